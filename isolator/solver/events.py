@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from isolator.solver.segments import ramp_state
+from isolator.solver.segments import segment_state
 
 BREAKAWAY = 0  #: stuck → sliding
 STICK = 1  #: sliding → stuck (a stop the static friction holds)
@@ -30,7 +30,7 @@ _MAX_ITERATIONS = 200
 
 
 @njit(cache=True)
-def ramp_root(which, sign, lo, hi, x0, v0, p, q, c, kappa):
+def segment_root(which, sign, lo, hi, x0, v0, p, q, force, theta0, c, kappa, omega):
     """Root of the velocity (which=0), the acceleration (1) or κV + cA (2) of a slip piece.
 
     The bracket ``[lo, hi]`` must hold exactly one sign change of ``sign·f`` from
@@ -42,23 +42,23 @@ def ramp_root(which, sign, lo, hi, x0, v0, p, q, c, kappa):
         0: root of V(τ); 1: root of the relative acceleration A(τ); 2: root of
         κV + cA, where the transmitted acceleration is extremal.
     sign : float
-        +1 or -1: the sign that ``f`` has at ``lo``.
+        +1 or -1: the sign that ``f`` has just after ``lo``.
     lo, hi : float
         Bracket in local time [s].
-    x0, v0, p, q, c, kappa : float
-        The slip piece (see :func:`isolator.solver.segments.ramp_state`).
+    x0, v0, p, q, force, theta0, c, kappa, omega : float
+        The slip piece (see :func:`isolator.solver.segments.segment_state`).
 
     Returns
     -------
     float
-        The root τ* [s], to a few ulps.
+        The root τ* [s]; for the velocity, the end of the final bracket where
+        ``sign·V <= 0`` (so that a stop is never declared before it happens).
     """
     a = lo
     b = hi
     t = 0.5 * (a + b)
     for _ in range(_MAX_ITERATIONS):
-        x, v, acc = ramp_state(t, x0, v0, p, q, c, kappa)
-        jerk = q - c * acc - kappa * v  # A' = q - c A - κ V
+        x, v, acc, jerk = segment_state(t, x0, v0, p, q, force, theta0, c, kappa, omega)
         if which == 0:
             f = sign * v
             df = sign * acc

@@ -26,8 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, breakaway_time, ramp_root
-from isolator.solver.segments import ramp_basis, ramp_state
+from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, breakaway_time, segment_root
+from isolator.solver.segments import ramp_basis, segment_state
 
 #: Safety net against stick–slip chatter: events allowed in one sample interval.
 MAX_EVENTS_PER_INTERVAL = 1000
@@ -104,7 +104,7 @@ def _viscous_integral(tau, x0, v0, p, q, c, kappa):
     # ∫₀^τ V² dτ by Gauss–Legendre on the exact velocity (partial pieces only)
     total = 0.0
     for k in range(GL_NODES.shape[0]):
-        _, v, _ = ramp_state(tau * GL_NODES[k], x0, v0, p, q, c, kappa)
+        _, v, _, _ = segment_state(tau * GL_NODES[k], x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)
         total += GL_WEIGHTS[k] * v * v
     return total * tau
 
@@ -225,22 +225,22 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 if s * v1 <= 0.0:
                     if from_rest:
                         # s·V rises first, so the stop lies after its maximum
-                        t_max = ramp_root(1, s, 0.0, rem, x, v, p, q, c, kappa)
-                        _, v_max, _ = ramp_state(t_max, x, v, p, q, c, kappa)
+                        t_max = segment_root(1, s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                        _, v_max, _, _ = segment_state(t_max, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                         if abs(v_max) > peak_v:
                             peak_v = abs(v_max)
                         if s * v_max > 0.0:
-                            t_stop = ramp_root(0, s, t_max, rem, x, v, p, q, c, kappa)
+                            t_stop = segment_root(0, s, t_max, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                         else:
                             t_stop = t_max
                     else:
-                        t_stop = ramp_root(0, s, 0.0, rem, x, v, p, q, c, kappa)
+                        t_stop = segment_root(0, s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                 elif s * acc0 < 0.0 and s * acc1 > 0.0:
                     # s·V has an interior minimum: does it reach zero?
-                    t_min = ramp_root(1, -s, 0.0, rem, x, v, p, q, c, kappa)
-                    _, v_min, _ = ramp_state(t_min, x, v, p, q, c, kappa)
+                    t_min = segment_root(1, -s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                    _, v_min, _, _ = segment_state(t_min, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                     if s * v_min <= 0.0:
-                        t_stop = ramp_root(0, s, 0.0, t_min, x, v, p, q, c, kappa)
+                        t_stop = segment_root(0, s, 0.0, t_min, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                 if t_stop < 0.0:
                     # the block slides through to the end of the piece
                     if exact_start or tau > 0.0:
@@ -265,8 +265,8 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     # interior extremum of the velocity (A changes sign)
                     if acc0 * acc1 < 0.0:
                         sg = 1.0 if acc0 > 0.0 else -1.0
-                        t_e = ramp_root(1, sg, 0.0, rem, x, v, p, q, c, kappa)
-                        _, v_e, _ = ramp_state(t_e, x, v, p, q, c, kappa)
+                        t_e = segment_root(1, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                        _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                         if abs(v_e) > peak_v:
                             peak_v = abs(v_e)
                     # interior extremum of the absolute acceleration -µk g s - κX - cV
@@ -275,8 +275,8 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                         d1 = kappa * v1 + c * acc1
                         if d0 * d1 < 0.0:
                             sg = 1.0 if d0 > 0.0 else -1.0
-                            t_e = ramp_root(2, sg, 0.0, rem, x, v, p, q, c, kappa)
-                            x_e, v_e, _ = ramp_state(t_e, x, v, p, q, c, kappa)
+                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                            x_e, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                             a_e = abs(mu_k_g * s + kappa * x_e + c * v_e)
                             if a_e > peak_a:
                                 peak_a = a_e
@@ -294,7 +294,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                         peak_a = a_abs
                     break
                 # ---- the block stops at tau + t_stop ----
-                x_s, v_s, acc_s = ramp_state(t_stop, x, v, p, q, c, kappa)
+                x_s, v_s, acc_s, _ = segment_state(t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                 _, e1s, h1s, h2s, h3s = ramp_basis(t_stop, c, kappa)
                 int_x = e1s * x + h1s * (v - 2.0 * m * x) + p * h2s + q * h3s
                 e_in -= a_start * (x_s - x) + b * (t_stop * x_s - int_x)
@@ -303,8 +303,8 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     e_v += c * _viscous_integral(t_stop, x, v, p, q, c, kappa)
                 if (not from_rest) and acc0 * acc_s < 0.0:
                     sg = 1.0 if acc0 > 0.0 else -1.0
-                    t_e = ramp_root(1, sg, 0.0, t_stop, x, v, p, q, c, kappa)
-                    _, v_e, _ = ramp_state(t_e, x, v, p, q, c, kappa)
+                    t_e = segment_root(1, sg, 0.0, t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                    _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                     if abs(v_e) > peak_v:
                         peak_v = abs(v_e)
                 slip_time += t_stop

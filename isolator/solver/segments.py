@@ -248,35 +248,6 @@ def ramp_basis(tau, c, kappa):
     return e0, e1, h1, h2, h3
 
 
-@njit(cache=True)
-def ramp_state(tau, x0, v0, p, q, c, kappa):
-    """State after a slip segment of length τ under forcing u = p + q τ.
-
-    Parameters
-    ----------
-    tau : float
-        Segment length [s].
-    x0, v0 : float
-        Displacement [m] and velocity [m/s] at the start of the segment.
-    p, q : float
-        Forcing per unit mass at τ = 0 [m/s²] and its slope [m/s³].
-    c, kappa : float
-        Damping [1/s] and stiffness [1/s²] per unit mass.
-
-    Returns
-    -------
-    tuple of float
-        ``(x, v, a)``: displacement [m], velocity [m/s] and relative acceleration
-        [m/s²] at τ.
-    """
-    e0, e1, h1, h2, _ = ramp_basis(tau, c, kappa)
-    m = -0.5 * c
-    x = e0 * x0 + e1 * (v0 - m * x0) + p * h1 + q * h2
-    v = e0 * v0 + e1 * (m * v0 - kappa * x0 + p) + q * h1
-    a = p + q * tau - c * v - kappa * x
-    return x, v, a
-
-
 # ---------------------------------------------------------------------------
 # Harmonic forcing: H1 for the complex shift μ = m - iω
 # ---------------------------------------------------------------------------
@@ -370,36 +341,49 @@ def harmonic_h1(tau, c, kappa, omega):
 
 
 @njit(cache=True)
-def harmonic_state(tau, x0, v0, p, force, theta0, c, kappa, omega):
-    """State after a slip segment under u = p + force·cos(θ0 + ωτ).
+def segment_state(tau, x0, v0, p, q, force, theta0, c, kappa, omega):
+    """State after a slip segment of length τ under u = p + q τ + F cos(θ0 + ωτ).
+
+    Records use the ramp (``force = 0``); the paper's harmonic case uses ``q = 0``,
+    ``force = -ω²`` (Eq. 2).  Both are the same closed form.
 
     Parameters
     ----------
     tau : float
-        Local time [-].
+        Local time since the start of the segment [s] (or dimensionless).
     x0, v0 : float
-        Displacement and velocity at τ = 0 [-].
-    p : float
-        Constant forcing (the kinetic friction, -µk s) [-].
-    force : float
-        Amplitude of the harmonic forcing (-ω² in Eq. 2) [-].
-    theta0 : float
-        Phase of the forcing at τ = 0 [rad].
-    c, kappa, omega : float
-        η, k and ω of Eq. 2.
+        Displacement [m] and velocity [m/s] at τ = 0.
+    p, q : float
+        Constant part of the forcing per unit mass [m/s²] (ground acceleration plus
+        kinetic friction, with their signs) and its slope [m/s³].
+    force, theta0, omega : float
+        Amplitude [m/s²], phase at τ = 0 [rad] and frequency [rad/s] of a harmonic
+        part of the forcing (``force = 0`` for none).
+    c, kappa : float
+        Damping [1/s] and stiffness [1/s²] per unit mass.
 
     Returns
     -------
     tuple of float
-        ``(x, v, a)`` at τ.
+        ``(x, v, a, j)``: displacement, velocity, relative acceleration and its rate
+        (the jerk) at τ.
     """
-    e0, e1, h1, _, _ = ramp_basis(tau, c, kappa)
+    e0, e1, h1, h2, _ = ramp_basis(tau, c, kappa)
     m = -0.5 * c
-    hc = harmonic_h1(tau, c, kappa, omega)
-    phase = theta0 + omega * tau
-    rot = complex(math.cos(phase), math.sin(phase))  # e^{i(θ0 + ωτ)}
-    x = e0 * x0 + e1 * (v0 - m * x0) + p * h1 + force * (rot * hc).real
-    v = (e0 * v0 + e1 * (m * v0 - kappa * x0 + p)
-         + force * ((1j * omega) * rot * hc).real + force * math.cos(theta0) * e1)
-    a = p + force * math.cos(phase) - c * v - kappa * x
-    return x, v, a
+    x = e0 * x0 + e1 * (v0 - m * x0) + p * h1 + q * h2
+    v = e0 * v0 + e1 * (m * v0 - kappa * x0 + p) + q * h1
+    u = p + q * tau
+    du = q
+    if force != 0.0:
+        hc = harmonic_h1(tau, c, kappa, omega)
+        phase = theta0 + omega * tau
+        cos_phase = math.cos(phase)
+        sin_phase = math.sin(phase)
+        rot_hc = complex(cos_phase, sin_phase) * hc  # e^{i(θ0 + ωτ)} H1μ
+        x += force * rot_hc.real
+        v += force * (-omega * rot_hc.imag + math.cos(theta0) * e1)
+        u += force * cos_phase
+        du -= force * omega * sin_phase
+    a = u - c * v - kappa * x
+    jerk = du - c * a - kappa * v
+    return x, v, a, jerk
