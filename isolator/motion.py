@@ -43,6 +43,10 @@ UNNAMED_COMPONENT = "unnamed"  # label of the one component of a file that names
 _SAC_NOT_ACCELERATION = {6: "displacement (IDISP)", 7: "velocity (IVEL)"}
 
 
+_FORMAT_NAMES = {"PEER_AT2": "PEER AT2", "ISOLATOR_TEXT": "plain text", "CSMIP_V2": "CSMIP V2",
+                 "USGS_SMC": "USGS SMC"}
+
+
 class RecordError(ValueError):
     """A record that cannot be turned into a ground motion; the message is one line naming the file."""
 
@@ -669,7 +673,7 @@ def _read_stream(path: Path, dt_s: float | None):
             raise
         except Exception as err:  # obspy's readers raise many types for damaged files
             reason = _one_line(err) or type(err).__name__
-            where = f"as {fmt}" if fmt else "with obspy"
+            where = f"as {_FORMAT_NAMES.get(fmt, fmt)}" if fmt else "with obspy"
             raise _fail(path, f"cannot be read {where}: {reason}") from None
 
 
