@@ -1,0 +1,364 @@
+"""The compiled record loop: exact stick–slip response to a piecewise-linear record.
+
+Pure arrays in, arrays out, no objects, so that numba compiles it (cached on disk)
+and dask can ship it.
+
+Why no stop is ever missed.  Inside a slip piece the forcing is ``p + q τ``, so the
+relative acceleration ``A = X''`` obeys the *homogeneous* equation
+``A'' + c A' + κ A = 0``.  A homogeneous solution has at most one zero on any
+interval shorter than half its damped period ``π/ω_d`` (and at most one zero at all
+when over- or critically damped).  Pieces are therefore at most ``π/(2 ω_d)`` long
+(the sample interval is split into ``n_sub`` equal sub-steps when the system is
+stiffer than the sampling), so the velocity is *unimodal* on every piece: it has at
+most one interior extremum, found as the root of ``A`` when ``A`` changes sign.
+Checking the velocity at the end of the piece and at that extremum decides, with no
+tolerance, whether the block stops inside the piece, and gives a bracket holding
+exactly one root.
+
+Stick phases are fast-forwarded sample by sample: while the two ends of a sample
+interval satisfy ``|κ X + a_g| <= µs g`` the whole (linear) interval does.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, breakaway_time, ramp_root
+from isolator.solver.segments import ramp_basis, ramp_state
+
+#: Safety net against stick–slip chatter: events allowed in one sample interval.
+MAX_EVENTS_PER_INTERVAL = 1000
+
+# status bits returned in summary[SUMMARY_STATUS]
+STATUS_OK = 0
+STATUS_CHATTER = 1  #: the chatter guard held the block for the rest of an interval
+STATUS_EVENTS_TRUNCATED = 2  #: more events than the event arrays could hold
+
+# layout of the summary vector
+SUMMARY_PEAK_DISPLACEMENT = 0
+SUMMARY_PEAK_VELOCITY = 1
+SUMMARY_PEAK_ABS_ACCELERATION = 2
+SUMMARY_SLIP_TIME = 3
+SUMMARY_ENERGY_INPUT = 4
+SUMMARY_ENERGY_FRICTION = 5
+SUMMARY_ENERGY_VISCOUS = 6
+SUMMARY_N_EVENTS = 7
+SUMMARY_STATUS = 8
+SUMMARY_SIZE = 9
+
+# 6-point Gauss–Legendre on [0, 1] for the viscous energy of partial pieces
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(6)
+GL_NODES = 0.5 * (_GL_X + 1.0)
+GL_WEIGHTS = 0.5 * _GL_W
+
+
+def substeps_per_interval(dt_s: float, damping_per_mass: float, stiffness_per_mass: float) -> int:
+    """Sub-steps per sample interval so that each piece is ≤ π/(2 ω_d).
+
+    Parameters
+    ----------
+    dt_s : float
+        Sample interval [s].
+    damping_per_mass, stiffness_per_mass : float
+        c = γ/M [1/s] and κ = K/M [1/s²].
+
+    Returns
+    -------
+    int
+        1 for every realistic isolator (ω_d dt ≪ 1); more for very stiff systems.
+    """
+    d2 = 0.25 * damping_per_mass ** 2 - stiffness_per_mass
+    if d2 >= 0.0:
+        return 1  # A has at most one zero on the whole line
+    omega_d = math.sqrt(-d2)
+    return max(1, math.ceil(dt_s * omega_d / (0.5 * math.pi)))
+
+
+def full_step_coefficients(h_s: float, damping_per_mass: float, stiffness_per_mass: float):
+    """Basis functions and Gram matrix of a full sub-step, computed once per run.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``basis`` = (E0, E1, H1, H2, H3) at h, and ``gram`` (3×3) = ∫₀ʰ B_i B_j dτ for
+        B = (E0, E1, H1), the functions the velocity is made of.
+    """
+    basis = np.array(ramp_basis(h_s, damping_per_mass, stiffness_per_mass))
+    # Gram matrix by 12-point Gauss–Legendre: the integrands are entire and the
+    # piece is short compared with every time scale, so this is exact to rounding.
+    nodes, weights = np.polynomial.legendre.leggauss(12)
+    gram = np.zeros((3, 3))
+    for x_node, w_node in zip(nodes, weights):
+        tau = 0.5 * h_s * (x_node + 1.0)
+        e0, e1, h1, _, _ = ramp_basis(tau, damping_per_mass, stiffness_per_mass)
+        b = np.array([e0, e1, h1])
+        gram += 0.5 * h_s * w_node * np.outer(b, b)
+    return basis, gram
+
+
+@njit(cache=True)
+def _viscous_integral(tau, x0, v0, p, q, c, kappa):
+    # ∫₀^τ V² dτ by Gauss–Legendre on the exact velocity (partial pieces only)
+    total = 0.0
+    for k in range(GL_NODES.shape[0]):
+        _, v, _ = ramp_state(tau * GL_NODES[k], x0, v0, p, q, c, kappa)
+        total += GL_WEIGHTS[k] * v * v
+    return total * tau
+
+
+@njit(cache=True)
+def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
+                  out_x, out_v, out_a, ev_time, ev_kind, ev_x, summary):
+    """Exact response of the friction–spring–dashpot block to a sampled record.
+
+    Parameters
+    ----------
+    acc : float64[n]
+        Ground acceleration samples [m/s²], linear between samples.
+    dt : float
+        Sample interval [s].
+    n_sub : int
+        Sub-steps per interval (:func:`substeps_per_interval`).
+    c, kappa : float
+        Damping [1/s] and stiffness [1/s²] per unit mass.
+    mu_s_g, mu_k_g : float
+        Static and kinetic friction per unit mass, µs g and µk g [m/s²].
+    full_basis, gram : float64 arrays
+        From :func:`full_step_coefficients` for h = dt / n_sub.
+    out_x, out_v, out_a : float64[n]
+        Filled with the relative displacement [m], relative velocity [m/s] and
+        absolute acceleration of the mass [m/s²] at the samples.
+    ev_time, ev_kind, ev_x : arrays
+        Filled with the events (time [s], kind, displacement [m]) while room lasts.
+    summary : float64[SUMMARY_SIZE]
+        Filled with the peaks, slip time, energies (J/kg), event count and status.
+    """
+    n = acc.shape[0]
+    h = dt / n_sub
+    m = -0.5 * c
+    cap = ev_time.shape[0]
+    x = 0.0
+    v = 0.0
+    stuck = True
+    s = 0.0
+    from_rest = False  # the current slip piece starts with V = 0
+    exact_start = False  # ... and at a break-away, where the net force is known exactly
+    n_ev = 0
+    status = 0
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_a = abs(acc[0])
+    slip_time = 0.0
+    e_in = 0.0
+    e_f = 0.0
+    e_v = 0.0
+    out_x[0] = 0.0
+    out_v[0] = 0.0
+    out_a[0] = acc[0]
+    i = 0
+    while i < n - 1:
+        if stuck:
+            # fast-forward through whole sample intervals that stay stuck
+            lo = -mu_s_g - kappa * x
+            hi = mu_s_g - kappa * x
+            while i < n - 1 and lo <= acc[i + 1] <= hi:
+                i += 1
+                out_x[i] = x
+                out_v[i] = 0.0
+                out_a[i] = acc[i]
+                if abs(acc[i]) > peak_a:
+                    peak_a = abs(acc[i])
+            if i >= n - 1:
+                break
+        a0 = acc[i]
+        b = (acc[i + 1] - a0) / dt
+        q = -b
+        events_here = 0
+        for jsub in range(n_sub):
+            a_sub = a0 + b * (jsub * h)
+            t_sub = i * dt + jsub * h
+            tau = 0.0
+            while tau < h:
+                if stuck:
+                    tb, direction = breakaway_time(x, a_sub, b, tau, h, kappa, mu_s_g)
+                    if tb < 0.0:
+                        break  # stuck to the end of the sub-step
+                    stuck = False
+                    s = float(direction)
+                    tau = tb
+                    from_rest = True
+                    exact_start = True
+                    if n_ev < cap:
+                        ev_time[n_ev] = t_sub + tb
+                        ev_kind[n_ev] = BREAKAWAY
+                        ev_x[n_ev] = x
+                    n_ev += 1
+                    jump = abs(mu_k_g * s + kappa * x)
+                    if jump > peak_a:
+                        peak_a = jump
+                    if tau >= h:
+                        break
+                # ---- sliding in direction s from local time tau ----
+                rem = h - tau
+                a_start = a_sub + b * tau
+                if exact_start:
+                    # at break-away the net force is exactly s (µs - µk) g
+                    p = kappa * x + s * (mu_s_g - mu_k_g)
+                else:
+                    p = -(a_start + mu_k_g * s)
+                if tau == 0.0 and not exact_start:
+                    e0 = full_basis[0]
+                    e1 = full_basis[1]
+                    h1 = full_basis[2]
+                    h2 = full_basis[3]
+                    h3 = full_basis[4]
+                else:
+                    e0, e1, h1, h2, h3 = ramp_basis(rem, c, kappa)
+                x1 = e0 * x + e1 * (v - m * x) + p * h1 + q * h2
+                v1 = e0 * v + e1 * (m * v - kappa * x + p) + q * h1
+                acc0 = p - kappa * x - c * v
+                acc1 = p + q * rem - kappa * x1 - c * v1
+                t_stop = -1.0
+                if s * v1 <= 0.0:
+                    if from_rest:
+                        # s·V rises first, so the stop lies after its maximum
+                        t_max = ramp_root(1, s, 0.0, rem, x, v, p, q, c, kappa)
+                        _, v_max, _ = ramp_state(t_max, x, v, p, q, c, kappa)
+                        if abs(v_max) > peak_v:
+                            peak_v = abs(v_max)
+                        if s * v_max > 0.0:
+                            t_stop = ramp_root(0, s, t_max, rem, x, v, p, q, c, kappa)
+                        else:
+                            t_stop = t_max
+                    else:
+                        t_stop = ramp_root(0, s, 0.0, rem, x, v, p, q, c, kappa)
+                elif s * acc0 < 0.0 and s * acc1 > 0.0:
+                    # s·V has an interior minimum: does it reach zero?
+                    t_min = ramp_root(1, -s, 0.0, rem, x, v, p, q, c, kappa)
+                    _, v_min, _ = ramp_state(t_min, x, v, p, q, c, kappa)
+                    if s * v_min <= 0.0:
+                        t_stop = ramp_root(0, s, 0.0, t_min, x, v, p, q, c, kappa)
+                if t_stop < 0.0:
+                    # the block slides through to the end of the piece
+                    if exact_start or tau > 0.0:
+                        int_x = e1 * x + h1 * (v - 2.0 * m * x) + p * h2 + q * h3
+                        int_v2 = _viscous_integral(rem, x, v, p, q, c, kappa) if c > 0.0 else 0.0
+                    else:
+                        int_x = e1 * x + h1 * (v - 2.0 * m * x) + p * h2 + q * h3
+                        if c > 0.0:
+                            beta0 = v
+                            beta1 = m * v - kappa * x + p
+                            beta2 = q
+                            int_v2 = (gram[0, 0] * beta0 * beta0 + gram[1, 1] * beta1 * beta1
+                                      + gram[2, 2] * beta2 * beta2
+                                      + 2.0 * (gram[0, 1] * beta0 * beta1 + gram[0, 2] * beta0 * beta2
+                                               + gram[1, 2] * beta1 * beta2))
+                        else:
+                            int_v2 = 0.0
+                    e_in -= a_start * (x1 - x) + b * (rem * x1 - int_x)
+                    e_f += mu_k_g * abs(x1 - x)
+                    e_v += c * int_v2
+                    slip_time += rem
+                    # interior extremum of the velocity (A changes sign)
+                    if acc0 * acc1 < 0.0:
+                        sg = 1.0 if acc0 > 0.0 else -1.0
+                        t_e = ramp_root(1, sg, 0.0, rem, x, v, p, q, c, kappa)
+                        _, v_e, _ = ramp_state(t_e, x, v, p, q, c, kappa)
+                        if abs(v_e) > peak_v:
+                            peak_v = abs(v_e)
+                    # interior extremum of the absolute acceleration -µk g s - κX - cV
+                    if c > 0.0:
+                        d0 = kappa * v + c * acc0
+                        d1 = kappa * v1 + c * acc1
+                        if d0 * d1 < 0.0:
+                            sg = 1.0 if d0 > 0.0 else -1.0
+                            t_e = ramp_root(2, sg, 0.0, rem, x, v, p, q, c, kappa)
+                            x_e, v_e, _ = ramp_state(t_e, x, v, p, q, c, kappa)
+                            a_e = abs(mu_k_g * s + kappa * x_e + c * v_e)
+                            if a_e > peak_a:
+                                peak_a = a_e
+                    x = x1
+                    v = v1
+                    tau = h
+                    from_rest = False
+                    exact_start = False
+                    if abs(x) > peak_x:
+                        peak_x = abs(x)
+                    if abs(v) > peak_v:
+                        peak_v = abs(v)
+                    a_abs = abs(mu_k_g * s + kappa * x + c * v)
+                    if a_abs > peak_a:
+                        peak_a = a_abs
+                    break
+                # ---- the block stops at tau + t_stop ----
+                x_s, v_s, acc_s = ramp_state(t_stop, x, v, p, q, c, kappa)
+                _, e1s, h1s, h2s, h3s = ramp_basis(t_stop, c, kappa)
+                int_x = e1s * x + h1s * (v - 2.0 * m * x) + p * h2s + q * h3s
+                e_in -= a_start * (x_s - x) + b * (t_stop * x_s - int_x)
+                e_f += mu_k_g * abs(x_s - x)
+                if c > 0.0:
+                    e_v += c * _viscous_integral(t_stop, x, v, p, q, c, kappa)
+                if (not from_rest) and acc0 * acc_s < 0.0:
+                    sg = 1.0 if acc0 > 0.0 else -1.0
+                    t_e = ramp_root(1, sg, 0.0, t_stop, x, v, p, q, c, kappa)
+                    _, v_e, _ = ramp_state(t_e, x, v, p, q, c, kappa)
+                    if abs(v_e) > peak_v:
+                        peak_v = abs(v_e)
+                slip_time += t_stop
+                tau += t_stop
+                x = x_s
+                v = 0.0
+                from_rest = False
+                exact_start = False
+                if abs(x) > peak_x:
+                    peak_x = abs(x)
+                a_slide = abs(mu_k_g * s + kappa * x)
+                if a_slide > peak_a:
+                    peak_a = a_slide
+                force = kappa * x + a_sub + b * tau
+                if abs(force) <= mu_s_g:
+                    stuck = True
+                    kind = STICK
+                    if abs(a_sub + b * tau) > peak_a:
+                        peak_a = abs(a_sub + b * tau)
+                else:
+                    s = -1.0 if force > 0.0 else 1.0
+                    from_rest = True
+                    kind = REVERSAL
+                if n_ev < cap:
+                    ev_time[n_ev] = t_sub + tau
+                    ev_kind[n_ev] = kind
+                    ev_x[n_ev] = x
+                n_ev += 1
+                events_here += 1
+                if events_here > MAX_EVENTS_PER_INTERVAL:
+                    # chatter guard: let the static friction hold to the end of the interval
+                    status |= STATUS_CHATTER
+                    stuck = True
+                    v = 0.0
+                    break
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                break
+        i += 1
+        out_x[i] = x
+        out_v[i] = v
+        if stuck:
+            out_a[i] = acc[i]
+        else:
+            out_a[i] = -(mu_k_g * s + kappa * x + c * v)
+        if abs(out_a[i]) > peak_a:
+            peak_a = abs(out_a[i])
+    if n_ev > cap:
+        status |= STATUS_EVENTS_TRUNCATED
+    summary[SUMMARY_PEAK_DISPLACEMENT] = peak_x
+    summary[SUMMARY_PEAK_VELOCITY] = peak_v
+    summary[SUMMARY_PEAK_ABS_ACCELERATION] = peak_a
+    summary[SUMMARY_SLIP_TIME] = slip_time
+    summary[SUMMARY_ENERGY_INPUT] = e_in
+    summary[SUMMARY_ENERGY_FRICTION] = e_f
+    summary[SUMMARY_ENERGY_VISCOUS] = e_v
+    summary[SUMMARY_N_EVENTS] = n_ev
+    summary[SUMMARY_STATUS] = status
