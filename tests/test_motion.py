@@ -348,3 +348,69 @@ def test_two_million_sample_text_reads_fast(tmp_path):
     motion = read_ground_motion(path, units="g", dt_s=0.01)
     assert time.perf_counter() - start < READ_LIMIT_S
     assert motion.npts == npts
+
+
+def test_counts_with_stationxml_response(tmp_path):
+    from obspy import Trace, UTCDateTime
+    from obspy.core.inventory import Channel, Inventory, Network, Response, Station
+
+    start = UTCDateTime(2020, 1, 1)
+    response = Response.from_paz(zeros=[], poles=[], stage_gain=1e6, stage_gain_frequency=1.0,
+                                 input_units="M/S**2", output_units="COUNTS")  # flat: 1e6 counts per m/s²
+    channel = Channel(code="HNZ", location_code="", latitude=0, longitude=0, elevation=0, depth=0,
+                      sample_rate=100, response=response, start_date=start - 86400)
+    station = Station(code="STA", latitude=0, longitude=0, elevation=0, channels=[channel], start_date=start - 86400)
+    inventory_path = tmp_path / "station.xml"
+    Inventory(networks=[Network(code="XX", stations=[station])], source="test").write(
+        str(inventory_path), format="STATIONXML")
+    acceleration = 0.5 * np.sin(2 * np.pi * 2 * np.arange(2000) * 0.01)
+    record = tmp_path / "counts.mseed"
+    Trace((acceleration * 1e6).astype(np.int32), header={"network": "XX", "station": "STA", "channel": "HNZ",
+                                                        "delta": 0.01, "starttime": start}).write(str(record))
+    motion = read_ground_motion(record, response=inventory_path)
+    assert motion.units_source == "instrument response (station.xml, output ACC)"
+    assert motion.processing[0]["step"] == "remove_response"
+    middle = slice(200, 1800)  # obspy tapers the ends before deconvolving
+    np.testing.assert_allclose(motion.acceleration_m_s2[middle], acceleration[middle], atol=1e-5)
+    with pytest.raises(RecordError, match="not both"):
+        read_ground_motion(record, response=inventory_path, units="g")
+    with pytest.raises(RecordError, match="cannot remove the instrument response"):
+        read_ground_motion(record, response=tmp_path / "missing.xml")
+
+
+_FUZZ_ALPHABET = "0123456789.-+eE ,;\t\n\r#NaNinfDTPS=abc*"
+
+
+@pytest.mark.parametrize(("base", "suffix"), [
+    (at2_text([0.01 * i for i in range(23)]), ".AT2"),
+    ("# t, a\n0,0.1\n0.01,0.2\n0.02,0.3\n0.03,0.1\n", ".csv"),
+])
+def test_damaged_files_never_escape_as_other_exceptions(tmp_path, base, suffix):
+    """Random edits of a valid file: either a GroundMotion or a one-line RecordError, nothing else."""
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    edits = st.lists(st.tuples(st.integers(0, len(base) - 1), st.sampled_from(["set", "insert", "delete"]),
+                               st.sampled_from(_FUZZ_ALPHABET)), min_size=1, max_size=6)
+
+    @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+    @given(edits=edits, cut=st.one_of(st.none(), st.integers(0, len(base))))
+    def check(edits, cut):
+        text = list(base)
+        for position, action, character in edits:
+            position = min(position, max(len(text) - 1, 0))
+            if action == "set" and text:
+                text[position] = character
+            elif action == "insert":
+                text.insert(position, character)
+            elif text:
+                del text[position]
+        path = tmp_path / f"fuzz{suffix}"
+        path.write_text("".join(text if cut is None else text[:cut]), newline="")
+        for options in ({}, {"units": "g"}):
+            try:
+                read_ground_motion(path, **options)
+            except RecordError as err:
+                assert "\n" not in str(err)
+
+    check()
