@@ -29,7 +29,7 @@ def _main() -> None:
 #: Help texts of the record options, shared by every command that reads a record.
 RECORD_HELP = {
     "component": "Component to read from a multi-component file: channel code (HNE), its last "
-    "letter (E), orientation (180, Up, NS) or trace id.",
+    "letter (E), orientation (180, Up, NS), axis letter (N, E, Z) or trace id.",
     "units": "Units of the values for formats that do not state them: g, m/s2, gal or cm/s2.",
     "merge": "Join segments of a channel that has gaps, filling gaps by linear interpolation "
     "(otherwise a gap is an error).",

@@ -686,10 +686,29 @@ def _plain_numeric(head: bytes) -> bool:
     return bool(lines) and _numeric_fields(lines[0]) in (1, 2)
 
 
+def _axis_letter(name: str) -> str:
+    """N, E or Z for an orientation name: azimuths on the N-S (0, 180, 360) or E-W (90, 270)
+    axis, K-NET's NS/EW/UD, Up/Down; "" otherwise."""
+    name = name.strip().upper()
+    if name in ("NS", "N-S"):
+        return "N"
+    if name in ("EW", "E-W"):
+        return "E"
+    if name in ("UD", "U-D", "UP", "DOWN", "VERT", "Z"):
+        return "Z"
+    try:
+        azimuth_deg = float(name)
+    except ValueError:
+        return ""
+    remainder = azimuth_deg % 180.0
+    return "N" if remainder == 0.0 else ("E" if remainder == 90.0 else "")
+
+
 def _matches(trace, wanted: str) -> bool:
     names = _component_names(trace)
     channel = names["channel"]
     candidates = {trace.id, channel, names["orientation"], _label(trace)}
+    candidates.add(_axis_letter(names["orientation"]) or _axis_letter(channel))
     if len(channel) == 3:
         candidates.add(channel[2])
     wanted = wanted.strip().lower()
@@ -927,7 +946,9 @@ def read_ground_motion(
         Record file: any obspy format, PEER AT2, CSMIP V2, USGS SMC or plain text [-].
     component : str, optional
         Channel code (``HNE``), its last letter (``E``), orientation (``180``, ``Up``,
-        ``NS``) or trace id; required when the file holds several components [-].
+        ``NS``), the axis letter of an orientation (``N`` for azimuth 0/180/360, ``E``
+        for 90/270, ``Z`` for Up/UD) or trace id; required when the file holds several
+        components [-].
     units : {"g", "m/s2", "gal", "cm/s2"}, optional
         Units of the values, for formats that do not state them; must agree with the
         file when it does [-].

@@ -103,8 +103,10 @@ def test_components_listed_picked_and_ambiguity_refused(records_dir):
     assert read_ground_motion(path, component="HN2").component == "HN2 (90)"
     assert read_ground_motion(path, component="z").component == "HNZ (Up)"
     assert read_ground_motion(path, component="180").components == ("HN1 (180)", "HN2 (90)", "HNZ (Up)")
-    with pytest.raises(RecordError, match=r"no component 'E' \(choices: HN1 \(180\)"):
-        read_ground_motion(path, component="E")
+    assert read_ground_motion(path, component="E").component == "HN2 (90)"  # azimuth 90: E-W axis
+    assert read_ground_motion(path, component="n").component == "HN1 (180)"  # azimuth 180: N-S axis
+    with pytest.raises(RecordError, match=r"no component 'HNE' \(choices: HN1 \(180\)"):
+        read_ground_motion(path, component="HNE")
 
 
 def _three_component_mseed(path, channels=("HNE", "HNN", "HNZ"), dtype=np.float64):
