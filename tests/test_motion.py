@@ -395,7 +395,7 @@ def test_damaged_files_never_escape_as_other_exceptions(tmp_path, base, suffix):
     edits = st.lists(st.tuples(st.integers(0, len(base) - 1), st.sampled_from(["set", "insert", "delete"]),
                                st.sampled_from(_FUZZ_ALPHABET)), min_size=1, max_size=6)
 
-    @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+    @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
     @given(edits=edits, cut=st.one_of(st.none(), st.integers(0, len(base))))
     def check(edits, cut):
         text = list(base)

@@ -45,6 +45,7 @@ _NPTS_DT_RE = re.compile(rf"NPTS\s*=\s*([-+]?\d+)\s*,?\s*DT\s*=\s*({_FLOAT})", r
 _NPTS_DT_REVERSED_RE = re.compile(rf"^\s*([-+]?\d+)\s+({_FLOAT})\s+NPTS\s*,\s*DT\b", re.IGNORECASE)
 _UNITS_G_RE = re.compile(r"UNITS\s+OF\s+G\b|\(\s*G\s*\)|\bIN\s+G\b|UNITS\s+ARE\s+\(?G\b", re.IGNORECASE)
 _NOT_ACCELERATION_RE = re.compile(r"\b(VELOCITY|DISPLACEMENT)\b.*\b(TIME|UNITS)\b", re.IGNORECASE)
+_UNITS_STATED_RE = re.compile(r"UNITS\s+OF\s+([^\s,]+)", re.IGNORECASE)
 _TRAILER_RE = re.compile(r"^\s*(\*|END\b)", re.IGNORECASE)
 
 
@@ -206,6 +207,9 @@ def _read_at2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
         header_text = "\n".join(header[:-1])
         if _NOT_ACCELERATION_RE.search(header_text) and not re.search("ACCELERATION", header_text, re.I):
             raise ValueError("PEER file holds velocity or displacement, not acceleration")
+        stated = _UNITS_STATED_RE.search(header_text)
+        if stated and stated.group(1).upper().rstrip(".,") not in ("G", "G'S"):
+            raise ValueError(f"header states units {stated.group(1)!r}; a PEER AT2 file is in g")
         if not dt_s > 0:
             raise ValueError(f"header DT={dt_s:g} s is not positive")
         if npts < 1:

@@ -97,6 +97,8 @@ def test_headonly(tmp_path):
         ("PEER NGA\nno npts here\n", "no 'NPTS=…, DT=…' line"),
         ("PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000, S, 0\nVELOCITY TIME SERIES IN UNITS OF CM/S\n"
          "NPTS=   2  DT=   .0100 SEC,\n .1 .2\n", "velocity or displacement"),
+        ("PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000, S, 0\nACCELERATION TIME SERIES IN UNITS OF CM/S/S\n"
+         "NPTS=   2  DT=   .0100 SEC,\n .1 .2\n", "header states units 'CM/S/S'"),
     ],
 )
 def test_malformed_at2_raises_one_line_value_error(tmp_path, text, message):
