@@ -118,3 +118,18 @@ def test_detector_rejects_binary_and_plain_text(tmp_path):
     assert not _is_at2(binary)
     assert not _is_at2(plain)
     assert not _is_at2(tmp_path / "missing.AT2")
+
+
+def test_entry_points_registered_and_obspy_autodetects(tmp_path):
+    """After installation obspy itself reads AT2 (no shared records needed)."""
+    from importlib.metadata import entry_points
+
+    names = {ep.name for ep in entry_points(group="obspy.plugin.waveform")}
+    assert {"PEER_AT2", "CSMIP_V2", "USGS_SMC", "ISOLATOR_TEXT"} <= names
+    functions = {ep.name: ep.value for ep in entry_points(group="obspy.plugin.waveform.PEER_AT2")}
+    assert functions == {"isFormat": "isolator.io.at2:_is_at2", "readFormat": "isolator.io.at2:_read_at2"}
+    path = tmp_path / "RSN0_SYNTH.AT2"
+    path.write_text(at2_text([0.1, -0.2, 0.3, 0.05, 0.0, -0.01, 0.02]))
+    stream = obspy.read(str(path))
+    assert stream[0].stats._format == "PEER_AT2"
+    np.testing.assert_allclose(stream[0].data, [0.1, -0.2, 0.3, 0.05, 0.0, -0.01, 0.02], rtol=1e-7)
