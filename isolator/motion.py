@@ -366,7 +366,7 @@ def _label(trace) -> str:
     return channel or orientation or UNNAMED_COMPONENT
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # compared and hashed by identity: it wraps a mutable Trace
 class GroundMotion:
     """A ground acceleration history in m/s² around one obspy :class:`~obspy.Trace`.
 
@@ -382,20 +382,20 @@ class GroundMotion:
         Where the units came from, e.g. ``"file header (AT2: g)"``, ``"--units g"`` [-].
     provenance : dict
         Path, format, network/station/channel, component, event and date when known [-].
-    processing : tuple of dict
+    processing : list of dict
         Steps applied since reading, in order, each ``{"step": name, …parameters}`` [-].
     component : str
         The component read, as listed by :func:`list_components` [-].
-    components : tuple of str
+    components : list of str
         All components the source file holds [-].
     """
 
     trace: Any
     units_source: str
     provenance: dict = field(default_factory=dict)
-    processing: tuple = ()
+    processing: list = field(default_factory=list)
     component: str = ""
-    components: tuple = ()
+    components: list = field(default_factory=list)
 
     # ---- construction --------------------------------------------------------------
 
@@ -441,13 +441,13 @@ class GroundMotion:
         trace.stats.delta = float(dt_s)
         trace.stats.units = "m/s2"
         return cls(trace=trace, units_source=units_source, provenance={"format": "array", **(provenance or {})},
-                   component=component, components=(component,) if component else ())
+                   component=component, components=[component] if component else [])
 
     def _derived(self, trace, step: dict) -> GroundMotion:
         trace.data = np.ascontiguousarray(trace.data, dtype=np.float64)
         return GroundMotion(trace=trace, units_source=self.units_source, provenance=self.provenance,
-                            processing=self.processing + (step,), component=self.component,
-                            components=self.components)
+                            processing=[*self.processing, step], component=self.component,
+                            components=list(self.components))
 
     # ---- data ----------------------------------------------------------------------
 
@@ -625,8 +625,8 @@ class GroundMotion:
         scaled = self.scaled(pga_m_s2 / current_m_s2)
         last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2))
         return GroundMotion(trace=scaled.trace, units_source=self.units_source, provenance=self.provenance,
-                            processing=self.processing + (last,), component=self.component,
-                            components=self.components)
+                            processing=[*self.processing, last], component=self.component,
+                            components=list(self.components))
 
 
 # --------------------------------------------------------------------------------------
@@ -985,7 +985,7 @@ def read_ground_motion(
     stream = _read_stream(path, dt_s)
     if len(stream) == 0:
         raise _fail(path, "holds no data")
-    components = tuple(_label(trace) for trace in stream)
+    components = [_label(trace) for trace in stream]
     steps = _check_gaps(path, stream, merge)
     trace = _select(path, stream, component)
     if np.ma.isMaskedArray(trace.data):
@@ -1006,11 +1006,12 @@ def read_ground_motion(
     result = trace.copy() if response is None else trace
     result.data = acceleration_m_s2
     result.stats.units = "m/s2"
+    result.stats.units_source = units_source
     return GroundMotion(
         trace=result,
         units_source=units_source,
         provenance=_provenance(path, trace, label),
-        processing=tuple(steps + unit_steps),
+        processing=steps + unit_steps,
         component=label,
         components=components,
     )

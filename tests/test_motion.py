@@ -77,7 +77,7 @@ def test_units_sources_and_provenance(records_dir):
     assert knet.provenance["station"] == "AOM008"
     at2 = read_ground_motion(records_dir / "at2/RSN1120_KOBE_TAK000.AT2")
     assert at2.provenance["event"] == "Kobe Japan" and at2.provenance["station"] == "Takatori"
-    assert at2.processing == ()
+    assert at2.processing == []
     text = read_ground_motion(records_dir / "other/elcentro.txt", units="g")
     assert text.units_source == "--units g"
     assert read_ground_motion(records_dir / "other/0111a.smc").units_source.startswith("file format (USGS SMC")
@@ -102,7 +102,7 @@ def test_components_listed_picked_and_ambiguity_refused(records_dir):
     assert "HN1 (180), HN2 (90), HNZ (Up)" in str(caught.value) and "--component" in str(caught.value)
     assert read_ground_motion(path, component="HN2").component == "HN2 (90)"
     assert read_ground_motion(path, component="z").component == "HNZ (Up)"
-    assert read_ground_motion(path, component="180").components == ("HN1 (180)", "HN2 (90)", "HNZ (Up)")
+    assert read_ground_motion(path, component="180").components == ["HN1 (180)", "HN2 (90)", "HNZ (Up)"]
     assert read_ground_motion(path, component="E").component == "HN2 (90)"  # azimuth 90: E-W axis
     assert read_ground_motion(path, component="n").component == "HN1 (180)"  # azimuth 180: N-S axis
     with pytest.raises(RecordError, match=r"no component 'HNE' \(choices: HN1 \(180\)"):
