@@ -640,6 +640,7 @@ def _read_stream(path: Path, dt_s: float | None):
 
     from isolator.io._common import looks_like_text, read_head
     from isolator.io.at2 import _is_at2
+    from isolator.io.text import _is_text
 
     head = read_head(path)
     if not head:
@@ -654,6 +655,8 @@ def _read_stream(path: Path, dt_s: float | None):
             if not looks_like_text(head):
                 raise _fail(path, "binary content: not a PEER AT2 text file")
             fmt = "PEER_AT2"  # let the AT2 reader say what is wrong
+        elif _is_text(path):
+            fmt = "ISOLATOR_TEXT"  # read it ourselves, so that --dt reaches the text reader
         try:
             if fmt is None:
                 try:
@@ -815,10 +818,10 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
         if not (math.isfinite(counts_factor) and counts_factor > 0):
             raise _fail(path, f"counts factor {counts_factor} is not a positive number")
         factor = counts_factor * _units_factor(path, units, "--units")
-        return stats_data(trace) * factor, f"--counts-factor {counts_factor:g} {units} per count", steps
+        return _as_float64(trace) * factor, f"--counts-factor {counts_factor:g} {units} per count", steps
     if fmt == "KNET":
         # obspy's K-NET reader turns the header's 'Scale Factor' (gal per count) into calib [m/s² per count]
-        data = stats_data(trace) * float(stats.calib)
+        data = _as_float64(trace) * float(stats.calib)
         steps.append({"step": "demean", "reason": "K-NET convention (NIED): counts × scale factor, minus the mean"})
         if units is not None and _units_factor(path, units, "--units") != 1.0:
             raise _fail(path, f"the K-NET scale factor gives m/s2 but --units says {units}")
@@ -831,7 +834,7 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
         factor = _units_factor(path, file_units, source)
         if units is not None and _units_factor(path, units, "--units") != factor:
             raise _fail(path, f"the file states {file_units} ({source}) but --units says {units}")
-        return stats_data(trace) * factor, source, steps
+        return _as_float64(trace) * factor, source, steps
     if units is None:
         kind = fmt or "this"
         raise _fail(path, f"{kind} file does not state its units; pass --units (g, m/s2, gal, cm/s2)")
@@ -839,10 +842,10 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
     if fmt in ("MSEED", "SAC", "GSE2", "SEISAN") and len(channel) == 3 and channel[1] in "HL":
         raise _fail(path, f"channel {channel} is a seismometer (velocity) channel; acceleration from it "
                           "needs the instrument response")
-    return stats_data(trace) * _units_factor(path, units, "--units"), f"--units {units}", steps
+    return _as_float64(trace) * _units_factor(path, units, "--units"), f"--units {units}", steps
 
 
-def stats_data(trace) -> np.ndarray:
+def _as_float64(trace) -> np.ndarray:
     """The trace's samples as float64 (a masked array is refused upstream)."""
     return np.asarray(trace.data, dtype=np.float64)
 

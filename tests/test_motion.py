@@ -165,6 +165,9 @@ def test_text_with_units_metadata_needs_no_option(tmp_path):
     motion = read_ground_motion(path)
     np.testing.assert_allclose(motion.acceleration_m_s2, [0.01, -0.02, 0.03])
     assert motion.units_source == "file header ('# units: gal')"
+    one_column = tmp_path / "meta_no_dt.dat"
+    one_column.write_text("# units: g\n0.1\n0.2\n0.3\n")
+    assert read_ground_motion(one_column, dt_s=0.005).dt_s == 0.005
 
 
 # --------------------------------------------------------------------------------------
