@@ -900,6 +900,11 @@ def _check_path(path: Path) -> None:
         raise _fail(path, "no such file")
     if path.is_dir():
         raise _fail(path, "is a directory, not a record file")
+    try:
+        with open(path, "rb") as handle:
+            handle.read(1)
+    except OSError as err:
+        raise _fail(path, f"cannot be opened: {err.strerror or err}") from None
     if path.stat().st_size == 0:
         raise _fail(path, "file is empty")
 
