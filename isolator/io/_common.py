@@ -1,0 +1,136 @@
+"""Helpers shared by the text-based record readers: opening, line reading, number parsing.
+
+Parsing is chunked (``CHUNK_LINES`` lines at a time) so that a record of millions of
+samples is read in bounded memory: only one chunk of text is held at a time besides the
+float64 result.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+from collections.abc import Iterator
+from typing import IO
+
+import numpy as np
+
+CHUNK_LINES = 65536  # lines parsed per numpy call; bounds the temporary text held in memory
+DETECT_BYTES = 8192  # bytes looked at by the format detectors
+
+# A floating-point number as written by Fortran formats (E, F, optionally D exponents).
+NUMBER_RE = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?")
+_ONLY_NUMBER_CHARS_RE = re.compile(r"^[\s0-9.EeDd+-]*$")
+
+
+def read_head(filename_or_buf, nbytes: int = DETECT_BYTES) -> bytes:
+    """First ``nbytes`` bytes of a path or a binary/text buffer, leaving a buffer's position alone."""
+    if hasattr(filename_or_buf, "read"):
+        position = filename_or_buf.tell()
+        try:
+            head = filename_or_buf.read(nbytes)
+        finally:
+            filename_or_buf.seek(position)
+        return head.encode("latin-1") if isinstance(head, str) else bytes(head)
+    try:
+        with open(filename_or_buf, "rb") as handle:
+            return handle.read(nbytes)
+    except (OSError, TypeError):
+        return b""
+
+
+def looks_like_text(head: bytes) -> bool:
+    """True when ``head`` is plausibly ASCII text (no NUL bytes, few control characters)."""
+    if not head or b"\x00" in head:
+        return False
+    control = sum(1 for byte in head if byte < 32 and byte not in (9, 10, 13, 12))
+    non_ascii = sum(1 for byte in head if byte > 126)
+    return control == 0 and non_ascii <= len(head) // 100
+
+
+def head_lines(head: bytes) -> list[str]:
+    """Lines of a detection head, any line ending (LF, CRLF, CR CR LF), blank lines dropped."""
+    text = head.decode("latin-1")
+    lines = [line for line in re.split(r"\r\n|\r|\n", text) if line.strip()]
+    if head and not head.endswith((b"\n", b"\r")) and len(head) >= DETECT_BYTES and lines:
+        lines.pop()  # the last line may be cut by the byte limit
+    return lines
+
+
+def open_text(filename_or_buf) -> IO[str]:
+    """A text stream with universal newlines over a path or a buffer (latin-1, never fails)."""
+    if hasattr(filename_or_buf, "read"):
+        raw = filename_or_buf.read()
+        if isinstance(raw, bytes):
+            raw = raw.decode("latin-1")
+        return io.StringIO(raw, newline=None)
+    return open(os.fspath(filename_or_buf), encoding="latin-1", newline=None)
+
+
+def parse_float(token: str) -> float:
+    """A float from a Fortran-style token (``D`` exponents accepted)."""
+    return float(token.replace("D", "E").replace("d", "e"))
+
+
+def split_numbers(line: str) -> list[str]:
+    """The numeric tokens of a line; fixed-width fields that touch (``1.5E+0-2.2E+0``) are split.
+
+    Raises
+    ------
+    ValueError
+        If the line holds something that is not a number.
+    """
+    tokens = line.split()
+    try:
+        for token in tokens:
+            parse_float(token)
+        return tokens
+    except ValueError:
+        pass
+    if _ONLY_NUMBER_CHARS_RE.match(line):
+        found = NUMBER_RE.findall(line)
+        if "".join(found) == "".join(line.split()):
+            return found
+    bad = next((t for t in tokens if not _is_number(t)), line.strip())
+    raise ValueError(f"non-numeric value {bad[:30]!r}")
+
+
+def _is_number(token: str) -> bool:
+    try:
+        parse_float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def numbers_from_lines(lines: list[str]) -> np.ndarray:
+    """All numbers in ``lines`` as float64, fast path first (one numpy conversion).
+
+    Raises
+    ------
+    ValueError
+        Naming the first offending token and its line index within ``lines``.
+    """
+    try:
+        return np.array(" ".join(lines).split(), dtype=np.float64)
+    except ValueError:
+        pass
+    values: list[float] = []
+    for index, line in enumerate(lines):
+        try:
+            values.extend(parse_float(t) for t in split_numbers(line))
+        except ValueError as err:
+            raise ValueError(f"{err} on data line {index + 1}") from None
+    return np.asarray(values, dtype=np.float64)
+
+
+def iter_line_chunks(stream: IO[str], chunk_lines: int = CHUNK_LINES) -> Iterator[list[str]]:
+    """Lists of at most ``chunk_lines`` lines (newline stripped) from a text stream."""
+    chunk: list[str] = []
+    for line in stream:
+        chunk.append(line.rstrip("\r\n"))
+        if len(chunk) >= chunk_lines:
+            yield chunk
+            chunk = []
+    if chunk:
+        yield chunk

@@ -1,0 +1,223 @@
+"""Plain-text accelerograms as an obspy waveform plugin (format ``ISOLATOR_TEXT``).
+
+Accepted layouts: two columns (time [s], acceleration) or one column (acceleration, with
+the time step given separately); comma, semicolon or whitespace separated; comment lines
+starting with ``#``, ``%`` or ``!``; at most one leading row of column names; any line
+ending; no final newline needed.
+
+Metadata in comment lines, all optional, ``key: value`` or ``key = value``::
+
+    # units: g            (g, m/s2, gal, cm/s2 — see isolator.units)
+    # dt_s: 0.01          (time step for a one-column file) [s]
+    # station: El Centro
+    # component: 180
+
+Detection is deliberately narrow.  Almost any text file of numbers *could* be an
+accelerogram, and a loose ``_is_text`` would make obspy's autodetection claim every
+unknown text file (other obspy text formats, tables, logs) as ours.  So ``_is_text``
+answers True only for files that carry our explicit ``# units:`` metadata line in their
+leading comments **and** whose first data lines are all one or two numeric columns.
+Everything else is read as text only when asked for explicitly, with
+``obspy.read(path, format="ISOLATOR_TEXT")``, which is what
+:func:`isolator.motion.read_ground_motion` does for a text file that no other reader
+claims.
+
+The reader does not convert units: it records ``stats.units`` only if the file states
+them; otherwise the caller must (``--units``).
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+from obspy import Stream, Trace, UTCDateTime
+from obspy.core.util import AttribDict
+
+from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
+from isolator.units import ACCELERATION_UNITS_TO_M_S2
+
+COMMENT_PREFIXES = ("#", "%", "!")
+TIME_STEP_REL_TOLERANCE = 1e-3  # allowed |Δt − dt| / dt in a time column (printing round-off)
+TIME_STEP_ABS_TOLERANCE = 2e-6  # [s] round-off of times printed with 6 decimals
+
+_META_RE = re.compile(r"^[#%!]+\s*([A-Za-z_][A-Za-z0-9_ ()/.-]*?)\s*[:=]\s*(.+?)\s*$")
+_SPLIT_RE = re.compile(r"[,;\s]+")
+
+
+def _is_comment(line: str) -> bool:
+    return line.lstrip().startswith(COMMENT_PREFIXES)
+
+
+def _metadata(comment_lines: list[str]) -> dict[str, str]:
+    meta: dict[str, str] = {}
+    for line in comment_lines:
+        match = _META_RE.match(line.strip())
+        if match:
+            meta[match.group(1).strip().lower()] = match.group(2)
+    return meta
+
+
+def _numeric_fields(line: str) -> int | None:
+    """Number of numeric fields of a data line, or None if one is not a number."""
+    fields = [f for f in _SPLIT_RE.split(line.strip()) if f]
+    try:
+        for field in fields:
+            parse_float(field)
+    except ValueError:
+        return None
+    return len(fields)
+
+
+def _is_text(filename_or_buf) -> bool:
+    """True only for a text record that carries isolator's ``# units:`` metadata (strict).
+
+    Parameters
+    ----------
+    filename_or_buf : str or path-like or file-like
+        The file to test [-].
+
+    Returns
+    -------
+    bool
+        Whether obspy's autodetection should hand the file to :func:`_read_text` [-].
+    """
+    head = read_head(filename_or_buf)
+    if not looks_like_text(head):
+        return False
+    lines = head_lines(head)
+    comments = [line for line in lines if _is_comment(line)]
+    units = _metadata(comments).get("units", "").strip().lower().replace(" ", "")
+    if units not in ACCELERATION_UNITS_TO_M_S2:
+        return False
+    data_lines = [line for line in lines if not _is_comment(line)][:50]
+    return bool(data_lines) and all(_numeric_fields(line) in (1, 2) for line in data_lines)
+
+
+def _layout(stream) -> tuple[list[str], list[str] | None, str | None, int, int]:
+    """Leading comments, column names, delimiter, number of columns, lines before the data."""
+    comments: list[str] = []
+    names: list[str] | None = None
+    skip = 0
+    for line in stream:
+        if not line.strip() or _is_comment(line):
+            if _is_comment(line):
+                comments.append(line.strip())
+            skip += 1
+            continue
+        delimiter = "," if "," in line else (";" if ";" in line else None)
+        fields = [f.strip() for f in (line.split(delimiter) if delimiter else line.split())]
+        fields = [f for f in fields if f]
+        if names is None and fields and _numeric_fields(line) is None and not any(
+            _numeric_fields(f) for f in fields
+        ):
+            names = fields  # one row of column names, e.g. "time,acc"
+            skip += 1
+            continue
+        return comments, names, delimiter, len(fields), skip
+    return comments, names, None, 0, skip
+
+
+def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = False, **kwargs) -> Stream:
+    """Read a one- or two-column text accelerogram into a one-trace :class:`obspy.Stream`.
+
+    Parameters
+    ----------
+    filename_or_buf : str or path-like or file-like
+        The text file [-].
+    dt_s : float, optional
+        Time step for a one-column file (overrides ``# dt_s:``; must agree with a time
+        column if there is one) [s].
+    headonly : bool, optional
+        Ignored; the whole file is parsed to know NPTS and DT [-].
+    **kwargs
+        Ignored (obspy passes its own reading options).
+
+    Returns
+    -------
+    obspy.Stream
+        One trace, data float64 in the file's (unconverted) units; ``stats.units`` only if
+        the file states them; ``stats.isolator_text`` the comments, metadata, column names
+        and the time of the first sample ``t0_s`` [s].
+
+    Raises
+    ------
+    ValueError
+        One-line message: no data, a non-numeric field, a changing number of columns,
+        more than two columns, a time column that does not increase or is not evenly
+        spaced, a missing or non-positive time step.
+    """
+    with open_text(filename_or_buf) as stream:
+        comments, names, delimiter, ncols, skip = _layout(stream)
+    if ncols == 0:
+        raise ValueError("no numeric data lines")
+    if ncols > 2:
+        raise ValueError(
+            f"{ncols} columns; expected 1 (acceleration, with a time step) or 2 (time, acceleration)"
+        )
+    with open_text(filename_or_buf) as stream:
+        try:
+            table = np.loadtxt(
+                stream, dtype=np.float64, comments=COMMENT_PREFIXES, delimiter=delimiter,
+                skiprows=skip, ndmin=2,
+            )
+        except ValueError as err:
+            message = str(err).splitlines()[0].rstrip(".;")
+            message = re.sub(r";\s*use `usecols`.*$", "", message)
+            message = message.replace("could not convert string", "non-numeric value")
+            raise ValueError(message) from None
+    meta = _metadata(comments)
+    info = AttribDict()
+    info.comments = comments
+    info.metadata = meta
+    info.column_names = names or []
+    info.columns = ncols
+    t0_s = 0.0
+    if ncols == 2:
+        time_s, acceleration = table[:, 0], table[:, 1]
+        if time_s.size >= 2:
+            steps_s = np.diff(time_s)
+            if not np.all(np.isfinite(time_s)):
+                raise ValueError("non-finite value in the time column")
+            bad = np.flatnonzero(steps_s <= 0)
+            if bad.size:
+                i = int(bad[0])
+                raise ValueError(
+                    f"time column does not increase at data row {i + 2} "
+                    f"(t = {time_s[i]:g} s then {time_s[i + 1]:g} s)"
+                )
+            step_s = (time_s[-1] - time_s[0]) / (time_s.size - 1)
+            tolerance_s = max(TIME_STEP_REL_TOLERANCE * step_s, TIME_STEP_ABS_TOLERANCE)
+            if np.max(np.abs(steps_s - step_s)) > tolerance_s:
+                raise ValueError(
+                    f"time column is not evenly spaced (steps from {steps_s.min():g} to "
+                    f"{steps_s.max():g} s); resample it to a constant step first"
+                )
+            if dt_s is not None and abs(dt_s - step_s) > tolerance_s:
+                raise ValueError(f"given dt = {dt_s:g} s disagrees with the time column's {step_s:g} s")
+            dt_s = float(f"{step_s:.12g}")  # drop the round-off of the division
+        elif dt_s is None:
+            dt_s = 1.0  # a single sample: the caller refuses it anyway
+        t0_s = float(time_s[0])
+    else:
+        acceleration = table[:, 0]
+        if dt_s is None and "dt_s" in meta:
+            dt_s = parse_float(meta["dt_s"])
+        if dt_s is None and "dt" in meta:
+            dt_s = parse_float(meta["dt"])
+        if dt_s is None:
+            raise ValueError("one column and no time step: give it with --dt (or a '# dt_s:' line)")
+    if not dt_s > 0:
+        raise ValueError(f"time step dt = {dt_s:g} s is not positive")
+    info.t0_s = t0_s
+    trace = Trace(data=np.ascontiguousarray(acceleration, dtype=np.float64))
+    trace.stats.delta = float(dt_s)
+    trace.stats.starttime = UTCDateTime(0) + t0_s
+    units = meta.get("units", "").strip()
+    if units:
+        trace.stats.units = units
+    trace.stats.station = meta.get("station", "")[:16]
+    if "component" in meta:
+        info.component = meta["component"]
+    trace.stats.isolator_text = info
+    return Stream([trace])
