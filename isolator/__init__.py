@@ -3,8 +3,39 @@
 The physics is M. Nicolas (2017), *A comprehensive study on the behavior of a rigid
 block on an oscillating ground with friction, elastic and viscous forces*
 (hal-01432172), generalised from harmonic to recorded ground acceleration.
+
+Public API (imported lazily, so that ``import isolator`` and ``isolator --help``
+stay instant)::
+
+    simulate_record(acceleration_m_s2, dt_s, mu_static=..., ...) -> Response
+    harmonic_response(alpha, k, eta, mu_s, mu_k=None) -> HarmonicResponse
+    harmonic_thresholds(k, eta, mu_s, mu_k=None, alpha_max=6) -> RegimeThresholds
+    System(mu_static, mu_kinetic, stiffness_per_mass, damping_per_mass, gravity_m_s2)
+    read_ground_motion(path, component=None, units=None, ...) -> GroundMotion
 """
 
 from __future__ import annotations
 
 __version__ = "0.1.0"
+
+_EXPORTS = {
+    "simulate_record": "isolator.solver.record",
+    "Response": "isolator.solver.record",
+    "harmonic_response": "isolator.solver.harmonic",
+    "HarmonicResponse": "isolator.solver.harmonic",
+    "harmonic_thresholds": "isolator.solver.harmonic",
+    "System": "isolator.solver.system",
+    "pseudo_acceleration_spectrum": "isolator.solver.linear",
+    "read_ground_motion": "isolator.motion",
+    "GroundMotion": "isolator.motion",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        import importlib
+
+        return getattr(importlib.import_module(_EXPORTS[name]), name)
+    raise AttributeError(f"module 'isolator' has no attribute {name!r}")

@@ -143,3 +143,204 @@ def info(
     width = max(len(name) for name, _, _ in rows)
     for name, value, unit in rows:
         typer.echo(f"{name:<{width}}  {value} {unit}".rstrip())
+
+
+# ======================================================================================
+# Solver commands: harmonic (the paper's problem), threshold, simulate (a record).
+# ======================================================================================
+
+
+def _echo_table(rows) -> None:
+    """Print (name, value, unit) rows aligned, one per line."""
+    width = max(len(name) for name, _, _ in rows)
+    for name, value, unit in rows:
+        typer.echo(f"{name:<{width}}  {value} {unit}".rstrip())
+
+
+def _user_error(message: str) -> None:
+    """End the command with one line on stderr and exit code 2."""
+    typer.echo(f"error: {' '.join(str(message).split())}", err=True)
+    raise typer.Exit(2)
+
+
+def _fmt(value, spec: str = ".6g") -> str:
+    return "n/a" if value is None else format(value, spec)
+
+
+@app.command()
+def harmonic(
+    alpha: float = typer.Option(..., "--alpha", help="Reduced acceleration α = A0 Ω²/(µs g) (Eq. 6)."),
+    k: float = typer.Option(0.0, "--k", help="Dimensionless stiffness k = K A0/(M g)."),
+    eta: float = typer.Option(0.0, "--eta", help="Dimensionless damping η = (γ/M) sqrt(A0/g)."),
+    mu_s: float = typer.Option(..., "--mu-s", help="Static friction coefficient µs."),
+    mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Steady response to a harmonic ground motion: the paper's problem, solved exactly.
+
+    Runs from rest (φ = π/2) until the motion is periodic, or grows linearly at
+    resonance, and reports the regime (ST stick, SS stick-slip, SL permanent slip),
+    ζ, A, ẋ_rms, the energies per period and the force ratios of Eq. 5.
+    """
+    import json
+
+    from isolator.solver.harmonic import harmonic_response
+    from isolator.solver.system import InvalidSystemError
+
+    try:
+        response = harmonic_response(alpha, k, eta, mu_s, mu_k)
+    except InvalidSystemError as err:
+        _user_error(str(err))
+    summary = response.summary()
+    if as_json:
+        typer.echo(json.dumps(_json_safe(summary), allow_nan=False))
+        return
+    regime_words = {"ST": "stick (no relative motion)", "SS": "stick-slip", "SL": "permanent slip"}
+    _echo_table([
+        ("configuration", response.configuration, f"(k = {k:g}, η = {eta:g}, µs = {mu_s:g}, µk = {response.mu_k:g})"),
+        ("regime", response.regime, f"({regime_words[response.regime]})"),
+        ("steady", str(response.steady), f"({response.status}, cycle of {response.cycle_periods} period(s), "
+                                         f"{response.periods_run} periods run)"),
+        ("zeta", f"{response.zeta:.6g}", "slip time / period (Eq. 3)"),
+        ("amplitude A", f"{response.amplitude:.6g}", "half peak-to-peak of x = X/A0"
+                                                     + ("  (> 1: ground motion amplified)" if response.amplitude > 1 else "")),
+        ("xdot_rms", f"{response.xdot_rms:.6g}", "(Eq. 4)"),
+        ("energy_friction", f"{response.energy_friction:.6g}", "∆e_f per period (Eq. 9)"),
+        ("energy_viscous", f"{response.energy_viscous:.6g}", "∆e_v per period (Eq. 10)"),
+        ("work_input", f"{response.work_input:.6g}", "∆w_i per period (Eq. 11)"),
+        ("balance residual", f"{response.energy_balance_residual:.2e}", "∆e_f + ∆e_v + ∆w_i (Eq. 8)"),
+        ("rho_ev", _fmt(response.rho_ev), "elastic/viscous (Eq. 5)"),
+        ("rho_vf", _fmt(response.rho_vf), "viscous/friction"),
+        ("rho_ef", _fmt(response.rho_ef), "elastic/friction"),
+        ("dominant force", response.dominant_force, ""),
+        ("growth rate β", _fmt(response.growth_rate), "dA/dt at resonance (Eq. 26)"),
+    ])
+
+
+@app.command()
+def threshold(
+    k: float = typer.Option(0.0, "--k", help="Dimensionless stiffness k."),
+    eta: float = typer.Option(0.0, "--eta", help="Dimensionless damping η."),
+    mu_s: float = typer.Option(..., "--mu-s", help="Static friction coefficient µs."),
+    mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
+    alpha_max: float = typer.Option(6.0, "--alpha-max", help="Upper end of the α scan."),
+    grid: int = typer.Option(120, "--grid", min=4, help="Grid points of the α scan before bisection."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+) -> None:
+    """Regime thresholds along α: α_SS = 1, α_SL and every transition up to --alpha-max."""
+    import json
+
+    from isolator.solver.harmonic import harmonic_thresholds
+    from isolator.solver.system import InvalidSystemError
+
+    try:
+        result = harmonic_thresholds(k, eta, mu_s, mu_k, alpha_max=alpha_max, n_grid=grid)
+    except InvalidSystemError as err:
+        _user_error(str(err))
+    if as_json:
+        typer.echo(json.dumps(_json_safe(result.summary()), allow_nan=False))
+        return
+    rows = [("alpha_ss", f"{result.alpha_ss:g}", "(stick below)"),
+            ("alpha_sl", _fmt(result.alpha_sl, ".9g"),
+             f"(permanent slip from here up to α = {alpha_max:g})" if result.alpha_sl else
+             f"(not permanent slip at α = {alpha_max:g})")]
+    rows += [("transition", f"{tr['alpha']:.9g}", f"{tr['from']} → {tr['to']}") for tr in result.transitions]
+    _echo_table(rows)
+
+
+def _write_csv_atomically(path, header: str, columns) -> None:
+    """Write columns to CSV through a temporary file and a rename: never half a file."""
+    import os
+    import tempfile
+    from pathlib import Path
+
+    import numpy as np
+
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    handle, tmp_name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w") as stream:
+            np.savetxt(stream, np.column_stack(columns), delimiter=",", header=header, comments="", fmt="%.17g")
+        os.replace(tmp_name, target)
+    except BaseException:
+        if os.path.exists(tmp_name):
+            os.unlink(tmp_name)
+        raise
+
+
+@app.command()
+def simulate(
+    record: str = typer.Argument(..., help="Record file: PEER AT2, plain text (time, acceleration), "
+                                 "MiniSEED, SAC, K-NET, CSMIP V2, USGS SMC …"),
+    mu_s: float = typer.Option(..., "--mu-s", help="Static friction coefficient µs."),
+    mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
+    stiffness_per_mass: float = typer.Option(0.0, "--stiffness-per-mass", help="K/M [1/s²] (g/R for a pendulum)."),
+    damping_per_mass: float = typer.Option(0.0, "--damping-per-mass", help="γ/M [1/s]."),
+    gravity: float = typer.Option(None, "--gravity", help="Gravity for the friction force [m/s²] "
+                                  "(standard gravity 9.80665 by default; records in g are always converted "
+                                  "with standard gravity)."),
+    component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"]),
+    units: str = typer.Option(None, "--units", "-u", help=RECORD_HELP["units"]),
+    merge: bool = typer.Option(False, "--merge", help=RECORD_HELP["merge"]),
+    dt: float = typer.Option(None, "--dt", help=RECORD_HELP["dt"]),
+    response: str = typer.Option(None, "--response", help=RECORD_HELP["response"]),
+    counts_factor: float = typer.Option(None, "--counts-factor", help=RECORD_HELP["counts_factor"]),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
+    out_csv: str = typer.Option(None, "--out-csv", help="Write the time histories to this CSV file."),
+) -> None:
+    """Exact response of a friction–spring–dashpot isolator to a recorded ground acceleration.
+
+    The record is taken as linear between samples; the response to it is exact
+    (closed forms between stick/slip events located to machine precision).
+    Energies are per unit mass (J/kg).
+    """
+    import json
+
+    from isolator.solver.record import RecordInputError, simulate_record
+    from isolator.solver.system import InvalidSystemError, System
+
+    try:
+        kwargs = {} if gravity is None else {"gravity_m_s2": gravity}
+        system = System(mu_static=mu_s, mu_kinetic=mu_k, stiffness_per_mass=stiffness_per_mass,
+                        damping_per_mass=damping_per_mass, **kwargs)
+    except InvalidSystemError as err:
+        _user_error(str(err))
+    motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
+    try:
+        result = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
+    except RecordInputError as err:
+        _user_error(f"{record}: {err}")
+    summary = {"record": str(record), "component": motion.component, "units_source": motion.units_source,
+               "npts": motion.npts, "dt_s": motion.dt_s, **result.summary()}
+    if out_csv:
+        try:
+            _write_csv_atomically(
+                out_csv,
+                "time_s,ground_acceleration_m_s2,displacement_m,velocity_m_s,absolute_acceleration_m_s2",
+                [result.time_s, result.ground_acceleration_m_s2, result.displacement_m,
+                 result.velocity_m_s, result.absolute_acceleration_m_s2])
+        except OSError as err:
+            _user_error(f"{out_csv}: cannot write ({err.strerror or err})")
+    if as_json:
+        typer.echo(json.dumps(_json_safe(summary), allow_nan=False))
+        return
+    _echo_table([
+        ("record", str(record), f"[{motion.component}, units from {motion.units_source}]"),
+        ("samples", f"{motion.npts} × {motion.dt_s:g} s", ""),
+        ("configuration", system.configuration, f"(µs = {system.mu_static:g}, µk = {system.mu_kinetic:g}, "
+                                                f"K/M = {system.stiffness_per_mass:g} 1/s², "
+                                                f"γ/M = {system.damping_per_mass:g} 1/s)"),
+        ("peak displacement", f"{result.peak_displacement_m:.6g}", "m"),
+        ("residual displacement", f"{result.residual_displacement_m:.6g}", "m"),
+        ("peak velocity", f"{result.peak_velocity_m_s:.6g}", "m/s"),
+        ("peak transmitted acc.", f"{result.peak_transmitted_acceleration_m_s2:.6g}", "m/s²"),
+        ("slip time", f"{result.slip_time_s:.6g}", f"s  of {result.time_s[-1] - result.time_s[0]:.6g} s"),
+        ("events", f"{result.n_events}", "(break-away, stick, reversal)"),
+        ("energy input", f"{result.energy_input_J_per_kg:.6g}", "J/kg"),
+        ("energy friction", f"{result.energy_friction_J_per_kg:.6g}", "J/kg"),
+        ("energy viscous", f"{result.energy_viscous_J_per_kg:.6g}", "J/kg"),
+        ("energy balance error", f"{result.energy_balance_error_J_per_kg:.2e}", "J/kg"),
+        ("solver time", f"{result.solver_seconds * 1e3:.3g}", "ms"),
+        ("status", result.message, ""),
+    ] + ([("time histories", out_csv, "")] if out_csv else []))
