@@ -572,8 +572,11 @@ def _read_stream(path: Path, dt_s: float | None):
 
     from isolator.io._common import looks_like_text, read_head
     from isolator.io.at2 import _is_at2
+    from isolator.io.smc import _is_smc
     from isolator.io.text import _is_text
+    from isolator.io.v2 import _is_v2
 
+    own_detectors = {"PEER_AT2": _is_at2, "CSMIP_V2": _is_v2, "USGS_SMC": _is_smc, "ISOLATOR_TEXT": _is_text}
     head = read_head(path)
     if not head:
         raise _fail(path, "file is empty")
@@ -587,8 +590,8 @@ def _read_stream(path: Path, dt_s: float | None):
             if not looks_like_text(head):
                 raise _fail(path, "binary content: not a PEER AT2 text file")
             fmt = "PEER_AT2"  # let the AT2 reader say what is wrong
-        elif _is_text(path):
-            fmt = "ISOLATOR_TEXT"  # read it ourselves, so that --dt reaches the text reader
+        else:  # our own formats first: their errors then name the format, and --dt reaches text
+            fmt = next((name for name, detect in own_detectors.items() if detect(path)), None)
         try:
             if fmt is None:
                 try:
@@ -608,8 +611,9 @@ def _read_stream(path: Path, dt_s: float | None):
             raise
         except Exception as err:  # obspy's readers raise many types for damaged files
             reason = _one_line(err) or type(err).__name__
-            where = f"as {_FORMAT_NAMES.get(fmt, fmt)}" if fmt else "with obspy"
-            raise _fail(path, f"cannot be read {where}: {reason}") from None
+            if fmt in _FORMAT_NAMES:  # our readers' messages say exactly what is wrong
+                raise _fail(path, f"{_FORMAT_NAMES[fmt]}: {reason}") from None
+            raise _fail(path, f"cannot be read with obspy: {reason}") from None
 
 
 def _plain_numeric(head: bytes) -> bool:
