@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, segment_root
+from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop
 from isolator.solver.segments import segment_state
 from isolator.solver.system import InvalidSystemError, classify_configuration
 
@@ -161,22 +161,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                 p = -mu_k * s
             x1, v1, a1, _ = segment_state(rem, x, v, p, 0.0, force, theta, c, kappa, omega)
             a0 = p + force * math.cos(theta) - kappa * x - c * v
-            t_stop = -1.0
-            if s * v1 <= 0.0:
-                if from_rest:
-                    t_max = segment_root(1, s, 0.0, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    _, v_max, _, _ = segment_state(t_max, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    if s * v_max > 0.0:
-                        t_stop = segment_root(0, s, t_max, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    else:
-                        t_stop = t_max
-                else:
-                    t_stop = segment_root(0, s, 0.0, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-            elif s * a0 < 0.0 and s * a1 > 0.0:
-                t_min = segment_root(1, -s, 0.0, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-                _, v_min, _, _ = segment_state(t_min, x, v, p, 0.0, force, theta, c, kappa, omega)
-                if s * v_min <= 0.0:
-                    t_stop = segment_root(0, s, 0.0, t_min, x, v, p, 0.0, force, theta, c, kappa, omega)
+            t_stop, _, _ = find_stop(s, from_rest, rem, x, v, v1, a0, a1, p, 0.0, force, theta, c, kappa, omega)
             length = rem if t_stop < 0.0 else t_stop
             if t_stop < 0.0:
                 x_end = x1

@@ -26,7 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, breakaway_time, segment_root
+from isolator.solver.events import (BREAKAWAY, REVERSAL, STICK, breakaway_time, find_stop, secant_guess,
+                                     segment_root)
 from isolator.solver.segments import ramp_basis, segment_state
 
 #: Safety net against stick–slip chatter: events allowed in one sample interval.
@@ -221,26 +222,10 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 v1 = e0 * v + e1 * (m * v - kappa * x + p) + q * h1
                 acc0 = p - kappa * x - c * v
                 acc1 = p + q * rem - kappa * x1 - c * v1
-                t_stop = -1.0
-                if s * v1 <= 0.0:
-                    if from_rest:
-                        # s·V rises first, so the stop lies after its maximum
-                        t_max = segment_root(1, s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        _, v_max, _, _ = segment_state(t_max, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        if abs(v_max) > peak_v:
-                            peak_v = abs(v_max)
-                        if s * v_max > 0.0:
-                            t_stop = segment_root(0, s, t_max, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        else:
-                            t_stop = t_max
-                    else:
-                        t_stop = segment_root(0, s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                elif s * acc0 < 0.0 and s * acc1 > 0.0:
-                    # s·V has an interior minimum: does it reach zero?
-                    t_min = segment_root(1, -s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                    _, v_min, _, _ = segment_state(t_min, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                    if s * v_min <= 0.0:
-                        t_stop = segment_root(0, s, 0.0, t_min, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                t_stop, t_ext, v_ext = find_stop(s, from_rest, rem, x, v, v1, acc0, acc1, p, q,
+                                                 0.0, 0.0, c, kappa, 0.0)
+                if t_ext >= 0.0 and abs(v_ext) > peak_v:
+                    peak_v = abs(v_ext)
                 if t_stop < 0.0:
                     # the block slides through to the end of the piece
                     if exact_start or tau > 0.0:
@@ -262,20 +247,25 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     e_f += mu_k_g * abs(x1 - x)
                     e_v += c * int_v2
                     slip_time += rem
-                    # interior extremum of the velocity (A changes sign)
-                    if acc0 * acc1 < 0.0:
+                    # interior extremum of the velocity (A changes sign); located only
+                    # when it could beat the peak so far (|V| moves by at most ~h max|A|)
+                    if (t_ext < 0.0 and acc0 * acc1 < 0.0
+                            and max(abs(v), abs(v1)) + 2.0 * rem * max(abs(acc0), abs(acc1)) > peak_v):
                         sg = 1.0 if acc0 > 0.0 else -1.0
-                        t_e = segment_root(1, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                        t_e = segment_root(1, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                                           secant_guess(0.0, rem, acc0, acc1))
                         _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                         if abs(v_e) > peak_v:
                             peak_v = abs(v_e)
-                    # interior extremum of the absolute acceleration -µk g s - κX - cV
+                    # interior extremum of the transmitted acceleration -(µk g s + κX + cV)
                     if c > 0.0:
                         d0 = kappa * v + c * acc0
                         d1 = kappa * v1 + c * acc1
-                        if d0 * d1 < 0.0:
+                        a_ends = max(abs(mu_k_g * s + kappa * x + c * v), abs(mu_k_g * s + kappa * x1 + c * v1))
+                        if d0 * d1 < 0.0 and a_ends + 2.0 * rem * max(abs(d0), abs(d1)) > peak_a:
                             sg = 1.0 if d0 > 0.0 else -1.0
-                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                                               secant_guess(0.0, rem, d0, d1))
                             x_e, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                             a_e = abs(mu_k_g * s + kappa * x_e + c * v_e)
                             if a_e > peak_a:
@@ -301,9 +291,11 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 e_f += mu_k_g * abs(x_s - x)
                 if c > 0.0:
                     e_v += c * _viscous_integral(t_stop, x, v, p, q, c, kappa)
-                if (not from_rest) and acc0 * acc_s < 0.0:
+                if (t_ext < 0.0 and acc0 * acc_s < 0.0
+                        and abs(v) + 2.0 * t_stop * max(abs(acc0), abs(acc_s)) > peak_v):
                     sg = 1.0 if acc0 > 0.0 else -1.0
-                    t_e = segment_root(1, sg, 0.0, t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                    t_e = segment_root(1, sg, 0.0, t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                                       secant_guess(0.0, t_stop, acc0, acc_s))
                     _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                     if abs(v_e) > peak_v:
                         peak_v = abs(v_e)

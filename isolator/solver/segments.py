@@ -159,28 +159,39 @@ def _scaled_cosh_sinh(m, d2, tau):
 # ---------------------------------------------------------------------------
 # Ramp forcing: E0, E1, H1, H2, H3
 # ---------------------------------------------------------------------------
+# Reciprocals used by the power series (divisions are the slow part of a series term)
+_N = np.arange(_MAX_TERMS + 4, dtype=np.float64)
+_RECIP_STEP = 1.0 / np.maximum((_N + 1.0) * _N, 1.0)  # 1/((n+1) n)
+_RECIP_K1 = 1.0 / (_N + 1.0)  # 1/(k+1)
+_RECIP_K12 = 1.0 / ((_N + 1.0) * (_N + 2.0))  # 1/((k+1)(k+2))
+_RECIP_K123 = 1.0 / ((_N + 1.0) * (_N + 2.0) * (_N + 3.0))  # 1/((k+1)(k+2)(k+3))
+
+
 @njit(cache=True)
 def _ramp_basis_taylor(tau, c, kappa):
     # Power series of the impulse response e(τ) = Σ z_n, z_n = e_n τ^n, from
     # e'' = -c e' - κ e, e(0) = 0, e'(0) = 1.
     a = -c * tau
     b = -kappa * tau * tau
+    tau2 = tau * tau
+    tau3 = tau2 * tau
     z_prev = 0.0  # z_0
     z_cur = tau  # z_1
     e1 = tau
-    h1 = tau * tau / 2.0
-    h2 = tau * tau * tau / 6.0
-    h3 = tau * tau * tau * tau / 24.0
+    h1 = tau2 / 2.0
+    h2 = tau3 / 6.0
+    h3 = tau3 * tau / 24.0
     de1 = 1.0  # Σ n z_n / τ  (= E1')
+    inv_tau = 1.0 / tau
     for n in range(1, _MAX_TERMS):
         # z_{n+1} from z_n and z_{n-1}
-        z_next = (a * n * z_cur + b * z_prev) / ((n + 1) * n)
+        z_next = (a * n * z_cur + b * z_prev) * _RECIP_STEP[n]
         k = n + 1
         e1 += z_next
-        h1 += z_next * tau / (k + 1)
-        h2 += z_next * tau * tau / ((k + 1) * (k + 2))
-        h3 += z_next * tau * tau * tau / ((k + 1) * (k + 2) * (k + 3))
-        de1 += k * z_next / tau
+        h1 += z_next * tau * _RECIP_K1[k]
+        h2 += z_next * tau2 * _RECIP_K12[k]
+        h3 += z_next * tau3 * _RECIP_K123[k]
+        de1 += k * z_next * inv_tau
         z_prev = z_cur
         z_cur = z_next
         if abs(z_next) <= 1e-18 * abs(e1) and abs(z_prev) <= 1e-17 * abs(e1):
