@@ -22,7 +22,7 @@ from isolator.motion import (
 from isolator.units import STANDARD_GRAVITY
 
 G = STANDARD_GRAVITY
-READ_LIMIT_S = 15.0  # 2 million samples read in ~1-3 s on one core; margin for a loaded CI machine
+READ_LIMIT_S = 120.0  # a hang guard, not a benchmark: timings are measured, not asserted (README)
 
 
 # --------------------------------------------------------------------------------------
