@@ -194,3 +194,13 @@ def find_stop(s, from_rest, rem, x, v, v_end, acc_start, acc_end, p, q, force, t
             guess = secant_guess(0.0, t_ext, v, v_ext)
             return segment_root(0, s, 0.0, t_ext, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
     return -1.0, t_ext, v_ext
+
+
+@njit(cache=True)
+def record_event(ev_time, ev_kind, ev_x, n_ev, time, kind, x):
+    """Store an event if the arrays have room; return the new event count (always counted)."""
+    if n_ev < ev_time.shape[0]:
+        ev_time[n_ev] = time
+        ev_kind[n_ev] = kind
+        ev_x[n_ev] = x
+    return n_ev + 1

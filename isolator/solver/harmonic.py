@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop
+from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
 from isolator.solver.segments import segment_state
 from isolator.solver.system import InvalidSystemError, classify_configuration
 
@@ -103,7 +103,6 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
     s = state[3]
     from_rest = state[4] != 0.0
     exact_start = state[5] != 0.0
-    cap = ev_time.shape[0]
     n_out = t_out.shape[0]
     i_out = 0
     metrics[M_XMIN] = x
@@ -138,11 +137,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                         x_out[i_out] = x
                         v_out[i_out] = 0.0
                         i_out += 1
-                    if n_ev < cap:
-                        ev_time[n_ev] = t0 + t_b
-                        ev_kind[n_ev] = BREAKAWAY
-                        ev_x[n_ev] = x
-                    n_ev += 1
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t0 + t_b, BREAKAWAY, x)
                 metrics[M_N_BREAK] += 1.0
                 metrics[M_N_EVENTS] += 1.0
                 t = t_b
@@ -216,11 +211,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                     v = 0.0
                     t = period
                 if record:
-                    if n_ev < cap:
-                        ev_time[n_ev] = t0 + t
-                        ev_kind[n_ev] = kind
-                        ev_x[n_ev] = x
-                    n_ev += 1
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t0 + t, kind, x)
     state[0] = x
     state[1] = v
     state[2] = 1.0 if stuck else 0.0

@@ -26,7 +26,8 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import (BREAKAWAY, REVERSAL, STICK, breakaway_time, find_stop, secant_guess,
+from isolator.solver.events import (BREAKAWAY, REVERSAL, STICK, breakaway_time, find_stop, record_event,
+                                     secant_guess,
                                      segment_root)
 from isolator.solver.segments import ramp_basis, segment_state
 
@@ -140,7 +141,6 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
     n = acc.shape[0]
     h = dt / n_sub
     m = -0.5 * c
-    cap = ev_time.shape[0]
     x = 0.0
     v = 0.0
     stuck = True
@@ -192,11 +192,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     tau = tb
                     from_rest = True
                     exact_start = True
-                    if n_ev < cap:
-                        ev_time[n_ev] = t_sub + tb
-                        ev_kind[n_ev] = BREAKAWAY
-                        ev_x[n_ev] = x
-                    n_ev += 1
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, BREAKAWAY, x)
                     jump = abs(mu_k_g * s + kappa * x)
                     if jump > peak_a:
                         peak_a = jump
@@ -320,11 +316,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     s = -1.0 if force > 0.0 else 1.0
                     from_rest = True
                     kind = REVERSAL
-                if n_ev < cap:
-                    ev_time[n_ev] = t_sub + tau
-                    ev_kind[n_ev] = kind
-                    ev_x[n_ev] = x
-                n_ev += 1
+                n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, kind, x)
                 events_here += 1
                 if events_here > MAX_EVENTS_PER_INTERVAL:
                     # chatter guard: let the static friction hold to the end of the interval
@@ -343,7 +335,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
             out_a[i] = -(mu_k_g * s + kappa * x + c * v)
         if abs(out_a[i]) > peak_a:
             peak_a = abs(out_a[i])
-    if n_ev > cap:
+    if n_ev > ev_time.shape[0]:
         status |= STATUS_EVENTS_TRUNCATED
     summary[SUMMARY_PEAK_DISPLACEMENT] = peak_x
     summary[SUMMARY_PEAK_VELOCITY] = peak_v

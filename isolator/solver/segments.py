@@ -126,10 +126,11 @@ def phi1_complex(z):
 # ---------------------------------------------------------------------------
 @njit(cache=True)
 def _scaled_cosh_sinh(m, d2, tau):
-    """E0 = e^{mτ} cosh(dτ) and E1 = e^{mτ} sinh(dτ)/d for real m ≤ 0 and signed d².
+    """E0 = e^{mτ} cosh(dτ) and E1 = e^{mτ} sinh(dτ)/d for signed d², real or complex m.
 
     d² < 0 gives e^{mτ} cos(ω_d τ) and e^{mτ} sin(ω_d τ)/ω_d; d² = 0 gives e^{mτ}
-    and τ e^{mτ}; both forms meet smoothly through the series in d²τ².
+    and τ e^{mτ}; both forms meet smoothly through the series in d²τ².  Real m ≤ 0
+    serves the ramp basis, complex m the harmonic one (numba compiles each).
     """
     w = d2 * tau * tau
     if abs(w) < SMALL_ARGUMENT * SMALL_ARGUMENT:
@@ -144,16 +145,16 @@ def _scaled_cosh_sinh(m, d2, tau):
             term_s = term_s * w / ((2 * n + 2) * (2 * n + 3))
             if abs(term_c) < 1e-18 and abs(term_s) < 1e-18:
                 break
-        em = math.exp(m * tau)
-        return em * c_sum, em * s_sum * tau
+        em = np.exp(m * tau)
+        return em * c_sum, em * (s_sum * tau)
     if d2 > 0.0:
         d = math.sqrt(d2)
-        e_plus = math.exp((m + d) * tau)
-        e_minus = math.exp((m - d) * tau)
+        e_plus = np.exp((m + d) * tau)
+        e_minus = np.exp((m - d) * tau)
         return 0.5 * (e_plus + e_minus), (e_plus - e_minus) / (2.0 * d)
     wd = math.sqrt(-d2)
-    em = math.exp(m * tau)
-    return em * math.cos(wd * tau), em * math.sin(wd * tau) / wd
+    em = np.exp(m * tau)
+    return em * math.cos(wd * tau), em * (math.sin(wd * tau) / wd)
 
 
 # ---------------------------------------------------------------------------
@@ -263,34 +264,6 @@ def ramp_basis(tau, c, kappa):
 # Harmonic forcing: H1 for the complex shift μ = m - iω
 # ---------------------------------------------------------------------------
 @njit(cache=True)
-def _complex_cosh_sinh(mu, d2, tau):
-    # e^{μτ} cosh(dτ) and e^{μτ} sinh(dτ)/d for complex μ and real signed d².
-    w = d2 * tau * tau
-    if abs(w) < SMALL_ARGUMENT * SMALL_ARGUMENT:
-        c_sum = 0.0
-        s_sum = 0.0
-        term_c = 1.0
-        term_s = 1.0
-        for n in range(30):
-            c_sum += term_c
-            s_sum += term_s
-            term_c = term_c * w / ((2 * n + 1) * (2 * n + 2))
-            term_s = term_s * w / ((2 * n + 2) * (2 * n + 3))
-            if abs(term_c) < 1e-18 and abs(term_s) < 1e-18:
-                break
-        em = np.exp(mu * tau)
-        return em * c_sum, em * s_sum * tau
-    if d2 > 0.0:
-        d = math.sqrt(d2)
-        e_plus = np.exp((mu + d) * tau)
-        e_minus = np.exp((mu - d) * tau)
-        return 0.5 * (e_plus + e_minus), (e_plus - e_minus) / (2.0 * d)
-    wd = math.sqrt(-d2)
-    em = np.exp(mu * tau)
-    return em * math.cos(wd * tau), em * (math.sin(wd * tau) / wd)
-
-
-@njit(cache=True)
 def harmonic_h1(tau, c, kappa, omega):
     r"""Particular integral of a slip segment under harmonic forcing.
 
@@ -346,7 +319,7 @@ def harmonic_h1(tau, c, kappa, omega):
     if 2.0 * absd >= min(abs(lam_p), abs(lam_m)):
         # well-separated roots of the shifted system; one of them may be 0 (resonance)
         return tau * (phi1_complex(lam_p * tau) - phi1_complex(lam_m * tau)) / (lam_p - lam_m)
-    e0, e1 = _complex_cosh_sinh(mu, d2, tau)
+    e0, e1 = _scaled_cosh_sinh(mu, d2, tau)
     kmu = mu * mu - d2  # |κ_μ| τ² > 1 here
     return (1.0 - e0 + mu * e1) / kmu
 
