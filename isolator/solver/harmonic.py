@@ -478,6 +478,8 @@ def harmonic_response(alpha: float, k: float, eta: float, mu_s: float, mu_k: flo
     work_input = omega * omega * metrics[M_INT_VCOS] / cycle
     rho_ev, rho_vf, rho_ef, dominant = force_ratios(k, eta, alpha, mu_s, mu_k, amplitude)
     status_text = {0: "steady", 1: "resonant growth", 2: "no steady state within max_periods"}[status]
+    if metrics[M_CHATTER]:
+        status_text += f"; chatter guard: more than {MAX_EVENTS_PER_PERIOD} events in a period"
     return HarmonicResponse(
         alpha=alpha, k=k, eta=eta, mu_s=mu_s, mu_k=mu_k, omega=omega,
         configuration=classify_configuration(eta, k),

@@ -9,7 +9,7 @@ that signal is then computed without discretisation error by
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -58,7 +58,6 @@ class Response:
     message: str = "ok"
     solver_seconds: float = 0.0
     substeps_per_interval: int = 1
-    extra: dict = field(default_factory=dict)
 
     @property
     def event_names(self) -> list[str]:
