@@ -113,12 +113,18 @@ def breakaway_time(x_stuck, a_start, slope, tau_lo, tau_hi, kappa, mu_s_g):
     Returns
     -------
     tuple
-        ``(tau_b, direction)``: the instant [s] and the direction ±1 in which the
-        block starts to slide, or ``(-1.0, 0)`` if it stays stuck to ``tau_hi``.
+        ``(tau_b, direction, crossing)``: the instant [s] and the direction ±1 in which
+        the block starts to slide, or ``(-1.0, 0, False)`` if it stays stuck to
+        ``tau_hi``; ``crossing`` is true when the force crosses µs g at ``tau_b``
+        (then the net force there is exactly s(µs − µk)g) and false when it already
+        exceeds it at ``tau_lo`` (a record that starts beyond the threshold).
     """
     f_end = kappa * x_stuck + a_start + slope * tau_hi
     if abs(f_end) <= mu_s_g:
-        return -1.0, 0
+        return -1.0, 0, False
+    direction = -1 if f_end > 0.0 else 1
+    if abs(kappa * x_stuck + a_start + slope * tau_lo) > mu_s_g:
+        return tau_lo, direction, False  # already beyond: a jump, not a crossing
     level = mu_s_g if f_end > 0.0 else -mu_s_g
     if slope != 0.0:
         tau_b = (level - kappa * x_stuck - a_start) / slope
@@ -128,8 +134,7 @@ def breakaway_time(x_stuck, a_start, slope, tau_lo, tau_hi, kappa, mu_s_g):
         tau_b = tau_lo
     if tau_b > tau_hi:
         tau_b = tau_hi
-    direction = -1 if f_end > 0.0 else 1
-    return tau_b, direction
+    return tau_b, direction, True
 
 
 @njit(cache=True)

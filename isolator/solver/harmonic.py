@@ -212,6 +212,12 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                     t = period
                 if record:
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t0 + t, kind, x)
+    if record:
+        # samples at the very end of the run (rounding of n·period) get the final state
+        while i_out < n_out:
+            x_out[i_out] = x
+            v_out[i_out] = v
+            i_out += 1
     state[0] = x
     state[1] = v
     state[2] = 1.0 if stuck else 0.0

@@ -197,14 +197,14 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
             tau = 0.0
             while tau < h:
                 if stuck:
-                    tb, direction = breakaway_time(x, a_sub, b, tau, h, kappa, mu_s_g)
+                    tb, direction, crossing = breakaway_time(x, a_sub, b, tau, h, kappa, mu_s_g)
                     if tb < 0.0:
                         break  # stuck to the end of the sub-step
                     stuck = False
                     s = float(direction)
                     tau = tb
                     from_rest = True
-                    exact_start = True
+                    exact_start = crossing
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, BREAKAWAY, x)
                     jump = abs(mu_k_g * s + kappa * x)
                     if jump > peak_a:
