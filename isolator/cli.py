@@ -437,8 +437,8 @@ def report(
 
 @app.command("regime-map")
 def regime_map_command(
-    eta: float = typer.Option(0.5, "--eta", help="Dimensionless damping η."),
-    mu_s: float = typer.Option(0.25, "--mu-s", help="Static friction coefficient µs."),
+    eta: float = typer.Option(None, "--eta", help="Dimensionless damping η (default 0.5)."),
+    mu_s: float = typer.Option(None, "--mu-s", help="Static friction coefficient µs (default 0.25)."),
     mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
     frame: str = typer.Option(None, "--frame", help="A paper frame: fig5a (k, α in [0, 6], η = 0) or fig6 "
                               "(k in [0, 5], α in [0, 10], η = 0.5); sets η and µs = 0.25 unless given."),
@@ -462,13 +462,10 @@ def regime_map_command(
             _user_error(f"unknown --frame {frame!r} (choose one of: {', '.join(PAPER_FRAMES)})")
         spec = PAPER_FRAMES[frame]
         k_range, alpha_range = spec["k"], spec["alpha"]
-        import click
-
-        source = click.get_current_context().get_parameter_source
-        if source("eta").name == "DEFAULT":
-            eta = spec["eta"]
-        if source("mu_s").name == "DEFAULT":
-            mu_s = spec["mu_s"]
+        eta = spec["eta"] if eta is None else eta
+        mu_s = spec["mu_s"] if mu_s is None else mu_s
+    eta = 0.5 if eta is None else eta
+    mu_s = 0.25 if mu_s is None else mu_s
     if not (k_range[1] > 0 and alpha_range[1] > 1):
         _user_error("--k-max must be > 0 and --alpha-max > 1")
     try:

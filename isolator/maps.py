@@ -307,7 +307,7 @@ def nice_ceiling(value: float) -> float:
     for step in (1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0):
         candidate = step * 10.0 ** exponent
         if candidate >= value * (1 - 1e-12):
-            return candidate
+            return float(f"{candidate:.12g}")
     return 10.0 ** (exponent + 1)
 
 

@@ -52,7 +52,8 @@ def _atomic_target(path: Path):
 def _page(plt, number: int, subtitle: str):
     fig = plt.figure(figsize=A4_IN)
     fig.text(0.05, 0.975, PAGE_TITLES[number - 1], fontsize=13, weight="bold", va="top")
-    fig.text(0.95, 0.975, subtitle, fontsize=8, va="top", ha="right", color="0.35")
+    fig.text(0.95, 0.975, textwrap.shorten(subtitle, 80, placeholder="…"), fontsize=7.5, va="top", ha="right",
+             color="0.35")
     return fig
 
 
@@ -87,16 +88,16 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
                     ("isolated period T", f"{fmt(d.isolated_period_s)} s"),
                     ("paper configuration", a.adaptation.system.configuration)]
     prov = a.motion.provenance
-    record_rows = [("record", textwrap.shorten(a.record_label, 48, placeholder="…"))]
+    record_rows = [("record", textwrap.shorten(a.record_label, 40, placeholder="…"))]
     for key, name in (("event", "event"), ("date", "date"), ("station", "station"),
                       ("station_name", "station name"), ("starttime", "start time (UTC)"),
                       ("magnitude", "magnitude")):
         if key in prov:
             value = prov[key]
             record_rows.append((name, textwrap.shorten(fmt(value, 3) if isinstance(value, float) else str(value),
-                                                       48, placeholder="…")))
+                                                       40, placeholder="…")))
     record_rows += [("component", a.motion.component or "-"), ("format", str(prov.get("format", "-"))),
-                    ("units from", textwrap.shorten(a.motion.units_source, 48, placeholder="…")),
+                    ("units from", textwrap.shorten(a.motion.units_source, 40, placeholder="…")),
                     ("samples", f"{a.motion.npts} × {fmt(a.motion.dt_s)} s = {fmt(a.motion.duration_s)} s")]
     for step in a.motion.processing:
         words = step.get("step", "")
@@ -104,7 +105,7 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
             words += f" ×{fmt(step['factor'])}"
         if "target_pga_m_s2" in step:
             words += f" to PGA {fmt(step['target_pga_m_s2'] / STANDARD_GRAVITY, 3)} g"
-        record_rows.append(("processing", textwrap.shorten(words, 48, placeholder="…")))
+        record_rows.append(("processing", textwrap.shorten(words, 40, placeholder="…")))
     im_rows = [("PGA", f"{fmt(im.pga_m_s2)} m/s²  ({fmt(im.pga_m_s2 / STANDARD_GRAVITY)} g)"),
                ("PGV", f"{fmt(im.pgv_m_s)} m/s"), ("PGD (baseline-corr.)", f"{fmt(im.pgd_m)} m"),
                ("Arias intensity", f"{fmt(im.arias_m_s)} m/s"), ("duration D5-95", f"{fmt(im.d5_95_s)} s"),
