@@ -254,12 +254,17 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
 
 
 def amplitude_curve(k: float, eta: float, mu_s: float, mu_k: float | None, alphas,
-                    workers: int | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """A(α) and the regime codes along α at fixed k and η (the paper's Figs. 5c–d, 8)."""
+                    workers: int | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A(α), the regime codes and the steady flags along α at fixed k and η (Figs. 5c–d, 8).
+
+    Where ``steady`` is False the solver stopped at resonant growth (no damping): A grows
+    without bound and the value returned is only the amplitude reached.
+    """
     mu_k = mu_s if mu_k is None else float(mu_k)
     points = [(float(a), float(k)) for a in alphas]
     results = _evaluate(points, float(eta), float(mu_s), mu_k, workers or _default_workers())
-    return (np.array([r[1] for r in results]), np.array([r[0] for r in results], dtype=np.int8))
+    return (np.array([r[1] for r in results]), np.array([r[0] for r in results], dtype=np.int8),
+            np.array([bool(r[7]) for r in results]))
 
 
 def triple_point(eta: float, mu_s: float, mu_k: float | None = None, alpha_max: float = 50.0,

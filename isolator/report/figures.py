@@ -149,16 +149,32 @@ def regime_map_figure(rmap, *, triple=None, design_point=None, title=None):
     return fig
 
 
-def draw_amplitude_curve(ax, alphas, amplitudes, regimes, *, alpha_record=None, amplitude_record=None,
-                         k=0.0, eta=0.0):
-    """A(α) at fixed k and η, coloured by regime, with the record's α marked."""
+def draw_amplitude_curve(ax, alphas, amplitudes, regimes, *, steady=None, alpha_record=None,
+                         amplitude_record=None, k=0.0, eta=0.0):
+    """A(α) at fixed k and η, coloured by regime, with the record's α marked.
+
+    Points at resonant growth (``steady`` False: no steady amplitude) are drawn as
+    triangles at the top of the axes, which is capped so that the rest stays readable.
+    """
+    steady = np.ones(alphas.shape, bool) if steady is None else np.asarray(steady, bool)
     colours = {0: "k", 1: "tab:orange", 2: "tab:blue"}
     names = {0: "ST", 1: "SS", 2: "SL"}
+    finite = amplitudes[steady]
+    reference = [1.0] + ([amplitude_record] if amplitude_record is not None else [])
+    top = 1.15 * max(float(np.nanmax(finite)) if finite.size else 1.0, *reference)
+    top = min(top, 1.3 * max(float(np.nanpercentile(finite, 90)) if finite.size else 1.0, *reference) + 0.5)
     for code in (0, 1, 2):
-        mask = regimes == code
+        mask = (regimes == code) & steady
         if mask.any():
             ax.plot(alphas[mask], amplitudes[mask], ".", ms=3.5, color=colours[code], label=f"harmonic, {names[code]}")
-    ax.plot(alphas, amplitudes, "-", color="0.6", lw=0.7, zorder=0)
+    ax.plot(alphas[steady], np.minimum(amplitudes[steady], top), "-", color="0.6", lw=0.7, zorder=0)
+    clipped = steady & (amplitudes > top)
+    if clipped.any():
+        ax.plot(alphas[clipped], np.full(clipped.sum(), 0.97 * top), "^", color="0.3", ms=4,
+                label="A above the axis")
+    if (~steady).any():
+        ax.plot(alphas[~steady], np.full((~steady).sum(), 0.97 * top), "^", color="red", ms=5,
+                label="resonant growth (unbounded A)")
     ax.axhline(1.0, color="0.3", ls=":", lw=1.0, label="A = 1")
     if alpha_record is not None:
         ax.axvline(alpha_record, color="red", lw=1.0, ls="--", label=f"record α = {alpha_record:.3g}")
@@ -167,7 +183,7 @@ def draw_amplitude_curve(ax, alphas, amplitudes, regimes, *, alpha_record=None, 
     ax.set_xlabel("reduced acceleration α  [-]")
     ax.set_ylabel("amplitude A = X_pp / (2 A0)  [-]")
     ax.set_title(f"Harmonic amplitude A(α) at the design's k = {k:.3g}, η = {eta:.3g}")
-    ax.set_ylim(bottom=0.0)
+    ax.set_ylim(0.0, top)
     ax.legend(loc="best", frameon=True)
 
 

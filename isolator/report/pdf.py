@@ -73,7 +73,8 @@ def _table(fig, x: float, y: float, title: str, rows, width: float = 0.43, line:
 
 
 def _summary_page(plt, a: Analysis, summary: dict, command: str):
-    fig = _page(plt, 1, f"{a.design.name} | {a.record_label}")
+    record_name = Path(a.record_label).name if Path(a.record_label).is_file() else a.record_label
+    fig = _page(plt, 1, f"{a.design.name} | {record_name}")
     d, p, r, im = a.design, a.adaptation.point, a.response, a.adaptation.intensity
     eng = a.engineering
     fig.text(0.05, 0.945, "Friction isolator - engineering review", fontsize=11, va="top")
@@ -204,7 +205,8 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
     summary = summary_dict(a)
     d, p, r = a.design, a.adaptation.point, a.response
     rc, hc = a.record_class, a.harmonic_class
-    label = f"{d.name} | {a.record_label}"
+    record_name = Path(a.record_label).name if Path(a.record_label).is_file() else a.record_label
+    label = f"{d.name} | {record_name}"
 
     # the map and the A(α) curve first: the slow part, before any file is opened
     frame = design_frame(p.alpha, p.k)
@@ -212,7 +214,7 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
                       n_k=map_resolution, n_alpha=map_resolution, workers=workers)
     triple = triple_point(p.eta, p.mu_s, p.mu_k, alpha_max=frame["alpha"][1]) if p.eta > 0 else None
     alphas = np.unique(np.concatenate((np.linspace(1.0 + 1e-6, frame["alpha"][1], 2 * map_resolution), [p.alpha])))
-    amplitudes, regimes = amplitude_curve(p.k, p.eta, p.mu_s, p.mu_k, alphas, workers=workers)
+    amplitudes, regimes, steady = amplitude_curve(p.k, p.eta, p.mu_s, p.mu_k, alphas, workers=workers)
     summary["map"] = {"k_range": list(frame["k"]), "alpha_range": list(frame["alpha"]),
                       "resolution": map_resolution, "computed_s": rmap.elapsed_s, "from_cache": rmap.from_cache,
                       "triple_point": None if triple is None else {"alpha": triple[0], "k": triple[1]},
@@ -271,7 +273,7 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
                                     title=f"Regime map at η = {fmt(p.eta, 3)}, µs = {fmt(p.mu_s, 3)}, "
                                           f"µk = {fmt(p.mu_k, 3)}")
             ax_amp = fig.add_subplot(grid[1])
-            figures.draw_amplitude_curve(ax_amp, alphas, amplitudes, regimes, alpha_record=p.alpha,
+            figures.draw_amplitude_curve(ax_amp, alphas, amplitudes, regimes, steady=steady, alpha_record=p.alpha,
                                          amplitude_record=rc.amplitude, k=p.k, eta=p.eta)
             ax_amp.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
             _caption(fig, f"Top: the paper's (k, α) map (Figs. 5-7) at the design's η, µs, µk, zoomed to the "
