@@ -58,13 +58,23 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
     k, alpha = rmap.k, rmap.alpha
     kk, aa = np.meshgrid(k, alpha)
     handles = []
-    # dominance regions: friction light blue, viscous light red, elastic hatched
-    dom = rmap.dominant.astype(float)
+    # dominance regions (friction light blue, viscous light red, elastic hatched) from the
+    # continuous log-ratio of each force to the larger of the two others, so that the
+    # region edges are interpolated between grid points rather than drawn as steps
     moving = rmap.regime > 0
-    ax.contourf(kk, aa, np.where(dom == 0, 1.0, 0.0), levels=[0.5, 1.5], colors=[COLOUR_FRICTION], zorder=0)
-    ax.contourf(kk, aa, np.where(dom == 2, 1.0, 0.0), levels=[0.5, 1.5], colors=[COLOUR_VISCOUS], zorder=0)
-    hatch = ax.contourf(kk, aa, np.where(dom == 1, 1.0, 0.0), levels=[0.5, 1.5], colors="none",
-                        hatches=["////"], zorder=1)
+    amplitude = np.where(moving, rmap.amplitude, 0.0)
+    forces = {"friction": np.full(amplitude.shape, rmap.mu_k), "elastic": kk * amplitude,
+              "viscous": rmap.eta * amplitude * np.sqrt(np.maximum(aa, 0.0) * rmap.mu_s)}
+
+    def margin(name):
+        others = np.maximum(*[forces[o] for o in forces if o != name])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            values = np.log10(forces[name] / others)
+        return np.nan_to_num(values, nan=-10.0, posinf=10.0, neginf=-10.0)
+
+    ax.contourf(kk, aa, margin("friction"), levels=[0.0, 11.0], colors=[COLOUR_FRICTION], zorder=0)
+    ax.contourf(kk, aa, margin("viscous"), levels=[0.0, 11.0], colors=[COLOUR_VISCOUS], zorder=0)
+    hatch = ax.contourf(kk, aa, margin("elastic"), levels=[0.0, 11.0], colors="none", hatches=["////"], zorder=1)
     try:
         hatch.set_edgecolor("#9a9a9a")
         hatch.set_linewidth(0.0)
@@ -73,14 +83,21 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
     handles += [Patch(facecolor=COLOUR_FRICTION, label="friction dominant"),
                 Patch(facecolor=COLOUR_VISCOUS, label="viscous dominant"),
                 Patch(facecolor="white", hatch="////", edgecolor="#9a9a9a", label="elastic dominant")]
-    # A > 1 region
-    amplified = np.where(moving & (rmap.amplitude > 1.0), 1.0, 0.0)
-    if amplified.any():
-        ax.contourf(kk, aa, amplified, levels=[0.5, 1.5], colors=[COLOUR_AMPLIFIED], alpha=0.75, zorder=2)
+    # A > 1 region, interpolated on the amplitude field
+    if (amplitude > 1.0).any():
+        ax.contourf(kk, aa, np.minimum(amplitude, 1e6), levels=[1.0, 1e7], colors=[COLOUR_AMPLIFIED], alpha=0.75,
+                    zorder=2)
         handles.append(Patch(facecolor=COLOUR_AMPLIFIED, alpha=0.75, label="A > 1 (amplified)"))
-    # every regime boundary (ST/SS, SS/SL, and back): contour of the regime codes
-    ax.contour(kk, aa, rmap.regime.astype(float), levels=[0.5, 1.5], colors=["k", "red"],
-               linewidths=[1.0, 1.6], zorder=4)
+    # regime boundaries: ST | SS at α = 1 from the regime codes; every SS | SL change from the
+    # slip-time ratio ζ (= 1 exactly in SL), so SS/SL/SS/SL sequences along α all show
+    if alpha[0] < 1.0 < alpha[-1]:
+        ax.axhline(1.0, color="k", lw=1.0, zorder=4)  # α_SS = 1 exactly, whatever k and η
+    if (~moving & (aa > 1.0)).any():  # ST islands above α = 1 (stuck for good after a transient)
+        ax.contour(kk, aa, np.where(aa <= 1.0, 1.0, moving.astype(float)), levels=[0.5], colors=["k"],
+                   linewidths=[1.0], zorder=4)
+    zeta = np.where(moving, rmap.zeta, 0.0)
+    if (rmap.regime == 2).any() and (rmap.regime == 1).any():
+        ax.contour(kk, aa, zeta, levels=[0.999], colors=["red"], linewidths=[1.6], zorder=4)
     handles += [Line2D([], [], color="k", lw=1.0, label="ST | SS boundary (α = 1)"),
                 Line2D([], [], color="red", lw=1.6, label="SS | SL boundaries (ζ = 1)")]
     # ρ = 1 curves

@@ -42,6 +42,11 @@ def fmt(value, digits: int = 4) -> str:
     return format(value, f".{digits}g")
 
 
+def _tail(text: str, width: int) -> str:
+    """``text`` cut at the front to ``width`` characters (file names keep their end)."""
+    return text if len(text) <= width else "…" + text[-(width - 1):]
+
+
 def _atomic_target(path: Path):
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
@@ -89,14 +94,13 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
                     ("isolated period T", f"{fmt(d.isolated_period_s)} s"),
                     ("paper configuration", a.adaptation.system.configuration)]
     prov = a.motion.provenance
-    record_rows = [("record", textwrap.shorten(a.record_label, 40, placeholder="…"))]
+    record_rows = [("record", _tail(record_name, 40))]
     for key, name in (("event", "event"), ("date", "date"), ("station", "station"),
                       ("station_name", "station name"), ("starttime", "start time (UTC)"),
                       ("magnitude", "magnitude")):
         if key in prov:
             value = prov[key]
-            record_rows.append((name, textwrap.shorten(fmt(value, 3) if isinstance(value, float) else str(value),
-                                                       40, placeholder="…")))
+            record_rows.append((name, _tail(fmt(value, 3) if isinstance(value, float) else str(value), 40)))
     record_rows += [("component", a.motion.component or "-"), ("format", str(prov.get("format", "-"))),
                     ("units from", textwrap.shorten(a.motion.units_source, 40, placeholder="…")),
                     ("samples", f"{a.motion.npts} × {fmt(a.motion.dt_s)} s = {fmt(a.motion.duration_s)} s")]

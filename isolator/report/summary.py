@@ -76,8 +76,14 @@ def verdicts(analysis: Analysis) -> list[str]:
     """Plain sentences for the summary page."""
     rc, hc = analysis.record_class, analysis.harmonic_class
     eng = analysis.engineering
-    out = [f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
-           f"zeta = {rc.zeta:.3f}; harmonic prediction: {hc.regime} ({REGIME_WORDS[hc.regime]})."]
+    p = analysis.adaptation.point
+    if rc.regime == "ST":
+        out = [f"Regime under the record: ST - the isolator never slides (alpha = PGA/(mu_s g) = {p.alpha:.3g}"
+               f"{' <= 1' if p.alpha <= 1 else ''}): the superstructure moves with the ground, not isolated; "
+               f"harmonic prediction: {hc.regime} ({REGIME_WORDS[hc.regime]})."]
+    else:
+        out = [f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
+               f"zeta = {rc.zeta:.3f}; harmonic prediction: {hc.regime} ({REGIME_WORDS[hc.regime]})."]
     if rc.amplified:
         out.append(f"The isolator AMPLIFIES the ground motion: A = {rc.amplitude:.3g} > 1.")
     else:
