@@ -196,7 +196,14 @@ def _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k) -> str:
 
 
 def _default_workers() -> int:
-    return max(1, min(2, os.cpu_count() or 1))
+    # up to 2 processes, but only on idle cores: on a busy shared machine (load average at or
+    # above the core count) extra processes only add start-up time and contention
+    cores = os.cpu_count() or 1
+    try:
+        idle = cores - int(os.getloadavg()[0])
+    except OSError:
+        idle = cores
+    return max(1, min(2, idle))
 
 
 def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0.0, 6.0),

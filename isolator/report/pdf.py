@@ -51,6 +51,9 @@ def _atomic_target(path: Path):
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     os.close(handle)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a report is an ordinary file
     return tmp
 
 
@@ -96,7 +99,8 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
     prov = a.motion.provenance
     record_rows = [("record", _tail(record_name, 40))]
     for key, name in (("event", "event"), ("date", "date"), ("station", "station"),
-                      ("station_name", "station name"), ("starttime", "start time (UTC)"),
+                      ("station_name", "station name"), ("event_origin_time", "event origin (UTC)"),
+                      ("starttime", "record start (UTC)"),
                       ("magnitude", "magnitude")):
         if key in prov:
             value = prov[key]

@@ -179,7 +179,7 @@ def summary_dict(analysis: Analysis) -> dict:
 #: Record names that resolve without a file of the user's: real records shipped by a dependency.
 EXAMPLE_RECORDS = {
     "example:knet": ("obspy.io.nied", ("tests", "data", "test.knet"),
-                     "K-NET AKT013 E-W, M5.9 Akita/Miyagi border 1996-08-11 (obspy's bundled test.knet)"),
+                     "test.knet (K-NET sample bundled with obspy)"),
 }
 
 
