@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
@@ -12,6 +13,7 @@ from isolator.cli import app
 
 pypdf = pytest.importorskip("pypdf")
 runner = CliRunner()
+DATA = Path(__file__).resolve().parents[1] / "data"
 
 REQUIRED_KEYS = ("regime_record", "regime_harmonic", "amplified_record", "amplified_harmonic",
                  "dominant_force_record", "dominant_force_harmonic", "k", "alpha", "eta",
@@ -26,12 +28,11 @@ def _cache(tmp_path, monkeypatch):
 @pytest.fixture(scope="module")
 def knet_report(tmp_path_factory):
     """One report on obspy's bundled K-NET record (5900 samples), scaled to 0.3 g, coarse map."""
-    import os
-
     out = tmp_path_factory.mktemp("report") / "knet.pdf"
-    os.environ["ISOLATOR_CACHE_DIR"] = str(out.parent / "cache")
-    result = runner.invoke(app, ["report", "--design", "data/example_pendulum.toml", "example:knet",
-                                 "--scale-to-pga", "0.3", "-o", str(out), "--map-resolution", "10"])
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv("ISOLATOR_CACHE_DIR", str(out.parent / "cache"))
+        result = runner.invoke(app, ["report", "--design", str(DATA / "example_pendulum.toml"), "example:knet",
+                                     "--scale-to-pga", "0.3", "-o", str(out), "--map-resolution", "10"])
     return result, out
 
 
@@ -76,10 +77,10 @@ def test_report_output_summary_lines(knet_report):
 
 @pytest.mark.parametrize("args,words", [
     (["--design", "absent.toml", "example:knet"], "no such design file"),
-    (["--design", "data/example_pendulum.toml", "example:nothing"], "unknown example record"),
-    (["--design", "data/example_pendulum.toml", "example:knet", "--scale-to-pga", "-1"], "--scale-to-pga must be > 0"),
-    (["--design", "data/example_pendulum.toml", "no_such_record.AT2"], "no such file"),
-    (["--design", "data/example_pendulum.toml", "example:knet", "-o", "x.txt"], "must end with .pdf"),
+    (["--design", str(DATA / "example_pendulum.toml"), "example:nothing"], "unknown example record"),
+    (["--design", str(DATA / "example_pendulum.toml"), "example:knet", "--scale-to-pga", "-1"], "--scale-to-pga must be > 0"),
+    (["--design", str(DATA / "example_pendulum.toml"), "no_such_record.AT2"], "no such file"),
+    (["--design", str(DATA / "example_pendulum.toml"), "example:knet", "-o", "x.txt"], "must end with .pdf"),
 ])
 def test_report_user_errors(args, words):
     result = runner.invoke(app, ["report", *args])
@@ -110,7 +111,7 @@ def test_regime_map_command(tmp_path):
 
 def test_report_on_a_shared_record(records_dir, tmp_path):
     out = tmp_path / "elcentro.pdf"
-    result = runner.invoke(app, ["report", "--design", "data/example_pendulum_damped.toml",
+    result = runner.invoke(app, ["report", "--design", str(DATA / "example_pendulum_damped.toml"),
                                  str(records_dir / "at2" / "elCentro.AT2"), "-o", str(out), "--map-resolution", "8"])
     assert result.exit_code == 0, result.output
     summary = json.loads(out.with_suffix(".json").read_text())
