@@ -225,7 +225,7 @@ def record_page(fig, motion, window_s, periods_s, psa_m_s2, isolated_period_s, e
                 label=f"peak {abs(values[peak]):.3g} at {t[peak]:.2f} s")
         ax.set_ylabel(label)
         ax.set_xlim(t[0], t[-1])
-        ax.legend(loc="upper right", frameon=True)
+        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), frameon=False, ncol=2, borderaxespad=0.2)
     axes[2].set_xlabel("time  [s]")
     ax = axes[3]
     ax.plot(periods_s, psa_m_s2 / STANDARD_GRAVITY, color="k", lw=1.0, label="PSA, 5 % damping")
@@ -281,8 +281,8 @@ def response_page(fig, response, mass_kg: float, slip_intervals):
     ax_a.set_ylabel("acceleration  [g]")
     ax_a.set_xlabel("time  [s]")
     ax_a.set_xlim(t[0], t[-1])
-    for ax in (ax_x, ax_v, ax_a):
-        ax.legend(loc="upper right", frameon=True, ncol=3)
+    for ax in (ax_x, ax_v, ax_a):  # legends above the axes: the traces fill the frame
+        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), frameon=False, ncol=3, borderaxespad=0.2)
     ax_h = fig.add_subplot(grid[3, 0])
     force_kN = -mass_kg * response.absolute_acceleration_m_s2 / 1e3
     ax_h.plot(response.displacement_m, force_kN, color="k", lw=0.6)
@@ -301,5 +301,5 @@ def response_page(fig, response, mass_kg: float, slip_intervals):
     ax_e.set_xlabel("time  [s]")
     ax_e.set_ylabel("energy  [kJ]")
     ax_e.set_title("Energy balance over time")
-    ax_e.legend(loc="center right", frameon=True)
+    ax_e.legend(loc="upper left", frameon=True)  # cumulative curves leave the upper left empty
     return energies
