@@ -136,11 +136,17 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
             handles.append(Line2D([], [], marker="o", ls="none", mfc="none", mec="k", mew=1.6,
                                   label=f"triple point (k̂ = {k_hat:.3g}, α̂ = {a_hat:.3g})"))
     # regime names at the centre of each region
+    from scipy.ndimage import distance_transform_edt
+
     for code, name in enumerate(("ST", "SS", "SL")):
-        rows, cols = np.nonzero(rmap.regime == code)
-        if rows.size:
-            i, j = int(np.median(rows)), int(np.median(cols))
-            if rmap.regime[i, j] == code:
+        mask = rmap.regime == code
+        if mask.any():
+            # the label goes where the region is deepest (farthest from its edges)
+            depth = distance_transform_edt(np.pad(mask, 1))[1:-1, 1:-1]
+            rows, cols = np.nonzero(depth >= max(0.75 * depth.max(), 1.0))
+            if rows.size:
+                nearest = int(np.argmin((rows - rows.mean()) ** 2 + (cols - cols.mean()) ** 2))
+                i, j = rows[nearest], cols[nearest]
                 ax.text(k[j], alpha[i], name, ha="center", va="center", fontsize=10, weight="bold",
                         zorder=8, bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.7})
     if design_point is not None:
