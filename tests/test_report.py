@@ -117,3 +117,33 @@ def test_report_on_a_shared_record(records_dir, tmp_path):
     summary = json.loads(out.with_suffix(".json").read_text())
     assert summary["eta"] > 0 and summary["record"]["component"]
     assert len(pypdf.PdfReader(str(out)).pages) == 4
+
+
+SHARED_CASES = [
+    ("at2/RSN1044_NORTHR_NWH360.AT2", {}),
+    ("other/elcentro.txt", {"units": "g"}),
+    ("other/IELC180.acc", {"units": "g", "dt_s": 0.01}),
+    ("other/Chi-Chi_1999_TCU068-090.csv", {"units": "g"}),
+    ("other/ce89486SampleInput.v2", {"component": "180"}),
+    ("other/0111a.smc", {}),
+    ("other/AOM0081801241951.NS", {}),
+    ("converted/converted_RSN779_LOMAP_LGP000.mseed", {"units": "m/s2"}),
+]
+
+
+@pytest.mark.parametrize("name,options", SHARED_CASES)
+def test_every_format_analyses_to_json(records_dir, name, options):
+    """The analysis behind the report (no PDF) on one record of each format of ../shared/records."""
+    from isolator.design import Design
+    from isolator.motion import read_ground_motion
+    from isolator.report.summary import analyse, summary_dict
+
+    motion = read_ground_motion(records_dir / name, **options)
+    analysis = analyse(Design.from_toml(DATA / "example_pendulum.toml"), motion, record_label=name)
+    summary = json.loads(json.dumps(summary_dict(analysis), allow_nan=False))
+    for key in REQUIRED_KEYS:
+        assert summary[key] is not None
+    assert summary["regime_record"] in ("ST", "SS", "SL")
+    assert abs(summary["energy_balance_error_J_per_kg"]) < 1e-6 * max(1.0, summary["energy_input_J_per_kg"])
+    if summary["regime_record"] == "ST":
+        assert summary["peak_displacement_m"] == 0.0
