@@ -357,8 +357,9 @@ def simulate(
 def report(
     record: str = typer.Argument(..., help="Record file (any format `info` reads), or `example:knet` for the "
                                  "real K-NET record bundled with obspy (no download)."),
-    design: str = typer.Option(..., "--design", "-d", help="Design file (TOML): mass_kg, radius_m or "
-                               "stiffness_N_per_m, mu_static, [mu_kinetic], [damping_Ns_per_m or damping_ratio], name."),
+    design: str = typer.Option(..., "--design", "-d", help="Design file (TOML): name, mass_kg, radius_m or "
+                               "stiffness_N_per_m, mu_static; optional mu_kinetic, damping_Ns_per_m or "
+                               "damping_ratio."),
     component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"]),
     units: str = typer.Option(None, "--units", "-u", help=RECORD_HELP["units"]),
     merge: bool = typer.Option(False, "--merge", help=RECORD_HELP["merge"]),
