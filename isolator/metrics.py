@@ -234,8 +234,9 @@ def compare(record: Classification, harmonic: Classification) -> list[str]:
     """Sentences naming each disagreement between the record and the harmonic prediction."""
     notes = []
     if record.regime != harmonic.regime:
-        notes.append(f"regime: the record gives {record.regime} ({REGIME_WORDS[record.regime]}), the harmonic "
-                     f"map predicts {harmonic.regime} ({REGIME_WORDS[harmonic.regime]})")
+        notes.append(f"regime: the record gives {record.regime} ({REGIME_WORDS[record.regime]}, sliding "
+                     f"{100 * record.zeta:.0f} % of the strong motion), the harmonic map predicts "
+                     f"{harmonic.regime} ({REGIME_WORDS[harmonic.regime]}, zeta = {harmonic.zeta:.2f})")
     if record.amplified != harmonic.amplified:
         notes.append(f"amplification: the record gives A = {record.amplitude:.3g}, the harmonic map "
                      f"A = {harmonic.amplitude:.3g} (one above 1, the other not)")
