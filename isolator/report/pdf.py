@@ -219,7 +219,7 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
     # the map and the A(α) curve first: the slow part, before any file is opened
     frame = design_frame(p.alpha, p.k)
     rmap = regime_map(p.eta, p.mu_s, p.mu_k, k_range=frame["k"], alpha_range=frame["alpha"],
-                      n_k=map_resolution, n_alpha=map_resolution, workers=workers)
+                      n_k=map_resolution, n_alpha=map_resolution, workers=workers, refine=True)
     triple = triple_point(p.eta, p.mu_s, p.mu_k, alpha_max=frame["alpha"][1]) if p.eta > 0 else None
     alphas = np.unique(np.concatenate((np.linspace(1.0 + 1e-6, frame["alpha"][1], 2 * map_resolution), [p.alpha])))
     amplitudes, regimes, steady = amplitude_curve(p.k, p.eta, p.mu_s, p.mu_k, alphas, workers=workers)
