@@ -89,6 +89,8 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
     design_rows = [("name", d.name), ("design file", Path(d.source).name),
                    ("type", "friction pendulum" if d.is_pendulum else "flat slider with spring"),
                    ("mass M", f"{d.mass_kg:.6g} kg  (W = {fmt(d.weight_N / 1e3)} kN)")]
+    if d.description:
+        design_rows.insert(1, ("description", textwrap.shorten(d.description, 40, placeholder="…")))
     if d.is_pendulum:
         design_rows.append(("radius R", f"{fmt(d.radius_m)} m"))
     design_rows += [("stiffness K", f"{fmt(d.stiffness_N_per_m / 1e3)} kN/m"),
