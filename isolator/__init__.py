@@ -12,6 +12,9 @@ stay instant)::
     harmonic_thresholds(k, eta, mu_s, mu_k=None, alpha_max=6) -> RegimeThresholds
     System(mu_static, mu_kinetic, stiffness_per_mass, damping_per_mass, gravity_m_s2)
     read_ground_motion(path, component=None, units=None, ...) -> GroundMotion
+    Design.from_toml(path) -> Design;  adapt(design, motion) -> Adaptation (System, (α, k, η))
+    classify_record(response, point) / classify_harmonic(harmonic_response) -> Classification
+    regime_map(eta, mu_s, mu_k, k_range=..., alpha_range=...) -> RegimeMap (cached)
 """
 
 from __future__ import annotations
@@ -28,6 +31,11 @@ _EXPORTS = {
     "pseudo_acceleration_spectrum": "isolator.solver.linear",
     "read_ground_motion": "isolator.motion",
     "GroundMotion": "isolator.motion",
+    "Design": "isolator.design",
+    "adapt": "isolator.adapter",
+    "classify_record": "isolator.metrics",
+    "classify_harmonic": "isolator.metrics",
+    "regime_map": "isolator.maps",
 }
 
 __all__ = sorted(_EXPORTS)

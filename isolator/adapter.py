@@ -1,0 +1,156 @@
+r"""Adapter: a design and a ground motion → the solver's system and the paper's point.
+
+A record is mapped onto the harmonic motion with the same peak ground acceleration and
+peak ground velocity (exact for a harmonic record: a sampled cosine of amplitude A0 and
+angular frequency Ω has PGA = A0 Ω² and PGV = A0 Ω):
+
+.. math::  A_0 = \frac{PGV^2}{PGA},\quad \Omega = \frac{PGA}{PGV},\quad
+           \alpha = \frac{PGA}{\mu_s g},\quad k = \frac{K A_0}{M g},\quad
+           \eta = \frac{\gamma}{M}\sqrt{\frac{A_0}{g}}
+
+(Nicolas 2017, Eq. 6; for a friction pendulum k = A0/R.)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from isolator.design import Design
+
+
+@dataclass(frozen=True)
+class DimensionlessPoint:
+    """The paper's dimensionless parameters of a design under a ground motion.
+
+    Attributes
+    ----------
+    alpha : float
+        α = PGA / (µs g) [-] (Eq. 6).
+    k : float
+        k = K A0 / (M g) [-].
+    eta : float
+        η = (γ/M) sqrt(A0/g) [-].
+    mu_s, mu_k : float
+        Friction coefficients [-].
+    a0_m : float
+        A0 = PGV²/PGA, the equivalent harmonic ground-displacement amplitude [m].
+    omega_rad_s : float
+        Ω = PGA/PGV, the equivalent angular frequency [rad/s].
+    """
+
+    alpha: float
+    k: float
+    eta: float
+    mu_s: float
+    mu_k: float
+    a0_m: float
+    omega_rad_s: float
+
+    def as_dict(self) -> dict:
+        return {"alpha": self.alpha, "k": self.k, "eta": self.eta, "mu_s": self.mu_s, "mu_k": self.mu_k,
+                "a0_m": self.a0_m, "omega_rad_s": self.omega_rad_s}
+
+
+def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float) -> DimensionlessPoint:
+    """The paper's (α, k, η) of a design under a motion of given PGA and PGV.
+
+    Parameters
+    ----------
+    design : Design
+        The isolator.
+    pga_m_s2 : float
+        Peak ground acceleration [m/s²], > 0.
+    pgv_m_s : float
+        Peak ground velocity [m/s], > 0.
+
+    Returns
+    -------
+    DimensionlessPoint
+    """
+    if not (pga_m_s2 > 0 and pgv_m_s > 0):
+        raise ValueError(f"PGA ({pga_m_s2} m/s²) and PGV ({pgv_m_s} m/s) must be > 0")
+    g = design.gravity_m_s2
+    a0_m = pgv_m_s ** 2 / pga_m_s2
+    return DimensionlessPoint(
+        alpha=pga_m_s2 / (design.mu_static * g),
+        k=design.stiffness_N_per_m * a0_m / (design.mass_kg * g),
+        eta=design.damping_per_mass * math.sqrt(a0_m / g),
+        mu_s=design.mu_static,
+        mu_k=design.mu_kinetic,
+        a0_m=a0_m,
+        omega_rad_s=pga_m_s2 / pgv_m_s,
+    )
+
+
+@dataclass(frozen=True)
+class Adaptation:
+    """Everything the solver and the classification need about a design under a motion."""
+
+    design: Design
+    system: object  #: isolator.solver.system.System (per unit mass)
+    point: DimensionlessPoint
+    intensity: object  #: isolator.motion.IntensityMeasures
+
+    def dimensional_dict(self) -> dict:
+        """K [N/m], γ [N·s/m], µs, µk, M [kg]: the dimensional system."""
+        d = self.design
+        return {"mass_kg": d.mass_kg, "stiffness_N_per_m": d.stiffness_N_per_m,
+                "damping_Ns_per_m": d.damping_Ns_per_m, "mu_static": d.mu_static, "mu_kinetic": d.mu_kinetic,
+                "configuration": self.system.configuration}
+
+
+def adapt(design: Design, motion) -> Adaptation:
+    """Map a design and a ground motion onto the solver and the paper.
+
+    Parameters
+    ----------
+    design : Design
+        The isolator.
+    motion : isolator.motion.GroundMotion
+        The ground acceleration [m/s²].
+
+    Returns
+    -------
+    Adaptation
+    """
+    intensity = motion.intensity_measures()
+    point = dimensionless_point(design, intensity.pga_m_s2, intensity.pgv_m_s)
+    return Adaptation(design=design, system=design.system(), point=point, intensity=intensity)
+
+
+def engineering_quantities(design: Design, response) -> dict:
+    """What a reviewer reads for an isolator under a record (SI units).
+
+    Parameters
+    ----------
+    design : Design
+        The isolator.
+    response : isolator.solver.record.Response
+        Its exact response to the record.
+
+    Returns
+    -------
+    dict
+        ``isolated_period_s`` (T = 2π sqrt(M/K)), ``peak_displacement_m`` D,
+        ``effective_stiffness_N_per_m``, ``effective_period_s`` and
+        ``effective_damping_ratio`` at D (see :meth:`Design.effective_properties`),
+        ``peak_transmitted_force_N`` = M × peak absolute acceleration of the mass
+        (the horizontal force through the isolator into the superstructure),
+        ``base_shear_coefficient`` = that force / (M g), and ``design_force_N`` (the
+        bilinear force K D + µk M g at D).
+    """
+    peak_d = float(response.peak_displacement_m)
+    effective = design.effective_properties(peak_d)
+    force_N = design.mass_kg * float(response.peak_transmitted_acceleration_m_s2)
+    return {
+        "isolated_period_s": design.isolated_period_s,
+        "peak_displacement_m": peak_d,
+        "residual_displacement_m": float(response.residual_displacement_m),
+        "effective_stiffness_N_per_m": effective.effective_stiffness_N_per_m,
+        "effective_period_s": effective.effective_period_s,
+        "effective_damping_ratio": effective.effective_damping_ratio,
+        "peak_transmitted_force_N": force_N,
+        "base_shear_coefficient": force_N / design.weight_N,
+        "design_force_N": effective.design_force_N,
+    }
