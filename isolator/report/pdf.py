@@ -264,11 +264,11 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
                           f"relative to the ground ({fmt(r.slip_time_s)} s in all, {r.n_events} events).  "
                           "Transmitted acceleration = absolute acceleration of the supported mass; isolator "
                           "force = -M × that acceleration (friction + spring + damper).  Energy curves: "
-                          "trapezoids on the sampled X and dX/dt (input = -M∫a_g dX/dt dt, friction = "
-                          "M µk g∫|dX/dt| dt, viscous = Mγ/M∫(dX/dt)² dt); at the end they give input "
-                          f"{fmt(final['input'])} kJ, friction {fmt(final['friction'])} kJ, against the solver's "
-                          f"exact {fmt(r.energy_input_J_per_kg * d.mass_kg / 1e3)} kJ and "
-                          f"{fmt(r.energy_friction_J_per_kg * d.mass_kg / 1e3)} kJ.")
+                          "the solver's exact cumulative energies (input = -M∫a_g dX/dt dt, friction = "
+                          "M µk g∫|dX/dt| dt, viscous = M(γ/M)∫(dX/dt)² dt); at the end input "
+                          f"{fmt(final['input'])} kJ = kinetic + potential + friction {fmt(final['friction'])} kJ "
+                          f"+ viscous {fmt(final['viscous'])} kJ, balance error "
+                          f"{fmt(r.energy_balance_error_J_per_kg * d.mass_kg)} J.")
             pdf.savefig(fig)
             plt.close(fig)
 

@@ -126,7 +126,7 @@ def _viscous_integral(tau, x0, v0, p, q, c, kappa):
 
 @njit(cache=True)
 def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
-                  out_x, out_v, out_a, ev_time, ev_kind, ev_x, summary):
+                  out_x, out_v, out_a, out_energy, ev_time, ev_kind, ev_x, summary):
     """Exact response of the friction–spring–dashpot block to a sampled record.
 
     Parameters
@@ -146,6 +146,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
     out_x, out_v, out_a : float64[n]
         Filled with the relative displacement [m], relative velocity [m/s] and
         absolute acceleration of the mass [m/s²] at the samples.
+    out_energy : float64[3, n]
+        Filled with the cumulative input, friction and viscous energies per unit
+        mass at the samples [J/kg] (the same closed forms as the totals).
     ev_time, ev_kind, ev_x : arrays
         Filled with the events (time [s], kind, displacement [m]) while room lasts.
     summary : float64[SUMMARY_SIZE]
@@ -172,6 +175,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
     out_x[0] = 0.0
     out_v[0] = 0.0
     out_a[0] = acc[0]
+    out_energy[0, 0] = 0.0
+    out_energy[1, 0] = 0.0
+    out_energy[2, 0] = 0.0
     i = 0
     while i < n - 1:
         if stuck:
@@ -183,6 +189,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 out_x[i] = x
                 out_v[i] = 0.0
                 out_a[i] = acc[i]
+                out_energy[0, i] = e_in
+                out_energy[1, i] = e_f
+                out_energy[2, i] = e_v
                 if abs(acc[i]) > peak_a:
                     peak_a = abs(acc[i])
             if i >= n - 1:
@@ -342,6 +351,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
         i += 1
         out_x[i] = x
         out_v[i] = v
+        out_energy[0, i] = e_in
+        out_energy[1, i] = e_f
+        out_energy[2, i] = e_v
         if stuck:
             out_a[i] = acc[i]
         else:

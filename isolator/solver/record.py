@@ -54,6 +54,8 @@ class Response:
     energy_kinetic_final_J_per_kg: float
     energy_potential_final_J_per_kg: float
     energy_balance_error_J_per_kg: float
+    #: cumulative energies per unit mass at the samples [J/kg], rows: input, friction, viscous
+    energy_history_J_per_kg: np.ndarray
     status: int = 0
     message: str = "ok"
     solver_seconds: float = 0.0
@@ -114,8 +116,8 @@ def _warm_up_kernel() -> None:
     basis, gram = _kernel.full_step_coefficients(0.01, 0.1, 1.0)
     two = np.zeros(2)
     _kernel.record_kernel(np.array([0.0, 1.0]), 0.01, 1, 0.1, 1.0, 0.5, 0.5, basis, gram, two.copy(),
-                          two.copy(), two.copy(), np.empty(4), np.empty(4, dtype=np.int8), np.empty(4),
-                          np.zeros(_kernel.SUMMARY_SIZE))
+                          two.copy(), two.copy(), np.empty((3, 2)), np.empty(4), np.empty(4, dtype=np.int8),
+                          np.empty(4), np.zeros(_kernel.SUMMARY_SIZE))
     _KERNEL_READY = True
 
 
@@ -185,6 +187,7 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
     out_x = np.empty(n)
     out_v = np.empty(n)
     out_a = np.empty(n)
+    out_energy = np.empty((3, n))
     summary = np.zeros(_kernel.SUMMARY_SIZE)
     capacity = 64 + n // 4
     _warm_up_kernel()
@@ -194,7 +197,7 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
         ev_x = np.empty(capacity)
         start = time.perf_counter()
         _kernel.record_kernel(acc, dt, n_sub, c, kappa, system.static_friction_m_s2,
-                              system.kinetic_friction_m_s2, basis, gram, out_x, out_v, out_a,
+                              system.kinetic_friction_m_s2, basis, gram, out_x, out_v, out_a, out_energy,
                               ev_time, ev_kind, ev_x, summary)
         elapsed = time.perf_counter() - start
         n_events = int(summary[_kernel.SUMMARY_N_EVENTS])
@@ -233,6 +236,7 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
         energy_kinetic_final_J_per_kg=float(e_kin),
         energy_potential_final_J_per_kg=float(e_pot),
         energy_balance_error_J_per_kg=float(e_in - (e_kin + e_pot + e_f + e_v)),
+        energy_history_J_per_kg=out_energy,
         status=status,
         message=message,
         solver_seconds=elapsed,

@@ -206,3 +206,14 @@ def test_stiff_and_heavily_damped_systems(params):
     assert abs(ours.energy_balance_error_J_per_kg) <= 1e-12 * ours.energy_input_J_per_kg
     # a grazing touch (V tangent to zero) may be counted as a stop here and not by the reference,
     # so events are compared through the trajectory, not their number
+
+
+def test_energy_history_balances_at_every_sample():
+    acc, dt = synthetic_record(seed=13)
+    params = SYSTEMS["4a under-damped"]
+    r = simulate_record(acc, dt, **params)
+    e_in, e_f, e_v = r.energy_history_J_per_kg
+    stored = 0.5 * r.velocity_m_s ** 2 + 0.5 * params["stiffness_per_mass"] * r.displacement_m ** 2
+    assert np.max(np.abs(e_in - e_f - e_v - stored)) <= 1e-12 * r.energy_input_J_per_kg
+    assert np.all(np.diff(e_f) >= 0.0) and np.all(np.diff(e_v) >= -1e-18)
+    assert e_in[-1] == r.energy_input_J_per_kg and e_f[-1] == r.energy_friction_J_per_kg
