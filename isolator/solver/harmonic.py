@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
-from isolator.solver.segments import segment_state
+from isolator.solver.segments import harmonic_h1, ramp_basis, segment_state, state_from_basis
 from isolator.solver.system import InvalidSystemError, classify_configuration
 
 PHASE_DEFAULT = 0.5 * math.pi  #: φ of the paper: zero ground acceleration at t = 0 [rad]
@@ -97,6 +97,8 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
     """
     period = 2.0 * math.pi / omega
     force = -omega * omega
+    piece_e0, piece_e1, piece_h1, _, _ = ramp_basis(piece_max, c, kappa)
+    piece_hc = harmonic_h1(piece_max, c, kappa, omega)
     x = state[0]
     v = state[1]
     stuck = state[2] != 0.0
@@ -154,7 +156,12 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                 p = s * (mu_s - mu_k) + kappa * x - force * math.cos(theta)
             else:
                 p = -mu_k * s
-            x1, v1, a1, _ = segment_state(rem, x, v, p, 0.0, force, theta, c, kappa, omega)
+            if rem == piece_max:
+                # full pieces recur: their basis was evaluated once
+                x1, v1, a1, _ = state_from_basis(piece_e0, piece_e1, piece_h1, 0.0, piece_hc, rem, x, v, p, 0.0,
+                                                 force, theta, c, kappa, omega)
+            else:
+                x1, v1, a1, _ = segment_state(rem, x, v, p, 0.0, force, theta, c, kappa, omega)
             a0 = p + force * math.cos(theta) - kappa * x - c * v
             t_stop, _, _ = find_stop(s, from_rest, rem, x, v, v1, a0, a1, p, 0.0, force, theta, c, kappa, omega)
             length = rem if t_stop < 0.0 else t_stop

@@ -85,6 +85,29 @@ def substeps_per_interval(dt_s: float, damping_per_mass: float, stiffness_per_ma
     return max(1, math.ceil(dt_s * omega_d / (0.5 * math.pi)))
 
 
+_GRAM_NODES, _GRAM_WEIGHTS = np.polynomial.legendre.leggauss(12)
+
+
+@njit(cache=True)
+def _gram_matrix(h, c, kappa, n_pieces, nodes, weights):
+    gram = np.zeros((3, 3))
+    piece = h / n_pieces
+    for j in range(n_pieces):
+        for k in range(nodes.shape[0]):
+            e0, e1, h1, _, _ = ramp_basis(piece * (j + 0.5 * (nodes[k] + 1.0)), c, kappa)
+            w = 0.5 * piece * weights[k]
+            gram[0, 0] += w * e0 * e0
+            gram[0, 1] += w * e0 * e1
+            gram[0, 2] += w * e0 * h1
+            gram[1, 1] += w * e1 * e1
+            gram[1, 2] += w * e1 * h1
+            gram[2, 2] += w * h1 * h1
+    gram[1, 0] = gram[0, 1]
+    gram[2, 0] = gram[0, 2]
+    gram[2, 1] = gram[1, 2]
+    return gram
+
+
 def full_step_coefficients(h_s: float, damping_per_mass: float, stiffness_per_mass: float):
     """Basis functions and Gram matrix of a full sub-step, computed once per run.
 
@@ -98,15 +121,7 @@ def full_step_coefficients(h_s: float, damping_per_mass: float, stiffness_per_ma
     # Gram matrix by composite 12-point Gauss–Legendre, one piece per time constant of
     # the fastest exponent: the integrands are entire, so this is exact to rounding.
     n_pieces = min(4000, max(1, math.ceil(fastest_rate(damping_per_mass, stiffness_per_mass) * h_s)))
-    nodes, weights = np.polynomial.legendre.leggauss(12)
-    piece = h_s / n_pieces
-    gram = np.zeros((3, 3))
-    for j in range(n_pieces):
-        for x_node, w_node in zip(nodes, weights):
-            tau = piece * (j + 0.5 * (x_node + 1.0))
-            e0, e1, h1, _, _ = ramp_basis(tau, damping_per_mass, stiffness_per_mass)
-            b = np.array([e0, e1, h1])
-            gram += 0.5 * piece * w_node * np.outer(b, b)
+    gram = _gram_matrix(h_s, damping_per_mass, stiffness_per_mass, n_pieces, _GRAM_NODES, _GRAM_WEIGHTS)
     return basis, gram
 
 

@@ -33,7 +33,8 @@ def _peak_displacement(acc, dt, c, kappa, n_sub):
             p = -(acc[i] + b * (j * h))
             x1 = e0 * x + e1 * (v - m * x) + p * h1 + q * h2
             v1 = e0 * v + e1 * (m * v - kappa * x + p) + q * h1
-            if v * v1 < 0.0:
+            # between samples |x| exceeds its ends by at most ~h max|v| (v changes sign there)
+            if v * v1 < 0.0 and max(abs(x), abs(x1)) + h * max(abs(v), abs(v1)) > peak:
                 # an extremum of x between the samples: locate it exactly
                 sign = 1.0 if v > 0.0 else -1.0
                 t_e = segment_root(0, sign, 0.0, h, x, v, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, v, v1))

@@ -353,13 +353,23 @@ def segment_state(tau, x0, v0, p, q, force, theta0, c, kappa, omega):
         (the jerk) at τ.
     """
     e0, e1, h1, h2, _ = ramp_basis(tau, c, kappa)
+    hc = harmonic_h1(tau, c, kappa, omega) if force != 0.0 else 0.0j
+    return state_from_basis(e0, e1, h1, h2, hc, tau, x0, v0, p, q, force, theta0, c, kappa, omega)
+
+
+@njit(cache=True)
+def state_from_basis(e0, e1, h1, h2, hc, tau, x0, v0, p, q, force, theta0, c, kappa, omega):
+    """:func:`segment_state` from basis values already evaluated at τ.
+
+    Slip pieces of one fixed length recur (a record's sample interval, a harmonic
+    piece of 1/16 period): their basis is computed once and reused through this.
+    """
     m = -0.5 * c
     x = e0 * x0 + e1 * (v0 - m * x0) + p * h1 + q * h2
     v = e0 * v0 + e1 * (m * v0 - kappa * x0 + p) + q * h1
     u = p + q * tau
     du = q
     if force != 0.0:
-        hc = harmonic_h1(tau, c, kappa, omega)
         phase = theta0 + omega * tau
         cos_phase = math.cos(phase)
         sin_phase = math.sin(phase)
