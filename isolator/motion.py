@@ -35,7 +35,7 @@ MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong
 MIN_SAMPLES = 2  # a record needs at least two samples to have a time step
 DEFAULT_DAMPING_RATIO = 0.05  # [-] response spectra are 5 % damped unless asked otherwise
 #: Periods searched for the predominant period (peak of the 5 %-damped PSA) [s].
-PREDOMINANT_PERIODS_S = np.geomspace(0.02, 5.0, 150)
+PREDOMINANT_PERIODS_S = np.geomspace(0.02, 5.0, 100)
 #: Suffixes read as plain text when no reader claims the file by content.
 TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
 UNNAMED_COMPONENT = "unnamed"  # label of the one component of a file that names none
@@ -171,69 +171,6 @@ def significant_duration_s(
     return float(end_s - start_s)
 
 
-def _foh_filters(dt_s: float, periods_s: np.ndarray, damping_ratio: float) -> tuple[np.ndarray, np.ndarray]:
-    """Exact first-order-hold discretisation of the linear SDOF, as digital filters.
-
-    The state-space system ``x' = A x + B a_g`` with ``x = (u, u')``, ``A = [[0, 1],
-    [−ω², −2ζω]]``, ``B = (0, −1)`` is discretised exactly for an input linear between
-    samples, by the matrix exponential of the augmented matrix — the construction of
-    :func:`scipy.signal.cont2discrete` with ``method="foh"`` (the hold
-    :func:`scipy.signal.lsim` uses), done for all periods at once with the batched
-    :func:`scipy.linalg.expm`; the 2×2 system is then written as a second-order filter
-    ``b, a`` (transfer function of the relative displacement u).
-
-    Returns
-    -------
-    numerator, denominator : numpy.ndarray
-        Shape (len(periods_s), 3) filter coefficients for :func:`scipy.signal.lfilter`.
-    """
-    from scipy.linalg import expm
-
-    omega_rad_s = 2.0 * np.pi / periods_s
-    augmented = np.zeros((periods_s.size, 4, 4))
-    augmented[:, 0, 1] = dt_s
-    augmented[:, 1, 0] = -(omega_rad_s**2) * dt_s
-    augmented[:, 1, 1] = -2.0 * damping_ratio * omega_rad_s * dt_s
-    augmented[:, 1, 2] = -dt_s  # B = (0, -1): the ground acceleration drives -u''
-    augmented[:, 2, 3] = 1.0  # the input's slope over one step (first-order hold)
-    exponential = expm(augmented)
-    state = exponential[:, :2, :2]
-    hold0 = exponential[:, :2, 2]
-    hold1 = exponential[:, :2, 3]
-    input_gain = hold0 - hold1 + np.einsum("pij,pj->pi", state, hold1)
-    feedthrough = hold1[:, 0]
-    trace = state[:, 0, 0] + state[:, 1, 1]
-    determinant = state[:, 0, 0] * state[:, 1, 1] - state[:, 0, 1] * state[:, 1, 0]
-    b1, b2 = input_gain[:, 0], input_gain[:, 1]
-    numerator = np.stack(
-        [feedthrough, b1 - feedthrough * trace, state[:, 0, 1] * b2 - state[:, 1, 1] * b1 + feedthrough * determinant],
-        axis=1,
-    )
-    denominator = np.stack([np.ones_like(trace), -trace, determinant], axis=1)
-    return numerator, denominator
-
-
-def _psa_scipy(
-    acceleration_m_s2: np.ndarray, dt_s: float, periods_s: np.ndarray, damping_ratio: float
-) -> np.ndarray:
-    """Pseudo-acceleration spectrum by scipy's exact first-order-hold discretisation.
-
-    The input is taken as linear between samples (exact for a piecewise-linear record,
-    the hold of :func:`scipy.signal.lsim`); the oscillator starts at rest with the input
-    taken as 0 before the first sample.  The filters come from :func:`_foh_filters` and
-    run in compiled code (:func:`scipy.signal.lfilter`; ``lsim`` loops in Python).
-    """
-    from scipy.signal import lfilter
-
-    numerator, denominator = _foh_filters(dt_s, periods_s, damping_ratio)
-    omega_rad_s = 2.0 * np.pi / periods_s
-    psa_m_s2 = np.empty(periods_s.size)
-    for index in range(periods_s.size):
-        displacement_m = lfilter(numerator[index], denominator[index], acceleration_m_s2)
-        psa_m_s2[index] = omega_rad_s[index] ** 2 * np.max(np.abs(displacement_m))
-    return psa_m_s2
-
-
 def pseudo_acceleration_spectrum(
     acceleration_m_s2: np.ndarray,
     dt_s: float,
@@ -242,10 +179,10 @@ def pseudo_acceleration_spectrum(
 ) -> np.ndarray:
     """Pseudo-acceleration response spectrum of a linear SDOF oscillator.
 
-    Uses the core solver's exact piecewise-linear propagator
-    (:func:`isolator.solver.linear.pseudo_acceleration_spectrum`) when it is installed,
-    otherwise scipy's exact first-order-hold discretisation (:func:`_psa_scipy`); both
-    treat the record as linear between samples.
+    Delegates to the core solver's exact piecewise-linear propagator
+    (:func:`isolator.solver.linear.pseudo_acceleration_spectrum`: the friction-free case
+    of the solver, the record linear between samples, peaks between samples included),
+    so the spectrum and the isolator response come from one physics engine.
 
     .. math:: S_a(T) = \\omega^2 \\max_t |u(t)|, \\quad \\omega = 2\\pi / T
 
@@ -265,15 +202,10 @@ def pseudo_acceleration_spectrum(
     numpy.ndarray
         Pseudo-spectral acceleration at each period [m/s²].
     """
-    periods_s = np.atleast_1d(np.asarray(periods_s, dtype=np.float64))
-    if np.any(periods_s <= 0) or not np.all(np.isfinite(periods_s)):
-        raise ValueError("periods must be finite and positive")
-    acceleration_m_s2 = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
-    try:
-        from isolator.solver.linear import pseudo_acceleration_spectrum as _solver_psa
-    except ImportError:
-        return _psa_scipy(acceleration_m_s2, dt_s, periods_s, damping_ratio)
-    return np.asarray(_solver_psa(acceleration_m_s2, dt_s, periods_s, damping_ratio=damping_ratio))
+    from isolator.solver.linear import pseudo_acceleration_spectrum as solver_spectrum
+
+    return np.asarray(solver_spectrum(np.ascontiguousarray(acceleration_m_s2, dtype=np.float64), float(dt_s),
+                                      periods_s, damping_ratio=damping_ratio))
 
 
 @dataclass(frozen=True)
@@ -640,8 +572,11 @@ def _read_stream(path: Path, dt_s: float | None):
 
     from isolator.io._common import looks_like_text, read_head
     from isolator.io.at2 import _is_at2
+    from isolator.io.smc import _is_smc
     from isolator.io.text import _is_text
+    from isolator.io.v2 import _is_v2
 
+    own_detectors = {"PEER_AT2": _is_at2, "CSMIP_V2": _is_v2, "USGS_SMC": _is_smc, "ISOLATOR_TEXT": _is_text}
     head = read_head(path)
     if not head:
         raise _fail(path, "file is empty")
@@ -655,8 +590,8 @@ def _read_stream(path: Path, dt_s: float | None):
             if not looks_like_text(head):
                 raise _fail(path, "binary content: not a PEER AT2 text file")
             fmt = "PEER_AT2"  # let the AT2 reader say what is wrong
-        elif _is_text(path):
-            fmt = "ISOLATOR_TEXT"  # read it ourselves, so that --dt reaches the text reader
+        else:  # our own formats first: their errors then name the format, and --dt reaches text
+            fmt = next((name for name, detect in own_detectors.items() if detect(path)), None)
         try:
             if fmt is None:
                 try:
@@ -676,8 +611,9 @@ def _read_stream(path: Path, dt_s: float | None):
             raise
         except Exception as err:  # obspy's readers raise many types for damaged files
             reason = _one_line(err) or type(err).__name__
-            where = f"as {_FORMAT_NAMES.get(fmt, fmt)}" if fmt else "with obspy"
-            raise _fail(path, f"cannot be read {where}: {reason}") from None
+            if fmt in _FORMAT_NAMES:  # our readers' messages say exactly what is wrong
+                raise _fail(path, f"{_FORMAT_NAMES[fmt]}: {reason}") from None
+            raise _fail(path, f"cannot be read with obspy: {reason}") from None
 
 
 def _plain_numeric(head: bytes) -> bool:

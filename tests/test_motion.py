@@ -22,7 +22,7 @@ from isolator.motion import (
 from isolator.units import STANDARD_GRAVITY
 
 G = STANDARD_GRAVITY
-READ_LIMIT_S = 15.0  # 2 million samples read in ~1-3 s on one core; margin for a loaded CI machine
+READ_LIMIT_S = 120.0  # a hang guard, not a benchmark: timings are measured, not asserted (README)
 
 
 # --------------------------------------------------------------------------------------
@@ -252,21 +252,39 @@ def test_response_spectrum_at_resonance_matches_closed_form(periods):
 
 
 def test_response_spectrum_is_exact_for_piecewise_linear_input():
-    """A ramp then a constant: the FOH propagator is exact at the samples (coarse dt = T/10)."""
+    """A linear rise then a constant: exact, peak between samples included (coarse dt = T/10)."""
     period_s, zeta, dt_s, rise_s = 1.0, 0.0, 0.1, 0.1
     omega = 2 * math.pi / period_s
     acceleration = np.ones(101)
     acceleration[0] = 0.0  # rises linearly from 0 to 1 over the first step
-    # undamped response to a(t) = t/rise (t<rise), 1 after: u = −(1 − cos ωt)/ω² ramp-convolved
-    time_s = np.arange(acceleration.size) * dt_s  # the spectrum is the peak over the samples
+    time_s = np.linspace(0.0, 10.0, 400001)
 
-    def ramp(t):
+    def ramp(t):  # undamped response to a(t) = t / rise from rest
         t = np.maximum(t, 0)
         return -(t / rise_s - np.sin(omega * t) / (omega * rise_s)) / omega**2
-    u = ramp(time_s) - ramp(time_s - rise_s)
-    expected = omega**2 * np.max(np.abs(u))
+
+    expected = omega**2 * np.max(np.abs(ramp(time_s) - ramp(time_s - rise_s)))
     psa = pseudo_acceleration_spectrum(acceleration, dt_s, [period_s], damping_ratio=zeta)[0]
-    assert psa == pytest.approx(expected, rel=1e-9)
+    assert psa == pytest.approx(expected, rel=1e-8)
+
+
+@pytest.mark.shared
+def test_response_spectrum_against_scipy_first_order_hold(records_dir):
+    """Independent reference: scipy's exact FOH discretisation (cont2discrete + lfilter), peaks
+    at the samples only; the solver also finds the peaks between samples, so it is ≥ and close."""
+    from scipy.signal import cont2discrete, lfilter, ss2tf
+
+    motion = read_ground_motion(records_dir / "at2/RSN1044_NORTHR_NWH360.AT2")
+    periods_s = np.array([0.1, 0.3, 1.0, 3.0])
+    spectrum = motion.response_spectrum(periods_s)
+    for period_s, psa in zip(periods_s, spectrum):
+        omega = 2 * math.pi / period_s
+        system = (np.array([[0.0, 1.0], [-omega**2, -2 * 0.05 * omega]]), np.array([[0.0], [-1.0]]),
+                  np.array([[1.0, 0.0]]), np.zeros((1, 1)))
+        numerator, denominator = ss2tf(*cont2discrete(system, motion.dt_s, method="foh")[:4])
+        reference = omega**2 * np.max(np.abs(lfilter(numerator[0], denominator, motion.acceleration_m_s2)))
+        # a sampled oscillation misses its crest by at most the factor cos(ω dt / 2)
+        assert reference * (1 - 1e-9) <= psa <= reference / math.cos(omega * motion.dt_s / 2) * 1.001
 
 
 # --------------------------------------------------------------------------------------

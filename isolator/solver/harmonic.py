@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, segment_root
+from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
 from isolator.solver.segments import segment_state
 from isolator.solver.system import InvalidSystemError, classify_configuration
 
@@ -103,7 +103,6 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
     s = state[3]
     from_rest = state[4] != 0.0
     exact_start = state[5] != 0.0
-    cap = ev_time.shape[0]
     n_out = t_out.shape[0]
     i_out = 0
     metrics[M_XMIN] = x
@@ -138,11 +137,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                         x_out[i_out] = x
                         v_out[i_out] = 0.0
                         i_out += 1
-                    if n_ev < cap:
-                        ev_time[n_ev] = t0 + t_b
-                        ev_kind[n_ev] = BREAKAWAY
-                        ev_x[n_ev] = x
-                    n_ev += 1
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t0 + t_b, BREAKAWAY, x)
                 metrics[M_N_BREAK] += 1.0
                 metrics[M_N_EVENTS] += 1.0
                 t = t_b
@@ -161,22 +156,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                 p = -mu_k * s
             x1, v1, a1, _ = segment_state(rem, x, v, p, 0.0, force, theta, c, kappa, omega)
             a0 = p + force * math.cos(theta) - kappa * x - c * v
-            t_stop = -1.0
-            if s * v1 <= 0.0:
-                if from_rest:
-                    t_max = segment_root(1, s, 0.0, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    _, v_max, _, _ = segment_state(t_max, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    if s * v_max > 0.0:
-                        t_stop = segment_root(0, s, t_max, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    else:
-                        t_stop = t_max
-                else:
-                    t_stop = segment_root(0, s, 0.0, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-            elif s * a0 < 0.0 and s * a1 > 0.0:
-                t_min = segment_root(1, -s, 0.0, rem, x, v, p, 0.0, force, theta, c, kappa, omega)
-                _, v_min, _, _ = segment_state(t_min, x, v, p, 0.0, force, theta, c, kappa, omega)
-                if s * v_min <= 0.0:
-                    t_stop = segment_root(0, s, 0.0, t_min, x, v, p, 0.0, force, theta, c, kappa, omega)
+            t_stop, _, _ = find_stop(s, from_rest, rem, x, v, v1, a0, a1, p, 0.0, force, theta, c, kappa, omega)
             length = rem if t_stop < 0.0 else t_stop
             if t_stop < 0.0:
                 x_end = x1
@@ -231,11 +211,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                     v = 0.0
                     t = period
                 if record:
-                    if n_ev < cap:
-                        ev_time[n_ev] = t0 + t
-                        ev_kind[n_ev] = kind
-                        ev_x[n_ev] = x
-                    n_ev += 1
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t0 + t, kind, x)
     state[0] = x
     state[1] = v
     state[2] = 1.0 if stuck else 0.0

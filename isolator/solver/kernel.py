@@ -26,7 +26,9 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, breakaway_time, segment_root
+from isolator.solver.events import (BREAKAWAY, REVERSAL, STICK, breakaway_time, find_stop, record_event,
+                                     secant_guess,
+                                     segment_root)
 from isolator.solver.segments import ramp_basis, segment_state
 
 #: Safety net against stick–slip chatter: events allowed in one sample interval.
@@ -49,10 +51,16 @@ SUMMARY_N_EVENTS = 7
 SUMMARY_STATUS = 8
 SUMMARY_SIZE = 9
 
-# 6-point Gauss–Legendre on [0, 1] for the viscous energy of partial pieces
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(6)
+# 8-point Gauss–Legendre on [0, 1] for the viscous energy of partial pieces; pieces
+# longer than one time constant of the fastest exponent are split (composite rule)
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 GL_NODES = 0.5 * (_GL_X + 1.0)
 GL_WEIGHTS = 0.5 * _GL_W
+
+
+def fastest_rate(damping_per_mass: float, stiffness_per_mass: float) -> float:
+    """Largest |λ| of the free motion, |m| + |d| [1/s]: sets the quadrature pieces."""
+    return 0.5 * damping_per_mass + math.sqrt(abs(0.25 * damping_per_mass ** 2 - stiffness_per_mass))
 
 
 def substeps_per_interval(dt_s: float, damping_per_mass: float, stiffness_per_mass: float) -> int:
@@ -87,26 +95,33 @@ def full_step_coefficients(h_s: float, damping_per_mass: float, stiffness_per_ma
         B = (E0, E1, H1), the functions the velocity is made of.
     """
     basis = np.array(ramp_basis(h_s, damping_per_mass, stiffness_per_mass))
-    # Gram matrix by 12-point Gauss–Legendre: the integrands are entire and the
-    # piece is short compared with every time scale, so this is exact to rounding.
+    # Gram matrix by composite 12-point Gauss–Legendre, one piece per time constant of
+    # the fastest exponent: the integrands are entire, so this is exact to rounding.
+    n_pieces = min(4000, max(1, math.ceil(fastest_rate(damping_per_mass, stiffness_per_mass) * h_s)))
     nodes, weights = np.polynomial.legendre.leggauss(12)
+    piece = h_s / n_pieces
     gram = np.zeros((3, 3))
-    for x_node, w_node in zip(nodes, weights):
-        tau = 0.5 * h_s * (x_node + 1.0)
-        e0, e1, h1, _, _ = ramp_basis(tau, damping_per_mass, stiffness_per_mass)
-        b = np.array([e0, e1, h1])
-        gram += 0.5 * h_s * w_node * np.outer(b, b)
+    for j in range(n_pieces):
+        for x_node, w_node in zip(nodes, weights):
+            tau = piece * (j + 0.5 * (x_node + 1.0))
+            e0, e1, h1, _, _ = ramp_basis(tau, damping_per_mass, stiffness_per_mass)
+            b = np.array([e0, e1, h1])
+            gram += 0.5 * piece * w_node * np.outer(b, b)
     return basis, gram
 
 
 @njit(cache=True)
 def _viscous_integral(tau, x0, v0, p, q, c, kappa):
-    # ∫₀^τ V² dτ by Gauss–Legendre on the exact velocity (partial pieces only)
+    # ∫₀^τ V² dτ by composite Gauss–Legendre on the exact velocity (partial pieces only)
+    rate = 0.5 * c + math.sqrt(abs(0.25 * c * c - kappa))
+    n_pieces = min(4000, max(1, int(math.ceil(rate * tau))))
+    piece = tau / n_pieces
     total = 0.0
-    for k in range(GL_NODES.shape[0]):
-        _, v, _, _ = segment_state(tau * GL_NODES[k], x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)
-        total += GL_WEIGHTS[k] * v * v
-    return total * tau
+    for j in range(n_pieces):
+        for k in range(GL_NODES.shape[0]):
+            _, v, _, _ = segment_state(piece * (j + GL_NODES[k]), x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)
+            total += GL_WEIGHTS[k] * v * v
+    return total * piece
 
 
 @njit(cache=True)
@@ -139,7 +154,6 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
     n = acc.shape[0]
     h = dt / n_sub
     m = -0.5 * c
-    cap = ev_time.shape[0]
     x = 0.0
     v = 0.0
     stuck = True
@@ -191,11 +205,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     tau = tb
                     from_rest = True
                     exact_start = True
-                    if n_ev < cap:
-                        ev_time[n_ev] = t_sub + tb
-                        ev_kind[n_ev] = BREAKAWAY
-                        ev_x[n_ev] = x
-                    n_ev += 1
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, BREAKAWAY, x)
                     jump = abs(mu_k_g * s + kappa * x)
                     if jump > peak_a:
                         peak_a = jump
@@ -221,26 +231,10 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 v1 = e0 * v + e1 * (m * v - kappa * x + p) + q * h1
                 acc0 = p - kappa * x - c * v
                 acc1 = p + q * rem - kappa * x1 - c * v1
-                t_stop = -1.0
-                if s * v1 <= 0.0:
-                    if from_rest:
-                        # s·V rises first, so the stop lies after its maximum
-                        t_max = segment_root(1, s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        _, v_max, _, _ = segment_state(t_max, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        if abs(v_max) > peak_v:
-                            peak_v = abs(v_max)
-                        if s * v_max > 0.0:
-                            t_stop = segment_root(0, s, t_max, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        else:
-                            t_stop = t_max
-                    else:
-                        t_stop = segment_root(0, s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                elif s * acc0 < 0.0 and s * acc1 > 0.0:
-                    # s·V has an interior minimum: does it reach zero?
-                    t_min = segment_root(1, -s, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                    _, v_min, _, _ = segment_state(t_min, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                    if s * v_min <= 0.0:
-                        t_stop = segment_root(0, s, 0.0, t_min, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                t_stop, t_ext, v_ext = find_stop(s, from_rest, rem, x, v, v1, acc0, acc1, p, q,
+                                                 0.0, 0.0, c, kappa, 0.0)
+                if t_ext >= 0.0 and abs(v_ext) > peak_v:
+                    peak_v = abs(v_ext)
                 if t_stop < 0.0:
                     # the block slides through to the end of the piece
                     if exact_start or tau > 0.0:
@@ -262,20 +256,25 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     e_f += mu_k_g * abs(x1 - x)
                     e_v += c * int_v2
                     slip_time += rem
-                    # interior extremum of the velocity (A changes sign)
-                    if acc0 * acc1 < 0.0:
+                    # interior extremum of the velocity (A changes sign); located only
+                    # when it could beat the peak so far (|V| moves by at most ~h max|A|)
+                    if (t_ext < 0.0 and acc0 * acc1 < 0.0
+                            and max(abs(v), abs(v1)) + 2.0 * rem * max(abs(acc0), abs(acc1)) > peak_v):
                         sg = 1.0 if acc0 > 0.0 else -1.0
-                        t_e = segment_root(1, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                        t_e = segment_root(1, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                                           secant_guess(0.0, rem, acc0, acc1))
                         _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                         if abs(v_e) > peak_v:
                             peak_v = abs(v_e)
-                    # interior extremum of the absolute acceleration -µk g s - κX - cV
+                    # interior extremum of the transmitted acceleration -(µk g s + κX + cV)
                     if c > 0.0:
                         d0 = kappa * v + c * acc0
                         d1 = kappa * v1 + c * acc1
-                        if d0 * d1 < 0.0:
+                        a_ends = max(abs(mu_k_g * s + kappa * x + c * v), abs(mu_k_g * s + kappa * x1 + c * v1))
+                        if d0 * d1 < 0.0 and a_ends + 2.0 * rem * max(abs(d0), abs(d1)) > peak_a:
                             sg = 1.0 if d0 > 0.0 else -1.0
-                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                                               secant_guess(0.0, rem, d0, d1))
                             x_e, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                             a_e = abs(mu_k_g * s + kappa * x_e + c * v_e)
                             if a_e > peak_a:
@@ -301,9 +300,11 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 e_f += mu_k_g * abs(x_s - x)
                 if c > 0.0:
                     e_v += c * _viscous_integral(t_stop, x, v, p, q, c, kappa)
-                if (not from_rest) and acc0 * acc_s < 0.0:
+                if (t_ext < 0.0 and acc0 * acc_s < 0.0
+                        and abs(v) + 2.0 * t_stop * max(abs(acc0), abs(acc_s)) > peak_v):
                     sg = 1.0 if acc0 > 0.0 else -1.0
-                    t_e = segment_root(1, sg, 0.0, t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                    t_e = segment_root(1, sg, 0.0, t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                                       secant_guess(0.0, t_stop, acc0, acc_s))
                     _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                     if abs(v_e) > peak_v:
                         peak_v = abs(v_e)
@@ -328,11 +329,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     s = -1.0 if force > 0.0 else 1.0
                     from_rest = True
                     kind = REVERSAL
-                if n_ev < cap:
-                    ev_time[n_ev] = t_sub + tau
-                    ev_kind[n_ev] = kind
-                    ev_x[n_ev] = x
-                n_ev += 1
+                n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, kind, x)
                 events_here += 1
                 if events_here > MAX_EVENTS_PER_INTERVAL:
                     # chatter guard: let the static friction hold to the end of the interval
@@ -351,7 +348,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
             out_a[i] = -(mu_k_g * s + kappa * x + c * v)
         if abs(out_a[i]) > peak_a:
             peak_a = abs(out_a[i])
-    if n_ev > cap:
+    if n_ev > ev_time.shape[0]:
         status |= STATUS_EVENTS_TRUNCATED
     summary[SUMMARY_PEAK_DISPLACEMENT] = peak_x
     summary[SUMMARY_PEAK_VELOCITY] = peak_v

@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import segment_root
+from isolator.solver.events import secant_guess, segment_root
 from isolator.solver.segments import ramp_basis, segment_state
 
 
@@ -36,7 +36,7 @@ def _peak_displacement(acc, dt, c, kappa, n_sub):
             if v * v1 < 0.0:
                 # an extremum of x between the samples: locate it exactly
                 sign = 1.0 if v > 0.0 else -1.0
-                t_e = segment_root(0, sign, 0.0, h, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+                t_e = segment_root(0, sign, 0.0, h, x, v, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, v, v1))
                 x_e, _, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                 if abs(x_e) > peak:
                     peak = abs(x_e)

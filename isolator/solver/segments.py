@@ -126,10 +126,11 @@ def phi1_complex(z):
 # ---------------------------------------------------------------------------
 @njit(cache=True)
 def _scaled_cosh_sinh(m, d2, tau):
-    """E0 = e^{mτ} cosh(dτ) and E1 = e^{mτ} sinh(dτ)/d for real m ≤ 0 and signed d².
+    """E0 = e^{mτ} cosh(dτ) and E1 = e^{mτ} sinh(dτ)/d for signed d², real or complex m.
 
     d² < 0 gives e^{mτ} cos(ω_d τ) and e^{mτ} sin(ω_d τ)/ω_d; d² = 0 gives e^{mτ}
-    and τ e^{mτ}; both forms meet smoothly through the series in d²τ².
+    and τ e^{mτ}; both forms meet smoothly through the series in d²τ².  Real m ≤ 0
+    serves the ramp basis, complex m the harmonic one (numba compiles each).
     """
     w = d2 * tau * tau
     if abs(w) < SMALL_ARGUMENT * SMALL_ARGUMENT:
@@ -144,43 +145,54 @@ def _scaled_cosh_sinh(m, d2, tau):
             term_s = term_s * w / ((2 * n + 2) * (2 * n + 3))
             if abs(term_c) < 1e-18 and abs(term_s) < 1e-18:
                 break
-        em = math.exp(m * tau)
-        return em * c_sum, em * s_sum * tau
+        em = np.exp(m * tau)
+        return em * c_sum, em * (s_sum * tau)
     if d2 > 0.0:
         d = math.sqrt(d2)
-        e_plus = math.exp((m + d) * tau)
-        e_minus = math.exp((m - d) * tau)
+        e_plus = np.exp((m + d) * tau)
+        e_minus = np.exp((m - d) * tau)
         return 0.5 * (e_plus + e_minus), (e_plus - e_minus) / (2.0 * d)
     wd = math.sqrt(-d2)
-    em = math.exp(m * tau)
-    return em * math.cos(wd * tau), em * math.sin(wd * tau) / wd
+    em = np.exp(m * tau)
+    return em * math.cos(wd * tau), em * (math.sin(wd * tau) / wd)
 
 
 # ---------------------------------------------------------------------------
 # Ramp forcing: E0, E1, H1, H2, H3
 # ---------------------------------------------------------------------------
+# Reciprocals used by the power series (divisions are the slow part of a series term)
+_N = np.arange(_MAX_TERMS + 4, dtype=np.float64)
+_RECIP_STEP = 1.0 / np.maximum((_N + 1.0) * _N, 1.0)  # 1/((n+1) n)
+_RECIP_K1 = 1.0 / (_N + 1.0)  # 1/(k+1)
+_RECIP_K12 = 1.0 / ((_N + 1.0) * (_N + 2.0))  # 1/((k+1)(k+2))
+_RECIP_K123 = 1.0 / ((_N + 1.0) * (_N + 2.0) * (_N + 3.0))  # 1/((k+1)(k+2)(k+3))
+
+
 @njit(cache=True)
 def _ramp_basis_taylor(tau, c, kappa):
     # Power series of the impulse response e(τ) = Σ z_n, z_n = e_n τ^n, from
     # e'' = -c e' - κ e, e(0) = 0, e'(0) = 1.
     a = -c * tau
     b = -kappa * tau * tau
+    tau2 = tau * tau
+    tau3 = tau2 * tau
     z_prev = 0.0  # z_0
     z_cur = tau  # z_1
     e1 = tau
-    h1 = tau * tau / 2.0
-    h2 = tau * tau * tau / 6.0
-    h3 = tau * tau * tau * tau / 24.0
+    h1 = tau2 / 2.0
+    h2 = tau3 / 6.0
+    h3 = tau3 * tau / 24.0
     de1 = 1.0  # Σ n z_n / τ  (= E1')
+    inv_tau = 1.0 / tau
     for n in range(1, _MAX_TERMS):
         # z_{n+1} from z_n and z_{n-1}
-        z_next = (a * n * z_cur + b * z_prev) / ((n + 1) * n)
+        z_next = (a * n * z_cur + b * z_prev) * _RECIP_STEP[n]
         k = n + 1
         e1 += z_next
-        h1 += z_next * tau / (k + 1)
-        h2 += z_next * tau * tau / ((k + 1) * (k + 2))
-        h3 += z_next * tau * tau * tau / ((k + 1) * (k + 2) * (k + 3))
-        de1 += k * z_next / tau
+        h1 += z_next * tau * _RECIP_K1[k]
+        h2 += z_next * tau2 * _RECIP_K12[k]
+        h3 += z_next * tau3 * _RECIP_K123[k]
+        de1 += k * z_next * inv_tau
         z_prev = z_cur
         z_cur = z_next
         if abs(z_next) <= 1e-18 * abs(e1) and abs(z_prev) <= 1e-17 * abs(e1):
@@ -252,34 +264,6 @@ def ramp_basis(tau, c, kappa):
 # Harmonic forcing: H1 for the complex shift μ = m - iω
 # ---------------------------------------------------------------------------
 @njit(cache=True)
-def _complex_cosh_sinh(mu, d2, tau):
-    # e^{μτ} cosh(dτ) and e^{μτ} sinh(dτ)/d for complex μ and real signed d².
-    w = d2 * tau * tau
-    if abs(w) < SMALL_ARGUMENT * SMALL_ARGUMENT:
-        c_sum = 0.0
-        s_sum = 0.0
-        term_c = 1.0
-        term_s = 1.0
-        for n in range(30):
-            c_sum += term_c
-            s_sum += term_s
-            term_c = term_c * w / ((2 * n + 1) * (2 * n + 2))
-            term_s = term_s * w / ((2 * n + 2) * (2 * n + 3))
-            if abs(term_c) < 1e-18 and abs(term_s) < 1e-18:
-                break
-        em = np.exp(mu * tau)
-        return em * c_sum, em * s_sum * tau
-    if d2 > 0.0:
-        d = math.sqrt(d2)
-        e_plus = np.exp((mu + d) * tau)
-        e_minus = np.exp((mu - d) * tau)
-        return 0.5 * (e_plus + e_minus), (e_plus - e_minus) / (2.0 * d)
-    wd = math.sqrt(-d2)
-    em = np.exp(mu * tau)
-    return em * math.cos(wd * tau), em * (math.sin(wd * tau) / wd)
-
-
-@njit(cache=True)
 def harmonic_h1(tau, c, kappa, omega):
     r"""Particular integral of a slip segment under harmonic forcing.
 
@@ -335,7 +319,7 @@ def harmonic_h1(tau, c, kappa, omega):
     if 2.0 * absd >= min(abs(lam_p), abs(lam_m)):
         # well-separated roots of the shifted system; one of them may be 0 (resonance)
         return tau * (phi1_complex(lam_p * tau) - phi1_complex(lam_m * tau)) / (lam_p - lam_m)
-    e0, e1 = _complex_cosh_sinh(mu, d2, tau)
+    e0, e1 = _scaled_cosh_sinh(mu, d2, tau)
     kmu = mu * mu - d2  # |κ_μ| τ² > 1 here
     return (1.0 - e0 + mu * e1) / kmu
 
