@@ -297,9 +297,11 @@ class ReadOptions:
 
     units: str | None = None
     scale_to_pga_g: float | None = None
+    dt_s: float | None = None
 
     def fingerprint(self) -> str:
-        return json.dumps({"units": self.units, "scale_to_pga_g": self.scale_to_pga_g}, sort_keys=True)
+        return json.dumps({"units": self.units, "scale_to_pga_g": self.scale_to_pga_g, "dt_s": self.dt_s},
+                          sort_keys=True)
 
 
 def row_key(record_path: str, component: str | None, design_hash: str, options: ReadOptions) -> str:
@@ -332,8 +334,9 @@ _HARMONIC_CACHE_MAX = 200_000
 def _read_motion(path: str, component: str | None, options: ReadOptions):
     """(GroundMotion, IntensityMeasures, strong-motion window, scale factor, read seconds), cached per process.
 
-    ``--units`` is used for the files that do not state their units (text, MiniSEED …):
-    a file that states them is read as it says, so that one batch can mix formats.
+    ``--units`` is used for the files that do not state their units (text, MiniSEED …)
+    and ``--dt`` for one-column text files that give no time step: a file that states
+    them is read as it says, so that one batch can mix formats.
     """
     key = (os.path.abspath(path), component, options)
     if key in _MOTION_CACHE:
@@ -343,12 +346,19 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
-    try:
-        motion = read_ground_motion(path, component=component)
-    except RecordError as err:
-        if options.units is None or "does not state its units" not in str(err):
-            raise
-        motion = read_ground_motion(path, component=component, units=options.units)
+    given: dict = {}
+    while True:
+        try:
+            motion = read_ground_motion(path, component=component, **given)
+            break
+        except RecordError as err:
+            message, before = str(err), dict(given)
+            if options.units is not None and "does not state its units" in message:
+                given["units"] = options.units
+            if options.dt_s is not None and "no time step" in message:
+                given["dt_s"] = options.dt_s
+            if given == before:
+                raise
     factor = 1.0
     if options.scale_to_pga_g is not None:
         original = motion.pga_m_s2
@@ -686,6 +696,15 @@ def make_tasks(pairs, cases, options: ReadOptions, done: set, workers: int, repo
             tasks.append(Task(record=path, component=comp, options=options, designs=chunk,
                               reports_dir=reports_dir, map_resolution=map_resolution))
             n_rows += len(chunk)
+
+    def size(task):
+        try:
+            return os.path.getsize(task.record)
+        except OSError:
+            return 0
+
+    # longest first (file size ~ samples ~ reading and solving time): a short tail on the last worker
+    tasks.sort(key=lambda task: (-size(task), task.record))
     return tasks, n_rows
 
 

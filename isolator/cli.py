@@ -523,6 +523,8 @@ def batch(
                               "they say."),
     component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"] + "  Or "
                                   "'all-horizontal': every horizontal component of multi-component files."),
+    dt: float = typer.Option(None, "--dt", help="Time step [s] of the one-column text records that give none "
+                             "(other files keep their own)."),
     scale_to_pga: float = typer.Option(None, "--scale-to-pga", help="Scale every record to this peak ground "
                                        "acceleration, in g."),
     output: str = typer.Option(..., "--output", "-o", help="Table to write: .csv or .parquet."),
@@ -545,6 +547,7 @@ def batch(
     saved as tasks finish (OUTPUT.parts/); run the same command again to resume.  Exit
     code 1 if any row failed, 2 for a mistake in the command.
     """
+    import math
     import sys
 
     from isolator.batch import BatchError, ReadOptions, parse_grid, run_batch
@@ -553,6 +556,8 @@ def batch(
         grids = [parse_grid(spec) for spec in grid or []]
         if len({key for key, _ in grids}) != len(grids):
             raise BatchError("--grid: each key may be swept once")
+        if dt is not None and not (math.isfinite(dt) and dt > 0):
+            raise BatchError(f"--dt must be a time step > 0 in seconds, got {dt:g}")
         if scale_to_pga is not None and not scale_to_pga > 0:
             raise BatchError(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
         if units is not None:
@@ -569,7 +574,7 @@ def batch(
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
     except BatchError as err:
         _user_error(str(err))
-    options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga)
+    options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt)
 
     progress_bar, callback = None, None
     if sys.stderr.isatty():

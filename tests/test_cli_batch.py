@@ -98,3 +98,21 @@ def test_reports_one_row(files):
     pdfs = list((folder / "reports").glob("*.pdf"))
     assert len(pdfs) == 1 and pdfs[0].stat().st_size > 10_000
     assert pdfs[0].with_suffix(".json").is_file()
+
+
+def test_units_and_dt_apply_only_to_files_that_need_them(files):
+    import numpy as np
+
+    folder, designs = files
+    values = np.loadtxt(folder / "a.txt", delimiter=",", comments="#")[:, 1]
+    np.savetxt(folder / "a.acc", values)  # one column, no units, no time step
+    out = folder / "t.csv"
+    result = run(folder / "a.acc", folder / "b.txt", "--designs", designs, "-o", out)
+    assert result.exit_code == 1 and result.stdout.strip().splitlines()[-1] == "4 rows, 2 failed"
+    result = run(folder / "a.acc", folder / "a.txt", folder / "b.txt", "--designs", designs, "-o", out,
+                 "--units", "g", "--dt", "0.01")
+    assert result.exit_code == 0, result.output
+    table = pd.read_csv(out, keep_default_na=False).set_index(["record", "design_index"])
+    acc, txt = table.loc[(str(folder / "a.acc"), 0)], table.loc[(str(folder / "a.txt"), 0)]
+    assert acc["record_units_source"] == "--units g" and "units" in txt["record_units_source"]
+    assert acc["peak_displacement_m"] == pytest.approx(txt["peak_displacement_m"], rel=1e-6)
