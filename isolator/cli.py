@@ -448,6 +448,8 @@ def regime_map_command(
     resolution: int = typer.Option(100, "--resolution", "-n", min=4, max=1000, help="Grid points per axis."),
     workers: int = typer.Option(None, "--workers", min=1, help="Processes (default: up to 2)."),
     no_cache: bool = typer.Option(False, "--no-cache", help="Compute even if cached (and do not store)."),
+    refine: bool = typer.Option(False, "--refine", help="Locate every regime boundary by bisection in each "
+                                "column (exact boundaries instead of grid steps; slower)."),
     output: str = typer.Option(None, "--output", "-o", help="Write the figure (PNG or PDF)."),
 ) -> None:
     """The paper's (k, α) regime map (Figs. 5-7): regimes, A > 1, dominant force, triple point."""
@@ -472,7 +474,7 @@ def regime_map_command(
     try:
         start = time.perf_counter()
         rmap = regime_map(eta, mu_s, mu_k, k_range=k_range, alpha_range=alpha_range, n_k=resolution,
-                          n_alpha=resolution, workers=workers, use_cache=not no_cache)
+                          n_alpha=resolution, workers=workers, use_cache=not no_cache, refine=refine)
         wall = time.perf_counter() - start
         triple = triple_point(eta, mu_s, mu_k, alpha_max=alpha_range[1]) if eta > 0 else None
     except InvalidSystemError as err:

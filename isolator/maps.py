@@ -28,7 +28,7 @@ import math
 import os
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -94,8 +94,14 @@ class RegimeMap:
     mu_k: float
     elapsed_s: float = 0.0
     from_cache: bool = False
+    #: regime boundaries refined by bisection along α in each column (see :func:`refine_boundaries`):
+    #: k [-], α [-], and the code 3·from + to of each change of regime
+    boundary_k: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    boundary_alpha: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    boundary_kind: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int8))
 
-    _ARRAYS = ("k", "alpha", "regime", "amplitude", "zeta", "rho_ev", "rho_vf", "rho_ef", "dominant", "steady")
+    _ARRAYS = ("k", "alpha", "regime", "amplitude", "zeta", "rho_ev", "rho_vf", "rho_ef", "dominant", "steady",
+               "boundary_k", "boundary_alpha", "boundary_kind")
 
     def regime_at(self, alpha: float, k: float) -> str:
         """Regime of the nearest grid point."""
@@ -186,6 +192,88 @@ def _evaluate(points: list[tuple], eta: float, mu_s: float, mu_k: float, workers
     return out
 
 
+def _refine_chunk(args) -> list[tuple]:
+    """Bisect each (k, α_lo, α_hi, from, to) change of regime to the α where it happens."""
+    from isolator.solver.harmonic import harmonic_regime
+
+    jobs, eta, mu_s, mu_k, rel_tol = args
+    out = []
+    for k, lo, hi, r_lo, r_hi in jobs:
+        if r_lo == 0 and lo < 1.0 <= hi:
+            out.append((k, 1.0, 3 * r_lo + r_hi))  # α_SS = 1 exactly
+            continue
+        while hi - lo > rel_tol * hi:
+            mid = 0.5 * (lo + hi)
+            if REGIME_CODES[harmonic_regime(mid, k, eta, mu_s, mu_k)] == r_lo:
+                lo = mid
+            else:
+                hi = mid
+        out.append((k, 0.5 * (lo + hi), 3 * r_lo + r_hi))
+    return out
+
+
+def refine_boundaries(rmap: RegimeMap, workers: int | None = None, rel_tol: float = 1e-4) -> RegimeMap:
+    """Locate every change of regime along α in each column by bisection with the core solver.
+
+    Fills ``boundary_k``, ``boundary_alpha``, ``boundary_kind`` (in place, also returned).  A
+    window narrower than the grid step that no grid point falls into is not seen (as in
+    :func:`isolator.solver.harmonic.harmonic_thresholds` with a coarse grid).
+    """
+    jobs = []
+    for j, k in enumerate(rmap.k):
+        column = rmap.regime[:, j]
+        for i in np.nonzero(np.diff(column))[0]:
+            jobs.append((float(k), float(rmap.alpha[i]), float(rmap.alpha[i + 1]), int(column[i]),
+                         int(column[i + 1])))
+    workers = workers or _default_workers()
+    if workers <= 1 or len(jobs) < 16:
+        results = _refine_chunk((jobs, rmap.eta, rmap.mu_s, rmap.mu_k, rel_tol))
+    else:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        n_chunks = workers * 4
+        chunks = [jobs[i::n_chunks] for i in range(n_chunks)]
+        with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
+            parts = list(pool.map(_refine_chunk, [(c, rmap.eta, rmap.mu_s, rmap.mu_k, rel_tol) for c in chunks]))
+        results = [item for part in parts for item in part]
+    results.sort()
+    rmap.boundary_k = np.array([r[0] for r in results], dtype=float)
+    rmap.boundary_alpha = np.array([r[1] for r in results], dtype=float)
+    rmap.boundary_kind = np.array([r[2] for r in results], dtype=np.int8)
+    return rmap
+
+
+def boundary_segments(rmap: RegimeMap, kind_from: str, kind_to: str) -> list[np.ndarray]:
+    """Polylines (arrays of (k, α) rows) joining the refined boundaries of one kind across columns.
+
+    In neighbouring columns, boundaries of the same kind are paired in order when both columns
+    hold as many of them, otherwise each to its nearest within three grid steps of α.
+    """
+    code = 3 * REGIME_CODES[kind_from] + REGIME_CODES[kind_to]
+    mask = rmap.boundary_kind == code
+    if not mask.any():
+        return []
+    ks, alphas = rmap.boundary_k[mask], rmap.boundary_alpha[mask]
+    columns = [alphas[ks == k] for k in rmap.k]
+    step = 3.0 * (rmap.alpha[1] - rmap.alpha[0]) if rmap.alpha.size > 1 else np.inf
+    segments = []
+    for j in range(rmap.k.size - 1):
+        left, right = columns[j], columns[j + 1]
+        if left.size == 0 or right.size == 0:
+            continue
+        if left.size == right.size:
+            pairs = list(zip(left, right))
+        else:
+            pairs = []
+            for a in left:
+                b = right[int(np.argmin(np.abs(right - a)))]
+                if abs(b - a) <= step:
+                    pairs.append((a, b))
+        segments += [np.array([[rmap.k[j], a], [rmap.k[j + 1], b]]) for a, b in pairs]
+    return segments
+
+
 def _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k) -> str:
     from isolator import __version__
 
@@ -208,7 +296,7 @@ def _default_workers() -> int:
 
 def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0.0, 6.0),
                alpha_range=(0.0, 6.0), n_k: int = 100, n_alpha: int = 100, workers: int | None = None,
-               use_cache: bool = True) -> RegimeMap:
+               use_cache: bool = True, refine: bool = False) -> RegimeMap:
     """The harmonic regime map over a (k, α) frame at fixed η, µs, µk.
 
     Parameters
@@ -225,19 +313,34 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
         Processes (2 by default, or 1 on a single core).
     use_cache : bool
         Read and write the on-disk cache (:func:`cache_dir`).
+    refine : bool
+        Also locate every regime boundary by bisection (:func:`refine_boundaries`).
 
     Returns
     -------
     RegimeMap
     """
     mu_k = mu_s if mu_k is None else float(mu_k)
-    key = _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k)
-    path = cache_dir() / f"map-{key}.npz"
+    base_key = _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k)
+    path = cache_dir() / f"map-{base_key}{'-refined' if refine else ''}.npz"
     if use_cache and path.exists():
         try:
             return RegimeMap.load(path)
         except (OSError, KeyError, ValueError):
             pass  # a damaged cache entry is recomputed
+    base_path = cache_dir() / f"map-{base_key}.npz"
+    if refine and use_cache and base_path.exists():
+        try:
+            rmap = refine_boundaries(RegimeMap.load(base_path), workers)
+        except (OSError, KeyError, ValueError):
+            rmap = None
+        if rmap is not None:
+            rmap.from_cache = False
+            try:
+                rmap.save(path)
+            except OSError:
+                pass
+            return rmap
     k = np.linspace(k_range[0], k_range[1], n_k)
     alpha = np.linspace(alpha_range[0], alpha_range[1], n_alpha)
     start = time.perf_counter()
@@ -252,6 +355,9 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
     rmap = RegimeMap(k=k, alpha=alpha, regime=grid(0, np.int8), amplitude=grid(1), zeta=grid(2),
                      rho_ev=grid(3), rho_vf=grid(4), rho_ef=grid(5), dominant=grid(6, np.int8),
                      steady=grid(7, bool), eta=float(eta), mu_s=float(mu_s), mu_k=mu_k, elapsed_s=elapsed)
+    if refine:
+        refine_boundaries(rmap, workers)
+        rmap.elapsed_s = time.perf_counter() - start
     if use_cache:
         try:
             rmap.save(path)

@@ -210,9 +210,7 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
         zeta = 1.0
     else:
         zeta = min(slip / length, 1.0 - 1e-12) if length > 0 else 0.0
-    if moved and zeta == 0.0 and slip == 0.0:
-        # it slid, but not during the strong-motion window: still stick-slip overall
-        zeta = 0.0
+    # a block that slid only outside the window has ζ = 0 but moved: SS, not ST
     x = np.asarray(response.displacement_m)
     v = np.asarray(response.velocity_m_s)
     if amplitude_window_s is not None:
@@ -222,8 +220,9 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
         x_window, v_window = x, v
     amplitude = 0.5 * (float(x_window.max()) - float(x_window.min())) / point.a0_m
     system = response.system
-    friction = system.kinetic_friction_m_s2 if moved else float(
-        np.max(np.abs(response.ground_acceleration_m_s2)).clip(max=system.static_friction_m_s2))
+    # stuck throughout, the friction force is what holds the block: |a_g| ≤ µs g
+    friction = system.kinetic_friction_m_s2 if moved else min(
+        float(np.max(np.abs(response.ground_acceleration_m_s2))), system.static_friction_m_s2)
     peaks = (friction, system.stiffness_per_mass * float(np.max(np.abs(x_window))),
              system.damping_per_mass * float(np.max(np.abs(v_window))))
     return classify("record", moved, zeta, amplitude, peaks, point.alpha, point.k, point.eta,

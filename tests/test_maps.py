@@ -82,3 +82,21 @@ def test_design_frame_is_rounded_and_contains_the_point():
     frame = design_frame(9.84, 0.0805)
     assert frame["k"][1] >= 0.0805 * 2.5 and frame["alpha"][1] >= 9.84 * 1.5
     assert nice_ceiling(0.2013) == 0.3 and nice_ceiling(14.76) == 15.0 and nice_ceiling(3.0) == 3.0
+
+
+def test_refined_boundaries_equal_the_thresholds():
+    """Bisected boundaries of a coarse Fig. 6 map sit on harmonic_thresholds' transitions."""
+    from isolator.maps import boundary_segments
+
+    rmap = regime_map(0.5, 0.25, k_range=(0.0, 5.0), alpha_range=(0.0, 10.0), n_k=5, n_alpha=9, workers=1,
+                      refine=True)
+    assert rmap.boundary_k.size >= 2 * rmap.k.size - 1
+    for k in rmap.k:
+        found = sorted(rmap.boundary_alpha[rmap.boundary_k == k])
+        direct = [tr["alpha"] for tr in harmonic_thresholds(k, 0.5, 0.25, alpha_max=10.0, n_grid=60).transitions]
+        assert len(found) == len(direct)
+        np.testing.assert_allclose(found, direct, rtol=2e-4)
+    assert len(boundary_segments(rmap, "SS", "SL")) == rmap.k.size - 1
+    again = regime_map(0.5, 0.25, k_range=(0.0, 5.0), alpha_range=(0.0, 10.0), n_k=5, n_alpha=9, workers=1,
+                       refine=True)
+    assert again.from_cache and again.boundary_k.size == rmap.boundary_k.size

@@ -95,8 +95,20 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
     if (~moving & (aa > 1.0)).any():  # ST islands above α = 1 (stuck for good after a transient)
         ax.contour(kk, aa, np.where(aa <= 1.0, 1.0, moving.astype(float)), levels=[0.5], colors=["k"],
                    linewidths=[1.0], zorder=4)
-    zeta = np.where(moving, rmap.zeta, 0.0)
-    if (rmap.regime == 2).any() and (rmap.regime == 1).any():
+    if rmap.boundary_k.size:
+        from matplotlib.collections import LineCollection
+
+        from isolator.maps import boundary_segments
+
+        # refined: each change of regime located by bisection in every column, joined across columns
+        segments = boundary_segments(rmap, "SS", "SL") + boundary_segments(rmap, "SL", "SS")
+        ax.add_collection(LineCollection(segments, colors="red", linewidths=1.6, zorder=4))
+        islands = boundary_segments(rmap, "SS", "ST") + boundary_segments(rmap, "ST", "SS")
+        islands = [seg for seg in islands if seg[:, 1].min() > 1.0]
+        if islands:
+            ax.add_collection(LineCollection(islands, colors="k", linewidths=1.0, zorder=4))
+    elif (rmap.regime == 2).any() and (rmap.regime == 1).any():
+        zeta = np.where(moving, rmap.zeta, 0.0)
         ax.contour(kk, aa, zeta, levels=[0.999], colors=["red"], linewidths=[1.6], zorder=4)
     handles += [Line2D([], [], color="k", lw=1.0, label="ST | SS boundary (α = 1)"),
                 Line2D([], [], color="red", lw=1.6, label="SS | SL boundaries (ζ = 1)")]

@@ -88,7 +88,9 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
     fig.text(0.05, 0.945, "Friction isolator - engineering review", fontsize=11, va="top")
     design_rows = [("name", d.name), ("design file", Path(d.source).name),
                    ("type", "friction pendulum" if d.is_pendulum else "flat slider with spring"),
-                   ("mass M", f"{fmt(d.mass_kg)} kg  (W = {fmt(d.weight_N / 1e3)} kN)")]
+                   ("mass M", f"{d.mass_kg:.6g} kg  (W = {fmt(d.weight_N / 1e3)} kN)")]
+    if d.description:
+        design_rows.insert(1, ("description", textwrap.shorten(d.description, 40, placeholder="…")))
     if d.is_pendulum:
         design_rows.append(("radius R", f"{fmt(d.radius_m)} m"))
     design_rows += [("stiffness K", f"{fmt(d.stiffness_N_per_m / 1e3)} kN/m"),
@@ -219,7 +221,7 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
     # the map and the A(α) curve first: the slow part, before any file is opened
     frame = design_frame(p.alpha, p.k)
     rmap = regime_map(p.eta, p.mu_s, p.mu_k, k_range=frame["k"], alpha_range=frame["alpha"],
-                      n_k=map_resolution, n_alpha=map_resolution, workers=workers)
+                      n_k=map_resolution, n_alpha=map_resolution, workers=workers, refine=True)
     triple = triple_point(p.eta, p.mu_s, p.mu_k, alpha_max=frame["alpha"][1]) if p.eta > 0 else None
     alphas = np.unique(np.concatenate((np.linspace(1.0 + 1e-6, frame["alpha"][1], 2 * map_resolution), [p.alpha])))
     amplitudes, regimes, steady = amplitude_curve(p.k, p.eta, p.mu_s, p.mu_k, alphas, workers=workers)

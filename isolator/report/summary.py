@@ -179,7 +179,7 @@ def summary_dict(analysis: Analysis) -> dict:
 #: Record names that resolve without a file of the user's: real records shipped by a dependency.
 EXAMPLE_RECORDS = {
     "example:knet": ("obspy.io.nied", ("tests", "data", "test.knet"),
-                     "test.knet (K-NET sample bundled with obspy)"),
+                     "test.knet (obspy's K-NET sample)"),
 }
 
 
