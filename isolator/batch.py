@@ -628,7 +628,7 @@ def _iterate_dask(tasks: list[Task], address: str):
     from distributed import Client, as_completed
 
     try:
-        client = Client(address, timeout=30)
+        client = Client(address, timeout=10)
     except (OSError, TimeoutError) as err:
         raise BatchError(f"--scheduler {address}: cannot connect ({_one_line(err)})") from None
     try:
