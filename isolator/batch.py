@@ -199,6 +199,7 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
 
     combos = list(itertools.product(*[[(key, value) for value in values] for key, values in grids])) or [()]
     cases = []
+    seen: dict = {}  # the same design twice (a repeated table, coinciding grid values) keeps both rows
     for file_index, mapping in enumerate(mappings):
         for combo in combos:
             label = f"{source}[design {file_index}]"
@@ -215,8 +216,12 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
                     error = _one_line(err)
             else:
                 swept, error = {"value": mapping}, f"{label}: a design must be a table of keys"
+            digest = _design_hash(swept)
+            seen[digest] = seen.get(digest, -1) + 1
+            if seen[digest]:
+                digest = f"{digest}#{seen[digest]}"
             cases.append(DesignCase(index=len(cases), file_index=file_index, mapping=swept, source=label,
-                                    design_hash=_design_hash(swept), error=error))
+                                    design_hash=digest, error=error))
     return cases
 
 

@@ -120,6 +120,15 @@ def test_expand_designs_cartesian_product_and_invalid_grid_values():
     assert len({c.design_hash for c in cases}) == 16
 
 
+def test_repeated_design_keeps_its_rows(suite, tmp_path):
+    records, designs = suite
+    designs.write_text(DESIGNS + DESIGNS)
+    result = run_batch([str(records / "rec0.txt")], designs, tmp_path / "t.csv", jobs=1)
+    assert result.n_rows == 4 and list(result.table["design_index"]) == [0, 1, 2, 3]
+    assert result.table["row_key"].nunique() == 4
+    assert result.table["peak_displacement_m"].iloc[0] == result.table["peak_displacement_m"].iloc[2]
+
+
 def test_expand_records_folders_globs_and_missing(tmp_path):
     (tmp_path / "a").mkdir()
     for name in ("x.AT2", "y.txt", "README.md", ".hidden"):
