@@ -7,7 +7,7 @@ record solver), the harmonic classification at the equivalent point, and writing
 table.  Reading/solving/harmonic are CPU seconds summed over the workers (from the
 table's timing columns); plan/compute/write are the batch's own wall-clock phases.
 
-    .venv/bin/python benchmarks/batch_throughput.py [--jobs 2] [--repeat 3]
+    .venv/bin/python benchmarks/batch_throughput.py [--jobs 2] [--repeat 3] [--no-harmonic]
 
 The 18 records: the 12 AT2 files of ../shared/records/at2, and from ../shared/records/other
 the USGS SMC file, the four K-NET files (AOM008 NS/EW/UD, test.knet) and the Chi-Chi CSV
@@ -43,6 +43,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--no-harmonic", action="store_true", help="pass --no-harmonic to the batch")
     args = parser.parse_args()
     records = sorted(str(p) for p in (RECORDS / "at2").iterdir()) + [str(RECORDS / "other" / n) for n in OTHER]
     assert len(records) == 18, records
@@ -55,6 +56,7 @@ def main() -> None:
             out = Path(tmp) / f"run{run}.csv"
             command = [isolator, "batch", *records, "--designs", str(designs), "--grid", "radius_m=1:4:10",
                        "--grid", "mu_static=0.03:0.12:10", "--units", "g", "-o", str(out), "--jobs", str(args.jobs)]
+            command += ["--no-harmonic"] if args.no_harmonic else []
             start = time.perf_counter()
             done = subprocess.run(command, capture_output=True, text=True)
             walls.append(time.perf_counter() - start)
@@ -67,7 +69,8 @@ def main() -> None:
             splits.append((table.groupby("record")["read_seconds"].first().sum(), table["solver_seconds"].sum(),
                            table["harmonic_seconds"].sum(), int((table["harmonic_seconds"] == 0).sum())))
     median = statistics.median
-    print(f"batch: 18 records x 100 designs = 1800 analyses, --jobs {args.jobs}, {args.repeat} runs")
+    print(f"batch: 18 records x 100 designs = 1800 analyses, --jobs {args.jobs}, {args.repeat} runs"
+          + (", --no-harmonic" if args.no_harmonic else ""))
     print(f"{'':34s}{'median':>9s}   runs")
     print(f"{'wall, launch to exit [s]':34s}{median(walls):9.2f}   " + " ".join(f"{w:.2f}" for w in walls))
     for i, name in enumerate(("plan (expand, resume check)", "compute (pool + tasks)", "write table")):

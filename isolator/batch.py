@@ -303,10 +303,13 @@ class ReadOptions:
     units: str | None = None
     scale_to_pga_g: float | None = None
     dt_s: float | None = None
+    harmonic: bool = True  #: also classify the harmonic response at the equivalent point
 
     def fingerprint(self) -> str:
-        return json.dumps({"units": self.units, "scale_to_pga_g": self.scale_to_pga_g, "dt_s": self.dt_s},
-                          sort_keys=True)
+        options = {"units": self.units, "scale_to_pga_g": self.scale_to_pga_g, "dt_s": self.dt_s}
+        if not self.harmonic:
+            options["harmonic"] = False
+        return json.dumps(options, sort_keys=True)
 
 
 def row_key(record_path: str, component: str | None, design_hash: str, options: ReadOptions) -> str:
@@ -435,7 +438,7 @@ def _record_columns(path: str, component: str | None, motion=None, measures=None
     return out
 
 
-def _analyse_row(design, motion, measures, window) -> dict:
+def _analyse_row(design, motion, measures, window, harmonic: bool = True) -> dict:
     """The numbers of one (record, design): point, simulate, classifications (no dict of the report)."""
     from isolator.adapter import Adaptation, dimensionless_point, engineering_quantities
     from isolator.metrics import classify_record, compare
@@ -447,8 +450,11 @@ def _analyse_row(design, motion, measures, window) -> dict:
     system = design.system()
     response = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
     record_class = classify_record(response, point, design, window_s=window)
-    harmonic_class, steady, status, harmonic_seconds = _harmonic_classification(
-        point.alpha, point.k, point.eta, point.mu_s, point.mu_k)
+    if harmonic:
+        harmonic_class, steady, status, harmonic_seconds = _harmonic_classification(
+            point.alpha, point.k, point.eta, point.mu_s, point.mu_k)
+    else:
+        harmonic_class, steady, status, harmonic_seconds = None, None, "not computed (--no-harmonic)", 0.0
     engineering = engineering_quantities(design, response)
     row = {
         "alpha": point.alpha, "k": point.k, "eta": point.eta, "configuration": system.configuration,
@@ -467,13 +473,13 @@ def _analyse_row(design, motion, measures, window) -> dict:
         "peak_transmitted_force_N": engineering["peak_transmitted_force_N"],
         "base_shear_coefficient": engineering["base_shear_coefficient"],
         "window_start_s": record_class.window_s[0], "window_end_s": record_class.window_s[1],
-        "harmonic_steady": bool(steady), "harmonic_status": status,
-        "n_disagreements": len(compare(record_class, harmonic_class)),
+        "harmonic_steady": None if steady is None else bool(steady), "harmonic_status": status,
+        "n_disagreements": None if harmonic_class is None else len(compare(record_class, harmonic_class)),
         "solver_seconds": response.solver_seconds, "harmonic_seconds": harmonic_seconds,
     }
     for name in _CLASS_FIELDS:
         row[f"{name}_record"] = getattr(record_class, name)
-        row[f"{name}_harmonic"] = getattr(harmonic_class, name)
+        row[f"{name}_harmonic"] = None if harmonic_class is None else getattr(harmonic_class, name)
     return row
 
 
@@ -512,7 +518,7 @@ def run_task(task: Task) -> list[dict]:
         try:
             design = Design.from_mapping(case.mapping, source=case.source)
             row.update(_design_columns(case, design))
-            row.update(_analyse_row(design, motion, measures, window))
+            row.update(_analyse_row(design, motion, measures, window, task.options.harmonic))
             if task.reports_dir:
                 _write_report(task, case, design, motion, factor)
             row["error"] = ""

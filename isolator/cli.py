@@ -540,6 +540,9 @@ def batch(
                               "peak displacement and transmitted acceleration over the first two swept keys."),
     map_resolution: int = typer.Option(30, "--map-resolution", min=8, max=400,
                                        help="Regime-map resolution of the --reports pages."),
+    no_harmonic: bool = typer.Option(False, "--no-harmonic", help="Skip the harmonic classification at the "
+                                     "equivalent point (most of the time of a large sweep); its columns stay "
+                                     "empty."),
 ) -> None:
     """Many records × many designs into one table: resumable, parallel, locally or on Dask.
 
@@ -576,7 +579,7 @@ def batch(
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
     except BatchError as err:
         _user_error(str(err))
-    options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt)
+    options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic)
 
     progress_bar, callback = None, None
     if sys.stderr.isatty():

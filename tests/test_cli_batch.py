@@ -116,3 +116,17 @@ def test_units_and_dt_apply_only_to_files_that_need_them(files):
     acc, txt = table.loc[(str(folder / "a.acc"), 0)], table.loc[(str(folder / "a.txt"), 0)]
     assert acc["record_units_source"] == "--units g" and "units" in txt["record_units_source"]
     assert acc["peak_displacement_m"] == pytest.approx(txt["peak_displacement_m"], rel=1e-6)
+
+
+def test_no_harmonic_leaves_its_columns_empty(files):
+    folder, designs = files
+    out = folder / "t.csv"
+    assert run(folder / "a.txt", "--designs", designs, "-o", out, "--jobs", "1").exit_code == 0
+    full = pd.read_csv(out)
+    result = run(folder / "a.txt", "--designs", designs, "-o", out, "--jobs", "1", "--no-harmonic")
+    assert result.exit_code == 0, result.output
+    assert "resumed" not in result.stdout  # other options, other row keys
+    quick = pd.read_csv(out)
+    assert quick["regime_harmonic"].isna().all() and (quick["harmonic_seconds"] == 0).all()
+    assert list(quick["peak_displacement_m"]) == list(full["peak_displacement_m"])
+    assert list(quick["regime_record"]) == list(full["regime_record"])
