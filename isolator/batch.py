@@ -44,7 +44,7 @@ GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kineti
              "damping_ratio")
 
 #: Columns that measure time: they differ between two runs of the same batch.
-TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds")
+TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
 
 #: Column order of the table (columns of every row; a row may leave some empty).
 COLUMNS = (
@@ -75,7 +75,7 @@ COLUMNS = (
     "dominant_force_rho_harmonic", "rho_ev_harmonic", "rho_vf_harmonic", "rho_ef_harmonic", "harmonic_steady",
     "harmonic_status", "n_disagreements",
     # timings (not compared between runs)
-    "read_seconds", "solver_seconds", "harmonic_seconds",
+    "read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds",
     "row_key",
 )
 
@@ -516,9 +516,11 @@ def run_task(task: Task) -> list[dict]:
             rows.append({**row, **_design_columns(case), "error": case.error})
             continue
         try:
+            start = time.perf_counter()
             design = Design.from_mapping(case.mapping, source=case.source)
             row.update(_design_columns(case, design))
             row.update(_analyse_row(design, motion, measures, window, task.options.harmonic))
+            row["row_seconds"] = time.perf_counter() - start
             if task.reports_dir:
                 _write_report(task, case, design, motion, factor)
             row["error"] = ""
