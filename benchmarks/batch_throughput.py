@@ -83,7 +83,7 @@ def main() -> None:
         print(f"{name + ' [s]':34s}{median(values):9.3f}   " + " ".join(f"{v:.3f}" for v in values))
     print("seconds inside the workers (wall clock, summed over workers):")
     for i, name in enumerate(("read (file, units, IMs, D5-95)", "solve (record solver kernel)",
-                              "simulate set-up, record classif.", "harmonic classification")):
+                              "set-up + record classification", "harmonic classification")):
         values = [s[i] for s in splits]
         print(f"  {name + ' [s]':33s}{median(values):9.3f}   " + " ".join(f"{v:.3f}" for v in values))
     print(f"  harmonic cache hits: {splits[-1][4]} of 1800 rows")
