@@ -613,6 +613,10 @@ def batch(
         if progress_bar is not None:
             progress_bar.stop()
         _user_error(str(err))
+    except OSError as err:
+        if progress_bar is not None:
+            progress_bar.stop()
+        _user_error(f"{getattr(err, 'filename', None) or output}: cannot write ({err.strerror or err})")
     except KeyboardInterrupt:
         if progress_bar is not None:
             progress_bar.stop()

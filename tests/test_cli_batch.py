@@ -55,7 +55,8 @@ def test_bad_designs_file_and_output_suffix_exit_2(files):
     for args, words in (((folder / "a.txt", "--designs", folder / "none.toml", "-o", folder / "t.csv"), "no such"),
                         ((folder / "a.txt", "--designs", folder / "empty.toml", "-o", folder / "t.csv"), "[[design]]"),
                         ((folder / "a.txt", "--designs", designs, "-o", folder / "t.xlsx"), ".csv or .parquet"),
-                        ((folder / "*.none", "--designs", designs, "-o", folder / "t.csv"), "no file matches")):
+                        ((folder / "*.none", "--designs", designs, "-o", folder / "t.csv"), "no file matches"),
+                        ((folder / "a.txt", "--designs", designs, "-o", "/proc/none/t.csv"), "cannot write")):
         result = run(*args)
         assert result.exit_code == 2 and words in result.stderr, result.output
 
