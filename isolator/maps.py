@@ -127,8 +127,13 @@ class RegimeMap:
                 continue
             i = int(np.nanargmax(column))
             if 0 < i < self.alpha.size - 1 and self.k[j] > 0:
+                # vertex of the parabola through the three points around the maximum
+                a_m, a_0, a_p = column[i - 1], column[i], column[i + 1]
+                curvature = a_m - 2.0 * a_0 + a_p
+                shift = 0.5 * (a_m - a_p) / curvature if curvature < 0 else 0.0
+                step = self.alpha[i + 1] - self.alpha[i]
                 ks.append(self.k[j])
-                alphas.append(self.alpha[i])
+                alphas.append(self.alpha[i] + float(np.clip(shift, -0.5, 0.5)) * step)
         return np.array(ks), np.array(alphas)
 
     def save(self, path: Path) -> None:
