@@ -588,15 +588,19 @@ def errors(case: BenchCase, out: MethodOutput, ref: MethodOutput) -> dict:
     }
 
 
-def time_method(function, case, setting, repeats: int, budget_s: float = 2.0):
-    """Median wall time [s] of ``repeats`` runs (one run if the first takes more than ``budget_s``)."""
+def time_method(function, case, setting, repeats: int, budget_s: float = 2.0, min_total_s: float = 0.2,
+                max_runs: int = 50):
+    """Median wall time [s] of at least ``repeats`` runs, more (up to ``max_runs``) while the
+    total stays under ``min_total_s``; a single run if the first takes more than ``budget_s``."""
     times = []
     out = None
-    for i in range(max(1, repeats)):
+    while True:
         start = time.perf_counter()
         out = function(case, setting)
         times.append(time.perf_counter() - start)
-        if times[0] > budget_s:
+        if times[0] > budget_s or len(times) >= max_runs:
+            break
+        if len(times) >= max(1, repeats) and sum(times) >= min_total_s:
             break
     return statistics.median(times), out
 
@@ -630,7 +634,7 @@ def run_bench(quick: bool = False, records_dir: Path | None = None, repeats: int
     warm_up()
     rows = []
     for case in cases:
-        seconds, ours = time_method(exact_solver, case, None, max(repeats, 5))
+        seconds, ours = time_method(exact_solver, case, None, repeats)
         cross_name, cross_tol = CROSS_CHECK
         cross_seconds, cross = time_method(lambda c, tol: ivp_with_events(c, tol, "DOP853"), case, cross_tol, 1)
         row = {"method": OURS, "case": case.name, "setting": "-", "seconds": seconds, **errors(case, ours, cross),
@@ -656,7 +660,8 @@ def run_bench(quick: bool = False, records_dir: Path | None = None, repeats: int
     pareto = pareto_summary(rows)
     for row in rows:  # the ratios ride along on our rows too
         if row["method"] == OURS:
-            row.update({k: v for k, v in pareto_by_case(pareto)[row["case"]].items() if k.startswith(("speedup", "accuracy"))})
+            by_case = pareto_by_case(pareto)[row["case"]]
+            row.update({k: v for k, v in by_case.items() if k.startswith(("speedup", "accuracy"))})
     return rows, pareto
 
 

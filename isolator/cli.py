@@ -344,3 +344,100 @@ def simulate(
         ("solver time", f"{result.solver_seconds * 1e3:.3g}", "ms"),
         ("status", result.message, ""),
     ] + ([("time histories", out_csv, "")] if out_csv else []))
+
+
+# ======================================================================================
+# Speed against error: the `bench` command.  (Block owned by the benchmark issue.)
+# ======================================================================================
+
+def _write_text_atomically(path, text: str) -> None:
+    """Write text through a temporary file in the same folder and a rename: never half a file."""
+    import os
+    import tempfile
+    from pathlib import Path
+
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+            stream.write(text)
+        os.replace(temporary, target)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+        raise
+
+
+@app.command()
+def bench(
+    quick: bool = typer.Option(False, "--quick", help="A representative subset (under a minute)."),
+    as_json: bool = typer.Option(False, "--json", help="Print the rows as one JSON list instead of tables."),
+    out: str = typer.Option("reports/bench", "--out", help="Folder for bench.csv, bench_pareto.csv, bench.json, "
+                                                            "bench.md and bench.png."),
+    records: str = typer.Option(None, "--records", help="Folder of the shared records "
+                                                        "(default: ../shared/records beside the repository)."),
+    repeats: int = typer.Option(None, "--repeats", min=1, help="Runs per timing (median); default 3 quick, 5 full."),
+) -> None:
+    """Speed against error: our exact solver against fixed-step, Newmark and solve_ivp methods.
+
+    Runs the harmonic cases of every configuration and friction-pendulum records, times
+    every method (median of several runs, in this process) and measures the errors of
+    peak and residual displacement, slip-time ratio and trajectory; writes the table
+    (CSV, JSON, Markdown) and a log error / log time plot to --out.
+    """
+    import json
+    import os
+    import platform
+    import tempfile
+    import time
+    from pathlib import Path
+
+    from isolator import bench as bench_module
+
+    records_dir = Path(records) if records else None
+    if records_dir is not None and not records_dir.is_dir():
+        _user_error(f"{records}: no such folder of records")
+    out_dir = Path(out)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        _user_error(f"{out}: cannot create the output folder ({err.strerror or err})")
+    started = time.perf_counter()
+    progress = None if as_json else (lambda line: typer.echo(line, err=True))
+    rows, pareto = bench_module.run_bench(quick=quick, records_dir=records_dir, repeats=repeats, progress=progress)
+    wall_s = time.perf_counter() - started
+    machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
+               "cpus": os.cpu_count(), "python": platform.python_version()}
+    try:
+        import numpy
+        import scipy
+
+        machine.update(numpy=numpy.__version__, scipy=scipy.__version__)
+    except ImportError:  # pragma: no cover - both are dependencies
+        pass
+    command = "isolator bench" + (" --quick" if quick else "")
+    document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto}
+    try:
+        _write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
+        _write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))
+        _write_text_atomically(out_dir / "bench.json", json.dumps(_json_safe(document), indent=1, allow_nan=False))
+        _write_text_atomically(out_dir / "bench.md", bench_module.pareto_markdown(pareto) + "\n"
+                               + bench_module.rows_markdown(rows))
+        handle, temporary = tempfile.mkstemp(dir=out_dir, prefix=".bench.", suffix=".png")
+        os.close(handle)
+        try:
+            bench_module.plot(rows, Path(temporary))
+            os.replace(temporary, out_dir / "bench.png")
+        finally:
+            if os.path.exists(temporary):
+                os.unlink(temporary)
+    except OSError as err:
+        _user_error(f"{out}: cannot write ({err.strerror or err})")
+    if as_json:
+        typer.echo(json.dumps(_json_safe(rows), allow_nan=False))
+        return
+    typer.echo(bench_module.pareto_markdown(pareto))
+    typer.echo(bench_module.rows_markdown(rows))
+    typer.echo(f"{len(rows)} runs in {wall_s:.1f} s on {machine['processor']} ({machine['cpus']} CPUs); "
+               f"written to {out_dir}/bench.csv, bench_pareto.csv, bench.json, bench.md, bench.png")
