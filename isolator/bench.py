@@ -288,7 +288,8 @@ def exact_solver(case: BenchCase, setting=None) -> MethodOutput:
     if case.n_periods > 1:
         hm._advance_periods(case.n_periods - 1, state, omega, k, eta, mu_s, mu_k, HARMONIC_PHASE, piece_max,
                             False, empty, empty_kind, empty, empty, empty, empty, metrics)
-    t_out = case.output_time - case.window_start
+    # times from the start of the last period; rounding must not push the last one past it
+    t_out = np.clip(case.output_time - case.window_start, 0.0, period)
     x_out = np.empty_like(t_out)
     v_out = np.empty_like(t_out)
     capacity = 256
