@@ -187,8 +187,10 @@ HARMONIC_CASES = [
     ("harmonic config 3 (+ spring)", 1.3, 0.1, 0.0, 0.25, 0.2),
     ("harmonic config 4a (complete)", 1.5, 1.0, 0.5, 0.25, 0.2),
 ]
-#: Records of ../shared/records used by the full bench (the first one by --quick).
-RECORD_FILES = ["at2/RSN1044_NORTHR_NWH360.AT2", "at2/IELC180.AT2", "at2/RSN779_LOMAP_LGP000.AT2"]
+#: Records of ../shared/records used by the full bench (the first one by --quick), with the
+#: damping of an added viscous damper c = γ/M [1/s] (0.44 1/s: 10 % of critical at T = 2.84 s).
+RECORD_FILES = [("at2/RSN1044_NORTHR_NWH360.AT2", 0.0), ("at2/IELC180.AT2", 0.0),
+                ("at2/RSN779_LOMAP_LGP000.AT2", 0.44)]
 
 
 def default_records_dir() -> Path:
@@ -204,15 +206,16 @@ def bench_cases(quick: bool = False, records_dir: Path | None = None) -> list[Be
     if records_dir.is_dir():
         from isolator.motion import read_ground_motion
 
-        for rel in RECORD_FILES[:1] if quick else RECORD_FILES:
+        for rel, damping in RECORD_FILES[:1] if quick else RECORD_FILES:
             path = records_dir / rel
             if not path.is_file():
                 continue
             motion = read_ground_motion(path)
+            damper = f" + damper c={damping:g}/s" if damping else ""
             cases.append(record_case(
-                f"record {path.stem} (FP R={PENDULUM_RADIUS_M:g} m)", motion.acceleration_m_s2, motion.dt_s,
+                f"record {path.stem} (FP R={PENDULUM_RADIUS_M:g} m{damper})", motion.acceleration_m_s2, motion.dt_s,
                 mu_static=PENDULUM_MU_STATIC, mu_kinetic=PENDULUM_MU_KINETIC,
-                stiffness_per_mass=STANDARD_GRAVITY_M_S2 / PENDULUM_RADIUS_M))
+                stiffness_per_mass=STANDARD_GRAVITY_M_S2 / PENDULUM_RADIUS_M, damping_per_mass=damping))
     return cases
 
 

@@ -324,13 +324,16 @@ def test_extreme_damping_is_finite_and_balanced(damping):
 
 
 def test_large_k_and_large_eta_harmonic():
-    stiff = harmonic_response(2.0, 1e4, 0.0, 0.25, 0.2)
-    damped = harmonic_response(2.0, 0.5, 1e3, 0.25, 0.2)
+    # k = 1e4: the spring period is 1/140 of the forcing period; η = 1e3: exponent -η t
+    stiff, seconds_stiff = timed(harmonic_response, 2.0, 1e4, 0.0, 0.25, 0.2)
+    damped, seconds_damped = timed(harmonic_response, 2.0, 0.0, 1e3, 0.25, 0.2)
+    assert seconds_stiff < TIME_LIMIT_S and seconds_damped < TIME_LIMIT_S
     for response in (stiff, damped):
-        assert math.isfinite(response.amplitude) and math.isfinite(response.zeta)
-        assert 0.0 <= response.zeta <= 1.0
-    assert stiff.amplitude < 1e-3 and damped.amplitude < 1e-2
-    exact_vs_reference_harmonic(2.0, 0.5, 1e3, 0.25, 0.2, n_periods=3)
+        assert response.steady and math.isfinite(response.amplitude) and 0.0 <= response.zeta <= 1.0
+        assert abs(response.energy_balance_residual) < 1e-6 * abs(response.work_input)
+    assert stiff.amplitude < 1e-4 and damped.amplitude < 1e-3
+    _, ours, _ = exact_vs_reference_harmonic(2.0, 0.0, 1e3, 0.25, 0.2, n_periods=2)
+    assert ours.peak == pytest.approx(damped.amplitude, rel=1e-6)
 
 
 # --------------------------------------------------------------------------------------
@@ -361,3 +364,45 @@ def test_breakaway_at_time_zero_by_a_jump(mu_k):
     exact = 0.5 * (1.0 - mu_k * G) * t ** 2  # slides forwards at X'' = |a_g| - µk g
     np.testing.assert_allclose(response.displacement_m, exact, rtol=1e-9, atol=1e-20)
     assert abs(response.energy_balance_error_J_per_kg) < 1e-12
+
+
+# µk = 0: free sliding between a break-away and the next stop.  V = -∫ a_g dt returns to
+# zero at t = 3.4271 ms and (were the block not held by µs g there) again at 3.7530 ms:
+# a step-based integrator with event location steps over the pair and misses the stick
+# (both tests/reference.py and the solve_ivp methods of isolator.bench do).
+FREE_SLIDING_RECORD = np.array([
+    0.0, 6.18292357, 2.48663835, -9.80665, 6.81307512, 3.35910287, -4.04073455, 4.37308846, 2.7435169,
+    2.21343548, 0.21388591, 4.11417961, -5.54203844, -1.22594634, -3.62809279, 4.50649781, 0.2989208,
+    -2.20082499, -5.88409628, -1.93544894])  # [m/s²], dt = 1 ms
+
+
+def test_free_sliding_mu_k_zero():
+    from scipy.optimize import brentq
+
+    system = dict(mu_static=0.375, mu_kinetic=0.0)
+    dt = 0.001
+    ours = simulate_record(FREE_SLIDING_RECORD, dt, **system)
+    assert list(ours.event_names) == ["breakaway", "stick", "breakaway"]
+    sample_times = dt * np.arange(FREE_SLIDING_RECORD.size)
+    t_break = ours.event_time_s[0]
+    assert np.interp(t_break, sample_times, FREE_SLIDING_RECORD) == pytest.approx(0.375 * G, rel=1e-12)
+
+    def velocity(t):  # exact for a piecewise-linear record: V = -∫ a_g from the break-away
+        nodes = np.concatenate(([t_break], sample_times[(sample_times > t_break) & (sample_times < t)], [t]))
+        values = np.interp(nodes, sample_times, FREE_SLIDING_RECORD)
+        return -float(np.sum(0.5 * (values[1:] + values[:-1]) * np.diff(nodes)))
+
+    t_stop = brentq(velocity, 0.0034, 0.0035, xtol=1e-15)
+    assert ours.event_time_s[1] == pytest.approx(t_stop, abs=1e-12)
+    assert abs(np.interp(t_stop, sample_times, FREE_SLIDING_RECORD)) < 0.375 * G  # so it sticks
+    assert_energy_balance(ours)
+
+
+@pytest.mark.xfail(strict=True, reason="tests/reference.py steps over the pair of zeros of V and misses the "
+                   "stick at t = 3.427 ms when µk = 0 (a limitation of the reference, not a solver problem; the "
+                   "property tests leave µk = 0 out of the reference comparison)")
+def test_reference_free_sliding():
+    system = dict(mu_static=0.375, mu_kinetic=0.0)
+    ours = simulate_record(FREE_SLIDING_RECORD, 0.001, **system)
+    ref = reference_record(FREE_SLIDING_RECORD, 0.001, **system)
+    assert len(ref["events"]) == ours.n_events
