@@ -818,7 +818,8 @@ def plot(rows: list[dict], path: Path, error_key: str = "error_trajectory") -> N
     markers = "o^svDPX*"
     for ax, case in zip(axes.ravel(), cases):
         for i, name in enumerate(names):
-            pts = sorted((r["seconds"], r[error_key]) for r in rows if r["case"] == case and r["method"] == name)
+            # in the order of the settings (coarse to fine), so each curve is the method's own path
+            pts = [(r["seconds"], r[error_key]) for r in rows if r["case"] == case and r["method"] == name]
             if not pts:
                 continue
             t, e = zip(*pts)
