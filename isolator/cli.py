@@ -403,6 +403,9 @@ def bench(
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         _user_error(f"{out}: cannot create the output folder ({err.strerror or err})")
+    if records_dir is None and not bench_module.default_records_dir().is_dir():
+        typer.echo(f"note: no records at {bench_module.default_records_dir()}: harmonic cases only "
+                   "(give --records DIR)", err=True)
     started = time.perf_counter()
     progress = None if as_json else (lambda line: typer.echo(line, err=True))
     rows, pareto = bench_module.run_bench(quick=quick, records_dir=records_dir, repeats=repeats, progress=progress)
