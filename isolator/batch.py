@@ -39,6 +39,8 @@ import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from isolator.atomic import atomic_path
+
 #: Numeric design keys a --grid may sweep.
 GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kinetic", "damping_Ns_per_m",
              "damping_ratio")
@@ -761,9 +763,7 @@ def to_table(rows: list[dict]):
 def write_table_atomically(table, path) -> None:
     """CSV or Parquet (by suffix) through a temporary file and a rename: never half a file."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
+    with atomic_path(path) as tmp:
         if path.suffix.lower() == ".parquet":
             out = table.copy()
             for column in out.columns:
@@ -780,11 +780,6 @@ def write_table_atomically(table, path) -> None:
             out.to_parquet(tmp, index=False)
         else:
             table.to_csv(tmp, index=False)
-        os.replace(tmp, path)
-    except BaseException:
-        if tmp.exists():
-            tmp.unlink()
-        raise
 
 
 def run_batch(records, designs_file, output, *, grids=(), component: str | None = None,
@@ -970,13 +965,10 @@ def design_chart(table, keys, path) -> int:
             codes.append(_regime_code(rows[f"regime_{source}"]))
         summary[f"regime_code_{source}"] = codes
     pages = 0
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp.pdf")
     quantities = (("peak_displacement_m_mean", "mean peak displacement [m]", 1.0),
                   ("peak_transmitted_acceleration_m_s2_mean", "mean peak transmitted acceleration [g]",
                    1.0 / STANDARD_GRAVITY))
-    try:
+    with atomic_path(path) as tmp:
         with PdfPages(tmp) as pdf:
             for file_index, group in summary.groupby("design_file_index", sort=True):
                 xs = np.unique(group[key_x].astype(float))
@@ -1019,8 +1011,4 @@ def design_chart(table, keys, path) -> int:
                     pages += 1
         if pages == 0:
             raise BatchError("the design chart needs at least 2 values of each swept key")
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return pages

@@ -250,23 +250,12 @@ def threshold(
 
 def _write_csv_atomically(path, header: str, columns) -> None:
     """Write columns to CSV through a temporary file and a rename: never half a file."""
-    import os
-    import tempfile
-    from pathlib import Path
-
     import numpy as np
 
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    handle, tmp_name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w") as stream:
-            np.savetxt(stream, np.column_stack(columns), delimiter=",", header=header, comments="", fmt="%.17g")
-        os.replace(tmp_name, target)
-    except BaseException:
-        if os.path.exists(tmp_name):
-            os.unlink(tmp_name)
-        raise
+    from isolator.atomic import atomic_path
+
+    with atomic_path(path) as temporary:
+        np.savetxt(temporary, np.column_stack(columns), delimiter=",", header=header, comments="", fmt="%.17g")
 
 
 @app.command()
@@ -657,3 +646,78 @@ def batch(
 # ======================================================================================
 # End of the batch block.
 # ======================================================================================
+
+
+# ======================================================================================
+# Speed against error: the `bench` command.  (Block owned by the benchmark issue.)
+# ======================================================================================
+
+@app.command()
+def bench(
+    quick: bool = typer.Option(False, "--quick", help="A representative subset (under a minute)."),
+    as_json: bool = typer.Option(False, "--json", help="Print the rows as one JSON list instead of tables."),
+    out: str = typer.Option("reports/bench", "--out", help="Folder for bench.csv, bench_pareto.csv, bench.json, "
+                                                            "bench.md and bench.png."),
+    records: str = typer.Option(None, "--records", help="Folder of the shared records "
+                                                        "(default: ../shared/records beside the repository)."),
+    repeats: int = typer.Option(None, "--repeats", min=1, help="Runs per timing (median); default 3 quick, 5 full."),
+) -> None:
+    """Speed against error: our exact solver against fixed-step, Newmark and solve_ivp methods.
+
+    Runs the harmonic cases of every configuration and friction-pendulum records, times
+    every method (median of several runs, in this process) and measures the errors of
+    peak and residual displacement, slip-time ratio and trajectory; writes the table
+    (CSV, JSON, Markdown) and a log error / log time plot to --out.
+    """
+    import json
+    import os
+    import platform
+    import time
+    from pathlib import Path
+
+    from isolator import bench as bench_module
+    from isolator.atomic import atomic_path, write_text_atomically
+
+    records_dir = Path(records) if records else None
+    if records_dir is not None and not records_dir.is_dir():
+        _user_error(f"{records}: no such folder of records")
+    out_dir = Path(out)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        _user_error(f"{out}: cannot create the output folder ({err.strerror or err})")
+    if records_dir is None and not bench_module.default_records_dir().is_dir():
+        typer.echo(f"note: no records at {bench_module.default_records_dir()}: harmonic cases only "
+                   "(give --records DIR)", err=True)
+    started = time.perf_counter()
+    progress = None if as_json else (lambda line: typer.echo(line, err=True))
+    rows, pareto = bench_module.run_bench(quick=quick, records_dir=records_dir, repeats=repeats, progress=progress)
+    wall_s = time.perf_counter() - started
+    machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
+               "cpus": os.cpu_count(), "python": platform.python_version()}
+    try:
+        import numpy
+        import scipy
+
+        machine.update(numpy=numpy.__version__, scipy=scipy.__version__)
+    except ImportError:  # pragma: no cover - both are dependencies
+        pass
+    command = "isolator bench" + (" --quick" if quick else "")
+    document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto}
+    try:
+        write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
+        write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))
+        write_text_atomically(out_dir / "bench.json", json.dumps(_json_safe(document), indent=1, allow_nan=False))
+        write_text_atomically(out_dir / "bench.md", bench_module.pareto_markdown(pareto) + "\n"
+                              + bench_module.rows_markdown(rows))
+        with atomic_path(out_dir / "bench.png") as temporary:
+            bench_module.plot(rows, temporary)
+    except OSError as err:
+        _user_error(f"{out}: cannot write ({err.strerror or err})")
+    if as_json:
+        typer.echo(json.dumps(_json_safe(rows), allow_nan=False))
+        return
+    typer.echo(bench_module.pareto_markdown(pareto))
+    typer.echo(bench_module.rows_markdown(rows))
+    typer.echo(f"{len(rows)} runs in {wall_s:.1f} s on {machine['processor']} ({machine['cpus']} CPUs); "
+               f"written to {out_dir}/bench.csv, bench_pareto.csv, bench.json, bench.md, bench.png")

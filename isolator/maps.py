@@ -26,12 +26,13 @@ import hashlib
 import json
 import math
 import os
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from isolator.atomic import atomic_path
 
 MAP_FORMAT_VERSION = 1  #: bump when the content of a cached map changes
 REGIME_CODES = {"ST": 0, "SS": 1, "SL": 2}
@@ -138,18 +139,9 @@ class RegimeMap:
 
     def save(self, path: Path) -> None:
         """Write as .npz atomically (temporary file, then rename)."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(handle, "wb") as stream:
-                np.savez(stream, **{name: getattr(self, name) for name in self._ARRAYS},
-                         params=np.array([self.eta, self.mu_s, self.mu_k, self.elapsed_s]))
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+        with atomic_path(path) as tmp, open(tmp, "wb") as stream:
+            np.savez(stream, **{name: getattr(self, name) for name in self._ARRAYS},
+                     params=np.array([self.eta, self.mu_s, self.mu_k, self.elapsed_s]))
 
     @classmethod
     def load(cls, path: Path) -> RegimeMap:

@@ -10,13 +10,12 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 import textwrap
 from pathlib import Path
 
 import numpy as np
 
+from isolator.atomic import atomic_path
 from isolator.metrics import REGIME_WORDS, slip_intervals
 from isolator.report import figures
 from isolator.report.summary import Analysis, summary_dict, verdicts
@@ -45,16 +44,6 @@ def fmt(value, digits: int = 4) -> str:
 def _tail(text: str, width: int) -> str:
     """``text`` cut at the front to ``width`` characters (file names keep their end)."""
     return text if len(text) <= width else "…" + text[-(width - 1):]
-
-
-def _atomic_target(path: Path):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    os.close(handle)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a report is an ordinary file
-    return tmp
 
 
 def _page(plt, number: int, subtitle: str):
@@ -230,8 +219,7 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
                       "triple_point": None if triple is None else {"alpha": triple[0], "k": triple[1]},
                       "regime_at_design": rmap.regime_at(p.alpha, p.k)}
 
-    tmp_pdf = _atomic_target(pdf_path)
-    try:
+    with atomic_path(pdf_path) as tmp_pdf:
         with PdfPages(tmp_pdf) as pdf:
             fig = _summary_page(plt, a, summary, command)
             pdf.savefig(fig)
@@ -299,20 +287,9 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
             info = pdf.infodict()
             info["Title"] = f"isolator review: {label}"
             info["Creator"] = f"isolator {summary['software']['version']}"
-        os.replace(tmp_pdf, pdf_path)
-    except BaseException:
-        if os.path.exists(tmp_pdf):
-            os.unlink(tmp_pdf)
-        raise
     summary["pdf"] = str(pdf_path)
-    tmp_json = _atomic_target(json_path)
-    try:
+    with atomic_path(json_path) as tmp_json:
         with open(tmp_json, "w") as stream:
             json.dump(summary, stream, indent=2, allow_nan=False)
             stream.write("\n")
-        os.replace(tmp_json, json_path)
-    except BaseException:
-        if os.path.exists(tmp_json):
-            os.unlink(tmp_json)
-        raise
     return summary

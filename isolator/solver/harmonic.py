@@ -97,6 +97,7 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
     """
     period = 2.0 * math.pi / omega
     force = -omega * omega
+    fast_rate = 0.5 * c + math.sqrt(abs(0.25 * c * c - kappa))  # largest |λ| of the free motion
     piece_e0, piece_e1, piece_h1, _, _ = ramp_basis(piece_max, c, kappa)
     piece_hc = harmonic_h1(piece_max, c, kappa, omega)
     x = state[0]
@@ -172,16 +173,20 @@ def _advance_periods(n_periods, state, omega, kappa, c, mu_s, mu_k, phase0, piec
                 x_end, _, _, _ = segment_state(t_stop, x, v, p, 0.0, force, theta, c, kappa, omega)
                 v_end = 0.0
             if record:
-                # quadratures of v² and v cos θ on the piece (8-point Gauss–Legendre)
+                # quadratures of v² and v cos θ on the piece: composite 8-point
+                # Gauss–Legendre, one sub-piece per time constant of the fastest exponent
+                n_quad = min(4000, max(1, int(math.ceil(fast_rate * length))))
+                sub = length / n_quad
                 int_v2 = 0.0
                 int_vcos = 0.0
-                for k in range(_GL_NODES.shape[0]):
-                    tk = length * _GL_NODES[k]
-                    _, vk, _, _ = segment_state(tk, x, v, p, 0.0, force, theta, c, kappa, omega)
-                    int_v2 += _GL_WEIGHTS[k] * vk * vk
-                    int_vcos += _GL_WEIGHTS[k] * vk * math.cos(theta + omega * tk)
-                metrics[M_INT_V2] += int_v2 * length
-                metrics[M_INT_VCOS] += int_vcos * length
+                for jq in range(n_quad):
+                    for k in range(_GL_NODES.shape[0]):
+                        tk = sub * (jq + _GL_NODES[k])
+                        _, vk, _, _ = segment_state(tk, x, v, p, 0.0, force, theta, c, kappa, omega)
+                        int_v2 += _GL_WEIGHTS[k] * vk * vk
+                        int_vcos += _GL_WEIGHTS[k] * vk * math.cos(theta + omega * tk)
+                metrics[M_INT_V2] += int_v2 * sub
+                metrics[M_INT_VCOS] += int_vcos * sub
                 while i_out < n_out and t_out[i_out] <= t0 + t + length:
                     xo, vo, _, _ = segment_state(t_out[i_out] - t0 - t, x, v, p, 0.0, force, theta,
                                                  c, kappa, omega)
@@ -258,8 +263,10 @@ def _find_steady(omega, kappa, c, mu_s, mu_k, phase0, piece_max, max_periods, to
         if metrics[M_N_EVENTS] > 0.0:
             moved = True
         boundary_states[n + 1, :] = state
-        scale = max(1.0, amplitudes[n])
-        scale_v = max(1.0, amplitudes[n] * omega)
+        # relative to the motion itself (a stiff isolator moves by µs/k ≪ 1), down to a
+        # floor below which the motion is rounding-level anyway
+        scale = max(amplitudes[n], 1e-6)
+        scale_v = scale * omega
         for p in range(1, MAX_SUBHARMONIC + 1):
             if n + 1 - p < 0:
                 break
@@ -440,12 +447,12 @@ def harmonic_response(alpha: float, k: float, eta: float, mu_s: float, mu_k: flo
     _validate(alpha, k, eta, mu_s, mu_k)
     omega = math.sqrt(alpha * mu_s)
     period = 2.0 * math.pi / omega
+    # pieces resolve the forcing and the damped oscillation; an over-damped system adds
+    # no oscillation (its fast exponential only decays), so it needs no shorter pieces
     shortest = period
     d2 = 0.25 * eta * eta - k
     if d2 < 0.0:
         shortest = min(shortest, 2.0 * math.pi / math.sqrt(-d2))
-    if eta > 0.0:
-        shortest = min(shortest, 2.0 * math.pi / eta)
     piece_max = shortest / PIECES_PER_PERIOD
     boundary_states = np.zeros((max_periods + 1, _STATE_SIZE))
     amplitudes = np.zeros(max_periods)
