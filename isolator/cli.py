@@ -140,9 +140,7 @@ def info(
             rows.insert(3, (key.replace("_", " "), str(motion.provenance[key]), ""))
     for step in motion.processing:
         rows.append(("processing", step.get("step", ""), step.get("reason", "")))
-    width = max(len(name) for name, _, _ in rows)
-    for name, value, unit in rows:
-        typer.echo(f"{name:<{width}}  {value} {unit}".rstrip())
+    _echo_table(rows)
 
 
 # ======================================================================================

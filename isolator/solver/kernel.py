@@ -140,6 +140,22 @@ def _viscous_integral(tau, x0, v0, p, q, c, kappa):
 
 
 @njit(cache=True)
+def _velocity_peak(peak_v, length, x, v, v_end, acc_start, acc_end, p, q, c, kappa):
+    # The larger of peak_v and the interior extremum of |V| on a piece, which exists where
+    # the acceleration changes sign; located only when it could beat the peak so far
+    # (on a piece |V| moves beyond its ends by at most ~length max|A|).
+    if acc_start * acc_end >= 0.0:
+        return peak_v
+    if max(abs(v), abs(v_end)) + 2.0 * length * max(abs(acc_start), abs(acc_end)) <= peak_v:
+        return peak_v
+    sign = 1.0 if acc_start > 0.0 else -1.0
+    t_e = segment_root(1, sign, 0.0, length, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                       secant_guess(0.0, length, acc_start, acc_end))
+    _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
+    return max(peak_v, abs(v_e))
+
+
+@njit(cache=True)
 def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                   out_x, out_v, out_a, out_energy, ev_time, ev_kind, ev_x, summary):
     """Exact response of the friction–spring–dashpot block to a sampled record.
@@ -280,16 +296,8 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     e_f += mu_k_g * abs(x1 - x)
                     e_v += c * int_v2
                     slip_time += rem
-                    # interior extremum of the velocity (A changes sign); located only
-                    # when it could beat the peak so far (|V| moves by at most ~h max|A|)
-                    if (t_ext < 0.0 and acc0 * acc1 < 0.0
-                            and max(abs(v), abs(v1)) + 2.0 * rem * max(abs(acc0), abs(acc1)) > peak_v):
-                        sg = 1.0 if acc0 > 0.0 else -1.0
-                        t_e = segment_root(1, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
-                                           secant_guess(0.0, rem, acc0, acc1))
-                        _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                        if abs(v_e) > peak_v:
-                            peak_v = abs(v_e)
+                    if t_ext < 0.0:
+                        peak_v = _velocity_peak(peak_v, rem, x, v, v1, acc0, acc1, p, q, c, kappa)
                     # interior extremum of the transmitted acceleration -(µk g s + κX + cV)
                     if c > 0.0:
                         d0 = kappa * v + c * acc0
@@ -324,14 +332,8 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 e_f += mu_k_g * abs(x_s - x)
                 if c > 0.0:
                     e_v += c * _viscous_integral(t_stop, x, v, p, q, c, kappa)
-                if (t_ext < 0.0 and acc0 * acc_s < 0.0
-                        and abs(v) + 2.0 * t_stop * max(abs(acc0), abs(acc_s)) > peak_v):
-                    sg = 1.0 if acc0 > 0.0 else -1.0
-                    t_e = segment_root(1, sg, 0.0, t_stop, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
-                                       secant_guess(0.0, t_stop, acc0, acc_s))
-                    _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
-                    if abs(v_e) > peak_v:
-                        peak_v = abs(v_e)
+                if t_ext < 0.0:
+                    peak_v = _velocity_peak(peak_v, t_stop, x, v, 0.0, acc0, acc_s, p, q, c, kappa)
                 slip_time += t_stop
                 tau += t_stop
                 x = x_s
