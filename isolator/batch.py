@@ -154,19 +154,10 @@ def load_design_mappings(path) -> list[dict]:
     BatchError
         Missing or unreadable file, invalid TOML, no ``[[design]]`` list.
     """
-    import tomllib
+    from isolator.design import load_toml
 
     path = Path(path)
-    try:
-        text = path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise BatchError(f"{path}: no such designs file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise BatchError(f"{path}: cannot read the designs file ({_one_line(err)})") from None
-    try:
-        content = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise BatchError(f"{path}: not valid TOML ({_one_line(err)})") from None
+    content = load_toml(path, "designs file", BatchError)
     designs = content.get("design")
     if not isinstance(designs, list) or not designs:
         raise BatchError(f"{path}: expected a list of designs ([[design]] tables), found none")

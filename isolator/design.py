@@ -44,6 +44,33 @@ DESIGN_KEYS = {
 }
 
 
+def load_toml(path, what: str, error_type: type[Exception]) -> dict:
+    """Read a TOML file; a missing, unreadable or invalid file raises ``error_type``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+    what : str
+        What the file is, for the message ("design file", "designs file").
+    error_type : type
+        The exception raised, with one line naming the file and the problem.
+    """
+    import tomllib
+
+    path = Path(path)
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except FileNotFoundError:
+        raise error_type(f"{path}: no such {what}") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise error_type(f"{path}: cannot read the {what} ({' '.join(str(err).split())})") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise error_type(f"{path}: not valid TOML ({' '.join(str(err).split())})") from None
+
+
 class DesignError(ValueError):
     """An invalid design (the message names the file and the key)."""
 
@@ -127,19 +154,7 @@ class Design:
         -------
         Design
         """
-        import tomllib
-
-        path = Path(path)
-        try:
-            text = path.read_bytes().decode("utf-8")
-        except FileNotFoundError:
-            raise DesignError(f"{path}: no such design file") from None
-        except (OSError, UnicodeDecodeError) as err:
-            raise DesignError(f"{path}: cannot read the design file ({err})") from None
-        try:
-            mapping = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as err:
-            raise DesignError(f"{path}: not valid TOML ({err})") from None
+        mapping = load_toml(path, "design file", DesignError)
         return cls.from_mapping(mapping, source=str(path), gravity_m_s2=gravity_m_s2)
 
     @classmethod
