@@ -100,7 +100,7 @@ class Adaptation:
                 "configuration": self.system.configuration}
 
 
-def adapt(design: Design, motion) -> Adaptation:
+def adapt(design: Design, motion, intensity=None) -> Adaptation:
     """Map a design and a ground motion onto the solver and the paper.
 
     Parameters
@@ -109,12 +109,16 @@ def adapt(design: Design, motion) -> Adaptation:
         The isolator.
     motion : isolator.motion.GroundMotion
         The ground acceleration [m/s²].
+    intensity : isolator.motion.IntensityMeasures, optional
+        The motion's intensity measures if already computed (they cost a response
+        spectrum; a batch computes them once per record for all its designs).
 
     Returns
     -------
     Adaptation
     """
-    intensity = motion.intensity_measures()
+    if intensity is None:
+        intensity = motion.intensity_measures()
     point = dimensionless_point(design, intensity.pga_m_s2, intensity.pgv_m_s)
     return Adaptation(design=design, system=design.system(), point=point, intensity=intensity)
 

@@ -433,14 +433,13 @@ def _record_columns(path: str, component: str | None, motion=None, measures=None
 
 def _analyse_row(design, motion, measures, window, harmonic: bool = True) -> dict:
     """The numbers of one (record, design): point, simulate, classifications (no dict of the report)."""
-    from isolator.adapter import Adaptation, dimensionless_point, engineering_quantities
+    from isolator.adapter import adapt, engineering_quantities
     from isolator.metrics import classify_record, compare
     from isolator.solver.record import simulate_record
 
-    # adapter.adapt() recomputes the record's intensity measures (≈ 0.1 s, the spectrum)
-    # for every design; the batch computes them once per record and builds the point itself.
-    point = dimensionless_point(design, measures.pga_m_s2, measures.pgv_m_s)
-    system = design.system()
+    # the record's intensity measures are computed once per record, not per design
+    adaptation = adapt(design, motion, measures)
+    point, system = adaptation.point, adaptation.system
     response = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
     record_class = classify_record(response, point, design, window_s=window)
     if harmonic:
