@@ -9,6 +9,7 @@ a subprocess started by this script, median of --python-repeat runs).
 
     python benchmarks/kernel_throughput.py            # full table
     python benchmarks/kernel_throughput.py --quick    # two records
+    python benchmarks/kernel_throughput.py --no-python  # compiled kernel only
 """
 
 from __future__ import annotations
@@ -74,6 +75,7 @@ def main(argv=None) -> None:
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--repeat", type=int, default=21)
     parser.add_argument("--python-repeat", type=int, default=3)
+    parser.add_argument("--no-python", action="store_true", help="skip the pure-Python comparison")
     parser.add_argument("--_python-worker", dest="python_worker", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     records = load_records(args.quick)
@@ -86,7 +88,10 @@ def main(argv=None) -> None:
     if args.quick:
         cmd.append("--quick")
     compiled = {label: time_records(records, design, args.repeat) for label, design in DESIGNS.items()}
-    python = json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
+    if args.no_python:
+        python = {label: [{"seconds": math.nan}] * len(rows) for label, rows in compiled.items()}
+    else:
+        python = json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
     for label in DESIGNS:
         print(f"\n{label}")
         print(f"{'record':34s} {'npts':>6s} {'events':>6s} {'compiled Ms/s':>14s} {'python Ms/s':>12s} {'speed-up':>9s}")

@@ -314,9 +314,12 @@ def energy_balance(result, n_gauss=12):
 # ----------------------------------------------------------------------
 def reference_record(acceleration_m_s2, dt_s, *, mu_static, mu_kinetic=None,
                      stiffness_per_mass=0.0, damping_per_mass=0.0,
-                     gravity_m_s2=G_STANDARD, rtol=1e-12, atol=1e-13):
+                     gravity_m_s2=G_STANDARD, rtol=1e-12, atol=1e-13, time_s=None,
+                     max_step_s=np.inf):
     """Reference response to a sampled ground-acceleration record
-    (first-order hold between samples).
+    (first-order hold between samples).  ``time_s`` (then ``dt_s`` is ignored)
+    gives sample times that need not be evenly spaced; ``max_step_s`` caps the
+    integrator's step (a long step can hide a velocity zero and its return).
 
     Returns dict with keys time_s, displacement_m, velocity_m_s, events
     [(time_s, kind)], slip_time_s, peak_displacement_m,
@@ -327,16 +330,21 @@ def reference_record(acceleration_m_s2, dt_s, *, mu_static, mu_kinetic=None,
         raise ValueError("empty record")
     if not np.all(np.isfinite(a)):
         raise ValueError("non-finite acceleration")
-    dt = float(dt_s)
-    if not dt > 0:
-        raise ValueError("dt must be > 0")
     n = a.size
+    if time_s is None:
+        dt = float(dt_s)
+        if not dt > 0:
+            raise ValueError("dt must be > 0")
+        times = np.arange(n) * dt
+    else:
+        times = np.asarray(time_s, dtype=float) - float(time_s[0])
+        if times.shape != a.shape or np.any(np.diff(times) <= 0):
+            raise ValueError("time_s must increase and match the acceleration")
     core = _Core(mu_s=mu_static, mu_k=mu_kinetic, kappa=stiffness_per_mass,
                  c=damping_per_mass, g=gravity_m_s2, rtol=rtol, atol=atol,
-                 max_step=np.inf)
+                 max_step=max_step_s)
     fs = core.fs
     kappa = core.kappa
-    times = np.arange(n) * dt
     X = np.zeros(n)
     V = np.zeros(n)
 
@@ -347,7 +355,7 @@ def reference_record(acceleration_m_s2, dt_s, *, mu_static, mu_kinetic=None,
     for i in range(n - 1):
         ti, ti1 = times[i], times[i + 1]
         a0, a1 = a[i], a[i + 1]
-        slope = (a1 - a0) / dt
+        slope = (a1 - a0) / (ti1 - ti)
 
         def accel(t, ti=ti, a0=a0, slope=slope):
             return a0 + slope * (t - ti)

@@ -17,6 +17,15 @@ exactly one root.
 
 Stick phases are fast-forwarded sample by sample: while the two ends of a sample
 interval satisfy ``|κ X + a_g| <= µs g`` the whole (linear) interval does.
+
+Non-uniform sampling.  Nothing above needs equal intervals: each interval is its own
+ramp.  A uniform record (``times`` empty) uses constants computed once per run (the
+basis and Gram matrix of a full sub-step); a non-uniform one (``times`` the sample
+times) takes each interval's length, splits it into its own number of sub-steps
+(``ceil(Δt_i / max_piece)``) and evaluates the basis of every piece, as the uniform
+path already does for pieces that start inside an interval — the same closed forms,
+so a uniform record with extra collinear samples inserted gives the uniform answer to
+rounding.
 """
 
 from __future__ import annotations
@@ -61,6 +70,20 @@ GL_WEIGHTS = 0.5 * _GL_W
 def fastest_rate(damping_per_mass: float, stiffness_per_mass: float) -> float:
     """Largest |λ| of the free motion, |m| + |d| [1/s]: sets the quadrature pieces."""
     return 0.5 * damping_per_mass + math.sqrt(abs(0.25 * damping_per_mass ** 2 - stiffness_per_mass))
+
+
+def max_piece_s(damping_per_mass: float, stiffness_per_mass: float) -> float:
+    """Longest slip piece that keeps the velocity unimodal, π/(2 ω_d) [s] (inf if not oscillatory).
+
+    Parameters
+    ----------
+    damping_per_mass, stiffness_per_mass : float
+        c = γ/M [1/s] and κ = K/M [1/s²].
+    """
+    d2 = 0.25 * damping_per_mass ** 2 - stiffness_per_mass
+    if d2 >= 0.0:
+        return math.inf
+    return 0.5 * math.pi / math.sqrt(-d2)
 
 
 def substeps_per_interval(dt_s: float, damping_per_mass: float, stiffness_per_mass: float) -> int:
@@ -157,7 +180,8 @@ def _velocity_peak(peak_v, length, x, v, v_end, acc_start, acc_end, p, q, c, kap
 
 @njit(cache=True)
 def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
-                  out_x, out_v, out_a, out_energy, ev_time, ev_kind, ev_x, summary):
+                  out_x, out_v, out_a, out_energy, ev_time, ev_kind, ev_x, summary,
+                  times, max_piece):
     """Exact response of the friction–spring–dashpot block to a sampled record.
 
     Parameters
@@ -165,9 +189,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
     acc : float64[n]
         Ground acceleration samples [m/s²], linear between samples.
     dt : float
-        Sample interval [s].
+        Sample interval [s] of a uniform record (ignored when ``times`` is given).
     n_sub : int
-        Sub-steps per interval (:func:`substeps_per_interval`).
+        Sub-steps per interval (:func:`substeps_per_interval`) of a uniform record.
     c, kappa : float
         Damping [1/s] and stiffness [1/s²] per unit mass.
     mu_s_g, mu_k_g : float
@@ -184,9 +208,14 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
         Filled with the events (time [s], kind, displacement [m]) while room lasts.
     summary : float64[SUMMARY_SIZE]
         Filled with the peaks, slip time, energies (J/kg), event count and status.
+    times : float64[n] or float64[0]
+        Sample times from the first one [s] for a non-uniform record; empty for a
+        uniform one (then ``dt``, ``n_sub``, ``full_basis`` and ``gram`` are used).
+    max_piece : float
+        :func:`max_piece_s` [s]: the longest sub-step of a non-uniform interval.
     """
+    uniform = times.shape[0] == 0
     n = acc.shape[0]
-    h = dt / n_sub
     m = -0.5 * c
     x = 0.0
     v = 0.0
@@ -228,12 +257,24 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
             if i >= n - 1:
                 break
         a0 = acc[i]
-        b = (acc[i + 1] - a0) / dt
+        if uniform:
+            dt_i = dt
+            n_sub_i = n_sub
+            h = dt / n_sub
+            t_i = i * dt
+        else:
+            t_i = times[i]
+            dt_i = times[i + 1] - t_i
+            n_sub_i = 1
+            if dt_i > max_piece:
+                n_sub_i = int(math.ceil(dt_i / max_piece))
+            h = dt_i / n_sub_i
+        b = (acc[i + 1] - a0) / dt_i
         q = -b
         events_here = 0
-        for jsub in range(n_sub):
+        for jsub in range(n_sub_i):
             a_sub = a0 + b * (jsub * h)
-            t_sub = i * dt + jsub * h
+            t_sub = t_i + jsub * h
             tau = 0.0
             while tau < h:
                 if stuck:
@@ -259,7 +300,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     p = kappa * x + s * (mu_s_g - mu_k_g)
                 else:
                     p = -(a_start + mu_k_g * s)
-                if tau == 0.0 and not exact_start:
+                if uniform and tau == 0.0 and not exact_start:
                     e0 = full_basis[0]
                     e1 = full_basis[1]
                     h1 = full_basis[2]
@@ -277,7 +318,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     peak_v = abs(v_ext)
                 if t_stop < 0.0:
                     # the block slides through to the end of the piece
-                    if exact_start or tau > 0.0:
+                    if exact_start or tau > 0.0 or not uniform:
                         int_x = e1 * x + h1 * (v - 2.0 * m * x) + p * h2 + q * h3
                         int_v2 = _viscous_integral(rem, x, v, p, q, c, kappa) if c > 0.0 else 0.0
                     else:

@@ -3,11 +3,14 @@
 The record is taken as piecewise linear between its samples (first-order hold), the
 only reading of a sampled signal under which "exact" has a meaning; the response to
 that signal is then computed without discretisation error by
-:func:`isolator.solver.kernel.record_kernel`.
+:func:`isolator.solver.kernel.record_kernel`.  The samples need not be evenly spaced
+(digitised analogue records are not): a time column with unequal steps is the same
+piecewise-linear signal, solved interval by interval.
 """
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 
@@ -90,17 +93,40 @@ class Response:
         }
 
 
-def _uniform_dt(time_s: np.ndarray) -> float:
-    steps = np.diff(time_s)
+#: Steps that differ from their mean by less than this fraction are one uniform step:
+#: the sample times then move by < 1e-9 dt, far below any physical time scale.
+UNIFORM_STEP_REL_TOLERANCE = 1e-9
+
+
+def sample_timing(time_s) -> tuple[float, np.ndarray | None]:
+    """Mean step and, for unequal steps, the sample times from the first one.
+
+    Parameters
+    ----------
+    time_s : array_like
+        Sample times [s], finite and strictly increasing.
+
+    Returns
+    -------
+    tuple
+        ``(dt, None)`` when every step equals the mean ``dt`` [s] to
+        ``UNIFORM_STEP_REL_TOLERANCE``; ``(dt, time_s - time_s[0])`` otherwise.
+
+    Raises
+    ------
+    RecordInputError
+        Fewer than two samples, non-finite or non-increasing times.
+    """
+    times = np.asarray(time_s, dtype=np.float64)
+    steps = np.diff(times)
     if steps.size == 0:
         raise RecordInputError("a record needs at least two samples")
-    if not np.all(np.isfinite(steps)) or np.any(steps <= 0.0):
+    if not np.all(np.isfinite(times)) or np.any(steps <= 0.0):
         raise RecordInputError("time values must be finite and strictly increasing")
-    dt = (time_s[-1] - time_s[0]) / (time_s.size - 1)
-    if np.max(np.abs(steps - dt)) > 1e-6 * dt + 1e-12:
-        raise RecordInputError(
-            f"time steps are not uniform (from {steps.min():.6g} s to {steps.max():.6g} s): resample first")
-    return float(dt)
+    dt = float((times[-1] - times[0]) / (times.size - 1))
+    if np.max(np.abs(steps - dt)) <= UNIFORM_STEP_REL_TOLERANCE * dt:
+        return dt, None
+    return dt, np.ascontiguousarray(times - times[0])
 
 
 _KERNEL_READY = False
@@ -117,7 +143,7 @@ def _warm_up_kernel() -> None:
     two = np.zeros(2)
     _kernel.record_kernel(np.array([0.0, 1.0]), 0.01, 1, 0.1, 1.0, 0.5, 0.5, basis, gram, two.copy(),
                           two.copy(), two.copy(), np.empty((3, 2)), np.empty(4), np.empty(4, dtype=np.int8),
-                          np.empty(4), np.zeros(_kernel.SUMMARY_SIZE))
+                          np.empty(4), np.zeros(_kernel.SUMMARY_SIZE), np.empty(0), math.inf)
     _KERNEL_READY = True
 
 
@@ -134,7 +160,8 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
     dt_s : float, optional
         Sample interval [s]; give either this or ``time_s``.
     time_s : array_like, optional
-        Sample times [s], uniformly spaced.
+        Sample times [s], strictly increasing; unequal steps are solved exactly
+        (each interval its own ramp), equal ones on the uniform fast path.
     system : System, optional
         The isolator; or give ``mu_static`` etc. as keywords.
     mu_static, mu_kinetic : float
@@ -169,20 +196,27 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
         times = np.asarray(time_s, dtype=np.float64)
         if times.shape != acc.shape:
             raise RecordInputError(f"time ({times.shape}) and acceleration ({acc.shape}) differ in length")
-        dt = _uniform_dt(times)
+        dt, relative_times = sample_timing(times)
         t0 = float(times[0])
     elif dt_s is not None:
         dt = float(dt_s)
         if not np.isfinite(dt) or dt <= 0.0:
             raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
         t0 = 0.0
+        relative_times = None
     else:
         raise TypeError("give dt_s or time_s")
 
     c = system.damping_per_mass
     kappa = system.stiffness_per_mass
-    n_sub = _kernel.substeps_per_interval(dt, c, kappa)
-    basis, gram = _kernel.full_step_coefficients(dt / n_sub, c, kappa)
+    if relative_times is None:
+        n_sub = _kernel.substeps_per_interval(dt, c, kappa)
+        basis, gram = _kernel.full_step_coefficients(dt / n_sub, c, kappa)
+        kernel_times = np.empty(0)
+    else:  # per-interval pieces; the full-step constants are unused
+        n_sub = max(1, math.ceil(float(np.max(np.diff(relative_times))) / _kernel.max_piece_s(c, kappa)))
+        basis, gram = np.zeros(5), np.zeros((3, 3))
+        kernel_times = relative_times
     n = acc.size
     out_x = np.empty(n)
     out_v = np.empty(n)
@@ -198,7 +232,7 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
         start = time.perf_counter()
         _kernel.record_kernel(acc, dt, n_sub, c, kappa, system.static_friction_m_s2,
                               system.kinetic_friction_m_s2, basis, gram, out_x, out_v, out_a, out_energy,
-                              ev_time, ev_kind, ev_x, summary)
+                              ev_time, ev_kind, ev_x, summary, kernel_times, _kernel.max_piece_s(c, kappa))
         elapsed = time.perf_counter() - start
         n_events = int(summary[_kernel.SUMMARY_N_EVENTS])
         if n_events <= capacity:
@@ -216,7 +250,7 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
     e_pot = 0.5 * kappa * out_x[-1] ** 2
     return Response(
         system=system,
-        time_s=t0 + dt * np.arange(n),
+        time_s=t0 + (dt * np.arange(n) if relative_times is None else relative_times),
         ground_acceleration_m_s2=acc,
         displacement_m=out_x,
         velocity_m_s=out_v,
