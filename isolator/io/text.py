@@ -24,6 +24,11 @@ claims.
 
 The reader does not convert units: it records ``stats.units`` only if the file states
 them; otherwise the caller must (``--units``).
+
+A time column need not be evenly spaced (digitised analogue records are not): steps
+equal to within printing round-off give one step ``stats.delta``; unequal steps are kept
+as ``stats.isolator_text.time_s`` (times from the first sample [s]), with ``stats.delta``
+their mean, and the record is solved as the piecewise-linear signal through them.
 """
 
 from __future__ import annotations
@@ -144,8 +149,8 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     ------
     ValueError
         One-line message: no data, a non-numeric field, a changing number of columns,
-        more than two columns, a time column that does not increase or is not evenly
-        spaced, a missing or non-positive time step.
+        more than two columns, a time column that does not increase, a missing or
+        non-positive time step, ``dt_s`` given for an unevenly spaced time column.
     """
     with open_text(filename_or_buf) as stream:
         comments, names, delimiter, ncols, skip = _layout(stream)
@@ -189,13 +194,15 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
             step_s = (time_s[-1] - time_s[0]) / (time_s.size - 1)
             tolerance_s = max(TIME_STEP_REL_TOLERANCE * step_s, TIME_STEP_ABS_TOLERANCE)
             if np.max(np.abs(steps_s - step_s)) > tolerance_s:
-                raise ValueError(
-                    f"time column is not evenly spaced (steps from {steps_s.min():g} to "
-                    f"{steps_s.max():g} s); resample it to a constant step first"
-                )
-            if dt_s is not None and abs(dt_s - step_s) > tolerance_s:
-                raise ValueError(f"given dt = {dt_s:g} s disagrees with the time column's {step_s:g} s")
-            dt_s = float(f"{step_s:.12g}")  # drop the round-off of the division
+                if dt_s is not None:
+                    raise ValueError(f"given dt = {dt_s:g} s, but the time column is not evenly spaced "
+                                     f"(steps from {steps_s.min():g} to {steps_s.max():g} s)")
+                info.time_s = time_s - time_s[0]  # unequal steps: kept, solved as they are
+                dt_s = float(step_s)
+            else:
+                if dt_s is not None and abs(dt_s - step_s) > tolerance_s:
+                    raise ValueError(f"given dt = {dt_s:g} s disagrees with the time column's {step_s:g} s")
+                dt_s = float(f"{step_s:.12g}")  # drop the round-off of the division
         elif dt_s is None:
             dt_s = 1.0  # a single sample: the caller refuses it anyway
         t0_s = float(time_s[0])

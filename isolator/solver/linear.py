@@ -4,7 +4,8 @@ The same closed-form ramp segments as the friction kernel (first-order hold: the
 record is linear between samples), so the response of an elastic oscillator to a
 sampled record is exact — this is the Nigam–Jennings recursion, with the peaks
 located between samples where the velocity changes sign.  Used for the elastic
-response spectrum.
+response spectrum.  Samples need not be evenly spaced: with ``time_s`` each interval is
+its own ramp (the basis evaluated per interval), the same closed forms.
 """
 
 from __future__ import annotations
@@ -19,17 +20,27 @@ from isolator.solver.segments import ramp_basis, segment_state
 
 
 @njit(cache=True)
-def _peak_displacement(acc, dt, c, kappa, n_sub):
+def _peak_displacement(acc, dt, c, kappa, n_sub, times, max_piece):
+    # times: empty for a uniform record; otherwise sample times, each interval split
+    # into pieces no longer than max_piece
+    uniform = times.shape[0] == 0
     h = dt / n_sub
     e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
     m = -0.5 * c
     x = 0.0
     v = 0.0
     peak = 0.0
+    n_sub_i = n_sub
+    dt_i = dt
     for i in range(acc.shape[0] - 1):
-        b = (acc[i + 1] - acc[i]) / dt
+        if not uniform:
+            dt_i = times[i + 1] - times[i]
+            n_sub_i = max(1, int(math.ceil(dt_i / max_piece)))
+            h = dt_i / n_sub_i
+            e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+        b = (acc[i + 1] - acc[i]) / dt_i
         q = -b
-        for j in range(n_sub):
+        for j in range(n_sub_i):
             p = -(acc[i] + b * (j * h))
             x1 = e0 * x + e1 * (v - m * x) + p * h1 + q * h2
             v1 = e0 * v + e1 * (m * v - kappa * x + p) + q * h1
@@ -48,7 +59,8 @@ def _peak_displacement(acc, dt, c, kappa, n_sub):
     return peak
 
 
-def linear_peak_displacement(acceleration_m_s2, dt_s: float, period_s: float, damping_ratio: float) -> float:
+def linear_peak_displacement(acceleration_m_s2, dt_s: float, period_s: float, damping_ratio: float,
+                             time_s=None) -> float:
     """Peak relative displacement of a linear oscillator under a sampled record.
 
     Parameters
@@ -61,6 +73,8 @@ def linear_peak_displacement(acceleration_m_s2, dt_s: float, period_s: float, da
         Natural period T of the oscillator [s] > 0.
     damping_ratio : float
         Fraction of critical damping ζ [-] ≥ 0.
+    time_s : array_like, optional
+        Sample times [s] of a record whose steps are not all equal (``dt_s`` unused).
 
     Returns
     -------
@@ -73,10 +87,12 @@ def linear_peak_displacement(acceleration_m_s2, dt_s: float, period_s: float, da
     # pieces no longer than a quarter of the damped period keep the velocity unimodal
     n_sub = max(1, math.ceil(dt_s / (0.25 * period_s)))
     acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
-    return float(_peak_displacement(acc, float(dt_s), c, kappa, n_sub))
+    times = np.empty(0) if time_s is None else np.ascontiguousarray(time_s, dtype=np.float64)
+    return float(_peak_displacement(acc, float(dt_s), c, kappa, n_sub, times, 0.25 * period_s))
 
 
-def pseudo_acceleration_spectrum(acceleration_m_s2, dt_s: float, periods_s, damping_ratio: float = 0.05):
+def pseudo_acceleration_spectrum(acceleration_m_s2, dt_s: float, periods_s, damping_ratio: float = 0.05,
+                                 time_s=None):
     r"""Pseudo-acceleration response spectrum, exact for a piecewise-linear record.
 
     .. math::  PSA(T) = \left(\frac{2\pi}{T}\right)^2 \max_t |X(t)|
@@ -91,6 +107,8 @@ def pseudo_acceleration_spectrum(acceleration_m_s2, dt_s: float, periods_s, damp
         Natural periods [s], each > 0.
     damping_ratio : float
         Fraction of critical damping [-] (5 % by default).
+    time_s : array_like, optional
+        Sample times [s] of a record whose steps are not all equal.
 
     Returns
     -------
@@ -102,5 +120,6 @@ def pseudo_acceleration_spectrum(acceleration_m_s2, dt_s: float, periods_s, damp
         raise ValueError("periods must be finite and > 0")
     if not (math.isfinite(damping_ratio) and damping_ratio >= 0.0):
         raise ValueError(f"damping_ratio must be ≥ 0, got {damping_ratio!r}")
-    return np.array([(2.0 * math.pi / T) ** 2 * linear_peak_displacement(acceleration_m_s2, dt_s, T, damping_ratio)
+    return np.array([(2.0 * math.pi / T) ** 2
+                     * linear_peak_displacement(acceleration_m_s2, dt_s, T, damping_ratio, time_s=time_s)
                      for T in periods])

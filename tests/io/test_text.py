@@ -89,7 +89,7 @@ def test_start_time_kept(tmp_path):
     [
         ("0 0.1\n0.01 0.2\n0.005 0.3\n", {}, "time column does not increase at data row 3"),
         ("0 0.1\n0 0.2\n", {}, "does not increase"),
-        ("0 0.1\n0.01 0.2\n0.05 0.3\n", {}, "not evenly spaced"),
+        ("0 0.1\n0.01 0.2\n0.05 0.3\n", {"dt_s": 0.01}, "not evenly spaced"),
         ("0 0.1\n0.01 abc\n", {}, "non-numeric value 'abc'"),
         ("0 0.1 1\n", {}, "3 columns"),
         ("0 0.1\n0.01\n", {}, "columns"),
@@ -107,3 +107,21 @@ def test_malformed_text_raises_one_line_value_error(tmp_path, text, options, mes
         _read_text(path, **options)
     assert message in str(caught.value)
     assert "\n" not in str(caught.value)
+
+
+def test_uneven_time_column_is_kept(tmp_path):
+    # a digitised record: unequal steps are a valid piecewise-linear record, not an error
+    path = tmp_path / "digitised.txt"
+    path.write_text("# units: g\n2.0 0.1\n2.01 0.2\n2.03 -0.3\n2.045 0.1\n2.1 0.0\n")
+    trace = _read_text(path)[0]
+    np.testing.assert_allclose(trace.stats.isolator_text.time_s, [0.0, 0.01, 0.03, 0.045, 0.1], atol=1e-12)
+    assert trace.stats.isolator_text.t0_s == 2.0
+    assert trace.stats.delta == pytest.approx(0.1 / 4)
+
+
+def test_printing_round_off_is_one_step(tmp_path):
+    path = tmp_path / "third.txt"
+    path.write_text("# units: g\n0.000000 1\n0.333333 2\n0.666667 3\n1.000000 4\n")
+    trace = _read_text(path)[0]
+    assert "time_s" not in trace.stats.isolator_text
+    assert trace.stats.delta == pytest.approx(1 / 3)

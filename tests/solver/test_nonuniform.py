@@ -124,3 +124,14 @@ def test_non_uniform_record_equals_its_uniform_refinement(records_dir, name):
                                atol=1e-12 * refined.peak_displacement_m)
     assert ours.n_events == refined.n_events
     assert ours.peak_displacement_m == pytest.approx(refined.peak_displacement_m, rel=1e-12)
+
+
+def test_linear_spectrum_of_collinear_samples_is_unchanged():
+    from isolator.solver.linear import pseudo_acceleration_spectrum
+
+    acc, dt = synthetic_record(n=800)
+    values, times, _ = with_collinear_samples(acc, dt, seed=2)
+    periods = np.array([0.02, 0.1, 0.5, 2.0])
+    uniform = pseudo_acceleration_spectrum(acc, dt, periods)
+    dense = pseudo_acceleration_spectrum(values, float(np.mean(np.diff(times))), periods, time_s=times)
+    np.testing.assert_allclose(dense, uniform, rtol=1e-12)
