@@ -64,8 +64,19 @@ def _fail(path: Path | str, message: str) -> RecordError:
 # --------------------------------------------------------------------------------------
 
 
-def velocity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
+def _spacing(dt_s: float, time_s) -> dict:
+    """The spacing argument of scipy's trapezoid rules: equal steps, or the sample times."""
+    return {"dx": dt_s} if time_s is None else {"x": np.asarray(time_s, dtype=np.float64)}
+
+
+def _times(n: int, dt_s: float, time_s) -> np.ndarray:
+    return np.arange(n) * dt_s if time_s is None else np.asarray(time_s, dtype=np.float64) - time_s[0]
+
+
+def velocity_m_s(acceleration_m_s2: np.ndarray, dt_s: float, time_s=None) -> np.ndarray:
     """Ground velocity by trapezoidal integration from rest, no correction.
+
+    The trapezoidal rule is the exact integral of the piecewise-linear record.
 
     Parameters
     ----------
@@ -73,6 +84,8 @@ def velocity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
         Ground acceleration samples [m/s²].
     dt_s : float
         Time step [s].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
 
     Returns
     -------
@@ -81,10 +94,10 @@ def velocity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
     """
     from scipy.integrate import cumulative_trapezoid
 
-    return cumulative_trapezoid(acceleration_m_s2, dx=dt_s, initial=0.0)
+    return cumulative_trapezoid(acceleration_m_s2, initial=0.0, **_spacing(dt_s, time_s))
 
 
-def displacement_m(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
+def displacement_m(acceleration_m_s2: np.ndarray, dt_s: float, time_s=None) -> np.ndarray:
     """Ground displacement by double trapezoidal integration with a baseline correction.
 
     Raw double integration drifts: a small constant error in the acceleration (or an
@@ -102,6 +115,8 @@ def displacement_m(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
         Ground acceleration samples [m/s²].
     dt_s : float
         Time step [s].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
 
     Returns
     -------
@@ -110,15 +125,16 @@ def displacement_m(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
     """
     from scipy.integrate import cumulative_trapezoid
 
-    raw_m = cumulative_trapezoid(velocity_m_s(acceleration_m_s2, dt_s), dx=dt_s, initial=0.0)
-    time_s = np.arange(raw_m.size) * dt_s
+    raw_m = cumulative_trapezoid(velocity_m_s(acceleration_m_s2, dt_s, time_s), initial=0.0,
+                                 **_spacing(dt_s, time_s))
+    times_s = _times(raw_m.size, dt_s, time_s)
     if raw_m.size < 3:
         return raw_m - raw_m.mean()
-    coefficients = np.polynomial.polynomial.polyfit(time_s, raw_m, 2)
-    return raw_m - np.polynomial.polynomial.polyval(time_s, coefficients)
+    coefficients = np.polynomial.polynomial.polyfit(times_s, raw_m, 2)
+    return raw_m - np.polynomial.polynomial.polyval(times_s, coefficients)
 
 
-def arias_intensity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> float:
+def arias_intensity_m_s(acceleration_m_s2: np.ndarray, dt_s: float, time_s=None) -> float:
     """Arias intensity.
 
     .. math:: I_A = \\frac{\\pi}{2 g} \\int_0^{t_f} a^2(t) \\,\\mathrm{d}t
@@ -129,6 +145,8 @@ def arias_intensity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> float:
         Ground acceleration samples [m/s²].
     dt_s : float
         Time step [s].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
 
     Returns
     -------
@@ -137,11 +155,12 @@ def arias_intensity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> float:
     """
     from scipy.integrate import trapezoid as _trapezoid
 
-    return float(math.pi / (2.0 * STANDARD_GRAVITY) * _trapezoid(acceleration_m_s2**2, dx=dt_s))
+    return float(math.pi / (2.0 * STANDARD_GRAVITY) * _trapezoid(acceleration_m_s2**2, **_spacing(dt_s, time_s)))
 
 
 def significant_duration_s(
-    acceleration_m_s2: np.ndarray, dt_s: float, start_fraction: float = 0.05, end_fraction: float = 0.95
+    acceleration_m_s2: np.ndarray, dt_s: float, start_fraction: float = 0.05, end_fraction: float = 0.95,
+    time_s=None,
 ) -> float:
     """Significant duration: time between two fractions of the Arias intensity (D5–95).
 
@@ -153,6 +172,8 @@ def significant_duration_s(
         Time step [s].
     start_fraction, end_fraction : float, optional
         Fractions of the total Arias intensity that bound the interval [-].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
 
     Returns
     -------
@@ -162,12 +183,12 @@ def significant_duration_s(
     """
     from scipy.integrate import cumulative_trapezoid
 
-    cumulative = cumulative_trapezoid(acceleration_m_s2**2, dx=dt_s, initial=0.0)
+    cumulative = cumulative_trapezoid(acceleration_m_s2**2, initial=0.0, **_spacing(dt_s, time_s))
     total = cumulative[-1]
     if not total > 0:
         return 0.0
-    time_s = np.arange(cumulative.size) * dt_s
-    start_s, end_s = np.interp([start_fraction * total, end_fraction * total], cumulative, time_s)
+    times_s = _times(cumulative.size, dt_s, time_s)
+    start_s, end_s = np.interp([start_fraction * total, end_fraction * total], cumulative, times_s)
     return float(end_s - start_s)
 
 
@@ -176,6 +197,7 @@ def pseudo_acceleration_spectrum(
     dt_s: float,
     periods_s: np.ndarray,
     damping_ratio: float = DEFAULT_DAMPING_RATIO,
+    time_s=None,
 ) -> np.ndarray:
     """Pseudo-acceleration response spectrum of a linear SDOF oscillator.
 
@@ -196,6 +218,8 @@ def pseudo_acceleration_spectrum(
         Oscillator periods, all > 0 [s].
     damping_ratio : float, optional
         Fraction of critical damping [-].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
 
     Returns
     -------
@@ -205,7 +229,7 @@ def pseudo_acceleration_spectrum(
     from isolator.solver.linear import pseudo_acceleration_spectrum as solver_spectrum
 
     return np.asarray(solver_spectrum(np.ascontiguousarray(acceleration_m_s2, dtype=np.float64), float(dt_s),
-                                      periods_s, damping_ratio=damping_ratio))
+                                      periods_s, damping_ratio=damping_ratio, time_s=time_s))
 
 
 @dataclass(frozen=True)
@@ -231,7 +255,7 @@ class IntensityMeasures:
         return asdict(self)
 
 
-def intensity_measures(acceleration_m_s2: np.ndarray, dt_s: float) -> IntensityMeasures:
+def intensity_measures(acceleration_m_s2: np.ndarray, dt_s: float, time_s=None) -> IntensityMeasures:
     """Intensity measures of an acceleration history.
 
     PGV is the peak of the raw trapezoidal integral from rest (what strong-motion tables
@@ -246,6 +270,8 @@ def intensity_measures(acceleration_m_s2: np.ndarray, dt_s: float) -> IntensityM
         Ground acceleration samples [m/s²].
     dt_s : float
         Time step [s].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
 
     Returns
     -------
@@ -255,17 +281,17 @@ def intensity_measures(acceleration_m_s2: np.ndarray, dt_s: float) -> IntensityM
     """
     acceleration_m_s2 = np.asarray(acceleration_m_s2, dtype=np.float64)
     pga_m_s2 = float(np.max(np.abs(acceleration_m_s2)))
-    pgv_m_s = float(np.max(np.abs(velocity_m_s(acceleration_m_s2, dt_s))))
-    pgd_m = float(np.max(np.abs(displacement_m(acceleration_m_s2, dt_s))))
-    psa_m_s2 = pseudo_acceleration_spectrum(acceleration_m_s2, dt_s, PREDOMINANT_PERIODS_S)
+    pgv_m_s = float(np.max(np.abs(velocity_m_s(acceleration_m_s2, dt_s, time_s))))
+    pgd_m = float(np.max(np.abs(displacement_m(acceleration_m_s2, dt_s, time_s))))
+    psa_m_s2 = pseudo_acceleration_spectrum(acceleration_m_s2, dt_s, PREDOMINANT_PERIODS_S, time_s=time_s)
     predominant_period_s = float(PREDOMINANT_PERIODS_S[int(np.argmax(psa_m_s2))]) if pga_m_s2 > 0 else math.nan
     both = pga_m_s2 > 0 and pgv_m_s > 0
     return IntensityMeasures(
         pga_m_s2=pga_m_s2,
         pgv_m_s=pgv_m_s,
         pgd_m=pgd_m,
-        arias_m_s=arias_intensity_m_s(acceleration_m_s2, dt_s),
-        d5_95_s=significant_duration_s(acceleration_m_s2, dt_s),
+        arias_m_s=arias_intensity_m_s(acceleration_m_s2, dt_s, time_s),
+        d5_95_s=significant_duration_s(acceleration_m_s2, dt_s, time_s=time_s),
         predominant_period_s=predominant_period_s,
         a0_equiv_m=pgv_m_s**2 / pga_m_s2 if both else math.nan,
         omega_equiv_rad_s=pga_m_s2 / pgv_m_s if both else math.nan,
@@ -305,6 +331,13 @@ class GroundMotion:
     Build it with :func:`read_ground_motion` or :meth:`from_array`.  Processing methods
     return a new GroundMotion with the step appended to :attr:`processing`.
 
+    Samples need not be evenly spaced (digitised analogue records): the times are then
+    kept in ``trace.stats.sample_time_s`` (from the first sample [s]), :attr:`time_s`
+    returns them, :attr:`dt_s` is the mean step and :attr:`sample_times_s` is not
+    None; the solvers and intensity measures use the times, and the processing steps
+    that assume equal steps (filters, taper, detrend, FFT resampling) refuse such a
+    record until it is resampled (``resampled(dt, method="linear")``).
+
     Attributes
     ----------
     trace : obspy.Trace
@@ -335,8 +368,9 @@ class GroundMotion:
     def from_array(
         cls,
         acceleration_m_s2: np.ndarray,
-        dt_s: float,
+        dt_s: float | None = None,
         *,
+        time_s: np.ndarray | None = None,
         units_source: str = "array in m/s2",
         component: str = "",
         provenance: dict | None = None,
@@ -347,8 +381,10 @@ class GroundMotion:
         ----------
         acceleration_m_s2 : numpy.ndarray
             Acceleration samples [m/s²].
-        dt_s : float
-            Time step, > 0 [s].
+        dt_s : float, optional
+            Time step, > 0 [s]; or give ``time_s``.
+        time_s : numpy.ndarray, optional
+            Sample times, strictly increasing; unequal steps are kept [s].
         units_source : str, optional
             Description of where the units came from [-].
         component : str, optional
@@ -365,13 +401,25 @@ class GroundMotion:
         data = np.array(acceleration_m_s2, dtype=np.float64)
         if data.ndim != 1 or data.size < MIN_SAMPLES:
             raise ValueError(f"need a 1-D array of at least {MIN_SAMPLES} samples")
-        if not dt_s > 0:
+        sample_times_s = None
+        if time_s is not None:
+            from isolator.solver.record import RecordInputError, sample_timing
+
+            if np.shape(time_s) != data.shape:
+                raise ValueError(f"time_s {np.shape(time_s)} and acceleration {data.shape} differ in shape")
+            try:
+                dt_s, sample_times_s = sample_timing(time_s)
+            except RecordInputError as err:
+                raise ValueError(str(err)) from None
+        if dt_s is None or not dt_s > 0:
             raise ValueError(f"dt_s = {dt_s} s is not positive")
         if not np.all(np.isfinite(data)):
             raise ValueError("acceleration holds NaN or infinite values")
         trace = Trace(data=data)
         trace.stats.delta = float(dt_s)
         trace.stats.units = "m/s2"
+        if sample_times_s is not None:
+            trace.stats.sample_time_s = sample_times_s
         return cls(trace=trace, units_source=units_source, provenance={"format": "array", **(provenance or {})},
                    component=component, components=[component] if component else [])
 
@@ -390,8 +438,18 @@ class GroundMotion:
 
     @property
     def dt_s(self) -> float:
-        """Time step [s]."""
+        """Time step; the mean step when the steps are unequal (see :attr:`sample_times_s`) [s]."""
         return float(self.trace.stats.delta)
+
+    @property
+    def sample_times_s(self) -> np.ndarray | None:
+        """Sample times from the first one when the steps are unequal, else None [s]."""
+        return self.trace.stats.get("sample_time_s")
+
+    @property
+    def is_uniform(self) -> bool:
+        """True when every step equals :attr:`dt_s` [-]."""
+        return self.sample_times_s is None
 
     @property
     def npts(self) -> int:
@@ -401,12 +459,21 @@ class GroundMotion:
     @property
     def time_s(self) -> np.ndarray:
         """Time of each sample from the first one [s]."""
+        if self.sample_times_s is not None:
+            return np.array(self.sample_times_s)
         return np.arange(self.npts) * self.dt_s
 
     @property
     def duration_s(self) -> float:
         """Time from the first to the last sample [s]."""
+        if self.sample_times_s is not None:
+            return float(self.sample_times_s[-1])
         return (self.npts - 1) * self.dt_s
+
+    def _require_uniform(self, what: str) -> None:
+        if self.sample_times_s is not None:
+            raise ValueError(f"{what} needs evenly spaced samples; this record's steps are unequal "
+                             "(resample it first: resampled(dt_s, method='linear'))")
 
     @property
     def pga_m_s2(self) -> float:
@@ -415,7 +482,7 @@ class GroundMotion:
 
     def intensity_measures(self) -> IntensityMeasures:
         """Intensity measures of this motion (see :func:`intensity_measures`)."""
-        return intensity_measures(self.acceleration_m_s2, self.dt_s)
+        return intensity_measures(self.acceleration_m_s2, self.dt_s, self.sample_times_s)
 
     def response_spectrum(
         self, periods_s: np.ndarray, damping_ratio: float = DEFAULT_DAMPING_RATIO
@@ -434,12 +501,14 @@ class GroundMotion:
         numpy.ndarray
             Pseudo-spectral acceleration [m/s²].
         """
-        return pseudo_acceleration_spectrum(self.acceleration_m_s2, self.dt_s, periods_s, damping_ratio)
+        return pseudo_acceleration_spectrum(self.acceleration_m_s2, self.dt_s, periods_s, damping_ratio,
+                                            time_s=self.sample_times_s)
 
     # ---- processing (obspy Trace methods on a copy) ------------------------------------
 
     def demeaned(self) -> GroundMotion:
         """Remove the mean (obspy ``detrend("demean")``)."""
+        self._require_uniform("demean")
         trace = self.trace.copy()
         trace.detrend("demean")
         return self._derived(trace, {"step": "demean"})
@@ -452,6 +521,7 @@ class GroundMotion:
         order : int, optional
             Polynomial order: 0 the mean, 1 a straight line [-].
         """
+        self._require_uniform("baseline correction")
         trace = self.trace.copy()
         if order == 0:
             trace.detrend("demean")
@@ -471,6 +541,7 @@ class GroundMotion:
         taper_type : str, optional
             Window name understood by obspy [-].
         """
+        self._require_uniform("taper")
         trace = self.trace.copy()
         trace.taper(max_percentage=max_percentage, type=taper_type)
         return self._derived(trace, {"step": "taper", "max_percentage": max_percentage, "type": taper_type})
@@ -489,6 +560,7 @@ class GroundMotion:
         zerophase : bool, optional
             Run forwards and backwards (no phase shift) [-].
         """
+        self._require_uniform("band-pass")
         nyquist_hz = 0.5 / self.dt_s
         if not 0 < freqmin_hz < freqmax_hz < nyquist_hz:
             raise ValueError(
@@ -510,9 +582,21 @@ class GroundMotion:
         method : {"fft", "linear", "lanczos"}, optional
             ``"fft"``: obspy ``resample`` (Fourier, band-limited); ``"linear"`` or
             ``"lanczos"``: obspy ``interpolate`` (no anti-alias filter: use it to refine) [-].
+            A record with unequal steps accepts ``"linear"`` only: the piecewise-linear
+            record sampled at ``t0 + k dt``.
         """
         if not dt_s > 0:
             raise ValueError(f"target dt_s = {dt_s} s is not positive")
+        if self.sample_times_s is not None and method == "linear":
+            times_s = self.sample_times_s
+            grid_s = dt_s * np.arange(int(math.floor(times_s[-1] / dt_s * (1 + 1e-12))) + 1)
+            trace = self.trace.copy()
+            del trace.stats.sample_time_s
+            trace.data = np.interp(grid_s, times_s, self.trace.data)
+            trace.stats.delta = float(dt_s)
+            return self._derived(trace, {"step": "resample", "dt_s": dt_s, "method": "linear",
+                                         "from": "unequal steps"})
+        self._require_uniform(f"{method} resampling")
         trace = self.trace.copy()
         if method == "fft":
             trace.resample(1.0 / dt_s)
@@ -531,12 +615,29 @@ class GroundMotion:
         start_s, end_s : float, optional
             Window bounds from the first sample; None keeps that end [s].
         """
+        if self.sample_times_s is not None:
+            return self._trimmed_by_times(start_s, end_s)
         trace = self.trace.copy()
         origin = trace.stats.starttime
         trace.trim(None if start_s is None else origin + start_s, None if end_s is None else origin + end_s,
                    nearest_sample=True)
         if trace.stats.npts < MIN_SAMPLES:
             raise ValueError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
+        return self._derived(trace, {"step": "trim", "start_s": start_s, "end_s": end_s})
+
+    def _trimmed_by_times(self, start_s: float | None, end_s: float | None) -> GroundMotion:
+        # unequal steps: keep the samples inside the window (nearest sample at each end)
+        times_s = self.sample_times_s
+        first = 0 if start_s is None else int(np.argmin(np.abs(times_s - start_s)))
+        last = times_s.size - 1 if end_s is None else int(np.argmin(np.abs(times_s - end_s)))
+        if last - first + 1 < MIN_SAMPLES:
+            raise ValueError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
+        trace = self.trace.copy()
+        trace.data = np.ascontiguousarray(self.trace.data[first:last + 1])
+        trace.stats.starttime = self.trace.stats.starttime + float(times_s[first])
+        kept_s = times_s[first:last + 1] - times_s[first]
+        trace.stats.delta = float(kept_s[-1] / (kept_s.size - 1))
+        trace.stats.sample_time_s = kept_s
         return self._derived(trace, {"step": "trim", "start_s": start_s, "end_s": end_s})
 
     def scaled(self, factor: float) -> GroundMotion:
@@ -951,10 +1052,16 @@ def read_ground_motion(
     result.data = acceleration_m_s2
     result.stats.units = "m/s2"
     result.stats.units_source = units_source
+    provenance = _provenance(path, trace, label)
+    text_info = trace.stats.get("isolator_text") or {}
+    if text_info.get("time_s") is not None:  # a time column with unequal steps: kept as it is
+        result.stats.sample_time_s = np.asarray(text_info["time_s"], dtype=np.float64)
+        steps_s = np.diff(result.stats.sample_time_s)
+        provenance["sampling"] = f"unequal steps from {steps_s.min():g} to {steps_s.max():g} s"
     return GroundMotion(
         trace=result,
         units_source=units_source,
-        provenance=_provenance(path, trace, label),
+        provenance=provenance,
         processing=steps + unit_steps,
         component=label,
         components=components,
