@@ -1,0 +1,371 @@
+"""Ground-motion pairs: the two horizontal components (and the vertical) of one station.
+
+:func:`read_ground_motion_pair` reads the components of a bidirectional analysis into a
+:class:`MotionPair` of :class:`~isolator.motion.GroundMotion` objects on one time base:
+
+* from two (or three) files, one component each: ``read_ground_motion_pair(x, y, z)``;
+* from one file that holds several channels (CSMIP V2, MiniSEED/SAC streams) with
+  ``component="pair"`` (the two horizontals, in the file's order) or ``"all"`` (with the
+  vertical); a K-NET / KiK-net file (``.NS``, ``.EW``, ``.UD``, ``.NS2`` …) brings its
+  sibling files of the same set.
+
+Each file is read by :func:`~isolator.motion.read_ground_motion`, so the units rules
+are the same as for one component, per file.  Components that do not share their time
+step, length or start time are refused (:class:`ComponentMismatchError`, saying which)
+unless the caller asks for ``trim=True`` (cut to the common window; equal steps on one
+grid needed) or ``resample=True`` (the union of the components' sample times over the
+common window, each component linearly interpolated onto it — the same
+piecewise-linear signals, so nothing is approximated; the steps may become unequal,
+which the solvers take as they are).  Either is recorded in :attr:`MotionPair.processing`.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from isolator.motion import GroundMotion, RecordError, list_components, read_ground_motion
+
+#: Orientation names of a vertical component (lower case tokens of a component label).
+VERTICAL_NAMES = frozenset({"up", "down", "ud", "u-d", "vert", "vertical", "z", "v", "dwn"})
+#: K-NET (.NS/.EW/.UD) and KiK-net (1: borehole, 2: surface) file suffixes of one set.
+KNET_SUFFIXES = {"": ("NS", "EW", "UD"), "1": ("NS1", "EW1", "UD1"), "2": ("NS2", "EW2", "UD2")}
+#: Relative tolerance on equal time steps and on start times (fraction of the step).
+TIME_TOLERANCE = 1e-6
+PAIR_CHOICES = ("pair", "all")
+
+
+class ComponentMismatchError(RecordError):
+    """The components of a pair differ in time step, length or start time.
+
+    Attributes
+    ----------
+    kind : {"dt", "length", "start"}
+        What differs [-].
+    """
+
+    def __init__(self, message: str, kind: str):
+        super().__init__(message)
+        self.kind = kind
+
+
+@dataclass(frozen=True, eq=False)
+class MotionPair:
+    """Two horizontal ground motions (X, Y) and optionally the vertical (Z), on one time base.
+
+    Attributes
+    ----------
+    x, y : GroundMotion
+        The horizontal components [m/s²]; X is the first in the file's (or the
+        command line's) order.
+    z : GroundMotion or None
+        The vertical component, positive up [m/s²].
+    processing : list of dict
+        Steps applied to the set (trimming to a common window, a common time grid) [-].
+    """
+
+    x: GroundMotion
+    y: GroundMotion
+    z: GroundMotion | None = None
+    processing: list = field(default_factory=list)
+
+    @property
+    def components(self) -> dict[str, GroundMotion]:
+        """The components present, by axis name ``x``, ``y`` (and ``z``)."""
+        out = {"x": self.x, "y": self.y}
+        if self.z is not None:
+            out["z"] = self.z
+        return out
+
+    @property
+    def dt_s(self) -> float:
+        """Time step (mean step when unequal) [s]."""
+        return self.x.dt_s
+
+    @property
+    def npts(self) -> int:
+        """Number of samples of each component [-]."""
+        return self.x.npts
+
+    @property
+    def time_s(self) -> np.ndarray:
+        """Sample times from the first one [s]."""
+        return self.x.time_s
+
+    @property
+    def sample_times_s(self) -> np.ndarray | None:
+        """Sample times when the steps are unequal, else None [s]."""
+        return self.x.sample_times_s
+
+    @property
+    def duration_s(self) -> float:
+        """Time from the first to the last sample [s]."""
+        return self.x.duration_s
+
+    def scaled(self, factor: float) -> MotionPair:
+        """All components multiplied by one ``factor`` [-] (keeps the direction of shaking)."""
+        return MotionPair(*(m.scaled(factor) if m is not None else None for m in (self.x, self.y, self.z)),
+                          processing=list(self.processing))
+
+    def describe(self) -> dict:
+        """Path, component label, PGA and units source of each component (for JSON output)."""
+        return {name: {"path": motion.provenance.get("path", ""), "component": motion.component,
+                       "pga_m_s2": motion.pga_m_s2, "units_source": motion.units_source,
+                       "processing": list(motion.processing)}
+                for name, motion in self.components.items()}
+
+
+def is_vertical(motion: GroundMotion) -> bool:
+    """True when the component's label or channel code names the vertical (Up, UD, HNZ, …)."""
+    channel = str(motion.provenance.get("channel", "") or "")
+    if len(channel) == 3 and channel[2].upper() == "Z":
+        return True
+    tokens = re.findall(r"[a-z0-9-]+", motion.component.lower())
+    return any(token in VERTICAL_NAMES for token in tokens)
+
+
+def _knet_siblings(path: Path) -> list[Path] | None:
+    """The files of a K-NET / KiK-net set that ``path`` belongs to, or None if it is not one."""
+    suffix = path.suffix.lstrip(".").upper()
+    for names in KNET_SUFFIXES.values():
+        if suffix in names:
+            siblings = []
+            for name in names:
+                candidates = [path.with_suffix("." + name), path.with_suffix("." + name.lower())]
+                found = next((c for c in candidates if c.exists()), None)
+                if found is not None:
+                    siblings.append(found)
+            return siblings
+    return None
+
+
+def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMotion], list[GroundMotion]]:
+    """Horizontal and vertical components of one multi-channel file (or K-NET set)."""
+    siblings = _knet_siblings(path)
+    if siblings is not None:
+        motions = [read_ground_motion(p, **options) for p in siblings]
+    else:
+        labels = list_components(path, merge=options.get("merge", False))
+        if len(labels) < 2:
+            raise RecordError(f"{path}: holds one component ({labels[0]}); --component {component} needs a "
+                              "file with two horizontal components, or give the second file as the pair")
+        motions = [read_ground_motion(path, component=label, **options) for label in labels]
+    horizontal = [m for m in motions if not is_vertical(m)]
+    vertical = [m for m in motions if is_vertical(m)]
+    names = ", ".join(m.component for m in motions)
+    if len(horizontal) != 2:
+        raise RecordError(f"{path}: holds {len(horizontal)} horizontal component(s) ({names}); a pair needs two")
+    if component == "all" and len(vertical) != 1:
+        raise RecordError(f"{path}: holds {len(vertical)} vertical component(s) ({names}); "
+                          "--component all needs one")
+    return horizontal, vertical
+
+
+def _start_s(motion: GroundMotion) -> float:
+    """Start time as a POSIX timestamp (0 for formats that state none, e.g. AT2) [s]."""
+    return float(motion.trace.stats.starttime.timestamp)
+
+
+def _where(motion: GroundMotion) -> str:
+    path = motion.provenance.get("path", "")
+    return f"{Path(path).name} {motion.component}" if path else motion.component
+
+
+def _mismatch(motions: dict[str, GroundMotion]) -> tuple[str, str] | None:
+    """(kind, description) of the first difference between the components, or None."""
+    first = motions["x"]
+    for kind, value, unit, fmt in (("dt", lambda m: m.dt_s, "s", "{:g}"),
+                                   ("sampling", lambda m: m.is_uniform, "", "{}"),
+                                   ("start", _start_s, "s", "{:.6f}"),
+                                   ("length", lambda m: m.npts, "samples", "{}")):
+        values = {name: value(m) for name, m in motions.items()}
+        ref = values["x"]
+        if kind in ("dt", "start"):
+            same = all(abs(v - ref) <= TIME_TOLERANCE * first.dt_s for v in values.values())
+        else:
+            same = all(v == ref for v in values.values())
+        if kind == "sampling" and same and not ref:
+            same = all(np.array_equal(m.time_s, first.time_s) for m in motions.values())
+        if not same:
+            if kind == "start":
+                listed = ", ".join(f"{_where(m)} {m.trace.stats.starttime}" for m in motions.values())
+            elif kind == "sampling":
+                listed = ", ".join(f"{_where(m)} {'equal' if m.is_uniform else 'unequal'} steps"
+                                   for m in motions.values())
+                kind = "dt"
+            else:
+                listed = ", ".join(f"{_where(m)} {fmt.format(values[n])} {unit}".rstrip()
+                                   for n, m in motions.items())
+            words = {"dt": "time steps", "start": "start times", "length": "lengths"}[kind]
+            return kind, f"the components have different {words} ({listed})"
+    return None
+
+
+def _common_window(motions: dict[str, GroundMotion]) -> tuple[float, float]:
+    starts = [_start_s(m) for m in motions.values()]
+    ends = [_start_s(m) + m.duration_s for m in motions.values()]
+    start, end = max(starts), min(ends)
+    if not end > start:
+        raise ComponentMismatchError("the components do not overlap in time", "start")
+    return start, end
+
+
+def _trimmed(motions: dict[str, GroundMotion]) -> tuple[dict[str, GroundMotion], dict]:
+    """Cut equal-step components on one grid to their common window."""
+    start, end = _common_window(motions)
+    dt = motions["x"].dt_s
+    out, dropped = {}, {}
+    for name, motion in motions.items():
+        first = (start - _start_s(motion)) / dt
+        if abs(first - round(first)) > TIME_TOLERANCE:
+            raise ComponentMismatchError(
+                f"{_where(motion)} is sampled {abs(first - round(first)) * dt:g} s off the grid of the others; "
+                "trimming cannot align it", "start")
+        first = int(round(first))
+        count = int(np.floor((end - start) / dt * (1 + 1e-12))) + 1
+        out[name] = motion.trimmed(first * dt, (first + count - 1) * dt)
+        dropped[name] = motion.npts - out[name].npts
+    return out, {"step": "trim_to_common_window", "npts": out["x"].npts, "dropped_samples": dropped}
+
+
+def _on_union_grid(motions: dict[str, GroundMotion]) -> tuple[dict[str, GroundMotion], dict]:
+    """Every component on the union of all sample times inside the common window (exact)."""
+    start, end = _common_window(motions)
+    smallest = min(m.dt_s for m in motions.values())
+    absolute = np.concatenate([_start_s(m) - start + m.time_s for m in motions.values()])
+    grid = np.unique(absolute[(absolute >= -TIME_TOLERANCE * smallest)
+                              & (absolute <= end - start + TIME_TOLERANCE * smallest)])
+    keep = np.concatenate([[True], np.diff(grid) > TIME_TOLERANCE * smallest])  # merge coincident times
+    grid = np.clip(grid[keep], 0.0, end - start)
+    out = {}
+    for name, motion in motions.items():
+        values = np.interp(grid, _start_s(motion) - start + motion.time_s, motion.acceleration_m_s2)
+        common = GroundMotion.from_array(values, time_s=grid, units_source=motion.units_source,
+                                         component=motion.component, provenance=motion.provenance)
+        out[name] = GroundMotion(trace=common.trace, units_source=motion.units_source,
+                                 provenance=motion.provenance, processing=list(motion.processing),
+                                 component=motion.component, components=list(motion.components))
+        out[name].trace.stats.starttime = motion.trace.stats.starttime + (start - _start_s(motion))
+    step = {"step": "common_time_grid", "npts": int(grid.size), "uniform": out["x"].is_uniform,
+            "method": "union of the components' sample times over their common window; linear "
+                      "interpolation (the same piecewise-linear signals, nothing approximated)"}
+    return out, step
+
+
+def align(motions: dict[str, GroundMotion], *, trim: bool = False,
+          resample: bool = False) -> tuple[dict[str, GroundMotion], list[dict]]:
+    """Put the components on one time base, or say what differs.
+
+    Parameters
+    ----------
+    motions : dict of str to GroundMotion
+        Components by axis name (``x`` first) [-].
+    trim : bool
+        Cut to the common window when lengths or start times differ (equal steps on one
+        grid needed) [-].
+    resample : bool
+        Interpolate every component onto the union of their sample times over the
+        common window (handles any difference; exact for piecewise-linear records) [-].
+
+    Returns
+    -------
+    tuple
+        The aligned components and the processing steps applied [-].
+
+    Raises
+    ------
+    ComponentMismatchError
+        The components differ and the difference was not asked to be repaired.
+    """
+    problem = _mismatch(motions)
+    if problem is None:
+        return motions, []
+    kind, message = problem
+    if resample:
+        aligned, step = _on_union_grid(motions)
+        return aligned, [step]
+    if trim and kind in ("length", "start"):
+        aligned, step = _trimmed(motions)
+        left = _mismatch(aligned)
+        if left is not None:
+            raise ComponentMismatchError(left[1], left[0])
+        return aligned, [step]
+    raise ComponentMismatchError(message, kind)
+
+
+def read_ground_motion_pair(
+    x: str | Path,
+    y: str | Path | None = None,
+    z: str | Path | None = None,
+    *,
+    component: str | None = None,
+    units: str | None = None,
+    merge: bool = False,
+    response: str | Path | None = None,
+    counts_factor: float | None = None,
+    dt_s: float | None = None,
+    trim: bool = False,
+    resample: bool = False,
+) -> MotionPair:
+    """Read the horizontal components (and the vertical) of one station into a :class:`MotionPair`.
+
+    Parameters
+    ----------
+    x : str or path-like
+        The X record file; with ``y`` None, a file that holds several channels [-].
+    y, z : str or path-like, optional
+        The Y (second horizontal) and Z (vertical) record files [-].
+    component : {"pair", "all"} or str, optional
+        For one multi-channel ``x``: ``"pair"`` (the two horizontals, the default) or
+        ``"all"`` (with the vertical).  With ``y`` given: the component to take from
+        ``x`` when it holds several [-].
+    units, merge, response, counts_factor, dt_s
+        As for :func:`~isolator.motion.read_ground_motion`, applied to each file [-].
+    trim, resample : bool
+        Repair components that differ (see :func:`align`) [-].
+
+    Returns
+    -------
+    MotionPair
+
+    Raises
+    ------
+    RecordError
+        One line naming the file and the problem (any reading error, not two
+        horizontals, a vertical given as a horizontal or the reverse).
+    ComponentMismatchError
+        The components differ in time step, length or start time (one line saying which).
+    """
+    options = {"units": units, "merge": merge, "response": response, "counts_factor": counts_factor,
+               "dt_s": dt_s}
+    x = Path(x)
+    vertical: list[GroundMotion] = []
+    if y is None:
+        wanted = (component or "pair").lower()
+        if wanted not in PAIR_CHOICES:
+            raise RecordError(f"{x}: a pair from one file takes component 'pair' or 'all', not {component!r}")
+        horizontal, vertical = _read_set(x, wanted, options)
+        if wanted == "pair":
+            vertical = []
+    else:
+        if component is not None and component.lower() in PAIR_CHOICES:
+            raise RecordError(f"{x}: component {component!r} reads a pair from one file; "
+                              "with a second file give one component (or none)")
+        horizontal = [read_ground_motion(x, component=component, **options),
+                      read_ground_motion(y, **options)]
+        for motion in horizontal:
+            if is_vertical(motion):
+                raise RecordError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
+                                  "X and Y are the horizontal components")
+        if z is not None:
+            vertical = [read_ground_motion(z, **options)]
+            if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
+                raise RecordError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)")
+    motions = {"x": horizontal[0], "y": horizontal[1]}
+    if vertical:
+        motions["z"] = vertical[0]
+    aligned, steps = align(motions, trim=trim, resample=resample)
+    return MotionPair(x=aligned["x"], y=aligned["y"], z=aligned.get("z"), processing=steps)
