@@ -27,6 +27,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+#: The regimes of the paper, in the order of their codes (0, 1, 2), and what they mean.
+REGIMES = ("ST", "SS", "SL")
 REGIME_WORDS = {"ST": "stick (no sliding)", "SS": "stick-slip", "SL": "permanent slip"}
 FORCE_NAMES = ("friction", "elastic", "viscous")
 
@@ -158,13 +160,20 @@ def slip_intervals(response) -> np.ndarray:
 
 
 def strong_motion_window_s(acceleration_m_s2, dt_s: float, start_fraction: float = 0.05,
-                           end_fraction: float = 0.95) -> tuple[float, float]:
-    """Times [s] at which the Arias intensity reaches 5 % and 95 % (D5–95 window)."""
+                           end_fraction: float = 0.95, time_s=None) -> tuple[float, float]:
+    """Times [s] at which the Arias intensity reaches 5 % and 95 % (D5–95 window).
+
+    ``time_s`` gives the sample times of a record with unequal steps [s] (``dt_s`` unused).
+    """
     from scipy.integrate import cumulative_trapezoid
 
     acc = np.asarray(acceleration_m_s2, dtype=float)
-    cumulative = cumulative_trapezoid(acc ** 2, dx=dt_s, initial=0.0)
-    time_s = np.arange(acc.size) * dt_s
+    if time_s is None:
+        cumulative = cumulative_trapezoid(acc ** 2, dx=dt_s, initial=0.0)
+        time_s = np.arange(acc.size) * dt_s
+    else:
+        time_s = np.asarray(time_s, dtype=float) - time_s[0]
+        cumulative = cumulative_trapezoid(acc ** 2, x=time_s, initial=0.0)
     if not cumulative[-1] > 0:
         return 0.0, float(time_s[-1])
     start, end = np.interp([start_fraction * cumulative[-1], end_fraction * cumulative[-1]], cumulative, time_s)
@@ -193,10 +202,12 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
     -------
     Classification
     """
+    from isolator.solver.record import sample_timing
+
     t = response.time_s
-    dt = float(t[1] - t[0])
+    dt, unequal = sample_timing(t)
     if window_s is None:
-        t0, t1 = strong_motion_window_s(response.ground_acceleration_m_s2, dt)
+        t0, t1 = strong_motion_window_s(response.ground_acceleration_m_s2, dt, time_s=unequal)
         window_s = (t[0] + t0, t[0] + t1)
     w0, w1 = window_s
     intervals = slip_intervals(response)

@@ -233,8 +233,8 @@ def record_page(fig, motion, window_s, periods_s, psa_m_s2, isolated_period_s, e
     acc = motion.acceleration_m_s2
     axes = fig.subplots(4, 1, gridspec_kw={"height_ratios": [1, 1, 1, 1.25]})
     series = [(acc / STANDARD_GRAVITY, "ground acceleration  [g]"),
-              (velocity_m_s(acc, motion.dt_s), "ground velocity  [m/s]"),
-              (displacement_m(acc, motion.dt_s), "ground displacement  [m]")]
+              (velocity_m_s(acc, motion.dt_s, motion.sample_times_s), "ground velocity  [m/s]"),
+              (displacement_m(acc, motion.dt_s, motion.sample_times_s), "ground displacement  [m]")]
     for ax, (values, label) in zip(axes[:3], series):
         ax.axvspan(*window_s, color="0.92", lw=0, zorder=0, label="D5-95 window")
         ax.plot(t, values, lw=0.6, color="k")

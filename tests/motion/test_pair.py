@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from isolator.motion import RecordError, read_ground_motion
-from isolator.motion_pair import ComponentMismatchError, read_ground_motion_pair
+from isolator.motion.pair import ComponentMismatchError, read_ground_motion_pair
 
 G = 9.80665
 

@@ -27,7 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.motion import GroundMotion, RecordError, list_components, read_ground_motion
+from isolator.motion.ground_motion import GroundMotion
+from isolator.motion.read import RecordError, list_components, read_ground_motion
 
 #: Orientation names of a vertical component (lower case tokens of a component label).
 VERTICAL_NAMES = frozenset({"up", "down", "ud", "u-d", "vert", "vertical", "z", "v", "dwn"})
