@@ -5,6 +5,7 @@ from __future__ import annotations
 import typer
 
 from isolator.cli.common import RECORD_HELP, app, echo_json, echo_table, load_record_for_cli, user_error, write_csv_atomically
+from isolator.cli.pairs import PAIR_HELP
 
 
 @app.command()
@@ -69,7 +70,7 @@ def info(
 
 @app.command()
 def simulate(
-    record: str = typer.Argument(..., help="Record file: PEER AT2, plain text (time, acceleration), "
+    record: str = typer.Argument(..., help="Record file (X): PEER AT2, plain text (time, acceleration), "
                                  "MiniSEED, SAC, K-NET, CSMIP V2, USGS SMC …"),
     mu_s: float = typer.Option(..., "--mu-s", help="Static friction coefficient µs."),
     mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
@@ -78,66 +79,83 @@ def simulate(
     gravity: float = typer.Option(None, "--gravity", help="Gravity for the friction force [m/s²] "
                                   "(standard gravity by default; records in g are always converted "
                                   "with standard gravity)."),
-    component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"]),
+    radius_m: float = typer.Option(None, "--radius-m", help=PAIR_HELP["radius"]),
+    mu_slow: float = typer.Option(None, "--mu-slow", help=PAIR_HELP["mu_slow"]),
+    mu_fast: float = typer.Option(None, "--mu-fast", help=PAIR_HELP["mu_fast"]),
+    rate_s_per_m: float = typer.Option(None, "--rate-s-per-m", help=PAIR_HELP["rate"]),
+    pair: str = typer.Option(None, "--pair", help=PAIR_HELP["pair"]),
+    vertical: str = typer.Option(None, "--vertical", help=PAIR_HELP["vertical"]),
+    component: str = typer.Option(None, "--component", "-c", help=PAIR_HELP["component"]),
+    trim: bool = typer.Option(False, "--trim", help=PAIR_HELP["trim"]),
+    resample: bool = typer.Option(False, "--resample", help=PAIR_HELP["resample"]),
     units: str = typer.Option(None, "--units", "-u", help=RECORD_HELP["units"]),
     merge: bool = typer.Option(False, "--merge", help=RECORD_HELP["merge"]),
     dt: float = typer.Option(None, "--dt", help=RECORD_HELP["dt"]),
     response: str = typer.Option(None, "--response", help=RECORD_HELP["response"]),
     counts_factor: float = typer.Option(None, "--counts-factor", help=RECORD_HELP["counts_factor"]),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
-    out_csv: str = typer.Option(None, "--out-csv", help="Write the time histories to this CSV file."),
+    out_csv: str = typer.Option(None, "--out-csv", help="Write the time histories (every component) to this "
+                                "CSV file."),
 ) -> None:
-    """Exact response of a friction–spring–dashpot isolator to a recorded ground acceleration.
+    """Response of a friction isolator to a recorded ground acceleration: one component, a pair, a vertical.
 
-    The record is taken as linear between samples; the response to it is exact
-    (closed forms between stick/slip events located to machine precision).
-    Energies are per unit mass (J/kg).
+    The model is the one the scene needs, and the output says which ran and why: one
+    component with constant friction and no vertical → the exact 1-D kernel (closed
+    forms between stick/slip events located to machine precision); two horizontal
+    components (--pair, --component pair|all), a vertical (--vertical) or µ(v)
+    (--mu-slow/--mu-fast/--rate-s-per-m) → the 2-D engine.  Records are linear
+    between samples (unequal steps allowed).  Energies are per unit mass (J/kg).
     """
-    from isolator.solver.record import RecordInputError, simulate_record
+    from isolator.cli.pairs import (history_columns, load_motion_set_for_cli, response_summary, result_rows,
+                                    solve, system_keywords, wants_set)
     from isolator.solver.system import InvalidSystemError, System
 
-    try:
+    system = system_keywords(mu_s=mu_s, mu_k=mu_k, stiffness_per_mass=stiffness_per_mass,
+                             damping_per_mass=damping_per_mass, gravity=gravity, radius_m=radius_m,
+                             mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate_s_per_m)
+    try:  # the isolator is checked before any file is read
         kwargs = {} if gravity is None else {"gravity_m_s2": gravity}
-        system = System(mu_static=mu_s, mu_kinetic=mu_k, stiffness_per_mass=stiffness_per_mass,
-                        damping_per_mass=damping_per_mass, **kwargs)
-    except InvalidSystemError as err:
-        user_error(str(err))
-    motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
-    try:
-        result = simulate_record(motion.acceleration_m_s2, motion.dt_s, time_s=motion.sample_times_s, system=system)
-    except RecordInputError as err:
-        user_error(f"{record}: {err}")
-    summary = {"record": str(record), "component": motion.component, "units_source": motion.units_source,
-               "npts": motion.npts, "dt_s": motion.dt_s, **result.summary()}
+        kappa = stiffness_per_mass if radius_m is None else System(mu_static=mu_s, **kwargs).gravity_m_s2 / radius_m
+        nominal = System(mu_static=mu_s, mu_kinetic=mu_k, stiffness_per_mass=kappa,
+                         damping_per_mass=damping_per_mass, **kwargs)
+    except (InvalidSystemError, ZeroDivisionError) as err:
+        user_error(str(err) if str(err) else "--radius-m must be > 0")
+    if wants_set(pair, vertical, component):
+        motions = load_motion_set_for_cli(record, pair, vertical, component, units, merge, dt, response,
+                                          counts_factor, trim, resample)
+        parts = motions.components
+        result = solve(record, parts["x"].acceleration_m_s2, parts["y"].acceleration_m_s2 if "y" in parts else None,
+                       parts["z"].acceleration_m_s2 if "z" in parts else None, dt_s=motions.dt_s,
+                       time_s=motions.sample_times_s, system=system)
+        head = {"record": str(record), "pair": pair, "vertical": vertical, "components": motions.describe(),
+                "npts": motions.npts, "dt_s": motions.dt_s, "uniform_sampling": motions.sample_times_s is None,
+                "processing": list(motions.processing)}
+        described = ", ".join(f"{axis} = {m.component}" for axis, m in parts.items())
+        samples = (motions.npts, motions.dt_s, motions.sample_times_s is None)
+    else:
+        motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
+        result = solve(record, motion.acceleration_m_s2, dt_s=motion.dt_s, time_s=motion.sample_times_s,
+                       system=system)
+        head = {"record": str(record), "component": motion.component, "units_source": motion.units_source,
+                "npts": motion.npts, "dt_s": motion.dt_s}
+        described = f"{motion.component}, units from {motion.units_source}"
+        samples = (motion.npts, motion.dt_s, motion.is_uniform)
+    summary = {**head, **response_summary(result)}
     if out_csv:
+        header, columns = history_columns(result)
         try:
-            write_csv_atomically(
-                out_csv,
-                "time_s,ground_acceleration_m_s2,displacement_m,velocity_m_s,absolute_acceleration_m_s2",
-                [result.time_s, result.ground_acceleration_m_s2, result.displacement_m,
-                 result.velocity_m_s, result.absolute_acceleration_m_s2])
+            write_csv_atomically(out_csv, header, columns)
         except OSError as err:
             user_error(f"{out_csv}: cannot write ({err.strerror or err})")
     if as_json:
         echo_json(summary)
         return
+    step = f"{samples[1]:g} s" if samples[2] else f"unequal steps (mean {samples[1]:g} s)"
     echo_table([
-        ("record", str(record), f"[{motion.component}, units from {motion.units_source}]"),
-        ("samples", f"{motion.npts} × {motion.dt_s:g} s", ""),
-        ("configuration", system.configuration, f"(µs = {system.mu_static:g}, µk = {system.mu_kinetic:g}, "
-                                                f"K/M = {system.stiffness_per_mass:g} 1/s², "
-                                                f"γ/M = {system.damping_per_mass:g} 1/s)"),
-        ("peak displacement", f"{result.peak_displacement_m:.6g}", "m"),
-        ("residual displacement", f"{result.residual_displacement_m:.6g}", "m"),
-        ("peak velocity", f"{result.peak_velocity_m_s:.6g}", "m/s"),
-        ("peak transmitted acc.", f"{result.peak_transmitted_acceleration_m_s2:.6g}", "m/s²"),
-        ("slip time", f"{result.slip_time_s:.6g}", f"s  of {result.time_s[-1] - result.time_s[0]:.6g} s"),
-        ("events", f"{result.n_events}", "(break-away, stick, reversal)"),
-        ("energy input", f"{result.energy_input_J_per_kg:.6g}", "J/kg"),
-        ("energy friction", f"{result.energy_friction_J_per_kg:.6g}", "J/kg"),
-        ("energy viscous", f"{result.energy_viscous_J_per_kg:.6g}", "J/kg"),
-        ("energy balance error", f"{result.energy_balance_error_J_per_kg:.2e}", "J/kg"),
-        ("solver time", f"{result.solver_seconds * 1e3:.3g}", "ms"),
-        ("status", result.message, ""),
+        ("record", str(record), f"[{described}]"),
+        ("samples", f"{samples[0]} × {step}", ""),
+        ("configuration", summary["configuration"], f"(µs = {nominal.mu_static:g}, µk = {nominal.mu_kinetic:g}, "
+                                                    f"K/M = {nominal.stiffness_per_mass:g} 1/s², "
+                                                    f"γ/M = {nominal.damping_per_mass:g} 1/s)"),
+        *result_rows(result, summary),
     ] + ([("time histories", out_csv, "")] if out_csv else []))
-

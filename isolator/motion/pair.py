@@ -59,9 +59,11 @@ class MotionPair:
 
     Attributes
     ----------
-    x, y : GroundMotion
-        The horizontal components [m/s²]; X is the first in the file's (or the
-        command line's) order.
+    x : GroundMotion
+        The first horizontal component [m/s²] (the first in the file's or the command
+        line's order).
+    y : GroundMotion or None
+        The second horizontal component [m/s²]; None for one horizontal with a vertical.
     z : GroundMotion or None
         The vertical component, positive up [m/s²].
     processing : list of dict
@@ -69,14 +71,16 @@ class MotionPair:
     """
 
     x: GroundMotion
-    y: GroundMotion
+    y: GroundMotion | None = None
     z: GroundMotion | None = None
     processing: list = field(default_factory=list)
 
     @property
     def components(self) -> dict[str, GroundMotion]:
         """The components present, by axis name ``x``, ``y`` (and ``z``)."""
-        out = {"x": self.x, "y": self.y}
+        out = {"x": self.x}
+        if self.y is not None:
+            out["y"] = self.y
         if self.z is not None:
             out["z"] = self.z
         return out
@@ -108,7 +112,7 @@ class MotionPair:
 
     def scaled(self, factor: float) -> MotionPair:
         """All components multiplied by one ``factor`` [-] (keeps the direction of shaking)."""
-        return MotionPair(*(m.scaled(factor) if m is not None else None for m in (self.x, self.y, self.z)),
+        return MotionPair(*(None if m is None else m.scaled(factor) for m in (self.x, self.y, self.z)),
                           processing=list(self.processing))
 
     def describe(self) -> dict:
@@ -316,13 +320,15 @@ def read_ground_motion_pair(
     Parameters
     ----------
     x : str or path-like
-        The X record file; with ``y`` None, a file that holds several channels [-].
+        The X record file; with ``y`` and ``z`` None, a file that holds several
+        channels (or one file of a K-NET set) [-].
     y, z : str or path-like, optional
-        The Y (second horizontal) and Z (vertical) record files [-].
+        The Y (second horizontal) and Z (vertical) record files; ``z`` without ``y``
+        gives one horizontal with its vertical [-].
     component : {"pair", "all"} or str, optional
         For one multi-channel ``x``: ``"pair"`` (the two horizontals, the default) or
-        ``"all"`` (with the vertical).  With ``y`` given: the component to take from
-        ``x`` when it holds several [-].
+        ``"all"`` (with the vertical).  With ``y`` or ``z`` given: the component to
+        take from ``x`` when it holds several [-].
     units, merge, response, counts_factor, dt_s
         As for :func:`~isolator.motion.read_ground_motion`, applied to each file [-].
     trim, resample : bool
@@ -344,7 +350,7 @@ def read_ground_motion_pair(
                "dt_s": dt_s}
     x = Path(x)
     vertical: list[GroundMotion] = []
-    if y is None:
+    if y is None and z is None:
         wanted = (component or "pair").lower()
         if wanted not in PAIR_CHOICES:
             raise RecordError(f"{x}: a pair from one file takes component 'pair' or 'all', not {component!r}")
@@ -355,8 +361,9 @@ def read_ground_motion_pair(
         if component is not None and component.lower() in PAIR_CHOICES:
             raise RecordError(f"{x}: component {component!r} reads a pair from one file; "
                               "with a second file give one component (or none)")
-        horizontal = [read_ground_motion(x, component=component, **options),
-                      read_ground_motion(y, **options)]
+        horizontal = [read_ground_motion(x, component=component, **options)]
+        if y is not None:
+            horizontal.append(read_ground_motion(y, **options))
         for motion in horizontal:
             if is_vertical(motion):
                 raise RecordError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
@@ -365,8 +372,8 @@ def read_ground_motion_pair(
             vertical = [read_ground_motion(z, **options)]
             if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
                 raise RecordError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)")
-    motions = {"x": horizontal[0], "y": horizontal[1]}
+    motions = dict(zip(("x", "y"), horizontal))
     if vertical:
         motions["z"] = vertical[0]
     aligned, steps = align(motions, trim=trim, resample=resample)
-    return MotionPair(x=aligned["x"], y=aligned["y"], z=aligned.get("z"), processing=steps)
+    return MotionPair(x=aligned["x"], y=aligned.get("y"), z=aligned.get("z"), processing=steps)
