@@ -401,8 +401,8 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
 def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, **system):
     """Response to one component, a pair, or a pair and a vertical, with the model the scene needs.
 
-    One component, constant friction, no vertical and uniform sampling → the exact
-    1-D kernel (:func:`simulate_record`, a :class:`Response`); anything else → the
+    One component, constant friction and no vertical → the exact 1-D kernel
+    (:func:`simulate_record`, a :class:`Response`, equal or unequal steps); anything else → the
     2-D engine (:func:`simulate_pair`, a :class:`PairResponse`; a single component
     runs with a_y = 0).  ``model`` and ``model_reason`` say which ran and why.
 
@@ -418,33 +418,23 @@ def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=No
     velocity_dependent = any(system.get(k) is not None for k in ("mu_slow", "mu_fast", "rate_s_per_m"))
     model, reason = select_model(has_y=ay_m_s2 is not None, has_z=az_m_s2 is not None,
                                  velocity_dependent=velocity_dependent)
-    if model == "1d-exact":
-        uniform = True
-        if time_s is not None:
-            steps = np.diff(np.asarray(time_s, dtype=np.float64))
-            if steps.size and np.all(np.isfinite(steps)) and np.all(steps > 0.0):
-                dt = (steps.sum()) / steps.size
-                uniform = bool(np.max(np.abs(steps - dt)) <= 1e-6 * dt + 1e-12)
-        if uniform:
-            kwargs = dict(system)
-            kwargs.pop("rtol", None)
-            radius = kwargs.pop("radius_m", None)
-            if radius is not None:
-                _parameters(kwargs.get("mu_static", 0.0), kwargs.get("mu_kinetic"),
-                            kwargs.get("stiffness_per_mass", 0.0), radius, kwargs.get("damping_per_mass", 0.0),
-                            kwargs.get("gravity_m_s2"), None, None, None)
-                g = kwargs.get("gravity_m_s2") or STANDARD_GRAVITY
-                kwargs["stiffness_per_mass"] = float(g) / float(radius)
-            result: Response = simulate_record(ax_m_s2, dt_s, time_s=time_s, **kwargs)
-            result.model = model
-            result.model_reason = reason
-            return result
-        reason = ("one horizontal component, constant friction, no vertical, but non-uniform sampling: "
-                  "the 2-D engine with a_y = 0 (the exact 1-D kernel needs a uniform step)")
+    if model == "1d-exact":  # the exact kernel takes unequal steps too, interval by interval
+        kwargs = dict(system)
+        kwargs.pop("rtol", None)
+        radius = kwargs.pop("radius_m", None)
+        if radius is not None:
+            _parameters(kwargs.get("mu_static", 0.0), kwargs.get("mu_kinetic"),
+                        kwargs.get("stiffness_per_mass", 0.0), radius, kwargs.get("damping_per_mass", 0.0),
+                        kwargs.get("gravity_m_s2"), None, None, None)
+            g = kwargs.get("gravity_m_s2") or STANDARD_GRAVITY
+            kwargs["stiffness_per_mass"] = float(g) / float(radius)
+        result: Response = simulate_record(ax_m_s2, dt_s, time_s=time_s, **kwargs)
+        result.model = model
+        result.model_reason = reason
+        return result
     ax = np.asarray(ax_m_s2, dtype=np.float64)
     ay = np.zeros_like(ax) if ay_m_s2 is None else ay_m_s2
     result = simulate_pair(ax, ay, dt_s, time_s=time_s, az_m_s2=az_m_s2, **system)
-    if model == "1d-exact":
-        result.model = "2d"
+    result.model = model  # the 2-D engine ran, whatever the values of a_y (simulate_pair looks at them)
     result.model_reason = reason
     return result

@@ -135,3 +135,15 @@ def test_linear_spectrum_of_collinear_samples_is_unchanged():
     uniform = pseudo_acceleration_spectrum(acc, dt, periods)
     dense = pseudo_acceleration_spectrum(values, float(np.mean(np.diff(times))), periods, time_s=times)
     np.testing.assert_allclose(dense, uniform, rtol=1e-12)
+
+
+def test_simulate_motion_keeps_a_non_uniform_single_component_on_the_exact_kernel():
+    from isolator.solver.planar import simulate_motion
+
+    acc, dt = synthetic_record(n=400)
+    values, times, original = with_collinear_samples(acc, dt, seed=7)
+    result = simulate_motion(values, time_s=times, mu_static=0.06, radius_m=2.0)
+    assert result.model == "1d-exact"
+    reference = simulate_record(acc, dt, mu_static=0.06, stiffness_per_mass=G / 2.0)
+    np.testing.assert_allclose(result.displacement_m[original], reference.displacement_m, rtol=0,
+                               atol=1e-12 * reference.peak_displacement_m)
