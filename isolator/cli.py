@@ -719,3 +719,9 @@ def bench(
     typer.echo(bench_module.rows_markdown(rows))
     typer.echo(f"{len(rows)} runs in {wall_s:.1f} s on {machine['processor']} ({machine['cpus']} CPUs); "
                f"written to {out_dir}/bench.csv, bench_pareto.csv, bench.json, bench.md, bench.png")
+
+
+# The design-review command lives in its own module (isolator.review.command).
+from isolator.review.command import register as _register_review  # noqa: E402
+
+_register_review(app)
