@@ -140,19 +140,29 @@ def _sample_hash(acceleration: np.ndarray) -> str:
     return hashlib.sha256(np.ascontiguousarray(acceleration, dtype=np.float64).tobytes()).hexdigest()
 
 
-def read_pair(spec: PairSpec) -> Pair:
+def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
     """Read the components of a pair and make them one piecewise-linear pair.
+
+    ``seen`` maps the SHA-256 of samples already in the suite to where they are (updated here).
 
     Raises
     ------
     isolator.motion.RecordError, isolator.units.UnitsError
         A component cannot be read (the pair fails, not the suite).
     SuiteError
-        Different time steps, or lengths without ``trim`` (the suite is refused).
+        The same samples twice, different time steps, or lengths without ``trim`` (the suite is refused).
     """
     motions = {"x": _read(spec.x, spec.units), "y": _read(spec.y, spec.units)}
     if spec.z is not None:
         motions["z"] = _read(spec.z, spec.units)
+    specs = {"x": spec.x, "y": spec.y, "z": spec.z}
+    hashes = {key: _sample_hash(m.acceleration_m_s2) for key, m in motions.items()}
+    seen = {} if seen is None else seen
+    for key, digest in hashes.items():
+        where = f"pair '{spec.name}' {key} ({specs[key].label()})"
+        if digest in seen:
+            raise SuiteError(f"the same samples twice: {seen[digest]} and {where} (sha256 {digest[:12]}…)")
+        seen[digest] = where
     dts = {key: m.dt_s for key, m in motions.items()}
     if max(dts.values()) - min(dts.values()) > 1e-9 * max(dts.values()):
         raise SuiteError(f"pair '{spec.name}': components have different time steps "
@@ -172,12 +182,11 @@ def read_pair(spec: PairSpec) -> Pair:
     provenance = {key: dict(m.provenance) for key, m in motions.items()}
     for m in motions.values():
         processing.extend(dict(step) for step in m.processing)
-    specs = {"x": spec.x, "y": spec.y, "z": spec.z}
     return Pair(name=spec.name, ax_m_s2=arrays["x"], ay_m_s2=arrays["y"], az_m_s2=arrays.get("z"),
                 dt_s=float(motions["x"].dt_s), files={k: specs[k].label() for k in motions},
                 component_names={k: m.component for k, m in motions.items()}, processing=processing,
                 provenance=provenance, high_pass_hz=max(corners) if corners else None,
-                sample_hashes={k: _sample_hash(m.acceleration_m_s2) for k, m in motions.items()})
+                sample_hashes=hashes)
 
 
 # ---- SUITE.toml --------------------------------------------------------------------------
@@ -350,15 +359,10 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
     pairs, seen = [], {}
     for spec in specs:
         try:
-            pair = read_pair(spec)
+            pair = read_pair(spec, seen)
         except (RecordError, UnitsError) as err:
             failed.append({"name": spec.name, "error": " ".join(str(err).split())})
             continue
-        for key, digest in pair.sample_hashes.items():
-            where = f"pair '{pair.name}' {key} ({pair.files[key]})"
-            if digest in seen:
-                raise SuiteError(f"the same samples twice: {seen[digest]} and {where} (sha256 {digest[:12]}…)")
-            seen[digest] = where
         pairs.append(pair)
     if not pairs:
         detail = f": {failed[0]['name']}: {failed[0]['error']}" if failed else ""
