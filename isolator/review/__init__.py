@@ -25,7 +25,7 @@ def __getattr__(name):
 
         return load_target
     if name == "resolve_example":
-        from isolator.review.command import resolve_example
+        from isolator.review.examples import resolve_example
 
         return resolve_example
     raise AttributeError(name)

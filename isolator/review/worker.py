@@ -11,7 +11,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -143,6 +142,9 @@ def analyse_task(task: dict) -> dict:
 
 def warm_up() -> None:
     """Load the compiled engines once in the parent before workers fork."""
+    from isolator.parallel import warm_up as warm_solvers
+
+    warm_solvers()
     t = np.linspace(0.0, 2.0, 201)
     task = {"ax": np.sin(5 * t), "ay": np.cos(5 * t), "az": None, "dt": 0.01, "factor": 1.0,
             "design": {"mu_static": 0.05, "mu_kinetic": 0.05, "radius_m": 2.0, "stiffness_per_mass": 9.80665 / 2,
@@ -207,12 +209,13 @@ def _iterate_local(todo: dict, jobs: int):
         for key, task in todo.items():
             yield key, analyse_task(task)
         return
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
+
+    from isolator.parallel import process_pool
 
     # longest first: the pool finishes together
     order = sorted(todo, key=lambda k: -todo[k]["ax"].size)
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("fork")) as pool:
+    with process_pool(jobs) as pool:
         futures = {pool.submit(analyse_task, todo[key]): key for key in order}
         for future in as_completed(futures):
             try:
@@ -242,11 +245,10 @@ def _iterate_dask(todo: dict, address: str):
 
 
 def default_jobs() -> int:
-    """All cores this process may use."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover
-        return max(1, os.cpu_count() or 1)
+    """Worker processes when the user gives none (:func:`isolator.parallel.default_workers`)."""
+    from isolator.parallel import default_workers
+
+    return default_workers()
 
 
 def _per_component_pair(ax, ay, dt, *, az_m_s2=None, mu_static, mu_kinetic=None, stiffness_per_mass=0.0,

@@ -1,4 +1,4 @@
-"""The ``isolator review`` command: option checks and one-line errors over :func:`run_review`."""
+"""``isolator review``: option checks and one-line errors over :func:`isolator.review.run.run_review`."""
 
 from __future__ import annotations
 
@@ -6,18 +6,8 @@ from pathlib import Path
 
 import typer
 
-DATA = Path(__file__).resolve().parents[1] / "data"
-EXAMPLES = {"target": DATA / "targets" / "example.toml", "suite": DATA / "suites" / "example" / "suite.toml"}
-
-
-def resolve_example(kind: str, argument: str) -> str:
-    """``example`` names the bundled target or suite; anything else is returned as given."""
-    return str(EXAMPLES[kind]) if argument == "example" else argument
-
-
-def _user_error(message: str) -> None:
-    typer.echo(f"error: {' '.join(str(message).split())}", err=True)
-    raise typer.Exit(2)
+from isolator.cli.common import app
+from isolator.cli.common import user_error as _user_error
 
 
 def _parse_set(items) -> dict:
@@ -30,6 +20,7 @@ def _parse_set(items) -> dict:
     return out
 
 
+@app.command("review")
 def review(
     design: str = typer.Option(..., "--design", "-d", help="Design file (TOML) with the friction bounds "
                                "(lambda_max/lambda_min, mu_upper/mu_lower or the λ_ae/λ_test/λ_spec factors), "
@@ -66,6 +57,7 @@ def review(
     from isolator.design import Design, DesignError
     from isolator.motion import RecordError
     from isolator.review.errors import ReviewError
+    from isolator.review.examples import resolve_example
     from isolator.review.run import CODES
     from isolator.review.scaling import SCALING_METHODS
     from isolator.units import UnitsError
@@ -127,7 +119,3 @@ def review(
         typer.echo(f"{c['status']:<12} {c['id']:<{width}}  {value} vs {limit} {c['unit']}  [{c['clause']}]")
     typer.echo(f"checks   {counts['pass']} pass, {counts['fail']} fail, {counts['not checked']} not checked")
 
-
-def register(app) -> None:
-    """Add the command to the CLI app."""
-    app.command("review")(review)
