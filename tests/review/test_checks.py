@@ -42,3 +42,26 @@ def test_en15129_restoring_capability_is_d_over_mu_R():
     design = Design.from_mapping({"name": "r", "mass_kg": 1.0, "radius_m": 2.0, "mu_static": 0.06})
     assert en15129.static_residual_m(design, 0.05) == pytest.approx(0.1)
     assert en15129.restoring_capability_ratio(design, 0.05, 0.3) == pytest.approx(3.0)
+
+
+def test_single_record_checks_and_the_labelled_measure():
+    """One record: capacity, D/R, restoring force, transmitted/PGA, scale factor, usable band; no AMPLIFIES."""
+    import numpy as np
+
+    from isolator.motion import GroundMotion
+    from isolator.report.summary import analyse, checks, verdicts
+
+    t = np.arange(0, 20, 0.01)
+    motion = GroundMotion.from_array(3.0 * np.sin(2 * np.pi * 0.5 * t) * np.exp(-0.1 * t), 0.01).scaled(2.0)
+    design = Design.from_mapping({"name": "x" * 120, "mass_kg": 1.0e5, "radius_m": 2.0, "mu_static": 0.05,
+                                  "displacement_capacity_m": 0.05})
+    a = analyse(design, motion)
+    rows = {row["id"]: row for row in checks(a)}
+    d = a.engineering["peak_displacement_m"]
+    assert rows["displacement_capacity"]["status"] == ("pass" if d <= 0.05 else "fail")
+    assert rows["D_over_R"]["value"] == pytest.approx(d / 2.0)
+    assert rows["restoring_force"]["status"] == ("pass" if d >= 0.1 else "fail")
+    assert rows["scale_factor"]["value"] == pytest.approx(2.0) and rows["scale_factor"]["status"] == "pass"
+    assert rows["usable_band"]["status"] == "not checked"  # an array states no filter corner
+    text = " ".join(verdicts(a))
+    assert "AMPLIFIES" not in text and "A0 = PGV²/PGA" in text and "Paper's measure A" in text
