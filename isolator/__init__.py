@@ -8,6 +8,8 @@ Public API (imported lazily, so that ``import isolator`` and ``isolator --help``
 stay instant)::
 
     simulate_record(acceleration_m_s2, dt_s, mu_static=..., ...) -> Response
+    simulate_pair(ax_m_s2, ay_m_s2, dt_s, mu_static=..., az_m_s2=None, radius_m=None, ...) -> PairResponse
+    simulate_motion(ax, ay=None, az=None, dt_s, **system) -> Response | PairResponse (the model the scene needs)
     harmonic_response(alpha, k, eta, mu_s, mu_k=None) -> HarmonicResponse
     harmonic_thresholds(k, eta, mu_s, mu_k=None, alpha_max=6) -> RegimeThresholds
     System(mu_static, mu_kinetic, stiffness_per_mass, damping_per_mass, gravity_m_s2)
@@ -24,6 +26,9 @@ __version__ = "0.1.0"
 _EXPORTS = {
     "simulate_record": "isolator.solver.record",
     "Response": "isolator.solver.record",
+    "simulate_pair": "isolator.solver.planar",
+    "PairResponse": "isolator.solver.planar",
+    "simulate_motion": "isolator.solver.planar",
     "harmonic_response": "isolator.solver.harmonic",
     "HarmonicResponse": "isolator.solver.harmonic",
     "harmonic_thresholds": "isolator.solver.harmonic",

@@ -60,6 +60,9 @@ class Response:
     message: str = "ok"
     solver_seconds: float = 0.0
     substeps_per_interval: int = 1
+    #: which model ran (see :func:`isolator.solver.planar.select_model`) and why
+    model: str = "1d-exact"
+    model_reason: str = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
 
     @property
     def event_names(self) -> list[str]:
@@ -87,6 +90,8 @@ class Response:
             "solver_seconds": self.solver_seconds,
             "configuration": self.system.configuration,
             "status": self.message,
+            "model": self.model,
+            "model_reason": self.model_reason,
         }
 
 

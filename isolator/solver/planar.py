@@ -1,0 +1,450 @@
+r"""The planar (2-D) engine: a friction isolator under two horizontal components at once.
+
+Per unit mass, X and V = X' in the horizontal plane relative to the ground, a_g
+linear between samples (issue 10, "The model"):
+
+.. math::
+
+    X'' = -\mu(|V|)\, n(t)\, \frac{V}{|V|} - \kappa(t) X - c V - a_g(t)
+    \quad (|V| > 0), \qquad
+    |\kappa X + a_g| \le \mu_s n \quad (V = 0, \text{stuck}),
+
+with n = g + a_z (g without a vertical record), κ = n/R for a friction pendulum of
+radius R or κ = K/M for a flat slider with a spring, and either a constant µk or
+:math:`\mu(v) = \mu_{fast} - (\mu_{fast} - \mu_{slow}) e^{-a v}`; µs decides every
+break-away.  Where n ≤ 0 the bearing carries no load: no friction and (pendulum) no
+restoring force, so the block keeps its horizontal velocity while the ground
+accelerates under it (X'' = −a_g − cV, or −κX − a_g − cV with a spring); the vertical
+separation itself is not modelled (contact resumes as soon as n > 0).
+
+The integration (DOP853 between events, stops and break-aways located exactly) is in
+:mod:`isolator.solver.planar_kernel`; accuracy and speed are measured in docs/planar.md.
+
+:func:`simulate_motion` is the one entry point that models only what the scene needs:
+one component, constant µ and no vertical runs the exact 1-D kernel
+(:func:`isolator.solver.record.simulate_record`); anything else runs this engine.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from isolator.solver import planar_kernel as _pk
+from isolator.solver import planar_rk as _rk
+from isolator.solver.events import EVENT_NAMES
+from isolator.solver.record import RecordInputError, Response, simulate_record
+from isolator.solver.system import InvalidSystemError, classify_configuration
+from isolator.units import STANDARD_GRAVITY
+
+#: Event words of the planar engine: the 1-D vocabulary plus uplift and landing.
+PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
+
+#: Relative tolerance of the DOP853 steps (see docs/planar.md for the achieved error).
+DEFAULT_RTOL = 1e-12
+
+_STATUS_MESSAGES = (
+    (_pk.STATUS_CHATTER, f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
+                         "interval; the static friction held the block to the end of that interval"),
+    (_pk.STATUS_EVENTS_TRUNCATED, "more events than the event arrays could hold"),
+    (_pk.STATUS_STEP_LIMIT, f"step guard: more than {_pk.MAX_STEPS_PER_INTERVAL} steps in one sample "
+                            "interval; the response after it is NaN"),
+)
+
+
+@dataclass
+class PairResponse:
+    """Response of the planar engine (SI units; energies per unit mass [J/kg]).
+
+    Resultant quantities use the Euclidean norm in the horizontal plane; the
+    ``_x``/``_y`` residuals are along the two input components.  The energy input
+    is the work of −M a_g on the relative motion plus, on a pendulum with a
+    vertical record, the work ½∫κ'|X|² dt of the vertical motion; the balance
+    ``input = kinetic + potential + friction + viscous`` holds to
+    ``energy_balance_error_J_per_kg``.
+    """
+
+    time_s: np.ndarray
+    ground_acceleration_m_s2: np.ndarray  #: (N, 2)
+    vertical_acceleration_m_s2: np.ndarray | None  #: (N,) or None
+    displacement_m: np.ndarray  #: (N, 2), block minus ground
+    velocity_m_s: np.ndarray  #: (N, 2)
+    absolute_acceleration_m_s2: np.ndarray  #: (N, 2), acceleration of the mass (transmitted)
+    event_time_s: np.ndarray
+    event_kind: np.ndarray  #: codes into PLANAR_EVENT_NAMES
+    peak_displacement_m: float
+    residual_displacement_m: float
+    residual_displacement_x_m: float
+    residual_displacement_y_m: float
+    peak_velocity_m_s: float
+    peak_transmitted_acceleration_m_s2: float
+    slip_time_s: float  #: time with V ≠ 0 (sliding or in flight) [s]
+    uplift_time_s: float  #: time with n = g + a_z ≤ 0 [s]
+    n_uplifts: int
+    n_events: int
+    energy_input_J_per_kg: float
+    energy_friction_J_per_kg: float
+    energy_viscous_J_per_kg: float
+    energy_kinetic_final_J_per_kg: float
+    energy_potential_final_J_per_kg: float
+    energy_balance_error_J_per_kg: float
+    #: cumulative energies at the samples [J/kg], rows: input, friction, viscous
+    energy_history_J_per_kg: np.ndarray
+    solver_seconds: float
+    status: int
+    message: str
+    model: str
+    model_reason: str
+    configuration: str = "1"
+    n_steps: int = 0
+
+    @property
+    def event_names(self) -> list[str]:
+        """Event kinds as words (breakaway, stick, reversal, uplift, landing)."""
+        return [PLANAR_EVENT_NAMES[k] for k in self.event_kind]
+
+    @property
+    def resultant_displacement_m(self) -> np.ndarray:
+        """|X| at the samples [m]."""
+        return np.hypot(self.displacement_m[:, 0], self.displacement_m[:, 1])
+
+    def summary(self) -> dict:
+        """Scalar results; the keys of :meth:`Response.summary` where the quantity is the same."""
+        return {
+            "model": self.model,
+            "model_reason": self.model_reason,
+            "peak_displacement_m": self.peak_displacement_m,
+            "residual_displacement_m": self.residual_displacement_m,
+            "residual_displacement_x_m": self.residual_displacement_x_m,
+            "residual_displacement_y_m": self.residual_displacement_y_m,
+            "peak_velocity_m_s": self.peak_velocity_m_s,
+            "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
+            "slip_time_s": self.slip_time_s,
+            "uplift_time_s": self.uplift_time_s,
+            "n_uplifts": self.n_uplifts,
+            "n_events": self.n_events,
+            "energy_input": self.energy_input_J_per_kg,
+            "energy_friction": self.energy_friction_J_per_kg,
+            "energy_viscous": self.energy_viscous_J_per_kg,
+            "energy_kinetic_final": self.energy_kinetic_final_J_per_kg,
+            "energy_potential_final": self.energy_potential_final_J_per_kg,
+            "energy_balance_error": self.energy_balance_error_J_per_kg,
+            "solver_seconds": self.solver_seconds,
+            "configuration": self.configuration,
+            "status": self.message,
+        }
+
+
+# ---------------------------------------------------------------------------------------
+# model selection
+# ---------------------------------------------------------------------------------------
+def select_model(*, has_y: bool, has_z: bool, velocity_dependent: bool) -> tuple[str, str]:
+    """The model a scene needs, and why (issue 10, "model only what the scene needs").
+
+    Returns
+    -------
+    tuple of str
+        ``(model, reason)``; model is ``"1d-exact"`` (one component, constant µ, no
+        vertical: the exact closed-form kernel) or ``"2d"`` with the suffixes
+        ``"+vertical"`` (n = g + a_z) and ``"+mu(v)"`` (velocity-dependent friction).
+    """
+    if not (has_y or has_z or velocity_dependent):
+        return "1d-exact", "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
+    name = "2d" + ("+vertical" if has_z else "") + ("+mu(v)" if velocity_dependent else "")
+    needs = []
+    if has_y:
+        needs.append("two horizontal components (coupled friction)")
+    if has_z:
+        needs.append("a vertical component (normal force n = g + a_z)")
+    if velocity_dependent:
+        needs.append("velocity-dependent friction µ(v)")
+    reason = "the 2-D engine, for " + " and ".join(needs)
+    if not has_y:
+        reason += ", with the second horizontal component zero"
+    return name, reason
+
+
+# ---------------------------------------------------------------------------------------
+# inputs
+# ---------------------------------------------------------------------------------------
+def _finite_nonnegative(name: str, value) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise InvalidSystemError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(value) or value < 0.0:
+        raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
+    return value
+
+
+def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per_mass, gravity_m_s2,
+                mu_slow, mu_fast, rate_s_per_m):
+    mu_s = _finite_nonnegative("mu_static", mu_static)
+    law = (mu_slow, mu_fast, rate_s_per_m)
+    velocity_dependent = any(v is not None for v in law)
+    if velocity_dependent and any(v is None for v in law):
+        missing = [n for n, v in zip(("mu_slow", "mu_fast", "rate_s_per_m"), law) if v is None]
+        raise InvalidSystemError(f"velocity-dependent friction needs mu_slow, mu_fast and rate_s_per_m; "
+                                 f"missing {', '.join(missing)}")
+    if velocity_dependent and mu_kinetic is not None:
+        raise InvalidSystemError("give mu_kinetic or (mu_slow, mu_fast, rate_s_per_m), not both")
+    mu_k = mu_s if mu_kinetic is None else _finite_nonnegative("mu_kinetic", mu_kinetic)
+    if mu_k > mu_s:
+        raise InvalidSystemError(f"mu_kinetic ({mu_k}) must not exceed mu_static ({mu_s})")
+    slow = fast = rate = 0.0
+    if velocity_dependent:
+        slow = _finite_nonnegative("mu_slow", mu_slow)
+        fast = _finite_nonnegative("mu_fast", mu_fast)
+        rate = _finite_nonnegative("rate_s_per_m", rate_s_per_m)
+        if slow > fast:
+            raise InvalidSystemError(f"mu_slow ({slow}) must not exceed mu_fast ({fast})")
+        if slow > mu_s:
+            raise InvalidSystemError(f"mu_slow ({slow}) must not exceed mu_static ({mu_s}): "
+                                     "a block that breaks away must be able to slide")
+    kappa = _finite_nonnegative("stiffness_per_mass", stiffness_per_mass)
+    inv_r = 0.0
+    if radius_m is not None:
+        if kappa != 0.0:
+            raise InvalidSystemError("give radius_m (friction pendulum) or stiffness_per_mass, not both")
+        try:
+            radius = float(radius_m)
+        except (TypeError, ValueError):
+            raise InvalidSystemError(f"radius_m must be a number, got {radius_m!r}") from None
+        if not math.isfinite(radius) or radius <= 0.0:
+            raise InvalidSystemError(f"radius_m must be a finite number > 0, got {radius_m!r}")
+        inv_r = 1.0 / radius
+    c = _finite_nonnegative("damping_per_mass", damping_per_mass)
+    g = STANDARD_GRAVITY if gravity_m_s2 is None else float(gravity_m_s2)
+    if not math.isfinite(g) or g <= 0.0:
+        raise InvalidSystemError(f"gravity_m_s2 must be a finite number > 0, got {gravity_m_s2!r}")
+    prm = np.zeros(_rk.P_SIZE)
+    prm[_rk.P_MU_S] = mu_s
+    prm[_rk.P_MU_K] = mu_k
+    prm[_rk.P_MU_SLOW] = slow
+    prm[_rk.P_MU_FAST] = fast
+    prm[_rk.P_RATE] = rate
+    prm[_rk.P_VELDEP] = 1.0 if velocity_dependent else 0.0
+    prm[_rk.P_C] = c
+    prm[_rk.P_KAPPA] = kappa
+    prm[_rk.P_INV_R] = inv_r
+    prm[_rk.P_PENDULUM] = 1.0 if radius_m is not None else 0.0
+    return prm, g, velocity_dependent
+
+
+def _samples(name: str, values, n: int | None = None) -> np.ndarray:
+    arr = np.ascontiguousarray(values, dtype=np.float64)
+    if arr.ndim != 1:
+        raise RecordInputError(f"{name} must be one-dimensional, got shape {arr.shape}")
+    if arr.size < 2:
+        raise RecordInputError(f"{name}: a record needs at least two samples")
+    if n is not None and arr.size != n:
+        raise RecordInputError(f"{name} has {arr.size} samples, the first component {n}")
+    if not np.all(np.isfinite(arr)):
+        raise RecordInputError(f"{name} holds NaN or infinite values")
+    return arr
+
+
+def _times(n: int, dt_s, time_s) -> np.ndarray:
+    if time_s is not None:
+        times = np.ascontiguousarray(time_s, dtype=np.float64)
+        if times.shape != (n,):
+            raise RecordInputError(f"time_s has shape {times.shape}, the accelerations ({n},)")
+        steps = np.diff(times)
+        if not np.all(np.isfinite(times)) or np.any(steps <= 0.0):
+            raise RecordInputError("time_s must be finite and strictly increasing")
+        return times
+    if dt_s is None:
+        raise TypeError("give dt_s or time_s")
+    dt = float(dt_s)
+    if not math.isfinite(dt) or dt <= 0.0:
+        raise RecordInputError(f"dt_s must be a finite number > 0, got {dt_s!r}")
+    return dt * np.arange(n)
+
+
+_READY = False
+
+
+def _warm_up() -> None:
+    # load (or compile) the machine code once, so that solver_seconds measures solving
+    global _READY
+    if _READY:
+        return
+    simulate_pair(np.array([0.0, 2.0, 0.0]), np.array([0.0, 1.0, 0.0]), 0.01, mu_static=0.05,
+                  radius_m=2.0, az_m_s2=np.array([0.0, 1.0, 0.0]), _timed=False)
+    _READY = True
+
+
+def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_static, mu_kinetic=None,
+                  stiffness_per_mass=0.0, radius_m=None, damping_per_mass=0.0, gravity_m_s2=None,
+                  mu_slow=None, mu_fast=None, rate_s_per_m=None, rtol=DEFAULT_RTOL,
+                  _timed=True) -> PairResponse:
+    """Response of a friction isolator to two horizontal components (and a vertical).
+
+    Parameters
+    ----------
+    ax_m_s2, ay_m_s2 : array_like
+        Horizontal ground acceleration samples [m/s²], linear between samples.
+    dt_s : float, optional
+        Sample interval [s]; or give ``time_s``.
+    time_s : array_like, optional
+        Sample times [s], strictly increasing, not necessarily uniform (a digitised
+        record is a valid piecewise-linear signal).
+    az_m_s2 : array_like, optional
+        Vertical ground acceleration [m/s²], up positive; the normal force per unit
+        mass is n = g + a_z.
+    mu_static : float
+        Static friction coefficient µs [-], used for every break-away.
+    mu_kinetic : float, optional
+        Constant kinetic coefficient µk ≤ µs [-] (default µs).
+    stiffness_per_mass : float
+        K/M [1/s²] of a flat slider with a spring.
+    radius_m : float, optional
+        Radius of a friction pendulum [m]: κ(t) = n(t)/R.
+    damping_per_mass : float
+        c = γ/M [1/s].
+    gravity_m_s2 : float, optional
+        g [m/s²], standard gravity by default.
+    mu_slow, mu_fast, rate_s_per_m : float, optional
+        Velocity-dependent friction µ(v) = µ_fast − (µ_fast − µ_slow) e^{−a v} with
+        a = rate_s_per_m [s/m]; all three or none.
+    rtol : float
+        Relative tolerance of the integration steps [-].
+
+    Returns
+    -------
+    PairResponse
+    """
+    prm, g, velocity_dependent = _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m,
+                                             damping_per_mass, gravity_m_s2, mu_slow, mu_fast, rate_s_per_m)
+    ax = _samples("ax_m_s2", ax_m_s2)
+    ay = _samples("ay_m_s2", ay_m_s2, ax.size)
+    az = None if az_m_s2 is None else _samples("az_m_s2", az_m_s2, ax.size)
+    times = _times(ax.size, dt_s, time_s)
+    if _timed:
+        _warm_up()
+    n = ax.size
+    nz = np.full(n, g) if az is None else g + az
+    steps = np.diff(times)
+    pga = float(np.max(np.hypot(ax, ay)))
+    vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * float(np.median(steps))
+    scales = np.empty(_pk.SC_SIZE)
+    scales[_pk.SC_R_MIN] = 1e-13 * vref
+    scales[_pk.SC_R_SWITCH] = 1e-4 * vref
+    scales[_pk.SC_X_FLOOR] = 1e-3 * vref * float(np.median(steps))
+    scales[_pk.SC_V_FLOOR] = 1e-3 * vref
+    refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)
+    out_x = np.empty((n, 2))
+    out_v = np.empty((n, 2))
+    out_a = np.empty((n, 2))
+    out_en = np.empty((3, n))
+    summary = np.zeros(_pk.S_SIZE)
+    capacity = 64 + n // 4
+    while True:
+        ev_t = np.empty(capacity)
+        ev_k = np.empty(capacity, dtype=np.int8)
+        start = time.perf_counter()
+        _pk.planar_kernel(times - times[0], ax, ay, nz, prm, scales, float(rtol), refresh, out_x, out_v, out_a,
+                          out_en, ev_t, ev_k, summary)
+        elapsed = time.perf_counter() - start
+        n_events = int(summary[_pk.S_N_EVENTS])
+        if n_events <= capacity:
+            break
+        capacity = n_events + 16
+    status = int(summary[_pk.S_STATUS])
+    messages = [text for bit, text in _STATUS_MESSAGES if status & bit]
+    kappa_end = (max(nz[-1], 0.0) * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA])
+    kappa_nominal = g * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
+    e_in, e_f, e_v = (float(summary[j]) for j in (_pk.S_E_IN, _pk.S_E_F, _pk.S_E_V))
+    e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
+    e_pot = 0.5 * kappa_end * float(out_x[-1, 0] ** 2 + out_x[-1, 1] ** 2)
+    model, reason = select_model(has_y=bool(np.any(ay != 0.0)), has_z=az is not None,
+                                 velocity_dependent=velocity_dependent)
+    return PairResponse(
+        time_s=times,
+        ground_acceleration_m_s2=np.column_stack((ax, ay)),
+        vertical_acceleration_m_s2=az,
+        displacement_m=out_x,
+        velocity_m_s=out_v,
+        absolute_acceleration_m_s2=out_a,
+        event_time_s=times[0] + ev_t[:n_events],
+        event_kind=ev_k[:n_events],
+        peak_displacement_m=float(summary[_pk.S_PEAK_X]),
+        residual_displacement_m=float(math.hypot(out_x[-1, 0], out_x[-1, 1])),
+        residual_displacement_x_m=float(out_x[-1, 0]),
+        residual_displacement_y_m=float(out_x[-1, 1]),
+        peak_velocity_m_s=float(summary[_pk.S_PEAK_V]),
+        peak_transmitted_acceleration_m_s2=float(summary[_pk.S_PEAK_A]),
+        slip_time_s=float(summary[_pk.S_SLIP_TIME]),
+        uplift_time_s=float(summary[_pk.S_UPLIFT_TIME]),
+        n_uplifts=int(summary[_pk.S_N_UPLIFTS]),
+        n_events=n_events,
+        energy_input_J_per_kg=e_in,
+        energy_friction_J_per_kg=e_f,
+        energy_viscous_J_per_kg=e_v,
+        energy_kinetic_final_J_per_kg=e_kin,
+        energy_potential_final_J_per_kg=e_pot,
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v),
+        energy_history_J_per_kg=out_en,
+        solver_seconds=elapsed,
+        status=status,
+        message="; ".join(messages) if messages else "ok",
+        model=model,
+        model_reason=reason,
+        configuration=classify_configuration(prm[_rk.P_C], kappa_nominal),
+        n_steps=int(summary[_pk.S_N_STEPS]),
+    )
+
+
+def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, **system):
+    """Response to one component, a pair, or a pair and a vertical, with the model the scene needs.
+
+    One component, constant friction, no vertical and uniform sampling → the exact
+    1-D kernel (:func:`simulate_record`, a :class:`Response`); anything else → the
+    2-D engine (:func:`simulate_pair`, a :class:`PairResponse`; a single component
+    runs with a_y = 0).  ``model`` and ``model_reason`` say which ran and why.
+
+    Parameters
+    ----------
+    ax_m_s2, ay_m_s2, az_m_s2 : array_like
+        Ground acceleration [m/s²]; ``ay``/``az`` optional.
+    dt_s, time_s
+        Sampling, as in :func:`simulate_pair`.
+    **system
+        The keywords of :func:`simulate_pair` (mu_static, mu_kinetic, radius_m, …).
+    """
+    velocity_dependent = any(system.get(k) is not None for k in ("mu_slow", "mu_fast", "rate_s_per_m"))
+    model, reason = select_model(has_y=ay_m_s2 is not None, has_z=az_m_s2 is not None,
+                                 velocity_dependent=velocity_dependent)
+    if model == "1d-exact":
+        uniform = True
+        if time_s is not None:
+            steps = np.diff(np.asarray(time_s, dtype=np.float64))
+            if steps.size and np.all(np.isfinite(steps)) and np.all(steps > 0.0):
+                dt = (steps.sum()) / steps.size
+                uniform = bool(np.max(np.abs(steps - dt)) <= 1e-6 * dt + 1e-12)
+        if uniform:
+            kwargs = dict(system)
+            kwargs.pop("rtol", None)
+            radius = kwargs.pop("radius_m", None)
+            if radius is not None:
+                _parameters(kwargs.get("mu_static", 0.0), kwargs.get("mu_kinetic"),
+                            kwargs.get("stiffness_per_mass", 0.0), radius, kwargs.get("damping_per_mass", 0.0),
+                            kwargs.get("gravity_m_s2"), None, None, None)
+                g = kwargs.get("gravity_m_s2") or STANDARD_GRAVITY
+                kwargs["stiffness_per_mass"] = float(g) / float(radius)
+            result: Response = simulate_record(ax_m_s2, dt_s, time_s=time_s, **kwargs)
+            result.model = model
+            result.model_reason = reason
+            return result
+        reason = ("one horizontal component, constant friction, no vertical, but non-uniform sampling: "
+                  "the 2-D engine with a_y = 0 (the exact 1-D kernel needs a uniform step)")
+    ax = np.asarray(ax_m_s2, dtype=np.float64)
+    ay = np.zeros_like(ax) if ay_m_s2 is None else ay_m_s2
+    result = simulate_pair(ax, ay, dt_s, time_s=time_s, az_m_s2=az_m_s2, **system)
+    if model == "1d-exact":
+        result.model = "2d"
+    result.model_reason = reason
+    return result

@@ -1,0 +1,707 @@
+"""The compiled planar (2-D) record loop: coupled friction, µ(v), n(t) = g + a_z, uplift.
+
+Pure arrays in, arrays out (numba, cached on disk).  The motion between events has
+no closed form; it is integrated by the DOP853 steps of :mod:`planar_rk` with these
+rules, which make the answer depend on the record only through its piecewise-linear
+reading:
+
+* no step crosses a sample (the forcing has a kink there) nor an instant where
+  n = g + a_z changes sign (exact: n is linear in the interval);
+* stuck: the stick test ``|κX + a_g| ≤ µs n`` is a quadratic inequality in local
+  time (a_g, n and κ = n/R are linear), solved in closed form for the first
+  break-away (or uplift) instant — no stepping while stuck;
+* a start from rest runs in the START form, then in Cartesian form; a decelerating
+  block whose predicted stop is within about two steps switches to the LOG form and
+  reaches V = 0 exactly (to r = ``r_min``, then the last 1e-13 of the speed in
+  closed form); there the stick test decides: stick, or restart in the direction
+  of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
+* peaks of |X| and |V| between step ends are located (secant on X·V and V·A with
+  DOP853 sub-steps from the step start);
+* loops are bounded: steps per interval, events per interval (chatter guard).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from isolator.solver.planar_rk import (CARTESIAN, LOG, NSTATE, P_MU_S, P_C, START, dop853_step,
+                                       forcing, friction_coefficient, rhs, step_factor)
+
+# phases of the motion
+PH_STUCK = 0
+PH_SLIDE = 1
+PH_APPROACH = 2
+PH_START = 3
+PH_FLIGHT = 4
+
+# event kinds: the 1-D vocabulary (breakaway, stick, reversal) + uplift, landing
+EV_BREAKAWAY = 0
+EV_STICK = 1
+EV_REVERSAL = 2
+EV_UPLIFT = 3
+EV_LANDING = 4
+
+MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
+MAX_STEPS_PER_INTERVAL = 100000  #: hang guard
+
+STATUS_CHATTER = 1
+STATUS_EVENTS_TRUNCATED = 2
+STATUS_STEP_LIMIT = 4
+
+# summary layout
+S_PEAK_X = 0
+S_PEAK_V = 1
+S_PEAK_A = 2
+S_SLIP_TIME = 3
+S_UPLIFT_TIME = 4
+S_N_UPLIFTS = 5
+S_E_IN = 6
+S_E_F = 7
+S_E_V = 8
+S_N_EVENTS = 9
+S_STATUS = 10
+S_N_STEPS = 11
+S_SIZE = 12
+
+# scales layout (built by isolator.solver.planar)
+SC_R_MIN = 0  #: speed at which the LOG form hands over to the closed-form finish [m/s]
+SC_R_SWITCH = 1  #: speed at which START hands over to Cartesian form [m/s]
+SC_X_FLOOR = 2  #: displacement floor of the absolute tolerance [m]
+SC_V_FLOOR = 3  #: speed floor of the absolute tolerance [m/s]
+SC_SIZE = 4
+
+#: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
+_ENTER = 0.02
+_LEAVE = 0.01
+
+
+@njit(cache=True)
+def _record_event(ev_t, ev_k, n_ev, time, kind):
+    if n_ev < ev_t.shape[0]:
+        ev_t[n_ev] = time
+        ev_k[n_ev] = kind
+    return n_ev + 1
+
+
+@njit(cache=True)
+def _kappa_at(tau, prm, frc):
+    return forcing(tau, 0.0, 0.0, prm, frc)[3]
+
+
+@njit(cache=True)
+def stuck_until(x1, x2, tau0, length, prm, frc):
+    """First instant in [τ0, τ0 + length] where a stuck block must move.
+
+    ``Q(u) = |G(u)|² − µs² n(u)²`` with ``G = κX + a_g`` linear in u = τ − τ0 is a
+    quadratic; the block breaks away at its first upward zero, or lifts off where
+    n reaches 0.
+
+    Returns
+    -------
+    tuple
+        ``(u, uplift)``: the offset u [s] (−1 if stuck throughout) and whether the
+        exit is an uplift (n ≤ 0) rather than a break-away.
+    """
+    mu_s = prm[P_MU_S]
+    _, _, nn, _, kdot, fx, fy = forcing(tau0, x1, x2, prm, frc)
+    n1 = frc[5]
+    u_up = -1.0
+    if nn <= 0.0:
+        return 0.0, True
+    if n1 < 0.0:
+        uu = -nn / n1
+        if uu <= length:
+            u_up = uu
+    gx = -fx
+    gy = -fy
+    g1x = kdot * x1 + frc[1]
+    g1y = kdot * x2 + frc[3]
+    a = g1x * g1x + g1y * g1y - mu_s * mu_s * n1 * n1
+    b = 2.0 * (gx * g1x + gy * g1y - mu_s * mu_s * nn * n1)
+    c = gx * gx + gy * gy - mu_s * mu_s * nn * nn
+    u_b = -1.0
+    if c > 0.0:
+        u_b = 0.0  # already beyond the static friction (e.g. a record that starts above µs n)
+    elif a == 0.0:
+        if b > 0.0:
+            uu = -c / b
+            if uu <= length:
+                u_b = uu
+    else:
+        disc = b * b - 4.0 * a * c
+        if disc >= 0.0:
+            sq = math.sqrt(disc)
+            q = -0.5 * (b + (sq if b >= 0.0 else -sq))
+            r1 = q / a
+            r2 = c / q if q != 0.0 else r1
+            lo = min(r1, r2)
+            hi = max(r1, r2)
+            if 0.0 <= lo <= length and 2.0 * a * lo + b > 0.0:
+                u_b = lo
+            elif 0.0 <= hi <= length and 2.0 * a * hi + b > 0.0:
+                u_b = hi
+    if u_up >= 0.0 and (u_b < 0.0 or u_up < u_b):
+        return u_up, True
+    return u_b, False
+
+
+@njit(cache=True)
+def _restart_or_stick(tau, y, prm, frc):
+    """At rest at τ: True if the static friction holds (|κX + a_g| ≤ µs n, n > 0)."""
+    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return nn > 0.0 and math.hypot(fx, fy) <= prm[P_MU_S] * nn
+
+
+@njit(cache=True)
+def _velocity(phase, x, tau, y, prm, frc):
+    """Relative velocity (V_x, V_y) [m/s] in any phase."""
+    if phase == PH_STUCK:
+        return 0.0, 0.0
+    if phase == PH_APPROACH:
+        r = math.exp(x)
+        return r * y[2], r * y[3]
+    if phase == PH_START:
+        _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+        fm = math.hypot(fx, fy)
+        if fm == 0.0:
+            return 0.0, 0.0
+        return y[2] * fx / fm, y[2] * fy / fm
+    return y[2], y[3]
+
+
+@njit(cache=True)
+def _transmitted(phase, x, tau, y, prm, frc):
+    """Absolute acceleration of the mass (a_x, a_y) [m/s²]: a_g when stuck, else −(friction + κX + cV)."""
+    axx, ayy, nn, kap, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    if phase == PH_STUCK:
+        return axx, ayy
+    v1, v2 = _velocity(phase, x, tau, y, prm, frc)
+    r = math.hypot(v1, v2)
+    c = prm[P_C]
+    e1 = 0.0
+    e2 = 0.0
+    if phase == PH_START:
+        fm = math.hypot(fx, fy)
+        if fm > 0.0:
+            e1 = fx / fm
+            e2 = fy / fm
+    elif r > 0.0:
+        e1 = v1 / r
+        e2 = v2 / r
+    fr = friction_coefficient(r, prm) * nn if (nn > 0.0 and phase != PH_FLIGHT) else 0.0
+    return -fr * e1 - kap * y[0] - c * v1, -fr * e2 - kap * y[1] - c * v2
+
+
+@njit(cache=True)
+def _gval(which, mode, y, d):
+    # d|X|²/2 dt (which 0) or d|V|²/2 dt (which 1) from a state and its derivative
+    if which == 0:
+        g = y[0] * d[0] + y[1] * d[1]
+        if mode == LOG:
+            g /= d[7]
+        return g
+    if mode == CARTESIAN:
+        return y[2] * d[2] + y[3] * d[3]
+    if mode == START:
+        return y[2] * d[2]
+    return -1.0
+
+
+@njit(cache=True)
+def _value(which, mode, y):
+    if which == 0:
+        return math.hypot(y[0], y[1])
+    if mode == CARTESIAN:
+        return math.hypot(y[2], y[3])
+    return abs(y[2])
+
+
+@njit(cache=True)
+def _locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol):
+    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −."""
+    lo = 0.0
+    hi = 1.0
+    glo = g0
+    ghi = g1
+    side = 0
+    best = 0.0
+    theta = glo / (glo - ghi)
+    for _ in range(60):
+        if not (lo < theta < hi):
+            theta = 0.5 * (lo + hi)
+        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        if not ok:
+            hi = theta
+            theta = 0.5 * (lo + hi)
+            continue
+        best = max(best, _value(which, mode, yb))
+        g = _gval(which, mode, yb, fb)
+        if g > 0.0:
+            lo = theta
+            glo = g
+            if side == 1:
+                ghi *= 0.5
+            side = 1
+        else:
+            hi = theta
+            ghi = g
+            if side == -1:
+                glo *= 0.5
+            side = -1
+        if hi - lo < 1e-11:
+            break
+        theta = lo + (hi - lo) * glo / (glo - ghi)
+    return best
+
+
+@njit(cache=True)
+def _land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol):
+    """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
+
+    The component must be monotone on the step, below the target at θ = 0 and
+    at or beyond it at θ = 1 (sign-adjusted); the state at θ is left in ``yb``/``fb``.
+    """
+    lo = 0.0
+    hi = 1.0
+    flo = y[coord] - target
+    fhi = 1.0
+    ok, _ = dop853_step(mode, x, y, f, h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    if ok:
+        fhi = yb[coord] - target
+    sgn = 1.0 if fhi > flo else -1.0
+    flo *= sgn
+    fhi *= sgn
+    theta = 1.0
+    side = 0
+    for _ in range(80):
+        theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+        if not (lo < theta < hi):
+            theta = 0.5 * (lo + hi)
+        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        if not ok:
+            hi = theta
+            continue
+        val = sgn * (yb[coord] - target)
+        if val < 0.0:
+            lo = theta
+            flo = val
+            if side == 1:
+                fhi *= 0.5
+            side = 1
+        else:
+            hi = theta
+            fhi = val
+            if side == -1:
+                flo *= 0.5
+            side = -1
+        if hi - lo < 1e-13 or val == 0.0:
+            break
+    # finish on the upper end of the bracket: the crossing has happened there
+    theta = hi
+    dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    return theta
+
+
+@njit(cache=True)
+def _at_rest(tau, y, prm, frc, f):
+    """The block is at rest at τ: stick (returns PH_STUCK) or restart from rest (PH_START)."""
+    y[2] = 0.0
+    y[3] = 0.0
+    if _restart_or_stick(tau, y, prm, frc):
+        return PH_STUCK
+    rhs(START, tau, y, prm, frc, f)
+    return PH_START
+
+
+@njit(cache=True)
+def _mode_of(phase):
+    if phase == PH_APPROACH:
+        return LOG
+    if phase == PH_START:
+        return START
+    return CARTESIAN
+
+
+@njit(cache=True)
+def _force_scale(tau, y, r, prm, frc):
+    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return math.hypot(fx, fy) + (friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0)
+
+
+@njit(cache=True)
+def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a, out_en, ev_t, ev_k,
+                  summary):
+    """Response of the planar friction block to a piecewise-linear record.
+
+    Parameters
+    ----------
+    t : float64[n]
+        Sample times [s], strictly increasing (not necessarily uniform).
+    ax, ay : float64[n]
+        Ground acceleration samples [m/s²].
+    nz : float64[n]
+        Normal acceleration n = g + a_z at the samples [m/s²].
+    prm : float64[P_SIZE]
+        System (see :mod:`planar_rk`).
+    scales : float64[SC_SIZE]
+        Speed and tolerance scales (see the SC_* constants).
+    rtol : float
+        Relative tolerance of the DOP853 steps [-].
+    refresh : bool
+        Re-evaluate the derivative at each sample (needed when κ' jumps there).
+    out_x, out_v, out_a : float64[n, 2]
+        Filled with X [m], V [m/s] and the absolute acceleration of the mass [m/s²].
+    out_en : float64[3, n]
+        Cumulative input, friction and viscous energy per unit mass [J/kg].
+    ev_t, ev_k : arrays
+        Event times [s] and kinds, while room lasts.
+    summary : float64[S_SIZE]
+        Peaks, times, energies, counts and status.
+    """
+    n = t.shape[0]
+    y = np.zeros(NSTATE)
+    f = np.zeros(NSTATE)
+    ynew = np.zeros(NSTATE)
+    fnew = np.zeros(NSTATE)
+    ytmp = np.zeros(NSTATE)
+    yb = np.zeros(NSTATE)
+    fb = np.zeros(NSTATE)
+    k = np.zeros((13, NSTATE))
+    atol = np.full(NSTATE, np.inf)
+    frc = np.zeros(6)
+    phase = PH_STUCK
+    x = 0.0
+    h_sugg = -1.0
+    ds_sugg = -0.5
+    r_min = scales[SC_R_MIN]
+    r_switch = scales[SC_R_SWITCH]
+    s_end = math.log(r_min)
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_a = math.hypot(ax[0], ay[0])
+    slip = 0.0
+    upt = 0.0
+    n_up = 0
+    n_ev = 0
+    status = 0
+    n_steps = 0
+    failed_at = -1
+    out_x[0, 0] = 0.0
+    out_x[0, 1] = 0.0
+    out_v[0, 0] = 0.0
+    out_v[0, 1] = 0.0
+    out_a[0, 0] = ax[0]
+    out_a[0, 1] = ay[0]
+    out_en[0, 0] = 0.0
+    out_en[1, 0] = 0.0
+    out_en[2, 0] = 0.0
+    for i in range(n - 1):
+        hi = t[i + 1] - t[i]
+        t0 = t[i]
+        frc[0] = ax[i]
+        frc[1] = (ax[i + 1] - ax[i]) / hi
+        frc[2] = ay[i]
+        frc[3] = (ay[i + 1] - ay[i]) / hi
+        frc[4] = nz[i]
+        frc[5] = (nz[i + 1] - nz[i]) / hi
+        tau = 0.0
+        if phase == PH_APPROACH:
+            y[7] = 0.0
+        elif phase != PH_STUCK:
+            x = 0.0
+        if refresh and phase != PH_STUCK:
+            rhs(_mode_of(phase), x, y, prm, frc, f)
+        tz = hi
+        if (nz[i] > 0.0 > nz[i + 1]) or (nz[i] < 0.0 < nz[i + 1]):
+            tz = nz[i] / (nz[i] - nz[i + 1]) * hi
+        crossed = tz >= hi
+        nplus = nz[i] if nz[i] != 0.0 else nz[i + 1]
+        # contact state just after the sample
+        if phase == PH_FLIGHT and nplus > 0.0:
+            n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_LANDING)
+            if y[2] != 0.0 or y[3] != 0.0:
+                phase = PH_SLIDE
+                rhs(CARTESIAN, 0.0, y, prm, frc, f)
+            else:
+                phase = _at_rest(0.0, y, prm, frc, f)
+                if phase == PH_START:
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_BREAKAWAY)
+                    h_sugg = 0.01 * hi
+        elif phase != PH_FLIGHT and nplus <= 0.0:
+            v1, v2 = _velocity(phase, x, 0.0, y, prm, frc)
+            y[2] = v1
+            y[3] = v2
+            x = 0.0
+            phase = PH_FLIGHT
+            rhs(CARTESIAN, 0.0, y, prm, frc, f)
+            n_up += 1
+            n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_UPLIFT)
+        atol[0] = rtol * max(peak_x, scales[SC_X_FLOOR])
+        atol[1] = atol[0]
+        events_here = 0
+        steps_here = 0
+        while tau < hi:
+            steps_here += 1
+            if steps_here > MAX_STEPS_PER_INTERVAL:
+                status |= STATUS_STEP_LIMIT
+                failed_at = i
+                break
+            target = tz if tau < tz else hi
+            if phase == PH_STUCK:
+                u, up = stuck_until(y[0], y[1], tau, target - tau, prm, frc)
+                tau_new = target if u < 0.0 else min(tau + u, target)
+                y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (_kappa_at(tau_new, prm, frc) - _kappa_at(tau, prm, frc))
+                tau = tau_new
+                if u >= 0.0 and not up:
+                    phase = PH_START
+                    y[2] = 0.0
+                    y[3] = 0.0
+                    rhs(START, tau, y, prm, frc, f)
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                    events_here += 1
+                    h_sugg = 0.01 * hi
+                    a1, a2 = _transmitted(phase, x, tau, y, prm, frc)
+                    peak_a = max(peak_a, math.hypot(a1, a2))
+            elif phase == PH_APPROACH:
+                r = math.exp(x)
+                rdot = r / f[7]
+                fscale = _force_scale(y[7], y, r, prm, frc)
+                if x <= s_end or rdot > -_LEAVE * fscale:
+                    if x > s_end:
+                        # the speed no longer falls fast: back to Cartesian form (a turn, not a stop)
+                        y[2] *= r
+                        y[3] *= r
+                        x = y[7]
+                        phase = PH_SLIDE
+                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                        h_sugg = r / max(fscale, 1e-300)
+                        continue
+                else:
+                    ds = max(ds_sugg, s_end - x)
+                    ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
+                    n_steps += 1
+                    if not ok or err > 1.0:
+                        ds_sugg = ds * (0.25 if not ok else step_factor(err))
+                        if abs(ds_sugg) < 1e-9:
+                            y[2] *= r
+                            y[3] *= r
+                            x = y[7]
+                            phase = PH_SLIDE
+                            rhs(CARTESIAN, tau, y, prm, frc, f)
+                            h_sugg = r / max(fscale, 1e-300)
+                        continue
+                    hit = False
+                    if ynew[7] >= target:
+                        theta = _land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                        ynew[:] = yb
+                        fnew[:] = fb
+                        ds *= theta
+                        ynew[7] = target
+                        hit = True
+                    g0 = _gval(0, LOG, y, f)
+                    g1 = _gval(0, LOG, ynew, fnew)
+                    if g0 > 0.0 >= g1 and max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + \
+                            r * (ynew[7] - y[7]) > peak_x:
+                        peak_x = max(peak_x, _locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, k, ytmp, yb, fb,
+                                                          atol, rtol))
+                    slip += ynew[7] - y[7]
+                    x += ds
+                    y[:] = ynew
+                    f[:] = fnew
+                    tau = y[7]
+                    peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                    if not hit:
+                        ds_sugg = ds * step_factor(err)
+                    if hit or x > s_end:
+                        continue
+                # the stop: the last speed r_min in closed form (constant deceleration)
+                r = math.exp(x)
+                rdot = r / f[7]
+                dtt = min(r / (-rdot), target - tau)
+                axx, ayy, nn, _, _, _, _ = forcing(tau, y[0], y[1], prm, frc)
+                half = 0.5 * r * dtt
+                y[0] += half * y[2]
+                y[1] += half * y[3]
+                y[4] -= (axx * y[2] + ayy * y[3]) * half
+                y[5] += friction_coefficient(0.0, prm) * max(nn, 0.0) * half
+                y[6] += prm[P_C] * r * r * dtt / 3.0
+                tau += dtt
+                slip += dtt
+                peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                phase = _at_rest(tau, y, prm, frc, f)
+                x = tau
+                n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
+                events_here += 1
+                h_sugg = 0.01 * hi
+            else:
+                mode = START if phase == PH_START else CARTESIAN
+                if phase == PH_SLIDE:
+                    r = math.hypot(y[2], y[3])
+                    fscale = _force_scale(tau, y, r, prm, frc)
+                    rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
+                    if r <= r_min and rdot <= 0.0:
+                        phase = _at_rest(tau, y, prm, frc, f)
+                        x = tau
+                        n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau,
+                                             EV_STICK if phase == PH_STUCK else EV_REVERSAL)
+                        events_here += 1
+                        h_sugg = 0.01 * hi
+                        if events_here > MAX_EVENTS_PER_INTERVAL:
+                            status |= STATUS_CHATTER
+                            phase = PH_STUCK
+                            break
+                        continue
+                    if r < 0.5 * r_switch:
+                        # too slow for the Cartesian form (the direction is stiff): slaved-direction form
+                        y[2] = r
+                        y[3] = 0.0
+                        phase = PH_START
+                        rhs(START, tau, y, prm, frc, f)
+                        continue
+                    h_try = h_sugg if h_sugg > 0.0 else target - tau
+                    if rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try:
+                        y[2] /= r
+                        y[3] /= r
+                        y[7] = tau
+                        x = math.log(r)
+                        if rhs(LOG, x, y, prm, frc, f):
+                            phase = PH_APPROACH
+                            ds_sugg = -0.5
+                            continue
+                        y[2] *= r
+                        y[3] *= r
+                        x = tau
+                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                hmax = target - tau
+                h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
+                atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
+                atol[3] = atol[2] if mode == CARTESIAN else np.inf
+                ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
+                n_steps += 1
+                if not ok or err > 1.0:
+                    h_sugg = h * (0.25 if not ok else step_factor(err))
+                    continue
+                if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
+                    # it stops again inside the step
+                    theta = _land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    y[:] = yb
+                    slip += theta * h
+                    tau = tau + theta * h if theta < 1.0 else target
+                    peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                    phase = _at_rest(tau, y, prm, frc, f)
+                    x = tau
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
+                    events_here += 1
+                    h_sugg = 0.01 * hi
+                    if events_here > MAX_EVENTS_PER_INTERVAL:
+                        status |= STATUS_CHATTER
+                        phase = PH_STUCK
+                        break
+                    continue
+                for which in range(2):
+                    g0 = _gval(which, mode, y, f)
+                    g1 = _gval(which, mode, ynew, fnew)
+                    if g0 > 0.0 >= g1:
+                        if which == 0:
+                            bound = max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + h * max(
+                                _value(1, mode, y), _value(1, mode, ynew))
+                            if bound > peak_x:
+                                peak_x = max(peak_x, _locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
+                                                                  yb, fb, atol, rtol))
+                        else:
+                            bound = max(_value(1, mode, y), _value(1, mode, ynew)) + h * (
+                                abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
+                            if bound > peak_v:
+                                peak_v = max(peak_v, _locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
+                                                                  yb, fb, atol, rtol))
+                tau = target if h == hmax else tau + h
+                y[:] = ynew
+                f[:] = fnew
+                slip += h
+                if phase == PH_FLIGHT:
+                    upt += h
+                h_sugg = h * step_factor(err)
+                peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                peak_v = max(peak_v, _value(1, mode, y))
+                x = tau
+                if phase == PH_START and y[2] >= r_switch:
+                    v1, v2 = _velocity(PH_START, x, tau, y, prm, frc)
+                    y[2] = v1
+                    y[3] = v2
+                    phase = PH_SLIDE
+                    rhs(CARTESIAN, tau, y, prm, frc, f)
+            if phase != PH_STUCK:
+                a1, a2 = _transmitted(phase, x, tau, y, prm, frc)
+                peak_a = max(peak_a, math.hypot(a1, a2))
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                # chatter guard: let the static friction hold the block to the end of the interval
+                status |= STATUS_CHATTER
+                phase = PH_STUCK
+                y[2] = 0.0
+                y[3] = 0.0
+                break
+            if not crossed and tau >= tz:
+                crossed = True
+                if phase == PH_FLIGHT:
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
+                    events_here += 1
+                    if y[2] != 0.0 or y[3] != 0.0:
+                        phase = PH_SLIDE
+                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                    else:
+                        phase = _at_rest(tau, y, prm, frc, f)
+                        if phase == PH_START:
+                            n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                            h_sugg = 0.01 * hi
+                else:
+                    v1, v2 = _velocity(phase, x, tau, y, prm, frc)
+                    y[2] = v1
+                    y[3] = v2
+                    phase = PH_FLIGHT
+                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                    n_up += 1
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
+                    events_here += 1
+                x = tau
+        if failed_at >= 0:
+            break
+        out_x[i + 1, 0] = y[0]
+        out_x[i + 1, 1] = y[1]
+        v1, v2 = _velocity(phase, x, hi, y, prm, frc)
+        out_v[i + 1, 0] = v1
+        out_v[i + 1, 1] = v2
+        a1, a2 = _transmitted(phase, x, hi, y, prm, frc)
+        out_a[i + 1, 0] = a1
+        out_a[i + 1, 1] = a2
+        peak_a = max(peak_a, math.hypot(a1, a2))
+        out_en[0, i + 1] = y[4]
+        out_en[1, i + 1] = y[5]
+        out_en[2, i + 1] = y[6]
+    if failed_at >= 0:
+        for j in range(failed_at + 1, n):
+            out_x[j, 0] = np.nan
+            out_x[j, 1] = np.nan
+            out_v[j, 0] = np.nan
+            out_v[j, 1] = np.nan
+            out_a[j, 0] = np.nan
+            out_a[j, 1] = np.nan
+            out_en[0, j] = np.nan
+            out_en[1, j] = np.nan
+            out_en[2, j] = np.nan
+    if n_ev > ev_t.shape[0]:
+        status |= STATUS_EVENTS_TRUNCATED
+    summary[S_PEAK_X] = peak_x
+    summary[S_PEAK_V] = peak_v
+    summary[S_PEAK_A] = peak_a
+    summary[S_SLIP_TIME] = slip
+    summary[S_UPLIFT_TIME] = upt
+    summary[S_N_UPLIFTS] = n_up
+    summary[S_E_IN] = y[4]
+    summary[S_E_F] = y[5]
+    summary[S_E_V] = y[6]
+    summary[S_N_EVENTS] = n_ev
+    summary[S_STATUS] = status
+    summary[S_N_STEPS] = n_steps

@@ -1,0 +1,247 @@
+r"""Right-hand sides and the Dormand–Prince 8(5,3) step of the planar (2-D) kernel.
+
+Per unit mass, relative to the ground, inside one sample interval (local time τ):
+
+.. math::  X'' = -\mu(|V|)\, n(\tau)\, V/|V| - \kappa(\tau) X - c V - a_g(\tau)
+
+with :math:`a_g`, :math:`n = g + a_z` linear in τ and κ = n/R (pendulum) or K/M.
+Writing :math:`F = -\kappa X - a_g` for the non-dissipative force, the motion is
+integrated in one of three forms (``mode``), each regular where it is used:
+
+* ``CARTESIAN`` (0): state (X, V), independent variable τ; sliding away from V = 0
+  and free flight (no friction while n ≤ 0).
+* ``LOG`` (1): approach to a stop.  V = r e with r = |V|, independent variable
+  s = ln r (decreasing).  Since :math:`\dot r = -\mu n + e\cdot F - c r < 0`,
+
+  .. math::  \frac{d\tau}{ds} = \frac{r}{\dot r},\quad
+             \frac{dX}{ds} = \frac{r^2 e}{\dot r},\quad
+             \frac{de}{ds} = \frac{F - (e\cdot F) e}{\dot r},
+
+  all smooth down to r → 0, where V/|V| is singular in Cartesian form: the stop
+  (a finite-time event under Coulomb friction) is reached without ever
+  regularising the friction law.
+* ``START`` (2): the first instants after a start from rest (break-away or a
+  stop the static friction cannot hold).  The velocity direction is slaved to
+  F (its relaxation rate |F|/r is unbounded as r → 0, an infinitely stiff mode),
+  so the motion is integrated as r' = |F| − µ(r) n − c r, X' = r F/|F| until r
+  reaches a small switch value; the neglected lag of the direction changes r' by
+  ≈ ω_F² r²/(2|F|) (ω_F the turning rate of F), below 1e-15 of the motion there.
+
+Energies per unit mass are integrated with the motion (components 4–6): input
+``-a_g·V + ½ κ' |X|²`` (the second term is the work of the vertical motion on a
+pendulum), friction ``µ n |V|`` and viscous ``c |V|²``.
+
+The step is Dormand & Prince's DOP853 (Hairer, Nørsett & Wanner, *Solving ODEs I*,
+§II.10) with scipy's coefficient tables and its 5th/3rd-order error estimate.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from scipy.integrate._ivp import dop853_coefficients as _dop
+
+CARTESIAN = 0
+LOG = 1
+START = 2
+
+#: state size: X (2), V or e or (r, -) (2), energies input/friction/viscous (3), τ (log mode)
+NSTATE = 8
+
+# parameter vector layout (built by isolator.solver.planar)
+P_MU_S = 0
+P_MU_K = 1
+P_MU_SLOW = 2
+P_MU_FAST = 3
+P_RATE = 4
+P_VELDEP = 5
+P_C = 6
+P_KAPPA = 7
+P_INV_R = 8
+P_PENDULUM = 9
+P_SIZE = 10
+
+_A = np.ascontiguousarray(_dop.A[:12, :12])
+_B = np.ascontiguousarray(_dop.B)
+_C = np.ascontiguousarray(_dop.C[:12])
+_E3 = np.ascontiguousarray(_dop.E3)
+_E5 = np.ascontiguousarray(_dop.E5)
+
+
+@njit(cache=True)
+def friction_coefficient(r, prm):
+    """µ(|V|) [-]: constant µk, or µ_fast − (µ_fast − µ_slow) e^{−a |V|}."""
+    if prm[P_VELDEP] > 0.0:
+        return prm[P_MU_FAST] - (prm[P_MU_FAST] - prm[P_MU_SLOW]) * math.exp(-prm[P_RATE] * r)
+    return prm[P_MU_K]
+
+
+@njit(cache=True)
+def forcing(tau, x1, x2, prm, frc):
+    """Ground and normal force at local time τ.
+
+    Returns
+    -------
+    tuple of float
+        ``(a_x, a_y, n, κ, κ', F_x, F_y)``: ground acceleration [m/s²], normal
+        acceleration n = g + a_z [m/s²], stiffness per mass κ [1/s²] and its rate
+        [1/s³], and the non-dissipative force F = −κX − a_g [m/s²].
+    """
+    axx = frc[0] + frc[1] * tau
+    ayy = frc[2] + frc[3] * tau
+    nn = frc[4] + frc[5] * tau
+    if prm[P_PENDULUM] > 0.0:
+        if nn > 0.0:
+            kap = nn * prm[P_INV_R]
+            kdot = frc[5] * prm[P_INV_R]
+        else:
+            kap = 0.0  # uplift: the dish carries no load, so no restoring force
+            kdot = 0.0
+    else:
+        kap = prm[P_KAPPA]
+        kdot = 0.0
+    return axx, ayy, nn, kap, kdot, -kap * x1 - axx, -kap * x2 - ayy
+
+
+@njit(cache=True)
+def rhs(mode, x, y, prm, frc, d):
+    """Derivative of the state in ``mode`` at independent variable ``x`` (into ``d``).
+
+    Returns False where the LOG form is not valid (the speed no longer decreases).
+    """
+    c = prm[P_C]
+    tau = y[7] if mode == LOG else x
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    pin = 0.5 * kdot * (y[0] * y[0] + y[1] * y[1])
+    if mode == CARTESIAN:
+        v1 = y[2]
+        v2 = y[3]
+        r = math.hypot(v1, v2)
+        fr = 0.0
+        e1 = 0.0
+        e2 = 0.0
+        if nn > 0.0 and r > 0.0:
+            fr = friction_coefficient(r, prm) * nn
+            e1 = v1 / r
+            e2 = v2 / r
+        d[0] = v1
+        d[1] = v2
+        d[2] = fx - fr * e1 - c * v1
+        d[3] = fy - fr * e2 - c * v2
+        d[4] = -(axx * v1 + ayy * v2) + pin
+        d[5] = fr * r
+        d[6] = c * r * r
+        d[7] = 0.0
+        return True
+    if mode == START:
+        r = y[2]
+        fm = math.hypot(fx, fy)
+        e1 = 0.0
+        e2 = 0.0
+        if fm > 0.0:
+            e1 = fx / fm
+            e2 = fy / fm
+        fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
+        d[0] = r * e1
+        d[1] = r * e2
+        d[2] = fm - fr - c * r
+        d[3] = 0.0
+        d[4] = -(axx * e1 + ayy * e2) * r + pin
+        d[5] = fr * abs(r)
+        d[6] = c * r * r
+        d[7] = 0.0
+        return True
+    # LOG: independent variable s = ln r
+    r = math.exp(x)
+    e1 = y[2]
+    e2 = y[3]
+    fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
+    ef = e1 * fx + e2 * fy
+    rdot = -fr + ef - c * r
+    if not rdot < 0.0:
+        return False
+    w = 1.0 / rdot
+    rw = r * w
+    d[0] = r * rw * e1
+    d[1] = r * rw * e2
+    d[2] = (fx - ef * e1) * w
+    d[3] = (fy - ef * e2) * w
+    d[4] = (-(axx * e1 + ayy * e2) * r + pin) * rw
+    d[5] = fr * r * rw
+    d[6] = c * r * r * rw
+    d[7] = rw
+    return True
+
+
+@njit(cache=True)
+def dop853_step(mode, x, y, f0, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol):
+    """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
+
+    Parameters
+    ----------
+    atol : float64[NSTATE]
+        Absolute tolerance per component; components with atol = inf are not
+        error-controlled (the energies).
+    rtol : float
+        Relative tolerance [-].
+
+    Returns
+    -------
+    tuple
+        ``(ok, err)``: ok is False if a stage left the domain of ``mode``;
+        err is the scaled error norm (accept when ≤ 1).  ``ynew``/``fnew`` hold the
+        new state and its derivative.
+    """
+    ns = y.shape[0]
+    for j in range(ns):
+        k[0, j] = f0[j]
+    for s in range(1, 12):
+        for j in range(ns):
+            acc = 0.0
+            for m in range(s):
+                acc += _A[s, m] * k[m, j]
+            ytmp[j] = y[j] + h * acc
+        if not rhs(mode, x + _C[s] * h, ytmp, prm, frc, k[s]):
+            return False, np.inf
+    for j in range(ns):
+        acc = 0.0
+        for m in range(12):
+            acc += _B[m] * k[m, j]
+        ynew[j] = y[j] + h * acc
+    if not rhs(mode, x + h, ynew, prm, frc, fnew):
+        return False, np.inf
+    for j in range(ns):
+        k[12, j] = fnew[j]
+    err5 = 0.0
+    err3 = 0.0
+    count = 0
+    for j in range(ns):
+        if not atol[j] < np.inf:
+            continue
+        sc = atol[j] + rtol * max(abs(y[j]), abs(ynew[j]))
+        e5 = 0.0
+        e3 = 0.0
+        for m in range(13):
+            e5 += _E5[m] * k[m, j]
+            e3 += _E3[m] * k[m, j]
+        e5 /= sc
+        e3 /= sc
+        err5 += e5 * e5
+        err3 += e3 * e3
+        count += 1
+    if err5 == 0.0 and err3 == 0.0:
+        return True, 0.0
+    err = abs(h) * err5 / math.sqrt((err5 + 0.01 * err3) * count)
+    if not err < np.inf:
+        return False, np.inf
+    return True, err
+
+
+@njit(cache=True)
+def step_factor(err):
+    """Step-size factor after a step with scaled error ``err`` (order 8 controller)."""
+    if err == 0.0:
+        return 10.0
+    return min(10.0, max(0.2, 0.9 * err ** (-1.0 / 8.0)))
