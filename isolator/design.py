@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import difflib
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from isolator.units import STANDARD_GRAVITY
@@ -41,7 +41,36 @@ DESIGN_KEYS = {
     "mu_kinetic": "kinetic friction coefficient µk [-], 0 <= µk <= µs (default µs)",
     "damping_Ns_per_m": "supplemental linear damper γ [N·s/m], >= 0",
     "damping_ratio": "supplemental damper as a fraction of critical at sqrt(K/M) [-], >= 0",
+    "mu_slow": "velocity-dependent friction: µ at zero sliding velocity [-], 0 <= µ_slow <= µ_fast",
+    "mu_fast": "velocity-dependent friction: µ at high sliding velocity [-], < 1",
+    "rate_s_per_m": "velocity-dependent friction: rate a in µ(v) = µ_fast - (µ_fast - µ_slow) exp(-a|v|) [s/m], > 0",
+    "displacement_capacity_m": "displacement capacity of the bearing (resultant) [m], > 0",
+    "lambda_max": "upper-bound property modification factor on µ [-], >= 1",
+    "lambda_min": "lower-bound property modification factor on µ [-], 0 < λ_min <= 1",
+    "mu_upper": "upper-bound kinetic friction coefficient [-], >= µk",
+    "mu_lower": "lower-bound kinetic friction coefficient [-], 0 < µ_lower <= µk",
+    "lambda_ae_max": "λ for aging and environment, maximum [-], >= 1",
+    "lambda_ae_min": "λ for aging and environment, minimum [-], 0 < λ <= 1",
+    "lambda_test_max": "λ for heating, rate and scragging (prototype tests), maximum [-], >= 1",
+    "lambda_test_min": "λ for heating, rate and scragging (prototype tests), minimum [-], 0 < λ <= 1",
+    "lambda_spec_max": "λ for permitted manufacturing variation, maximum [-], >= 1",
+    "lambda_spec_min": "λ for permitted manufacturing variation, minimum [-], 0 < λ <= 1",
+    "plan": "table: plan dimensions b_m, d_m [m], eccentricity_m [m], y_m [m] or P_T [-] (torsion factor)",
 }
+
+#: keys of the optional ``[plan]`` table
+PLAN_KEYS = {
+    "b_m": "plan dimension b [m], > 0",
+    "d_m": "plan dimension d [m], > 0",
+    "eccentricity_m": "actual eccentricity between the centres of mass and rigidity [m], >= 0 (default 0)",
+    "y_m": "distance from the centre of rigidity to the bearing considered, perpendicular to the loading [m], >= 0",
+    "P_T": "ratio of torsional to translational period of the isolation system [-], > 0",
+}
+
+#: the three ways a file may give the bounds of µ (one at most)
+BOUND_FORMS = (("lambda_max", "lambda_min"), ("mu_upper", "mu_lower"),
+               ("lambda_ae_max", "lambda_ae_min", "lambda_test_max", "lambda_test_min", "lambda_spec_max",
+                "lambda_spec_min"))
 
 
 def load_toml(path, what: str, error_type: type[Exception]) -> dict:
@@ -123,6 +152,17 @@ class Design:
         Where the design came from (file name) [-].
     gravity_m_s2 : float
         Gravity used for K = M g / R and for the friction force [m/s²].
+    mu_slow, mu_fast : float or None
+        Velocity-dependent friction µ(v) = µ_fast − (µ_fast − µ_slow) exp(−a|v|) [-] (all three or none).
+    rate_s_per_m : float or None
+        The rate a of µ(v) [s/m].
+    displacement_capacity_m : float or None
+        Displacement capacity of the bearing (resultant) [m].
+    property_factors : dict
+        The bounding keys as given (``lambda_max``/``lambda_min``, ``mu_upper``/``mu_lower`` or the
+        λ_ae/λ_test/λ_spec factors) [-]; combined per code by :mod:`isolator.review.bounds`.
+    plan : dict or None
+        The ``[plan]`` table: ``b_m``, ``d_m``, ``eccentricity_m``, ``y_m`` or ``P_T``.
     """
 
     name: str
@@ -136,6 +176,12 @@ class Design:
     description: str = ""
     source: str = "<design>"
     gravity_m_s2: float = STANDARD_GRAVITY
+    mu_slow: float | None = None
+    mu_fast: float | None = None
+    rate_s_per_m: float | None = None
+    displacement_capacity_m: float | None = None
+    property_factors: dict = field(default_factory=dict)
+    plan: dict | None = None
 
     # ---- construction ----------------------------------------------------------------
 
@@ -155,6 +201,8 @@ class Design:
         Design
         """
         mapping = load_toml(path, "design file", DesignError)
+        if isinstance(mapping, dict) and "name" not in mapping:
+            mapping = {"name": Path(path).stem, **mapping}  # the file's stem names an unnamed design
         return cls.from_mapping(mapping, source=str(path), gravity_m_s2=gravity_m_s2)
 
     @classmethod
@@ -238,10 +286,58 @@ class Design:
             damping = 2.0 * damping_ratio * math.sqrt(stiffness * mass_kg)
         else:
             damping = number("damping_Ns_per_m") or 0.0
+
+        # velocity-dependent friction (all three or none): 0 <= µ_slow <= µ_fast < 1, a > 0
+        velocity_keys = ("mu_slow", "mu_fast", "rate_s_per_m")
+        given = [key for key in velocity_keys if key in mapping]
+        mu_slow = mu_fast = rate = None
+        if given:
+            if len(given) != 3:
+                missing = [key for key in velocity_keys if key not in mapping]
+                raise fail(f"velocity-dependent friction needs 'mu_slow', 'mu_fast' and 'rate_s_per_m' together; "
+                           f"missing {', '.join(repr(k) for k in missing)}")
+            mu_slow, mu_fast = number("mu_slow"), number("mu_fast")
+            rate = number("rate_s_per_m", strict=True)
+            if mu_slow > mu_fast:
+                raise fail(f"key 'mu_slow' ({mu_slow:g}) must not exceed 'mu_fast' ({mu_fast:g})")
+            if mu_fast >= 1.0:
+                raise fail(f"key 'mu_fast' must be < 1 for a sliding isolator, got {mu_fast:g}")
+        capacity = number("displacement_capacity_m", strict=True)
+        factors = _property_factors(mapping, number, fail, mu_kinetic)
+        plan = _plan(mapping.get("plan"), fail)
         return cls(name=name.strip(), mass_kg=mass_kg, mu_static=mu_static, mu_kinetic=mu_kinetic,
                    radius_m=radius_m, stiffness_N_per_m=stiffness, damping_Ns_per_m=damping,
                    damping_ratio_input=damping_ratio, description=description, source=source,
-                   gravity_m_s2=g)
+                   gravity_m_s2=g, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate,
+                   displacement_capacity_m=capacity, property_factors=factors, plan=plan)
+
+    def with_friction_factor(self, factor: float, label: str) -> Design:
+        """The same design with every friction coefficient multiplied by ``factor`` (a property bound).
+
+        Parameters
+        ----------
+        factor : float
+            λ applied to µs, µk and µ_slow/µ_fast [-], > 0.
+        label : str
+            Appended to the name, e.g. ``"upper bound"``.
+
+        Returns
+        -------
+        Design
+        """
+        if not (factor > 0 and math.isfinite(factor)):
+            raise DesignError(f"{self.source}: property modification factor must be > 0, got {factor!r}")
+        if self.mu_static * factor >= 1.0 or (self.mu_fast is not None and self.mu_fast * factor >= 1.0):
+            raise DesignError(f"{self.source}: µ × λ = {self.mu_static * factor:g} must stay < 1 ({label})")
+        scale = (lambda mu: None if mu is None else mu * factor)  # noqa: E731
+        return replace(self, name=f"{self.name} ({label})", mu_static=self.mu_static * factor,
+                       mu_kinetic=self.mu_kinetic * factor, mu_slow=scale(self.mu_slow),
+                       mu_fast=scale(self.mu_fast))
+
+    @property
+    def velocity_dependent(self) -> bool:
+        """True when µ(v) is given (µ_slow, µ_fast, a)."""
+        return self.rate_s_per_m is not None
 
     # ---- derived quantities -------------------------------------------------------------
 
@@ -347,4 +443,62 @@ class Design:
             "damping_ratio": self.damping_ratio,
             "isolated_period_s": self.isolated_period_s,
             "gravity_m_s2": self.gravity_m_s2,
+            "mu_slow": self.mu_slow,
+            "mu_fast": self.mu_fast,
+            "rate_s_per_m": self.rate_s_per_m,
+            "displacement_capacity_m": self.displacement_capacity_m,
+            "property_factors": dict(self.property_factors),
+            "plan": None if self.plan is None else dict(self.plan),
         }
+
+
+def _property_factors(mapping: dict, number, fail, mu_kinetic: float) -> dict:
+    """The bounding keys of a design file, checked (one form, pairs complete, λ_min ≤ 1 ≤ λ_max)."""
+    forms = [form for form in BOUND_FORMS if any(key in mapping for key in form)]
+    if not forms:
+        return {}
+    if len(forms) > 1:
+        raise fail(f"give the friction bounds one way: {'/'.join(forms[0][:2])} or {'/'.join(forms[1][:2])}, "
+                   "not both")
+    form = forms[0]
+    missing = [key for key in form if key not in mapping]
+    if missing:
+        raise fail(f"missing key '{missing[0]}' (bounds need {', '.join(form)})")
+    values = {key: number(key, strict=True) for key in form}
+    if form[0] == "mu_upper":
+        if values["mu_upper"] < mu_kinetic:
+            raise fail(f"key 'mu_upper' ({values['mu_upper']:g}) must be >= the nominal µk ({mu_kinetic:g})")
+        if values["mu_lower"] > mu_kinetic:
+            raise fail(f"key 'mu_lower' ({values['mu_lower']:g}) must be <= the nominal µk ({mu_kinetic:g})")
+        return values
+    for key, value in values.items():
+        if key.endswith("_max") and value < 1.0:
+            raise fail(f"key '{key}' must be >= 1, got {value:g}")
+        if key.endswith("_min") and value > 1.0:
+            raise fail(f"key '{key}' must be <= 1, got {value:g}")
+    return values
+
+
+def _plan(table, fail) -> dict | None:
+    """The optional ``[plan]`` table, checked."""
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise fail("key 'plan' must be a table ([plan] with b_m, d_m, eccentricity_m, y_m or P_T)")
+    unknown = [key for key in table if key not in PLAN_KEYS]
+    if unknown:
+        close = difflib.get_close_matches(str(unknown[0]), list(PLAN_KEYS), n=1, cutoff=0.5)
+        hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(PLAN_KEYS)})"
+        raise fail(f"unknown key 'plan.{unknown[0]}'{hint}")
+    out = {}
+    for key, value in table.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise fail(f"key 'plan.{key}' must be a finite number, got {value!r}")
+        if value < 0 or (key in ("b_m", "d_m", "P_T") and value == 0):
+            raise fail(f"key 'plan.{key}' must be {'> 0' if key in ('b_m', 'd_m', 'P_T') else '>= 0'}, "
+                       f"got {value:g}")
+        out[key] = float(value)
+    for key in ("b_m", "d_m"):
+        if key not in out:
+            raise fail(f"missing key 'plan.{key}' ({PLAN_KEYS[key]})")
+    return out

@@ -109,7 +109,51 @@ def test_damping_ratio_needs_a_spring():
 
 def test_every_key_is_documented():
     assert set(DESIGN_KEYS) == {"name", "description", "mass_kg", "radius_m", "stiffness_N_per_m", "mu_static",
-                                "mu_kinetic", "damping_Ns_per_m", "damping_ratio"}
+                                "mu_kinetic", "damping_Ns_per_m", "damping_ratio", "mu_slow", "mu_fast",
+                                "rate_s_per_m", "displacement_capacity_m", "lambda_max", "lambda_min", "mu_upper",
+                                "mu_lower", "lambda_ae_max", "lambda_ae_min", "lambda_test_max", "lambda_test_min",
+                                "lambda_spec_max", "lambda_spec_min", "plan"}
+
+
+REVIEW_INVALID = [
+    ({"mu_slow": 0.02, "mu_fast": 0.05}, "missing 'rate_s_per_m'"),
+    ({"mu_slow": 0.06, "mu_fast": 0.05, "rate_s_per_m": 20.0}, "'mu_slow' (0.06) must not exceed 'mu_fast'"),
+    ({"mu_slow": -0.01, "mu_fast": 0.05, "rate_s_per_m": 20.0}, "'mu_slow' must be >= 0"),
+    ({"mu_slow": 0.02, "mu_fast": 1.0, "rate_s_per_m": 20.0}, "'mu_fast' must be < 1"),
+    ({"mu_slow": 0.02, "mu_fast": 0.05, "rate_s_per_m": 0.0}, "'rate_s_per_m' must be > 0"),
+    ({"displacement_capacity_m": 0.0}, "'displacement_capacity_m' must be > 0"),
+    ({"lambda_max": 1.2}, "missing key 'lambda_min'"),
+    ({"lambda_max": 0.9, "lambda_min": 0.8}, "'lambda_max' must be >= 1"),
+    ({"lambda_max": 1.3, "lambda_min": 1.1}, "'lambda_min' must be <= 1"),
+    ({"lambda_max": 1.3, "lambda_min": 0.9, "mu_upper": 0.08, "mu_lower": 0.04}, "one way"),
+    ({"mu_upper": 0.03, "mu_lower": 0.02}, "'mu_upper' (0.03) must be >= the nominal"),
+    ({"plan": {"b_m": 30.0}}, "missing key 'plan.d_m'"),
+    ({"plan": {"b_m": 30.0, "d_m": 20.0, "ecc": 1.0}}, "unknown key 'plan.ecc'"),
+    ({"plan": {"b_m": -30.0, "d_m": 20.0}}, "'plan.b_m' must be > 0"),
+]
+
+
+@pytest.mark.parametrize("change,words", REVIEW_INVALID)
+def test_review_keys_invalid(change, words):
+    with pytest.raises(DesignError) as info:
+        Design.from_mapping(dict(BASE, **change), source="design.toml")
+    assert str(info.value).startswith("design.toml: ") and words in str(info.value)
+
+
+def test_review_keys_valid_and_bounds_scale_every_mu():
+    d = Design.from_mapping(dict(BASE, mu_kinetic=0.05, mu_slow=0.03, mu_fast=0.05, rate_s_per_m=20.0,
+                                 displacement_capacity_m=0.5, lambda_max=1.3, lambda_min=0.8,
+                                 plan={"b_m": 30.0, "d_m": 20.0, "y_m": 15.0}))
+    assert d.velocity_dependent and d.displacement_capacity_m == 0.5 and d.plan["y_m"] == 15.0
+    up = d.with_friction_factor(1.3, "upper bound")
+    assert (up.mu_static, up.mu_kinetic, up.mu_slow, up.mu_fast) == pytest.approx((0.078, 0.065, 0.039, 0.065))
+    assert up.name == "t (upper bound)" and up.radius_m == d.radius_m
+
+
+def test_name_defaults_to_the_file_stem(tmp_path):
+    path = tmp_path / "my_bearing.toml"
+    path.write_text("mass_kg = 10\nradius_m = 1\nmu_static = 0.1\n")
+    assert Design.from_toml(path).name == "my_bearing"
 
 
 def test_toml_file_errors(tmp_path):

@@ -75,7 +75,8 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
     d, p, r, im = a.design, a.adaptation.point, a.response, a.adaptation.intensity
     eng = a.engineering
     fig.text(0.05, 0.945, "Friction isolator - engineering review", fontsize=11, va="top")
-    design_rows = [("name", d.name), ("design file", Path(d.source).name),
+    design_rows = [("name", textwrap.shorten(d.name, 38, placeholder="…")),
+                   ("design file", _tail(Path(d.source).name, 38)),
                    ("type", "friction pendulum" if d.is_pendulum else "flat slider with spring"),
                    ("mass M", f"{d.mass_kg:.6g} kg  (W = {fmt(d.weight_N / 1e3)} kN)")]
     if d.description:
@@ -155,7 +156,19 @@ def _summary_page(plt, a: Analysis, summary: dict, command: str):
         y -= 0.0145
     y_right = y - 0.01
     y = min(y_left, y_right) - 0.005
-    fig.text(0.05, y, "Verdicts", fontsize=9.5, weight="bold", va="top")
+    fig.text(0.05, y, "Checks that apply to one record (nominal properties; `isolator review` for a suite)",
+             fontsize=9.5, weight="bold", va="top")
+    y -= 0.02
+    colours = {"pass": "#1a7f37", "fail": "#c62828", "not checked": "#6e6e6e"}
+    for row in summary["checks"]:
+        fig.text(0.06, y, row["id"], fontsize=7.6, va="top")
+        fig.text(0.25, y, f"{fmt(row['value'])} vs {fmt(row['limit'])} {row['unit']}", fontsize=7.6, va="top")
+        fig.text(0.42, y, row["status"], fontsize=7.6, va="top", weight="bold", color=colours[row["status"]])
+        fig.text(0.52, y, textwrap.shorten(f"{row['clause']}; {row['note']}", 72, placeholder="…"), fontsize=6.4,
+                 va="top", color="0.3")
+        y -= 0.0132
+    y -= 0.006
+    fig.text(0.05, y, "Notes (the paper's measures are labelled as such)", fontsize=9.5, weight="bold", va="top")
     y -= 0.02
     notes = list(verdicts(a))
     if a.scaling_note:

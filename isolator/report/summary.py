@@ -73,6 +73,13 @@ def analyse(design: Design, motion, *, record_label: str = "", scaling_note: str
                     created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
 
 
+def checks(analysis: Analysis) -> list[dict]:
+    """The review checks that apply to one record (:func:`isolator.review.record_checks.record_checks`)."""
+    from isolator.review.record_checks import record_checks
+
+    return record_checks(analysis.design, analysis.motion, analysis.engineering)
+
+
 def verdicts(analysis: Analysis) -> list[str]:
     """Plain sentences for the summary page."""
     rc, hc = analysis.record_class, analysis.harmonic_class
@@ -85,10 +92,10 @@ def verdicts(analysis: Analysis) -> list[str]:
     else:
         out = [f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
                f"zeta = {rc.zeta:.3f}; harmonic prediction: {hc.regime} ({REGIME_WORDS[hc.regime]})."]
-    if rc.amplified:
-        out.append(f"The isolator AMPLIFIES the ground motion: A = {rc.amplitude:.3g} > 1.")
-    else:
-        out.append(f"Ground motion not amplified: A = {rc.amplitude:.3g} <= 1.")
+    # the paper's measure, labelled: A is relative to A0 = PGV²/PGA, not to the ground's displacement
+    out.append(f"Paper's measure A = {rc.amplitude:.3g} ({'>' if rc.amplified else '<='} 1): half peak-to-peak "
+               f"displacement / A0, A0 = PGV²/PGA = {p.a0_m:.3g} m (the harmonic motion of equal PGA and PGV, "
+               "not the ground's displacement).")
     out.append(f"Dominant force: {rc.dominant_force} (force peaks); harmonic prediction: {hc.dominant_force}.")
     if eng["peak_displacement_m"] > 0:
         ratio = abs(eng["residual_displacement_m"]) / eng["peak_displacement_m"]
@@ -144,6 +151,7 @@ def summary_dict(analysis: Analysis) -> dict:
         "harmonic_status": a.harmonic.status,
         "disagreements": a.disagreements,
         "verdicts": verdicts(a),
+        "checks": checks(a),
         "design": a.design.as_dict(),
         "system": a.adaptation.dimensional_dict(),
         "record": {

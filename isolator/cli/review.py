@@ -1,0 +1,121 @@
+"""``isolator review``: option checks and one-line errors over :func:`isolator.review.run.run_review`."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from isolator.cli.common import app
+from isolator.cli.common import user_error as _user_error
+
+
+def _parse_set(items) -> dict:
+    out = {}
+    for item in items or ():
+        if "=" not in item:
+            _user_error(f"--set {item}: expected NAME=VALUE")
+        name, value = item.split("=", 1)
+        out[name.strip()] = value.strip()
+    return out
+
+
+@app.command("review")
+def review(
+    design: str = typer.Option(..., "--design", "-d", help="Design file (TOML) with the friction bounds "
+                               "(lambda_max/lambda_min, mu_upper/mu_lower or the λ_ae/λ_test/λ_spec factors), "
+                               "displacement_capacity_m and an optional [plan] table."),
+    target: str = typer.Option(..., "--target", "-t", help="TARGET.toml (S_MS, S_M1, T_L; or spectrum_csv), or "
+                               "`example` for the bundled MCE_R target."),
+    suite: list[str] = typer.Option(..., "--suite", "-s", help="SUITE.toml, or record files, folders and globs "
+                                    "grouped into pairs by station (repeatable); `example` for the bundled suite."),
+    code: str = typer.Option("asce7-22", "--code", help="asce7-22 or en15129."),
+    scaling: str = typer.Option("common", "--scaling", help="common (one factor for all pairs) or fit (shape "
+                                "factor per pair, then a common factor)."),
+    output: str = typer.Option(None, "--output", "-o", help="PDF to write (default reports/review_DESIGN.pdf); "
+                               "the JSON goes beside it, the analysis cache in a folder beside it."),
+    as_json: bool = typer.Option(False, "--json", help="Print the review's JSON on stdout."),
+    jobs: int = typer.Option(None, "--jobs", "-j", help="Local worker processes (default: all cores)."),
+    scheduler: str = typer.Option(None, "--scheduler", help="Dask scheduler address (instead of local processes)."),
+    settings: list[str] = typer.Option(None, "--set", help="Review parameter NAME=VALUE (see docs/review.md), "
+                                       "e.g. --set min_ratio=0.9 (repeatable)."),
+    units: str = typer.Option(None, "--units", "-u", help="Units of records that do not state them (files and "
+                              "folders given to --suite; a SUITE.toml has its own)."),
+    trim: bool = typer.Option(False, "--trim", help="Trim the components of a pair to their common span when "
+                              "their lengths differ (files and folders given to --suite)."),
+    no_cache: bool = typer.Option(False, "--no-cache", help="Analyse everything again (ignore and keep no cache)."),
+) -> None:
+    """Code-based design review over a ground-motion suite scaled to a target, at both property bounds.
+
+    Every pair × {lower, upper, nominal} friction runs through the 2-D engine; the PDF's page 1 lists
+    the checks with their clauses (pass / fail / not checked), the JSON holds every number.
+    """
+    import json
+    import shlex
+    import sys
+
+    from isolator.design import Design, DesignError
+    from isolator.motion import RecordError
+    from isolator.review.errors import ReviewError
+    from isolator.review.examples import resolve_example
+    from isolator.review.run import CODES
+    from isolator.review.scaling import SCALING_METHODS
+    from isolator.units import UnitsError
+
+    if code not in CODES:
+        _user_error(f"--code must be one of {', '.join(CODES)}, got {code!r}")
+    if scaling not in SCALING_METHODS:
+        _user_error(f"--scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
+    if jobs is not None and jobs < 1:
+        _user_error(f"--jobs must be ≥ 1, got {jobs}")
+    if output is None:
+        output = str(Path("reports") / f"review_{Path(design).stem}.pdf")
+    if Path(output).suffix.lower() != ".pdf":
+        _user_error(f"--output must end with .pdf, got {output}")
+    parameters = _parse_set(settings)
+    try:
+        from isolator.review.parameters import resolve
+        from isolator.review.suite import load_suite
+        from isolator.review.target import load_target
+
+        resolve(code, parameters)
+        the_design = Design.from_toml(design)
+        the_target = load_target(resolve_example("target", target))
+        suite_args = [resolve_example("suite", s) for s in suite]
+        inputs = {Path(p).resolve() for p in (design, *suite_args) if Path(p).is_file()}
+        if Path(output).resolve() in inputs or Path(output).with_suffix(".json").resolve() in inputs:
+            _user_error(f"--output {output}: would overwrite an input")
+        the_suite = load_suite(suite_args, units=units, trim=trim)
+    except (DesignError, ReviewError, RecordError, UnitsError) as err:
+        _user_error(str(err))
+    from isolator.report.review_pages import write_review_pdf
+    from isolator.review.run import run_review
+
+    cache_dir = None if no_cache else Path(output).parent / f".{Path(output).stem}.cache"
+    try:
+        result = run_review(the_design, the_target, the_suite, code=code, scaling=scaling, jobs=jobs,
+                            scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12)
+    except (DesignError, ReviewError) as err:
+        _user_error(str(err))
+    command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
+    try:
+        out = write_review_pdf(result, output, command=command)
+    except OSError as err:
+        _user_error(f"{output}: cannot write ({err.strerror or err})")
+    if as_json:
+        typer.echo(json.dumps(out, indent=2))
+        return
+    counts = out["check_counts"]
+    typer.echo(f"review   {output} (5 pages), numbers in {Path(output).with_suffix('.json')}")
+    typer.echo(f"pairs    {len(out['suite']['pairs'])} read, {len(out['suite']['failed'])} failed; scale factors "
+               f"{min(out['scale_factors'].values()):.4g}–{max(out['scale_factors'].values()):.4g} ({scaling}), "
+               f"range {out['period_range_s'][0]:.4g}–{out['period_range_s'][1]:.4g} s")
+    for failure in out["suite"]["failed"]:
+        typer.echo(f"failed   {failure['name']}: {failure['error']}")
+    width = max(len(c["id"]) for c in out["checks"])
+    for c in out["checks"]:
+        value = "n/a" if c["value"] is None else f"{c['value']:.4g}"
+        limit = "n/a" if c["limit"] is None else f"{c['limit']:.4g}"
+        typer.echo(f"{c['status']:<12} {c['id']:<{width}}  {value} vs {limit} {c['unit']}  [{c['clause']}]")
+    typer.echo(f"checks   {counts['pass']} pass, {counts['fail']} fail, {counts['not checked']} not checked")
+

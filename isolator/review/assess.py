@@ -1,0 +1,174 @@
+"""Design values over the suite (per bound, then the envelope) and the checks of a review."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from isolator.review import checks as C
+from isolator.review.codes import asce7_22, en15129
+
+BOUNDS = ("lower", "upper")
+
+
+def _per_bound(results: dict, n_for_mean: int) -> dict:
+    ok = [r for r in results.values() if "error" not in r]
+    d = C.suite_value([r["peak_displacement_m"] for r in ok], n_for_mean)
+    return {
+        "D_M_m": d["value"], "rule": d["rule"], "n": d["n"],
+        "residual_displacement_m": C.suite_value([abs(r["residual_displacement_m"]) for r in ok], n_for_mean)["value"],
+        "base_shear_coefficient": C.suite_value([r["base_shear_coefficient"] for r in ok], n_for_mean)["value"],
+        "transmitted_over_pga": C.suite_value([r["transmitted_over_pga"] for r in ok], n_for_mean)["value"],
+        "transmitted_over_pga_max": max((r["transmitted_over_pga"] for r in ok), default=math.nan),
+        "peak_displacement_max_m": max((r["peak_displacement_m"] for r in ok), default=math.nan),
+        "n_uplifts": int(sum(r.get("n_uplifts", 0) for r in ok)),
+        "models": sorted({r.get("model", "") for r in ok}),
+    }
+
+
+def _governing(values: dict, key: str) -> tuple[float, str]:
+    finite = {b: v[key] for b, v in values.items() if math.isfinite(v[key])}
+    if not finite:
+        return math.nan, "none"
+    bound = max(finite, key=finite.get)
+    return finite[bound], bound
+
+
+def assess(review, designs: dict) -> None:
+    """Fill ``review.design_values`` and ``review.checks`` (in place)."""
+    p, code = review.parameters, review.code
+    values = {b: _per_bound(review.analyses[b], p["n_for_mean"]) for b in review.analyses}
+    bounded = {b: values[b] for b in values}
+    d_m, d_bound = _governing(bounded, "D_M_m")
+    v_b, v_bound = _governing(bounded, "base_shear_coefficient")
+    residual, _ = _governing(bounded, "residual_displacement_m")
+    torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p})
+    for b in review.elf:
+        review.elf[b]["D_TM_m"] = review.elf[b]["D_M_m"] * torsion["factor"]
+    elf_d_tm = max((review.elf[b]["D_TM_m"] for b in BOUNDS if math.isfinite(review.elf[b]["D_TM_m"])),
+                   default=math.nan)
+    rha_d_tm = d_m * torsion["factor"]
+    floor = p.get("f_disp", 0.0) * elf_d_tm if code == "asce7-22" else 0.0
+    d_tm_value = max(rha_d_tm, floor) if math.isfinite(floor) else rha_d_tm
+    rule = values[d_bound]["rule"] if d_bound in values else "none"
+    n = values[d_bound]["n"] if d_bound in values else 0
+    review.design_values = {**values, "torsion": torsion, "elf_D_TM_m": elf_d_tm, "envelope": {
+        "D_M_m": d_m, "D_M_bound": d_bound, "rule": rule, "n": n, "V_b_over_W": v_b, "V_b_bound": v_bound,
+        "residual_displacement_m": residual,
+        "D_TM": {"value": d_tm_value, "rha_m": rha_d_tm, "elf_floor_m": floor,
+                 "governs": "ELF floor" if floor > rha_d_tm else "response history"}}}
+    review.checks = (_asce_checks if code == "asce7-22" else _en_checks)(review, values, designs)
+
+
+def _asce_defaults() -> dict:
+    from isolator.review.parameters import resolve
+
+    return resolve("asce7-22")
+
+
+def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, basis: str) -> list:
+    p = review.parameters
+    n = len(review.suite.pairs)
+    ratio = float(np.min(review.suite_ratio))
+    t_min = float(review.grid_s[int(np.argmin(review.suite_ratio))])
+    lo, hi = review.period_range_s
+    rows = [C.at_least("suite_size", clause_size, n, n_min, f"{n} pairs read"
+                       + (f", {len(review.suite.failed)} failed" if review.suite.failed else ""), "pairs"),
+            C.at_least("suite_spectrum", clause_spectrum, ratio, review.min_ratio_required,
+                       f"min over {review.grid_s.size} log-spaced periods {lo:.3g}–{hi:.3g} s of the average scaled "
+                       f"{basis} / target, at T = {t_min:.3g} s; scaling '{review.scaling}'", "×target")]
+    if review.code == "asce7-22" and p.get("mean_ratio_min"):
+        rows.append(C.at_least("suite_spectrum_mean", "ASCE 7-22 16.2.3.2 (interpretation)",
+                               float(np.mean(review.suite_ratio)), p["mean_ratio_min"],
+                               "mean over the range of the ratio ('generally matches or exceeds')", "×target"))
+    factors = list(review.factors.values())
+    outside = [name for name, f in review.factors.items() if not p["sf_flag_low"] <= f <= p["sf_flag_high"]]
+    rows.append(C.check("scale_factors", "reviewer practice, not code", C.FAIL if outside else C.PASS,
+                        max(factors), p["sf_flag_high"],
+                        f"factors {min(factors):.3g}–{max(factors):.3g}; flagged outside "
+                        f"{p['sf_flag_low']:g}–{p['sf_flag_high']:g}" + (f": {', '.join(outside)}" if outside else ""),
+                        "×"))
+    rows.append(C.usable_band([(pair.name, pair.high_pass_hz) for pair in review.suite.pairs], hi,
+                              p["usable_band_factor"]))
+    return rows
+
+
+def _common_back(review, values: dict, d_tm_design: float) -> list:
+    p, design = review.parameters, review.design
+    env = review.design_values["envelope"]
+    rows = []
+    if design.is_pendulum:
+        rows.append(C.at_most("D_over_R", "small-angle pendulum (practice)", d_tm_design / design.radius_m,
+                              p["D_over_R_max"], f"design total displacement / R = {design.radius_m:g} m", "-"))
+    else:
+        rows.append(C.check("D_over_R", "small-angle pendulum (practice)", C.NOT_CHECKED,
+                            note="not a friction pendulum (no radius)"))
+    rows.append(C.at_most("residual_displacement", "no code clause (practice)", env["residual_displacement_m"],
+                          p["residual_max_m"], "suite value of |residual| (resultant), larger bound"
+                          + ("" if p["residual_max_m"] is not None else "; no limit set (residual_max_m)"), "m"))
+    ratio = max(v["transmitted_over_pga_max"] for v in values.values())
+    rows.append(C.at_most("transmitted_over_pga", "isolation effectiveness (practice)", ratio,
+                          p["transmitted_over_pga_max"],
+                          "largest peak transmitted acceleration / resultant PGA of the scaled pair, any bound", "-"))
+    if any(pair.az_m_s2 is not None for pair in review.suite.pairs):
+        n_up = sum(v["n_uplifts"] for v in values.values())
+        with_z = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
+        rows.append(C.at_most("uplift", "bearing uplift (ASCE 7-22 17.2.4.7)", n_up, 0,
+                              f"uplifts counted over {with_z} pair(s) with a vertical component", "events"))
+    else:
+        rows.append(C.check("uplift", "bearing uplift (ASCE 7-22 17.2.4.7)", C.NOT_CHECKED,
+                            note="no vertical components in the suite"))
+    return rows
+
+
+def _asce_checks(review, values: dict, designs: dict) -> list:
+    p, design, elf = review.parameters, review.design, review.elf
+    env = review.design_values["envelope"]
+    d_tm = env["D_TM"]
+    cap = design.displacement_capacity_m
+    rows = _common_front(review, p["n_pairs_min"], "ASCE 7-22 17.3.2", "ASCE 7-22 17.3.3 / 16.2.3.2", "RotD100")
+    capacity_note = "" if cap is not None else "no displacement_capacity_m in the design"
+    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4 / 17.2.4 (capacity)", env["D_M_m"], cap,
+                          f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs" + (
+                              "; " + capacity_note if capacity_note else ""), "m"))
+    rows.append(C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
+                          f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
+                          f"{p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"))
+    rows.append(C.at_least("D_TM_elf_floor", "ASCE 7-22 17.6.4.1", d_tm["rha_m"], d_tm["elf_floor_m"],
+                           f"RHA total displacement ≥ {p['f_disp']:g} × D_TM (ELF) = {p['f_disp']:g} × "
+                           f"{review.design_values['elf_D_TM_m']:.4g} m; below it the floor is used", "m"))
+    ratios = {b: asce7_22.restoring_force_ratio(designs[b], values[b]["D_M_m"]) for b in ("lower", "upper")}
+    b_min = min(ratios, key=ratios.get)
+    rows.append(C.restoring_force(ratios[b_min], p["restoring_min"], displacement_m=values[b_min]["D_M_m"],
+                                  radius_m=design.radius_m))
+    elf_vb = max(elf[b]["V_b_over_W"] for b in ("lower", "upper"))
+    rows.append(C.at_least("base_shear_elf_floor", "ASCE 7-22 17.6.4.2", env["V_b_over_W"], p["f_below"] * elf_vb,
+                           f"RHA isolation-system shear / W ({env['V_b_bound']} bound) ≥ {p['f_below']:g} V_b/W (ELF "
+                           f"{elf_vb:.4g})", "W"))
+    v_s = max(elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper"))
+    v_act = asce7_22.activation_shear_over_w(designs["upper"].mu_static, design.mu_static)
+    rows.append(C.check("superstructure_shear", "ASCE 7-22 17.6.4.2 / 17.5.4.3", C.NOT_CHECKED, v_s,
+                        p["f_above_rha"] * v_s if math.isfinite(v_s) else None,
+                        f"needs a superstructure model; ELF V_s/W = {v_s:.4g} (R_I = {p['R_I']:g}), activation "
+                        f"limit V_b ≥ {v_act:.4g} W (17.5.4.3)", "W"))
+    return rows + _common_back(review, values, d_tm["value"])
+
+
+def _en_checks(review, values: dict, designs: dict) -> list:
+    p, design = review.parameters, review.design
+    env = review.design_values["envelope"]
+    cap = design.displacement_capacity_m
+    rows = _common_front(review, p["n_records_min_en"], "EN 1998-1 3.2.3.1.2", "EN 1998-1 3.2.3.1.2(4)",
+                         "component spectra")
+    d_tm = env["D_TM"]["rha_m"]
+    rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_tm, cap,
+                          f"γ_x = {p['gamma_x']:g} × design displacement {d_tm:.4g} m (torsion factor "
+                          f"{review.design_values['torsion']['factor']:.4g}); {env['rule']} of {env['n']} pairs"
+                          + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
+    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_m"])
+              for b in ("lower", "upper")}
+    b_min = min(ratios, key=ratios.get)
+    rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
+                           f"d_Ed / d_r with d_r = µR ({b_min} bound, µ = {designs[b_min].mu_kinetic:.4g})", "-"))
+    return rows + _common_back(review, values, p["gamma_x"] * d_tm)

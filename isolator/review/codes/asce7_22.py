@@ -1,0 +1,155 @@
+r"""ASCE/SEI 7-22 Chapter 17: equivalent-lateral-force reference values of a friction isolation system.
+
+Formulas and their sources are those of ``REVIEW_RULES.md`` §1.8–1.10 (marks there); per bound
+of the friction coefficient µ, with W the supported weight and g = 9.80665 m/s²:
+
+.. math::
+   k_M(D) = K + \mu W / D,\quad T_M = 2\pi\sqrt{W/(k_M g)}                       (17.5-2)
+   \beta_M = E_{loop}/(2\pi k_M D^2),\ E_{loop} = 4\mu W D\ (+\ \pi\gamma\omega D^2)
+   D_M = g\,S_a(T_M)\,T_M^2/(4\pi^2 B_M)\quad(\text{or } g S_{M1} T_M/(4\pi^2 B_M))  (17.5-1)
+   D_{TM} = D_M\,[1 + (y/P_T^2)\,12e/(b^2 + d^2)] \ge 1.15 D_M                    (17.5-3)
+   V_b = k_M D_M,\quad V_{st} = V_b (W_s/W)^{1 - 2.5\beta_M},\quad V_s = V_{st}/R_I  (17.5-7/-8/-6)
+
+D_M is the largest fixed point of D ↦ g S_a(T(D)) T(D)²/(4π² B(β(D))), found by a scan of D over
+1e-5…50 m (400 log-spaced points) and Brent's method on the bracketing interval (relative
+tolerance 1e-12).  Restoring force (17.2.4.4): F(D) − F(D/2) ≥ 0.025 W.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from isolator.review.target import Target
+
+#: Table 17.5-1 damping coefficient B_M at β_M [S: P1, P2; P1 stops at 1.9 for ≥ 40 %]
+B_M_TABLE = ((0.02, 0.8), (0.05, 1.0), (0.10, 1.2), (0.20, 1.5), (0.30, 1.7), (0.40, 1.9), (0.50, 2.0))
+CLAUSE = {"D_M": "ASCE 7-22 17.5.3.1 (Eq. 17.5-1)", "T_M": "ASCE 7-22 17.5.3.2 (Eq. 17.5-2)",
+          "B_M": "ASCE 7-22 Table 17.5-1", "D_TM": "ASCE 7-22 17.5.3.3 (Eq. 17.5-3)",
+          "V_b": "ASCE 7-22 17.5.4.1 (Eq. 17.5-7)", "V_st": "ASCE 7-22 17.5.4.2 (Eq. 17.5-8)",
+          "restoring": "ASCE 7-22 17.2.4.4", "limits_V_s": "ASCE 7-22 17.5.4.3"}
+
+
+def damping_coefficient(beta: float) -> float:
+    """B_M of Table 17.5-1, linear between the tabulated β, constant beyond the ends [-].
+
+    Parameters
+    ----------
+    beta : float
+        Effective damping ratio β_M [-].
+    """
+    betas, values = zip(*B_M_TABLE)
+    return float(np.interp(beta, betas, values))
+
+
+def effective_properties(design, mu: float, displacement_m: float) -> tuple[float, float, float]:
+    """k_M [N/m], T_M [s], β_M [-] of the bilinear model at a displacement (friction µ, spring K, damper γ)."""
+    d = float(displacement_m)
+    w = design.weight_N
+    k = design.stiffness_N_per_m + mu * w / d
+    omega = math.sqrt(k / design.mass_kg)
+    energy = 4.0 * mu * w * d + math.pi * design.damping_Ns_per_m * omega * d * d
+    return k, 2.0 * math.pi / omega, energy / (2.0 * math.pi * k * d * d)
+
+
+def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM") -> dict:
+    """D_M, T_M, β_M, B_M and V_b/W of one property bound (17.5.3).
+
+    Parameters
+    ----------
+    design : isolator.design.Design
+        The isolator (mass, K, γ).
+    mu : float
+        Kinetic friction coefficient of the bound [-].
+    target : Target
+        MCE_R spectrum.
+    form : {"SaM", "SM1"}
+        Eq. 17.5-1 with S_a(T_M) T_M² (7-22) or S_M1 T_M (7-16; ASCE two-period targets only).
+
+    Returns
+    -------
+    dict
+        ``D_M_m``, ``T_M_s``, ``beta_M``, ``B_M``, ``k_M_N_per_m``, ``V_b_over_W``, ``mu``, ``form``,
+        ``notes`` (list of text).
+    """
+    g = design.gravity_m_s2
+    use_sm1 = form == "SM1" and target.kind == "asce7-two-period"
+
+    def image(d):
+        _, t, beta = effective_properties(design, mu, d)
+        b = damping_coefficient(beta)
+        if use_sm1:
+            return g * target.parameters["S_M1"] * t / (4.0 * math.pi ** 2 * b)
+        return g * float(target.sa_g(t, clip=True)[0]) * t * t / (4.0 * math.pi ** 2 * b)
+
+    notes = []
+    grid = np.geomspace(1e-5, 50.0, 400)
+    gap = np.array([image(d) - d for d in grid])
+    crossings = np.flatnonzero((gap[:-1] > 0) & (gap[1:] <= 0))
+    if gap[-1] > 0:
+        notes.append("no ELF fixed point below 50 m: the isolator has no restoring capacity at this demand")
+        d_m = math.nan
+    elif crossings.size == 0:
+        notes.append("the ELF demand does not exceed the friction: no sliding (D_M = 0)")
+        d_m = 0.0
+    else:
+        from scipy.optimize import brentq
+
+        i = int(crossings[-1])
+        d_m = float(brentq(lambda d: image(d) - d, grid[i], grid[i + 1], xtol=1e-14, rtol=1e-12))
+        if crossings.size > 1:
+            notes.append(f"{crossings.size} ELF fixed points; the largest is used")
+    if not d_m > 0:
+        return {"D_M_m": d_m, "T_M_s": math.nan, "beta_M": math.nan, "B_M": math.nan, "k_M_N_per_m": math.nan,
+                "V_b_over_W": math.nan if math.isnan(d_m) else mu, "mu": mu, "form": form, "notes": notes}
+    k, t, beta = effective_properties(design, mu, d_m)
+    if t > target.long_period_s:
+        notes.append(f"T_M = {t:.3g} s exceeds T_L = {target.long_period_s:g} s: the S_aM and S_M1 forms differ")
+    if beta > B_M_TABLE[-1][0]:
+        notes.append(f"β_M = {beta:.3g} beyond Table 17.5-1: B_M held at {B_M_TABLE[-1][1]}")
+    return {"D_M_m": d_m, "T_M_s": t, "beta_M": beta, "B_M": damping_coefficient(beta), "k_M_N_per_m": k,
+            "V_b_over_W": k * d_m / design.weight_N, "mu": mu, "form": "SM1" if use_sm1 else "SaM", "notes": notes}
+
+
+def torsion_factor(plan: dict | None, params: dict) -> dict:
+    """D_TM / D_M of Eq. 17.5-3 (the larger of the two loading directions), with its basis.
+
+    ``e`` = actual eccentricity + ``accidental_e`` × the plan dimension ⟂ loading; ``y`` the given
+    distance or, when absent, half the plan dimension ⟂ loading (a corner bearing); ``P_T`` the given
+    value, not below ``P_T_min`` (absent: ``P_T_min``, the most conservative). No [plan]: the floor.
+    """
+    floor = params["D_TM_floor"]
+    if plan is None:
+        return {"factor": floor, "basis": f"no [plan] in the design: D_TM = {floor:g} D_M (the floor of Eq. 17.5-3)",
+                "assumed": True}
+    b, d = plan["b_m"], plan["d_m"]
+    p_t = max(plan.get("P_T", params["P_T_min"]), params["P_T_min"])
+    factors = []
+    for perpendicular in (b, d):
+        e = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * perpendicular
+        y = plan.get("y_m", 0.5 * perpendicular)
+        factors.append(1.0 + (y / p_t ** 2) * 12.0 * e / (b * b + d * d))
+    raw = max(factors)
+    return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t,
+            "basis": f"Eq. 17.5-3 with b = {b:g} m, d = {d:g} m, P_T = {p_t:g}"
+                     + ("" if "y_m" in plan else ", y = half the plan dimension (corner bearing, assumed)")
+                     + (f"; floor {floor:g} governs" if raw < floor else ""),
+            "assumed": "y_m" not in plan or "P_T" not in plan}
+
+
+def superstructure_shear(v_b_over_w: float, beta: float, params: dict) -> dict:
+    """V_st/W and V_s/W from V_b/W (Eqs. 17.5-8, 17.5-6)."""
+    exponent = 1.0 - (3.5 if params["abrupt_hysteresis"] else 2.5) * beta
+    v_st = v_b_over_w * params["Ws_over_W"] ** exponent
+    return {"V_st_over_W": v_st, "V_s_over_W": v_st / params["R_I"]}
+
+
+def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float) -> float:
+    """Breakaway friction force of the isolation system / W (17.5.4.3: greater of UB or 1.5 × nominal)."""
+    return max(mu_static_upper, 1.5 * mu_static_nominal)
+
+
+def restoring_force_ratio(design, displacement_m: float) -> float:
+    """(F(D) − F(D/2)) / W of the bilinear model (17.2.4.4): K D / (2W); D/(2R) for a friction pendulum."""
+    return design.stiffness_N_per_m * 0.5 * displacement_m / design.weight_N

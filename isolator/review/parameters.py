@@ -1,0 +1,135 @@
+"""The review's parameters: every number a code clause needs that the rules file does not fix.
+
+Each entry has its default, its mark from ``REVIEW_RULES.md`` (§0: **V** verified, **S** secondary
+source, **U** unverified — must be a parameter, printed in the report — or *practice* /
+*convention* / *interpretation*), the rule it serves and a short meaning.  Every review prints the
+values it used with their marks; any of them can be changed (``--set name=value`` on the command
+line, ``parameters={…}`` in :func:`isolator.review.run.run_review`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from isolator.review.errors import ReviewError
+
+
+@dataclass(frozen=True)
+class Parameter:
+    name: str
+    default: object
+    mark: str
+    rule: str
+    meaning: str
+    codes: tuple = ("asce7-22", "en15129")
+
+
+PARAMETERS = {p.name: p for p in [
+    Parameter("n_pairs_min", 7, "U", "ASCE 7-22 17.3.2", "minimum number of pairs in the suite", ("asce7-22",)),
+    Parameter("n_records_min_en", 3, "U", "EN 1998-1 3.2.3.1.2", "minimum number of records", ("en15129",)),
+    Parameter("range_lo_factor", 0.75, "U", "ASCE 7-22 17.3.3", "period range from f × T_M (upper bound)",
+              ("asce7-22",)),
+    Parameter("range_hi_factor", 1.25, "U", "ASCE 7-22 17.3.3", "period range to f × T_M (lower bound)",
+              ("asce7-22",)),
+    Parameter("en_range_lo_factor", 0.2, "U", "EN 1998-1 3.2.3.1.2(4)", "range from f × T_eff", ("en15129",)),
+    Parameter("en_range_hi_factor", 2.0, "U", "EN 1998-1 3.2.3.1.2(4)", "range to f × T_eff", ("en15129",)),
+    Parameter("min_ratio", 1.00, "U", "ASCE 7-22 17.3.3 / 16.2.3.2",
+              "suite-average RotD100 ≥ min_ratio × target at every period of the range (0.90 alternative)",
+              ("asce7-22",)),
+    Parameter("mean_ratio_min", None, "interpretation", "ASCE 7-22 16.2.3.2",
+              "with min_ratio 0.90: mean over the range of the ratio ≥ this ('generally matches')",
+              ("asce7-22",)),
+    Parameter("en_min_ratio", 0.90, "U", "EN 1998-1 3.2.3.1.2(4)",
+              "mean component spectrum ≥ en_min_ratio × elastic spectrum over the range", ("en15129",)),
+    Parameter("grid_points", 300, "convention", "ASCE 7-22 17.3.3",
+              "log-spaced periods of the range (plus both ends and the T_M values)"),
+    Parameter("sf_flag_low", 0.25, "practice", "reviewer practice, not code", "scale factors below are flagged"),
+    Parameter("sf_flag_high", 4.0, "practice", "reviewer practice, not code", "scale factors above are flagged"),
+    Parameter("usable_band_factor", 1.25, "practice", "NGA-West2 usable band",
+              "lowest usable frequency = factor × high-pass corner"),
+    Parameter("f_ae", 0.75, "S", "ASCE 7-22 17.2.8.4", "weight of the aging/environment factor", ("asce7-22",)),
+    Parameter("restoring_min", 0.025, "S/U", "ASCE 7-22 17.2.4.4",
+              "F(D) − F(D/2) ≥ restoring_min × W (FPS: D ≥ 2 restoring_min R)", ("asce7-22",)),
+    Parameter("D_M_form", "SaM", "U", "ASCE 7-22 17.5.3.1",
+              "D_M = g S_a(T_M) T_M²/(4π² B_M) ('SaM') or g S_M1 T_M/(4π² B_M) ('SM1')", ("asce7-22",)),
+    Parameter("accidental_e", 0.05, "S", "ASCE 7-22 17.5.3.3",
+              "accidental eccentricity as a fraction of the plan dimension ⟂ loading", ("asce7-22",)),
+    Parameter("D_TM_floor", 1.15, "S", "ASCE 7-22 17.5.3.3 (Eq. 17.5-3)", "D_TM ≥ floor × D_M", ("asce7-22",)),
+    Parameter("P_T_min", 1.0, "S", "ASCE 7-22 17.5.3.3", "P_T not taken below this", ("asce7-22",)),
+    Parameter("abrupt_hysteresis", False, "S", "ASCE 7-22 17.5.4.2 (Eq. 17.5-8)",
+              "exponent 1 − 3.5 β_M instead of 1 − 2.5 β_M", ("asce7-22",)),
+    Parameter("Ws_over_W", 1.0, "U", "ASCE 7-22 17.5.4.2", "seismic weight above the isolation / total",
+              ("asce7-22",)),
+    Parameter("R_I", 1.0, "U", "ASCE 7-22 17.5.4.2 (R_I = 3R/8, 1 ≤ R_I ≤ 2)",
+              "response modification of the superstructure (1.0 is the most conservative)", ("asce7-22",)),
+    Parameter("n_for_mean", 7, "U", "ASCE 7-22 17.6.3.4 / EN 1998-1 4.3.3.4.3(3)",
+              "mean of the suite when ≥ n analyses, otherwise the maximum"),
+    Parameter("f_disp", 0.8, "U", "ASCE 7-22 17.6.4.1", "RHA total displacement ≥ f × D_TM (ELF)", ("asce7-22",)),
+    Parameter("f_below", 0.9, "U", "ASCE 7-22 17.6.4.2", "RHA isolation-system shear ≥ f × V_b (ELF)",
+              ("asce7-22",)),
+    Parameter("f_above_rha", 0.6, "U", "ASCE 7-22 17.6.4.2", "RHA superstructure shear ≥ f × V_s (regular)",
+              ("asce7-22",)),
+    Parameter("D_over_R_max", 0.25, "practice", "small-angle pendulum (F = W D/R)",
+              "D/R beyond which the pendulum relation and most bearings' geometry do not hold"),
+    Parameter("residual_max_m", None, "practice", "no clause in ASCE 7-22 Ch. 17",
+              "limit on the design residual displacement [m] (none: reported, not checked)"),
+    Parameter("transmitted_over_pga_max", 1.0, "practice", "isolation effectiveness (issue 11)",
+              "peak transmitted acceleration / PGA of the scaled pair"),
+    Parameter("gamma_x", 1.2, "U", "EN 1998-1 10.3(2)", "reliability factor on isolator displacements",
+              ("en15129",)),
+    Parameter("delta", 0.5, "U", "EN 1998-2 7.7.1 / EN 15129", "restoring capability d_Ed/d_r ≥ δ", ("en15129",)),
+]}
+
+
+def resolve(code: str, overrides: dict | None = None) -> dict:
+    """The parameter values of a review: defaults of ``code`` with ``overrides`` applied.
+
+    Raises
+    ------
+    ReviewError
+        An unknown parameter name or a value of the wrong kind.
+    """
+    values = {name: p.default for name, p in PARAMETERS.items() if code in p.codes}
+    for name, value in (overrides or {}).items():
+        if name not in PARAMETERS:
+            raise ReviewError(f"unknown review parameter '{name}' (known: {', '.join(PARAMETERS)})")
+        default = PARAMETERS[name].default
+        values[name] = _coerce(name, value, default)
+    if code == "asce7-22" and values.get("mean_ratio_min") is None and values.get("min_ratio", 1.0) < 1.0:
+        values["mean_ratio_min"] = 1.0  # REVIEW_RULES 1.5: with 0.90 also require mean ≥ 1.00
+    return values
+
+
+def _coerce(name: str, value, default):
+    if isinstance(default, bool):
+        if isinstance(value, str) and value.lower() in ("true", "false", "1", "0", "yes", "no"):
+            return value.lower() in ("true", "1", "yes")
+        if isinstance(value, bool):
+            return value
+        raise ReviewError(f"review parameter '{name}' must be true or false, got {value!r}")
+    if isinstance(default, str):
+        allowed = {"D_M_form": ("SaM", "SM1")}.get(name)
+        if allowed and value not in allowed:
+            raise ReviewError(f"review parameter '{name}' must be one of {', '.join(allowed)}, got {value!r}")
+        return str(value)
+    if isinstance(value, str) and value.lower() in ("none", "null", ""):
+        return None
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ReviewError(f"review parameter '{name}' must be a number, got {value!r}") from None
+    if not math.isfinite(number) or number < 0:
+        raise ReviewError(f"review parameter '{name}' must be a finite number ≥ 0, got {value!r}")
+    if isinstance(default, int) and not isinstance(default, bool):
+        if number != int(number) or number < 1:
+            raise ReviewError(f"review parameter '{name}' must be a whole number ≥ 1, got {value!r}")
+        return int(number)
+    return number
+
+
+def table(code: str, values: dict) -> list[dict]:
+    """Rows {name, value, default, mark, rule, meaning} of the parameters used."""
+    return [{"name": name, "value": values[name], "default": PARAMETERS[name].default, "mark": PARAMETERS[name].mark,
+             "rule": PARAMETERS[name].rule, "meaning": PARAMETERS[name].meaning}
+            for name in values if name in PARAMETERS]

@@ -1,0 +1,273 @@
+"""run_review: a design over a scaled suite at its property bounds, checked clause by clause.
+
+Order of work (each step a module of this package): property bounds (bounds) → ELF reference
+values per bound (codes) → period range and grid → spectra of every pair (spectra) → scale
+factors (scaling) → every pair × bound through the 2-D engine (worker; cached, in parallel) →
+design values over the suite (mean of ≥ 7 else max) → checks.  :meth:`Review.to_dict` is the
+JSON of every number the PDF shows.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from isolator.review import checks as C
+from isolator.review import parameters as P
+from isolator.review.bounds import friction_bounds
+from isolator.review.codes import asce7_22, en15129
+from isolator.review.errors import ReviewError
+from isolator.review.scaling import SCALING_METHODS, period_grid, scale_factors, suite_mean
+from isolator.review.spectra import pair_spectra, rotd50
+
+CODES = ("asce7-22", "en15129")
+SCHEMA_VERSION = 1
+PLOT_PERIODS_S = np.geomspace(0.05, 10.0, 90)
+
+
+@dataclass
+class Review:
+    """Everything a review found (SI units; see :meth:`to_dict`)."""
+
+    design: object
+    target: object
+    suite: object
+    code: str
+    scaling: str
+    parameters: dict
+    bounds: object
+    elf: dict
+    period_range_s: tuple
+    grid_s: np.ndarray
+    factors: dict
+    spectra: dict  #: plot periods, per pair rotd100 / components, target, suite mean (scaled)
+    suite_ratio: np.ndarray
+    analyses: dict  #: bound → pair → result
+    design_values: dict
+    checks: list
+    notes: list = field(default_factory=list)
+    timing: dict = field(default_factory=dict)
+    created_utc: str = ""
+
+    # ---- JSON ------------------------------------------------------------------------------
+
+    def to_dict(self) -> dict:
+        """The review's JSON (the Contract keys of issue 11, and every number of the PDF)."""
+        bounds = {}
+        for bound in ("lower", "upper", "nominal"):
+            if bound not in self.analyses:
+                continue
+            pairs = {name: {k: v for k, v in r.items() if k != "orbit_m"} for name, r in self.analyses[bound].items()}
+            bounds[bound] = {"mu": self.bound_mu[bound], "pairs": pairs, **self.design_values.get(bound, {})}
+        elf = {b: {k: v for k, v in self.elf[b].items()} for b in self.elf}
+        env = self.design_values["envelope"]
+        return _clean({
+            "schema_version": SCHEMA_VERSION,
+            "created_utc": self.created_utc,
+            "code": self.code,
+            "scaling": self.scaling,
+            "design": self.design.as_dict(),
+            "target": self.target.as_dict(),
+            "suite": {"source": self.suite.source, "pairs": [
+                {"name": p.name, "files": p.files, "components": p.component_names, "dt_s": p.dt_s, "npts": p.npts,
+                 "high_pass_hz": p.high_pass_hz, "processing": p.processing} for p in self.suite.pairs],
+                "failed": self.suite.failed},
+            "parameters": P.table(self.code, self.parameters),
+            "property_bounds": self.bounds.as_dict(),
+            "period_range_s": list(self.period_range_s),
+            "period_grid": {"n": int(self.grid_s.size), "lo_s": float(self.grid_s[0]), "hi_s": float(self.grid_s[-1]),
+                            "spacing": "log", "includes": "both ends and the T_M values inside the range"},
+            "spectrum_basis": "RotD100" if self.code == "asce7-22" else "components (mean of both)",
+            "spectrum_conventions": "5 % damping; exact first-order-hold recurrence; peaks at the sample "
+                                    "instants (≥ 20 per period); no padding, no filtering",
+            "scale_factors": dict(self.factors),
+            "min_ratio_required": self.min_ratio_required,
+            "suite_min_ratio": float(np.min(self.suite_ratio)),
+            "suite_min_ratio_period_s": float(self.grid_s[int(np.argmin(self.suite_ratio))]),
+            "suite_mean_ratio": float(np.mean(self.suite_ratio)),
+            "elf": elf,
+            "D_TM_m": self.design_values["elf_D_TM_m"],
+            "torsion": self.design_values["torsion"],
+            "bounds": bounds,
+            "design_displacement_m": {"value": env["D_M_m"], "rule": env["rule"], "n": env["n"],
+                                      "governing_bound": env["D_M_bound"]},
+            "design_total_displacement_m": env["D_TM"],
+            "design_base_shear_coefficient": {"value": env["V_b_over_W"], "governing_bound": env["V_b_bound"]},
+            "checks": self.checks,
+            "check_counts": C.status_counts(self.checks),
+            "notes": self.notes,
+            "timing_s": self.timing,
+        })
+
+    @property
+    def bound_mu(self) -> dict:
+        return {"lower": self.bounds.mu_lower, "upper": self.bounds.mu_upper, "nominal": self.bounds.mu_nominal}
+
+    @property
+    def min_ratio_required(self) -> float:
+        return self.parameters["min_ratio"] if self.code == "asce7-22" else self.parameters["en_min_ratio"]
+
+
+def _clean(value):
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, (np.floating, np.integer, np.bool_)):
+        return _clean(value.item())
+    if isinstance(value, np.ndarray):
+        return _clean(value.tolist())
+    if isinstance(value, dict):
+        return {str(k): _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    return value
+
+
+def _elf(design, mu, target, code, params) -> dict:
+    out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"))
+    if code == "asce7-22" and out["D_M_m"] > 0:
+        out.update(asce7_22.superstructure_shear(out["V_b_over_W"], out["beta_M"], params))
+    return out
+
+
+def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = "common", jobs: int | None = None,
+               scheduler: str | None = None, parameters: dict | None = None, cache_dir=None,
+               nominal: bool = True, rotd50_points: int = 0) -> Review:
+    """Review a design over a suite scaled to a target, at its lower and upper property bounds.
+
+    Parameters
+    ----------
+    design : isolator.design.Design
+    target : isolator.review.target.Target
+    suite : isolator.review.suite.Suite
+    code : {"asce7-22", "en15129"}
+    scaling : {"common", "fit"}
+        How the scale factors are formed (:mod:`isolator.review.scaling`).
+    jobs : int, optional
+        Local worker processes (default: all cores).
+    scheduler : str, optional
+        Address of a Dask scheduler (instead of local processes).
+    parameters : dict, optional
+        Overrides of :data:`isolator.review.parameters.PARAMETERS`.
+    cache_dir : path-like, optional
+        Folder of the analysis cache (resumable reviews).
+    nominal : bool
+        Also analyse the nominal properties.
+    rotd50_points : int
+        Periods at which RotD50 is computed (informational; 0: none).
+
+    Returns
+    -------
+    Review
+    """
+    import time
+
+    from isolator.review.worker import Cache, default_jobs, design_parameters, run_tasks, task_key
+
+    clock = time.perf_counter()
+    timing = {}
+    if code not in CODES:
+        raise ReviewError(f"code must be one of {', '.join(CODES)}, got {code!r}")
+    if scaling not in SCALING_METHODS:
+        raise ReviewError(f"scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
+    params = P.resolve(code, parameters)
+    notes = []
+    bounds = friction_bounds(design, code=code, f_ae=params.get("f_ae", 0.75))
+    designs = {"lower": design.with_friction_factor(bounds.lambda_min, "lower bound"),
+               "upper": design.with_friction_factor(bounds.lambda_max, "upper bound")}
+    if nominal:
+        designs["nominal"] = design
+    if bounds.lambda_min == bounds.lambda_max == 1.0:
+        notes.append("the design gives no property bounds: lower = upper = nominal")
+
+    # ELF reference values per bound (17.5)
+    elf = {b: _elf(designs[b], designs[b].mu_kinetic, target, code, params) for b in designs}
+    for b in designs:
+        notes.extend(f"ELF {b}: {n}" for n in elf[b]["notes"])
+
+    # period range
+    t_upper, t_lower = elf["upper"]["T_M_s"], elf["lower"]["T_M_s"]
+    if not (math.isfinite(t_upper) and math.isfinite(t_lower)):
+        t_upper = t_lower = design.isolated_period_s
+        notes.append("T_M undefined (no ELF sliding): the range is taken around the pendulum period")
+    if code == "asce7-22":
+        lo, hi = params["range_lo_factor"] * t_upper, params["range_hi_factor"] * t_lower
+        required = params["min_ratio"]
+    else:
+        lo, hi = params["en_range_lo_factor"] * t_upper, params["en_range_hi_factor"] * t_lower
+        required = params["en_min_ratio"]
+    base, grid = period_grid(lo, hi, params["grid_points"], (t_upper, t_lower))
+    fit_mask = np.isin(grid, base)
+
+    # spectra of every pair on the grid and the plot periods
+    g = design.gravity_m_s2
+    plot = np.unique(np.concatenate([PLOT_PERIODS_S, [lo, hi]]))
+    on_grid, on_plot = [], []
+    for pair in suite.pairs:
+        both = np.concatenate([grid, plot])
+        s = pair_spectra(pair.ax_m_s2, pair.ay_m_s2, pair.dt_s, both)
+        split = grid.size
+        if code == "asce7-22":
+            on_grid.append(s["rotd100_m_s2"][:split] / g)
+        else:
+            on_grid.append(np.vstack([s["psa_x_m_s2"][:split], s["psa_y_m_s2"][:split]]) / g)
+        on_plot.append({k: v[split:] / g for k, v in s.items()})
+    timing["spectra"] = time.perf_counter() - clock
+    target_grid = target.sa_g(grid)
+    factors = scale_factors(np.array(on_grid), target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask)
+    ratio = suite_mean(np.array(on_grid), factors) / target_grid
+    names = suite.names
+    key = "rotd100_m_s2" if code == "asce7-22" else None
+    plot_pairs = {name: (s[key] if key else 0.5 * (s["psa_x_m_s2"] + s["psa_y_m_s2"])) * f
+                  for name, s, f in zip(names, on_plot, factors)}
+    spectra = {"periods_s": plot, "target_g": _safe_target(target, plot), "pairs_scaled_g": plot_pairs,
+               "suite_mean_scaled_g": np.mean(list(plot_pairs.values()), axis=0),
+               "grid_s": grid, "target_grid_g": target_grid}
+    if rotd50_points:
+        t50 = np.geomspace(lo, hi, rotd50_points)
+        spectra["rotd50"] = {"periods_s": t50, "pairs_scaled_g": {
+            p.name: f * rotd50(p.ax_m_s2, p.ay_m_s2, p.dt_s, t50) / g for p, f in zip(suite.pairs, factors)}}
+
+    # analyses: every pair × bound (one run per distinct friction)
+    tasks, index = {}, {}
+    for b, d in designs.items():
+        dp = design_parameters(d)
+        for pair, f in zip(suite.pairs, factors):
+            k = task_key(pair.content_key(), f, dp)
+            index[(b, pair.name)] = k
+            tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": pair.az_m_s2, "dt": pair.dt_s,
+                                 "factor": float(f), "design": dp})
+    start = time.perf_counter()
+    results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler, cache=Cache(cache_dir))
+    timing["analyses"] = time.perf_counter() - start
+    timing["analyses_cached"] = n_cached
+    timing["analyses_total"] = len(tasks)
+    analyses = {b: {name: dict(results[index[(b, name)]], scale_factor=float(f))
+                    for name, f in zip(names, factors)} for b in designs}
+    failed = sorted({name for b in analyses for name, r in analyses[b].items() if "error" in r})
+    for name in failed:
+        notes.append(f"analysis of pair '{name}' failed: "
+                     + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))
+
+    review = Review(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
+                    bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
+                    factors=dict(zip(names, map(float, factors))), spectra=spectra, suite_ratio=ratio,
+                    analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing,
+                    created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
+    from isolator.review.assess import assess
+
+    assess(review, designs)
+    timing["total"] = time.perf_counter() - clock
+    return review
+
+
+def _safe_target(target, periods):
+    """The target at the plot periods, NaN outside a tabulated target's range."""
+    if target.kind != "table":
+        return target.sa_g(periods)
+    inside = (periods >= target.periods_s[0]) & (periods <= target.periods_s[-1])
+    out = np.full(periods.size, np.nan)
+    out[inside] = target.sa_g(periods[inside])
+    return out

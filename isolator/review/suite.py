@@ -1,0 +1,370 @@
+"""Ground-motion suites: pairs of horizontal components (and optional verticals) read, checked and hashed.
+
+A suite is given either as SUITE.toml::
+
+    units = "g"            # optional default for files that do not state their units
+    trim = false           # optional: trim the two components of a pair to their common span
+    [[pair]]
+    name = "Duzce 1999 DZC"
+    x = "records/RSN1605_DUZCE_DZC180.AT2"        # a path, or {file = "CE89146.V2", component = "HN1"}
+    y = "records/RSN1605_DUZCE_DZC270.AT2"
+    z = "…"                # optional vertical
+    units = "g"            # optional, this pair's units
+    trim = true            # optional, this pair only
+
+(paths relative to the suite file), or as files, folders and globs of records, grouped into pairs
+by station and event (a multi-channel file is one station: its two horizontals and its vertical).
+
+Rules (REVIEW_RULES 1.4 and issue 11):
+
+* the same samples twice in a suite (two files of one motion, or one component used twice) are
+  refused, naming both, by the SHA-256 of the samples in m/s²;
+* two components of different length are trimmed to the common span only when the suite asks
+  (``trim``), and the trim is recorded in the pair's processing; otherwise the suite is refused
+  with one line naming the pair; different time steps are always refused;
+* a record that cannot be read fails its pair only (reported), not the review.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from isolator.review.errors import SuiteError
+
+SUITE_KEYS = {"units", "trim", "pair", "name", "description"}
+PAIR_KEYS = {"name", "x", "y", "z", "units", "trim"}
+_CHECKSUMS_RE = re.compile(r"^(SHA\d*SUMS|MD5SUMS)(\.txt)?$", re.IGNORECASE)
+_CORNER_RE = re.compile(r"(-?\d+)\s*POLE\s*@\s*([0-9.]+)", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class ComponentSpec:
+    """One component to read: a file and, for multi-channel files, the component label."""
+
+    path: str
+    component: str | None = None
+
+    def label(self) -> str:
+        return self.path if self.component is None else f"{self.path} [{self.component}]"
+
+
+@dataclass(frozen=True)
+class PairSpec:
+    """A pair as the suite gives it."""
+
+    name: str
+    x: ComponentSpec
+    y: ComponentSpec
+    z: ComponentSpec | None = None
+    units: str | None = None
+    trim: bool = False
+
+
+@dataclass
+class Pair:
+    """A pair read and checked: same dt, same length, in m/s²."""
+
+    name: str
+    ax_m_s2: np.ndarray
+    ay_m_s2: np.ndarray
+    az_m_s2: np.ndarray | None
+    dt_s: float
+    files: dict  #: component ("x", "y", "z") → label of the file read
+    component_names: dict  #: component → component name in the file
+    processing: list = field(default_factory=list)
+    provenance: dict = field(default_factory=dict)
+    high_pass_hz: float | None = None  #: the largest high-pass corner stated by the files (AT2 headers)
+    sample_hashes: dict = field(default_factory=dict)
+
+    @property
+    def npts(self) -> int:
+        return int(self.ax_m_s2.size)
+
+    @property
+    def pga_m_s2(self) -> float:
+        """Larger horizontal component PGA [m/s²]."""
+        return float(max(np.max(np.abs(self.ax_m_s2)), np.max(np.abs(self.ay_m_s2))))
+
+    def content_key(self) -> str:
+        """SHA-256 of the samples and dt (for caches)."""
+        digest = hashlib.sha256()
+        for array in (self.ax_m_s2, self.ay_m_s2, self.az_m_s2):
+            digest.update(b"-" if array is None else np.ascontiguousarray(array, dtype=np.float64).tobytes())
+        digest.update(repr(self.dt_s).encode())
+        return digest.hexdigest()
+
+
+@dataclass
+class Suite:
+    """The pairs that could be read, and the ones that could not (with the reason)."""
+
+    pairs: list
+    failed: list  #: [{"name": …, "error": …}]
+    source: str
+    specs: list = field(default_factory=list)
+
+    @property
+    def names(self) -> list[str]:
+        return [p.name for p in self.pairs]
+
+
+# ---- reading a component -----------------------------------------------------------------
+
+def _read(spec: ComponentSpec, units: str | None):
+    from isolator.motion import read_ground_motion
+
+    return read_ground_motion(spec.path, component=spec.component, units=units)
+
+
+def high_pass_corner_hz(motion) -> float | None:
+    """The high-pass corner of the record's processing, from a PEER AT2 header (``-5 POLE @ .06``) [Hz].
+
+    A negative pole count is a high-pass (acausal Butterworth, NGA-West2 convention); ``None`` when the
+    header states none.
+    """
+    stats = motion.trace.stats
+    if "peer_at2" not in stats:
+        return None
+    corners = [float(f) for poles, f in _CORNER_RE.findall("\n".join(stats.peer_at2.get("header_lines", [])))
+               if int(poles) < 0 and float(f) > 0]
+    return max(corners) if corners else None
+
+
+def _sample_hash(acceleration: np.ndarray) -> str:
+    return hashlib.sha256(np.ascontiguousarray(acceleration, dtype=np.float64).tobytes()).hexdigest()
+
+
+def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
+    """Read the components of a pair and make them one piecewise-linear pair.
+
+    ``seen`` maps the SHA-256 of samples already in the suite to where they are (updated here).
+
+    Raises
+    ------
+    isolator.motion.RecordError, isolator.units.UnitsError
+        A component cannot be read (the pair fails, not the suite).
+    SuiteError
+        The same samples twice, different time steps, or lengths without ``trim`` (the suite is refused).
+    """
+    motions = {"x": _read(spec.x, spec.units), "y": _read(spec.y, spec.units)}
+    if spec.z is not None:
+        motions["z"] = _read(spec.z, spec.units)
+    specs = {"x": spec.x, "y": spec.y, "z": spec.z}
+    hashes = {key: _sample_hash(m.acceleration_m_s2) for key, m in motions.items()}
+    seen = {} if seen is None else seen
+    for key, digest in hashes.items():
+        where = f"pair '{spec.name}' {key} ({specs[key].label()})"
+        if digest in seen:
+            raise SuiteError(f"the same samples twice: {seen[digest]} and {where} (sha256 {digest[:12]}…)")
+        seen[digest] = where
+    dts = {key: m.dt_s for key, m in motions.items()}
+    if max(dts.values()) - min(dts.values()) > 1e-9 * max(dts.values()):
+        raise SuiteError(f"pair '{spec.name}': components have different time steps "
+                         f"({', '.join(f'{k} {v:g} s' for k, v in dts.items())}); resample them first")
+    lengths = {key: m.npts for key, m in motions.items()}
+    processing = []
+    n = min(lengths.values())
+    if len(set(lengths.values())) > 1:
+        if not spec.trim:
+            raise SuiteError(f"pair '{spec.name}': components differ in length "
+                             f"({', '.join(f'{k} {v}' for k, v in lengths.items())} samples); "
+                             "set trim = true for this pair (or the suite) to use the common span")
+        processing.append({"step": "trim to the common span (suite asked: trim = true)",
+                           "samples": {k: v for k, v in lengths.items()}, "kept": n})
+    arrays = {key: np.ascontiguousarray(m.acceleration_m_s2[:n], dtype=np.float64) for key, m in motions.items()}
+    corners = [c for c in (high_pass_corner_hz(m) for m in motions.values()) if c is not None]
+    provenance = {key: dict(m.provenance) for key, m in motions.items()}
+    for m in motions.values():
+        processing.extend(dict(step) for step in m.processing)
+    return Pair(name=spec.name, ax_m_s2=arrays["x"], ay_m_s2=arrays["y"], az_m_s2=arrays.get("z"),
+                dt_s=float(motions["x"].dt_s), files={k: specs[k].label() for k in motions},
+                component_names={k: m.component for k, m in motions.items()}, processing=processing,
+                provenance=provenance, high_pass_hz=max(corners) if corners else None,
+                sample_hashes=hashes)
+
+
+# ---- SUITE.toml --------------------------------------------------------------------------
+
+def _component(value, base: Path, where: str) -> ComponentSpec:
+    if isinstance(value, str):
+        return ComponentSpec(str(base / value))
+    if isinstance(value, dict) and isinstance(value.get("file"), str) and set(value) <= {"file", "component"}:
+        component = value.get("component")
+        if component is not None and not isinstance(component, str):
+            raise SuiteError(f"{where}: 'component' must be text")
+        return ComponentSpec(str(base / value["file"]), component)
+    raise SuiteError(f"{where}: must be a file name or {{file = \"…\", component = \"…\"}}, got {value!r}")
+
+
+def specs_from_toml(path) -> list[PairSpec]:
+    """The pairs of a SUITE.toml (see the module docstring).
+
+    Raises
+    ------
+    SuiteError
+    """
+    from isolator.design import load_toml
+
+    path = Path(path)
+    mapping = load_toml(path, "suite file", SuiteError)
+    unknown = sorted(set(mapping) - SUITE_KEYS)
+    if unknown:
+        raise SuiteError(f"{path}: unknown key '{unknown[0]}' (valid: units, trim, [[pair]])")
+    units = mapping.get("units")
+    if units is not None and not isinstance(units, str):
+        raise SuiteError(f"{path}: 'units' must be text (g, m/s2, gal, cm/s2)")
+    trim = mapping.get("trim", False)
+    if not isinstance(trim, bool):
+        raise SuiteError(f"{path}: 'trim' must be true or false")
+    pairs = mapping.get("pair")
+    if not isinstance(pairs, list) or not pairs:
+        raise SuiteError(f"{path}: no [[pair]] tables")
+    specs, names = [], set()
+    for index, table in enumerate(pairs, 1):
+        where = f"{path}: pair {index}"
+        if not isinstance(table, dict):
+            raise SuiteError(f"{where}: must be a table")
+        bad = sorted(set(table) - PAIR_KEYS)
+        if bad:
+            raise SuiteError(f"{where}: unknown key '{bad[0]}' (valid: {', '.join(sorted(PAIR_KEYS))})")
+        for key in ("x", "y"):
+            if key not in table:
+                raise SuiteError(f"{where}: missing key '{key}'")
+        name = table.get("name", f"pair{index}")
+        if not isinstance(name, str) or not name.strip():
+            raise SuiteError(f"{where}: 'name' must be a non-empty text")
+        if name in names:
+            raise SuiteError(f"{where}: name '{name}' is used twice")
+        names.add(name)
+        pair_units = table.get("units", units)
+        if pair_units is not None and not isinstance(pair_units, str):
+            raise SuiteError(f"{where}: 'units' must be text")
+        pair_trim = table.get("trim", trim)
+        if not isinstance(pair_trim, bool):
+            raise SuiteError(f"{where}: 'trim' must be true or false")
+        specs.append(PairSpec(name=name.strip(), x=_component(table["x"], path.parent, f"{where} x"),
+                              y=_component(table["y"], path.parent, f"{where} y"),
+                              z=_component(table["z"], path.parent, f"{where} z") if "z" in table else None,
+                              units=pair_units, trim=pair_trim))
+    return specs
+
+
+# ---- files, folders, globs ---------------------------------------------------------------
+
+def specs_from_records(arguments, *, units: str | None = None, trim: bool = False) -> tuple[list, list]:
+    """Pairs from files, folders and globs: grouped by station and event.
+
+    A file with several channels is one station (its two horizontals, and its vertical). Files
+    of one component are grouped by (station, event) from their headers; components left alone
+    are grouped by folder when a folder holds exactly two horizontals (and at most one vertical).
+
+    Returns
+    -------
+    (list of PairSpec, list of {"name", "error"})
+        The pairs, and the files that could not be placed in a pair (with the reason).
+    """
+    from isolator.batch import BatchError, expand_records, is_vertical
+    from isolator.motion import RecordError, list_components, read_ground_motion
+    from isolator.units import UnitsError
+
+    try:
+        files = expand_records(arguments)
+    except BatchError as err:
+        raise SuiteError(str(err)) from None
+    specs, failed, singles = [], [], {}
+    for path in files:
+        if _CHECKSUMS_RE.match(Path(path).name):
+            continue  # checksum lists travel with record folders
+        try:
+            labels = list_components(path)
+            if len(labels) > 1:
+                horizontal = [label for label in labels if not is_vertical(label)]
+                vertical = [label for label in labels if is_vertical(label)]
+                if len(horizontal) != 2:
+                    failed.append({"name": Path(path).name, "error": f"{path}: {len(horizontal)} horizontal "
+                                   "components (a pair needs 2)"})
+                    continue
+                specs.append(PairSpec(Path(path).stem, ComponentSpec(path, horizontal[0]),
+                                      ComponentSpec(path, horizontal[1]),
+                                      ComponentSpec(path, vertical[0]) if len(vertical) == 1 else None,
+                                      units=units, trim=trim))
+                continue
+            head = read_ground_motion(path, units=units)
+        except (RecordError, UnitsError, ValueError, OSError) as err:
+            failed.append({"name": Path(path).name, "error": " ".join(str(err).split())})
+            continue
+        p = head.provenance
+        key = (p.get("network", ""), p.get("station", ""), p.get("event", p.get("event_origin_time", "")))
+        singles.setdefault(key if key[1] else ("folder", str(Path(path).parent), ""), []).append(
+            (path, is_vertical(head.component)))
+    # a station key that holds one file only: fall back to its folder
+    grouped = {}
+    for key, items in singles.items():
+        if len(items) == 1:
+            grouped.setdefault(("folder", str(Path(items[0][0]).parent), ""), []).extend(items)
+        else:
+            grouped.setdefault(key, []).extend(items)
+    for key, items in grouped.items():
+        horizontal = sorted(path for path, vertical in items if not vertical)
+        vertical = sorted(path for path, vertical in items if vertical)
+        name = (key[1] if key[0] != "folder" else Path(key[1]).name) or Path(horizontal[0]).stem
+        if len(horizontal) != 2 or len(vertical) > 1:
+            failed.append({"name": name, "error": f"cannot form a pair from {', '.join(horizontal + vertical)} "
+                           f"({len(horizontal)} horizontal, {len(vertical)} vertical); list the pair in a SUITE.toml"})
+            continue
+        specs.append(PairSpec(name, ComponentSpec(horizontal[0]), ComponentSpec(horizontal[1]),
+                              ComponentSpec(vertical[0]) if vertical else None, units=units, trim=trim))
+    return specs, failed
+
+
+# ---- the suite ---------------------------------------------------------------------------
+
+def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Suite:
+    """Read a suite: a SUITE.toml, or files/folders/globs of records.
+
+    Parameters
+    ----------
+    arguments : str or list of str
+        One ``.toml`` file, or record files, folders and globs.
+    units : str, optional
+        Units for records that do not state them (files/folders only; SUITE.toml has its own).
+    trim : bool
+        Trim pairs of different lengths to the common span (files/folders only).
+
+    Returns
+    -------
+    Suite
+
+    Raises
+    ------
+    SuiteError
+        Duplicated samples, mismatched components, a malformed SUITE.toml, or no pair at all.
+    """
+    from isolator.motion import RecordError
+    from isolator.units import UnitsError
+
+    arguments = [arguments] if isinstance(arguments, (str, os.PathLike)) else list(arguments)
+    if len(arguments) == 1 and str(arguments[0]).lower().endswith(".toml"):
+        source = str(arguments[0])
+        specs, failed = specs_from_toml(arguments[0]), []
+    else:
+        source = ", ".join(str(a) for a in arguments)
+        specs, failed = specs_from_records(arguments, units=units, trim=trim)
+    pairs, seen = [], {}
+    for spec in specs:
+        try:
+            pair = read_pair(spec, seen)
+        except (RecordError, UnitsError) as err:
+            failed.append({"name": spec.name, "error": " ".join(str(err).split())})
+            continue
+        pairs.append(pair)
+    if not pairs:
+        detail = f": {failed[0]['name']}: {failed[0]['error']}" if failed else ""
+        raise SuiteError(f"suite {source}: no pair could be read{detail}")
+    return Suite(pairs=pairs, failed=failed, source=source, specs=specs)

@@ -1,0 +1,273 @@
+"""One analysis of the review (a scaled pair × a property bound), its cache, and the executors.
+
+A task is a plain dict (arrays and numbers, no objects) so that local processes and a Dask
+cluster ship it alike.  Results are cached as JSON under a content key (the samples, the
+scale factor, the friction and the engine version), so an interrupted review resumes where it
+stopped and a rerun with the same inputs analyses nothing.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+#: bump when the numbers an analysis returns change meaning
+CACHE_VERSION = "review-1"
+ORBIT_POINTS = 1500
+
+
+def design_parameters(design) -> dict:
+    """The numbers of a design the 2-D engine needs (per unit mass; SI)."""
+    return {"mu_static": design.mu_static, "mu_kinetic": design.mu_kinetic, "radius_m": design.radius_m,
+            "stiffness_per_mass": design.stiffness_per_mass, "damping_per_mass": design.damping_per_mass,
+            "gravity_m_s2": design.gravity_m_s2, "mu_slow": design.mu_slow, "mu_fast": design.mu_fast,
+            "rate_s_per_m": design.rate_s_per_m}
+
+
+def task_key(pair_key: str, factor: float, parameters: dict) -> str:
+    """Content key of an analysis."""
+    text = json.dumps([CACHE_VERSION, _engine_version(), pair_key, repr(float(factor)), parameters], sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:32]
+
+
+def _engine_version() -> str:
+    from isolator import __version__
+
+    return str(__version__)
+
+
+def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
+    """At most ``points`` rows of an orbit, keeping the row of the peak resultant."""
+    n = xy.shape[0]
+    if n <= points:
+        rows = np.arange(n)
+    else:
+        rows = np.unique(np.concatenate([np.linspace(0, n - 1, points).astype(int),
+                                         [int(np.argmax(np.hypot(xy[:, 0], xy[:, 1])))]]))
+    return np.round(xy[rows], 6).tolist()
+
+
+def _ground_measures(ax, ay, dt):
+    """Resultant PGA [m/s²], PGV [m/s] and D5–95 [s] of the horizontal ground motion."""
+    pga = float(np.max(np.hypot(ax, ay)))
+    vx = np.concatenate([[0.0], np.cumsum(0.5 * (ax[1:] + ax[:-1]) * dt)])
+    vy = np.concatenate([[0.0], np.cumsum(0.5 * (ay[1:] + ay[:-1]) * dt)])
+    pgv = float(np.max(np.hypot(vx, vy)))
+    energy = np.concatenate([[0.0], np.cumsum(0.5 * ((ax ** 2 + ay ** 2)[1:] + (ax ** 2 + ay ** 2)[:-1]) * dt)])
+    t = np.arange(ax.size) * dt
+    if energy[-1] > 0:
+        t5, t95 = np.interp([0.05 * energy[-1], 0.95 * energy[-1]], energy, t)
+    else:
+        t5 = t95 = 0.0
+    return pga, pgv, float(t95 - t5)
+
+
+def simulate(task: dict):
+    """Run the pair engine on a task (imported here so workers load it once)."""
+    try:
+        from isolator.solver.planar import simulate_pair
+    except ImportError:  # TEMPORARY until the planar branch lands: removed at the merge
+        simulate_pair = _per_component_pair
+
+    p = task["design"]
+    kwargs = {"mu_static": p["mu_static"], "mu_kinetic": p["mu_kinetic"], "damping_per_mass": p["damping_per_mass"],
+              "gravity_m_s2": p["gravity_m_s2"]}
+    if p["radius_m"] is not None:
+        kwargs["radius_m"] = p["radius_m"]
+    else:
+        kwargs["stiffness_per_mass"] = p["stiffness_per_mass"]
+    if p["rate_s_per_m"] is not None:
+        kwargs.update(mu_slow=p["mu_slow"], mu_fast=p["mu_fast"], rate_s_per_m=p["rate_s_per_m"])
+    f = task["factor"]
+    az = None if task["az"] is None else f * task["az"]
+    return simulate_pair(f * task["ax"], f * task["ay"], task["dt"], az_m_s2=az, **kwargs)
+
+
+def analyse_task(task: dict) -> dict:
+    """The numbers of one analysis (see :func:`simulate`), or ``{"error": …}``.
+
+    Returns
+    -------
+    dict
+        ``peak_displacement_m`` (resultant), ``residual_displacement_m`` (resultant),
+        ``residual_displacement_x_m``/``_y_m``, ``peak_velocity_m_s``,
+        ``peak_transmitted_acceleration_m_s2`` (resultant), ``base_shear_coefficient`` (= that /g),
+        ``transmitted_over_pga``, ``slip_time_s``, ``uplift_time_s``, ``n_uplifts``, ``n_events``,
+        ``model``, ``model_reason``, the paper's measures (``paper_A`` = D/A0 with A0 = PGV²/PGA of
+        the resultant ground motion, ``paper_alpha`` = PGA/(µs g), ``paper_slip_ratio`` = slip time /
+        D5–95) and ``orbit_m`` (decimated X–Y path).
+    """
+    import time
+
+    start = time.perf_counter()
+    try:
+        r = simulate(task)
+    except Exception as err:  # noqa: BLE001 - one analysis fails, the review reports it
+        return {"error": f"{type(err).__name__}: {' '.join(str(err).split())}"}
+    f, dt = task["factor"], task["dt"]
+    pga, pgv, d595 = _ground_measures(f * task["ax"], f * task["ay"], dt)
+    g = task["design"]["gravity_m_s2"]
+    peak = float(r.peak_displacement_m)
+    a0 = pgv * pgv / pga if pga > 0 else math.nan
+    transmitted = float(r.peak_transmitted_acceleration_m_s2)
+    return {
+        "peak_displacement_m": peak,
+        "residual_displacement_m": float(r.residual_displacement_m),
+        "residual_displacement_x_m": float(r.residual_displacement_x_m),
+        "residual_displacement_y_m": float(r.residual_displacement_y_m),
+        "peak_velocity_m_s": float(r.peak_velocity_m_s),
+        "peak_transmitted_acceleration_m_s2": transmitted,
+        "base_shear_coefficient": transmitted / g,
+        "pga_m_s2": pga,
+        "pgv_m_s": pgv,
+        "transmitted_over_pga": transmitted / pga if pga > 0 else math.nan,
+        "slip_time_s": float(r.slip_time_s),
+        "uplift_time_s": float(getattr(r, "uplift_time_s", 0.0)),
+        "n_uplifts": int(getattr(r, "n_uplifts", 0)),
+        "n_events": int(r.n_events),
+        "model": str(getattr(r, "model", "")),
+        "model_reason": str(getattr(r, "model_reason", "")),
+        "paper_A": peak / a0 if a0 > 0 else math.nan,
+        "paper_A0_m": a0,
+        "paper_alpha": pga / (task["design"]["mu_static"] * g),
+        "paper_slip_ratio": float(r.slip_time_s) / d595 if d595 > 0 else math.nan,
+        "orbit_m": _decimate(np.asarray(r.displacement_m, dtype=np.float64)),
+        "seconds": time.perf_counter() - start,
+    }
+
+
+def warm_up() -> None:
+    """Load the compiled engines once in the parent before workers fork."""
+    from isolator.parallel import warm_up as warm_solvers
+
+    warm_solvers()
+    t = np.linspace(0.0, 2.0, 201)
+    task = {"ax": np.sin(5 * t), "ay": np.cos(5 * t), "az": None, "dt": 0.01, "factor": 1.0,
+            "design": {"mu_static": 0.05, "mu_kinetic": 0.05, "radius_m": 2.0, "stiffness_per_mass": 9.80665 / 2,
+                       "damping_per_mass": 0.0, "gravity_m_s2": 9.80665, "mu_slow": None, "mu_fast": None,
+                       "rate_s_per_m": None}}
+    simulate(task)
+
+
+class Cache:
+    """One JSON file per analysis under ``directory`` (atomic writes)."""
+
+    def __init__(self, directory):
+        self.directory = None if directory is None else Path(directory)
+
+    def get(self, key: str):
+        if self.directory is None:
+            return None
+        path = self.directory / f"{key}.json"
+        try:
+            return json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
+
+    def put(self, key: str, result: dict) -> None:
+        if self.directory is None or "error" in result:
+            return
+        from isolator.atomic import write_text_atomically
+
+        write_text_atomically(self.directory / f"{key}.json", json.dumps(result, allow_nan=True))
+
+
+def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache: Cache | None = None):
+    """Analyse ``{key: task}``; return ``({key: result}, n_cached)``.
+
+    Local processes (fork) when ``jobs`` > 1, a Dask cluster when ``scheduler`` is given.
+    """
+    cache = cache or Cache(None)
+    results, todo = {}, {}
+    for key, task in tasks.items():
+        hit = cache.get(key)
+        if hit is not None:
+            results[key] = hit
+        else:
+            todo[key] = task
+    n_cached = len(results)
+    if not todo:
+        return results, n_cached
+    if scheduler:
+        iterator = _iterate_dask(todo, scheduler)
+    else:
+        iterator = _iterate_local(todo, jobs)
+    for key, result in iterator:
+        results[key] = result
+        cache.put(key, result)
+    return results, n_cached
+
+
+def _iterate_local(todo: dict, jobs: int):
+    warm_up()
+    jobs = max(1, min(int(jobs), len(todo)))
+    if jobs == 1:
+        for key, task in todo.items():
+            yield key, analyse_task(task)
+        return
+    from concurrent.futures import as_completed
+
+    from isolator.parallel import process_pool
+
+    # longest first: the pool finishes together
+    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)
+    with process_pool(jobs) as pool:
+        futures = {pool.submit(analyse_task, todo[key]): key for key in order}
+        for future in as_completed(futures):
+            try:
+                yield futures[future], future.result()
+            except Exception as err:  # noqa: BLE001 - a lost worker: reported, a rerun retries it
+                yield futures[future], {"error": f"worker lost ({type(err).__name__}: {err})"}
+
+
+def _iterate_dask(todo: dict, address: str):
+    from distributed import Client, as_completed
+
+    from isolator.review.errors import ReviewError
+
+    try:
+        client = Client(address, timeout=10)
+    except (OSError, TimeoutError) as err:
+        raise ReviewError(f"--scheduler {address}: cannot connect ({' '.join(str(err).split())})") from None
+    try:
+        futures = {client.submit(analyse_task, task, pure=False): key for key, task in todo.items()}
+        for future in as_completed(list(futures)):
+            try:
+                yield futures[future], future.result()
+            except Exception as err:  # noqa: BLE001
+                yield futures[future], {"error": f"worker lost ({type(err).__name__}: {err})"}
+    finally:
+        client.close()
+
+
+def default_jobs() -> int:
+    """Worker processes when the user gives none (:func:`isolator.parallel.default_workers`)."""
+    from isolator.parallel import default_workers
+
+    return default_workers()
+
+
+def _per_component_pair(ax, ay, dt, *, az_m_s2=None, mu_static, mu_kinetic=None, stiffness_per_mass=0.0,
+                        radius_m=None, damping_per_mass=0.0, gravity_m_s2=None, **_):  # TEMPORARY
+    from types import SimpleNamespace
+
+    from isolator.solver.record import simulate_record
+
+    kappa = gravity_m_s2 / radius_m if radius_m is not None else stiffness_per_mass
+    rx = simulate_record(ax, dt, mu_static=mu_static, mu_kinetic=mu_kinetic, stiffness_per_mass=kappa,
+                         damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2)
+    ry = simulate_record(ay, dt, mu_static=mu_static, mu_kinetic=mu_kinetic, stiffness_per_mass=kappa,
+                         damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2)
+    xy = np.column_stack([rx.displacement_m, ry.displacement_m])
+    acc = np.column_stack([rx.absolute_acceleration_m_s2, ry.absolute_acceleration_m_s2])
+    return SimpleNamespace(displacement_m=xy, peak_displacement_m=float(np.max(np.hypot(xy[:, 0], xy[:, 1]))),
+                           residual_displacement_m=float(np.hypot(*xy[-1])), residual_displacement_x_m=xy[-1, 0],
+                           residual_displacement_y_m=xy[-1, 1],
+                           peak_velocity_m_s=max(rx.peak_velocity_m_s, ry.peak_velocity_m_s),
+                           peak_transmitted_acceleration_m_s2=float(np.max(np.hypot(acc[:, 0], acc[:, 1]))),
+                           slip_time_s=max(rx.slip_time_s, ry.slip_time_s), n_events=rx.n_events + ry.n_events,
+                           model="1d-per-component", model_reason="2-D engine not available")

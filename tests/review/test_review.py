@@ -1,0 +1,171 @@
+"""run_review end to end on real pairs, its JSON contract, the cache, the PDF's page 1 and the CLI."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from isolator.cli import app
+from isolator.design import Design
+from isolator.report.pdf import fmt
+from isolator.review.suite import load_suite
+from isolator.review.target import two_period_target
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "isolator" / "data" / "suites" / "example"
+SHORT = [("landers1992_YER", "RSN900_LANDERS_YER270.AT2", "RSN900_LANDERS_YER360.AT2", ""),
+         ("hectormine1999_ABY", "RSN1762_HECTOR_ABY090.AT2", "RSN1762_HECTOR_ABY360.AT2", ""),
+         ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2", "trim = true")]
+DESIGN = """name = "A very long design name that would overprint the first page of the review if nothing cut it short"
+mass_kg = 1.0e6
+radius_m = 2.5
+mu_static = 0.06
+mu_kinetic = 0.05
+displacement_capacity_m = 0.5
+lambda_max = 1.3
+lambda_min = 0.8
+"""
+
+
+@pytest.fixture(scope="module")
+def inputs(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("review")
+    body = ""
+    for name, x, y, extra in SHORT:
+        body += f'[[pair]]\nname = "{name}"\nx = "{EXAMPLE / name / x}"\ny = "{EXAMPLE / name / y}"\n{extra}\n'
+    (folder / "suite.toml").write_text(body)
+    (folder / "design.toml").write_text(DESIGN)
+    (folder / "target.toml").write_text("S_MS = 1.5\nS_M1 = 0.9\nT_L = 8.0\n")
+    return folder
+
+
+@pytest.fixture(scope="module")
+def review(inputs):
+    from isolator.review.run import run_review
+
+    return run_review(Design.from_toml(inputs / "design.toml"), two_period_target(1.5, 0.9, 8.0),
+                      load_suite(inputs / "suite.toml"), jobs=1, cache_dir=inputs / "cache")
+
+
+def test_contract_keys_and_suite_rules(review):
+    out = review.to_dict()
+    lo, hi = out["period_range_s"]
+    assert lo == pytest.approx(0.75 * out["elf"]["upper"]["T_M_s"])
+    assert hi == pytest.approx(1.25 * out["elf"]["lower"]["T_M_s"])
+    assert out["min_ratio_required"] == 1.0 and out["suite_min_ratio"] >= 1.0 - 1e-12
+    assert out["suite_min_ratio"] == pytest.approx(1.0, rel=1e-9)  # the common factor is the smallest that passes
+    assert set(out["scale_factors"]) == {name for name, *_ in SHORT}
+    for bound in ("lower", "upper"):
+        assert set(out["elf"][bound]) >= {"D_M_m", "T_M_s", "beta_M", "B_M", "V_b_over_W"}
+        pairs = out["bounds"][bound]["pairs"]
+        for result in pairs.values():
+            assert set(result) >= {"peak_displacement_m", "residual_displacement_m", "base_shear_coefficient"}
+    assert out["bounds"]["upper"]["mu"] == pytest.approx(0.065) and out["bounds"]["lower"]["mu"] == pytest.approx(0.04)
+    # three pairs (< 7): the design value is the maximum over the pairs of the governing bound
+    d = out["design_displacement_m"]
+    assert d["rule"] == "max" and d["n"] == 3
+    governing = out["bounds"][d["governing_bound"]]["pairs"]
+    assert d["value"] == max(r["peak_displacement_m"] for r in governing.values())
+    assert d["value"] == max(max(r["peak_displacement_m"] for r in out["bounds"][b]["pairs"].values())
+                             for b in ("lower", "upper"))
+    ids = [c["id"] for c in out["checks"]]
+    assert {"suite_size", "suite_spectrum", "D_M_capacity", "D_TM_capacity", "restoring_force", "D_over_R",
+            "residual_displacement", "base_shear_elf_floor", "transmitted_over_pga", "uplift"} <= set(ids)
+    for c in out["checks"]:
+        assert set(c) >= {"id", "clause", "status", "value", "limit", "note"}
+        assert c["status"] in ("pass", "fail", "not checked")
+    size = next(c for c in out["checks"] if c["id"] == "suite_size")
+    assert size["status"] == "fail" and size["value"] == 3 and size["limit"] == 7
+    capacity = next(c for c in out["checks"] if c["id"] == "D_M_capacity")
+    assert capacity["status"] == ("pass" if d["value"] <= 0.5 else "fail")
+    json.dumps(out, allow_nan=False)
+
+
+def test_scaled_spectrum_meets_the_target_on_the_grid(review):
+    ratio = review.suite_ratio
+    assert review.grid_s.size >= 300 and review.grid_s[0] == pytest.approx(review.period_range_s[0])
+    assert np.min(ratio) >= 1.0 - 1e-12
+    t_m = [review.elf[b]["T_M_s"] for b in ("lower", "upper")]
+    assert all(np.any(np.isclose(review.grid_s, t)) for t in t_m)
+
+
+def test_rerun_is_served_from_the_cache(inputs, review):
+    from isolator.review.run import run_review
+
+    again = run_review(Design.from_toml(inputs / "design.toml"), two_period_target(1.5, 0.9, 8.0),
+                       load_suite(inputs / "suite.toml"), jobs=1, cache_dir=inputs / "cache")
+    assert again.timing["analyses_cached"] == again.timing["analyses_total"] == 9
+    assert again.to_dict()["design_displacement_m"] == review.to_dict()["design_displacement_m"]
+
+
+def test_pdf_page_one_numbers_equal_the_json(review, tmp_path):
+    from pypdf import PdfReader
+
+    from isolator.report.review_pages import write_review_pdf
+
+    out = write_review_pdf(review, tmp_path / "r.pdf", command="isolator review …")
+    saved = json.loads((tmp_path / "r.json").read_text())
+    assert saved["checks"] == out["checks"]
+    reader = PdfReader(tmp_path / "r.pdf")
+    assert len(reader.pages) == 5
+    text = reader.pages[0].extract_text()
+    for c in saved["checks"]:
+        assert c["id"] in text and fmt(c["value"]) in text and fmt(c["limit"]) in text
+    assert fmt(saved["design_displacement_m"]["value"]) in text
+    assert fmt(saved["suite_min_ratio"]) in text and fmt(saved["D_TM_m"]) in text
+    assert "cut it short" not in text and "A very long design name" in text  # shortened, not overprinted
+    assert "[U]" in text
+
+
+def _cli(*args):
+    return CliRunner().invoke(app, ["review", *[str(a) for a in args]])
+
+
+def test_cli_review_json(inputs, tmp_path):
+    result = _cli("--design", inputs / "design.toml", "--target", inputs / "target.toml", "--suite",
+                  inputs / "suite.toml", "-o", tmp_path / "r.pdf", "--json", "--jobs", "1", "--scaling", "fit")
+    assert result.exit_code == 0, result.output
+    out = json.loads(result.stdout)
+    assert out["scaling"] == "fit" and len(set(np.round(list(out["scale_factors"].values()), 9))) == 3
+    assert (tmp_path / "r.pdf").is_file() and (tmp_path / "r.json").is_file()
+
+
+@pytest.mark.parametrize("change, words", [
+    (["--code", "aashto"], "--code must be one of"),
+    (["--scaling", "best"], "--scaling must be one of"),
+    (["--set", "min_ratio=abc"], "must be a number"),
+    (["--set", "colour=red"], "unknown review parameter 'colour'"),
+    (["-o", "r.png"], "must end with .pdf"),
+    (["--target", "absent.toml"], "no such target file"),
+])
+def test_cli_mistakes_are_one_line_exit_2(inputs, change, words):
+    args = {"--design": inputs / "design.toml", "--target": inputs / "target.toml", "--suite": inputs / "suite.toml",
+            "-o": inputs / "out.pdf"}
+    extra = []
+    for i in range(0, len(change), 2):
+        if change[i] in args:
+            args[change[i]] = change[i + 1]
+        else:
+            extra += change[i:i + 2]
+    flat = [item for pair in args.items() for item in pair] + extra
+    result = _cli(*flat)
+    assert result.exit_code == 2 and words in result.output and "Traceback" not in result.output
+    assert len(result.output.strip().splitlines()) == 1
+
+
+def test_cli_bad_target_key_and_duplicate_suite(inputs, tmp_path):
+    target = tmp_path / "t.toml"
+    target.write_text("S_MS = 1.5\nS_M1 = 0.9\n")
+    result = _cli("--design", inputs / "design.toml", "--target", target, "--suite", inputs / "suite.toml")
+    assert result.exit_code == 2 and "missing key 'T_L'" in result.output
+    name, x, _, _ = SHORT[0]
+    shutil.copy(EXAMPLE / name / x, tmp_path / "again.AT2")
+    suite = tmp_path / "dup.toml"
+    suite.write_text(f'[[pair]]\nx = "{EXAMPLE / name / x}"\ny = "again.AT2"\n')
+    result = _cli("--design", inputs / "design.toml", "--target", inputs / "target.toml", "--suite", suite)
+    assert result.exit_code == 2 and "same samples" in result.output and "again.AT2" in result.output
