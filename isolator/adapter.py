@@ -158,3 +158,34 @@ def engineering_quantities(design: Design, response) -> dict:
         "base_shear_coefficient": force_N / design.weight_N,
         "design_force_N": effective.design_force_N,
     }
+
+
+def motion_keywords(design: Design) -> dict:
+    """The isolator keywords of :func:`isolator.solver.planar.simulate_motion` for a design (per unit mass).
+
+    A friction pendulum is given by its radius (κ = g/R, or n(t)/R with a vertical
+    record); any other design by K/M.  µ(v) is passed when the design gives it, which
+    selects the 2-D engine even for one component.
+
+    Parameters
+    ----------
+    design : Design
+        The isolator.
+
+    Returns
+    -------
+    dict
+        ``mu_static``, ``mu_kinetic``, ``radius_m`` or ``stiffness_per_mass`` [1/s²],
+        ``damping_per_mass`` [1/s], ``gravity_m_s2`` [m/s²] and, for µ(v), ``mu_slow``,
+        ``mu_fast``, ``rate_s_per_m`` [s/m].
+    """
+    keywords = {"mu_static": design.mu_static, "mu_kinetic": design.mu_kinetic,
+                "damping_per_mass": design.damping_per_mass, "gravity_m_s2": design.gravity_m_s2}
+    if design.is_pendulum:
+        keywords["radius_m"] = design.radius_m
+    else:
+        keywords["stiffness_per_mass"] = design.stiffness_per_mass
+    if design.velocity_dependent:  # µ(v) replaces the constant kinetic coefficient
+        del keywords["mu_kinetic"]
+        keywords.update(mu_slow=design.mu_slow, mu_fast=design.mu_fast, rate_s_per_m=design.rate_s_per_m)
+    return keywords

@@ -199,24 +199,58 @@ def is_vertical(label: str) -> bool:
     return False
 
 
-def record_components(path: str, component: str | None) -> list[str | None]:
-    """Components to analyse in a file: ``[component]``, or every horizontal one for ``all-horizontal``.
+#: Suffixes of formats that hold one component per file: never listed at planning.
+_ONE_COMPONENT_SUFFIXES = frozenset({".at2", ".smc", ".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy",
+                                     ".sac"})
+#: Analyses of a whole file: its two horizontal components ("pair") or with the vertical ("all").
+SET_COMPONENTS = ("pair", "all")
 
-    For ``all-horizontal`` a single-component file gives ``[None]`` (its one
-    component); a file that cannot be listed also gives ``[None]`` (the read then fails
-    with the file's message, in the rows).
+
+def _knet_set_member(path: str) -> tuple[bool, bool]:
+    """(belongs to a K-NET/KiK-net set of two horizontals, is the set's first existing file)."""
+    from isolator.motion.pair import _knet_siblings
+
+    siblings = _knet_siblings(Path(path))
+    if siblings is None:
+        return False, False
+    horizontal = [p for p in siblings if not p.suffix.upper().startswith(".UD")]
+    if len(horizontal) != 2:
+        return False, False
+    return True, os.path.abspath(siblings[0]) == os.path.abspath(path)
+
+
+def record_components(path: str, component: str | None) -> list[str | None]:
+    """Components to analyse in a file.
+
+    * ``None`` (the default): ``["pair"]`` for a file with two horizontal components
+      (a multi-channel file, or the first file of a K-NET set), ``[]`` for the other
+      files of that set, ``[None]`` (the file's one component) otherwise;
+    * ``"pair"`` / ``"all"``: the same, the vertical included for ``"all"``;
+    * ``"all-horizontal"``: every horizontal component of a multi-component file, one by one;
+    * any other label: ``[component]``.
+
+    A file that cannot be listed gives ``[None]`` (or ``[component]``): the read then
+    fails with the file's message, in the rows.
     """
-    if component != "all-horizontal":
+    if component not in (None, "all-horizontal", *SET_COMPONENTS):
         return [component]
+    knet, first = _knet_set_member(path)
+    if knet and component != "all-horizontal":
+        return [component or "pair"] if first else []
+    if component is None and Path(path).suffix.lower() in _ONE_COMPONENT_SUFFIXES:
+        return [None]
     from isolator.motion import RecordError, list_components
 
     try:
         labels = list_components(path)
     except (RecordError, ValueError, OSError):
-        return [None]
-    if len(labels) <= 1:
-        return [None]
-    return [label for label in labels if not is_vertical(label)] or [None]
+        return [component if component in SET_COMPONENTS else None]
+    horizontal = [label for label in labels if not is_vertical(label)]
+    if component == "all-horizontal":
+        return horizontal if len(labels) > 1 and horizontal else [None]
+    if len(horizontal) == 2:
+        return [component or "pair"]
+    return [component if component in SET_COMPONENTS else None]
 
 
 @dataclass(frozen=True)

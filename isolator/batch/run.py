@@ -49,7 +49,8 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     grids : list of (str, list of float)
         From :func:`parse_grid` [-].
     component : str, optional
-        Component to read, or ``"all-horizontal"`` [-].
+        Component to read; ``"pair"``/``"all"`` (the two horizontals of a file, with the vertical), the
+        default for a file with two horizontal components; or ``"all-horizontal"`` (each one alone) [-].
     options : ReadOptions
         Units for records that do not state them; scaling to a PGA [g].
     jobs : int, optional

@@ -16,11 +16,13 @@ TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_sec
 
 #: Column order of the table (columns of every row; a row may leave some empty).
 COLUMNS = (
-    "record", "component", "design_index", "design_name", "error",
+    "record", "component", "design_index", "design_name", "error", "model", "model_reason",
     # record provenance
     "record_format", "record_station", "record_station_name", "record_network", "record_channel",
     "record_event", "record_date", "record_starttime", "record_units_source", "record_npts", "record_dt_s",
-    "record_duration_s", "record_scale_factor",
+    "record_duration_s", "record_scale_factor", "record_processing",
+    # the components of a pair (and the vertical), their PGA
+    "component_x", "component_y", "component_z", "pga_x_m_s2", "pga_y_m_s2", "pga_z_m_s2",
     # intensity measures (of the motion analysed, after scaling)
     "pga_m_s2", "pgv_m_s", "pgd_m", "arias_m_s", "d5_95_s", "predominant_period_s", "a0_equiv_m",
     "omega_equiv_rad_s",
@@ -30,11 +32,13 @@ COLUMNS = (
     # the paper's dimensionless point
     "alpha", "k", "eta", "configuration",
     # simulate
-    "peak_displacement_m", "residual_displacement_m", "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2",
-    "slip_time_s", "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
+    "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m", "residual_displacement_y_m",
+    "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2", "slip_time_s", "uplift_time_s", "n_uplifts",
+    "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
     "energy_balance_error_J_per_kg", "solver_status",
     # engineering quantities at the peak displacement
     "effective_period_s", "effective_damping_ratio", "peak_transmitted_force_N", "base_shear_coefficient",
+    "displacement_capacity_m", "displacement_demand_ratio",
     # classification (record, over D5-95) and harmonic (at the equivalent point)
     "regime_record", "zeta_record", "amplitude_record", "amplified_record", "dominant_force_record",
     "dominant_force_rho_record", "rho_ev_record", "rho_vf_record", "rho_ef_record", "window_start_s",

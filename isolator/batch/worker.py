@@ -135,9 +135,16 @@ def _analyse_row(design, motion, measures, window, harmonic: bool = True) -> dic
         harmonic_class, steady, status, harmonic_seconds = None, None, "not computed (--no-harmonic)", 0.0
     engineering = engineering_quantities(design, response)
     row = {
+        "model": response.model, "model_reason": response.model_reason,
         "alpha": point.alpha, "k": point.k, "eta": point.eta, "configuration": system.configuration,
         "peak_displacement_m": response.peak_displacement_m,
         "residual_displacement_m": response.residual_displacement_m,
+        # one component: the motion is along X; no vertical, no uplift
+        "residual_displacement_x_m": response.residual_displacement_m, "residual_displacement_y_m": 0.0,
+        "uplift_time_s": 0.0, "n_uplifts": 0,
+        "displacement_capacity_m": design.displacement_capacity_m,
+        "displacement_demand_ratio": None if design.displacement_capacity_m is None
+        else response.peak_displacement_m / design.displacement_capacity_m,
         "peak_velocity_m_s": response.peak_velocity_m_s,
         "peak_transmitted_acceleration_m_s2": response.peak_transmitted_acceleration_m_s2,
         "slip_time_s": response.slip_time_s, "n_events": int(response.n_events),
@@ -174,19 +181,20 @@ def _write_report(task: Task, case: DesignCase, design, motion, factor) -> None:
     write_report(analysis, target, map_resolution=task.map_resolution, command="isolator batch", workers=1)
 
 
-def run_task(task: Task) -> list[dict]:
-    """Rows of one task (the function both executors run).  Never raises for a bad record or design."""
+def _read_error_rows(task: Task, err: Exception) -> list[dict]:
+    """One row per design saying why the record could not be read."""
+    message = _one_line(err) if str(err) else type(err).__name__
+    if task.record not in message:
+        message = f"{task.record}: {message}"
+    base = {"record": task.record, "component": task.component or ""}
+    return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
+
+
+def _design_rows(task: Task, record_cols: dict, analyse, report) -> list[dict]:
+    """The rows of every design of a task: ``analyse(design)`` gives the numbers, ``report(case, design)``
+    writes the PDF when ``--reports`` is given; a design's failure is its row's error."""
     from isolator.design import Design
 
-    base = {"record": task.record, "component": task.component or ""}
-    try:
-        motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)
-    except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
-        message = _one_line(err) if str(err) else type(err).__name__
-        if task.record not in message:
-            message = f"{task.record}: {message}"
-        return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
-    record_cols = _record_columns(task.record, task.component, motion, measures, factor, read_seconds)
     rows = []
     for case, key in task.designs:
         row = {**record_cols, "row_key": key}
@@ -197,13 +205,45 @@ def run_task(task: Task) -> list[dict]:
             start = time.perf_counter()
             design = Design.from_mapping(case.mapping, source=case.source)
             row.update(_design_columns(case, design))
-            row.update(_analyse_row(design, motion, measures, window, task.options.harmonic))
+            row.update(analyse(design))
             row["row_seconds"] = time.perf_counter() - start
             if task.reports_dir:
-                _write_report(task, case, design, motion, factor)
+                report(case, design)
             row["error"] = ""
         except Exception as err:  # noqa: BLE001 - one design's failure is its row's error
             row.update(_design_columns(case))
             row["error"] = f"{case.source}: {type(err).__name__}: {_one_line(err)}"
         rows.append(row)
     return rows
+
+
+def run_task(task: Task) -> list[dict]:
+    """Rows of one task (the function both executors run).  Never raises for a bad record or design.
+
+    A task on ``"pair"``/``"all"`` reads the file's components together and runs the
+    model the scene needs (:mod:`isolator.batch.pairs`); a design with µ(v) runs the
+    2-D engine on one component too.
+    """
+    from isolator.batch import pairs
+    from isolator.batch.plan import SET_COMPONENTS
+
+    if task.component in SET_COMPONENTS:
+        try:
+            motions, factor, read_seconds = pairs.read_pair(task.record, task.component, task.options)
+        except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
+            return _read_error_rows(task, err)
+        return _design_rows(task, pairs.record_columns(task, motions, factor, read_seconds),
+                            lambda design: pairs.analyse_motion_row(design, motions),
+                            lambda case, design: pairs.write_pair_report(task, case, design, motions, factor))
+    try:
+        motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)
+    except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
+        return _read_error_rows(task, err)
+
+    def analyse(design):
+        if design.velocity_dependent:  # µ(v): the 2-D engine, no 1-D classification
+            return pairs.analyse_motion_row(design, motion)
+        return _analyse_row(design, motion, measures, window, task.options.harmonic)
+
+    return _design_rows(task, _record_columns(task.record, task.component, motion, measures, factor, read_seconds),
+                        analyse, lambda case, design: _write_report(task, case, design, motion, factor))

@@ -18,8 +18,10 @@ def batch(
     units: str = typer.Option(None, "--units", "-u", help="Units of the records whose file does not state them "
                               "(text, MiniSEED …): g, m/s2, gal or cm/s2.  Files that state theirs are read as "
                               "they say."),
-    component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"] + "  Or "
-                                  "'all-horizontal': every horizontal component of multi-component files."),
+    component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"] + "  Or 'pair' "
+                                  "(the default for a file with two horizontal components: CSMIP V2, MiniSEED "
+                                  "streams, K-NET sets; a coupled 2-D analysis), 'all' (with the vertical), or "
+                                  "'all-horizontal': every horizontal component of multi-component files alone."),
     dt: float = typer.Option(None, "--dt", help="Time step [s] of the one-column text records that give none "
                              "(other files keep their own)."),
     scale_to_pga: float = typer.Option(None, "--scale-to-pga", help="Scale every record to this peak ground "

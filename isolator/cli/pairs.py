@@ -89,24 +89,6 @@ def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, sys
         user_error(f"{record_label}: {err}")
 
 
-def response_summary(result) -> dict:
-    """The scalar results of a 1-D or 2-D response under one set of keys (units in the names).
-
-    A 1-D response has its displacement along X: the resultant peak is its peak,
-    ``residual_displacement_x_m`` its signed residual, Y zero, no uplift.
-    """
-    summary = dict(result.summary())
-    summary.setdefault("model", getattr(result, "model", "1d-exact"))
-    summary.setdefault("model_reason", getattr(result, "model_reason", ""))
-    if "residual_displacement_x_m" not in summary:
-        summary["residual_displacement_x_m"] = summary["residual_displacement_m"]
-        summary["residual_displacement_y_m"] = 0.0
-        summary.setdefault("uplift_time_s", 0.0)
-        summary.setdefault("n_uplifts", 0)
-    first = {key: summary.pop(key) for key in ("model", "model_reason")}
-    return {**first, **summary}
-
-
 def history_columns(result) -> tuple[str, list]:
     """CSV header and columns of the time histories of a 1-D or a 2-D response."""
     if getattr(result, "displacement_m").ndim == 1:

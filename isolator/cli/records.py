@@ -106,8 +106,9 @@ def simulate(
     (--mu-slow/--mu-fast/--rate-s-per-m) → the 2-D engine.  Records are linear
     between samples (unequal steps allowed).  Energies are per unit mass (J/kg).
     """
-    from isolator.cli.pairs import (history_columns, load_motion_set_for_cli, response_summary, result_rows,
-                                    solve, system_keywords, wants_set)
+    from isolator.cli.pairs import (history_columns, load_motion_set_for_cli, result_rows, solve, system_keywords,
+                                    wants_set)
+    from isolator.pair_analysis import response_summary
     from isolator.solver.system import InvalidSystemError, System
 
     system = system_keywords(mu_s=mu_s, mu_k=mu_k, stiffness_per_mass=stiffness_per_mass,

@@ -5,6 +5,78 @@ from __future__ import annotations
 import typer
 
 from isolator.cli.common import RECORD_HELP, app, echo_table, load_record_for_cli, user_error
+from isolator.cli.pairs import PAIR_HELP, wants_set
+
+
+def _output_pdf(output: str | None, record: str, design: str, tag: str = "") -> str:
+    """The PDF to write: ``--output`` (must end with .pdf) or reports/DESIGN_RECORD<tag>.pdf."""
+    from pathlib import Path
+
+    if output is None:
+        record_stem = record.split(":", 1)[1] if record.startswith("example:") else Path(record).stem
+        output = str(Path("reports") / f"{Path(design).stem}_{record_stem}{tag}.pdf")
+    if Path(output).suffix.lower() != ".pdf":
+        user_error(f"--output must end with .pdf, got {output}")
+    return output
+
+
+def _command_line() -> str:
+    """The command as typed, quoted for a shell (printed in the report)."""
+    import shlex
+    import sys
+
+    return "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
+
+
+def _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
+                 dt, trim, resample, scale_to_pga, output) -> None:
+    """The bidirectional report (:mod:`isolator.report.pair`) of a design under a pair (or one component with µ(v))."""
+    from pathlib import Path
+
+    from isolator.cli.pairs import load_motion_set_for_cli
+    from isolator.pair_analysis import analyse_pair
+    from isolator.report.pair import write_pair_report
+    from isolator.solver.record import RecordInputError
+    from isolator.solver.system import InvalidSystemError
+    from isolator.units import STANDARD_GRAVITY
+
+    if wants_set(pair, vertical, component):
+        motions = load_motion_set_for_cli(record_path, pair, vertical, component, units, merge, dt, trim=trim,
+                                          resample=resample)
+    else:
+        motions = load_record_for_cli(record_path, component, units, merge, dt)
+    scaling_note = ""
+    if scale_to_pga is not None:
+        if not scale_to_pga > 0:
+            user_error(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
+        horizontal = [m for axis, m in getattr(motions, "components", {"x": motions}).items() if axis != "z"]
+        largest = max(m.pga_m_s2 for m in horizontal)
+        if not largest > 0:
+            user_error(f"{record_label}: cannot scale a record of zeros to a PGA")
+        factor = scale_to_pga * STANDARD_GRAVITY / largest
+        motions = motions.scaled(factor)
+        scaling_note = (f"Scaled by {factor:.4g}: the larger horizontal PGA {largest / STANDARD_GRAVITY:.4g} g to "
+                        f"{scale_to_pga:g} g.")
+    output = _output_pdf(output, record, design, "_pair")
+    try:
+        analysis = analyse_pair(the_design, motions, record_label=record_label, scaling_note=scaling_note)
+    except (InvalidSystemError, RecordInputError) as err:
+        user_error(f"{record_label}: {err}")
+    try:
+        numbers = write_pair_report(analysis, output, command=_command_line())
+    except OSError as err:
+        user_error(f"{output}: cannot write ({err.strerror or err})")
+    results = numbers["results"]
+    echo_table([
+        ("report", output, "(3 pages)"),
+        ("numbers", str(Path(output).with_suffix(".json")), ""),
+        ("model", numbers["model"], f"({numbers['model_reason']})"),
+        ("peak displacement", f"{results['peak_displacement_m']:.4g}", "m (resultant)"),
+        ("demand / capacity", "n/a" if results["displacement_demand_ratio"] is None
+         else f"{results['displacement_demand_ratio']:.3g}", ""),
+        ("residual displacement", f"{results['residual_displacement_m']:.4g}", "m"),
+        ("peak transmitted acc.", f"{results['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
+    ])
 
 
 @app.command()
@@ -14,12 +86,17 @@ def report(
     design: str = typer.Option(..., "--design", "-d", help="Design file (TOML): name, mass_kg, radius_m or "
                                "stiffness_N_per_m, mu_static; optional mu_kinetic, damping_Ns_per_m or "
                                "damping_ratio."),
-    component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"]),
+    component: str = typer.Option(None, "--component", "-c", help=PAIR_HELP["component"]),
+    pair: str = typer.Option(None, "--pair", help=PAIR_HELP["pair"]),
+    vertical: str = typer.Option(None, "--vertical", help=PAIR_HELP["vertical"]),
+    trim: bool = typer.Option(False, "--trim", help=PAIR_HELP["trim"]),
+    resample: bool = typer.Option(False, "--resample", help=PAIR_HELP["resample"]),
     units: str = typer.Option(None, "--units", "-u", help=RECORD_HELP["units"]),
     merge: bool = typer.Option(False, "--merge", help=RECORD_HELP["merge"]),
     dt: float = typer.Option(None, "--dt", help=RECORD_HELP["dt"]),
     scale_to_pga: float = typer.Option(None, "--scale-to-pga", help="Scale the record to this peak ground "
-                                       "acceleration, in g (e.g. 0.3); stated on the summary page."),
+                                       "acceleration, in g (e.g. 0.3); stated on the summary page.  A pair is "
+                                       "scaled by one factor: its larger horizontal PGA to this value."),
     output: str = typer.Option(None, "--output", "-o", help="PDF to write (default reports/DESIGN_RECORD.pdf); "
                                "the JSON of the same numbers is written beside it."),
     map_resolution: int = typer.Option(40, "--map-resolution", min=8, max=400,
@@ -27,11 +104,13 @@ def report(
 ) -> None:
     """Engineering-review PDF (and JSON) of an isolator design under a ground-motion record.
 
-    Pages: summary and verdicts; the record and its spectrum; the response (time
-    histories, hysteresis, energy); the design on the paper's harmonic regime map.
+    One component: summary and verdicts; the record and its spectrum; the response
+    (time histories, hysteresis, energy); the design on the paper's harmonic regime map.
+    A pair (--pair, --component pair|all, --vertical) or a design with µ(v): summary
+    with the model that ran and why; the ground motion; the orbit with the
+    displacement-capacity circle, the resultant displacement and the hysteresis in each
+    direction.
     """
-    import shlex
-    import sys
     from pathlib import Path
 
     from isolator.design import Design, DesignError
@@ -45,6 +124,10 @@ def report(
         record_path, record_label = resolve_record(record)
     except ValueError as err:
         user_error(str(err))
+    if wants_set(pair, vertical, component) or the_design.velocity_dependent:
+        _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
+                     dt, trim, resample, scale_to_pga, output)
+        return
     motion = load_record_for_cli(record_path, component, units, merge, dt)
     scaling_note = ""
     if scale_to_pga is not None:
@@ -59,11 +142,7 @@ def report(
             user_error(f"{record_label}: {err}")
         scaling_note = (f"Record scaled to the design PGA {scale_to_pga:g} g (from {original_g:.4g} g, "
                         f"factor {scale_to_pga / original_g:.4g}).")
-    if output is None:
-        record_stem = record.split(":", 1)[1] if record.startswith("example:") else Path(record).stem
-        output = str(Path("reports") / f"{Path(design).stem}_{record_stem}.pdf")
-    if Path(output).suffix.lower() != ".pdf":
-        user_error(f"--output must end with .pdf, got {output}")
+    output = _output_pdf(output, record, design)
     from isolator.report.pdf import write_report
     from isolator.report.summary import analyse
     from isolator.solver.record import RecordInputError
@@ -72,9 +151,8 @@ def report(
         analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note)
     except (RecordInputError, ValueError) as err:
         user_error(f"{record_label}: {err}")
-    command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
     try:
-        summary = write_report(analysis, output, map_resolution=map_resolution, command=command)
+        summary = write_report(analysis, output, map_resolution=map_resolution, command=_command_line())
     except OSError as err:
         user_error(f"{output}: cannot write ({err.strerror or err})")
     echo_table([

@@ -68,6 +68,8 @@ def pair_response_page(fig, response, mass_kg: float, *, capacity_m: float | Non
     dict
         The axes drawn, by name.
     """
+    from matplotlib.ticker import MaxNLocator
+
     t = np.asarray(response.time_s)
     disp = np.asarray(response.displacement_m)
     force_kN = -mass_kg * np.asarray(response.absolute_acceleration_m_s2) / 1e3
@@ -91,6 +93,7 @@ def pair_response_page(fig, response, mass_kg: float, *, capacity_m: float | Non
         ax.set_xlabel(f"displacement {name}  [m]")
         ax.set_ylabel(f"isolator force {name}  [kN]")
         ax.set_title(f"Force-displacement loop, {name}")
+        ax.xaxis.set_major_locator(MaxNLocator(5))
         axes[f"hysteresis_{name}"] = ax
     return axes
 

@@ -46,9 +46,9 @@ def _tail(text: str, width: int) -> str:
     return text if len(text) <= width else "…" + text[-(width - 1):]
 
 
-def _page(plt, number: int, subtitle: str):
+def _page(plt, number: int, subtitle: str, titles=PAGE_TITLES):
     fig = plt.figure(figsize=A4_IN)
-    fig.text(0.05, 0.975, PAGE_TITLES[number - 1], fontsize=13, weight="bold", va="top")
+    fig.text(0.05, 0.975, titles[number - 1], fontsize=13, weight="bold", va="top")
     fig.text(0.95, 0.975, textwrap.shorten(subtitle, 80, placeholder="…"), fontsize=7.5, va="top", ha="right",
              color="0.35")
     return fig

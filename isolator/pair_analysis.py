@@ -1,0 +1,153 @@
+"""The analysis of a design under a pair of components (and a vertical), on the model the scene needs.
+
+``analyse_pair(design, motions)`` runs :func:`isolator.solver.planar.simulate_motion`
+on the components of a :class:`~isolator.motion.MotionPair` (or one
+:class:`~isolator.motion.GroundMotion`) with the design's isolator
+(:func:`isolator.adapter.motion_keywords`) and returns a :class:`PairAnalysis`, whose
+:meth:`~PairAnalysis.to_dict` is what the report's JSON, the batch row and the
+``simulate`` JSON share: the model that ran and why first, then the results under
+the same names everywhere (units in the names, energies per unit mass).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+SCHEMA = "isolator.pair_analysis/1"
+
+
+def response_summary(result) -> dict:
+    """The scalar results of a 1-D or 2-D response under one set of keys, the model first.
+
+    A 1-D response has its displacement along X: the resultant peak is its peak,
+    ``residual_displacement_x_m`` its signed residual, Y zero, no uplift.
+
+    Parameters
+    ----------
+    result : Response or PairResponse
+        From :func:`isolator.solver.planar.simulate_motion`.
+
+    Returns
+    -------
+    dict
+        ``model``, ``model_reason``, ``peak_displacement_m`` (resultant),
+        ``residual_displacement_m`` (resultant; signed for 1-D), ``residual_displacement_x_m``,
+        ``residual_displacement_y_m``, ``peak_velocity_m_s``,
+        ``peak_transmitted_acceleration_m_s2``, ``slip_time_s``, ``uplift_time_s``,
+        ``n_uplifts``, ``n_events``, energies [J/kg], ``solver_seconds``, ``configuration``, ``status``.
+    """
+    summary = dict(result.summary())
+    if "residual_displacement_x_m" not in summary:
+        summary["residual_displacement_x_m"] = summary["residual_displacement_m"]
+        summary["residual_displacement_y_m"] = 0.0
+        summary.setdefault("uplift_time_s", 0.0)
+        summary.setdefault("n_uplifts", 0)
+    first = {"model": summary.pop("model", getattr(result, "model", "1d-exact")),
+             "model_reason": summary.pop("model_reason", getattr(result, "model_reason", ""))}
+    return {**first, **summary}
+
+
+@dataclass
+class PairAnalysis:
+    """A design under a pair (or one component with µ(v) or a vertical): the response and what it means.
+
+    Attributes
+    ----------
+    design : Design
+    motions : MotionPair or GroundMotion
+    response : PairResponse or Response
+    engineering : dict
+        :func:`isolator.adapter.engineering_quantities` at the resultant peak displacement.
+    record_label : str
+    scaling_note : str
+    """
+
+    design: object
+    motions: object
+    response: object
+    engineering: dict = field(default_factory=dict)
+    record_label: str = ""
+    scaling_note: str = ""
+
+    @property
+    def components(self) -> dict:
+        """The ground motions analysed, by axis name (``x``, ``y``, ``z``)."""
+        parts = getattr(self.motions, "components", None)
+        return parts if isinstance(parts, dict) else {"x": self.motions}
+
+    @property
+    def displacement_demand_ratio(self) -> float | None:
+        """Peak resultant displacement / the design's displacement capacity (None without one) [-]."""
+        capacity = getattr(self.design, "displacement_capacity_m", None)
+        return None if capacity is None else self.response.peak_displacement_m / capacity
+
+    def verdicts(self) -> list[str]:
+        """Plain sentences on the demand, the residual and the uplift."""
+        r, out = self.response, []
+        ratio = self.displacement_demand_ratio
+        if ratio is not None:
+            word = "within" if ratio <= 1.0 else "EXCEEDS"
+            out.append(f"Peak resultant displacement {r.peak_displacement_m:.4g} m {word} the displacement "
+                       f"capacity {self.design.displacement_capacity_m:.4g} m (ratio {ratio:.3g}).")
+        summary = response_summary(r)
+        if summary["uplift_time_s"] > 0:
+            out.append(f"The bearing lifts off {summary['n_uplifts']} time(s), {summary['uplift_time_s']:.3g} s "
+                       "in all (n = g + a_z <= 0: no friction, no restoring force).")
+        out.append(f"Residual displacement {summary['residual_displacement_m']:.3g} m "
+                   f"(x {summary['residual_displacement_x_m']:.3g} m, y {summary['residual_displacement_y_m']:.3g} m).")
+        return out
+
+    def to_dict(self) -> dict:
+        """The numbers of the analysis (JSON-ready; units in the keys, energies in J/kg)."""
+        components = {axis: {"path": m.provenance.get("path", ""), "component": m.component,
+                             "units_source": m.units_source, "pga_m_s2": m.pga_m_s2,
+                             "processing": list(m.processing)}
+                      for axis, m in self.components.items()}
+        first = next(iter(self.components.values()))
+        results = response_summary(self.response)
+        head = {"model": results.pop("model"), "model_reason": results.pop("model_reason")}
+        return {
+            "schema": SCHEMA,
+            **head,
+            "design": self.design.as_dict() if hasattr(self.design, "as_dict") else {},
+            "record": {"label": self.record_label, "components": components,
+                       "processing": list(getattr(self.motions, "processing", [])),
+                       "npts": first.npts, "dt_s": first.dt_s,
+                       "uniform_sampling": first.sample_times_s is None,
+                       "scaling_note": self.scaling_note},
+            "results": {**results, **self.engineering,
+                        "displacement_capacity_m": getattr(self.design, "displacement_capacity_m", None),
+                        "displacement_demand_ratio": self.displacement_demand_ratio},
+            "verdicts": self.verdicts(),
+        }
+
+
+def analyse_pair(design, motions, *, record_label: str = "", scaling_note: str = "") -> PairAnalysis:
+    """Analyse a design under a pair (and a vertical) or one component, on the model the scene needs.
+
+    Parameters
+    ----------
+    design : Design
+        The isolator (µ(v) and the displacement capacity are used when given).
+    motions : MotionPair or GroundMotion
+        The components, on one time base.
+    record_label, scaling_note : str
+        How the record is named and was scaled, for the outputs.
+
+    Returns
+    -------
+    PairAnalysis
+    """
+    from isolator.adapter import engineering_quantities, motion_keywords
+    from isolator.solver.planar import simulate_motion
+
+    parts = getattr(motions, "components", None)
+    if not isinstance(parts, dict):
+        parts = {"x": motions}
+    response = simulate_motion(parts["x"].acceleration_m_s2,
+                               parts["y"].acceleration_m_s2 if "y" in parts else None,
+                               parts["z"].acceleration_m_s2 if "z" in parts else None, motions.dt_s,
+                               time_s=motions.sample_times_s, **motion_keywords(design))
+    return PairAnalysis(design=design, motions=motions, response=response,
+                        engineering=engineering_quantities(design, response), record_label=record_label,
+                        scaling_note=scaling_note)
