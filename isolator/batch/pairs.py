@@ -1,17 +1,17 @@
 """The worker side of a batch on a pair: both horizontal components (and the vertical) of one file.
 
 A task whose component is ``"pair"`` or ``"all"`` reads the file's components with
-:func:`~isolator.motion.read_ground_motion_pair` and runs every design through
-:func:`~isolator.solver.planar.simulate_motion` (the model the scene needs); each row
-states ``model`` and ``model_reason``.  The 1-D classification against the harmonic
-regime map does not apply to a coupled 2-D response: those columns stay empty.
+:func:`~isolator.motion.read_ground_motion_pair`; :func:`isolator.analysis.analyse`
+then runs every design on the model the scene needs and each row states ``model`` and
+``model_reason``.  The 1-D classification against the harmonic regime map does not
+apply to a coupled 2-D response: those columns stay empty.
 """
 
 from __future__ import annotations
 
 import time
 
-from isolator.batch.plan import DesignCase, ReadOptions, Task
+from isolator.batch.plan import ReadOptions, Task
 
 _PAIR_CACHE: dict = {}
 
@@ -68,49 +68,3 @@ def record_columns(task: Task, motions, factor: float, read_seconds: float) -> d
         out[f"component_{axis}"] = motion.component
         out[f"pga_{axis}_m_s2"] = motion.pga_m_s2
     return out
-
-
-#: Columns of a batch row taken from :meth:`PairAnalysis.to_dict` ``["results"]`` (energies renamed).
-_RESULT_COLUMNS = ("configuration", "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m",
-                   "residual_displacement_y_m", "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2",
-                   "slip_time_s", "uplift_time_s", "n_uplifts", "n_events", "effective_period_s",
-                   "effective_damping_ratio", "peak_transmitted_force_N", "base_shear_coefficient",
-                   "displacement_capacity_m", "displacement_demand_ratio", "solver_seconds")
-
-
-def analyse_motion_row(design, motions) -> dict:
-    """The numbers of one (motion, design) on the model the scene needs (:func:`analyse_pair`), as a row.
-
-    Parameters
-    ----------
-    design : Design
-        The isolator (µ(v) selects the 2-D engine even for one component).
-    motions : MotionPair or GroundMotion
-        A pair (and a vertical), or one component.
-    """
-    from isolator.pair_analysis import analyse_pair
-
-    numbers = analyse_pair(design, motions).to_dict()
-    results = numbers["results"]
-    row = {"model": numbers["model"], "model_reason": numbers["model_reason"], "solver_status": results["status"]}
-    row.update({key: results[key] for key in _RESULT_COLUMNS})
-    for name in ("input", "friction", "viscous", "balance_error"):
-        row[f"energy_{name}_J_per_kg"] = results[f"energy_{name}"]
-    return row
-
-
-def write_pair_report(task: Task, case: DesignCase, design, motions, factor: float) -> None:
-    """The PDF of one (pair, design) row in ``--reports`` (see :mod:`isolator.report.pair`)."""
-    import re
-    from pathlib import Path
-
-    from isolator.pair_analysis import analyse_pair
-    from isolator.report.pair import write_pair_report as write
-
-    note = f"Record scaled by {factor:.4g} (larger horizontal PGA to {task.options.scale_to_pga_g:g} g)." \
-        if task.options.scale_to_pga_g is not None else ""
-    safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", f"{case.index:05d}_{Path(task.record).stem}_{task.component}")
-    target = Path(task.reports_dir) / f"{safe.strip('_')}.pdf"
-    target.parent.mkdir(parents=True, exist_ok=True)
-    write(analyse_pair(design, motions, record_label=task.record, scaling_note=note), target,
-          command="isolator batch")

@@ -7,15 +7,11 @@ import re
 import time
 from pathlib import Path
 
-from isolator.batch.plan import GRID_KEYS, DesignCase, ReadOptions, Task, _one_line
-
-_CLASS_FIELDS = ("regime", "zeta", "amplitude", "amplified", "dominant_force", "dominant_force_rho",
-                 "rho_ev", "rho_vf", "rho_ef")
-
+from isolator.batch.pairs import read_pair
+from isolator.batch.pairs import record_columns as pair_record_columns
+from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, _one_line
 
 _MOTION_CACHE: dict = {}
-_HARMONIC_CACHE: dict = {}
-_HARMONIC_CACHE_MAX = 200_000
 
 
 def _read_motion(path: str, component: str | None, options: ReadOptions):
@@ -60,25 +56,6 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     return result
 
 
-def _harmonic_classification(alpha, k, eta, mu_s, mu_k):
-    """(Classification, steady, status, seconds) at a point; cached per process (seconds = 0 on a hit)."""
-    key = (alpha, k, eta, mu_s, mu_k)
-    hit = _HARMONIC_CACHE.get(key)
-    if hit is not None:
-        return hit[0], hit[1], hit[2], 0.0
-    from isolator.metrics import classify_harmonic
-    from isolator.solver.harmonic import harmonic_response
-
-    start = time.perf_counter()
-    # the classification reads the exact event metrics, not the dense output: 2 samples per period
-    harmonic = harmonic_response(alpha, k, eta, mu_s, mu_k, samples_per_period=2)
-    classification = classify_harmonic(harmonic)
-    seconds = time.perf_counter() - start
-    if len(_HARMONIC_CACHE) < _HARMONIC_CACHE_MAX:
-        _HARMONIC_CACHE[key] = (classification, harmonic.steady, harmonic.status)
-    return classification, harmonic.steady, harmonic.status, seconds
-
-
 def _design_columns(case: DesignCase, design=None) -> dict:
     if design is not None:
         d = design.as_dict()
@@ -117,84 +94,67 @@ def _record_columns(path: str, component: str | None, motion=None, measures=None
     return out
 
 
-def _analyse_row(design, motion, measures, window, harmonic: bool = True) -> dict:
-    """The numbers of one (record, design): point, simulate, classifications (no dict of the report)."""
-    from isolator.adapter import adapt, engineering_quantities
-    from isolator.metrics import classify_record, compare
-    from isolator.solver.record import simulate_record
-
-    # the record's intensity measures are computed once per record, not per design
-    adaptation = adapt(design, motion, measures)
-    point, system = adaptation.point, adaptation.system
-    response = simulate_record(motion.acceleration_m_s2, motion.dt_s, time_s=motion.sample_times_s, system=system)
-    record_class = classify_record(response, point, design, window_s=window)
-    if harmonic:
-        harmonic_class, steady, status, harmonic_seconds = _harmonic_classification(
-            point.alpha, point.k, point.eta, point.mu_s, point.mu_k)
-    else:
-        harmonic_class, steady, status, harmonic_seconds = None, None, "not computed (--no-harmonic)", 0.0
-    engineering = engineering_quantities(design, response)
-    row = {
-        "model": response.model, "model_reason": response.model_reason,
-        "alpha": point.alpha, "k": point.k, "eta": point.eta, "configuration": system.configuration,
-        "peak_displacement_m": response.peak_displacement_m,
-        "residual_displacement_m": response.residual_displacement_m,
-        # one component: the motion is along X; no vertical, no uplift
-        "residual_displacement_x_m": response.residual_displacement_m, "residual_displacement_y_m": 0.0,
-        "uplift_time_s": 0.0, "n_uplifts": 0,
-        "displacement_capacity_m": design.displacement_capacity_m,
-        "displacement_demand_ratio": None if design.displacement_capacity_m is None
-        else response.peak_displacement_m / design.displacement_capacity_m,
-        "peak_velocity_m_s": response.peak_velocity_m_s,
-        "peak_transmitted_acceleration_m_s2": response.peak_transmitted_acceleration_m_s2,
-        "slip_time_s": response.slip_time_s, "n_events": int(response.n_events),
-        "energy_input_J_per_kg": response.energy_input_J_per_kg,
-        "energy_friction_J_per_kg": response.energy_friction_J_per_kg,
-        "energy_viscous_J_per_kg": response.energy_viscous_J_per_kg,
-        "energy_balance_error_J_per_kg": response.energy_balance_error_J_per_kg,
-        "solver_status": response.message,
-        "effective_period_s": engineering["effective_period_s"],
-        "effective_damping_ratio": engineering["effective_damping_ratio"],
-        "peak_transmitted_force_N": engineering["peak_transmitted_force_N"],
-        "base_shear_coefficient": engineering["base_shear_coefficient"],
-        "window_start_s": record_class.window_s[0], "window_end_s": record_class.window_s[1],
-        "harmonic_steady": None if steady is None else bool(steady), "harmonic_status": status,
-        "n_disagreements": None if harmonic_class is None else len(compare(record_class, harmonic_class)),
-        "solver_seconds": response.solver_seconds, "harmonic_seconds": harmonic_seconds,
-    }
-    for name in _CLASS_FIELDS:
-        row[f"{name}_record"] = getattr(record_class, name)
-        row[f"{name}_harmonic"] = None if harmonic_class is None else getattr(harmonic_class, name)
-    return row
+def _report_path(task: Task, case: DesignCase, motion) -> Path:
+    label = task.component if task.component in SET_COMPONENTS else motion.component
+    safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", f"{case.index:05d}_{Path(task.record).stem}_{label}")
+    return Path(task.reports_dir) / f"{safe.strip('_')}.pdf"
 
 
-def _write_report(task: Task, case: DesignCase, design, motion, factor) -> None:
-    from isolator.report.pdf import write_report
-    from isolator.report.summary import analyse
+def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, window, factor) -> dict:
+    """The row's slice of the analysis (:meth:`isolator.analysis.Analysis.row`); writes the report if asked.
+
+    ``motion`` is a GroundMotion, or a MotionPair for a task on ``"pair"``/``"all"``;
+    :func:`~isolator.analysis.analyse` runs the model the scene needs (a pair or µ(v):
+    the 2-D engine, :class:`~isolator.pair_analysis.PairAnalysis`, no harmonic columns).
+    """
+    from isolator.analysis import analyse
+    from isolator.pair_analysis import PairAnalysis
 
     note = f"Record scaled to PGA {task.options.scale_to_pga_g:g} g (factor {factor:.4g})." \
         if task.options.scale_to_pga_g is not None else ""
-    analysis = analyse(design, motion, record_label=task.record, scaling_note=note)
-    safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", f"{case.index:05d}_{Path(task.record).stem}_{motion.component}")
-    target = Path(task.reports_dir) / f"{safe.strip('_')}.pdf"
-    target.parent.mkdir(parents=True, exist_ok=True)
-    write_report(analysis, target, map_resolution=task.map_resolution, command="isolator batch", workers=1)
+    if task.component in SET_COMPONENTS and task.options.scale_to_pga_g is not None:
+        note = f"Record scaled by {factor:.4g} (larger horizontal PGA to {task.options.scale_to_pga_g:g} g)."
+    # the record's intensity measures and window are computed once per record, not per design
+    analysis = analyse(design, motion, intensity=measures, window_s=window,
+                       harmonic=task.options.harmonic or bool(task.reports_dir), record_label=task.record,
+                       scaling_note=note, map_resolution=task.map_resolution if task.reports_dir else None,
+                       workers=1)
+    if task.reports_dir:
+        from isolator.report.pair import write_pair_report
+        from isolator.report.pdf import write_report
+
+        target = _report_path(task, case, motion)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        (write_pair_report if isinstance(analysis, PairAnalysis) else write_report)(analysis, target,
+                                                                                   command="isolator batch")
+    if isinstance(analysis, PairAnalysis):
+        return analysis.row()
+    if not task.options.harmonic and analysis.harmonic is not None:
+        analysis.harmonic = analysis.harmonic_class = None  # the table leaves the harmonic columns empty
+        analysis.disagreements = []
+    return analysis.row()
 
 
-def _read_error_rows(task: Task, err: Exception) -> list[dict]:
-    """One row per design saying why the record could not be read."""
-    message = _one_line(err) if str(err) else type(err).__name__
-    if task.record not in message:
-        message = f"{task.record}: {message}"
-    base = {"record": task.record, "component": task.component or ""}
-    return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
-
-
-def _design_rows(task: Task, record_cols: dict, analyse, report) -> list[dict]:
-    """The rows of every design of a task: ``analyse(design)`` gives the numbers, ``report(case, design)``
-    writes the PDF when ``--reports`` is given; a design's failure is its row's error."""
+def run_task(task: Task) -> list[dict]:
+    """Rows of one task (the function both executors run).  Never raises for a bad record or design."""
     from isolator.design import Design
 
+    base = {"record": task.record, "component": task.component or ""}
+    try:
+        if task.component in SET_COMPONENTS:  # the file's components together (isolator.batch.pairs)
+            motion, factor, read_seconds = read_pair(task.record, task.component, task.options)
+            measures = window = None
+        else:
+            motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)
+    except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
+        message = _one_line(err) if str(err) else type(err).__name__
+        if task.record not in message:
+            message = f"{task.record}: {message}"
+        return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
+    if task.component in SET_COMPONENTS:
+        record_cols = pair_record_columns(task, motion, factor, read_seconds)
+    else:
+        record_cols = _record_columns(task.record, task.component, motion, measures, factor, read_seconds)
     rows = []
     for case, key in task.designs:
         row = {**record_cols, "row_key": key}
@@ -205,45 +165,11 @@ def _design_rows(task: Task, record_cols: dict, analyse, report) -> list[dict]:
             start = time.perf_counter()
             design = Design.from_mapping(case.mapping, source=case.source)
             row.update(_design_columns(case, design))
-            row.update(analyse(design))
+            row.update(_analysis_columns(task, case, design, motion, measures, window, factor))
             row["row_seconds"] = time.perf_counter() - start
-            if task.reports_dir:
-                report(case, design)
             row["error"] = ""
         except Exception as err:  # noqa: BLE001 - one design's failure is its row's error
             row.update(_design_columns(case))
             row["error"] = f"{case.source}: {type(err).__name__}: {_one_line(err)}"
         rows.append(row)
     return rows
-
-
-def run_task(task: Task) -> list[dict]:
-    """Rows of one task (the function both executors run).  Never raises for a bad record or design.
-
-    A task on ``"pair"``/``"all"`` reads the file's components together and runs the
-    model the scene needs (:mod:`isolator.batch.pairs`); a design with µ(v) runs the
-    2-D engine on one component too.
-    """
-    from isolator.batch import pairs
-    from isolator.batch.plan import SET_COMPONENTS
-
-    if task.component in SET_COMPONENTS:
-        try:
-            motions, factor, read_seconds = pairs.read_pair(task.record, task.component, task.options)
-        except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
-            return _read_error_rows(task, err)
-        return _design_rows(task, pairs.record_columns(task, motions, factor, read_seconds),
-                            lambda design: pairs.analyse_motion_row(design, motions),
-                            lambda case, design: pairs.write_pair_report(task, case, design, motions, factor))
-    try:
-        motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)
-    except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
-        return _read_error_rows(task, err)
-
-    def analyse(design):
-        if design.velocity_dependent:  # µ(v): the 2-D engine, no 1-D classification
-            return pairs.analyse_motion_row(design, motion)
-        return _analyse_row(design, motion, measures, window, task.options.harmonic)
-
-    return _design_rows(task, _record_columns(task.record, task.component, motion, measures, factor, read_seconds),
-                        analyse, lambda case, design: _write_report(task, case, design, motion, factor))

@@ -128,20 +128,26 @@ def simulate(
         result = solve(record, parts["x"].acceleration_m_s2, parts["y"].acceleration_m_s2 if "y" in parts else None,
                        parts["z"].acceleration_m_s2 if "z" in parts else None, dt_s=motions.dt_s,
                        time_s=motions.sample_times_s, system=system)
-        head = {"record": str(record), "pair": pair, "vertical": vertical, "components": motions.describe(),
-                "npts": motions.npts, "dt_s": motions.dt_s, "uniform_sampling": motions.sample_times_s is None,
-                "processing": list(motions.processing)}
         described = ", ".join(f"{axis} = {m.component}" for axis, m in parts.items())
         samples = (motions.npts, motions.dt_s, motions.sample_times_s is None)
+        record_dict = {"label": str(record), "components": motions.describe(), "npts": motions.npts,
+                       "dt_s": motions.dt_s, "duration_s": motions.duration_s,
+                       "uniform_sampling": motions.sample_times_s is None, "processing": list(motions.processing)}
     else:
         motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
         result = solve(record, motion.acceleration_m_s2, dt_s=motion.dt_s, time_s=motion.sample_times_s,
                        system=system)
-        head = {"record": str(record), "component": motion.component, "units_source": motion.units_source,
-                "npts": motion.npts, "dt_s": motion.dt_s}
         described = f"{motion.component}, units from {motion.units_source}"
         samples = (motion.npts, motion.dt_s, motion.is_uniform)
-    summary = {**head, **response_summary(result)}
+        record_dict = {"label": str(record), "component": motion.component, "units_source": motion.units_source,
+                       "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s,
+                       "uniform_sampling": motion.is_uniform}
+    from isolator.analysis import SCHEMA_VERSION
+
+    # the analysis schema's slice for a record without a design: model and why, record, response keys
+    results = response_summary(result)
+    summary = {"schema_version": SCHEMA_VERSION, "model": results.pop("model"),
+               "model_reason": results.pop("model_reason"), "record": record_dict, **results}
     if out_csv:
         header, columns = history_columns(result)
         try:

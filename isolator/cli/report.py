@@ -101,6 +101,8 @@ def report(
                                "the JSON of the same numbers is written beside it."),
     map_resolution: int = typer.Option(40, "--map-resolution", min=8, max=400,
                                        help="Grid points per axis of the regime map (cached on disk)."),
+    no_pdf: bool = typer.Option(False, "--no-pdf", help="Write only the JSON of the numbers (beside where the PDF "
+                                "would go), without rendering the PDF."),
 ) -> None:
     """Engineering-review PDF (and JSON) of an isolator design under a ground-motion record.
 
@@ -114,7 +116,7 @@ def report(
     from pathlib import Path
 
     from isolator.design import Design, DesignError
-    from isolator.report.summary import resolve_record
+    from isolator.motion.examples import resolve_record
 
     try:
         the_design = Design.from_toml(design)
@@ -143,21 +145,28 @@ def report(
         scaling_note = (f"Record scaled to the design PGA {scale_to_pga:g} g (from {original_g:.4g} g, "
                         f"factor {scale_to_pga / original_g:.4g}).")
     output = _output_pdf(output, record, design)
-    from isolator.report.pdf import write_report
-    from isolator.report.summary import analyse
+    from isolator.analysis import analyse
     from isolator.solver.record import RecordInputError
 
     try:
-        analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note)
+        analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note,
+                           map_resolution=map_resolution)
     except (RecordInputError, ValueError) as err:
         user_error(f"{record_label}: {err}")
+    json_path = Path(output).with_suffix(".json")
     try:
-        summary = write_report(analysis, output, map_resolution=map_resolution, command=_command_line())
+        if no_pdf:
+            from isolator.report.summary import write_json
+
+            summary = write_json(analysis, json_path)
+        else:
+            from isolator.report.pdf import write_report
+
+            summary = write_report(analysis, output, command=_command_line())
     except OSError as err:
         user_error(f"{output}: cannot write ({err.strerror or err})")
-    echo_table([
-        ("report", output, "(4 pages)"),
-        ("numbers", str(Path(output).with_suffix(".json")), ""),
+    echo_table(([] if no_pdf else [("report", output, "(4 pages)")]) + [
+        ("numbers", str(json_path), ""),
         ("point", f"α = {summary['alpha']:.4g}, k = {summary['k']:.4g}, η = {summary['eta']:.4g}", ""),
         ("regime", f"{summary['regime_record']} (record) / {summary['regime_harmonic']} (harmonic)", ""),
         ("amplitude A", f"{summary['amplitude_record']:.3g} (record) / {summary['amplitude_harmonic']:.3g} "
