@@ -16,7 +16,8 @@ in Cartesian form (X, V) only:
   (implicit, L-stable) at rtol 1e-12 with terminal events |V| = v_switch (rising) and
   |V| = v_eps (falling: the stop; the last v_eps is finished at constant deceleration,
   an error ~ v_eps^2 / (2 |d|V|/dt|) in X);
-* a start from rest begins at |V| = v_eps along the net force;
+* a start from rest begins at |V| = v_eps along the net force, reached after the time
+  that the net force |F| - mu n (frozen X, linear in time) needs to give that speed;
 * break-away: the first sign change of |kappa X + a_g|^2 - (mu_s n)^2 on a 65-point
   grid of the stuck stretch, polished by brentq.
 """
@@ -50,7 +51,7 @@ class PlanarReference:
 
 
 def reference_pair(t, ax, ay, az=None, *, mu_s, mu_k=None, kappa=0.0, radius=None, c=0.0, g=G,
-                   mu_slow=None, mu_fast=None, rate=None, rtol=1e-12, v_eps=1e-10, v_switch=1e-3):
+                   mu_slow=None, mu_fast=None, rate=None, rtol=1e-12, v_eps=1e-11, v_switch=1e-3):
     t = np.asarray(t, float)
     ax = np.asarray(ax, float)
     ay = np.asarray(ay, float)
@@ -61,6 +62,24 @@ def reference_pair(t, ax, ay, az=None, *, mu_s, mu_k=None, kappa=0.0, radius=Non
         if mu_slow is None:
             return mu_k
         return mu_fast - (mu_fast - mu_slow) * math.exp(-rate * r)
+
+    def start_from_rest(tb, x0, kap, acc, normal, t_end):
+        # the first v_eps of speed along the net force F: r' = |F| - mu(0) n =: p + q s
+        # (X frozen), solved for the time s at which r = v_eps; X moves by the integral of r
+        def excess(s):
+            force = -(kap(s) * x0 + acc(s))
+            return np.linalg.norm(force) - mu(0.0) * normal(s)
+        delta = 1e-7 * (t_end - tb) if t_end > tb else 1e-9
+        p = max(excess(tb), 0.0)
+        q = (excess(tb + delta) - excess(tb)) / delta
+        if q > 0.0:
+            s = 2.0 * v_eps / (p + math.sqrt(p * p + 2.0 * q * v_eps))
+        else:
+            s = v_eps / p
+        s = min(s, max(t_end - tb, 0.0))
+        force = -(kap(tb) * x0 + acc(tb))
+        direction = force / np.linalg.norm(force)
+        return x0 + direction * (0.5 * p * s * s + q * s ** 3 / 6.0), v_eps * direction, tb + s
 
     X = np.zeros(2)
     V = np.zeros(2)
@@ -131,8 +150,7 @@ def reference_pair(t, ax, ay, az=None, *, mu_s, mu_k=None, kappa=0.0, radius=Non
                             break
                         j = pos[0]
                         tb = brentq(q, grid[j - 1], grid[j], xtol=1e-15, rtol=1e-15)
-                    force = -(kap(tb) * X + acc(tb))
-                    V = v_eps * force / np.linalg.norm(force)
+                    X, V, tb = start_from_rest(tb, X, kap, acc, normal, b)
                     stuck = False
                     slow_form = True
                     n_break += 1
@@ -194,7 +212,7 @@ def reference_pair(t, ax, ay, az=None, *, mu_s, mu_k=None, kappa=0.0, radius=Non
                         stuck = True
                         events.append((tt, "stick"))
                     else:
-                        V = v_eps * force / np.linalg.norm(force)
+                        X, V, tt = start_from_rest(tt, X, kap, acc, normal, b)
                         slow_form = True
                         events.append((tt, "reversal"))
                 elif sol.status == 1:

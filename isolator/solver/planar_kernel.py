@@ -683,7 +683,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         v1, v2 = _velocity(phase, x, hi, y, prm, frc)
         out_v[i + 1, 0] = v1
         out_v[i + 1, 1] = v2
-        a1, a2 = _transmitted(phase, x, hi, y, prm, frc)
+        if phase == PH_STUCK:
+            a1, a2 = ax[i + 1], ay[i + 1]
+        else:
+            a1, a2 = _transmitted(phase, x, hi, y, prm, frc)
         out_a[i + 1, 0] = a1
         out_a[i + 1, 1] = a2
         peak_a = max(peak_a, math.hypot(a1, a2))
