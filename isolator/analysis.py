@@ -36,16 +36,19 @@ from isolator.serialize import json_safe
 
 #: Version of the dict of :meth:`Analysis.to_dict` (bump on any rename or change of meaning).
 SCHEMA_VERSION = 1
-#: The solver model of a one-component analysis.
-MODEL_1D = "1-D exact event-driven (isolator.solver.record)"
+#: The solver model of a one-component analysis (the name :func:`isolator.solver.planar.select_model` gives it).
+MODEL_1D = "1d-exact"
+#: Why a one-component analysis runs it.
+MODEL_1D_REASON = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
 #: Fields of a :class:`~isolator.metrics.Classification` written flat as ``<field>_record`` / ``<field>_harmonic``.
 CLASSIFICATION_FIELDS = ("regime", "zeta", "amplitude", "amplified", "dominant_force", "dominant_force_rho",
                          "rho_ev", "rho_vf", "rho_ef")
 #: Keys of the batch row taken from :meth:`Analysis.to_dict` (the record and design columns are the batch's own).
 ROW_KEYS = (
-    "alpha", "k", "eta", "configuration",
-    "peak_displacement_m", "residual_displacement_m", "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2",
-    "slip_time_s", "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
+    "model", "model_reason", "alpha", "k", "eta", "configuration",
+    "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m", "residual_displacement_y_m",
+    "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2", "slip_time_s", "uplift_time_s", "n_uplifts",
+    "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
     "energy_balance_error_J_per_kg", "solver_status",
     "window_start_s", "window_end_s", "harmonic_steady", "harmonic_status", "n_disagreements",
     "solver_seconds", "harmonic_seconds",
@@ -290,18 +293,31 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     -------
     Analysis
 
+    A pair of components (:class:`~isolator.motion.MotionPair`) or a design with µ(v)
+    needs the 2-D engine: the analysis is then a :class:`~isolator.pair_analysis.PairAnalysis`
+    (same ``model``/``model_reason`` and response keys; no harmonic classification,
+    which is a 1-D notion), and ``intensity``, ``window_s``, ``harmonic``,
+    ``map_resolution`` do not apply.
+
     Raises
     ------
     isolator.solver.record.RecordInputError
-        A motion the solver cannot take (e.g. non-uniform time step).
+        A motion the solver cannot take.
     """
     from isolator.adapter import adapt, engineering_quantities
     from isolator.metrics import classify_record, compare
     from isolator.solver.record import simulate_record
 
+    if getattr(motion, "y", None) is not None or getattr(motion, "z", None) is not None \
+            or getattr(design, "velocity_dependent", False):
+        from isolator.pair_analysis import analyse_pair
+
+        return analyse_pair(design, motion, record_label=record_label, scaling_note=scaling_note)
+    motion = getattr(motion, "x", motion)  # a MotionPair of one component is that component
     adaptation = adapt(design, motion, intensity)
     point = adaptation.point
-    response = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=adaptation.system)
+    response = simulate_record(motion.acceleration_m_s2, motion.dt_s, time_s=motion.sample_times_s,
+                               system=adaptation.system)
     record_class = classify_record(response, point, design, window_s=window_s)
     harmonic_response = harmonic_class = None
     harmonic_seconds = 0.0
@@ -310,7 +326,7 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     disagreements = [] if harmonic_class is None else compare(record_class, harmonic_class)
     return Analysis(
         design=design, motion=motion, adaptation=adaptation, response=response, model=MODEL_1D,
-        model_reason="one horizontal component: the exact 1-D solver",
+        model_reason=MODEL_1D_REASON,
         record_class=record_class, harmonic=harmonic_response, harmonic_class=harmonic_class,
         engineering=engineering_quantities(design, response), disagreements=disagreements,
         record_label=record_label, scaling_note=scaling_note,

@@ -1,26 +1,28 @@
 """The analysis of a design under a pair of components (and a vertical), on the model the scene needs.
 
-``analyse_pair(design, motions)`` runs :func:`isolator.solver.planar.simulate_motion`
+``analyse_pair(design, motions)`` (reached through :func:`isolator.analysis.analyse` for
+a pair, a vertical or µ(v)) runs :func:`isolator.solver.planar.simulate_motion`
 on the components of a :class:`~isolator.motion.MotionPair` (or one
 :class:`~isolator.motion.GroundMotion`) with the design's isolator
 (:func:`isolator.adapter.motion_keywords`) and returns a :class:`PairAnalysis`, whose
-:meth:`~PairAnalysis.to_dict` is what the report's JSON, the batch row and the
-``simulate`` JSON share: the model that ran and why first, then the results under
-the same names everywhere (units in the names, energies per unit mass).
+:meth:`~PairAnalysis.to_dict` is the one schema of :mod:`isolator.analysis` for a 2-D
+response: the model that ran and why first, then the results under the same names as
+a 1-D analysis (units in the names, energies per unit mass), plus the pair's own
+(``residual_displacement_x_m``/``_y_m``, ``uplift_time_s``, the displacement demand).
 """
 
 from __future__ import annotations
 
+import datetime as _dt
 from dataclasses import dataclass, field
-
-SCHEMA = "isolator.pair_analysis/1"
 
 
 def response_summary(result) -> dict:
     """The scalar results of a 1-D or 2-D response under one set of keys, the model first.
 
-    A 1-D response has its displacement along X: the resultant peak is its peak,
-    ``residual_displacement_x_m`` its signed residual, Y zero, no uplift.
+    Both summaries carry the same keys (a 1-D response moves along X: its resultant
+    peak is its peak, ``residual_displacement_x_m`` its signed residual, Y zero, no
+    uplift); this puts the model and why first.
 
     Parameters
     ----------
@@ -34,14 +36,10 @@ def response_summary(result) -> dict:
         ``residual_displacement_m`` (resultant; signed for 1-D), ``residual_displacement_x_m``,
         ``residual_displacement_y_m``, ``peak_velocity_m_s``,
         ``peak_transmitted_acceleration_m_s2``, ``slip_time_s``, ``uplift_time_s``,
-        ``n_uplifts``, ``n_events``, energies [J/kg], ``solver_seconds``, ``configuration``, ``status``.
+        ``n_uplifts``, ``n_events``, energies [J/kg] (``energy_input_J_per_kg`` …),
+        ``solver_seconds``, ``configuration``, ``solver_status``.
     """
     summary = dict(result.summary())
-    if "residual_displacement_x_m" not in summary:
-        summary["residual_displacement_x_m"] = summary["residual_displacement_m"]
-        summary["residual_displacement_y_m"] = 0.0
-        summary.setdefault("uplift_time_s", 0.0)
-        summary.setdefault("n_uplifts", 0)
     first = {"model": summary.pop("model", getattr(result, "model", "1d-exact")),
              "model_reason": summary.pop("model_reason", getattr(result, "model_reason", ""))}
     return {**first, **summary}
@@ -68,6 +66,7 @@ class PairAnalysis:
     engineering: dict = field(default_factory=dict)
     record_label: str = ""
     scaling_note: str = ""
+    created_utc: str = ""
 
     @property
     def components(self) -> dict:
@@ -98,28 +97,61 @@ class PairAnalysis:
         return out
 
     def to_dict(self) -> dict:
-        """The numbers of the analysis (JSON-ready; units in the keys, energies in J/kg)."""
+        """The numbers of the analysis in the one schema of :meth:`isolator.analysis.Analysis.to_dict`.
+
+        Returns
+        -------
+        dict
+            ``schema_version``, ``model``, ``model_reason``, ``configuration``; the response
+            keys (``peak_displacement_m`` resultant, ``residual_displacement_m`` resultant,
+            ``residual_displacement_x_m``/``_y_m``, ``peak_velocity_m_s``, ``slip_time_s``,
+            ``uplift_time_s``, ``n_uplifts``, ``n_events``, energies in J/kg,
+            ``solver_status``, ``solver_seconds``); ``displacement_capacity_m`` and
+            ``displacement_demand_ratio``; ``engineering``; ``design``; ``record`` (label,
+            each component's path, label, units source, PGA, processing; the set's
+            processing, npts, dt_s, duration_s, uniform_sampling, scaling); ``verdicts``;
+            ``software``; ``created_utc``.  JSON-safe.
+        """
+        from isolator import __version__
+        from isolator.analysis import SCHEMA_VERSION
+        from isolator.serialize import json_safe
+
         components = {axis: {"path": m.provenance.get("path", ""), "component": m.component,
                              "units_source": m.units_source, "pga_m_s2": m.pga_m_s2,
                              "processing": list(m.processing)}
                       for axis, m in self.components.items()}
         first = next(iter(self.components.values()))
-        results = response_summary(self.response)
-        head = {"model": results.pop("model"), "model_reason": results.pop("model_reason")}
-        return {
-            "schema": SCHEMA,
-            **head,
-            "design": self.design.as_dict() if hasattr(self.design, "as_dict") else {},
-            "record": {"label": self.record_label, "components": components,
-                       "processing": list(getattr(self.motions, "processing", [])),
-                       "npts": first.npts, "dt_s": first.dt_s,
-                       "uniform_sampling": first.sample_times_s is None,
-                       "scaling_note": self.scaling_note},
-            "results": {**results, **self.engineering,
-                        "displacement_capacity_m": getattr(self.design, "displacement_capacity_m", None),
-                        "displacement_demand_ratio": self.displacement_demand_ratio},
-            "verdicts": self.verdicts(),
-        }
+        out = {"schema_version": SCHEMA_VERSION, **response_summary(self.response)}
+        out["displacement_capacity_m"] = getattr(self.design, "displacement_capacity_m", None)
+        out["displacement_demand_ratio"] = self.displacement_demand_ratio
+        out["engineering"] = dict(self.engineering)
+        out["design"] = self.design.as_dict() if hasattr(self.design, "as_dict") else {}
+        out["record"] = {"label": self.record_label, "components": components,
+                         "processing": list(getattr(self.motions, "processing", [])),
+                         "npts": first.npts, "dt_s": first.dt_s, "duration_s": first.duration_s,
+                         "uniform_sampling": first.sample_times_s is None, "scaling": self.scaling_note}
+        out["verdicts"] = self.verdicts()
+        out["software"] = {"name": "isolator", "version": __version__}
+        out["created_utc"] = self.created_utc
+        return json_safe(out)
+
+    def row(self) -> dict:
+        """The batch's slice of :meth:`to_dict` (:data:`ROW_KEYS` and the engineering keys of a 1-D row), flat."""
+        from isolator.analysis import ROW_ENGINEERING_KEYS
+
+        full = self.to_dict()
+        row = {key: full[key] for key in ROW_KEYS}
+        row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
+        return row
+
+
+#: Keys of a batch row of a pair analysis (the harmonic columns of a 1-D row stay empty).
+ROW_KEYS = ("model", "model_reason", "configuration", "peak_displacement_m", "residual_displacement_m",
+            "residual_displacement_x_m", "residual_displacement_y_m", "peak_velocity_m_s",
+            "peak_transmitted_acceleration_m_s2", "slip_time_s", "uplift_time_s", "n_uplifts", "n_events",
+            "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
+            "energy_balance_error_J_per_kg", "solver_status", "solver_seconds", "displacement_capacity_m",
+            "displacement_demand_ratio")
 
 
 def analyse_pair(design, motions, *, record_label: str = "", scaling_note: str = "") -> PairAnalysis:
@@ -150,4 +182,5 @@ def analyse_pair(design, motions, *, record_label: str = "", scaling_note: str =
                                time_s=motions.sample_times_s, **motion_keywords(design))
     return PairAnalysis(design=design, motions=motions, response=response,
                         engineering=engineering_quantities(design, response), record_label=record_label,
-                        scaling_note=scaling_note)
+                        scaling_note=scaling_note,
+                        created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))

@@ -121,11 +121,11 @@ def result_rows(result, summary: dict) -> list[tuple[str, str, str]]:
         ("slip time", f"{summary['slip_time_s']:.6g}", f"s  of {duration_s:.6g} s"),
         ("uplift time", f"{summary['uplift_time_s']:.6g}", f"s  ({summary['n_uplifts']} uplift(s))"),
         ("events", f"{summary['n_events']}", ""),
-        ("energy input", f"{summary['energy_input']:.6g}", "J/kg"),
-        ("energy friction", f"{summary['energy_friction']:.6g}", "J/kg"),
-        ("energy viscous", f"{summary['energy_viscous']:.6g}", "J/kg"),
-        ("energy balance error", f"{summary['energy_balance_error']:.2e}", "J/kg"),
+        ("energy input", f"{summary['energy_input_J_per_kg']:.6g}", "J/kg"),
+        ("energy friction", f"{summary['energy_friction_J_per_kg']:.6g}", "J/kg"),
+        ("energy viscous", f"{summary['energy_viscous_J_per_kg']:.6g}", "J/kg"),
+        ("energy balance error", f"{summary['energy_balance_error_J_per_kg']:.2e}", "J/kg"),
         ("solver time", f"{summary['solver_seconds'] * 1e3:.3g}", "ms"),
-        ("status", summary["status"], ""),
+        ("status", summary["solver_status"], ""),
     ]
     return rows

@@ -29,13 +29,13 @@ def _command_line() -> str:
 
 
 def _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
-                 dt, trim, resample, scale_to_pga, output) -> None:
+                 dt, trim, resample, scale_to_pga, output, no_pdf) -> None:
     """The bidirectional report (:mod:`isolator.report.pair`) of a design under a pair (or one component with µ(v))."""
     from pathlib import Path
 
+    from isolator.analysis import analyse
     from isolator.cli.pairs import load_motion_set_for_cli
-    from isolator.pair_analysis import analyse_pair
-    from isolator.report.pair import write_pair_report
+    from isolator.report.pair import write_pair_json, write_pair_report
     from isolator.solver.record import RecordInputError
     from isolator.solver.system import InvalidSystemError
     from isolator.units import STANDARD_GRAVITY
@@ -59,17 +59,20 @@ def _pair_report(the_design, design, record, record_path, record_label, pair, ve
                         f"{scale_to_pga:g} g.")
     output = _output_pdf(output, record, design, "_pair")
     try:
-        analysis = analyse_pair(the_design, motions, record_label=record_label, scaling_note=scaling_note)
+        analysis = analyse(the_design, motions, record_label=record_label, scaling_note=scaling_note)
     except (InvalidSystemError, RecordInputError) as err:
         user_error(f"{record_label}: {err}")
+    json_path = Path(output).with_suffix(".json")
     try:
-        numbers = write_pair_report(analysis, output, command=_command_line())
+        if no_pdf:
+            numbers = write_pair_json(analysis.to_dict(), json_path)
+        else:
+            numbers = write_pair_report(analysis, output, command=_command_line())
     except OSError as err:
         user_error(f"{output}: cannot write ({err.strerror or err})")
-    results = numbers["results"]
-    echo_table([
-        ("report", output, "(3 pages)"),
-        ("numbers", str(Path(output).with_suffix(".json")), ""),
+    results = numbers
+    echo_table(([] if no_pdf else [("report", output, "(3 pages)")]) + [
+        ("numbers", str(json_path), ""),
         ("model", numbers["model"], f"({numbers['model_reason']})"),
         ("peak displacement", f"{results['peak_displacement_m']:.4g}", "m (resultant)"),
         ("demand / capacity", "n/a" if results["displacement_demand_ratio"] is None
@@ -128,7 +131,7 @@ def report(
         user_error(str(err))
     if wants_set(pair, vertical, component) or the_design.velocity_dependent:
         _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
-                     dt, trim, resample, scale_to_pga, output)
+                     dt, trim, resample, scale_to_pga, output, no_pdf)
         return
     motion = load_record_for_cli(record_path, component, units, merge, dt)
     scaling_note = ""

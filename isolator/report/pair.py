@@ -49,7 +49,7 @@ class _Planar:
 
 def _summary_page(plt, analysis, numbers: dict, label: str, command: str):
     fig = _page(plt, 1, label)
-    d, results, record = analysis.design, numbers["results"], numbers["record"]
+    d, results, record = analysis.design, {**numbers, **numbers["engineering"]}, numbers["record"]
     fig.text(0.05, 0.935, f"Model: {numbers['model']}", fontsize=11, weight="bold", va="top")
     fig.text(0.05, 0.915, textwrap.fill(f"Why: {numbers['model_reason']}.", 110), fontsize=8.5, va="top")
     design_rows = [("name", d.name), ("mass", f"{fmt(d.mass_kg)} kg"),
@@ -71,8 +71,8 @@ def _summary_page(plt, analysis, numbers: dict, label: str, command: str):
                                    + ("" if record["uniform_sampling"] else " (mean; unequal steps)")))
     record_rows += [("units from", _tail(c["units_source"], 40)) for c in list(record["components"].values())[:1]]
     record_rows += [("processing", step["step"]) for step in record["processing"]]
-    if record["scaling_note"]:
-        record_rows.append(("scaling", _tail(record["scaling_note"], 48)))
+    if record["scaling"]:
+        record_rows.append(("scaling", _tail(record["scaling"], 48)))
     _table(fig, 0.52, 0.875, "Ground motion", record_rows)
     result_rows = [
         ("peak displacement (resultant)", f"{fmt(results['peak_displacement_m'])} m"),
@@ -86,10 +86,11 @@ def _summary_page(plt, analysis, numbers: dict, label: str, command: str):
         ("slip time", f"{fmt(results['slip_time_s'])} s"),
         ("uplift", f"{fmt(results['uplift_time_s'])} s, {results['n_uplifts']} time(s)"),
         ("events", str(results["n_events"])),
-        ("energy input / friction / viscous", f"{fmt(results['energy_input'])} / {fmt(results['energy_friction'])} / "
-                                              f"{fmt(results['energy_viscous'])} J/kg"),
-        ("energy balance error", f"{fmt(results['energy_balance_error'], 2)} J/kg"),
-        ("solver", f"{fmt(results['solver_seconds'] * 1e3, 3)} ms, {results['status']}"),
+        ("energy input / friction / viscous", f"{fmt(results['energy_input_J_per_kg'])} / "
+                                              f"{fmt(results['energy_friction_J_per_kg'])} / "
+                                              f"{fmt(results['energy_viscous_J_per_kg'])} J/kg"),
+        ("energy balance error", f"{fmt(results['energy_balance_error_J_per_kg'], 2)} J/kg"),
+        ("solver", f"{fmt(results['solver_seconds'] * 1e3, 3)} ms, {results['solver_status']}"),
     ]
     y = _table(fig, 0.05, min(y, 0.66), "Results", result_rows, width=0.9)
     fig.text(0.05, y, "Verdicts", fontsize=9.5, weight="bold", va="top")
@@ -122,6 +123,9 @@ def _ground_page(plt, analysis, label: str):
 def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
     """Write the PDF of a :class:`~isolator.pair_analysis.PairAnalysis` and its JSON (same name, ``.json``).
 
+    The JSON is :meth:`~isolator.pair_analysis.PairAnalysis.to_dict` (the analysis schema)
+    with ``pdf``.
+
     Parameters
     ----------
     analysis : PairAnalysis
@@ -142,6 +146,8 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
     pdf_path = Path(pdf_path)
     numbers = analysis.to_dict()
     first = next(iter(analysis.components.values()))
+    if pdf_path.suffix.lower() != ".pdf":
+        raise ValueError(f"{pdf_path}: a report is a .pdf")
     label = f"{analysis.design.name} | {Path(analysis.record_label).name or first.component}"
     labels = tuple(m.component for m in list(analysis.components.values())[:2])
     if len(labels) < 2:
@@ -164,7 +170,12 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
             info = pdf.infodict()
             info["Title"] = f"isolator bidirectional review: {label}"
     numbers["pdf"] = str(pdf_path)
-    with atomic_path(pdf_path.with_suffix(".json")) as tmp_json:
+    return write_pair_json(numbers, pdf_path.with_suffix(".json"))
+
+
+def write_pair_json(numbers: dict, json_path) -> dict:
+    """Write the numbers of a pair analysis (``to_dict()``) as JSON, atomically; returns them."""
+    with atomic_path(json_path) as tmp_json:
         with open(tmp_json, "w") as stream:
             json.dump(json_safe(numbers), stream, indent=2, allow_nan=False)
             stream.write("\n")

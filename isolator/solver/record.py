@@ -81,11 +81,18 @@ class Response:
         """The response's numbers, named as in the analysis schema (``docs/schema.md``).
 
         ``isolator simulate --json``, the batch rows and the report JSON all carry these
-        keys (SI units in the names, energies per unit mass in J/kg).
+        keys (SI units in the names, energies per unit mass in J/kg).  The keys of a
+        2-D response (:meth:`isolator.solver.planar.PairResponse.summary`) are here too:
+        one component moves along X (``residual_displacement_x_m`` is the signed
+        residual, Y is zero) and never lifts off.
         """
         return {
             "peak_displacement_m": self.peak_displacement_m,
             "residual_displacement_m": self.residual_displacement_m,
+            "residual_displacement_x_m": self.residual_displacement_m,
+            "residual_displacement_y_m": 0.0,
+            "uplift_time_s": 0.0,
+            "n_uplifts": 0,
             "peak_velocity_m_s": self.peak_velocity_m_s,
             "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
             "slip_time_s": self.slip_time_s,

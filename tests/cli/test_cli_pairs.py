@@ -14,7 +14,8 @@ from isolator.cli import app
 runner = CliRunner()
 PAIR_KEYS = {"model", "model_reason", "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m",
              "residual_displacement_y_m", "peak_velocity_m_s", "n_events", "slip_time_s", "uplift_time_s",
-             "energy_input", "energy_friction", "energy_viscous", "energy_balance_error", "solver_seconds"}
+             "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
+             "energy_balance_error_J_per_kg", "solver_seconds", "schema_version", "record"}
 PENDULUM = ["--mu-s", "0.05", "--radius-m", "2"]
 
 
@@ -38,10 +39,11 @@ def test_v2_pair_and_all_state_the_model(records_dir):
     pair = _json([path, "--component", "pair", *PENDULUM])
     assert PAIR_KEYS <= set(pair)
     assert pair["model"] == "2d" and "two horizontal components" in pair["model_reason"]
-    assert pair["components"]["x"]["component"] == "HN1 (180)" and pair["components"]["y"]["component"] == "HN2 (90)"
+    components = pair["record"]["components"]
+    assert components["x"]["component"] == "HN1 (180)" and components["y"]["component"] == "HN2 (90)"
     assert pair["residual_displacement_m"] == pytest.approx(np.hypot(pair["residual_displacement_x_m"],
                                                                      pair["residual_displacement_y_m"]), rel=1e-12)
-    assert abs(pair["energy_balance_error"]) <= 1e-9 * pair["energy_input"]
+    assert abs(pair["energy_balance_error_J_per_kg"]) <= 1e-9 * pair["energy_input_J_per_kg"]
     every = _json([path, "--component", "all", *PENDULUM])
     assert every["model"] == "2d+vertical" and "vertical" in every["model_reason"]
     single = _json([path, "--component", "180", *PENDULUM])
@@ -56,7 +58,7 @@ def test_zero_second_component_equals_the_one_component_answer(records_dir, tmp_
     one = _json([str(x), *PENDULUM])
     two = _json([str(x), "--pair", str(zeros), *PENDULUM])
     assert one["model"] == "1d-exact" and two["model"] == "2d"
-    for key in ("peak_displacement_m", "slip_time_s", "energy_input", "energy_friction"):
+    for key in ("peak_displacement_m", "slip_time_s", "energy_input_J_per_kg", "energy_friction_J_per_kg"):
         assert two[key] == pytest.approx(one[key], rel=1e-9), key
     assert two["residual_displacement_x_m"] == pytest.approx(one["residual_displacement_m"], rel=1e-9)
     assert two["residual_displacement_y_m"] == 0.0
@@ -69,7 +71,8 @@ def test_lengths_differ_one_line_then_trim(records_dir):
     line = _one_line_error(args)
     assert "different lengths" in line and "2235" in line and "2231" in line and "--trim" in line
     trimmed = _json([*args, "--trim"])
-    assert trimmed["npts"] == 2231 and trimmed["processing"][0]["step"] == "trim_to_common_window"
+    assert trimmed["record"]["npts"] == 2231
+    assert trimmed["record"]["processing"][0]["step"] == "trim_to_common_window"
 
 
 def test_time_steps_differ_one_line_then_resample(records_dir):
@@ -79,7 +82,7 @@ def test_time_steps_differ_one_line_then_resample(records_dir):
     assert "different time steps" in line and "--resample" in line
     assert "--resample" in _one_line_error([str(coarse), "--pair", str(fine), "--trim", *PENDULUM])
     joined = _json([str(coarse), "--pair", str(fine), "--resample", *PENDULUM])
-    assert joined["processing"][0]["step"] == "common_time_grid" and joined["dt_s"] == 0.005
+    assert joined["record"]["processing"][0]["step"] == "common_time_grid" and joined["record"]["dt_s"] == 0.005
 
 
 @pytest.mark.parametrize("options, words", [
@@ -102,7 +105,7 @@ def test_out_csv_holds_both_components(records_dir, tmp_path):
                        "ground_acceleration_z_m_s2", "displacement_x_m", "displacement_y_m", "velocity_x_m_s",
                        "velocity_y_m_s", "absolute_acceleration_x_m_s2", "absolute_acceleration_y_m_s2"]
     table = np.array(rows[1:], dtype=float)
-    assert table.shape == (summary["npts"], 10)
+    assert table.shape == (summary["record"]["npts"], 10)
     resultant = np.hypot(table[:, 4], table[:, 5])
     assert resultant.max() <= summary["peak_displacement_m"] * (1 + 1e-12)  # the peak includes between samples
     assert np.hypot(*table[-1, 4:6]) == pytest.approx(summary["residual_displacement_m"], rel=1e-12)
