@@ -204,10 +204,14 @@ class Analysis:
 
     def row(self) -> dict:
         """The batch's slice of :meth:`to_dict`: :data:`ROW_KEYS` and :data:`ROW_ENGINEERING_KEYS`, flat."""
-        full = self.to_dict()
-        row = {key: full[key] for key in ROW_KEYS}
-        row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
-        return row
+        return schema_row(self.to_dict(), ROW_KEYS)
+
+
+def schema_row(full: dict, keys) -> dict:
+    """A batch row from an analysis dict: ``keys`` and :data:`ROW_ENGINEERING_KEYS`, flat."""
+    row = {key: full[key] for key in keys}
+    row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
+    return row
 
 
 def _harmonic_at(point) -> tuple:

@@ -137,12 +137,9 @@ class PairAnalysis:
 
     def row(self) -> dict:
         """The batch's slice of :meth:`to_dict` (:data:`ROW_KEYS` and the engineering keys of a 1-D row), flat."""
-        from isolator.analysis import ROW_ENGINEERING_KEYS
+        from isolator.analysis import schema_row
 
-        full = self.to_dict()
-        row = {key: full[key] for key in ROW_KEYS}
-        row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
-        return row
+        return schema_row(self.to_dict(), ROW_KEYS)
 
 
 #: Keys of a batch row of a pair analysis (the harmonic columns of a 1-D row stay empty).
