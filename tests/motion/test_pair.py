@@ -82,3 +82,70 @@ def test_different_time_steps_need_resampling_onto_the_union_grid(pairs_dir):
 def test_one_component_file_asked_for_a_pair_is_one_line(records_dir):
     with pytest.raises(RecordError, match="holds one component"):
         read_ground_motion_pair(records_dir / "at2" / "IELC180.AT2", component="pair")
+
+
+def test_miniseed_stream_of_three_channels(records_dir, tmp_path):
+    from obspy import Stream, Trace, UTCDateTime
+
+    source = read_ground_motion_pair(records_dir / "other" / "ce89486SampleInput.v2", component="all")
+    traces = []
+    for channel, motion in zip(("HNZ", "HNN", "HNE"), (source.z, source.x, source.y)):  # the vertical first
+        trace = Trace(data=motion.acceleration_m_s2.astype(np.float64))
+        trace.stats.update({"network": "CE", "station": "89486", "channel": channel, "delta": motion.dt_s,
+                            "starttime": UTCDateTime(2022, 12, 20, 10, 34, 1)})
+        traces.append(trace)
+    path = tmp_path / "three.mseed"
+    Stream(traces).write(str(path), format="MSEED")
+    with pytest.raises(RecordError, match="does not state its units"):
+        read_ground_motion_pair(path, component="all")
+    pair = read_ground_motion_pair(path, component="all", units="m/s2")
+    assert (pair.x.component, pair.y.component, pair.z.component) == ("HNN", "HNE", "HNZ")
+    for ours, theirs in ((pair.x, source.x), (pair.y, source.y), (pair.z, source.z)):
+        np.testing.assert_array_equal(ours.acceleration_m_s2, theirs.acceleration_m_s2)
+
+
+def test_unequal_steps_of_two_components_are_joined_exactly(tmp_path):
+    # dt 0.02 s and 0.03 s: the union of the sample times has unequal steps (0.01 and 0.02 s)
+    rng = np.random.default_rng(3)
+    t_x, t_y = 0.02 * np.arange(301), 0.03 * np.arange(201)
+    a_x, a_y = rng.normal(0, 2.0, t_x.size), rng.normal(0, 2.0, t_y.size)
+    paths = []
+    for name, t, a in (("x.txt", t_x, a_x), ("y.txt", t_y, a_y)):
+        np.savetxt(tmp_path / name, np.column_stack([t, a]), fmt="%.17g", header="units: m/s2")
+        paths.append(tmp_path / name)
+    pair = read_ground_motion_pair(*paths, resample=True)
+    assert pair.sample_times_s is not None and pair.duration_s == pytest.approx(6.0)
+    # the same piecewise-linear signals on the uniform 0.01 s grid (every breakpoint is on it)
+    grid = 0.01 * np.arange(601)
+    np.testing.assert_allclose(np.interp(grid, pair.time_s, pair.x.acceleration_m_s2), np.interp(grid, t_x, a_x),
+                               atol=1e-12)
+    np.testing.assert_allclose(np.interp(grid, pair.time_s, pair.y.acceleration_m_s2), np.interp(grid, t_y, a_y),
+                               atol=1e-12)
+    # the 2-D engine on the two samplings of one signal: close (1e-7 here; see the xfail below for 1e-9)
+    joined, uniform = _two_samplings(pair, grid, t_x, a_x, t_y, a_y)
+    assert joined.peak_displacement_m == pytest.approx(uniform.peak_displacement_m, rel=1e-7)
+    assert joined.residual_displacement_m == pytest.approx(uniform.residual_displacement_m, rel=1e-6)
+
+
+def _two_samplings(pair, grid, t_x, a_x, t_y, a_y):
+    from isolator.solver.planar import simulate_pair
+
+    joined = simulate_pair(pair.x.acceleration_m_s2, pair.y.acceleration_m_s2, time_s=pair.time_s,
+                           mu_static=0.05, radius_m=2.0)
+    uniform = simulate_pair(np.interp(grid, t_x, a_x), np.interp(grid, t_y, a_y), 0.01, mu_static=0.05,
+                            radius_m=2.0)
+    return joined, uniform
+
+
+@pytest.mark.xfail(strict=True, reason="planar engine (first version): the same piecewise-linear pair on the union "
+                   "grid and on the uniform 0.01 s grid differ by 2.3e-8 relative in the peak, independent of rtol "
+                   "(the 1-D engine agrees to 1e-15 on the same grids); issue 10 asks for 1e-9")
+def test_two_samplings_of_one_pair_agree_to_the_issue_tolerance(tmp_path):
+    rng = np.random.default_rng(3)
+    t_x, t_y = 0.02 * np.arange(301), 0.03 * np.arange(201)
+    a_x, a_y = rng.normal(0, 2.0, t_x.size), rng.normal(0, 2.0, t_y.size)
+    for name, t, a in (("x.txt", t_x, a_x), ("y.txt", t_y, a_y)):
+        np.savetxt(tmp_path / name, np.column_stack([t, a]), fmt="%.17g", header="units: m/s2")
+    pair = read_ground_motion_pair(tmp_path / "x.txt", tmp_path / "y.txt", resample=True)
+    joined, uniform = _two_samplings(pair, 0.01 * np.arange(601), t_x, a_x, t_y, a_y)
+    assert joined.peak_displacement_m == pytest.approx(uniform.peak_displacement_m, rel=1e-9)
