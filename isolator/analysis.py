@@ -49,7 +49,7 @@ ROW_KEYS = (
     "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m", "residual_displacement_y_m",
     "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2", "slip_time_s", "uplift_time_s", "n_uplifts",
     "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
-    "energy_balance_error_J_per_kg", "solver_status",
+    "energy_balance_error_J_per_kg", "solver_status", "displacement_capacity_m", "displacement_demand_ratio",
     "window_start_s", "window_end_s", "harmonic_steady", "harmonic_status", "n_disagreements",
     "solver_seconds", "harmonic_seconds",
     *(f"{name}_{source}" for name in CLASSIFICATION_FIELDS for source in ("record", "harmonic")),
@@ -180,6 +180,9 @@ class Analysis:
         out["harmonic_seconds"] = self.harmonic_seconds
         out["disagreements"] = list(self.disagreements)
         out["n_disagreements"] = None if hc is None else len(self.disagreements)
+        capacity = getattr(self.design, "displacement_capacity_m", None)
+        out["displacement_capacity_m"] = capacity
+        out["displacement_demand_ratio"] = None if capacity is None else self.response.peak_displacement_m / capacity
         out["engineering"] = dict(self.engineering)
         out["design"] = self.design.as_dict()
         out["system"] = self.adaptation.dimensional_dict()

@@ -63,6 +63,8 @@ def test_rows_state_the_model_and_match_the_engine(records_dir, tmp_path):
     assert row["displacement_demand_ratio"] == pytest.approx(direct.peak_displacement_m / 0.15, rel=1e-12)
     assert row["residual_displacement_y_m"] == pytest.approx(direct.residual_displacement_y_m, rel=1e-12)
     assert table.loc[("180", "FP"), "residual_displacement_y_m"] == 0.0
+    one = table.loc[("180", "FP")]
+    assert one["displacement_demand_ratio"] == pytest.approx(one["peak_displacement_m"] / 0.15, rel=1e-12)
 
 
 def test_a_pair_whose_components_differ_is_a_row_error(records_dir, tmp_path):
