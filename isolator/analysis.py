@@ -358,10 +358,10 @@ def verdicts(analysis: Analysis) -> list[str]:
     else:
         out = [f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
                f"zeta = {rc.zeta:.3f}; harmonic prediction: {prediction}."]
-    if rc.amplified:
-        out.append(f"The isolator AMPLIFIES the ground motion: A = {rc.amplitude:.3g} > 1.")
-    else:
-        out.append(f"Ground motion not amplified: A = {rc.amplitude:.3g} <= 1.")
+    # the paper's measure, labelled (review branch): A is relative to A0 = PGV²/PGA, not the ground's displacement
+    out.append(f"Paper's measure A = {rc.amplitude:.3g} ({'>' if rc.amplified else '<='} 1): half peak-to-peak "
+               f"displacement / A0, A0 = PGV²/PGA = {p.a0_m:.3g} m (the harmonic motion of equal PGA and PGV, "
+               "not the ground's displacement).")
     out.append(f"Dominant force: {rc.dominant_force} (force peaks); harmonic prediction: "
                f"{'not computed' if hc is None else hc.dominant_force}.")
     if eng["peak_displacement_m"] > 0:
