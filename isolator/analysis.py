@@ -180,18 +180,9 @@ class Analysis:
         out["engineering"] = dict(self.engineering)
         out["design"] = self.design.as_dict()
         out["system"] = self.adaptation.dimensional_dict()
-        out["record"] = {
-            "label": self.record_label,
-            "component": motion.component,
-            "units_source": motion.units_source,
-            "npts": motion.npts,
-            "dt_s": motion.dt_s,
-            "duration_s": motion.duration_s,
-            "provenance": motion.provenance,
-            "processing": list(motion.processing),
-            "scaling": self.scaling_note,
-            "intensity_measures": self.adaptation.intensity.as_dict(),
-        }
+        out["record"] = record_dict(motion, self.record_label)
+        out["record"].update(provenance=motion.provenance, processing=list(motion.processing),
+                             scaling=self.scaling_note, intensity_measures=self.adaptation.intensity.as_dict())
         if self.harmonic_map is not None:
             out["map"] = self.harmonic_map.to_dict(p.alpha, p.k)
         out["verdicts"] = verdicts(self)
@@ -205,6 +196,25 @@ class Analysis:
         row = {key: full[key] for key in ROW_KEYS}
         row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
         return row
+
+
+def record_dict(motion, label: str) -> dict:
+    """The ``record`` group of the schema that every output shares: label, component, units, sampling.
+
+    Parameters
+    ----------
+    motion : isolator.motion.GroundMotion
+        The motion analysed [m/s²].
+    label : str
+        How the user named the record [-].
+
+    Returns
+    -------
+    dict
+        ``label``, ``component``, ``units_source``, ``npts``, ``dt_s`` [s], ``duration_s`` [s].
+    """
+    return {"label": label, "component": motion.component, "units_source": motion.units_source,
+            "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s}
 
 
 def _harmonic_at(point) -> tuple:
