@@ -163,20 +163,8 @@ class Analysis:
 
         p = self.adaptation.point
         motion = self.motion
-        out: dict = {"schema_version": SCHEMA_VERSION, "model": self.model, "model_reason": self.model_reason}
-        out.update(p.as_dict())
-        out["configuration"] = self.adaptation.system.configuration
-        out.update(self.response.summary())
-        rc, hc = self.record_class, self.harmonic_class
-        for name in CLASSIFICATION_FIELDS:
-            out[f"{name}_record"] = getattr(rc, name)
-            out[f"{name}_harmonic"] = None if hc is None else getattr(hc, name)
-        out["window_start_s"], out["window_end_s"] = (float(v) for v in rc.window_s)
-        out["harmonic_steady"] = None if self.harmonic is None else bool(self.harmonic.steady)
-        out["harmonic_status"] = HARMONIC_NOT_COMPUTED if self.harmonic is None else self.harmonic.status
-        out["harmonic_seconds"] = self.harmonic_seconds
+        out = self._flat()
         out["disagreements"] = list(self.disagreements)
-        out["n_disagreements"] = None if hc is None else len(self.disagreements)
         out["engineering"] = dict(self.engineering)
         out["design"] = self.design.as_dict()
         out["system"] = self.adaptation.dimensional_dict()
@@ -190,12 +178,33 @@ class Analysis:
         out["created_utc"] = self.created_utc
         return json_safe(out)
 
+    def _flat(self) -> dict:
+        """The flat keys of the schema (identity, point, response, classifications), in schema order."""
+        out: dict = {"schema_version": SCHEMA_VERSION, "model": self.model, "model_reason": self.model_reason}
+        out.update(self.adaptation.point.as_dict())
+        out["configuration"] = self.adaptation.system.configuration
+        out.update(self.response.summary())
+        rc, hc = self.record_class, self.harmonic_class
+        for name in CLASSIFICATION_FIELDS:
+            out[f"{name}_record"] = getattr(rc, name)
+            out[f"{name}_harmonic"] = None if hc is None else getattr(hc, name)
+        out["window_start_s"], out["window_end_s"] = (float(v) for v in rc.window_s)
+        out["harmonic_steady"] = None if self.harmonic is None else bool(self.harmonic.steady)
+        out["harmonic_status"] = HARMONIC_NOT_COMPUTED if self.harmonic is None else self.harmonic.status
+        out["harmonic_seconds"] = self.harmonic_seconds
+        out["n_disagreements"] = None if hc is None else len(self.disagreements)
+        return out
+
     def row(self) -> dict:
-        """The batch's slice of :meth:`to_dict`: :data:`ROW_KEYS` and :data:`ROW_ENGINEERING_KEYS`, flat."""
-        full = self.to_dict()
-        row = {key: full[key] for key in ROW_KEYS}
-        row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
-        return row
+        """The batch's slice of :meth:`to_dict`: :data:`ROW_KEYS` and :data:`ROW_ENGINEERING_KEYS`, flat.
+
+        Built from the same pieces as :meth:`to_dict` without its nested groups and sentences
+        (a batch makes thousands of rows), through the same JSON-safe helper.
+        """
+        flat = self._flat()
+        row = {key: flat[key] for key in ROW_KEYS}
+        row.update({key: self.engineering[key] for key in ROW_ENGINEERING_KEYS})
+        return json_safe(row)
 
 
 def record_dict(motion, label: str) -> dict:
