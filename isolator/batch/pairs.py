@@ -26,13 +26,14 @@ def read_pair(path: str, component: str, options: ReadOptions):
     key = (path, component, options)
     if key in _PAIR_CACHE:
         return _PAIR_CACHE[key]
-    from isolator.motion import RecordError, read_ground_motion_pair
+    from isolator.errors import MissingUnitsError
+    from isolator.motion import read_ground_motion_pair
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
     try:
         motions = read_ground_motion_pair(path, component=component, dt_s=options.dt_s)
-    except RecordError:
+    except MissingUnitsError:
         if options.units is None:
             raise
         motions = read_ground_motion_pair(path, component=component, units=options.units, dt_s=options.dt_s)

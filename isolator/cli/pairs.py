@@ -7,7 +7,7 @@ everywhere.  Reading and model errors end the command with one line and exit cod
 
 from __future__ import annotations
 
-from isolator.cli.common import user_error
+from isolator.cli.common import error_line, user_error
 
 #: Help texts of the pair and friction options.
 PAIR_HELP = {
@@ -30,11 +30,6 @@ PAIR_HELP = {
               "(instead of --stiffness-per-mass).",
 }
 
-_HINT = {"length": "pass --trim to cut them to their common window (or --resample)",
-         "start": "pass --trim to cut them to their common window (or --resample)",
-         "dt": "pass --resample to put them on the union of their sample times"}
-
-
 def wants_set(pair: str | None, vertical: str | None, component: str | None) -> bool:
     """True when the command reads more than one component (a pair, a vertical, or 'pair'/'all')."""
     return pair is not None or vertical is not None or (component or "").lower() in ("pair", "all")
@@ -48,17 +43,17 @@ def load_motion_set_for_cli(record, pair=None, vertical=None, component=None, un
     -------
     isolator.motion.MotionPair
     """
-    from isolator.motion import ComponentMismatchError, RecordError, read_ground_motion_pair
-    from isolator.units import UnitsError
+    from isolator.errors import ComponentMismatchError, RecordError, UnitsError
+    from isolator.motion import read_ground_motion_pair
 
     try:
         return read_ground_motion_pair(record, pair, vertical, component=component, units=units, merge=merge,
                                        response=response, counts_factor=counts_factor, dt_s=dt_s, trim=trim,
                                        resample=resample)
-    except ComponentMismatchError as err:
-        user_error(f"{record}: {err}; {_HINT[err.kind]}")
+    except ComponentMismatchError as err:  # the message names each component's file
+        user_error(f"{record}: {error_line(err)}")
     except (RecordError, UnitsError) as err:
-        user_error(str(err))
+        user_error(error_line(err))
 
 
 def system_keywords(*, mu_s, mu_k=None, stiffness_per_mass=0.0, damping_per_mass=0.0, gravity=None,

@@ -121,6 +121,8 @@ def simulate(
                          damping_per_mass=damping_per_mass, **kwargs)
     except (InvalidSystemError, ZeroDivisionError) as err:
         user_error(str(err) if str(err) else "--radius-m must be > 0")
+    from isolator.analysis import SCHEMA_VERSION, record_dict
+
     if wants_set(pair, vertical, component):
         motions = load_motion_set_for_cli(record, pair, vertical, component, units, merge, dt, response,
                                           counts_factor, trim, resample)
@@ -130,24 +132,21 @@ def simulate(
                        time_s=motions.sample_times_s, system=system)
         described = ", ".join(f"{axis} = {m.component}" for axis, m in parts.items())
         samples = (motions.npts, motions.dt_s, motions.sample_times_s is None)
-        record_dict = {"label": str(record), "components": motions.describe(), "npts": motions.npts,
-                       "dt_s": motions.dt_s, "duration_s": motions.duration_s,
-                       "uniform_sampling": motions.sample_times_s is None, "processing": list(motions.processing)}
+        record_group = {"label": str(record), "components": motions.describe(), "npts": motions.npts,
+                        "dt_s": motions.dt_s, "duration_s": motions.duration_s,
+                        "uniform_sampling": motions.sample_times_s is None, "processing": list(motions.processing)}
     else:
         motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
         result = solve(record, motion.acceleration_m_s2, dt_s=motion.dt_s, time_s=motion.sample_times_s,
                        system=system)
         described = f"{motion.component}, units from {motion.units_source}"
         samples = (motion.npts, motion.dt_s, motion.is_uniform)
-        record_dict = {"label": str(record), "component": motion.component, "units_source": motion.units_source,
-                       "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s,
-                       "uniform_sampling": motion.is_uniform}
-    from isolator.analysis import SCHEMA_VERSION
+        record_group = {**record_dict(motion, str(record)), "uniform_sampling": motion.is_uniform}
 
     # the analysis schema's slice for a record without a design: model and why, record, response keys
     results = response_summary(result)
     summary = {"schema_version": SCHEMA_VERSION, "model": results.pop("model"),
-               "model_reason": results.pop("model_reason"), "record": record_dict, **results}
+               "model_reason": results.pop("model_reason"), "record": record_group, **results}
     if out_csv:
         header, columns = history_columns(result)
         try:

@@ -28,7 +28,8 @@ from pathlib import Path
 import numpy as np
 
 from isolator.motion.ground_motion import GroundMotion
-from isolator.motion.read import RecordError, list_components, read_ground_motion
+from isolator.errors import ComponentError, ComponentMismatchError
+from isolator.motion.read import list_components, read_ground_motion
 
 #: Orientation names of a vertical component (lower case tokens of a component label).
 VERTICAL_NAMES = frozenset({"up", "down", "ud", "u-d", "vert", "vertical", "z", "v", "dwn"})
@@ -37,20 +38,6 @@ KNET_SUFFIXES = {"": ("NS", "EW", "UD"), "1": ("NS1", "EW1", "UD1"), "2": ("NS2"
 #: Relative tolerance on equal time steps and on start times (fraction of the step).
 TIME_TOLERANCE = 1e-6
 PAIR_CHOICES = ("pair", "all")
-
-
-class ComponentMismatchError(RecordError):
-    """The components of a pair differ in time step, length or start time.
-
-    Attributes
-    ----------
-    kind : {"dt", "length", "start"}
-        What differs [-].
-    """
-
-    def __init__(self, message: str, kind: str):
-        super().__init__(message)
-        self.kind = kind
 
 
 @dataclass(frozen=True, eq=False)
@@ -155,17 +142,18 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
     else:
         labels = list_components(path, merge=options.get("merge", False))
         if len(labels) < 2:
-            raise RecordError(f"{path}: holds one component ({labels[0]}); --component {component} needs a "
-                              "file with two horizontal components, or give the second file as the pair")
+            raise ComponentError(f"{path}: holds one component ({labels[0]}); a pair from one file needs two "
+                                 "horizontal components (or give the second file)", path=path)
         motions = [read_ground_motion(path, component=label, **options) for label in labels]
     horizontal = [m for m in motions if not is_vertical(m)]
     vertical = [m for m in motions if is_vertical(m)]
     names = ", ".join(m.component for m in motions)
     if len(horizontal) != 2:
-        raise RecordError(f"{path}: holds {len(horizontal)} horizontal component(s) ({names}); a pair needs two")
+        raise ComponentError(f"{path}: holds {len(horizontal)} horizontal component(s) ({names}); a pair needs two",
+                             path=path)
     if component == "all" and len(vertical) != 1:
-        raise RecordError(f"{path}: holds {len(vertical)} vertical component(s) ({names}); "
-                          "--component all needs one")
+        raise ComponentError(f"{path}: holds {len(vertical)} vertical component(s) ({names}); the pair with its "
+                             "vertical ('all') needs one", path=path)
     return horizontal, vertical
 
 
@@ -214,7 +202,7 @@ def _common_window(motions: dict[str, GroundMotion]) -> tuple[float, float]:
     ends = [_start_s(m) + m.duration_s for m in motions.values()]
     start, end = max(starts), min(ends)
     if not end > start:
-        raise ComponentMismatchError("the components do not overlap in time", "start")
+        raise ComponentMismatchError("the components do not overlap in time", kind="start")
     return start, end
 
 
@@ -228,7 +216,7 @@ def _trimmed(motions: dict[str, GroundMotion]) -> tuple[dict[str, GroundMotion],
         if abs(first - round(first)) > TIME_TOLERANCE:
             raise ComponentMismatchError(
                 f"{_where(motion)} is sampled {abs(first - round(first)) * dt:g} s off the grid of the others; "
-                "trimming cannot align it", "start")
+                "trimming cannot align it", kind="start")
         first = int(round(first))
         count = int(np.floor((end - start) / dt * (1 + 1e-12))) + 1
         out[name] = motion.trimmed(first * dt, (first + count - 1) * dt)
@@ -296,9 +284,9 @@ def align(motions: dict[str, GroundMotion], *, trim: bool = False,
         aligned, step = _trimmed(motions)
         left = _mismatch(aligned)
         if left is not None:
-            raise ComponentMismatchError(left[1], left[0])
+            raise ComponentMismatchError(left[1], kind=left[0])
         return aligned, [step]
-    raise ComponentMismatchError(message, kind)
+    raise ComponentMismatchError(message, kind=kind)
 
 
 def read_ground_motion_pair(
@@ -353,25 +341,27 @@ def read_ground_motion_pair(
     if y is None and z is None:
         wanted = (component or "pair").lower()
         if wanted not in PAIR_CHOICES:
-            raise RecordError(f"{x}: a pair from one file takes component 'pair' or 'all', not {component!r}")
+            raise ComponentError(f"{x}: a pair from one file takes component 'pair' or 'all', not {component!r}",
+                                 path=x)
         horizontal, vertical = _read_set(x, wanted, options)
         if wanted == "pair":
             vertical = []
     else:
         if component is not None and component.lower() in PAIR_CHOICES:
-            raise RecordError(f"{x}: component {component!r} reads a pair from one file; "
-                              "with a second file give one component (or none)")
+            raise ComponentError(f"{x}: component {component!r} reads a pair from one file; "
+                                 "with a second file give one component (or none)", path=x)
         horizontal = [read_ground_motion(x, component=component, **options)]
         if y is not None:
             horizontal.append(read_ground_motion(y, **options))
         for motion in horizontal:
             if is_vertical(motion):
-                raise RecordError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
-                                  "X and Y are the horizontal components")
+                raise ComponentError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
+                                     "X and Y are the horizontal components", path=motion.provenance.get("path", ""))
         if z is not None:
             vertical = [read_ground_motion(z, **options)]
             if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
-                raise RecordError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)")
+                raise ComponentError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)",
+                                     path=z)
     motions = dict(zip(("x", "y"), horizontal))
     if vertical:
         motions["z"] = vertical[0]
