@@ -47,11 +47,11 @@ PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 DEFAULT_RTOL = 1e-12
 
 _STATUS_MESSAGES = (
-    (_pk.STATUS_CHATTER, f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
-                         "interval; the static friction held the block to the end of that interval"),
+    (_pk.STATUS_CHATTER, (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
+                          "interval; the static friction held the block to the end of that interval")),
     (_pk.STATUS_EVENTS_TRUNCATED, "more events than the event arrays could hold"),
-    (_pk.STATUS_STEP_LIMIT, f"step guard: more than {_pk.MAX_STEPS_PER_INTERVAL} steps in one sample "
-                            "interval; the response after it is NaN"),
+    (_pk.STATUS_STEP_LIMIT, (f"step guard: more than {_pk.MAX_STEPS_PER_INTERVAL} steps in one sample "
+                             "interval; the response after it is NaN")),
 )
 
 

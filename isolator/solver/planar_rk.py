@@ -117,7 +117,7 @@ def rhs(mode, x, y, prm, frc, d):
     """
     c = prm[P_C]
     tau = y[7] if mode == LOG else x
-    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    axx, ayy, nn, _, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
     pin = 0.5 * kdot * (y[0] * y[0] + y[1] * y[1])
     if mode == CARTESIAN:
         v1 = y[2]
@@ -187,7 +187,7 @@ def dop853_step(mode, x, y, f0, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol):
     ----------
     atol : float64[NSTATE]
         Absolute tolerance per component; components with atol = inf are not
-        error-controlled (the energies).
+        error-controlled.
     rtol : float
         Relative tolerance [-].
 
@@ -198,38 +198,47 @@ def dop853_step(mode, x, y, f0, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol):
         err is the scaled error norm (accept when ≤ 1).  ``ynew``/``fnew`` hold the
         new state and its derivative.
     """
-    ns = y.shape[0]
-    for j in range(ns):
+    # loops over the fixed state size with the stage index outside and zero
+    # coefficients skipped (50 of the 66 below-diagonal entries are used)
+    for j in range(NSTATE):
         k[0, j] = f0[j]
     for s in range(1, 12):
-        for j in range(ns):
-            acc = 0.0
-            for m in range(s):
-                acc += _A[s, m] * k[m, j]
-            ytmp[j] = y[j] + h * acc
+        for j in range(NSTATE):
+            ytmp[j] = 0.0
+        for m in range(s):
+            a = _A[s, m]
+            if a != 0.0:
+                for j in range(NSTATE):
+                    ytmp[j] += a * k[m, j]
+        for j in range(NSTATE):
+            ytmp[j] = y[j] + h * ytmp[j]
         if not rhs(mode, x + _C[s] * h, ytmp, prm, frc, k[s]):
             return False, np.inf
-    for j in range(ns):
-        acc = 0.0
-        for m in range(12):
-            acc += _B[m] * k[m, j]
-        ynew[j] = y[j] + h * acc
+    for j in range(NSTATE):
+        ytmp[j] = 0.0
+    for m in range(12):
+        b = _B[m]
+        if b != 0.0:
+            for j in range(NSTATE):
+                ytmp[j] += b * k[m, j]
+    for j in range(NSTATE):
+        ynew[j] = y[j] + h * ytmp[j]
     if not rhs(mode, x + h, ynew, prm, frc, fnew):
         return False, np.inf
-    for j in range(ns):
+    for j in range(NSTATE):
         k[12, j] = fnew[j]
     err5 = 0.0
     err3 = 0.0
     count = 0
-    for j in range(ns):
+    for j in range(NSTATE):
         if not atol[j] < np.inf:
             continue
-        sc = atol[j] + rtol * max(abs(y[j]), abs(ynew[j]))
         e5 = 0.0
         e3 = 0.0
         for m in range(13):
             e5 += _E5[m] * k[m, j]
             e3 += _E3[m] * k[m, j]
+        sc = atol[j] + rtol * max(abs(y[j]), abs(ynew[j]))
         e5 /= sc
         e3 /= sc
         err5 += e5 * e5
