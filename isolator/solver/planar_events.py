@@ -25,6 +25,7 @@ from isolator.solver.planar_rk import (
     dop853_step,
     forcing,
     friction_coefficient,
+    start_direction,
 )
 
 # phases of the motion
@@ -113,18 +114,16 @@ def velocity(phase, x, tau, y, prm, frc):
         r = math.exp(x)
         return r * y[2], r * y[3]
     if phase == PH_START:
-        _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-        fm = math.hypot(fx, fy)
-        if fm == 0.0:
-            return 0.0, 0.0
-        return y[2] * fx / fm, y[2] * fy / fm
+        _, _, _, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+        return y[2] * e1, y[2] * e2
     return y[2], y[3]
 
 
 @njit(cache=True)
 def transmitted(phase, x, tau, y, prm, frc):
     """Absolute acceleration of the mass (a_x, a_y) [m/s²]: a_g when stuck, else −(friction + κX + cV)."""
-    axx, ayy, nn, kap, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
     if phase == PH_STUCK:
         return axx, ayy
     v1, v2 = velocity(phase, x, tau, y, prm, frc)
@@ -133,10 +132,7 @@ def transmitted(phase, x, tau, y, prm, frc):
     e1 = 0.0
     e2 = 0.0
     if phase == PH_START:
-        fm = math.hypot(fx, fy)
-        if fm > 0.0:
-            e1 = fx / fm
-            e2 = fy / fm
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
     elif r > 0.0:
         e1 = v1 / r
         e2 = v2 / r

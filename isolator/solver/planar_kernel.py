@@ -95,6 +95,8 @@ SC_SIZE = 4
 #: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
 _ENTER = 0.02
 _LEAVE = 0.01
+#: h·(|F| + µn)/|V| kept below this in Cartesian form (DOP853's real stability interval is ≈ [−6, 0])
+_STABLE = 12.0
 
 
 @njit(cache=True)
@@ -395,6 +397,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         rhs(CARTESIAN, tau, y, prm, frc, f)
                 hmax = target - tau
                 h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
+                if phase == PH_SLIDE:
+                    # slow sliding: the direction relaxes at the rate ~ µn/|V|; DOP853 is
+                    # stable for h·rate up to ≈ 6, so stay inside rather than be rejected
+                    stiff = _STABLE * r / max(fscale, 1e-300)
+                    if h > stiff:
+                        h = stiff
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
