@@ -31,12 +31,13 @@ def read_pair(path: str, component: str, options: ReadOptions):
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
+    align = {"trim": options.trim, "resample": options.resample, "dt_s": options.dt_s}
     try:
-        motions = read_ground_motion_pair(path, component=component, dt_s=options.dt_s)
+        motions = read_ground_motion_pair(path, component=component, **align)
     except MissingUnitsError:
         if options.units is None:
             raise
-        motions = read_ground_motion_pair(path, component=component, units=options.units, dt_s=options.dt_s)
+        motions = read_ground_motion_pair(path, component=component, units=options.units, **align)
     factor = 1.0
     if options.scale_to_pga_g is not None:
         largest = max(motions.x.pga_m_s2, motions.y.pga_m_s2)

@@ -260,11 +260,17 @@ class ReadOptions:
     scale_to_pga_g: float | None = None
     dt_s: float | None = None
     harmonic: bool = True  #: also classify the harmonic response at the equivalent point
+    #: components of a pair that differ: cut to the common window, or the union of their sample times
+    trim: bool = False
+    resample: bool = False
 
     def fingerprint(self) -> str:
         options = {"units": self.units, "scale_to_pga_g": self.scale_to_pga_g, "dt_s": self.dt_s}
         if not self.harmonic:
             options["harmonic"] = False
+        for name in ("trim", "resample"):  # only when set: the keys of earlier batches stay valid
+            if getattr(self, name):
+                options[name] = True
         return json.dumps(options, sort_keys=True)
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import typer
 
 from isolator.cli.common import RECORD_HELP, app, echo_table, error_line, user_error
+from isolator.cli.pairs import PAIR_HELP
 
 
 @app.command()
@@ -24,6 +25,8 @@ def batch(
                                   "'all-horizontal': every horizontal component of multi-component files alone."),
     dt: float = typer.Option(None, "--dt", help="Time step [s] of the one-column text records that give none "
                              "(other files keep their own)."),
+    trim: bool = typer.Option(False, "--trim", help=PAIR_HELP["trim"]),
+    resample: bool = typer.Option(False, "--resample", help=PAIR_HELP["resample"]),
     scale_to_pga: float = typer.Option(None, "--scale-to-pga", help="Scale every record to this peak ground "
                                        "acceleration, in g."),
     output: str = typer.Option(..., "--output", "-o", help="Table to write: .csv or .parquet."),
@@ -76,7 +79,8 @@ def batch(
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
     except BatchError as err:
         user_error(error_line(err))
-    options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic)
+    options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic, trim=trim,
+                          resample=resample)
 
     progress_bar, callback = None, None
     if sys.stderr.isatty():

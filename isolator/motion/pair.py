@@ -157,9 +157,11 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
     return horizontal, vertical
 
 
-def _start_s(motion: GroundMotion) -> float:
-    """Start time as a POSIX timestamp (0 for formats that state none, e.g. AT2) [s]."""
-    return float(motion.trace.stats.starttime.timestamp)
+def _offsets_s(motions: dict[str, GroundMotion]) -> dict[str, float]:
+    """Start time of each component after X's [s] (UTCDateTime differences: nanosecond precision;
+    formats that state no start time, e.g. AT2, all start at 0)."""
+    reference = motions["x"].trace.stats.starttime
+    return {name: float(motion.trace.stats.starttime - reference) for name, motion in motions.items()}
 
 
 def _where(motion: GroundMotion) -> str:
@@ -170,11 +172,12 @@ def _where(motion: GroundMotion) -> str:
 def _mismatch(motions: dict[str, GroundMotion]) -> tuple[str, str] | None:
     """(kind, description) of the first difference between the components, or None."""
     first = motions["x"]
-    for kind, value, unit, fmt in (("dt", lambda m: m.dt_s, "s", "{:g}"),
-                                   ("sampling", lambda m: m.is_uniform, "", "{}"),
-                                   ("start", _start_s, "s", "{:.6f}"),
-                                   ("length", lambda m: m.npts, "samples", "{}")):
-        values = {name: value(m) for name, m in motions.items()}
+    offsets = _offsets_s(motions)
+    for kind, value, unit, fmt in (("dt", lambda n, m: m.dt_s, "s", "{:g}"),
+                                   ("sampling", lambda n, m: m.is_uniform, "", "{}"),
+                                   ("start", lambda n, m: offsets[n], "s", "{:.6f}"),
+                                   ("length", lambda n, m: m.npts, "samples", "{}")):
+        values = {name: value(name, m) for name, m in motions.items()}
         ref = values["x"]
         if kind in ("dt", "start"):
             same = all(abs(v - ref) <= TIME_TOLERANCE * first.dt_s for v in values.values())
@@ -198,9 +201,10 @@ def _mismatch(motions: dict[str, GroundMotion]) -> tuple[str, str] | None:
 
 
 def _common_window(motions: dict[str, GroundMotion]) -> tuple[float, float]:
-    starts = [_start_s(m) for m in motions.values()]
-    ends = [_start_s(m) + m.duration_s for m in motions.values()]
-    start, end = max(starts), min(ends)
+    """(start, end) of the time all components cover, after X's start [s]."""
+    offsets = _offsets_s(motions)
+    start = max(offsets.values())
+    end = min(offsets[name] + motion.duration_s for name, motion in motions.items())
     if not end > start:
         raise ComponentMismatchError("the components do not overlap in time", kind="start")
     return start, end
@@ -208,18 +212,26 @@ def _common_window(motions: dict[str, GroundMotion]) -> tuple[float, float]:
 
 def _trimmed(motions: dict[str, GroundMotion]) -> tuple[dict[str, GroundMotion], dict]:
     """Cut equal-step components on one grid to their common window."""
-    start, end = _common_window(motions)
+    start, _ = _common_window(motions)
+    offsets = _offsets_s(motions)
     dt = motions["x"].dt_s
-    out, dropped = {}, {}
+    firsts = {}
     for name, motion in motions.items():
-        first = (start - _start_s(motion)) / dt
+        first = (start - offsets[name]) / dt
         if abs(first - round(first)) > TIME_TOLERANCE:
             raise ComponentMismatchError(
                 f"{_where(motion)} is sampled {abs(first - round(first)) * dt:g} s off the grid of the others; "
                 "trimming cannot align it", kind="start")
-        first = int(round(first))
-        count = int(np.floor((end - start) / dt * (1 + 1e-12))) + 1
-        out[name] = motion.trimmed(first * dt, (first + count - 1) * dt)
+        firsts[name] = int(round(first))
+    # by sample index: every component keeps the samples all of them cover
+    count = min(motion.npts - firsts[name] for name, motion in motions.items())
+    out, dropped = {}, {}
+    for name, motion in motions.items():
+        first = firsts[name]
+        trace = motion.trace.copy()
+        trace.data = np.ascontiguousarray(motion.acceleration_m_s2[first:first + count])
+        trace.stats.starttime = motion.trace.stats.starttime + first * dt
+        out[name] = motion._derived(trace, {"step": "trim", "first_sample": first, "npts": count})
         dropped[name] = motion.npts - out[name].npts
     return out, {"step": "trim_to_common_window", "npts": out["x"].npts, "dropped_samples": dropped}
 
@@ -227,21 +239,22 @@ def _trimmed(motions: dict[str, GroundMotion]) -> tuple[dict[str, GroundMotion],
 def _on_union_grid(motions: dict[str, GroundMotion]) -> tuple[dict[str, GroundMotion], dict]:
     """Every component on the union of all sample times inside the common window (exact)."""
     start, end = _common_window(motions)
+    offsets = _offsets_s(motions)
     smallest = min(m.dt_s for m in motions.values())
-    absolute = np.concatenate([_start_s(m) - start + m.time_s for m in motions.values()])
+    absolute = np.concatenate([offsets[n] - start + m.time_s for n, m in motions.items()])
     grid = np.unique(absolute[(absolute >= -TIME_TOLERANCE * smallest)
                               & (absolute <= end - start + TIME_TOLERANCE * smallest)])
     keep = np.concatenate([[True], np.diff(grid) > TIME_TOLERANCE * smallest])  # merge coincident times
     grid = np.clip(grid[keep], 0.0, end - start)
     out = {}
     for name, motion in motions.items():
-        values = np.interp(grid, _start_s(motion) - start + motion.time_s, motion.acceleration_m_s2)
+        values = np.interp(grid, offsets[name] - start + motion.time_s, motion.acceleration_m_s2)
         common = GroundMotion.from_array(values, time_s=grid, units_source=motion.units_source,
                                          component=motion.component, provenance=motion.provenance)
         out[name] = GroundMotion(trace=common.trace, units_source=motion.units_source,
                                  provenance=motion.provenance, processing=list(motion.processing),
                                  component=motion.component, components=list(motion.components))
-        out[name].trace.stats.starttime = motion.trace.stats.starttime + (start - _start_s(motion))
+        out[name].trace.stats.starttime = motion.trace.stats.starttime + (start - offsets[name])
     step = {"step": "common_time_grid", "npts": int(grid.size), "uniform": out["x"].is_uniform,
             "method": "union of the components' sample times over their common window; linear "
                       "interpolation (the same piecewise-linear signals, nothing approximated)"}

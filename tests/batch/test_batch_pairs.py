@@ -74,3 +74,17 @@ def test_a_pair_whose_components_differ_is_a_row_error(records_dir, tmp_path):
                        jobs=1)
     assert result.n_failed == 2
     assert all("different lengths" in error and "15050" in error for error in result.table["error"])
+
+
+def test_trim_repairs_the_pair_and_is_recorded(records_dir, tmp_path):
+    from isolator.batch import ReadOptions
+
+    designs = tmp_path / "designs.toml"
+    designs.write_text(DESIGNS)
+    path = str(records_dir / "pairs" / "lahabra2014_WLT" / "CIWLT.V2")
+    result = run_batch([path], designs, tmp_path / "t.csv", jobs=1, options=ReadOptions(trim=True))
+    assert result.n_failed == 0
+    row = result.table.iloc[0]
+    assert row["record_npts"] == 15029 and row["record_processing"] == "trim_to_common_window"  # the shortest, HN2
+    # the row key changes with --trim: a batch without it is not resumed into one with it
+    assert ReadOptions(trim=True).fingerprint() != ReadOptions().fingerprint()

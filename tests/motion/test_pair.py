@@ -149,3 +149,18 @@ def test_two_samplings_of_one_pair_agree_to_the_issue_tolerance(tmp_path):
     pair = read_ground_motion_pair(tmp_path / "x.txt", tmp_path / "y.txt", resample=True)
     joined, uniform = _two_samplings(pair, 0.01 * np.arange(601), t_x, a_x, t_y, a_y)
     assert joined.peak_displacement_m == pytest.approx(uniform.peak_displacement_m, rel=1e-9)
+
+
+def test_start_times_that_differ_by_whole_samples_are_trimmed_into_line(tmp_path):
+    rng = np.random.default_rng(8)
+    a_x, a_y = rng.normal(0, 1.0, 400), rng.normal(0, 1.0, 400)
+    for name, t0, a in (("x.txt", 0.0, a_x), ("y.txt", 0.05, a_y)):  # Y starts 5 samples later
+        np.savetxt(tmp_path / name, np.column_stack([t0 + 0.01 * np.arange(a.size), a]), fmt="%.17g",
+                   header="units: m/s2")
+    with pytest.raises(ComponentMismatchError) as caught:
+        read_ground_motion_pair(tmp_path / "x.txt", tmp_path / "y.txt")
+    assert caught.value.kind == "start"
+    pair = read_ground_motion_pair(tmp_path / "x.txt", tmp_path / "y.txt", trim=True)
+    assert pair.npts == 395 and pair.processing[0]["dropped_samples"] == {"x": 5, "y": 5}
+    np.testing.assert_array_equal(pair.x.acceleration_m_s2, a_x[5:])
+    np.testing.assert_array_equal(pair.y.acceleration_m_s2, a_y[:395])
