@@ -164,3 +164,16 @@ def test_start_times_that_differ_by_whole_samples_are_trimmed_into_line(tmp_path
     assert pair.npts == 395 and pair.processing[0]["dropped_samples"] == {"x": 5, "y": 5}
     np.testing.assert_array_equal(pair.x.acceleration_m_s2, a_x[5:])
     np.testing.assert_array_equal(pair.y.acceleration_m_s2, a_y[:395])
+
+
+def test_kiknet_surface_set_by_its_suffixes(pairs_dir, tmp_path):
+    import shutil
+
+    # KiK-net names the surface set .NS2/.EW2/.UD2 (the borehole .NS1 …); the content is K-NET ASCII
+    for suffix in ("NS", "EW", "UD"):
+        shutil.copy(pairs_dir / "iwatemiyagi2008_AOM017" / f"AOM0170806140843.{suffix}",
+                    tmp_path / f"AOM0170806140843.{suffix}2")
+    pair = read_ground_motion_pair(tmp_path / "AOM0170806140843.EW2", component="all")
+    knet = read_ground_motion_pair(pairs_dir / "iwatemiyagi2008_AOM017" / "AOM0170806140843.NS", component="all")
+    for ours, theirs in zip(pair.components.values(), knet.components.values()):
+        np.testing.assert_array_equal(ours.acceleration_m_s2, theirs.acceleration_m_s2)
