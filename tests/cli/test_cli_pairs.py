@@ -109,3 +109,15 @@ def test_out_csv_holds_both_components(records_dir, tmp_path):
     resultant = np.hypot(table[:, 4], table[:, 5])
     assert resultant.max() <= summary["peak_displacement_m"] * (1 + 1e-12)  # the peak includes between samples
     assert np.hypot(*table[-1, 4:6]) == pytest.approx(summary["residual_displacement_m"], rel=1e-12)
+
+
+def test_one_horizontal_with_its_vertical(records_dir):
+    folder = records_dir / "pairs" / "iwatemiyagi2008_AOM017"
+    result = _json([str(folder / "AOM0170806140843.NS"), "--vertical", str(folder / "AOM0170806140843.UD"),
+                    "--mu-s", "0.01", "--radius-m", "2"])
+    assert result["model"] == "2d+vertical" and "second horizontal component zero" in result["model_reason"]
+    assert set(result["record"]["components"]) == {"x", "z"}
+    assert result["residual_displacement_y_m"] == 0.0 and result["peak_displacement_m"] > 0
+    line = _one_line_error([str(folder / "AOM0170806140843.NS"), "--vertical", str(folder / "AOM0170806140843.EW"),
+                            *PENDULUM])
+    assert "is not a vertical" in line
