@@ -68,10 +68,7 @@ def _ground_measures(ax, ay, dt):
 
 def simulate(task: dict):
     """Run the pair engine on a task (imported here so workers load it once)."""
-    try:
-        from isolator.solver.planar import simulate_pair
-    except ImportError:  # TEMPORARY until the planar branch lands: removed at the merge
-        simulate_pair = _per_component_pair
+    from isolator.solver.planar import simulate_pair
 
     p = task["design"]
     kwargs = {"mu_static": p["mu_static"], "mu_kinetic": p["mu_kinetic"], "damping_per_mass": p["damping_per_mass"],
@@ -250,24 +247,3 @@ def default_jobs() -> int:
 
     return default_workers()
 
-
-def _per_component_pair(ax, ay, dt, *, az_m_s2=None, mu_static, mu_kinetic=None, stiffness_per_mass=0.0,
-                        radius_m=None, damping_per_mass=0.0, gravity_m_s2=None, **_):  # TEMPORARY
-    from types import SimpleNamespace
-
-    from isolator.solver.record import simulate_record
-
-    kappa = gravity_m_s2 / radius_m if radius_m is not None else stiffness_per_mass
-    rx = simulate_record(ax, dt, mu_static=mu_static, mu_kinetic=mu_kinetic, stiffness_per_mass=kappa,
-                         damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2)
-    ry = simulate_record(ay, dt, mu_static=mu_static, mu_kinetic=mu_kinetic, stiffness_per_mass=kappa,
-                         damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2)
-    xy = np.column_stack([rx.displacement_m, ry.displacement_m])
-    acc = np.column_stack([rx.absolute_acceleration_m_s2, ry.absolute_acceleration_m_s2])
-    return SimpleNamespace(displacement_m=xy, peak_displacement_m=float(np.max(np.hypot(xy[:, 0], xy[:, 1]))),
-                           residual_displacement_m=float(np.hypot(*xy[-1])), residual_displacement_x_m=xy[-1, 0],
-                           residual_displacement_y_m=xy[-1, 1],
-                           peak_velocity_m_s=max(rx.peak_velocity_m_s, ry.peak_velocity_m_s),
-                           peak_transmitted_acceleration_m_s2=float(np.max(np.hypot(acc[:, 0], acc[:, 1]))),
-                           slip_time_s=max(rx.slip_time_s, ry.slip_time_s), n_events=rx.n_events + ry.n_events,
-                           model="1d-per-component", model_reason="2-D engine not available")
