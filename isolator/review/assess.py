@@ -114,10 +114,10 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
     if any(pair.az_m_s2 is not None for pair in review.suite.pairs):
         n_up = sum(v["n_uplifts"] for v in values.values())
         with_z = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
-        rows.append(C.at_most("uplift", "bearing uplift (ASCE 7-22 17.2.4.7)", n_up, 0,
+        rows.append(C.at_most("uplift", "bearing uplift (ASCE 7-22 17.2.4.7) [U]", n_up, 0,
                               f"uplifts counted over {with_z} pair(s) with a vertical component", "events"))
     else:
-        rows.append(C.check("uplift", "bearing uplift (ASCE 7-22 17.2.4.7)", C.NOT_CHECKED,
+        rows.append(C.check("uplift", "bearing uplift (ASCE 7-22 17.2.4.7) [U]", C.NOT_CHECKED,
                             note="no vertical components in the suite"))
     return rows
 
@@ -129,7 +129,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     cap = design.displacement_capacity_m
     rows = _common_front(review, p["n_pairs_min"], "ASCE 7-22 17.3.2", "ASCE 7-22 17.3.3 / 16.2.3.2", "RotD100")
     capacity_note = "" if cap is not None else "no displacement_capacity_m in the design"
-    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4 / 17.2.4 (capacity)", env["D_M_m"], cap,
+    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_m"], cap,
                           f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs" + (
                               "; " + capacity_note if capacity_note else ""), "m"))
     rows.append(C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
