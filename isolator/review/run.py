@@ -126,6 +126,8 @@ def _clean(value):
 
 
 def _elf(design, mu, target, code, params) -> dict:
+    if code == "en15129":  # the effective period of the isolated system at its design displacement, η damping
+        return asce7_22.elf_displacement(design, mu, target, form="SaM", reduction=en15129.damping_divisor)
     out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"))
     if code == "asce7-22" and out["D_M_m"] > 0:
         out.update(asce7_22.superstructure_shear(out["V_b_over_W"], out["beta_M"], params))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from isolator.design import Design
@@ -65,3 +67,8 @@ def test_single_record_checks_and_the_labelled_measure():
     assert rows["usable_band"]["status"] == "not checked"  # an array states no filter corner
     text = " ".join(verdicts(a))
     assert "AMPLIFIES" not in text and "A0 = PGV²/PGA" in text and "Paper's measure A" in text
+
+
+@pytest.mark.parametrize("beta,divisor", [(0.05, 1.0), (0.15, math.sqrt(2.0)), (0.5, 1 / 0.55)])
+def test_en_damping_correction(beta, divisor):
+    assert en15129.damping_divisor(beta) == pytest.approx(divisor)
