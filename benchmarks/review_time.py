@@ -36,7 +36,7 @@ def one_review(jobs: int, out: Path) -> dict:
     read = time.perf_counter()
     review = run_review(Design.from_toml(ROOT / "data" / "example_review.toml"),
                         load_target(ROOT / "isolator" / "data" / "targets" / "example.toml"), suite, jobs=jobs,
-                        nominal=False, rotd50_points=12)
+                        nominal=False, rotd50_points=12, paper_map_resolution=30)
     done = time.perf_counter()
     write_review_pdf(review, out)
     end = time.perf_counter()

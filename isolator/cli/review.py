@@ -94,7 +94,8 @@ def review(
     cache_dir = None if no_cache else Path(output).parent / f".{Path(output).stem}.cache"
     try:
         result = run_review(the_design, the_target, the_suite, code=code, scaling=scaling, jobs=jobs,
-                            scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12)
+                            scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12,
+                            paper_map_resolution=30)
     except (DesignError, ReviewError) as err:
         _user_error(str(err))
     command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])

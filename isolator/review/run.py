@@ -51,6 +51,7 @@ class Review:
     notes: list = field(default_factory=list)
     timing: dict = field(default_factory=dict)
     created_utc: str = ""
+    paper_map: dict | None = None  #: the paper's regime map and the pairs' equivalent points (context)
 
     # ---- JSON ------------------------------------------------------------------------------
 
@@ -136,7 +137,7 @@ def _elf(design, mu, target, code, params) -> dict:
 
 def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = "common", jobs: int | None = None,
                scheduler: str | None = None, parameters: dict | None = None, cache_dir=None,
-               nominal: bool = True, rotd50_points: int = 0) -> Review:
+               nominal: bool = True, rotd50_points: int = 0, paper_map_resolution: int = 0) -> Review:
     """Review a design over a suite scaled to a target, at its lower and upper property bounds.
 
     Parameters
@@ -159,6 +160,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         Also analyse the nominal properties.
     rotd50_points : int
         Periods at which RotD50 is computed (informational; 0: none).
+    paper_map_resolution : int
+        Grid points per axis of the paper's harmonic regime map around the pairs' equivalent points
+        (context only, cached on disk; 0: none).
 
     Returns
     -------
@@ -253,10 +257,11 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         notes.append(f"analysis of pair '{name}' failed: "
                      + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))
 
+    paper_map = _paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution else None
     review = Review(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
                     bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
                     factors=dict(zip(names, map(float, factors))), spectra=spectra, suite_ratio=ratio,
-                    analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing,
+                    analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing, paper_map=paper_map,
                     created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
     from isolator.review.assess import assess
 
@@ -273,3 +278,23 @@ def _safe_target(target, periods):
     out = np.full(periods.size, np.nan)
     out[inside] = target.sa_g(periods[inside])
     return out
+
+
+def _paper_map(designs: dict, analyses: dict, resolution: int, jobs) -> dict | None:
+    """The paper's harmonic regime map (Nicolas 2017, Figs. 5–7) at the nominal friction, with each pair's
+    equivalent point k = K A0/(M g), α = PGA/(µs g), A0 = PGV²/PGA of the scaled resultant motion."""
+    from isolator.maps import design_frame, regime_map
+
+    bound = "nominal" if "nominal" in analyses else "lower"
+    d = designs[bound]
+    g = d.gravity_m_s2
+    points = {name: (d.stiffness_per_mass * r["paper_A0_m"] / g, r["paper_alpha"], r["paper_A"])
+              for name, r in analyses[bound].items() if "error" not in r and r["paper_A0_m"] > 0}
+    if not points:
+        return None
+    etas = [d.damping_per_mass * math.sqrt(analyses[bound][n]["paper_A0_m"] / g) for n in points]
+    eta = float(np.median(etas))
+    frame = design_frame(max(p[1] for p in points.values()), max(p[0] for p in points.values()))
+    rmap = regime_map(eta, d.mu_static, d.mu_kinetic, k_range=frame["k"], alpha_range=frame["alpha"],
+                      n_k=resolution, n_alpha=resolution, workers=jobs)
+    return {"map": rmap, "bound": bound, "eta": eta, "points": points}

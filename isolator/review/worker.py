@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 #: bump when the numbers an analysis returns change meaning
-CACHE_VERSION = "review-1"
+CACHE_VERSION = "review-2"
 ORBIT_POINTS = 1500
 
 
@@ -52,7 +52,7 @@ def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
 
 
 def _ground_measures(ax, ay, dt):
-    """Resultant PGA [m/s²], PGV [m/s] and D5–95 [s] of the horizontal ground motion."""
+    """Resultant PGA [m/s²], PGV [m/s] and the D5–95 window (t5, t95) [s] of the horizontal ground motion."""
     pga = float(np.max(np.hypot(ax, ay)))
     vx = np.concatenate([[0.0], np.cumsum(0.5 * (ax[1:] + ax[:-1]) * dt)])
     vy = np.concatenate([[0.0], np.cumsum(0.5 * (ay[1:] + ay[:-1]) * dt)])
@@ -63,7 +63,7 @@ def _ground_measures(ax, ay, dt):
         t5, t95 = np.interp([0.05 * energy[-1], 0.95 * energy[-1]], energy, t)
     else:
         t5 = t95 = 0.0
-    return pga, pgv, float(t95 - t5)
+    return pga, pgv, (float(t5), float(t95))
 
 
 def simulate(task: dict):
@@ -95,8 +95,8 @@ def analyse_task(task: dict) -> dict:
         ``peak_transmitted_acceleration_m_s2`` (resultant), ``base_shear_coefficient`` (= that /g),
         ``transmitted_over_pga``, ``slip_time_s``, ``uplift_time_s``, ``n_uplifts``, ``n_events``,
         ``model``, ``model_reason``, the paper's measures (``paper_A`` = D/A0 with A0 = PGV²/PGA of
-        the resultant ground motion, ``paper_alpha`` = PGA/(µs g), ``paper_slip_ratio`` = slip time /
-        D5–95) and ``orbit_m`` (decimated X–Y path).
+        the resultant ground motion, ``paper_alpha`` = PGA/(µs g), ``paper_slip_ratio`` = share of the
+        D5–95 window spent sliding, read at the samples) and ``orbit_m`` (decimated X–Y path).
     """
     import time
 
@@ -106,7 +106,11 @@ def analyse_task(task: dict) -> dict:
     except Exception as err:  # noqa: BLE001 - one analysis fails, the review reports it
         return {"error": f"{type(err).__name__}: {' '.join(str(err).split())}"}
     f, dt = task["factor"], task["dt"]
-    pga, pgv, d595 = _ground_measures(f * task["ax"], f * task["ay"], dt)
+    pga, pgv, (t5, t95) = _ground_measures(f * task["ax"], f * task["ay"], dt)
+    # the paper's ζ: the share of the D5–95 window spent sliding (read at the samples)
+    window = slice(int(np.ceil(t5 / dt)), int(np.floor(t95 / dt)) + 1)
+    speed = np.hypot(*np.asarray(r.velocity_m_s, dtype=np.float64)[window].T)
+    slip_ratio = float(np.mean(speed > 0.0)) if speed.size else math.nan
     g = task["design"]["gravity_m_s2"]
     peak = float(r.peak_displacement_m)
     a0 = pgv * pgv / pga if pga > 0 else math.nan
@@ -131,7 +135,7 @@ def analyse_task(task: dict) -> dict:
         "paper_A": peak / a0 if a0 > 0 else math.nan,
         "paper_A0_m": a0,
         "paper_alpha": pga / (task["design"]["mu_static"] * g),
-        "paper_slip_ratio": float(r.slip_time_s) / d595 if d595 > 0 else math.nan,
+        "paper_slip_ratio": slip_ratio,
         "orbit_m": _decimate(np.asarray(r.displacement_m, dtype=np.float64)),
         "seconds": time.perf_counter() - start,
     }
