@@ -189,7 +189,11 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         notes.append("the design gives no property bounds: lower = upper = nominal")
 
     # ELF reference values per bound (17.5)
-    elf = {b: _elf(designs[b], designs[b].mu_kinetic, target, code, params) for b in designs}
+    # ELF at the kinetic friction; with µ(v), at µ_fast (the friction of seismic sliding speeds)
+    elf = {b: _elf(designs[b], designs[b].mu_fast if designs[b].velocity_dependent else designs[b].mu_kinetic,
+                   target, code, params) for b in designs}
+    if design.velocity_dependent:
+        notes.append("velocity-dependent friction: the ELF values use µ_fast of each bound; the analyses µ(v)")
     for b in designs:
         notes.extend(f"ELF {b}: {n}" for n in elf[b]["notes"])
 
@@ -253,6 +257,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     analyses = {b: {name: dict(results[index[(b, name)]], scale_factor=float(f))
                     for name, f in zip(names, factors)} for b in designs}
     failed = sorted({name for b in analyses for name, r in analyses[b].items() if "error" in r})
+    if len(failed) == len(names):
+        first = next(r["error"] for b in analyses for r in analyses[b].values() if "error" in r)
+        raise ReviewError(f"every analysis failed ({first})")
     for name in failed:
         notes.append(f"analysis of pair '{name}' failed: "
                      + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))

@@ -71,14 +71,15 @@ def simulate(task: dict):
     from isolator.solver.planar import simulate_pair
 
     p = task["design"]
-    kwargs = {"mu_static": p["mu_static"], "mu_kinetic": p["mu_kinetic"], "damping_per_mass": p["damping_per_mass"],
-              "gravity_m_s2": p["gravity_m_s2"]}
+    kwargs = {"mu_static": p["mu_static"], "damping_per_mass": p["damping_per_mass"], "gravity_m_s2": p["gravity_m_s2"]}
     if p["radius_m"] is not None:
         kwargs["radius_m"] = p["radius_m"]
     else:
         kwargs["stiffness_per_mass"] = p["stiffness_per_mass"]
-    if p["rate_s_per_m"] is not None:
+    if p["rate_s_per_m"] is not None:  # µ(v) replaces the constant kinetic friction
         kwargs.update(mu_slow=p["mu_slow"], mu_fast=p["mu_fast"], rate_s_per_m=p["rate_s_per_m"])
+    else:
+        kwargs["mu_kinetic"] = p["mu_kinetic"]
     f = task["factor"]
     az = None if task["az"] is None else f * task["az"]
     return simulate_pair(f * task["ax"], f * task["ay"], task["dt"], az_m_s2=az, **kwargs)

@@ -169,3 +169,21 @@ def test_cli_bad_target_key_and_duplicate_suite(inputs, tmp_path):
     suite.write_text(f'[[pair]]\nx = "{EXAMPLE / name / x}"\ny = "again.AT2"\n')
     result = _cli("--design", inputs / "design.toml", "--target", inputs / "target.toml", "--suite", suite)
     assert result.exit_code == 2 and "same samples" in result.output and "again.AT2" in result.output
+
+
+def test_velocity_dependent_friction_and_en15129(inputs):
+    from isolator.review.run import run_review
+
+    text = (inputs / "design.toml").read_text() + "mu_slow = 0.03\nmu_fast = 0.05\nrate_s_per_m = 25.0\n"
+    design = Design.from_mapping(__import__("tomllib").loads(text), source="v.toml")
+    suite = load_suite(inputs / "suite.toml")
+    out = run_review(design, two_period_target(1.5, 0.9, 8.0), suite, jobs=1, nominal=False,
+                     code="en15129").to_dict()
+    models = {r["model"] for b in ("lower", "upper") for r in out["bounds"][b]["pairs"].values()}
+    assert models == {"2d+mu(v)"}
+    assert out["elf"]["upper"]["mu"] == pytest.approx(0.05 * 1.3)  # ELF at µ_fast of the bound
+    assert out["property_bounds"]["lambda_max"] == 1.3  # lambda_max given: no combination
+    ids = {c["id"] for c in out["checks"]}
+    assert {"displacement_capacity", "restoring_capability"} <= ids and "restoring_force" not in ids
+    lo, hi = out["period_range_s"]
+    assert lo == pytest.approx(0.2 * out["elf"]["upper"]["T_M_s"]) and hi == pytest.approx(2.0 * out["elf"]["lower"]["T_M_s"])
