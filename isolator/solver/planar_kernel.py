@@ -317,6 +317,27 @@ def _at_rest(tau, y, prm, frc, f):
 
 
 @njit(cache=True)
+def _lift_off(phase, x, tau, y, prm, frc, f):
+    """Uplift: n reaches 0; the state becomes Cartesian, the phase FLIGHT."""
+    v1, v2 = _velocity(phase, x, tau, y, prm, frc)
+    y[2] = v1
+    y[3] = v2
+    frc[6] = 0.0
+    rhs(CARTESIAN, tau, y, prm, frc, f)
+    return PH_FLIGHT
+
+
+@njit(cache=True)
+def _land(tau, y, prm, frc, f):
+    """Landing: n becomes positive; slide on, or (at rest) stick or start."""
+    frc[6] = 1.0
+    if y[2] != 0.0 or y[3] != 0.0:
+        rhs(CARTESIAN, tau, y, prm, frc, f)
+        return PH_SLIDE
+    return _at_rest(tau, y, prm, frc, f)
+
+
+@njit(cache=True)
 def _mode_of(phase):
     if phase == PH_APPROACH:
         return LOG
@@ -371,7 +392,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     fb = np.zeros(NSTATE)
     k = np.zeros((13, NSTATE))
     atol = np.full(NSTATE, np.inf)
-    frc = np.zeros(6)
+    frc = np.zeros(7)
     phase = PH_STUCK
     x = 0.0
     h_sugg = -1.0
@@ -407,6 +428,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         frc[3] = (ay[i + 1] - ay[i]) / hi
         frc[4] = nz[i]
         frc[5] = (nz[i + 1] - nz[i]) / hi
+        frc[6] = 0.0 if phase == PH_FLIGHT else 1.0
         tau = 0.0
         if phase == PH_APPROACH:
             y[7] = 0.0
@@ -422,25 +444,21 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         # contact state just after the sample
         if phase == PH_FLIGHT and nplus > 0.0:
             n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_LANDING)
-            if y[2] != 0.0 or y[3] != 0.0:
-                phase = PH_SLIDE
-                rhs(CARTESIAN, 0.0, y, prm, frc, f)
-            else:
-                phase = _at_rest(0.0, y, prm, frc, f)
-                if phase == PH_START:
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_BREAKAWAY)
-                    h_sugg = 0.01 * hi
+            phase = _land(0.0, y, prm, frc, f)
+            if phase == PH_START:
+                n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_BREAKAWAY)
+                h_sugg = 0.01 * hi
         elif phase != PH_FLIGHT and nplus <= 0.0:
-            v1, v2 = _velocity(phase, x, 0.0, y, prm, frc)
-            y[2] = v1
-            y[3] = v2
+            phase = _lift_off(phase, x, 0.0, y, prm, frc, f)
             x = 0.0
-            phase = PH_FLIGHT
-            rhs(CARTESIAN, 0.0, y, prm, frc, f)
             n_up += 1
             n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_UPLIFT)
         atol[0] = rtol * max(peak_x, scales[SC_X_FLOOR])
         atol[1] = atol[0]
+        # the energies are error-controlled too (the balance is a check of the integration)
+        atol[4] = rtol * max(abs(y[4]) + y[5] + y[6], scales[SC_V_FLOOR] ** 2)
+        atol[5] = atol[4]
+        atol[6] = atol[4]
         events_here = 0
         steps_here = 0
         while tau < hi:
@@ -648,20 +666,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if phase == PH_FLIGHT:
                     n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
                     events_here += 1
-                    if y[2] != 0.0 or y[3] != 0.0:
-                        phase = PH_SLIDE
-                        rhs(CARTESIAN, tau, y, prm, frc, f)
-                    else:
-                        phase = _at_rest(tau, y, prm, frc, f)
-                        if phase == PH_START:
-                            n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
-                            h_sugg = 0.01 * hi
+                    phase = _land(tau, y, prm, frc, f)
+                    if phase == PH_START:
+                        n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                        h_sugg = 0.01 * hi
                 else:
-                    v1, v2 = _velocity(phase, x, tau, y, prm, frc)
-                    y[2] = v1
-                    y[3] = v2
-                    phase = PH_FLIGHT
-                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                    phase = _lift_off(phase, x, tau, y, prm, frc, f)
                     n_up += 1
                     n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
                     events_here += 1
@@ -673,7 +683,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         v1, v2 = _velocity(phase, x, hi, y, prm, frc)
         out_v[i + 1, 0] = v1
         out_v[i + 1, 1] = v2
-        a1, a2 = _transmitted(phase, x, hi, y, prm, frc)
+        if phase == PH_STUCK:
+            a1, a2 = ax[i + 1], ay[i + 1]
+        else:
+            a1, a2 = _transmitted(phase, x, hi, y, prm, frc)
         out_a[i + 1, 0] = a1
         out_a[i + 1, 1] = a2
         peak_a = max(peak_a, math.hypot(a1, a2))

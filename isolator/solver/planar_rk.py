@@ -82,6 +82,8 @@ def friction_coefficient(r, prm):
 def forcing(tau, x1, x2, prm, frc):
     """Ground and normal force at local time τ.
 
+    ``frc`` = (a_x0, a_x', a_y0, a_y', n0, n', contact) for the current interval.
+
     Returns
     -------
     tuple of float
@@ -93,7 +95,9 @@ def forcing(tau, x1, x2, prm, frc):
     ayy = frc[2] + frc[3] * tau
     nn = frc[4] + frc[5] * tau
     if prm[P_PENDULUM] > 0.0:
-        if nn > 0.0:
+        # frc[6]: 1 in contact, 0 in flight.  The phase, not the sign of n, decides,
+        # because steps end exactly where n = 0 and rounding must not switch κ there.
+        if frc[6] > 0.0:
             kap = nn * prm[P_INV_R]
             kdot = frc[5] * prm[P_INV_R]
         else:
