@@ -129,8 +129,10 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     cap = design.displacement_capacity_m
     rows = _common_front(review, p["n_pairs_min"], "ASCE 7-22 17.3.2", "ASCE 7-22 17.3.3 / 16.2.3.2", "RotD100")
     capacity_note = "" if cap is not None else "no displacement_capacity_m in the design"
+    largest = max(v["peak_displacement_max_m"] for v in values.values())
     rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_m"], cap,
-                          f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs" + (
+                          f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest single "
+                          f"analysis {largest:.3g} m" + (
                               "; " + capacity_note if capacity_note else ""), "m"))
     rows.append(C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
                           f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
