@@ -108,7 +108,7 @@ def _spectra_page(plt, review, r: dict):
     s = review.spectra
     ax = fig.add_axes([0.1, 0.47, 0.84, 0.43])
     lo, hi = r["period_range_s"]
-    for name, values in s["pairs_scaled_g"].items():
+    for values in s["pairs_scaled_g"].values():
         ax.loglog(s["periods_s"], values, color="0.6", lw=0.6)
     ax.loglog([], [], color="0.6", lw=0.6, label=f"scaled pairs ({r['spectrum_basis']})")
     ax.loglog(s["periods_s"], s["suite_mean_scaled_g"], color="k", lw=1.8, label="suite average (scaled)")
@@ -292,16 +292,15 @@ def write_review_pdf(review, pdf_path, *, command: str = "") -> dict:
     r = review.to_dict()
     r["command"] = command
     pdf_path = Path(pdf_path)
-    with atomic_path(pdf_path) as tmp:
-        with PdfPages(tmp) as pdf:
-            for make in (lambda: _checks_page(plt, r, command), lambda: _spectra_page(plt, review, r),
-                         lambda: _pairs_page(plt, r), lambda: _orbits_page(plt, review, r),
-                         lambda: _paper_page(plt, review, r)):
-                fig = make()
-                pdf.savefig(fig)
-                plt.close(fig)
-            info = pdf.infodict()
-            info["Title"] = f"isolator review: {r['design']['name']}"
+    with atomic_path(pdf_path) as tmp, PdfPages(tmp) as pdf:
+        for make in (lambda: _checks_page(plt, r, command), lambda: _spectra_page(plt, review, r),
+                     lambda: _pairs_page(plt, r), lambda: _orbits_page(plt, review, r),
+                     lambda: _paper_page(plt, review, r)):
+            fig = make()
+            pdf.savefig(fig)
+            plt.close(fig)
+        info = pdf.infodict()
+        info["Title"] = f"isolator review: {r['design']['name']}"
     r["pdf"] = str(pdf_path)
     with atomic_path(pdf_path.with_suffix(".json")) as tmp:
         tmp.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")

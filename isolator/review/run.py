@@ -269,7 +269,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                     bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
                     factors=dict(zip(names, map(float, factors))), spectra=spectra, suite_ratio=ratio,
                     analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing, paper_map=paper_map,
-                    created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
+                    created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
     from isolator.review.assess import assess
 
     assess(review, designs)

@@ -63,13 +63,10 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
             for j in range(n_sub):
                 x1, v1 = _step(x1, v1, -(ax[i] + b1 * (j * h)), b1, e0, e1, h1, h2, m, kappa)
                 x2, v2 = _step(x2, v2, -(ay[i] + b2 * (j * h)), b2, e0, e1, h1, h2, m, kappa)
-                if abs(x1) > p1:
-                    p1 = abs(x1)
-                if abs(x2) > p2:
-                    p2 = abs(x2)
+                p1 = max(p1, abs(x1))
+                p2 = max(p2, abs(x2))
                 r2 = x1 * x1 + x2 * x2
-                if r2 > pv:
-                    pv = r2
+                pv = max(pv, r2)
         out[k, 0] = p1
         out[k, 1] = p2
         out[k, 2] = math.sqrt(pv)
@@ -98,8 +95,7 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
             x2, v2 = _step(x2, v2, -(ay[i] + b2 * (j * h)), b2, e0, e1, h1, h2, m, kappa)
             for a in range(out.shape[0]):
                 u = abs(x1 * cosines[a] + x2 * sines[a])
-                if u > out[a]:
-                    out[a] = u
+                out[a] = max(out[a], u)
 
 
 def _prepare(ax, ay, dt_s, periods_s, damping_ratio):

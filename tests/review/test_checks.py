@@ -50,8 +50,8 @@ def test_single_record_checks_and_the_labelled_measure():
     """One record: capacity, D/R, restoring force, transmitted/PGA, scale factor, usable band; no AMPLIFIES."""
     import numpy as np
 
-    from isolator.motion import GroundMotion
     from isolator.analysis import analyse, verdicts
+    from isolator.motion import GroundMotion
 
     t = np.arange(0, 20, 0.01)
     motion = GroundMotion.from_array(3.0 * np.sin(2 * np.pi * 0.5 * t) * np.exp(-0.1 * t), 0.01).scaled(2.0)
