@@ -22,6 +22,7 @@ from isolator.review.codes import asce7_22, en15129
 from isolator.review.errors import ReviewError
 from isolator.review.scaling import SCALING_METHODS, period_grid, scale_factors, suite_mean
 from isolator.review.spectra import pair_spectra, rotd50
+from isolator.serialize import json_safe
 
 CODES = ("asce7-22", "en15129")
 SCHEMA_VERSION = 1
@@ -65,7 +66,7 @@ class Review:
             bounds[bound] = {"mu": self.bound_mu[bound], "pairs": pairs, **self.design_values.get(bound, {})}
         elf = {b: {k: v for k, v in self.elf[b].items()} for b in self.elf}
         env = self.design_values["envelope"]
-        return _clean({
+        return json_safe({
             "schema_version": SCHEMA_VERSION,
             "created_utc": self.created_utc,
             "code": self.code,
@@ -110,20 +111,6 @@ class Review:
     @property
     def min_ratio_required(self) -> float:
         return self.parameters["min_ratio"] if self.code == "asce7-22" else self.parameters["en_min_ratio"]
-
-
-def _clean(value):
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, (np.floating, np.integer, np.bool_)):
-        return _clean(value.item())
-    if isinstance(value, np.ndarray):
-        return _clean(value.tolist())
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    return value
 
 
 def _elf(design, mu, target, code, params) -> dict:

@@ -205,45 +205,36 @@ def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache
 
 
 def _iterate_local(todo: dict, jobs: int):
+    """(key, result) on local processes through the batch executor (longest records first)."""
+    from isolator.batch.executors import _iterate_local as iterate
+
     warm_up()
-    jobs = max(1, min(int(jobs), len(todo)))
-    if jobs == 1:
-        for key, task in todo.items():
-            yield key, analyse_task(task)
-        return
-    from concurrent.futures import as_completed
-
-    from isolator.parallel import process_pool
-
-    # longest first: the pool finishes together
-    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)
-    with process_pool(jobs) as pool:
-        futures = {pool.submit(analyse_task, todo[key]): key for key in order}
-        for future in as_completed(futures):
-            try:
-                yield futures[future], future.result()
-            except Exception as err:  # noqa: BLE001 - a lost worker: reported, a rerun retries it
-                yield futures[future], {"error": f"worker lost ({type(err).__name__}: {err})"}
+    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)  # the pool finishes together
+    tasks = [dict(todo[key], key=key) for key in order]
+    for task, result in iterate(tasks, max(1, min(int(jobs), len(tasks))), function=analyse_task):
+        yield task["key"], _result(result)
 
 
 def _iterate_dask(todo: dict, address: str):
-    from distributed import Client, as_completed
+    """(key, result) on a Dask cluster through the batch executor."""
+    from isolator.batch.executors import _iterate_dask as iterate
+    from isolator.batch.plan import BatchError
 
     from isolator.review.errors import ReviewError
 
+    tasks = [dict(task, key=key) for key, task in todo.items()]
     try:
-        client = Client(address, timeout=10)
-    except (OSError, TimeoutError) as err:
-        raise ReviewError(f"--scheduler {address}: cannot connect ({' '.join(str(err).split())})") from None
-    try:
-        futures = {client.submit(analyse_task, task, pure=False): key for key, task in todo.items()}
-        for future in as_completed(list(futures)):
-            try:
-                yield futures[future], future.result()
-            except Exception as err:  # noqa: BLE001
-                yield futures[future], {"error": f"worker lost ({type(err).__name__}: {err})"}
-    finally:
-        client.close()
+        for task, result in iterate(tasks, address, function=analyse_task):
+            yield task["key"], _result(result)
+    except BatchError as err:
+        raise ReviewError(str(err)) from None
+
+
+def _result(result) -> dict:
+    """A worker's result, or the exception of a lost worker as an error entry."""
+    if isinstance(result, Exception):
+        return {"error": f"worker lost ({type(result).__name__}: {' '.join(str(result).split())})"}
+    return result
 
 
 def default_jobs() -> int:
