@@ -82,7 +82,8 @@ def review(
         the_design = Design.from_toml(design)
         the_target = load_target(resolve_example("target", target))
         suite_args = [resolve_example("suite", s) for s in suite]
-        inputs = {Path(p).resolve() for p in (design, *suite_args) if Path(p).is_file()}
+        inputs = {Path(p).resolve() for p in (design, resolve_example("target", target), *suite_args)
+                  if Path(p).is_file()}
         if Path(output).resolve() in inputs or Path(output).with_suffix(".json").resolve() in inputs:
             _user_error(f"--output {output}: would overwrite an input")
         the_suite = load_suite(suite_args, units=units, trim=trim)

@@ -195,6 +195,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     else:
         lo, hi = params["en_range_lo_factor"] * t_upper, params["en_range_hi_factor"] * t_lower
         required = params["en_min_ratio"]
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise ReviewError(f"no scaling period range: T_M upper {t_upper:.4g} s, lower {t_lower:.4g} s "
+                          f"give {lo:.4g}–{hi:.4g} s")
     base, grid = period_grid(lo, hi, params["grid_points"], (t_upper, t_lower))
     fit_mask = np.isin(grid, base)
 
@@ -213,6 +216,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         on_plot.append({k: v[split:] / g for k, v in s.items()})
     timing["spectra"] = time.perf_counter() - clock
     target_grid = target.sa_g(grid)
+    weak = [p.name for p, s in zip(suite.pairs, on_grid) if not np.all(np.asarray(s) > 0)]
+    if weak:
+        raise ReviewError(f"pair '{weak[0]}' has a zero spectrum in the period range: it cannot be scaled")
     factors = scale_factors(np.array(on_grid), target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask)
     ratio = suite_mean(np.array(on_grid), factors) / target_grid
     names = suite.names
