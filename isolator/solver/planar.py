@@ -45,13 +45,15 @@ PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 
 #: Relative tolerance of the DOP853 steps (see docs/planar.md for the achieved error).
 DEFAULT_RTOL = 1e-12
+#: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample
+R_SWITCH_FACTOR = 1e-5
 
 _STATUS_MESSAGES = (
-    (_pk.STATUS_CHATTER, f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
-                         "interval; the static friction held the block to the end of that interval"),
+    (_pk.STATUS_CHATTER, (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
+                          "interval; the static friction held the block to the end of that interval")),
     (_pk.STATUS_EVENTS_TRUNCATED, "more events than the event arrays could hold"),
-    (_pk.STATUS_STEP_LIMIT, f"step guard: more than {_pk.MAX_STEPS_PER_INTERVAL} steps in one sample "
-                            "interval; the response after it is NaN"),
+    (_pk.STATUS_STEP_LIMIT, (f"step guard: more than {_pk.MAX_STEPS_PER_INTERVAL} steps in one sample "
+                             "interval; the response after it is NaN")),
 )
 
 
@@ -332,7 +334,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * float(np.median(steps))
     scales = np.empty(_pk.SC_SIZE)
     scales[_pk.SC_R_MIN] = 1e-13 * vref
-    scales[_pk.SC_R_SWITCH] = 1e-4 * vref
+    scales[_pk.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
     scales[_pk.SC_X_FLOOR] = 1e-3 * vref * float(np.median(steps))
     scales[_pk.SC_V_FLOOR] = 1e-3 * vref
     refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)

@@ -27,15 +27,34 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.planar_rk import (CARTESIAN, LOG, NSTATE, P_MU_S, P_C, START, dop853_step,
-                                       forcing, friction_coefficient, rhs, step_factor)
-
-# phases of the motion
-PH_STUCK = 0
-PH_SLIDE = 1
-PH_APPROACH = 2
-PH_START = 3
-PH_FLIGHT = 4
+from isolator.solver.planar_events import (
+    PH_APPROACH,
+    PH_FLIGHT,
+    PH_SLIDE,
+    PH_START,
+    PH_STUCK,
+    holds,
+    kappa_at,
+    land_on,
+    locate_peak,
+    peak_value,
+    rate_of_peak,
+    stuck_until,
+    transmitted,
+    velocity,
+)
+from isolator.solver.planar_rk import (
+    CARTESIAN,
+    LOG,
+    NSTATE,
+    P_C,
+    START,
+    dop853_step,
+    forcing,
+    friction_coefficient,
+    rhs,
+    step_factor,
+)
 
 # event kinds: the 1-D vocabulary (breakaway, stick, reversal) + uplift, landing
 EV_BREAKAWAY = 0
@@ -76,6 +95,8 @@ SC_SIZE = 4
 #: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
 _ENTER = 0.02
 _LEAVE = 0.01
+#: h·(|F| + µn)/|V| kept below this in Cartesian form (DOP853's real stability interval is ≈ [−6, 0])
+_STABLE = 12.0
 
 
 @njit(cache=True)
@@ -87,230 +108,11 @@ def _record_event(ev_t, ev_k, n_ev, time, kind):
 
 
 @njit(cache=True)
-def _kappa_at(tau, prm, frc):
-    return forcing(tau, 0.0, 0.0, prm, frc)[3]
-
-
-@njit(cache=True)
-def stuck_until(x1, x2, tau0, length, prm, frc):
-    """First instant in [τ0, τ0 + length] where a stuck block must move.
-
-    ``Q(u) = |G(u)|² − µs² n(u)²`` with ``G = κX + a_g`` linear in u = τ − τ0 is a
-    quadratic; the block breaks away at its first upward zero, or lifts off where
-    n reaches 0.
-
-    Returns
-    -------
-    tuple
-        ``(u, uplift)``: the offset u [s] (−1 if stuck throughout) and whether the
-        exit is an uplift (n ≤ 0) rather than a break-away.
-    """
-    mu_s = prm[P_MU_S]
-    _, _, nn, _, kdot, fx, fy = forcing(tau0, x1, x2, prm, frc)
-    n1 = frc[5]
-    u_up = -1.0
-    if nn <= 0.0:
-        return 0.0, True
-    if n1 < 0.0:
-        uu = -nn / n1
-        if uu <= length:
-            u_up = uu
-    gx = -fx
-    gy = -fy
-    g1x = kdot * x1 + frc[1]
-    g1y = kdot * x2 + frc[3]
-    a = g1x * g1x + g1y * g1y - mu_s * mu_s * n1 * n1
-    b = 2.0 * (gx * g1x + gy * g1y - mu_s * mu_s * nn * n1)
-    c = gx * gx + gy * gy - mu_s * mu_s * nn * nn
-    u_b = -1.0
-    if c > 0.0:
-        u_b = 0.0  # already beyond the static friction (e.g. a record that starts above µs n)
-    elif a == 0.0:
-        if b > 0.0:
-            uu = -c / b
-            if uu <= length:
-                u_b = uu
-    else:
-        disc = b * b - 4.0 * a * c
-        if disc >= 0.0:
-            sq = math.sqrt(disc)
-            q = -0.5 * (b + (sq if b >= 0.0 else -sq))
-            r1 = q / a
-            r2 = c / q if q != 0.0 else r1
-            lo = min(r1, r2)
-            hi = max(r1, r2)
-            if 0.0 <= lo <= length and 2.0 * a * lo + b > 0.0:
-                u_b = lo
-            elif 0.0 <= hi <= length and 2.0 * a * hi + b > 0.0:
-                u_b = hi
-    if u_up >= 0.0 and (u_b < 0.0 or u_up < u_b):
-        return u_up, True
-    return u_b, False
-
-
-@njit(cache=True)
-def _restart_or_stick(tau, y, prm, frc):
-    """At rest at τ: True if the static friction holds (|κX + a_g| ≤ µs n, n > 0)."""
-    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return nn > 0.0 and math.hypot(fx, fy) <= prm[P_MU_S] * nn
-
-
-@njit(cache=True)
-def _velocity(phase, x, tau, y, prm, frc):
-    """Relative velocity (V_x, V_y) [m/s] in any phase."""
-    if phase == PH_STUCK:
-        return 0.0, 0.0
-    if phase == PH_APPROACH:
-        r = math.exp(x)
-        return r * y[2], r * y[3]
-    if phase == PH_START:
-        _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-        fm = math.hypot(fx, fy)
-        if fm == 0.0:
-            return 0.0, 0.0
-        return y[2] * fx / fm, y[2] * fy / fm
-    return y[2], y[3]
-
-
-@njit(cache=True)
-def _transmitted(phase, x, tau, y, prm, frc):
-    """Absolute acceleration of the mass (a_x, a_y) [m/s²]: a_g when stuck, else −(friction + κX + cV)."""
-    axx, ayy, nn, kap, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    if phase == PH_STUCK:
-        return axx, ayy
-    v1, v2 = _velocity(phase, x, tau, y, prm, frc)
-    r = math.hypot(v1, v2)
-    c = prm[P_C]
-    e1 = 0.0
-    e2 = 0.0
-    if phase == PH_START:
-        fm = math.hypot(fx, fy)
-        if fm > 0.0:
-            e1 = fx / fm
-            e2 = fy / fm
-    elif r > 0.0:
-        e1 = v1 / r
-        e2 = v2 / r
-    fr = friction_coefficient(r, prm) * nn if (nn > 0.0 and phase != PH_FLIGHT) else 0.0
-    return -fr * e1 - kap * y[0] - c * v1, -fr * e2 - kap * y[1] - c * v2
-
-
-@njit(cache=True)
-def _gval(which, mode, y, d):
-    # d|X|²/2 dt (which 0) or d|V|²/2 dt (which 1) from a state and its derivative
-    if which == 0:
-        g = y[0] * d[0] + y[1] * d[1]
-        if mode == LOG:
-            g /= d[7]
-        return g
-    if mode == CARTESIAN:
-        return y[2] * d[2] + y[3] * d[3]
-    if mode == START:
-        return y[2] * d[2]
-    return -1.0
-
-
-@njit(cache=True)
-def _value(which, mode, y):
-    if which == 0:
-        return math.hypot(y[0], y[1])
-    if mode == CARTESIAN:
-        return math.hypot(y[2], y[3])
-    return abs(y[2])
-
-
-@njit(cache=True)
-def _locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol):
-    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −."""
-    lo = 0.0
-    hi = 1.0
-    glo = g0
-    ghi = g1
-    side = 0
-    best = 0.0
-    theta = glo / (glo - ghi)
-    for _ in range(60):
-        if not (lo < theta < hi):
-            theta = 0.5 * (lo + hi)
-        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
-        if not ok:
-            hi = theta
-            theta = 0.5 * (lo + hi)
-            continue
-        best = max(best, _value(which, mode, yb))
-        g = _gval(which, mode, yb, fb)
-        if g > 0.0:
-            lo = theta
-            glo = g
-            if side == 1:
-                ghi *= 0.5
-            side = 1
-        else:
-            hi = theta
-            ghi = g
-            if side == -1:
-                glo *= 0.5
-            side = -1
-        if hi - lo < 1e-11:
-            break
-        theta = lo + (hi - lo) * glo / (glo - ghi)
-    return best
-
-
-@njit(cache=True)
-def _land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol):
-    """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
-
-    The component must be monotone on the step, below the target at θ = 0 and
-    at or beyond it at θ = 1 (sign-adjusted); the state at θ is left in ``yb``/``fb``.
-    """
-    lo = 0.0
-    hi = 1.0
-    flo = y[coord] - target
-    fhi = 1.0
-    ok, _ = dop853_step(mode, x, y, f, h, prm, frc, k, ytmp, yb, fb, atol, rtol)
-    if ok:
-        fhi = yb[coord] - target
-    sgn = 1.0 if fhi > flo else -1.0
-    flo *= sgn
-    fhi *= sgn
-    theta = 1.0
-    side = 0
-    for _ in range(80):
-        theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
-        if not (lo < theta < hi):
-            theta = 0.5 * (lo + hi)
-        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
-        if not ok:
-            hi = theta
-            continue
-        val = sgn * (yb[coord] - target)
-        if val < 0.0:
-            lo = theta
-            flo = val
-            if side == 1:
-                fhi *= 0.5
-            side = 1
-        else:
-            hi = theta
-            fhi = val
-            if side == -1:
-                flo *= 0.5
-            side = -1
-        if hi - lo < 1e-13 or val == 0.0:
-            break
-    # finish on the upper end of the bracket: the crossing has happened there
-    theta = hi
-    dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
-    return theta
-
-
-@njit(cache=True)
 def _at_rest(tau, y, prm, frc, f):
     """The block is at rest at τ: stick (returns PH_STUCK) or restart from rest (PH_START)."""
     y[2] = 0.0
     y[3] = 0.0
-    if _restart_or_stick(tau, y, prm, frc):
+    if holds(tau, y, prm, frc):
         return PH_STUCK
     rhs(START, tau, y, prm, frc, f)
     return PH_START
@@ -319,7 +121,7 @@ def _at_rest(tau, y, prm, frc, f):
 @njit(cache=True)
 def _lift_off(phase, x, tau, y, prm, frc, f):
     """Uplift: n reaches 0; the state becomes Cartesian, the phase FLIGHT."""
-    v1, v2 = _velocity(phase, x, tau, y, prm, frc)
+    v1, v2 = velocity(phase, x, tau, y, prm, frc)
     y[2] = v1
     y[3] = v2
     frc[6] = 0.0
@@ -471,7 +273,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if phase == PH_STUCK:
                 u, up = stuck_until(y[0], y[1], tau, target - tau, prm, frc)
                 tau_new = target if u < 0.0 else min(tau + u, target)
-                y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (_kappa_at(tau_new, prm, frc) - _kappa_at(tau, prm, frc))
+                y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (kappa_at(tau_new, prm, frc) - kappa_at(tau, prm, frc))
                 tau = tau_new
                 if u >= 0.0 and not up:
                     phase = PH_START
@@ -481,7 +283,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
                     events_here += 1
                     h_sugg = 0.01 * hi
-                    a1, a2 = _transmitted(phase, x, tau, y, prm, frc)
+                    a1, a2 = transmitted(phase, x, tau, y, prm, frc)
                     peak_a = max(peak_a, math.hypot(a1, a2))
             elif phase == PH_APPROACH:
                 r = math.exp(x)
@@ -513,17 +315,17 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = _land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
                         ynew[7] = target
                         hit = True
-                    g0 = _gval(0, LOG, y, f)
-                    g1 = _gval(0, LOG, ynew, fnew)
+                    g0 = rate_of_peak(0, LOG, y, f)
+                    g1 = rate_of_peak(0, LOG, ynew, fnew)
                     if g0 > 0.0 >= g1 and max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + \
                             r * (ynew[7] - y[7]) > peak_x:
-                        peak_x = max(peak_x, _locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, k, ytmp, yb, fb,
+                        peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, k, ytmp, yb, fb,
                                                           atol, rtol))
                     slip += ynew[7] - y[7]
                     x += ds
@@ -595,6 +397,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         rhs(CARTESIAN, tau, y, prm, frc, f)
                 hmax = target - tau
                 h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
+                if phase == PH_SLIDE:
+                    # slow sliding: the direction relaxes at the rate ~ µn/|V|; DOP853 is
+                    # stable for h·rate up to ≈ 6, so stay inside rather than be rejected
+                    stiff = _STABLE * r / max(fscale, 1e-300)
+                    if h > stiff:
+                        h = stiff
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
@@ -604,7 +412,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = _land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol)
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
@@ -620,20 +428,20 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         break
                     continue
                 for which in range(2):
-                    g0 = _gval(which, mode, y, f)
-                    g1 = _gval(which, mode, ynew, fnew)
+                    g0 = rate_of_peak(which, mode, y, f)
+                    g1 = rate_of_peak(which, mode, ynew, fnew)
                     if g0 > 0.0 >= g1:
                         if which == 0:
                             bound = max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + h * max(
-                                _value(1, mode, y), _value(1, mode, ynew))
+                                peak_value(1, mode, y), peak_value(1, mode, ynew))
                             if bound > peak_x:
-                                peak_x = max(peak_x, _locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
+                                peak_x = max(peak_x, locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
                                                                   yb, fb, atol, rtol))
                         else:
-                            bound = max(_value(1, mode, y), _value(1, mode, ynew)) + h * (
+                            bound = max(peak_value(1, mode, y), peak_value(1, mode, ynew)) + h * (
                                 abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
                             if bound > peak_v:
-                                peak_v = max(peak_v, _locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
+                                peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
                                                                   yb, fb, atol, rtol))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
@@ -643,16 +451,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     upt += h
                 h_sugg = h * step_factor(err)
                 peak_x = max(peak_x, math.hypot(y[0], y[1]))
-                peak_v = max(peak_v, _value(1, mode, y))
+                peak_v = max(peak_v, peak_value(1, mode, y))
                 x = tau
                 if phase == PH_START and y[2] >= r_switch:
-                    v1, v2 = _velocity(PH_START, x, tau, y, prm, frc)
+                    v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
                     y[2] = v1
                     y[3] = v2
                     phase = PH_SLIDE
                     rhs(CARTESIAN, tau, y, prm, frc, f)
             if phase != PH_STUCK:
-                a1, a2 = _transmitted(phase, x, tau, y, prm, frc)
+                a1, a2 = transmitted(phase, x, tau, y, prm, frc)
                 peak_a = max(peak_a, math.hypot(a1, a2))
             if events_here > MAX_EVENTS_PER_INTERVAL:
                 # chatter guard: let the static friction hold the block to the end of the interval
@@ -680,13 +488,13 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             break
         out_x[i + 1, 0] = y[0]
         out_x[i + 1, 1] = y[1]
-        v1, v2 = _velocity(phase, x, hi, y, prm, frc)
+        v1, v2 = velocity(phase, x, hi, y, prm, frc)
         out_v[i + 1, 0] = v1
         out_v[i + 1, 1] = v2
         if phase == PH_STUCK:
             a1, a2 = ax[i + 1], ay[i + 1]
         else:
-            a1, a2 = _transmitted(phase, x, hi, y, prm, frc)
+            a1, a2 = transmitted(phase, x, hi, y, prm, frc)
         out_a[i + 1, 0] = a1
         out_a[i + 1, 1] = a2
         peak_a = max(peak_a, math.hypot(a1, a2))

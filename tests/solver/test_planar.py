@@ -14,7 +14,12 @@ import numpy as np
 import pytest
 
 from isolator.motion import read_ground_motion
-from isolator.solver.planar import PairResponse, select_model, simulate_motion, simulate_pair
+from isolator.solver.planar import (
+    PairResponse,
+    select_model,
+    simulate_motion,
+    simulate_pair,
+)
 from isolator.solver.record import RecordInputError, Response, simulate_record
 from isolator.solver.system import InvalidSystemError
 from tests.planar_reference import reference_pair

@@ -1,0 +1,250 @@
+"""Events and helpers of the planar kernel: the stick test, peaks between step ends, landing on an instant.
+
+* :func:`stuck_until` — the closed-form first exit from a stuck state (quadratic in
+  local time), the 2-D counterpart of :func:`isolator.solver.events.breakaway_time`;
+* :func:`locate_peak` — the largest |X| or |V| inside a step where its rate changes
+  sign, by Illinois secant on DOP853 sub-steps from the step start (the value is
+  stationary there, so a 1e-11 bracket in time gives it to rounding);
+* :func:`land_on` — the fraction of a step at which one state component reaches a
+  target (used for a re-stop in the START form and for ending a LOG step exactly on
+  a sample or on the instant n = 0).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from isolator.solver.planar_rk import (
+    CARTESIAN,
+    LOG,
+    P_C,
+    P_MU_S,
+    START,
+    dop853_step,
+    forcing,
+    friction_coefficient,
+    start_direction,
+)
+
+# phases of the motion
+PH_STUCK = 0
+PH_SLIDE = 1
+PH_APPROACH = 2
+PH_START = 3
+PH_FLIGHT = 4
+
+
+@njit(cache=True)
+def kappa_at(tau, prm, frc):
+    return forcing(tau, 0.0, 0.0, prm, frc)[3]
+
+
+@njit(cache=True)
+def stuck_until(x1, x2, tau0, length, prm, frc):
+    """First instant in [τ0, τ0 + length] where a stuck block must move.
+
+    ``Q(u) = |G(u)|² − µs² n(u)²`` with ``G = κX + a_g`` linear in u = τ − τ0 is a
+    quadratic; the block breaks away at its first upward zero, or lifts off where
+    n reaches 0.
+
+    Returns
+    -------
+    tuple
+        ``(u, uplift)``: the offset u [s] (−1 if stuck throughout) and whether the
+        exit is an uplift (n ≤ 0) rather than a break-away.
+    """
+    mu_s = prm[P_MU_S]
+    _, _, nn, _, kdot, fx, fy = forcing(tau0, x1, x2, prm, frc)
+    n1 = frc[5]
+    u_up = -1.0
+    if nn <= 0.0:
+        return 0.0, True
+    if n1 < 0.0:
+        uu = -nn / n1
+        if uu <= length:
+            u_up = uu
+    gx = -fx
+    gy = -fy
+    g1x = kdot * x1 + frc[1]
+    g1y = kdot * x2 + frc[3]
+    a = g1x * g1x + g1y * g1y - mu_s * mu_s * n1 * n1
+    b = 2.0 * (gx * g1x + gy * g1y - mu_s * mu_s * nn * n1)
+    c = gx * gx + gy * gy - mu_s * mu_s * nn * nn
+    u_b = -1.0
+    if c > 0.0:
+        u_b = 0.0  # already beyond the static friction (e.g. a record that starts above µs n)
+    elif a == 0.0:
+        if b > 0.0:
+            uu = -c / b
+            if uu <= length:
+                u_b = uu
+    else:
+        disc = b * b - 4.0 * a * c
+        if disc >= 0.0:
+            sq = math.sqrt(disc)
+            q = -0.5 * (b + (sq if b >= 0.0 else -sq))
+            r1 = q / a
+            r2 = c / q if q != 0.0 else r1
+            lo = min(r1, r2)
+            hi = max(r1, r2)
+            if 0.0 <= lo <= length and 2.0 * a * lo + b > 0.0:
+                u_b = lo
+            elif 0.0 <= hi <= length and 2.0 * a * hi + b > 0.0:
+                u_b = hi
+    if u_up >= 0.0 and (u_b < 0.0 or u_up < u_b):
+        return u_up, True
+    return u_b, False
+
+
+@njit(cache=True)
+def holds(tau, y, prm, frc):
+    """At rest at τ: True if the static friction holds (|κX + a_g| ≤ µs n, n > 0)."""
+    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return nn > 0.0 and math.hypot(fx, fy) <= prm[P_MU_S] * nn
+
+
+@njit(cache=True)
+def velocity(phase, x, tau, y, prm, frc):
+    """Relative velocity (V_x, V_y) [m/s] in any phase."""
+    if phase == PH_STUCK:
+        return 0.0, 0.0
+    if phase == PH_APPROACH:
+        r = math.exp(x)
+        return r * y[2], r * y[3]
+    if phase == PH_START:
+        _, _, _, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+        return y[2] * e1, y[2] * e2
+    return y[2], y[3]
+
+
+@njit(cache=True)
+def transmitted(phase, x, tau, y, prm, frc):
+    """Absolute acceleration of the mass (a_x, a_y) [m/s²]: a_g when stuck, else −(friction + κX + cV)."""
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    if phase == PH_STUCK:
+        return axx, ayy
+    v1, v2 = velocity(phase, x, tau, y, prm, frc)
+    r = math.hypot(v1, v2)
+    c = prm[P_C]
+    e1 = 0.0
+    e2 = 0.0
+    if phase == PH_START:
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+    elif r > 0.0:
+        e1 = v1 / r
+        e2 = v2 / r
+    fr = friction_coefficient(r, prm) * nn if (nn > 0.0 and phase != PH_FLIGHT) else 0.0
+    return -fr * e1 - kap * y[0] - c * v1, -fr * e2 - kap * y[1] - c * v2
+
+
+@njit(cache=True)
+def rate_of_peak(which, mode, y, d):
+    # d|X|²/2 dt (which 0) or d|V|²/2 dt (which 1) from a state and its derivative
+    if which == 0:
+        g = y[0] * d[0] + y[1] * d[1]
+        if mode == LOG:
+            g /= d[7]
+        return g
+    if mode == CARTESIAN:
+        return y[2] * d[2] + y[3] * d[3]
+    if mode == START:
+        return y[2] * d[2]
+    return -1.0
+
+
+@njit(cache=True)
+def peak_value(which, mode, y):
+    if which == 0:
+        return math.hypot(y[0], y[1])
+    if mode == CARTESIAN:
+        return math.hypot(y[2], y[3])
+    return abs(y[2])
+
+
+@njit(cache=True)
+def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol):
+    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −."""
+    lo = 0.0
+    hi = 1.0
+    glo = g0
+    ghi = g1
+    side = 0
+    best = 0.0
+    theta = glo / (glo - ghi)
+    for _ in range(60):
+        if not (lo < theta < hi):
+            theta = 0.5 * (lo + hi)
+        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        if not ok:
+            hi = theta
+            theta = 0.5 * (lo + hi)
+            continue
+        best = max(best, peak_value(which, mode, yb))
+        g = rate_of_peak(which, mode, yb, fb)
+        if g > 0.0:
+            lo = theta
+            glo = g
+            if side == 1:
+                ghi *= 0.5
+            side = 1
+        else:
+            hi = theta
+            ghi = g
+            if side == -1:
+                glo *= 0.5
+            side = -1
+        if hi - lo < 1e-11:
+            break
+        theta = lo + (hi - lo) * glo / (glo - ghi)
+    return best
+
+
+@njit(cache=True)
+def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol):
+    """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
+
+    The component must be monotone on the step, below the target at θ = 0 and
+    at or beyond it at θ = 1 (sign-adjusted); the state at θ is left in ``yb``/``fb``.
+    """
+    lo = 0.0
+    hi = 1.0
+    flo = y[coord] - target
+    fhi = 1.0
+    ok, _ = dop853_step(mode, x, y, f, h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    if ok:
+        fhi = yb[coord] - target
+    sgn = 1.0 if fhi > flo else -1.0
+    flo *= sgn
+    fhi *= sgn
+    theta = 1.0
+    side = 0
+    for _ in range(80):
+        theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+        if not (lo < theta < hi):
+            theta = 0.5 * (lo + hi)
+        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        if not ok:
+            hi = theta
+            continue
+        val = sgn * (yb[coord] - target)
+        if val < 0.0:
+            lo = theta
+            flo = val
+            if side == 1:
+                fhi *= 0.5
+            side = 1
+        else:
+            hi = theta
+            fhi = val
+            if side == -1:
+                flo *= 0.5
+            side = -1
+        if hi - lo < 1e-13 or val == 0.0:
+            break
+    # finish on the upper end of the bracket: the crossing has happened there
+    theta = hi
+    dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    return theta
