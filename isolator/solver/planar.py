@@ -128,15 +128,15 @@ class PairResponse:
             "uplift_time_s": self.uplift_time_s,
             "n_uplifts": self.n_uplifts,
             "n_events": self.n_events,
-            "energy_input": self.energy_input_J_per_kg,
-            "energy_friction": self.energy_friction_J_per_kg,
-            "energy_viscous": self.energy_viscous_J_per_kg,
-            "energy_kinetic_final": self.energy_kinetic_final_J_per_kg,
-            "energy_potential_final": self.energy_potential_final_J_per_kg,
-            "energy_balance_error": self.energy_balance_error_J_per_kg,
+            "energy_input_J_per_kg": self.energy_input_J_per_kg,
+            "energy_friction_J_per_kg": self.energy_friction_J_per_kg,
+            "energy_viscous_J_per_kg": self.energy_viscous_J_per_kg,
+            "energy_kinetic_final_J_per_kg": self.energy_kinetic_final_J_per_kg,
+            "energy_potential_final_J_per_kg": self.energy_potential_final_J_per_kg,
+            "energy_balance_error_J_per_kg": self.energy_balance_error_J_per_kg,
             "solver_seconds": self.solver_seconds,
             "configuration": self.configuration,
-            "status": self.message,
+            "solver_status": self.message,
         }
 
 
