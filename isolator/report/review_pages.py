@@ -96,8 +96,10 @@ def _checks_page(plt, r: dict, command: str):
         value = "none" if p["value"] is None else (fmt(p["value"]) if not isinstance(p["value"], str) else p["value"])
         fig.text(x, yy, short(f"{p['name']} = {value}{flag}  {p['rule']}", 78), fontsize=6.3, va="top")
     y -= half * 0.0112 + 0.006
-    if r["notes"]:
-        fig.text(0.05, y, short("Notes: " + " · ".join(r["notes"]), 190), fontsize=6.3, va="top", color="0.25")
+    lines = textwrap.wrap("Notes: " + " · ".join(r["notes"]), 145) if r["notes"] else []
+    for line in lines[:4]:  # the JSON has them all
+        fig.text(0.05, y, line, fontsize=6.3, va="top", color="0.25")
+        y -= 0.011
     _caption(fig, f"{r['created_utc']} · {short(command, 200)} · every number on this page is in the JSON beside "
                   "the PDF.  'not checked' = the review lacks the input (named in the note).")
     return fig
