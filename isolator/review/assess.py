@@ -154,6 +154,13 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                         p["f_above_rha"] * v_s if math.isfinite(v_s) else None,
                         f"needs a superstructure model; ELF V_s/W = {v_s:.4g} (R_I = {p['R_I']:g}), activation "
                         f"limit V_b ≥ {v_act:.4g} W (17.5.4.3)", "W"))
+    rows.append(C.check("separation", "ASCE 7-22 17.2.5.2 [U]", C.NOT_CHECKED, None, d_tm["value"],
+                        "the moat (separation to retaining walls) must be ≥ the design total displacement; not an "
+                        "input of the review", "m"))
+    rows.append(C.check("prototype_tests", "ASCE 7-22 17.8 [U]", C.NOT_CHECKED, None, d_tm["value"],
+                        f"prototype tests must reach the total displacement and confirm λ_min "
+                        f"{review.bounds.lambda_min:.3g} / λ_max {review.bounds.lambda_max:.3g}; reviewer's list",
+                        "m"))
     return rows + _common_back(review, values, d_tm["value"])
 
 
