@@ -187,3 +187,24 @@ def test_velocity_dependent_friction_and_en15129(inputs):
     assert {"displacement_capacity", "restoring_capability"} <= ids and "restoring_force" not in ids
     lo, hi = out["period_range_s"]
     assert lo == pytest.approx(0.2 * out["elf"]["upper"]["T_M_s"]) and hi == pytest.approx(2.0 * out["elf"]["lower"]["T_M_s"])
+
+
+def test_bundled_example_uses_the_mean_of_eight_pairs():
+    """The shipped example: 8 pairs (≥ 7) → the suite value is the mean; the Düzce header corner sets the usable
+    band; the APEEL2 vertical makes the uplift check run; every clause is named."""
+    from isolator.review.examples import resolve_example
+    from isolator.review.run import run_review
+    from isolator.review.target import load_target
+
+    out = run_review(Design.from_toml(ROOT / "data" / "example_review.toml"),
+                     load_target(resolve_example("target", "example")), load_suite(resolve_example("suite", "example")),
+                     jobs=1, nominal=False).to_dict()
+    d = out["design_displacement_m"]
+    assert d["rule"] == "mean" and d["n"] == 8
+    pairs = out["bounds"][d["governing_bound"]]["pairs"]
+    assert d["value"] == pytest.approx(np.mean([r["peak_displacement_m"] for r in pairs.values()]), rel=1e-12)
+    rows = {c["id"]: c for c in out["checks"]}
+    assert rows["usable_band"]["value"] == pytest.approx(1 / (1.25 * 0.08))
+    assert rows["uplift"]["status"] == "pass" and "1 pair" in rows["uplift"]["note"]
+    assert all(c["clause"] for c in out["checks"])
+    assert {r["model"] for r in pairs.values()} == {"2d", "2d+vertical"}
