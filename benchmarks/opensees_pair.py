@@ -40,10 +40,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
-from planar_throughput import load  # noqa: E402
+from planar_throughput import load
 
-from isolator.solver.planar import simulate_pair  # noqa: E402
-from tests.planar_reference import reference_pair  # noqa: E402
+from isolator.solver.planar import simulate_pair
+from tests.planar_reference import reference_pair
 
 G = 9.80665
 

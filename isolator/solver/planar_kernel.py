@@ -269,6 +269,32 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 status |= STATUS_STEP_LIMIT
                 failed_at = i
                 break
+            # every path through the loop (including each `continue`) comes back here
+            if phase != PH_STUCK:
+                a1, a2 = transmitted(phase, x, tau, y, prm, frc)
+                peak_a = max(peak_a, math.hypot(a1, a2))
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                # chatter guard: let the static friction hold the block to the end of the interval
+                status |= STATUS_CHATTER
+                phase = PH_STUCK
+                y[2] = 0.0
+                y[3] = 0.0
+                break
+            if not crossed and tau >= tz:
+                crossed = True
+                if phase == PH_FLIGHT:
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
+                    events_here += 1
+                    phase = _land(tau, y, prm, frc, f)
+                    if phase == PH_START:
+                        n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                        h_sugg = 0.01 * hi
+                else:
+                    phase = _lift_off(phase, x, tau, y, prm, frc, f)
+                    n_up += 1
+                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
+                    events_here += 1
+                x = tau
             target = tz if tau < tz else hi
             if phase == PH_STUCK:
                 u, up = stuck_until(y[0], y[1], tau, target - tau, prm, frc)
@@ -459,31 +485,6 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     y[3] = v2
                     phase = PH_SLIDE
                     rhs(CARTESIAN, tau, y, prm, frc, f)
-            if phase != PH_STUCK:
-                a1, a2 = transmitted(phase, x, tau, y, prm, frc)
-                peak_a = max(peak_a, math.hypot(a1, a2))
-            if events_here > MAX_EVENTS_PER_INTERVAL:
-                # chatter guard: let the static friction hold the block to the end of the interval
-                status |= STATUS_CHATTER
-                phase = PH_STUCK
-                y[2] = 0.0
-                y[3] = 0.0
-                break
-            if not crossed and tau >= tz:
-                crossed = True
-                if phase == PH_FLIGHT:
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
-                    events_here += 1
-                    phase = _land(tau, y, prm, frc, f)
-                    if phase == PH_START:
-                        n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
-                        h_sugg = 0.01 * hi
-                else:
-                    phase = _lift_off(phase, x, tau, y, prm, frc, f)
-                    n_up += 1
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
-                    events_here += 1
-                x = tau
         if failed_at >= 0:
             break
         out_x[i + 1, 0] = y[0]

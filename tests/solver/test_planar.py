@@ -337,3 +337,22 @@ def test_invalid_records_raise_record_errors():
         simulate_pair(np.zeros(5), np.zeros(5), 0.01, az_m_s2=np.full(5, np.nan), mu_static=0.05)
     with pytest.raises(RecordInputError, match="increasing"):
         simulate_pair(np.zeros(3), np.zeros(3), time_s=[0.0, 0.02, 0.01], mu_static=0.05)
+
+
+def test_frequent_uplift_keeps_the_energy_balance_and_pairs_uplifts_with_landings():
+    # n = g + a_z crosses zero hundreds of times, also inside approach-to-stop steps
+    rng = np.random.default_rng(0)
+    n = 2000
+    ax, ay, az = rng.standard_normal(n), rng.standard_normal(n), 15.0 * rng.standard_normal(n)
+    r = simulate_pair(ax, ay, 0.01, az_m_s2=az, mu_static=0.05, radius_m=2.0)
+    assert r.status == 0 and r.n_uplifts > 100
+    assert abs(r.energy_balance_error_J_per_kg) <= 1e-9 * r.energy_input_J_per_kg
+    names = r.event_names
+    assert names.count("uplift") == r.n_uplifts
+    assert abs(names.count("landing") - names.count("uplift")) <= 1
+    # every uplift instant is where n = 0 on the piecewise-linear vertical record
+    nz = G + az
+    for time in r.event_time_s[np.array(names) == "uplift"][:50]:
+        i = min(int(time / 0.01), n - 2)
+        frac = time / 0.01 - i
+        assert abs(nz[i] + frac * (nz[i + 1] - nz[i])) <= 1e-9 * G
