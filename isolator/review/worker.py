@@ -35,9 +35,13 @@ def task_key(pair_key: str, factor: float, parameters: dict) -> str:
 
 
 def _engine_version() -> str:
+    """isolator's version and a digest of the 2-D engine's source: a changed engine misses the cache."""
     from isolator import __version__
 
-    return str(__version__)
+    digest = hashlib.sha256()
+    for path in sorted((Path(__file__).resolve().parents[1] / "solver").glob("planar*.py")):
+        digest.update(path.read_bytes())
+    return f"{__version__}+{digest.hexdigest()[:16]}"
 
 
 def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
