@@ -8,6 +8,7 @@ stopped and a rerun with the same inputs analyses nothing.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -34,6 +35,7 @@ def task_key(pair_key: str, factor: float, parameters: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
+@functools.lru_cache(maxsize=1)
 def _engine_version() -> str:
     """isolator's version and a digest of the 2-D engine's source: a changed engine misses the cache."""
     from isolator import __version__
