@@ -81,7 +81,8 @@ class Review:
             "property_bounds": self.bounds.as_dict(),
             "period_range_s": list(self.period_range_s),
             "period_grid": {"n": int(self.grid_s.size), "lo_s": float(self.grid_s[0]), "hi_s": float(self.grid_s[-1]),
-                            "spacing": "log", "includes": "both ends and the T_M values inside the range"},
+                            "spacing": "log", "includes": "both ends and the T_M values inside the range",
+                            "periods_s": self.grid_s.tolist(), "suite_ratio": self.suite_ratio.tolist()},
             "spectrum_basis": "RotD100" if self.code == "asce7-22" else "components (mean of both)",
             "spectrum_conventions": "5 % damping; exact first-order-hold recurrence; peaks at the sample "
                                     "instants (≥ 20 per period); no padding, no filtering",
