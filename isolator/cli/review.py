@@ -24,7 +24,7 @@ def _parse_set(items) -> dict:
 def review(
     design: str = typer.Option(..., "--design", "-d", help="Design file (TOML) with the friction bounds "
                                "(lambda_max/lambda_min, mu_upper/mu_lower or the λ_ae/λ_test/λ_spec factors), "
-                               "displacement_capacity_m and an optional [plan] table."),
+                               "displacement_capacity_m and an optional \\[plan] table."),
     target: str = typer.Option(..., "--target", "-t", help="TARGET.toml (S_MS, S_M1, T_L; or spectrum_csv), or "
                                "`example` for the bundled MCE_R target."),
     suite: list[str] = typer.Option(..., "--suite", "-s", help="SUITE.toml, or record files, folders and globs "
@@ -47,8 +47,8 @@ def review(
 ) -> None:
     """Code-based design review over a ground-motion suite scaled to a target, at both property bounds.
 
-    Every pair × {lower, upper, nominal} friction runs through the 2-D engine; the PDF's page 1 lists
-    the checks with their clauses (pass / fail / not checked), the JSON holds every number.
+    Every pair × {lower, upper, nominal} friction runs through the 2-D engine; the PDF's page 1 lists the
+    checks with their clauses (pass / fail / not checked); the JSON holds every number.  See docs/review.md.
     """
     import json
     import shlex
