@@ -39,17 +39,22 @@ def _step(x, v, f, slope, e0, e1, h1, h2, m, kappa):
 
 
 @njit(cache=True)
+def _coefficients(omega, zeta, dt, n_sub):
+    """κ = ω², m = −ζω, the piece length h = dt/n_sub and the ramp basis (E0, E1, H1, H2) over h."""
+    kappa = omega * omega
+    c = 2.0 * zeta * omega
+    h = dt / n_sub
+    e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+    return kappa, -0.5 * c, h, e0, e1, h1, h2
+
+
+@njit(cache=True)
 def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
     """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| at the (sub)sample instants → out[:, 0:3]."""
     n = ax.shape[0]
     for k in range(omegas.shape[0]):
-        omega = omegas[k]
-        kappa = omega * omega
-        c = 2.0 * zeta * omega
-        m = -0.5 * c
         n_sub = n_subs[k]
-        h = dt / n_sub
-        e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+        kappa, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
         x1 = 0.0
         v1 = 0.0
         x2 = 0.0
@@ -76,11 +81,7 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
 def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
     """Peak |u_x cos θ + u_y sin θ| for each angle θ at one period → out[:]."""
     n = ax.shape[0]
-    kappa = omega * omega
-    c = 2.0 * zeta * omega
-    m = -0.5 * c
-    h = dt / n_sub
-    e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+    kappa, m, h, e0, e1, h1, h2 = _coefficients(omega, zeta, dt, n_sub)
     x1 = 0.0
     v1 = 0.0
     x2 = 0.0
