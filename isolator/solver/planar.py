@@ -46,7 +46,7 @@ PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 #: Relative tolerance of the DOP853 steps (see docs/planar.md for the achieved error).
 DEFAULT_RTOL = 1e-12
 #: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample
-R_SWITCH_FACTOR = 1e-5
+R_SWITCH_FACTOR = 1e-4
 
 _STATUS_MESSAGES = (
     (_pk.STATUS_CHATTER, (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "

@@ -453,6 +453,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         phase = PH_STUCK
                         break
                     continue
+                if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
+                    # the slaved direction is accurate only up to r_switch: end the step there
+                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    ynew[:] = yb
+                    fnew[:] = fb
+                    h *= theta
                 for which in range(2):
                     g0 = rate_of_peak(which, mode, y, f)
                     g1 = rate_of_peak(which, mode, ynew, fnew)

@@ -217,7 +217,8 @@ def _hard_case(name):
         pga = np.max(np.hypot(ax, ay))
         system = dict(mu_static=pga / G * (1 - 1e-3), mu_kinetic=pga / G * 0.9, radius_m=2.0)
     elif name == "chatter":
-        ax = 0.065 * G + 0.02 * G * np.sin(2 * np.pi * 25 * t)
+        # a stick–slip cycle in every period of a 25 Hz forcing that only just beats µs
+        ax = 0.045 * G + 0.03 * G * np.sin(2 * np.pi * 25 * t)
         ay = 0.01 * G * np.cos(2 * np.pi * 25 * t)
         system = dict(mu_static=0.07, mu_kinetic=0.05, stiffness_per_mass=1.0)
     elif name == "uplift":
@@ -255,6 +256,8 @@ def test_hard_cases_against_the_reference(name):
     _compare(ref, r, 1e-9)
     if name == "uplift":
         assert r.n_uplifts > 0 and r.model == "2d+vertical"
+    if name == "chatter":
+        assert r.n_events > 200
     if name == "starts above mu_s n":
         assert r.event_time_s[0] == 0.0 and r.event_names[0] == "breakaway"
 
