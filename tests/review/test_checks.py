@@ -72,3 +72,21 @@ def test_single_record_checks_and_the_labelled_measure():
 @pytest.mark.parametrize("beta,divisor", [(0.05, 1.0), (0.15, math.sqrt(2.0)), (0.5, 1 / 0.55)])
 def test_en_damping_correction(beta, divisor):
     assert en15129.damping_divisor(beta) == pytest.approx(divisor)
+
+
+def test_parameters_resolve_with_marks_and_the_090_reading():
+    from isolator.review.errors import ReviewError
+    from isolator.review.parameters import PARAMETERS, resolve, table
+
+    asce = resolve("asce7-22")
+    assert asce["min_ratio"] == 1.0 and asce["mean_ratio_min"] is None and "gamma_x" not in asce
+    relaxed = resolve("asce7-22", {"min_ratio": "0.9"})
+    assert relaxed["min_ratio"] == 0.9 and relaxed["mean_ratio_min"] == 1.0  # REVIEW_RULES 1.5
+    assert resolve("en15129", {"n_for_mean": "3"})["n_for_mean"] == 3
+    assert resolve("asce7-22", {"abrupt_hysteresis": "true"})["abrupt_hysteresis"] is True
+    for bad in ({"n_for_mean": "2.5"}, {"D_M_form": "X"}, {"nonsense": 1}, {"f_ae": "-1"}):
+        with pytest.raises(ReviewError):
+            resolve("asce7-22", bad)
+    rows = table("asce7-22", asce)
+    assert all(row["mark"] for row in rows) and {row["name"] for row in rows} <= set(PARAMETERS)
+    assert next(r for r in rows if r["name"] == "range_lo_factor")["mark"] == "U"
