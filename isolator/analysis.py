@@ -177,6 +177,7 @@ class Analysis:
         if self.harmonic_map is not None:
             out["map"] = self.harmonic_map.to_dict(p.alpha, p.k)
         out["verdicts"] = verdicts(self)
+        out["checks"] = checks(self)
         out["software"] = {"name": "isolator", "version": __version__}
         out["created_utc"] = self.created_utc
         return json_safe(out)
@@ -366,6 +367,14 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     )
 
 
+def checks(analysis: Analysis) -> list[dict]:
+    """The review checks that apply to one record (:func:`isolator.review.record_checks.record_checks`):
+    capacity, D/R, restoring force, transmitted/PGA, scale factor, usable band."""
+    from isolator.review.record_checks import record_checks
+
+    return record_checks(analysis.design, analysis.motion, analysis.engineering)
+
+
 def verdicts(analysis: Analysis) -> list[str]:
     """Plain sentences on the analysis: regime, amplification, dominant force, residual displacement."""
     from isolator.metrics import REGIME_WORDS
@@ -381,7 +390,7 @@ def verdicts(analysis: Analysis) -> list[str]:
     else:
         out = [f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
                f"zeta = {rc.zeta:.3f}; harmonic prediction: {prediction}."]
-    # the paper's measure, labelled (review branch): A is relative to A0 = PGV²/PGA, not the ground's displacement
+    # the paper's measure, labelled: A is relative to A0 = PGV²/PGA, not to the ground's displacement
     out.append(f"Paper's measure A = {rc.amplitude:.3g} ({'>' if rc.amplified else '<='} 1): half peak-to-peak "
                f"displacement / A0, A0 = PGV²/PGA = {p.a0_m:.3g} m (the harmonic motion of equal PGA and PGV, "
                "not the ground's displacement).")

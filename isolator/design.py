@@ -328,10 +328,9 @@ class Design:
             raise DesignError(f"{self.source}: property modification factor must be > 0, got {factor!r}")
         if self.mu_static * factor >= 1.0 or (self.mu_fast is not None and self.mu_fast * factor >= 1.0):
             raise DesignError(f"{self.source}: µ × λ = {self.mu_static * factor:g} must stay < 1 ({label})")
-        scale = (lambda mu: None if mu is None else mu * factor)  # noqa: E731
         return replace(self, name=f"{self.name} ({label})", mu_static=self.mu_static * factor,
-                       mu_kinetic=self.mu_kinetic * factor, mu_slow=scale(self.mu_slow),
-                       mu_fast=scale(self.mu_fast))
+                       mu_kinetic=self.mu_kinetic * factor, mu_slow=None if self.mu_slow is None else self.mu_slow * factor,
+                       mu_fast=None if self.mu_fast is None else self.mu_fast * factor)
 
     @property
     def velocity_dependent(self) -> bool:

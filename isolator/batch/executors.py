@@ -7,17 +7,20 @@ from isolator.batch.worker import run_task
 from isolator.parallel import process_pool, warm_up
 
 
-def _iterate_local(tasks: list[Task], jobs: int):
-    """Yield (task, rows or exception) as tasks finish, on ``jobs`` local processes."""
+def _iterate_local(tasks: list[Task], jobs: int, function=run_task):
+    """Yield (task, ``function(task)`` or exception) as tasks finish, on ``jobs`` local processes.
+
+    ``function`` is the batch's :func:`run_task` unless another driver (the review) passes its own.
+    """
     warm_up()
     if jobs <= 1:
         for task in tasks:
-            yield task, run_task(task)
+            yield task, function(task)
         return
     from concurrent.futures import as_completed
 
     with process_pool(jobs) as pool:
-        futures = {pool.submit(run_task, task): task for task in tasks}
+        futures = {pool.submit(function, task): task for task in tasks}
         for future in as_completed(futures):
             try:
                 yield futures[future], future.result()
@@ -25,8 +28,8 @@ def _iterate_local(tasks: list[Task], jobs: int):
                 yield futures[future], err
 
 
-def _iterate_dask(tasks: list[Task], address: str):
-    """Yield (task, rows or exception) as tasks finish on the dask.distributed cluster at ``address``."""
+def _iterate_dask(tasks: list[Task], address: str, function=run_task):
+    """Yield (task, ``function(task)`` or exception) as tasks finish on the dask.distributed cluster at ``address``."""
     from distributed import Client, as_completed
 
     try:
@@ -36,7 +39,7 @@ def _iterate_dask(tasks: list[Task], address: str):
     try:
         futures = {}
         for task in tasks:
-            future = client.submit(run_task, task, pure=False)
+            future = client.submit(function, task, pure=False)
             futures[future.key] = (future, task)
         for future in as_completed([f for f, _ in futures.values()]):
             task = futures[future.key][1]

@@ -24,7 +24,7 @@ def _parse_set(items) -> dict:
 def review(
     design: str = typer.Option(..., "--design", "-d", help="Design file (TOML) with the friction bounds "
                                "(lambda_max/lambda_min, mu_upper/mu_lower or the λ_ae/λ_test/λ_spec factors), "
-                               "displacement_capacity_m and an optional [plan] table."),
+                               "displacement_capacity_m and an optional \\[plan] table."),
     target: str = typer.Option(..., "--target", "-t", help="TARGET.toml (S_MS, S_M1, T_L; or spectrum_csv), or "
                                "`example` for the bundled MCE_R target."),
     suite: list[str] = typer.Option(..., "--suite", "-s", help="SUITE.toml, or record files, folders and globs "
@@ -47,8 +47,8 @@ def review(
 ) -> None:
     """Code-based design review over a ground-motion suite scaled to a target, at both property bounds.
 
-    Every pair × {lower, upper, nominal} friction runs through the 2-D engine; the PDF's page 1 lists
-    the checks with their clauses (pass / fail / not checked), the JSON holds every number.
+    Every pair × {lower, upper, nominal} friction runs through the 2-D engine; the PDF's page 1 lists the
+    checks with their clauses (pass / fail / not checked); the JSON holds every number.  See docs/review.md.
     """
     import json
     import shlex
@@ -82,7 +82,8 @@ def review(
         the_design = Design.from_toml(design)
         the_target = load_target(resolve_example("target", target))
         suite_args = [resolve_example("suite", s) for s in suite]
-        inputs = {Path(p).resolve() for p in (design, *suite_args) if Path(p).is_file()}
+        inputs = {Path(p).resolve() for p in (design, resolve_example("target", target), *suite_args)
+                  if Path(p).is_file()}
         if Path(output).resolve() in inputs or Path(output).with_suffix(".json").resolve() in inputs:
             _user_error(f"--output {output}: would overwrite an input")
         the_suite = load_suite(suite_args, units=units, trim=trim)
@@ -94,7 +95,8 @@ def review(
     cache_dir = None if no_cache else Path(output).parent / f".{Path(output).stem}.cache"
     try:
         result = run_review(the_design, the_target, the_suite, code=code, scaling=scaling, jobs=jobs,
-                            scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12)
+                            scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12,
+                            paper_map_resolution=30)
     except (DesignError, ReviewError) as err:
         _user_error(str(err))
     command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])

@@ -96,8 +96,10 @@ def _checks_page(plt, r: dict, command: str):
         value = "none" if p["value"] is None else (fmt(p["value"]) if not isinstance(p["value"], str) else p["value"])
         fig.text(x, yy, short(f"{p['name']} = {value}{flag}  {p['rule']}", 78), fontsize=6.3, va="top")
     y -= half * 0.0112 + 0.006
-    if r["notes"]:
-        fig.text(0.05, y, short("Notes: " + " · ".join(r["notes"]), 190), fontsize=6.3, va="top", color="0.25")
+    lines = textwrap.wrap("Notes: " + " · ".join(r["notes"]), 145) if r["notes"] else []
+    for line in lines[:4]:  # the JSON has them all
+        fig.text(0.05, y, line, fontsize=6.3, va="top", color="0.25")
+        y -= 0.011
     _caption(fig, f"{r['created_utc']} · {short(command, 200)} · every number on this page is in the JSON beside "
                   "the PDF.  'not checked' = the review lacks the input (named in the note).")
     return fig
@@ -108,7 +110,7 @@ def _spectra_page(plt, review, r: dict):
     s = review.spectra
     ax = fig.add_axes([0.1, 0.47, 0.84, 0.43])
     lo, hi = r["period_range_s"]
-    for name, values in s["pairs_scaled_g"].items():
+    for values in s["pairs_scaled_g"].values():
         ax.loglog(s["periods_s"], values, color="0.6", lw=0.6)
     ax.loglog([], [], color="0.6", lw=0.6, label=f"scaled pairs ({r['spectrum_basis']})")
     ax.loglog(s["periods_s"], s["suite_mean_scaled_g"], color="k", lw=1.8, label="suite average (scaled)")
@@ -235,17 +237,17 @@ def _orbits_page(plt, review, r: dict):
     return fig
 
 
-def _paper_page(plt, r: dict):
+def _paper_page(plt, review, r: dict):
     fig = _page(plt, 5, r["design"]["name"])
     fig.text(0.05, 0.93, textwrap.fill(
         "These are the measures of the paper behind isolator (Nicolas 2017), shown for context.  They are NOT "
         "design checks.  A = peak relative displacement / A0 with A0 = PGV²/PGA of the (resultant, scaled) ground "
         "motion: A compares the isolator's displacement with the amplitude of the harmonic motion of equal PGA and "
         "PGV, not with the ground's displacement, so A > 1 does not mean that the isolator amplifies the ground "
-        "motion.  α = PGA/(µs g) (sliding needs α > 1); slip ratio = time sliding / D5-95.", 135),
+        "motion.  α = PGA/(µs g) (sliding needs α > 1); slip = share of the D5-95 window spent sliding (the paper's ζ, at the samples).", 135),
         fontsize=7.6, va="top")
-    ax = fig.add_axes([0.1, 0.42, 0.84, 0.38])
-    y = 0.35
+    ax = fig.add_axes([0.08, 0.47, 0.4, 0.34])
+    y = 0.37
     for b in ("lower", "upper"):
         if b not in r["bounds"]:
             continue
@@ -253,9 +255,18 @@ def _paper_page(plt, r: dict):
         alpha = [v.get("paper_alpha", np.nan) for v in pairs.values()]
         a = [v.get("paper_A", np.nan) for v in pairs.values()]
         ax.scatter(alpha, a, color=BOUND_COLOUR[b], label=f"{b} bound", s=18)
-    ax.set_xlabel("α = PGA/(µs g) [-]  (paper's measure)")
-    ax.set_ylabel("A = D / A0,  A0 = PGV²/PGA [-]  (paper's measure)")
+    ax.set_xlabel("α = PGA/(µs g) [-]")
+    ax.set_ylabel("A = D / A0,  A0 = PGV²/PGA [-]")
+    ax.set_title("the paper's measures of each pair", fontsize=8.5)
     ax.legend(loc="best")
+    if review.paper_map is not None:
+        pm = review.paper_map
+        axm = fig.add_axes([0.58, 0.47, 0.38, 0.34])
+        figures.draw_regime_map(axm, pm["map"], show_legend=False,
+                                title=f"harmonic regime map, {pm['bound']} µ, η = {fmt(pm['eta'], 3)}")
+        axm.scatter([p[0] for p in pm["points"].values()], [p[1] for p in pm["points"].values()], marker="*",
+                    s=40, color="k", zorder=5, label="pairs (equivalent points)")
+        axm.legend(loc="upper right", fontsize=6.5)
     fig.text(0.05, y, "pair", fontsize=7.4, weight="bold", va="top")
     for x, head in ((0.4, "α lo"), (0.48, "A lo"), (0.56, "slip lo"), (0.66, "α up"), (0.74, "A up"),
                     (0.82, "slip up")):
@@ -268,9 +279,10 @@ def _paper_page(plt, r: dict):
             for dx, key in ((0.0, "paper_alpha"), (0.08, "paper_A"), (0.16, "paper_slip_ratio")):
                 fig.text(x0 + dx, y, fmt(v.get(key), 3), fontsize=7.0, va="top")
         y -= 0.013
-    _caption(fig, "The paper's harmonic classification (stick/slip regimes, A > 1, dominant force) is defined for "
-                  "one horizontal component under harmonic motion; for the 2-D analyses of the pairs only the "
-                  "measures above are reported.")
+    _caption(fig, "Right: the paper's (k, α) regime map of the steady harmonic response (one component) at the "
+                  "design's friction, with each scaled pair placed at its equivalent harmonic point (k = K A0/(M g), "
+                  "α = PGA/(µs g)); regions and shading as in the single-record report.  The map classifies a "
+                  "harmonic motion in one direction; the pairs were analysed in 2-D: context only.")
     return fig
 
 
@@ -282,16 +294,15 @@ def write_review_pdf(review, pdf_path, *, command: str = "") -> dict:
     r = review.to_dict()
     r["command"] = command
     pdf_path = Path(pdf_path)
-    with atomic_path(pdf_path) as tmp:
-        with PdfPages(tmp) as pdf:
-            for make in (lambda: _checks_page(plt, r, command), lambda: _spectra_page(plt, review, r),
-                         lambda: _pairs_page(plt, r), lambda: _orbits_page(plt, review, r),
-                         lambda: _paper_page(plt, r)):
-                fig = make()
-                pdf.savefig(fig)
-                plt.close(fig)
-            info = pdf.infodict()
-            info["Title"] = f"isolator review: {r['design']['name']}"
+    with atomic_path(pdf_path) as tmp, PdfPages(tmp) as pdf:
+        for make in (lambda: _checks_page(plt, r, command), lambda: _spectra_page(plt, review, r),
+                     lambda: _pairs_page(plt, r), lambda: _orbits_page(plt, review, r),
+                     lambda: _paper_page(plt, review, r)):
+            fig = make()
+            pdf.savefig(fig)
+            plt.close(fig)
+        info = pdf.infodict()
+        info["Title"] = f"isolator review: {r['design']['name']}"
     r["pdf"] = str(pdf_path)
     with atomic_path(pdf_path.with_suffix(".json")) as tmp:
         tmp.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")

@@ -15,17 +15,9 @@ from isolator.atomic import atomic_path
 from isolator.motion.examples import EXAMPLE_RECORDS, resolve_record  # noqa: F401 - re-exported
 
 
-def checks(analysis: Analysis) -> list[dict]:
-    """The review checks that apply to one record (:func:`isolator.review.record_checks.record_checks`)."""
-    from isolator.review.record_checks import record_checks
-
-    return record_checks(analysis.design, analysis.motion, analysis.engineering)
-
-
 def summary_dict(analysis: Analysis, pdf_path=None) -> dict:
-    """The JSON of a report: the analysis schema (``docs/schema.md``), the record checks, and ``pdf``."""
+    """The JSON of a report: the analysis schema (``docs/schema.md``) and ``pdf`` when one is written."""
     out = analysis.to_dict()
-    out["checks"] = checks(analysis)
     if pdf_path is not None:
         out["pdf"] = str(pdf_path)
     return out

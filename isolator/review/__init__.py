@@ -8,7 +8,7 @@ Imports are lazy so that ``isolator --help`` stays fast.
 
 from __future__ import annotations
 
-__all__ = ["run_review", "load_suite", "load_target", "resolve_example"]
+__all__ = ["load_suite", "load_target", "resolve_example", "run_review"]
 
 
 def __getattr__(name):

@@ -114,10 +114,10 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
     if any(pair.az_m_s2 is not None for pair in review.suite.pairs):
         n_up = sum(v["n_uplifts"] for v in values.values())
         with_z = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
-        rows.append(C.at_most("uplift", "bearing uplift (ASCE 7-22 17.2.4.7)", n_up, 0,
+        rows.append(C.at_most("uplift", "bearing uplift (ASCE 7-22 17.2.4.7) [U]", n_up, 0,
                               f"uplifts counted over {with_z} pair(s) with a vertical component", "events"))
     else:
-        rows.append(C.check("uplift", "bearing uplift (ASCE 7-22 17.2.4.7)", C.NOT_CHECKED,
+        rows.append(C.check("uplift", "bearing uplift (ASCE 7-22 17.2.4.7) [U]", C.NOT_CHECKED,
                             note="no vertical components in the suite"))
     return rows
 
@@ -129,8 +129,10 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     cap = design.displacement_capacity_m
     rows = _common_front(review, p["n_pairs_min"], "ASCE 7-22 17.3.2", "ASCE 7-22 17.3.3 / 16.2.3.2", "RotD100")
     capacity_note = "" if cap is not None else "no displacement_capacity_m in the design"
-    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4 / 17.2.4 (capacity)", env["D_M_m"], cap,
-                          f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs" + (
+    largest = max(v["peak_displacement_max_m"] for v in values.values())
+    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_m"], cap,
+                          f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest single "
+                          f"analysis {largest:.3g} m" + (
                               "; " + capacity_note if capacity_note else ""), "m"))
     rows.append(C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
                           f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
@@ -152,6 +154,13 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                         p["f_above_rha"] * v_s if math.isfinite(v_s) else None,
                         f"needs a superstructure model; ELF V_s/W = {v_s:.4g} (R_I = {p['R_I']:g}), activation "
                         f"limit V_b ≥ {v_act:.4g} W (17.5.4.3)", "W"))
+    rows.append(C.check("separation", "ASCE 7-22 17.2.5.2 [U]", C.NOT_CHECKED, None, d_tm["value"],
+                        "the moat (separation to retaining walls) must be ≥ the design total displacement; not an "
+                        "input of the review", "m"))
+    rows.append(C.check("prototype_tests", "ASCE 7-22 17.8 [U]", C.NOT_CHECKED, None, d_tm["value"],
+                        f"prototype tests must reach the total displacement and confirm λ_min "
+                        f"{review.bounds.lambda_min:.3g} / λ_max {review.bounds.lambda_max:.3g}; reviewer's list",
+                        "m"))
     return rows + _common_back(review, values, d_tm["value"])
 
 

@@ -72,7 +72,7 @@ def friction_bounds(design, *, code: str = "asce7-22", f_ae: float = 0.75) -> Fr
                               code=code, f_ae=f_ae)
         lmin = combine_lambda(f["lambda_ae_min"], f["lambda_test_min"], f["lambda_spec_min"], side="min",
                               code=code, f_ae=f_ae)
-        basis = ("ASCE 7-22 17.2.8.4 Eqs. 17.2-1/-2 with f_ae = %g" % f_ae if code != "en15129"
+        basis = (f"ASCE 7-22 17.2.8.4 Eqs. 17.2-1/-2 with f_ae = {f_ae:g}" if code != "en15129"
                  else "EN 15129 / EN 1998-2 7.5.2.4: plain product of λ factors")
     elif "lambda_max" in f:
         lmax, lmin, basis = f["lambda_max"], f["lambda_min"], "λ_max, λ_min given in the design"

@@ -17,9 +17,12 @@ def check(id_: str, clause: str, status: str, value=None, limit=None, note: str 
     """One row of the checks table."""
     if status not in (PASS, FAIL, NOT_CHECKED):
         raise ValueError(f"status {status!r}")
-    clean = (lambda v: None if isinstance(v, float) and not math.isfinite(v) else v)  # noqa: E731
-    return {"id": id_, "clause": clause, "status": status, "value": clean(value), "limit": clean(limit),
-            "unit": unit, "note": note}
+    return {"id": id_, "clause": clause, "status": status, "value": _finite_or_none(value),
+            "limit": _finite_or_none(limit), "unit": unit, "note": note}
+
+
+def _finite_or_none(value):
+    return None if isinstance(value, float) and not math.isfinite(value) else value
 
 
 def at_most(id_, clause, value, limit, note="", unit="") -> dict:

@@ -7,6 +7,8 @@ for a design under one (optionally scaled) record and nominal properties.
 
 from __future__ import annotations
 
+import math
+
 from isolator.review import checks as C
 from isolator.review.codes import asce7_22
 from isolator.review.parameters import resolve
@@ -57,7 +59,7 @@ def record_checks(design, motion, engineering: dict, parameters: dict | None = N
     rows.append(C.check("scale_factor", "reviewer practice, not code", C.FAIL if outside else C.PASS, factor,
                         p["sf_flag_high"], f"flagged outside {p['sf_flag_low']:g}–{p['sf_flag_high']:g}", "×"))
     period = engineering.get("effective_period_s")
-    period = period if period and period == period else design.isolated_period_s
+    period = period if period is not None and math.isfinite(period) and period > 0 else design.isolated_period_s
     rows.append(C.usable_band([(motion.component or "record", high_pass_corner_hz(motion))],
                               p["range_hi_factor"] * period, p["usable_band_factor"]))
     rows[-1]["note"] = f"needs {p['range_hi_factor']:g} × T_eff = {p['range_hi_factor'] * period:.3g} s; " + rows[-1]["note"]

@@ -22,6 +22,7 @@ from isolator.review.codes import asce7_22, en15129
 from isolator.review.errors import ReviewError
 from isolator.review.scaling import SCALING_METHODS, period_grid, scale_factors, suite_mean
 from isolator.review.spectra import pair_spectra, rotd50
+from isolator.serialize import json_safe
 
 CODES = ("asce7-22", "en15129")
 SCHEMA_VERSION = 1
@@ -51,6 +52,7 @@ class Review:
     notes: list = field(default_factory=list)
     timing: dict = field(default_factory=dict)
     created_utc: str = ""
+    paper_map: dict | None = None  #: the paper's regime map and the pairs' equivalent points (context)
 
     # ---- JSON ------------------------------------------------------------------------------
 
@@ -64,7 +66,7 @@ class Review:
             bounds[bound] = {"mu": self.bound_mu[bound], "pairs": pairs, **self.design_values.get(bound, {})}
         elf = {b: {k: v for k, v in self.elf[b].items()} for b in self.elf}
         env = self.design_values["envelope"]
-        return _clean({
+        return json_safe({
             "schema_version": SCHEMA_VERSION,
             "created_utc": self.created_utc,
             "code": self.code,
@@ -79,7 +81,8 @@ class Review:
             "property_bounds": self.bounds.as_dict(),
             "period_range_s": list(self.period_range_s),
             "period_grid": {"n": int(self.grid_s.size), "lo_s": float(self.grid_s[0]), "hi_s": float(self.grid_s[-1]),
-                            "spacing": "log", "includes": "both ends and the T_M values inside the range"},
+                            "spacing": "log", "includes": "both ends and the T_M values inside the range",
+                            "periods_s": self.grid_s.tolist(), "suite_ratio": self.suite_ratio.tolist()},
             "spectrum_basis": "RotD100" if self.code == "asce7-22" else "components (mean of both)",
             "spectrum_conventions": "5 % damping; exact first-order-hold recurrence; peaks at the sample "
                                     "instants (≥ 20 per period); no padding, no filtering",
@@ -111,21 +114,9 @@ class Review:
         return self.parameters["min_ratio"] if self.code == "asce7-22" else self.parameters["en_min_ratio"]
 
 
-def _clean(value):
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, (np.floating, np.integer, np.bool_)):
-        return _clean(value.item())
-    if isinstance(value, np.ndarray):
-        return _clean(value.tolist())
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    return value
-
-
 def _elf(design, mu, target, code, params) -> dict:
+    if code == "en15129":  # the effective period of the isolated system at its design displacement, η damping
+        return asce7_22.elf_displacement(design, mu, target, form="SaM", reduction=en15129.damping_divisor)
     out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"))
     if code == "asce7-22" and out["D_M_m"] > 0:
         out.update(asce7_22.superstructure_shear(out["V_b_over_W"], out["beta_M"], params))
@@ -134,7 +125,7 @@ def _elf(design, mu, target, code, params) -> dict:
 
 def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = "common", jobs: int | None = None,
                scheduler: str | None = None, parameters: dict | None = None, cache_dir=None,
-               nominal: bool = True, rotd50_points: int = 0) -> Review:
+               nominal: bool = True, rotd50_points: int = 0, paper_map_resolution: int = 0) -> Review:
     """Review a design over a suite scaled to a target, at its lower and upper property bounds.
 
     Parameters
@@ -157,6 +148,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         Also analyse the nominal properties.
     rotd50_points : int
         Periods at which RotD50 is computed (informational; 0: none).
+    paper_map_resolution : int
+        Grid points per axis of the paper's harmonic regime map around the pairs' equivalent points
+        (context only, cached on disk; 0: none).
 
     Returns
     -------
@@ -183,7 +177,11 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         notes.append("the design gives no property bounds: lower = upper = nominal")
 
     # ELF reference values per bound (17.5)
-    elf = {b: _elf(designs[b], designs[b].mu_kinetic, target, code, params) for b in designs}
+    # ELF at the kinetic friction; with µ(v), at µ_fast (the friction of seismic sliding speeds)
+    elf = {b: _elf(designs[b], designs[b].mu_fast if designs[b].velocity_dependent else designs[b].mu_kinetic,
+                   target, code, params) for b in designs}
+    if design.velocity_dependent:
+        notes.append("velocity-dependent friction: the ELF values use µ_fast of each bound; the analyses µ(v)")
     for b in designs:
         notes.extend(f"ELF {b}: {n}" for n in elf[b]["notes"])
 
@@ -198,6 +196,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     else:
         lo, hi = params["en_range_lo_factor"] * t_upper, params["en_range_hi_factor"] * t_lower
         required = params["en_min_ratio"]
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo < hi):
+        raise ReviewError(f"no scaling period range: T_M upper {t_upper:.4g} s, lower {t_lower:.4g} s "
+                          f"give {lo:.4g}–{hi:.4g} s")
     base, grid = period_grid(lo, hi, params["grid_points"], (t_upper, t_lower))
     fit_mask = np.isin(grid, base)
 
@@ -216,6 +217,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         on_plot.append({k: v[split:] / g for k, v in s.items()})
     timing["spectra"] = time.perf_counter() - clock
     target_grid = target.sa_g(grid)
+    weak = [p.name for p, s in zip(suite.pairs, on_grid) if not np.all(np.asarray(s) > 0)]
+    if weak:
+        raise ReviewError(f"pair '{weak[0]}' has a zero spectrum in the period range: it cannot be scaled")
     factors = scale_factors(np.array(on_grid), target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask)
     ratio = suite_mean(np.array(on_grid), factors) / target_grid
     names = suite.names
@@ -247,15 +251,19 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     analyses = {b: {name: dict(results[index[(b, name)]], scale_factor=float(f))
                     for name, f in zip(names, factors)} for b in designs}
     failed = sorted({name for b in analyses for name, r in analyses[b].items() if "error" in r})
+    if len(failed) == len(names):
+        first = next(r["error"] for b in analyses for r in analyses[b].values() if "error" in r)
+        raise ReviewError(f"every analysis failed ({first})")
     for name in failed:
         notes.append(f"analysis of pair '{name}' failed: "
                      + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))
 
+    paper_map = _paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution else None
     review = Review(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
                     bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
                     factors=dict(zip(names, map(float, factors))), spectra=spectra, suite_ratio=ratio,
-                    analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing,
-                    created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
+                    analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing, paper_map=paper_map,
+                    created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
     from isolator.review.assess import assess
 
     assess(review, designs)
@@ -271,3 +279,23 @@ def _safe_target(target, periods):
     out = np.full(periods.size, np.nan)
     out[inside] = target.sa_g(periods[inside])
     return out
+
+
+def _paper_map(designs: dict, analyses: dict, resolution: int, jobs) -> dict | None:
+    """The paper's harmonic regime map (Nicolas 2017, Figs. 5–7) at the nominal friction, with each pair's
+    equivalent point k = K A0/(M g), α = PGA/(µs g), A0 = PGV²/PGA of the scaled resultant motion."""
+    from isolator.maps import design_frame, regime_map
+
+    bound = "nominal" if "nominal" in analyses else "lower"
+    d = designs[bound]
+    g = d.gravity_m_s2
+    points = {name: (d.stiffness_per_mass * r["paper_A0_m"] / g, r["paper_alpha"], r["paper_A"])
+              for name, r in analyses[bound].items() if "error" not in r and r["paper_A0_m"] > 0}
+    if not points:
+        return None
+    etas = [d.damping_per_mass * math.sqrt(analyses[bound][n]["paper_A0_m"] / g) for n in points]
+    eta = float(np.median(etas))
+    frame = design_frame(max(p[1] for p in points.values()), max(p[0] for p in points.values()))
+    rmap = regime_map(eta, d.mu_static, d.mu_kinetic, k_range=frame["k"], alpha_range=frame["alpha"],
+                      n_k=resolution, n_alpha=resolution, workers=jobs)
+    return {"map": rmap, "bound": bound, "eta": eta, "points": points}

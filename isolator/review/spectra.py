@@ -31,18 +31,30 @@ STEPS_PER_PERIOD = 20
 ROTD50_ANGLES_DEG = np.arange(180.0)
 
 
+@njit(cache=True, inline="always")
+def _step(x, v, f, slope, e0, e1, h1, h2, m, kappa):
+    """One exact step of u'' + c u' + κ u = f + (−slope) t from (x, v): the ramp segment of linear.py."""
+    return (e0 * x + e1 * (v - m * x) + f * h1 - slope * h2,
+            e0 * v + e1 * (m * v - kappa * x + f) - slope * h1)
+
+
+@njit(cache=True)
+def _coefficients(omega, zeta, dt, n_sub):
+    """κ = ω², m = −ζω, the piece length h = dt/n_sub and the ramp basis (E0, E1, H1, H2) over h."""
+    kappa = omega * omega
+    c = 2.0 * zeta * omega
+    h = dt / n_sub
+    e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+    return kappa, -0.5 * c, h, e0, e1, h1, h2
+
+
 @njit(cache=True)
 def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
     """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| at the (sub)sample instants → out[:, 0:3]."""
     n = ax.shape[0]
     for k in range(omegas.shape[0]):
-        omega = omegas[k]
-        kappa = omega * omega
-        c = 2.0 * zeta * omega
-        m = -0.5 * c
         n_sub = n_subs[k]
-        h = dt / n_sub
-        e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+        kappa, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
         x1 = 0.0
         v1 = 0.0
         x2 = 0.0
@@ -54,21 +66,12 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
             b1 = (ax[i + 1] - ax[i]) / dt
             b2 = (ay[i + 1] - ay[i]) / dt
             for j in range(n_sub):
-                f1 = -(ax[i] + b1 * (j * h))
-                f2 = -(ay[i] + b2 * (j * h))
-                xn = e0 * x1 + e1 * (v1 - m * x1) + f1 * h1 - b1 * h2
-                v1 = e0 * v1 + e1 * (m * v1 - kappa * x1 + f1) - b1 * h1
-                x1 = xn
-                xn = e0 * x2 + e1 * (v2 - m * x2) + f2 * h1 - b2 * h2
-                v2 = e0 * v2 + e1 * (m * v2 - kappa * x2 + f2) - b2 * h1
-                x2 = xn
-                if abs(x1) > p1:
-                    p1 = abs(x1)
-                if abs(x2) > p2:
-                    p2 = abs(x2)
+                x1, v1 = _step(x1, v1, -(ax[i] + b1 * (j * h)), b1, e0, e1, h1, h2, m, kappa)
+                x2, v2 = _step(x2, v2, -(ay[i] + b2 * (j * h)), b2, e0, e1, h1, h2, m, kappa)
+                p1 = max(p1, abs(x1))
+                p2 = max(p2, abs(x2))
                 r2 = x1 * x1 + x2 * x2
-                if r2 > pv:
-                    pv = r2
+                pv = max(pv, r2)
         out[k, 0] = p1
         out[k, 1] = p2
         out[k, 2] = math.sqrt(pv)
@@ -78,11 +81,7 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
 def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
     """Peak |u_x cos θ + u_y sin θ| for each angle θ at one period → out[:]."""
     n = ax.shape[0]
-    kappa = omega * omega
-    c = 2.0 * zeta * omega
-    m = -0.5 * c
-    h = dt / n_sub
-    e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
+    kappa, m, h, e0, e1, h1, h2 = _coefficients(omega, zeta, dt, n_sub)
     x1 = 0.0
     v1 = 0.0
     x2 = 0.0
@@ -93,18 +92,11 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
         b1 = (ax[i + 1] - ax[i]) / dt
         b2 = (ay[i + 1] - ay[i]) / dt
         for j in range(n_sub):
-            f1 = -(ax[i] + b1 * (j * h))
-            f2 = -(ay[i] + b2 * (j * h))
-            xn = e0 * x1 + e1 * (v1 - m * x1) + f1 * h1 - b1 * h2
-            v1 = e0 * v1 + e1 * (m * v1 - kappa * x1 + f1) - b1 * h1
-            x1 = xn
-            xn = e0 * x2 + e1 * (v2 - m * x2) + f2 * h1 - b2 * h2
-            v2 = e0 * v2 + e1 * (m * v2 - kappa * x2 + f2) - b2 * h1
-            x2 = xn
+            x1, v1 = _step(x1, v1, -(ax[i] + b1 * (j * h)), b1, e0, e1, h1, h2, m, kappa)
+            x2, v2 = _step(x2, v2, -(ay[i] + b2 * (j * h)), b2, e0, e1, h1, h2, m, kappa)
             for a in range(out.shape[0]):
                 u = abs(x1 * cosines[a] + x2 * sines[a])
-                if u > out[a]:
-                    out[a] = u
+                out[a] = max(out[a], u)
 
 
 def _prepare(ax, ay, dt_s, periods_s, damping_ratio):

@@ -350,7 +350,10 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
     from isolator.units import UnitsError
 
     arguments = [arguments] if isinstance(arguments, (str, os.PathLike)) else list(arguments)
-    if len(arguments) == 1 and str(arguments[0]).lower().endswith(".toml"):
+    tomls = [a for a in arguments if str(a).lower().endswith(".toml")]
+    if tomls and len(arguments) > 1:
+        raise SuiteError(f"{tomls[0]}: give one SUITE.toml, or record files, folders and globs, not both")
+    if tomls:
         source = str(arguments[0])
         specs, failed = specs_from_toml(arguments[0]), []
     else:

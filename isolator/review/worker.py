@@ -8,6 +8,7 @@ stopped and a rerun with the same inputs analyses nothing.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -16,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 #: bump when the numbers an analysis returns change meaning
-CACHE_VERSION = "review-1"
+CACHE_VERSION = "review-2"
 ORBIT_POINTS = 1500
 
 
@@ -34,10 +35,15 @@ def task_key(pair_key: str, factor: float, parameters: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
+@functools.lru_cache(maxsize=1)
 def _engine_version() -> str:
+    """isolator's version and a digest of the 2-D engine's source: a changed engine misses the cache."""
     from isolator import __version__
 
-    return str(__version__)
+    digest = hashlib.sha256()
+    for path in sorted((Path(__file__).resolve().parents[1] / "solver").glob("planar*.py")):
+        digest.update(path.read_bytes())
+    return f"{__version__}+{digest.hexdigest()[:16]}"
 
 
 def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
@@ -52,7 +58,7 @@ def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
 
 
 def _ground_measures(ax, ay, dt):
-    """Resultant PGA [m/s²], PGV [m/s] and D5–95 [s] of the horizontal ground motion."""
+    """Resultant PGA [m/s²], PGV [m/s] and the D5–95 window (t5, t95) [s] of the horizontal ground motion."""
     pga = float(np.max(np.hypot(ax, ay)))
     vx = np.concatenate([[0.0], np.cumsum(0.5 * (ax[1:] + ax[:-1]) * dt)])
     vy = np.concatenate([[0.0], np.cumsum(0.5 * (ay[1:] + ay[:-1]) * dt)])
@@ -63,25 +69,23 @@ def _ground_measures(ax, ay, dt):
         t5, t95 = np.interp([0.05 * energy[-1], 0.95 * energy[-1]], energy, t)
     else:
         t5 = t95 = 0.0
-    return pga, pgv, float(t95 - t5)
+    return pga, pgv, (float(t5), float(t95))
 
 
 def simulate(task: dict):
     """Run the pair engine on a task (imported here so workers load it once)."""
-    try:
-        from isolator.solver.planar import simulate_pair
-    except ImportError:  # TEMPORARY until the planar branch lands: removed at the merge
-        simulate_pair = _per_component_pair
+    from isolator.solver.planar import simulate_pair
 
     p = task["design"]
-    kwargs = {"mu_static": p["mu_static"], "mu_kinetic": p["mu_kinetic"], "damping_per_mass": p["damping_per_mass"],
-              "gravity_m_s2": p["gravity_m_s2"]}
+    kwargs = {"mu_static": p["mu_static"], "damping_per_mass": p["damping_per_mass"], "gravity_m_s2": p["gravity_m_s2"]}
     if p["radius_m"] is not None:
         kwargs["radius_m"] = p["radius_m"]
     else:
         kwargs["stiffness_per_mass"] = p["stiffness_per_mass"]
-    if p["rate_s_per_m"] is not None:
+    if p["rate_s_per_m"] is not None:  # µ(v) replaces the constant kinetic friction
         kwargs.update(mu_slow=p["mu_slow"], mu_fast=p["mu_fast"], rate_s_per_m=p["rate_s_per_m"])
+    else:
+        kwargs["mu_kinetic"] = p["mu_kinetic"]
     f = task["factor"]
     az = None if task["az"] is None else f * task["az"]
     return simulate_pair(f * task["ax"], f * task["ay"], task["dt"], az_m_s2=az, **kwargs)
@@ -98,8 +102,8 @@ def analyse_task(task: dict) -> dict:
         ``peak_transmitted_acceleration_m_s2`` (resultant), ``base_shear_coefficient`` (= that /g),
         ``transmitted_over_pga``, ``slip_time_s``, ``uplift_time_s``, ``n_uplifts``, ``n_events``,
         ``model``, ``model_reason``, the paper's measures (``paper_A`` = D/A0 with A0 = PGV²/PGA of
-        the resultant ground motion, ``paper_alpha`` = PGA/(µs g), ``paper_slip_ratio`` = slip time /
-        D5–95) and ``orbit_m`` (decimated X–Y path).
+        the resultant ground motion, ``paper_alpha`` = PGA/(µs g), ``paper_slip_ratio`` = share of the
+        D5–95 window spent sliding, read at the samples) and ``orbit_m`` (decimated X–Y path).
     """
     import time
 
@@ -109,7 +113,11 @@ def analyse_task(task: dict) -> dict:
     except Exception as err:  # noqa: BLE001 - one analysis fails, the review reports it
         return {"error": f"{type(err).__name__}: {' '.join(str(err).split())}"}
     f, dt = task["factor"], task["dt"]
-    pga, pgv, d595 = _ground_measures(f * task["ax"], f * task["ay"], dt)
+    pga, pgv, (t5, t95) = _ground_measures(f * task["ax"], f * task["ay"], dt)
+    # the paper's ζ: the share of the D5–95 window spent sliding (read at the samples)
+    window = slice(int(np.ceil(t5 / dt)), int(np.floor(t95 / dt)) + 1)
+    speed = np.hypot(*np.asarray(r.velocity_m_s, dtype=np.float64)[window].T)
+    slip_ratio = float(np.mean(speed > 0.0)) if speed.size else math.nan
     g = task["design"]["gravity_m_s2"]
     peak = float(r.peak_displacement_m)
     a0 = pgv * pgv / pga if pga > 0 else math.nan
@@ -134,7 +142,7 @@ def analyse_task(task: dict) -> dict:
         "paper_A": peak / a0 if a0 > 0 else math.nan,
         "paper_A0_m": a0,
         "paper_alpha": pga / (task["design"]["mu_static"] * g),
-        "paper_slip_ratio": float(r.slip_time_s) / d595 if d595 > 0 else math.nan,
+        "paper_slip_ratio": slip_ratio,
         "orbit_m": _decimate(np.asarray(r.displacement_m, dtype=np.float64)),
         "seconds": time.perf_counter() - start,
     }
@@ -203,45 +211,35 @@ def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache
 
 
 def _iterate_local(todo: dict, jobs: int):
+    """(key, result) on local processes through the batch executor (longest records first)."""
+    from isolator.batch.executors import _iterate_local as iterate
+
     warm_up()
-    jobs = max(1, min(int(jobs), len(todo)))
-    if jobs == 1:
-        for key, task in todo.items():
-            yield key, analyse_task(task)
-        return
-    from concurrent.futures import as_completed
-
-    from isolator.parallel import process_pool
-
-    # longest first: the pool finishes together
-    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)
-    with process_pool(jobs) as pool:
-        futures = {pool.submit(analyse_task, todo[key]): key for key in order}
-        for future in as_completed(futures):
-            try:
-                yield futures[future], future.result()
-            except Exception as err:  # noqa: BLE001 - a lost worker: reported, a rerun retries it
-                yield futures[future], {"error": f"worker lost ({type(err).__name__}: {err})"}
+    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)  # the pool finishes together
+    tasks = [dict(todo[key], key=key) for key in order]
+    for task, result in iterate(tasks, max(1, min(int(jobs), len(tasks))), function=analyse_task):
+        yield task["key"], _result(result)
 
 
 def _iterate_dask(todo: dict, address: str):
-    from distributed import Client, as_completed
-
+    """(key, result) on a Dask cluster through the batch executor."""
+    from isolator.batch.executors import _iterate_dask as iterate
+    from isolator.batch.plan import BatchError
     from isolator.review.errors import ReviewError
 
+    tasks = [dict(task, key=key) for key, task in todo.items()]
     try:
-        client = Client(address, timeout=10)
-    except (OSError, TimeoutError) as err:
-        raise ReviewError(f"--scheduler {address}: cannot connect ({' '.join(str(err).split())})") from None
-    try:
-        futures = {client.submit(analyse_task, task, pure=False): key for key, task in todo.items()}
-        for future in as_completed(list(futures)):
-            try:
-                yield futures[future], future.result()
-            except Exception as err:  # noqa: BLE001
-                yield futures[future], {"error": f"worker lost ({type(err).__name__}: {err})"}
-    finally:
-        client.close()
+        for task, result in iterate(tasks, address, function=analyse_task):
+            yield task["key"], _result(result)
+    except BatchError as err:
+        raise ReviewError(str(err)) from None
+
+
+def _result(result) -> dict:
+    """A worker's result, or the exception of a lost worker as an error entry."""
+    if isinstance(result, Exception):
+        return {"error": f"worker lost ({type(result).__name__}: {' '.join(str(result).split())})"}
+    return result
 
 
 def default_jobs() -> int:
@@ -250,24 +248,3 @@ def default_jobs() -> int:
 
     return default_workers()
 
-
-def _per_component_pair(ax, ay, dt, *, az_m_s2=None, mu_static, mu_kinetic=None, stiffness_per_mass=0.0,
-                        radius_m=None, damping_per_mass=0.0, gravity_m_s2=None, **_):  # TEMPORARY
-    from types import SimpleNamespace
-
-    from isolator.solver.record import simulate_record
-
-    kappa = gravity_m_s2 / radius_m if radius_m is not None else stiffness_per_mass
-    rx = simulate_record(ax, dt, mu_static=mu_static, mu_kinetic=mu_kinetic, stiffness_per_mass=kappa,
-                         damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2)
-    ry = simulate_record(ay, dt, mu_static=mu_static, mu_kinetic=mu_kinetic, stiffness_per_mass=kappa,
-                         damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2)
-    xy = np.column_stack([rx.displacement_m, ry.displacement_m])
-    acc = np.column_stack([rx.absolute_acceleration_m_s2, ry.absolute_acceleration_m_s2])
-    return SimpleNamespace(displacement_m=xy, peak_displacement_m=float(np.max(np.hypot(xy[:, 0], xy[:, 1]))),
-                           residual_displacement_m=float(np.hypot(*xy[-1])), residual_displacement_x_m=xy[-1, 0],
-                           residual_displacement_y_m=xy[-1, 1],
-                           peak_velocity_m_s=max(rx.peak_velocity_m_s, ry.peak_velocity_m_s),
-                           peak_transmitted_acceleration_m_s2=float(np.max(np.hypot(acc[:, 0], acc[:, 1]))),
-                           slip_time_s=max(rx.slip_time_s, ry.slip_time_s), n_events=rx.n_events + ry.n_events,
-                           model="1d-per-component", model_reason="2-D engine not available")

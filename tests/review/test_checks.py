@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from isolator.design import Design
@@ -48,15 +50,15 @@ def test_single_record_checks_and_the_labelled_measure():
     """One record: capacity, D/R, restoring force, transmitted/PGA, scale factor, usable band; no AMPLIFIES."""
     import numpy as np
 
+    from isolator.analysis import analyse, verdicts
     from isolator.motion import GroundMotion
-    from isolator.report.summary import analyse, checks, verdicts
 
     t = np.arange(0, 20, 0.01)
     motion = GroundMotion.from_array(3.0 * np.sin(2 * np.pi * 0.5 * t) * np.exp(-0.1 * t), 0.01).scaled(2.0)
     design = Design.from_mapping({"name": "x" * 120, "mass_kg": 1.0e5, "radius_m": 2.0, "mu_static": 0.05,
                                   "displacement_capacity_m": 0.05})
     a = analyse(design, motion)
-    rows = {row["id"]: row for row in checks(a)}
+    rows = {row["id"]: row for row in a.to_dict()["checks"]}
     d = a.engineering["peak_displacement_m"]
     assert rows["displacement_capacity"]["status"] == ("pass" if d <= 0.05 else "fail")
     assert rows["D_over_R"]["value"] == pytest.approx(d / 2.0)
@@ -65,3 +67,26 @@ def test_single_record_checks_and_the_labelled_measure():
     assert rows["usable_band"]["status"] == "not checked"  # an array states no filter corner
     text = " ".join(verdicts(a))
     assert "AMPLIFIES" not in text and "A0 = PGV²/PGA" in text and "Paper's measure A" in text
+
+
+@pytest.mark.parametrize("beta,divisor", [(0.05, 1.0), (0.15, math.sqrt(2.0)), (0.5, 1 / 0.55)])
+def test_en_damping_correction(beta, divisor):
+    assert en15129.damping_divisor(beta) == pytest.approx(divisor)
+
+
+def test_parameters_resolve_with_marks_and_the_090_reading():
+    from isolator.review.errors import ReviewError
+    from isolator.review.parameters import PARAMETERS, resolve, table
+
+    asce = resolve("asce7-22")
+    assert asce["min_ratio"] == 1.0 and asce["mean_ratio_min"] is None and "gamma_x" not in asce
+    relaxed = resolve("asce7-22", {"min_ratio": "0.9"})
+    assert relaxed["min_ratio"] == 0.9 and relaxed["mean_ratio_min"] == 1.0  # REVIEW_RULES 1.5
+    assert resolve("en15129", {"n_for_mean": "3"})["n_for_mean"] == 3
+    assert resolve("asce7-22", {"abrupt_hysteresis": "true"})["abrupt_hysteresis"] is True
+    for bad in ({"n_for_mean": "2.5"}, {"D_M_form": "X"}, {"nonsense": 1}, {"f_ae": "-1"}):
+        with pytest.raises(ReviewError):
+            resolve("asce7-22", bad)
+    rows = table("asce7-22", asce)
+    assert all(row["mark"] for row in rows) and {row["name"] for row in rows} <= set(PARAMETERS)
+    assert next(r for r in rows if r["name"] == "range_lo_factor")["mark"] == "U"

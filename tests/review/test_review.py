@@ -169,3 +169,42 @@ def test_cli_bad_target_key_and_duplicate_suite(inputs, tmp_path):
     suite.write_text(f'[[pair]]\nx = "{EXAMPLE / name / x}"\ny = "again.AT2"\n')
     result = _cli("--design", inputs / "design.toml", "--target", inputs / "target.toml", "--suite", suite)
     assert result.exit_code == 2 and "same samples" in result.output and "again.AT2" in result.output
+
+
+def test_velocity_dependent_friction_and_en15129(inputs):
+    from isolator.review.run import run_review
+
+    text = (inputs / "design.toml").read_text() + "mu_slow = 0.03\nmu_fast = 0.05\nrate_s_per_m = 25.0\n"
+    design = Design.from_mapping(__import__("tomllib").loads(text), source="v.toml")
+    suite = load_suite(inputs / "suite.toml")
+    out = run_review(design, two_period_target(1.5, 0.9, 8.0), suite, jobs=1, nominal=False,
+                     code="en15129").to_dict()
+    models = {r["model"] for b in ("lower", "upper") for r in out["bounds"][b]["pairs"].values()}
+    assert models == {"2d+mu(v)"}
+    assert out["elf"]["upper"]["mu"] == pytest.approx(0.05 * 1.3)  # ELF at µ_fast of the bound
+    assert out["property_bounds"]["lambda_max"] == 1.3  # lambda_max given: no combination
+    ids = {c["id"] for c in out["checks"]}
+    assert {"displacement_capacity", "restoring_capability"} <= ids and "restoring_force" not in ids
+    lo, hi = out["period_range_s"]
+    assert lo == pytest.approx(0.2 * out["elf"]["upper"]["T_M_s"]) and hi == pytest.approx(2.0 * out["elf"]["lower"]["T_M_s"])
+
+
+def test_bundled_example_uses_the_mean_of_eight_pairs():
+    """The shipped example: 8 pairs (≥ 7) → the suite value is the mean; the Düzce header corner sets the usable
+    band; the APEEL2 vertical makes the uplift check run; every clause is named."""
+    from isolator.review.examples import resolve_example
+    from isolator.review.run import run_review
+    from isolator.review.target import load_target
+
+    out = run_review(Design.from_toml(ROOT / "data" / "example_review.toml"),
+                     load_target(resolve_example("target", "example")), load_suite(resolve_example("suite", "example")),
+                     jobs=1, nominal=False).to_dict()
+    d = out["design_displacement_m"]
+    assert d["rule"] == "mean" and d["n"] == 8
+    pairs = out["bounds"][d["governing_bound"]]["pairs"]
+    assert d["value"] == pytest.approx(np.mean([r["peak_displacement_m"] for r in pairs.values()]), rel=1e-12)
+    rows = {c["id"]: c for c in out["checks"]}
+    assert rows["usable_band"]["value"] == pytest.approx(1 / (1.25 * 0.08))
+    assert rows["uplift"]["status"] == "pass" and "1 pair" in rows["uplift"]["note"]
+    assert all(c["clause"] for c in out["checks"])
+    assert {r["model"] for r in pairs.values()} == {"2d", "2d+vertical"}

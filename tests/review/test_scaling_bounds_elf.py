@@ -113,3 +113,24 @@ def test_D_TM_by_hand():
     assert asce7_22.torsion_factor(None, params)["factor"] == 1.15
     small = {"b_m": 40.0, "d_m": 25.0, "y_m": 1.0, "P_T": 1.3}
     assert asce7_22.torsion_factor(small, params)["factor"] == 1.15  # the floor governs
+
+
+def test_factors_of_a_pair_and_its_double_on_real_records():
+    """Pair B = 2 × pair A: RotD100_B = 2 RotD100_A, so 'fit' gives SF_A = 2 SF_B and 'common' k = max(T/S_A)/1.5."""
+    from pathlib import Path
+
+    from isolator.motion import read_ground_motion
+    from isolator.review.spectra import pair_spectra
+
+    folder = Path(__file__).resolve().parents[2] / "isolator" / "data" / "suites" / "example" / "landers1992_YER"
+    x = read_ground_motion(folder / "RSN900_LANDERS_YER270.AT2")
+    y = read_ground_motion(folder / "RSN900_LANDERS_YER360.AT2")
+    _, grid = period_grid(2.0, 4.0, 200)
+    a = pair_spectra(x.acceleration_m_s2, y.acceleration_m_s2, x.dt_s, grid)["rotd100_m_s2"] / G
+    b = pair_spectra(2 * x.acceleration_m_s2, 2 * y.acceleration_m_s2, x.dt_s, grid)["rotd100_m_s2"] / G
+    np.testing.assert_allclose(b, 2 * a, rtol=1e-12)
+    target = two_period_target(1.5, 0.9, 8.0).sa_g(grid)
+    fit = scale_factors([a, b], target, method="fit")
+    assert fit[0] == pytest.approx(2 * fit[1], rel=1e-12)
+    common = scale_factors([a, b], target, method="common")
+    assert common[0] == pytest.approx(np.max(target / a) / 1.5, rel=1e-9)

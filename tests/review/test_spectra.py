@@ -30,7 +30,7 @@ def _histories_ivp(acc, dt, period, zeta=0.05):
     for i in range(acc.size - 1):
         a0, a1 = acc[i], acc[i + 1]
 
-        def rhs(t, y):
+        def rhs(t, y, a0=a0, a1=a1):
             ag = a0 + (a1 - a0) * t / dt
             return [y[1], -ag - 2 * zeta * omega * y[1] - omega * omega * y[0]]
 

@@ -53,7 +53,7 @@ def effective_properties(design, mu: float, displacement_m: float) -> tuple[floa
     return k, 2.0 * math.pi / omega, energy / (2.0 * math.pi * k * d * d)
 
 
-def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM") -> dict:
+def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", reduction=None) -> dict:
     """D_M, T_M, β_M, B_M and V_b/W of one property bound (17.5.3).
 
     Parameters
@@ -66,6 +66,8 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM") ->
         MCE_R spectrum.
     form : {"SaM", "SM1"}
         Eq. 17.5-1 with S_a(T_M) T_M² (7-22) or S_M1 T_M (7-16; ASCE two-period targets only).
+    reduction : callable, optional
+        β ↦ the divisor of the 5 % spectrum (default: B_M of Table 17.5-1; EN: 1/η).
 
     Returns
     -------
@@ -75,10 +77,11 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM") ->
     """
     g = design.gravity_m_s2
     use_sm1 = form == "SM1" and target.kind == "asce7-two-period"
+    reduction = reduction or damping_coefficient
 
     def image(d):
         _, t, beta = effective_properties(design, mu, d)
-        b = damping_coefficient(beta)
+        b = reduction(beta)
         if use_sm1:
             return g * target.parameters["S_M1"] * t / (4.0 * math.pi ** 2 * b)
         return g * float(target.sa_g(t, clip=True)[0]) * t * t / (4.0 * math.pi ** 2 * b)
@@ -108,7 +111,7 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM") ->
         notes.append(f"T_M = {t:.3g} s exceeds T_L = {target.long_period_s:g} s: the S_aM and S_M1 forms differ")
     if beta > B_M_TABLE[-1][0]:
         notes.append(f"β_M = {beta:.3g} beyond Table 17.5-1: B_M held at {B_M_TABLE[-1][1]}")
-    return {"D_M_m": d_m, "T_M_s": t, "beta_M": beta, "B_M": damping_coefficient(beta), "k_M_N_per_m": k,
+    return {"D_M_m": d_m, "T_M_s": t, "beta_M": beta, "B_M": reduction(beta), "k_M_N_per_m": k,
             "V_b_over_W": k * d_m / design.weight_N, "mu": mu, "form": "SM1" if use_sm1 else "SaM", "notes": notes}
 
 

@@ -27,3 +27,9 @@ def restoring_capability_ratio(design, mu: float, displacement_m: float) -> floa
     """d_Ed / d_r [-] (EN 1998-2 7.7.1): ≥ δ is required."""
     d_r = static_residual_m(design, mu)
     return 0.0 if math.isinf(d_r) else displacement_m / d_r
+
+
+def damping_divisor(beta: float) -> float:
+    """1/η with η = sqrt(10/(5 + ξ)) ≥ 0.55, ξ in % (EN 1998-1 3.2.2.2(3)) [-]: divides the 5 % spectrum."""
+    eta = max(math.sqrt(0.10 / (0.05 + max(beta, 0.0))), 0.55)
+    return 1.0 / eta
