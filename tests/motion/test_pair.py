@@ -121,10 +121,10 @@ def test_unequal_steps_of_two_components_are_joined_exactly(tmp_path):
                                atol=1e-12)
     np.testing.assert_allclose(np.interp(grid, pair.time_s, pair.y.acceleration_m_s2), np.interp(grid, t_y, a_y),
                                atol=1e-12)
-    # the 2-D engine on the two samplings of one signal: close (1e-7 here; see the xfail below for 1e-9)
+    # the 2-D engine on the two samplings of one signal (issue 10: the answer must not depend on the sampling)
     joined, uniform = _two_samplings(pair, grid, t_x, a_x, t_y, a_y)
-    assert joined.peak_displacement_m == pytest.approx(uniform.peak_displacement_m, rel=1e-7)
-    assert joined.residual_displacement_m == pytest.approx(uniform.residual_displacement_m, rel=1e-6)
+    assert joined.peak_displacement_m == pytest.approx(uniform.peak_displacement_m, rel=1e-9)
+    assert joined.residual_displacement_m == pytest.approx(uniform.residual_displacement_m, rel=1e-9)
 
 
 def _two_samplings(pair, grid, t_x, a_x, t_y, a_y):
@@ -137,10 +137,8 @@ def _two_samplings(pair, grid, t_x, a_x, t_y, a_y):
     return joined, uniform
 
 
-@pytest.mark.xfail(strict=True, reason="planar engine (first version): the same piecewise-linear pair on the union "
-                   "grid and on the uniform 0.01 s grid differ by ~2e-8 relative in the peak, independent of rtol "
-                   "(the 1-D engine agrees to 1e-15 on the same grids); issue 10 asks for 1e-9")
 def test_two_samplings_of_one_pair_agree_to_the_issue_tolerance(tmp_path):
+    # read from files and joined by --resample, as a user would (planar before 06d906b differed by 2e-8 here)
     rng = np.random.default_rng(3)
     t_x, t_y = 0.02 * np.arange(301), 0.03 * np.arange(201)
     a_x, a_y = rng.normal(0, 2.0, t_x.size), rng.normal(0, 2.0, t_y.size)
