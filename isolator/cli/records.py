@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_json, echo_table, load_record_for_cli, user_error, write_csv_atomically
+from isolator.cli.common import (RECORD_HELP, app, echo_json, echo_table, error_line, load_record_for_cli, user_error,
+                                  write_csv_atomically)
 from isolator.cli.pairs import PAIR_HELP
 
 
@@ -108,19 +109,23 @@ def simulate(
     """
     from isolator.cli.pairs import (history_columns, load_motion_set_for_cli, result_rows, solve, system_keywords,
                                     wants_set)
+    import math
+
     from isolator.pair_analysis import response_summary
     from isolator.solver.system import InvalidSystemError, System
 
     system = system_keywords(mu_s=mu_s, mu_k=mu_k, stiffness_per_mass=stiffness_per_mass,
                              damping_per_mass=damping_per_mass, gravity=gravity, radius_m=radius_m,
                              mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate_s_per_m)
+    if radius_m is not None and not (math.isfinite(radius_m) and radius_m > 0):
+        user_error(f"--radius-m must be a finite number > 0, got {radius_m:g}")
     try:  # the isolator is checked before any file is read
         kwargs = {} if gravity is None else {"gravity_m_s2": gravity}
         kappa = stiffness_per_mass if radius_m is None else System(mu_static=mu_s, **kwargs).gravity_m_s2 / radius_m
         nominal = System(mu_static=mu_s, mu_kinetic=mu_k, stiffness_per_mass=kappa,
                          damping_per_mass=damping_per_mass, **kwargs)
-    except (InvalidSystemError, ZeroDivisionError) as err:
-        user_error(str(err) if str(err) else "--radius-m must be > 0")
+    except InvalidSystemError as err:
+        user_error(error_line(err))
     from isolator.analysis import SCHEMA_VERSION, record_dict
 
     if wants_set(pair, vertical, component):

@@ -89,6 +89,8 @@ def test_time_steps_differ_one_line_then_resample(records_dir):
     (["--mu-slow", "0.03"], "together"),
     (["--stiffness-per-mass", "3"], "not both"),
     (["--component", "pair"], "one component"),
+    (["--radius-m", "0"], "--radius-m must be a finite number > 0"),
+    (["--mu-slow", "0.09", "--mu-fast", "0.05", "--rate-s-per-m", "10"], "mu_slow"),
 ])
 def test_option_mistakes_are_one_line(records_dir, options, words):
     line = _one_line_error([str(records_dir / "at2" / "IELC180.AT2"), *PENDULUM, *options])
