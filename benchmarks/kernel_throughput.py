@@ -70,6 +70,13 @@ def time_records(records, design, repeat):
     return rows
 
 
+def _python_columns(n: float, python_s: float, compiled_s: float) -> str:
+    """The pure-Python throughput and the speed-up, or dashes when not measured (--no-python)."""
+    if math.isnan(python_s):
+        return f"{'-':>12s} {'-':>9s}"
+    return f"{n / python_s / 1e6:12.3f} {python_s / compiled_s:8.0f}x"
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
@@ -102,9 +109,9 @@ def main(argv=None) -> None:
             total_c += c_row["seconds"]
             total_p += p_row["seconds"]
             print(f"{c_row['record']:34s} {n:6d} {c_row['events']:6d} {n / c_row['seconds'] / 1e6:14.1f} "
-                  f"{n / p_row['seconds'] / 1e6:12.3f} {p_row['seconds'] / c_row['seconds']:8.0f}x")
+                  + _python_columns(n, p_row["seconds"], c_row["seconds"]))
         print(f"{'all records':34s} {int(total_n):6d} {'':6s} {total_n / total_c / 1e6:14.1f} "
-              f"{total_n / total_p / 1e6:12.3f} {total_p / total_c:8.0f}x")
+              + _python_columns(total_n, total_p, total_c))
 
 
 if __name__ == "__main__":
