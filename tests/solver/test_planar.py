@@ -359,3 +359,16 @@ def test_frequent_uplift_keeps_the_energy_balance_and_pairs_uplifts_with_landing
         i = min(int(time / 0.01), n - 2)
         frac = time / 0.01 - i
         assert abs(nz[i] + frac * (nz[i + 1] - nz[i])) <= 1e-9 * G
+
+
+def test_stiff_coarsely_sampled_spring_converges():
+    # ω dt = 10 and ~1 000 stick–slip events: the slow-speed hand-over scales with 1/ω, not dt
+    rng = np.random.default_rng(0)
+    rng.standard_normal(8000)
+    ax, ay = 5.0 * rng.standard_normal(2000), 5.0 * rng.standard_normal(2000)
+    system = dict(mu_static=0.05, stiffness_per_mass=1e6, damping_per_mass=10.0)
+    loose = simulate_pair(ax, ay, 0.01, **system)
+    tight = simulate_pair(ax, ay, 0.01, rtol=1e-14, **system)
+    assert loose.status == 0 and loose.n_events > 100
+    assert _rel(loose.peak_displacement_m, tight.peak_displacement_m) <= 1e-8
+    assert abs(loose.residual_displacement_m - tight.residual_displacement_m) <= 1e-8 * tight.peak_displacement_m
