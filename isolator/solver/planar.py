@@ -409,12 +409,20 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     )
 
 
+def _is_uniform(time_s) -> bool:
+    steps = np.diff(np.asarray(time_s, dtype=np.float64))
+    if steps.size == 0 or not np.all(np.isfinite(steps)) or np.any(steps <= 0.0):
+        return True  # not a valid grid: let the 1-D reader's error stand
+    dt = steps.sum() / steps.size
+    return bool(np.max(np.abs(steps - dt)) <= 1e-6 * dt + 1e-12)
+
+
 def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, **system):
     """Response to one component, a pair, or a pair and a vertical, with the model the scene needs.
 
-    One component, constant friction, no vertical and uniform sampling → the exact
-    1-D kernel (:func:`simulate_record`, a :class:`Response`); anything else → the
-    2-D engine (:func:`simulate_pair`, a :class:`PairResponse`; a single component
+    One component, constant friction, no vertical → the exact 1-D kernel
+    (:func:`simulate_record`, a :class:`Response`; if that kernel refuses a
+    non-uniform time grid, the 2-D engine with a_y = 0); anything else → the 2-D engine (:func:`simulate_pair`, a :class:`PairResponse`; a single component
     runs with a_y = 0).  ``model`` and ``model_reason`` say which ran and why.
 
     Parameters
@@ -430,28 +438,27 @@ def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=No
     model, reason = select_model(has_y=ay_m_s2 is not None, has_z=az_m_s2 is not None,
                                  velocity_dependent=velocity_dependent)
     if model == "1d-exact":
-        uniform = True
-        if time_s is not None:
-            steps = np.diff(np.asarray(time_s, dtype=np.float64))
-            if steps.size and np.all(np.isfinite(steps)) and np.all(steps > 0.0):
-                dt = (steps.sum()) / steps.size
-                uniform = bool(np.max(np.abs(steps - dt)) <= 1e-6 * dt + 1e-12)
-        if uniform:
-            kwargs = dict(system)
-            kwargs.pop("rtol", None)
-            radius = kwargs.pop("radius_m", None)
-            if radius is not None:
-                _parameters(kwargs.get("mu_static", 0.0), kwargs.get("mu_kinetic"),
-                            kwargs.get("stiffness_per_mass", 0.0), radius, kwargs.get("damping_per_mass", 0.0),
-                            kwargs.get("gravity_m_s2"), None, None, None)
-                g = kwargs.get("gravity_m_s2") or STANDARD_GRAVITY
-                kwargs["stiffness_per_mass"] = float(g) / float(radius)
+        kwargs = dict(system)
+        kwargs.pop("rtol", None)
+        radius = kwargs.pop("radius_m", None)
+        if radius is not None:
+            _parameters(kwargs.get("mu_static", 0.0), kwargs.get("mu_kinetic"),
+                        kwargs.get("stiffness_per_mass", 0.0), radius, kwargs.get("damping_per_mass", 0.0),
+                        kwargs.get("gravity_m_s2"), None, None, None)
+            g = kwargs.get("gravity_m_s2") or STANDARD_GRAVITY
+            kwargs["stiffness_per_mass"] = float(g) / float(radius)
+        try:
             result: Response = simulate_record(ax_m_s2, dt_s, time_s=time_s, **kwargs)
+        except RecordInputError:
+            if time_s is None or _is_uniform(time_s):
+                raise
+            # a 1-D kernel that needs a uniform step: the 2-D engine solves any grid
+            reason = ("one horizontal component, constant friction, no vertical, on a non-uniform time grid: "
+                      "the 2-D engine with a_y = 0")
+        else:
             result.model = model
             result.model_reason = reason
             return result
-        reason = ("one horizontal component, constant friction, no vertical, but non-uniform sampling: "
-                  "the 2-D engine with a_y = 0 (the exact 1-D kernel needs a uniform step)")
     ax = np.asarray(ax_m_s2, dtype=np.float64)
     ay = np.zeros_like(ax) if ay_m_s2 is None else ay_m_s2
     result = simulate_pair(ax, ay, dt_s, time_s=time_s, az_m_s2=az_m_s2, **system)
