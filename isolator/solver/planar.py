@@ -331,11 +331,20 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     nz = np.full(n, g) if az is None else g + az
     steps = np.diff(times)
     pga = float(np.max(np.hypot(ax, ay)))
-    vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * float(np.median(steps))
+    # the speed the larger of µs g and the PGA gives in the shortest time scale of the
+    # problem: the sample step, or the system's own 1/ω and 1/c when they are shorter
+    n_max = float(np.max(nz))
+    kappa_max = n_max * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
+    t_scale = float(np.median(steps))
+    if kappa_max > 0.0:
+        t_scale = min(t_scale, 1.0 / math.sqrt(kappa_max))
+    if prm[_rk.P_C] > 0.0:
+        t_scale = min(t_scale, 1.0 / prm[_rk.P_C])
+    vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * t_scale
     scales = np.empty(_pk.SC_SIZE)
     scales[_pk.SC_R_MIN] = 1e-13 * vref
     scales[_pk.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
-    scales[_pk.SC_X_FLOOR] = 1e-3 * vref * float(np.median(steps))
+    scales[_pk.SC_X_FLOOR] = 1e-3 * vref * t_scale
     scales[_pk.SC_V_FLOOR] = 1e-3 * vref
     refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)
     out_x = np.empty((n, 2))
@@ -398,6 +407,14 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         configuration=classify_configuration(prm[_rk.P_C], kappa_nominal),
         n_steps=int(summary[_pk.S_N_STEPS]),
     )
+
+
+def _is_uniform(time_s) -> bool:
+    steps = np.diff(np.asarray(time_s, dtype=np.float64))
+    if steps.size == 0 or not np.all(np.isfinite(steps)) or np.any(steps <= 0.0):
+        return True  # not a valid grid: let the 1-D reader's error stand
+    dt = steps.sum() / steps.size
+    return bool(np.max(np.abs(steps - dt)) <= 1e-6 * dt + 1e-12)
 
 
 def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, **system):

@@ -426,9 +426,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if phase == PH_SLIDE:
                     # slow sliding: the direction relaxes at the rate ~ µn/|V|; DOP853 is
                     # stable for h·rate up to ≈ 6, so stay inside rather than be rejected
-                    stiff = _STABLE * r / max(fscale, 1e-300)
-                    if h > stiff:
-                        h = stiff
+                    h = min(h, _STABLE * r / max(fscale, 1e-300))
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)

@@ -177,6 +177,7 @@ def _pair_from(records_dir, folder, names, n_max=None):
     return motions[0].dt_s, [m.acceleration_m_s2[:n] for m in motions]
 
 
+@pytest.mark.slow
 def test_real_pair_against_the_reference(records_dir):
     dt, (ax, ay) = _pair_from(records_dir, "superstitionhills1987_PTS",
                               ["RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2"], n_max=1600)
@@ -187,6 +188,7 @@ def test_real_pair_against_the_reference(records_dir):
     _compare(ref, r, 1e-9)
 
 
+@pytest.mark.slow
 def test_real_pair_with_vertical_against_the_reference(records_dir):
     dt, (ax, ay, az) = _pair_from(records_dir, "lomaprieta1989_APEEL2",
                                   ["np01002p_4225a_a.smc", "np01002p_4225c_a.smc", "np01002p_4225b_a.smc"],
@@ -218,6 +220,7 @@ def _hard_case(name):
         system = dict(mu_static=pga / G * (1 - 1e-3), mu_kinetic=pga / G * 0.9, radius_m=2.0)
     elif name == "chatter":
         # a stick–slip cycle in every period of a 25 Hz forcing that only just beats µs
+        t = t[:100]  # 1 s, 25 cycles: the reference needs ~0.2 s per stop
         ax = 0.045 * G + 0.03 * G * np.sin(2 * np.pi * 25 * t)
         ay = 0.01 * G * np.cos(2 * np.pi * 25 * t)
         system = dict(mu_static=0.07, mu_kinetic=0.05, stiffness_per_mass=1.0)
@@ -257,7 +260,7 @@ def test_hard_cases_against_the_reference(name):
     if name == "uplift":
         assert r.n_uplifts > 0 and r.model == "2d+vertical"
     if name == "chatter":
-        assert r.n_events > 200
+        assert r.n_events > 40
     if name == "starts above mu_s n":
         assert r.event_time_s[0] == 0.0 and r.event_names[0] == "breakaway"
 
@@ -359,3 +362,16 @@ def test_frequent_uplift_keeps_the_energy_balance_and_pairs_uplifts_with_landing
         i = min(int(time / 0.01), n - 2)
         frac = time / 0.01 - i
         assert abs(nz[i] + frac * (nz[i + 1] - nz[i])) <= 1e-9 * G
+
+
+def test_stiff_coarsely_sampled_spring_converges():
+    # ω dt = 10 and ~1 000 stick–slip events: the slow-speed hand-over scales with 1/ω, not dt
+    rng = np.random.default_rng(0)
+    rng.standard_normal(8000)
+    ax, ay = 5.0 * rng.standard_normal(2000), 5.0 * rng.standard_normal(2000)
+    system = dict(mu_static=0.05, stiffness_per_mass=1e6, damping_per_mass=10.0)
+    loose = simulate_pair(ax, ay, 0.01, **system)
+    tight = simulate_pair(ax, ay, 0.01, rtol=1e-14, **system)
+    assert loose.status == 0 and loose.n_events > 100
+    assert _rel(loose.peak_displacement_m, tight.peak_displacement_m) <= 1e-8
+    assert abs(loose.residual_displacement_m - tight.residual_displacement_m) <= 1e-8 * tight.peak_displacement_m
