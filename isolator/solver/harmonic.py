@@ -404,10 +404,21 @@ def force_ratios(k: float, eta: float, alpha: float, mu_s: float, mu_k: float, a
     return rho_ev, rho_vf, rho_ef, dominant
 
 
+#: Largest α, k and η accepted [-].  The paper's maps span k ≤ 6, α ≤ 10, η ≤ 1; the work per
+#: forcing period grows as sqrt(k / (α µs)) pieces (k = 1e9 takes 5 s, 1e12 minutes), and
+#: beyond 1e6 the block is either rigid or sliding freely: nothing left to compute.
+MAX_DIMENSIONLESS = 1e6
+#: Largest grid of an α scan (each point a harmonic response, ~0.5 ms: about 10 s).
+MAX_THRESHOLD_GRID = 20_000
+
+
 def _validate(alpha, k, eta, mu_s, mu_k):
     for name, value in (("alpha", alpha), ("k", k), ("eta", eta), ("mu_s", mu_s)):
         if not math.isfinite(value) or value < 0.0:
             raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
+        if name != "mu_s" and value > MAX_DIMENSIONLESS:
+            raise InvalidSystemError(f"{name} = {value:g} exceeds {MAX_DIMENSIONLESS:g}: beyond it the block is "
+                                     "rigid or slides freely, and the work per period grows without bound")
     if alpha <= 0.0:
         raise InvalidSystemError(f"alpha must be > 0, got {alpha!r}")
     if mu_s <= 0.0:
@@ -581,6 +592,12 @@ def harmonic_thresholds(k: float, eta: float, mu_s: float, mu_k: float | None = 
     mu_k = mu_s if mu_k is None else mu_k
     if not alpha_max > 1.0:
         raise InvalidSystemError(f"alpha_max must be > 1, got {alpha_max!r}")
+    if not alpha_max <= MAX_DIMENSIONLESS:
+        raise InvalidSystemError(f"alpha_max = {alpha_max:g} exceeds {MAX_DIMENSIONLESS:g} (the largest α the "
+                                 "harmonic solver accepts)")
+    if not 4 <= n_grid <= MAX_THRESHOLD_GRID:
+        raise InvalidSystemError(f"the α grid must have 4 to {MAX_THRESHOLD_GRID} points (each is a harmonic "
+                                 f"response, ~0.5 ms), got {n_grid}")
     _validate(1.0, float(k), float(eta), float(mu_s), float(mu_k))
     # the first grid point sits just above 1 so that the ST → moving step is at α_SS = 1;
     # narrow windows open at the sub- and super-harmonic resonances √k = n ω and
