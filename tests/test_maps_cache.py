@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 import pytest
 
-from isolator.maps import CacheEntryError, RegimeMap, cache_dir, effective_workers, regime_map
+from isolator.maps import CacheEntryError, RegimeMap, cache_dir, regime_map
+from isolator.parallel import available_cores, capped_workers
 
 FRAME = {"k_range": (0.0, 2.0), "alpha_range": (0.0, 4.0), "n_k": 8, "n_alpha": 8}
 
@@ -99,9 +98,9 @@ def test_pickled_arrays_are_never_loaded():
 
 
 def test_workers_are_capped_at_the_cores():
-    cores = os.cpu_count() or 1
-    assert effective_workers(cores + 14) == (cores, f"{cores + 14} workers asked, {cores} used (the machine has "
-                                                    f"{cores} cores)")
-    assert effective_workers(1) == (1, "")
+    cores = available_cores()
+    note = f"{cores + 14} workers asked, {cores} used (this machine gives this process {cores} cores)"
+    assert capped_workers(cores + 14) == (cores, note)
+    assert capped_workers(1) == (1, "")
     rmap = regime_map(0.5, 0.25, workers=cores + 14, use_cache=False, **FRAME)
-    assert rmap.notes == [f"{cores + 14} workers asked, {cores} used (the machine has {cores} cores)"]
+    assert rmap.notes == [note]
