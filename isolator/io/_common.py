@@ -74,8 +74,11 @@ def literal_pattern(path) -> str:
 
     :func:`obspy.read` expands ``*``, ``?`` and ``[…]`` in a ``str`` path, so that
     ``x[1].AT2`` would read ``x1.AT2``; escaping them makes a path name exactly one file.
+    The path is made absolute, so that it is never taken for a URL.
     """
-    return glob.escape(os.fspath(path))
+    # absolute: obspy downloads anything with "://" in its first characters; abspath also
+    # collapses "a://b" to "a:/b", so a local path can never be taken for a URL
+    return glob.escape(os.path.abspath(os.fspath(path)))
 
 
 def read_head(filename_or_buf, nbytes: int = DETECT_BYTES) -> bytes:
