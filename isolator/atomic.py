@@ -90,23 +90,17 @@ def resolve_output(path, *, allow_stream: bool = False) -> tuple[Path, bool]:
     """
     given = Path(path)
     try:
-        target = Path(os.path.realpath(given, strict=True))
+        mode = os.stat(given).st_mode  # follows links, /proc/self/fd magic links included
     except FileNotFoundError:
-        target = Path(os.path.realpath(given))  # a new file, or a dangling link: its would-be target
+        return Path(os.path.realpath(given)), False  # a new file, or a dangling link: its would-be target
     except OSError as err:
         if err.errno == errno.ELOOP:
             raise OutputError(given, "symbolic-link loop", errno.ELOOP) from None
         raise OutputError(given, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
-    try:
-        mode = os.stat(target).st_mode
-    except FileNotFoundError:
-        return target, False
-    except OSError as err:
-        raise OutputError(given, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
     if stat.S_ISREG(mode):
-        return target, False
+        return Path(os.path.realpath(given)), False
     if allow_stream and (stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
-        return target, True
+        return given, True  # written in place through the name given (/dev/stdout → a pipe)
     raise OutputError(given, f"is {file_kind(mode)}, not a regular file; outputs are written only to "
                              "regular files", errno.EINVAL)
 

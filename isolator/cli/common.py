@@ -143,16 +143,58 @@ def user_error(message: str) -> None:
     raise typer.Exit(2)
 
 
+def check_outputs(outputs, inputs, *, streams=()) -> None:
+    """Before any work: refuse outputs that resolve to an input or are not regular files.
+
+    Parameters
+    ----------
+    outputs : iterable of str or None
+        What the command will write.
+    inputs : iterable of str or None
+        What it reads (records, design files, response files …).
+    streams : iterable of str
+        Outputs that may be a character device or FIFO (``/dev/stdout``), written in place.
+
+    Ends the command with one line naming the output (exit 2) on a refusal.
+    """
+    from isolator.atomic import OutputError, refuse_overwriting_inputs, resolve_output
+
+    outputs = [item for item in outputs if item]
+    try:
+        refuse_overwriting_inputs(outputs, inputs)
+        for output in outputs:
+            resolve_output(output, allow_stream=output in streams)
+    except OutputError as err:
+        user_error(str(err))
+
+
+def write_error(err: OSError, path) -> None:
+    """End the command with one line naming the output that could not be written (exit 2)."""
+    from isolator.atomic import OutputError
+
+    if isinstance(err, OutputError):
+        user_error(str(err))
+    user_error(f"{getattr(err, 'filename', None) or path}: cannot write ({err.strerror or err})")
+
+
 def fmt(value, spec: str = ".6g") -> str:
     """``value`` formatted with ``spec``, or ``"n/a"`` for None."""
     return "n/a" if value is None else format(value, spec)
 
 
-def write_csv_atomically(path, header: str, columns) -> None:
-    """Write columns to CSV through a temporary file and a rename: never half a file."""
+def write_csv_atomically(path, header: str, columns, *, allow_stream: bool = False) -> None:
+    """Write columns to CSV through a temporary file and a rename: never half a file.
+
+    ``path`` "-" writes to standard output; with ``allow_stream`` a character device or
+    FIFO (``/dev/stdout``) is written in place (see :func:`isolator.atomic.atomic_path`).
+    """
     import numpy as np
 
     from isolator.atomic import atomic_path
 
-    with atomic_path(path) as temporary:
-        np.savetxt(temporary, np.column_stack(columns), delimiter=",", header=header, comments="", fmt="%.17g")
+    table = np.column_stack(columns)
+    if path == "-":
+        np.savetxt(sys.stdout, table, delimiter=",", header=header, comments="", fmt="%.17g")
+        return
+    with atomic_path(path, allow_stream=allow_stream) as temporary:
+        np.savetxt(temporary, table, delimiter=",", header=header, comments="", fmt="%.17g")

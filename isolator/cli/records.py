@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_json, echo_table, load_record_for_cli, user_error, write_csv_atomically
+from isolator.cli.common import (RECORD_HELP, app, check_outputs, echo_json, echo_table, load_record_for_cli,
+                                 user_error, write_csv_atomically, write_error)
 
 
 @app.command()
@@ -84,7 +85,8 @@ def simulate(
     response: str = typer.Option(None, "--response", help=RECORD_HELP["response"]),
     counts_factor: float = typer.Option(None, "--counts-factor", help=RECORD_HELP["counts_factor"]),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
-    out_csv: str = typer.Option(None, "--out-csv", help="Write the time histories to this CSV file."),
+    out_csv: str = typer.Option(None, "--out-csv", help="Write the time histories to this CSV file ('-' or "
+                                "/dev/stdout: to standard output, instead of the table)."),
 ) -> None:
     """Exact response of a friction–spring–dashpot isolator to a recorded ground acceleration.
 
@@ -101,6 +103,8 @@ def simulate(
                         damping_per_mass=damping_per_mass, **kwargs)
     except InvalidSystemError as err:
         user_error(str(err))
+    streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
+    check_outputs([None if out_csv == "-" else out_csv], [record, response], streams=[out_csv])
     motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
     try:
         result = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
@@ -114,9 +118,11 @@ def simulate(
                 out_csv,
                 "time_s,ground_acceleration_m_s2,displacement_m,velocity_m_s,absolute_acceleration_m_s2",
                 [result.time_s, result.ground_acceleration_m_s2, result.displacement_m,
-                 result.velocity_m_s, result.absolute_acceleration_m_s2])
+                 result.velocity_m_s, result.absolute_acceleration_m_s2], allow_stream=True)
         except OSError as err:
-            user_error(f"{out_csv}: cannot write ({err.strerror or err})")
+            write_error(err, out_csv)
+    if streamed:
+        return  # standard output holds the CSV: no table after it
     if as_json:
         echo_json(summary)
         return
@@ -140,3 +146,13 @@ def simulate(
         ("status", result.message, ""),
     ] + ([("time histories", out_csv, "")] if out_csv else []))
 
+
+def _is_stdout(path: str) -> bool:
+    """True if ``path`` is this process's standard output (``/dev/stdout``, its tty or pipe)."""
+    import os
+    import sys
+
+    try:
+        return os.path.samestat(os.stat(path), os.fstat(sys.stdout.fileno()))
+    except (OSError, ValueError, AttributeError):  # no such file, or stdout is not a real file (tests)
+        return path in ("/dev/stdout", "/proc/self/fd/1")

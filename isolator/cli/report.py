@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_table, load_record_for_cli, user_error
+from isolator.cli.common import (RECORD_HELP, app, check_outputs, echo_table, load_record_for_cli, user_error,
+                                 write_error)
 
 
 @app.command()
@@ -45,11 +46,23 @@ def report(
         record_path, record_label = resolve_record(record)
     except ValueError as err:
         user_error(str(err))
+    if output is None:
+        record_stem = record.split(":", 1)[1] if record.startswith("example:") else Path(record).stem
+        output = str(Path("reports") / f"{Path(design).stem}_{record_stem}.pdf")
+    if Path(output).suffix.lower() != ".pdf":
+        user_error(f"--output must end with .pdf, got {output}")
+    # the JSON sidecar too: `-o design.pdf` beside design.json must not overwrite the design file
+    check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path])
+    if scale_to_pga is not None:
+        from isolator.motion import MAX_ABS_ACCELERATION_G
+        from isolator.motion.ground_motion import MIN_TARGET_PGA_G
+
+        if not MIN_TARGET_PGA_G <= scale_to_pga <= MAX_ABS_ACCELERATION_G:
+            user_error(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
+                       f"got {scale_to_pga:g}")
     motion = load_record_for_cli(record_path, component, units, merge, dt)
     scaling_note = ""
     if scale_to_pga is not None:
-        if not scale_to_pga > 0:
-            user_error(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
         from isolator.units import STANDARD_GRAVITY
 
         original_g = motion.pga_m_s2 / STANDARD_GRAVITY
@@ -59,11 +72,6 @@ def report(
             user_error(f"{record_label}: {err}")
         scaling_note = (f"Record scaled to the design PGA {scale_to_pga:g} g (from {original_g:.4g} g, "
                         f"factor {scale_to_pga / original_g:.4g}).")
-    if output is None:
-        record_stem = record.split(":", 1)[1] if record.startswith("example:") else Path(record).stem
-        output = str(Path("reports") / f"{Path(design).stem}_{record_stem}.pdf")
-    if Path(output).suffix.lower() != ".pdf":
-        user_error(f"--output must end with .pdf, got {output}")
     from isolator.report.pdf import write_report
     from isolator.report.summary import analyse
     from isolator.solver.record import RecordInputError
@@ -76,7 +84,7 @@ def report(
     try:
         summary = write_report(analysis, output, map_resolution=map_resolution, command=command)
     except OSError as err:
-        user_error(f"{output}: cannot write ({err.strerror or err})")
+        write_error(err, output)
     echo_table([
         ("report", output, "(4 pages)"),
         ("numbers", str(Path(output).with_suffix(".json")), ""),
@@ -88,6 +96,10 @@ def report(
         ("peak displacement", f"{summary['peak_displacement_m']:.4g}", "m"),
         ("peak transmitted acc.", f"{summary['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
     ] + [("disagreement", note, "") for note in summary["disagreements"]])
+
+
+#: Figure formats of ``regime-map -o`` (matplotlib's vector and raster writers).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 @app.command("regime-map")
@@ -125,6 +137,12 @@ def regime_map_command(
     mu_s = 0.25 if mu_s is None else mu_s
     if not (k_range[1] > 0 and alpha_range[1] > 1):
         user_error("--k-max must be > 0 and --alpha-max > 1")
+    if output:
+        suffix = Path(output).suffix.lower()
+        if suffix not in FIGURE_SUFFIXES:
+            user_error(f"{output}: cannot tell the figure format from {suffix or 'no suffix'!r} "
+                       f"(use {', '.join(FIGURE_SUFFIXES)})")
+        check_outputs([output], [])
     try:
         start = time.perf_counter()
         rmap = regime_map(eta, mu_s, mu_k, k_range=k_range, alpha_range=alpha_range, n_k=resolution,
@@ -138,6 +156,7 @@ def regime_map_command(
             ("parameters", f"η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}", ""),
             ("time", f"{wall:.3g} s", "(read from cache)" if rmap.from_cache else
              f"(computed, {workers or 'idle-core'} worker(s))"),
+            *[("note", note, "") for note in rmap.notes],
             ("triple point", "none in frame" if triple is None else f"α̂ = {triple[0]:.4g}, k̂ = {triple[1]:.4g}", "")]
     if output:
         from isolator.report.figures import regime_map_figure
@@ -145,13 +164,12 @@ def regime_map_command(
         title = f"Harmonic regime map, η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}" + (
             f" (frame of the paper's {frame.replace('fig', 'Fig. ')})" if frame else "")
         fig = regime_map_figure(rmap, triple=triple, title=title)
-        target = Path(output)
+        from isolator.atomic import atomic_path
+
         try:
-            target.parent.mkdir(parents=True, exist_ok=True)
-            tmp = target.with_name(f".{target.name}.tmp{target.suffix}")
-            fig.savefig(tmp, dpi=130)
-            tmp.replace(target)
+            with atomic_path(output) as temporary:
+                fig.savefig(temporary, dpi=130, format=suffix[1:])
         except OSError as err:
-            user_error(f"{output}: cannot write ({err.strerror or err})")
+            write_error(err, output)
         rows.append(("figure", output, ""))
     echo_table(rows)
