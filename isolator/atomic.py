@@ -268,7 +268,7 @@ def output_lock(path):
                                           f"(lock {lock}); wait for it, or delete the lock if that run is gone",
                                     errno.EBUSY) from None
         except OSError as err:
-            raise OutputError(path, f"cannot create the lock {lock} ({_reason(err)})",
+            raise OutputError(path, f"cannot write (its lock {lock}: {_reason(err)})",
                               err.errno or errno.EIO) from None
         break
     else:
