@@ -173,7 +173,7 @@ def _is_output(path, outputs) -> bool:
     return False
 
 
-def expand_records(arguments, outputs=()) -> list[str]:
+def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[str]:
     """Record files from files, folders (recursively, sorted) and glob patterns.
 
     A literal path that does not exist is kept (its rows will say why); a glob that
@@ -188,20 +188,26 @@ def expand_records(arguments, outputs=()) -> list[str]:
     """
     files: list[str] = []
     outputs = [str(item) for item in outputs if item]
+    excluded = [] if excluded is None else excluded
+
+    def wanted(path) -> bool:
+        if _is_output(path, outputs):
+            excluded.append(str(path))  # run_batch checks that such a file is the batch's own
+            return False
+        return True
+
     for argument in arguments:
         argument = str(argument)
         if os.path.isdir(argument):
             found = sorted(str(p) for p in Path(argument).rglob("*")
                            if p.is_file() and not any(part.startswith(".") or part.endswith(".parts")
                                                       for part in p.relative_to(argument).parts[:-1])
-                           and not p.name.startswith(".")
-                           and not _NOT_RECORDS.match(p.name) and not _is_output(p, outputs))
+                           and not p.name.startswith(".") and not _NOT_RECORDS.match(p.name) and wanted(p))
             if not found:
                 raise BatchError(f"{argument}: folder holds no record files")
             files.extend(found)
         elif _glob.has_magic(argument) and not os.path.lexists(argument):
-            found = sorted(p for p in _glob.glob(argument, recursive=True)
-                           if os.path.isfile(p) and not _is_output(p, outputs))
+            found = sorted(p for p in _glob.glob(argument, recursive=True) if os.path.isfile(p) and wanted(p))
             if not found:
                 raise BatchError(f"{argument}: no file matches this pattern")
             files.extend(found)
@@ -328,7 +334,7 @@ class Task:
 
 
 def plan(records, designs_file, grids=(), component: str | None = None, options: ReadOptions = ReadOptions(),
-         design_mappings: list | None = None, outputs=()):
+         design_mappings: list | None = None, outputs=(), excluded: list | None = None):
     """(record files, [(record, component)], design cases) of a batch.
 
     Raises
@@ -336,7 +342,7 @@ def plan(records, designs_file, grids=(), component: str | None = None, options:
     BatchError
         Including a plan of more than :data:`MAX_PLAN_ROWS` rows.
     """
-    files = expand_records(records, outputs)
+    files = expand_records(records, outputs, excluded)
     mappings = design_mappings if design_mappings is not None else load_design_mappings(designs_file)
     cases = expand_designs(mappings, list(grids), source=str(designs_file))
     pairs = [(path, comp) for path in files for comp in record_components(path, component)]

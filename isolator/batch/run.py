@@ -10,7 +10,7 @@ from isolator.atomic import output_lock, refuse_overwriting_inputs
 from isolator.batch.executors import _iterate_dask, _iterate_local, check_scheduler
 from isolator.parallel import default_workers
 from isolator.batch.plan import BatchError, ReadOptions, _one_line, make_tasks, plan, record_digest, row_key
-from isolator.batch.store import PartStore, _existing_rows, to_table, write_table_atomically
+from isolator.batch.store import PartStore, _existing_rows, _table_is_ours, to_table, write_table_atomically
 
 
 @dataclass
@@ -82,8 +82,11 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     if output.suffix.lower() not in (".csv", ".parquet"):
         raise BatchError(f"-o {output}: the table must end with .csv or .parquet")
     outputs = [output, *(extra_outputs or ()), *([reports_dir] if reports_dir else [])]
-    files, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings, outputs)
+    excluded: list = []
+    files, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings, outputs, excluded)
     refuse_overwriting_inputs(outputs, [*files, designs_file])
+    # a file among the records that an output would replace is an input unless this batch wrote it
+    refuse_overwriting_inputs([item for item in excluded if not _table_is_ours(Path(item))], excluded)
     notes = check_scheduler(scheduler) if scheduler else []
     with output_lock(output):  # a second run on the same -o is refused, naming this one
         return _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map_resolution, progress,

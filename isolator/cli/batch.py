@@ -150,7 +150,7 @@ def batch(
         swept = [key for key, _ in grids]
         try:
             if summary is not None:
-                write_table_atomically(suite_summary(result.table, swept), summary)
+                write_table_atomically(suite_summary(result.table, swept), summary, keyed=True)
                 rows.append(("summary", summary, ""))
             if chart is not None:
                 pages = design_chart(result.table, swept[:2], chart)
