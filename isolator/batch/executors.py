@@ -45,14 +45,14 @@ def check_scheduler(address: str) -> list[str]:
     import ipaddress
     from urllib.parse import urlsplit
 
-    usage = f"--scheduler {address!r}: expected tcp://HOST:PORT or tls://HOST:PORT (e.g. tls://10.0.0.5:8786)"
+    usage = f"scheduler address {address!r}: expected tcp://HOST:PORT or tls://HOST:PORT (e.g. tls://10.0.0.5:8786)"
     try:
         parts = urlsplit(address)
         port = parts.port
     except ValueError:
-        raise BatchError(usage) from None
+        raise BatchError(usage, parameter="scheduler") from None
     if parts.scheme not in SCHEDULER_SCHEMES or not parts.hostname or port is None or parts.path not in ("", "/"):
-        raise BatchError(usage)
+        raise BatchError(usage, parameter="scheduler")
     if parts.scheme == "tcp":
         host = parts.hostname
         try:
@@ -60,7 +60,7 @@ def check_scheduler(address: str) -> list[str]:
         except ValueError:
             loopback = host == "localhost"
         if not loopback:
-            return [f"--scheduler {address} is plain TCP to another machine: tasks and results travel unencrypted "
+            return [f"scheduler {address} is plain TCP to another machine: tasks and results travel unencrypted "
                     "and unauthenticated, and dask's pickles let that scheduler run code here; use tls:// "
                     "(docs/security.md)"]
     return []
@@ -74,8 +74,9 @@ def _security(address: str):
 
     security = Security()  # reads distributed.comm.tls.* (ca-file, client cert and key) from the dask config
     if not security.tls_ca_file:
-        raise BatchError(f"--scheduler {address}: tls:// needs certificates in the dask configuration "
-                         "(distributed.comm.tls.ca-file, .client.cert, .client.key; see docs/security.md)")
+        raise BatchError(f"scheduler {address}: tls:// needs certificates in the dask configuration "
+                         "(distributed.comm.tls.ca-file, .client.cert, .client.key; see docs/security.md)",
+                         parameter="scheduler")
     return security
 
 
@@ -88,7 +89,7 @@ def _iterate_dask(tasks: list[Task], address: str):
     try:
         client = Client(address, timeout=10, security=security)
     except (OSError, TimeoutError, ValueError) as err:
-        raise BatchError(f"--scheduler {address}: cannot connect ({_one_line(err)})") from None
+        raise BatchError(f"scheduler {address}: cannot connect ({_one_line(err)})", parameter="scheduler") from None
     try:
         futures = {}
         for task in tasks:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, check_outputs, echo_table, user_error, write_error
+from isolator.cli.common import RECORD_HELP, app, check_outputs, echo_table, error_line, user_error, write_error
 
 
 @app.command()
@@ -83,7 +83,7 @@ def batch(
         if chart is not None and len(grids) < 2:
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
     except BatchError as err:
-        user_error(str(err))
+        user_error(error_line(err))
     check_outputs([output, summary, chart], [designs, *records])
     options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic)
 
@@ -118,7 +118,7 @@ def batch(
     except BatchError as err:
         if progress_bar is not None:
             progress_bar.stop()
-        user_error(str(err))
+        user_error(error_line(err))
     except OSError as err:  # an output that is an input, locked by another run, or unwritable
         if progress_bar is not None:
             progress_bar.stop()

@@ -66,6 +66,8 @@ def test_a_changed_record_is_recomputed(suite, tmp_path):
     assert again.n_resumed == 2  # only rec1's rows
     run_batch([str(records)], designs, tmp_path / "fresh.csv", jobs=1)
     pd.testing.assert_frame_equal(comparable(read(out)), comparable(read(tmp_path / "fresh.csv")))
+    rec0 = read(out)[read(out)["record"].str.endswith("rec0.txt")]
+    assert rec0["pga_m_s2"].tolist() == pytest.approx([0.6 * 9.80665] * 2, rel=1e-6)  # the new content
 
 
 def test_output_inside_the_records_folder_is_never_a_record(suite, monkeypatch):
@@ -159,14 +161,14 @@ def test_failures_blame_the_right_thing_without_raw_exception_text(suite, tmp_pa
                        'mu_static = 0.05\n')
     import isolator.batch.worker as worker
 
-    real = worker._analyse_row
+    real = worker._analysis_columns
 
-    def failing(design, *args, **kwargs):
+    def failing(task, case, design, *args, **kwargs):
         if design.name == "FPS damped":
             return 1.0 / 0.0
-        return real(design, *args, **kwargs)
+        return real(task, case, design, *args, **kwargs)
 
-    monkeypatch.setattr(worker, "_analyse_row", failing)
+    monkeypatch.setattr(worker, "_analysis_columns", failing)
     table = run_batch([str(records)], designs, tmp_path / "t.csv", jobs=1).table
     errors = table.set_index(["record", "design_name"])["error"]
     assert all(str(zeros) in e and "is zero" in e for e in table[table["record"] == str(zeros)]["error"])
