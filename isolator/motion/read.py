@@ -34,6 +34,7 @@ RECORD_DT_RANGE_S = (1e-5, 0.5)
 TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
 #: SAC ``idep`` codes for quantities that are not acceleration.
 _SAC_NOT_ACCELERATION = {6: "displacement (IDISP)", 7: "velocity (IVEL)"}
+_SAC_IACC = 8  #: SAC ``idep`` of acceleration (nm/s² by the SAC convention)
 
 
 _FORMAT_NAMES = {"PEER_AT2": "PEER AT2", "ISOLATOR_TEXT": "plain text", "CSMIP_V2": "CSMIP V2",
@@ -269,7 +270,14 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
     if fmt in ("MSEED", "SAC", "GSE2", "SEISAN") and len(channel) == 3 and channel[1] in "HL":
         raise _fail(path, f"channel {channel} is a seismometer (velocity) channel; acceleration from it "
                           "needs the instrument response", CountsError)
-    return _as_float64(trace) * _units_factor(path, units, "units given"), f"--units {units}", steps
+    source = f"--units {units}"
+    if fmt == "SAC" and int(stats.sac.get("idep", 5)) == _SAC_IACC:
+        # the header says "acceleration" and, by the SAC convention, nm/s²; files rarely follow it, so the
+        # units given are used, but the table says so instead of trusting them silently
+        source += " (the SAC header says acceleration, IACC, in nm/s² by convention: check the units)"
+        steps.append({"step": "units", "reason": "SAC idep = IACC states acceleration without a usable unit; "
+                                                 f"the units given ({units}) were used"})
+    return _as_float64(trace) * _units_factor(path, units, "units given"), source, steps
 
 
 def _as_float64(trace) -> np.ndarray:

@@ -41,3 +41,15 @@ def test_scaling_is_bounded_like_reading():
 def test_record_error_is_typed(tmp_path):
     with pytest.raises(RecordError):
         read_ground_motion(tmp_path)
+
+
+def test_sac_iacc_with_units_given_is_stated_not_silent(tmp_path):
+    import obspy
+
+    trace = obspy.Trace(0.1 * np.sin(np.arange(300) * 0.1), header={"delta": 0.01})
+    trace.stats.sac = obspy.core.AttribDict({"idep": 8})  # IACC: acceleration, nm/s² by convention
+    trace.write(str(tmp_path / "a.sac"), format="SAC")
+    motion = read_ground_motion(tmp_path / "a.sac", units="g")
+    assert motion.units_source.startswith("--units g (the SAC header says acceleration, IACC, in nm/s²")
+    assert motion.processing[-1]["step"] == "units"
+    assert motion.pga_m_s2 == pytest.approx(np.abs(trace.data).max() * 9.80665, rel=1e-9)  # used, and said
