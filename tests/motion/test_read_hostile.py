@@ -52,4 +52,4 @@ def test_sac_iacc_with_units_given_is_stated_not_silent(tmp_path):
     motion = read_ground_motion(tmp_path / "a.sac", units="g")
     assert motion.units_source.startswith("--units g (the SAC header says acceleration, IACC, in nm/s²")
     assert motion.processing[-1]["step"] == "units"
-    assert motion.pga_m_s2 == pytest.approx(np.abs(trace.data).max() * 9.80665, rel=1e-9)  # used, and said
+    assert motion.pga_m_s2 == pytest.approx(np.abs(trace.data).max() * 9.80665, rel=1e-6)  # float32 in SAC
