@@ -382,7 +382,13 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
     """
     mu_k = mu_s if mu_k is None else float(mu_k)
     from isolator.parallel import capped_workers
+    from isolator.solver.harmonic import MAX_DIMENSIONLESS
+    from isolator.solver.system import InvalidSystemError
 
+    for name, (low, high) in (("k", k_range), ("alpha", alpha_range)):
+        if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high <= MAX_DIMENSIONLESS):
+            raise InvalidSystemError(f"the {name} range [{low:g}, {high:g}] must lie within [0, "
+                                     f"{MAX_DIMENSIONLESS:g}] (the harmonic solver's domain)")
     workers, workers_note = capped_workers(workers)
     notes = [workers_note] if workers_note else []
     base_key = _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k)
