@@ -237,7 +237,9 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
     # regime names at the centre of each region
     from scipy.ndimage import distance_transform_edt
 
-    for code, name in enumerate(("ST", "SS", "SL")):
+    from isolator.metrics import REGIMES
+
+    for code, name in enumerate(REGIMES):
         mask = rmap.regime == code
         if mask.any():
             # the label goes where the region is deepest (farthest from its edges)
