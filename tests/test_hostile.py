@@ -64,6 +64,8 @@ def corpus(tmp_path_factory):
     (root / "design_loop.toml").symlink_to(root / "design_loop.toml")
     (root / "records").mkdir()
     (root / "records" / "a.AT2").write_text(at2_text(_record_values()))
+    (root / "bench_records").mkdir()
+    (root / "bench_records" / "bench.csv").write_text("a record that happens to be named like a bench output\n")
     # a batch output whose lock is held by a live process (pid 1) on this host
     (root / "locked.csv.lock").write_text(f"pid=1 host={socket.gethostname()} since=earlier\n")
     return root
@@ -143,6 +145,7 @@ def _cases(c: Path):
         # bench
         (["bench", "--records", str(c / "nowhere"), "--out", str(c / "out" / "bench")], "no such folder"),
         (["bench", "--repeats", "0"], "'--repeats'"),
+        (["bench", "--records", str(c / "bench_records"), "--out", str(c / "bench_records")], "is an input"),
     ]
 
 
