@@ -21,13 +21,13 @@ from isolator.batch.plan import MAX_PLAN_ROWS
 from isolator.batch.store import PartStore, write_table_atomically
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from test_batch import DESIGNS, read, write_record  # noqa: E402
+from test_batch import DESIGNS, read, write_record
 
 
 @pytest.fixture(autouse=True)
 def _private_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("ISOLATOR_CACHE_DIR", str(tmp_path / "cache"))
-    import isolator.batch.store as store
+    from isolator.batch import store
 
     monkeypatch.setattr(store, "_SECRET", None)  # this test's own key
 
@@ -159,7 +159,7 @@ def test_failures_blame_the_right_thing_without_raw_exception_text(suite, tmp_pa
     zeros.write_text("# units: g\n" + "".join(f"{0.01 * i:.2f},0\n" for i in range(50)))
     designs.write_text(DESIGNS + '\n[[design]]\nname = "absurd"\nmass_kg = 1000.0\nradius_m = 1e-300\n'
                        'mu_static = 0.05\n')
-    import isolator.batch.worker as worker
+    from isolator.batch import worker
 
     real = worker._analysis_columns
 
