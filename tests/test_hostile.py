@@ -197,6 +197,15 @@ def test_damaged_cache_and_parts_are_repaired_and_said(corpus, tmp_path, monkeyp
     again = RUNNER.invoke(app, ["regime-map", "-n", "8", "--k-max", "2", "--alpha-max", "3"])
     assert again.exit_code == 0 and again.stderr == ""
     assert f"cached map {entry} was damaged" in again.stdout and "recomputed" in again.stdout
+    # the report's map too: its table says the damaged entry was recomputed
+    report = ["report", str(corpus / "good.AT2"), "-d", str(corpus / "design.toml"), "-o", str(tmp_path / "r.pdf"),
+              "--map-resolution", "8", "--no-pdf"]
+    assert RUNNER.invoke(app, report).exit_code == 0
+    for entry in (tmp_path / "cache" / "maps").glob("map-*-refined.npz"):
+        entry.write_bytes(b"PK\x03\x04 not a zip")
+    result = RUNNER.invoke(app, report)
+    assert result.exit_code == 0 and result.stderr == ""
+    assert any(line.startswith("note") and "was damaged" in line for line in result.stdout.splitlines())
     # batch parts with a truncated line and bytes that are not UTF-8: skipped, counted, recomputed
     out = tmp_path / "t.csv"
     parts = Path(str(out) + ".parts")

@@ -105,7 +105,14 @@ def report(
         ("dominant force", f"{summary['dominant_force_record']} / {summary['dominant_force_harmonic']}", ""),
         ("peak displacement", f"{summary['peak_displacement_m']:.4g}", "m"),
         ("peak transmitted acc.", f"{summary['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
-    ] + [("disagreement", note, "") for note in summary["disagreements"]])
+    ] + [("disagreement", note, "") for note in summary["disagreements"]]
+      + [("note", note, "") for note in _map_notes(analysis)])
+
+
+def _map_notes(analysis) -> list[str]:
+    """What the regime map has to say (a damaged cache entry recomputed …)."""
+    harmonic_map = getattr(analysis, "harmonic_map", None)
+    return list(getattr(getattr(harmonic_map, "regime_map", None), "notes", []) or [])
 
 
 #: Figure formats of ``regime-map -o`` (matplotlib's vector and raster writers).
