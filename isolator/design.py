@@ -87,7 +87,14 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
     """
     import tomllib
 
+    from isolator.io._common import input_file_problem
+
     path = Path(path)
+    problem = input_file_problem(path)  # before opening: a FIFO must not block, a loop is not "missing"
+    if problem == "no such file":
+        raise error_type(f"{path}: no such {what}")
+    if problem is not None and problem != "file is empty":
+        raise error_type(f"{path}: {problem}")
     try:
         text = path.read_bytes().decode("utf-8")
     except FileNotFoundError:
@@ -101,6 +108,33 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
 
 
 from isolator.errors import DesignError  # noqa: E402,F401 - the design's error, defined with the others
+
+
+#: Supported mass M accepted [kg]: from a gram (a laboratory specimen) to 1e10 kg (ten times
+#: the heaviest isolated structure); outside, K/M and γ/M lose their meaning (1e-320 kg is
+#: a subnormal number: K/M overflows).
+MASS_RANGE_KG = (1e-3, 1e10)
+
+
+def _check_derived(fail, mass_kg, stiffness_N_per_m, damping_Ns_per_m, radius_m, damping_ratio) -> None:
+    """Refuse a design whose K/M or γ/M the solver cannot take, naming the key at fault."""
+    from isolator.solver.system import MAX_DAMPING_PER_MASS, MAX_STIFFNESS_PER_MASS
+
+    low, high = MASS_RANGE_KG
+    if not low <= mass_kg <= high:
+        raise fail(f"key 'mass_kg' must lie in [{low:g}, {high:g}] kg, got {mass_kg:g}")
+    kappa = stiffness_N_per_m / mass_kg
+    if not kappa <= MAX_STIFFNESS_PER_MASS:
+        key = "radius_m" if radius_m is not None else "stiffness_N_per_m"
+        given = f"{radius_m:g} m" if radius_m is not None else f"{stiffness_N_per_m:g} N/m"
+        raise fail(f"key '{key}' = {given} gives K/M = {kappa:.3g} 1/s² (natural period "
+                   f"{2 * math.pi / math.sqrt(kappa):.3g} s), above {MAX_STIFFNESS_PER_MASS:g} 1/s²: "
+                   "no isolator is that stiff")
+    c = damping_Ns_per_m / mass_kg
+    if not c <= MAX_DAMPING_PER_MASS:
+        key = "damping_ratio" if damping_ratio is not None else "damping_Ns_per_m"
+        raise fail(f"key '{key}' gives γ/M = {c:.3g} 1/s, above {MAX_DAMPING_PER_MASS:g} 1/s: no damper is "
+                   "that strong")
 
 
 @dataclass(frozen=True)
@@ -285,6 +319,7 @@ class Design:
             damping = 2.0 * damping_ratio * math.sqrt(stiffness * mass_kg)
         else:
             damping = number("damping_Ns_per_m") or 0.0
+        _check_derived(fail, mass_kg, stiffness, damping, radius_m, damping_ratio)
 
         # velocity-dependent friction (all three or none): 0 <= µ_slow <= µ_fast < 1, a > 0
         velocity_keys = ("mu_slow", "mu_fast", "rate_s_per_m")

@@ -33,6 +33,20 @@ def default_workers() -> int:
     return max(1, min(cores, idle))
 
 
+def capped_workers(requested: int | None) -> tuple[int, str]:
+    """Processes to use, and a sentence when the request was capped at the available cores.
+
+    More processes than cores only add start-up time and contention (``--workers 16``
+    on 2 cores runs 2).  None gives :func:`default_workers` without a note.
+    """
+    if requested is None:
+        return default_workers(), ""
+    cores = available_cores()
+    if requested > cores:
+        return cores, f"{requested} workers asked, {cores} used (this machine gives this process {cores} cores)"
+    return max(1, int(requested)), ""
+
+
 _WARM = False
 
 
@@ -58,6 +72,36 @@ def warm_up() -> None:
     _WARM = True
 
 
+def _die_with_parent(parent_pid: int) -> None:
+    """Pool initializer: this worker ends when the process that started it ends.
+
+    On Linux the kernel sends SIGTERM on the parent's death (``prctl(PR_SET_PDEATHSIG)``),
+    whatever killed it (kill -9 included); elsewhere, and against the race where the
+    parent died before this line, a daemon thread checks the parent once a second.
+    """
+    import signal
+    import threading
+    import time
+
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGTERM, 0, 0, 0)  # 1 = PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        pass
+
+    def watch() -> None:
+        while True:
+            if os.getppid() != parent_pid:
+                os._exit(1)  # orphaned: nobody will collect our results
+            time.sleep(1.0)
+
+    if os.getppid() != parent_pid:
+        os._exit(1)
+    threading.Thread(target=watch, name="isolator-parent-watch", daemon=True).start()
+
+
 @contextmanager
 def process_pool(workers: int):
     """A :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` forked processes, warmed up.
@@ -73,7 +117,9 @@ def process_pool(workers: int):
         context = multiprocessing.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform
         context = None
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=context)
+    # workers die with their parent: a killed batch leaves no process computing for nobody
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_die_with_parent,
+                               initargs=(os.getpid(),))
     try:
         yield pool
     finally:

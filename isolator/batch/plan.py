@@ -19,8 +19,15 @@ GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kineti
 #: Columns that measure time: they differ between two runs of the same batch.
 TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
 
-#: Files a folder holds that are never records.
-_NOT_RECORDS = re.compile(r"^(readme.*|.*\.(md|json|toml|pdf|png|parquet|py|xml|zip|gz))$", re.IGNORECASE)
+#: Files a folder holds that are never records (a batch's own lock and MAC files included).
+_NOT_RECORDS = re.compile(r"^(readme.*|.*\.(md|json|toml|pdf|png|parquet|py|xml|zip|gz|lock|jsonl))$",
+                          re.IGNORECASE)
+#: Largest batch planned [rows]: 1,800 rows take ~7 s on 2 cores, so a million rows is about
+#: an hour; larger sweeps are refused before anything is allocated (split them).
+MAX_PLAN_ROWS = 1_000_000
+#: Version of what a row holds: part of every row key, so that rows of an older isolator
+#: whose columns meant something else are never reused.
+ROW_SCHEMA_VERSION = 2
 
 
 from isolator.errors import BatchError  # noqa: E402,F401 - defined with the other typed errors
@@ -72,6 +79,9 @@ def parse_grid(spec: str) -> tuple[str, list[float]]:
         raise BatchError(f"grid {spec!r}: COUNT must be >= 1, got {count}", parameter="grid")
     if count == 1 and start != stop:
         raise BatchError(f"grid {spec!r}: COUNT = 1 needs START = STOP", parameter="grid")
+    if count > MAX_PLAN_ROWS:
+        raise BatchError(f"grid {spec!r}: COUNT = {count} exceeds the largest batch, {MAX_PLAN_ROWS:,} rows "
+                         "(split the sweep)", parameter="grid")
     return key, [float(v) for v in np.linspace(start, stop, count)]
 
 
@@ -119,6 +129,10 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
     """
     from isolator.design import Design, DesignError
 
+    n_cases = len(mappings) * math.prod(len(values) for _, values in grids)
+    if n_cases > MAX_PLAN_ROWS:
+        raise BatchError(f"the sweep plans {n_cases:,} designs, more than the largest batch ({MAX_PLAN_ROWS:,} "
+                         "rows): split it")
     combos = list(itertools.product(*[[(key, value) for value in values] for key, values in grids])) or [()]
     cases = []
     seen: dict = {}  # the same design twice (a repeated table, coinciding grid values) keeps both rows
@@ -147,32 +161,56 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
     return cases
 
 
-def expand_records(arguments) -> list[str]:
+def _is_output(path, outputs) -> bool:
+    """True if ``path`` is one of the batch's outputs, its part files, lock or report folder."""
+    real = os.path.realpath(path)
+    for output in outputs:
+        out = os.path.realpath(output)
+        if real in (out, out + ".lock") or real.startswith(out + ".parts" + os.sep) or \
+                real.startswith(out.rstrip(os.sep) + os.sep):
+            return True
+    return False
+
+
+def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[str]:
     """Record files from files, folders (recursively, sorted) and glob patterns.
 
     A literal path that does not exist is kept (its rows will say why); a glob that
-    matches nothing and an empty folder are user mistakes.
+    matches nothing and an empty folder are user mistakes.  Files of the batch itself
+    (``outputs``: the table, its ``.parts/`` and lock, the summary, chart and reports
+    folder) and any ``*.parts`` folder are never records, so that ``-o`` may sit inside
+    the records folder.
 
     Raises
     ------
     BatchError
     """
     files: list[str] = []
+    outputs = [str(item) for item in outputs if item]
+    excluded = [] if excluded is None else excluded
+
+    def wanted(path) -> bool:
+        if _is_output(path, outputs):
+            excluded.append(str(path))  # run_batch checks that such a file is the batch's own
+            return False
+        return True
+
     for argument in arguments:
         argument = str(argument)
         if os.path.isdir(argument):
             found = sorted(str(p) for p in Path(argument).rglob("*")
-                           if p.is_file() and not any(part.startswith(".") for part in p.relative_to(argument).parts)
-                           and not _NOT_RECORDS.match(p.name))
+                           if p.is_file() and not any(part.startswith(".") or part.endswith(".parts")
+                                                      for part in p.relative_to(argument).parts[:-1])
+                           and not p.name.startswith(".") and not _NOT_RECORDS.match(p.name) and wanted(p))
             if not found:
                 raise BatchError(f"{argument}: folder holds no record files")
             files.extend(found)
-        elif _glob.has_magic(argument):
-            found = sorted(p for p in _glob.glob(argument, recursive=True) if os.path.isfile(p))
+        elif _glob.has_magic(argument) and not os.path.lexists(argument):
+            found = sorted(p for p in _glob.glob(argument, recursive=True) if os.path.isfile(p) and wanted(p))
             if not found:
                 raise BatchError(f"{argument}: no file matches this pattern")
             files.extend(found)
-        else:
+        else:  # a literal path, even with [ ] * ? in its name, names exactly that file
             files.append(argument)
     unique, seen = [], set()
     for path in files:
@@ -274,10 +312,52 @@ class ReadOptions:
         return json.dumps(options, sort_keys=True)
 
 
-def row_key(record_path: str, component: str | None, design_hash: str, options: ReadOptions) -> str:
-    """Deterministic key of a row: absolute record path, component asked, design hash, read options."""
-    text = "\0".join([os.path.abspath(record_path), component or "", design_hash, options.fingerprint()])
-    return hashlib.sha1(text.encode()).hexdigest()[:20]
+_DIGESTS: dict = {}
+
+
+def record_digest(path: str) -> str:
+    """SHA-256 of a record file's bytes (``absent`` or ``unreadable: …`` when there are none).
+
+    Cached per process by (path, size, modification time), so a batch reads each file once
+    for its keys.  Non-regular files are never opened (a FIFO would block).
+    """
+    from isolator.io._common import input_file_problem
+
+    problem = input_file_problem(path)
+    if problem is not None:
+        return f"unreadable: {problem}"
+    stat = os.stat(path)
+    cache_key = (os.path.abspath(path), stat.st_size, stat.st_mtime_ns)
+    if cache_key not in _DIGESTS:
+        digest = hashlib.sha256()
+        try:
+            with open(path, "rb") as stream:
+                for block in iter(lambda: stream.read(1 << 20), b""):
+                    digest.update(block)
+        except OSError as err:
+            return f"unreadable: {err.strerror or err}"
+        _DIGESTS[cache_key] = digest.hexdigest()
+    return _DIGESTS[cache_key]
+
+
+def row_key(record_path: str, component: str | None, design_hash: str, options: ReadOptions,
+            content: str | None = None) -> str:
+    """Key of a row, from what the row *is*: never from a position in a plan.
+
+    The record (absolute path and the SHA-256 of its content: a file changed since an
+    earlier run is recomputed), the component asked, the design's own keys and values
+    (``design_hash``), the read options that change results, and
+    :data:`ROW_SCHEMA_VERSION`.
+
+    Parameters
+    ----------
+    content : str, optional
+        :func:`record_digest` of the file, if already computed.
+    """
+    content = record_digest(record_path) if content is None else content
+    text = "\0".join([os.path.abspath(record_path), content, component or "", design_hash, options.fingerprint(),
+                      str(ROW_SCHEMA_VERSION)])
+    return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
 @dataclass
@@ -293,12 +373,21 @@ class Task:
 
 
 def plan(records, designs_file, grids=(), component: str | None = None, options: ReadOptions = ReadOptions(),
-         design_mappings: list | None = None):
-    """(record files, [(record, component)], design cases) of a batch."""
-    files = expand_records(records)
+         design_mappings: list | None = None, outputs=(), excluded: list | None = None):
+    """(record files, [(record, component)], design cases) of a batch.
+
+    Raises
+    ------
+    BatchError
+        Including a plan of more than :data:`MAX_PLAN_ROWS` rows.
+    """
+    files = expand_records(records, outputs, excluded)
     mappings = design_mappings if design_mappings is not None else load_design_mappings(designs_file)
     cases = expand_designs(mappings, list(grids), source=str(designs_file))
     pairs = [(path, comp) for path in files for comp in record_components(path, component)]
+    if len(pairs) * len(cases) > MAX_PLAN_ROWS:
+        raise BatchError(f"the batch plans {len(pairs) * len(cases):,} rows ({len(pairs)} record components × "
+                         f"{len(cases)} designs), more than the largest batch ({MAX_PLAN_ROWS:,}): split it")
     return files, pairs, cases
 
 
@@ -310,7 +399,8 @@ def make_tasks(pairs, cases, options: ReadOptions, done: set, workers: int, repo
     size = max(1, math.ceil(len(cases) / chunks))
     tasks, n_rows = [], 0
     for path, comp in pairs:
-        todo = [(case, row_key(path, comp, case.design_hash, options)) for case in cases]
+        content = record_digest(path)
+        todo = [(case, row_key(path, comp, case.design_hash, options, content)) for case in cases]
         todo = [(case, key) for case, key in todo if key not in done]
         for start in range(0, len(todo), size):
             chunk = todo[start:start + size]

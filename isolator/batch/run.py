@@ -6,10 +6,11 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from isolator.batch.executors import _iterate_dask, _iterate_local
+from isolator.atomic import output_lock, refuse_overwriting_inputs
+from isolator.batch.executors import _iterate_dask, _iterate_local, check_scheduler
 from isolator.parallel import default_workers
-from isolator.batch.plan import BatchError, ReadOptions, _one_line, make_tasks, plan, row_key
-from isolator.batch.store import PartStore, _existing_rows, to_table, write_table_atomically
+from isolator.batch.plan import BatchError, ReadOptions, make_tasks, plan, record_digest, row_key
+from isolator.batch.store import PartStore, _existing_rows, _table_is_ours, to_table, write_table_atomically
 
 
 @dataclass
@@ -22,6 +23,8 @@ class BatchResult:
     n_resumed: int  #: rows found done from an earlier run
     n_lost_tasks: int  #: tasks whose worker died (rerun to finish them)
     lost_messages: list = field(default_factory=list)
+    #: sentences for the user: damaged part lines skipped, an unencrypted scheduler …
+    notes: list = field(default_factory=list)
     seconds: dict = field(default_factory=dict)
     table: object = None  #: pandas.DataFrame
 
@@ -35,7 +38,7 @@ class BatchResult:
 def run_batch(records, designs_file, output, *, grids=(), component: str | None = None,
               options: ReadOptions = ReadOptions(), jobs: int | None = None, scheduler: str | None = None,
               reports_dir: str | None = None, map_resolution: int = 30, progress=None,
-              design_mappings: list | None = None) -> BatchResult:
+              design_mappings: list | None = None, extra_outputs=()) -> BatchResult:
     """Run a batch and write its table (see the module docstring).
 
     Parameters
@@ -62,6 +65,8 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
         Also write the PDF report of every row there (slow).
     progress : callable, optional
         ``progress(total=n)`` once, then ``progress(advance=n)`` per finished task.
+    extra_outputs : list of str, optional
+        Other files the command writes (summary, chart): never read as records nor inputs.
 
     Returns
     -------
@@ -71,18 +76,44 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     ------
     BatchError
         A mistake in the command (records, designs file, grid, output suffix, scheduler).
+    isolator.atomic.OutputError
+        An output that is an input, or that another run is writing (its lock).
     """
     clock = time.perf_counter()
     output = Path(output)
     if output.suffix.lower() not in (".csv", ".parquet"):
         raise BatchError(f"{output}: the table must end with .csv or .parquet", parameter="output")
-    _, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings)
-    planned = {row_key(path, comp, case.design_hash, options) for path, comp in pairs for case in cases}
+    outputs = [output, *(extra_outputs or ()), *([reports_dir] if reports_dir else [])]
+    excluded: list = []
+    files, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings, outputs, excluded)
+    refuse_overwriting_inputs(outputs, [*files, designs_file])
+    # a file among the records that an output would replace is an input unless this batch wrote it
+    refuse_overwriting_inputs([item for item in excluded if not _table_is_ours(Path(item))], excluded)
+    notes = check_scheduler(scheduler) if scheduler else []
+    with output_lock(output):  # a second run on the same -o is refused, naming this one
+        return _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map_resolution, progress,
+                           clock, notes)
+
+
+def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map_resolution, progress, clock,
+                notes) -> BatchResult:
+    # every planned row by its key: what it is, and where the current plan puts it
+    planned = {}
+    for path, comp in pairs:
+        content = record_digest(path)
+        for case in cases:
+            planned[row_key(path, comp, case.design_hash, options, content)] = (path, case)
     store = PartStore(output)
     done_rows = {}
-    for row in _existing_rows(output, planned) + store.rows():
+    for row in _existing_rows(output, set(planned)) + store.rows(set(planned)):
         if row.get("row_key") in planned:
-            done_rows[row["row_key"]] = row
+            path, case = planned[row["row_key"]]
+            # a reused row takes its place in this plan: positions are never part of what it is
+            done_rows[row["row_key"]] = {**row, "record": path, "design_index": case.index,
+                                         "design_file_index": case.file_index}
+    if store.damaged:
+        notes.append(f"{store.damaged} damaged line(s) in {store.directory} skipped (truncated, corrupt or not "
+                     "written by this user); their rows are recomputed")
     workers = 1 if scheduler is None and (jobs or default_workers()) <= 1 else (jobs or default_workers())
     tasks, n_todo = make_tasks(pairs, cases, options, set(done_rows), workers, reports_dir, map_resolution)
     if progress is not None:
@@ -94,7 +125,8 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
         for task, result in iterator:
             if isinstance(result, BaseException):
                 lost += 1
-                lost_messages.append(f"{task.record}: {type(result).__name__}: {_one_line(result)}")
+                lost_messages.append(f"{task.record}: its worker was lost ({type(result).__name__}); rerun the "
+                                     "same command to finish it")
                 continue
             store.write(result)
             for row in result:
@@ -104,12 +136,12 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     compute_seconds = time.perf_counter() - clock - planning_seconds
     write_start = time.perf_counter()
     table = to_table(list(done_rows.values()))
-    write_table_atomically(table, output)
+    write_table_atomically(table, output, keyed=True)
     if not lost:
         store.remove()
     write_seconds = time.perf_counter() - write_start
     n_failed = int((table["error"] != "").sum())
     return BatchResult(output=str(output), n_rows=len(table), n_failed=n_failed,
-                       n_resumed=len(planned) - n_todo, n_lost_tasks=lost, lost_messages=lost_messages,
+                       n_resumed=len(planned) - n_todo, n_lost_tasks=lost, lost_messages=lost_messages, notes=notes,
                        seconds={"plan": planning_seconds, "compute": compute_seconds, "write": write_seconds},
                        table=table)

@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import hashlib
+import hmac
 import json
 import os
 import time
 import uuid
 from pathlib import Path
 
-from isolator.atomic import atomic_path
-from isolator.serialize import dumps
+from isolator.atomic import atomic_path, write_text_atomically
+from isolator.serialize import dumps, json_safe
 
 #: Columns that measure time: they differ between two runs of the same batch.
 TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
@@ -52,24 +54,109 @@ COLUMNS = (
 )
 
 
+_SECRET: bytes | None = None
+
+
+def _secret() -> bytes:
+    """This user's key for the content keys of part lines and tables (32 random bytes).
+
+    Kept in ``$ISOLATOR_CACHE_DIR/batch.key`` (or ``~/.cache/isolator/batch.key``), mode
+    0600: whoever can write a batch's ``.parts/`` folder but not read this key cannot make
+    a line that passes.  Without a writable cache the key lives for this process only
+    (earlier parts are then recomputed, never trusted).
+    """
+    global _SECRET
+    if _SECRET is not None:
+        return _SECRET
+    root = os.environ.get("ISOLATOR_CACHE_DIR")
+    path = (Path(root) if root else Path.home() / ".cache" / "isolator") / "batch.key"
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        except FileExistsError:
+            key = path.read_bytes()
+        else:
+            key = os.urandom(32)
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(key)
+        if len(key) < 32:
+            raise OSError("short key")
+    except OSError:
+        key = os.urandom(32)
+    _SECRET = key
+    return key
+
+
+def content_key(data: bytes) -> str:
+    """HMAC-SHA256 of ``data`` under this user's key (:func:`_secret`)."""
+    return hmac.new(_secret(), data, hashlib.sha256).hexdigest()
+
+
+def _valid_row(row, planned) -> bool:
+    """A part row holds only known columns with JSON scalars, and a planned key."""
+    if not isinstance(row, dict) or row.get("row_key") not in planned:
+        return False
+    return all(key in _COLUMN_SET and (value is None or isinstance(value, (str, int, float, bool)))
+               for key, value in row.items())
+
+
+_COLUMN_SET = frozenset(COLUMNS)
+
+
+def _canonical(row) -> bytes:
+    return json.dumps(row, sort_keys=True, allow_nan=False, separators=(",", ":")).encode("utf-8")
+
+
 class PartStore:
-    """``<output>.parts/``: one JSON-lines file per finished task, written atomically."""
+    """``<output>.parts/``: one JSON-lines file per finished task, written atomically.
+
+    Each line is ``{"row": {…}, "key": HMAC}``: a line whose content key does not match
+    (truncated, bit-flipped, crafted), that is not JSON or not UTF-8, or whose row holds
+    unknown columns, nested values or a key outside the plan, is skipped and counted in
+    :attr:`damaged`; its row is then recomputed.
+    """
 
     def __init__(self, output):
         output = Path(output)
         self.directory = output.with_name(output.name + ".parts")
+        self.damaged = 0  #: part lines skipped by the last :meth:`rows`
 
-    def rows(self) -> list[dict]:
-        """Rows of every complete part (temporary files of an interrupted write are ignored)."""
+    def rows(self, planned=None) -> list[dict]:
+        """Rows of every complete part that pass the checks (see the class docstring).
+
+        Parameters
+        ----------
+        planned : set of str, optional
+            Row keys of the current plan; rows outside it are ignored (not counted as damaged).
+        """
+        self.damaged = 0
         if not self.directory.is_dir():
             return []
         rows = []
         for part in sorted(self.directory.glob("part-*.jsonl")):
-            with open(part, encoding="utf-8") as stream:
-                for line in stream:
-                    line = line.strip()
-                    if line:
-                        rows.append(json.loads(line))
+            try:
+                data = part.read_bytes() if part.is_file() else b""
+            except OSError:
+                self.damaged += 1
+                continue
+            for raw in data.split(b"\n"):
+                if not raw.strip():
+                    continue
+                try:
+                    line = json.loads(raw.decode("utf-8"))
+                    row, key = line["row"], line["key"]
+                    if not isinstance(key, str) or not hmac.compare_digest(key, content_key(_canonical(row))):
+                        raise ValueError("content key")
+                except (ValueError, KeyError, TypeError, AttributeError):  # JSON/Unicode errors are ValueErrors
+                    self.damaged += 1
+                    continue
+                if planned is not None and isinstance(row, dict) and row.get("row_key") not in planned:
+                    continue  # another plan's row: not ours to use, not damage
+                if not _valid_row(row, planned if planned is not None else {row.get("row_key")}):
+                    self.damaged += 1
+                    continue
+                rows.append(row)
         return rows
 
     def write(self, rows: list[dict]) -> None:
@@ -80,7 +167,8 @@ class PartStore:
         tmp = self.directory / f".{name}.tmp"
         with open(tmp, "w", encoding="utf-8") as stream:
             for row in rows:
-                stream.write(dumps(row) + "\n")
+                safe = json_safe(row)
+                stream.write(dumps({"row": safe, "key": content_key(_canonical(safe))}) + "\n")
             stream.flush()
             os.fsync(stream.fileno())
         os.replace(tmp, self.directory / name)
@@ -91,9 +179,27 @@ class PartStore:
         shutil.rmtree(self.directory, ignore_errors=True)
 
 
+def table_key_path(output: Path) -> Path:
+    """Where the content key of a finished table is kept: ``.<name>.key`` beside it."""
+    output = Path(output)
+    return output.with_name(f".{output.name}.key")
+
+
+def _table_is_ours(output: Path) -> bool:
+    try:
+        stored = table_key_path(output).read_text(encoding="ascii").strip()
+        return hmac.compare_digest(stored, content_key(output.read_bytes()))
+    except (OSError, UnicodeDecodeError):
+        return False
+
+
 def _existing_rows(output: Path, keys: set) -> list[dict]:
-    """Rows of a finished table at ``output`` whose key is planned (a rerun after completion)."""
-    if not output.is_file():
+    """Rows of a finished table at ``output`` whose key is planned (a rerun after completion).
+
+    Only a table whose content key (written beside it by :func:`write_table_atomically`)
+    still matches is reused: an edited or foreign table is recomputed, never trusted.
+    """
+    if not output.is_file() or not _table_is_ours(output):
         return []
     import pandas as pd
 
@@ -103,6 +209,8 @@ def _existing_rows(output: Path, keys: set) -> list[dict]:
     except Exception:  # noqa: BLE001 - an unreadable old table is simply recomputed
         return []
     if "row_key" not in table.columns:
+        return []
+    if any(column not in _COLUMN_SET for column in table.columns):
         return []
     table = table[table["row_key"].isin(keys)]
     table = table.astype(object).where(table.notna(), None)
@@ -128,8 +236,12 @@ def to_table(rows: list[dict]):
     return table
 
 
-def write_table_atomically(table, path) -> None:
-    """CSV or Parquet (by suffix) through a temporary file and a rename: never half a file."""
+def write_table_atomically(table, path, *, keyed: bool = False) -> None:
+    """CSV or Parquet (by suffix) through a temporary file and a rename: never half a file.
+
+    With ``keyed``, the table's content key is written beside it (:func:`table_key_path`)
+    so that a rerun may reuse its rows.
+    """
     path = Path(path)
     with atomic_path(path) as tmp:
         if path.suffix.lower() == ".parquet":
@@ -148,6 +260,9 @@ def write_table_atomically(table, path) -> None:
             out.to_parquet(tmp, index=False)
         else:
             table.to_csv(tmp, index=False)
+        signature = content_key(tmp.read_bytes()) if keyed else ""
+    if keyed:
+        write_text_atomically(table_key_path(path), signature + "\n")
 
 
 def comparable(table):

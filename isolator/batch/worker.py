@@ -21,7 +21,12 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     and ``--dt`` for one-column text files that give no time step: a file that states
     them is read as it says, so that one batch can mix formats.
     """
-    key = (os.path.abspath(path), component, options)
+    try:  # a file rewritten since it was cached (same name, other content) is read again
+        stat = os.stat(path)
+        version = (stat.st_size, stat.st_mtime_ns, stat.st_ino)
+    except OSError:
+        version = None
+    key = (os.path.abspath(path), version, component, options)
     if key in _MOTION_CACHE:
         return _MOTION_CACHE[key]
     from isolator.errors import MissingTimeStepError, MissingUnitsError
@@ -135,6 +140,37 @@ def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, wi
     return analysis.row()
 
 
+def row_error(err: Exception, record: str, design_source: str | None) -> str:
+    """The ``error`` column of a failed row: one line that blames the right thing.
+
+    Our typed errors already say what is wrong: a record's (:class:`RecordError`,
+    :class:`RecordInputError` — e.g. a record of zeros), a design's
+    (:class:`DesignError`, :class:`InvalidSystemError` from its K/M, γ/M).  A write error
+    names its path.  Anything else is a defect of isolator: the row says so without the
+    raw exception text.
+    """
+    from isolator.design import DesignError
+    from isolator.motion import RecordError
+    from isolator.solver.record import RecordInputError
+    from isolator.solver.system import InvalidSystemError
+    from isolator.units import UnitsError
+
+    def named(owner: str, message: str) -> str:
+        message = _one_line(message)
+        return message if message.startswith(owner) else f"{owner}: {message}"
+
+    if isinstance(err, (RecordError, RecordInputError, UnitsError)):
+        return named(record, str(err))
+    if isinstance(err, (DesignError, InvalidSystemError)):
+        return named(design_source or record, str(err))
+    if isinstance(err, OSError):
+        return f"{err.filename or record}: cannot read or write ({err.strerror or type(err).__name__})"
+    if isinstance(err, ValueError) and design_source is None:  # scaling a record (a sentence of ours)
+        return named(record, str(err))
+    where = f"{design_source} under {record}" if design_source else record
+    return f"{where}: internal error in isolator (please report it with this record and design)"
+
+
 def run_task(task: Task) -> list[dict]:
     """Rows of one task (the function both executors run).  Never raises for a bad record or design."""
     from isolator.design import Design
@@ -147,9 +183,7 @@ def run_task(task: Task) -> list[dict]:
         else:
             motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)
     except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
-        message = _one_line(err) if str(err) else type(err).__name__
-        if task.record not in message:
-            message = f"{task.record}: {message}"
+        message = row_error(err, task.record, None)
         return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
     if task.component in SET_COMPONENTS:
         record_cols = pair_record_columns(task, motion, factor, read_seconds)
@@ -170,6 +204,6 @@ def run_task(task: Task) -> list[dict]:
             row["error"] = ""
         except Exception as err:  # noqa: BLE001 - one design's failure is its row's error
             row.update(_design_columns(case))
-            row["error"] = f"{case.source}: {type(err).__name__}: {_one_line(err)}"
+            row["error"] = row_error(err, task.record, case.source)
         rows.append(row)
     return rows

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_table, error_line, user_error
+from isolator.cli.common import RECORD_HELP, app, check_outputs, echo_table, error_line, user_error, write_error
 from isolator.cli.pairs import PAIR_HELP
 
 
@@ -56,6 +56,9 @@ def batch(
     import sys
 
     from isolator.batch import BatchError, ReadOptions, parse_grid, run_batch
+    from isolator.motion import MAX_ABS_ACCELERATION_G
+    from isolator.motion.ground_motion import MIN_TARGET_PGA_G
+    from isolator.motion.read import dt_problem
 
     try:
         grids = [parse_grid(spec) for spec in grid or []]
@@ -63,8 +66,15 @@ def batch(
             raise BatchError("--grid: each key may be swept once")
         if dt is not None and not (math.isfinite(dt) and dt > 0):
             raise BatchError(f"--dt must be a time step > 0 in seconds, got {dt:g}")
-        if scale_to_pga is not None and not scale_to_pga > 0:
-            raise BatchError(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
+        if dt is not None and dt_problem(dt):
+            raise BatchError(f"--dt: {dt_problem(dt)}")
+        if scale_to_pga is not None and not MIN_TARGET_PGA_G <= scale_to_pga <= MAX_ABS_ACCELERATION_G:
+            raise BatchError(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
+                             f"got {scale_to_pga:g}")
+        if scheduler is not None:
+            from isolator.batch.executors import check_scheduler
+
+            check_scheduler(scheduler)
         if units is not None:
             from isolator.units import UnitsError, acceleration_factor_to_m_s2
 
@@ -79,6 +89,7 @@ def batch(
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
     except BatchError as err:
         user_error(error_line(err))
+    check_outputs([output, summary, chart], [designs, *records])
     options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic, trim=trim,
                           resample=resample)
 
@@ -109,15 +120,15 @@ def batch(
     try:
         result = run_batch(records, designs, output, grids=grids, component=component, options=options,
                            jobs=jobs, scheduler=scheduler, reports_dir=reports, map_resolution=map_resolution,
-                           progress=callback)
+                           progress=callback, extra_outputs=[summary, chart])
     except BatchError as err:
         if progress_bar is not None:
             progress_bar.stop()
         user_error(error_line(err))
-    except OSError as err:
+    except OSError as err:  # an output that is an input, locked by another run, or unwritable
         if progress_bar is not None:
             progress_bar.stop()
-        user_error(f"{getattr(err, 'filename', None) or output}: cannot write ({err.strerror or err})")
+        write_error(err, output)
     except KeyboardInterrupt:
         if progress_bar is not None:
             progress_bar.stop()
@@ -128,6 +139,8 @@ def batch(
         progress_bar.stop()
     for message in result.lost_messages:
         typer.echo(f"lost: {message}", err=True)
+    for note in result.notes:
+        typer.echo(f"note: {note}", err=True)
     rows = [("table", result.output, f"({len(result.table.columns)} columns)")]
     if result.n_resumed:
         rows.append(("resumed", f"{result.n_resumed} rows", "(done by an earlier run)"))
@@ -143,13 +156,13 @@ def batch(
         swept = [key for key, _ in grids]
         try:
             if summary is not None:
-                write_table_atomically(suite_summary(result.table, swept), summary)
+                write_table_atomically(suite_summary(result.table, swept), summary, keyed=True)
                 rows.append(("summary", summary, ""))
             if chart is not None:
                 pages = design_chart(result.table, swept[:2], chart)
                 rows.append(("chart", chart, f"({pages} pages)"))
         except OSError as err:
-            user_error(f"cannot write ({err.strerror or err})")
+            write_error(err, summary if chart is None else chart)
     echo_table(rows)
     typer.echo(result.final_line())
     if result.n_failed or result.n_lost_tasks:

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import app, echo_json, user_error
+from isolator.cli.common import app, check_outputs, echo_json, user_error, write_error
+
+#: What `bench` writes into --out.
+BENCH_FILES = ("bench.csv", "bench_pareto.csv", "bench.json", "bench.md", "bench.png")
 
 
 @app.command()
@@ -42,6 +45,9 @@ def bench(
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         user_error(f"{out}: cannot create the output folder ({err.strerror or err})")
+    # --out may be the records folder itself: none of the five files may replace a record
+    check_outputs([out_dir / name for name in BENCH_FILES],
+                  [path for path in records_dir.rglob("*") if path.is_file()])
     started = time.perf_counter()
     progress = None if as_json else (lambda line: typer.echo(line, err=True))
     cases = bench_module.bench_cases(quick, records_dir)
@@ -69,7 +75,7 @@ def bench(
         with atomic_path(out_dir / "bench.png") as temporary:
             bench_module.plot(rows, temporary)
     except OSError as err:
-        user_error(f"{out}: cannot write ({err.strerror or err})")
+        write_error(err, out)
     if as_json:
         echo_json(rows)
         return

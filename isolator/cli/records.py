@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import (RECORD_HELP, app, echo_json, echo_table, error_line, load_record_for_cli, user_error,
-                                  write_csv_atomically)
+from isolator.cli.common import (RECORD_HELP, app, check_outputs, echo_json, echo_table, error_line,
+                                  load_record_for_cli, user_error, write_csv_atomically, write_error)
 from isolator.cli.pairs import PAIR_HELP
 
 
@@ -96,7 +96,7 @@ def simulate(
     counts_factor: float = typer.Option(None, "--counts-factor", help=RECORD_HELP["counts_factor"]),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
     out_csv: str = typer.Option(None, "--out-csv", help="Write the time histories (every component) to this "
-                                "CSV file."),
+                                "CSV file ('-' or /dev/stdout: to standard output, instead of the table)."),
 ) -> None:
     """Response of a friction isolator to a recorded ground acceleration: one component, a pair, a vertical.
 
@@ -126,6 +126,8 @@ def simulate(
                          damping_per_mass=damping_per_mass, **kwargs)
     except InvalidSystemError as err:
         user_error(error_line(err))
+    streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
+    check_outputs([None if out_csv == "-" else out_csv], [record, response, pair, vertical], streams=[out_csv])
     from isolator.analysis import SCHEMA_VERSION, record_dict
 
     if wants_set(pair, vertical, component):
@@ -155,9 +157,11 @@ def simulate(
     if out_csv:
         header, columns = history_columns(result)
         try:
-            write_csv_atomically(out_csv, header, columns)
+            write_csv_atomically(out_csv, header, columns, allow_stream=True)
         except OSError as err:
-            user_error(f"{out_csv}: cannot write ({err.strerror or err})")
+            write_error(err, out_csv)
+    if streamed:
+        return  # standard output holds the CSV: no table after it
     if as_json:
         echo_json(summary)
         return
@@ -170,3 +174,14 @@ def simulate(
                                                     f"γ/M = {nominal.damping_per_mass:g} 1/s)"),
         *result_rows(result, summary),
     ] + ([("time histories", out_csv, "")] if out_csv else []))
+
+
+def _is_stdout(path: str) -> bool:
+    """True if ``path`` is this process's standard output (``/dev/stdout``, its tty or pipe)."""
+    import os
+    import sys
+
+    try:
+        return os.path.samestat(os.stat(path), os.fstat(sys.stdout.fileno()))
+    except (OSError, ValueError, AttributeError):  # no such file, or stdout is not a real file (tests)
+        return path in ("/dev/stdout", "/proc/self/fd/1")

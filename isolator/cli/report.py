@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_table, load_record_for_cli, user_error
+from isolator.cli.common import (RECORD_HELP, app, check_outputs, echo_table, load_record_for_cli, user_error,
+                                 write_error)
 from isolator.cli.pairs import PAIR_HELP, wants_set
 
 
@@ -129,15 +130,25 @@ def report(
         record_path, record_label = resolve_record(record)
     except ValueError as err:
         user_error(str(err))
+    if scale_to_pga is not None:
+        from isolator.motion import MAX_ABS_ACCELERATION_G
+        from isolator.motion.ground_motion import MIN_TARGET_PGA_G
+
+        if not MIN_TARGET_PGA_G <= scale_to_pga <= MAX_ABS_ACCELERATION_G:
+            user_error(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
+                       f"got {scale_to_pga:g}")
     if wants_set(pair, vertical, component) or the_design.velocity_dependent:
+        output = _output_pdf(output, record, design, "_pair")
+        # the JSON sidecar too: `-o design.pdf` beside design.json must not overwrite the design file
+        check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path, pair, vertical])
         _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
                      dt, trim, resample, scale_to_pga, output, no_pdf)
         return
+    output = _output_pdf(output, record, design)
+    check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path])
     motion = load_record_for_cli(record_path, component, units, merge, dt)
     scaling_note = ""
     if scale_to_pga is not None:
-        if not scale_to_pga > 0:
-            user_error(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
         from isolator.units import STANDARD_GRAVITY
 
         original_g = motion.pga_m_s2 / STANDARD_GRAVITY
@@ -147,7 +158,6 @@ def report(
             user_error(f"{record_label}: {err}")
         scaling_note = (f"Record scaled to the design PGA {scale_to_pga:g} g (from {original_g:.4g} g, "
                         f"factor {scale_to_pga / original_g:.4g}).")
-    output = _output_pdf(output, record, design)
     from isolator.analysis import analyse
     from isolator.solver.record import RecordInputError
 
@@ -167,7 +177,7 @@ def report(
 
             summary = write_report(analysis, output, command=_command_line())
     except OSError as err:
-        user_error(f"{output}: cannot write ({err.strerror or err})")
+        write_error(err, output)
     echo_table(([] if no_pdf else [("report", output, "(4 pages)")]) + [
         ("numbers", str(json_path), ""),
         ("point", f"α = {summary['alpha']:.4g}, k = {summary['k']:.4g}, η = {summary['eta']:.4g}", ""),
@@ -177,7 +187,18 @@ def report(
         ("dominant force", f"{summary['dominant_force_record']} / {summary['dominant_force_harmonic']}", ""),
         ("peak displacement", f"{summary['peak_displacement_m']:.4g}", "m"),
         ("peak transmitted acc.", f"{summary['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
-    ] + [("disagreement", note, "") for note in summary["disagreements"]])
+    ] + [("disagreement", note, "") for note in summary["disagreements"]]
+      + [("note", note, "") for note in _map_notes(analysis)])
+
+
+def _map_notes(analysis) -> list[str]:
+    """What the regime map has to say (a damaged cache entry recomputed …)."""
+    harmonic_map = getattr(analysis, "harmonic_map", None)
+    return list(getattr(getattr(harmonic_map, "regime_map", None), "notes", []) or [])
+
+
+#: Figure formats of ``regime-map -o`` (matplotlib's vector and raster writers).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
 @app.command("regime-map")
@@ -201,7 +222,7 @@ def regime_map_command(
     from pathlib import Path
 
     from isolator.maps import PAPER_FRAMES, regime_map, triple_point
-    from isolator.parallel import default_workers
+    from isolator.parallel import capped_workers
     from isolator.solver.system import InvalidSystemError
 
     k_range, alpha_range = (0.0, k_max), (0.0, alpha_max)
@@ -216,6 +237,12 @@ def regime_map_command(
     mu_s = 0.25 if mu_s is None else mu_s
     if not (k_range[1] > 0 and alpha_range[1] > 1):
         user_error("--k-max must be > 0 and --alpha-max > 1")
+    if output:
+        suffix = Path(output).suffix.lower()
+        if suffix not in FIGURE_SUFFIXES:
+            user_error(f"{output}: cannot tell the figure format from {suffix or 'no suffix'!r} "
+                       f"(use {', '.join(FIGURE_SUFFIXES)})")
+        check_outputs([output], [])
     try:
         start = time.perf_counter()
         rmap = regime_map(eta, mu_s, mu_k, k_range=k_range, alpha_range=alpha_range, n_k=resolution,
@@ -228,7 +255,8 @@ def regime_map_command(
                                                       f"α in [{alpha_range[0]:g}, {alpha_range[1]:g}])"),
             ("parameters", f"η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}", ""),
             ("time", f"{wall:.3g} s", "(read from cache)" if rmap.from_cache else
-             f"(computed, {workers or default_workers()} worker(s))"),
+             f"(computed, {capped_workers(workers)[0]} worker(s))"),
+            *[("note", note, "") for note in rmap.notes],
             ("triple point", "none in frame" if triple is None else f"α̂ = {triple[0]:.4g}, k̂ = {triple[1]:.4g}", "")]
     if output:
         from isolator.report.figures import regime_map_figure
@@ -236,13 +264,12 @@ def regime_map_command(
         title = f"Harmonic regime map, η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}" + (
             f" (frame of the paper's {frame.replace('fig', 'Fig. ')})" if frame else "")
         fig = regime_map_figure(rmap, triple=triple, title=title)
-        target = Path(output)
+        from isolator.atomic import atomic_path
+
         try:
-            target.parent.mkdir(parents=True, exist_ok=True)
-            tmp = target.with_name(f".{target.name}.tmp{target.suffix}")
-            fig.savefig(tmp, dpi=130)
-            tmp.replace(target)
+            with atomic_path(output) as temporary:
+                fig.savefig(temporary, dpi=130, format=suffix[1:])
         except OSError as err:
-            user_error(f"{output}: cannot write ({err.strerror or err})")
+            write_error(err, output)
         rows.append(("figure", output, ""))
     echo_table(rows)

@@ -29,6 +29,7 @@ _BLOCK_RE = re.compile(
     r"(?:,\s*in\s+([^.(]+?)\.?\s*(?:\(|$))?",
     re.IGNORECASE,
 )
+_CHANNELS_RE = re.compile(r"\((\d+)\s+Chns\s+of", re.IGNORECASE)  #: channels the file holds
 _CHANNEL_RE = re.compile(r"Chan\s+(\d+)\s*:\s*([^\s]+)(\s+Deg)?", re.IGNORECASE)
 _START_RE = re.compile(
     r"Start time:\s*(\d+)/(\d+)/(\d+),\s*(\d+):\s*(\d+):\s*([\d.]+)\s*UTC", re.IGNORECASE
@@ -166,4 +167,10 @@ def _read_v2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
         index += 1 + nlines
     if not traces:
         raise ValueError("no 'points of accel data' block found")
+    # the first header states the channels the file holds ("(3 Chns of  3 at Sta)"): a file cut
+    # between channels must not pass for a file of fewer channels
+    stated = next((m for m in map(_CHANNELS_RE.search, lines[:25]) if m), None)
+    if stated is not None and len(traces) < int(stated.group(1)):
+        raise ValueError(f"truncated: the header states {int(stated.group(1))} channels but "
+                         f"{len(traces)} were found")
     return Stream(traces)

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from isolator.motion.ground_motion import GroundMotion
-from isolator.errors import ComponentError, ComponentMismatchError
+from isolator.errors import ComponentError, ComponentMismatchError, RecordValuesError
 from isolator.motion.read import list_components, read_ground_motion
 
 #: Orientation names of a vertical component (lower case tokens of a component label).
@@ -138,13 +138,13 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
     """Horizontal and vertical components of one multi-channel file (or K-NET set)."""
     siblings = _knet_siblings(path)
     if siblings is not None:
-        motions = [read_ground_motion(p, **options) for p in siblings]
+        motions = [read_ground_motion(p, allow_zero=True, **options) for p in siblings]
     else:
         labels = list_components(path, merge=options.get("merge", False))
         if len(labels) < 2:
             raise ComponentError(f"{path}: holds one component ({labels[0]}); a pair from one file needs two "
                                  "horizontal components (or give the second file)", path=path)
-        motions = [read_ground_motion(path, component=label, **options) for label in labels]
+        motions = [read_ground_motion(path, component=label, allow_zero=True, **options) for label in labels]
     horizontal = [m for m in motions if not is_vertical(m)]
     vertical = [m for m in motions if is_vertical(m)]
     names = ", ".join(m.component for m in motions)
@@ -363,18 +363,21 @@ def read_ground_motion_pair(
         if component is not None and component.lower() in PAIR_CHOICES:
             raise ComponentError(f"{x}: component {component!r} reads a pair from one file; "
                                  "with a second file give one component (or none)", path=x)
-        horizontal = [read_ground_motion(x, component=component, **options)]
+        horizontal = [read_ground_motion(x, component=component, allow_zero=y is not None, **options)]
         if y is not None:
-            horizontal.append(read_ground_motion(y, **options))
+            horizontal.append(read_ground_motion(y, allow_zero=True, **options))
         for motion in horizontal:
             if is_vertical(motion):
                 raise ComponentError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
                                      "X and Y are the horizontal components", path=motion.provenance.get("path", ""))
         if z is not None:
-            vertical = [read_ground_motion(z, **options)]
+            vertical = [read_ground_motion(z, allow_zero=True, **options)]
             if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
                 raise ComponentError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)",
                                      path=z)
+    if all(motion.pga_m_s2 == 0.0 for motion in horizontal):  # the record's fault: no ground motion at all
+        source = horizontal[0].provenance.get("path", str(x))
+        raise RecordValuesError(f"{source}: every horizontal component is zero: no ground motion", path=source)
     motions = dict(zip(("x", "y"), horizontal))
     if vertical:
         motions["z"] = vertical[0]

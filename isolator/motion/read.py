@@ -25,10 +25,16 @@ from isolator.errors import (ComponentError, CountsError, GapsError, InstrumentR
 from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 
 MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units
+#: Time steps a record may have [s]: accelerograms sample at 100 Hz to 1 kHz (dt 0.001 to
+#: 0.05 s).  Below 10 µs (100 kHz) a time step is a corrupt header (DT= 1e-300 made the
+#: predominant period sit on its search floor and A0 = 0); above 0.5 s the record cannot
+#: carry ground shaking (0.1 to 25 Hz) and its spectrum would need unbounded work.
+RECORD_DT_RANGE_S = (1e-5, 0.5)
 #: Suffixes read as plain text when no reader claims the file by content.
 TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
 #: SAC ``idep`` codes for quantities that are not acceleration.
 _SAC_NOT_ACCELERATION = {6: "displacement (IDISP)", 7: "velocity (IVEL)"}
+_SAC_IACC = 8  #: SAC ``idep`` of acceleration (nm/s² by the SAC convention)
 
 
 _FORMAT_NAMES = {"PEER_AT2": "PEER AT2", "ISOLATOR_TEXT": "plain text", "CSMIP_V2": "CSMIP V2",
@@ -49,6 +55,7 @@ def _read_stream(path: Path, dt_s: float | None):
     import obspy
 
     from isolator.io import detect, looks_like_text, read_head
+    from isolator.io._common import literal_pattern
 
     head = read_head(path)
     if not head:
@@ -67,7 +74,7 @@ def _read_stream(path: Path, dt_s: float | None):
         try:
             if fmt is None:
                 try:
-                    return obspy.read(str(path))
+                    return obspy.read(literal_pattern(path))
                 except TypeError as err:
                     if "Unknown format" not in str(err):
                         raise
@@ -78,7 +85,7 @@ def _read_stream(path: Path, dt_s: float | None):
                                       "or plain numeric columns")
                 fmt = "ISOLATOR_TEXT"
             options = {"dt_s": dt_s} if fmt == "ISOLATOR_TEXT" else {}
-            return obspy.read(str(path), format=fmt, **options)
+            return obspy.read(literal_pattern(path), format=fmt, **options)
         except RecordError as err:  # a reader's typed error (no time step …): name the file and the format
             if err.path:
                 raise
@@ -212,8 +219,14 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
                         RecordOptionError, parameter="response")
         import obspy
 
+        from isolator.io._common import input_file_problem, literal_pattern
+
+        problem = input_file_problem(response)
+        if problem is not None:
+            raise _fail(path, f"cannot remove the instrument response: {response}: {problem}",
+                        InstrumentResponseError)
         try:
-            inventory = obspy.read_inventory(str(response))
+            inventory = obspy.read_inventory(literal_pattern(response))
             corrected = trace.copy()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -257,7 +270,14 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
     if fmt in ("MSEED", "SAC", "GSE2", "SEISAN") and len(channel) == 3 and channel[1] in "HL":
         raise _fail(path, f"channel {channel} is a seismometer (velocity) channel; acceleration from it "
                           "needs the instrument response", CountsError)
-    return _as_float64(trace) * _units_factor(path, units, "units given"), f"--units {units}", steps
+    source = f"--units {units}"
+    if fmt == "SAC" and int(stats.sac.get("idep", 5)) == _SAC_IACC:
+        # the header says "acceleration" and, by the SAC convention, nm/s²; files rarely follow it, so the
+        # units given are used, but the table says so instead of trusting them silently
+        source += " (the SAC header says acceleration, IACC, in nm/s² by convention: check the units)"
+        steps.append({"step": "units", "reason": "SAC idep = IACC states acceleration without a usable unit; "
+                                                 f"the units given ({units}) were used"})
+    return _as_float64(trace) * _units_factor(path, units, "units given"), source, steps
 
 
 def _as_float64(trace) -> np.ndarray:
@@ -265,12 +285,15 @@ def _as_float64(trace) -> np.ndarray:
     return np.asarray(trace.data, dtype=np.float64)
 
 
-def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float) -> None:
+def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float, allow_zero: bool = False) -> None:
     if acceleration_m_s2.size < MIN_SAMPLES:
         raise _fail(path, f"only {acceleration_m_s2.size} sample(s); a record needs at least {MIN_SAMPLES}",
                     RecordValuesError)
     if not (math.isfinite(dt_s) and dt_s > 0):
         raise _fail(path, f"time step dt = {dt_s:g} s is not positive", RecordValuesError)
+    problem = dt_problem(dt_s)
+    if problem:
+        raise _fail(path, problem, RecordValuesError)
     finite = np.isfinite(acceleration_m_s2)
     if not finite.all():
         index = int(np.flatnonzero(~finite)[0])
@@ -280,6 +303,23 @@ def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float) -> Non
     if peak_m_s2 > MAX_ABS_ACCELERATION_G * STANDARD_GRAVITY:
         raise _fail(path, f"peak |a| = {peak_m_s2:.4g} m/s2 ({peak_m_s2 / STANDARD_GRAVITY:.4g} g) exceeds "
                           f"{MAX_ABS_ACCELERATION_G:g} g: wrong units?", RecordValuesError)
+    if peak_m_s2 == 0.0 and not allow_zero:  # the record's fault: every measure (A0 = PGV²/PGA …) would be 0/0
+        raise _fail(path, f"every one of its {acceleration_m_s2.size} samples is zero: no ground motion",
+                    RecordValuesError)
+
+
+def dt_problem(dt_s: float) -> str:
+    """Why ``dt_s`` [s] is not the time step of an accelerogram, or "" (see :data:`RECORD_DT_RANGE_S`)."""
+    low, high = RECORD_DT_RANGE_S
+    if not math.isfinite(dt_s) or dt_s <= 0:
+        return f"time step dt = {dt_s:g} s is not positive"
+    if dt_s < low:
+        return (f"time step dt = {dt_s:g} s is below {low:g} s (sampling above 100 kHz): no accelerogram has it; "
+                "a corrupt header?")
+    if dt_s > high:
+        return (f"time step dt = {dt_s:g} s is above {high:g} s (sampling below 2 Hz): too coarse for ground "
+                "shaking (0.1 to 25 Hz); no accelerogram has it")
+    return ""
 
 
 def _provenance(path: Path, trace, label: str) -> dict:
@@ -312,10 +352,13 @@ def _provenance(path: Path, trace, label: str) -> dict:
 
 
 def _check_path(path: Path) -> None:
-    if not path.exists():
-        raise _fail(path, "no such file", RecordNotFoundError)
-    if path.is_dir():
+    from isolator.io._common import input_file_problem
+
+    problem = input_file_problem(path)  # from metadata: a FIFO or a device never blocks the reader
+    if problem == "is a folder, not a file":
         raise _fail(path, "is a directory, not a record file", RecordNotFoundError)
+    if problem is not None:
+        raise _fail(path, problem, RecordNotFoundError)
     try:
         with open(path, "rb") as handle:
             handle.read(1)
@@ -361,6 +404,7 @@ def read_ground_motion(
     response: str | Path | None = None,
     counts_factor: float | None = None,
     dt_s: float | None = None,
+    allow_zero: bool = False,
 ) -> GroundMotion:
     """Read a record file into a :class:`GroundMotion` in m/s².
 
@@ -387,6 +431,9 @@ def read_ground_motion(
         Units (given by ``units``) per count, for records in counts [unit/count].
     dt_s : float, optional
         Time step of a one-column text file; checked against the file otherwise [s].
+    allow_zero : bool, optional
+        Accept a record whose samples are all zero (one component of a pair may be at
+        rest; a pair refuses only when every horizontal component is zero) [-].
 
     Returns
     -------
@@ -407,6 +454,8 @@ def read_ground_motion(
     if dt_s is not None and not (math.isfinite(dt_s) and dt_s > 0):
         raise _fail(path, f"the time step given, {dt_s:g} s, is not positive", RecordOptionError, given=dt_s,
                     parameter="dt_s")
+    if dt_s is not None and dt_problem(dt_s):
+        raise _fail(path, "the time step given: " + dt_problem(dt_s), RecordOptionError, given=dt_s, parameter="dt_s")
     stream = _read_stream(path, dt_s)
     if len(stream) == 0:
         raise _fail(path, "holds no data")
@@ -428,7 +477,7 @@ def read_ground_motion(
                     RecordValuesError)
     acceleration_m_s2, units_source, unit_steps = _to_m_s2(path, trace, units, response, counts_factor)
     acceleration_m_s2 = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
-    _check_values(path, acceleration_m_s2, float(trace.stats.delta))
+    _check_values(path, acceleration_m_s2, float(trace.stats.delta), allow_zero)
     label = _label(trace)
     result = trace.copy() if response is None else trace
     result.data = acceleration_m_s2

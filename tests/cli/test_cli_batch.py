@@ -39,7 +39,7 @@ def test_batch_in_help():
     (["--chart", "c.pdf"], "two --grid"),
     (["--summary", "s.txt"], "must end with .csv"),
     (["--units", "furlongs"], "--units"),
-    (["--scale-to-pga", "-1"], "must be > 0"),
+    (["--scale-to-pga", "-1"], "must lie in [1e-06, 50] g"),
 ])
 def test_command_mistakes_exit_2_with_one_line(files, extra, words):
     folder, designs = files

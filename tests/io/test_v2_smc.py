@@ -48,3 +48,14 @@ def test_truncated_smc(records_dir, tmp_path):
     path.write_bytes(b"\r\n".join(lines[:200]))
     with pytest.raises(ValueError, match="truncated"):
         _read_smc(path)
+
+
+def test_v2_cut_between_channels_is_truncated_not_fewer_channels(records_dir, tmp_path):
+    lines = (records_dir / "other/ce89486SampleInput.v2").read_text(encoding="latin-1").splitlines(keepends=True)
+    ends = [i for i, line in enumerate(lines) if line.startswith("/&")]  # the end of each channel
+    assert len(ends) == 3
+    for kept in (1, 2):  # whole channels only: every block that is there is complete
+        path = tmp_path / f"cut{kept}.v2"
+        path.write_text("".join(lines[:ends[kept - 1] + 1]), encoding="latin-1")
+        with pytest.raises(ValueError, match=f"the header states 3 channels but {kept} were found"):
+            _read_v2(path)

@@ -78,7 +78,7 @@ def test_report_output_summary_lines(knet_report):
 @pytest.mark.parametrize("args,words", [
     (["--design", "absent.toml", "example:knet"], "no such design file"),
     (["--design", str(DATA / "example_pendulum.toml"), "example:nothing"], "unknown example record"),
-    (["--design", str(DATA / "example_pendulum.toml"), "example:knet", "--scale-to-pga", "-1"], "--scale-to-pga must be > 0"),
+    (["--design", str(DATA / "example_pendulum.toml"), "example:knet", "--scale-to-pga", "-1"], "--scale-to-pga must lie in [1e-06, 50] g, got -1"),
     (["--design", str(DATA / "example_pendulum.toml"), "no_such_record.AT2"], "no such file"),
     (["--design", str(DATA / "example_pendulum.toml"), "example:knet", "-o", "x.txt"], "must end with .pdf"),
 ])

@@ -1,0 +1,219 @@
+"""Every command over a malformed-input corpus: exit 2, one line on stderr, no traceback, quickly,
+and no input file changed.
+
+The corpus is generated here (issue 13): paths with glob characters, a FIFO, symbolic links and
+a loop, a dangling link, /dev/full and /dev/null, absurd numbers in options and design files,
+time steps no accelerogram has, a record of zeros, an output that is an input, a locked output,
+damaged batch parts and a damaged map cache.  Commands run in-process (typer's CliRunner).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import socket
+import stat
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from _records import at2_text
+from isolator.cli import app
+
+RUNNER = CliRunner()
+#: Wall-time bound of one refused command [s] (most answer in milliseconds; report and batch
+#: import matplotlib and pandas on their first call).
+TIME_BOUND_S = 15.0
+
+DESIGN = 'name = "d"\nmass_kg = 1000.0\nradius_m = 2.0\nmu_static = 0.06\n'
+DESIGNS = '[[design]]\nname = "d"\nmass_kg = 1000.0\nradius_m = 2.0\nmu_static = 0.06\n'
+
+
+def _record_values(n=400, amplitude=0.2):
+    return [amplitude * np.sin(0.3 * i) * min(1.0, i / 50) for i in range(n)]
+
+
+@pytest.fixture(scope="module")
+def corpus(tmp_path_factory):
+    root = tmp_path_factory.mktemp("corpus")
+    (root / "good.AT2").write_text(at2_text(_record_values()))
+    (root / "x[1].AT2").write_text(at2_text(_record_values(300, 0.1), dt=".0200"))
+    (root / "x1.AT2").write_text(at2_text(_record_values(500, 0.3)))  # what a glob would read instead
+    (root / "zeros.AT2").write_text(at2_text([0.0] * 50))
+    (root / "dt_tiny.AT2").write_text(at2_text(_record_values(40), dt="1e-300"))
+    (root / "dt_huge.AT2").write_text(at2_text(_record_values(40), dt="100.0"))
+    (root / "empty.AT2").write_text("")
+    (root / "record.csv").write_text("# units: g\n" + "".join(f"{0.01 * i:.2f},{v:.6f}\n"
+                                                              for i, v in enumerate(_record_values())))
+    os.mkfifo(root / "pipe.AT2")
+    os.mkfifo(root / "pipe.toml")
+    (root / "loop.AT2").symlink_to(root / "loop2.AT2")
+    (root / "loop2.AT2").symlink_to(root / "loop.AT2")
+    (root / "dangling.AT2").symlink_to(root / "gone.AT2")
+    (root / "alias.csv").symlink_to(root / "good.AT2")
+    (root / "folder.AT2").mkdir()
+    (root / "design.toml").write_text(DESIGN)
+    (root / "design.json").write_text(DESIGN)  # a design file may be named .json: the report's sidecar
+    (root / "designs.toml").write_text(DESIGNS)
+    (root / "tiny_radius.toml").write_text(DESIGN.replace("radius_m = 2.0", "radius_m = 1e-300"))
+    (root / "tiny_mass.toml").write_text(DESIGN.replace("mass_kg = 1000.0", "mass_kg = 1e-320"))
+    (root / "stiff.toml").write_text(DESIGN.replace("radius_m = 2.0", "stiffness_N_per_m = 1e300"))
+    (root / "design_loop.toml").symlink_to(root / "design_loop.toml")
+    (root / "records").mkdir()
+    (root / "records" / "a.AT2").write_text(at2_text(_record_values()))
+    (root / "bench_records").mkdir()
+    (root / "bench_records" / "bench.csv").write_text("a record that happens to be named like a bench output\n")
+    # a batch output whose lock is held by a live process (pid 1) on this host
+    (root / "locked.csv.lock").write_text(f"pid=1 host={socket.gethostname()} since=earlier\n")
+    return root
+
+
+def _snapshot(root: Path) -> dict:
+    """Every entry under ``root``: kind, and content hash or link target (FIFOs are never opened)."""
+    state = {}
+    for path in sorted(root.rglob("*")):
+        mode = path.lstat().st_mode
+        if stat.S_ISLNK(mode):
+            state[str(path)] = ("link", os.readlink(path))
+        elif stat.S_ISREG(mode):
+            state[str(path)] = ("file", hashlib.sha256(path.read_bytes()).hexdigest())
+        else:
+            state[str(path)] = (stat.S_IFMT(mode), None)
+    return state
+
+
+def _cases(c: Path):
+    """(command line, words the one stderr line must hold) for every command."""
+    good, design = str(c / "good.AT2"), str(c / "design.toml")
+    return [
+        # info: files that are not records, paths that are not what they seem
+        (["info", str(c / "pipe.AT2")], "FIFO"),
+        (["info", str(c / "loop.AT2")], "symbolic-link loop"),
+        (["info", str(c / "dangling.AT2")], "dangling symbolic link"),
+        (["info", str(c / "folder.AT2")], "is a directory"),
+        (["info", str(c / "empty.AT2")], "empty"),
+        (["info", "/dev/null"], "character device"),
+        (["info", str(c / "solo[2].AT2")], "no such file"),
+        (["info", str(c / "zeros.AT2")], "is zero"),
+        (["info", str(c / "dt_tiny.AT2")], "below 1e-05 s"),
+        (["info", str(c / "dt_huge.AT2")], "above 0.5 s"),
+        (["info", good, "--dt", "abc"], "'--dt'"),
+        (["info", good, "--bogus"], "No such option"),
+        # simulate: absurd system, outputs that are inputs or not files
+        (["simulate", good, "--mu-s", "0.1", "--stiffness-per-mass", "1e300"], "stiffness_per_mass"),
+        (["simulate", good, "--mu-s", "0.1", "--damping-per-mass", "1e300"], "damping_per_mass"),
+        (["simulate", good, "--mu-s", "0.1", "--out-csv", good], "is an input"),
+        (["simulate", good, "--mu-s", "0.1", "--out-csv", str(c / "alias.csv")], "is an input"),
+        (["simulate", good, "--mu-s", "0.1", "--out-csv", "/dev/full"], "No space left on device"),
+        (["simulate", good, "--mu-s", "0.1", "--out-csv", str(c / "folder.AT2")], "is a folder"),
+        (["simulate", good], "Missing option '--mu-s'"),
+        # harmonic and threshold: unbounded work refused
+        (["harmonic", "--alpha", "2", "--mu-s", "0.2", "--k", "1e300"], "k = 1e+300 exceeds"),
+        (["harmonic", "--alpha", "1e300", "--mu-s", "0.2"], "alpha = 1e+300 exceeds"),
+        (["harmonic", "--alpha", "2", "--mu-s", "0.2", "--eta", "1e300"], "eta = 1e+300 exceeds"),
+        (["threshold", "--mu-s", "0.2", "--grid", "10000000"], "4 to 20000 points"),
+        (["threshold", "--mu-s", "0.2", "--alpha-max", "1e300"], "alpha_max = 1e+300"),
+        # report: the record's fault, the design's fault, outputs
+        (["report", good, "-d", design, "--scale-to-pga", "1e-300", "-o", str(c / "out" / "r.pdf")], "--scale-to-pga"),
+        (["report", good, "-d", design, "--scale-to-pga", "100", "-o", str(c / "out" / "r.pdf")], "--scale-to-pga"),
+        (["report", str(c / "zeros.AT2"), "-d", design, "-o", str(c / "out" / "r.pdf")], "is zero"),
+        (["report", good, "-d", str(c / "tiny_radius.toml"), "-o", str(c / "out" / "r.pdf")], "key 'radius_m'"),
+        (["report", good, "-d", str(c / "tiny_mass.toml"), "-o", str(c / "out" / "r.pdf")], "key 'mass_kg'"),
+        (["report", good, "-d", str(c / "stiff.toml"), "-o", str(c / "out" / "r.pdf")], "key 'stiffness_N_per_m'"),
+        (["report", good, "-d", str(c / "pipe.toml"), "-o", str(c / "out" / "r.pdf")], "FIFO"),
+        (["report", good, "-d", str(c / "design_loop.toml"), "-o", str(c / "out" / "r.pdf")], "symbolic-link loop"),
+        (["report", good, "-d", str(c / "design.json"), "-o", str(c / "design.pdf")], "is an input"),
+        (["report", good, "-d", design, "-o", str(c / "pipe.AT2")], "must end with .pdf"),
+        # regime-map
+        (["regime-map", "-n", "8", "-o", str(c / "m.xyz")], "cannot tell the figure format"),
+        (["regime-map", "-n", "8", "--k-max", "1e300", "--no-cache"], "the k range [0, 1e+300] must lie within"),
+        (["regime-map", "--resolution", "2"], "'--resolution'"),
+        # batch
+        (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--scheduler", "not a url"],
+         "expected tcp://HOST:PORT"),
+        (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--grid",
+          "radius_m=1:2:100000000"], "exceeds the largest batch"),
+        (["batch", str(c / "record.csv"), "-d", str(c / "designs.toml"), "-o", str(c / "record.csv")], "is an input"),
+        (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "locked.csv")], "is being written by process 1"),
+        (["batch", good, "-d", str(c / "pipe.toml"), "-o", str(c / "out" / "t.csv")], "FIFO"),
+        (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--jobs", "0"], "'--jobs'"),
+        (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--dt", "1e-300"],
+         "below 1e-05 s"),
+        # bench
+        (["bench", "--records", str(c / "nowhere"), "--out", str(c / "out" / "bench")], "no such folder"),
+        (["bench", "--repeats", "0"], "'--repeats'"),
+        (["bench", "--records", str(c / "bench_records"), "--out", str(c / "bench_records")], "is an input"),
+    ]
+
+
+def test_every_command_refuses_the_corpus_in_one_line(corpus, tmp_path, monkeypatch):
+    monkeypatch.setenv("ISOLATOR_CACHE_DIR", str(tmp_path / "cache"))
+    before = _snapshot(corpus)
+    full = os.stat("/dev/full")
+    failures = []
+    for args, words in _cases(corpus):
+        start = time.perf_counter()
+        result = RUNNER.invoke(app, args)
+        seconds = time.perf_counter() - start
+        lines = result.stderr.splitlines()
+        problems = []
+        if result.exit_code != 2:
+            problems.append(f"exit {result.exit_code}")
+        if len(lines) != 1 or not lines[0].startswith("error: "):
+            problems.append(f"stderr {result.stderr!r}")
+        if "Traceback" in result.stderr + result.stdout or result.exception and not isinstance(result.exception,
+                                                                                               SystemExit):
+            problems.append(f"exception {result.exception!r}")
+        if words not in result.stderr:
+            problems.append(f"{words!r} not in {result.stderr!r}")
+        if seconds > TIME_BOUND_S:
+            problems.append(f"{seconds:.1f} s")
+        if problems:
+            failures.append(f"{' '.join(args)}: {'; '.join(problems)}")
+    assert failures == []
+    assert _snapshot(corpus) == before  # no input changed, no output appeared among them
+    assert os.stat("/dev/full").st_rdev == full.st_rdev and stat.S_ISCHR(os.stat("/dev/full").st_mode)
+
+
+def test_glob_characters_read_exactly_the_file_named(corpus):
+    import json
+
+    result = RUNNER.invoke(app, ["info", str(corpus / "x[1].AT2"), "--json"])
+    assert result.exit_code == 0 and result.stderr == ""
+    summary = json.loads(result.stdout)
+    assert (summary["npts"], summary["dt_s"]) == (300, 0.02)  # not x1.AT2's 500 × 0.01 s
+
+
+def test_damaged_cache_and_parts_are_repaired_and_said(corpus, tmp_path, monkeypatch):
+    monkeypatch.setenv("ISOLATOR_CACHE_DIR", str(tmp_path / "cache"))
+    # a map cache entry cut in half: the map is recomputed, the table says so
+    first = RUNNER.invoke(app, ["regime-map", "-n", "8", "--k-max", "2", "--alpha-max", "3"])
+    assert first.exit_code == 0, first.stderr
+    (entry,) = (tmp_path / "cache" / "maps").glob("map-*.npz")
+    entry.write_bytes(entry.read_bytes()[:100])
+    again = RUNNER.invoke(app, ["regime-map", "-n", "8", "--k-max", "2", "--alpha-max", "3"])
+    assert again.exit_code == 0 and again.stderr == ""
+    assert f"cached map {entry} was damaged" in again.stdout and "recomputed" in again.stdout
+    # the report's map too: its table says the damaged entry was recomputed
+    report = ["report", str(corpus / "good.AT2"), "-d", str(corpus / "design.toml"), "-o", str(tmp_path / "r.pdf"),
+              "--map-resolution", "8", "--no-pdf"]
+    assert RUNNER.invoke(app, report).exit_code == 0
+    for entry in (tmp_path / "cache" / "maps").glob("map-*-refined.npz"):
+        entry.write_bytes(b"PK\x03\x04 not a zip")
+    result = RUNNER.invoke(app, report)
+    assert result.exit_code == 0 and result.stderr == ""
+    assert any(line.startswith("note") and "was damaged" in line for line in result.stdout.splitlines())
+    # batch parts with a truncated line and bytes that are not UTF-8: skipped, counted, recomputed
+    out = tmp_path / "t.csv"
+    parts = Path(str(out) + ".parts")
+    parts.mkdir()
+    (parts / "part-00000000000000000001-aaaaaaaa.jsonl").write_bytes(b'{"row": {"record": "x"\n\xff\xfe\n')
+    result = RUNNER.invoke(app, ["batch", str(corpus / "records"), "-d", str(corpus / "designs.toml"), "-o", str(out),
+                                 "--jobs", "1"])
+    assert result.exit_code == 0, result.stderr
+    assert result.stderr.splitlines() == [f"note: 2 damaged line(s) in {parts} skipped (truncated, corrupt or not "
+                                          "written by this user); their rows are recomputed"]
+    assert result.stdout.strip().splitlines()[-1] == "1 rows, 0 failed"
