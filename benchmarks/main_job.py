@@ -1,0 +1,95 @@
+"""Wall time of the README's main job and of ``isolator --help``, warm, median of N runs.
+
+Run from the repository root (``PYTHONPATH`` is passed on, so a worktree's ``isolator`` wins)::
+
+    .venv/bin/python benchmarks/main_job.py            # 5 runs each
+    .venv/bin/python benchmarks/main_job.py --runs 9
+
+Each run is a fresh ``isolator`` process, launch to exit, as a user types it.  One untimed
+run first fills the caches a second run of the same command finds (numba's compiled
+functions on disk, the regime map under ``$ISOLATOR_CACHE_DIR``): "warm" means that.  The
+report goes to a temporary folder, not to ``reports/``.  The load average is printed
+before and after: on a shared machine, compare medians taken at similar loads.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+MAIN_JOB = ["report", "--design", "data/example_pendulum.toml", "example:knet", "--scale-to-pga", "0.3",
+            "-o", "{out}/example.pdf"]
+HEAVY = ("numpy", "scipy", "obspy", "matplotlib", "numba", "dask", "pandas")
+
+
+def _isolator_command() -> list[str]:
+    """The ``isolator`` console script of this interpreter's environment, else the module entry."""
+    script = Path(sys.executable).with_name("isolator")
+    if script.is_file():
+        return [str(script)]
+    return [sys.executable, "-c", "from isolator.cli import app; app()"]
+
+
+def _time(command: list[str]) -> float:
+    start = time.perf_counter()
+    done = subprocess.run(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    elapsed = time.perf_counter() - start
+    if done.returncode != 0:
+        raise SystemExit(f"{' '.join(command)} failed (exit {done.returncode}): {done.stderr.strip()[-500:]}")
+    return elapsed
+
+
+def _heavy_modules_after_import() -> list[str]:
+    """Which of the heavy libraries ``import isolator`` loads (should be none)."""
+    code = ("import sys, isolator; heavy = %r; "
+            "print(' '.join(sorted(m for m in heavy if m in sys.modules)))" % (HEAVY,))
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True)
+    return done.stdout.split()
+
+
+def _row(name: str, values: list[float]) -> str:
+    runs = " ".join(f"{v:.2f}" for v in values)
+    return f"{name:34s} {statistics.median(values):7.2f} {min(values):7.2f} {max(values):7.2f}   {runs}"
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=5, help="timed runs of each command (default 5)")
+    args = parser.parse_args(argv)
+    if args.runs < 1:
+        parser.error("--runs must be ≥ 1")
+    isolator = _isolator_command()
+    out = Path(tempfile.mkdtemp(prefix="isolator-main-job-"))
+    try:
+        job = isolator + [part.format(out=out) for part in MAIN_JOB]
+        load_before = os.getloadavg()[0]
+        _time(job)  # warm-up: numba cache, map cache
+        report_s = [_time(job) for _ in range(args.runs)]
+        help_s = [_time(isolator + ["--help"]) for _ in range(args.runs)]
+        load_after = os.getloadavg()[0]
+        pdf_bytes = (out / "example.pdf").stat().st_size
+    finally:
+        shutil.rmtree(out, ignore_errors=True)
+    print(f"main job: isolator {' '.join(MAIN_JOB).format(out='OUT')}")
+    print(f"{args.runs} warm runs each after one warm-up; {platform.python_implementation()} "
+          f"{platform.python_version()}, {os.cpu_count()} CPUs, load average {load_before:.2f} before, "
+          f"{load_after:.2f} after")
+    print(f"{'wall time, launch to exit [s]':34s} {'median':>7s} {'min':>7s} {'max':>7s}   runs")
+    print(_row("isolator report (main job)", report_s))
+    print(_row("isolator --help", help_s))
+    heavy = _heavy_modules_after_import()
+    print(f"PDF size {pdf_bytes / 1024:.0f} KiB; `import isolator` loads: {', '.join(heavy) if heavy else 'none of ' + ', '.join(HEAVY)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
