@@ -1,4 +1,4 @@
-"""isolator.atomic, the basic promise: an output is complete or absent, never half written, replaced in one step.
+"""isolator.atomic, the basic promise: an output is complete or absent, and replaced in one step.
 
 (The hardening branch adds tests/test_atomic.py for links, non-regular files, inputs and locks.)
 """
