@@ -5,7 +5,9 @@ Run from the repository root (``PYTHONPATH`` is passed on, so a worktree's ``iso
     .venv/bin/python benchmarks/main_job.py            # 5 runs each
     .venv/bin/python benchmarks/main_job.py --runs 9
 
-Each run is a fresh ``isolator`` process, launch to exit, as a user types it.  One untimed
+Each run is a fresh ``isolator`` process, launch to exit, as a user types it; the wall time
+is what the user waits, the CPU time (user + system of the child) what the process spent,
+which other jobs on a shared machine disturb less.  One untimed
 run first fills the caches a second run of the same command finds (numba's compiled
 functions on disk, the regime map under ``$ISOLATOR_CACHE_DIR``): "warm" means that.  The
 report goes to a temporary folder, not to ``reports/``.  The load average is printed
@@ -17,6 +19,7 @@ from __future__ import annotations
 import argparse
 import os
 import platform
+import resource
 import shutil
 import statistics
 import subprocess
@@ -39,13 +42,17 @@ def _isolator_command() -> list[str]:
     return [sys.executable, "-c", "from isolator.cli import app; app()"]
 
 
-def _time(command: list[str]) -> float:
+def _time(command: list[str]) -> tuple[float, float]:
+    """(wall time, CPU time of the child: user + system) [s] of one run, launch to exit."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    elapsed = time.perf_counter() - start
+    wall_s = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode != 0:
         raise SystemExit(f"{' '.join(command)} failed (exit {done.returncode}): {done.stderr.strip()[-500:]}")
-    return elapsed
+    cpu_s = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall_s, cpu_s
 
 
 def _heavy_modules_after_import() -> list[str]:
@@ -58,7 +65,7 @@ def _heavy_modules_after_import() -> list[str]:
 
 def _row(name: str, values: list[float]) -> str:
     runs = " ".join(f"{v:.2f}" for v in values)
-    return f"{name:34s} {statistics.median(values):7.2f} {min(values):7.2f} {max(values):7.2f}   {runs}"
+    return f"{name:40s} {statistics.median(values):7.2f} {min(values):7.2f} {max(values):7.2f}   {runs}"
 
 
 def main(argv=None) -> int:
@@ -73,8 +80,8 @@ def main(argv=None) -> int:
         job = isolator + [part.format(out=out) for part in MAIN_JOB]
         load_before = os.getloadavg()[0]
         _time(job)  # warm-up: numba cache, map cache
-        report_s = [_time(job) for _ in range(args.runs)]
-        help_s = [_time(isolator + ["--help"]) for _ in range(args.runs)]
+        report = [_time(job) for _ in range(args.runs)]
+        help_ = [_time(isolator + ["--help"]) for _ in range(args.runs)]
         load_after = os.getloadavg()[0]
         pdf_bytes = (out / "example.pdf").stat().st_size
     finally:
@@ -83,9 +90,10 @@ def main(argv=None) -> int:
     print(f"{args.runs} warm runs each after one warm-up; {platform.python_implementation()} "
           f"{platform.python_version()}, {os.cpu_count()} CPUs, load average {load_before:.2f} before, "
           f"{load_after:.2f} after")
-    print(f"{'wall time, launch to exit [s]':34s} {'median':>7s} {'min':>7s} {'max':>7s}   runs")
-    print(_row("isolator report (main job)", report_s))
-    print(_row("isolator --help", help_s))
+    print(f"{'launch to exit [s]':40s} {'median':>7s} {'min':>7s} {'max':>7s}   runs")
+    for name, runs in (("isolator report (main job)", report), ("isolator --help", help_)):
+        print(_row(f"{name}, wall", [wall for wall, _ in runs]))
+        print(_row(f"{name}, CPU", [cpu for _, cpu in runs]))
     heavy = _heavy_modules_after_import()
     print(f"PDF size {pdf_bytes / 1024:.0f} KiB; `import isolator` loads: {', '.join(heavy) if heavy else 'none of ' + ', '.join(HEAVY)}")
     return 0

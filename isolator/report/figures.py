@@ -27,15 +27,25 @@ RC_PARAMS = {"pdf.fonttype": 3, "ps.fonttype": 3, "font.size": 8.5, "axes.titles
              "ytick.labelsize": 7.5, "axes.grid": True, "grid.alpha": 0.3}
 
 
-def _mpl():
-    """matplotlib.pyplot on the Agg backend, with the report's style (microseconds: call it freely)."""
+def new_figure(**kwargs):
+    """A matplotlib ``Figure`` in the report's style, outside pyplot.
+
+    Built directly (no ``matplotlib.pyplot``: no GUI backend, no global list of open
+    figures to close, 0.1 s less to import); ``fig.savefig`` picks the PDF or PNG writer
+    from the file name.  The style is applied to the process's rcParams (a few
+    microseconds, every call, so that a change elsewhere does not leak into a report);
+    tick labels read it when the figure is drawn.
+
+    Parameters
+    ----------
+    **kwargs
+        Passed to ``matplotlib.figure.Figure`` (``figsize`` [in], ``layout``…).
+    """
     import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")  # returns at once when Agg is already the backend
-    matplotlib.rcParams.update(RC_PARAMS)  # again each time: other code may have changed them
-    import matplotlib.pyplot as plt
-
-    return plt
+    matplotlib.rcParams.update(RC_PARAMS)
+    return Figure(**kwargs)
 
 
 def shade_intervals(ax, intervals, label="sliding", colour=COLOUR_SLIDING) -> None:
@@ -217,8 +227,8 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
 
 def regime_map_figure(rmap, *, triple=None, design_point=None, title=None):
     """A stand-alone figure of a regime map with its legend on the right."""
-    plt = _mpl()
-    fig, ax = plt.subplots(figsize=(9.0, 5.6), layout="constrained")
+    fig = new_figure(figsize=(9.0, 5.6), layout="constrained")
+    ax = fig.subplots()
     draw_regime_map(ax, rmap, triple=triple, design_point=design_point, title=title)
     return fig
 
