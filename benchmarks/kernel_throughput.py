@@ -26,7 +26,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORDS = ROOT.parent / "shared" / "records" / "at2"
-G = 9.80665
+from isolator.units import STANDARD_GRAVITY as G  # noqa: E402
 RADIUS_M = 2.0
 MU = 0.06
 DESIGNS = {

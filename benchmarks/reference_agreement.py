@@ -5,25 +5,24 @@ models 1 and 2) on a synthetic pulse record, and a friction pendulum on real rec
 from ../shared/records/at2 when present.  The reference is tests/reference.py
 (DOP853, rtol 1e-12, event location, restarted at every sample).
 
-    python benchmarks/reference_agreement.py
+    python -m benchmarks.reference_agreement      # from the repository root
+
+(run as a module, so that the ``tests`` package is importable without editing sys.path)
 """
 
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 
+from isolator.solver.record import simulate_record
+from isolator.units import STANDARD_GRAVITY as G
+from tests.reference import reference_record
+from tests.solver.test_record import SYSTEMS, synthetic_record
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-
-from isolator.solver.record import simulate_record  # noqa: E402
-from tests.reference import reference_record  # noqa: E402
-from tests.solver.test_record import SYSTEMS, synthetic_record  # noqa: E402
-
-G = 9.80665
 REAL = ["RSN1044_NORTHR_NWH360.AT2", "IELC180.AT2", "RSN779_LOMAP_LGP000.AT2"]
 
 

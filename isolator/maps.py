@@ -28,15 +28,18 @@ import math
 import os
 import time
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from isolator.atomic import atomic_path
+from isolator.metrics import REGIMES as REGIME_NAMES
 
 MAP_FORMAT_VERSION = 1  #: bump when the content of a cached map changes
-REGIME_CODES = {"ST": 0, "SS": 1, "SL": 2}
-REGIME_NAMES = ("ST", "SS", "SL")
+REGIME_CODES = {name: code for code, name in enumerate(REGIME_NAMES)}
+
+
 FORCE_CODES = {"friction": 0, "elastic": 1, "viscous": 2}
 FORCE_NAMES = ("friction", "elastic", "viscous")
 
@@ -163,48 +166,30 @@ def _point(alpha: float, k: float, eta: float, mu_s: float, mu_k: float) -> tupl
             FORCE_CODES[r.dominant_force], r.steady)
 
 
-def _chunk(args) -> list[tuple]:
-    points, eta, mu_s, mu_k = args
+def _chunk(points, *, eta, mu_s, mu_k) -> list[tuple]:
     return [_point(a, k, eta, mu_s, mu_k) for a, k in points]
 
 
 def _evaluate(points: list[tuple], eta: float, mu_s: float, mu_k: float, workers: int) -> list[tuple]:
-    if workers <= 1 or len(points) < 64:
-        return _chunk((points, eta, mu_s, mu_k))
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
+    from isolator.parallel import map_interleaved
 
+    if len(points) < 64:
+        workers = 1
     # interleaved chunks balance the cost (points near resonance take longer)
-    n_chunks = workers * 8
-    chunks = [points[i::n_chunks] for i in range(n_chunks)]
-    try:
-        context = multiprocessing.get_context("fork")  # workers inherit the compiled solver
-    except ValueError:
-        context = None
-    with ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-        results = list(pool.map(_chunk, [(chunk, eta, mu_s, mu_k) for chunk in chunks]))
-    out: list = [None] * len(points)
-    for c, result in enumerate(results):
-        out[c::n_chunks] = result
-    return out
+    return map_interleaved(partial(_chunk, eta=eta, mu_s=mu_s, mu_k=mu_k), points, workers, chunks_per_worker=8)
 
 
-def _refine_chunk(args) -> list[tuple]:
+def _refine_chunk(jobs, *, eta, mu_s, mu_k, rel_tol) -> list[tuple]:
     """Bisect each (k, α_lo, α_hi, from, to) change of regime to the α where it happens."""
-    from isolator.solver.harmonic import harmonic_regime
+    from isolator.solver.harmonic import bisect_change, harmonic_regime
 
-    jobs, eta, mu_s, mu_k, rel_tol = args
     out = []
     for k, lo, hi, r_lo, r_hi in jobs:
         if r_lo == 0 and lo < 1.0 <= hi:
             out.append((k, 1.0, 3 * r_lo + r_hi))  # α_SS = 1 exactly
             continue
-        while hi - lo > rel_tol * hi:
-            mid = 0.5 * (lo + hi)
-            if REGIME_CODES[harmonic_regime(mid, k, eta, mu_s, mu_k)] == r_lo:
-                lo = mid
-            else:
-                hi = mid
+        lo, hi = bisect_change(lambda a, k=k, r_lo=r_lo: REGIME_CODES[harmonic_regime(a, k, eta, mu_s, mu_k)] == r_lo,
+                               lo, hi, rel_tol=rel_tol)
         out.append((k, 0.5 * (lo + hi), 3 * r_lo + r_hi))
     return out
 
@@ -222,18 +207,11 @@ def refine_boundaries(rmap: RegimeMap, workers: int | None = None, rel_tol: floa
         for i in np.nonzero(np.diff(column))[0]:
             jobs.append((float(k), float(rmap.alpha[i]), float(rmap.alpha[i + 1]), int(column[i]),
                          int(column[i + 1])))
-    workers = workers or _default_workers()
-    if workers <= 1 or len(jobs) < 16:
-        results = _refine_chunk((jobs, rmap.eta, rmap.mu_s, rmap.mu_k, rel_tol))
-    else:
-        import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
+    from isolator.parallel import default_workers, map_interleaved
 
-        n_chunks = workers * 4
-        chunks = [jobs[i::n_chunks] for i in range(n_chunks)]
-        with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
-            parts = list(pool.map(_refine_chunk, [(c, rmap.eta, rmap.mu_s, rmap.mu_k, rel_tol) for c in chunks]))
-        results = [item for part in parts for item in part]
+    workers = 1 if len(jobs) < 16 else (workers or default_workers())
+    results = map_interleaved(partial(_refine_chunk, eta=rmap.eta, mu_s=rmap.mu_s, mu_k=rmap.mu_k, rel_tol=rel_tol),
+                              jobs, workers, chunks_per_worker=4)
     results.sort()
     rmap.boundary_k = np.array([r[0] for r in results], dtype=float)
     rmap.boundary_alpha = np.array([r[1] for r in results], dtype=float)
@@ -281,14 +259,9 @@ def _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k) -> str:
 
 
 def _default_workers() -> int:
-    # up to 2 processes, but only on idle cores: on a busy shared machine (load average at or
-    # above the core count) extra processes only add start-up time and contention
-    cores = os.cpu_count() or 1
-    try:
-        idle = cores - int(os.getloadavg()[0])
-    except OSError:
-        idle = cores
-    return max(1, min(2, idle))
+    from isolator.parallel import default_workers
+
+    return default_workers()
 
 
 def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0.0, 6.0),
@@ -400,17 +373,13 @@ def triple_point(eta: float, mu_s: float, mu_k: float | None = None, alpha_max: 
         k = eta * math.sqrt(alpha * mu_s)
         return k * harmonic_response(alpha, k, eta, mu_s, mu_k, samples_per_period=2).amplitude - mu_k
 
+    from isolator.solver.harmonic import bisect_change
+
     alphas = np.geomspace(1.0 + 1e-6, alpha_max, n_scan)
     values = [excess(a) for a in alphas]
     for a_lo, a_hi, f_lo, f_hi in zip(alphas[:-1], alphas[1:], values[:-1], values[1:]):
         if f_lo < 0.0 <= f_hi:
-            lo, hi = a_lo, a_hi
-            for _ in range(40):
-                mid = 0.5 * (lo + hi)
-                if excess(mid) < 0.0:
-                    lo = mid
-                else:
-                    hi = mid
+            lo, hi = bisect_change(lambda a: excess(a) < 0.0, a_lo, a_hi, iterations=40)
             alpha_hat = 0.5 * (lo + hi)
             return alpha_hat, eta * math.sqrt(alpha_hat * mu_s)
     return None

@@ -27,6 +27,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+#: The regimes of the paper, in the order of their codes (0, 1, 2), and what they mean.
+REGIMES = ("ST", "SS", "SL")
 REGIME_WORDS = {"ST": "stick (no sliding)", "SS": "stick-slip", "SL": "permanent slip"}
 FORCE_NAMES = ("friction", "elastic", "viscous")
 

@@ -8,13 +8,13 @@ classifies both responses by the same rules (:mod:`isolator.metrics`).
 from __future__ import annotations
 
 import datetime as _dt
-import math
 from dataclasses import dataclass, field
 
-import numpy as np
 
 from isolator.adapter import Adaptation, adapt, engineering_quantities
 from isolator.design import Design
+from isolator.serialize import json_safe
+from isolator.motion.examples import EXAMPLE_RECORDS, resolve_record  # noqa: F401 - re-exported
 from isolator.metrics import REGIME_WORDS, Classification, classify_harmonic, classify_record, compare
 
 
@@ -99,18 +99,6 @@ def verdicts(analysis: Analysis) -> list[str]:
     return out
 
 
-def _clean(value):
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, (np.floating, np.integer, np.bool_)):
-        return _clean(value.item())
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    return value
-
-
 def summary_dict(analysis: Analysis) -> dict:
     """The JSON written beside the PDF (SI units; energies per unit mass in J/kg)."""
     from isolator import __version__
@@ -173,33 +161,4 @@ def summary_dict(analysis: Analysis) -> dict:
         "software": {"name": "isolator", "version": __version__},
         "created_utc": a.created_utc,
     }
-    return _clean(out)
-
-
-#: Record names that resolve without a file of the user's: real records shipped by a dependency.
-EXAMPLE_RECORDS = {
-    "example:knet": ("obspy.io.nied", ("tests", "data", "test.knet"),
-                     "test.knet (obspy's K-NET sample)"),
-}
-
-
-def resolve_record(argument: str) -> tuple[str, str]:
-    """A record argument → (path, label); ``example:knet`` is obspy's bundled K-NET record.
-
-    Raises
-    ------
-    ValueError
-        An unknown ``example:`` name, or the bundled file missing from the installation.
-    """
-    if not argument.startswith("example:"):
-        return argument, argument
-    if argument not in EXAMPLE_RECORDS:
-        raise ValueError(f"unknown example record {argument!r} (choose one of: {', '.join(EXAMPLE_RECORDS)})")
-    import importlib
-    from pathlib import Path
-
-    module, parts, label = EXAMPLE_RECORDS[argument]
-    path = Path(importlib.import_module(module).__file__).parent.joinpath(*parts)
-    if not path.is_file():
-        raise ValueError(f"{argument}: the bundled file {path} is missing from this installation")
-    return str(path), label
+    return json_safe(out)

@@ -27,6 +27,7 @@ from numba import njit
 
 from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
 from isolator.solver.segments import harmonic_h1, ramp_basis, segment_state, state_from_basis
+from isolator.serialize import finite_or_none
 from isolator.solver.system import InvalidSystemError, classify_configuration
 
 PHASE_DEFAULT = 0.5 * math.pi  #: φ of the paper: zero ground acceleration at t = 0 [rad]
@@ -366,10 +367,6 @@ class HarmonicResponse:
         }
 
 
-def _finite_or_none(value: float) -> float | None:
-    return float(value) if math.isfinite(value) else None
-
-
 def force_ratios(k: float, eta: float, alpha: float, mu_s: float, mu_k: float, amplitude: float):
     r"""The paper's force ratios (Eq. 5) and the dominant force.
 
@@ -394,7 +391,7 @@ def force_ratios(k: float, eta: float, alpha: float, mu_s: float, mu_k: float, a
     def ratio(num, den):
         if den == 0.0:
             return None
-        return _finite_or_none(num / den)
+        return finite_or_none(num / den)
 
     rho_ev = ratio(k * k, eta * eta * alpha * mu_s)
     rho_vf = ratio(eta * eta * amplitude * amplitude * alpha * mu_s, mu_k * mu_k)
@@ -414,6 +411,19 @@ def _validate(alpha, k, eta, mu_s, mu_k):
         raise InvalidSystemError(f"mu_s must be > 0 (α is defined relative to µs g), got {mu_s!r}")
     if not math.isfinite(mu_k) or mu_k < 0.0 or mu_k > mu_s:
         raise InvalidSystemError(f"mu_k must lie in [0, mu_s = {mu_s}], got {mu_k!r}")
+
+
+def _discretisation(alpha: float, k: float, eta: float, mu_s: float) -> tuple[float, float, float]:
+    """(ω, forcing period, longest slip piece) of a harmonic problem, in Eq. 2 units."""
+    omega = math.sqrt(alpha * mu_s)
+    period = 2.0 * math.pi / omega
+    # pieces resolve the forcing and the damped oscillation; an over-damped system adds
+    # no oscillation (its fast exponential only decays), so it needs no shorter pieces
+    shortest = period
+    d2 = 0.25 * eta * eta - k
+    if d2 < 0.0:
+        shortest = min(shortest, 2.0 * math.pi / math.sqrt(-d2))
+    return omega, period, shortest / PIECES_PER_PERIOD
 
 
 def harmonic_response(alpha: float, k: float, eta: float, mu_s: float, mu_k: float | None = None, *,
@@ -445,15 +455,7 @@ def harmonic_response(alpha: float, k: float, eta: float, mu_s: float, mu_k: flo
     mu_k = mu_s if mu_k is None else mu_k
     alpha, k, eta, mu_s, mu_k = (float(alpha), float(k), float(eta), float(mu_s), float(mu_k))
     _validate(alpha, k, eta, mu_s, mu_k)
-    omega = math.sqrt(alpha * mu_s)
-    period = 2.0 * math.pi / omega
-    # pieces resolve the forcing and the damped oscillation; an over-damped system adds
-    # no oscillation (its fast exponential only decays), so it needs no shorter pieces
-    shortest = period
-    d2 = 0.25 * eta * eta - k
-    if d2 < 0.0:
-        shortest = min(shortest, 2.0 * math.pi / math.sqrt(-d2))
-    piece_max = shortest / PIECES_PER_PERIOD
+    omega, period, piece_max = _discretisation(alpha, k, eta, mu_s)
     boundary_states = np.zeros((max_periods + 1, _STATE_SIZE))
     amplitudes = np.zeros(max_periods)
     status, cycle, n_run, moved = _find_steady(omega, k, eta, mu_s, mu_k, phase, piece_max, max_periods,
@@ -517,99 +519,81 @@ def harmonic_response(alpha: float, k: float, eta: float, mu_s: float, mu_k: flo
 
 
 @dataclass
-class RegimeThresholds:
-    """Regime transitions of the harmonic response along α at fixed (k, η, µs, µk).
+class HarmonicTransient:
+    """The response from rest over a whole number of forcing periods, sampled on the last one.
 
-    ``alpha_ss`` = 1 (the block cannot move for α ≤ 1, whatever k and η);
-    ``alpha_sl`` is the lowest α above which the motion stays permanent slip up to
-    ``alpha_max`` (``None`` if it is not SL at ``alpha_max``); ``transitions`` lists
-    every change of regime found, in order, so an SS/SL/SS/SL sequence (Fig. 5a,
-    4.1 < k < 5.3) shows as three transitions above α = 1.
+    Dimensionless (Eq. 2, g = 1); ``amplitude``, ``slip_ratio`` and ``n_events`` are
+    those of the last period, ``residual`` is x at the end of the run.
     """
 
-    k: float
-    eta: float
-    mu_s: float
-    mu_k: float
-    alpha_max: float
-    alpha_ss: float
-    alpha_sl: float | None
-    transitions: list
-
-    def summary(self) -> dict:
-        return {"alpha_ss": self.alpha_ss, "alpha_sl": self.alpha_sl, "transitions": self.transitions,
-                "k": self.k, "eta": self.eta, "mu_s": self.mu_s, "mu_k": self.mu_k,
-                "alpha_max": self.alpha_max}
+    time: np.ndarray  #: sample times (from the start of the run) [-]
+    x: np.ndarray  #: relative displacement at ``time`` [-]
+    xdot: np.ndarray  #: relative velocity at ``time`` [-]
+    amplitude: float  #: half peak-to-peak of x on the last period [-]
+    residual: float  #: x at the end of the run [-]
+    slip_ratio: float  #: slip time / period on the last period (ζ, Eq. 3) [-]
+    n_events: int  #: break-aways, stops and reversals on the last period [-]
 
 
-def harmonic_regime(alpha: float, k: float, eta: float, mu_s: float, mu_k: float | None = None,
-                    max_periods: int = MAX_PERIODS_DEFAULT) -> str:
-    """Regime (ST, SS or SL) of the steady harmonic response; see :func:`harmonic_response`."""
-    if alpha <= 1.0:
-        return "ST"  # |ω² cos| ≤ µs: the block never breaks away
-    return harmonic_response(alpha, k, eta, mu_s, mu_k, max_periods=max_periods, samples_per_period=2).regime
+def harmonic_transient(alpha: float, k: float, eta: float, mu_s: float, mu_k: float | None = None, *,
+                       n_periods: int, times, phase: float = PHASE_DEFAULT) -> HarmonicTransient:
+    """Exact response from rest to ``n_periods`` forcing periods of Eq. 2, sampled on the last one.
 
-
-def harmonic_thresholds(k: float, eta: float, mu_s: float, mu_k: float | None = None, *,
-                        alpha_max: float = 6.0, n_grid: int = 120,
-                        rel_tol: float = 1e-9) -> RegimeThresholds:
-    """Every regime transition in α ∈ (1, alpha_max] at fixed k, η, µs, µk.
-
-    Scans a grid of ``n_grid`` values of α, plus the values where the natural
-    frequency is a multiple or a fraction of the forcing one (where the narrow
-    SS windows of Fig. 5a open), then bisects every change of regime between
-    neighbours to ``rel_tol``.  A window narrower than the grid step elsewhere can
-    be missed; raise ``n_grid`` to look closer.
+    :func:`harmonic_response` gives the steady cycle; this gives the transient that leads
+    to it (or that never ends, at undamped resonance), with the same kernel and pieces.
 
     Parameters
     ----------
-    k, eta : float
-        Dimensionless stiffness and damping (Eq. 6).
+    alpha, k, eta : float
+        Reduced acceleration, stiffness and damping (Eq. 6) [-].
     mu_s, mu_k : float
-        Friction coefficients; µk defaults to µs.
-    alpha_max : float
-        Upper end of the scan [-].
-    n_grid : int
-        Grid points on (1, alpha_max].
-    rel_tol : float
-        Relative accuracy of each transition in α.
+        Friction coefficients; µk defaults to µs [-].
+    n_periods : int
+        Forcing periods run from rest, ≥ 1 [-].
+    times : array_like
+        Increasing sample times inside the last period, from the start of the run [-]
+        (times that rounding puts just outside it are clipped to it).
+    phase : float
+        φ [rad], π/2 by default (Eq. 2).
 
     Returns
     -------
-    RegimeThresholds
+    HarmonicTransient
     """
     mu_k = mu_s if mu_k is None else mu_k
-    if not alpha_max > 1.0:
-        raise InvalidSystemError(f"alpha_max must be > 1, got {alpha_max!r}")
-    _validate(1.0, float(k), float(eta), float(mu_s), float(mu_k))
-    # the first grid point sits just above 1 so that the ST → moving step is at α_SS = 1;
-    # narrow windows open at the sub- and super-harmonic resonances √k = n ω and
-    # ω = n √k (ω² = α µs), so those values of α join the grid
-    resonant = [k * n * n / mu_s for n in range(1, 7)] + [k / (n * n * mu_s) for n in range(2, 7)]
-    resonant = [a for a in resonant if 1.0 < a < alpha_max]
-    alphas = np.unique(np.concatenate(([1.0 + 1e-6], np.linspace(1.0, alpha_max, n_grid + 1)[1:], resonant)))
-    regimes = [harmonic_regime(a, k, eta, mu_s, mu_k) for a in alphas]
-    transitions = [{"alpha": 1.0, "from": "ST", "to": regimes[0]}]
-    for a_lo, a_hi, r_lo, r_hi in zip(alphas[:-1], alphas[1:], regimes[:-1], regimes[1:]):
-        if r_lo == r_hi:
-            continue
-        lo, hi = a_lo, a_hi
-        while hi - lo > rel_tol * hi:
-            mid = 0.5 * (lo + hi)
-            if harmonic_regime(mid, k, eta, mu_s, mu_k) == r_lo:
-                lo = mid
-            else:
-                hi = mid
-        transitions.append({"alpha": 0.5 * (lo + hi), "from": r_lo, "to": r_hi})
-    alpha_sl = None
-    if regimes[-1] == "SL":
-        alpha_sl = 1.0
-        for tr in transitions:
-            if tr["to"] == "SL":
-                alpha_sl = tr["alpha"]
-    return RegimeThresholds(k=float(k), eta=float(eta), mu_s=float(mu_s), mu_k=float(mu_k),
-                            alpha_max=float(alpha_max), alpha_ss=1.0, alpha_sl=alpha_sl,
-                            transitions=transitions)
+    alpha, k, eta, mu_s, mu_k = (float(alpha), float(k), float(eta), float(mu_s), float(mu_k))
+    _validate(alpha, k, eta, mu_s, mu_k)
+    n_periods = int(n_periods)
+    if n_periods < 1:
+        raise InvalidSystemError(f"n_periods must be >= 1, got {n_periods}")
+    omega, period, piece_max = _discretisation(alpha, k, eta, mu_s)
+    start = (n_periods - 1) * period
+    t_out = np.clip(np.asarray(times, dtype=np.float64) - start, 0.0, period)
+    state = np.zeros(_STATE_SIZE)
+    state[2] = 1.0  # at rest, stuck
+    metrics = np.zeros(_METRICS_SIZE)
+    empty = np.zeros(0)
+    if n_periods > 1:
+        _advance_periods(n_periods - 1, state, omega, k, eta, mu_s, mu_k, phase, piece_max, False,
+                         empty, np.zeros(0, dtype=np.int8), empty, empty, empty, empty, metrics)
+    x_out = np.empty_like(t_out)
+    v_out = np.empty_like(t_out)
+    capacity = 256
+    boundary = state.copy()
+    while True:  # bounded: the second pass has room for every event of the first
+        ev_time = np.empty(capacity)
+        ev_kind = np.empty(capacity, dtype=np.int8)
+        ev_x = np.empty(capacity)
+        n_ev = _advance_periods(1, state, omega, k, eta, mu_s, mu_k, phase, piece_max, True,
+                                ev_time, ev_kind, ev_x, t_out, x_out, v_out, metrics)
+        if n_ev <= capacity:
+            break
+        capacity = n_ev + 16
+        state = boundary.copy()
+    return HarmonicTransient(time=t_out + start, x=x_out, xdot=v_out,
+                             amplitude=float(0.5 * (metrics[M_XMAX] - metrics[M_XMIN])),
+                             residual=float(state[0]), slip_ratio=float(metrics[M_SLIP] / period),
+                             n_events=int(n_ev))
 
 
 def alpha_sl_friction_only(mu_s: float, mu_k: float | None = None) -> float:
@@ -619,3 +603,8 @@ def alpha_sl_friction_only(mu_s: float, mu_k: float | None = None) -> float:
     """
     mu_k = mu_s if mu_k is None else mu_k
     return math.sqrt(1.0 + (math.pi ** 2 / 4.0) * (mu_k / mu_s) ** 2)
+
+
+# the regime thresholds along α live in their own module; re-exported here for callers
+from isolator.solver.thresholds import (  # noqa: E402,F401
+    RegimeThresholds, bisect_change, harmonic_regime, harmonic_thresholds)

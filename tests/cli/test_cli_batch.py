@@ -7,7 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 from isolator.cli import app
-from test_batch import DESIGNS, write_record
+from tests.batch.test_batch import DESIGNS, write_record
 
 runner = CliRunner()
 

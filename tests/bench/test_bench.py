@@ -72,7 +72,8 @@ def test_baselines_converge_with_their_setting():
 
 def test_cli_bench_json_and_files(tmp_path, monkeypatch):
     monkeypatch.setattr(bench, "bench_cases", lambda quick=False, records_dir=None: tiny_cases())
-    result = CliRunner().invoke(app, ["bench", "--quick", "--json", "--repeats", "1", "--out", str(tmp_path)])
+    result = CliRunner().invoke(app, ["bench", "--quick", "--json", "--repeats", "1", "--out", str(tmp_path),
+                                      "--records", str(tmp_path)])  # any folder: the cases are patched
     assert result.exit_code == 0, result.output
     rows = json.loads(result.stdout)
     assert isinstance(rows, list) and all(ROW_KEYS <= set(row) for row in rows)

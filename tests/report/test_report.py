@@ -13,7 +13,7 @@ from isolator.cli import app
 
 pypdf = pytest.importorskip("pypdf")
 runner = CliRunner()
-DATA = Path(__file__).resolve().parents[1] / "data"
+DATA = Path(__file__).resolve().parents[2] / "data"
 
 REQUIRED_KEYS = ("regime_record", "regime_harmonic", "amplified_record", "amplified_harmonic",
                  "dominant_force_record", "dominant_force_harmonic", "k", "alpha", "eta",

@@ -1,0 +1,113 @@
+"""Running a batch: plan, skip what is done, execute, keep every finished task, write the table."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from isolator.batch.executors import _iterate_dask, _iterate_local
+from isolator.parallel import default_workers
+from isolator.batch.plan import BatchError, ReadOptions, _one_line, make_tasks, plan, row_key
+from isolator.batch.store import PartStore, _existing_rows, to_table, write_table_atomically
+
+
+@dataclass
+class BatchResult:
+    """What a batch did."""
+
+    output: str
+    n_rows: int
+    n_failed: int  #: rows with an error
+    n_resumed: int  #: rows found done from an earlier run
+    n_lost_tasks: int  #: tasks whose worker died (rerun to finish them)
+    lost_messages: list = field(default_factory=list)
+    seconds: dict = field(default_factory=dict)
+    table: object = None  #: pandas.DataFrame
+
+    def final_line(self) -> str:
+        line = f"{self.n_rows} rows, {self.n_failed} failed"
+        if self.n_lost_tasks:
+            line += f", {self.n_lost_tasks} task(s) lost: rerun the same command to finish them"
+        return line
+
+
+def run_batch(records, designs_file, output, *, grids=(), component: str | None = None,
+              options: ReadOptions = ReadOptions(), jobs: int | None = None, scheduler: str | None = None,
+              reports_dir: str | None = None, map_resolution: int = 30, progress=None,
+              design_mappings: list | None = None) -> BatchResult:
+    """Run a batch and write its table (see the module docstring).
+
+    Parameters
+    ----------
+    records : list of str
+        Record files, folders or glob patterns [-].
+    designs_file : str or Path
+        TOML file with ``[[design]]`` tables [-].
+    output : str or Path
+        ``.csv`` or ``.parquet`` table to write [-].
+    grids : list of (str, list of float)
+        From :func:`parse_grid` [-].
+    component : str, optional
+        Component to read, or ``"all-horizontal"`` [-].
+    options : ReadOptions
+        Units for records that do not state them; scaling to a PGA [g].
+    jobs : int, optional
+        Local processes (default: the idle cores, :func:`isolator.parallel.default_workers`); ignored with ``scheduler``.
+    scheduler : str, optional
+        Address of a dask.distributed scheduler, e.g. ``tcp://10.0.0.1:8786``.
+    reports_dir : str, optional
+        Also write the PDF report of every row there (slow).
+    progress : callable, optional
+        ``progress(total=n)`` once, then ``progress(advance=n)`` per finished task.
+
+    Returns
+    -------
+    BatchResult
+
+    Raises
+    ------
+    BatchError
+        A mistake in the command (records, designs file, grid, output suffix, scheduler).
+    """
+    clock = time.perf_counter()
+    output = Path(output)
+    if output.suffix.lower() not in (".csv", ".parquet"):
+        raise BatchError(f"-o {output}: the table must end with .csv or .parquet")
+    _, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings)
+    planned = {row_key(path, comp, case.design_hash, options) for path, comp in pairs for case in cases}
+    store = PartStore(output)
+    done_rows = {}
+    for row in _existing_rows(output, planned) + store.rows():
+        if row.get("row_key") in planned:
+            done_rows[row["row_key"]] = row
+    workers = 1 if scheduler is None and (jobs or default_workers()) <= 1 else (jobs or default_workers())
+    tasks, n_todo = make_tasks(pairs, cases, options, set(done_rows), workers, reports_dir, map_resolution)
+    if progress is not None:
+        progress(total=len(planned), completed=len(done_rows))
+    lost, lost_messages = 0, []
+    planning_seconds = time.perf_counter() - clock
+    if tasks:
+        iterator = _iterate_dask(tasks, scheduler) if scheduler else _iterate_local(tasks, workers)
+        for task, result in iterator:
+            if isinstance(result, BaseException):
+                lost += 1
+                lost_messages.append(f"{task.record}: {type(result).__name__}: {_one_line(result)}")
+                continue
+            store.write(result)
+            for row in result:
+                done_rows[row["row_key"]] = row
+            if progress is not None:
+                progress(advance=len(result))
+    compute_seconds = time.perf_counter() - clock - planning_seconds
+    write_start = time.perf_counter()
+    table = to_table(list(done_rows.values()))
+    write_table_atomically(table, output)
+    if not lost:
+        store.remove()
+    write_seconds = time.perf_counter() - write_start
+    n_failed = int((table["error"] != "").sum())
+    return BatchResult(output=str(output), n_rows=len(table), n_failed=n_failed,
+                       n_resumed=len(planned) - n_todo, n_lost_tasks=lost, lost_messages=lost_messages,
+                       seconds={"plan": planning_seconds, "compute": compute_seconds, "write": write_seconds},
+                       table=table)

@@ -1,0 +1,151 @@
+"""Where rows go: part files (one JSON-lines file per finished task) and the final table."""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+import uuid
+from pathlib import Path
+
+from isolator.atomic import atomic_path
+from isolator.serialize import dumps
+
+#: Columns that measure time: they differ between two runs of the same batch.
+TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
+
+#: Column order of the table (columns of every row; a row may leave some empty).
+COLUMNS = (
+    "record", "component", "design_index", "design_name", "error",
+    # record provenance
+    "record_format", "record_station", "record_station_name", "record_network", "record_channel",
+    "record_event", "record_date", "record_starttime", "record_units_source", "record_npts", "record_dt_s",
+    "record_duration_s", "record_scale_factor",
+    # intensity measures (of the motion analysed, after scaling)
+    "pga_m_s2", "pgv_m_s", "pgd_m", "arias_m_s", "d5_95_s", "predominant_period_s", "a0_equiv_m",
+    "omega_equiv_rad_s",
+    # design
+    "design_file_index", "design_kind", "mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kinetic",
+    "damping_Ns_per_m", "damping_ratio", "isolated_period_s",
+    # the paper's dimensionless point
+    "alpha", "k", "eta", "configuration",
+    # simulate
+    "peak_displacement_m", "residual_displacement_m", "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2",
+    "slip_time_s", "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
+    "energy_balance_error_J_per_kg", "solver_status",
+    # engineering quantities at the peak displacement
+    "effective_period_s", "effective_damping_ratio", "peak_transmitted_force_N", "base_shear_coefficient",
+    # classification (record, over D5-95) and harmonic (at the equivalent point)
+    "regime_record", "zeta_record", "amplitude_record", "amplified_record", "dominant_force_record",
+    "dominant_force_rho_record", "rho_ev_record", "rho_vf_record", "rho_ef_record", "window_start_s",
+    "window_end_s",
+    "regime_harmonic", "zeta_harmonic", "amplitude_harmonic", "amplified_harmonic", "dominant_force_harmonic",
+    "dominant_force_rho_harmonic", "rho_ev_harmonic", "rho_vf_harmonic", "rho_ef_harmonic", "harmonic_steady",
+    "harmonic_status", "n_disagreements",
+    # timings (not compared between runs)
+    "read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds",
+    "row_key",
+)
+
+
+class PartStore:
+    """``<output>.parts/``: one JSON-lines file per finished task, written atomically."""
+
+    def __init__(self, output):
+        output = Path(output)
+        self.directory = output.with_name(output.name + ".parts")
+
+    def rows(self) -> list[dict]:
+        """Rows of every complete part (temporary files of an interrupted write are ignored)."""
+        if not self.directory.is_dir():
+            return []
+        rows = []
+        for part in sorted(self.directory.glob("part-*.jsonl")):
+            with open(part, encoding="utf-8") as stream:
+                for line in stream:
+                    line = line.strip()
+                    if line:
+                        rows.append(json.loads(line))
+        return rows
+
+    def write(self, rows: list[dict]) -> None:
+        if not rows:
+            return
+        self.directory.mkdir(parents=True, exist_ok=True)
+        name = f"part-{time.time_ns():020d}-{uuid.uuid4().hex[:8]}.jsonl"
+        tmp = self.directory / f".{name}.tmp"
+        with open(tmp, "w", encoding="utf-8") as stream:
+            for row in rows:
+                stream.write(dumps(row) + "\n")
+            stream.flush()
+            os.fsync(stream.fileno())
+        os.replace(tmp, self.directory / name)
+
+    def remove(self) -> None:
+        import shutil
+
+        shutil.rmtree(self.directory, ignore_errors=True)
+
+
+def _existing_rows(output: Path, keys: set) -> list[dict]:
+    """Rows of a finished table at ``output`` whose key is planned (a rerun after completion)."""
+    if not output.is_file():
+        return []
+    import pandas as pd
+
+    try:
+        table = pd.read_parquet(output) if output.suffix.lower() == ".parquet" else pd.read_csv(
+            output, keep_default_na=False, na_values=[""])
+    except Exception:  # noqa: BLE001 - an unreadable old table is simply recomputed
+        return []
+    if "row_key" not in table.columns:
+        return []
+    table = table[table["row_key"].isin(keys)]
+    table = table.astype(object).where(table.notna(), None)
+    rows = table.to_dict("records")
+    for row in rows:
+        if row.get("error") is None:
+            row["error"] = ""
+    return rows
+
+
+def to_table(rows: list[dict]):
+    """Rows → DataFrame in the column order of :data:`COLUMNS`, sorted by record, component, design."""
+    import pandas as pd
+
+    table = pd.DataFrame(rows)
+    for column in COLUMNS:
+        if column not in table.columns:
+            table[column] = None
+    extra = [c for c in table.columns if c not in COLUMNS]
+    table = table[list(COLUMNS) + extra]
+    table["error"] = table["error"].fillna("").astype(str)
+    table = table.sort_values(["record", "component", "design_index"], kind="mergesort").reset_index(drop=True)
+    return table
+
+
+def write_table_atomically(table, path) -> None:
+    """CSV or Parquet (by suffix) through a temporary file and a rename: never half a file."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        if path.suffix.lower() == ".parquet":
+            out = table.copy()
+            for column in out.columns:
+                if out[column].dtype == object:
+                    values = out[column].dropna()
+                    if len(values) and all(isinstance(v, str) for v in values):
+                        out[column] = out[column].astype("string")
+                    elif len(values) and all(isinstance(v, bool) for v in values):
+                        out[column] = out[column].astype("boolean")
+                    elif len(values) and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
+                        out[column] = out[column].astype(float)
+                    else:
+                        out[column] = out[column].astype("string")
+            out.to_parquet(tmp, index=False)
+        else:
+            table.to_csv(tmp, index=False)
+
+
+def comparable(table):
+    """The table without its timing columns (what must be equal between two runs)."""
+    return table.drop(columns=[c for c in TIMING_COLUMNS if c in table.columns])

@@ -1,0 +1,176 @@
+"""The harness: time every method on every case and measure its errors against the reference.
+
+Our solver is compared with the tightest event-located ``solve_ivp`` run (DOP853,
+rtol 1e-12), the baselines with our solver; :func:`pareto_summary` says where ours
+stands (speed-up at equal error, accuracy gain at equal time).
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import time
+from typing import Callable
+
+import numpy as np
+
+from isolator.bench.cases import BenchCase, harmonic_case, record_case
+from isolator.bench.methods import (OURS, MethodOutput, exact_solver, implicit_fixed_step, ivp_with_events,
+                                    methods, newmark_elastic_plastic)
+
+ERROR_FLOOR = 1e-16  #: errors below this are reported as this (round-off)
+
+
+CROSS_CHECK = ("solve_ivp DOP853 + events (tightest)", 1e-12)
+
+
+def errors(case: BenchCase, out: MethodOutput, ref: MethodOutput) -> dict:
+    """Errors of ``out`` against ``ref``: peak (relative), residual [m], ζ, trajectory (relative to the peak)."""
+    scale = max(float(np.max(np.abs(ref.displacement))), ERROR_FLOOR)
+    traj = float(np.max(np.abs(out.displacement - ref.displacement))) / scale
+    peak = abs(out.peak - ref.peak) / max(abs(ref.peak), ERROR_FLOOR)
+    return {
+        "error_peak_rel": max(peak, ERROR_FLOOR),
+        "error_residual_abs": max(abs(out.residual - ref.residual), ERROR_FLOOR),
+        "error_zeta": max(abs(out.slip_ratio - ref.slip_ratio), ERROR_FLOOR),
+        "error_trajectory": max(traj, ERROR_FLOOR) if np.all(np.isfinite(out.displacement)) else math.inf,
+    }
+
+
+def time_method(function, case, setting, repeats: int, budget_s: float = 2.0, min_total_s: float = 0.2,
+                max_runs: int = 50):
+    """Median wall time [s] of at least ``repeats`` runs, more (up to ``max_runs``) while the
+    total stays under ``min_total_s``; a single run if the first takes more than ``budget_s``."""
+    times = []
+    out = None
+    while True:
+        start = time.perf_counter()
+        out = function(case, setting)
+        times.append(time.perf_counter() - start)
+        if times[0] > budget_s or len(times) >= max_runs:
+            break
+        if len(times) >= max(1, repeats) and sum(times) >= min_total_s:
+            break
+    return statistics.median(times), out
+
+
+def warm_up() -> None:
+    """Compile or load every numba function once, so that timings measure solving."""
+    case = harmonic_case("warm-up", 1.5, 1.0, 0.5, 0.25, 0.2, n_periods=1)
+    exact_solver(case)
+    implicit_fixed_step(case, 0.5)
+    newmark_elastic_plastic(case, 0.5)
+    rec = record_case("warm-up", np.sin(np.arange(50) * 0.3), 0.01, mu_static=0.05, stiffness_per_mass=4.9)
+    exact_solver(rec)
+
+
+def run_bench(quick: bool = False, records_dir=None, repeats: int | None = None,
+              cases: list[BenchCase] | None = None, progress: Callable[[str], None] | None = None):
+    """Run every method on every case (``cases``, or :func:`~isolator.bench.cases.bench_cases`).
+
+    Returns
+    -------
+    rows : list of dict
+        One row per (method, case, setting) with keys ``method``, ``case``, ``setting``,
+        ``seconds`` (median wall time [s]), ``error_peak_rel`` [-], ``error_residual_abs``
+        [m, or A0 for harmonic cases], ``error_zeta`` [-] and ``error_trajectory`` [-,
+        max |X - X_ref| / max |X_ref|].
+    pareto : list of dict
+        Per case, where our solver stands against the baselines (see :func:`pareto_summary`).
+    """
+    repeats = (3 if quick else 5) if repeats is None else repeats
+    if cases is None:
+        from isolator.bench.cases import bench_cases
+
+        cases = bench_cases(quick, records_dir)
+    warm_up()
+    rows = []
+    for case in cases:
+        seconds, ours = time_method(exact_solver, case, None, repeats)
+        cross_name, cross_tol = CROSS_CHECK
+        cross_seconds, cross = time_method(lambda c, tol: ivp_with_events(c, tol, "DOP853"), case, cross_tol, 1)
+        row = {"method": OURS, "case": case.name, "setting": "-", "seconds": seconds, **errors(case, ours, cross),
+               "n_events": ours.n_events}
+        if case.kind == "harmonic":
+            row["error_zeta_analytic"] = max(abs(ours.slip_ratio - case.exact_zeta), ERROR_FLOOR)
+            row["error_amplitude_analytic_rel"] = max(abs(ours.peak - case.exact_amplitude) / case.exact_amplitude,
+                                                      ERROR_FLOOR)
+        rows.append(row)
+        rows.append({"method": cross_name, "case": case.name, "setting": cross_tol, "seconds": cross_seconds,
+                     **errors(case, cross, ours), "n_events": cross.n_events})
+        if progress:
+            progress(f"{case.name}: ours {seconds * 1e3:.3g} ms, cross-check {cross_seconds:.3g} s")
+        for method in methods(quick)[1:]:
+            settings = method.harmonic_settings if case.kind == "harmonic" else method.settings
+            for setting in settings:
+                seconds, out = time_method(method.function, case, setting, repeats)
+                rows.append({"method": method.name, "case": case.name, "setting": setting, "seconds": seconds,
+                             **errors(case, out, ours), "n_events": out.n_events})
+                if progress:
+                    progress(f"  {method.name} {method.setting_name}={setting}: {seconds:.3g} s, "
+                             f"trajectory error {rows[-1]['error_trajectory']:.2e}")
+    pareto = pareto_summary(rows)
+    for row in rows:  # the ratios ride along on our rows too
+        if row["method"] == OURS:
+            by_case = pareto_by_case(pareto)[row["case"]]
+            row.update({k: v for k, v in by_case.items() if k.startswith(("speedup", "accuracy"))})
+    return rows, pareto
+
+
+def pareto_by_case(pareto):
+    return {p["case"]: p for p in pareto}
+
+
+#: the engineering accuracy at which speed-ups are also quoted (trajectory error)
+ENGINEERING_ERROR = 1e-3
+
+
+def pareto_summary(rows: list[dict], error_key: str = "error_trajectory") -> list[dict]:
+    """Per case: is ours on the Pareto front, and by how much.
+
+    ``speedup_at_equal_error``: time of the fastest baseline whose error is at most
+    ours, divided by ours (``None``: no baseline reaches our error).
+    ``speedup_at_1e-3``: the same at the engineering accuracy 1e-3.
+    ``accuracy_gain_at_equal_time``: error of the most accurate baseline that runs at
+    most as long as ours, divided by ours (``None``: no baseline is as fast).
+    ``accuracy_gain_vs_fastest``: error of the fastest baseline over ours, with
+    ``fastest_time_ratio`` its time over ours.  The DOP853 cross-check is left out of
+    the baselines (its error and ours are the same number, their discrepancy);
+    ``cross_check_time_ratio`` is its time over ours.
+    """
+    summary = []
+    for case in dict.fromkeys(r["case"] for r in rows):
+        ours = next(r for r in rows if r["case"] == case and r["method"] == OURS)
+        # the cross-check is not a baseline: its error and ours are the same discrepancy
+        base = [r for r in rows if r["case"] == case and r["method"] not in (OURS, CROSS_CHECK[0])
+                and math.isfinite(r[error_key])]
+        cross = [r for r in rows if r["case"] == case and r["method"] == CROSS_CHECK[0]]
+        t0, e0 = ours["seconds"], ours[error_key]
+        reach = [r for r in base if r[error_key] <= e0]
+        reach_eng = [r for r in base if r[error_key] <= ENGINEERING_ERROR]
+        as_fast = [r for r in base if r["seconds"] <= t0]
+        fastest = min(base, key=lambda r: r["seconds"])
+        most_accurate = min(base, key=lambda r: r[error_key])
+        dominated = any(r["seconds"] <= t0 and r[error_key] <= e0 for r in base)
+
+        def label(r):
+            return f"{r['method']} @ {r['setting']}"
+
+        summary.append({
+            "case": case,
+            "seconds": t0,
+            "error": e0,
+            "on_pareto_front": not dominated,
+            "speedup_at_equal_error": min(r["seconds"] for r in reach) / t0 if reach else None,
+            "speedup_at_1e-3": (min(r["seconds"] for r in reach_eng) / t0) if reach_eng else None,
+            "speedup_at_1e-3_vs": label(min(reach_eng, key=lambda r: r["seconds"])) if reach_eng else "none reaches it",
+            "accuracy_gain_at_equal_time": (min(r[error_key] for r in as_fast) / e0) if as_fast else None,
+            "accuracy_gain_vs_fastest": fastest[error_key] / e0,
+            "fastest_baseline": label(fastest),
+            "fastest_time_ratio": fastest["seconds"] / t0,
+            "most_accurate_baseline": label(most_accurate),
+            "most_accurate_error": most_accurate[error_key],
+            "most_accurate_time_ratio": most_accurate["seconds"] / t0,
+            "cross_check_time_ratio": cross[0]["seconds"] / t0 if cross else None,
+        })
+    return summary

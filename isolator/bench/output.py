@@ -1,0 +1,116 @@
+"""Output of the bench: CSV, Markdown tables and the log error / log time plot."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from isolator.bench.methods import OURS
+
+
+ROW_KEYS = ["method", "case", "setting", "seconds", "error_peak_rel", "error_residual_abs", "error_zeta",
+            "error_trajectory"]
+
+
+def rows_to_csv(rows: list[dict]) -> str:
+    """The rows as CSV text (ROW_KEYS columns, then n_events)."""
+    lines = [",".join(ROW_KEYS + ["n_events"])]
+    for r in rows:
+        cells = []
+        for key in ROW_KEYS + ["n_events"]:
+            value = r.get(key, "")
+            cells.append(f'"{value}"' if isinstance(value, str) and "," in value else
+                         (f"{value:.6g}" if isinstance(value, float) else str(value)))
+        lines.append(",".join(cells))
+    return "\n".join(lines) + "\n"
+
+
+def pareto_to_csv(pareto: list[dict]) -> str:
+    keys = list(pareto[0].keys()) if pareto else []
+    lines = [",".join(keys)]
+    for p in pareto:
+        cells = []
+        for k in keys:
+            v = p[k]
+            cells.append(f"{v:.4g}" if isinstance(v, float) else (f'"{v}"' if isinstance(v, str) and "," in v
+                                                                   else str(v)))
+        lines.append(",".join(cells))
+    return "\n".join(lines) + "\n"
+
+
+def _ratio(value, fmt=".3g"):
+    return "—" if value is None else f"{value:{fmt}}×"
+
+
+def _speed_words(time_ratio: float) -> str:
+    return f"{time_ratio:.3g}× slower" if time_ratio >= 1.0 else f"{1.0 / time_ratio:.3g}× faster"
+
+
+def pareto_markdown(pareto: list[dict]) -> str:
+    """The Pareto headline as a Markdown table."""
+    lines = ["| case | ours: time | ours: error | on front | speed-up at equal error | speed-up at error 1e-3 "
+             "| accuracy gain at equal time | fastest baseline: time, error gain | most accurate baseline |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for p in pareto:
+        eq_err = _ratio(p["speedup_at_equal_error"]) if p["speedup_at_equal_error"] else "none reaches it"
+        if p["speedup_at_equal_error"] is None and p.get("cross_check_time_ratio"):
+            eq_err += f" (DOP853 rtol 1e-12 cross-check: {p['cross_check_time_ratio']:.3g}× slower)"
+        eq_time = _ratio(p["accuracy_gain_at_equal_time"]) if p["accuracy_gain_at_equal_time"] else "none as fast"
+        eng = (f"{p['speedup_at_1e-3']:.3g}× ({p['speedup_at_1e-3_vs']})" if p["speedup_at_1e-3"] else
+               "none reaches it")
+        lines.append(
+            f"| {p['case']} | {p['seconds'] * 1e3:.3g} ms | {p['error']:.1e} | {'yes' if p['on_pareto_front'] else 'NO'} "
+            f"| {eq_err} | {eng} | {eq_time} | {_speed_words(p['fastest_time_ratio'])}, "
+            f"{p['accuracy_gain_vs_fastest']:.2g}× less accurate ({p['fastest_baseline']}) | "
+            f"{p['most_accurate_baseline']}: error {p['most_accurate_error']:.1e}, "
+            f"{_speed_words(p['most_accurate_time_ratio'])} |")
+    return "\n".join(lines) + "\n"
+
+
+def rows_markdown(rows: list[dict]) -> str:
+    """All rows as a Markdown table."""
+    lines = ["| case | method | setting | time [ms] | peak (rel) | residual (abs) | ζ | trajectory (rel) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        setting = r["setting"] if isinstance(r["setting"], str) else f"{r['setting']:g}"
+        lines.append(f"| {r['case']} | {r['method']} | {setting} | {r['seconds'] * 1e3:.3g} | "
+                     f"{r['error_peak_rel']:.1e} | {r['error_residual_abs']:.1e} | {r['error_zeta']:.1e} | "
+                     f"{r['error_trajectory']:.1e} |")
+    return "\n".join(lines) + "\n"
+
+
+def plot(rows: list[dict], path: Path, error_key: str = "error_trajectory") -> None:
+    """Log error against log time, one curve per method, one panel per case."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    names = list(dict.fromkeys(r["method"] for r in rows))
+    n_col = 2 if len(cases) > 1 else 1
+    n_row = int(math.ceil(len(cases) / n_col))
+    fig, axes = plt.subplots(n_row, n_col, figsize=(6.0 * n_col, 4.2 * n_row), squeeze=False)
+    markers = "o^svDPX*"
+    for ax, case in zip(axes.ravel(), cases):
+        for i, name in enumerate(names):
+            # in the order of the settings (coarse to fine), so each curve is the method's own path
+            pts = [(r["seconds"], r[error_key]) for r in rows if r["case"] == case and r["method"] == name]
+            if not pts:
+                continue
+            t, e = zip(*pts)
+            style = dict(marker=markers[i % len(markers)], label=name)
+            if name == OURS:
+                style.update(color="k", markersize=11, zorder=5)
+            ax.loglog(t, e, "-" if len(t) > 1 else "", **style)
+        ax.set_title(case, fontsize=9)
+        ax.set_xlabel("wall time [s] (median)")
+        ax.set_ylabel("max trajectory error / peak [-]")
+        ax.grid(True, which="major", alpha=0.3)
+    for ax in axes.ravel()[len(cases):]:
+        ax.axis("off")
+    handles, labels = axes.ravel()[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.08 if n_row > 1 else 0.15, 1, 1))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,79 @@
+"""``bench``: speed against error of our exact solver and classical methods."""
+
+from __future__ import annotations
+
+import typer
+
+from isolator.cli.common import app, echo_json, user_error
+
+
+@app.command()
+def bench(
+    quick: bool = typer.Option(False, "--quick", help="A representative subset (under a minute)."),
+    as_json: bool = typer.Option(False, "--json", help="Print the rows as one JSON list instead of tables."),
+    out: str = typer.Option("reports/bench", "--out", help="Folder for bench.csv, bench_pareto.csv, bench.json, "
+                                                            "bench.md and bench.png."),
+    records: str = typer.Option("../shared/records", "--records", help="Folder of the records of the bench "
+                                "(at2/RSN1044_NORTHR_NWH360.AT2, … as in ../shared/records)."),
+    repeats: int = typer.Option(None, "--repeats", min=1, help="Runs per timing (median); default 3 quick, 5 full."),
+) -> None:
+    """Speed against error: our exact solver against fixed-step, Newmark and solve_ivp methods.
+
+    Runs the harmonic cases of every configuration and friction-pendulum records, times
+    every method (median of several runs, in this process) and measures the errors of
+    peak and residual displacement, slip-time ratio and trajectory; writes the table
+    (CSV, JSON, Markdown) and a log error / log time plot to --out.
+    """
+    import os
+    import platform
+    import time
+    from pathlib import Path
+
+    from isolator import bench as bench_module
+    from isolator.atomic import atomic_path, write_text_atomically
+
+    from isolator.serialize import dumps
+
+    records_dir = Path(records)
+    if not records_dir.is_dir():
+        user_error(f"{records}: no such folder of records (give the folder of the bench records with --records)")
+    out_dir = Path(out)
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        user_error(f"{out}: cannot create the output folder ({err.strerror or err})")
+    started = time.perf_counter()
+    progress = None if as_json else (lambda line: typer.echo(line, err=True))
+    cases = bench_module.bench_cases(quick, records_dir)
+    if not any(case.kind == "record" for case in cases):
+        typer.echo(f"note: none of the bench records in {records_dir}: harmonic cases only", err=True)
+    rows, pareto = bench_module.run_bench(quick=quick, repeats=repeats, cases=cases, progress=progress)
+    wall_s = time.perf_counter() - started
+    machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
+               "cpus": os.cpu_count(), "python": platform.python_version()}
+    try:
+        import numpy
+        import scipy
+
+        machine.update(numpy=numpy.__version__, scipy=scipy.__version__)
+    except ImportError:  # pragma: no cover - both are dependencies
+        pass
+    command = "isolator bench" + (" --quick" if quick else "")
+    document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto}
+    try:
+        write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
+        write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))
+        write_text_atomically(out_dir / "bench.json", dumps(document, indent=1))
+        write_text_atomically(out_dir / "bench.md", bench_module.pareto_markdown(pareto) + "\n"
+                              + bench_module.rows_markdown(rows))
+        with atomic_path(out_dir / "bench.png") as temporary:
+            bench_module.plot(rows, temporary)
+    except OSError as err:
+        user_error(f"{out}: cannot write ({err.strerror or err})")
+    if as_json:
+        echo_json(rows)
+        return
+    typer.echo(bench_module.pareto_markdown(pareto))
+    typer.echo(bench_module.rows_markdown(rows))
+    typer.echo(f"{len(rows)} runs in {wall_s:.1f} s on {machine['processor']} ({machine['cpus']} CPUs); "
+               f"written to {out_dir}/bench.csv, bench_pareto.csv, bench.json, bench.md, bench.png")

@@ -1,0 +1,157 @@
+"""Engineering review: ``report`` (PDF and JSON of a design under a record) and ``regime-map``."""
+
+from __future__ import annotations
+
+import typer
+
+from isolator.cli.common import RECORD_HELP, app, echo_table, load_record_for_cli, user_error
+
+
+@app.command()
+def report(
+    record: str = typer.Argument(..., help="Record file (any format `info` reads), or `example:knet` for the "
+                                 "real K-NET record bundled with obspy (no download)."),
+    design: str = typer.Option(..., "--design", "-d", help="Design file (TOML): name, mass_kg, radius_m or "
+                               "stiffness_N_per_m, mu_static; optional mu_kinetic, damping_Ns_per_m or "
+                               "damping_ratio."),
+    component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"]),
+    units: str = typer.Option(None, "--units", "-u", help=RECORD_HELP["units"]),
+    merge: bool = typer.Option(False, "--merge", help=RECORD_HELP["merge"]),
+    dt: float = typer.Option(None, "--dt", help=RECORD_HELP["dt"]),
+    scale_to_pga: float = typer.Option(None, "--scale-to-pga", help="Scale the record to this peak ground "
+                                       "acceleration, in g (e.g. 0.3); stated on the summary page."),
+    output: str = typer.Option(None, "--output", "-o", help="PDF to write (default reports/DESIGN_RECORD.pdf); "
+                               "the JSON of the same numbers is written beside it."),
+    map_resolution: int = typer.Option(40, "--map-resolution", min=8, max=400,
+                                       help="Grid points per axis of the regime map (cached on disk)."),
+) -> None:
+    """Engineering-review PDF (and JSON) of an isolator design under a ground-motion record.
+
+    Pages: summary and verdicts; the record and its spectrum; the response (time
+    histories, hysteresis, energy); the design on the paper's harmonic regime map.
+    """
+    import shlex
+    import sys
+    from pathlib import Path
+
+    from isolator.design import Design, DesignError
+    from isolator.report.summary import resolve_record
+
+    try:
+        the_design = Design.from_toml(design)
+    except DesignError as err:
+        user_error(str(err))
+    try:
+        record_path, record_label = resolve_record(record)
+    except ValueError as err:
+        user_error(str(err))
+    motion = load_record_for_cli(record_path, component, units, merge, dt)
+    scaling_note = ""
+    if scale_to_pga is not None:
+        if not scale_to_pga > 0:
+            user_error(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
+        from isolator.units import STANDARD_GRAVITY
+
+        original_g = motion.pga_m_s2 / STANDARD_GRAVITY
+        try:
+            motion = motion.scaled_to_pga(scale_to_pga * STANDARD_GRAVITY)
+        except ValueError as err:
+            user_error(f"{record_label}: {err}")
+        scaling_note = (f"Record scaled to the design PGA {scale_to_pga:g} g (from {original_g:.4g} g, "
+                        f"factor {scale_to_pga / original_g:.4g}).")
+    if output is None:
+        record_stem = record.split(":", 1)[1] if record.startswith("example:") else Path(record).stem
+        output = str(Path("reports") / f"{Path(design).stem}_{record_stem}.pdf")
+    if Path(output).suffix.lower() != ".pdf":
+        user_error(f"--output must end with .pdf, got {output}")
+    from isolator.report.pdf import write_report
+    from isolator.report.summary import analyse
+    from isolator.solver.record import RecordInputError
+
+    try:
+        analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note)
+    except (RecordInputError, ValueError) as err:
+        user_error(f"{record_label}: {err}")
+    command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
+    try:
+        summary = write_report(analysis, output, map_resolution=map_resolution, command=command)
+    except OSError as err:
+        user_error(f"{output}: cannot write ({err.strerror or err})")
+    echo_table([
+        ("report", output, "(4 pages)"),
+        ("numbers", str(Path(output).with_suffix(".json")), ""),
+        ("point", f"α = {summary['alpha']:.4g}, k = {summary['k']:.4g}, η = {summary['eta']:.4g}", ""),
+        ("regime", f"{summary['regime_record']} (record) / {summary['regime_harmonic']} (harmonic)", ""),
+        ("amplitude A", f"{summary['amplitude_record']:.3g} (record) / {summary['amplitude_harmonic']:.3g} "
+                        "(harmonic)", ""),
+        ("dominant force", f"{summary['dominant_force_record']} / {summary['dominant_force_harmonic']}", ""),
+        ("peak displacement", f"{summary['peak_displacement_m']:.4g}", "m"),
+        ("peak transmitted acc.", f"{summary['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
+    ] + [("disagreement", note, "") for note in summary["disagreements"]])
+
+
+@app.command("regime-map")
+def regime_map_command(
+    eta: float = typer.Option(None, "--eta", help="Dimensionless damping η (default 0.5)."),
+    mu_s: float = typer.Option(None, "--mu-s", help="Static friction coefficient µs (default 0.25)."),
+    mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
+    frame: str = typer.Option(None, "--frame", help="A paper frame: fig5a (k, α in [0, 6], η = 0) or fig6 "
+                              "(k in [0, 5], α in [0, 10], η = 0.5); sets η and µs = 0.25 unless given."),
+    k_max: float = typer.Option(6.0, "--k-max", help="Upper end of k."),
+    alpha_max: float = typer.Option(6.0, "--alpha-max", help="Upper end of α."),
+    resolution: int = typer.Option(100, "--resolution", "-n", min=4, max=1000, help="Grid points per axis."),
+    workers: int = typer.Option(None, "--workers", min=1, help="Processes (default: the idle cores)."),
+    no_cache: bool = typer.Option(False, "--no-cache", help="Compute even if cached (and do not store)."),
+    refine: bool = typer.Option(False, "--refine", help="Locate every regime boundary by bisection in each "
+                                "column (exact boundaries instead of grid steps; slower)."),
+    output: str = typer.Option(None, "--output", "-o", help="Write the figure (PNG or PDF)."),
+) -> None:
+    """The paper's (k, α) regime map (Figs. 5-7): regimes, A > 1, dominant force, triple point."""
+    import time
+    from pathlib import Path
+
+    from isolator.maps import PAPER_FRAMES, regime_map, triple_point
+    from isolator.solver.system import InvalidSystemError
+
+    k_range, alpha_range = (0.0, k_max), (0.0, alpha_max)
+    if frame is not None:
+        if frame not in PAPER_FRAMES:
+            user_error(f"unknown --frame {frame!r} (choose one of: {', '.join(PAPER_FRAMES)})")
+        spec = PAPER_FRAMES[frame]
+        k_range, alpha_range = spec["k"], spec["alpha"]
+        eta = spec["eta"] if eta is None else eta
+        mu_s = spec["mu_s"] if mu_s is None else mu_s
+    eta = 0.5 if eta is None else eta
+    mu_s = 0.25 if mu_s is None else mu_s
+    if not (k_range[1] > 0 and alpha_range[1] > 1):
+        user_error("--k-max must be > 0 and --alpha-max > 1")
+    try:
+        start = time.perf_counter()
+        rmap = regime_map(eta, mu_s, mu_k, k_range=k_range, alpha_range=alpha_range, n_k=resolution,
+                          n_alpha=resolution, workers=workers, use_cache=not no_cache, refine=refine)
+        wall = time.perf_counter() - start
+        triple = triple_point(eta, mu_s, mu_k, alpha_max=alpha_range[1]) if eta > 0 else None
+    except InvalidSystemError as err:
+        user_error(str(err))
+    rows = [("grid", f"{resolution} × {resolution}", f"(k in [{k_range[0]:g}, {k_range[1]:g}], "
+                                                      f"α in [{alpha_range[0]:g}, {alpha_range[1]:g}])"),
+            ("parameters", f"η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}", ""),
+            ("time", f"{wall:.3g} s", "(read from cache)" if rmap.from_cache else
+             f"(computed, {workers or 'idle-core'} worker(s))"),
+            ("triple point", "none in frame" if triple is None else f"α̂ = {triple[0]:.4g}, k̂ = {triple[1]:.4g}", "")]
+    if output:
+        from isolator.report.figures import regime_map_figure
+
+        title = f"Harmonic regime map, η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}" + (
+            f" (frame of the paper's {frame.replace('fig', 'Fig. ')})" if frame else "")
+        fig = regime_map_figure(rmap, triple=triple, title=title)
+        target = Path(output)
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            tmp = target.with_name(f".{target.name}.tmp{target.suffix}")
+            fig.savefig(tmp, dpi=130)
+            tmp.replace(target)
+        except OSError as err:
+            user_error(f"{output}: cannot write ({err.strerror or err})")
+        rows.append(("figure", output, ""))
+    echo_table(rows)

@@ -1,0 +1,305 @@
+"""GroundMotion: an acceleration history in m/s² around one obspy Trace, and its processing.
+
+Processing methods (:meth:`GroundMotion.demeaned`, :meth:`~GroundMotion.tapered`,
+:meth:`~GroundMotion.bandpassed`, …) use obspy's Trace methods and return a new object
+with the step appended to :attr:`GroundMotion.processing`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from isolator.motion.measures import IntensityMeasures, intensity_measures
+from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
+
+MIN_SAMPLES = 2  # a record needs at least two samples to have a time step
+UNNAMED_COMPONENT = "unnamed"  # label of the one component of a file that names none
+
+
+def _component_names(trace) -> dict[str, str]:
+    """Channel code and orientation/component name of a trace, whatever its format."""
+    stats = trace.stats
+    orientation = ""
+    for key, attribute in (("peer_at2", "component"), ("csmip_v2", "orientation"), ("usgs_smc", "component"),
+                           ("isolator_text", "component")):
+        if key in stats:
+            orientation = str(stats[key].get(attribute, "") or "")
+            break
+    return {"channel": stats.channel or "", "orientation": orientation}
+
+
+def _label(trace) -> str:
+    """How a component is shown to the user: channel code, orientation, or both."""
+    names = _component_names(trace)
+    channel, orientation = names["channel"], names["orientation"]
+    if channel and orientation and orientation.lower() != channel.lower():
+        return f"{channel} ({orientation})"
+    return channel or orientation or UNNAMED_COMPONENT
+
+
+@dataclass(frozen=True, eq=False)  # compared and hashed by identity: it wraps a mutable Trace
+class GroundMotion:
+    """A ground acceleration history in m/s² around one obspy :class:`~obspy.Trace`.
+
+    Build it with :func:`read_ground_motion` or :meth:`from_array`.  Processing methods
+    return a new GroundMotion with the step appended to :attr:`processing`.
+
+    Attributes
+    ----------
+    trace : obspy.Trace
+        The acceleration, float64 [m/s²]; ``stats.units == "m/s2"``; the format header
+        kept by the reader (``stats.peer_at2``, ``stats.sac``, …).
+    units_source : str
+        Where the units came from, e.g. ``"file header (AT2: g)"``, ``"--units g"`` [-].
+    provenance : dict
+        Path, format, network/station/channel, component, event and date when known [-].
+    processing : list of dict
+        Steps applied since reading, in order, each ``{"step": name, …parameters}`` [-].
+    component : str
+        The component read, as listed by :func:`list_components` [-].
+    components : list of str
+        All components the source file holds [-].
+    """
+
+    trace: Any
+    units_source: str
+    provenance: dict = field(default_factory=dict)
+    processing: list = field(default_factory=list)
+    component: str = ""
+    components: list = field(default_factory=list)
+
+    # ---- construction --------------------------------------------------------------
+
+    @classmethod
+    def from_array(
+        cls,
+        acceleration_m_s2: np.ndarray,
+        dt_s: float,
+        *,
+        units_source: str = "array in m/s2",
+        component: str = "",
+        provenance: dict | None = None,
+    ) -> GroundMotion:
+        """A GroundMotion from samples already in m/s² (synthetic or computed records).
+
+        Parameters
+        ----------
+        acceleration_m_s2 : numpy.ndarray
+            Acceleration samples [m/s²].
+        dt_s : float
+            Time step, > 0 [s].
+        units_source : str, optional
+            Description of where the units came from [-].
+        component : str, optional
+            Component name [-].
+        provenance : dict, optional
+            Extra provenance entries [-].
+
+        Returns
+        -------
+        GroundMotion
+        """
+        from obspy import Trace
+
+        data = np.array(acceleration_m_s2, dtype=np.float64)
+        if data.ndim != 1 or data.size < MIN_SAMPLES:
+            raise ValueError(f"need a 1-D array of at least {MIN_SAMPLES} samples")
+        if not dt_s > 0:
+            raise ValueError(f"dt_s = {dt_s} s is not positive")
+        if not np.all(np.isfinite(data)):
+            raise ValueError("acceleration holds NaN or infinite values")
+        trace = Trace(data=data)
+        trace.stats.delta = float(dt_s)
+        trace.stats.units = "m/s2"
+        return cls(trace=trace, units_source=units_source, provenance={"format": "array", **(provenance or {})},
+                   component=component, components=[component] if component else [])
+
+    def _derived(self, trace, step: dict) -> GroundMotion:
+        trace.data = np.ascontiguousarray(trace.data, dtype=np.float64)
+        return GroundMotion(trace=trace, units_source=self.units_source, provenance=self.provenance,
+                            processing=[*self.processing, step], component=self.component,
+                            components=list(self.components))
+
+    # ---- data ----------------------------------------------------------------------
+
+    @property
+    def acceleration_m_s2(self) -> np.ndarray:
+        """Acceleration samples, float64 [m/s²]."""
+        return self.trace.data
+
+    @property
+    def dt_s(self) -> float:
+        """Time step [s]."""
+        return float(self.trace.stats.delta)
+
+    @property
+    def npts(self) -> int:
+        """Number of samples [-]."""
+        return int(self.trace.stats.npts)
+
+    @property
+    def time_s(self) -> np.ndarray:
+        """Time of each sample from the first one [s]."""
+        return np.arange(self.npts) * self.dt_s
+
+    @property
+    def duration_s(self) -> float:
+        """Time from the first to the last sample [s]."""
+        return (self.npts - 1) * self.dt_s
+
+    @property
+    def pga_m_s2(self) -> float:
+        """Peak ground acceleration [m/s²]."""
+        return float(np.max(np.abs(self.acceleration_m_s2)))
+
+    def intensity_measures(self) -> IntensityMeasures:
+        """Intensity measures of this motion (see :func:`intensity_measures`)."""
+        return intensity_measures(self.acceleration_m_s2, self.dt_s)
+
+    def response_spectrum(
+        self, periods_s: np.ndarray, damping_ratio: float = DEFAULT_DAMPING_RATIO
+    ) -> np.ndarray:
+        """Pseudo-acceleration response spectrum (see :func:`pseudo_acceleration_spectrum`).
+
+        Parameters
+        ----------
+        periods_s : numpy.ndarray
+            Oscillator periods [s].
+        damping_ratio : float, optional
+            Fraction of critical damping [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            Pseudo-spectral acceleration [m/s²].
+        """
+        return pseudo_acceleration_spectrum(self.acceleration_m_s2, self.dt_s, periods_s, damping_ratio)
+
+    # ---- processing (obspy Trace methods on a copy) ------------------------------------
+
+    def demeaned(self) -> GroundMotion:
+        """Remove the mean (obspy ``detrend("demean")``)."""
+        trace = self.trace.copy()
+        trace.detrend("demean")
+        return self._derived(trace, {"step": "demean"})
+
+    def baseline_corrected(self, order: int = 1) -> GroundMotion:
+        """Remove the least-squares polynomial of ``order`` (obspy ``detrend``).
+
+        Parameters
+        ----------
+        order : int, optional
+            Polynomial order: 0 the mean, 1 a straight line [-].
+        """
+        trace = self.trace.copy()
+        if order == 0:
+            trace.detrend("demean")
+        elif order == 1:
+            trace.detrend("linear")
+        else:
+            trace.detrend("polynomial", order=int(order))
+        return self._derived(trace, {"step": "baseline", "order": int(order)})
+
+    def tapered(self, max_percentage: float = 0.05, taper_type: str = "hann") -> GroundMotion:
+        """Taper both ends (obspy ``taper``).
+
+        Parameters
+        ----------
+        max_percentage : float, optional
+            Fraction of the record tapered at each end [-].
+        taper_type : str, optional
+            Window name understood by obspy [-].
+        """
+        trace = self.trace.copy()
+        trace.taper(max_percentage=max_percentage, type=taper_type)
+        return self._derived(trace, {"step": "taper", "max_percentage": max_percentage, "type": taper_type})
+
+    def bandpassed(
+        self, freqmin_hz: float, freqmax_hz: float, corners: int = 4, zerophase: bool = True
+    ) -> GroundMotion:
+        """Butterworth band-pass (obspy ``filter("bandpass")``).
+
+        Parameters
+        ----------
+        freqmin_hz, freqmax_hz : float
+            Corner frequencies, 0 < freqmin < freqmax < Nyquist [Hz].
+        corners : int, optional
+            Filter order [-].
+        zerophase : bool, optional
+            Run forwards and backwards (no phase shift) [-].
+        """
+        nyquist_hz = 0.5 / self.dt_s
+        if not 0 < freqmin_hz < freqmax_hz < nyquist_hz:
+            raise ValueError(
+                f"band-pass needs 0 < freqmin < freqmax < Nyquist = {nyquist_hz:g} Hz "
+                f"(got {freqmin_hz:g}, {freqmax_hz:g})"
+            )
+        trace = self.trace.copy()
+        trace.filter("bandpass", freqmin=freqmin_hz, freqmax=freqmax_hz, corners=corners, zerophase=zerophase)
+        return self._derived(trace, {"step": "bandpass", "freqmin_hz": freqmin_hz, "freqmax_hz": freqmax_hz,
+                                     "corners": corners, "zerophase": zerophase})
+
+    def resampled(self, dt_s: float, method: str = "fft") -> GroundMotion:
+        """Resample to a new time step.
+
+        Parameters
+        ----------
+        dt_s : float
+            New time step [s].
+        method : {"fft", "linear", "lanczos"}, optional
+            ``"fft"``: obspy ``resample`` (Fourier, band-limited); ``"linear"`` or
+            ``"lanczos"``: obspy ``interpolate`` (no anti-alias filter: use it to refine) [-].
+        """
+        if not dt_s > 0:
+            raise ValueError(f"target dt_s = {dt_s} s is not positive")
+        trace = self.trace.copy()
+        if method == "fft":
+            trace.resample(1.0 / dt_s)
+        elif method in ("linear", "lanczos"):
+            options = {"a": 20} if method == "lanczos" else {}
+            trace.interpolate(sampling_rate=1.0 / dt_s, method=method, **options)
+        else:
+            raise ValueError(f"unknown resampling method {method!r} (fft, linear, lanczos)")
+        return self._derived(trace, {"step": "resample", "dt_s": dt_s, "method": method})
+
+    def trimmed(self, start_s: float | None = None, end_s: float | None = None) -> GroundMotion:
+        """Keep the samples between two times measured from the first sample (obspy ``trim``).
+
+        Parameters
+        ----------
+        start_s, end_s : float, optional
+            Window bounds from the first sample; None keeps that end [s].
+        """
+        trace = self.trace.copy()
+        origin = trace.stats.starttime
+        trace.trim(None if start_s is None else origin + start_s, None if end_s is None else origin + end_s,
+                   nearest_sample=True)
+        if trace.stats.npts < MIN_SAMPLES:
+            raise ValueError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
+        return self._derived(trace, {"step": "trim", "start_s": start_s, "end_s": end_s})
+
+    def scaled(self, factor: float) -> GroundMotion:
+        """Multiply the acceleration by ``factor`` [-]."""
+        if not math.isfinite(factor):
+            raise ValueError(f"scale factor {factor} is not finite")
+        trace = self.trace.copy()
+        trace.data = trace.data * float(factor)
+        return self._derived(trace, {"step": "scale", "factor": float(factor)})
+
+    def scaled_to_pga(self, pga_m_s2: float) -> GroundMotion:
+        """Scale so that the peak ground acceleration equals ``pga_m_s2`` [m/s²]."""
+        current_m_s2 = self.pga_m_s2
+        if not current_m_s2 > 0:
+            raise ValueError("cannot scale a record of zeros to a PGA")
+        if not pga_m_s2 > 0:
+            raise ValueError(f"target PGA {pga_m_s2} m/s² is not positive")
+        scaled = self.scaled(pga_m_s2 / current_m_s2)
+        last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2))
+        return GroundMotion(trace=scaled.trace, units_source=self.units_source, provenance=self.provenance,
+                            processing=[*self.processing, last], component=self.component,
+                            components=list(self.components))
+

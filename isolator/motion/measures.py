@@ -1,0 +1,195 @@
+"""Intensity measures of a ground-acceleration history: pure functions on arrays.
+
+PGA, PGV, PGD (baseline-corrected), Arias intensity, significant duration D5-95, the
+predominant period (peak of the 5 %-damped PSA) and the equivalent harmonic amplitude
+and frequency that map a record onto the paper's parameters.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
+from isolator.units import STANDARD_GRAVITY
+
+#: Periods searched for the predominant period (peak of the 5 %-damped PSA) [s].
+PREDOMINANT_PERIODS_S = np.geomspace(0.02, 5.0, 100)
+
+__all__ = ["DEFAULT_DAMPING_RATIO", "IntensityMeasures", "arias_intensity_m_s", "displacement_m",
+           "intensity_measures", "significant_duration_s", "velocity_m_s"]
+
+
+def velocity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
+    """Ground velocity by trapezoidal integration from rest, no correction.
+
+    Parameters
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        Ground acceleration samples [m/s²].
+    dt_s : float
+        Time step [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Velocity at the samples, 0 at the first one [m/s].
+    """
+    from scipy.integrate import cumulative_trapezoid
+
+    return cumulative_trapezoid(acceleration_m_s2, dx=dt_s, initial=0.0)
+
+
+def displacement_m(acceleration_m_s2: np.ndarray, dt_s: float) -> np.ndarray:
+    """Ground displacement by double trapezoidal integration with a baseline correction.
+
+    Raw double integration drifts: a small constant error in the acceleration (or an
+    initial velocity) grows into a parabola in the displacement.  The correction removes
+    the least-squares quadratic from the doubly-integrated displacement, which is the
+    same as removing the best constant acceleration offset and initial velocity and
+    displacement; it leaves a record that starts and ends near rest almost unchanged
+    and does not filter.
+
+    .. math:: d(t) = \\iint a \\,\\mathrm{d}t^2 - (c_0 + c_1 t + c_2 t^2)
+
+    Parameters
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        Ground acceleration samples [m/s²].
+    dt_s : float
+        Time step [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Baseline-corrected displacement at the samples [m].
+    """
+    from scipy.integrate import cumulative_trapezoid
+
+    raw_m = cumulative_trapezoid(velocity_m_s(acceleration_m_s2, dt_s), dx=dt_s, initial=0.0)
+    time_s = np.arange(raw_m.size) * dt_s
+    if raw_m.size < 3:
+        return raw_m - raw_m.mean()
+    coefficients = np.polynomial.polynomial.polyfit(time_s, raw_m, 2)
+    return raw_m - np.polynomial.polynomial.polyval(time_s, coefficients)
+
+
+def arias_intensity_m_s(acceleration_m_s2: np.ndarray, dt_s: float) -> float:
+    """Arias intensity.
+
+    .. math:: I_A = \\frac{\\pi}{2 g} \\int_0^{t_f} a^2(t) \\,\\mathrm{d}t
+
+    Parameters
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        Ground acceleration samples [m/s²].
+    dt_s : float
+        Time step [s].
+
+    Returns
+    -------
+    float
+        Arias intensity (trapezoidal rule) [m/s].
+    """
+    from scipy.integrate import trapezoid as _trapezoid
+
+    return float(math.pi / (2.0 * STANDARD_GRAVITY) * _trapezoid(acceleration_m_s2**2, dx=dt_s))
+
+
+def significant_duration_s(
+    acceleration_m_s2: np.ndarray, dt_s: float, start_fraction: float = 0.05, end_fraction: float = 0.95
+) -> float:
+    """Significant duration: time between two fractions of the Arias intensity (D5–95).
+
+    Parameters
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        Ground acceleration samples [m/s²].
+    dt_s : float
+        Time step [s].
+    start_fraction, end_fraction : float, optional
+        Fractions of the total Arias intensity that bound the interval [-].
+
+    Returns
+    -------
+    float
+        Duration, the crossing times linearly interpolated on the cumulative
+        (trapezoidal) integral of a²; 0 for a record of zeros [s].
+    """
+    from scipy.integrate import cumulative_trapezoid
+
+    cumulative = cumulative_trapezoid(acceleration_m_s2**2, dx=dt_s, initial=0.0)
+    total = cumulative[-1]
+    if not total > 0:
+        return 0.0
+    time_s = np.arange(cumulative.size) * dt_s
+    start_s, end_s = np.interp([start_fraction * total, end_fraction * total], cumulative, time_s)
+    return float(end_s - start_s)
+
+
+
+@dataclass(frozen=True)
+class IntensityMeasures:
+    """Intensity measures of a ground motion; every name carries its unit.
+
+    ``a0_equiv_m`` = PGV²/PGA and ``omega_equiv_rad_s`` = PGA/PGV are the amplitude and
+    angular frequency of the harmonic ground motion with the same PGA and PGV (exact for
+    a harmonic record); they map a record onto the paper's harmonic parameters.
+    """
+
+    pga_m_s2: float
+    pgv_m_s: float
+    pgd_m: float
+    arias_m_s: float
+    d5_95_s: float
+    predominant_period_s: float
+    a0_equiv_m: float
+    omega_equiv_rad_s: float
+
+    def as_dict(self) -> dict[str, float]:
+        """The measures as a plain dict of floats."""
+        return asdict(self)
+
+
+def intensity_measures(acceleration_m_s2: np.ndarray, dt_s: float) -> IntensityMeasures:
+    """Intensity measures of an acceleration history.
+
+    PGV is the peak of the raw trapezoidal integral from rest (what strong-motion tables
+    such as ``../shared/records/README.md`` quote for unfiltered records); PGD uses the
+    baseline-corrected double integral (:func:`displacement_m`); the predominant period
+    is the period of the peak of the 5 %-damped pseudo-acceleration spectrum over
+    ``PREDOMINANT_PERIODS_S``.
+
+    Parameters
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        Ground acceleration samples [m/s²].
+    dt_s : float
+        Time step [s].
+
+    Returns
+    -------
+    IntensityMeasures
+        PGA [m/s²], PGV [m/s], PGD [m], Arias [m/s], D5–95 [s], predominant period [s],
+        A0 = PGV²/PGA [m], Ω = PGA/PGV [rad/s] (NaN when PGA or PGV is zero).
+    """
+    acceleration_m_s2 = np.asarray(acceleration_m_s2, dtype=np.float64)
+    pga_m_s2 = float(np.max(np.abs(acceleration_m_s2)))
+    pgv_m_s = float(np.max(np.abs(velocity_m_s(acceleration_m_s2, dt_s))))
+    pgd_m = float(np.max(np.abs(displacement_m(acceleration_m_s2, dt_s))))
+    psa_m_s2 = pseudo_acceleration_spectrum(acceleration_m_s2, dt_s, PREDOMINANT_PERIODS_S)
+    predominant_period_s = float(PREDOMINANT_PERIODS_S[int(np.argmax(psa_m_s2))]) if pga_m_s2 > 0 else math.nan
+    both = pga_m_s2 > 0 and pgv_m_s > 0
+    return IntensityMeasures(
+        pga_m_s2=pga_m_s2,
+        pgv_m_s=pgv_m_s,
+        pgd_m=pgd_m,
+        arias_m_s=arias_intensity_m_s(acceleration_m_s2, dt_s),
+        d5_95_s=significant_duration_s(acceleration_m_s2, dt_s),
+        predominant_period_s=predominant_period_s,
+        a0_equiv_m=pgv_m_s**2 / pga_m_s2 if both else math.nan,
+        omega_equiv_rad_s=pga_m_s2 / pgv_m_s if both else math.nan,
+    )
+

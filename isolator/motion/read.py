@@ -1,0 +1,439 @@
+"""Reading a record file into a GroundMotion: format detection, units, components, checks.
+
+Units are never guessed: they come from the file (AT2: g; V2, SMC: cm/s²; K-NET: the
+header's scale factor; SAC: ``kuser0``), from an instrument response (StationXML), or
+from the caller (``units=``).  A record whose units are known from nowhere is refused.
+
+Reading applies no processing, with one exception that follows the data provider's own
+convention: K-NET records have their mean removed (NIED's "counts × scale factor, minus
+the mean").  It is recorded in :attr:`GroundMotion.processing` like any other step.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from isolator.motion.ground_motion import MIN_SAMPLES, GroundMotion, _component_names, _label
+from isolator.units import STANDARD_GRAVITY, UnitsError, acceleration_factor_to_m_s2
+
+MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units
+#: Suffixes read as plain text when no reader claims the file by content.
+TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
+#: SAC ``idep`` codes for quantities that are not acceleration.
+_SAC_NOT_ACCELERATION = {6: "displacement (IDISP)", 7: "velocity (IVEL)"}
+
+
+_FORMAT_NAMES = {"PEER_AT2": "PEER AT2", "ISOLATOR_TEXT": "plain text", "CSMIP_V2": "CSMIP V2",
+                 "USGS_SMC": "USGS SMC"}
+
+
+class RecordError(ValueError):
+    """A record that cannot be turned into a ground motion; the message is one line naming the file."""
+
+
+def _one_line(message: str) -> str:
+    return " ".join(str(message).split())
+
+
+def _fail(path: Path | str, message: str) -> RecordError:
+    return RecordError(_one_line(f"{path}: {message}"))
+
+
+def _read_stream(path: Path, dt_s: float | None):
+    """obspy.read with our plugins; explicit text reading as the fallback; RecordError otherwise."""
+    import obspy
+
+    from isolator.io._common import looks_like_text, read_head
+    from isolator.io.at2 import _is_at2
+    from isolator.io.smc import _is_smc
+    from isolator.io.text import _is_text
+    from isolator.io.v2 import _is_v2
+
+    own_detectors = {"PEER_AT2": _is_at2, "CSMIP_V2": _is_v2, "USGS_SMC": _is_smc, "ISOLATOR_TEXT": _is_text}
+    head = read_head(path)
+    if not head:
+        raise _fail(path, "file is empty")
+    if not head.strip():
+        raise _fail(path, "file holds only blank space")
+    suffix = path.suffix.lower()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fmt = None
+        if suffix == ".at2" and not _is_at2(path):
+            if not looks_like_text(head):
+                raise _fail(path, "binary content: not a PEER AT2 text file")
+            fmt = "PEER_AT2"  # let the AT2 reader say what is wrong
+        else:  # our own formats first: their errors then name the format, and --dt reaches text
+            fmt = next((name for name, detect in own_detectors.items() if detect(path)), None)
+        try:
+            if fmt is None:
+                try:
+                    return obspy.read(str(path))
+                except TypeError as err:
+                    if "Unknown format" not in str(err):
+                        raise
+                if not looks_like_text(head):
+                    raise _fail(path, "unrecognised binary format (not one obspy or isolator reads)")
+                if suffix not in TEXT_SUFFIXES and not _plain_numeric(head):
+                    raise _fail(path, "unsupported format: not a format obspy reads, nor AT2, V2, SMC "
+                                      "or plain numeric columns")
+                fmt = "ISOLATOR_TEXT"
+            options = {"dt_s": dt_s} if fmt == "ISOLATOR_TEXT" else {}
+            return obspy.read(str(path), format=fmt, **options)
+        except RecordError:
+            raise
+        except Exception as err:  # obspy's readers raise many types for damaged files
+            reason = _one_line(err) or type(err).__name__
+            if fmt in _FORMAT_NAMES:  # our readers' messages say exactly what is wrong
+                raise _fail(path, f"{_FORMAT_NAMES[fmt]}: {reason}") from None
+            raise _fail(path, f"cannot be read with obspy: {reason}") from None
+
+
+def _plain_numeric(head: bytes) -> bool:
+    """True if the head's first non-comment line is made of numbers (a headerless text record)."""
+    from isolator.io._common import head_lines
+    from isolator.io.text import _is_comment, _numeric_fields
+
+    lines = [line for line in head_lines(head) if not _is_comment(line)]
+    return bool(lines) and _numeric_fields(lines[0]) in (1, 2)
+
+
+def _axis_letter(name: str) -> str:
+    """N, E or Z for an orientation name: azimuths on the N-S (0, 180, 360) or E-W (90, 270)
+    axis, K-NET's NS/EW/UD, Up/Down; "" otherwise."""
+    name = name.strip().upper()
+    if name in ("NS", "N-S"):
+        return "N"
+    if name in ("EW", "E-W"):
+        return "E"
+    if name in ("UD", "U-D", "UP", "DOWN", "VERT", "Z"):
+        return "Z"
+    try:
+        azimuth_deg = float(name)
+    except ValueError:
+        return ""
+    remainder = azimuth_deg % 180.0
+    return "N" if remainder == 0.0 else ("E" if remainder == 90.0 else "")
+
+
+def _matches(trace, wanted: str) -> bool:
+    names = _component_names(trace)
+    channel = names["channel"]
+    candidates = {trace.id, channel, names["orientation"], _label(trace)}
+    candidates.add(_axis_letter(names["orientation"]) or _axis_letter(channel))
+    if len(channel) == 3:
+        candidates.add(channel[2])
+    wanted = wanted.strip().lower()
+    return wanted in {c.lower() for c in candidates if c}
+
+
+def _select(path: Path, stream, component: str | None):
+    labels = [_label(trace) for trace in stream]
+    if component is None:
+        if len(stream) == 1:
+            return stream[0]
+        raise _fail(path, f"holds {len(stream)} components ({', '.join(labels)}); choose one with --component")
+    chosen = [trace for trace in stream if _matches(trace, component)]
+    if not chosen:
+        raise _fail(path, f"no component {component!r} (choices: {', '.join(labels)})")
+    if len(chosen) > 1:
+        names = ", ".join(f"{_label(t)} = {t.id}" for t in chosen)
+        raise _fail(path, f"component {component!r} is ambiguous: it matches {names}; give the full trace id")
+    return chosen[0]
+
+
+def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
+    gaps = stream.get_gaps()
+    if not gaps:
+        if len({trace.id for trace in stream}) < len(stream) and merge:
+            stream.merge(method=1, fill_value="interpolate")
+            return [{"step": "merge", "method": "obspy Stream.merge(method=1, fill_value='interpolate')",
+                     "gaps": 0}]
+        if len({trace.id for trace in stream}) < len(stream):
+            raise _fail(path, "holds several segments of the same channel; pass --merge to join them")
+        return []
+    first = gaps[0]
+    if not merge:
+        kind = "overlap" if first[6] < 0 else "gap"
+        raise _fail(
+            path,
+            f"{len(gaps)} gap(s)/overlap(s) in the data (first: {kind} of {abs(first[6]):g} s in "
+            f"{'.'.join(first[:4])} at {first[4]}); pass --merge to join the segments, filling gaps "
+            f"by linear interpolation",
+        )
+    stream.merge(method=1, fill_value="interpolate")
+    return [{"step": "merge", "method": "obspy Stream.merge(method=1, fill_value='interpolate')",
+             "gaps": len(gaps), "gap_lengths_s": [float(g[6]) for g in gaps]}]
+
+
+def _units_factor(path: Path, units: str, source: str) -> float:
+    try:
+        return acceleration_factor_to_m_s2(units)
+    except UnitsError as err:
+        raise _fail(path, f"{err} ({source})") from None
+
+
+def _file_units(trace) -> tuple[str | None, str]:
+    """Units stated by the file itself, and a description of where they were found."""
+    stats = trace.stats
+    fmt = str(stats.get("_format", ""))
+    if fmt == "PEER_AT2":
+        return "g", "file header (AT2: g)"
+    if fmt == "CSMIP_V2":
+        return stats.units, f"file header (CSMIP V2: {stats.units})"
+    if fmt == "USGS_SMC":
+        return stats.units, "file format (USGS SMC corrected: cm/s2)"
+    if fmt == "ISOLATOR_TEXT" and stats.get("units"):
+        return stats.units, f"file header ('# units: {stats.units}')"
+    if fmt == "SAC":
+        stated = str(stats.sac.get("kuser0", "") or "").strip()
+        if stated and stated.lower().replace(" ", "") in _known_units():
+            return stated, f"SAC header kuser0 = {stated!r}"
+    return None, ""
+
+
+def _known_units() -> set[str]:
+    from isolator.units import ACCELERATION_UNITS_TO_M_S2
+
+    return set(ACCELERATION_UNITS_TO_M_S2)
+
+
+def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndarray, str, list[dict]]:
+    """Acceleration in m/s² and the description of the units' source."""
+    stats = trace.stats
+    fmt = str(stats.get("_format", ""))
+    steps: list[dict] = []
+    if fmt == "SAC" and int(stats.sac.get("idep", 5)) in _SAC_NOT_ACCELERATION:
+        raise _fail(path, f"SAC header says the data are {_SAC_NOT_ACCELERATION[int(stats.sac.idep)]}, "
+                          "not acceleration")
+    if response is not None:
+        if units is not None or counts_factor is not None:
+            raise _fail(path, "give either an instrument response or --units/--counts-factor, not both")
+        import obspy
+
+        try:
+            inventory = obspy.read_inventory(str(response))
+            corrected = trace.copy()
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                corrected.remove_response(inventory=inventory, output="ACC")
+        except Exception as err:
+            raise _fail(path, f"cannot remove the instrument response from {response}: {_one_line(err)}") from None
+        steps.append({"step": "remove_response", "inventory": str(response), "output": "ACC"})
+        return corrected.data.astype(np.float64), f"instrument response ({Path(response).name}, output ACC)", steps
+    if counts_factor is not None:
+        if units is None:
+            raise _fail(path, "--counts-factor needs --units for the units it converts counts into")
+        if not (math.isfinite(counts_factor) and counts_factor > 0):
+            raise _fail(path, f"counts factor {counts_factor} is not a positive number")
+        factor = counts_factor * _units_factor(path, units, "--units")
+        return _as_float64(trace) * factor, f"--counts-factor {counts_factor:g} {units} per count", steps
+    if fmt == "KNET":
+        # obspy's K-NET reader turns the header's 'Scale Factor' (gal per count) into calib [m/s² per count]
+        data = _as_float64(trace) * float(stats.calib)
+        steps.append({"step": "demean", "reason": "K-NET convention (NIED): counts × scale factor, minus the mean"})
+        if units is not None and _units_factor(path, units, "--units") != 1.0:
+            raise _fail(path, f"the K-NET scale factor gives m/s2 but --units says {units}")
+        return data - data.mean(), "K-NET scale factor (header, gal per count → m/s2)", steps
+    if np.issubdtype(trace.data.dtype, np.integer):
+        raise _fail(path, "holds integer counts: give the instrument response (StationXML) or "
+                          "--counts-factor with --units")
+    file_units, source = _file_units(trace)
+    if file_units is not None:
+        factor = _units_factor(path, file_units, source)
+        if units is not None and _units_factor(path, units, "--units") != factor:
+            raise _fail(path, f"the file states {file_units} ({source}) but --units says {units}")
+        return _as_float64(trace) * factor, source, steps
+    if units is None:
+        kind = fmt or "this"
+        raise _fail(path, f"{kind} file does not state its units; pass --units (g, m/s2, gal, cm/s2)")
+    channel = stats.channel or ""
+    if fmt in ("MSEED", "SAC", "GSE2", "SEISAN") and len(channel) == 3 and channel[1] in "HL":
+        raise _fail(path, f"channel {channel} is a seismometer (velocity) channel; acceleration from it "
+                          "needs the instrument response")
+    return _as_float64(trace) * _units_factor(path, units, "--units"), f"--units {units}", steps
+
+
+def _as_float64(trace) -> np.ndarray:
+    """The trace's samples as float64 (a masked array is refused upstream)."""
+    return np.asarray(trace.data, dtype=np.float64)
+
+
+def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float) -> None:
+    if acceleration_m_s2.size < MIN_SAMPLES:
+        raise _fail(path, f"only {acceleration_m_s2.size} sample(s); a record needs at least {MIN_SAMPLES}")
+    if not (math.isfinite(dt_s) and dt_s > 0):
+        raise _fail(path, f"time step dt = {dt_s:g} s is not positive")
+    finite = np.isfinite(acceleration_m_s2)
+    if not finite.all():
+        index = int(np.flatnonzero(~finite)[0])
+        raise _fail(path, f"non-finite value ({acceleration_m_s2[index]}) at sample {index} "
+                          f"(t = {index * dt_s:g} s)")
+    peak_m_s2 = float(np.max(np.abs(acceleration_m_s2)))
+    if peak_m_s2 > MAX_ABS_ACCELERATION_G * STANDARD_GRAVITY:
+        raise _fail(path, f"peak |a| = {peak_m_s2:.4g} m/s2 ({peak_m_s2 / STANDARD_GRAVITY:.4g} g) exceeds "
+                          f"{MAX_ABS_ACCELERATION_G:g} g: wrong units?")
+
+
+def _provenance(path: Path, trace, label: str) -> dict:
+    stats = trace.stats
+    provenance: dict[str, Any] = {
+        "path": str(path),
+        "format": str(stats.get("_format", "")),
+        "network": stats.network,
+        "station": stats.station,
+        "location": stats.location,
+        "channel": stats.channel,
+        "component": label,
+    }
+    if stats.starttime.timestamp != 0:
+        provenance["starttime"] = str(stats.starttime)
+    for key in ("peer_at2", "usgs_smc", "csmip_v2"):
+        if key in stats:
+            header = stats[key]
+            for name in ("event", "date", "station_name"):
+                if header.get(name):
+                    provenance[name] = header[name]
+            if key == "peer_at2" and header.get("station"):
+                provenance["station"] = header["station"]
+    if "knet" in stats:
+        provenance["event_origin_time"] = str(stats.knet.get("evot", ""))
+        provenance["magnitude"] = float(stats.knet.get("mag", math.nan))
+    if "sac" in stats and stats.sac.get("kevnm"):
+        provenance["event"] = str(stats.sac.kevnm).strip()
+    return {key: value for key, value in provenance.items() if value not in ("", None)}
+
+
+def _check_path(path: Path) -> None:
+    if not path.exists():
+        raise _fail(path, "no such file")
+    if path.is_dir():
+        raise _fail(path, "is a directory, not a record file")
+    try:
+        with open(path, "rb") as handle:
+            handle.read(1)
+    except OSError as err:
+        raise _fail(path, f"cannot be opened: {err.strerror or err}") from None
+    if path.stat().st_size == 0:
+        raise _fail(path, "file is empty")
+
+
+def list_components(path: str | Path, *, merge: bool = False) -> list[str]:
+    """Components (channels) a record file holds, as accepted by ``component=``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Record file [-].
+    merge : bool, optional
+        Join segments of the same channel (see :func:`read_ground_motion`) [-].
+
+    Returns
+    -------
+    list of str
+        One label per component: channel code, orientation, or ``"HN1 (180)"`` [-].
+
+    Raises
+    ------
+    RecordError
+        If the file cannot be read.
+    """
+    path = Path(path)
+    _check_path(path)
+    stream = _read_stream(path, None)
+    _check_gaps(path, stream, merge)
+    return [_label(trace) for trace in stream]
+
+
+def read_ground_motion(
+    path: str | Path,
+    *,
+    component: str | None = None,
+    units: str | None = None,
+    merge: bool = False,
+    response: str | Path | None = None,
+    counts_factor: float | None = None,
+    dt_s: float | None = None,
+) -> GroundMotion:
+    """Read a record file into a :class:`GroundMotion` in m/s².
+
+    Parameters
+    ----------
+    path : str or path-like
+        Record file: any obspy format, PEER AT2, CSMIP V2, USGS SMC or plain text [-].
+    component : str, optional
+        Channel code (``HNE``), its last letter (``E``), orientation (``180``, ``Up``,
+        ``NS``), the axis letter of an orientation (``N`` for azimuth 0/180/360, ``E``
+        for 90/270, ``Z`` for Up/UD) or trace id; required when the file holds several
+        components [-].
+    units : {"g", "m/s2", "gal", "cm/s2"}, optional
+        Units of the values, for formats that do not state them; must agree with the
+        file when it does [-].
+    merge : bool, optional
+        Join segments of a channel with gaps, filling gaps by linear interpolation
+        (obspy ``Stream.merge(method=1, fill_value="interpolate")``); without it a gap
+        is an error [-].
+    response : str or path-like, optional
+        StationXML inventory; the response is removed with obspy ``remove_response``
+        (output acceleration) [-].
+    counts_factor : float, optional
+        Units (given by ``units``) per count, for records in counts [unit/count].
+    dt_s : float, optional
+        Time step of a one-column text file; checked against the file otherwise [s].
+
+    Returns
+    -------
+    GroundMotion
+        float64 acceleration [m/s²] with units source, provenance and (empty or
+        provider-convention) processing.
+
+    Raises
+    ------
+    RecordError
+        One line naming the file and the problem: missing, empty, unrecognised or
+        damaged file, truncated data, dt ≤ 0, NaN/inf, non-monotonic time, text in a
+        numeric column, fewer than two samples, |a| > 50 g, gaps without ``merge``,
+        unknown or conflicting units, ambiguous or unknown component.
+    """
+    path = Path(path)
+    _check_path(path)
+    if dt_s is not None and not (math.isfinite(dt_s) and dt_s > 0):
+        raise _fail(path, f"--dt {dt_s:g} s is not positive")
+    stream = _read_stream(path, dt_s)
+    if len(stream) == 0:
+        raise _fail(path, "holds no data")
+    components = [_label(trace) for trace in stream]
+    steps = _check_gaps(path, stream, merge)
+    trace = _select(path, stream, component)
+    if np.ma.isMaskedArray(trace.data):
+        raise _fail(path, "data are masked (gaps); pass --merge")
+    if trace.stats.npts < MIN_SAMPLES:
+        raise _fail(path, f"only {trace.stats.npts} sample(s); a record needs at least {MIN_SAMPLES}")
+    if dt_s is not None and abs(trace.stats.delta - dt_s) > 1e-9 * max(dt_s, 1.0):
+        raise _fail(path, f"the file's time step is {trace.stats.delta:g} s but --dt says {dt_s:g} s")
+    raw = np.asarray(trace.data, dtype=np.float64)
+    finite = np.isfinite(raw)
+    if not finite.all():
+        index = int(np.flatnonzero(~finite)[0])
+        raise _fail(path, f"non-finite value ({raw[index]}) at sample {index} (t = {index * trace.stats.delta:g} s)")
+    acceleration_m_s2, units_source, unit_steps = _to_m_s2(path, trace, units, response, counts_factor)
+    acceleration_m_s2 = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
+    _check_values(path, acceleration_m_s2, float(trace.stats.delta))
+    label = _label(trace)
+    result = trace.copy() if response is None else trace
+    result.data = acceleration_m_s2
+    result.stats.units = "m/s2"
+    result.stats.units_source = units_source
+    return GroundMotion(
+        trace=result,
+        units_source=units_source,
+        provenance=_provenance(path, trace, label),
+        processing=steps + unit_steps,
+        component=label,
+        components=components,
+    )
