@@ -162,11 +162,10 @@ def slip_intervals(response) -> np.ndarray:
 def strong_motion_window_s(acceleration_m_s2, dt_s: float, start_fraction: float = 0.05,
                            end_fraction: float = 0.95) -> tuple[float, float]:
     """Times [s] at which the Arias intensity reaches 5 % and 95 % (D5–95 window)."""
+    from isolator.motion.measures import cumulative_trapezoid
+
     acc = np.asarray(acceleration_m_s2, dtype=float)
-    squared = acc ** 2
-    # cumulative trapezoidal integral of a², written as scipy's cumulative_trapezoid writes it
-    # (same operations, same bits) without importing scipy.integrate (~0.3 s) for one line
-    cumulative = np.concatenate(([0.0], np.cumsum(dt_s * (squared[1:] + squared[:-1]) / 2.0)))
+    cumulative = cumulative_trapezoid(acc ** 2, dt_s)
     time_s = np.arange(acc.size) * dt_s
     if not cumulative[-1] > 0:
         return 0.0, float(time_s[-1])

@@ -50,6 +50,7 @@ def _read_stream(path: Path, dt_s: float | None):
 
     from isolator.io._common import looks_like_text, read_head
     from isolator.io.at2 import _is_at2
+    from isolator.io.obspy_formats import detect_obspy_format
     from isolator.io.smc import _is_smc
     from isolator.io.text import _is_text
     from isolator.io.v2 import _is_v2
@@ -72,8 +73,8 @@ def _read_stream(path: Path, dt_s: float | None):
             fmt = next((name for name, detect in own_detectors.items() if detect(path)), None)
         try:
             if fmt is None:
-                try:
-                    return obspy.read(str(path))
+                try:  # the format obspy's autodetection would pick, found without its metadata scans
+                    return obspy.read(str(path), format=detect_obspy_format(path))
                 except TypeError as err:
                     if "Unknown format" not in str(err):
                         raise
