@@ -170,10 +170,16 @@ def _chunk(points, *, eta, mu_s, mu_k) -> list[tuple]:
     return [_point(a, k, eta, mu_s, mu_k) for a, k in points]
 
 
+#: Grids smaller than this run in this process whatever ``workers`` says [points].
+IN_PROCESS_POINTS = 256
+
+
 def _evaluate(points: list[tuple], eta: float, mu_s: float, mu_k: float, workers: int) -> list[tuple]:
     from isolator.parallel import map_interleaved
 
-    if len(points) < 64:
+    if len(points) < IN_PROCESS_POINTS:
+        # a pool costs ~0.15 s to start and warm up, the work of ~150 typical points (~1 ms each):
+        # a report's A(α) curve (2 × 40 + 1 points) runs faster in this process
         workers = 1
     # interleaved chunks balance the cost (points near resonance take longer)
     return map_interleaved(partial(_chunk, eta=eta, mu_s=mu_s, mu_k=mu_k), points, workers, chunks_per_worker=8)
