@@ -36,6 +36,8 @@ _EXPORTS = {
     "classify_record": "isolator.metrics",
     "classify_harmonic": "isolator.metrics",
     "regime_map": "isolator.maps",
+    "analyse": "isolator.analysis",
+    "Analysis": "isolator.analysis",
 }
 
 __all__ = sorted(_EXPORTS)

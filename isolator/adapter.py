@@ -68,10 +68,19 @@ def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float) -> Dime
     -------
     DimensionlessPoint
     """
+    from isolator.solver.record import RecordInputError
+
+    # the record's fault, not the design's: a record of zeros (or scaled to nothing) has no
+    # equivalent harmonic motion (A0 = PGV²/PGA, Eq. 6 of the paper needs A0 > 0)
     if not (pga_m_s2 > 0 and pgv_m_s > 0):
-        raise ValueError(f"PGA ({pga_m_s2} m/s²) and PGV ({pgv_m_s} m/s) must be > 0")
+        raise RecordInputError(f"the record has PGA = {pga_m_s2:g} m/s² and PGV = {pgv_m_s:g} m/s: no ground "
+                               "motion to analyse (both must be > 0)")
     g = design.gravity_m_s2
     a0_m = pgv_m_s ** 2 / pga_m_s2
+    if not (math.isfinite(a0_m) and a0_m > 0 and math.isfinite(pga_m_s2 / pgv_m_s)):
+        raise RecordInputError(f"the record's equivalent amplitude PGV²/PGA = {a0_m:g} m is not a positive "
+                               f"finite number (PGA = {pga_m_s2:g} m/s², PGV = {pgv_m_s:g} m/s): a motion that "
+                               "small is below floating-point resolution")
     return DimensionlessPoint(
         alpha=pga_m_s2 / (design.mu_static * g),
         k=design.stiffness_N_per_m * a0_m / (design.mass_kg * g),

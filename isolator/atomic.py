@@ -3,48 +3,289 @@
 Every output of isolator (CSV, JSON, PDF, PNG, Parquet, cached maps, batch parts) is
 written to a temporary file beside its target and renamed onto it once complete;
 a failure (or Ctrl-C) removes the temporary file and leaves any older target intact.
+
+The rules an output obeys (``docs/security.md``):
+
+- an output that is a symbolic link is written *through* the link: the temporary file
+  is made in the folder of the link's final target and renamed onto that target, so
+  the link survives and points at the new content;
+- an output that exists and is not a regular file (a folder, a device such as
+  ``/dev/full``, a FIFO, a socket) is refused, unless the caller allows streaming and
+  the target is a character device or a FIFO (``/dev/stdout``): then it is written in
+  place, not atomically, because that is what the user asked for;
+- an output that resolves to one of the command's inputs is refused
+  (:func:`refuse_overwriting_inputs`);
+- two runs that write the same output: the second is refused while the first holds
+  ``<output>.lock`` (:func:`output_lock`);
+- every failure to write raises :class:`OutputError`, whose message names the path.
 """
 
 from __future__ import annotations
 
+import errno
 import os
+import socket
+import stat
 import tempfile
+import time
 from contextlib import contextmanager
 from pathlib import Path
 
 
+class OutputError(OSError):
+    """An output that cannot or must not be written; ``str(err)`` is one line naming the path.
+
+    A subclass of :class:`OSError` (``err.filename`` is the output, ``err.strerror`` the
+    reason) so that callers which catch write errors catch it too.
+    """
+
+    def __init__(self, path, reason: str, code: int = errno.EIO):
+        super().__init__(code, reason, str(path))
+
+    def __str__(self) -> str:
+        return f"{self.filename}: {self.strerror}"
+
+
+class OutputIsInputError(OutputError):
+    """An output that resolves to one of the command's inputs."""
+
+
+class OutputLockedError(OutputError):
+    """An output that another run is writing (its lock file exists and its holder lives)."""
+
+
+_KINDS = ((stat.S_ISDIR, "a folder"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+          (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"))
+
+
+def file_kind(mode: int) -> str:
+    """Words for what a non-regular file is ("a folder", "a FIFO (named pipe)", …)."""
+    return next((words for test, words in _KINDS if test(mode)), "not a regular file")
+
+
+def _reason(err: OSError) -> str:
+    return err.strerror or " ".join(str(err).split()) or type(err).__name__
+
+
+def resolve_output(path, *, allow_stream: bool = False) -> tuple[Path, bool]:
+    """The file an output really writes, and whether it is streamed in place.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output as the user gave it.
+    allow_stream : bool
+        Accept an existing character device or FIFO (``/dev/stdout``) as a stream.
+
+    Returns
+    -------
+    (Path, bool)
+        The final target (symbolic links followed, the folder made absolute) and True when
+        that target is a stream to write in place.
+
+    Raises
+    ------
+    OutputError
+        A symbolic-link loop, or an existing target that is not a regular file.
+    """
+    given = Path(path)
+    try:
+        target = Path(os.path.realpath(given, strict=True))
+    except FileNotFoundError:
+        target = Path(os.path.realpath(given))  # a new file, or a dangling link: its would-be target
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            raise OutputError(given, "symbolic-link loop", errno.ELOOP) from None
+        raise OutputError(given, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
+    try:
+        mode = os.stat(target).st_mode
+    except FileNotFoundError:
+        return target, False
+    except OSError as err:
+        raise OutputError(given, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
+    if stat.S_ISREG(mode):
+        return target, False
+    if allow_stream and (stat.S_ISCHR(mode) or stat.S_ISFIFO(mode)):
+        return target, True
+    raise OutputError(given, f"is {file_kind(mode)}, not a regular file; outputs are written only to "
+                             "regular files", errno.EINVAL)
+
+
 @contextmanager
-def atomic_path(path):
-    """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
+def atomic_path(path, *, allow_stream: bool = False):
+    """Yield a temporary path beside the output's target; rename it onto the target on success.
 
     The temporary name keeps the target's extension (``.pdf``, ``.png``, ``.parquet``…)
     so that writers that infer the format from it work unchanged, and starts with a
     dot so that it stays out of listings.  The file gets ordinary permissions (mkstemp
-    makes 0600) and is flushed to disk before the rename.
+    makes 0600) and is flushed to disk before the rename.  A symbolic link is written
+    through (the temporary file lives in the folder of its final target).
 
     Parameters
     ----------
     path : str or path-like
         The file to write; its folder is created if needed.
+    allow_stream : bool
+        If the target is a character device or FIFO (``/dev/stdout``), yield it as is
+        and let the caller write in place (not atomic: what the user asked for).
+
+    Raises
+    ------
+    OutputError
+        Any failure to write (the message names ``path``), or a target that is not a
+        regular file.
     """
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=target.suffix)
-    os.close(handle)
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(temporary, 0o666 & ~umask)
+    target, stream = resolve_output(path, allow_stream=allow_stream)
+    if stream:
+        try:
+            yield target
+        except OSError as err:
+            if isinstance(err, OutputError):
+                raise
+            raise OutputError(path, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
+        return
+    temporary = None
     try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=target.suffix)
+        os.close(handle)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)
         yield Path(temporary)
-        with open(temporary, "rb+") as stream:
-            os.fsync(stream.fileno())
+        with open(temporary, "rb+") as stream_handle:
+            os.fsync(stream_handle.fileno())
         os.replace(temporary, target)
+    except OutputError:
+        raise
+    except OSError as err:
+        raise OutputError(path, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
     finally:
-        if os.path.exists(temporary):
+        if temporary is not None and os.path.lexists(temporary):
             os.unlink(temporary)
 
 
 def write_text_atomically(path, text: str) -> None:
-    """Write ``text`` (UTF-8) to ``path`` atomically."""
+    """Write ``text`` (UTF-8) to ``path`` atomically (see :func:`atomic_path`)."""
     with atomic_path(path) as temporary:
         temporary.write_text(text, encoding="utf-8")
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one of them does not exist (yet): compare where they resolve to
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
+def refuse_overwriting_inputs(outputs, inputs) -> None:
+    """Refuse any output that is (resolves to, or is a hard link of) one of the inputs.
+
+    Every command calls this with all it writes and all it reads before it writes
+    anything.
+
+    Parameters
+    ----------
+    outputs : iterable of str or path-like or None
+        The files the command will write (None entries are ignored).
+    inputs : iterable of str or path-like or None
+        The files the command reads (None entries and non-paths such as
+        ``example:knet`` that do not exist are compared by resolved name only).
+
+    Raises
+    ------
+    OutputIsInputError
+        Naming the output and the input it would overwrite.
+    """
+    inputs = [Path(item) for item in inputs if item is not None]
+    for output in outputs:
+        if output is None:
+            continue
+        out = Path(output)
+        for source in inputs:
+            if _same_file(out, source):
+                detail = "" if str(out) == str(source) else f" ({source})"
+                raise OutputIsInputError(out, f"is an input of this command{detail}; refusing to overwrite "
+                                              "it: choose another output", errno.EEXIST)
+
+
+def _holder(lock: Path) -> tuple[int | None, str, str]:
+    try:
+        text = lock.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return None, "", ""
+    fields = dict(part.split("=", 1) for part in text.split() if "=" in part)
+    try:
+        pid = int(fields.get("pid", ""))
+    except ValueError:
+        pid = None
+    return pid, fields.get("host", ""), fields.get("since", "")
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def lock_path(path) -> Path:
+    """The lock file of an output: ``<final target>.lock`` beside it."""
+    target, _ = resolve_output(path, allow_stream=True)
+    return target.with_name(target.name + ".lock")
+
+
+@contextmanager
+def output_lock(path):
+    """Hold an exclusive lock on an output for the duration of a run.
+
+    The lock is a file ``<output>.lock`` created with ``O_CREAT | O_EXCL`` holding
+    ``pid=… host=… since=…``.  A lock whose holder is a dead process on this host is
+    stale and taken over; a lock held by a live process (or by another host) refuses
+    the run.
+
+    Raises
+    ------
+    OutputLockedError
+        One line naming the holder and the lock file.
+    OutputError
+        The lock cannot be created (read-only folder …).
+    """
+    lock = lock_path(path)
+    host = socket.gethostname()
+    content = f"pid={os.getpid()} host={host} since={time.strftime('%Y-%m-%dT%H:%M:%S%z')}\n"
+    for _ in range(3):  # bounded: one take-over of a stale lock, then a retry if another run raced us
+        try:
+            lock.parent.mkdir(parents=True, exist_ok=True)
+            handle = os.open(lock, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        except FileExistsError:
+            pid, holder_host, since = _holder(lock)
+            if pid is not None and holder_host == host and not _alive(pid):
+                try:
+                    os.unlink(lock)  # stale: its process is gone
+                except FileNotFoundError:
+                    pass
+                continue
+            who = f"process {pid} on {holder_host or 'an unknown host'}" if pid else "another run"
+            raise OutputLockedError(path, f"is being written by {who}{' since ' + since if since else ''} "
+                                          f"(lock {lock}); wait for it, or delete the lock if that run is gone",
+                                    errno.EBUSY) from None
+        except OSError as err:
+            raise OutputError(path, f"cannot create the lock {lock} ({_reason(err)})",
+                              err.errno or errno.EIO) from None
+        break
+    else:
+        raise OutputLockedError(path, f"its lock {lock} keeps changing hands; try again", errno.EBUSY)
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(content)
+        yield lock
+    finally:
+        try:
+            if _holder(lock)[0] == os.getpid():
+                os.unlink(lock)
+        except OSError:
+            pass

@@ -58,7 +58,14 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
     """
     import tomllib
 
+    from isolator.io._common import input_file_problem
+
     path = Path(path)
+    problem = input_file_problem(path)  # before opening: a FIFO must not block, a loop is not "missing"
+    if problem == "no such file":
+        raise error_type(f"{path}: no such {what}")
+    if problem is not None and problem != "file is empty":
+        raise error_type(f"{path}: {problem}")
     try:
         text = path.read_bytes().decode("utf-8")
     except FileNotFoundError:
@@ -73,6 +80,33 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
 
 class DesignError(ValueError):
     """An invalid design (the message names the file and the key)."""
+
+
+#: Supported mass M accepted [kg]: from a gram (a laboratory specimen) to 1e10 kg (ten times
+#: the heaviest isolated structure); outside, K/M and γ/M lose their meaning (1e-320 kg is
+#: a subnormal number: K/M overflows).
+MASS_RANGE_KG = (1e-3, 1e10)
+
+
+def _check_derived(fail, mass_kg, stiffness_N_per_m, damping_Ns_per_m, radius_m, damping_ratio) -> None:
+    """Refuse a design whose K/M or γ/M the solver cannot take, naming the key at fault."""
+    from isolator.solver.system import MAX_DAMPING_PER_MASS, MAX_STIFFNESS_PER_MASS
+
+    low, high = MASS_RANGE_KG
+    if not low <= mass_kg <= high:
+        raise fail(f"key 'mass_kg' must lie in [{low:g}, {high:g}] kg, got {mass_kg:g}")
+    kappa = stiffness_N_per_m / mass_kg
+    if not kappa <= MAX_STIFFNESS_PER_MASS:
+        key = "radius_m" if radius_m is not None else "stiffness_N_per_m"
+        given = f"{radius_m:g} m" if radius_m is not None else f"{stiffness_N_per_m:g} N/m"
+        raise fail(f"key '{key}' = {given} gives K/M = {kappa:.3g} 1/s² (natural period "
+                   f"{2 * math.pi / math.sqrt(kappa):.3g} s), above {MAX_STIFFNESS_PER_MASS:g} 1/s²: "
+                   "no isolator is that stiff")
+    c = damping_Ns_per_m / mass_kg
+    if not c <= MAX_DAMPING_PER_MASS:
+        key = "damping_ratio" if damping_ratio is not None else "damping_Ns_per_m"
+        raise fail(f"key '{key}' gives γ/M = {c:.3g} 1/s, above {MAX_DAMPING_PER_MASS:g} 1/s: no damper is "
+                   "that strong")
 
 
 @dataclass(frozen=True)
@@ -238,6 +272,7 @@ class Design:
             damping = 2.0 * damping_ratio * math.sqrt(stiffness * mass_kg)
         else:
             damping = number("damping_Ns_per_m") or 0.0
+        _check_derived(fail, mass_kg, stiffness, damping, radius_m, damping_ratio)
         return cls(name=name.strip(), mass_kg=mass_kg, mu_static=mu_static, mu_kinetic=mu_kinetic,
                    radius_m=radius_m, stiffness_N_per_m=stiffness, damping_Ns_per_m=damping,
                    damping_ratio_input=damping_ratio, description=description, source=source,

@@ -36,7 +36,7 @@ import numpy as np
 from isolator.atomic import atomic_path
 from isolator.metrics import REGIMES as REGIME_NAMES
 
-MAP_FORMAT_VERSION = 1  #: bump when the content of a cached map changes
+MAP_FORMAT_VERSION = 2  #: bump when the content of a cached map changes
 REGIME_CODES = {name: code for code, name in enumerate(REGIME_NAMES)}
 
 
@@ -98,6 +98,8 @@ class RegimeMap:
     mu_k: float
     elapsed_s: float = 0.0
     from_cache: bool = False
+    #: sentences for the user: a damaged cache entry recomputed, a worker count capped
+    notes: list = field(default_factory=list)
     #: regime boundaries refined by bisection along α in each column (see :func:`refine_boundaries`):
     #: k [-], α [-], and the code 3·from + to of each change of regime
     boundary_k: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -140,18 +142,106 @@ class RegimeMap:
                 alphas.append(self.alpha[i] + float(np.clip(shift, -0.5, 0.5)) * step)
         return np.array(ks), np.array(alphas)
 
+    def content_key(self) -> str:
+        """SHA-256 over every array (dtype, shape, bytes) and the fixed parameters.
+
+        Stored with a cached map and checked on reading: a truncated, bit-flipped or
+        hand-edited entry no longer matches.  (Not a signature: anyone who can write the
+        cache can recompute it; :func:`_check_cached` also recomputes random grid points.)
+        """
+        digest = hashlib.sha256()
+        for name in self._ARRAYS:
+            array = np.ascontiguousarray(getattr(self, name))
+            digest.update(f"{name}:{array.dtype.str}:{array.shape};".encode())
+            digest.update(array.tobytes())
+        digest.update(np.array([self.eta, self.mu_s, self.mu_k], dtype=np.float64).tobytes())
+        return digest.hexdigest()
+
     def save(self, path: Path) -> None:
-        """Write as .npz atomically (temporary file, then rename)."""
+        """Write as .npz atomically (temporary file, then rename), with its content key."""
         with atomic_path(path) as tmp, open(tmp, "wb") as stream:
             np.savez(stream, **{name: getattr(self, name) for name in self._ARRAYS},
-                     params=np.array([self.eta, self.mu_s, self.mu_k, self.elapsed_s]))
+                     params=np.array([self.eta, self.mu_s, self.mu_k, self.elapsed_s]),
+                     content_key=np.array(self.content_key()))
 
     @classmethod
     def load(cls, path: Path) -> RegimeMap:
-        with np.load(path) as data:
-            eta, mu_s, mu_k, elapsed = (float(v) for v in data["params"])
-            arrays = {name: data[name] for name in cls._ARRAYS}
-        return cls(**arrays, eta=eta, mu_s=mu_s, mu_k=mu_k, elapsed_s=elapsed, from_cache=True)
+        """Read a cached map; any damage raises :class:`CacheEntryError` (never unpickles).
+
+        Checks the schema (every array present, numeric, of the right shape and codes)
+        and the content key.
+        """
+        import zipfile
+
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                missing = [name for name in (*cls._ARRAYS, "params", "content_key") if name not in data.files]
+                if missing:
+                    raise CacheEntryError(f"missing arrays {', '.join(missing)}")
+                params = np.asarray(data["params"], dtype=np.float64)
+                if params.shape != (4,):
+                    raise CacheEntryError(f"params of shape {params.shape}, expected (4,)")
+                eta, mu_s, mu_k, elapsed = (float(v) for v in params)
+                arrays = {name: data[name] for name in cls._ARRAYS}
+                stored_key = str(data["content_key"])
+        except CacheEntryError:
+            raise
+        except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as err:
+            raise CacheEntryError(f"unreadable ({type(err).__name__}: {' '.join(str(err).split())[:80]})") from None
+        _check_schema(arrays)
+        rmap = cls(**arrays, eta=eta, mu_s=mu_s, mu_k=mu_k, elapsed_s=elapsed, from_cache=True)
+        if rmap.content_key() != stored_key:
+            raise CacheEntryError("content key does not match its arrays")
+        return rmap
+
+
+class CacheEntryError(ValueError):
+    """A cached map that is damaged or does not hold what its name says (it is recomputed)."""
+
+
+_ARRAY_KINDS = {"k": "f", "alpha": "f", "amplitude": "f", "zeta": "f", "rho_ev": "f", "rho_vf": "f",
+                "rho_ef": "f", "regime": "i", "dominant": "i", "steady": "b", "boundary_k": "f",
+                "boundary_alpha": "f", "boundary_kind": "i"}
+
+
+def _check_schema(arrays: dict) -> None:
+    for name, kind in _ARRAY_KINDS.items():
+        if arrays[name].dtype.kind != kind:
+            raise CacheEntryError(f"array {name} has dtype {arrays[name].dtype}, expected kind {kind!r}")
+    n_k, n_alpha = arrays["k"].size, arrays["alpha"].size
+    if arrays["k"].shape != (n_k,) or arrays["alpha"].shape != (n_alpha,):
+        raise CacheEntryError("axes k and α must be one-dimensional")
+    for name in ("regime", "amplitude", "zeta", "rho_ev", "rho_vf", "rho_ef", "dominant", "steady"):
+        if arrays[name].shape != (n_alpha, n_k):
+            raise CacheEntryError(f"array {name} has shape {arrays[name].shape}, expected {(n_alpha, n_k)}")
+    n_boundaries = arrays["boundary_k"].shape
+    if len(n_boundaries) != 1 or arrays["boundary_alpha"].shape != n_boundaries or \
+            arrays["boundary_kind"].shape != n_boundaries:
+        raise CacheEntryError("boundary arrays differ in shape")
+    for name, valid in (("regime", 3), ("dominant", 3), ("boundary_kind", 9)):
+        values = arrays[name]
+        if values.size and (values.min() < 0 or values.max() >= valid):
+            raise CacheEntryError(f"array {name} holds codes outside 0..{valid - 1}")
+
+
+def _check_cached(rmap: RegimeMap, k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k, n_spot: int = 12) -> None:
+    """A cached map must be the map asked for: same frame and parameters, and the solver
+    agrees on ``n_spot`` grid points drawn at random (a well-formed entry with made-up
+    regimes is caught; the draw is unpredictable, so no crafted entry passes reliably)."""
+    if (rmap.eta, rmap.mu_s, rmap.mu_k) != (float(eta), float(mu_s), float(mu_k)):
+        raise CacheEntryError("parameters differ from its name")
+    if rmap.k.size != n_k or rmap.alpha.size != n_alpha or \
+            not np.array_equal(rmap.k, np.linspace(k_range[0], k_range[1], n_k)) or \
+            not np.array_equal(rmap.alpha, np.linspace(alpha_range[0], alpha_range[1], n_alpha)):
+        raise CacheEntryError("grid differs from its name")
+    generator = np.random.default_rng(int.from_bytes(os.urandom(8), "little"))
+    for _ in range(n_spot):
+        i, j = int(generator.integers(n_alpha)), int(generator.integers(n_k))
+        expected = _point(float(rmap.alpha[i]), float(rmap.k[j]), rmap.eta, rmap.mu_s, rmap.mu_k)
+        amplitude = float(rmap.amplitude[i, j])
+        if int(rmap.regime[i, j]) != expected[0] or not math.isclose(amplitude, expected[1], rel_tol=1e-6,
+                                                                     abs_tol=1e-12):
+            raise CacheEntryError(f"point α = {rmap.alpha[i]:g}, k = {rmap.k[j]:g} disagrees with the solver")
 
 
 def _point(alpha: float, k: float, eta: float, mu_s: float, mu_k: float) -> tuple:
@@ -297,26 +387,39 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
     RegimeMap
     """
     mu_k = mu_s if mu_k is None else float(mu_k)
+    from isolator.parallel import capped_workers
+
+    workers, workers_note = capped_workers(workers)
+    notes = [workers_note] if workers_note else []
     base_key = _key(k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k)
     path = cache_dir() / f"map-{base_key}{'-refined' if refine else ''}.npz"
-    if use_cache and path.exists():
+    frame = (k_range, alpha_range, n_k, n_alpha, eta, mu_s, mu_k)
+
+    def cached(entry: Path) -> RegimeMap | None:
+        if not (use_cache and entry.exists()):
+            return None
         try:
-            return RegimeMap.load(path)
-        except (OSError, KeyError, ValueError):
-            pass  # a damaged cache entry is recomputed
-    base_path = cache_dir() / f"map-{base_key}.npz"
-    if refine and use_cache and base_path.exists():
+            found = RegimeMap.load(entry)
+            _check_cached(found, *frame)
+            return found
+        except CacheEntryError as err:
+            notes.append(f"cached map {entry} was damaged ({err}): recomputed")
+            return None
+
+    rmap = cached(path)
+    if rmap is not None:
+        rmap.notes = notes
+        return rmap
+    base = cached(cache_dir() / f"map-{base_key}.npz") if refine else None
+    if base is not None:
+        rmap = refine_boundaries(base, workers)
+        rmap.from_cache = False
+        rmap.notes = notes
         try:
-            rmap = refine_boundaries(RegimeMap.load(base_path), workers)
-        except (OSError, KeyError, ValueError):
-            rmap = None
-        if rmap is not None:
-            rmap.from_cache = False
-            try:
-                rmap.save(path)
-            except OSError:
-                pass
-            return rmap
+            rmap.save(path)
+        except OSError:
+            pass
+        return rmap
     k = np.linspace(k_range[0], k_range[1], n_k)
     alpha = np.linspace(alpha_range[0], alpha_range[1], n_alpha)
     start = time.perf_counter()
@@ -339,6 +442,7 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
             rmap.save(path)
         except OSError:
             pass  # a read-only cache never stops a map
+    rmap.notes = notes
     return rmap
 
 

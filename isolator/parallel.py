@@ -33,6 +33,20 @@ def default_workers() -> int:
     return max(1, min(cores, idle))
 
 
+def capped_workers(requested: int | None) -> tuple[int, str]:
+    """Processes to use, and a sentence when the request was capped at the available cores.
+
+    More processes than cores only add start-up time and contention (``--workers 16``
+    on 2 cores runs 2).  None gives :func:`default_workers` without a note.
+    """
+    if requested is None:
+        return default_workers(), ""
+    cores = available_cores()
+    if requested > cores:
+        return cores, f"{requested} workers asked, {cores} used (this machine gives this process {cores} cores)"
+    return max(1, int(requested)), ""
+
+
 _WARM = False
 
 

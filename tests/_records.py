@@ -137,6 +137,18 @@ BAD_RECORDS = {
     "conflicting_units": ("conflict.AT2", lambda p: p.write_text(at2_text(_SINE)), {"units": "gal"},
                           ["states g", "--units says gal"]),
     "missing": ("missing.AT2", lambda p: None, {}, ["no such file"]),
+    # hostile inputs (issue 13): never a hang, never "no such file" for what exists
+    "fifo": ("pipe.AT2", lambda p: __import__("os").mkfifo(p), {}, ["FIFO", "not a regular file"]),
+    "symlink_loop": ("loop.AT2", lambda p: (p.symlink_to(p.with_name("loop2.AT2")),
+                                            p.with_name("loop2.AT2").symlink_to(p)), {}, ["symbolic-link loop"]),
+    "dangling_link": ("dangling.AT2", lambda p: p.symlink_to(p.with_name("gone.AT2")), {},
+                      ["dangling symbolic link"]),
+    "folder": ("folder.AT2", lambda p: p.mkdir(), {}, ["is a directory"]),
+    "all_zero": ("zeros.AT2", lambda p: p.write_text(at2_text([0.0] * 20)), {}, ["every one of its 20 samples is zero"]),
+    "dt_tiny": ("dttiny.AT2", lambda p: p.write_text(at2_text(_SINE, dt="1e-300")), {}, ["below 1e-05 s"]),
+    "dt_huge": ("dthuge.AT2", lambda p: p.write_text(at2_text(_SINE, dt="100.0")), {}, ["above 0.5 s"]),
+    "dt_option_huge": ("coarse.acc", lambda p: p.write_text("0.1\n0.2\n0.3\n"), {"units": "g", "dt_s": 100.0},
+                       ["--dt", "above 0.5 s"]),
 }
 
 

@@ -122,3 +122,21 @@ def test_toml_file_errors(tmp_path):
     good = tmp_path / "good.toml"
     good.write_text('name = "x"\nmass_kg = 10\nradius_m = 1\nmu_static = 0.1\n')
     assert Design.from_toml(good).stiffness_N_per_m == pytest.approx(10 * G)
+
+
+def test_design_file_that_is_not_a_regular_file_is_refused_at_once(tmp_path):
+    import os
+    import time
+
+    fifo = tmp_path / "design.toml"
+    os.mkfifo(fifo)
+    start = time.perf_counter()
+    with pytest.raises(DesignError, match=r"design.toml: is a FIFO \(named pipe\), not a regular file"):
+        Design.from_toml(fifo)  # reading it would block forever
+    assert time.perf_counter() - start < 1.0
+    (tmp_path / "a.toml").symlink_to(tmp_path / "b.toml")
+    (tmp_path / "b.toml").symlink_to(tmp_path / "a.toml")
+    with pytest.raises(DesignError, match="a.toml: symbolic-link loop"):
+        Design.from_toml(tmp_path / "a.toml")
+    with pytest.raises(DesignError, match="is a folder"):
+        Design.from_toml(tmp_path)

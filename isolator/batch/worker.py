@@ -9,13 +9,7 @@ from pathlib import Path
 
 from isolator.batch.plan import GRID_KEYS, DesignCase, ReadOptions, Task, _one_line
 
-_CLASS_FIELDS = ("regime", "zeta", "amplitude", "amplified", "dominant_force", "dominant_force_rho",
-                 "rho_ev", "rho_vf", "rho_ef")
-
-
 _MOTION_CACHE: dict = {}
-_HARMONIC_CACHE: dict = {}
-_HARMONIC_CACHE_MAX = 200_000
 
 
 def _read_motion(path: str, component: str | None, options: ReadOptions):
@@ -60,25 +54,6 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     return result
 
 
-def _harmonic_classification(alpha, k, eta, mu_s, mu_k):
-    """(Classification, steady, status, seconds) at a point; cached per process (seconds = 0 on a hit)."""
-    key = (alpha, k, eta, mu_s, mu_k)
-    hit = _HARMONIC_CACHE.get(key)
-    if hit is not None:
-        return hit[0], hit[1], hit[2], 0.0
-    from isolator.metrics import classify_harmonic
-    from isolator.solver.harmonic import harmonic_response
-
-    start = time.perf_counter()
-    # the classification reads the exact event metrics, not the dense output: 2 samples per period
-    harmonic = harmonic_response(alpha, k, eta, mu_s, mu_k, samples_per_period=2)
-    classification = classify_harmonic(harmonic)
-    seconds = time.perf_counter() - start
-    if len(_HARMONIC_CACHE) < _HARMONIC_CACHE_MAX:
-        _HARMONIC_CACHE[key] = (classification, harmonic.steady, harmonic.status)
-    return classification, harmonic.steady, harmonic.status, seconds
-
-
 def _design_columns(case: DesignCase, design=None) -> dict:
     if design is not None:
         d = design.as_dict()
@@ -117,61 +92,32 @@ def _record_columns(path: str, component: str | None, motion=None, measures=None
     return out
 
 
-def _analyse_row(design, motion, measures, window, harmonic: bool = True) -> dict:
-    """The numbers of one (record, design): point, simulate, classifications (no dict of the report)."""
-    from isolator.adapter import adapt, engineering_quantities
-    from isolator.metrics import classify_record, compare
-    from isolator.solver.record import simulate_record
-
-    # the record's intensity measures are computed once per record, not per design
-    adaptation = adapt(design, motion, measures)
-    point, system = adaptation.point, adaptation.system
-    response = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
-    record_class = classify_record(response, point, design, window_s=window)
-    if harmonic:
-        harmonic_class, steady, status, harmonic_seconds = _harmonic_classification(
-            point.alpha, point.k, point.eta, point.mu_s, point.mu_k)
-    else:
-        harmonic_class, steady, status, harmonic_seconds = None, None, "not computed (--no-harmonic)", 0.0
-    engineering = engineering_quantities(design, response)
-    row = {
-        "alpha": point.alpha, "k": point.k, "eta": point.eta, "configuration": system.configuration,
-        "peak_displacement_m": response.peak_displacement_m,
-        "residual_displacement_m": response.residual_displacement_m,
-        "peak_velocity_m_s": response.peak_velocity_m_s,
-        "peak_transmitted_acceleration_m_s2": response.peak_transmitted_acceleration_m_s2,
-        "slip_time_s": response.slip_time_s, "n_events": int(response.n_events),
-        "energy_input_J_per_kg": response.energy_input_J_per_kg,
-        "energy_friction_J_per_kg": response.energy_friction_J_per_kg,
-        "energy_viscous_J_per_kg": response.energy_viscous_J_per_kg,
-        "energy_balance_error_J_per_kg": response.energy_balance_error_J_per_kg,
-        "solver_status": response.message,
-        "effective_period_s": engineering["effective_period_s"],
-        "effective_damping_ratio": engineering["effective_damping_ratio"],
-        "peak_transmitted_force_N": engineering["peak_transmitted_force_N"],
-        "base_shear_coefficient": engineering["base_shear_coefficient"],
-        "window_start_s": record_class.window_s[0], "window_end_s": record_class.window_s[1],
-        "harmonic_steady": None if steady is None else bool(steady), "harmonic_status": status,
-        "n_disagreements": None if harmonic_class is None else len(compare(record_class, harmonic_class)),
-        "solver_seconds": response.solver_seconds, "harmonic_seconds": harmonic_seconds,
-    }
-    for name in _CLASS_FIELDS:
-        row[f"{name}_record"] = getattr(record_class, name)
-        row[f"{name}_harmonic"] = None if harmonic_class is None else getattr(harmonic_class, name)
-    return row
+def _report_path(task: Task, case: DesignCase, motion) -> Path:
+    safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", f"{case.index:05d}_{Path(task.record).stem}_{motion.component}")
+    return Path(task.reports_dir) / f"{safe.strip('_')}.pdf"
 
 
-def _write_report(task: Task, case: DesignCase, design, motion, factor) -> None:
-    from isolator.report.pdf import write_report
-    from isolator.report.summary import analyse
+def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, window, factor) -> dict:
+    """The row's slice of the analysis (:meth:`isolator.analysis.Analysis.row`); writes the report if asked."""
+    from isolator.analysis import analyse
 
     note = f"Record scaled to PGA {task.options.scale_to_pga_g:g} g (factor {factor:.4g})." \
         if task.options.scale_to_pga_g is not None else ""
-    analysis = analyse(design, motion, record_label=task.record, scaling_note=note)
-    safe = re.sub(r"[^A-Za-z0-9_.-]+", "_", f"{case.index:05d}_{Path(task.record).stem}_{motion.component}")
-    target = Path(task.reports_dir) / f"{safe.strip('_')}.pdf"
-    target.parent.mkdir(parents=True, exist_ok=True)
-    write_report(analysis, target, map_resolution=task.map_resolution, command="isolator batch", workers=1)
+    # the record's intensity measures and window are computed once per record, not per design
+    analysis = analyse(design, motion, intensity=measures, window_s=window,
+                       harmonic=task.options.harmonic or bool(task.reports_dir), record_label=task.record,
+                       scaling_note=note, map_resolution=task.map_resolution if task.reports_dir else None,
+                       workers=1)
+    if task.reports_dir:
+        from isolator.report.pdf import write_report
+
+        target = _report_path(task, case, motion)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        write_report(analysis, target, command="isolator batch")
+    if not task.options.harmonic and analysis.harmonic is not None:
+        analysis.harmonic = analysis.harmonic_class = None  # the table leaves the harmonic columns empty
+        analysis.disagreements = []
+    return analysis.row()
 
 
 def run_task(task: Task) -> list[dict]:
@@ -197,10 +143,8 @@ def run_task(task: Task) -> list[dict]:
             start = time.perf_counter()
             design = Design.from_mapping(case.mapping, source=case.source)
             row.update(_design_columns(case, design))
-            row.update(_analyse_row(design, motion, measures, window, task.options.harmonic))
+            row.update(_analysis_columns(task, case, design, motion, measures, window, factor))
             row["row_seconds"] = time.perf_counter() - start
-            if task.reports_dir:
-                _write_report(task, case, design, motion, factor)
             row["error"] = ""
         except Exception as err:  # noqa: BLE001 - one design's failure is its row's error
             row.update(_design_columns(case))

@@ -6,11 +6,69 @@ one line on stderr and exit code 2 (:func:`user_error`), never a traceback.
 
 from __future__ import annotations
 
+import sys
+import warnings
+
 import typer
+from typer.core import TyperGroup
+
+try:  # typer ≥ 0.20 carries its own copy of click: its exceptions are not click's
+    from typer._click import exceptions as click_exceptions
+except ImportError:  # pragma: no cover - older typer over click
+    from click import exceptions as click_exceptions
+
+
+def usage_line(err) -> str:
+    """One line for a usage mistake: ``error: … (see 'isolator CMD --help')``."""
+    message = " ".join(err.format_message().split())
+    context = getattr(err, "ctx", None)
+    command = context.command_path if context is not None else "isolator"
+    hint = f" (see '{command} --help')" if isinstance(err, click_exceptions.UsageError) else ""
+    return f"error: {message}{hint}"
+
+
+class OneLineErrors(TyperGroup):
+    """The command group: usage mistakes are one line and exit 2, and no Python warning
+    reaches stderr.
+
+    Typer prints click's usage errors (unknown flag, missing option, ``--jobs 0``,
+    ``--dt abc``) as a framed box of several lines; here every one becomes
+    ``error: … (see 'isolator CMD --help')``.  Warnings of numpy, obspy, matplotlib … are
+    silenced for the whole run (forked workers inherit the filter): where one matters, the
+    command says so in a sentence of its own.
+    """
+
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                result = super().main(args=args, prog_name="isolator", complete_var=complete_var,
+                                      standalone_mode=False, **extra)
+            except click_exceptions.NoArgsIsHelpError as err:
+                if not standalone_mode:
+                    raise
+                typer.echo(err.format_message(), err=True)  # `isolator` alone: the help, as click prints it
+                sys.exit(err.exit_code)
+            except click_exceptions.ClickException as err:
+                if not standalone_mode:
+                    raise
+                typer.echo(usage_line(err), err=True)
+                sys.exit(err.exit_code if isinstance(err, click_exceptions.UsageError) else 2)
+            except typer.Abort:
+                if not standalone_mode:
+                    raise
+                typer.echo("interrupted", err=True)
+                sys.exit(130)
+        if not standalone_mode:
+            return result
+        sys.exit(result if isinstance(result, int) else 0)
+
 
 app = typer.Typer(
+    cls=OneLineErrors,
     add_completion=False,
     no_args_is_help=True,
+    pretty_exceptions_enable=False,
     help="Exact analysis of friction isolators (friction + spring + dashpot) under ground motion.",
 )
 

@@ -106,8 +106,13 @@ def simulate(
         result = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
     except RecordInputError as err:
         user_error(f"{record}: {err}")
-    summary = {"record": str(record), "component": motion.component, "units_source": motion.units_source,
-               "npts": motion.npts, "dt_s": motion.dt_s, **result.summary()}
+    from isolator.analysis import MODEL_1D, SCHEMA_VERSION
+
+    # the analysis schema's slice for a record without a design: record, model and response keys
+    summary = {"schema_version": SCHEMA_VERSION, "model": MODEL_1D,
+               "record": {"label": str(record), "component": motion.component, "units_source": motion.units_source,
+                          "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s},
+               **result.summary()}
     if out_csv:
         try:
             write_csv_atomically(

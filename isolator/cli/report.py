@@ -24,18 +24,18 @@ def report(
                                "the JSON of the same numbers is written beside it."),
     map_resolution: int = typer.Option(40, "--map-resolution", min=8, max=400,
                                        help="Grid points per axis of the regime map (cached on disk)."),
+    no_pdf: bool = typer.Option(False, "--no-pdf", help="Write only the JSON of the numbers (beside where the PDF "
+                                "would go), without rendering the PDF."),
 ) -> None:
     """Engineering-review PDF (and JSON) of an isolator design under a ground-motion record.
 
     Pages: summary and verdicts; the record and its spectrum; the response (time
     histories, hysteresis, energy); the design on the paper's harmonic regime map.
     """
-    import shlex
-    import sys
     from pathlib import Path
 
     from isolator.design import Design, DesignError
-    from isolator.report.summary import resolve_record
+    from isolator.motion.examples import resolve_record
 
     try:
         the_design = Design.from_toml(design)
@@ -64,22 +64,32 @@ def report(
         output = str(Path("reports") / f"{Path(design).stem}_{record_stem}.pdf")
     if Path(output).suffix.lower() != ".pdf":
         user_error(f"--output must end with .pdf, got {output}")
-    from isolator.report.pdf import write_report
-    from isolator.report.summary import analyse
+    from isolator.analysis import analyse
     from isolator.solver.record import RecordInputError
 
     try:
-        analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note)
+        analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note,
+                           map_resolution=map_resolution)
     except (RecordInputError, ValueError) as err:
         user_error(f"{record_label}: {err}")
-    command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
+    json_path = Path(output).with_suffix(".json")
     try:
-        summary = write_report(analysis, output, map_resolution=map_resolution, command=command)
+        if no_pdf:
+            from isolator.report.summary import write_json
+
+            summary = write_json(analysis, json_path)
+        else:
+            import shlex
+            import sys
+
+            from isolator.report.pdf import write_report
+
+            command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
+            summary = write_report(analysis, output, command=command)
     except OSError as err:
         user_error(f"{output}: cannot write ({err.strerror or err})")
-    echo_table([
-        ("report", output, "(4 pages)"),
-        ("numbers", str(Path(output).with_suffix(".json")), ""),
+    echo_table(([] if no_pdf else [("report", output, "(4 pages)")]) + [
+        ("numbers", str(json_path), ""),
         ("point", f"α = {summary['alpha']:.4g}, k = {summary['k']:.4g}, η = {summary['eta']:.4g}", ""),
         ("regime", f"{summary['regime_record']} (record) / {summary['regime_harmonic']} (harmonic)", ""),
         ("amplitude A", f"{summary['amplitude_record']:.3g} (record) / {summary['amplitude_harmonic']:.3g} "

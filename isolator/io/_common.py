@@ -7,9 +7,12 @@ float64 result.
 
 from __future__ import annotations
 
+import errno
+import glob
 import io
 import os
 import re
+import stat
 from collections.abc import Iterator
 from typing import IO
 
@@ -21,6 +24,61 @@ DETECT_BYTES = 8192  # bytes looked at by the format detectors
 # A floating-point number as written by Fortran formats (E, F, optionally D exponents).
 NUMBER_RE = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?")
 _ONLY_NUMBER_CHARS_RE = re.compile(r"^[\s0-9.EeDd+-]*$")
+
+
+def input_file_problem(path) -> str | None:
+    """What is wrong with ``path`` as an input file, in words; None for a readable regular file.
+
+    Decided from the file's metadata alone, never by opening it, so that a FIFO or a
+    device answers at once instead of blocking.  Distinguishes a symbolic-link loop and a
+    dangling link from a missing file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file a command is asked to read.
+
+    Returns
+    -------
+    str or None
+        ``"no such file"``, ``"symbolic-link loop"``, ``"dangling symbolic link (to …)"``,
+        ``"is a folder, not a file"``, ``"is a FIFO (named pipe), not a regular file"``,
+        ``"file is empty"``, ``"cannot be read (Permission denied)"`` …, or None.
+    """
+    from isolator.atomic import file_kind
+
+    path = os.fspath(path)
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        if os.path.islink(path):
+            return f"dangling symbolic link (to {os.readlink(path)})"
+        return "no such file"
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            return "symbolic-link loop"
+        return f"cannot be read ({err.strerror or err})"
+    if stat.S_ISDIR(mode):
+        return "is a folder, not a file"
+    if not stat.S_ISREG(mode):
+        return f"is {file_kind(mode)}, not a regular file"
+    if not os.access(path, os.R_OK):
+        return "cannot be read (Permission denied)"
+    if os.stat(path).st_size == 0:
+        return "file is empty"
+    return None
+
+
+def literal_pattern(path) -> str:
+    """``path`` as a glob pattern that matches exactly that file.
+
+    :func:`obspy.read` expands ``*``, ``?`` and ``[…]`` in a ``str`` path, so that
+    ``x[1].AT2`` would read ``x1.AT2``; escaping them makes a path name exactly one file.
+    The path is made absolute, so that it is never taken for a URL.
+    """
+    # absolute: obspy downloads anything with "://" in its first characters; abspath also
+    # collapses "a://b" to "a:/b", so a local path can never be taken for a URL
+    return glob.escape(os.path.abspath(os.fspath(path)))
 
 
 def read_head(filename_or_buf, nbytes: int = DETECT_BYTES) -> bytes:

@@ -17,6 +17,7 @@ from isolator.motion.measures import IntensityMeasures, intensity_measures
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
 
 MIN_SAMPLES = 2  # a record needs at least two samples to have a time step
+MIN_TARGET_PGA_G = 1e-6  # [g] a smaller target PGA is below any accelerometer's noise
 UNNAMED_COMPONENT = "unnamed"  # label of the one component of a file that names none
 
 
@@ -297,6 +298,15 @@ class GroundMotion:
             raise ValueError("cannot scale a record of zeros to a PGA")
         if not pga_m_s2 > 0:
             raise ValueError(f"target PGA {pga_m_s2} m/s² is not positive")
+        from isolator.motion.read import MAX_ABS_ACCELERATION_G
+        from isolator.units import STANDARD_GRAVITY
+
+        pga_g = pga_m_s2 / STANDARD_GRAVITY
+        if pga_g > MAX_ABS_ACCELERATION_G:  # what the reader refuses is not reachable by scaling either
+            raise ValueError(f"target PGA {pga_g:g} g exceeds {MAX_ABS_ACCELERATION_G:g} g")
+        if pga_g < MIN_TARGET_PGA_G:
+            raise ValueError(f"target PGA {pga_g:g} g is below {MIN_TARGET_PGA_G:g} g (instrument noise; "
+                             "the record's measures underflow)")
         scaled = self.scaled(pga_m_s2 / current_m_s2)
         last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2))
         return GroundMotion(trace=scaled.trace, units_source=self.units_source, provenance=self.provenance,

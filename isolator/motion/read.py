@@ -22,6 +22,11 @@ from isolator.motion.ground_motion import MIN_SAMPLES, GroundMotion, _component_
 from isolator.units import STANDARD_GRAVITY, UnitsError, acceleration_factor_to_m_s2
 
 MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units
+#: Time steps a record may have [s]: accelerograms sample at 100 Hz to 1 kHz (dt 0.001 to
+#: 0.05 s).  Below 10 µs (100 kHz) a time step is a corrupt header (DT= 1e-300 made the
+#: predominant period sit on its search floor and A0 = 0); above 0.5 s the record cannot
+#: carry ground shaking (0.1 to 25 Hz) and its spectrum would need unbounded work.
+RECORD_DT_RANGE_S = (1e-5, 0.5)
 #: Suffixes read as plain text when no reader claims the file by content.
 TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
 #: SAC ``idep`` codes for quantities that are not acceleration.
@@ -48,7 +53,7 @@ def _read_stream(path: Path, dt_s: float | None):
     """obspy.read with our plugins; explicit text reading as the fallback; RecordError otherwise."""
     import obspy
 
-    from isolator.io._common import looks_like_text, read_head
+    from isolator.io._common import literal_pattern, looks_like_text, read_head
     from isolator.io.at2 import _is_at2
     from isolator.io.obspy_formats import detect_obspy_format
     from isolator.io.smc import _is_smc
@@ -74,7 +79,7 @@ def _read_stream(path: Path, dt_s: float | None):
         try:
             if fmt is None:
                 try:  # the format obspy's autodetection would pick, found without its metadata scans
-                    return obspy.read(str(path), format=detect_obspy_format(path))
+                    return obspy.read(literal_pattern(path), format=detect_obspy_format(path))
                 except TypeError as err:
                     if "Unknown format" not in str(err):
                         raise
@@ -85,7 +90,7 @@ def _read_stream(path: Path, dt_s: float | None):
                                       "or plain numeric columns")
                 fmt = "ISOLATOR_TEXT"
             options = {"dt_s": dt_s} if fmt == "ISOLATOR_TEXT" else {}
-            return obspy.read(str(path), format=fmt, **options)
+            return obspy.read(literal_pattern(path), format=fmt, **options)
         except RecordError:
             raise
         except Exception as err:  # obspy's readers raise many types for damaged files
@@ -217,8 +222,13 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
             raise _fail(path, "give either an instrument response or --units/--counts-factor, not both")
         import obspy
 
+        from isolator.io._common import input_file_problem, literal_pattern
+
+        problem = input_file_problem(response)
+        if problem is not None:
+            raise _fail(path, f"cannot remove the instrument response: {response}: {problem}")
         try:
-            inventory = obspy.read_inventory(str(response))
+            inventory = obspy.read_inventory(literal_pattern(response))
             corrected = trace.copy()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -270,6 +280,9 @@ def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float) -> Non
         raise _fail(path, f"only {acceleration_m_s2.size} sample(s); a record needs at least {MIN_SAMPLES}")
     if not (math.isfinite(dt_s) and dt_s > 0):
         raise _fail(path, f"time step dt = {dt_s:g} s is not positive")
+    problem = dt_problem(dt_s)
+    if problem:
+        raise _fail(path, problem)
     finite = np.isfinite(acceleration_m_s2)
     if not finite.all():
         index = int(np.flatnonzero(~finite)[0])
@@ -279,6 +292,22 @@ def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float) -> Non
     if peak_m_s2 > MAX_ABS_ACCELERATION_G * STANDARD_GRAVITY:
         raise _fail(path, f"peak |a| = {peak_m_s2:.4g} m/s2 ({peak_m_s2 / STANDARD_GRAVITY:.4g} g) exceeds "
                           f"{MAX_ABS_ACCELERATION_G:g} g: wrong units?")
+    if peak_m_s2 == 0.0:  # the record's fault: every measure (A0 = PGV²/PGA …) would be 0/0
+        raise _fail(path, f"every one of its {acceleration_m_s2.size} samples is zero: no ground motion")
+
+
+def dt_problem(dt_s: float) -> str:
+    """Why ``dt_s`` [s] is not the time step of an accelerogram, or "" (see :data:`RECORD_DT_RANGE_S`)."""
+    low, high = RECORD_DT_RANGE_S
+    if not math.isfinite(dt_s) or dt_s <= 0:
+        return f"time step dt = {dt_s:g} s is not positive"
+    if dt_s < low:
+        return (f"time step dt = {dt_s:g} s is below {low:g} s (sampling above 100 kHz): no accelerogram has it; "
+                "a corrupt header?")
+    if dt_s > high:
+        return (f"time step dt = {dt_s:g} s is above {high:g} s (sampling below 2 Hz): too coarse for ground "
+                "shaking (0.1 to 25 Hz); no accelerogram has it")
+    return ""
 
 
 def _provenance(path: Path, trace, label: str) -> dict:
@@ -311,10 +340,13 @@ def _provenance(path: Path, trace, label: str) -> dict:
 
 
 def _check_path(path: Path) -> None:
-    if not path.exists():
-        raise _fail(path, "no such file")
-    if path.is_dir():
+    from isolator.io._common import input_file_problem
+
+    problem = input_file_problem(path)  # from metadata: a FIFO or a device never blocks the reader
+    if problem == "is a folder, not a file":
         raise _fail(path, "is a directory, not a record file")
+    if problem is not None:
+        raise _fail(path, problem)
     try:
         with open(path, "rb") as handle:
             handle.read(1)
@@ -405,6 +437,8 @@ def read_ground_motion(
     _check_path(path)
     if dt_s is not None and not (math.isfinite(dt_s) and dt_s > 0):
         raise _fail(path, f"--dt {dt_s:g} s is not positive")
+    if dt_s is not None and dt_problem(dt_s):
+        raise _fail(path, "--dt: " + dt_problem(dt_s))
     stream = _read_stream(path, dt_s)
     if len(stream) == 0:
         raise _fail(path, "holds no data")

@@ -48,22 +48,6 @@ def new_figure(**kwargs):
     return Figure(**kwargs)
 
 
-def shade_intervals(ax, intervals, label="sliding", colour=COLOUR_SLIDING) -> None:
-    """Shade time intervals (e.g. slip) behind a time history, full height of the axes.
-
-    One collection for all intervals (x in data, y in axes coordinates, as ``axvspan``):
-    a record with hundreds of slip intervals draws as one artist, not hundreds.
-    """
-    from matplotlib.collections import PolyCollection
-
-    boxes = [((start, 0.0), (start, 1.0), (end, 1.0), (end, 0.0)) for start, end in intervals]
-    if not boxes:
-        return
-    shading = PolyCollection(boxes, transform=ax.get_xaxis_transform(), facecolors=colour, alpha=0.7,
-                             linewidths=0, edgecolors="none", zorder=0, label=label)
-    ax.add_collection(shading, autolim=False)
-
-
 def distance_to_edge(mask) -> np.ndarray:
     """Euclidean distance [cells] from each True cell of a 2-D mask to the nearest False cell.
 
@@ -86,6 +70,99 @@ def distance_to_edge(mask) -> np.ndarray:
     for c in range(n_cols):  # bounded: one pass per column
         d2[:, c] = np.min(g2[None, :, c] + offsets2, axis=1)
     return np.sqrt(d2)
+
+
+#: Horizontal resolution of a drawn time axis: buckets of a decimated curve, and the
+#: number of pieces of a time axis below which neighbouring shaded intervals are merged.
+#: A page is ~2000 device pixels wide at 300 dpi, so nothing visible is lost.
+PIXELS_PER_AXIS = 2000
+
+
+def extreme_indices(n_buckets: int, *series) -> np.ndarray:
+    """Indices that keep every series' envelope: first, last, and per bucket the minimum and maximum.
+
+    A curve drawn through these samples (at most ``2 n_buckets + 2`` per series) is, at
+    the resolution of ``n_buckets`` columns, the curve through all samples: each column
+    spans the same range.  Short series are returned whole.
+
+    Parameters
+    ----------
+    n_buckets : int
+        Columns of the drawing [-].
+    *series : numpy.ndarray
+        Equal-length arrays drawn together (e.g. X and the force of a hysteresis loop).
+
+    Returns
+    -------
+    numpy.ndarray
+        Sorted unique sample indices.
+    """
+    n = len(series[0])
+    if n <= 4 * n_buckets:
+        return np.arange(n)
+    length = n // n_buckets
+    used = length * n_buckets
+    starts = np.arange(n_buckets) * length
+    picks = [np.array([0, n - 1])]
+    for values in series:
+        blocks = np.asarray(values[:used]).reshape(n_buckets, length)
+        picks += [starts + blocks.argmin(axis=1), starts + blocks.argmax(axis=1)]
+        if used < n:
+            tail = np.asarray(values[used:])
+            picks.append(used + np.array([tail.argmin(), tail.argmax()]))
+    return np.unique(np.concatenate(picks))
+
+
+def merge_intervals(intervals, min_gap_s: float) -> np.ndarray:
+    """Intervals with gaps shorter than ``min_gap_s`` [s] joined (a gap below a pixel is invisible).
+
+    Parameters
+    ----------
+    intervals : array_like
+        (n, 2) start and end times [s], sorted.
+    min_gap_s : float
+        Gaps up to this length are closed [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        (m, 2) merged intervals, m ≤ n.
+    """
+    intervals = np.asarray(intervals, dtype=float).reshape(-1, 2)
+    if intervals.shape[0] < 2:
+        return intervals
+    gaps = intervals[1:, 0] - intervals[:-1, 1]
+    breaks = np.flatnonzero(gaps > min_gap_s)
+    starts = intervals[np.concatenate(([0], breaks + 1)), 0]
+    ends = intervals[np.concatenate((breaks, [intervals.shape[0] - 1])), 1]
+    return np.column_stack([starts, ends])
+
+
+def shade_intervals(ax, intervals, label="sliding", colour=COLOUR_SLIDING, span_s=None) -> None:
+    """Shade time intervals (e.g. slip) behind a time history, as one artist.
+
+    Intervals closer than a pixel (``span_s / PIXELS_PER_AXIS``) are merged, so a record
+    with hundreds of thousands of slips draws at most ``PIXELS_PER_AXIS`` bars.
+
+    Parameters
+    ----------
+    span_s : float, optional
+        Length of the time axis [s]; the extent of the intervals by default.
+    """
+    intervals = np.asarray(intervals, dtype=float).reshape(-1, 2)
+    if intervals.shape[0] == 0:
+        return
+    if span_s is None:
+        span_s = float(intervals[-1, 1] - intervals[0, 0])
+    merged = merge_intervals(intervals, span_s / PIXELS_PER_AXIS)
+    ax.broken_barh(list(zip(merged[:, 0], merged[:, 1] - merged[:, 0])), (0.0, 1.0),
+                   transform=ax.get_xaxis_transform(), facecolors=colour, alpha=0.7, lw=0, label=label, zorder=0)
+
+
+def plot_decimated(ax, x, y, **style):
+    """``ax.plot(x, y)`` through :func:`extreme_indices` of y: the same picture, bounded size."""
+    index = extreme_indices(PIXELS_PER_AXIS, y)
+    return ax.plot(np.asarray(x)[index], np.asarray(y)[index], **style)
 
 
 # ---- regime map ------------------------------------------------------------------------
@@ -286,7 +363,7 @@ def record_page(fig, motion, window_s, periods_s, psa_m_s2, isolated_period_s, e
               (displacement_m(acc, motion.dt_s), "ground displacement  [m]")]
     for ax, (values, label) in zip(axes[:3], series):
         ax.axvspan(*window_s, color="0.92", lw=0, zorder=0, label="D5-95 window")
-        ax.plot(t, values, lw=0.6, color="k")
+        plot_decimated(ax, t, values, lw=0.6, color="k")
         peak = int(np.argmax(np.abs(values)))
         ax.plot([t[peak]], [values[peak]], "o", color="red", ms=3.5,
                 label=f"peak {abs(values[peak]):.3g} at {t[peak]:.2f} s")
@@ -334,14 +411,15 @@ def response_page(fig, response, mass_kg: float, slip_intervals):
     ax_v = fig.add_subplot(grid[1, :], sharex=ax_x)
     ax_a = fig.add_subplot(grid[2, :], sharex=ax_x)
     for ax in (ax_x, ax_v, ax_a):
-        shade_intervals(ax, slip_intervals)
-    ax_x.plot(t, response.displacement_m, color="k", lw=0.7, label="relative displacement X")
+        shade_intervals(ax, slip_intervals, span_s=float(t[-1] - t[0]))
+    plot_decimated(ax_x, t, response.displacement_m, color="k", lw=0.7, label="relative displacement X")
     ax_x.set_ylabel("X  [m]")
-    ax_v.plot(t, response.velocity_m_s, color="k", lw=0.7, label="relative velocity dX/dt")
+    plot_decimated(ax_v, t, response.velocity_m_s, color="k", lw=0.7, label="relative velocity dX/dt")
     ax_v.set_ylabel("dX/dt  [m/s]")
-    ax_a.plot(t, response.ground_acceleration_m_s2 / STANDARD_GRAVITY, color="0.65", lw=0.6, label="ground")
-    ax_a.plot(t, response.absolute_acceleration_m_s2 / STANDARD_GRAVITY, color="tab:red", lw=0.8,
-              label="transmitted (absolute, of the mass)")
+    plot_decimated(ax_a, t, response.ground_acceleration_m_s2 / STANDARD_GRAVITY, color="0.65", lw=0.6,
+                   label="ground")
+    plot_decimated(ax_a, t, response.absolute_acceleration_m_s2 / STANDARD_GRAVITY, color="tab:red", lw=0.8,
+                   label="transmitted (absolute, of the mass)")
     ax_a.set_ylabel("acceleration  [g]")
     ax_a.set_xlabel("time  [s]")
     ax_a.set_xlim(t[0], t[-1])
@@ -349,7 +427,8 @@ def response_page(fig, response, mass_kg: float, slip_intervals):
         ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), frameon=False, ncol=3, borderaxespad=0.2)
     ax_h = fig.add_subplot(grid[3, 0])
     force_kN = -mass_kg * response.absolute_acceleration_m_s2 / 1e3
-    ax_h.plot(response.displacement_m, force_kN, color="k", lw=0.6)
+    loop = extreme_indices(PIXELS_PER_AXIS, response.displacement_m, force_kN)  # the loop's extremes kept
+    ax_h.plot(response.displacement_m[loop], force_kN[loop], color="k", lw=0.6)
     ax_h.set_xlabel("relative displacement X  [m]")
     ax_h.set_ylabel("isolator force  [kN]")
     ax_h.set_title("Force-displacement loop")
@@ -361,7 +440,7 @@ def response_page(fig, response, mass_kg: float, slip_intervals):
         if name == "viscous" and response.system.damping_per_mass == 0.0:
             continue
         colour, style = styles[name]
-        ax_e.plot(t, values / 1e3, color=colour, ls=style, lw=1.0, label=name)
+        plot_decimated(ax_e, t, values / 1e3, color=colour, ls=style, lw=1.0, label=name)
     ax_e.set_xlabel("time  [s]")
     ax_e.set_ylabel("energy  [kJ]")
     ax_e.set_title("Energy balance over time")

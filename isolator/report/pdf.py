@@ -8,7 +8,6 @@ harmonic regime map and the A(α) curve.  Both files are written atomically.
 
 from __future__ import annotations
 
-import json
 import math
 import textwrap
 from pathlib import Path
@@ -18,7 +17,7 @@ import numpy as np
 from isolator.atomic import atomic_path
 from isolator.metrics import REGIME_WORDS, slip_intervals
 from isolator.report import figures
-from isolator.report.summary import Analysis, summary_dict, verdicts
+from isolator.report.summary import Analysis, summary_dict, verdicts, write_json
 from isolator.units import STANDARD_GRAVITY
 
 A4_IN = (8.27, 11.69)
@@ -176,47 +175,41 @@ def _summary_page(a: Analysis, summary: dict, command: str):
     return fig
 
 
-def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, command: str = "",
-                 workers: int | None = None) -> dict:
-    """Write the PDF and its JSON (same name, ``.json``); returns the JSON dict.
+def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
+    """Render an analysis as a PDF and write its JSON beside it (same name, ``.json``); returns the JSON dict.
+
+    The PDF only draws what the analysis holds: it needs the design on the regime map
+    (``analyse(..., map_resolution=N)``).
 
     Parameters
     ----------
     analysis : Analysis
-        From :func:`isolator.report.summary.analyse`.
+        From :func:`isolator.analysis.analyse` with ``map_resolution``.
     pdf_path : str or Path
         Output PDF [-]; the JSON goes beside it.
-    map_resolution : int
-        Grid points per axis of the regime map.
     command : str
         The command line, printed in the footer.
-    workers : int, optional
-        Processes for the map.
+
+    Raises
+    ------
+    ValueError
+        An analysis without the regime map or without the harmonic problem.
     """
     from matplotlib.backends.backend_pdf import PdfPages
 
-    from isolator.maps import amplitude_curve, design_frame, regime_map, triple_point
-
     a = analysis
+    if a.harmonic_map is None or a.harmonic_class is None:
+        raise ValueError("a report needs the harmonic problem and the regime map: analyse(..., map_resolution=N)")
     pdf_path = Path(pdf_path)
     json_path = pdf_path.with_suffix(".json")
-    summary = summary_dict(a)
+    summary = summary_dict(a, pdf_path)
     d, p, r = a.design, a.adaptation.point, a.response
     rc, hc = a.record_class, a.harmonic_class
     record_name = Path(a.record_label).name if Path(a.record_label).is_file() else a.record_label
     label = f"{d.name} | {record_name}"
-
-    # the map and the A(α) curve first: the slow part, before any file is opened
-    frame = design_frame(p.alpha, p.k)
-    rmap = regime_map(p.eta, p.mu_s, p.mu_k, k_range=frame["k"], alpha_range=frame["alpha"],
-                      n_k=map_resolution, n_alpha=map_resolution, workers=workers, refine=True)
-    triple = triple_point(p.eta, p.mu_s, p.mu_k, alpha_max=frame["alpha"][1]) if p.eta > 0 else None
-    alphas = np.unique(np.concatenate((np.linspace(1.0 + 1e-6, frame["alpha"][1], 2 * map_resolution), [p.alpha])))
-    amplitudes, regimes, steady = amplitude_curve(p.k, p.eta, p.mu_s, p.mu_k, alphas, workers=workers)
-    summary["map"] = {"k_range": list(frame["k"]), "alpha_range": list(frame["alpha"]),
-                      "resolution": map_resolution, "computed_s": rmap.elapsed_s, "from_cache": rmap.from_cache,
-                      "triple_point": None if triple is None else {"alpha": triple[0], "k": triple[1]},
-                      "regime_at_design": rmap.regime_at(p.alpha, p.k)}
+    hmap = a.harmonic_map
+    rmap, triple, map_resolution = hmap.regime_map, hmap.triple_point, hmap.resolution
+    alphas, amplitudes, regimes, steady = hmap.alphas, hmap.amplitudes, hmap.regimes, hmap.steady
 
     with atomic_path(pdf_path) as tmp_pdf:
         with PdfPages(tmp_pdf) as pdf:
@@ -282,9 +275,4 @@ def write_report(analysis: Analysis, pdf_path, *, map_resolution: int = 60, comm
             info = pdf.infodict()
             info["Title"] = f"isolator review: {label}"
             info["Creator"] = f"isolator {summary['software']['version']}"
-    summary["pdf"] = str(pdf_path)
-    with atomic_path(json_path) as tmp_json:
-        with open(tmp_json, "w") as stream:
-            json.dump(summary, stream, indent=2, allow_nan=False)
-            stream.write("\n")
-    return summary
+    return write_json(a, json_path, pdf_path)

@@ -401,10 +401,19 @@ def force_ratios(k: float, eta: float, alpha: float, mu_s: float, mu_k: float, a
     return rho_ev, rho_vf, rho_ef, dominant
 
 
+#: Largest α, k and η accepted [-].  The paper's maps span k ≤ 6, α ≤ 10, η ≤ 1; the work per
+#: forcing period grows as sqrt(k / (α µs)) pieces (k = 1e9 takes 5 s, 1e12 minutes), and
+#: beyond 1e6 the block is either rigid or sliding freely: nothing left to compute.
+MAX_DIMENSIONLESS = 1e6
+
+
 def _validate(alpha, k, eta, mu_s, mu_k):
     for name, value in (("alpha", alpha), ("k", k), ("eta", eta), ("mu_s", mu_s)):
         if not math.isfinite(value) or value < 0.0:
             raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
+        if name != "mu_s" and value > MAX_DIMENSIONLESS:
+            raise InvalidSystemError(f"{name} = {value:g} exceeds {MAX_DIMENSIONLESS:g}: beyond it the block is "
+                                     "rigid or slides freely, and the work per period grows without bound")
     if alpha <= 0.0:
         raise InvalidSystemError(f"alpha must be > 0, got {alpha!r}")
     if mu_s <= 0.0:

@@ -18,6 +18,13 @@ from isolator.solver.events import secant_guess, segment_root
 from isolator.solver.segments import ramp_basis, segment_state
 
 
+#: Sub-steps per sample interval allowed in :func:`linear_peak_displacement`.  A peak between
+#: samples is located exactly only on pieces where the velocity is unimodal (a quarter of
+#: the period), so the work per sample grows as dt/T: bounded here, which accepts dt up to
+#: 25 T (0.5 s at the shortest period 0.02 s of the predominant-period search).
+MAX_SUBSTEPS_PER_SAMPLE = 100
+
+
 @njit(cache=True)
 def _peak_displacement(acc, dt, c, kappa, n_sub):
     h = dt / n_sub
@@ -66,12 +73,24 @@ def linear_peak_displacement(acceleration_m_s2, dt_s: float, period_s: float, da
     -------
     float
         max |X| [m], exact for the piecewise-linear record (peaks between samples included).
+
+    Raises
+    ------
+    isolator.solver.record.RecordInputError
+        If dt_s > 25 period_s (:data:`MAX_SUBSTEPS_PER_SAMPLE`): no accelerogram is that coarse.
     """
     omega = 2.0 * math.pi / period_s
     kappa = omega * omega
     c = 2.0 * damping_ratio * omega
     # pieces no longer than a quarter of the damped period keep the velocity unimodal
     n_sub = max(1, math.ceil(dt_s / (0.25 * period_s)))
+    if n_sub > MAX_SUBSTEPS_PER_SAMPLE:
+        from isolator.solver.record import RecordInputError
+
+        raise RecordInputError(
+            f"time step {dt_s:g} s is {dt_s / period_s:.4g} times the spectral period {period_s:g} s: the "
+            f"exact peak needs {n_sub} sub-steps per sample (at most {MAX_SUBSTEPS_PER_SAMPLE}); accelerograms "
+            "are sampled at 0.001 to 0.05 s")
     acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
     return float(_peak_displacement(acc, float(dt_s), c, kappa, n_sub))
 

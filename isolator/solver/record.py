@@ -72,21 +72,25 @@ class Response:
         return self.velocity_m_s != 0.0
 
     def summary(self) -> dict:
-        """The numbers of ``isolator simulate --json`` (SI units, energies in J/kg)."""
+        """The response's numbers, named as in the analysis schema (``docs/schema.md``).
+
+        ``isolator simulate --json``, the batch rows and the report JSON all carry these
+        keys (SI units in the names, energies per unit mass in J/kg).
+        """
         return {
             "peak_displacement_m": self.peak_displacement_m,
             "residual_displacement_m": self.residual_displacement_m,
             "peak_velocity_m_s": self.peak_velocity_m_s,
             "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
             "slip_time_s": self.slip_time_s,
-            "n_events": self.n_events,
-            "energy_input": self.energy_input_J_per_kg,
-            "energy_friction": self.energy_friction_J_per_kg,
-            "energy_viscous": self.energy_viscous_J_per_kg,
-            "energy_balance_error": self.energy_balance_error_J_per_kg,
+            "n_events": int(self.n_events),
+            "energy_input_J_per_kg": self.energy_input_J_per_kg,
+            "energy_friction_J_per_kg": self.energy_friction_J_per_kg,
+            "energy_viscous_J_per_kg": self.energy_viscous_J_per_kg,
+            "energy_balance_error_J_per_kg": self.energy_balance_error_J_per_kg,
             "solver_seconds": self.solver_seconds,
             "configuration": self.system.configuration,
-            "status": self.message,
+            "solver_status": self.message,
         }
 
 

@@ -49,10 +49,20 @@ def classify_configuration(damping: float, stiffness: float) -> str:
     return "4c"
 
 
-def _check_finite_nonnegative(name: str, value: float) -> float:
+#: Largest K/M [1/s²] accepted: a natural period of 2π/1e4 = 0.6 ms (a pendulum radius of 0.1 µm).
+#: Stiffer than that, the isolator is rigid for every sampled record, the solver would
+#: need ~ω dt sub-steps per sample, and K/M² overflows near 1e154.
+MAX_STIFFNESS_PER_MASS = 1e8
+#: Largest γ/M [1/s] accepted: a relaxation time M/γ of 10 ns, far beyond any damper.
+MAX_DAMPING_PER_MASS = 1e8
+
+
+def _check_finite_nonnegative(name: str, value: float, maximum: float = math.inf, why: str = "") -> float:
     value = float(value)
     if not math.isfinite(value) or value < 0.0:
         raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
+    if value > maximum:
+        raise InvalidSystemError(f"{name} = {value:g} exceeds {maximum:g}{why}")
     return value
 
 
@@ -87,10 +97,12 @@ class System:
             raise InvalidSystemError(f"mu_kinetic ({mu_k}) must not exceed mu_static ({mu_s})")
         object.__setattr__(self, "mu_static", mu_s)
         object.__setattr__(self, "mu_kinetic", mu_k)
-        object.__setattr__(self, "stiffness_per_mass",
-                           _check_finite_nonnegative("stiffness_per_mass", self.stiffness_per_mass))
-        object.__setattr__(self, "damping_per_mass",
-                           _check_finite_nonnegative("damping_per_mass", self.damping_per_mass))
+        object.__setattr__(self, "stiffness_per_mass", _check_finite_nonnegative(
+            "stiffness_per_mass", self.stiffness_per_mass, MAX_STIFFNESS_PER_MASS,
+            " 1/s² (a natural period below 0.6 ms: the isolator is rigid for any record)"))
+        object.__setattr__(self, "damping_per_mass", _check_finite_nonnegative(
+            "damping_per_mass", self.damping_per_mass, MAX_DAMPING_PER_MASS,
+            " 1/s (a relaxation time M/γ below 10 ns: no damper is that strong)"))
         g = float(self.gravity_m_s2)
         if not math.isfinite(g) or g <= 0.0:
             raise InvalidSystemError(f"gravity_m_s2 must be a finite number > 0, got {g!r}")

@@ -12,9 +12,11 @@ from typing import Callable
 
 import numpy as np
 
-from isolator.solver.harmonic import MAX_PERIODS_DEFAULT, _validate, harmonic_response
+from isolator.solver.harmonic import MAX_DIMENSIONLESS, MAX_PERIODS_DEFAULT, _validate, harmonic_response
 from isolator.solver.system import InvalidSystemError
 
+#: Largest grid of an α scan (each point a harmonic response, ~0.5 ms: about 10 s).
+MAX_THRESHOLD_GRID = 20_000
 #: bound on the halvings of one bisection (2⁻²⁰⁰ is far below any float spacing)
 MAX_BISECTIONS = 200
 
@@ -120,6 +122,12 @@ def harmonic_thresholds(k: float, eta: float, mu_s: float, mu_k: float | None = 
     mu_k = mu_s if mu_k is None else mu_k
     if not alpha_max > 1.0:
         raise InvalidSystemError(f"alpha_max must be > 1, got {alpha_max!r}")
+    if not alpha_max <= MAX_DIMENSIONLESS:
+        raise InvalidSystemError(f"alpha_max = {alpha_max:g} exceeds {MAX_DIMENSIONLESS:g} (the largest α the "
+                                 "harmonic solver accepts)")
+    if not 4 <= n_grid <= MAX_THRESHOLD_GRID:
+        raise InvalidSystemError(f"the α grid must have 4 to {MAX_THRESHOLD_GRID} points (each is a harmonic "
+                                 f"response, ~0.5 ms), got {n_grid}")
     _validate(1.0, float(k), float(eta), float(mu_s), float(mu_k))
     # the first grid point sits just above 1 so that the ST → moving step is at α_SS = 1;
     # narrow windows open at the sub- and super-harmonic resonances √k = n ω and

@@ -56,13 +56,13 @@ def test_info_multi_component_needs_component(records_dir):
     assert RUNNER.invoke(app, ["info", path, "-c", "90", "--json"]).exit_code == 0
 
 
-def test_info_json_has_no_nan_for_a_record_of_zeros(tmp_path):
+def test_info_refuses_a_record_of_zeros_instead_of_nan_measures(tmp_path):
+    # a record of zeros has no A0 = PGV²/PGA (0/0): the record is at fault, said in one line
     path = tmp_path / "zeros.txt"
     path.write_text("0 0\n0.01 0\n0.02 0\n")
     result = RUNNER.invoke(app, ["info", str(path), "--units", "g", "--json"])
-    assert result.exit_code == 0
-    summary = json.loads(result.stdout)
-    assert summary["a0_equiv_m"] is None and summary["pga_m_s2"] == 0.0
+    assert result.exit_code == 2 and result.stdout == ""
+    assert result.stderr == f"error: {path}: every one of its 3 samples is zero: no ground motion\n"
 
 
 @pytest.mark.parametrize("name", sorted(BAD_RECORDS))

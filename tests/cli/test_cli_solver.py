@@ -15,8 +15,9 @@ runner = CliRunner()
 HARMONIC_KEYS = {"regime", "zeta", "amplitude", "xdot_rms", "energy_friction", "energy_viscous", "work_input",
                  "rho_ev", "rho_vf", "rho_ef", "steady", "growth_rate"}
 SIMULATE_KEYS = {"peak_displacement_m", "residual_displacement_m", "peak_velocity_m_s",
-                 "peak_transmitted_acceleration_m_s2", "slip_time_s", "n_events", "energy_input",
-                 "energy_friction", "energy_viscous", "energy_balance_error", "solver_seconds"}
+                 "peak_transmitted_acceleration_m_s2", "slip_time_s", "n_events", "energy_input_J_per_kg",
+                 "energy_friction_J_per_kg", "energy_viscous_J_per_kg", "energy_balance_error_J_per_kg",
+                 "solver_seconds"}
 
 
 def _one_line_error(result):
@@ -74,7 +75,7 @@ def test_simulate_json_contract_and_units(two_column_record, tmp_path):
     data = json.loads(result.stdout)
     assert SIMULATE_KEYS <= data.keys()
     assert data["peak_displacement_m"] > 0 and data["n_events"] > 0
-    assert abs(data["energy_balance_error"]) < 1e-9 * data["energy_input"]
+    assert abs(data["energy_balance_error_J_per_kg"]) < 1e-9 * data["energy_input_J_per_kg"]
     history = np.loadtxt(out_csv, delimiter=",", skiprows=1)
     assert history.shape == (2000, 5)
     assert np.max(np.abs(history[:, 2])) == pytest.approx(data["peak_displacement_m"], rel=0.05)

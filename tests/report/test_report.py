@@ -147,3 +147,20 @@ def test_every_format_analyses_to_json(records_dir, name, options):
     assert abs(summary["energy_balance_error_J_per_kg"]) < 1e-6 * max(1.0, summary["energy_input_J_per_kg"])
     if summary["regime_record"] == "ST":
         assert summary["peak_displacement_m"] == 0.0
+
+
+def test_report_json_without_pdf(tmp_path, knet_report):
+    """--no-pdf writes the same numbers as the report's JSON and renders nothing."""
+    _, with_pdf = knet_report
+    out = tmp_path / "knet.pdf"
+    result = runner.invoke(app, ["report", "--design", str(DATA / "example_pendulum.toml"), "example:knet",
+                                 "--scale-to-pga", "0.3", "-o", str(out), "--map-resolution", "10", "--no-pdf"])
+    assert result.exit_code == 0, result.output
+    assert not out.exists() and out.with_suffix(".json").is_file()
+    alone = json.loads(out.with_suffix(".json").read_text())
+    beside = json.loads(with_pdf.with_suffix(".json").read_text())
+    assert "pdf" not in alone and beside["pdf"] == str(with_pdf)
+    assert alone["schema_version"] == beside["schema_version"] == 1
+    for key in ("alpha", "k", "peak_displacement_m", "energy_input_J_per_kg", "regime_record", "regime_harmonic"):
+        assert alone[key] == beside[key], key
+    assert alone["map"]["regime_at_design"] == beside["map"]["regime_at_design"]
