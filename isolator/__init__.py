@@ -38,6 +38,8 @@ _EXPORTS = {
     "regime_map": "isolator.maps",
     "analyse": "isolator.analysis",
     "Analysis": "isolator.analysis",
+    "IsolatorError": "isolator.errors",
+    "RecordError": "isolator.errors",
 }
 
 __all__ = sorted(_EXPORTS)

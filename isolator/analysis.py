@@ -163,8 +163,25 @@ class Analysis:
 
         p = self.adaptation.point
         motion = self.motion
+        out = self._flat()
+        out["disagreements"] = list(self.disagreements)
+        out["engineering"] = dict(self.engineering)
+        out["design"] = self.design.as_dict()
+        out["system"] = self.adaptation.dimensional_dict()
+        out["record"] = record_dict(motion, self.record_label)
+        out["record"].update(provenance=motion.provenance, processing=list(motion.processing),
+                             scaling=self.scaling_note, intensity_measures=self.adaptation.intensity.as_dict())
+        if self.harmonic_map is not None:
+            out["map"] = self.harmonic_map.to_dict(p.alpha, p.k)
+        out["verdicts"] = verdicts(self)
+        out["software"] = {"name": "isolator", "version": __version__}
+        out["created_utc"] = self.created_utc
+        return json_safe(out)
+
+    def _flat(self) -> dict:
+        """The flat keys of the schema (identity, point, response, classifications), in schema order."""
         out: dict = {"schema_version": SCHEMA_VERSION, "model": self.model, "model_reason": self.model_reason}
-        out.update(p.as_dict())
+        out.update(self.adaptation.point.as_dict())
         out["configuration"] = self.adaptation.system.configuration
         out.update(self.response.summary())
         rc, hc = self.record_class, self.harmonic_class
@@ -175,36 +192,38 @@ class Analysis:
         out["harmonic_steady"] = None if self.harmonic is None else bool(self.harmonic.steady)
         out["harmonic_status"] = HARMONIC_NOT_COMPUTED if self.harmonic is None else self.harmonic.status
         out["harmonic_seconds"] = self.harmonic_seconds
-        out["disagreements"] = list(self.disagreements)
         out["n_disagreements"] = None if hc is None else len(self.disagreements)
-        out["engineering"] = dict(self.engineering)
-        out["design"] = self.design.as_dict()
-        out["system"] = self.adaptation.dimensional_dict()
-        out["record"] = {
-            "label": self.record_label,
-            "component": motion.component,
-            "units_source": motion.units_source,
-            "npts": motion.npts,
-            "dt_s": motion.dt_s,
-            "duration_s": motion.duration_s,
-            "provenance": motion.provenance,
-            "processing": list(motion.processing),
-            "scaling": self.scaling_note,
-            "intensity_measures": self.adaptation.intensity.as_dict(),
-        }
-        if self.harmonic_map is not None:
-            out["map"] = self.harmonic_map.to_dict(p.alpha, p.k)
-        out["verdicts"] = verdicts(self)
-        out["software"] = {"name": "isolator", "version": __version__}
-        out["created_utc"] = self.created_utc
-        return json_safe(out)
+        return out
 
     def row(self) -> dict:
-        """The batch's slice of :meth:`to_dict`: :data:`ROW_KEYS` and :data:`ROW_ENGINEERING_KEYS`, flat."""
-        full = self.to_dict()
-        row = {key: full[key] for key in ROW_KEYS}
-        row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
-        return row
+        """The batch's slice of :meth:`to_dict`: :data:`ROW_KEYS` and :data:`ROW_ENGINEERING_KEYS`, flat.
+
+        Built from the same pieces as :meth:`to_dict` without its nested groups and sentences
+        (a batch makes thousands of rows), through the same JSON-safe helper.
+        """
+        flat = self._flat()
+        row = {key: flat[key] for key in ROW_KEYS}
+        row.update({key: self.engineering[key] for key in ROW_ENGINEERING_KEYS})
+        return json_safe(row)
+
+
+def record_dict(motion, label: str) -> dict:
+    """The ``record`` group of the schema that every output shares: label, component, units, sampling.
+
+    Parameters
+    ----------
+    motion : isolator.motion.GroundMotion
+        The motion analysed [m/s²].
+    label : str
+        How the user named the record [-].
+
+    Returns
+    -------
+    dict
+        ``label``, ``component``, ``units_source``, ``npts``, ``dt_s`` [s], ``duration_s`` [s].
+    """
+    return {"label": label, "component": motion.component, "units_source": motion.units_source,
+            "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s}
 
 
 def _harmonic_at(point) -> tuple:

@@ -78,8 +78,7 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         raise error_type(f"{path}: not valid TOML ({' '.join(str(err).split())})") from None
 
 
-class DesignError(ValueError):
-    """An invalid design (the message names the file and the key)."""
+from isolator.errors import DesignError  # noqa: E402,F401 - the design's error, defined with the others
 
 
 #: Supported mass M accepted [kg]: from a gram (a laboratory specimen) to 1e10 kg (ten times

@@ -34,14 +34,14 @@ from pathlib import Path
 import numpy as np
 
 from isolator.atomic import atomic_path
+from isolator.metrics import FORCE_NAMES
 from isolator.metrics import REGIMES as REGIME_NAMES
 
 MAP_FORMAT_VERSION = 2  #: bump when the content of a cached map changes
 REGIME_CODES = {name: code for code, name in enumerate(REGIME_NAMES)}
 
 
-FORCE_CODES = {"friction": 0, "elastic": 1, "viscous": 2}
-FORCE_NAMES = ("friction", "elastic", "viscous")
+FORCE_CODES = {name: code for code, name in enumerate(FORCE_NAMES)}
 
 #: The paper's frames (µs = 0.25, model 1 unless µk is given): (k_min, k_max, α_min, α_max, η)
 PAPER_FRAMES = {

@@ -26,8 +26,7 @@ ACCELERATION_UNITS_TO_M_S2: dict[str, float] = {
 ACCELERATION_UNIT_CHOICES = ("g", "m/s2", "gal", "cm/s2")
 
 
-class UnitsError(ValueError):
-    """An acceleration unit that isolator does not know."""
+from isolator.errors import UnitsError  # noqa: E402,F401 - defined with the other typed errors
 
 
 def acceleration_factor_to_m_s2(units: str) -> float:

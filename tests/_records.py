@@ -105,7 +105,7 @@ BAD_RECORDS = {
     "dt_zero": ("dt0.AT2", lambda p: p.write_text(at2_text(_SINE, dt="0.0")), {}, ["DT=0", "not positive"]),
     "dt_negative": ("dtneg.AT2", lambda p: p.write_text(at2_text(_SINE, dt="-.0100")), {}, ["not positive"]),
     "dt_zero_option": ("one.acc", lambda p: p.write_text("0.1\n0.2\n0.3\n"), {"units": "g", "dt_s": 0.0},
-                       ["--dt", "not positive"]),
+                       ["time step given", "not positive"]),
     "nan": ("nan.AT2", lambda p: p.write_text(at2_text(_SINE[:7] + ["NaN"] + _SINE[8:])), {}, ["non-finite", "sample 7"]),
     "inf": ("inf.txt", lambda p: p.write_text("0 0.1\n0.01 inf\n0.02 0.3\n"), {"units": "g"}, ["non-finite"]),
     "non_monotonic_time": ("time.csv", lambda p: p.write_text("0.00,0.1\n0.01,0.2\n0.03,0.3\n0.02,0.1\n"),
@@ -117,7 +117,7 @@ BAD_RECORDS = {
     "text_in_at2": ("text.AT2", lambda p: p.write_text(at2_text(_SINE[:12] + ["oops"] + _SINE[13:])), {},
                     ["non-numeric", "oops"]),
     "three_columns": ("three.txt", lambda p: p.write_text("0 0.1 5\n0.01 0.2 6\n"), {"units": "g"}, ["3 columns"]),
-    "no_dt_one_column": ("nodt.acc", lambda p: p.write_text("0.1\n0.2\n0.3\n"), {"units": "g"}, ["--dt"]),
+    "no_dt_one_column": ("nodt.acc", lambda p: p.write_text("0.1\n0.2\n0.3\n"), {"units": "g"}, ["no time step"]),
     "binary_at2": ("garbage.AT2", lambda p: p.write_bytes(bytes(np.random.default_rng(1).integers(0, 256, 4000,
                                                                                               dtype=np.uint8))),
                    {}, ["binary"]),
@@ -130,12 +130,12 @@ BAD_RECORDS = {
                      ["exceeds 50 g"]),
     "single_sample": ("one.AT2", lambda p: p.write_text(at2_text([0.1])), {}, ["only 1 sample"]),
     "single_row": ("one.txt", lambda p: p.write_text("0.0 0.1\n"), {"units": "g"}, ["only 1 sample"]),
-    "gaps": ("gappy.mseed", _gappy_mseed, {"units": "m/s2"}, ["gap", "--merge"]),
-    "no_units": ("nounits.txt", lambda p: p.write_text("0 0.1\n0.01 0.2\n0.02 0.3\n"), {}, ["--units"]),
+    "gaps": ("gappy.mseed", _gappy_mseed, {"units": "m/s2"}, ["gap", "not merged"]),
+    "no_units": ("nounits.txt", lambda p: p.write_text("0 0.1\n0.01 0.2\n0.02 0.3\n"), {}, ["does not state its units"]),
     "unknown_units": ("units.txt", lambda p: p.write_text("0 0.1\n0.01 0.2\n"), {"units": "furlong/s2"},
                       ["unknown acceleration unit"]),
     "conflicting_units": ("conflict.AT2", lambda p: p.write_text(at2_text(_SINE)), {"units": "gal"},
-                          ["states g", "--units says gal"]),
+                          ["states g", "units given are gal"]),
     "missing": ("missing.AT2", lambda p: None, {}, ["no such file"]),
     # hostile inputs (issue 13): never a hang, never "no such file" for what exists
     "fifo": ("pipe.AT2", lambda p: __import__("os").mkfifo(p), {}, ["FIFO", "not a regular file"]),
@@ -148,7 +148,23 @@ BAD_RECORDS = {
     "dt_tiny": ("dttiny.AT2", lambda p: p.write_text(at2_text(_SINE, dt="1e-300")), {}, ["below 1e-05 s"]),
     "dt_huge": ("dthuge.AT2", lambda p: p.write_text(at2_text(_SINE, dt="100.0")), {}, ["above 0.5 s"]),
     "dt_option_huge": ("coarse.acc", lambda p: p.write_text("0.1\n0.2\n0.3\n"), {"units": "g", "dt_s": 100.0},
-                       ["--dt", "above 0.5 s"]),
+                       ["time step given", "above 0.5 s"]),
 }
 
-
+#: The typed error (``isolator.errors``) of the bad records a caller can act on, and the command-line
+#: option the CLI names for it (the library's message never names a flag).
+BAD_RECORD_TYPES = {
+    "dt_zero_option": ("RecordOptionError", "--dt"),
+    "dt_option_huge": ("RecordOptionError", "--dt"),
+    "no_dt_one_column": ("MissingTimeStepError", "--dt"),
+    "gaps": ("GapsError", "--merge"),
+    "no_units": ("MissingUnitsError", "--units"),
+    "unknown_units": ("RecordOptionError", "--units"),
+    "conflicting_units": ("UnitsConflictError", "--units says gal"),
+    "missing": ("RecordNotFoundError", ""),
+    "empty": ("RecordNotFoundError", ""),
+    "nan": ("RecordValuesError", ""),
+    "absurd_magnitude": ("RecordValuesError", ""),
+    "truncated": ("RecordFormatError", ""),
+    "binary_unknown": ("RecordFormatError", ""),
+}

@@ -32,7 +32,7 @@ def _iterate_dask(tasks: list[Task], address: str):
     try:
         client = Client(address, timeout=10)
     except (OSError, TimeoutError) as err:
-        raise BatchError(f"--scheduler {address}: cannot connect ({_one_line(err)})") from None
+        raise BatchError(f"scheduler {address}: cannot connect ({_one_line(err)})", parameter="scheduler") from None
     try:
         futures = {}
         for task in tasks:

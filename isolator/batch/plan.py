@@ -23,8 +23,7 @@ TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_sec
 _NOT_RECORDS = re.compile(r"^(readme.*|.*\.(md|json|toml|pdf|png|parquet|py|xml|zip|gz))$", re.IGNORECASE)
 
 
-class BatchError(ValueError):
-    """A mistake in the batch command itself (bad --grid, designs file, record pattern …)."""
+from isolator.errors import BatchError  # noqa: E402,F401 - defined with the other typed errors
 
 
 def _one_line(message) -> str:
@@ -51,28 +50,28 @@ def parse_grid(spec: str) -> tuple[str, list[float]]:
     import numpy as np
 
     if "=" not in spec:
-        raise BatchError(f"--grid {spec!r}: expected KEY=START:STOP:COUNT, e.g. radius_m=1:4:13")
+        raise BatchError(f"grid {spec!r}: expected KEY=START:STOP:COUNT, e.g. radius_m=1:4:13", parameter="grid")
     key, _, values = (part.strip() for part in spec.partition("="))
     if key not in GRID_KEYS:
-        raise BatchError(f"--grid {spec!r}: {key!r} is not a numeric design key (choose one of: "
-                         f"{', '.join(GRID_KEYS)})")
+        raise BatchError(f"grid {spec!r}: {key!r} is not a numeric design key (choose one of: "
+                         f"{', '.join(GRID_KEYS)})", parameter="grid")
     parts = values.split(":")
     if len(parts) != 3:
-        raise BatchError(f"--grid {spec!r}: expected KEY=START:STOP:COUNT, e.g. {key}=1:4:13")
+        raise BatchError(f"grid {spec!r}: expected KEY=START:STOP:COUNT, e.g. {key}=1:4:13", parameter="grid")
     try:
         start, stop = float(parts[0]), float(parts[1])
     except ValueError:
-        raise BatchError(f"--grid {spec!r}: START and STOP must be numbers") from None
+        raise BatchError(f"grid {spec!r}: START and STOP must be numbers", parameter="grid") from None
     try:
         count = int(parts[2])
     except ValueError:
-        raise BatchError(f"--grid {spec!r}: COUNT must be a whole number, got {parts[2]!r}") from None
+        raise BatchError(f"grid {spec!r}: COUNT must be a whole number, got {parts[2]!r}", parameter="grid") from None
     if not (math.isfinite(start) and math.isfinite(stop)):
-        raise BatchError(f"--grid {spec!r}: START and STOP must be finite")
+        raise BatchError(f"grid {spec!r}: START and STOP must be finite", parameter="grid")
     if count < 1:
-        raise BatchError(f"--grid {spec!r}: COUNT must be >= 1, got {count}")
+        raise BatchError(f"grid {spec!r}: COUNT must be >= 1, got {count}", parameter="grid")
     if count == 1 and start != stop:
-        raise BatchError(f"--grid {spec!r}: COUNT = 1 needs START = STOP")
+        raise BatchError(f"grid {spec!r}: COUNT = 1 needs START = STOP", parameter="grid")
     return key, [float(v) for v in np.linspace(start, stop, count)]
 
 

@@ -53,7 +53,8 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     options : ReadOptions
         Units for records that do not state them; scaling to a PGA [g].
     jobs : int, optional
-        Local processes (default: the idle cores, :func:`isolator.parallel.default_workers`); ignored with ``scheduler``.
+        Local processes (default: the idle cores, :func:`isolator.parallel.default_workers`);
+        ignored with ``scheduler``.
     scheduler : str, optional
         Address of a dask.distributed scheduler, e.g. ``tcp://10.0.0.1:8786``.
     reports_dir : str, optional
@@ -73,7 +74,7 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     clock = time.perf_counter()
     output = Path(output)
     if output.suffix.lower() not in (".csv", ".parquet"):
-        raise BatchError(f"-o {output}: the table must end with .csv or .parquet")
+        raise BatchError(f"{output}: the table must end with .csv or .parquet", parameter="output")
     _, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings)
     planned = {row_key(path, comp, case.design_hash, options) for path, comp in pairs for case in cases}
     store = PartStore(output)

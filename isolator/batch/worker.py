@@ -22,24 +22,24 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     key = (os.path.abspath(path), component, options)
     if key in _MOTION_CACHE:
         return _MOTION_CACHE[key]
+    from isolator.errors import MissingTimeStepError, MissingUnitsError
     from isolator.metrics import strong_motion_window_s
-    from isolator.motion import RecordError, read_ground_motion
+    from isolator.motion import read_ground_motion
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
     given: dict = {}
-    while True:
+    # the batch's units and time step only go to the files that need them: retried by error type
+    fallbacks = {MissingUnitsError: ("units", options.units), MissingTimeStepError: ("dt_s", options.dt_s)}
+    for _ in range(len(fallbacks) + 1):
         try:
             motion = read_ground_motion(path, component=component, **given)
             break
-        except RecordError as err:
-            message, before = str(err), dict(given)
-            if options.units is not None and "does not state its units" in message:
-                given["units"] = options.units
-            if options.dt_s is not None and "no time step" in message:
-                given["dt_s"] = options.dt_s
-            if given == before:
+        except (MissingUnitsError, MissingTimeStepError) as err:
+            name, value = fallbacks[type(err)]
+            if value is None or name in given:
                 raise
+            given[name] = value
     factor = 1.0
     if options.scale_to_pga_g is not None:
         original = motion.pga_m_s2

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_table, user_error
+from isolator.cli.common import RECORD_HELP, app, echo_table, error_line, user_error
 
 
 @app.command()
@@ -73,7 +73,7 @@ def batch(
         if chart is not None and len(grids) < 2:
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
     except BatchError as err:
-        user_error(str(err))
+        user_error(error_line(err))
     options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic)
 
     progress_bar, callback = None, None
@@ -107,7 +107,7 @@ def batch(
     except BatchError as err:
         if progress_bar is not None:
             progress_bar.stop()
-        user_error(str(err))
+        user_error(error_line(err))
     except OSError as err:
         if progress_bar is not None:
             progress_bar.stop()

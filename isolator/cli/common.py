@@ -91,6 +91,44 @@ RECORD_HELP = {
 }
 
 
+#: The command-line option of each library parameter an error can name (``IsolatorError.parameter``).
+PARAMETER_FLAGS = {"units": "--units", "dt_s": "--dt", "component": "--component", "merge": "--merge",
+                   "counts_factor": "--counts-factor", "response": "--response", "grid": "--grid",
+                   "scheduler": "--scheduler", "output": "--output"}
+
+
+def flag_hint(err) -> str:
+    """What to do on the command line about a typed library error, by its type ("" if nothing).
+
+    The library says what is wrong with the file; this says which option fixes it.
+    """
+    from isolator import errors
+
+    given = getattr(err, "given", None)
+    hints = {
+        errors.MissingUnitsError: "pass --units (g, m/s2, gal, cm/s2)",
+        errors.UnitsConflictError: f"--units says {given}: drop it to use the file's units",
+        errors.MissingTimeStepError: "give the time step with --dt",
+        errors.TimeStepConflictError: f"--dt says {given:g} s: drop it to use the file's time step"
+        if isinstance(given, (int, float)) else "drop --dt to use the file's time step",
+        errors.ComponentError: "choose one with --component (or give the full trace id)",
+        errors.GapsError: "pass --merge to join the segments, filling gaps by linear interpolation",
+        errors.CountsError: "give the instrument response with --response, or --counts-factor with --units",
+        errors.InstrumentResponseError: "check the StationXML file given with --response",
+    }
+    for kind, hint in hints.items():
+        if isinstance(err, kind):
+            return hint
+    flag = PARAMETER_FLAGS.get(getattr(err, "parameter", ""), "")
+    return f"check {flag}" if flag else ""
+
+
+def error_line(err) -> str:
+    """A typed library error as the command line shows it: its message, then the option that fixes it."""
+    hint = flag_hint(err)
+    return f"{err}; {hint}" if hint else str(err)
+
+
 def load_record_for_cli(
     path,
     component: str | None = None,
@@ -109,8 +147,8 @@ def load_record_for_cli(
     isolator.motion.GroundMotion
         The acceleration in m/s² with its metadata.
     """
-    from isolator.motion import RecordError, read_ground_motion
-    from isolator.units import UnitsError
+    from isolator.errors import RecordError, UnitsError
+    from isolator.motion import read_ground_motion
 
     try:
         return read_ground_motion(
@@ -118,9 +156,7 @@ def load_record_for_cli(
             response=response, counts_factor=counts_factor,
         )
     except (RecordError, UnitsError) as err:
-        typer.echo(f"error: {' '.join(str(err).split())}", err=True)
-        raise typer.Exit(2) from None
-
+        user_error(error_line(err))
 
 
 def echo_json(value) -> None:

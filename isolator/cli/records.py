@@ -106,12 +106,10 @@ def simulate(
         result = simulate_record(motion.acceleration_m_s2, motion.dt_s, system=system)
     except RecordInputError as err:
         user_error(f"{record}: {err}")
-    from isolator.analysis import MODEL_1D, SCHEMA_VERSION
+    from isolator.analysis import MODEL_1D, SCHEMA_VERSION, record_dict
 
     # the analysis schema's slice for a record without a design: record, model and response keys
-    summary = {"schema_version": SCHEMA_VERSION, "model": MODEL_1D,
-               "record": {"label": str(record), "component": motion.component, "units_source": motion.units_source,
-                          "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s},
+    summary = {"schema_version": SCHEMA_VERSION, "model": MODEL_1D, "record": record_dict(motion, str(record)),
                **result.summary()}
     if out_csv:
         try:

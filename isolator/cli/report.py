@@ -121,6 +121,7 @@ def regime_map_command(
     from pathlib import Path
 
     from isolator.maps import PAPER_FRAMES, regime_map, triple_point
+    from isolator.parallel import default_workers
     from isolator.solver.system import InvalidSystemError
 
     k_range, alpha_range = (0.0, k_max), (0.0, alpha_max)
@@ -147,7 +148,7 @@ def regime_map_command(
                                                       f"α in [{alpha_range[0]:g}, {alpha_range[1]:g}])"),
             ("parameters", f"η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}", ""),
             ("time", f"{wall:.3g} s", "(read from cache)" if rmap.from_cache else
-             f"(computed, {workers or 'idle-core'} worker(s))"),
+             f"(computed, {workers or default_workers()} worker(s))"),
             ("triple point", "none in frame" if triple is None else f"α̂ = {triple[0]:.4g}, k̂ = {triple[1]:.4g}", "")]
     if output:
         from isolator.report.figures import regime_map_figure

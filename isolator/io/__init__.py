@@ -16,8 +16,56 @@ obspy format name         module                      files
 ========================  ==========================  =====================================
 
 The readers only parse; they raise :class:`ValueError` with a one-line message (without
-the file name) for malformed content.  Units, component choice and every check on the
+the file name) for malformed content, or a typed :mod:`isolator.errors` error where the
+caller can act on it (:class:`~isolator.errors.MissingTimeStepError`).  Units, component choice and every check on the
 values belong to :func:`isolator.motion.read_ground_motion`, which names the file.
 """
 
 from __future__ import annotations
+
+from isolator.io._common import head_lines, looks_like_text, read_head
+
+#: Our formats in the order they are tried: obspy format name → (module, detector name).
+FORMATS = {"PEER_AT2": ("isolator.io.at2", "_is_at2"), "CSMIP_V2": ("isolator.io.v2", "_is_v2"),
+           "USGS_SMC": ("isolator.io.smc", "_is_smc"), "ISOLATOR_TEXT": ("isolator.io.text", "_is_text")}
+
+__all__ = ["FORMATS", "detect", "head_lines", "looks_like_text", "numeric_columns", "read_head"]
+
+
+def detect(path) -> str | None:
+    """The obspy format name of one of isolator's own formats that claims ``path``, or None.
+
+    Each format's strict detector (the obspy plugin's ``isFormat``) is tried in the order
+    of :data:`FORMATS`; None means none of them (obspy's own formats are left to
+    :func:`obspy.read`).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file [-].
+
+    Returns
+    -------
+    str or None
+        ``"PEER_AT2"``, ``"CSMIP_V2"``, ``"USGS_SMC"``, ``"ISOLATOR_TEXT"`` or None [-].
+    """
+    import importlib
+
+    for name, (module, detector) in FORMATS.items():
+        if getattr(importlib.import_module(module), detector)(path):
+            return name
+    return None
+
+
+def numeric_columns(head: bytes) -> int | None:
+    """Number of numeric columns of the first non-comment line of a file's head, or None (not numbers).
+
+    Parameters
+    ----------
+    head : bytes
+        The first bytes of the file (:func:`read_head`) [-].
+    """
+    from isolator.io.text import _is_comment, _numeric_fields
+
+    lines = [line for line in head_lines(head) if not _is_comment(line)]
+    return _numeric_fields(lines[0]) if lines else None

@@ -34,6 +34,7 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
+from isolator.errors import MissingTimeStepError, TimeStepConflictError
 from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
 from isolator.units import ACCELERATION_UNITS_TO_M_S2
 
@@ -194,7 +195,8 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
                     f"{steps_s.max():g} s); resample it to a constant step first"
                 )
             if dt_s is not None and abs(dt_s - step_s) > tolerance_s:
-                raise ValueError(f"given dt = {dt_s:g} s disagrees with the time column's {step_s:g} s")
+                raise TimeStepConflictError(f"the time step given ({dt_s:g} s) disagrees with the time column's "
+                                            f"{step_s:g} s", given=dt_s)
             dt_s = float(f"{step_s:.12g}")  # drop the round-off of the division
         elif dt_s is None:
             dt_s = 1.0  # a single sample: the caller refuses it anyway
@@ -206,7 +208,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         if dt_s is None and "dt" in meta:
             dt_s = parse_float(meta["dt"])
         if dt_s is None:
-            raise ValueError("one column and no time step: give it with --dt (or a '# dt_s:' line)")
+            raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
     if not dt_s > 0:
         raise ValueError(f"time step dt = {dt_s:g} s is not positive")
     info.t0_s = t0_s

@@ -19,7 +19,10 @@ from typing import Any
 import numpy as np
 
 from isolator.motion.ground_motion import MIN_SAMPLES, GroundMotion, _component_names, _label
-from isolator.units import STANDARD_GRAVITY, UnitsError, acceleration_factor_to_m_s2
+from isolator.errors import (ComponentError, CountsError, GapsError, InstrumentResponseError, MissingUnitsError,
+                             RecordError, RecordFormatError, RecordNotFoundError, RecordOptionError,
+                             RecordValuesError, TimeStepConflictError, UnitsConflictError, UnitsError)
+from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 
 MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units
 #: Time steps a record may have [s]: accelerograms sample at 100 Hz to 1 kHz (dt 0.001 to
@@ -37,45 +40,37 @@ _FORMAT_NAMES = {"PEER_AT2": "PEER AT2", "ISOLATOR_TEXT": "plain text", "CSMIP_V
                  "USGS_SMC": "USGS SMC"}
 
 
-class RecordError(ValueError):
-    """A record that cannot be turned into a ground motion; the message is one line naming the file."""
-
-
 def _one_line(message: str) -> str:
     return " ".join(str(message).split())
 
 
-def _fail(path: Path | str, message: str) -> RecordError:
-    return RecordError(_one_line(f"{path}: {message}"))
+def _fail(path: Path | str, message: str, kind: type[RecordError] = RecordFormatError, **attributes) -> RecordError:
+    """A typed record error whose one-line message starts with the file's name."""
+    return kind(_one_line(f"{path}: {message}"), path=str(path), **attributes)
 
 
 def _read_stream(path: Path, dt_s: float | None):
     """obspy.read with our plugins; explicit text reading as the fallback; RecordError otherwise."""
     import obspy
 
-    from isolator.io._common import literal_pattern, looks_like_text, read_head
-    from isolator.io.at2 import _is_at2
+    from isolator.io import detect, looks_like_text, read_head
+    from isolator.io._common import literal_pattern
     from isolator.io.obspy_formats import detect_obspy_format
-    from isolator.io.smc import _is_smc
-    from isolator.io.text import _is_text
-    from isolator.io.v2 import _is_v2
 
-    own_detectors = {"PEER_AT2": _is_at2, "CSMIP_V2": _is_v2, "USGS_SMC": _is_smc, "ISOLATOR_TEXT": _is_text}
     head = read_head(path)
     if not head:
-        raise _fail(path, "file is empty")
+        raise _fail(path, "file is empty", RecordNotFoundError)
     if not head.strip():
-        raise _fail(path, "file holds only blank space")
+        raise _fail(path, "file holds only blank space", RecordNotFoundError)
     suffix = path.suffix.lower()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         fmt = None
-        if suffix == ".at2" and not _is_at2(path):
+        fmt = detect(path)  # our own formats first: their errors then name the format, and dt_s reaches text
+        if suffix == ".at2" and fmt != "PEER_AT2":
             if not looks_like_text(head):
                 raise _fail(path, "binary content: not a PEER AT2 text file")
             fmt = "PEER_AT2"  # let the AT2 reader say what is wrong
-        else:  # our own formats first: their errors then name the format, and --dt reaches text
-            fmt = next((name for name, detect in own_detectors.items() if detect(path)), None)
         try:
             if fmt is None:
                 try:  # the format obspy's autodetection would pick, found without its metadata scans
@@ -91,8 +86,10 @@ def _read_stream(path: Path, dt_s: float | None):
                 fmt = "ISOLATOR_TEXT"
             options = {"dt_s": dt_s} if fmt == "ISOLATOR_TEXT" else {}
             return obspy.read(literal_pattern(path), format=fmt, **options)
-        except RecordError:
-            raise
+        except RecordError as err:  # a reader's typed error (no time step …): name the file and the format
+            if err.path:
+                raise
+            raise err.located(path, _FORMAT_NAMES.get(fmt, "")) from None
         except Exception as err:  # obspy's readers raise many types for damaged files
             reason = _one_line(err) or type(err).__name__
             if fmt in _FORMAT_NAMES:  # our readers' messages say exactly what is wrong
@@ -102,11 +99,9 @@ def _read_stream(path: Path, dt_s: float | None):
 
 def _plain_numeric(head: bytes) -> bool:
     """True if the head's first non-comment line is made of numbers (a headerless text record)."""
-    from isolator.io._common import head_lines
-    from isolator.io.text import _is_comment, _numeric_fields
+    from isolator.io import numeric_columns
 
-    lines = [line for line in head_lines(head) if not _is_comment(line)]
-    return bool(lines) and _numeric_fields(lines[0]) in (1, 2)
+    return numeric_columns(head) in (1, 2)
 
 
 def _axis_letter(name: str) -> str:
@@ -143,13 +138,14 @@ def _select(path: Path, stream, component: str | None):
     if component is None:
         if len(stream) == 1:
             return stream[0]
-        raise _fail(path, f"holds {len(stream)} components ({', '.join(labels)}); choose one with --component")
+        raise _fail(path, f"holds {len(stream)} components ({', '.join(labels)}); none was chosen", ComponentError)
     chosen = [trace for trace in stream if _matches(trace, component)]
     if not chosen:
-        raise _fail(path, f"no component {component!r} (choices: {', '.join(labels)})")
+        raise _fail(path, f"no component {component!r} (choices: {', '.join(labels)})", ComponentError, given=component)
     if len(chosen) > 1:
         names = ", ".join(f"{_label(t)} = {t.id}" for t in chosen)
-        raise _fail(path, f"component {component!r} is ambiguous: it matches {names}; give the full trace id")
+        raise _fail(path, f"component {component!r} is ambiguous: it matches {names}; the full trace id is unique",
+                    ComponentError, given=component)
     return chosen[0]
 
 
@@ -161,7 +157,7 @@ def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
             return [{"step": "merge", "method": "obspy Stream.merge(method=1, fill_value='interpolate')",
                      "gaps": 0}]
         if len({trace.id for trace in stream}) < len(stream):
-            raise _fail(path, "holds several segments of the same channel; pass --merge to join them")
+            raise _fail(path, "holds several segments of the same channel, not merged", GapsError)
         return []
     first = gaps[0]
     if not merge:
@@ -169,8 +165,8 @@ def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
         raise _fail(
             path,
             f"{len(gaps)} gap(s)/overlap(s) in the data (first: {kind} of {abs(first[6]):g} s in "
-            f"{'.'.join(first[:4])} at {first[4]}); pass --merge to join the segments, filling gaps "
-            f"by linear interpolation",
+            f"{'.'.join(first[:4])} at {first[4]}), not merged",
+            GapsError,
         )
     stream.merge(method=1, fill_value="interpolate")
     return [{"step": "merge", "method": "obspy Stream.merge(method=1, fill_value='interpolate')",
@@ -181,7 +177,7 @@ def _units_factor(path: Path, units: str, source: str) -> float:
     try:
         return acceleration_factor_to_m_s2(units)
     except UnitsError as err:
-        raise _fail(path, f"{err} ({source})") from None
+        raise _fail(path, f"{err} ({source})", RecordOptionError, given=units, parameter="units") from None
 
 
 def _file_units(trace) -> tuple[str | None, str]:
@@ -216,10 +212,11 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
     steps: list[dict] = []
     if fmt == "SAC" and int(stats.sac.get("idep", 5)) in _SAC_NOT_ACCELERATION:
         raise _fail(path, f"SAC header says the data are {_SAC_NOT_ACCELERATION[int(stats.sac.idep)]}, "
-                          "not acceleration")
+                          "not acceleration", RecordValuesError)
     if response is not None:
         if units is not None or counts_factor is not None:
-            raise _fail(path, "give either an instrument response or --units/--counts-factor, not both")
+            raise _fail(path, "an instrument response and units or a counts factor were given: one or the other, not both",
+                        RecordOptionError, parameter="response")
         import obspy
 
         from isolator.io._common import input_file_problem, literal_pattern
@@ -234,40 +231,45 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
                 warnings.simplefilter("ignore")
                 corrected.remove_response(inventory=inventory, output="ACC")
         except Exception as err:
-            raise _fail(path, f"cannot remove the instrument response from {response}: {_one_line(err)}") from None
+            raise _fail(path, f"cannot remove the instrument response from {response}: {_one_line(err)}",
+                        InstrumentResponseError, given=str(response)) from None
         steps.append({"step": "remove_response", "inventory": str(response), "output": "ACC"})
         return corrected.data.astype(np.float64), f"instrument response ({Path(response).name}, output ACC)", steps
     if counts_factor is not None:
         if units is None:
-            raise _fail(path, "--counts-factor needs --units for the units it converts counts into")
+            raise _fail(path, "a counts factor was given without the units it converts counts into", RecordOptionError,
+                        parameter="units")
         if not (math.isfinite(counts_factor) and counts_factor > 0):
-            raise _fail(path, f"counts factor {counts_factor} is not a positive number")
-        factor = counts_factor * _units_factor(path, units, "--units")
+            raise _fail(path, f"counts factor {counts_factor} is not a positive number", RecordOptionError,
+                        given=counts_factor, parameter="counts_factor")
+        factor = counts_factor * _units_factor(path, units, "units given")
         return _as_float64(trace) * factor, f"--counts-factor {counts_factor:g} {units} per count", steps
     if fmt == "KNET":
         # obspy's K-NET reader turns the header's 'Scale Factor' (gal per count) into calib [m/s² per count]
         data = _as_float64(trace) * float(stats.calib)
         steps.append({"step": "demean", "reason": "K-NET convention (NIED): counts × scale factor, minus the mean"})
-        if units is not None and _units_factor(path, units, "--units") != 1.0:
-            raise _fail(path, f"the K-NET scale factor gives m/s2 but --units says {units}")
+        if units is not None and _units_factor(path, units, "units given") != 1.0:
+            raise _fail(path, f"the K-NET scale factor gives m/s2 but the units given are {units}", UnitsConflictError,
+                        given=units)
         return data - data.mean(), "K-NET scale factor (header, gal per count → m/s2)", steps
     if np.issubdtype(trace.data.dtype, np.integer):
-        raise _fail(path, "holds integer counts: give the instrument response (StationXML) or "
-                          "--counts-factor with --units")
+        raise _fail(path, "holds integer counts and neither an instrument response (StationXML) nor a counts "
+                          "factor with units was given", CountsError)
     file_units, source = _file_units(trace)
     if file_units is not None:
         factor = _units_factor(path, file_units, source)
-        if units is not None and _units_factor(path, units, "--units") != factor:
-            raise _fail(path, f"the file states {file_units} ({source}) but --units says {units}")
+        if units is not None and _units_factor(path, units, "units given") != factor:
+            raise _fail(path, f"the file states {file_units} ({source}) but the units given are {units}",
+                        UnitsConflictError, given=units)
         return _as_float64(trace) * factor, source, steps
     if units is None:
         kind = fmt or "this"
-        raise _fail(path, f"{kind} file does not state its units; pass --units (g, m/s2, gal, cm/s2)")
+        raise _fail(path, f"{kind} file does not state its units (g, m/s2, gal or cm/s2?)", MissingUnitsError)
     channel = stats.channel or ""
     if fmt in ("MSEED", "SAC", "GSE2", "SEISAN") and len(channel) == 3 and channel[1] in "HL":
         raise _fail(path, f"channel {channel} is a seismometer (velocity) channel; acceleration from it "
-                          "needs the instrument response")
-    return _as_float64(trace) * _units_factor(path, units, "--units"), f"--units {units}", steps
+                          "needs the instrument response", CountsError)
+    return _as_float64(trace) * _units_factor(path, units, "units given"), f"--units {units}", steps
 
 
 def _as_float64(trace) -> np.ndarray:
@@ -277,23 +279,25 @@ def _as_float64(trace) -> np.ndarray:
 
 def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float) -> None:
     if acceleration_m_s2.size < MIN_SAMPLES:
-        raise _fail(path, f"only {acceleration_m_s2.size} sample(s); a record needs at least {MIN_SAMPLES}")
+        raise _fail(path, f"only {acceleration_m_s2.size} sample(s); a record needs at least {MIN_SAMPLES}",
+                    RecordValuesError)
     if not (math.isfinite(dt_s) and dt_s > 0):
-        raise _fail(path, f"time step dt = {dt_s:g} s is not positive")
+        raise _fail(path, f"time step dt = {dt_s:g} s is not positive", RecordValuesError)
     problem = dt_problem(dt_s)
     if problem:
-        raise _fail(path, problem)
+        raise _fail(path, problem, RecordValuesError)
     finite = np.isfinite(acceleration_m_s2)
     if not finite.all():
         index = int(np.flatnonzero(~finite)[0])
         raise _fail(path, f"non-finite value ({acceleration_m_s2[index]}) at sample {index} "
-                          f"(t = {index * dt_s:g} s)")
+                          f"(t = {index * dt_s:g} s)", RecordValuesError)
     peak_m_s2 = float(np.max(np.abs(acceleration_m_s2)))
     if peak_m_s2 > MAX_ABS_ACCELERATION_G * STANDARD_GRAVITY:
         raise _fail(path, f"peak |a| = {peak_m_s2:.4g} m/s2 ({peak_m_s2 / STANDARD_GRAVITY:.4g} g) exceeds "
-                          f"{MAX_ABS_ACCELERATION_G:g} g: wrong units?")
+                          f"{MAX_ABS_ACCELERATION_G:g} g: wrong units?", RecordValuesError)
     if peak_m_s2 == 0.0:  # the record's fault: every measure (A0 = PGV²/PGA …) would be 0/0
-        raise _fail(path, f"every one of its {acceleration_m_s2.size} samples is zero: no ground motion")
+        raise _fail(path, f"every one of its {acceleration_m_s2.size} samples is zero: no ground motion",
+                    RecordValuesError)
 
 
 def dt_problem(dt_s: float) -> str:
@@ -344,16 +348,16 @@ def _check_path(path: Path) -> None:
 
     problem = input_file_problem(path)  # from metadata: a FIFO or a device never blocks the reader
     if problem == "is a folder, not a file":
-        raise _fail(path, "is a directory, not a record file")
+        raise _fail(path, "is a directory, not a record file", RecordNotFoundError)
     if problem is not None:
-        raise _fail(path, problem)
+        raise _fail(path, problem, RecordNotFoundError)
     try:
         with open(path, "rb") as handle:
             handle.read(1)
     except OSError as err:
-        raise _fail(path, f"cannot be opened: {err.strerror or err}") from None
+        raise _fail(path, f"cannot be opened: {err.strerror or err}", RecordNotFoundError) from None
     if path.stat().st_size == 0:
-        raise _fail(path, "file is empty")
+        raise _fail(path, "file is empty", RecordNotFoundError)
 
 
 def list_components(path: str | Path, *, merge: bool = False) -> list[str]:
@@ -436,9 +440,11 @@ def read_ground_motion(
     path = Path(path)
     _check_path(path)
     if dt_s is not None and not (math.isfinite(dt_s) and dt_s > 0):
-        raise _fail(path, f"--dt {dt_s:g} s is not positive")
+        raise _fail(path, f"the time step given, {dt_s:g} s, is not positive", RecordOptionError, given=dt_s,
+                    parameter="dt_s")
     if dt_s is not None and dt_problem(dt_s):
-        raise _fail(path, "--dt: " + dt_problem(dt_s))
+        raise _fail(path, "the time step given: " + dt_problem(dt_s), RecordOptionError, given=dt_s,
+                    parameter="dt_s")
     stream = _read_stream(path, dt_s)
     if len(stream) == 0:
         raise _fail(path, "holds no data")
@@ -446,16 +452,18 @@ def read_ground_motion(
     steps = _check_gaps(path, stream, merge)
     trace = _select(path, stream, component)
     if np.ma.isMaskedArray(trace.data):
-        raise _fail(path, "data are masked (gaps); pass --merge")
+        raise _fail(path, "data are masked (gaps), not merged", GapsError)
     if trace.stats.npts < MIN_SAMPLES:
-        raise _fail(path, f"only {trace.stats.npts} sample(s); a record needs at least {MIN_SAMPLES}")
+        raise _fail(path, f"only {trace.stats.npts} sample(s); a record needs at least {MIN_SAMPLES}", RecordValuesError)
     if dt_s is not None and abs(trace.stats.delta - dt_s) > 1e-9 * max(dt_s, 1.0):
-        raise _fail(path, f"the file's time step is {trace.stats.delta:g} s but --dt says {dt_s:g} s")
+        raise _fail(path, f"the file's time step is {trace.stats.delta:g} s but the time step given is {dt_s:g} s",
+                    TimeStepConflictError, given=dt_s)
     raw = np.asarray(trace.data, dtype=np.float64)
     finite = np.isfinite(raw)
     if not finite.all():
         index = int(np.flatnonzero(~finite)[0])
-        raise _fail(path, f"non-finite value ({raw[index]}) at sample {index} (t = {index * trace.stats.delta:g} s)")
+        raise _fail(path, f"non-finite value ({raw[index]}) at sample {index} (t = {index * trace.stats.delta:g} s)",
+                    RecordValuesError)
     acceleration_m_s2, units_source, unit_steps = _to_m_s2(path, trace, units, response, counts_factor)
     acceleration_m_s2 = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
     _check_values(path, acceleration_m_s2, float(trace.stats.delta))

@@ -276,7 +276,9 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
             handles.append(Line2D([], [], marker="o", ls="none", mfc="none", mec="k", mew=1.6,
                                   label=f"triple point (k̂ = {k_hat:.3g}, α̂ = {a_hat:.3g})"))
     # regime names at the centre of each region
-    for code, name in enumerate(("ST", "SS", "SL")):
+    from isolator.metrics import REGIMES
+
+    for code, name in enumerate(REGIMES):
         mask = rmap.regime == code
         if mask.any():
             # the label goes where the region is deepest (farthest from its edges)

@@ -18,8 +18,7 @@ from isolator.solver.events import EVENT_NAMES
 from isolator.solver.system import System
 
 
-class RecordInputError(ValueError):
-    """The acceleration samples or their timing cannot be analysed."""
+from isolator.errors import RecordInputError  # noqa: E402,F401 - defined with the other typed errors
 
 
 @dataclass

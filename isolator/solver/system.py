@@ -14,8 +14,7 @@ from isolator.units import STANDARD_GRAVITY
 FRICTION_MODEL_2_RATIO = 0.7  #: µk/µs of the paper's friction model 2 (Table 1)
 
 
-class InvalidSystemError(ValueError):
-    """Invalid system parameters (the message names the parameter)."""
+from isolator.errors import InvalidSystemError  # noqa: E402,F401 - defined with the other typed errors
 
 
 def classify_configuration(damping: float, stiffness: float) -> str:

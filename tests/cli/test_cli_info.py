@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from _records import BAD_RECORDS, RECORD_TABLE, decimals, record_path
+from _records import BAD_RECORD_TYPES, BAD_RECORDS, RECORD_TABLE, decimals, record_path
 from typer.testing import CliRunner
 
 from isolator.cli import app, load_record_for_cli
@@ -76,6 +76,8 @@ def test_info_bad_input_exit_2_one_line(make_bad_record, name):
     assert "Traceback" not in result.stderr + result.stdout
     for word in words:
         assert word in lines[0]
+    flag = BAD_RECORD_TYPES.get(name, ("", ""))[1]
+    assert flag in lines[0], (flag, lines[0])  # the CLI names the option that fixes it
 
 
 def test_merge_option_joins_gaps(make_bad_record):

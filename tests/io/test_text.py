@@ -6,6 +6,7 @@ import numpy as np
 import obspy
 import pytest
 
+from isolator.errors import MissingTimeStepError
 from isolator.io.at2 import _read_at2
 from isolator.io.text import _is_text, _read_text
 
@@ -22,7 +23,7 @@ def test_elcentro_txt_is_the_at2_plus_a_zero(records_dir):
 
 @pytest.mark.shared
 def test_one_column_needs_dt_and_equals_the_at2(records_dir):
-    with pytest.raises(ValueError, match="--dt"):
+    with pytest.raises(MissingTimeStepError, match="no time step"):
         _read_text(records_dir / "other/IELC180.acc")
     trace = _read_text(records_dir / "other/IELC180.acc", dt_s=0.01)[0]
     np.testing.assert_array_equal(trace.data, _read_at2(records_dir / "at2/IELC180.AT2")[0].data)

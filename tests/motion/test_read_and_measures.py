@@ -9,7 +9,7 @@ import tracemalloc
 
 import numpy as np
 import pytest
-from _records import BAD_RECORDS, PGV_TABLE_CM_S, RECORD_TABLE, at2_text, decimals, record_path
+from _records import BAD_RECORD_TYPES, BAD_RECORDS, PGV_TABLE_CM_S, RECORD_TABLE, at2_text, decimals, record_path
 
 from isolator.motion import (
     GroundMotion,
@@ -19,6 +19,8 @@ from isolator.motion import (
     pseudo_acceleration_spectrum,
     read_ground_motion,
 )
+from isolator import errors
+from isolator.errors import ComponentError, GapsError, MissingUnitsError, RecordOptionError
 from isolator.units import STANDARD_GRAVITY
 
 G = STANDARD_GRAVITY
@@ -86,7 +88,7 @@ def test_units_sources_and_provenance(records_dir):
 @pytest.mark.shared
 def test_units_are_never_guessed(records_dir):
     for path in ("converted/converted_RSN779_LOMAP_LGP000.mseed", "other/elcentro.txt"):
-        with pytest.raises(RecordError, match="does not state its units; pass --units"):
+        with pytest.raises(MissingUnitsError, match="does not state its units"):
             read_ground_motion(records_dir / path)
     with pytest.raises(RecordError, match="file states g"):
         read_ground_motion(records_dir / "at2/TAK000.AT2", units="cm/s2")
@@ -97,9 +99,9 @@ def test_units_are_never_guessed(records_dir):
 def test_components_listed_picked_and_ambiguity_refused(records_dir):
     path = records_dir / "other/ce89486SampleInput.v2"
     assert list_components(path) == ["HN1 (180)", "HN2 (90)", "HNZ (Up)"]
-    with pytest.raises(RecordError) as caught:
+    with pytest.raises(ComponentError) as caught:
         read_ground_motion(path)
-    assert "HN1 (180), HN2 (90), HNZ (Up)" in str(caught.value) and "--component" in str(caught.value)
+    assert "HN1 (180), HN2 (90), HNZ (Up)" in str(caught.value) and "--" not in str(caught.value)
     assert read_ground_motion(path, component="HN2").component == "HN2 (90)"
     assert read_ground_motion(path, component="z").component == "HNZ (Up)"
     assert read_ground_motion(path, component="180").components == ["HN1 (180)", "HN2 (90)", "HNZ (Up)"]
@@ -135,7 +137,7 @@ def test_counts_need_a_response_or_factor(tmp_path):
     _three_component_mseed(path, channels=("HNZ",), dtype=np.int32)
     with pytest.raises(RecordError, match="integer counts"):
         read_ground_motion(path, units="g")
-    with pytest.raises(RecordError, match="needs --units"):
+    with pytest.raises(RecordOptionError, match="without the units"):
         read_ground_motion(path, counts_factor=1e-3)
     motion = read_ground_motion(path, counts_factor=1e-3, units="gal")
     assert motion.acceleration_m_s2[10] == pytest.approx(10 * 1e-3 * 0.01)
@@ -151,7 +153,7 @@ def test_velocity_channel_refused_without_response(tmp_path):
 
 def test_gaps_refused_or_merged(make_bad_record):
     path, options, _ = make_bad_record("gaps")
-    with pytest.raises(RecordError, match="pass --merge"):
+    with pytest.raises(GapsError, match="not merged"):
         read_ground_motion(path, **options)
     merged = read_ground_motion(path, merge=True, **options)
     assert merged.npts == 500 + 49 + 500
@@ -186,6 +188,10 @@ def test_bad_input_gives_one_line_record_error(make_bad_record, name):
     assert message.startswith(str(path))
     for word in words:
         assert word in message, (word, message)
+    # typed (callers catch by type) and never naming a command-line flag
+    kind, _ = BAD_RECORD_TYPES.get(name, ("RecordError", ""))
+    assert isinstance(caught.value, getattr(errors, kind)), (kind, type(caught.value))
+    assert " --" not in message and not message.startswith("--"), message
 
 
 # --------------------------------------------------------------------------------------

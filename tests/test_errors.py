@@ -1,0 +1,98 @@
+"""Typed errors: one hierarchy, messages without command-line flags, hints added by the CLI by type."""
+
+from __future__ import annotations
+
+import ast
+import inspect
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import isolator
+from isolator import errors
+from isolator.cli.common import error_line, flag_hint
+from isolator.motion import read_ground_motion
+
+PACKAGE = Path(isolator.__file__).parent
+ERROR_TYPES = [obj for _, obj in inspect.getmembers(errors, inspect.isclass) if issubclass(obj, Exception)]
+
+
+def test_every_error_is_an_isolator_error_and_a_value_error():
+    assert len(ERROR_TYPES) >= 17
+    for kind in ERROR_TYPES:
+        assert issubclass(kind, errors.IsolatorError) and issubclass(kind, ValueError), kind
+    # the names the modules always exported are the same classes
+    from isolator.batch import BatchError
+    from isolator.design import DesignError
+    from isolator.motion import RecordError
+    from isolator.solver.record import RecordInputError
+    from isolator.solver.system import InvalidSystemError
+    from isolator.units import UnitsError
+
+    assert (BatchError, DesignError, RecordError, RecordInputError, InvalidSystemError, UnitsError) == (
+        errors.BatchError, errors.DesignError, errors.RecordError, errors.RecordInputError,
+        errors.InvalidSystemError, errors.UnitsError)
+
+
+def test_located_keeps_type_and_attributes():
+    err = errors.TimeStepConflictError("the time step given (0.02 s) disagrees", given=0.02)
+    where = err.located("rec.txt", "plain text")
+    assert type(where) is errors.TimeStepConflictError and where.given == 0.02 and where.path == "rec.txt"
+    assert str(where) == "rec.txt: plain text: the time step given (0.02 s) disagrees"
+    assert where.parameter == "dt_s"
+
+
+def _raised_strings(tree):
+    """String pieces of every ``raise X(...)`` / ``_fail(...)`` call in a module's syntax tree."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and (
+                (isinstance(node.func, ast.Name) and (node.func.id.endswith("Error") or node.func.id == "_fail"))
+                or (isinstance(node.func, ast.Attribute) and node.func.attr.endswith("Error"))):
+            for arg in ast.walk(node):
+                if isinstance(arg, ast.Constant) and isinstance(arg.value, str):
+                    yield arg.value
+
+
+def test_library_messages_never_name_a_flag():
+    offenders = []
+    for path in PACKAGE.rglob("*.py"):
+        if "cli" in path.relative_to(PACKAGE).parts:
+            continue  # the command line is where flags are named
+        for text in _raised_strings(ast.parse(path.read_text())):
+            if " --" in f" {text}":
+                offenders.append(f"{path.relative_to(PACKAGE)}: {text!r}")
+    assert not offenders, offenders
+
+
+def test_the_cli_names_the_option_by_type(tmp_path):
+    text = tmp_path / "no_units.txt"
+    text.write_text("0 0.1\n0.01 0.2\n0.02 0.3\n")
+    with pytest.raises(errors.MissingUnitsError) as caught:
+        read_ground_motion(text)
+    assert "--" not in str(caught.value)
+    assert error_line(caught.value).endswith("pass --units (g, m/s2, gal, cm/s2)")
+    one_column = tmp_path / "one.acc"
+    one_column.write_text("0.1\n0.2\n0.3\n")
+    with pytest.raises(errors.MissingTimeStepError) as caught:
+        read_ground_motion(one_column, units="g")
+    assert caught.value.path == str(one_column) and "--dt" in flag_hint(caught.value)
+    assert "--grid" in flag_hint(errors.BatchError("grid 'x': expected KEY=START:STOP:COUNT", parameter="grid"))
+    assert flag_hint(errors.DesignError("d.toml: unknown key 'radius'")) == ""
+
+
+def test_batch_retries_by_type_not_by_text(tmp_path):
+    """Units and time step of the batch reach only the files that need them (MissingUnits/TimeStep errors)."""
+    from isolator.batch import ReadOptions
+    from isolator.batch.worker import _read_motion
+
+    one_column = tmp_path / "one.acc"
+    np.savetxt(one_column, 0.1 * np.sin(np.arange(300) * 0.1))
+    motion, *_ = _read_motion(str(one_column), None, ReadOptions(units="g", dt_s=0.01))
+    assert motion.dt_s == 0.01 and motion.units_source == "--units g"
+    stated = tmp_path / "stated.txt"
+    stated.write_text("# units: gal\n" + "\n".join(f"{i * 0.02:.2f} {np.sin(i):.6f}" for i in range(300)))
+    motion, *_ = _read_motion(str(stated), None, ReadOptions(units="g", dt_s=0.01))
+    assert motion.dt_s == 0.02 and "gal" in motion.units_source  # the file's own units and step win
+    with pytest.raises(errors.MissingTimeStepError):
+        _read_motion(str(one_column), None, ReadOptions(units="g"))
