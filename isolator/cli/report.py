@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_table, load_record_for_cli, user_error
+from isolator.cli.common import (RECORD_HELP, app, collector_skips_existing_objects, echo_table,
+                                 load_record_for_cli, user_error)
 
 
 @app.command()
@@ -85,7 +86,8 @@ def report(
             from isolator.report.pdf import write_report
 
             command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
-            summary = write_report(analysis, output, command=command)
+            with collector_skips_existing_objects():
+                summary = write_report(analysis, output, command=command)
     except OSError as err:
         user_error(f"{output}: cannot write ({err.strerror or err})")
     echo_table(([] if no_pdf else [("report", output, "(4 pages)")]) + [

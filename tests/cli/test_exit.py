@@ -37,3 +37,17 @@ def test_cli_runner_process_is_not_frozen():
     result = CliRunner().invoke(app, ["harmonic", "--alpha", "1.2", "--k", "0", "--eta", "0", "--mu-s", "0.25"])
     assert result.exit_code == 0, result.output
     assert gc.get_freeze_count() == 0  # tests calling the CLI many times keep their garbage collected
+
+
+def test_objects_are_frozen_only_inside_the_block():
+    from isolator.cli.common import collector_skips_existing_objects
+
+    before = gc.get_freeze_count()
+    assert before == 0
+    with collector_skips_existing_objects():
+        assert gc.get_freeze_count() > 0
+        garbage = []
+        garbage.append(garbage)  # a cycle made inside the block is still collectable
+        del garbage
+        assert gc.collect() >= 1
+    assert gc.get_freeze_count() == 0
