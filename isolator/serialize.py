@@ -33,8 +33,8 @@ def json_safe(value):
         scalars, tuples as lists and dict keys as strings; any other object is left as
         it is (``json.dumps`` then says which type it cannot write).
     """
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
+    if isinstance(value, float):  # numpy.float64 is a float too: written as a plain float
+        return float(value) if math.isfinite(value) else None
     if isinstance(value, dict):
         return {str(key): json_safe(item) for key, item in value.items()}
     if isinstance(value, (list, tuple)):

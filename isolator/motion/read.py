@@ -263,7 +263,7 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
                         UnitsConflictError, given=units)
         return _as_float64(trace) * factor, source, steps
     if units is None:
-        kind = fmt or "this"
+        kind = _FORMAT_NAMES.get(fmt, fmt) or "this"
         raise _fail(path, f"{kind} file does not state its units (g, m/s2, gal or cm/s2?)", MissingUnitsError)
     channel = stats.channel or ""
     if fmt in ("MSEED", "SAC", "GSE2", "SEISAN") and len(channel) == 3 and channel[1] in "HL":
