@@ -58,8 +58,8 @@ def _time(command: list[str]) -> tuple[float, float]:
 
 def _heavy_modules_after_import() -> list[str]:
     """Which of the heavy libraries ``import isolator`` loads (should be none)."""
-    code = ("import sys, isolator; heavy = %r; "
-            "print(' '.join(sorted(m for m in heavy if m in sys.modules)))" % (HEAVY,))
+    code = (f"import sys, isolator; heavy = {HEAVY!r}; "
+            "print(' '.join(sorted(m for m in heavy if m in sys.modules)))")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True)
     return done.stdout.split()
 
@@ -154,7 +154,8 @@ def main(argv=None) -> int:
         print("CPU time by stage, one run [s]:")
         print(stages, end="")
     heavy = _heavy_modules_after_import()
-    print(f"PDF size {pdf_bytes / 1024:.0f} KiB; `import isolator` loads: {', '.join(heavy) if heavy else 'none of ' + ', '.join(HEAVY)}")
+    loaded = ", ".join(heavy) if heavy else "none of " + ", ".join(HEAVY)
+    print(f"PDF size {pdf_bytes / 1024:.0f} KiB; `import isolator` loads: {loaded}")
     return 0
 
 

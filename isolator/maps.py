@@ -334,7 +334,7 @@ def boundary_segments(rmap: RegimeMap, kind_from: str, kind_to: str) -> list[np.
         if left.size == 0 or right.size == 0:
             continue
         if left.size == right.size:
-            pairs = list(zip(left, right))
+            pairs = list(zip(left, right, strict=False))
         else:
             pairs = []
             for a in left:
@@ -487,7 +487,7 @@ def triple_point(eta: float, mu_s: float, mu_k: float | None = None, alpha_max: 
 
     alphas = np.geomspace(1.0 + 1e-6, alpha_max, n_scan)
     values = [excess(a) for a in alphas]
-    for a_lo, a_hi, f_lo, f_hi in zip(alphas[:-1], alphas[1:], values[:-1], values[1:]):
+    for a_lo, a_hi, f_lo, f_hi in zip(alphas[:-1], alphas[1:], values[:-1], values[1:], strict=True):
         if f_lo < 0.0 <= f_hi:
             lo, hi = bisect_change(lambda a: excess(a) < 0.0, a_lo, a_hi, iterations=40)
             alpha_hat = 0.5 * (lo + hi)

@@ -148,7 +148,7 @@ def slip_intervals(response) -> np.ndarray:
     kinds = np.asarray(response.event_kind)
     intervals = []
     start = None
-    for t, kind in zip(times, kinds):
+    for t, kind in zip(times, kinds, strict=True):
         if kind == 0 and start is None:  # break-away
             start = t
         elif kind == 1 and start is not None:  # stick

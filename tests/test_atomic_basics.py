@@ -78,7 +78,7 @@ def test_permissions_follow_the_umask_not_mkstemp(tmp_path):
 def test_write_text_atomically_is_utf8(tmp_path):
     target = tmp_path / "note.txt"
     write_text_atomically(target, "µs = 0.06, α = 5, ζ = 0.69\n")
-    assert target.read_bytes() == "µs = 0.06, α = 5, ζ = 0.69\n".encode("utf-8")
+    assert target.read_bytes() == "µs = 0.06, α = 5, ζ = 0.69\n".encode()
     write_text_atomically(target, "second\n")
     assert target.read_text(encoding="utf-8") == "second\n"
     assert _leftovers(tmp_path) == []

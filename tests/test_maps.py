@@ -42,9 +42,10 @@ def test_coarse_map_matches_thresholds(eta, k_range, alpha_range, n_k):
             checked += 1
     assert checked > 5 * n_k
     # every transition along α is kept (not one curve): the map's list equals the direct one in each column
-    for j, k in enumerate(rmap.k):
+    for j in range(rmap.k.size):
         column = [REGIME_NAMES[c] for c in rmap.regime[:, j]]
-        assert len(rmap.transitions_along_alpha(j)) == sum(a != b for a, b in zip(column[:-1], column[1:]))
+        changes = sum(a != b for a, b in zip(column[:-1], column[1:], strict=True))
+        assert len(rmap.transitions_along_alpha(j)) == changes
 
 
 def test_map_cache_roundtrip(tmp_path):

@@ -7,9 +7,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from isolator.batch.executors import _iterate_dask, _iterate_local
-from isolator.parallel import default_workers
 from isolator.batch.plan import BatchError, ReadOptions, _one_line, make_tasks, plan, row_key
 from isolator.batch.store import PartStore, _existing_rows, to_table, write_table_atomically
+from isolator.parallel import default_workers
 
 
 @dataclass

@@ -4,7 +4,15 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, echo_json, echo_table, load_record_for_cli, user_error, write_csv_atomically
+from isolator.cli.common import (
+    RECORD_HELP,
+    app,
+    echo_json,
+    echo_table,
+    load_record_for_cli,
+    user_error,
+    write_csv_atomically,
+)
 
 
 @app.command()

@@ -4,8 +4,14 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import (RECORD_HELP, app, collector_skips_existing_objects, echo_table,
-                                 load_record_for_cli, user_error)
+from isolator.cli.common import (
+    RECORD_HELP,
+    app,
+    collector_skips_existing_objects,
+    echo_table,
+    load_record_for_cli,
+    user_error,
+)
 
 
 @app.command()

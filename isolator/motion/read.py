@@ -18,10 +18,22 @@ from typing import Any
 
 import numpy as np
 
+from isolator.errors import (
+    ComponentError,
+    CountsError,
+    GapsError,
+    InstrumentResponseError,
+    MissingUnitsError,
+    RecordError,
+    RecordFormatError,
+    RecordNotFoundError,
+    RecordOptionError,
+    RecordValuesError,
+    TimeStepConflictError,
+    UnitsConflictError,
+    UnitsError,
+)
 from isolator.motion.ground_motion import MIN_SAMPLES, GroundMotion, _component_names, _label
-from isolator.errors import (ComponentError, CountsError, GapsError, InstrumentResponseError, MissingUnitsError,
-                             RecordError, RecordFormatError, RecordNotFoundError, RecordOptionError,
-                             RecordValuesError, TimeStepConflictError, UnitsConflictError, UnitsError)
 from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 
 MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units

@@ -155,7 +155,7 @@ def shade_intervals(ax, intervals, label="sliding", colour=COLOUR_SLIDING, span_
     if span_s is None:
         span_s = float(intervals[-1, 1] - intervals[0, 0])
     merged = merge_intervals(intervals, span_s / PIXELS_PER_AXIS)
-    ax.broken_barh(list(zip(merged[:, 0], merged[:, 1] - merged[:, 0])), (0.0, 1.0),
+    ax.broken_barh(list(zip(merged[:, 0], merged[:, 1] - merged[:, 0], strict=True)), (0.0, 1.0),
                    transform=ax.get_xaxis_transform(), facecolors=colour, alpha=0.7, lw=0, label=label, zorder=0)
 
 
@@ -180,8 +180,8 @@ def draw_regime_map(ax, rmap, *, design_point=None, triple=None, show_legend=Tru
     triple : tuple, optional
         (α̂, k̂) of the triple point.
     """
-    from matplotlib.patches import Patch
     from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 
     k, alpha = rmap.k, rmap.alpha
     kk, aa = np.meshgrid(k, alpha)
@@ -363,7 +363,7 @@ def record_page(fig, motion, window_s, periods_s, psa_m_s2, isolated_period_s, e
     series = [(acc / STANDARD_GRAVITY, "ground acceleration  [g]"),
               (velocity_m_s(acc, motion.dt_s), "ground velocity  [m/s]"),
               (displacement_m(acc, motion.dt_s), "ground displacement  [m]")]
-    for ax, (values, label) in zip(axes[:3], series):
+    for ax, (values, label) in zip(axes[:3], series, strict=True):
         ax.axvspan(*window_s, color="0.92", lw=0, zorder=0, label="D5-95 window")
         plot_decimated(ax, t, values, lw=0.6, color="k")
         peak = int(np.argmax(np.abs(values)))
