@@ -28,6 +28,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 RECORDS = ROOT.parent / "shared" / "records" / "at2"
 from isolator.units import STANDARD_GRAVITY as G  # noqa: E402
+
 RADIUS_M = 2.0
 MU = 0.06
 DESIGNS = {
@@ -101,9 +102,10 @@ def main(argv=None) -> None:
         python = json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
     for label in DESIGNS:
         print(f"\n{label}")
-        print(f"{'record':34s} {'npts':>6s} {'events':>6s} {'compiled Ms/s':>14s} {'python Ms/s':>12s} {'speed-up':>9s}")
+        print(f"{'record':34s} {'npts':>6s} {'events':>6s} {'compiled Ms/s':>14s} {'python Ms/s':>12s} "
+              f"{'speed-up':>9s}")
         total_n = total_c = total_p = 0.0
-        for c_row, p_row in zip(compiled[label], python[label]):
+        for c_row, p_row in zip(compiled[label], python[label], strict=False):
             n = c_row["npts"]
             total_n += n
             total_c += c_row["seconds"]

@@ -361,7 +361,7 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
         record_class=record_class, harmonic=harmonic_response, harmonic_class=harmonic_class,
         engineering=engineering_quantities(design, response), disagreements=disagreements,
         record_label=record_label, scaling_note=scaling_note,
-        created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
         harmonic_seconds=harmonic_seconds,
         harmonic_map=None if map_resolution is None else harmonic_map(point, map_resolution, workers),
     )

@@ -109,7 +109,6 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
 
 from isolator.errors import DesignError  # noqa: E402,F401 - the design's error, defined with the others
 
-
 #: Supported mass M accepted [kg]: from a gram (a laboratory specimen) to 1e10 kg (ten times
 #: the heaviest isolated structure); outside, K/M and γ/M lose their meaning (1e-320 kg is
 #: a subnormal number: K/M overflows).

@@ -260,10 +260,16 @@ def _chunk(points, *, eta, mu_s, mu_k) -> list[tuple]:
     return [_point(a, k, eta, mu_s, mu_k) for a, k in points]
 
 
+#: Grids smaller than this run in this process whatever ``workers`` says [points].
+IN_PROCESS_POINTS = 256
+
+
 def _evaluate(points: list[tuple], eta: float, mu_s: float, mu_k: float, workers: int) -> list[tuple]:
     from isolator.parallel import map_interleaved
 
-    if len(points) < 64:
+    if len(points) < IN_PROCESS_POINTS:
+        # a pool costs ~0.15 s to start and warm up, the work of ~150 typical points (~1 ms each):
+        # a report's A(α) curve (2 × 40 + 1 points) runs faster in this process
         workers = 1
     # interleaved chunks balance the cost (points near resonance take longer)
     return map_interleaved(partial(_chunk, eta=eta, mu_s=mu_s, mu_k=mu_k), points, workers, chunks_per_worker=8)
@@ -328,7 +334,7 @@ def boundary_segments(rmap: RegimeMap, kind_from: str, kind_to: str) -> list[np.
         if left.size == 0 or right.size == 0:
             continue
         if left.size == right.size:
-            pairs = list(zip(left, right))
+            pairs = list(zip(left, right, strict=False))
         else:
             pairs = []
             for a in left:
@@ -487,7 +493,7 @@ def triple_point(eta: float, mu_s: float, mu_k: float | None = None, alpha_max: 
 
     alphas = np.geomspace(1.0 + 1e-6, alpha_max, n_scan)
     values = [excess(a) for a in alphas]
-    for a_lo, a_hi, f_lo, f_hi in zip(alphas[:-1], alphas[1:], values[:-1], values[1:]):
+    for a_lo, a_hi, f_lo, f_hi in zip(alphas[:-1], alphas[1:], values[:-1], values[1:], strict=True):
         if f_lo < 0.0 <= f_hi:
             lo, hi = bisect_change(lambda a: excess(a) < 0.0, a_lo, a_hi, iterations=40)
             alpha_hat = 0.5 * (lo + hi)

@@ -148,7 +148,7 @@ def slip_intervals(response) -> np.ndarray:
     kinds = np.asarray(response.event_kind)
     intervals = []
     start = None
-    for t, kind in zip(times, kinds):
+    for t, kind in zip(times, kinds, strict=True):
         if kind == 0 and start is None:  # break-away
             start = t
         elif kind == 1 and start is not None:  # stick
@@ -165,15 +165,14 @@ def strong_motion_window_s(acceleration_m_s2, dt_s: float, start_fraction: float
 
     ``time_s`` gives the sample times of a record with unequal steps [s] (``dt_s`` unused).
     """
-    from scipy.integrate import cumulative_trapezoid
+    from isolator.motion.measures import cumulative_trapezoid
 
     acc = np.asarray(acceleration_m_s2, dtype=float)
     if time_s is None:
-        cumulative = cumulative_trapezoid(acc ** 2, dx=dt_s, initial=0.0)
         time_s = np.arange(acc.size) * dt_s
     else:
         time_s = np.asarray(time_s, dtype=float) - time_s[0]
-        cumulative = cumulative_trapezoid(acc ** 2, x=time_s, initial=0.0)
+    cumulative = cumulative_trapezoid(acc ** 2, dt_s, time_s)
     if not cumulative[-1] > 0:
         return 0.0, float(time_s[-1])
     start, end = np.interp([start_fraction * cumulative[-1], end_fraction * cumulative[-1]], cumulative, time_s)

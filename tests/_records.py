@@ -155,6 +155,7 @@ BAD_RECORDS = {
 #: option the CLI names for it (the library's message never names a flag).
 BAD_RECORD_TYPES = {
     "dt_zero_option": ("RecordOptionError", "--dt"),
+    "dt_option_huge": ("RecordOptionError", "--dt"),
     "no_dt_one_column": ("MissingTimeStepError", "--dt"),
     "gaps": ("GapsError", "--merge"),
     "no_units": ("MissingUnitsError", "--units"),

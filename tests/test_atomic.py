@@ -8,8 +8,17 @@ import sys
 
 import pytest
 
-from isolator.atomic import (OutputError, OutputIsInputError, OutputLockedError, atomic_path, lock_path,
-                             output_lock, refuse_overwriting_inputs, resolve_output, write_text_atomically)
+from isolator.atomic import (
+    OutputError,
+    OutputIsInputError,
+    OutputLockedError,
+    atomic_path,
+    lock_path,
+    output_lock,
+    refuse_overwriting_inputs,
+    resolve_output,
+    write_text_atomically,
+)
 
 
 def test_symlink_is_written_through_to_its_target_in_the_target_folder(tmp_path):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from isolator.maps import REGIME_NAMES, design_frame, nice_ceiling, regime_map, triple_point
+from isolator.maps import IN_PROCESS_POINTS, REGIME_NAMES, design_frame, nice_ceiling, regime_map, triple_point
 from isolator.solver.harmonic import harmonic_response, harmonic_thresholds
 
 
@@ -42,9 +42,10 @@ def test_coarse_map_matches_thresholds(eta, k_range, alpha_range, n_k):
             checked += 1
     assert checked > 5 * n_k
     # every transition along α is kept (not one curve): the map's list equals the direct one in each column
-    for j, k in enumerate(rmap.k):
+    for j in range(rmap.k.size):
         column = [REGIME_NAMES[c] for c in rmap.regime[:, j]]
-        assert len(rmap.transitions_along_alpha(j)) == sum(a != b for a, b in zip(column[:-1], column[1:]))
+        changes = sum(a != b for a, b in zip(column[:-1], column[1:], strict=True))
+        assert len(rmap.transitions_along_alpha(j)) == changes
 
 
 def test_map_cache_roundtrip(tmp_path):
@@ -61,7 +62,8 @@ def test_map_cache_roundtrip(tmp_path):
 
 
 def test_parallel_equals_serial():
-    kwargs = dict(k_range=(0.0, 3.0), alpha_range=(0.5, 6.0), n_k=8, n_alpha=9, use_cache=False)
+    kwargs = dict(k_range=(0.0, 3.0), alpha_range=(0.5, 6.0), n_k=16, n_alpha=17, use_cache=False)
+    assert kwargs["n_k"] * kwargs["n_alpha"] >= IN_PROCESS_POINTS  # large enough to really use the pool
     serial = regime_map(0.5, 0.25, workers=1, **kwargs)
     parallel = regime_map(0.5, 0.25, workers=2, **kwargs)
     np.testing.assert_array_equal(serial.regime, parallel.regime)

@@ -6,7 +6,8 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import brentq
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -25,7 +26,7 @@ def _synthetic_record(n=1500, dt=0.01, pga_g=0.4, seed=1):
     t = np.arange(n) * dt
     x = np.zeros(n)
     for f, ph, amp in zip(rng.uniform(0.3, 6.0, 12), rng.uniform(0, 2 * np.pi, 12),
-                          rng.uniform(0.2, 1.0, 12)):
+                          rng.uniform(0.2, 1.0, 12), strict=False):
         x += amp * np.sin(2 * np.pi * f * t + ph)
     env = np.minimum(1.0, t / 2.0) * np.exp(-np.maximum(0.0, t - 0.6 * t[-1]) / 3.0)
     x *= env
@@ -196,7 +197,7 @@ def test_energy_balance_random(seed, mu_s, ratio, kappa, c):
     lhs, rhs, _ = _balance(r)
     assert abs(lhs - rhs) <= 1e-8 * max(abs(lhs), 1e-12)
     # sticking states have zero velocity; stick condition holds at stick events
-    for t, k in r["events"]:
+    for _, k in r["events"]:
         assert k in ("breakaway", "stick", "reverse")
 
 
@@ -216,7 +217,7 @@ def test_record_converges_to_harmonic():
     rh = reference_harmonic(alpha, k, eta, MU, 0.7 * MU, t_end=t[-1], t_out=t)
     assert np.max(np.abs(rr["displacement_m"] - rh["x"])) < 1e-4 * np.max(np.abs(rh["x"]))
     assert len(rr["events"]) == len(rh["events"])
-    for (ta, ka), (tb, kb) in zip(rr["events"], rh["events"]):
+    for (ta, ka), (tb, kb) in zip(rr["events"], rh["events"], strict=False):
         assert ka == kb and abs(ta - tb) < 1e-3 * T
 
 
@@ -228,7 +229,7 @@ def test_tolerance_insensitivity():
     r2 = reference_record(a, 0.01, rtol=1e-10, atol=1e-12, **kw)
     assert np.max(np.abs(r1["displacement_m"] - r2["displacement_m"])) < 1e-10
     assert [k for _, k in r1["events"]] == [k for _, k in r2["events"]]
-    assert max(abs(x - y) for (x, _), (y, _) in zip(r1["events"], r2["events"])) < 1e-9
+    assert max(abs(x - y) for (x, _), (y, _) in zip(r1["events"], r2["events"], strict=False)) < 1e-9
 
 
 def test_invalid_parameters():

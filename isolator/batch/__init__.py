@@ -26,9 +26,22 @@ that computes rows (:func:`run_task`) is the same for both.
 """
 
 from isolator.batch.charts import SUMMARY_RESPONSES, design_chart, suite_summary
-from isolator.batch.plan import (GRID_KEYS, BatchError, DesignCase, ReadOptions, Task, expand_designs,
-                                 expand_records, is_vertical, load_design_mappings, make_tasks, parse_grid, plan,
-                                 record_components, row_key)
+from isolator.batch.plan import (
+                                 GRID_KEYS,
+                                 BatchError,
+                                 DesignCase,
+                                 ReadOptions,
+                                 Task,
+                                 expand_designs,
+                                 expand_records,
+                                 is_vertical,
+                                 load_design_mappings,
+                                 make_tasks,
+                                 parse_grid,
+                                 plan,
+                                 record_components,
+                                 row_key,
+)
 from isolator.batch.run import BatchResult, run_batch
 from isolator.batch.store import COLUMNS, TIMING_COLUMNS, PartStore, comparable, to_table, write_table_atomically
 from isolator.batch.worker import run_task

@@ -35,7 +35,7 @@ def suite_summary(table, swept_keys=()):
 
     keys = ["design_index", "design_name", "design_file_index"] + [k for k in GRID_KEYS if k in table.columns]
     out = []
-    for index, rows in table.groupby("design_index", sort=True):
+    for _, rows in table.groupby("design_index", sort=True):
         good = rows[rows["error"] == ""]
         first = rows.iloc[0]
         entry = {key: first[key] for key in keys}
@@ -105,7 +105,7 @@ def design_chart(table, keys, path) -> int:
                    1.0 / STANDARD_GRAVITY))
     with atomic_path(path) as tmp:
         with PdfPages(tmp) as pdf:
-            for file_index, group in summary.groupby("design_file_index", sort=True):
+            for _, group in summary.groupby("design_file_index", sort=True):
                 xs = np.unique(group[key_x].astype(float))
                 ys = np.unique(group[key_y].astype(float))
                 if xs.size < 2 or ys.size < 2:

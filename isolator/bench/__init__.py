@@ -46,13 +46,42 @@ References
 M. Nicolas (2017), hal-01432172, Eq. 2 (harmonic case), Eqs. 3 (ζ) and 15 (α_SL).
 """
 
-from isolator.bench.cases import (HARMONIC_CASES, HARMONIC_PHASE, PENDULUM_MU_KINETIC, PENDULUM_MU_STATIC,
-                                  PENDULUM_RADIUS_M, RECORD_FILES, STANDARD_GRAVITY_M_S2, BenchCase, bench_cases,
-                                  harmonic_case, record_case)
-from isolator.bench.harness import (CROSS_CHECK, ENGINEERING_ERROR, ERROR_FLOOR, errors, pareto_by_case,
-                                    pareto_summary, run_bench, time_method, warm_up)
-from isolator.bench.methods import (METHODS, OURS, Method, MethodOutput, exact_solver, implicit_fixed_step,
-                                    ivp_tanh, ivp_with_events, methods, newmark_elastic_plastic)
+from isolator.bench.cases import (
+                                  HARMONIC_CASES,
+                                  HARMONIC_PHASE,
+                                  PENDULUM_MU_KINETIC,
+                                  PENDULUM_MU_STATIC,
+                                  PENDULUM_RADIUS_M,
+                                  RECORD_FILES,
+                                  STANDARD_GRAVITY_M_S2,
+                                  BenchCase,
+                                  bench_cases,
+                                  harmonic_case,
+                                  record_case,
+)
+from isolator.bench.harness import (
+                                  CROSS_CHECK,
+                                  ENGINEERING_ERROR,
+                                  ERROR_FLOOR,
+                                  errors,
+                                  pareto_by_case,
+                                  pareto_summary,
+                                  run_bench,
+                                  time_method,
+                                  warm_up,
+)
+from isolator.bench.methods import (
+                                  METHODS,
+                                  OURS,
+                                  Method,
+                                  MethodOutput,
+                                  exact_solver,
+                                  implicit_fixed_step,
+                                  ivp_tanh,
+                                  ivp_with_events,
+                                  methods,
+                                  newmark_elastic_plastic,
+)
 from isolator.bench.output import ROW_KEYS, pareto_markdown, pareto_to_csv, plot, rows_markdown, rows_to_csv
 
 __all__ = ["CROSS_CHECK", "ENGINEERING_ERROR", "ERROR_FLOOR", "HARMONIC_CASES", "HARMONIC_PHASE", "METHODS", "OURS",

@@ -10,13 +10,20 @@ from __future__ import annotations
 import math
 import statistics
 import time
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 
 from isolator.bench.cases import BenchCase, harmonic_case, record_case
-from isolator.bench.methods import (OURS, MethodOutput, exact_solver, implicit_fixed_step, ivp_with_events,
-                                    methods, newmark_elastic_plastic)
+from isolator.bench.methods import (
+    OURS,
+    MethodOutput,
+    exact_solver,
+    implicit_fixed_step,
+    ivp_with_events,
+    methods,
+    newmark_elastic_plastic,
+)
 
 ERROR_FLOOR = 1e-16  #: errors below this are reported as this (round-off)
 

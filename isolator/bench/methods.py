@@ -9,8 +9,8 @@ functions (:func:`isolator.solver.record.simulate_record` and
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Callable
 
 import numpy as np
 from numba import njit

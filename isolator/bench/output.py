@@ -7,7 +7,6 @@ from pathlib import Path
 
 from isolator.bench.methods import OURS
 
-
 ROW_KEYS = ["method", "case", "setting", "seconds", "error_peak_rel", "error_residual_abs", "error_zeta",
             "error_trajectory"]
 
@@ -59,7 +58,8 @@ def pareto_markdown(pareto: list[dict]) -> str:
         eng = (f"{p['speedup_at_1e-3']:.3g}× ({p['speedup_at_1e-3_vs']})" if p["speedup_at_1e-3"] else
                "none reaches it")
         lines.append(
-            f"| {p['case']} | {p['seconds'] * 1e3:.3g} ms | {p['error']:.1e} | {'yes' if p['on_pareto_front'] else 'NO'} "
+            f"| {p['case']} | {p['seconds'] * 1e3:.3g} ms | {p['error']:.1e} | "
+            f"{'yes' if p['on_pareto_front'] else 'NO'} "
             f"| {eq_err} | {eng} | {eq_time} | {_speed_words(p['fastest_time_ratio'])}, "
             f"{p['accuracy_gain_vs_fastest']:.2g}× less accurate ({p['fastest_baseline']}) | "
             f"{p['most_accurate_baseline']}: error {p['most_accurate_error']:.1e}, "
@@ -92,13 +92,13 @@ def plot(rows: list[dict], path: Path, error_key: str = "error_trajectory") -> N
     n_row = int(math.ceil(len(cases) / n_col))
     fig, axes = plt.subplots(n_row, n_col, figsize=(6.0 * n_col, 4.2 * n_row), squeeze=False)
     markers = "o^svDPX*"
-    for ax, case in zip(axes.ravel(), cases):
+    for ax, case in zip(axes.ravel(), cases, strict=False):
         for i, name in enumerate(names):
             # in the order of the settings (coarse to fine), so each curve is the method's own path
             pts = [(r["seconds"], r[error_key]) for r in rows if r["case"] == case and r["method"] == name]
             if not pts:
                 continue
-            t, e = zip(*pts)
+            t, e = zip(*pts, strict=True)
             style = dict(marker=markers[i % len(markers)], label=name)
             if name == OURS:
                 style.update(color="k", markersize=11, zorder=5)

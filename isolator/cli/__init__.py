@@ -11,9 +11,8 @@ User mistakes end with one line on stderr and exit code 2, never a traceback.
 
 from __future__ import annotations
 
-from isolator.cli.common import RECORD_HELP, app, load_record_for_cli
-
 # registering the commands on ``app`` (in the order of ``isolator --help``)
-from isolator.cli import records, harmonic, report, batch, bench, review  # noqa: E402,F401,I001
+from isolator.cli import batch, bench, harmonic, records, report, review  # noqa: E402,F401,I001
+from isolator.cli.common import RECORD_HELP, app, load_record_for_cli
 
 __all__ = ["RECORD_HELP", "app", "load_record_for_cli"]

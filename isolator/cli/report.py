@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import (RECORD_HELP, app, check_outputs, echo_table, load_record_for_cli, user_error,
-                                 write_error)
+from isolator.cli.common import (RECORD_HELP, app, check_outputs, collector_skips_existing_objects, echo_table,
+                                 load_record_for_cli, user_error, write_error)
 from isolator.cli.pairs import PAIR_HELP, wants_set
 
 
@@ -175,7 +175,8 @@ def report(
         else:
             from isolator.report.pdf import write_report
 
-            summary = write_report(analysis, output, command=_command_line())
+            with collector_skips_existing_objects():
+                summary = write_report(analysis, output, command=_command_line())
     except OSError as err:
         write_error(err, output)
     echo_table(([] if no_pdf else [("report", output, "(4 pages)")]) + [

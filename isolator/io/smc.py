@@ -18,7 +18,7 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
-from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
+from isolator.io._common import looks_like_text, open_text, parse_float, read_head
 
 TEXT_LINES = 11
 INT_LINES = 6

@@ -21,10 +21,16 @@ Processing methods (:meth:`GroundMotion.demeaned`, :meth:`~GroundMotion.tapered`
 
 from isolator.motion.examples import EXAMPLE_RECORDS, resolve_record
 from isolator.motion.ground_motion import MIN_SAMPLES, UNNAMED_COMPONENT, GroundMotion
-from isolator.motion.measures import (PREDOMINANT_PERIODS_S, IntensityMeasures, arias_intensity_m_s,
-                                      displacement_m, intensity_measures, significant_duration_s, velocity_m_s)
-from isolator.motion.read import (MAX_ABS_ACCELERATION_G, TEXT_SUFFIXES, RecordError, list_components,
-                                  read_ground_motion)
+from isolator.motion.measures import (
+                                      PREDOMINANT_PERIODS_S,
+                                      IntensityMeasures,
+                                      arias_intensity_m_s,
+                                      displacement_m,
+                                      intensity_measures,
+                                      significant_duration_s,
+                                      velocity_m_s,
+)
+from isolator.motion.read import MAX_ABS_ACCELERATION_G, TEXT_SUFFIXES, RecordError, list_components, read_ground_motion
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
 from isolator.motion.pair import ComponentMismatchError, MotionPair, read_ground_motion_pair
 

@@ -18,10 +18,22 @@ from typing import Any
 
 import numpy as np
 
+from isolator.errors import (
+    ComponentError,
+    CountsError,
+    GapsError,
+    InstrumentResponseError,
+    MissingUnitsError,
+    RecordError,
+    RecordFormatError,
+    RecordNotFoundError,
+    RecordOptionError,
+    RecordValuesError,
+    TimeStepConflictError,
+    UnitsConflictError,
+    UnitsError,
+)
 from isolator.motion.ground_motion import MIN_SAMPLES, GroundMotion, _component_names, _label
-from isolator.errors import (ComponentError, CountsError, GapsError, InstrumentResponseError, MissingUnitsError,
-                             RecordError, RecordFormatError, RecordNotFoundError, RecordOptionError,
-                             RecordValuesError, TimeStepConflictError, UnitsConflictError, UnitsError)
 from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 
 MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units
@@ -56,6 +68,7 @@ def _read_stream(path: Path, dt_s: float | None):
 
     from isolator.io import detect, looks_like_text, read_head
     from isolator.io._common import literal_pattern
+    from isolator.io.obspy_formats import detect_obspy_format
 
     head = read_head(path)
     if not head:
@@ -73,8 +86,8 @@ def _read_stream(path: Path, dt_s: float | None):
             fmt = "PEER_AT2"  # let the AT2 reader say what is wrong
         try:
             if fmt is None:
-                try:
-                    return obspy.read(literal_pattern(path))
+                try:  # the format obspy's autodetection would pick, found without its metadata scans
+                    return obspy.read(literal_pattern(path), format=detect_obspy_format(path))
                 except TypeError as err:
                     if "Unknown format" not in str(err):
                         raise
@@ -455,7 +468,8 @@ def read_ground_motion(
         raise _fail(path, f"the time step given, {dt_s:g} s, is not positive", RecordOptionError, given=dt_s,
                     parameter="dt_s")
     if dt_s is not None and dt_problem(dt_s):
-        raise _fail(path, "the time step given: " + dt_problem(dt_s), RecordOptionError, given=dt_s, parameter="dt_s")
+        raise _fail(path, "the time step given: " + dt_problem(dt_s), RecordOptionError, given=dt_s,
+                    parameter="dt_s")
     stream = _read_stream(path, dt_s)
     if len(stream) == 0:
         raise _fail(path, "holds no data")

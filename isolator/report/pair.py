@@ -28,7 +28,7 @@ PAGE_TITLES = ("1  Summary (bidirectional)", "2  Ground motion", "3  Isolator re
 
 
 def _page(plt, number: int, subtitle: str):
-    return pdf_page(plt, number, subtitle, titles=PAGE_TITLES)
+    return pdf_page(number, subtitle, titles=PAGE_TITLES)
 
 
 def _planar(values) -> np.ndarray:

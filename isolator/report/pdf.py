@@ -45,8 +45,8 @@ def _tail(text: str, width: int) -> str:
     return text if len(text) <= width else "…" + text[-(width - 1):]
 
 
-def _page(plt, number: int, subtitle: str, titles=PAGE_TITLES):
-    fig = plt.figure(figsize=A4_IN)
+def _page(number: int, subtitle: str, titles=PAGE_TITLES):
+    fig = figures.new_figure(figsize=A4_IN)
     fig.text(0.05, 0.975, titles[number - 1], fontsize=13, weight="bold", va="top")
     fig.text(0.95, 0.975, textwrap.shorten(subtitle, 80, placeholder="…"), fontsize=7.5, va="top", ha="right",
              color="0.35")
@@ -68,9 +68,9 @@ def _table(fig, x: float, y: float, title: str, rows, width: float = 0.43, line:
     return y - line * 0.6
 
 
-def _summary_page(plt, a: Analysis, summary: dict, command: str):
+def _summary_page(a: Analysis, summary: dict, command: str):
     record_name = Path(a.record_label).name if Path(a.record_label).is_file() else a.record_label
-    fig = _page(plt, 1, f"{a.design.name} | {record_name}")
+    fig = _page(1, f"{a.design.name} | {record_name}")
     d, p, r, im = a.design, a.adaptation.point, a.response, a.adaptation.intensity
     eng = a.engineering
     fig.text(0.05, 0.945, "Friction isolator - engineering review", fontsize=11, va="top")
@@ -213,7 +213,6 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
     a = analysis
     if a.harmonic_map is None or a.harmonic_class is None:
         raise ValueError("a report needs the harmonic problem and the regime map: analyse(..., map_resolution=N)")
-    plt = figures._mpl()
     pdf_path = Path(pdf_path)
     json_path = pdf_path.with_suffix(".json")
     summary = summary_dict(a, pdf_path)
@@ -227,12 +226,11 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
 
     with atomic_path(pdf_path) as tmp_pdf:
         with PdfPages(tmp_pdf) as pdf:
-            fig = _summary_page(plt, a, summary, command)
+            fig = _summary_page(a, summary, command)
             pdf.savefig(fig)
-            plt.close(fig)
 
             # page 2: the record
-            fig = _page(plt, 2, label)
+            fig = _page(2, label)
             fig.subplots_adjust(left=0.11, right=0.95, top=0.93, bottom=0.1, hspace=0.38)
             window = rc.window_s
             periods = np.geomspace(0.05, max(6.0, 1.5 * min(d.isolated_period_s, 20.0)), 120)
@@ -247,10 +245,9 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
                           "linear oscillator) with the isolated period 2π sqrt(M/K) and the effective period at "
                           "the peak displacement marked.")
             pdf.savefig(fig)
-            plt.close(fig)
 
             # page 3: the response
-            fig = _page(plt, 3, label)
+            fig = _page(3, label)
             fig.subplots_adjust(left=0.1, right=0.96, top=0.93, bottom=0.1, hspace=0.42, wspace=0.3)
             energies = figures.response_page(fig, r, d.mass_kg, slip_intervals(r))
             final = {name: values[-1] / 1e3 for name, values in energies.items()}
@@ -264,10 +261,9 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
                           f"+ viscous {fmt(final['viscous'])} kJ, balance error "
                           f"{fmt(r.energy_balance_error_J_per_kg * d.mass_kg)} J.")
             pdf.savefig(fig)
-            plt.close(fig)
 
             # page 4: the map
-            fig = _page(plt, 4, label)
+            fig = _page(4, label)
             grid = fig.add_gridspec(2, 1, height_ratios=[1.35, 1], left=0.1, right=0.66, top=0.93,
                                     bottom=0.11, hspace=0.3)
             ax_map = fig.add_subplot(grid[0])
@@ -289,7 +285,6 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
                           f"Harmonic prediction at the star: {hc.regime} ({REGIME_WORDS[hc.regime]}), A = "
                           f"{fmt(hc.amplitude, 3)}; the record: {rc.regime}, A = {fmt(rc.amplitude, 3)}.")
             pdf.savefig(fig)
-            plt.close(fig)
             info = pdf.infodict()
             info["Title"] = f"isolator review: {label}"
             info["Creator"] = f"isolator {summary['software']['version']}"

@@ -25,9 +25,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from isolator.serialize import finite_or_none
 from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
 from isolator.solver.segments import harmonic_h1, ramp_basis, segment_state, state_from_basis
-from isolator.serialize import finite_or_none
 from isolator.solver.system import InvalidSystemError, classify_configuration
 
 PHASE_DEFAULT = 0.5 * math.pi  #: φ of the paper: zero ground acceleration at t = 0 [rad]
@@ -615,5 +615,4 @@ def alpha_sl_friction_only(mu_s: float, mu_k: float | None = None) -> float:
 
 
 # the regime thresholds along α live in their own module; re-exported here for callers
-from isolator.solver.thresholds import (  # noqa: E402,F401
-    RegimeThresholds, bisect_change, harmonic_regime, harmonic_thresholds)
+from isolator.solver.thresholds import RegimeThresholds, bisect_change, harmonic_regime, harmonic_thresholds  # noqa: E402,F401

@@ -35,9 +35,16 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import (BREAKAWAY, REVERSAL, STICK, breakaway_time, find_stop, record_event,
-                                     secant_guess,
-                                     segment_root)
+from isolator.solver.events import (
+    BREAKAWAY,
+    REVERSAL,
+    STICK,
+    breakaway_time,
+    find_stop,
+    record_event,
+    secant_guess,
+    segment_root,
+)
 from isolator.solver.segments import ramp_basis, segment_state
 
 #: Safety net against stick–slip chatter: events allowed in one sample interval.

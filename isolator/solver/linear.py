@@ -18,7 +18,6 @@ from numba import njit
 from isolator.solver.events import secant_guess, segment_root
 from isolator.solver.segments import ramp_basis, segment_state
 
-
 #: Sub-steps per sample interval allowed in :func:`linear_peak_displacement`.  A peak between
 #: samples is located exactly only on pieces where the velocity is unimodal (a quarter of
 #: the period), so the work per sample grows as dt/T: bounded here, which accepts dt up to

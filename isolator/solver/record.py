@@ -16,12 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from isolator.errors import RecordInputError  # noqa: E402,F401 - defined with the other typed errors
 from isolator.solver import kernel as _kernel
 from isolator.solver.events import EVENT_NAMES
 from isolator.solver.system import System
-
-
-from isolator.errors import RecordInputError  # noqa: E402,F401 - defined with the other typed errors
 
 
 @dataclass

@@ -7,8 +7,8 @@ scan of :func:`harmonic_thresholds`, the refined regime maps and the triple poin
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -137,7 +137,7 @@ def harmonic_thresholds(k: float, eta: float, mu_s: float, mu_k: float | None = 
     alphas = np.unique(np.concatenate(([1.0 + 1e-6], np.linspace(1.0, alpha_max, n_grid + 1)[1:], resonant)))
     regimes = [harmonic_regime(a, k, eta, mu_s, mu_k) for a in alphas]
     transitions = [{"alpha": 1.0, "from": "ST", "to": regimes[0]}]
-    for a_lo, a_hi, r_lo, r_hi in zip(alphas[:-1], alphas[1:], regimes[:-1], regimes[1:]):
+    for a_lo, a_hi, r_lo, r_hi in zip(alphas[:-1], alphas[1:], regimes[:-1], regimes[1:], strict=True):
         if r_lo == r_hi:
             continue
         lo, hi = bisect_change(lambda a, r_lo=r_lo: harmonic_regime(a, k, eta, mu_s, mu_k) == r_lo, a_lo, a_hi,

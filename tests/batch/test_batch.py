@@ -15,8 +15,19 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from isolator.batch import (BatchError, ReadOptions, comparable, design_chart, expand_designs, expand_records,
-                            is_vertical, parse_grid, row_key, run_batch, suite_summary)
+from isolator.batch import (
+    BatchError,
+    ReadOptions,
+    comparable,
+    design_chart,
+    expand_designs,
+    expand_records,
+    is_vertical,
+    parse_grid,
+    row_key,
+    run_batch,
+    suite_summary,
+)
 
 ISOLATOR = str(Path(sys.executable).with_name("isolator"))
 
@@ -52,7 +63,7 @@ def write_record(path: Path, pga_g: float, period_s: float, npts: int = 1500, dt
     envelope = (t / t[-1]) ** 2 * np.exp(-6.0 * t / t[-1])
     acc = np.sin(2 * np.pi * t / period_s) * envelope
     acc *= pga_g / np.max(np.abs(acc))
-    lines = ["# units: g"] + [f"{ti:.4f},{ai:.8e}" for ti, ai in zip(t, acc)]
+    lines = ["# units: g"] + [f"{ti:.4f},{ai:.8e}" for ti, ai in zip(t, acc, strict=True)]
     path.write_text("\n".join(lines) + "\n")
     return path
 

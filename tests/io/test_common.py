@@ -7,8 +7,17 @@ import io
 import numpy as np
 import pytest
 
-from isolator.io._common import (DETECT_BYTES, head_lines, iter_line_chunks, looks_like_text, numbers_from_lines,
-                                 open_text, parse_float, read_head, split_numbers)
+from isolator.io._common import (
+    DETECT_BYTES,
+    head_lines,
+    iter_line_chunks,
+    looks_like_text,
+    numbers_from_lines,
+    open_text,
+    parse_float,
+    read_head,
+    split_numbers,
+)
 
 
 def test_fortran_numbers():

@@ -11,6 +11,8 @@ import numpy as np
 import pytest
 from _records import BAD_RECORD_TYPES, BAD_RECORDS, PGV_TABLE_CM_S, RECORD_TABLE, at2_text, decimals, record_path
 
+from isolator import errors
+from isolator.errors import ComponentError, GapsError, MissingUnitsError, RecordOptionError
 from isolator.motion import (
     GroundMotion,
     RecordError,
@@ -19,8 +21,6 @@ from isolator.motion import (
     pseudo_acceleration_spectrum,
     read_ground_motion,
 )
-from isolator import errors
-from isolator.errors import ComponentError, GapsError, MissingUnitsError, RecordOptionError
 from isolator.units import STANDARD_GRAVITY
 
 G = STANDARD_GRAVITY
@@ -283,7 +283,7 @@ def test_response_spectrum_against_scipy_first_order_hold(records_dir):
     motion = read_ground_motion(records_dir / "at2/RSN1044_NORTHR_NWH360.AT2")
     periods_s = np.array([0.1, 0.3, 1.0, 3.0])
     spectrum = motion.response_spectrum(periods_s)
-    for period_s, psa in zip(periods_s, spectrum):
+    for period_s, psa in zip(periods_s, spectrum, strict=True):
         omega = 2 * math.pi / period_s
         system = (np.array([[0.0, 1.0], [-omega**2, -2 * 0.05 * omega]]), np.array([[0.0], [-1.0]]),
                   np.array([[1.0, 0.0]]), np.zeros((1, 1)))

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from _records import at2_text
+
 from isolator.motion import GroundMotion, RecordError, list_components, read_ground_motion
 
 

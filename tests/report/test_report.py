@@ -47,7 +47,7 @@ def test_report_pages_and_json(knet_report):
     assert len(reader.pages) == 4
     titles = ["Summary", "Ground motion", "Isolator response", "Harmonic regime map"]
     texts = [_text(page) for page in reader.pages]
-    for number, (title, text) in enumerate(zip(titles, texts), start=1):
+    for number, (title, text) in enumerate(zip(titles, texts, strict=True), start=1):
         assert f"{number} {title}" in text
     summary = json.loads(out.with_suffix(".json").read_text())
     for key in REQUIRED_KEYS:

@@ -11,10 +11,10 @@ import pytest
 from isolator.adapter import dimensionless_point
 from isolator.design import Design, DesignError
 from isolator.solver.harmonic import MAX_DIMENSIONLESS, harmonic_response
-from isolator.solver.thresholds import MAX_THRESHOLD_GRID, harmonic_thresholds
 from isolator.solver.linear import MAX_SUBSTEPS_PER_SAMPLE, linear_peak_displacement
 from isolator.solver.record import RecordInputError, simulate_record
 from isolator.solver.system import MAX_DAMPING_PER_MASS, MAX_STIFFNESS_PER_MASS, InvalidSystemError, System
+from isolator.solver.thresholds import MAX_THRESHOLD_GRID, harmonic_thresholds
 
 
 @pytest.mark.parametrize("key, value, words", [

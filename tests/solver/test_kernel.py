@@ -37,6 +37,7 @@ def test_gram_matrix_against_adaptive_quadrature(h, c, kappa):
     functions = [lambda t, i=i: ramp_basis(t, c, kappa)[i] for i in range(3)]  # E0, E1, H1
     for i in range(3):
         for j in range(3):
-            value, error = quad(lambda t: functions[i](t) * functions[j](t), 0.0, h, epsabs=0, epsrel=1e-13)
+            value, error = quad(lambda t, i=i, j=j: functions[i](t) * functions[j](t), 0.0, h, epsabs=0,
+                                epsrel=1e-13)
             assert gram[i, j] == pytest.approx(value, rel=1e-11, abs=1e-300), (i, j)
     np.testing.assert_array_equal(gram, gram.T)

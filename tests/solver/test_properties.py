@@ -16,7 +16,8 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings, strategies as st
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
 from isolator.solver.harmonic import harmonic_response
 from isolator.solver.record import simulate_record
