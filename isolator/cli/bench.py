@@ -49,6 +49,8 @@ def bench(
     cases = bench_module.bench_cases(quick, records_dir)
     if not any(case.kind == "record" for case in cases):
         typer.echo(f"note: none of the bench records in {records_dir}: harmonic cases only", err=True)
+    elif not any(case.kind == "pair" for case in cases):
+        typer.echo(f"note: none of the bench pairs in {records_dir}/pairs: no 2-D cases", err=True)
     rows, pareto = bench_module.run_bench(quick=quick, repeats=repeats, cases=cases, progress=progress)
     wall_s = time.perf_counter() - started
     machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
