@@ -130,7 +130,9 @@ def plot(rows: list[dict], path: Path, error_key: str = "error_trajectory") -> N
     n_col = 2 if len(cases) > 1 else 1
     n_row = int(math.ceil(len(cases) / n_col))
     fig, axes = plt.subplots(n_row, n_col, figsize=(6.0 * n_col, 4.2 * n_row), squeeze=False)
-    markers = "o^svDPX*"
+    markers = "o^svDPX*<>h"  # 11 markers over 10 colours: no two methods look alike
+    colors = plt.get_cmap("tab10").colors  # one colour per method across panels (1-D and 2-D methods differ)
+    legend = {}
     for ax, case in zip(axes.ravel(), cases):
         for i, name in enumerate(names):
             # in the order of the settings (coarse to fine), so each curve is the method's own path
@@ -139,18 +141,23 @@ def plot(rows: list[dict], path: Path, error_key: str = "error_trajectory") -> N
             if not pts:
                 continue
             t, e = zip(*pts)
-            style = dict(marker=markers[i % len(markers)], label=name)
+            style = dict(marker=markers[i % len(markers)], color=colors[i % len(colors)], label=name)
             if name in (OURS, PAIR_OURS):
-                style.update(color="k", markersize=11, zorder=5)
-            ax.loglog(t, e, "-" if len(t) > 1 else "", **style)
+                style.update(color="k", marker="o", markersize=11, zorder=5)
+            lines = ax.loglog(t, e, "-" if len(t) > 1 else "", **style)
+            legend.setdefault(name, lines[0])
         ax.set_title(case, fontsize=9)
         ax.set_xlabel("wall time [s] (median)")
         ax.set_ylabel("max trajectory error / peak [-]")
         ax.grid(True, which="major", alpha=0.3)
     for ax in axes.ravel()[len(cases):]:
         ax.axis("off")
-    handles, labels = axes.ravel()[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.08 if n_row > 1 else 0.15, 1, 1))
+    n_legend_col = 3 if n_col > 1 else 1
+    fig.legend(list(legend.values()), list(legend.keys()), loc="lower center", ncol=n_legend_col, fontsize=8,
+               frameon=False)
+    # room for the legend: ~0.18 in per row of labels plus the axis label above it [in / figure height]
+    legend_in = 0.18 * math.ceil(len(legend) / n_legend_col) + 0.4
+    fig.set_figheight(4.2 * n_row + legend_in)
+    fig.tight_layout(rect=(0, legend_in / (4.2 * n_row + legend_in), 1, 1))
     fig.savefig(path, dpi=110)
     plt.close(fig)
