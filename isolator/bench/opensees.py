@@ -163,7 +163,7 @@ def _analyze_record(ops, dt_s: float, n_samples: int, substeps: int) -> None:
                 raise RuntimeError(f"OpenSees did not converge near t = {ops.getTime():.3f} s")
         # finish the sample interval in steps of the size that converged
         next_sample = (math.floor(ops.getTime() / dt_s + 1e-9) + 1) * dt_s
-        for _ in range(int(math.ceil(dt_s / step)) + 2):
+        for _ in range(math.ceil(dt_s / step) + 2):
             if ops.getTime() >= next_sample - 1e-9 * dt_s:
                 break
             ops.analyze(1, min(step, next_sample - ops.getTime()))

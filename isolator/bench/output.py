@@ -9,7 +9,6 @@ from pathlib import Path
 from isolator.bench.methods import OURS
 from isolator.bench.pairs import PAIR_OURS
 
-
 ROW_KEYS = ["method", "case", "setting", "seconds", "error_peak_rel", "error_residual_abs", "error_zeta",
             "error_trajectory"]
 #: the columns after ROW_KEYS: events counted, timed runs (2-D) and why a baseline did not run

@@ -52,7 +52,7 @@ ERROR_FLOOR = 1e-16
 PAIR_RADIUS_M = 2.0
 PAIR_MU = 0.06
 #: The µ(v) case: µ_slow = µs = 0.06, µ_fast = 0.10, a = 20 s/m (PTFE-like; OpenSees VelDependent, same law).
-PAIR_MU_V = dict(mu_slow=0.06, mu_fast=0.10, rate_s_per_m=20.0)
+PAIR_MU_V = {"mu_slow": 0.06, "mu_fast": 0.10, "rate_s_per_m": 20.0}
 
 #: (label, folder, x file, y file, vertical file or None, µ(v)?, seconds kept or None) of the full run.
 PAIR_FILES = [
@@ -100,7 +100,7 @@ class PairCase:
         """µ(v) keywords of the engine and the reference ({} for constant µ)."""
         if self.mu_slow is None:
             return {}
-        return dict(mu_slow=self.mu_slow, mu_fast=self.mu_fast, rate_s_per_m=self.rate_s_per_m)
+        return {"mu_slow": self.mu_slow, "mu_fast": self.mu_fast, "rate_s_per_m": self.rate_s_per_m}
 
 
 def pair_case(name: str, ax_m_s2, ay_m_s2, dt_s: float, az_m_s2=None, *, mu_static: float = PAIR_MU,
@@ -128,7 +128,7 @@ def pair_cases(quick: bool, records_dir: Path) -> list[PairCase]:
             continue  # not a pair on one time base: nothing to compare
         accs = [m.acceleration_m_s2 for m in motions]
         if keep_s is not None:
-            accs = [a[:int(round(keep_s / dt)) + 1] for a in accs]
+            accs = [a[:round(keep_s / dt) + 1] for a in accs]
         friction = PAIR_MU_V if velocity_dependent else {}
         mu = PAIR_MU_V["mu_slow"] if velocity_dependent else PAIR_MU
         law = (f"mu(v) {friction['mu_slow']:g}..{friction['mu_fast']:g}, a={friction['rate_s_per_m']:g} s/m"

@@ -33,7 +33,6 @@ def bench(
 
     from isolator import bench as bench_module
     from isolator.atomic import atomic_path, write_text_atomically
-
     from isolator.serialize import dumps
 
     records_dir = Path(records)

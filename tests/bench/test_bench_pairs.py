@@ -80,10 +80,16 @@ def test_opensees_row_is_present_and_sane(quick_rows):
     assert len(lines) == 2 and "OpenSees" in lines[-1] and "faster" in lines[-1]
 
 
-def test_without_openseespy_the_rows_say_so_and_the_bench_runs(monkeypatch):
+def test_without_openseespy_the_rows_say_so_and_the_bench_runs(monkeypatch, tmp_path):
     monkeypatch.setattr(opensees_module, "opensees_available", lambda: (False, "openseespy not installed"))
     t = np.arange(301) * 0.01
     case = bench.pair_case("synthetic pair", 4.0 * np.sin(5.0 * t), 3.0 * np.cos(4.0 * t), 0.01)
+    monkeypatch.setattr(bench, "bench_cases", lambda quick=False, records_dir=None: [case])
+    result = CliRunner().invoke(app, ["bench", "--quick", "--json", "--repeats", "1", "--out", str(tmp_path),
+                                      "--records", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    cli_rows = json.loads(result.stdout)  # strict JSON: the missing times are null
+    assert [r["seconds"] for r in cli_rows if r["method"] == bench.OPENSEES] == [None]
     rows = bench.run_pair_case(case, quick=True, repeats=1)
     theirs = [r for r in rows if r["method"] == bench.OPENSEES]
     assert theirs and all(r["note"] == "openseespy not installed" and math.isnan(r["seconds"]) for r in theirs)
@@ -101,8 +107,8 @@ def test_bench_reference_is_the_tests_reference():
     ax, ay, az = 4.0 * np.sin(5.0 * t), 3.0 * np.cos(4.0 * t) * np.exp(-0.2 * t), 2.0 * np.sin(9.0 * t)
     case = bench.pair_case("synthetic pair", ax, ay, 0.01, az, **bench.pairs.PAIR_MU_V)
     ours = bench.reference_solver(case)
-    theirs = independent_reference_pair(t, ax, ay, az, mu_s=case.mu_static, radius=2.0, **{
-        "mu_slow": case.mu_slow, "mu_fast": case.mu_fast, "rate": case.rate_s_per_m})
+    theirs = independent_reference_pair(t, ax, ay, az, mu_s=case.mu_static, radius=2.0, mu_slow=case.mu_slow,
+                                        mu_fast=case.mu_fast, rate=case.rate_s_per_m)
     np.testing.assert_array_equal(ours.displacement, theirs.displacement_m)
     assert ours.peak == theirs.peak_displacement_m and ours.peak > 0.05
 
