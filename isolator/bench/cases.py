@@ -136,9 +136,10 @@ HARMONIC_CASES = [
 RECORD_FILES = [("at2/RSN1044_NORTHR_NWH360.AT2", 0.0), ("at2/IELC180.AT2", 0.0),
                 ("at2/RSN779_LOMAP_LGP000.AT2", 0.44)]
 
-def bench_cases(quick: bool = False, records_dir: Path | None = None) -> list[BenchCase]:
-    """The benchmark's cases: the harmonic configurations, and the records of :data:`RECORD_FILES`
-    found in ``records_dir`` (none without it)."""
+def bench_cases(quick: bool = False, records_dir: Path | None = None) -> list:
+    """The benchmark's cases: the harmonic configurations, the records of :data:`RECORD_FILES`
+    and the 2-D pairs of :data:`isolator.bench.pairs.PAIR_FILES` found in ``records_dir``
+    (none without it)."""
     harmonic = HARMONIC_CASES[:1] + HARMONIC_CASES[3:] if quick else HARMONIC_CASES
     cases = [harmonic_case(*spec) for spec in harmonic]
     if records_dir is not None and Path(records_dir).is_dir():
@@ -155,4 +156,7 @@ def bench_cases(quick: bool = False, records_dir: Path | None = None) -> list[Be
                 f"record {path.stem} (FP R={PENDULUM_RADIUS_M:g} m{damper})", motion.acceleration_m_s2, motion.dt_s,
                 mu_static=PENDULUM_MU_STATIC, mu_kinetic=PENDULUM_MU_KINETIC,
                 stiffness_per_mass=STANDARD_GRAVITY_M_S2 / PENDULUM_RADIUS_M, damping_per_mass=damping))
+        from isolator.bench.pairs import pair_cases
+
+        cases.extend(pair_cases(quick, records_dir))
     return cases

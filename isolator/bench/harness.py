@@ -1,8 +1,11 @@
 """The harness: time every method on every case and measure its errors against the reference.
 
-Our solver is compared with the tightest event-located ``solve_ivp`` run (DOP853,
-rtol 1e-12), the baselines with our solver; :func:`pareto_summary` says where ours
-stands (speed-up at equal error, accuracy gain at equal time).
+1-D cases: our solver is compared with the tightest event-located ``solve_ivp`` run
+(DOP853, rtol 1e-12), the baselines with our solver.  2-D cases
+(:mod:`isolator.bench.pairs`): ours and every baseline are compared with the
+independent reference (the truth).  :func:`pareto_summary` says where ours stands
+(speed-up at equal error, accuracy gain at equal time) and, on 2-D cases, its time
+and error against OpenSees at the record's dt, measured in the same run.
 """
 
 from __future__ import annotations
@@ -15,20 +18,20 @@ from collections.abc import Callable
 import numpy as np
 
 from isolator.bench.cases import BenchCase, harmonic_case, record_case
-from isolator.bench.methods import (
-    OURS,
-    MethodOutput,
-    exact_solver,
-    implicit_fixed_step,
-    ivp_with_events,
-    methods,
-    newmark_elastic_plastic,
-)
+from isolator.bench.methods import (OURS, MethodOutput, exact_solver, implicit_fixed_step, ivp_with_events,
+                                    methods, newmark_elastic_plastic)
+from isolator.bench.pairs import (OPENSEES, PAIR_OURS, PAIR_TRUTH, pair_case, pair_errors, pair_methods,
+                                  planar_solver, reference_solver)
 
 ERROR_FLOOR = 1e-16  #: errors below this are reported as this (round-off)
 
 
 CROSS_CHECK = ("solve_ivp DOP853 + events (tightest)", 1e-12)
+#: our rows (1-D exact solver, 2-D planar engine) and the references they are checked against (not baselines)
+OURS_METHODS = (OURS, PAIR_OURS)
+REFERENCE_METHODS = (CROSS_CHECK[0], PAIR_TRUTH)
+#: the OpenSees setting of the headline ratio: OpenSees at the record's own dt
+OPENSEES_HEADLINE_SETTING = "dt/1"
 
 
 def errors(case: BenchCase, out: MethodOutput, ref: MethodOutput) -> dict:
@@ -45,9 +48,10 @@ def errors(case: BenchCase, out: MethodOutput, ref: MethodOutput) -> dict:
 
 
 def time_method(function, case, setting, repeats: int, budget_s: float = 2.0, min_total_s: float = 0.2,
-                max_runs: int = 50):
+                max_runs: int = 50, count: list | None = None):
     """Median wall time [s] of at least ``repeats`` runs, more (up to ``max_runs``) while the
-    total stays under ``min_total_s``; a single run if the first takes more than ``budget_s``."""
+    total stays under ``min_total_s``; a single run if the first takes more than ``budget_s``.
+    The number of runs is appended to ``count`` when given."""
     times = []
     out = None
     while True:
@@ -58,6 +62,8 @@ def time_method(function, case, setting, repeats: int, budget_s: float = 2.0, mi
             break
         if len(times) >= max(1, repeats) and sum(times) >= min_total_s:
             break
+    if count is not None:
+        count.append(len(times))
     return statistics.median(times), out
 
 
@@ -69,6 +75,46 @@ def warm_up() -> None:
     newmark_elastic_plastic(case, 0.5)
     rec = record_case("warm-up", np.sin(np.arange(50) * 0.3), 0.01, mu_static=0.05, stiffness_per_mass=4.9)
     exact_solver(rec)
+
+
+def warm_up_pairs() -> None:
+    """Load the planar engine's numba functions once (2-D cases)."""
+    t = np.arange(60) * 0.01
+    planar_solver(pair_case("warm-up", 3.0 * np.sin(6.0 * t), 2.0 * np.cos(5.0 * t), 0.01))
+
+
+def _failed_row(method: str, case, setting, note: str) -> dict:
+    """A row for a baseline that could not run here (e.g. openseespy not installed)."""
+    return {"method": method, "case": case.name, "setting": setting, "seconds": math.nan,
+            "error_peak_rel": math.nan, "error_residual_abs": math.nan, "error_zeta": math.nan,
+            "error_trajectory": math.nan, "n_events": -1, "note": note}
+
+
+def run_pair_case(case, quick: bool, repeats: int, progress: Callable[[str], None] | None = None) -> list[dict]:
+    """The rows of one 2-D case: ours and every baseline against the truth (the independent reference)."""
+    runs: list[int] = []
+    seconds, ours = time_method(planar_solver, case, None, repeats, count=runs)
+    truth_seconds, truth = time_method(reference_solver, case, None, 1)
+    rows = [{"method": PAIR_OURS, "case": case.name, "setting": "-", "seconds": seconds, "runs": runs[-1],
+             **pair_errors(ours, truth), "n_events": ours.n_events},
+            {"method": PAIR_TRUTH, "case": case.name, "setting": 1e-12, "seconds": truth_seconds, "runs": 1,
+             **pair_errors(truth, ours), "n_events": truth.n_events}]
+    if progress:
+        progress(f"{case.name}: ours {seconds * 1e3:.3g} ms, reference {truth_seconds:.3g} s, "
+                 f"peak error {rows[0]['error_peak_rel']:.1e}")
+    for method in pair_methods(quick):
+        available, why = method.available()
+        for setting in method.settings:
+            if not available:
+                rows.append(_failed_row(method.name, case, setting, why))
+                continue
+            seconds, out = time_method(method.function, case, setting, repeats, count=runs)
+            rows.append({"method": method.name, "case": case.name, "setting": setting, "seconds": seconds,
+                         "runs": runs[-1], **pair_errors(out, truth), "n_events": out.n_events})
+            if progress:
+                progress(f"  {method.name} {method.setting_name}={setting}: {seconds:.3g} s, "
+                         f"trajectory error {rows[-1]['error_trajectory']:.2e}")
+    return rows
 
 
 def run_bench(quick: bool = False, records_dir=None, repeats: int | None = None,
@@ -91,8 +137,13 @@ def run_bench(quick: bool = False, records_dir=None, repeats: int | None = None,
 
         cases = bench_cases(quick, records_dir)
     warm_up()
+    if any(case.kind == "pair" for case in cases):
+        warm_up_pairs()
     rows = []
     for case in cases:
+        if case.kind == "pair":
+            rows.extend(run_pair_case(case, quick, repeats, progress))
+            continue
         seconds, ours = time_method(exact_solver, case, None, repeats)
         cross_name, cross_tol = CROSS_CHECK
         cross_seconds, cross = time_method(lambda c, tol: ivp_with_events(c, tol, "DOP853"), case, cross_tol, 1)
@@ -117,10 +168,11 @@ def run_bench(quick: bool = False, records_dir=None, repeats: int | None = None,
                     progress(f"  {method.name} {method.setting_name}={setting}: {seconds:.3g} s, "
                              f"trajectory error {rows[-1]['error_trajectory']:.2e}")
     pareto = pareto_summary(rows)
+    by_case = pareto_by_case(pareto)
     for row in rows:  # the ratios ride along on our rows too
-        if row["method"] == OURS:
-            by_case = pareto_by_case(pareto)[row["case"]]
-            row.update({k: v for k, v in by_case.items() if k.startswith(("speedup", "accuracy"))})
+        if row["method"] in OURS_METHODS and row["case"] in by_case:
+            row.update({k: v for k, v in by_case[row["case"]].items()
+                        if k.startswith(("speedup", "accuracy", "opensees"))})
     return rows, pareto
 
 
@@ -143,15 +195,21 @@ def pareto_summary(rows: list[dict], error_key: str = "error_trajectory") -> lis
     ``accuracy_gain_vs_fastest``: error of the fastest baseline over ours, with
     ``fastest_time_ratio`` its time over ours.  The DOP853 cross-check is left out of
     the baselines (its error and ours are the same number, their discrepancy);
-    ``cross_check_time_ratio`` is its time over ours.
+    ``cross_check_time_ratio`` is its time over ours.  On 2-D cases, with OpenSees at
+    the record's dt: ``opensees_time_ratio`` (its median time over ours, in the same
+    run) and ``opensees_error_ratio`` / ``opensees_peak_error_ratio`` (its trajectory
+    and peak errors over ours, both against the truth); None where it did not run.
+    A case without any baseline that ran is left out.
     """
     summary = []
     for case in dict.fromkeys(r["case"] for r in rows):
-        ours = next(r for r in rows if r["case"] == case and r["method"] == OURS)
-        # the cross-check is not a baseline: its error and ours are the same discrepancy
-        base = [r for r in rows if r["case"] == case and r["method"] not in (OURS, CROSS_CHECK[0])
+        ours = next(r for r in rows if r["case"] == case and r["method"] in OURS_METHODS)
+        # the cross-check / the truth is not a baseline: its error and ours are the same discrepancy
+        base = [r for r in rows if r["case"] == case and r["method"] not in OURS_METHODS + REFERENCE_METHODS
                 and math.isfinite(r[error_key])]
-        cross = [r for r in rows if r["case"] == case and r["method"] == CROSS_CHECK[0]]
+        if not base:
+            continue
+        cross = [r for r in rows if r["case"] == case and r["method"] in REFERENCE_METHODS]
         t0, e0 = ours["seconds"], ours[error_key]
         reach = [r for r in base if r[error_key] <= e0]
         reach_eng = [r for r in base if r[error_key] <= ENGINEERING_ERROR]
@@ -179,5 +237,21 @@ def pareto_summary(rows: list[dict], error_key: str = "error_trajectory") -> lis
             "most_accurate_error": most_accurate[error_key],
             "most_accurate_time_ratio": most_accurate["seconds"] / t0,
             "cross_check_time_ratio": cross[0]["seconds"] / t0 if cross else None,
+            **_opensees_ratios(rows, case, ours, error_key),
         })
     return summary
+
+
+def _opensees_ratios(rows: list[dict], case: str, ours: dict, error_key: str) -> dict:
+    """OpenSees at the record's dt against ours on one 2-D case (time and error ratios, same run)."""
+    if ours["method"] != PAIR_OURS:
+        return {}
+    theirs = [r for r in rows if r["case"] == case and r["method"] == OPENSEES
+              and r["setting"] == OPENSEES_HEADLINE_SETTING and math.isfinite(r[error_key])]
+    if not theirs:
+        return {"opensees_time_ratio": None, "opensees_error_ratio": None, "opensees_peak_error_ratio": None}
+    r = theirs[0]
+    return {"opensees_time_ratio": r["seconds"] / ours["seconds"],
+            "opensees_error_ratio": r[error_key] / ours[error_key],
+            "opensees_peak_error_ratio": r["error_peak_rel"] / ours["error_peak_rel"],
+            "opensees_runs": r.get("runs"), "ours_runs": ours.get("runs")}

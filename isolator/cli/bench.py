@@ -17,12 +17,14 @@ def bench(
     out: str = typer.Option("reports/bench", "--out", help="Folder for bench.csv, bench_pareto.csv, bench.json, "
                                                             "bench.md and bench.png."),
     records: str = typer.Option("../shared/records", "--records", help="Folder of the records of the bench "
-                                "(at2/RSN1044_NORTHR_NWH360.AT2, … as in ../shared/records)."),
+                                "(at2/RSN1044_NORTHR_NWH360.AT2, pairs/superstitionhills1987_PTS/…, "
+                                "as in ../shared/records)."),
     repeats: int = typer.Option(None, "--repeats", min=1, help="Runs per timing (median); default 3 quick, 5 full."),
 ) -> None:
-    """Speed against error: our exact solver against fixed-step, Newmark and solve_ivp methods.
+    """Speed against error: our exact solver against fixed-step, Newmark, solve_ivp and OpenSees.
 
-    Runs the harmonic cases of every configuration and friction-pendulum records, times
+    Runs the harmonic cases of every configuration, friction-pendulum records and real
+    pairs in 2-D (against OpenSees' singleFPBearing when openseespy imports), times
     every method (median of several runs, in this process) and measures the errors of
     peak and residual displacement, slip-time ratio and trajectory; writes the table
     (CSV, JSON, Markdown) and a log error / log time plot to --out.
@@ -52,6 +54,8 @@ def bench(
     cases = bench_module.bench_cases(quick, records_dir)
     if not any(case.kind == "record" for case in cases):
         typer.echo(f"note: none of the bench records in {records_dir}: harmonic cases only", err=True)
+    elif not any(case.kind == "pair" for case in cases):
+        typer.echo(f"note: none of the bench pairs in {records_dir}/pairs: no 2-D cases", err=True)
     rows, pareto = bench_module.run_bench(quick=quick, repeats=repeats, cases=cases, progress=progress)
     wall_s = time.perf_counter() - started
     machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
@@ -64,13 +68,20 @@ def bench(
     except ImportError:  # pragma: no cover - both are dependencies
         pass
     command = "isolator bench" + (" --quick" if quick else "")
-    document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto}
+    summary = bench_module.opensees_summary(pareto)
+    try:
+        load = os.getloadavg()
+        machine["load_average_1_5_15"] = [round(x, 2) for x in load]
+    except OSError:  # pragma: no cover - not on every platform
+        pass
+    document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto,
+                "summary_2d": summary}
     try:
         write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
         write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))
         write_text_atomically(out_dir / "bench.json", dumps(document, indent=1))
         write_text_atomically(out_dir / "bench.md", bench_module.pareto_markdown(pareto) + "\n"
-                              + bench_module.rows_markdown(rows))
+                              + bench_module.rows_markdown(rows) + "".join(f"\n{line}\n" for line in summary))
         with atomic_path(out_dir / "bench.png") as temporary:
             bench_module.plot(rows, temporary)
     except OSError as err:
@@ -80,5 +91,7 @@ def bench(
         return
     typer.echo(bench_module.pareto_markdown(pareto))
     typer.echo(bench_module.rows_markdown(rows))
+    for line in summary:
+        typer.echo(line)
     typer.echo(f"{len(rows)} runs in {wall_s:.1f} s on {machine['processor']} ({machine['cpus']} CPUs); "
                f"written to {out_dir}/bench.csv, bench_pareto.csv, bench.json, bench.md, bench.png")

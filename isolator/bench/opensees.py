@@ -1,0 +1,170 @@
+"""The OpenSees baseline of the 2-D bench: openseespy's coupled friction pendulum (``singleFPBearing``).
+
+Ported from ``benchmarks/opensees_pair.py``.  A 3-D model (ndm 3, ndf 6): two
+coincident nodes joined by a ``singleFPBearing`` (Reff = R, the usual elastic
+stiffness before sliding kInit = µW/u_y with u_y = 0.5 mm, a stiff elastic vertical
+material), gravity applied statically, then the horizontal components (and the
+vertical one, when the case has it) as ``UniformExcitation`` patterns; Newmark
+(γ = 1/2, β = 1/4) with Newton, at the record's dt or a fraction of it, in one
+``analyze`` call (a step that does not converge is redone in halves, as in the
+OpenSees examples).  Friction: ``frictionModel Coulomb`` (constant µ) or
+``VelDependent`` (µ(v) = µ_fast − (µ_fast − µ_slow) e^{−a v}, the same law as ours).
+
+The error of this model is mostly the element's own formulation (elastic stick
+branch, its large-displacement geometry), not its time step: docs/planar.md shows it
+does not shrink with a 10× smaller step nor a 100× stiffer kInit.
+
+openseespy is optional (``pip install "isolator[bench]"``); :func:`opensees_available`
+says whether it imports here, and why not.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+#: stick displacement of the bearing's elastic branch, kInit = µW/u_y [m] (OpenSees examples use ~0.5 mm)
+OPENSEES_YIELD_DISPLACEMENT_M = 5e-4
+#: stiffness of the vertical material per unit weight [1/m]: a static deflection of 0.1 µm
+VERTICAL_STIFFNESS_PER_WEIGHT = 1e7
+#: guard on the number of analyze() restarts after non-converged steps
+MAX_RESTARTS = 100000
+
+
+class OpenSeesUnavailable(RuntimeError):
+    """openseespy does not import here (not installed, or its shared libraries are missing)."""
+
+
+def opensees_available() -> tuple[bool, str]:
+    """(True, "") when ``openseespy.opensees`` imports, else (False, the reason)."""
+    try:
+        import openseespy.opensees  # noqa: F401
+    except ImportError:
+        return False, "openseespy not installed"
+    except RuntimeError as exc:  # openseespy raises RuntimeError when libblas/liblapack are missing
+        return False, f"openseespy does not load ({exc})"
+    return True, ""
+
+
+def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, radius_m: float,
+                  mu_slow: float | None = None, mu_fast: float | None = None, rate_s_per_m: float | None = None,
+                  gravity_m_s2: float = 9.80665, yield_m: float = OPENSEES_YIELD_DISPLACEMENT_M,
+                  substeps: int = 1) -> np.ndarray:
+    """Relative displacement history (N, 2) [m] of a single friction pendulum in OpenSees.
+
+    Parameters
+    ----------
+    dt_s : float
+        Sample interval of the record [s].
+    ax_m_s2, ay_m_s2, az_m_s2 : array_like
+        Ground acceleration [m/s²] (vertical up positive, optional).
+    mu : float
+        Coulomb friction coefficient [-] (when ``mu_slow`` is None).
+    radius_m : float
+        Effective radius of the pendulum [m].
+    mu_slow, mu_fast, rate_s_per_m : float, optional
+        Velocity-dependent friction (OpenSees ``VelDependent``), [-], [-], [s/m].
+    yield_m : float
+        Elastic displacement before sliding [m] (kInit = µW/yield_m).
+    substeps : int
+        OpenSees steps per sample interval.
+
+    Raises
+    ------
+    OpenSeesUnavailable
+        When openseespy does not import.
+    RuntimeError
+        When OpenSees does not converge even at 1e-8 of the step.
+    """
+    ok, why = opensees_available()
+    if not ok:
+        raise OpenSeesUnavailable(why)
+    import openseespy.opensees as ops
+
+    ax = np.asarray(ax_m_s2, dtype=float)
+    ay = np.asarray(ay_m_s2, dtype=float)
+    mass = 1.0
+    weight = mass * gravity_m_s2
+    ops.wipe()
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    ops.node(1, 0.0, 0.0, 0.0)
+    ops.node(2, 0.0, 0.0, 0.0, "-mass", mass, mass, mass, 0.0, 0.0, 0.0)
+    ops.fix(1, 1, 1, 1, 1, 1, 1)
+    ops.fix(2, 0, 0, 0, 1, 1, 1)
+    ops.uniaxialMaterial("Elastic", 1, VERTICAL_STIFFNESS_PER_WEIGHT * weight)  # stiff vertical spring
+    ops.uniaxialMaterial("Elastic", 2, 0.0)
+    if mu_slow is None:
+        ops.frictionModel("Coulomb", 1, mu)
+    else:
+        ops.frictionModel("VelDependent", 1, mu_slow, mu_fast, rate_s_per_m)
+    k_init = (mu if mu_slow is None else mu_slow) * weight / yield_m
+    ops.element("singleFPBearing", 1, 1, 2, 1, radius_m, k_init, "-P", 1, "-T", 2, "-My", 2, "-Mz", 2,
+                "-orient", 0, 0, 1, 1, 0, 0)
+    ops.timeSeries("Linear", 1)
+    ops.pattern("Plain", 1, 1)
+    ops.load(2, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
+    ops.system("BandGeneral")
+    ops.numberer("Plain")
+    ops.constraints("Plain")
+    ops.test("NormDispIncr", 1e-12, 25)
+    ops.integrator("LoadControl", 0.1)
+    ops.algorithm("Newton")
+    ops.analysis("Static")
+    ops.analyze(10)
+    ops.loadConst("-time", 0.0)
+    ops.wipeAnalysis()
+    ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *ax.tolist())
+    ops.timeSeries("Path", 3, "-dt", dt_s, "-values", *ay.tolist())
+    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
+    ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
+    if az_m_s2 is not None:
+        ops.timeSeries("Path", 4, "-dt", dt_s, "-values", *np.asarray(az_m_s2, dtype=float).tolist())
+        ops.pattern("UniformExcitation", 4, 3, "-accel", 4)
+    ops.system("BandGeneral")
+    ops.numberer("Plain")
+    ops.constraints("Plain")
+    ops.test("NormDispIncr", 1e-10, 25)
+    ops.integrator("Newmark", 0.5, 0.25)
+    ops.algorithm("Newton")
+    ops.analysis("Transient")
+    try:
+        with tempfile.TemporaryDirectory() as folder:
+            path = str(Path(folder) / "disp.out")
+            ops.recorder("Node", "-file", path, "-time", "-precision", 17, "-node", 2, "-dof", 1, 2, "disp")
+            _analyze_record(ops, dt_s, ax.size, substeps)
+            ops.remove("recorders")
+            rows = np.loadtxt(path, ndmin=2)
+    finally:
+        ops.wipe()
+    index = np.rint(rows[:, 0] / dt_s).astype(int)
+    on_sample = (np.abs(rows[:, 0] - index * dt_s) < 1e-9 * dt_s) & (index >= 0) & (index < ax.size)
+    out = np.zeros((ax.size, 2))
+    out[index[on_sample]] = rows[on_sample, 1:3]
+    return out
+
+
+def _analyze_record(ops, dt_s: float, n_samples: int, substeps: int) -> None:
+    """The whole record in one analyze() call; a failing step is redone in halves from where it stopped."""
+    t_end = (n_samples - 1) * dt_s
+    for _ in range(MAX_RESTARTS):
+        if ops.getTime() >= t_end - 1e-9 * dt_s:
+            return
+        remaining = round((t_end - ops.getTime()) / dt_s)
+        on_sample = abs(ops.getTime() / dt_s - round(ops.getTime() / dt_s)) < 1e-9
+        if remaining >= 1 and on_sample and ops.analyze(remaining * substeps, dt_s / substeps) == 0:
+            return
+        step = dt_s / substeps
+        while ops.analyze(1, step) != 0:
+            step *= 0.5
+            if step < 1e-8 * dt_s:
+                raise RuntimeError(f"OpenSees did not converge near t = {ops.getTime():.3f} s")
+        # finish the sample interval in steps of the size that converged
+        next_sample = (math.floor(ops.getTime() / dt_s + 1e-9) + 1) * dt_s
+        for _ in range(math.ceil(dt_s / step) + 2):
+            if ops.getTime() >= next_sample - 1e-9 * dt_s:
+                break
+            ops.analyze(1, min(step, next_sample - ops.getTime()))
+    raise RuntimeError(f"OpenSees: more than {MAX_RESTARTS} restarts")
