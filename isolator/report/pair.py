@@ -17,7 +17,6 @@ from pathlib import Path
 import numpy as np
 
 from isolator.atomic import atomic_path
-from isolator.report.figures import _mpl
 from isolator.report.pair_figures import pair_response_page
 from isolator.report.pdf import _caption, _table, _tail, fmt
 from isolator.report.pdf import _page as pdf_page
@@ -27,7 +26,7 @@ from isolator.units import STANDARD_GRAVITY
 PAGE_TITLES = ("1  Summary (bidirectional)", "2  Ground motion", "3  Isolator response in the plane")
 
 
-def _page(plt, number: int, subtitle: str):
+def _page(number: int, subtitle: str):
     return pdf_page(number, subtitle, titles=PAGE_TITLES)
 
 
@@ -47,8 +46,8 @@ class _Planar:
         self.peak_displacement_m = response.peak_displacement_m
 
 
-def _summary_page(plt, analysis, numbers: dict, label: str, command: str):
-    fig = _page(plt, 1, label)
+def _summary_page(analysis, numbers: dict, label: str, command: str):
+    fig = _page(1, label)
     d, results, record = analysis.design, {**numbers, **numbers["engineering"]}, numbers["record"]
     fig.text(0.05, 0.935, f"Model: {numbers['model']}", fontsize=11, weight="bold", va="top")
     fig.text(0.05, 0.915, textwrap.fill(f"Why: {numbers['model_reason']}.", 110), fontsize=8.5, va="top")
@@ -103,8 +102,8 @@ def _summary_page(plt, analysis, numbers: dict, label: str, command: str):
     return fig
 
 
-def _ground_page(plt, analysis, label: str):
-    fig = _page(plt, 2, label)
+def _ground_page(analysis, label: str):
+    fig = _page(2, label)
     parts = analysis.components
     axes = fig.subplots(len(parts), 1, sharex=True)
     axes = np.atleast_1d(axes)
@@ -142,7 +141,6 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
     """
     from matplotlib.backends.backend_pdf import PdfPages
 
-    plt = _mpl()
     pdf_path = Path(pdf_path)
     numbers = analysis.to_dict()
     first = next(iter(analysis.components.values()))
@@ -154,10 +152,9 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
         labels = (labels[0], "Y (zero)")
     with atomic_path(pdf_path) as tmp_pdf:
         with PdfPages(tmp_pdf) as pdf:
-            for fig in (_summary_page(plt, analysis, numbers, label, command), _ground_page(plt, analysis, label)):
+            for fig in (_summary_page(analysis, numbers, label, command), _ground_page(analysis, label)):
                 pdf.savefig(fig)
-                plt.close(fig)
-            fig = _page(plt, 3, label)
+            fig = _page(3, label)
             fig.subplots_adjust(left=0.1, right=0.96, top=0.93, bottom=0.08, hspace=0.45, wspace=0.32)
             pair_response_page(fig, _Planar(analysis.response), analysis.design.mass_kg,
                                capacity_m=analysis.design.displacement_capacity_m, labels=labels)
@@ -166,7 +163,6 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
                           "design gives one.  Middle: resultant |X| and each component.  Bottom: isolator force "
                           "(−M × absolute acceleration of the mass) against displacement, in each direction.")
             pdf.savefig(fig)
-            plt.close(fig)
             info = pdf.infodict()
             info["Title"] = f"isolator bidirectional review: {label}"
     numbers["pdf"] = str(pdf_path)

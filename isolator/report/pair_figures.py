@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from isolator.report.figures import _mpl
+from isolator.report.figures import new_figure
 
 
 def resultant(values: np.ndarray) -> np.ndarray:
@@ -100,8 +100,7 @@ def pair_response_page(fig, response, mass_kg: float, *, capacity_m: float | Non
 
 def pair_response_figure(response, mass_kg: float, *, capacity_m: float | None = None, labels=("X", "Y")):
     """A stand-alone A4 figure of :func:`pair_response_page` (for a PNG or the report)."""
-    plt = _mpl()
-    fig = plt.figure(figsize=(8.27, 11.69))
+    fig = new_figure(figsize=(8.27, 11.69))
     fig.subplots_adjust(left=0.1, right=0.96, top=0.95, bottom=0.06, hspace=0.45, wspace=0.32)
     pair_response_page(fig, response, mass_kg, capacity_m=capacity_m, labels=labels)
     return fig

@@ -29,8 +29,8 @@ def short(text, width: int) -> str:
     return text if len(text) <= width else text[: width - 1] + "…"
 
 
-def _page(plt, number: int, subtitle: str):
-    fig = plt.figure(figsize=A4_IN)
+def _page(number: int, subtitle: str):
+    fig = figures.new_figure(figsize=A4_IN)
     fig.text(0.05, 0.975, TITLES[number - 1], fontsize=13, weight="bold", va="top")
     fig.text(0.95, 0.952, short(subtitle, 95), fontsize=7.5, va="top", ha="right", color="0.35")
     return fig
@@ -40,8 +40,8 @@ def _caption(fig, text: str, y: float = 0.012) -> None:
     fig.text(0.05, y, textwrap.fill(text, 150), fontsize=7.0, va="bottom", ha="left", color="0.15")
 
 
-def _checks_page(plt, r: dict, command: str):
-    fig = _page(plt, 1, f"{r['design']['name']} | {r['target']['name']}")
+def _checks_page(r: dict, command: str):
+    fig = _page(1, f"{r['design']['name']} | {r['target']['name']}")
     y = 0.935
     lines = [("Design", short(r["design"]["name"], 80) + f"  ({short(Path(r['design']['source']).name, 40)})"),
              ("Target", short(r["target"]["name"], 90)),
@@ -105,8 +105,8 @@ def _checks_page(plt, r: dict, command: str):
     return fig
 
 
-def _spectra_page(plt, review, r: dict):
-    fig = _page(plt, 2, r["target"]["name"])
+def _spectra_page(review, r: dict):
+    fig = _page(2, r["target"]["name"])
     s = review.spectra
     ax = fig.add_axes([0.1, 0.47, 0.84, 0.43])
     lo, hi = r["period_range_s"]
@@ -140,8 +140,8 @@ def _spectra_page(plt, review, r: dict):
     return fig
 
 
-def _pairs_page(plt, r: dict):
-    fig = _page(plt, 3, r["design"]["name"])
+def _pairs_page(r: dict):
+    fig = _page(3, r["design"]["name"])
     bounds = [b for b in ("lower", "upper") if b in r["bounds"]]
     columns = [(0.05, "pair", None), (0.33, "SF", None)]
     x = 0.39
@@ -196,8 +196,8 @@ def _pairs_page(plt, r: dict):
     return fig
 
 
-def _orbits_page(plt, review, r: dict):
-    fig = _page(plt, 4, r["design"]["name"])
+def _orbits_page(review, r: dict):
+    fig = _page(4, r["design"]["name"])
     cap = r["design"]["displacement_capacity_m"]
     theta = np.linspace(0, 2 * np.pi, 200)
     for i, b in enumerate(("lower", "upper")):
@@ -237,8 +237,8 @@ def _orbits_page(plt, review, r: dict):
     return fig
 
 
-def _paper_page(plt, review, r: dict):
-    fig = _page(plt, 5, r["design"]["name"])
+def _paper_page(review, r: dict):
+    fig = _page(5, r["design"]["name"])
     fig.text(0.05, 0.93, textwrap.fill(
         "These are the measures of the paper behind isolator (Nicolas 2017), shown for context.  They are NOT "
         "design checks.  A = peak relative displacement / A0 with A0 = PGV²/PGA of the (resultant, scaled) ground "
@@ -290,17 +290,15 @@ def write_review_pdf(review, pdf_path, *, command: str = "") -> dict:
     """Write the review PDF and its JSON (same name, ``.json``) atomically; return the JSON dict."""
     from matplotlib.backends.backend_pdf import PdfPages
 
-    plt = figures._mpl()
     r = review.to_dict()
     r["command"] = command
     pdf_path = Path(pdf_path)
     with atomic_path(pdf_path) as tmp, PdfPages(tmp) as pdf:
-        for make in (lambda: _checks_page(plt, r, command), lambda: _spectra_page(plt, review, r),
-                     lambda: _pairs_page(plt, r), lambda: _orbits_page(plt, review, r),
-                     lambda: _paper_page(plt, review, r)):
+        for make in (lambda: _checks_page(r, command), lambda: _spectra_page(review, r),
+                     lambda: _pairs_page(r), lambda: _orbits_page(review, r),
+                     lambda: _paper_page(review, r)):
             fig = make()
             pdf.savefig(fig)
-            plt.close(fig)
         info = pdf.infodict()
         info["Title"] = f"isolator review: {r['design']['name']}"
     r["pdf"] = str(pdf_path)
