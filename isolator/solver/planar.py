@@ -102,6 +102,9 @@ class PairResponse:
     model_reason: str
     configuration: str = "1"
     n_steps: int = 0
+    #: where the integration work went: rejected steps, steps in the START and LOG forms, Cartesian
+    #: steps held to the stability bound, DOP853 sub-steps landing on instants and locating peaks
+    work: dict | None = None
 
     @property
     def event_names(self) -> list[str]:
@@ -406,6 +409,10 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         model_reason=reason,
         configuration=classify_configuration(prm[_rk.P_C], kappa_nominal),
         n_steps=int(summary[_pk.S_N_STEPS]),
+        work={name: int(summary[j]) for name, j in (
+            ("rejected", _pk.S_N_REJECTED), ("start", _pk.S_STEPS_START), ("log", _pk.S_STEPS_LOG),
+            ("stability_limited", _pk.S_STEPS_LIMITED), ("land_substeps", _pk.S_SUB_LAND),
+            ("peak_substeps", _pk.S_SUB_PEAK))},
     )
 
 

@@ -165,8 +165,11 @@ def peak_value(which, mode, y):
 
 
 @njit(cache=True)
-def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol):
-    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −."""
+def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol, work):
+    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −.
+
+    ``work[1]`` counts the DOP853 sub-steps taken.
+    """
     lo = 0.0
     hi = 1.0
     glo = g0
@@ -178,6 +181,7 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
         ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        work[1] += 1
         if not ok:
             hi = theta
             theta = 0.5 * (lo + hi)
@@ -203,11 +207,12 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol
 
 
 @njit(cache=True)
-def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol):
+def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol, work):
     """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
 
     The component must be monotone on the step, below the target at θ = 0 and
     at or beyond it at θ = 1 (sign-adjusted); the state at θ is left in ``yb``/``fb``.
+    ``work[0]`` counts the DOP853 sub-steps taken.
     """
     lo = 0.0
     hi = 1.0
@@ -226,6 +231,7 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
         ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        work[0] += 1
         if not ok:
             hi = theta
             continue
@@ -247,4 +253,5 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
     # finish on the upper end of the bracket: the crossing has happened there
     theta = hi
     dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    work[0] += 2
     return theta

@@ -83,7 +83,13 @@ S_E_V = 8
 S_N_EVENTS = 9
 S_STATUS = 10
 S_N_STEPS = 11
-S_SIZE = 12
+S_N_REJECTED = 12  #: rejected steps (error or domain)
+S_STEPS_START = 13  #: steps in the START form (after a break-away)
+S_STEPS_LOG = 14  #: steps in the LOG form (approach to a stop)
+S_STEPS_LIMITED = 15  #: Cartesian steps shortened to the stability bound (slow sliding)
+S_SUB_LAND = 16  #: DOP853 sub-steps spent landing on an instant (sample, r_switch, re-stop)
+S_SUB_PEAK = 17  #: DOP853 sub-steps spent locating peaks inside steps
+S_SIZE = 18
 
 # scales layout (built by isolator.solver.planar)
 SC_R_MIN = 0  #: speed at which the LOG form hands over to the closed-form finish [m/s]
@@ -195,6 +201,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     k = np.zeros((13, NSTATE))
     atol = np.full(NSTATE, np.inf)
     frc = np.zeros(7)
+    work = np.zeros(2)
     phase = PH_STUCK
     x = 0.0
     h_sugg = -1.0
@@ -211,6 +218,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_ev = 0
     status = 0
     n_steps = 0
+    n_rej = 0
+    n_start = 0
+    n_log = 0
+    n_lim = 0
     failed_at = -1
     out_x[0, 0] = 0.0
     out_x[0, 1] = 0.0
@@ -329,7 +340,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     ds = max(ds_sugg, s_end - x)
                     ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                     n_steps += 1
+                    n_log += 1
                     if not ok or err > 1.0:
+                        n_rej += 1
                         ds_sugg = ds * (0.25 if not ok else step_factor(err))
                         if abs(ds_sugg) < 1e-9:
                             y[2] *= r
@@ -341,7 +354,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
@@ -352,7 +365,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     if g0 > 0.0 >= g1 and max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + \
                             r * (ynew[7] - y[7]) > peak_x:
                         peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, k, ytmp, yb, fb,
-                                                          atol, rtol))
+                                                          atol, rtol, work))
                     slip += ynew[7] - y[7]
                     x += ds
                     y[:] = ynew
@@ -426,17 +439,23 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if phase == PH_SLIDE:
                     # slow sliding: the direction relaxes at the rate ~ µn/|V|; DOP853 is
                     # stable for h·rate up to ≈ 6, so stay inside rather than be rejected
-                    h = min(h, _STABLE * r / max(fscale, 1e-300))
+                    h_stable = _STABLE * r / max(fscale, 1e-300)
+                    if h_stable < h:
+                        h = h_stable
+                        n_lim += 1
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                 n_steps += 1
+                if mode == START:
+                    n_start += 1
                 if not ok or err > 1.0:
+                    n_rej += 1
                     h_sugg = h * (0.25 if not ok else step_factor(err))
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
@@ -453,7 +472,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
                     # the slaved direction is accurate only up to r_switch: end the step there
-                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
@@ -466,13 +485,13 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                                 peak_value(1, mode, y), peak_value(1, mode, ynew))
                             if bound > peak_x:
                                 peak_x = max(peak_x, locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
-                                                                  yb, fb, atol, rtol))
+                                                                  yb, fb, atol, rtol, work))
                         else:
                             bound = max(peak_value(1, mode, y), peak_value(1, mode, ynew)) + h * (
                                 abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
                             if bound > peak_v:
                                 peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
-                                                                  yb, fb, atol, rtol))
+                                                                  yb, fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
@@ -531,3 +550,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     summary[S_N_EVENTS] = n_ev
     summary[S_STATUS] = status
     summary[S_N_STEPS] = n_steps
+    summary[S_N_REJECTED] = n_rej
+    summary[S_STEPS_START] = n_start
+    summary[S_STEPS_LOG] = n_log
+    summary[S_STEPS_LIMITED] = n_lim
+    summary[S_SUB_LAND] = work[0]
+    summary[S_SUB_PEAK] = work[1]
