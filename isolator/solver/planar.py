@@ -43,10 +43,14 @@ from isolator.units import STANDARD_GRAVITY
 #: Event words of the planar engine: the 1-D vocabulary plus uplift and landing.
 PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 
-#: Relative tolerance of the DOP853 steps (see docs/planar.md for the achieved error).
-DEFAULT_RTOL = 1e-12
+#: Relative tolerance of the DOP853 steps: peak and residual within ~1e-10 of the reference, the
+#: issue asks 1e-9 (see docs/planar.md for the measured error)
+DEFAULT_RTOL = 1e-10
 #: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample
 R_SWITCH_FACTOR = 1e-4
+#: LOG form → finish of a stop at constant deceleration, as a fraction of the same speed (the finish
+#: errs by ~R_MIN_FACTOR³ of that speed times the sample step in X: far below the tolerance)
+R_MIN_FACTOR = 1e-7
 
 _STATUS_MESSAGES = (
     (_pk.STATUS_CHATTER, (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
@@ -345,7 +349,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         t_scale = min(t_scale, 1.0 / prm[_rk.P_C])
     vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * t_scale
     scales = np.empty(_pk.SC_SIZE)
-    scales[_pk.SC_R_MIN] = 1e-13 * vref
+    scales[_pk.SC_R_MIN] = R_MIN_FACTOR * vref
     scales[_pk.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
     scales[_pk.SC_X_FLOOR] = 1e-3 * vref * t_scale
     scales[_pk.SC_V_FLOOR] = 1e-3 * vref

@@ -12,8 +12,9 @@ reading:
   break-away (or uplift) instant — no stepping while stuck;
 * a start from rest runs in the START form, then in Cartesian form; a decelerating
   block whose predicted stop is within about two steps switches to the LOG form and
-  reaches V = 0 exactly (to r = ``r_min``, then the last 1e-13 of the speed in
-  closed form); there the stick test decides: stick, or restart in the direction
+  reaches V = 0 exactly (to r = ``r_min``, then the last bit at constant
+  deceleration, an error of order r_min³ in X and the energies; the stop instant τ
+  is error-controlled like X); there the stick test decides: stick, or restart in the direction
   of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
 * peaks of |X| and |V| between step ends are located (secant on X·V and V·A with
   DOP853 sub-steps from the step start);
@@ -338,6 +339,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                 else:
                     ds = max(ds_sugg, s_end - x)
+                    atol[7] = rtol * hi  # the stop instant is error-controlled too
                     ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                     n_steps += 1
                     n_log += 1
@@ -380,8 +382,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 r = math.exp(x)
                 rdot = r / f[7]
                 dtt = min(r / (-rdot), target - tau)
-                axx, ayy, nn, _, _, _, _ = forcing(tau, y[0], y[1], prm, frc)
+                axx, ayy, nn, _, kdot, _, _ = forcing(tau, y[0], y[1], prm, frc)
                 half = 0.5 * r * dtt
+                # the work of the vertical motion ½κ'|X|² dt, at the mid-point position
+                y[4] += 0.5 * kdot * ((y[0] + 0.5 * half * y[2]) ** 2 + (y[1] + 0.5 * half * y[3]) ** 2) * dtt
                 y[0] += half * y[2]
                 y[1] += half * y[3]
                 y[4] -= (axx * y[2] + ayy * y[3]) * half
@@ -444,6 +448,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         h = h_stable
                         n_lim += 1
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
+                atol[7] = np.inf
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                 n_steps += 1
