@@ -46,8 +46,10 @@ PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 #: Relative tolerance of the DOP853 steps: peak and residual within ~1e-10 of the reference, the
 #: issue asks 1e-9 (see docs/planar.md for the measured error)
 DEFAULT_RTOL = 1e-10
-#: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample
-R_SWITCH_FACTOR = 1e-4
+#: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample;
+#: from R_SWITCH_LO_FACTOR on, the hand-over comes earlier where the slaved direction lags F by > 1e-3
+R_SWITCH_FACTOR = 1e-3
+R_SWITCH_LO_FACTOR = 1e-4
 #: LOG form → finish of a stop at constant deceleration, as a fraction of the same speed (the finish
 #: errs by ~R_MIN_FACTOR³ of that speed times the sample step in X: far below the tolerance)
 R_MIN_FACTOR = 1e-7
@@ -351,6 +353,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     scales = np.empty(_pk.SC_SIZE)
     scales[_pk.SC_R_MIN] = R_MIN_FACTOR * vref
     scales[_pk.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
+    scales[_pk.SC_R_SWITCH_LO] = R_SWITCH_LO_FACTOR * vref
     scales[_pk.SC_X_FLOOR] = 1e-3 * vref * t_scale
     scales[_pk.SC_V_FLOOR] = 1e-3 * vref
     refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)

@@ -114,10 +114,22 @@ def velocity(phase, x, tau, y, prm, frc):
         r = math.exp(x)
         return r * y[2], r * y[3]
     if phase == PH_START:
-        _, _, _, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+        _, _, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+        fr = friction_coefficient(abs(y[2]), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc, fr, prm[P_C])
         return y[2] * e1, y[2] * e2
     return y[2], y[3]
+
+
+@njit(cache=True)
+def start_lag(tau, y, prm, frc):
+    """|sin θ|, the angle by which the slaved (START form) velocity trails F [-]."""
+    _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    fm = math.hypot(fx, fy)
+    if fm == 0.0 or y[2] == 0.0:
+        return 0.0
+    v1, v2 = velocity(PH_START, 0.0, tau, y, prm, frc)
+    return abs(fx * v2 - fy * v1) / (fm * abs(y[2]))
 
 
 @njit(cache=True)
@@ -132,7 +144,8 @@ def transmitted(phase, x, tau, y, prm, frc):
     e1 = 0.0
     e2 = 0.0
     if phase == PH_START:
-        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+        fr0 = friction_coefficient(abs(y[2]), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc, fr0, c)
     elif r > 0.0:
         e1 = v1 / r
         e2 = v2 / r

@@ -40,6 +40,7 @@ from isolator.solver.planar_events import (
     locate_peak,
     peak_value,
     rate_of_peak,
+    start_lag,
     stuck_until,
     transmitted,
     velocity,
@@ -97,13 +98,16 @@ SC_R_MIN = 0  #: speed at which the LOG form hands over to the closed-form finis
 SC_R_SWITCH = 1  #: speed at which START hands over to Cartesian form [m/s]
 SC_X_FLOOR = 2  #: displacement floor of the absolute tolerance [m]
 SC_V_FLOOR = 3  #: speed floor of the absolute tolerance [m/s]
-SC_SIZE = 4
+SC_R_SWITCH_LO = 4  #: lowest START → Cartesian hand-over speed (where the slaved direction lags much) [m/s]
+SC_SIZE = 5
 
 #: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
 _ENTER = 0.02
 _LEAVE = 0.01
 #: h·(|F| + µn)/|V| kept below this in Cartesian form (DOP853's real stability interval is ≈ [−6, 0])
 _STABLE = 12.0
+#: START form kept above SC_R_SWITCH_LO only while the slaved direction lags F by less than this [rad]
+_LAG_MAX = 1e-3
 
 
 @njit(cache=True)
@@ -209,6 +213,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     ds_sugg = -0.5
     r_min = scales[SC_R_MIN]
     r_switch = scales[SC_R_SWITCH]
+    r_switch_lo = scales[SC_R_SWITCH_LO]
     s_end = math.log(r_min)
     peak_x = 0.0
     peak_v = 0.0
@@ -417,7 +422,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             phase = PH_STUCK
                             break
                         continue
-                    if r < 0.5 * r_switch:
+                    if r < 0.5 * r_switch_lo:
                         # too slow for the Cartesian form (the direction is stiff): slaved-direction form
                         y[2] = r
                         y[3] = 0.0
@@ -507,7 +512,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 peak_x = max(peak_x, math.hypot(y[0], y[1]))
                 peak_v = max(peak_v, peak_value(1, mode, y))
                 x = tau
-                if phase == PH_START and y[2] >= r_switch:
+                if phase == PH_START and (y[2] >= r_switch or (
+                        y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > _LAG_MAX)):
                     v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
                     y[2] = v1
                     y[3] = v2

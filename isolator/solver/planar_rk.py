@@ -112,12 +112,15 @@ def forcing(tau, x1, x2, prm, frc):
 
 
 @njit(cache=True)
-def start_direction(r, x1, x2, fx, fy, kap, kdot, frc):
-    """Direction of a slow (START form) velocity: F/|F| lagging by θ, sin θ = ω_F r/|F|.
+def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
+    """Direction of a slow (START form) velocity: F/|F| lagging by θ.
 
-    The velocity direction relaxes onto F at the rate |F|/r; while F turns at
-    ω_F = (F × F')/|F|² the direction trails it by the angle at which the two rates
-    balance (the slow manifold of de/dt = (F − (e·F)e)/r, first order in r).
+    The velocity direction relaxes onto F at the rate |F|/r (θ' = ψ' − (|F|/r) sin θ,
+    ψ the direction of F); on the slow manifold, with the relaxation time
+    τ_r = r/|F| itself changing at τ_r' = ṙ/|F| − r|F|'/|F|², θ = τ_r ψ'/(1 + τ_r')
+    (exact for r growing linearly under a steadily turning F; the neglected terms
+    are O(τ_r² ψ'')).  ``fr`` is the friction force µ(r) n [m/s²] and ``c`` the
+    damping [1/s], which give ṙ ≈ |F| − fr − c r.
     """
     fm = math.hypot(fx, fy)
     if fm == 0.0:
@@ -127,7 +130,15 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc):
     # F' = −κ'X − κV − a_g' with V ≈ r F/|F|
     dfx = -kdot * x1 - kap * r * e1 - frc[1]
     dfy = -kdot * x2 - kap * r * e2 - frc[3]
-    sin_t = (e1 * dfy - e2 * dfx) / fm * r / fm
+    rdot = fm - fr - c * r
+    dfl = (e1 * dfx + e2 * dfy) / fm  # |F|'/|F|
+    psi1 = (e1 * dfy - e2 * dfx) / fm  # ψ'
+    # ψ'' from F'' = −2κ'V − κV', V ≈ r e, V' ≈ ṙ e (a_g, κ linear in the interval)
+    psi2 = -2.0 * psi1 * dfl  # the F'' terms are along e: no turning
+    tau_r = r / fm
+    # 1 + τ_r' = 1 + ṙ/|F| − τ_r |F|'/|F|, kept ≥ 1/2 (a fast re-stop)
+    one = max(1.0 + rdot / fm - tau_r * dfl, 0.5)
+    sin_t = tau_r * psi1 / one - tau_r * tau_r * psi2 / (one * (2.0 * one - 1.0 if one > 0.75 else 0.5))
     if sin_t > 0.5:
         sin_t = 0.5
     elif sin_t < -0.5:
@@ -168,8 +179,8 @@ def rhs(mode, x, y, prm, frc, d):
         return True
     if mode == START:
         r = y[2]
-        e1, e2 = start_direction(r, y[0], y[1], fx, fy, kap, kdot, frc)
         fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(r, y[0], y[1], fx, fy, kap, kdot, frc, fr, c)
         d[0] = r * e1
         d[1] = r * e2
         d[2] = e1 * fx + e2 * fy - fr - c * r
