@@ -45,6 +45,10 @@ import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _dop
 
+#: numba fast-math flags that keep NaN/inf semantics (the step tests for both): FMA contraction,
+#: reassociation, reciprocal division, no signed zeros
+_FAST = {"contract", "reassoc", "arcp", "nsz"}
+
 CARTESIAN = 0
 LOG = 1
 START = 2
@@ -147,7 +151,7 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
     return cos_t * e1 + sin_t * e2, -sin_t * e1 + cos_t * e2
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_FAST)
 def rhs(mode, x, y, prm, frc, d):
     """Derivative of the state in ``mode`` at independent variable ``x`` (into ``d``).
 
@@ -212,7 +216,7 @@ def rhs(mode, x, y, prm, frc, d):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_FAST)
 def dop853_step(mode, x, y, f0, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol):
     """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
 
