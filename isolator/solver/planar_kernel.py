@@ -228,6 +228,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_start = 0
     n_log = 0
     n_lim = 0
+    just_rejected = False
     failed_at = -1
     out_x[0, 0] = 0.0
     out_x[0, 1] = 0.0
@@ -351,6 +352,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     if not ok or err > 1.0:
                         n_rej += 1
                         ds_sugg = ds * (0.25 if not ok else step_factor(err))
+                        just_rejected = True
                         if abs(ds_sugg) < 1e-9:
                             y[2] *= r
                             y[3] *= r
@@ -380,7 +382,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     tau = y[7]
                     peak_x = max(peak_x, math.hypot(y[0], y[1]))
                     if not hit:
-                        ds_sugg = ds * step_factor(err)
+                        # no growth right after a rejection (Hairer & Wanner's facmax = 1)
+                        ds_sugg = ds * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
+                    just_rejected = False
                     if hit or x > s_end:
                         continue
                 # the stop: the last speed r_min in closed form (constant deceleration)
@@ -462,6 +466,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if not ok or err > 1.0:
                     n_rej += 1
                     h_sugg = h * (0.25 if not ok else step_factor(err))
+                    just_rejected = True
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
@@ -508,7 +513,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 slip += h
                 if phase == PH_FLIGHT:
                     upt += h
-                h_sugg = h * step_factor(err)
+                h_sugg = h * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
+                just_rejected = False
                 peak_x = max(peak_x, math.hypot(y[0], y[1]))
                 peak_v = max(peak_v, peak_value(1, mode, y))
                 x = tau
