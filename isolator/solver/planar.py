@@ -43,9 +43,9 @@ from isolator.units import STANDARD_GRAVITY
 #: Event words of the planar engine: the 1-D vocabulary plus uplift and landing.
 PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 
-#: Relative tolerance of the DOP853 steps: peak and residual within ~1e-10 of the reference, the
-#: issue asks 1e-9 (see docs/planar.md for the measured error)
-DEFAULT_RTOL = 1e-10
+#: Relative tolerance of the DOP853 steps: peak and residual within ~1e-10 of the reference (1e-10
+#: left 1e-9 on a non-uniform white-noise pair); the issue asks 1e-9 (docs/planar.md)
+DEFAULT_RTOL = 1e-11
 #: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample;
 #: from R_SWITCH_LO_FACTOR on, the hand-over comes earlier where the slaved direction lags F by > 1e-3
 R_SWITCH_FACTOR = 1e-3
