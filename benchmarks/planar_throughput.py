@@ -74,7 +74,8 @@ def main(argv=None) -> None:
     system = dict(mu_static=args.mu, radius_m=args.radius)
     print(f"friction pendulum R = {args.radius} m, µ = {args.mu}; median of {args.repeat} runs, one core")
     print(f"{'pair':28s} {'vert':>4s} {'samples':>8s} {'ms':>8s} {'Msamples/s':>10s} {'steps':>7s} "
-          f"{'rej':>5s} {'start':>5s} {'log':>5s} {'sub':>5s} {'events':>6s} {'sliding':>7s} {'us/step':>7s} {'peak mm':>8s}")
+          f"{'rej':>5s} {'start':>5s} {'log':>5s} {'sub':>5s} {'events':>6s} {'sliding':>7s} {'us/step':>7s} "
+          f"{'peak mm':>8s}")
     total_n = 0
     total_t = 0.0
     for folder in SOURCES:

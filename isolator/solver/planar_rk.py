@@ -24,9 +24,9 @@ integrated in one of three forms (``mode``), each regular where it is used:
   stop the static friction cannot hold).  The velocity direction is slaved to
   F (its relaxation rate |F|/r is unbounded as r → 0, an infinitely stiff mode),
   so the motion is integrated as r' = e·F − µ(r) n − c r, X' = r e with e on the
-  slow manifold (F/|F| trailing by sin θ = ω_F r/|F|, ω_F the turning rate of F;
-  :func:`start_direction`) until r reaches a small switch value, where the error of
-  that first-order direction is below the integration tolerance (measured in
+  slow manifold (F/|F| trailing by θ ≈ τ_r ψ'/(1 + τ_r'), τ_r = r/|F| and ψ' the
+  turning rate of F; :func:`start_direction`) until r reaches a switch value where
+  the error of that direction is below the integration tolerance (measured in
   docs/planar.md).
 
 Energies per unit mass are integrated with the motion (components 4–6): input
