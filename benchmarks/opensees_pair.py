@@ -10,7 +10,7 @@ Model (the same for both): a rigid mass on a single friction pendulum of radius 
 Coulomb friction µ, both horizontal components at once, no vertical.
 
 * **isolator** — :func:`isolator.solver.planar.simulate_pair` (DOP853 between exact
-  events, rtol 1e-12).
+  events, its default rtol, 1e-11).
 * **OpenSees** — openseespy, a 3-D model (ndm 3, ndf 6) with two coincident nodes and
   ``singleFPBearing`` (``frictionModel Coulomb``, Reff = R, its usual elastic
   stiffness before sliding kInit = µW/u_y with u_y = ``--yield-mm``, a stiff

@@ -7,7 +7,7 @@ Usage::
 Prints, for real pairs and the hard cases of tests/solver/test_planar.py, the relative
 error of the peak and residual resultant displacement and the largest difference of the
 sampled history (all relative to the reference peak), the engine at its default
-tolerance (rtol 1e-12).  docs/planar.md quotes its output.
+tolerance (rtol 1e-11).  docs/planar.md quotes its output.
 """
 
 from __future__ import annotations

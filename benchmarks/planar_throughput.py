@@ -8,8 +8,10 @@ For every pair in ../shared/records/pairs (both horizontals, trimmed to the shor
 one; and with the vertical where the station recorded one) it runs
 :func:`isolator.solver.planar.simulate_pair` ``--repeat`` times on one core and
 prints the median solver time (numba machine code already loaded), samples per
-second, the number of DOP853 steps and events, and the fraction of the record spent
-sliding.  docs/planar.md quotes its output.
+second, the number of DOP853 steps (and of them: rejected, in the START form after a
+break-away, in the LOG form approaching a stop; plus the sub-steps that land on
+instants and locate peaks), the events, the fraction of the record spent sliding and
+the solver time per DOP853 step or sub-step.  docs/planar.md quotes its output.
 """
 
 from __future__ import annotations
@@ -72,7 +74,8 @@ def main(argv=None) -> None:
     system = dict(mu_static=args.mu, radius_m=args.radius)
     print(f"friction pendulum R = {args.radius} m, µ = {args.mu}; median of {args.repeat} runs, one core")
     print(f"{'pair':28s} {'vert':>4s} {'samples':>8s} {'ms':>8s} {'Msamples/s':>10s} {'steps':>7s} "
-          f"{'events':>6s} {'sliding':>7s} {'peak mm':>8s}")
+          f"{'rej':>5s} {'start':>5s} {'log':>5s} {'sub':>5s} {'events':>6s} {'sliding':>7s} {'us/step':>7s} "
+          f"{'peak mm':>8s}")
     total_n = 0
     total_t = 0.0
     for folder in SOURCES:
@@ -83,8 +86,12 @@ def main(argv=None) -> None:
             total_n += ax.size
             total_t += seconds
             sliding = r.slip_time_s / (r.time_s[-1] - r.time_s[0])
+            w = r.work
+            sub = w["land_substeps"] + w["peak_substeps"]
+            per_step = 1e6 * seconds / (r.n_steps + sub) if r.n_steps + sub else float("nan")
             print(f"{folder:28s} {label:>4s} {ax.size:8d} {1e3 * seconds:8.2f} {ax.size / seconds / 1e6:10.3f} "
-                  f"{r.n_steps:7d} {r.n_events:6d} {sliding:7.1%} {1e3 * r.peak_displacement_m:8.2f}")
+                  f"{r.n_steps:7d} {w['rejected']:5d} {w['start']:5d} {w['log']:5d} {sub:5d} {r.n_events:6d} "
+                  f"{sliding:7.1%} {per_step:7.2f} {1e3 * r.peak_displacement_m:8.2f}")
     print(f"{'all':28s} {'':>4s} {total_n:8d} {1e3 * total_t:8.2f} {total_n / total_t / 1e6:10.3f}")
 
 

@@ -43,10 +43,16 @@ from isolator.units import STANDARD_GRAVITY
 #: Event words of the planar engine: the 1-D vocabulary plus uplift and landing.
 PLANAR_EVENT_NAMES = EVENT_NAMES + ("uplift", "landing")
 
-#: Relative tolerance of the DOP853 steps (see docs/planar.md for the achieved error).
-DEFAULT_RTOL = 1e-12
-#: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample
-R_SWITCH_FACTOR = 1e-4
+#: Relative tolerance of the DOP853 steps: peak and residual within ~1e-10 of the reference (1e-10
+#: left 1e-9 on a non-uniform white-noise pair); the issue asks 1e-9 (docs/planar.md)
+DEFAULT_RTOL = 1e-11
+#: START → Cartesian hand-over speed, as a fraction of the speed µs·g (or the PGA) gives in one sample;
+#: from R_SWITCH_LO_FACTOR on, the hand-over comes earlier where the slaved direction lags F by > 1e-3
+R_SWITCH_FACTOR = 1e-3
+R_SWITCH_LO_FACTOR = 1e-4
+#: LOG form → finish of a stop at constant deceleration, as a fraction of the same speed (the finish
+#: errs by ~R_MIN_FACTOR³ of that speed times the sample step in X: far below the tolerance)
+R_MIN_FACTOR = 1e-7
 
 _STATUS_MESSAGES = (
     (_pk.STATUS_CHATTER, (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
@@ -102,6 +108,9 @@ class PairResponse:
     model_reason: str
     configuration: str = "1"
     n_steps: int = 0
+    #: where the integration work went: rejected steps, steps in the START and LOG forms, Cartesian
+    #: steps held to the stability bound, DOP853 sub-steps landing on instants and locating peaks
+    work: dict | None = None
 
     @property
     def event_names(self) -> list[str]:
@@ -342,8 +351,9 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         t_scale = min(t_scale, 1.0 / prm[_rk.P_C])
     vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * t_scale
     scales = np.empty(_pk.SC_SIZE)
-    scales[_pk.SC_R_MIN] = 1e-13 * vref
+    scales[_pk.SC_R_MIN] = R_MIN_FACTOR * vref
     scales[_pk.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
+    scales[_pk.SC_R_SWITCH_LO] = R_SWITCH_LO_FACTOR * vref
     scales[_pk.SC_X_FLOOR] = 1e-3 * vref * t_scale
     scales[_pk.SC_V_FLOOR] = 1e-3 * vref
     refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)
@@ -406,6 +416,10 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         model_reason=reason,
         configuration=classify_configuration(prm[_rk.P_C], kappa_nominal),
         n_steps=int(summary[_pk.S_N_STEPS]),
+        work={name: int(summary[j]) for name, j in (
+            ("rejected", _pk.S_N_REJECTED), ("start", _pk.S_STEPS_START), ("log", _pk.S_STEPS_LOG),
+            ("stability_limited", _pk.S_STEPS_LIMITED), ("land_substeps", _pk.S_SUB_LAND),
+            ("peak_substeps", _pk.S_SUB_PEAK))},
     )
 
 

@@ -114,10 +114,22 @@ def velocity(phase, x, tau, y, prm, frc):
         r = math.exp(x)
         return r * y[2], r * y[3]
     if phase == PH_START:
-        _, _, _, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+        _, _, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+        fr = friction_coefficient(abs(y[2]), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc, fr, prm[P_C])
         return y[2] * e1, y[2] * e2
     return y[2], y[3]
+
+
+@njit(cache=True)
+def start_lag(tau, y, prm, frc):
+    """|sin θ|, the angle by which the slaved (START form) velocity trails F [-]."""
+    _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    fm = math.hypot(fx, fy)
+    if fm == 0.0 or y[2] == 0.0:
+        return 0.0
+    v1, v2 = velocity(PH_START, 0.0, tau, y, prm, frc)
+    return abs(fx * v2 - fy * v1) / (fm * abs(y[2]))
 
 
 @njit(cache=True)
@@ -132,7 +144,8 @@ def transmitted(phase, x, tau, y, prm, frc):
     e1 = 0.0
     e2 = 0.0
     if phase == PH_START:
-        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc)
+        fr0 = friction_coefficient(abs(y[2]), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc, fr0, c)
     elif r > 0.0:
         e1 = v1 / r
         e2 = v2 / r
@@ -165,8 +178,11 @@ def peak_value(which, mode, y):
 
 
 @njit(cache=True)
-def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol):
-    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −."""
+def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol, work):
+    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −.
+
+    ``work[1]`` counts the DOP853 sub-steps taken.
+    """
     lo = 0.0
     hi = 1.0
     glo = g0
@@ -178,6 +194,7 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
         ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        work[1] += 1
         if not ok:
             hi = theta
             theta = 0.5 * (lo + hi)
@@ -203,11 +220,12 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol
 
 
 @njit(cache=True)
-def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol):
+def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol, work):
     """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
 
     The component must be monotone on the step, below the target at θ = 0 and
     at or beyond it at θ = 1 (sign-adjusted); the state at θ is left in ``yb``/``fb``.
+    ``work[0]`` counts the DOP853 sub-steps taken.
     """
     lo = 0.0
     hi = 1.0
@@ -226,6 +244,7 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
         ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        work[0] += 1
         if not ok:
             hi = theta
             continue
@@ -247,4 +266,5 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
     # finish on the upper end of the bracket: the crossing has happened there
     theta = hi
     dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    work[0] += 2
     return theta

@@ -12,8 +12,9 @@ reading:
   break-away (or uplift) instant — no stepping while stuck;
 * a start from rest runs in the START form, then in Cartesian form; a decelerating
   block whose predicted stop is within about two steps switches to the LOG form and
-  reaches V = 0 exactly (to r = ``r_min``, then the last 1e-13 of the speed in
-  closed form); there the stick test decides: stick, or restart in the direction
+  reaches V = 0 exactly (to r = ``r_min``, then the last bit at constant
+  deceleration, an error of order r_min³ in X and the energies; the stop instant τ
+  is error-controlled like X); there the stick test decides: stick, or restart in the direction
   of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
 * peaks of |X| and |V| between step ends are located (secant on X·V and V·A with
   DOP853 sub-steps from the step start);
@@ -39,6 +40,7 @@ from isolator.solver.planar_events import (
     locate_peak,
     peak_value,
     rate_of_peak,
+    start_lag,
     stuck_until,
     transmitted,
     velocity,
@@ -83,20 +85,29 @@ S_E_V = 8
 S_N_EVENTS = 9
 S_STATUS = 10
 S_N_STEPS = 11
-S_SIZE = 12
+S_N_REJECTED = 12  #: rejected steps (error or domain)
+S_STEPS_START = 13  #: steps in the START form (after a break-away)
+S_STEPS_LOG = 14  #: steps in the LOG form (approach to a stop)
+S_STEPS_LIMITED = 15  #: Cartesian steps shortened to the stability bound (slow sliding)
+S_SUB_LAND = 16  #: DOP853 sub-steps spent landing on an instant (sample, r_switch, re-stop)
+S_SUB_PEAK = 17  #: DOP853 sub-steps spent locating peaks inside steps
+S_SIZE = 18
 
 # scales layout (built by isolator.solver.planar)
 SC_R_MIN = 0  #: speed at which the LOG form hands over to the closed-form finish [m/s]
 SC_R_SWITCH = 1  #: speed at which START hands over to Cartesian form [m/s]
 SC_X_FLOOR = 2  #: displacement floor of the absolute tolerance [m]
 SC_V_FLOOR = 3  #: speed floor of the absolute tolerance [m/s]
-SC_SIZE = 4
+SC_R_SWITCH_LO = 4  #: lowest START → Cartesian hand-over speed (where the slaved direction lags much) [m/s]
+SC_SIZE = 5
 
 #: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
 _ENTER = 0.02
 _LEAVE = 0.01
 #: h·(|F| + µn)/|V| kept below this in Cartesian form (DOP853's real stability interval is ≈ [−6, 0])
 _STABLE = 12.0
+#: START form kept above SC_R_SWITCH_LO only while the slaved direction lags F by less than this [rad]
+_LAG_MAX = 1e-3
 
 
 @njit(cache=True)
@@ -195,12 +206,14 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     k = np.zeros((13, NSTATE))
     atol = np.full(NSTATE, np.inf)
     frc = np.zeros(7)
+    work = np.zeros(2)
     phase = PH_STUCK
     x = 0.0
     h_sugg = -1.0
     ds_sugg = -0.5
     r_min = scales[SC_R_MIN]
     r_switch = scales[SC_R_SWITCH]
+    r_switch_lo = scales[SC_R_SWITCH_LO]
     s_end = math.log(r_min)
     peak_x = 0.0
     peak_v = 0.0
@@ -211,6 +224,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_ev = 0
     status = 0
     n_steps = 0
+    n_rej = 0
+    n_start = 0
+    n_log = 0
+    n_lim = 0
+    just_rejected = False
     failed_at = -1
     out_x[0, 0] = 0.0
     out_x[0, 1] = 0.0
@@ -327,10 +345,14 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                 else:
                     ds = max(ds_sugg, s_end - x)
+                    atol[7] = rtol * hi  # the stop instant is error-controlled too
                     ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                     n_steps += 1
+                    n_log += 1
                     if not ok or err > 1.0:
+                        n_rej += 1
                         ds_sugg = ds * (0.25 if not ok else step_factor(err))
+                        just_rejected = True
                         if abs(ds_sugg) < 1e-9:
                             y[2] *= r
                             y[3] *= r
@@ -341,7 +363,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
@@ -352,7 +374,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     if g0 > 0.0 >= g1 and max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + \
                             r * (ynew[7] - y[7]) > peak_x:
                         peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, k, ytmp, yb, fb,
-                                                          atol, rtol))
+                                                          atol, rtol, work))
                     slip += ynew[7] - y[7]
                     x += ds
                     y[:] = ynew
@@ -360,15 +382,19 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     tau = y[7]
                     peak_x = max(peak_x, math.hypot(y[0], y[1]))
                     if not hit:
-                        ds_sugg = ds * step_factor(err)
+                        # no growth right after a rejection (Hairer & Wanner's facmax = 1)
+                        ds_sugg = ds * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
+                    just_rejected = False
                     if hit or x > s_end:
                         continue
                 # the stop: the last speed r_min in closed form (constant deceleration)
                 r = math.exp(x)
                 rdot = r / f[7]
                 dtt = min(r / (-rdot), target - tau)
-                axx, ayy, nn, _, _, _, _ = forcing(tau, y[0], y[1], prm, frc)
+                axx, ayy, nn, _, kdot, _, _ = forcing(tau, y[0], y[1], prm, frc)
                 half = 0.5 * r * dtt
+                # the work of the vertical motion ½κ'|X|² dt, at the mid-point position
+                y[4] += 0.5 * kdot * ((y[0] + 0.5 * half * y[2]) ** 2 + (y[1] + 0.5 * half * y[3]) ** 2) * dtt
                 y[0] += half * y[2]
                 y[1] += half * y[3]
                 y[4] -= (axx * y[2] + ayy * y[3]) * half
@@ -400,7 +426,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             phase = PH_STUCK
                             break
                         continue
-                    if r < 0.5 * r_switch:
+                    if r < 0.5 * r_switch_lo:
                         # too slow for the Cartesian form (the direction is stiff): slaved-direction form
                         y[2] = r
                         y[3] = 0.0
@@ -426,17 +452,25 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if phase == PH_SLIDE:
                     # slow sliding: the direction relaxes at the rate ~ µn/|V|; DOP853 is
                     # stable for h·rate up to ≈ 6, so stay inside rather than be rejected
-                    h = min(h, _STABLE * r / max(fscale, 1e-300))
+                    h_stable = _STABLE * r / max(fscale, 1e-300)
+                    if h_stable < h:
+                        h = h_stable
+                        n_lim += 1
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
+                atol[7] = np.inf
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                 n_steps += 1
+                if mode == START:
+                    n_start += 1
                 if not ok or err > 1.0:
+                    n_rej += 1
                     h_sugg = h * (0.25 if not ok else step_factor(err))
+                    just_rejected = True
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
@@ -453,7 +487,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
                     # the slaved direction is accurate only up to r_switch: end the step there
-                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, k, ytmp, yb, fb, atol, rtol)
+                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
@@ -466,24 +500,26 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                                 peak_value(1, mode, y), peak_value(1, mode, ynew))
                             if bound > peak_x:
                                 peak_x = max(peak_x, locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
-                                                                  yb, fb, atol, rtol))
+                                                                  yb, fb, atol, rtol, work))
                         else:
                             bound = max(peak_value(1, mode, y), peak_value(1, mode, ynew)) + h * (
                                 abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
                             if bound > peak_v:
                                 peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
-                                                                  yb, fb, atol, rtol))
+                                                                  yb, fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
                 slip += h
                 if phase == PH_FLIGHT:
                     upt += h
-                h_sugg = h * step_factor(err)
+                h_sugg = h * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
+                just_rejected = False
                 peak_x = max(peak_x, math.hypot(y[0], y[1]))
                 peak_v = max(peak_v, peak_value(1, mode, y))
                 x = tau
-                if phase == PH_START and y[2] >= r_switch:
+                if phase == PH_START and (y[2] >= r_switch or (
+                        y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > _LAG_MAX)):
                     v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
                     y[2] = v1
                     y[3] = v2
@@ -531,3 +567,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     summary[S_N_EVENTS] = n_ev
     summary[S_STATUS] = status
     summary[S_N_STEPS] = n_steps
+    summary[S_N_REJECTED] = n_rej
+    summary[S_STEPS_START] = n_start
+    summary[S_STEPS_LOG] = n_log
+    summary[S_STEPS_LIMITED] = n_lim
+    summary[S_SUB_LAND] = work[0]
+    summary[S_SUB_PEAK] = work[1]

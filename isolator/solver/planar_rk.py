@@ -24,9 +24,9 @@ integrated in one of three forms (``mode``), each regular where it is used:
   stop the static friction cannot hold).  The velocity direction is slaved to
   F (its relaxation rate |F|/r is unbounded as r → 0, an infinitely stiff mode),
   so the motion is integrated as r' = e·F − µ(r) n − c r, X' = r e with e on the
-  slow manifold (F/|F| trailing by sin θ = ω_F r/|F|, ω_F the turning rate of F;
-  :func:`start_direction`) until r reaches a small switch value, where the error of
-  that first-order direction is below the integration tolerance (measured in
+  slow manifold (F/|F| trailing by θ ≈ τ_r ψ'/(1 + τ_r'), τ_r = r/|F| and ψ' the
+  turning rate of F; :func:`start_direction`) until r reaches a switch value where
+  the error of that direction is below the integration tolerance (measured in
   docs/planar.md).
 
 Energies per unit mass are integrated with the motion (components 4–6): input
@@ -44,6 +44,10 @@ import math
 import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _dop
+
+#: numba fast-math flags that keep NaN/inf semantics (the step tests for both): FMA contraction,
+#: reassociation, reciprocal division, no signed zeros
+_FAST = {"contract", "reassoc", "arcp", "nsz"}
 
 CARTESIAN = 0
 LOG = 1
@@ -112,12 +116,15 @@ def forcing(tau, x1, x2, prm, frc):
 
 
 @njit(cache=True)
-def start_direction(r, x1, x2, fx, fy, kap, kdot, frc):
-    """Direction of a slow (START form) velocity: F/|F| lagging by θ, sin θ = ω_F r/|F|.
+def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
+    """Direction of a slow (START form) velocity: F/|F| lagging by θ.
 
-    The velocity direction relaxes onto F at the rate |F|/r; while F turns at
-    ω_F = (F × F')/|F|² the direction trails it by the angle at which the two rates
-    balance (the slow manifold of de/dt = (F − (e·F)e)/r, first order in r).
+    The velocity direction relaxes onto F at the rate |F|/r (θ' = ψ' − (|F|/r) sin θ,
+    ψ the direction of F); on the slow manifold, with the relaxation time
+    τ_r = r/|F| itself changing at τ_r' = ṙ/|F| − r|F|'/|F|², θ = τ_r ψ'/(1 + τ_r')
+    (exact for r growing linearly under a steadily turning F; the neglected terms
+    are O(τ_r² ψ'')).  ``fr`` is the friction force µ(r) n [m/s²] and ``c`` the
+    damping [1/s], which give ṙ ≈ |F| − fr − c r.
     """
     fm = math.hypot(fx, fy)
     if fm == 0.0:
@@ -127,7 +134,15 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc):
     # F' = −κ'X − κV − a_g' with V ≈ r F/|F|
     dfx = -kdot * x1 - kap * r * e1 - frc[1]
     dfy = -kdot * x2 - kap * r * e2 - frc[3]
-    sin_t = (e1 * dfy - e2 * dfx) / fm * r / fm
+    rdot = fm - fr - c * r
+    dfl = (e1 * dfx + e2 * dfy) / fm  # |F|'/|F|
+    psi1 = (e1 * dfy - e2 * dfx) / fm  # ψ'
+    # ψ'' from F'' = −2κ'V − κV', V ≈ r e, V' ≈ ṙ e (a_g, κ linear in the interval)
+    psi2 = -2.0 * psi1 * dfl  # the F'' terms are along e: no turning
+    tau_r = r / fm
+    # 1 + τ_r' = 1 + ṙ/|F| − τ_r |F|'/|F|, kept ≥ 1/2 (a fast re-stop)
+    one = max(1.0 + rdot / fm - tau_r * dfl, 0.5)
+    sin_t = tau_r * psi1 / one - tau_r * tau_r * psi2 / (one * (2.0 * one - 1.0 if one > 0.75 else 0.5))
     if sin_t > 0.5:
         sin_t = 0.5
     elif sin_t < -0.5:
@@ -136,7 +151,7 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc):
     return cos_t * e1 + sin_t * e2, -sin_t * e1 + cos_t * e2
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_FAST)
 def rhs(mode, x, y, prm, frc, d):
     """Derivative of the state in ``mode`` at independent variable ``x`` (into ``d``).
 
@@ -168,8 +183,8 @@ def rhs(mode, x, y, prm, frc, d):
         return True
     if mode == START:
         r = y[2]
-        e1, e2 = start_direction(r, y[0], y[1], fx, fy, kap, kdot, frc)
         fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(r, y[0], y[1], fx, fy, kap, kdot, frc, fr, c)
         d[0] = r * e1
         d[1] = r * e2
         d[2] = e1 * fx + e2 * fy - fr - c * r
@@ -201,7 +216,7 @@ def rhs(mode, x, y, prm, frc, d):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_FAST)
 def dop853_step(mode, x, y, f0, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol):
     """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
 

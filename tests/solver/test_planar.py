@@ -375,3 +375,32 @@ def test_stiff_coarsely_sampled_spring_converges():
     assert loose.status == 0 and loose.n_events > 100
     assert _rel(loose.peak_displacement_m, tight.peak_displacement_m) <= 1e-8
     assert abs(loose.residual_displacement_m - tight.residual_displacement_m) <= 1e-8 * tight.peak_displacement_m
+
+
+def test_slaved_direction_lag_matches_a_steadily_turning_force():
+    # independent truth: the Cartesian motion V' = F(t) − fr V/|V| from rest under a force of
+    # constant magnitude turning at ω (solve_ivp Radau, tight); the START form's slaved direction
+    # must trail F by the same angle.  The first-order lag ω r/|F| is 50 % off here (r grows).
+    from scipy.integrate import solve_ivp
+
+    from isolator.solver.planar_rk import start_direction
+
+    phi, fr, omega = 1.0, 0.5, 2.0
+
+    def rhs(t, v):
+        r = math.hypot(v[0], v[1])
+        return [phi * math.cos(omega * t) - fr * v[0] / r, phi * math.sin(omega * t) - fr * v[1] / r]
+
+    t0 = 1e-6
+    for t1, tol in ((0.002, 1e-6), (0.01, 2e-5)):
+        v = solve_ivp(rhs, (t0, t1), [(phi - fr) * t0, 0.0], method="Radau", rtol=1e-12, atol=1e-18).y[:, -1]
+        r = math.hypot(v[0], v[1])
+        fx, fy = phi * math.cos(omega * t1), phi * math.sin(omega * t1)
+        true_lag = math.atan2(fx * v[1] - fy * v[0], fx * v[0] + fy * v[1])
+        # frc: a_g = −F linear in time with a_g' = −F'
+        frc = np.array([-fx, omega * fy, -fy, -omega * fx, G, 0.0, 1.0])
+        e1, e2 = start_direction(r, 0.0, 0.0, fx, fy, 0.0, 0.0, frc, fr, 0.0)
+        lag = math.atan2(fx * e2 - fy * e1, fx * e1 + fy * e2)
+        assert true_lag < 0.0
+        assert abs(lag - true_lag) <= tol * abs(true_lag)
+        assert abs(-omega * r / phi - true_lag) > 0.4 * abs(true_lag)  # the first-order lag would fail
