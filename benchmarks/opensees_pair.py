@@ -3,7 +3,7 @@
 Usage::
 
     pip install "isolator[bench]"      # openseespy (Linux wheels need libblas3, liblapack3)
-    PYTHONPATH=. python benchmarks/opensees_pair.py [--pair superstitionhills1987_PTS] [--mu 0.06]
+    python -m benchmarks.opensees_pair   (from the repository root) [--pair superstitionhills1987_PTS] [--mu 0.06]
                                                     [--radius 2.0] [--yield-mm 0.5] [--repeat 3]
 
 Model (the same for both): a rigid mass on a single friction pendulum of radius R,
@@ -27,101 +27,22 @@ the residual, and the largest difference over the sampled history.
 from __future__ import annotations
 
 import argparse
-import math
 import statistics
-import sys
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "benchmarks"))
-
-from planar_throughput import load
-
+from benchmarks.planar_throughput import load
+from isolator.bench.planar_reference import reference_pair
 from isolator.solver.planar import simulate_pair
-from tests.planar_reference import reference_pair
-
-G = 9.80665
-VERTICAL_STIFFNESS_PER_WEIGHT = 1e7  #: [1/m] the static deflection is 0.1 µm
+from isolator.units import STANDARD_GRAVITY as G  # noqa: E402
 
 
-def opensees_pair(dt, ax, ay, *, mu, radius, yield_m, mass=1.0, substeps=1):
-    """Relative displacement history (n, 2) of a single friction pendulum in OpenSees."""
-    import openseespy.opensees as ops
+def opensees_pair(dt, ax, ay, *, mu, radius, yield_m, substeps=1):
+    """Relative displacement history (n, 2) of a single friction pendulum in OpenSees (the bench's model)."""
+    from isolator.bench.opensees import opensees_pair as model
 
-    weight = mass * G
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0, "-mass", mass, mass, mass, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.uniaxialMaterial("Elastic", 1, VERTICAL_STIFFNESS_PER_WEIGHT * weight)  # stiff vertical spring
-    ops.uniaxialMaterial("Elastic", 2, 0.0)
-    ops.frictionModel("Coulomb", 1, mu)
-    k_init = mu * weight / yield_m
-    ops.element("singleFPBearing", 1, 1, 2, 1, radius, k_init, "-P", 1, "-T", 2, "-My", 2, "-Mz", 2,
-                "-orient", 0, 0, 1, 1, 0, 0)
-    ops.timeSeries("Linear", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
-    ops.system("BandGeneral")
-    ops.numberer("Plain")
-    ops.constraints("Plain")
-    ops.test("NormDispIncr", 1e-12, 25)
-    ops.integrator("LoadControl", 0.1)
-    ops.algorithm("Newton")
-    ops.analysis("Static")
-    ops.analyze(10)
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
-    ops.timeSeries("Path", 2, "-dt", dt, "-values", *ax.tolist())
-    ops.timeSeries("Path", 3, "-dt", dt, "-values", *ay.tolist())
-    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
-    ops.system("BandGeneral")
-    ops.numberer("Plain")
-    ops.constraints("Plain")
-    ops.test("NormDispIncr", 1e-10, 25)
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.algorithm("Newton")
-    ops.analysis("Transient")
-    # the whole record in one analyze() call (as an OpenSees user would run it), recorded
-    # to a file; a step that does not converge is redone in halves from where it stopped
-    with tempfile.TemporaryDirectory() as folder:
-        path = str(Path(folder) / "disp.out")
-        ops.recorder("Node", "-file", path, "-time", "-precision", 17, "-node", 2, "-dof", 1, 2, "disp")
-        t_end = (ax.size - 1) * dt
-        guard = 0
-        while ops.getTime() < t_end - 1e-9 * dt:
-            guard += 1
-            if guard > 100000:
-                raise RuntimeError(f"OpenSees did not converge near t = {ops.getTime():.3f} s")
-            remaining = round((t_end - ops.getTime()) / dt)
-            on_sample = abs(ops.getTime() / dt - round(ops.getTime() / dt)) < 1e-9
-            if remaining >= 1 and on_sample and ops.analyze(remaining * substeps, dt / substeps) == 0:
-                break
-            step = dt / substeps
-            while ops.analyze(1, step) != 0:
-                step *= 0.5
-                if step < 1e-8 * dt:
-                    raise RuntimeError(f"OpenSees did not converge near t = {ops.getTime():.3f} s")
-            # finish the sample interval in steps of the size that converged
-            next_sample = (math.floor(ops.getTime() / dt + 1e-9) + 1) * dt
-            while ops.getTime() < next_sample - 1e-9 * dt:
-                ops.analyze(1, min(step, next_sample - ops.getTime()))
-        ops.remove("recorders")
-        rows = np.loadtxt(path, ndmin=2)
-    index = np.rint(rows[:, 0] / dt).astype(int)
-    on_sample = np.abs(rows[:, 0] - index * dt) < 1e-9 * dt
-    out = np.zeros((ax.size, 2))
-    out[index[on_sample]] = rows[on_sample, 1:3]
-    ops.wipe()
-    return out
+    return model(dt, ax, ay, mu=mu, radius_m=radius, gravity_m_s2=G, yield_m=yield_m, substeps=substeps)
 
 
 def errors(history, ref):

@@ -2,7 +2,7 @@
 
 Usage::
 
-    PYTHONPATH=. python benchmarks/planar_accuracy.py
+    python -m benchmarks.planar_accuracy   (from the repository root)
 
 Prints, for real pairs and the hard cases of tests/solver/test_planar.py, the relative
 error of the peak and residual resultant displacement and the largest difference of the
@@ -12,20 +12,13 @@ tolerance (rtol 1e-11).  docs/planar.md quotes its output.
 
 from __future__ import annotations
 
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "benchmarks"))
-
-from planar_throughput import load
-
+from benchmarks.planar_throughput import load
+from isolator.bench.planar_reference import reference_pair
 from isolator.solver.planar import simulate_pair
-from tests.planar_reference import reference_pair
 from tests.solver.test_planar import HARD, _hard_case
 
 

@@ -180,4 +180,4 @@ def analyse_pair(design, motions, *, record_label: str = "", scaling_note: str =
     return PairAnalysis(design=design, motions=motions, response=response,
                         engineering=engineering_quantities(design, response), record_label=record_label,
                         scaling_note=scaling_note,
-                        created_utc=_dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"))
+                        created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))

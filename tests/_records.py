@@ -174,5 +174,4 @@ BAD_RECORD_TYPES = {
     "all_zero": ("RecordValuesError", ""),
     "dt_tiny": ("RecordValuesError", ""),
     "dt_huge": ("RecordValuesError", ""),
-    "dt_option_huge": ("RecordOptionError", "--dt"),
 }

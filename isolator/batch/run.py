@@ -8,9 +8,9 @@ from pathlib import Path
 
 from isolator.atomic import output_lock, refuse_overwriting_inputs
 from isolator.batch.executors import _iterate_dask, _iterate_local, check_scheduler
-from isolator.parallel import default_workers
 from isolator.batch.plan import BatchError, ReadOptions, make_tasks, plan, record_digest, row_key
 from isolator.batch.store import PartStore, _existing_rows, _table_is_ours, to_table, write_table_atomically
+from isolator.parallel import default_workers
 
 
 @dataclass

@@ -52,19 +52,70 @@ References
 M. Nicolas (2017), hal-01432172, Eq. 2 (harmonic case), Eqs. 3 (ζ) and 15 (α_SL).
 """
 
-from isolator.bench.cases import (HARMONIC_CASES, HARMONIC_PHASE, PENDULUM_MU_KINETIC, PENDULUM_MU_STATIC,
-                                  PENDULUM_RADIUS_M, RECORD_FILES, STANDARD_GRAVITY_M_S2, BenchCase, bench_cases,
-                                  harmonic_case, record_case)
-from isolator.bench.harness import (CROSS_CHECK, ENGINEERING_ERROR, ERROR_FLOOR, OURS_METHODS, REFERENCE_METHODS,
-                                    errors, pareto_by_case, pareto_summary, run_bench, run_pair_case, time_method,
-                                    warm_up)
-from isolator.bench.methods import (METHODS, OURS, Method, MethodOutput, exact_solver, implicit_fixed_step,
-                                    ivp_tanh, ivp_with_events, methods, newmark_elastic_plastic)
-from isolator.bench.output import (ROW_KEYS, opensees_summary, pareto_markdown, pareto_to_csv, plot, rows_markdown,
-                                   rows_to_csv)
-from isolator.bench.pairs import (IVP_REGULARISED, OPENSEES, PAIR_METHODS, PAIR_OURS, PAIR_TRUTH, PairCase,
-                                  ivp_regularised, opensees_solver, pair_case, pair_cases, pair_errors, pair_methods,
-                                  planar_solver, reference_solver)
+from isolator.bench.cases import (
+                                  HARMONIC_CASES,
+                                  HARMONIC_PHASE,
+                                  PENDULUM_MU_KINETIC,
+                                  PENDULUM_MU_STATIC,
+                                  PENDULUM_RADIUS_M,
+                                  RECORD_FILES,
+                                  STANDARD_GRAVITY_M_S2,
+                                  BenchCase,
+                                  bench_cases,
+                                  harmonic_case,
+                                  record_case,
+)
+from isolator.bench.harness import (
+                                  CROSS_CHECK,
+                                  ENGINEERING_ERROR,
+                                  ERROR_FLOOR,
+                                  OURS_METHODS,
+                                  REFERENCE_METHODS,
+                                  errors,
+                                  pareto_by_case,
+                                  pareto_summary,
+                                  run_bench,
+                                  run_pair_case,
+                                  time_method,
+                                  warm_up,
+)
+from isolator.bench.methods import (
+                                  METHODS,
+                                  OURS,
+                                  Method,
+                                  MethodOutput,
+                                  exact_solver,
+                                  implicit_fixed_step,
+                                  ivp_tanh,
+                                  ivp_with_events,
+                                  methods,
+                                  newmark_elastic_plastic,
+)
+from isolator.bench.output import (
+                                  ROW_KEYS,
+                                  opensees_summary,
+                                  pareto_markdown,
+                                  pareto_to_csv,
+                                  plot,
+                                  rows_markdown,
+                                  rows_to_csv,
+)
+from isolator.bench.pairs import (
+                                  IVP_REGULARISED,
+                                  OPENSEES,
+                                  PAIR_METHODS,
+                                  PAIR_OURS,
+                                  PAIR_TRUTH,
+                                  PairCase,
+                                  ivp_regularised,
+                                  opensees_solver,
+                                  pair_case,
+                                  pair_cases,
+                                  pair_errors,
+                                  pair_methods,
+                                  planar_solver,
+                                  reference_solver,
+)
 
 __all__ = ["IVP_REGULARISED", "OPENSEES", "OURS_METHODS", "PAIR_METHODS", "PAIR_OURS", "PAIR_TRUTH",
            "REFERENCE_METHODS", "PairCase", "ivp_regularised", "opensees_solver", "opensees_summary", "pair_case",

@@ -18,10 +18,25 @@ from collections.abc import Callable
 import numpy as np
 
 from isolator.bench.cases import BenchCase, harmonic_case, record_case
-from isolator.bench.methods import (OURS, MethodOutput, exact_solver, implicit_fixed_step, ivp_with_events,
-                                    methods, newmark_elastic_plastic)
-from isolator.bench.pairs import (OPENSEES, PAIR_OURS, PAIR_TRUTH, pair_case, pair_errors, pair_methods,
-                                  planar_solver, reference_solver)
+from isolator.bench.methods import (
+    OURS,
+    MethodOutput,
+    exact_solver,
+    implicit_fixed_step,
+    ivp_with_events,
+    methods,
+    newmark_elastic_plastic,
+)
+from isolator.bench.pairs import (
+    OPENSEES,
+    PAIR_OURS,
+    PAIR_TRUTH,
+    pair_case,
+    pair_errors,
+    pair_methods,
+    planar_solver,
+    reference_solver,
+)
 
 ERROR_FLOOR = 1e-16  #: errors below this are reported as this (round-off)
 

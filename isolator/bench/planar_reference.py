@@ -1,8 +1,7 @@
 """Independent reference for the planar (2-D) friction block: the truth of the bench's 2-D cases.
 
-A copy of ``tests/planar_reference.py`` (the installed package must not import
-``tests``); it shares no code with the rest of ``isolator`` and is checked against
-the tests' copy in ``tests/bench/test_bench_pairs.py``.  Its own error, measured
+The tests import it too (``tests/planar_reference.py``); it shares no code with the rest of
+``isolator``.  Its own error, measured
 against the exact 1-D kernel on a collinear record, is ~1e-14 of the peak
 (docs/planar.md).
 
@@ -118,7 +117,7 @@ def reference_pair(t, ax, ay, az=None, *, mu_s, mu_k=None, kappa=0.0, radius=Non
         if nz[i] * nz[i + 1] < 0.0:
             cuts.append(t0 + nz[i] / (nz[i] - nz[i + 1]) * h)
         cuts.append(t1)
-        for a, b in zip(cuts[:-1], cuts[1:]):
+        for a, b in zip(cuts[:-1], cuts[1:], strict=False):
             contact = normal(0.5 * (a + b)) > 0.0
 
             def kap(tt, contact=contact):
@@ -142,7 +141,7 @@ def reference_pair(t, ax, ay, az=None, *, mu_s, mu_k=None, kappa=0.0, radius=Non
                 if guard > 2000:
                     raise RuntimeError(f"reference: too many phases in interval {i}")
                 if stuck:
-                    def q(s):
+                    def q(s, X=X):
                         gv = kap(s) * X + acc(s)
                         return gv @ gv - (mu_s * normal(s)) ** 2
                     grid = np.linspace(tt, b, 65)

@@ -86,7 +86,7 @@ def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, sys
 
 def history_columns(result) -> tuple[str, list]:
     """CSV header and columns of the time histories of a 1-D or a 2-D response."""
-    if getattr(result, "displacement_m").ndim == 1:
+    if result.displacement_m.ndim == 1:
         return ("time_s,ground_acceleration_m_s2,displacement_m,velocity_m_s,absolute_acceleration_m_s2",
                 [result.time_s, result.ground_acceleration_m_s2, result.displacement_m, result.velocity_m_s,
                  result.absolute_acceleration_m_s2])

@@ -4,8 +4,18 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import (RECORD_HELP, app, check_outputs, echo_json, echo_table, error_line,
-                                  load_record_for_cli, user_error, write_csv_atomically, write_error)
+from isolator.cli.common import (
+    RECORD_HELP,
+    app,
+    check_outputs,
+    echo_json,
+    echo_table,
+    error_line,
+    load_record_for_cli,
+    user_error,
+    write_csv_atomically,
+    write_error,
+)
 from isolator.cli.pairs import PAIR_HELP
 
 
@@ -107,10 +117,16 @@ def simulate(
     (--mu-slow/--mu-fast/--rate-s-per-m) → the 2-D engine.  Records are linear
     between samples (unequal steps allowed).  Energies are per unit mass (J/kg).
     """
-    from isolator.cli.pairs import (history_columns, load_motion_set_for_cli, result_rows, solve, system_keywords,
-                                    wants_set)
     import math
 
+    from isolator.cli.pairs import (
+        history_columns,
+        load_motion_set_for_cli,
+        result_rows,
+        solve,
+        system_keywords,
+        wants_set,
+    )
     from isolator.pair_analysis import response_summary
     from isolator.solver.system import InvalidSystemError, System
 

@@ -4,8 +4,16 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import (RECORD_HELP, app, check_outputs, collector_skips_existing_objects, echo_table,
-                                 load_record_for_cli, user_error, write_error)
+from isolator.cli.common import (
+    RECORD_HELP,
+    app,
+    check_outputs,
+    collector_skips_existing_objects,
+    echo_table,
+    load_record_for_cli,
+    user_error,
+    write_error,
+)
 from isolator.cli.pairs import PAIR_HELP, wants_set
 
 

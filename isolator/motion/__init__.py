@@ -30,9 +30,9 @@ from isolator.motion.measures import (
                                       significant_duration_s,
                                       velocity_m_s,
 )
+from isolator.motion.pair import ComponentMismatchError, MotionPair, read_ground_motion_pair
 from isolator.motion.read import MAX_ABS_ACCELERATION_G, TEXT_SUFFIXES, RecordError, list_components, read_ground_motion
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
-from isolator.motion.pair import ComponentMismatchError, MotionPair, read_ground_motion_pair
 
 __all__ = ["DEFAULT_DAMPING_RATIO", "EXAMPLE_RECORDS", "MAX_ABS_ACCELERATION_G", "MIN_SAMPLES",
            "PREDOMINANT_PERIODS_S", "TEXT_SUFFIXES", "UNNAMED_COMPONENT", "GroundMotion", "IntensityMeasures",

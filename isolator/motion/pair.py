@@ -27,8 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.motion.ground_motion import GroundMotion
 from isolator.errors import ComponentError, ComponentMismatchError, RecordValuesError
+from isolator.motion.ground_motion import GroundMotion
 from isolator.motion.read import list_components, read_ground_motion
 
 #: Orientation names of a vertical component (lower case tokens of a component label).
@@ -378,7 +378,7 @@ def read_ground_motion_pair(
     if all(motion.pga_m_s2 == 0.0 for motion in horizontal):  # the record's fault: no ground motion at all
         source = horizontal[0].provenance.get("path", str(x))
         raise RecordValuesError(f"{source}: every horizontal component is zero: no ground motion", path=source)
-    motions = dict(zip(("x", "y"), horizontal))
+    motions = dict(zip(("x", "y"), horizontal, strict=False))
     if vertical:
         motions["z"] = vertical[0]
     aligned, steps = align(motions, trim=trim, resample=resample)

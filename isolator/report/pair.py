@@ -108,7 +108,7 @@ def _ground_page(analysis, label: str):
     axes = fig.subplots(len(parts), 1, sharex=True)
     axes = np.atleast_1d(axes)
     fig.subplots_adjust(left=0.11, right=0.95, top=0.93, bottom=0.1, hspace=0.3)
-    for ax, (axis, motion) in zip(axes, parts.items()):
+    for ax, (axis, motion) in zip(axes, parts.items(), strict=False):
         values = motion.acceleration_m_s2 / STANDARD_GRAVITY
         ax.plot(motion.time_s, values, color="k", lw=0.6)
         ax.set_ylabel(f"{axis}: {motion.component}  [g]")

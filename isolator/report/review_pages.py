@@ -74,7 +74,7 @@ def _checks_page(r: dict, command: str):
         status = row["status"]
         cells = (short(row["id"], 26), short(row["clause"], 42), fmt(row["value"]), fmt(row["limit"]),
                  status, short(row.get("unit", ""), 10))
-        for (x, _), cell in zip(columns, cells):
+        for (x, _), cell in zip(columns, cells, strict=False):
             fig.text(x, y, cell, fontsize=7.4, va="top", color=STATUS_COLOUR[status] if cell == status else "black",
                      weight="bold" if cell == status else "normal")
         y -= 0.0118

@@ -217,7 +217,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         on_plot.append({k: v[split:] / g for k, v in s.items()})
     timing["spectra"] = time.perf_counter() - clock
     target_grid = target.sa_g(grid)
-    weak = [p.name for p, s in zip(suite.pairs, on_grid) if not np.all(np.asarray(s) > 0)]
+    weak = [p.name for p, s in zip(suite.pairs, on_grid, strict=False) if not np.all(np.asarray(s) > 0)]
     if weak:
         raise ReviewError(f"pair '{weak[0]}' has a zero spectrum in the period range: it cannot be scaled")
     factors = scale_factors(np.array(on_grid), target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask)
@@ -225,20 +225,20 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     names = suite.names
     key = "rotd100_m_s2" if code == "asce7-22" else None
     plot_pairs = {name: (s[key] if key else 0.5 * (s["psa_x_m_s2"] + s["psa_y_m_s2"])) * f
-                  for name, s, f in zip(names, on_plot, factors)}
+                  for name, s, f in zip(names, on_plot, factors, strict=False)}
     spectra = {"periods_s": plot, "target_g": _safe_target(target, plot), "pairs_scaled_g": plot_pairs,
                "suite_mean_scaled_g": np.mean(list(plot_pairs.values()), axis=0),
                "grid_s": grid, "target_grid_g": target_grid}
     if rotd50_points:
         t50 = np.geomspace(lo, hi, rotd50_points)
         spectra["rotd50"] = {"periods_s": t50, "pairs_scaled_g": {
-            p.name: f * rotd50(p.ax_m_s2, p.ay_m_s2, p.dt_s, t50) / g for p, f in zip(suite.pairs, factors)}}
+            p.name: f * rotd50(p.ax_m_s2, p.ay_m_s2, p.dt_s, t50) / g for p, f in zip(suite.pairs, factors, strict=False)}}
 
     # analyses: every pair × bound (one run per distinct friction)
     tasks, index = {}, {}
     for b, d in designs.items():
         dp = design_parameters(d)
-        for pair, f in zip(suite.pairs, factors):
+        for pair, f in zip(suite.pairs, factors, strict=False):
             k = task_key(pair.content_key(), f, dp)
             index[(b, pair.name)] = k
             tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": pair.az_m_s2, "dt": pair.dt_s,
@@ -249,7 +249,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     timing["analyses_cached"] = n_cached
     timing["analyses_total"] = len(tasks)
     analyses = {b: {name: dict(results[index[(b, name)]], scale_factor=float(f))
-                    for name, f in zip(names, factors)} for b in designs}
+                    for name, f in zip(names, factors, strict=False)} for b in designs}
     failed = sorted({name for b in analyses for name, r in analyses[b].items() if "error" in r})
     if len(failed) == len(names):
         first = next(r["error"] for b in analyses for r in analyses[b].values() if "error" in r)
@@ -261,7 +261,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     paper_map = _paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution else None
     review = Review(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
                     bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
-                    factors=dict(zip(names, map(float, factors))), spectra=spectra, suite_ratio=ratio,
+                    factors=dict(zip(names, map(float, factors), strict=False)), spectra=spectra, suite_ratio=ratio,
                     analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing, paper_map=paper_map,
                     created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
     from isolator.review.assess import assess

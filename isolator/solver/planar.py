@@ -197,7 +197,7 @@ def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per
     law = (mu_slow, mu_fast, rate_s_per_m)
     velocity_dependent = any(v is not None for v in law)
     if velocity_dependent and any(v is None for v in law):
-        missing = [n for n, v in zip(("mu_slow", "mu_fast", "rate_s_per_m"), law) if v is None]
+        missing = [n for n, v in zip(("mu_slow", "mu_fast", "rate_s_per_m"), law, strict=False) if v is None]
         raise InvalidSystemError(f"velocity-dependent friction needs mu_slow, mu_fast and rate_s_per_m; "
                                  f"missing {', '.join(missing)}")
     if velocity_dependent and mu_kinetic is not None:

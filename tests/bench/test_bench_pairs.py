@@ -17,7 +17,7 @@ from typer.testing import CliRunner
 from isolator import bench
 from isolator.bench import opensees as opensees_module
 from isolator.cli import app
-from tests.planar_reference import reference_pair as independent_reference_pair  # the tests' own copy
+from tests.planar_reference import reference_pair as independent_reference_pair
 
 RECORDS = Path(__file__).resolve().parents[2].parent / "shared" / "records"
 OPENSEES_OK, OPENSEES_WHY = opensees_module.opensees_available()
@@ -102,7 +102,7 @@ def test_without_openseespy_the_rows_say_so_and_the_bench_runs(monkeypatch, tmp_
 
 
 def test_bench_reference_is_the_tests_reference():
-    """The package's copy of the reference gives the tests' reference to the bit (no drift)."""
+    """The bench's truth is the reference called with the case's own system (no parameter lost on the way)."""
     t = np.arange(401) * 0.01
     ax, ay, az = 4.0 * np.sin(5.0 * t), 3.0 * np.cos(4.0 * t) * np.exp(-0.2 * t), 2.0 * np.sin(9.0 * t)
     case = bench.pair_case("synthetic pair", ax, ay, 0.01, az, **bench.pairs.PAIR_MU_V)

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _records import at2_text
 from typer.testing import CliRunner
 
-from _records import at2_text
 from isolator.cli import app
 
 RUNNER = CliRunner()

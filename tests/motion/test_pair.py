@@ -89,7 +89,7 @@ def test_miniseed_stream_of_three_channels(records_dir, tmp_path):
 
     source = read_ground_motion_pair(records_dir / "other" / "ce89486SampleInput.v2", component="all")
     traces = []
-    for channel, motion in zip(("HNZ", "HNN", "HNE"), (source.z, source.x, source.y)):  # the vertical first
+    for channel, motion in zip(("HNZ", "HNN", "HNE"), (source.z, source.x, source.y), strict=False):  # the vertical first
         trace = Trace(data=motion.acceleration_m_s2.astype(np.float64))
         trace.stats.update({"network": "CE", "station": "89486", "channel": channel, "delta": motion.dt_s,
                             "starttime": UTCDateTime(2022, 12, 20, 10, 34, 1)})
@@ -173,5 +173,5 @@ def test_kiknet_surface_set_by_its_suffixes(pairs_dir, tmp_path):
                     tmp_path / f"AOM0170806140843.{suffix}2")
     pair = read_ground_motion_pair(tmp_path / "AOM0170806140843.EW2", component="all")
     knet = read_ground_motion_pair(pairs_dir / "iwatemiyagi2008_AOM017" / "AOM0170806140843.NS", component="all")
-    for ours, theirs in zip(pair.components.values(), knet.components.values()):
+    for ours, theirs in zip(pair.components.values(), knet.components.values(), strict=False):
         np.testing.assert_array_equal(ours.acceleration_m_s2, theirs.acceleration_m_s2)

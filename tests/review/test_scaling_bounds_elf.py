@@ -82,7 +82,7 @@ def test_D_M_fixed_point_against_a_hand_iteration():
     table = [(0.02, 0.8), (0.05, 1.0), (0.10, 1.2), (0.20, 1.5), (0.30, 1.7), (0.40, 1.9), (0.50, 2.0)]
 
     def b_m(beta):
-        for (b0, v0), (b1, v1) in zip(table, table[1:]):
+        for (b0, v0), (b1, v1) in zip(table, table[1:], strict=False):
             if b0 <= beta <= b1:
                 return v0 + (v1 - v0) * (beta - b0) / (b1 - b0)
         return 0.8 if beta < 0.02 else 2.0

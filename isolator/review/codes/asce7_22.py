@@ -39,7 +39,7 @@ def damping_coefficient(beta: float) -> float:
     beta : float
         Effective damping ratio β_M [-].
     """
-    betas, values = zip(*B_M_TABLE)
+    betas, values = zip(*B_M_TABLE, strict=False)
     return float(np.interp(beta, betas, values))
 
 
