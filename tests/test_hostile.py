@@ -64,6 +64,7 @@ def corpus(tmp_path_factory):
     (root / "design_loop.toml").symlink_to(root / "design_loop.toml")
     (root / "records").mkdir()
     (root / "records" / "a.AT2").write_text(at2_text(_record_values()))
+    (root / "short.AT2").write_text(at2_text(_record_values(150)))  # a second component of another length
     (root / "bench_records").mkdir()
     (root / "bench_records" / "bench.csv").write_text("a record that happens to be named like a bench output\n")
     # a batch output whose lock is held by a live process (pid 1) on this host
@@ -142,6 +143,31 @@ def _cases(c: Path):
         (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--jobs", "0"], "'--jobs'"),
         (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--dt", "1e-300"],
          "below 1e-05 s"),
+        # simulate on a pair: the second file's faults, mismatched components, bad µ(v), outputs that are inputs
+        (["simulate", good, "--pair", str(c / "solo[2].AT2"), "--mu-s", "0.1"], "no such file"),
+        (["simulate", good, "--pair", str(c / "pipe.AT2"), "--mu-s", "0.1"], "FIFO"),
+        (["simulate", good, "--pair", str(c / "short.AT2"), "--mu-s", "0.1"], "different lengths"),
+        (["simulate", good, "--component", "pair", "--mu-s", "0.1"], "holds one component"),
+        (["simulate", good, "--pair", str(c / "short.AT2"), "--trim", "--mu-s", "0.1", "--mu-slow", "0.2",
+          "--mu-fast", "0.1", "--rate-s-per-m", "20"], "must not exceed mu_fast"),
+        (["simulate", good, "--pair", str(c / "short.AT2"), "--trim", "--mu-s", "0.1", "--out-csv",
+          str(c / "short.AT2")], "is an input"),
+        (["simulate", good, "--pair", str(c / "short.AT2"), "--mu-s", "0.1", "--radius-m", "-1"], "--radius-m"),
+        # review: suite, target, parameters and outputs
+        (["review", "-d", design, "--target", "example", "--suite", str(c / "empty.AT2"), "-o",
+          str(c / "out" / "r.pdf")], "no pair could be read"),
+        (["review", "-d", design, "--target", str(c / "nowhere.toml"), "--suite", "example", "-o",
+          str(c / "out" / "r.pdf")], "no such target file"),
+        (["review", "-d", str(c / "design.json"), "--target", "example", "--suite", "example", "-o",
+          str(c / "design.pdf")], "would overwrite an input"),
+        (["review", "-d", design, "--target", "example", "--suite", "example", "--set", "min_ratio=abc", "-o",
+          str(c / "out" / "r.pdf")], "must be a number"),
+        (["review", "-d", design, "--target", "example", "--suite", "example", "--code", "foo", "-o",
+          str(c / "out" / "r.pdf")], "--code must be one of"),
+        (["review", "-d", str(c / "pipe.toml"), "--target", "example", "--suite", "example", "-o",
+          str(c / "out" / "r.pdf")], "FIFO"),
+        (["review", "-d", design, "--target", "example", "--suite", "example", "--jobs", "0", "-o",
+          str(c / "out" / "r.pdf")], "--jobs"),
         # bench
         (["bench", "--records", str(c / "nowhere"), "--out", str(c / "out" / "bench")], "no such folder"),
         (["bench", "--repeats", "0"], "'--repeats'"),

@@ -368,6 +368,9 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
             continue
         pairs.append(pair)
     if not pairs:
-        detail = f": {failed[0]['name']}: {failed[0]['error']}" if failed else ""
+        detail = ""
+        if failed:  # the reader's message names the file already when the pair is named after it
+            name, error = failed[0]["name"], str(failed[0]["error"])
+            detail = f": {error}" if error.startswith(name) else f": {name}: {error}"
         raise SuiteError(f"suite {source}: no pair could be read{detail}")
     return Suite(pairs=pairs, failed=failed, source=source, specs=specs)
