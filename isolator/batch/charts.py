@@ -17,6 +17,10 @@ def suite_summary(table, swept_keys=()):
     peak displacement and the peak transmitted acceleration, and the count of each regime
     (record and harmonic).
 
+    A motion is counted once: rows whose ``motion_sha256`` (the samples analysed and their
+    time step) repeats an earlier row of the same design — the same record in two files —
+    are left out of the statistics and counted in ``n_duplicate_motions``.
+
     σ is the sample standard deviation (n − 1 in the denominator; NaN for one record).
 
     Parameters
@@ -41,6 +45,11 @@ def suite_summary(table, swept_keys=()):
         entry = {key: first[key] for key in keys}
         entry["n_rows"] = len(rows)
         entry["n_failed"] = len(rows) - len(good)
+        n_good = len(good)
+        if "motion_sha256" in good.columns:
+            digests = good["motion_sha256"].fillna("").astype(str)
+            good = good[(digests == "") | ~digests.duplicated(keep="first")]
+        entry["n_duplicate_motions"] = n_good - len(good)
         for name in SUMMARY_RESPONSES:
             values = pd.to_numeric(good[name], errors="coerce").dropna()
             mean = float(values.mean()) if len(values) else math.nan

@@ -141,7 +141,17 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
         store.remove()
     write_seconds = time.perf_counter() - write_start
     n_failed = int((table["error"] != "").sum())
+    notes.extend(_duplicate_motion_notes(table))
     return BatchResult(output=str(output), n_rows=len(table), n_failed=n_failed,
                        n_resumed=len(planned) - n_todo, n_lost_tasks=lost, lost_messages=lost_messages, notes=notes,
                        seconds={"plan": planning_seconds, "compute": compute_seconds, "write": write_seconds},
                        table=table)
+
+
+def _duplicate_motion_notes(table) -> list[str]:
+    """A sentence for each motion held by more than one file (same samples and time step)."""
+    if "motion_sha256" not in table.columns:
+        return []
+    files = table[table["motion_sha256"].fillna("") != ""].groupby("motion_sha256")["record"].unique()
+    return [f"the same motion is in {len(names)} files ({', '.join(sorted(str(n) for n in names))}): "
+            "the summary counts it once" for names in files if len(names) > 1]

@@ -80,6 +80,22 @@ def _design_columns(case: DesignCase, design=None) -> dict:
     return out
 
 
+def motion_digest(arrays, dt_s: float) -> str:
+    """SHA-256 of the ground motion as analysed: its samples [m/s²] (float64) and time step [s].
+
+    Two files that hold the same motion (the same samples under another header, e.g. two
+    editions of one record) get the same digest, so that a suite summary counts it once.
+    """
+    import hashlib
+
+    import numpy as np
+
+    digest = hashlib.sha256(repr(float(dt_s)).encode())
+    for array in arrays:
+        digest.update(np.ascontiguousarray(array, dtype=np.float64).tobytes())
+    return digest.hexdigest()
+
+
 def _record_columns(path: str, component: str | None, motion=None, measures=None, factor=1.0,
                     read_seconds=None) -> dict:
     out = {"record": path, "component": component or ""}
@@ -94,6 +110,7 @@ def _record_columns(path: str, component: str | None, motion=None, measures=None
         "record_starttime": prov.get("starttime", ""), "record_units_source": motion.units_source,
         "record_npts": motion.npts, "record_dt_s": motion.dt_s, "record_duration_s": motion.duration_s,
         "record_scale_factor": factor, "read_seconds": read_seconds,
+        "motion_sha256": motion_digest([motion.acceleration_m_s2], motion.dt_s),
     })
     out.update(measures.as_dict())
     return out
@@ -187,6 +204,8 @@ def run_task(task: Task) -> list[dict]:
         return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
     if task.component in SET_COMPONENTS:
         record_cols = pair_record_columns(task, motion, factor, read_seconds)
+        record_cols["motion_sha256"] = motion_digest([m.acceleration_m_s2 for m in motion.components.values()],
+                                                     motion.dt_s)
     else:
         record_cols = _record_columns(task.record, task.component, motion, measures, factor, read_seconds)
     rows = []

@@ -235,6 +235,25 @@ def test_summary_against_a_hand_computation():
     assert b["peak_displacement_m_mean"] == pytest.approx(0.05) and math.isnan(b["peak_displacement_m_std"])
 
 
+def test_same_motion_in_two_files_is_counted_once(suite, tmp_path):
+    """Two files holding the same samples in another layout (another edition of one record): one motion."""
+    records, designs = suite
+    rows = (records / "rec0.txt").read_text().splitlines()[1:]
+    again = ["# units: g", "# the same record, another edition: semicolons, a comment line"]
+    (records / "rec0_again.txt").write_text("\n".join(again + [row.replace(",", ";") for row in rows]) + "\n")
+    result = run_batch([str(records)], str(designs), str(tmp_path / "t.csv"), jobs=1,
+                       options=ReadOptions(harmonic=False))
+    table = read(tmp_path / "t.csv")
+    assert table.groupby("motion_sha256")["record"].nunique().max() == 2  # the two files: one digest
+    assert any("the same motion is in 2 files" in note for note in result.notes)
+    summary = suite_summary(table)
+    distinct = table[~table["record"].str.endswith("rec0_again.txt")]
+    for design_index, row in summary.set_index("design_index").iterrows():
+        expected = distinct[distinct["design_index"] == design_index]["peak_displacement_m"]
+        assert row["n_duplicate_motions"] == 1 and row["n_rows"] == 4
+        assert row["peak_displacement_m_mean"] == pytest.approx(expected.mean(), rel=1e-12)
+
+
 def test_chart_pdf_has_its_pages(suite, tmp_path):
     from pypdf import PdfReader
 
