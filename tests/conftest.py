@@ -8,6 +8,7 @@ themselves into ``tmp_path``.
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -17,6 +18,14 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _records import BAD_RECORDS  # noqa: E402
+
+# CI (CI=true): the property tests draw the same examples on every run, so that a result is
+# reproducible from the commit alone; locally they draw new ones each run (and keep failures).
+if os.environ.get("CI"):
+    from hypothesis import settings
+
+    settings.register_profile("ci", derandomize=True, database=None)
+    settings.load_profile("ci")
 
 #: ``<repository>/../shared/records``: real records beside the repository, never copied into it.
 RECORDS_DIR = Path(__file__).resolve().parents[1].parent / "shared" / "records"
