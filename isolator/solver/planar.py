@@ -109,7 +109,7 @@ class PairResponse:
     configuration: str = "1"
     n_steps: int = 0
     #: where the integration work went: rejected steps, steps in the START and LOG forms, Cartesian
-    #: steps held to the stability bound, DOP853 sub-steps landing on instants and locating peaks
+    #: and POLAR steps held to the stability bound, DOP853 sub-steps landing on instants and locating peaks
     work: dict | None = None
 
     @property

@@ -21,6 +21,7 @@ from isolator.solver.planar_rk import (
     LOG,
     P_C,
     P_MU_S,
+    POLAR,
     START,
     dop853_step,
     forcing,
@@ -34,6 +35,7 @@ PH_SLIDE = 1
 PH_APPROACH = 2
 PH_START = 3
 PH_FLIGHT = 4
+PH_POLAR = 5  #: sliding slowly: speed and direction angle (POLAR form)
 
 
 @njit(cache=True)
@@ -118,6 +120,8 @@ def velocity(phase, x, tau, y, prm, frc):
         fr = friction_coefficient(abs(y[2]), prm) * nn if nn > 0.0 else 0.0
         e1, e2 = start_direction(y[2], y[0], y[1], fx, fy, kap, kdot, frc, fr, prm[P_C])
         return y[2] * e1, y[2] * e2
+    if phase == PH_POLAR:
+        return y[7] * y[2], y[7] * y[3]
     return y[2], y[3]
 
 
@@ -165,6 +169,8 @@ def rate_of_peak(which, mode, y, d):
         return y[2] * d[2] + y[3] * d[3]
     if mode == START:
         return y[2] * d[2]
+    if mode == POLAR:
+        return y[7] * d[7]
     return -1.0
 
 
@@ -174,6 +180,8 @@ def peak_value(which, mode, y):
         return math.hypot(y[0], y[1])
     if mode == CARTESIAN:
         return math.hypot(y[2], y[3])
+    if mode == POLAR:
+        return abs(y[7])
     return abs(y[2])
 
 
@@ -268,3 +276,29 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
     dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
     work[0] += 2
     return theta
+
+
+@njit(cache=True)
+def mode_of(phase):
+    """The integration form (mode) of a phase."""
+    if phase == PH_APPROACH:
+        return LOG
+    if phase == PH_START:
+        return START
+    if phase == PH_POLAR:
+        return POLAR
+    return CARTESIAN
+
+
+@njit(cache=True)
+def force_scale(tau, y, r, prm, frc):
+    """|F| + µ(r) n [m/s²]: the force scale of the stop and LOG-entry tests."""
+    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return math.hypot(fx, fy) + (friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0)
+
+
+@njit(cache=True)
+def force_norm(tau, y, prm, frc):
+    """|F| = |−κX − a_g| [m/s²]."""
+    _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return math.hypot(fx, fy)

@@ -10,8 +10,9 @@ reading:
 * stuck: the stick test ``|κX + a_g| ≤ µs n`` is a quadratic inequality in local
   time (a_g, n and κ = n/R are linear), solved in closed form for the first
   break-away (or uplift) instant — no stepping while stuck;
-* a start from rest runs in the START form, then in Cartesian form; a decelerating
-  block whose predicted stop is within about two steps switches to the LOG form and
+* a start from rest runs in the START form, then (slow sliding) in the POLAR form, then in
+  Cartesian form; a decelerating block whose predicted stop is within about two steps
+  switches to the LOG form and
   reaches V = 0 exactly (to r = ``r_min``, then the last bit at constant
   deceleration, an error of order r_min³ in X and the energies; the stop instant τ
   is error-controlled like X); there the stick test decides: stick, or restart in the direction
@@ -31,13 +32,17 @@ from numba import njit
 from isolator.solver.planar_events import (
     PH_APPROACH,
     PH_FLIGHT,
+    PH_POLAR,
     PH_SLIDE,
     PH_START,
     PH_STUCK,
+    force_norm,
+    force_scale,
     holds,
     kappa_at,
     land_on,
     locate_peak,
+    mode_of,
     peak_value,
     rate_of_peak,
     start_lag,
@@ -50,6 +55,7 @@ from isolator.solver.planar_rk import (
     LOG,
     NSTATE,
     P_C,
+    POLAR,
     START,
     dop853_step,
     forcing,
@@ -108,6 +114,11 @@ _LEAVE = 0.01
 _STABLE = 12.0
 #: START form kept above SC_R_SWITCH_LO only while the slaved direction lags F by less than this [rad]
 _LAG_MAX = 1e-3
+#: POLAR form below r = _POLAR_ENTER·|F|·(sample step), Cartesian above _POLAR_LEAVE·|F|·(sample step);
+#: POLAR steps kept below _STABLE_POLAR·r/|F| (the direction relaxes at the rate e·F/r)
+_POLAR_ENTER = 5.0
+_POLAR_LEAVE = 10.0
+_STABLE_POLAR = 5.0
 
 
 @njit(cache=True)
@@ -148,21 +159,6 @@ def _land(tau, y, prm, frc, f):
         rhs(CARTESIAN, tau, y, prm, frc, f)
         return PH_SLIDE
     return _at_rest(tau, y, prm, frc, f)
-
-
-@njit(cache=True)
-def _mode_of(phase):
-    if phase == PH_APPROACH:
-        return LOG
-    if phase == PH_START:
-        return START
-    return CARTESIAN
-
-
-@njit(cache=True)
-def _force_scale(tau, y, r, prm, frc):
-    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return math.hypot(fx, fy) + (friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0)
 
 
 @njit(cache=True)
@@ -229,6 +225,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_log = 0
     n_lim = 0
     just_rejected = False
+    polar_ok = True
     failed_at = -1
     out_x[0, 0] = 0.0
     out_x[0, 1] = 0.0
@@ -255,7 +252,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         elif phase != PH_STUCK:
             x = 0.0
         if refresh and phase != PH_STUCK:
-            rhs(_mode_of(phase), x, y, prm, frc, f)
+            rhs(mode_of(phase), x, y, prm, frc, f)
         tz = hi
         if (nz[i] > 0.0 > nz[i + 1]) or (nz[i] < 0.0 < nz[i + 1]):
             tz = nz[i] / (nz[i] - nz[i + 1]) * hi
@@ -332,7 +329,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             elif phase == PH_APPROACH:
                 r = math.exp(x)
                 rdot = r / f[7]
-                fscale = _force_scale(y[7], y, r, prm, frc)
+                fscale = force_scale(y[7], y, r, prm, frc)
                 if x <= s_end or rdot > -_LEAVE * fscale:
                     if x > s_end:
                         # the speed no longer falls fast: back to Cartesian form (a turn, not a stop)
@@ -409,10 +406,27 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 events_here += 1
                 h_sugg = 0.01 * hi
             else:
-                mode = START if phase == PH_START else CARTESIAN
+                mode = START if phase == PH_START else (POLAR if phase == PH_POLAR else CARTESIAN)
+                if phase == PH_POLAR:
+                    r = y[7]
+                    fm = force_norm(tau, y, prm, frc)
+                    fscale = force_scale(tau, y, r, prm, frc)
+                    rdot = f[7]
+                    h_try = h_sugg if h_sugg > 0.0 else target - tau
+                    if (r <= r_min and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try) \
+                            or r > _POLAR_LEAVE * fm * hi:
+                        # a stop, the approach to one, or fast sliding: the Cartesian branch takes over
+                        # (and, until it has taken a step, does not hand back: rounding must not ping-pong)
+                        polar_ok = r > _POLAR_LEAVE * fm * hi
+                        y[2] *= r
+                        y[3] *= r
+                        y[7] = 0.0
+                        phase = PH_SLIDE
+                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                        continue
                 if phase == PH_SLIDE:
                     r = math.hypot(y[2], y[3])
-                    fscale = _force_scale(tau, y, r, prm, frc)
+                    fscale = force_scale(tau, y, r, prm, frc)
                     rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
                     if r <= r_min and rdot <= 0.0:
                         phase = _at_rest(tau, y, prm, frc, f)
@@ -447,6 +461,14 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         y[3] *= r
                         x = tau
                         rhs(CARTESIAN, tau, y, prm, frc, f)
+                    elif polar_ok and r < _POLAR_ENTER * force_norm(tau, y, prm, frc) * hi and not (
+                            rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
+                        y[2] /= r
+                        y[3] /= r
+                        y[7] = r
+                        phase = PH_POLAR
+                        rhs(POLAR, tau, y, prm, frc, f)
+                        continue
                 hmax = target - tau
                 h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
                 if phase == PH_SLIDE:
@@ -456,9 +478,18 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     if h_stable < h:
                         h = h_stable
                         n_lim += 1
+                elif phase == PH_POLAR:
+                    h_stable = _STABLE_POLAR * y[7] / max(force_norm(tau, y, prm, frc), 1e-300)
+                    if h_stable < h:
+                        h = h_stable
+                        n_lim += 1
                 atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
                 atol[7] = np.inf
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
+                if mode == POLAR:
+                    atol[7] = atol[2]
+                    atol[2] /= y[7]
+                    atol[3] = atol[2]
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
                 n_steps += 1
                 if mode == START:
@@ -503,6 +534,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                                                                   yb, fb, atol, rtol, work))
                         else:
                             bound = max(peak_value(1, mode, y), peak_value(1, mode, ynew)) + h * (
+                                abs(f[7]) + abs(fnew[7]) if mode == POLAR else
                                 abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
                             if bound > peak_v:
                                 peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
@@ -518,13 +550,15 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 peak_x = max(peak_x, math.hypot(y[0], y[1]))
                 peak_v = max(peak_v, peak_value(1, mode, y))
                 x = tau
+                polar_ok = True
                 if phase == PH_START and (y[2] >= r_switch or (
                         y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > _LAG_MAX)):
                     v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
-                    y[2] = v1
-                    y[3] = v2
-                    phase = PH_SLIDE
-                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                    y[7] = y[2]
+                    y[2] = v1 / y[7]
+                    y[3] = v2 / y[7]
+                    phase = PH_POLAR
+                    rhs(POLAR, tau, y, prm, frc, f)
         if failed_at >= 0:
             break
         out_x[i + 1, 0] = y[0]

@@ -6,7 +6,7 @@ Per unit mass, relative to the ground, inside one sample interval (local time τ
 
 with :math:`a_g`, :math:`n = g + a_z` linear in τ and κ = n/R (pendulum) or K/M.
 Writing :math:`F = -\kappa X - a_g` for the non-dissipative force, the motion is
-integrated in one of three forms (``mode``), each regular where it is used:
+integrated in one of four forms (``mode``), each regular where it is used:
 
 * ``CARTESIAN`` (0): state (X, V), independent variable τ; sliding away from V = 0
   and free flight (no friction while n ≤ 0).
@@ -28,6 +28,10 @@ integrated in one of three forms (``mode``), each regular where it is used:
   turning rate of F; :func:`start_direction`) until r reaches a switch value where
   the error of that direction is below the integration tolerance (measured in
   docs/planar.md).
+* ``POLAR`` (3): slow sliding.  Speed r (component 7) and direction e = V/|V|
+  (components 2, 3) as separate variables: r' = e·F − µ(r) n − c r,
+  e' = (F − (e·F) e)/r, X' = r e; the stiff mode is e relaxing onto F at the
+  rate e·F/r.
 
 Energies per unit mass are integrated with the motion (components 4–6): input
 ``-a_g·V + ½ κ' |X|²`` (the second term is the work of the vertical motion on a
@@ -52,6 +56,7 @@ _FAST = {"contract", "reassoc", "arcp", "nsz"}
 CARTESIAN = 0
 LOG = 1
 START = 2
+POLAR = 3
 
 #: state size: X (2), V or e or (r, -) (2), energies input/friction/viscous (3), τ (log mode)
 NSTATE = 8
@@ -193,6 +198,25 @@ def rhs(mode, x, y, prm, frc, d):
         d[5] = fr * abs(r)
         d[6] = c * r * r
         d[7] = 0.0
+        return True
+    if mode == POLAR:
+        # speed r (component 7) and direction e = V/|V| (components 2, 3, as in LOG form);
+        # e' = (F − (e·F) e)/r, the direction's relaxation rate e·F/r is the stiff mode
+        r = y[7]
+        if not r > 0.0:
+            return False
+        e1 = y[2]
+        e2 = y[3]
+        fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
+        ef = e1 * fx + e2 * fy
+        d[0] = r * e1
+        d[1] = r * e2
+        d[2] = (fx - ef * e1) / r
+        d[3] = (fy - ef * e2) / r
+        d[4] = -(axx * e1 + ayy * e2) * r + pin
+        d[5] = fr * r
+        d[6] = c * r * r
+        d[7] = ef - fr - c * r
         return True
     # LOG: independent variable s = ln r
     r = math.exp(x)
