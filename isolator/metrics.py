@@ -165,18 +165,13 @@ def strong_motion_window_s(acceleration_m_s2, dt_s: float, start_fraction: float
 
     ``time_s`` gives the sample times of a record with unequal steps [s] (``dt_s`` unused).
     """
-    from isolator.motion.measures import cumulative_trapezoid
+    from isolator.motion.measures import arias_window_s
 
-    acc = np.asarray(acceleration_m_s2, dtype=float)
-    if time_s is None:
-        time_s = np.arange(acc.size) * dt_s
-    else:
-        time_s = np.asarray(time_s, dtype=float) - time_s[0]
-    cumulative = cumulative_trapezoid(acc ** 2, dt_s, time_s)
-    if not cumulative[-1] > 0:
-        return 0.0, float(time_s[-1])
-    start, end = np.interp([start_fraction * cumulative[-1], end_fraction * cumulative[-1]], cumulative, time_s)
-    return float(start), float(end)
+    window = arias_window_s(acceleration_m_s2, dt_s, start_fraction, end_fraction, time_s)
+    if window is None:  # a record of zeros: the whole record
+        n = np.asarray(acceleration_m_s2).size
+        return 0.0, float((n - 1) * dt_s if time_s is None else time_s[-1] - time_s[0])
+    return window
 
 
 def classify_record(response, point, design=None, *, window_s: tuple | None = None,

@@ -18,8 +18,8 @@ from isolator.units import STANDARD_GRAVITY
 #: Periods searched for the predominant period (peak of the 5 %-damped PSA) [s].
 PREDOMINANT_PERIODS_S = np.geomspace(0.02, 5.0, 100)
 
-__all__ = ["DEFAULT_DAMPING_RATIO", "IntensityMeasures", "arias_intensity_m_s", "cumulative_trapezoid",
-           "displacement_m", "intensity_measures", "significant_duration_s", "velocity_m_s"]
+__all__ = ["DEFAULT_DAMPING_RATIO", "IntensityMeasures", "arias_intensity_m_s", "arias_window_s",
+           "cumulative_trapezoid", "displacement_m", "intensity_measures", "significant_duration_s", "velocity_m_s"]
 
 
 def cumulative_trapezoid(values: np.ndarray, dt_s: float, time_s=None) -> np.ndarray:
@@ -156,13 +156,38 @@ def significant_duration_s(
         Duration, the crossing times linearly interpolated on the cumulative
         (trapezoidal) integral of a²; 0 for a record of zeros [s].
     """
+    window = arias_window_s(acceleration_m_s2, dt_s, start_fraction, end_fraction, time_s)
+    return 0.0 if window is None else window[1] - window[0]
+
+
+def arias_window_s(acceleration_m_s2: np.ndarray, dt_s: float, start_fraction: float = 0.05,
+                   end_fraction: float = 0.95, time_s=None) -> tuple[float, float] | None:
+    """Times at which the Arias intensity reaches two fractions of its total (D5–95 window).
+
+    Parameters
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        Ground acceleration samples [m/s²].
+    dt_s : float
+        Time step [s].
+    start_fraction, end_fraction : float, optional
+        Fractions of the total Arias intensity [-].
+    time_s : numpy.ndarray, optional
+        Sample times of a record with unequal steps (then ``dt_s`` is unused) [s].
+
+    Returns
+    -------
+    tuple of float or None
+        (start, end) from the first sample, the crossings linearly interpolated on the
+        cumulative (trapezoidal) integral of a² [s]; None for a record of zeros.
+    """
     cumulative = cumulative_trapezoid(np.asarray(acceleration_m_s2, dtype=float) ** 2, dt_s, time_s)
     total = cumulative[-1]
     if not total > 0:
-        return 0.0
+        return None
     times_s = _times(cumulative.size, dt_s, time_s)
     start_s, end_s = np.interp([start_fraction * total, end_fraction * total], cumulative, times_s)
-    return float(end_s - start_s)
+    return float(start_s), float(end_s)
 
 
 

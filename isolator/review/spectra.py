@@ -24,18 +24,12 @@ import math
 import numpy as np
 from numba import njit
 
+from isolator.solver.linear import ramp_step
 from isolator.solver.segments import ramp_basis
 
 #: minimum number of recurrence steps per oscillator period (see the module docstring)
 STEPS_PER_PERIOD = 20
 ROTD50_ANGLES_DEG = np.arange(180.0)
-
-
-@njit(cache=True, inline="always")
-def _step(x, v, f, slope, e0, e1, h1, h2, m, kappa):
-    """One exact step of u'' + c u' + κ u = f + (−slope) t from (x, v): the ramp segment of linear.py."""
-    return (e0 * x + e1 * (v - m * x) + f * h1 - slope * h2,
-            e0 * v + e1 * (m * v - kappa * x + f) - slope * h1)
 
 
 @njit(cache=True)
@@ -66,8 +60,8 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
             b1 = (ax[i + 1] - ax[i]) / dt
             b2 = (ay[i + 1] - ay[i]) / dt
             for j in range(n_sub):
-                x1, v1 = _step(x1, v1, -(ax[i] + b1 * (j * h)), b1, e0, e1, h1, h2, m, kappa)
-                x2, v2 = _step(x2, v2, -(ay[i] + b2 * (j * h)), b2, e0, e1, h1, h2, m, kappa)
+                x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
+                x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
                 p1 = max(p1, abs(x1))
                 p2 = max(p2, abs(x2))
                 r2 = x1 * x1 + x2 * x2
@@ -92,8 +86,8 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
         b1 = (ax[i + 1] - ax[i]) / dt
         b2 = (ay[i + 1] - ay[i]) / dt
         for j in range(n_sub):
-            x1, v1 = _step(x1, v1, -(ax[i] + b1 * (j * h)), b1, e0, e1, h1, h2, m, kappa)
-            x2, v2 = _step(x2, v2, -(ay[i] + b2 * (j * h)), b2, e0, e1, h1, h2, m, kappa)
+            x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
+            x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
             for a in range(out.shape[0]):
                 u = abs(x1 * cosines[a] + x2 * sines[a])
                 out[a] = max(out[a], u)

@@ -25,6 +25,17 @@ from isolator.solver.segments import ramp_basis, segment_state
 MAX_SUBSTEPS_PER_SAMPLE = 100
 
 
+@njit(cache=True, inline="always")
+def ramp_step(x, v, p, q, e0, e1, h1, h2, m, kappa):
+    """One exact step of u'' + c u' + κ u = p + q t over a piece h, from (x, v) at its start.
+
+    ``e0, e1, h1, h2`` are :func:`isolator.solver.segments.ramp_basis` over h, m = −c/2
+    (the Nigam–Jennings recurrence, REVIEW_RULES 1.2).  Returns (x, v) at the piece's end.
+    """
+    return (e0 * x + e1 * (v - m * x) + p * h1 + q * h2,
+            e0 * v + e1 * (m * v - kappa * x + p) + q * h1)
+
+
 @njit(cache=True)
 def _peak_displacement(acc, dt, c, kappa, n_sub, times, max_piece):
     # times: empty for a uniform record; otherwise sample times, each interval split
@@ -48,8 +59,7 @@ def _peak_displacement(acc, dt, c, kappa, n_sub, times, max_piece):
         q = -b
         for j in range(n_sub_i):
             p = -(acc[i] + b * (j * h))
-            x1 = e0 * x + e1 * (v - m * x) + p * h1 + q * h2
-            v1 = e0 * v + e1 * (m * v - kappa * x + p) + q * h1
+            x1, v1 = ramp_step(x, v, p, q, e0, e1, h1, h2, m, kappa)
             # between samples |x| exceeds its ends by at most ~h max|v| (v changes sign there)
             if v * v1 < 0.0 and max(abs(x), abs(x1)) + h * max(abs(v), abs(v1)) > peak:
                 # an extremum of x between the samples: locate it exactly

@@ -423,14 +423,6 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     )
 
 
-def _is_uniform(time_s) -> bool:
-    steps = np.diff(np.asarray(time_s, dtype=np.float64))
-    if steps.size == 0 or not np.all(np.isfinite(steps)) or np.any(steps <= 0.0):
-        return True  # not a valid grid: let the 1-D reader's error stand
-    dt = steps.sum() / steps.size
-    return bool(np.max(np.abs(steps - dt)) <= 1e-6 * dt + 1e-12)
-
-
 def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, **system):
     """Response to one component, a pair, or a pair and a vertical, with the model the scene needs.
 
