@@ -16,6 +16,7 @@ import math
 
 from numba import njit
 
+from isolator.solver.planar_dop853 import dop853_step
 from isolator.solver.planar_rk import (
     CARTESIAN,
     LOG,
@@ -23,9 +24,9 @@ from isolator.solver.planar_rk import (
     P_MU_S,
     POLAR,
     START,
-    dop853_step,
     forcing,
     friction_coefficient,
+    norm,
     start_direction,
 )
 
@@ -104,7 +105,7 @@ def stuck_until(x1, x2, tau0, length, prm, frc):
 def holds(tau, y, prm, frc):
     """At rest at τ: True if the static friction holds (|κX + a_g| ≤ µs n, n > 0)."""
     _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return nn > 0.0 and math.hypot(fx, fy) <= prm[P_MU_S] * nn
+    return nn > 0.0 and norm(fx, fy) <= prm[P_MU_S] * nn
 
 
 @njit(cache=True)
@@ -129,7 +130,7 @@ def velocity(phase, x, tau, y, prm, frc):
 def start_lag(tau, y, prm, frc):
     """|sin θ|, the angle by which the slaved (START form) velocity trails F [-]."""
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    fm = math.hypot(fx, fy)
+    fm = norm(fx, fy)
     if fm == 0.0 or y[2] == 0.0:
         return 0.0
     v1, v2 = velocity(PH_START, 0.0, tau, y, prm, frc)
@@ -143,7 +144,7 @@ def transmitted(phase, x, tau, y, prm, frc):
     if phase == PH_STUCK:
         return axx, ayy
     v1, v2 = velocity(phase, x, tau, y, prm, frc)
-    r = math.hypot(v1, v2)
+    r = norm(v1, v2)
     c = prm[P_C]
     e1 = 0.0
     e2 = 0.0
@@ -177,16 +178,16 @@ def rate_of_peak(which, mode, y, d):
 @njit(cache=True)
 def peak_value(which, mode, y):
     if which == 0:
-        return math.hypot(y[0], y[1])
+        return norm(y[0], y[1])
     if mode == CARTESIAN:
-        return math.hypot(y[2], y[3])
+        return norm(y[2], y[3])
     if mode == POLAR:
         return abs(y[7])
     return abs(y[2])
 
 
 @njit(cache=True)
-def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol, rtol, work):
+def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, yb, fb, atol, rtol, work):
     """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −.
 
     ``work[1]`` counts the DOP853 sub-steps taken.
@@ -201,7 +202,7 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol
     for _ in range(60):
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
-        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
         work[1] += 1
         if not ok:
             hi = theta
@@ -228,7 +229,7 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, k, ytmp, yb, fb, atol
 
 
 @njit(cache=True)
-def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rtol, work):
+def land_on(mode, x, y, f, h, coord, target, prm, frc, yb, fb, atol, rtol, work):
     """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
 
     The component must be monotone on the step, below the target at θ = 0 and
@@ -239,7 +240,7 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
     hi = 1.0
     flo = y[coord] - target
     fhi = 1.0
-    ok, _ = dop853_step(mode, x, y, f, h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    ok, _ = dop853_step(mode, x, y, f, h, prm, frc, yb, fb, atol, rtol)
     if ok:
         fhi = yb[coord] - target
     sgn = 1.0 if fhi > flo else -1.0
@@ -251,7 +252,7 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
         theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
-        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+        ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
         work[0] += 1
         if not ok:
             hi = theta
@@ -273,7 +274,7 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, k, ytmp, yb, fb, atol, rt
             break
     # finish on the upper end of the bracket: the crossing has happened there
     theta = hi
-    dop853_step(mode, x, y, f, theta * h, prm, frc, k, ytmp, yb, fb, atol, rtol)
+    dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
     work[0] += 2
     return theta
 
@@ -294,11 +295,11 @@ def mode_of(phase):
 def force_scale(tau, y, r, prm, frc):
     """|F| + µ(r) n [m/s²]: the force scale of the stop and LOG-entry tests."""
     _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return math.hypot(fx, fy) + (friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0)
+    return norm(fx, fy) + (friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0)
 
 
 @njit(cache=True)
 def force_norm(tau, y, prm, frc):
     """|F| = |−κX − a_g| [m/s²]."""
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return math.hypot(fx, fy)
+    return norm(fx, fy)

@@ -29,6 +29,7 @@ import math
 import numpy as np
 from numba import njit
 
+from isolator.solver.planar_dop853 import dop853_step
 from isolator.solver.planar_events import (
     PH_APPROACH,
     PH_FLIGHT,
@@ -57,9 +58,9 @@ from isolator.solver.planar_rk import (
     P_C,
     POLAR,
     START,
-    dop853_step,
     forcing,
     friction_coefficient,
+    norm,
     rhs,
     step_factor,
 )
@@ -196,10 +197,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     f = np.zeros(NSTATE)
     ynew = np.zeros(NSTATE)
     fnew = np.zeros(NSTATE)
-    ytmp = np.zeros(NSTATE)
     yb = np.zeros(NSTATE)
     fb = np.zeros(NSTATE)
-    k = np.zeros((13, NSTATE))
     atol = np.full(NSTATE, np.inf)
     frc = np.zeros(7)
     work = np.zeros(2)
@@ -213,7 +212,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     s_end = math.log(r_min)
     peak_x = 0.0
     peak_v = 0.0
-    peak_a = math.hypot(ax[0], ay[0])
+    peak_a = norm(ax[0], ay[0])
     slip = 0.0
     upt = 0.0
     n_up = 0
@@ -287,7 +286,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             # every path through the loop (including each `continue`) comes back here
             if phase != PH_STUCK:
                 a1, a2 = transmitted(phase, x, tau, y, prm, frc)
-                peak_a = max(peak_a, math.hypot(a1, a2))
+                peak_a = max(peak_a, norm(a1, a2))
             if events_here > MAX_EVENTS_PER_INTERVAL:
                 # chatter guard: let the static friction hold the block to the end of the interval
                 status |= STATUS_CHATTER
@@ -325,7 +324,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     events_here += 1
                     h_sugg = 0.01 * hi
                     a1, a2 = transmitted(phase, x, tau, y, prm, frc)
-                    peak_a = max(peak_a, math.hypot(a1, a2))
+                    peak_a = max(peak_a, norm(a1, a2))
             elif phase == PH_APPROACH:
                 r = math.exp(x)
                 rdot = r / f[7]
@@ -343,7 +342,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 else:
                     ds = max(ds_sugg, s_end - x)
                     atol[7] = rtol * hi  # the stop instant is error-controlled too
-                    ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
+                    ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
                     n_steps += 1
                     n_log += 1
                     if not ok or err > 1.0:
@@ -360,7 +359,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
+                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, yb, fb, atol, rtol, work)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
@@ -368,16 +367,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         hit = True
                     g0 = rate_of_peak(0, LOG, y, f)
                     g1 = rate_of_peak(0, LOG, ynew, fnew)
-                    if g0 > 0.0 >= g1 and max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + \
+                    if g0 > 0.0 >= g1 and max(norm(y[0], y[1]), norm(ynew[0], ynew[1])) + \
                             r * (ynew[7] - y[7]) > peak_x:
-                        peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, k, ytmp, yb, fb,
+                        peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, yb, fb,
                                                           atol, rtol, work))
                     slip += ynew[7] - y[7]
                     x += ds
                     y[:] = ynew
                     f[:] = fnew
                     tau = y[7]
-                    peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                    peak_x = max(peak_x, norm(y[0], y[1]))
                     if not hit:
                         # no growth right after a rejection (Hairer & Wanner's facmax = 1)
                         ds_sugg = ds * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
@@ -399,7 +398,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 y[6] += prm[P_C] * r * r * dtt / 3.0
                 tau += dtt
                 slip += dtt
-                peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                peak_x = max(peak_x, norm(y[0], y[1]))
                 phase = _at_rest(tau, y, prm, frc, f)
                 x = tau
                 n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
@@ -425,7 +424,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         rhs(CARTESIAN, tau, y, prm, frc, f)
                         continue
                 if phase == PH_SLIDE:
-                    r = math.hypot(y[2], y[3])
+                    r = norm(y[2], y[3])
                     fscale = force_scale(tau, y, r, prm, frc)
                     rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
                     if r <= r_min and rdot <= 0.0:
@@ -490,7 +489,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     atol[7] = atol[2]
                     atol[2] /= y[7]
                     atol[3] = atol[2]
-                ok, err = dop853_step(mode, tau, y, f, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol)
+                ok, err = dop853_step(mode, tau, y, f, h, prm, frc, ynew, fnew, atol, rtol)
                 n_steps += 1
                 if mode == START:
                     n_start += 1
@@ -501,11 +500,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
+                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, yb, fb, atol, rtol, work)
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
-                    peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                    peak_x = max(peak_x, norm(y[0], y[1]))
                     phase = _at_rest(tau, y, prm, frc, f)
                     x = tau
                     n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
@@ -518,7 +517,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
                     # the slaved direction is accurate only up to r_switch: end the step there
-                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, k, ytmp, yb, fb, atol, rtol, work)
+                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, yb, fb, atol, rtol, work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
@@ -527,18 +526,18 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     g1 = rate_of_peak(which, mode, ynew, fnew)
                     if g0 > 0.0 >= g1:
                         if which == 0:
-                            bound = max(math.hypot(y[0], y[1]), math.hypot(ynew[0], ynew[1])) + h * max(
+                            bound = max(norm(y[0], y[1]), norm(ynew[0], ynew[1])) + h * max(
                                 peak_value(1, mode, y), peak_value(1, mode, ynew))
                             if bound > peak_x:
-                                peak_x = max(peak_x, locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
-                                                                  yb, fb, atol, rtol, work))
+                                peak_x = max(peak_x, locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, yb,
+                                                                  fb, atol, rtol, work))
                         else:
                             bound = max(peak_value(1, mode, y), peak_value(1, mode, ynew)) + h * (
                                 abs(f[7]) + abs(fnew[7]) if mode == POLAR else
                                 abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
                             if bound > peak_v:
-                                peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, k, ytmp,
-                                                                  yb, fb, atol, rtol, work))
+                                peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, yb,
+                                                                  fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
@@ -547,7 +546,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     upt += h
                 h_sugg = h * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
                 just_rejected = False
-                peak_x = max(peak_x, math.hypot(y[0], y[1]))
+                peak_x = max(peak_x, norm(y[0], y[1]))
                 peak_v = max(peak_v, peak_value(1, mode, y))
                 x = tau
                 polar_ok = True
@@ -572,7 +571,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             a1, a2 = transmitted(phase, x, hi, y, prm, frc)
         out_a[i + 1, 0] = a1
         out_a[i + 1, 1] = a2
-        peak_a = max(peak_a, math.hypot(a1, a2))
+        peak_a = max(peak_a, norm(a1, a2))
         out_en[0, i + 1] = y[4]
         out_en[1, i + 1] = y[5]
         out_en[2, i + 1] = y[6]

@@ -1,4 +1,4 @@
-r"""Right-hand sides and the Dormand–Prince 8(5,3) step of the planar (2-D) kernel.
+r"""Right-hand sides of the planar (2-D) kernel, in the four forms of the motion.
 
 Per unit mass, relative to the ground, inside one sample interval (local time τ):
 
@@ -37,21 +37,19 @@ Energies per unit mass are integrated with the motion (components 4–6): input
 ``-a_g·V + ½ κ' |X|²`` (the second term is the work of the vertical motion on a
 pendulum), friction ``µ n |V|`` and viscous ``c |V|²``.
 
-The step is Dormand & Prince's DOP853 (Hairer, Nørsett & Wanner, *Solving ODEs I*,
-§II.10) with scipy's coefficient tables and its 5th/3rd-order error estimate.
+The DOP853 step that integrates them is :mod:`isolator.solver.planar_dop853` (generated,
+unrolled); :func:`step_factor` is its step-size controller.
 """
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop
 
 #: numba fast-math flags that keep NaN/inf semantics (the step tests for both): FMA contraction,
 #: reassociation, reciprocal division, no signed zeros
-_FAST = {"contract", "reassoc", "arcp", "nsz"}
+FASTMATH = {"contract", "reassoc", "arcp", "nsz"}
 
 CARTESIAN = 0
 LOG = 1
@@ -74,11 +72,12 @@ P_INV_R = 8
 P_PENDULUM = 9
 P_SIZE = 10
 
-_A = np.ascontiguousarray(_dop.A[:12, :12])
-_B = np.ascontiguousarray(_dop.B)
-_C = np.ascontiguousarray(_dop.C[:12])
-_E3 = np.ascontiguousarray(_dop.E3)
-_E5 = np.ascontiguousarray(_dop.E5)
+@njit(cache=True, fastmath=FASTMATH)
+def norm(a, b):
+    """√(a² + b²): the length of a plane vector.  Not ``math.hypot``, which guards
+    against overflow and underflow at a tenth of a DOP853 step's cost; the forces,
+    speeds and displacements here are far from both limits."""
+    return math.sqrt(a * a + b * b)
 
 
 @njit(cache=True)
@@ -131,7 +130,7 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
     are O(τ_r² ψ'')).  ``fr`` is the friction force µ(r) n [m/s²] and ``c`` the
     damping [1/s], which give ṙ ≈ |F| − fr − c r.
     """
-    fm = math.hypot(fx, fy)
+    fm = norm(fx, fy)
     if fm == 0.0:
         return 0.0, 0.0
     e1 = fx / fm
@@ -156,161 +155,74 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
     return cos_t * e1 + sin_t * e2, -sin_t * e1 + cos_t * e2
 
 
-@njit(cache=True, fastmath=_FAST)
-def rhs(mode, x, y, prm, frc, d):
-    """Derivative of the state in ``mode`` at independent variable ``x`` (into ``d``).
+@njit(cache=True, fastmath=FASTMATH)
+def derivative(mode, x, x1, x2, y2, y3, y7, prm, frc):
+    """Derivative of the state in ``mode`` at independent variable ``x``.
 
-    Returns False where the LOG form is not valid (the speed no longer decreases).
-    """
-    c = prm[P_C]
-    tau = y[7] if mode == LOG else x
-    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    pin = 0.5 * kdot * (y[0] * y[0] + y[1] * y[1])
-    if mode == CARTESIAN:
-        v1 = y[2]
-        v2 = y[3]
-        r = math.hypot(v1, v2)
-        fr = 0.0
-        e1 = 0.0
-        e2 = 0.0
-        if nn > 0.0 and r > 0.0:
-            fr = friction_coefficient(r, prm) * nn
-            e1 = v1 / r
-            e2 = v2 / r
-        d[0] = v1
-        d[1] = v2
-        d[2] = fx - fr * e1 - c * v1
-        d[3] = fy - fr * e2 - c * v2
-        d[4] = -(axx * v1 + ayy * v2) + pin
-        d[5] = fr * r
-        d[6] = c * r * r
-        d[7] = 0.0
-        return True
-    if mode == START:
-        r = y[2]
-        fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
-        e1, e2 = start_direction(r, y[0], y[1], fx, fy, kap, kdot, frc, fr, c)
-        d[0] = r * e1
-        d[1] = r * e2
-        d[2] = e1 * fx + e2 * fy - fr - c * r
-        d[3] = 0.0
-        d[4] = -(axx * e1 + ayy * e2) * r + pin
-        d[5] = fr * abs(r)
-        d[6] = c * r * r
-        d[7] = 0.0
-        return True
-    if mode == POLAR:
-        # speed r (component 7) and direction e = V/|V| (components 2, 3, as in LOG form);
-        # e' = (F − (e·F) e)/r, the direction's relaxation rate e·F/r is the stiff mode
-        r = y[7]
-        if not r > 0.0:
-            return False
-        e1 = y[2]
-        e2 = y[3]
-        fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
-        ef = e1 * fx + e2 * fy
-        d[0] = r * e1
-        d[1] = r * e2
-        d[2] = (fx - ef * e1) / r
-        d[3] = (fy - ef * e2) / r
-        d[4] = -(axx * e1 + ayy * e2) * r + pin
-        d[5] = fr * r
-        d[6] = c * r * r
-        d[7] = ef - fr - c * r
-        return True
-    # LOG: independent variable s = ln r
-    r = math.exp(x)
-    e1 = y[2]
-    e2 = y[3]
-    fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
-    ef = e1 * fx + e2 * fy
-    rdot = -fr + ef - c * r
-    if not rdot < 0.0:
-        return False
-    w = 1.0 / rdot
-    rw = r * w
-    d[0] = r * rw * e1
-    d[1] = r * rw * e2
-    d[2] = (fx - ef * e1) * w
-    d[3] = (fy - ef * e2) * w
-    d[4] = (-(axx * e1 + ayy * e2) * r + pin) * rw
-    d[5] = fr * r * rw
-    d[6] = c * r * r * rw
-    d[7] = rw
-    return True
-
-
-@njit(cache=True, fastmath=_FAST)
-def dop853_step(mode, x, y, f0, h, prm, frc, k, ytmp, ynew, fnew, atol, rtol):
-    """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
-
-    Parameters
-    ----------
-    atol : float64[NSTATE]
-        Absolute tolerance per component; components with atol = inf are not
-        error-controlled.
-    rtol : float
-        Relative tolerance [-].
+    The arguments are the components the right-hand side reads: X = (x1, x2) and
+    y2, y3, y7 (velocity, direction or speed, and τ in LOG form, per ``mode``); the
+    energies (components 4–6) are quadratures.  |V| is ``sqrt(v1² + v2²)``, not
+    ``hypot``: speeds here are far from overflow and underflow, and ``hypot`` costs
+    a sixth of a step.
 
     Returns
     -------
     tuple
-        ``(ok, err)``: ok is False if a stage left the domain of ``mode``;
-        err is the scaled error norm (accept when ≤ 1).  ``ynew``/``fnew`` hold the
-        new state and its derivative.
+        ``(ok, d0, …, d7)``: ok is False where the form is not valid (the speed no
+        longer decreases in LOG form, a non-positive speed in POLAR form).
     """
-    # loops over the fixed state size with the stage index outside and zero
-    # coefficients skipped (50 of the 66 below-diagonal entries are used)
-    for j in range(NSTATE):
-        k[0, j] = f0[j]
-    for s in range(1, 12):
-        for j in range(NSTATE):
-            ytmp[j] = 0.0
-        for m in range(s):
-            a = _A[s, m]
-            if a != 0.0:
-                for j in range(NSTATE):
-                    ytmp[j] += a * k[m, j]
-        for j in range(NSTATE):
-            ytmp[j] = y[j] + h * ytmp[j]
-        if not rhs(mode, x + _C[s] * h, ytmp, prm, frc, k[s]):
-            return False, np.inf
-    for j in range(NSTATE):
-        ytmp[j] = 0.0
-    for m in range(12):
-        b = _B[m]
-        if b != 0.0:
-            for j in range(NSTATE):
-                ytmp[j] += b * k[m, j]
-    for j in range(NSTATE):
-        ynew[j] = y[j] + h * ytmp[j]
-    if not rhs(mode, x + h, ynew, prm, frc, fnew):
-        return False, np.inf
-    for j in range(NSTATE):
-        k[12, j] = fnew[j]
-    err5 = 0.0
-    err3 = 0.0
-    count = 0
-    for j in range(NSTATE):
-        if not atol[j] < np.inf:
-            continue
-        e5 = 0.0
-        e3 = 0.0
-        for m in range(13):
-            e5 += _E5[m] * k[m, j]
-            e3 += _E3[m] * k[m, j]
-        sc = atol[j] + rtol * max(abs(y[j]), abs(ynew[j]))
-        e5 /= sc
-        e3 /= sc
-        err5 += e5 * e5
-        err3 += e3 * e3
-        count += 1
-    if err5 == 0.0 and err3 == 0.0:
-        return True, 0.0
-    err = abs(h) * err5 / math.sqrt((err5 + 0.01 * err3) * count)
-    if not err < np.inf:
-        return False, np.inf
-    return True, err
+    c = prm[P_C]
+    tau = y7 if mode == LOG else x
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, x1, x2, prm, frc)
+    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
+    if mode == CARTESIAN:
+        r = math.sqrt(y2 * y2 + y3 * y3)
+        fr_r = 0.0  # µ n / |V|
+        fr = 0.0
+        if nn > 0.0 and r > 0.0:
+            fr = friction_coefficient(r, prm) * nn
+            fr_r = fr / r
+        return (True, y2, y3, fx - (fr_r + c) * y2, fy - (fr_r + c) * y3, -(axx * y2 + ayy * y3) + pin,
+                fr * r, c * r * r, 0.0)
+    if mode == START:
+        r = y2
+        fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
+        e1, e2 = start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c)
+        return (True, r * e1, r * e2, e1 * fx + e2 * fy - fr - c * r, 0.0, -(axx * e1 + ayy * e2) * r + pin,
+                fr * abs(r), c * r * r, 0.0)
+    if mode == POLAR:
+        # speed r (component 7) and direction e = V/|V| (components 2, 3, as in LOG form);
+        # e' = (F − (e·F) e)/r, the direction's relaxation rate e·F/r is the stiff mode
+        r = y7
+        if not r > 0.0:
+            return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
+        ef = y2 * fx + y3 * fy
+        ir = 1.0 / r
+        return (True, r * y2, r * y3, (fx - ef * y2) * ir, (fy - ef * y3) * ir, -(axx * y2 + ayy * y3) * r + pin,
+                fr * r, c * r * r, ef - fr - c * r)
+    # LOG: independent variable s = ln r
+    r = math.exp(x)
+    fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
+    ef = y2 * fx + y3 * fy
+    rdot = -fr + ef - c * r
+    if not rdot < 0.0:
+        return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    w = 1.0 / rdot
+    rw = r * w
+    return (True, r * rw * y2, r * rw * y3, (fx - ef * y2) * w, (fy - ef * y3) * w,
+            (-(axx * y2 + ayy * y3) * r + pin) * rw, fr * r * rw, c * r * r * rw, rw)
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def rhs(mode, x, y, prm, frc, d):
+    """Derivative of the state ``y`` in ``mode`` at ``x``, into ``d`` (see :func:`derivative`).
+
+    Returns False where the form is not valid.
+    """
+    ok, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7] = derivative(mode, x, y[0], y[1], y[2], y[3], y[7], prm,
+                                                                    frc)
+    return ok
 
 
 @njit(cache=True)
