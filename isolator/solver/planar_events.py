@@ -72,6 +72,14 @@ def stuck_until(x1, x2, tau0, length, prm, frc):
     gy = -fy
     g1x = kdot * x1 + frc[1]
     g1y = kdot * x2 + frc[3]
+    # |G(u)| − µs n(u) is convex in u (the norm of an affine function minus an affine
+    # function), so ≤ 0 at both ends means ≤ 0 throughout: stuck, no quadratic to solve
+    n_end = nn + n1 * length
+    if n_end > 0.0:
+        gex = gx + g1x * length
+        gey = gy + g1y * length
+        if gx * gx + gy * gy <= (mu_s * nn) ** 2 and gex * gex + gey * gey <= (mu_s * n_end) ** 2:
+            return -1.0, False
     a = g1x * g1x + g1y * g1y - mu_s * mu_s * n1 * n1
     b = 2.0 * (gx * g1x + gy * g1y - mu_s * mu_s * nn * n1)
     c = gx * gx + gy * gy - mu_s * mu_s * nn * nn
@@ -229,31 +237,33 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, yb, fb, atol, rtol, w
 
 
 @njit(cache=True)
-def land_on(mode, x, y, f, h, coord, target, prm, frc, yb, fb, atol, rtol, work):
+def land_on(mode, x, y, f, h, coord, target, end, prm, frc, yb, fb, atol, rtol, work):
     """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
 
     The component must be monotone on the step, below the target at θ = 0 and
-    at or beyond it at θ = 1 (sign-adjusted); the state at θ is left in ``yb``/``fb``.
+    at or beyond it at θ = 1 (sign-adjusted); ``end`` is its value at θ = 1 (the
+    caller has taken that step).  Illinois secant on DOP853 sub-steps from the step
+    start, to a bracket of 1e-13 in θ; the state at θ is left in ``yb``/``fb``.
     ``work[0]`` counts the DOP853 sub-steps taken.
     """
     lo = 0.0
     hi = 1.0
     flo = y[coord] - target
-    fhi = 1.0
-    ok, _ = dop853_step(mode, x, y, f, h, prm, frc, yb, fb, atol, rtol)
-    if ok:
-        fhi = yb[coord] - target
+    fhi = end - target
     sgn = 1.0 if fhi > flo else -1.0
     flo *= sgn
     fhi *= sgn
+    close = 1e-13 * (fhi - flo)  # a crossing this close after the target is the target (θ to ~1e-13)
     theta = 1.0
     side = 0
+    at_hi = False  # yb/fb hold the state at θ = hi
     for _ in range(80):
         theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
         if not (lo < theta < hi):
             theta = 0.5 * (lo + hi)
         ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
         work[0] += 1
+        at_hi = False
         if not ok:
             hi = theta
             continue
@@ -267,16 +277,17 @@ def land_on(mode, x, y, f, h, coord, target, prm, frc, yb, fb, atol, rtol, work)
         else:
             hi = theta
             fhi = val
+            at_hi = True
             if side == -1:
                 flo *= 0.5
             side = -1
-        if hi - lo < 1e-13 or val == 0.0:
+        if hi - lo < 1e-13 or 0.0 <= val <= close:
             break
     # finish on the upper end of the bracket: the crossing has happened there
-    theta = hi
-    dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
-    work[0] += 2
-    return theta
+    if not at_hi:
+        dop853_step(mode, x, y, f, hi * h, prm, frc, yb, fb, atol, rtol)
+        work[0] += 1
+    return hi
 
 
 @njit(cache=True)

@@ -224,6 +224,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_log = 0
     n_lim = 0
     just_rejected = False
+    same_state = False  #: the state has not moved since the last transmitted-acceleration check
     polar_ok = True
     failed_at = -1
     out_x[0, 0] = 0.0
@@ -238,12 +239,13 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     for i in range(n - 1):
         hi = t[i + 1] - t[i]
         t0 = t[i]
+        inv_hi = 1.0 / hi
         frc[0] = ax[i]
-        frc[1] = (ax[i + 1] - ax[i]) / hi
+        frc[1] = (ax[i + 1] - ax[i]) * inv_hi
         frc[2] = ay[i]
-        frc[3] = (ay[i + 1] - ay[i]) / hi
+        frc[3] = (ay[i + 1] - ay[i]) * inv_hi
         frc[4] = nz[i]
-        frc[5] = (nz[i + 1] - nz[i]) / hi
+        frc[5] = (nz[i + 1] - nz[i]) * inv_hi
         frc[6] = 0.0 if phase == PH_FLIGHT else 1.0
         tau = 0.0
         if phase == PH_APPROACH:
@@ -284,9 +286,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 failed_at = i
                 break
             # every path through the loop (including each `continue`) comes back here
-            if phase != PH_STUCK:
+            if phase != PH_STUCK and not same_state:
                 a1, a2 = transmitted(phase, x, tau, y, prm, frc)
                 peak_a = max(peak_a, norm(a1, a2))
+            same_state = False
             if events_here > MAX_EVENTS_PER_INTERVAL:
                 # chatter guard: let the static friction hold the block to the end of the interval
                 status |= STATUS_CHATTER
@@ -313,7 +316,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if phase == PH_STUCK:
                 u, up = stuck_until(y[0], y[1], tau, target - tau, prm, frc)
                 tau_new = target if u < 0.0 else min(tau + u, target)
-                y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (kappa_at(tau_new, prm, frc) - kappa_at(tau, prm, frc))
+                if frc[5] != 0.0:  # κ changes with n(t): the work ½κ'|X|² of the vertical motion
+                    y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (kappa_at(tau_new, prm, frc) - kappa_at(tau, prm, frc))
                 tau = tau_new
                 if u >= 0.0 and not up:
                     phase = PH_START
@@ -349,6 +353,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         n_rej += 1
                         ds_sugg = ds * (0.25 if not ok else step_factor(err))
                         just_rejected = True
+                        same_state = True  # a rejected step leaves the state as it was
                         if abs(ds_sugg) < 1e-9:
                             y[2] *= r
                             y[3] *= r
@@ -359,7 +364,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, prm, frc, yb, fb, atol, rtol, work)
+                        theta = land_on(LOG, x, y, f, ds, 7, target, ynew[7], prm, frc, yb, fb, atol, rtol, work)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
@@ -497,10 +502,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     n_rej += 1
                     h_sugg = h * (0.25 if not ok else step_factor(err))
                     just_rejected = True
+                    same_state = True
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = land_on(START, tau, y, f, h, 2, 0.0, prm, frc, yb, fb, atol, rtol, work)
+                    theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], prm, frc, yb, fb, atol, rtol, work)
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
@@ -517,7 +523,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
                     # the slaved direction is accurate only up to r_switch: end the step there
-                    theta = land_on(START, tau, y, f, h, 2, r_switch, prm, frc, yb, fb, atol, rtol, work)
+                    theta = land_on(START, tau, y, f, h, 2, r_switch, ynew[2], prm, frc, yb, fb, atol, rtol, work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
