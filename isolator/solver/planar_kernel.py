@@ -224,6 +224,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_log = 0
     n_lim = 0
     just_rejected = False
+    h_prev = -1.0
+    err_prev = 1.0
+    prev_mode = -1
     same_state = False  #: the state has not moved since the last transmitted-acceleration check
     polar_ok = True
     failed_at = -1
@@ -550,7 +553,19 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 slip += h
                 if phase == PH_FLIGHT:
                     upt += h
-                h_sugg = h * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
+                fac = step_factor(err)
+                if h_prev > 0.0 and h != hmax and mode == prev_mode and err > 0.0:
+                    # Gustafsson's predictive factor (as in Hairer's RADAU5: the smaller of the two)
+                    fac = max(min(fac, 0.9 * (h / h_prev) * (err_prev / (err * err)) ** 0.125), 0.2)
+                if just_rejected:
+                    fac = min(1.0, fac)
+                h_sugg = h * fac
+                if h != hmax:
+                    h_prev = h
+                    err_prev = max(err, 1e-10)
+                    prev_mode = mode
+                else:
+                    h_prev = -1.0
                 just_rejected = False
                 peak_x = max(peak_x, norm(y[0], y[1]))
                 peak_v = max(peak_v, peak_value(1, mode, y))
