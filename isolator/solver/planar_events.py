@@ -21,7 +21,10 @@ from isolator.solver.planar_rk import (
     CARTESIAN,
     LOG,
     P_C,
+    P_INV_R,
+    P_KAPPA,
     P_MU_S,
+    P_PENDULUM,
     POLAR,
     START,
     forcing,
@@ -41,7 +44,32 @@ PH_POLAR = 5  #: sliding slowly: speed and direction angle (POLAR form)
 
 @njit(cache=True)
 def kappa_at(tau, prm, frc):
+    """κ [1/s²] at local time τ of the interval."""
     return forcing(tau, 0.0, 0.0, prm, frc)[3]
+
+
+@njit(cache=True)
+def kappa_of(nn, prm):
+    """κ [1/s²] of a block in contact under the normal acceleration n: n/R (pendulum) or K/M."""
+    return nn * prm[P_INV_R] if prm[P_PENDULUM] > 0.0 else prm[P_KAPPA]
+
+
+@njit(cache=True)
+def holds_at(x1, x2, a_x, a_y, nn, prm):
+    """Static friction holds a block at rest at X under ground acceleration a and normal n:
+    n > 0 and |κX + a_g| ≤ µs n, with κ = n/R (pendulum) or K/M.
+
+    Between two samples |κX + a_g| − µs n is convex in time (the norm of an affine
+    function minus an affine function), so a block that holds at both ends of an
+    interval holds throughout it.
+    """
+    if not nn > 0.0:
+        return False
+    kap = kappa_of(nn, prm)
+    gx = kap * x1 + a_x
+    gy = kap * x2 + a_y
+    lim = prm[P_MU_S] * nn
+    return gx * gx + gy * gy <= lim * lim
 
 
 @njit(cache=True)
@@ -72,14 +100,9 @@ def stuck_until(x1, x2, tau0, length, prm, frc):
     gy = -fy
     g1x = kdot * x1 + frc[1]
     g1y = kdot * x2 + frc[3]
-    # |G(u)| − µs n(u) is convex in u (the norm of an affine function minus an affine
-    # function), so ≤ 0 at both ends means ≤ 0 throughout: stuck, no quadratic to solve
-    n_end = nn + n1 * length
-    if n_end > 0.0:
-        gex = gx + g1x * length
-        gey = gy + g1y * length
-        if gx * gx + gy * gy <= (mu_s * nn) ** 2 and gex * gex + gey * gey <= (mu_s * n_end) ** 2:
-            return -1.0, False
+    if holds_at(x1, x2, frc[0] + frc[1] * tau0, frc[2] + frc[3] * tau0, nn, prm) and holds_at(
+            x1, x2, frc[0] + frc[1] * (tau0 + length), frc[2] + frc[3] * (tau0 + length), nn + n1 * length, prm):
+        return -1.0, False  # stuck at both ends, so throughout (see holds_at): no quadratic to solve
     a = g1x * g1x + g1y * g1y - mu_s * mu_s * n1 * n1
     b = 2.0 * (gx * g1x + gy * g1y - mu_s * mu_s * nn * n1)
     c = gx * gx + gy * gy - mu_s * mu_s * nn * nn
@@ -305,8 +328,14 @@ def mode_of(phase):
 @njit(cache=True)
 def force_scale(tau, y, r, prm, frc):
     """|F| + µ(r) n [m/s²]: the force scale of the stop and LOG-entry tests."""
-    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return norm(fx, fy) + (friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0)
+    return force_norm(tau, y, prm, frc) + friction_force(tau, r, prm, frc)
+
+
+@njit(cache=True)
+def friction_force(tau, r, prm, frc):
+    """µ(r) n [m/s²] at local time τ (0 where n ≤ 0)."""
+    nn = frc[4] + frc[5] * tau
+    return friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
 
 
 @njit(cache=True)

@@ -39,8 +39,11 @@ from isolator.solver.planar_events import (
     PH_STUCK,
     force_norm,
     force_scale,
+    friction_force,
     holds,
+    holds_at,
     kappa_at,
+    kappa_of,
     land_on,
     locate_peak,
     mode_of,
@@ -240,6 +243,23 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     out_en[1, 0] = 0.0
     out_en[2, 0] = 0.0
     for i in range(n - 1):
+        if phase == PH_STUCK and holds_at(y[0], y[1], ax[i], ay[i], nz[i], prm) and holds_at(
+                y[0], y[1], ax[i + 1], ay[i + 1], nz[i + 1], prm):
+            # stuck at both ends of the interval, so throughout (holds_at): the sample in closed form
+            if nz[i + 1] != nz[i]:  # κ = n/R changes: the work ½κ'|X|² of the vertical motion
+                y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (
+                    kappa_of(nz[i + 1], prm) - kappa_of(nz[i], prm))
+            out_x[i + 1, 0] = y[0]
+            out_x[i + 1, 1] = y[1]
+            out_v[i + 1, 0] = 0.0
+            out_v[i + 1, 1] = 0.0
+            out_a[i + 1, 0] = ax[i + 1]
+            out_a[i + 1, 1] = ay[i + 1]
+            peak_a = max(peak_a, norm(ax[i + 1], ay[i + 1]))
+            out_en[0, i + 1] = y[4]
+            out_en[1, i + 1] = y[5]
+            out_en[2, i + 1] = y[6]
+            continue
         hi = t[i + 1] - t[i]
         t0 = t[i]
         inv_hi = 1.0 / hi
@@ -417,7 +437,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if phase == PH_POLAR:
                     r = y[7]
                     fm = force_norm(tau, y, prm, frc)
-                    fscale = force_scale(tau, y, r, prm, frc)
+                    fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = f[7]
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
                     if (r <= r_min and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try) \
@@ -433,7 +453,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                 if phase == PH_SLIDE:
                     r = norm(y[2], y[3])
-                    fscale = force_scale(tau, y, r, prm, frc)
+                    fm = force_norm(tau, y, prm, frc)
+                    fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
                     if r <= r_min and rdot <= 0.0:
                         phase = _at_rest(tau, y, prm, frc, f)
@@ -468,7 +489,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         y[3] *= r
                         x = tau
                         rhs(CARTESIAN, tau, y, prm, frc, f)
-                    elif polar_ok and r < _POLAR_ENTER * force_norm(tau, y, prm, frc) * hi and not (
+                    elif polar_ok and r < _POLAR_ENTER * fm * hi and not (
                             rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
                         y[2] /= r
                         y[3] /= r
@@ -486,7 +507,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         h = h_stable
                         n_lim += 1
                 elif phase == PH_POLAR:
-                    h_stable = _STABLE_POLAR * y[7] / max(force_norm(tau, y, prm, frc), 1e-300)
+                    h_stable = _STABLE_POLAR * y[7] / max(fm, 1e-300)
                     if h_stable < h:
                         h = h_stable
                         n_lim += 1
