@@ -20,7 +20,10 @@ says whether it imports here, and why not.
 
 from __future__ import annotations
 
+import atexit
 import math
+import os
+import sys
 import tempfile
 from pathlib import Path
 
@@ -46,7 +49,33 @@ def opensees_available() -> tuple[bool, str]:
         return False, "openseespy not installed"
     except RuntimeError as exc:  # openseespy raises RuntimeError when libblas/liblapack are missing
         return False, f"openseespy does not load ({exc})"
+    _silence_exit_message()
     return True, ""
+
+
+_silenced = False
+
+
+def _silence_exit_message() -> None:
+    """OpenSees's library writes "Process 0 Terminating" on stderr when the process exits,
+    after everything we print: point stderr at /dev/null at exit, so that the bench ends
+    with its own last line.  (Exit handlers run last-registered first: whatever runs
+    after this one, the library's and those registered before openseespy was imported,
+    writes nothing to the terminal.)"""
+    global _silenced
+    if _silenced:
+        return
+    _silenced = True
+
+    def close_stderr() -> None:
+        try:
+            sys.stderr.flush()
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, 2)
+        except (OSError, ValueError):
+            pass
+
+    atexit.register(close_stderr)
 
 
 def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, radius_m: float,

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import json
 import math
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -136,3 +138,21 @@ def test_cli_bench_quick_with_pairs(tmp_path, monkeypatch):
     assert {bench.PAIR_OURS, bench.PAIR_TRUTH, bench.OPENSEES, bench.IVP_REGULARISED} <= methods
     assert document["summary_2d"] and document["summary_2d"][-1] in result.stdout
     assert "load_average_1_5_15" in document["machine"]
+
+
+@pytest.mark.skipif(not OPENSEES_OK, reason=f"openseespy does not import here: {OPENSEES_WHY}")
+def test_opensees_leaves_no_line_on_stderr_at_exit():
+    """openseespy prints "Process 0 Terminating" at exit; the bench's module keeps it off the terminal."""
+    code = ("import openseespy.opensees as ops\n"
+            "from isolator.bench.opensees import opensees_available\n"
+            "assert opensees_available()[0]\n"
+            "ops.wipe()\n"
+            "print('done')\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0
+    assert done.stdout == "done\n"
+    assert done.stderr == ""
+    # and without the module, the library's line is there (the test can fail)
+    raw = subprocess.run([sys.executable, "-c", "import openseespy.opensees as ops\nops.wipe()\n"],
+                         capture_output=True, text=True, timeout=120)
+    assert "Terminating" in raw.stderr
