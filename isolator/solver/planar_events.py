@@ -339,6 +339,12 @@ def friction_force(tau, r, prm, frc):
 
 
 @njit(cache=True)
+def ground_norm(tau, frc):
+    """|a_g| [m/s²] at local time τ of the interval."""
+    return norm(frc[0] + frc[1] * tau, frc[2] + frc[3] * tau)
+
+
+@njit(cache=True)
 def force_norm(tau, y, prm, frc):
     """|F| = |−κX − a_g| [m/s²]."""
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)

@@ -61,6 +61,7 @@ from isolator.solver.planar_rk import (
     P_C,
     POLAR,
     START,
+    eighth_root,
     forcing,
     friction_coefficient,
     norm,
@@ -227,8 +228,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_log = 0
     n_lim = 0
     just_rejected = False
-    h_prev = -1.0
-    err_prev = 1.0
+    h_prev = -1.0  #: the last accepted step that did not end on a sample [s]
+    root_prev = 1.0  #: err^(1/8) of that step
     prev_mode = -1
     same_state = False  #: the state has not moved since the last transmitted-acceleration check
     polar_ok = True
@@ -310,7 +311,14 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 break
             # every path through the loop (including each `continue`) comes back here
             if phase != PH_STUCK and not same_state:
-                a1, a2 = transmitted(phase, x, tau, y, prm, frc)
+                if phase == PH_SLIDE or phase == PH_FLIGHT:  # V' + a_g, from the derivative at hand
+                    a1 = f[2] + frc[0] + frc[1] * tau
+                    a2 = f[3] + frc[2] + frc[3] * tau
+                elif phase == PH_POLAR:  # V' = r' e + r e'
+                    a1 = f[7] * y[2] + y[7] * f[2] + frc[0] + frc[1] * tau
+                    a2 = f[7] * y[3] + y[7] * f[3] + frc[2] + frc[3] * tau
+                else:
+                    a1, a2 = transmitted(phase, x, tau, y, prm, frc)
                 peak_a = max(peak_a, norm(a1, a2))
             same_state = False
             if events_here > MAX_EVENTS_PER_INTERVAL:
@@ -574,16 +582,17 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 slip += h
                 if phase == PH_FLIGHT:
                     upt += h
-                fac = step_factor(err)
-                if h_prev > 0.0 and h != hmax and mode == prev_mode and err > 0.0:
+                root = eighth_root(max(err, 1e-10))
+                fac = min(10.0, max(0.2, 0.9 / root))  # = step_factor(err)
+                if h_prev > 0.0 and h != hmax and mode == prev_mode:
                     # Gustafsson's predictive factor (as in Hairer's RADAU5: the smaller of the two)
-                    fac = max(min(fac, 0.9 * (h / h_prev) * (err_prev / (err * err)) ** 0.125), 0.2)
+                    fac = max(min(fac, 0.9 * (h / h_prev) * root_prev / (root * root)), 0.2)
                 if just_rejected:
                     fac = min(1.0, fac)
                 h_sugg = h * fac
                 if h != hmax:
                     h_prev = h
-                    err_prev = max(err, 1e-10)
+                    root_prev = root
                     prev_mode = mode
                 else:
                     h_prev = -1.0

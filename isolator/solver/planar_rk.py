@@ -227,7 +227,13 @@ def rhs(mode, x, y, prm, frc, d):
 
 @njit(cache=True)
 def step_factor(err):
-    """Step-size factor after a step with scaled error ``err`` (order 8 controller)."""
+    """Step-size factor after a step with scaled error ``err`` (order 8 controller): 0.9 err^(−1/8) in [0.2, 10]."""
     if err == 0.0:
         return 10.0
-    return min(10.0, max(0.2, 0.9 * err ** (-1.0 / 8.0)))
+    return min(10.0, max(0.2, 0.9 / eighth_root(err)))
+
+
+@njit(cache=True, fastmath=FASTMATH)
+def eighth_root(err):
+    """err^(1/8) as three square roots (a third of the cost of ``pow`` here)."""
+    return math.sqrt(math.sqrt(math.sqrt(err)))
