@@ -40,6 +40,7 @@ from isolator.solver.planar_events import (
     force_norm,
     force_scale,
     friction_force,
+    ground_norm,
     holds,
     holds_at,
     kappa_at,
@@ -347,6 +348,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if phase == PH_STUCK:
                 u, up = stuck_until(y[0], y[1], tau, target - tau, prm, frc)
                 tau_new = target if u < 0.0 else min(tau + u, target)
+                # stuck, the transmitted acceleration is a_g, linear: its largest value is at an end
+                peak_a = max(peak_a, ground_norm(tau, frc), ground_norm(tau_new, frc))
                 if frc[5] != 0.0:  # κ changes with n(t): the work ½κ'|X|² of the vertical motion
                     y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (kappa_at(tau_new, prm, frc) - kappa_at(tau, prm, frc))
                 tau = tau_new
@@ -436,6 +439,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 slip += dtt
                 peak_x = max(peak_x, norm(y[0], y[1]))
                 phase = _at_rest(tau, y, prm, frc, f)
+                if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
+                    peak_a = max(peak_a, ground_norm(tau, frc))
                 x = tau
                 n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                 events_here += 1
@@ -466,6 +471,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
                     if r <= r_min and rdot <= 0.0:
                         phase = _at_rest(tau, y, prm, frc, f)
+                        if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
+                            peak_a = max(peak_a, ground_norm(tau, frc))
                         x = tau
                         n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau,
                                              EV_STICK if phase == PH_STUCK else EV_REVERSAL)
@@ -544,6 +551,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     tau = tau + theta * h if theta < 1.0 else target
                     peak_x = max(peak_x, norm(y[0], y[1]))
                     phase = _at_rest(tau, y, prm, frc, f)
+                    if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
+                        peak_a = max(peak_a, ground_norm(tau, frc))
                     x = tau
                     n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                     events_here += 1
