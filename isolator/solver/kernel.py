@@ -294,7 +294,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     from_rest = True
                     exact_start = crossing
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, BREAKAWAY, x)
-                    jump = abs(mu_k_g * s + kappa * x)
+                    # the transmitted acceleration jumps at the break-away: a_g on the stuck side
+                    # (|κx + a_g| = µs g there), −(µk g s + κx) on the sliding side; count both
+                    jump = max(abs(mu_k_g * s + kappa * x), abs(a_sub + b * tb))
                     if jump > peak_a:
                         peak_a = jump
                     if tau >= h:
