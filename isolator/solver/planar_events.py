@@ -29,6 +29,7 @@ from isolator.solver.planar_rk import (
     START,
     forcing,
     friction_coefficient,
+    friction_slope,
     norm,
     start_direction,
 )
@@ -218,8 +219,68 @@ def peak_value(which, mode, y):
 
 
 @njit(cache=True)
+def acceleration_peak_rate(mode, x, y, d, prm, frc):
+    """Transmitted acceleration of a sliding block in CARTESIAN, POLAR or LOG form: (|a|, a·a').
+
+    a = V' + a_g = −µ(r) n e − κX − cV [m/s²] from the state and its derivative ``d``;
+    a·a' [m²/s⁵] (half the time rate of |a|²) from
+    a' = −(µ'(r) ṙ n + µ n') e − µ n e' − κ'X − κV − cV', every term known from (y, d):
+    no extra evaluation of the right-hand side.  ``x`` is the independent variable
+    (local time τ, or s = ln r in LOG form, where τ is y[7] and d/dt = d/ds ÷ dτ/ds).
+    """
+    tau = y[7] if mode == LOG else x
+    axx, ayy, nn, kap, kdot, _, _ = forcing(tau, y[0], y[1], prm, frc)
+    if mode == POLAR or mode == LOG:
+        e1 = y[2]
+        e2 = y[3]
+        if mode == POLAR:
+            r = y[7]
+            rdot = d[7]
+            ed1 = d[2]
+            ed2 = d[3]
+        else:
+            r = math.exp(x)
+            rdot = r / d[7]
+            ed1 = d[2] / d[7]
+            ed2 = d[3] / d[7]
+        v1 = r * e1
+        v2 = r * e2
+        vd1 = rdot * e1 + r * ed1
+        vd2 = rdot * e2 + r * ed2
+    else:
+        v1 = y[2]
+        v2 = y[3]
+        vd1 = d[2]
+        vd2 = d[3]
+        r = norm(v1, v2)
+        e1 = 0.0
+        e2 = 0.0
+        rdot = 0.0
+        ed1 = 0.0
+        ed2 = 0.0
+        if r > 0.0:
+            e1 = v1 / r
+            e2 = v2 / r
+            rdot = e1 * vd1 + e2 * vd2
+            ed1 = (vd1 - rdot * e1) / r
+            ed2 = (vd2 - rdot * e2) / r
+    a1 = vd1 + axx
+    a2 = vd2 + ayy
+    fr = 0.0
+    frd = 0.0
+    if frc[6] > 0.0 and nn > 0.0:
+        fr = friction_coefficient(r, prm) * nn
+        frd = friction_slope(r, prm) * rdot * nn + friction_coefficient(r, prm) * frc[5]
+    c = prm[P_C]
+    ad1 = -frd * e1 - fr * ed1 - kdot * y[0] - kap * v1 - c * vd1
+    ad2 = -frd * e2 - fr * ed2 - kdot * y[1] - kap * v2 - c * vd2
+    return norm(a1, a2), a1 * ad1 + a2 * ad2
+
+
+@njit(cache=True)
 def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, yb, fb, atol, rtol, work):
-    """Largest |X| (which 0) or |V| (1) inside a step where its rate goes from + to −.
+    """Largest |X| (which 0), |V| (1) or transmitted |a| (2, not in START form) inside a step
+    where its rate goes from + to −.
 
     ``work[1]`` counts the DOP853 sub-steps taken.
     """
@@ -239,8 +300,12 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, yb, fb, atol, rtol, w
             hi = theta
             theta = 0.5 * (lo + hi)
             continue
-        best = max(best, peak_value(which, mode, yb))
-        g = rate_of_peak(which, mode, yb, fb)
+        if which == 2:
+            value, g = acceleration_peak_rate(mode, x + theta * h, yb, fb, prm, frc)
+        else:
+            value = peak_value(which, mode, yb)
+            g = rate_of_peak(which, mode, yb, fb)
+        best = max(best, value)
         if g > 0.0:
             lo = theta
             glo = g

@@ -37,6 +37,7 @@ from isolator.solver.planar_events import (
     PH_SLIDE,
     PH_START,
     PH_STUCK,
+    acceleration_peak_rate,
     force_norm,
     force_scale,
     friction_force,
@@ -229,6 +230,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     n_log = 0
     n_lim = 0
     just_rejected = False
+    acc_i = -1  #: sample interval and local time of (a_end, g_end), the transmitted acceleration
+    acc_tau = -1.0
+    a_end = 0.0
+    g_end = 0.0
     h_prev = -1.0  #: the last accepted step that did not end on a sample [s]
     root_prev = 1.0  #: err^(1/8) of that step
     prev_mode = -1
@@ -404,6 +409,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         ds *= theta
                         ynew[7] = target
                         hit = True
+                    a_lo, g0 = acceleration_peak_rate(LOG, x, y, f, prm, frc)
+                    a_hi, g1 = acceleration_peak_rate(LOG, x + ds, ynew, fnew, prm, frc)
+                    if g0 > 0.0 >= g1 and max(a_lo, a_hi) + (ynew[7] - y[7]) * (
+                            g0 / max(a_lo, 1e-300) - g1 / max(a_hi, 1e-300)) > peak_a:
+                        peak_a = max(peak_a, locate_peak(2, LOG, x, y, f, ds, g0, g1, prm, frc, yb, fb, atol, rtol,
+                                                         work))
                     g0 = rate_of_peak(0, LOG, y, f)
                     g1 = rate_of_peak(0, LOG, ynew, fnew)
                     if g0 > 0.0 >= g1 and max(norm(y[0], y[1]), norm(ynew[0], ynew[1])) + \
@@ -585,6 +596,20 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             if bound > peak_v:
                                 peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, yb,
                                                                   fb, atol, rtol, work))
+                if mode != START:
+                    # the transmitted acceleration between the step's ends (its rate from (y, f), no extra
+                    # evaluation; the value at the start is the previous step's end when it is the same point)
+                    if acc_i == i and acc_tau == tau:
+                        a_lo, g0 = a_end, g_end
+                    else:
+                        a_lo, g0 = acceleration_peak_rate(mode, tau, y, f, prm, frc)
+                    a_end, g_end = acceleration_peak_rate(mode, tau + h, ynew, fnew, prm, frc)
+                    acc_i = i
+                    acc_tau = target if h == hmax else tau + h
+                    if g0 > 0.0 >= g_end and max(a_lo, a_end) + h * (
+                            g0 / max(a_lo, 1e-300) - g_end / max(a_end, 1e-300)) > peak_a:
+                        peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, g0, g_end, prm, frc, yb, fb,
+                                                         atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew

@@ -89,6 +89,14 @@ def friction_coefficient(r, prm):
 
 
 @njit(cache=True)
+def friction_slope(r, prm):
+    """dµ/d|V| [s/m]: 0 for constant µk, a (µ_fast − µ_slow) e^{−a |V|} for µ(v)."""
+    if prm[P_VELDEP] > 0.0:
+        return prm[P_RATE] * (prm[P_MU_FAST] - prm[P_MU_SLOW]) * math.exp(-prm[P_RATE] * r)
+    return 0.0
+
+
+@njit(cache=True)
 def forcing(tau, x1, x2, prm, frc):
     """Ground and normal force at local time τ.
 
