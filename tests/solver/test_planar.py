@@ -72,6 +72,11 @@ def test_zero_second_component_is_the_exact_1d_result(name):
     np.testing.assert_allclose(pair.event_time_s, exact.event_time_s, rtol=0, atol=1e-9)
     assert _rel(pair.slip_time_s, exact.slip_time_s) <= 1e-9
     assert _rel(pair.energy_friction_J_per_kg, exact.energy_friction_J_per_kg) <= 1e-9
+    # the peak transmitted acceleration, located between samples (inside steps, at stick and
+    # break-away instants) as the exact kernel locates it
+    np.testing.assert_allclose(pair.absolute_acceleration_m_s2[:, 0], exact.absolute_acceleration_m_s2,
+                               rtol=0, atol=1e-9 * exact.peak_transmitted_acceleration_m_s2)
+    assert _rel(pair.peak_transmitted_acceleration_m_s2, exact.peak_transmitted_acceleration_m_s2) <= 1e-8
 
 
 @pytest.mark.parametrize("angle", [0.3, 2.0, -1.1])
