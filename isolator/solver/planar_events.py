@@ -278,18 +278,46 @@ def acceleration_peak_rate(mode, x, y, d, prm, frc):
 
 
 @njit(cache=True)
-def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, yb, fb, atol, rtol, work):
+def tangent_bound(a0, g0, a1, g1, h):
+    """Where the tangents at both ends of a step meet: the largest value a concave norm can take
+    inside it, from its values a0, a1 and the rates of its square's half, g0 > 0 ≥ g1, over a
+    time h [s].
+
+    A value that rises and falls inside a step is concave around its peak: the peak is
+    located (:func:`locate_peak`) only when this exceeds the largest value so far, and the
+    location stops when it is within rounding of the best value found.
+    """
+    s0 = g0 / max(a0, 1e-300)
+    s1 = g1 / max(a1, 1e-300)
+    t = (a1 - a0 - s1 * h) / (s0 - s1)
+    t = min(max(t, 0.0), h)
+    return a0 + s0 * t
+
+
+@njit(cache=True)
+def locate_peak(which, mode, x, y, f, h, v0, g0, v1, g1, span, prm, frc, yb, fb, atol, rtol, work):
     """Largest |X| (which 0), |V| (1) or transmitted |a| (2, not in START form) inside a step
     where its rate goes from + to −.
 
-    ``work[1]`` counts the DOP853 sub-steps taken.
+    ``v0``/``v1`` are the values at the step's ends, ``g0 > 0 ≥ g1`` half the time rates of
+    their squares there (:func:`rate_of_peak`, :func:`acceleration_peak_rate`) and ``span``
+    the step's duration [s].  Illinois secant on the rate, with DOP853 sub-steps from the
+    step start, until the tangents at the bracket's ends (:func:`tangent_bound`, an upper
+    bound around a concave peak) are within 1e-13 of the best value found.  ``work[1]``
+    counts the sub-steps.
     """
     lo = 0.0
     hi = 1.0
+    t_lo = 0.0
+    t_hi = span
+    v_lo = v0
+    v_hi = v1
+    r_lo = g0
+    r_hi = g1
     glo = g0
     ghi = g1
     side = 0
-    best = 0.0
+    best = max(v0, v1)
     theta = glo / (glo - ghi)
     for _ in range(60):
         if not (lo < theta < hi):
@@ -306,19 +334,26 @@ def locate_peak(which, mode, x, y, f, h, g0, g1, prm, frc, yb, fb, atol, rtol, w
             value = peak_value(which, mode, yb)
             g = rate_of_peak(which, mode, yb, fb)
         best = max(best, value)
+        t = yb[7] - y[7] if mode == LOG else theta * h
         if g > 0.0:
             lo = theta
+            t_lo = t
+            v_lo = value
+            r_lo = g
             glo = g
             if side == 1:
                 ghi *= 0.5
             side = 1
         else:
             hi = theta
+            t_hi = t
+            v_hi = value
+            r_hi = g
             ghi = g
             if side == -1:
                 glo *= 0.5
             side = -1
-        if hi - lo < 1e-11:
+        if hi - lo < 1e-11 or tangent_bound(v_lo, r_lo, v_hi, r_hi, t_hi - t_lo) <= best * (1.0 + 1e-13):
             break
         theta = lo + (hi - lo) * glo / (glo - ghi)
     return best

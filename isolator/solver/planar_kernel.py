@@ -53,6 +53,7 @@ from isolator.solver.planar_events import (
     rate_of_peak,
     start_lag,
     stuck_until,
+    tangent_bound,
     transmitted,
     velocity,
 )
@@ -411,16 +412,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         hit = True
                     a_lo, g0 = acceleration_peak_rate(LOG, x, y, f, prm, frc)
                     a_hi, g1 = acceleration_peak_rate(LOG, x + ds, ynew, fnew, prm, frc)
-                    if g0 > 0.0 >= g1 and max(a_lo, a_hi) + (ynew[7] - y[7]) * (
-                            g0 / max(a_lo, 1e-300) - g1 / max(a_hi, 1e-300)) > peak_a:
-                        peak_a = max(peak_a, locate_peak(2, LOG, x, y, f, ds, g0, g1, prm, frc, yb, fb, atol, rtol,
-                                                         work))
+                    if g0 > 0.0 >= g1 and tangent_bound(a_lo, g0, a_hi, g1, ynew[7] - y[7]) > peak_a:
+                        peak_a = max(peak_a, locate_peak(2, LOG, x, y, f, ds, a_lo, g0, a_hi, g1, ynew[7] - y[7],
+                                                         prm, frc, yb, fb, atol, rtol, work))
                     g0 = rate_of_peak(0, LOG, y, f)
                     g1 = rate_of_peak(0, LOG, ynew, fnew)
-                    if g0 > 0.0 >= g1 and max(norm(y[0], y[1]), norm(ynew[0], ynew[1])) + \
-                            r * (ynew[7] - y[7]) > peak_x:
-                        peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, g0, g1, prm, frc, yb, fb,
-                                                          atol, rtol, work))
+                    v0 = norm(y[0], y[1])
+                    v1 = norm(ynew[0], ynew[1])
+                    if g0 > 0.0 >= g1 and tangent_bound(v0, g0, v1, g1, ynew[7] - y[7]) > peak_x:
+                        peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, v0, g0, v1, g1, ynew[7] - y[7], prm,
+                                                          frc, yb, fb, atol, rtol, work))
                     slip += ynew[7] - y[7]
                     x += ds
                     y[:] = ynew
@@ -583,19 +584,15 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     g0 = rate_of_peak(which, mode, y, f)
                     g1 = rate_of_peak(which, mode, ynew, fnew)
                     if g0 > 0.0 >= g1:
-                        if which == 0:
-                            bound = max(norm(y[0], y[1]), norm(ynew[0], ynew[1])) + h * max(
-                                peak_value(1, mode, y), peak_value(1, mode, ynew))
-                            if bound > peak_x:
-                                peak_x = max(peak_x, locate_peak(0, mode, tau, y, f, h, g0, g1, prm, frc, yb,
-                                                                  fb, atol, rtol, work))
-                        else:
-                            bound = max(peak_value(1, mode, y), peak_value(1, mode, ynew)) + h * (
-                                abs(f[7]) + abs(fnew[7]) if mode == POLAR else
-                                abs(f[2]) + abs(f[3]) + abs(fnew[2]) + abs(fnew[3]))
-                            if bound > peak_v:
-                                peak_v = max(peak_v, locate_peak(1, mode, tau, y, f, h, g0, g1, prm, frc, yb,
-                                                                  fb, atol, rtol, work))
+                        v0 = peak_value(which, mode, y)
+                        v1 = peak_value(which, mode, ynew)
+                        if tangent_bound(v0, g0, v1, g1, h) > (peak_x if which == 0 else peak_v):
+                            best = locate_peak(which, mode, tau, y, f, h, v0, g0, v1, g1, h, prm, frc, yb, fb, atol,
+                                               rtol, work)
+                            if which == 0:
+                                peak_x = max(peak_x, best)
+                            else:
+                                peak_v = max(peak_v, best)
                 if mode != START:
                     # the transmitted acceleration between the step's ends (its rate from (y, f), no extra
                     # evaluation; the value at the start is the previous step's end when it is the same point)
@@ -606,10 +603,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     a_end, g_end = acceleration_peak_rate(mode, tau + h, ynew, fnew, prm, frc)
                     acc_i = i
                     acc_tau = target if h == hmax else tau + h
-                    if g0 > 0.0 >= g_end and max(a_lo, a_end) + h * (
-                            g0 / max(a_lo, 1e-300) - g_end / max(a_end, 1e-300)) > peak_a:
-                        peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, g0, g_end, prm, frc, yb, fb,
-                                                         atol, rtol, work))
+                    if g0 > 0.0 >= g_end and tangent_bound(a_lo, g0, a_end, g_end, h) > peak_a:
+                        peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm, frc,
+                                                         yb, fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
