@@ -414,6 +414,29 @@ def land_on(mode, x, y, f, h, coord, target, end, prm, frc, yb, fb, atol, rtol, 
 
 
 @njit(cache=True)
+def hermite_crossing(y0, d0, y1, d1, target):
+    """Fraction θ ∈ (0, 1) of a step where the cubic Hermite interpolant of one component reaches ``target``.
+
+    ``y0``, ``y1`` are its values at the ends and ``d0``, ``d1`` its derivatives times the step, with
+    y0 < target < y1; bisection on the cubic (60 halvings, no right-hand side evaluated).  A first guess:
+    the caller takes a DOP853 sub-step to θ and checks where it lands.
+    """
+    lo = 0.0
+    hi = 1.0
+    for _ in range(60):
+        th = 0.5 * (lo + hi)
+        th2 = th * th
+        th3 = th2 * th
+        p = (2.0 * th3 - 3.0 * th2 + 1.0) * y0 + (th3 - 2.0 * th2 + th) * d0 + (3.0 * th2 - 2.0 * th3) * y1 \
+            + (th3 - th2) * d1
+        if p < target:
+            lo = th
+        else:
+            hi = th
+    return 0.5 * (lo + hi)
+
+
+@njit(cache=True)
 def mode_of(phase):
     """The integration form (mode) of a phase."""
     if phase == PH_APPROACH:

@@ -42,6 +42,7 @@ from isolator.solver.planar_events import (
     force_scale,
     friction_force,
     ground_norm,
+    hermite_crossing,
     holds,
     holds_at,
     kappa_at,
@@ -575,8 +576,15 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         break
                     continue
                 if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
-                    # the slaved direction is accurate only up to r_switch: end the step there
-                    theta = land_on(START, tau, y, f, h, 2, r_switch, ynew[2], prm, frc, yb, fb, atol, rtol, work)
+                    # the slaved direction is accurate only up to r_switch (a step ending below 1.5 r_switch is
+                    # accepted as it is): end this one inside that band, where the cubic Hermite interpolant of
+                    # the speed reaches 1.2 r_switch (one sub-step), or else on r_switch itself (secant)
+                    theta = hermite_crossing(y[2], h * f[2], ynew[2], h * fnew[2], 1.2 * r_switch)
+                    ok, _ = dop853_step(START, tau, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
+                    work[0] += 1
+                    if not (ok and r_switch <= yb[2] <= 1.5 * r_switch):
+                        theta = land_on(START, tau, y, f, h, 2, r_switch, ynew[2], prm, frc, yb, fb, atol, rtol,
+                                        work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
