@@ -360,14 +360,15 @@ def locate_peak(which, mode, x, y, f, h, v0, g0, v1, g1, span, prm, frc, yb, fb,
 
 
 @njit(cache=True)
-def land_on(mode, x, y, f, h, coord, target, end, prm, frc, yb, fb, atol, rtol, work):
+def land_on(mode, x, y, f, h, coord, target, end, end_rate, prm, frc, yb, fb, atol, rtol, work):
     """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
 
     The component must be monotone on the step, below the target at θ = 0 and
-    at or beyond it at θ = 1 (sign-adjusted); ``end`` is its value at θ = 1 (the
-    caller has taken that step).  Illinois secant on DOP853 sub-steps from the step
-    start, to a bracket of 1e-13 in θ; the state at θ is left in ``yb``/``fb``.
-    ``work[0]`` counts the DOP853 sub-steps taken.
+    at or beyond it at θ = 1 (sign-adjusted); ``end`` and ``end_rate`` are its value and
+    derivative at θ = 1 (the caller has taken that step).  The first guess is where its
+    cubic Hermite interpolant crosses; then Newton steps with the derivative of each
+    DOP853 sub-step (from the step start), inside an Illinois bracket, to 1e-13 in θ;
+    the state at θ is left in ``yb``/``fb``.  ``work[0]`` counts the sub-steps taken.
     """
     lo = 0.0
     hi = 1.0
@@ -377,18 +378,20 @@ def land_on(mode, x, y, f, h, coord, target, end, prm, frc, yb, fb, atol, rtol, 
     flo *= sgn
     fhi *= sgn
     close = 1e-13 * (fhi - flo)  # a crossing this close after the target is the target (θ to ~1e-13)
-    theta = 1.0
+    theta = hermite_crossing(flo, sgn * h * f[coord], fhi, sgn * h * end_rate, 0.0)
     side = 0
     at_hi = False  # yb/fb hold the state at θ = hi
     for _ in range(80):
-        theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
         if not (lo < theta < hi):
-            theta = 0.5 * (lo + hi)
+            theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+            if not (lo < theta < hi):
+                theta = 0.5 * (lo + hi)
         ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
         work[0] += 1
         at_hi = False
         if not ok:
             hi = theta
+            theta = -1.0
             continue
         val = sgn * (yb[coord] - target)
         if val < 0.0:
@@ -406,6 +409,9 @@ def land_on(mode, x, y, f, h, coord, target, end, prm, frc, yb, fb, atol, rtol, 
             side = -1
         if hi - lo < 1e-13 or 0.0 <= val <= close:
             break
+        # Newton from here, aimed a hair past the target so that the next point lands on the crossed side
+        slope = sgn * h * fb[coord]
+        theta = theta - (val - 0.5 * close) / slope if slope > 0.0 else -1.0
     # finish on the upper end of the bracket: the crossing has happened there
     if not at_hi:
         dop853_step(mode, x, y, f, hi * h, prm, frc, yb, fb, atol, rtol)

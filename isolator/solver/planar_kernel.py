@@ -405,7 +405,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, ynew[7], prm, frc, yb, fb, atol, rtol, work)
+                        theta = land_on(LOG, x, y, f, ds, 7, target, ynew[7], fnew[7], prm, frc, yb, fb, atol, rtol,
+                                        work)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
@@ -558,7 +559,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], prm, frc, yb, fb, atol, rtol, work)
+                    theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], fnew[2], prm, frc, yb, fb, atol, rtol,
+                                    work)
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
@@ -583,8 +585,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     ok, _ = dop853_step(START, tau, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
                     work[0] += 1
                     if not (ok and r_switch <= yb[2] <= 1.5 * r_switch):
-                        theta = land_on(START, tau, y, f, h, 2, r_switch, ynew[2], prm, frc, yb, fb, atol, rtol,
-                                        work)
+                        theta = land_on(START, tau, y, f, h, 2, r_switch, ynew[2], fnew[2], prm, frc, yb, fb, atol,
+                                        rtol, work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
