@@ -443,6 +443,35 @@ def hermite_crossing(y0, d0, y1, d1, target):
 
 
 @njit(cache=True)
+def coast_to_rest(tau, y, r, rdot, target, prm, frc):
+    """The last speed r [m/s] of a stop in closed form, at the constant deceleration rdot < 0 [m/s²].
+
+    ``y[2], y[3]`` hold the direction e = V/|V|; X and the energies advance by the
+    time to rest r/(−rdot) (at most to ``target``): X by ½ r e dt, the input energy by the
+    ground's work and ½κ'|X|² dt at the mid-point, the friction and viscous energies by
+    µ(0) n ½ r dt and c r² dt/3.  The error is O(r³) in X and the energies.
+
+    Returns
+    -------
+    float
+        The time taken [s] (0 if rdot ≥ 0).
+    """
+    if not rdot < 0.0:
+        return 0.0
+    dtt = min(r / (-rdot), target - tau)
+    axx, ayy, nn, _, kdot, _, _ = forcing(tau, y[0], y[1], prm, frc)
+    half = 0.5 * r * dtt
+    # the work of the vertical motion ½κ'|X|² dt, at the mid-point position
+    y[4] += 0.5 * kdot * ((y[0] + 0.5 * half * y[2]) ** 2 + (y[1] + 0.5 * half * y[3]) ** 2) * dtt
+    y[0] += half * y[2]
+    y[1] += half * y[3]
+    y[4] -= (axx * y[2] + ayy * y[3]) * half
+    y[5] += friction_coefficient(0.0, prm) * max(nn, 0.0) * half
+    y[6] += prm[P_C] * r * r * dtt / 3.0
+    return dtt
+
+
+@njit(cache=True)
 def mode_of(phase):
     """The integration form (mode) of a phase."""
     if phase == PH_APPROACH:

@@ -38,6 +38,7 @@ from isolator.solver.planar_events import (
     PH_START,
     PH_STUCK,
     acceleration_peak_rate,
+    coast_to_rest,
     force_norm,
     force_scale,
     friction_force,
@@ -62,12 +63,9 @@ from isolator.solver.planar_rk import (
     CARTESIAN,
     LOG,
     NSTATE,
-    P_C,
     POLAR,
     START,
     eighth_root,
-    forcing,
-    friction_coefficient,
     norm,
     rhs,
     step_factor,
@@ -438,17 +436,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         continue
                 # the stop: the last speed r_min in closed form (constant deceleration)
                 r = math.exp(x)
-                rdot = r / f[7]
-                dtt = min(r / (-rdot), target - tau)
-                axx, ayy, nn, _, kdot, _, _ = forcing(tau, y[0], y[1], prm, frc)
-                half = 0.5 * r * dtt
-                # the work of the vertical motion ½κ'|X|² dt, at the mid-point position
-                y[4] += 0.5 * kdot * ((y[0] + 0.5 * half * y[2]) ** 2 + (y[1] + 0.5 * half * y[3]) ** 2) * dtt
-                y[0] += half * y[2]
-                y[1] += half * y[3]
-                y[4] -= (axx * y[2] + ayy * y[3]) * half
-                y[5] += friction_coefficient(0.0, prm) * max(nn, 0.0) * half
-                y[6] += prm[P_C] * r * r * dtt / 3.0
+                dtt = coast_to_rest(tau, y, r, r / f[7], target, prm, frc)
                 tau += dtt
                 slip += dtt
                 peak_x = max(peak_x, norm(y[0], y[1]))
@@ -484,6 +472,15 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
                     if r <= r_min and rdot <= 0.0:
+                        if r > 0.0:
+                            # the last speed in closed form, as at the end of the LOG form (a slide can get
+                            # here when the approach to the stop was never predicted two steps ahead)
+                            y[2] /= r
+                            y[3] /= r
+                            dtt = coast_to_rest(tau, y, r, rdot, target, prm, frc)
+                            tau += dtt
+                            slip += dtt
+                            peak_x = max(peak_x, norm(y[0], y[1]))
                         phase = _at_rest(tau, y, prm, frc, f)
                         if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
                             peak_a = max(peak_a, ground_norm(tau, frc))
