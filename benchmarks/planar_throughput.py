@@ -2,7 +2,7 @@
 
 Usage::
 
-    PYTHONPATH=. python benchmarks/planar_throughput.py [--repeat 7] [--mu 0.06] [--radius 2.0]
+    python -m benchmarks.planar_throughput [--repeat 7] [--mu 0.06] [--radius 2.0] [--rtol 1e-11]
 
 For every pair in ../shared/records/pairs (both horizontals, trimmed to the shorter
 one; and with the vertical where the station recorded one) it runs
@@ -68,10 +68,13 @@ def main(argv=None) -> None:
     parser.add_argument("--repeat", type=int, default=7)
     parser.add_argument("--mu", type=float, default=0.06)
     parser.add_argument("--radius", type=float, default=2.0)
+    parser.add_argument("--rtol", type=float, default=None, help="tolerance of the steps (default: the engine's)")
     args = parser.parse_args(argv)
     if not PAIRS.is_dir():
         raise SystemExit(f"pairs not found at {PAIRS}")
     system = dict(mu_static=args.mu, radius_m=args.radius)
+    if args.rtol is not None:
+        system["rtol"] = args.rtol
     print(f"friction pendulum R = {args.radius} m, µ = {args.mu}; median of {args.repeat} runs, one core")
     print(f"{'pair':28s} {'vert':>4s} {'samples':>8s} {'ms':>8s} {'Msamples/s':>10s} {'steps':>7s} "
           f"{'rej':>5s} {'start':>5s} {'log':>5s} {'sub':>5s} {'events':>6s} {'sliding':>7s} {'us/step':>7s} "
