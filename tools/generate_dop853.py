@@ -48,10 +48,13 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.planar_rk import FASTMATH, derivative
+from isolator.solver.planar_rk import CARTESIAN, FASTMATH, LOG, POLAR, START, derivative
 
 
-@njit(cache=True, fastmath=FASTMATH)
+'''
+
+DISPATCH = '''
+@njit(cache=True)
 def dop853_step(mode, x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
 
@@ -81,6 +84,13 @@ def dop853_step(mode, x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
         ``(ok, err)``: ok is False if a stage left the domain of ``mode``; err is the
         scaled error norm (accept when ≤ 1).
     """
+    if mode == CARTESIAN:
+        return _step_cartesian(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
+    if mode == POLAR:
+        return _step_polar(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
+    if mode == LOG:
+        return _step_log(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
+    return _step_start(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
 '''
 
 
@@ -89,11 +99,16 @@ def _combination(coefficients, stages, j):
     return " + ".join(terms) if terms else "0.0"
 
 
-def source() -> str:
-    """The text of the generated module."""
+def _step(name: str, out: list[str]) -> None:
+    """One step function, with the form ``name`` (a constant of planar_rk) fixed: numba folds
+    the other forms' branches of ``derivative`` away."""
     a, b, c, e3, e5 = dop.A, dop.B, dop.C, dop.E3, dop.E5
-    out = [HEADER]
     w = out.append
+    w("")
+    w("")
+    w("@njit(cache=True, fastmath=FASTMATH)")
+    w(f"def _step_{name.lower()}(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):")
+    w(f'    """The DOP853 step in the {name} form (see :func:`dop853_step`)."""')
     w("    " + ", ".join(f"y{j}" for j in range(NSTATE)) + " = (" + ", ".join(f"y[{j}]" for j in range(NSTATE)) + ")")
     w("    " + ", ".join(f"k0_{j}" for j in range(NSTATE)) + " = (" + ", ".join(f"f0[{j}]" for j in range(NSTATE))
       + ")")
@@ -103,7 +118,7 @@ def source() -> str:
         for j in DYNAMIC:
             args.append(f"y{j} + h * ({_combination(a[s, :s], range(s), j)})")
         w("    ok, " + ", ".join(f"k{s}_{j}" for j in range(NSTATE)) + " = derivative(")
-        w(f"        mode, x + {float(c[s])!r} * h,")
+        w(f"        {name}, x + {float(c[s])!r} * h,")
         for arg in args:
             w(f"        {arg},")
         w("        prm, frc)")
@@ -112,7 +127,7 @@ def source() -> str:
     w("    # the 8th-order solution and its derivative (the first stage of the next step)")
     for j in range(NSTATE):
         w(f"    n{j} = y{j} + h * ({_combination(b, range(N_STAGES), j)})")
-    w("    ok, " + ", ".join(f"k12_{j}" for j in range(NSTATE)) + " = derivative(mode, x + h, "
+    w("    ok, " + ", ".join(f"k12_{j}" for j in range(NSTATE)) + " = derivative(" + name + ", x + h, "
       + ", ".join(f"n{j}" for j in DYNAMIC) + ", prm, frc)")
     w("    if not ok:")
     w("        return False, np.inf")
@@ -137,6 +152,16 @@ def source() -> str:
     w("    if not err < np.inf:")
     w("        return False, np.inf")
     w("    return True, err")
+
+
+def source() -> str:
+    """The text of the generated module."""
+    out = [HEADER.rstrip("\n")]
+    for name in ("CARTESIAN", "POLAR", "LOG", "START"):
+        _step(name, out)
+    out.append("")
+    out.append("")
+    out.append(DISPATCH.strip("\n"))
     return "\n".join(out) + "\n"
 
 
