@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from isolator.solver import planar_kernel as _pk
+from isolator.solver import planar_layout as _pl
 from isolator.solver import planar_rk as _rk
 from isolator.solver.events import EVENT_NAMES
 from isolator.solver.record import RecordInputError, Response, simulate_record
@@ -55,10 +56,10 @@ R_SWITCH_LO_FACTOR = 1e-4
 R_MIN_FACTOR = 1e-7
 
 _STATUS_MESSAGES = (
-    (_pk.STATUS_CHATTER, (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample "
+    (_pl.STATUS_CHATTER, (f"chatter guard: more than {_pl.MAX_EVENTS_PER_INTERVAL} events in one sample "
                           "interval; the static friction held the block to the end of that interval")),
-    (_pk.STATUS_EVENTS_TRUNCATED, "more events than the event arrays could hold"),
-    (_pk.STATUS_STEP_LIMIT, (f"step guard: more than {_pk.MAX_STEPS_PER_INTERVAL} steps in one sample "
+    (_pl.STATUS_EVENTS_TRUNCATED, "more events than the event arrays could hold"),
+    (_pl.STATUS_STEP_LIMIT, (f"step guard: more than {_pl.MAX_STEPS_PER_INTERVAL} steps in one sample "
                              "interval; the response after it is NaN")),
 )
 
@@ -350,18 +351,18 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     if prm[_rk.P_C] > 0.0:
         t_scale = min(t_scale, 1.0 / prm[_rk.P_C])
     vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * t_scale
-    scales = np.empty(_pk.SC_SIZE)
-    scales[_pk.SC_R_MIN] = R_MIN_FACTOR * vref
-    scales[_pk.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
-    scales[_pk.SC_R_SWITCH_LO] = R_SWITCH_LO_FACTOR * vref
-    scales[_pk.SC_X_FLOOR] = 1e-3 * vref * t_scale
-    scales[_pk.SC_V_FLOOR] = 1e-3 * vref
+    scales = np.empty(_pl.SC_SIZE)
+    scales[_pl.SC_R_MIN] = R_MIN_FACTOR * vref
+    scales[_pl.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
+    scales[_pl.SC_R_SWITCH_LO] = R_SWITCH_LO_FACTOR * vref
+    scales[_pl.SC_X_FLOOR] = 1e-3 * vref * t_scale
+    scales[_pl.SC_V_FLOOR] = 1e-3 * vref
     refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)
     out_x = np.empty((n, 2))
     out_v = np.empty((n, 2))
     out_a = np.empty((n, 2))
     out_en = np.empty((3, n))
-    summary = np.zeros(_pk.S_SIZE)
+    summary = np.zeros(_pl.S_SIZE)
     capacity = 64 + n // 4
     while True:
         ev_t = np.empty(capacity)
@@ -370,15 +371,15 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         _pk.planar_kernel(times - times[0], ax, ay, nz, prm, scales, float(rtol), refresh, out_x, out_v, out_a,
                           out_en, ev_t, ev_k, summary)
         elapsed = time.perf_counter() - start
-        n_events = int(summary[_pk.S_N_EVENTS])
+        n_events = int(summary[_pl.S_N_EVENTS])
         if n_events <= capacity:
             break
         capacity = n_events + 16
-    status = int(summary[_pk.S_STATUS])
+    status = int(summary[_pl.S_STATUS])
     messages = [text for bit, text in _STATUS_MESSAGES if status & bit]
     kappa_end = (max(nz[-1], 0.0) * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA])
     kappa_nominal = g * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
-    e_in, e_f, e_v = (float(summary[j]) for j in (_pk.S_E_IN, _pk.S_E_F, _pk.S_E_V))
+    e_in, e_f, e_v = (float(summary[j]) for j in (_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = 0.5 * kappa_end * float(out_x[-1, 0] ** 2 + out_x[-1, 1] ** 2)
     model, reason = select_model(has_y=bool(np.any(ay != 0.0)), has_z=az is not None,
@@ -392,15 +393,15 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         absolute_acceleration_m_s2=out_a,
         event_time_s=times[0] + ev_t[:n_events],
         event_kind=ev_k[:n_events],
-        peak_displacement_m=float(summary[_pk.S_PEAK_X]),
+        peak_displacement_m=float(summary[_pl.S_PEAK_X]),
         residual_displacement_m=float(math.hypot(out_x[-1, 0], out_x[-1, 1])),
         residual_displacement_x_m=float(out_x[-1, 0]),
         residual_displacement_y_m=float(out_x[-1, 1]),
-        peak_velocity_m_s=float(summary[_pk.S_PEAK_V]),
-        peak_transmitted_acceleration_m_s2=float(summary[_pk.S_PEAK_A]),
-        slip_time_s=float(summary[_pk.S_SLIP_TIME]),
-        uplift_time_s=float(summary[_pk.S_UPLIFT_TIME]),
-        n_uplifts=int(summary[_pk.S_N_UPLIFTS]),
+        peak_velocity_m_s=float(summary[_pl.S_PEAK_V]),
+        peak_transmitted_acceleration_m_s2=float(summary[_pl.S_PEAK_A]),
+        slip_time_s=float(summary[_pl.S_SLIP_TIME]),
+        uplift_time_s=float(summary[_pl.S_UPLIFT_TIME]),
+        n_uplifts=int(summary[_pl.S_N_UPLIFTS]),
         n_events=n_events,
         energy_input_J_per_kg=e_in,
         energy_friction_J_per_kg=e_f,
@@ -415,11 +416,11 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         model=model,
         model_reason=reason,
         configuration=classify_configuration(prm[_rk.P_C], kappa_nominal),
-        n_steps=int(summary[_pk.S_N_STEPS]),
+        n_steps=int(summary[_pl.S_N_STEPS]),
         work={name: int(summary[j]) for name, j in (
-            ("rejected", _pk.S_N_REJECTED), ("start", _pk.S_STEPS_START), ("log", _pk.S_STEPS_LOG),
-            ("stability_limited", _pk.S_STEPS_LIMITED), ("land_substeps", _pk.S_SUB_LAND),
-            ("peak_substeps", _pk.S_SUB_PEAK))},
+            ("rejected", _pl.S_N_REJECTED), ("start", _pl.S_STEPS_START), ("log", _pl.S_STEPS_LOG),
+            ("stability_limited", _pl.S_STEPS_LIMITED), ("land_substeps", _pl.S_SUB_LAND),
+            ("peak_substeps", _pl.S_SUB_PEAK))},
     )
 
 

@@ -1,13 +1,17 @@
 """Events and helpers of the planar kernel: the stick test, peaks between step ends, landing on an instant.
 
-* :func:`stuck_until` — the closed-form first exit from a stuck state (quadratic in
-  local time), the 2-D counterpart of :func:`isolator.solver.events.breakaway_time`;
-* :func:`locate_peak` — the largest |X| or |V| inside a step where its rate changes
-  sign, by Illinois secant on DOP853 sub-steps from the step start (the value is
-  stationary there, so a 1e-11 bracket in time gives it to rounding);
+* :func:`stuck_until` / :func:`holds_at` — the closed-form first exit from a stuck state
+  (quadratic in local time), the 2-D counterpart of
+  :func:`isolator.solver.events.breakaway_time`, and the two-ends test of a whole stuck
+  sample;
+* :func:`locate_peak` — the largest |X|, |V| or transmitted |a| inside a step where its
+  rate changes sign, by Illinois secant on DOP853 sub-steps from the step start, while
+  the tangents at the bracket's ends (:func:`tangent_bound`) can still beat the best value;
 * :func:`land_on` — the fraction of a step at which one state component reaches a
-  target (used for a re-stop in the START form and for ending a LOG step exactly on
-  a sample or on the instant n = 0).
+  target (a re-stop in the START form, the end of a LOG step exactly on a sample or on
+  the instant n = 0), from the Hermite interpolant's crossing then Newton;
+* :func:`coast_to_rest`, :func:`at_rest`, :func:`lift_off`, :func:`land`,
+  :func:`record_event` — the phase changes of the kernel.
 """
 
 from __future__ import annotations
@@ -31,6 +35,7 @@ from isolator.solver.planar_rk import (
     friction_coefficient,
     friction_slope,
     norm,
+    rhs,
     start_direction,
 )
 
@@ -469,6 +474,47 @@ def coast_to_rest(tau, y, r, rdot, target, prm, frc):
     y[5] += friction_coefficient(0.0, prm) * max(nn, 0.0) * half
     y[6] += prm[P_C] * r * r * dtt / 3.0
     return dtt
+
+
+@njit(cache=True)
+def record_event(ev_t, ev_k, n_ev, time, kind):
+    """Log an event (time [s], kind) while the arrays have room; returns the new count."""
+    if n_ev < ev_t.shape[0]:
+        ev_t[n_ev] = time
+        ev_k[n_ev] = kind
+    return n_ev + 1
+
+
+@njit(cache=True)
+def at_rest(tau, y, prm, frc, f):
+    """The block is at rest at τ: stick (returns PH_STUCK) or restart from rest (PH_START)."""
+    y[2] = 0.0
+    y[3] = 0.0
+    if holds(tau, y, prm, frc):
+        return PH_STUCK
+    rhs(START, tau, y, prm, frc, f)
+    return PH_START
+
+
+@njit(cache=True)
+def lift_off(phase, x, tau, y, prm, frc, f):
+    """Uplift: n reaches 0; the state becomes Cartesian, the phase FLIGHT."""
+    v1, v2 = velocity(phase, x, tau, y, prm, frc)
+    y[2] = v1
+    y[3] = v2
+    frc[6] = 0.0
+    rhs(CARTESIAN, tau, y, prm, frc, f)
+    return PH_FLIGHT
+
+
+@njit(cache=True)
+def land(tau, y, prm, frc, f):
+    """Landing: n becomes positive; slide on, or (at rest) stick or start."""
+    frc[6] = 1.0
+    if y[2] != 0.0 or y[3] != 0.0:
+        rhs(CARTESIAN, tau, y, prm, frc, f)
+        return PH_SLIDE
+    return at_rest(tau, y, prm, frc, f)
 
 
 @njit(cache=True)

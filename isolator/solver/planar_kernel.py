@@ -38,26 +38,64 @@ from isolator.solver.planar_events import (
     PH_START,
     PH_STUCK,
     acceleration_peak_rate,
+    at_rest,
     coast_to_rest,
     force_norm,
     force_scale,
     friction_force,
     ground_norm,
     hermite_crossing,
-    holds,
     holds_at,
     kappa_at,
     kappa_of,
+    land,
     land_on,
+    lift_off,
     locate_peak,
     mode_of,
     peak_value,
     rate_of_peak,
+    record_event,
     start_lag,
     stuck_until,
     tangent_bound,
     transmitted,
     velocity,
+)
+from isolator.solver.planar_layout import (
+    EV_BREAKAWAY,
+    EV_LANDING,
+    EV_REVERSAL,
+    EV_STICK,
+    EV_UPLIFT,
+    MAX_EVENTS_PER_INTERVAL,
+    MAX_STEPS_PER_INTERVAL,
+    S_E_F,
+    S_E_IN,
+    S_E_V,
+    S_N_EVENTS,
+    S_N_REJECTED,
+    S_N_STEPS,
+    S_N_UPLIFTS,
+    S_PEAK_A,
+    S_PEAK_V,
+    S_PEAK_X,
+    S_SLIP_TIME,
+    S_STATUS,
+    S_STEPS_LIMITED,
+    S_STEPS_LOG,
+    S_STEPS_START,
+    S_SUB_LAND,
+    S_SUB_PEAK,
+    S_UPLIFT_TIME,
+    SC_R_MIN,
+    SC_R_SWITCH,
+    SC_R_SWITCH_LO,
+    SC_V_FLOOR,
+    SC_X_FLOOR,
+    STATUS_CHATTER,
+    STATUS_EVENTS_TRUNCATED,
+    STATUS_STEP_LIMIT,
 )
 from isolator.solver.planar_rk import (
     CARTESIAN,
@@ -71,49 +109,6 @@ from isolator.solver.planar_rk import (
     step_factor,
 )
 
-# event kinds: the 1-D vocabulary (breakaway, stick, reversal) + uplift, landing
-EV_BREAKAWAY = 0
-EV_STICK = 1
-EV_REVERSAL = 2
-EV_UPLIFT = 3
-EV_LANDING = 4
-
-MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
-MAX_STEPS_PER_INTERVAL = 100000  #: hang guard
-
-STATUS_CHATTER = 1
-STATUS_EVENTS_TRUNCATED = 2
-STATUS_STEP_LIMIT = 4
-
-# summary layout
-S_PEAK_X = 0
-S_PEAK_V = 1
-S_PEAK_A = 2
-S_SLIP_TIME = 3
-S_UPLIFT_TIME = 4
-S_N_UPLIFTS = 5
-S_E_IN = 6
-S_E_F = 7
-S_E_V = 8
-S_N_EVENTS = 9
-S_STATUS = 10
-S_N_STEPS = 11
-S_N_REJECTED = 12  #: rejected steps (error or domain)
-S_STEPS_START = 13  #: steps in the START form (after a break-away)
-S_STEPS_LOG = 14  #: steps in the LOG form (approach to a stop)
-S_STEPS_LIMITED = 15  #: Cartesian steps shortened to the stability bound (slow sliding)
-S_SUB_LAND = 16  #: DOP853 sub-steps spent landing on an instant (sample, r_switch, re-stop)
-S_SUB_PEAK = 17  #: DOP853 sub-steps spent locating peaks inside steps
-S_SIZE = 18
-
-# scales layout (built by isolator.solver.planar)
-SC_R_MIN = 0  #: speed at which the LOG form hands over to the closed-form finish [m/s]
-SC_R_SWITCH = 1  #: speed at which START hands over to Cartesian form [m/s]
-SC_X_FLOOR = 2  #: displacement floor of the absolute tolerance [m]
-SC_V_FLOOR = 3  #: speed floor of the absolute tolerance [m/s]
-SC_R_SWITCH_LO = 4  #: lowest START → Cartesian hand-over speed (where the slaved direction lags much) [m/s]
-SC_SIZE = 5
-
 #: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
 _ENTER = 0.02
 _LEAVE = 0.01
@@ -126,46 +121,6 @@ _LAG_MAX = 1e-3
 _POLAR_ENTER = 5.0
 _POLAR_LEAVE = 10.0
 _STABLE_POLAR = 5.0
-
-
-@njit(cache=True)
-def _record_event(ev_t, ev_k, n_ev, time, kind):
-    if n_ev < ev_t.shape[0]:
-        ev_t[n_ev] = time
-        ev_k[n_ev] = kind
-    return n_ev + 1
-
-
-@njit(cache=True)
-def _at_rest(tau, y, prm, frc, f):
-    """The block is at rest at τ: stick (returns PH_STUCK) or restart from rest (PH_START)."""
-    y[2] = 0.0
-    y[3] = 0.0
-    if holds(tau, y, prm, frc):
-        return PH_STUCK
-    rhs(START, tau, y, prm, frc, f)
-    return PH_START
-
-
-@njit(cache=True)
-def _lift_off(phase, x, tau, y, prm, frc, f):
-    """Uplift: n reaches 0; the state becomes Cartesian, the phase FLIGHT."""
-    v1, v2 = velocity(phase, x, tau, y, prm, frc)
-    y[2] = v1
-    y[3] = v2
-    frc[6] = 0.0
-    rhs(CARTESIAN, tau, y, prm, frc, f)
-    return PH_FLIGHT
-
-
-@njit(cache=True)
-def _land(tau, y, prm, frc, f):
-    """Landing: n becomes positive; slide on, or (at rest) stick or start."""
-    frc[6] = 1.0
-    if y[2] != 0.0 or y[3] != 0.0:
-        rhs(CARTESIAN, tau, y, prm, frc, f)
-        return PH_SLIDE
-    return _at_rest(tau, y, prm, frc, f)
 
 
 @njit(cache=True)
@@ -291,16 +246,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         nplus = nz[i] if nz[i] != 0.0 else nz[i + 1]
         # contact state just after the sample
         if phase == PH_FLIGHT and nplus > 0.0:
-            n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_LANDING)
-            phase = _land(0.0, y, prm, frc, f)
+            n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_LANDING)
+            phase = land(0.0, y, prm, frc, f)
             if phase == PH_START:
-                n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_BREAKAWAY)
+                n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_BREAKAWAY)
                 h_sugg = 0.01 * hi
         elif phase != PH_FLIGHT and nplus <= 0.0:
-            phase = _lift_off(phase, x, 0.0, y, prm, frc, f)
+            phase = lift_off(phase, x, 0.0, y, prm, frc, f)
             x = 0.0
             n_up += 1
-            n_ev = _record_event(ev_t, ev_k, n_ev, t0, EV_UPLIFT)
+            n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_UPLIFT)
         atol[0] = rtol * max(peak_x, scales[SC_X_FLOOR])
         atol[1] = atol[0]
         # the energies are error-controlled too (the balance is a check of the integration)
@@ -337,16 +292,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if not crossed and tau >= tz:
                 crossed = True
                 if phase == PH_FLIGHT:
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
                     events_here += 1
-                    phase = _land(tau, y, prm, frc, f)
+                    phase = land(tau, y, prm, frc, f)
                     if phase == PH_START:
-                        n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                        n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
                         h_sugg = 0.01 * hi
                 else:
-                    phase = _lift_off(phase, x, tau, y, prm, frc, f)
+                    phase = lift_off(phase, x, tau, y, prm, frc, f)
                     n_up += 1
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
                     events_here += 1
                 x = tau
             target = tz if tau < tz else hi
@@ -363,7 +318,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     y[2] = 0.0
                     y[3] = 0.0
                     rhs(START, tau, y, prm, frc, f)
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
                     events_here += 1
                     h_sugg = 0.01 * hi
                     a1, a2 = transmitted(phase, x, tau, y, prm, frc)
@@ -440,11 +395,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 tau += dtt
                 slip += dtt
                 peak_x = max(peak_x, norm(y[0], y[1]))
-                phase = _at_rest(tau, y, prm, frc, f)
+                phase = at_rest(tau, y, prm, frc, f)
                 if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
                     peak_a = max(peak_a, ground_norm(tau, frc))
                 x = tau
-                n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
+                n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                 events_here += 1
                 h_sugg = 0.01 * hi
             else:
@@ -481,11 +436,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             tau += dtt
                             slip += dtt
                             peak_x = max(peak_x, norm(y[0], y[1]))
-                        phase = _at_rest(tau, y, prm, frc, f)
+                        phase = at_rest(tau, y, prm, frc, f)
                         if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
                             peak_a = max(peak_a, ground_norm(tau, frc))
                         x = tau
-                        n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau,
+                        n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau,
                                              EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                         events_here += 1
                         h_sugg = 0.01 * hi
@@ -562,11 +517,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
                     peak_x = max(peak_x, norm(y[0], y[1]))
-                    phase = _at_rest(tau, y, prm, frc, f)
+                    phase = at_rest(tau, y, prm, frc, f)
                     if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
                         peak_a = max(peak_a, ground_norm(tau, frc))
                     x = tau
-                    n_ev = _record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                     events_here += 1
                     h_sugg = 0.01 * hi
                     if events_here > MAX_EVENTS_PER_INTERVAL:
