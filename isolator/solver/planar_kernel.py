@@ -308,7 +308,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if phase == PH_STUCK:
                 u, up = stuck_until(y[0], y[1], tau, target - tau, prm, frc)
                 tau_new = target if u < 0.0 else min(tau + u, target)
-                # stuck, the transmitted acceleration is a_g, linear: its largest value is at an end
+                # stuck, the transmitted acceleration is a_g, linear: its largest value is at an end (this
+                # counts it at every stick and break-away; a stick on a sample end is counted with the sample)
                 peak_a = max(peak_a, ground_norm(tau, frc), ground_norm(tau_new, frc))
                 if frc[5] != 0.0:  # κ changes with n(t): the work ½κ'|X|² of the vertical motion
                     y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (kappa_at(tau_new, prm, frc) - kappa_at(tau, prm, frc))
@@ -396,8 +397,6 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 slip += dtt
                 peak_x = max(peak_x, norm(y[0], y[1]))
                 phase = at_rest(tau, y, prm, frc, f)
-                if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
-                    peak_a = max(peak_a, ground_norm(tau, frc))
                 x = tau
                 n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                 events_here += 1
@@ -437,8 +436,6 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             slip += dtt
                             peak_x = max(peak_x, norm(y[0], y[1]))
                         phase = at_rest(tau, y, prm, frc, f)
-                        if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
-                            peak_a = max(peak_a, ground_norm(tau, frc))
                         x = tau
                         n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau,
                                              EV_STICK if phase == PH_STUCK else EV_REVERSAL)
@@ -518,8 +515,6 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     tau = tau + theta * h if theta < 1.0 else target
                     peak_x = max(peak_x, norm(y[0], y[1]))
                     phase = at_rest(tau, y, prm, frc, f)
-                    if phase == PH_STUCK:  # the transmitted acceleration becomes a_g: count it at the stick
-                        peak_a = max(peak_a, ground_norm(tau, frc))
                     x = tau
                     n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                     events_here += 1
