@@ -74,8 +74,7 @@ def holds_at(x1, x2, a_x, a_y, nn, prm):
     kap = kappa_of(nn, prm)
     gx = kap * x1 + a_x
     gy = kap * x2 + a_y
-    lim = prm[P_MU_S] * nn
-    return gx * gx + gy * gy <= lim * lim
+    return norm(gx, gy) <= prm[P_MU_S] * nn
 
 
 @njit(cache=True)
@@ -136,13 +135,6 @@ def stuck_until(x1, x2, tau0, length, prm, frc):
     if u_up >= 0.0 and (u_b < 0.0 or u_up < u_b):
         return u_up, True
     return u_b, False
-
-
-@njit(cache=True)
-def holds(tau, y, prm, frc):
-    """At rest at τ: True if the static friction holds (|κX + a_g| ≤ µs n, n > 0)."""
-    _, _, nn, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
-    return nn > 0.0 and norm(fx, fy) <= prm[P_MU_S] * nn
 
 
 @njit(cache=True)
@@ -490,7 +482,7 @@ def at_rest(tau, y, prm, frc, f):
     """The block is at rest at τ: stick (returns PH_STUCK) or restart from rest (PH_START)."""
     y[2] = 0.0
     y[3] = 0.0
-    if holds(tau, y, prm, frc):
+    if holds_at(y[0], y[1], frc[0] + frc[1] * tau, frc[2] + frc[3] * tau, frc[4] + frc[5] * tau, prm):
         return PH_STUCK
     rhs(START, tau, y, prm, frc, f)
     return PH_START

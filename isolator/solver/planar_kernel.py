@@ -104,6 +104,7 @@ from isolator.solver.planar_rk import (
     POLAR,
     START,
     eighth_root,
+    factor_of_root,
     norm,
     rhs,
     step_factor,
@@ -570,7 +571,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 if phase == PH_FLIGHT:
                     upt += h
                 root = eighth_root(max(err, 1e-10))
-                fac = min(10.0, max(0.2, 0.9 / root))  # = step_factor(err)
+                fac = factor_of_root(root)
                 if h_prev > 0.0 and h != hmax and mode == prev_mode:
                     # Gustafsson's predictive factor (as in Hairer's RADAU5: the smaller of the two)
                     fac = max(min(fac, 0.9 * (h / h_prev) * root_prev / (root * root)), 0.2)

@@ -236,9 +236,13 @@ def rhs(mode, x, y, prm, frc, d):
 @njit(cache=True)
 def step_factor(err):
     """Step-size factor after a step with scaled error ``err`` (order 8 controller): 0.9 err^(−1/8) in [0.2, 10]."""
-    if err == 0.0:
-        return 10.0
-    return min(10.0, max(0.2, 0.9 / eighth_root(err)))
+    return factor_of_root(eighth_root(max(err, 1e-10)))
+
+
+@njit(cache=True)
+def factor_of_root(root):
+    """The order-8 step factor from root = max(err, 1e-10)^(1/8): 0.9/root in [0.2, 10] (err = 0 gives 10)."""
+    return min(10.0, max(0.2, 0.9 / root))
 
 
 @njit(cache=True, fastmath=FASTMATH)
