@@ -41,6 +41,7 @@ from isolator.batch.plan import (
                                  plan,
                                  record_components,
                                  row_key,
+                                 station_sets,
 )
 from isolator.batch.run import BatchResult, run_batch
 from isolator.batch.store import COLUMNS, TIMING_COLUMNS, PartStore, comparable, to_table, write_table_atomically
@@ -49,5 +50,5 @@ from isolator.batch.worker import run_task
 __all__ = ["COLUMNS", "GRID_KEYS", "SUMMARY_RESPONSES", "TIMING_COLUMNS", "BatchError", "BatchResult",
            "DesignCase", "PartStore", "ReadOptions", "Task", "comparable", "design_chart", "expand_designs",
            "expand_records", "is_vertical", "load_design_mappings", "make_tasks", "parse_grid", "plan",
-           "record_components", "row_key", "run_batch", "run_task", "suite_summary", "to_table",
+           "record_components", "row_key", "run_batch", "run_task", "station_sets", "suite_summary", "to_table",
            "write_table_atomically"]

@@ -9,35 +9,56 @@ apply to a coupled 2-D response: those columns stay empty.
 
 from __future__ import annotations
 
+import os
 import time
+from pathlib import Path
 
 from isolator.batch.plan import ReadOptions, Task
 
 _PAIR_CACHE: dict = {}
 
 
-def read_pair(path: str, component: str, options: ReadOptions):
+def _version(path: str):
+    """(size, modification time, inode) of a file, or None."""
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return None
+    return stat.st_size, stat.st_mtime_ns, stat.st_ino
+
+
+def read_pair(path: str, component: str, options: ReadOptions, partners: tuple = ()):
     """(MotionPair, scale factor, read seconds), cached per process.
 
+    ``partners`` are the other files of a set of one-component files (Y, and Z:
+    :func:`isolator.batch.plan.station_sets`); without them the file holds the components.
     ``--units`` is tried only when the file does not state its units (read once without
     it, again with it when that fails), as for one component; ``--scale-to-pga`` scales
     every component by the one factor that brings the larger horizontal PGA to the target.
     """
-    key = (path, component, options)
+    # a file rewritten since it was cached (same name, other content) is read again
+    key = (component, options) + tuple((os.path.abspath(p), _version(p)) for p in (path, *partners))
     if key in _PAIR_CACHE:
         return _PAIR_CACHE[key]
-    from isolator.errors import MissingUnitsError
+    from isolator.errors import ComponentError, MissingUnitsError
     from isolator.motion import read_ground_motion_pair
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
     align = {"trim": options.trim, "resample": options.resample, "dt_s": options.dt_s}
+    if partners:
+        if component == "all" and len(partners) < 2:
+            raise ComponentError(f"{path}: its station has no vertical component among the records given "
+                                 f"(beside {Path(partners[0]).name}); 'all' needs one", path=path)
+        files = {"y": partners[0], "z": partners[1] if component == "all" else None}
+    else:
+        files = {"component": component}
     try:
-        motions = read_ground_motion_pair(path, component=component, **align)
+        motions = read_ground_motion_pair(path, **files, **align)
     except MissingUnitsError:
         if options.units is None:
             raise
-        motions = read_ground_motion_pair(path, component=component, units=options.units, **align)
+        motions = read_ground_motion_pair(path, **files, units=options.units, **align)
     factor = 1.0
     if options.scale_to_pga_g is not None:
         largest = max(motions.x.pga_m_s2, motions.y.pga_m_s2)
@@ -65,6 +86,7 @@ def record_columns(task: Task, motions, factor: float, read_seconds: float) -> d
         "record_npts": motions.npts, "record_dt_s": motions.dt_s, "record_duration_s": motions.duration_s,
         "record_scale_factor": factor, "read_seconds": read_seconds,
         "record_processing": "; ".join(step["step"] for step in motions.processing),
+        "record_files": "; ".join(Path(p).name for p in (task.record, *task.partners)),
     }
     for axis, motion in parts.items():
         out[f"component_{axis}"] = motion.component

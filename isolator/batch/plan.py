@@ -19,9 +19,10 @@ GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kineti
 #: Columns that measure time: they differ between two runs of the same batch.
 TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
 
-#: Files a folder holds that are never records (a batch's own lock and MAC files included).
-_NOT_RECORDS = re.compile(r"^(readme.*|.*\.(md|json|toml|pdf|png|parquet|py|xml|zip|gz|lock|jsonl))$",
-                          re.IGNORECASE)
+#: Files a folder holds that are never records (a batch's own lock and MAC files, and the checksum
+#: lists that travel with record folders, included).
+_NOT_RECORDS = re.compile(r"^(readme.*|(sha\d*sums|md5sums)(\.txt)?"
+                          r"|.*\.(md|json|toml|pdf|png|parquet|py|xml|zip|gz|lock|jsonl))$", re.IGNORECASE)
 #: Largest batch planned [rows]: 1,800 rows take ~7 s on 2 cores, so a million rows is about
 #: an hour; larger sweeps are refused before anything is allocated (split them).
 MAX_PLAN_ROWS = 1_000_000
@@ -290,6 +291,63 @@ def record_components(path: str, component: str | None) -> list[str | None]:
     return [component if component in SET_COMPONENTS else None]
 
 
+def station_sets(files, component: str | None) -> dict[str, tuple[str, ...]]:
+    """Pairs made of several one-component files: one station's horizontals (and vertical).
+
+    Files of one component each (PEER AT2, SMC, …) that sit in one folder and whose headers
+    name the same network, station and event form a set when it holds exactly two
+    horizontal components with different labels and different samples, and at most one
+    vertical.  Anything else (one file of the station, the same component twice, as
+    ``TAK000.AT2`` beside ``RSN1120_KOBE_TAK000.AT2``, a header without station or event, a
+    file that cannot be read) leaves the files alone, analysed one component each.
+
+    Returns
+    -------
+    dict
+        ``{x path: (y path,) or (y path, z path)}`` for the first horizontal (sorted) of
+        each set; the other members of a set are the keys' partners.  Empty unless
+        ``component`` is None, ``"pair"`` or ``"all"``.
+    """
+    if component not in (None, *SET_COMPONENTS):
+        return {}
+    from isolator.motion import read_ground_motion
+
+    groups: dict = {}
+    for path in files:
+        if Path(path).suffix.lower() not in _ONE_COMPONENT_SUFFIXES or _knet_set_member(path)[0]:
+            continue
+        try:
+            motion = read_ground_motion(path, allow_zero=True)
+        except Exception:  # noqa: BLE001 - unreadable here: analysed alone, its rows say why
+            continue
+        prov = motion.provenance
+        station, event = prov.get("station", ""), prov.get("event", prov.get("event_origin_time", ""))
+        if not station or not event:
+            continue
+        key = (os.path.dirname(os.path.abspath(path)), prov.get("network", ""), station, event)
+        samples = hashlib.sha256(motion.acceleration_m_s2.tobytes()).hexdigest()
+        groups.setdefault(key, []).append((path, motion.component, is_vertical(motion.component), samples))
+    sets = {}
+    for items in groups.values():
+        horizontal = sorted(item for item in items if not item[2])
+        vertical = [item for item in items if item[2]]
+        if len(horizontal) != 2 or len(vertical) > 1 or horizontal[0][1] == horizontal[1][1] \
+                or horizontal[0][3] == horizontal[1][3]:
+            continue
+        sets[horizontal[0][0]] = (horizontal[1][0], *(item[0] for item in vertical))
+    return sets
+
+
+def set_digest(path: str, partners: tuple = ()) -> str:
+    """:func:`record_digest` of a record, with its partner files' paths and digests for a
+    set of several files (so that a changed partner recomputes the rows)."""
+    content = record_digest(path)
+    if not partners:
+        return content
+    text = "\0".join([content] + [f"{os.path.abspath(p)}:{record_digest(p)}" for p in partners])
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
 @dataclass(frozen=True)
 class ReadOptions:
     """How records are read and scaled (part of every row key)."""
@@ -370,11 +428,16 @@ class Task:
     designs: list  #: list of (DesignCase, row key)
     reports_dir: str | None = None
     map_resolution: int = 30
+    #: the other files of a set of one-component files (:func:`station_sets`): Y, and Z
+    partners: tuple = ()
 
 
 def plan(records, designs_file, grids=(), component: str | None = None, options: ReadOptions = ReadOptions(),
          design_mappings: list | None = None, outputs=(), excluded: list | None = None):
-    """(record files, [(record, component)], design cases) of a batch.
+    """(record files, [(record, component, partners)], design cases) of a batch.
+
+    ``partners`` are the other files of a station's set of one-component files
+    (:func:`station_sets`: analysed as a pair from its first horizontal), else ``()``.
 
     Raises
     ------
@@ -384,7 +447,14 @@ def plan(records, designs_file, grids=(), component: str | None = None, options:
     files = expand_records(records, outputs, excluded)
     mappings = design_mappings if design_mappings is not None else load_design_mappings(designs_file)
     cases = expand_designs(mappings, list(grids), source=str(designs_file))
-    pairs = [(path, comp) for path in files for comp in record_components(path, component)]
+    sets = station_sets(files, component)
+    members = {os.path.abspath(p) for partners in sets.values() for p in partners}
+    pairs = []
+    for path in files:
+        if path in sets:
+            pairs.append((path, component or "pair", sets[path]))
+        elif os.path.abspath(path) not in members:
+            pairs.extend((path, comp, ()) for comp in record_components(path, component))
     if len(pairs) * len(cases) > MAX_PLAN_ROWS:
         raise BatchError(f"the batch plans {len(pairs) * len(cases):,} rows ({len(pairs)} record components × "
                          f"{len(cases)} designs), more than the largest batch ({MAX_PLAN_ROWS:,}): split it")
@@ -398,14 +468,14 @@ def make_tasks(pairs, cases, options: ReadOptions, done: set, workers: int, repo
     chunks = max(1, math.ceil(2 * workers / max(1, len(pairs))))
     size = max(1, math.ceil(len(cases) / chunks))
     tasks, n_rows = [], 0
-    for path, comp in pairs:
-        content = record_digest(path)
+    for path, comp, partners in pairs:
+        content = set_digest(path, partners)
         todo = [(case, row_key(path, comp, case.design_hash, options, content)) for case in cases]
         todo = [(case, key) for case, key in todo if key not in done]
         for start in range(0, len(todo), size):
             chunk = todo[start:start + size]
             tasks.append(Task(record=path, component=comp, options=options, designs=chunk,
-                              reports_dir=reports_dir, map_resolution=map_resolution))
+                              reports_dir=reports_dir, map_resolution=map_resolution, partners=partners))
             n_rows += len(chunk)
 
     def size(task):

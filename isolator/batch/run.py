@@ -8,7 +8,7 @@ from pathlib import Path
 
 from isolator.atomic import output_lock, refuse_overwriting_inputs
 from isolator.batch.executors import _iterate_dask, _iterate_local, check_scheduler
-from isolator.batch.plan import BatchError, ReadOptions, make_tasks, plan, record_digest, row_key
+from isolator.batch.plan import BatchError, ReadOptions, make_tasks, plan, row_key, set_digest
 from isolator.batch.store import PartStore, _existing_rows, _table_is_ours, to_table, write_table_atomically
 from isolator.parallel import default_workers
 
@@ -99,8 +99,8 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
                 notes) -> BatchResult:
     # every planned row by its key: what it is, and where the current plan puts it
     planned = {}
-    for path, comp in pairs:
-        content = record_digest(path)
+    for path, comp, partners in pairs:
+        content = set_digest(path, partners)
         for case in cases:
             planned[row_key(path, comp, case.design_hash, options, content)] = (path, case)
     store = PartStore(output)

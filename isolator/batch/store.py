@@ -22,7 +22,7 @@ COLUMNS = (
     # record provenance
     "record_format", "record_station", "record_station_name", "record_network", "record_channel",
     "record_event", "record_date", "record_starttime", "record_units_source", "record_npts", "record_dt_s",
-    "record_duration_s", "record_scale_factor", "record_processing", "motion_sha256",
+    "record_duration_s", "record_scale_factor", "record_processing", "record_files", "motion_sha256",
     # the components of a pair (and the vertical), their PGA
     "component_x", "component_y", "component_z", "pga_x_m_s2", "pga_y_m_s2", "pga_z_m_s2",
     # intensity measures (of the motion analysed, after scaling)

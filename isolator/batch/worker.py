@@ -195,7 +195,7 @@ def run_task(task: Task) -> list[dict]:
     base = {"record": task.record, "component": task.component or ""}
     try:
         if task.component in SET_COMPONENTS:  # the file's components together (isolator.batch.pairs)
-            motion, factor, read_seconds = read_pair(task.record, task.component, task.options)
+            motion, factor, read_seconds = read_pair(task.record, task.component, task.options, task.partners)
             measures = window = None
         else:
             motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)

@@ -21,8 +21,9 @@ def batch(
                               "they say."),
     component: str = typer.Option(None, "--component", "-c", help=RECORD_HELP["component"] + "  Or 'pair' "
                                   "(the default for a file with two horizontal components: CSMIP V2, MiniSEED "
-                                  "streams, K-NET sets; a coupled 2-D analysis), 'all' (with the vertical), or "
-                                  "'all-horizontal': every horizontal component of multi-component files alone."),
+                                  "streams, K-NET sets; and for two one-component files of one station and event, "
+                                  "e.g. PEER AT2, given together; a coupled 2-D analysis), 'all' (with the "
+                                  "vertical), or 'all-horizontal': every horizontal component alone."),
     dt: float = typer.Option(None, "--dt", help="Time step [s] of the one-column text records that give none "
                              "(other files keep their own)."),
     trim: bool = typer.Option(False, "--trim", help=PAIR_HELP["trim"]),

@@ -88,3 +88,91 @@ def test_trim_repairs_the_pair_and_is_recorded(records_dir, tmp_path):
     assert row["record_npts"] == 15029 and row["record_processing"] == "trim_to_common_window"  # the shortest, HN2
     # the row key changes with --trim: a batch without it is not resumed into one with it
     assert ReadOptions(trim=True).fingerprint() != ReadOptions().fingerprint()
+
+
+# ---- pairs made of two one-component files (PEER AT2: one file per component) ----------------
+
+def _pts(records_dir):
+    folder = records_dir / "pairs" / "superstitionhills1987_PTS"
+    return folder / "RSN723_SUPER.B_B-PTS225.AT2", folder / "RSN723_SUPER.B_B-PTS315.AT2"
+
+
+def test_station_sets_pair_the_two_horizontals_of_one_station(records_dir, tmp_path):
+    from isolator.batch import station_sets
+
+    x, y = _pts(records_dir)
+    assert station_sets([str(x), str(y)], None) == {str(x): (str(y),)}
+    assert station_sets([str(y), str(x)], "all") == {str(x): (str(y),)}  # X is the first by name
+    assert station_sets([str(x), str(y)], "225") == {}  # one component asked: no set
+    assert station_sets([str(x), str(y)], "all-horizontal") == {}
+    assert station_sets([str(x)], None) == {}  # one file of the station: analysed alone
+    # the same component twice (one motion in two files) is not a pair
+    twin = tmp_path / "twin" / "copy_of_225.AT2"
+    twin.parent.mkdir()
+    twin.write_bytes(x.read_bytes())
+    assert station_sets([str(x), str(twin)], None) == {}
+    # two files of one station in different folders are not a set
+    other = tmp_path / "other" / y.name
+    other.parent.mkdir()
+    other.write_bytes(y.read_bytes())
+    assert station_sets([str(x), str(other)], None) == {}
+    # different stations and events (the shared at2 folder: TAK000 twice, under two event names)
+    at2 = sorted(str(p) for p in (records_dir / "at2").iterdir())
+    assert station_sets(at2, None) == {}
+
+
+def test_batch_analyses_two_files_of_one_station_as_a_pair(records_dir, tmp_path):
+    from isolator.batch import ReadOptions
+    from isolator.motion import read_ground_motion_pair
+
+    designs = tmp_path / "designs.toml"
+    designs.write_text(DESIGNS)
+    x, y = _pts(records_dir)
+    # the components differ in length (2235 and 2231 samples): one error row per design, naming both
+    result = run_batch([str(x.parent)], designs, tmp_path / "t.csv", jobs=1)
+    assert result.n_failed == 2 and set(result.table["component"]) == {"pair"}
+    assert all("different lengths" in e and y.name in e for e in result.table["error"])
+    # with --trim: one 2-D row per design, on the pair read as `simulate X --pair Y --trim` reads it
+    result = run_batch([str(y), str(x)], designs, tmp_path / "t2.csv", jobs=1, options=ReadOptions(trim=True))
+    assert result.n_failed == 0 and len(result.table) == 2
+    row = result.table.set_index("design_name").loc["FP"]
+    assert row["record"] == str(x) and row["component"] == "pair" and row["model"] == "2d"
+    assert row["record_files"] == f"{x.name}; {y.name}"
+    assert (row["component_x"], row["component_y"]) == ("225", "315") and row["record_npts"] == 2231
+    pair = read_ground_motion_pair(x, y, trim=True)
+    direct = simulate_motion(pair.x.acceleration_m_s2, pair.y.acceleration_m_s2, dt_s=pair.dt_s, mu_static=0.05,
+                             radius_m=2.0)
+    assert row["peak_displacement_m"] == pytest.approx(direct.peak_displacement_m, rel=1e-12)
+    assert row["residual_displacement_x_m"] == pytest.approx(direct.residual_displacement_x_m, rel=1e-12)
+    # 'all' needs a vertical: the station has none among the records given
+    result = run_batch([str(x), str(y)], designs, tmp_path / "t3.csv", jobs=1, component="all",
+                       options=ReadOptions(trim=True))
+    assert result.n_failed == 2
+    assert all("no vertical component" in e and "'all' needs one" in e for e in result.table["error"])
+    # one component asked: each file alone, 1-D
+    result = run_batch([str(x), str(y)], designs, tmp_path / "t4.csv", jobs=1, component="all-horizontal")
+    assert sorted(result.table["component"].astype(str)) == ["225", "225", "315", "315"]
+
+
+def test_a_changed_partner_file_recomputes_the_pair_rows(records_dir, tmp_path):
+    from isolator.batch import ReadOptions
+
+    designs = tmp_path / "designs.toml"
+    designs.write_text(DESIGNS)
+    x, y = _pts(records_dir)
+    folder = tmp_path / "pts"
+    folder.mkdir()
+    for path in (x, y):
+        (folder / path.name).write_bytes(path.read_bytes())
+    options = ReadOptions(trim=True)
+    first = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, options=options)
+    again = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, options=options)
+    assert again.n_resumed == 2
+    # the Y file changes (its samples scaled by 2, in the header's units): the pair's rows are recomputed
+    lines = (folder / y.name).read_text().splitlines()
+    scaled = lines[:4] + [" ".join(f"{2 * float(v):.7E}" for v in line.split()) for line in lines[4:]]
+    (folder / y.name).write_text("\n".join(scaled) + "\n")
+    changed = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, options=options)
+    assert changed.n_resumed == 0
+    assert set(changed.table["row_key"]).isdisjoint(first.table["row_key"])
+    assert changed.table["pga_y_m_s2"].iloc[0] == pytest.approx(2 * first.table["pga_y_m_s2"].iloc[0], rel=1e-6)
