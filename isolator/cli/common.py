@@ -160,7 +160,9 @@ def flag_hint(err) -> str:
         if isinstance(given, (int, float)) else "drop --dt to use the file's time step",
         errors.ComponentMismatchError: "pass --resample to put them on the union of their sample times"
         if getattr(err, "kind", "") == "dt" else "pass --trim to cut them to their common window (or --resample)",
-        errors.ComponentError: "choose one with --component (or give the full trace id)",
+        # (a --pair or --vertical file's message says itself what to give)
+        errors.ComponentError: "choose one with --component (or give the full trace id)"
+        if getattr(err, "parameter", "component") == "component" else "",
         errors.GapsError: "pass --merge to join the segments, filling gaps by linear interpolation",
         errors.CountsError: "give the instrument response with --response, or --counts-factor with --units",
         errors.InstrumentResponseError: "check the StationXML file given with --response",

@@ -157,6 +157,34 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
     return horizontal, vertical
 
 
+def _label_is_vertical(label: str) -> bool:
+    """:func:`is_vertical` for a label of :func:`list_components` (``HNZ (Up)``, ``UD``, ``HN1 (90)`` …)."""
+    words = label.split()
+    if words and len(words[0]) == 3 and words[0].isalpha() and words[0][2].upper() == "Z":
+        return True
+    return any(token in VERTICAL_NAMES for token in re.findall(r"[a-z0-9-]+", label.lower()))
+
+
+def _vertical_channel(path: Path, merge: bool) -> str | None:
+    """The component to read from a vertical (``--vertical``) file: None for a file of one
+    component, else the label of its one vertical channel (HNZ, Up, UD …).
+
+    Raises
+    ------
+    ComponentError
+        The file holds several components and none, or several, of them are vertical.
+    """
+    labels = list_components(path, merge=merge)
+    if len(labels) <= 1:
+        return None
+    vertical = [label for label in labels if _label_is_vertical(label)]
+    if len(vertical) != 1:
+        raise ComponentError(f"{path}: holds {len(labels)} components ({', '.join(labels)}), "
+                             f"{'no' if not vertical else len(vertical)} vertical; --vertical takes a file's one "
+                             "vertical channel", path=path, parameter="vertical")
+    return vertical[0]
+
+
 def _offsets_s(motions: dict[str, GroundMotion]) -> dict[str, float]:
     """Start time of each component after X's [s] (UTCDateTime differences: nanosecond precision;
     formats that state no start time, e.g. AT2, all start at 0)."""
@@ -365,13 +393,19 @@ def read_ground_motion_pair(
                                  "with a second file give one component (or none)", path=x)
         horizontal = [read_ground_motion(x, component=component, allow_zero=y is not None, **options)]
         if y is not None:
+            labels = list_components(y, merge=merge)
+            if len(labels) > 1:
+                raise ComponentError(f"{y}: holds {len(labels)} components ({', '.join(labels)}); the second "
+                                     "horizontal (--pair) is a one-component file: read a pair from this file "
+                                     "alone with --component pair", path=y, parameter="pair")
             horizontal.append(read_ground_motion(y, allow_zero=True, **options))
         for motion in horizontal:
             if is_vertical(motion):
                 raise ComponentError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
                                      "X and Y are the horizontal components", path=motion.provenance.get("path", ""))
         if z is not None:
-            vertical = [read_ground_motion(z, allow_zero=True, **options)]
+            vertical = [read_ground_motion(z, component=_vertical_channel(Path(z), merge), allow_zero=True,
+                                           **options)]
             if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
                 raise ComponentError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)",
                                      path=z)

@@ -175,3 +175,56 @@ def test_kiknet_surface_set_by_its_suffixes(pairs_dir, tmp_path):
     knet = read_ground_motion_pair(pairs_dir / "iwatemiyagi2008_AOM017" / "AOM0170806140843.NS", component="all")
     for ours, theirs in zip(pair.components.values(), knet.components.values(), strict=False):
         np.testing.assert_array_equal(ours.acceleration_m_s2, theirs.acceleration_m_s2)
+
+
+def _v2_channels(path, out_dir):
+    """The channel blocks of a CSMIP V2 file, each written as a one-channel V2 file of its own."""
+    text = path.read_text(errors="replace").splitlines(keepends=True)
+    blocks, current = [], []
+    for line in text:
+        current.append(line)
+        if line.startswith("/&"):
+            blocks.append(current)
+            current = []
+    files = []
+    for k, block in enumerate(blocks, 1):
+        files.append(out_dir / f"chan{k}.v2")
+        # the header states the channels the file holds: one
+        files[-1].write_text("".join(block).replace("(3 Chns of  3 at Sta)", "(1 Chns of  3 at Sta)"))
+    return files
+
+
+def test_vertical_file_of_several_channels_gives_its_vertical(records_dir, tmp_path):
+    """--vertical FILE takes the file's one vertical channel; a multi-channel --pair file is refused."""
+    v2 = records_dir / "other" / "ce89486SampleInput.v2"
+    every = read_ground_motion_pair(v2, component="all")
+    x, y, _ = _v2_channels(v2, tmp_path)  # one-channel V2 files: 180 and 90
+    pair = read_ground_motion_pair(x, y, v2)
+    assert (pair.x.component, pair.y.component, pair.z.component) == ("HN1 (180)", "HN2 (90)", "HNZ (Up)")
+    for axis in "xyz":
+        np.testing.assert_array_equal(pair.components[axis].acceleration_m_s2,
+                                      every.components[axis].acceleration_m_s2)
+    # a second horizontal given as a file of several channels: one line saying what to do
+    with pytest.raises(RecordError, match=r"holds 3 components .*--pair.* one-component file") as caught:
+        read_ground_motion_pair(x, v2)
+    assert caught.value.parameter == "pair"
+    # a vertical file of several channels with no vertical among them
+    two = tmp_path / "two.v2"  # the two horizontal channels only
+    two.write_text((x.read_text() + y.read_text()).replace("(1 Chns of  3 at Sta)", "(2 Chns of  3 at Sta)", 1))
+    with pytest.raises(RecordError, match=r"holds 2 components .* no vertical; --vertical takes a file's one "
+                                          r"vertical channel") as caught:
+        read_ground_motion_pair(x, y, two)
+    assert caught.value.parameter == "vertical"
+
+
+def test_cli_pair_and_vertical_file_messages(records_dir, tmp_path):
+    from typer.testing import CliRunner
+
+    from isolator.cli import app
+
+    v2 = records_dir / "other" / "ce89486SampleInput.v2"
+    x = _v2_channels(v2, tmp_path)[0]
+    result = CliRunner().invoke(app, ["simulate", str(x), "--pair", str(v2), "--mu-s", "0.06", "--radius-m", "2"])
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 1 and "--component pair" in lines[0] and "trace id" not in lines[0]
