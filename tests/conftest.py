@@ -50,3 +50,14 @@ def make_bad_record(tmp_path):
         return path, dict(options), words
 
     return build
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _engines_loaded():
+    """Load (on a fresh clone: compile) the 1-D and 2-D engines once, before any test, so that a
+    test reading a command's output never meets the first-compilation note of
+    :mod:`isolator.solver.notice` (tests/solver/test_notice.py tests the note itself)."""
+    from isolator.solver import planar, record
+
+    record._warm_up_kernel()
+    planar._warm_up()

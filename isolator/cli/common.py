@@ -123,6 +123,9 @@ app = typer.Typer(
 @app.callback()
 def _main() -> None:
     """isolator: friction isolators under harmonic and recorded ground motion."""
+    from isolator.solver import notice
+
+    notice.ENABLED = True  # a first run that compiles an engine says so on stderr (not a hang)
 
 
 #: Help texts of the record options, shared by every command that reads a record.

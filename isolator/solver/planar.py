@@ -37,6 +37,7 @@ from isolator.solver import planar_kernel as _pk
 from isolator.solver import planar_layout as _pl
 from isolator.solver import planar_rk as _rk
 from isolator.solver.events import EVENT_NAMES
+from isolator.solver.notice import note_if_slow
 from isolator.solver.record import RecordInputError, Response, simulate_record
 from isolator.solver.system import InvalidSystemError, classify_configuration
 from isolator.units import STANDARD_GRAVITY
@@ -284,8 +285,10 @@ def _warm_up() -> None:
     global _READY
     if _READY:
         return
-    simulate_pair(np.array([0.0, 2.0, 0.0]), np.array([0.0, 1.0, 0.0]), 0.01, mu_static=0.05,
-                  radius_m=2.0, az_m_s2=np.array([0.0, 1.0, 0.0]), _timed=False)
+    with note_if_slow("compiling the 2-D engine (its first use after installation takes about 30 s; "
+                      "the machine code is cached for later runs)"):
+        simulate_pair(np.array([0.0, 2.0, 0.0]), np.array([0.0, 1.0, 0.0]), 0.01, mu_static=0.05,
+                      radius_m=2.0, az_m_s2=np.array([0.0, 1.0, 0.0]), _timed=False)
     _READY = True
 
 

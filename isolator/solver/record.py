@@ -19,6 +19,7 @@ import numpy as np
 from isolator.errors import RecordInputError  # noqa: E402,F401 - defined with the other typed errors
 from isolator.solver import kernel as _kernel
 from isolator.solver.events import EVENT_NAMES
+from isolator.solver.notice import note_if_slow
 from isolator.solver.system import System
 
 
@@ -152,11 +153,13 @@ def _warm_up_kernel() -> None:
     global _KERNEL_READY
     if _KERNEL_READY:
         return
-    basis, gram = _kernel.full_step_coefficients(0.01, 0.1, 1.0)
-    two = np.zeros(2)
-    _kernel.record_kernel(np.array([0.0, 1.0]), 0.01, 1, 0.1, 1.0, 0.5, 0.5, basis, gram, two.copy(),
-                          two.copy(), two.copy(), np.empty((3, 2)), np.empty(4), np.empty(4, dtype=np.int8),
-                          np.empty(4), np.zeros(_kernel.SUMMARY_SIZE), np.empty(0), math.inf)
+    with note_if_slow("compiling the 1-D solver (its first use after installation takes a few seconds; "
+                      "the machine code is cached for later runs)"):
+        basis, gram = _kernel.full_step_coefficients(0.01, 0.1, 1.0)
+        two = np.zeros(2)
+        _kernel.record_kernel(np.array([0.0, 1.0]), 0.01, 1, 0.1, 1.0, 0.5, 0.5, basis, gram, two.copy(),
+                              two.copy(), two.copy(), np.empty((3, 2)), np.empty(4), np.empty(4, dtype=np.int8),
+                              np.empty(4), np.zeros(_kernel.SUMMARY_SIZE), np.empty(0), math.inf)
     _KERNEL_READY = True
 
 
