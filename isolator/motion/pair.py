@@ -143,17 +143,17 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
         labels = list_components(path, merge=options.get("merge", False))
         if len(labels) < 2:
             raise ComponentError(f"{path}: holds one component ({labels[0]}); a pair from one file needs two "
-                                 "horizontal components (or give the second file)", path=path)
+                                 "horizontal components (or give the second file)", path=path, parameter="pair")
         motions = [read_ground_motion(path, component=label, allow_zero=True, **options) for label in labels]
     horizontal = [m for m in motions if not is_vertical(m)]
     vertical = [m for m in motions if is_vertical(m)]
     names = ", ".join(m.component for m in motions)
     if len(horizontal) != 2:
         raise ComponentError(f"{path}: holds {len(horizontal)} horizontal component(s) ({names}); a pair needs two",
-                             path=path)
+                             path=path, parameter="pair")
     if component == "all" and len(vertical) != 1:
         raise ComponentError(f"{path}: holds {len(vertical)} vertical component(s) ({names}); the pair with its "
-                             "vertical ('all') needs one", path=path)
+                             "vertical ('all') needs one", path=path, parameter="pair")
     return horizontal, vertical
 
 
@@ -183,6 +183,12 @@ def _vertical_channel(path: Path, merge: bool) -> str | None:
                              f"{'no' if not vertical else len(vertical)} vertical; --vertical takes a file's one "
                              "vertical channel", path=path, parameter="vertical")
     return vertical[0]
+
+
+def _same_motion(a: GroundMotion, b: GroundMotion) -> bool:
+    """True when two components hold the same samples at the same time step (one file given twice,
+    or one motion in two files): not a pair."""
+    return a.dt_s == b.dt_s and np.array_equal(a.acceleration_m_s2, b.acceleration_m_s2)
 
 
 def _offsets_s(motions: dict[str, GroundMotion]) -> dict[str, float]:
@@ -408,7 +414,13 @@ def read_ground_motion_pair(
                                            **options)]
             if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
                 raise ComponentError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)",
-                                     path=z)
+                                     path=z, parameter="vertical")
+    if len(horizontal) == 2 and _same_motion(*horizontal):
+        first, second = (_where(m) for m in horizontal)
+        path = horizontal[1].provenance.get("path", "")
+        what = "is given as both X and Y" if first == second else f"is the same motion as {first} (the same samples)"
+        raise ComponentError(f"{path or x}: {second} {what}; a pair is two different horizontal components",
+                             path=path, parameter="pair")
     if all(motion.pga_m_s2 == 0.0 for motion in horizontal):  # the record's fault: no ground motion at all
         source = horizontal[0].provenance.get("path", str(x))
         raise RecordValuesError(f"{source}: every horizontal component is zero: no ground motion", path=source)

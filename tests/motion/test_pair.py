@@ -228,3 +228,34 @@ def test_cli_pair_and_vertical_file_messages(records_dir, tmp_path):
     assert result.exit_code == 2
     lines = result.output.strip().splitlines()
     assert len(lines) == 1 and "--component pair" in lines[0] and "trace id" not in lines[0]
+
+
+def test_one_motion_twice_is_not_a_pair(pairs_dir, tmp_path):
+    x = pairs_dir / "superstitionhills1987_PTS" / "RSN723_SUPER.B_B-PTS225.AT2"
+    with pytest.raises(RecordError, match="is given as both X and Y; a pair is two different") as caught:
+        read_ground_motion_pair(x, x)
+    assert caught.value.parameter == "pair"
+    copy = tmp_path / "copy.AT2"
+    copy.write_bytes(x.read_bytes())
+    with pytest.raises(RecordError, match=r"copy.AT2 225 is the same motion as RSN723_SUPER.B_B-PTS225.AT2 225"):
+        read_ground_motion_pair(x, copy)
+
+
+def test_cli_hints_name_the_option_that_fixes_the_mistake(pairs_dir):
+    """--component is X's option: a message about the second file or the vertical does not point to it."""
+    from typer.testing import CliRunner
+
+    from isolator.cli import app
+
+    folder = pairs_dir / "superstitionhills1987_PTS"
+    x, y = folder / "RSN723_SUPER.B_B-PTS225.AT2", folder / "RSN723_SUPER.B_B-PTS315.AT2"
+    cases = {
+        ("--component", "all"): "a pair from one file needs two horizontal components (or give the second file)",
+        ("--vertical", str(y), "--trim"): "component 315 is not a vertical (Up, UD, HNZ …)",
+        ("--pair", str(x)): "is given as both X and Y; a pair is two different horizontal components",
+    }
+    for extra, message in cases.items():
+        result = CliRunner().invoke(app, ["simulate", str(x), *extra, "--mu-s", "0.06", "--radius-m", "2"])
+        lines = result.output.strip().splitlines()
+        assert result.exit_code == 2 and len(lines) == 1, result.output
+        assert lines[0].endswith(message), lines[0]
