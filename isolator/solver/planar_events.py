@@ -27,8 +27,12 @@ from isolator.solver.planar_rk import (
     P_C,
     P_INV_R,
     P_KAPPA,
+    P_MU_FAST,
+    P_MU_K,
     P_MU_S,
+    P_MU_SLOW,
     P_PENDULUM,
+    P_VELDEP,
     POLAR,
     START,
     forcing,
@@ -272,6 +276,20 @@ def acceleration_peak_rate(mode, x, y, d, prm, frc):
     ad1 = -frd * e1 - fr * ed1 - kdot * y[0] - kap * v1 - c * vd1
     ad2 = -frd * e2 - fr * ed2 - kdot * y[1] - kap * v2 - c * vd2
     return norm(a1, a2), a1 * ad1 + a2 * ad2
+
+
+@njit(cache=True)
+def acceleration_bound(n0, n1, x_top, v_top, prm):
+    """An upper bound of the transmitted acceleration |a| = |µ(r) n e + κX + cV| [m/s²] over a step.
+
+    ``n0``, ``n1``: the normal acceleration at its ends (n is linear between); ``x_top``,
+    ``v_top``: bounds of |X| [m] and |V| [m/s] over the step.  µ(r) ≤ max(µ_slow, µ_fast)
+    (µk when constant), and κ ≤ n_max/R for a pendulum; an uplifted block (no friction, no
+    restoring force on a pendulum) transmits less.
+    """
+    n_top = max(n0, n1, 0.0)
+    mu = max(prm[P_MU_SLOW], prm[P_MU_FAST]) if prm[P_VELDEP] > 0.0 else prm[P_MU_K]
+    return mu * n_top + kappa_of(n_top, prm) * x_top + prm[P_C] * v_top
 
 
 @njit(cache=True)

@@ -37,6 +37,7 @@ from isolator.solver.planar_events import (
     PH_SLIDE,
     PH_START,
     PH_STUCK,
+    acceleration_bound,
     acceleration_peak_rate,
     at_rest,
     coast_to_rest,
@@ -538,10 +539,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
+                turns = 0  #: bit 1: |X| may peak inside the step, bit 2: |V| may
                 for which in range(2):
                     g0 = rate_of_peak(which, mode, y, f)
                     g1 = rate_of_peak(which, mode, ynew, fnew)
                     if g0 > 0.0 >= g1:
+                        turns |= 1 << which
                         v0 = peak_value(which, mode, y)
                         v1 = peak_value(which, mode, ynew)
                         if tangent_bound(v0, g0, v1, g1, h) > (peak_x if which == 0 else peak_v):
@@ -552,18 +555,26 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             else:
                                 peak_v = max(peak_v, best)
                 if mode != START:
-                    # the transmitted acceleration between the step's ends (its rate from (y, f), no extra
-                    # evaluation; the value at the start is the previous step's end when it is the same point)
-                    if acc_i == i and acc_tau == tau:
-                        a_lo, g0 = a_end, g_end
+                    # |a| ≤ µ n + κ|X| + c|V| over the step (|X| and |V| at most their values at the ends, or the
+                    # running peaks where they may peak inside): not above the peak so far, nothing to locate
+                    x_top = peak_x if turns & 1 else max(norm(y[0], y[1]), norm(ynew[0], ynew[1]))
+                    v_top = peak_v if turns & 2 else max(peak_value(1, mode, y), peak_value(1, mode, ynew))
+                    if acceleration_bound(frc[4] + frc[5] * tau, frc[4] + frc[5] * (tau + h), x_top, v_top,
+                                          prm) <= peak_a:
+                        acc_i = -1  # the end's value is not computed (the next step computes its start)
                     else:
-                        a_lo, g0 = acceleration_peak_rate(mode, tau, y, f, prm, frc)
-                    a_end, g_end = acceleration_peak_rate(mode, tau + h, ynew, fnew, prm, frc)
-                    acc_i = i
-                    acc_tau = target if h == hmax else tau + h
-                    if g0 > 0.0 >= g_end and tangent_bound(a_lo, g0, a_end, g_end, h) > peak_a:
-                        peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm, frc,
-                                                         yb, fb, atol, rtol, work))
+                        # the transmitted acceleration between the step's ends (its rate from (y, f), no extra
+                        # evaluation; the value at the start is the previous step's end when it is the same point)
+                        if acc_i == i and acc_tau == tau:
+                            a_lo, g0 = a_end, g_end
+                        else:
+                            a_lo, g0 = acceleration_peak_rate(mode, tau, y, f, prm, frc)
+                        a_end, g_end = acceleration_peak_rate(mode, tau + h, ynew, fnew, prm, frc)
+                        acc_i = i
+                        acc_tau = target if h == hmax else tau + h
+                        if g0 > 0.0 >= g_end and tangent_bound(a_lo, g0, a_end, g_end, h) > peak_a:
+                            peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm,
+                                                             frc, yb, fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
