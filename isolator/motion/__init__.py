@@ -31,11 +31,18 @@ from isolator.motion.measures import (
                                       velocity_m_s,
 )
 from isolator.motion.pair import ComponentMismatchError, MotionPair, read_ground_motion_pair
-from isolator.motion.read import MAX_ABS_ACCELERATION_G, TEXT_SUFFIXES, RecordError, list_components, read_ground_motion
+from isolator.motion.read import (
+                                      MAX_ABS_ACCELERATION_G,
+                                      TEXT_SUFFIXES,
+                                      RecordError,
+                                      list_components,
+                                      read_ground_motion,
+                                      read_ground_motions,
+)
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
 
 __all__ = ["DEFAULT_DAMPING_RATIO", "EXAMPLE_RECORDS", "MAX_ABS_ACCELERATION_G", "MIN_SAMPLES",
            "PREDOMINANT_PERIODS_S", "TEXT_SUFFIXES", "UNNAMED_COMPONENT", "GroundMotion", "IntensityMeasures",
            "RecordError", "ComponentMismatchError", "MotionPair", "read_ground_motion_pair", "arias_intensity_m_s", "displacement_m", "intensity_measures", "list_components",
-           "pseudo_acceleration_spectrum", "read_ground_motion", "resolve_record", "significant_duration_s",
+           "pseudo_acceleration_spectrum", "read_ground_motion", "read_ground_motions", "resolve_record", "significant_duration_s",
            "velocity_m_s"]

@@ -29,7 +29,7 @@ import numpy as np
 
 from isolator.errors import ComponentError, ComponentMismatchError, RecordValuesError
 from isolator.motion.ground_motion import GroundMotion
-from isolator.motion.read import list_components, read_ground_motion
+from isolator.motion.read import list_components, read_ground_motion, read_ground_motions
 
 #: Orientation names of a vertical component (lower case tokens of a component label).
 VERTICAL_NAMES = frozenset({"up", "down", "ud", "u-d", "vert", "vertical", "z", "v", "dwn"})
@@ -140,11 +140,11 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
     if siblings is not None:
         motions = [read_ground_motion(p, allow_zero=True, **options) for p in siblings]
     else:
-        labels = list_components(path, merge=options.get("merge", False))
-        if len(labels) < 2:
-            raise ComponentError(f"{path}: holds one component ({labels[0]}); a pair from one file needs two "
-                                 "horizontal components (or give the second file)", path=path, parameter="pair")
-        motions = [read_ground_motion(path, component=label, allow_zero=True, **options) for label in labels]
+        motions = read_ground_motions(path, allow_zero=True, **options)  # the file parsed once
+        if len(motions) < 2:
+            raise ComponentError(f"{path}: holds one component ({motions[0].component}); a pair from one file "
+                                 "needs two horizontal components (or give the second file)", path=path,
+                                 parameter="pair")
     horizontal = [m for m in motions if not is_vertical(m)]
     vertical = [m for m in motions if is_vertical(m)]
     names = ", ".join(m.component for m in motions)

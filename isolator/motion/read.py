@@ -463,6 +463,41 @@ def read_ground_motion(
         unknown or conflicting units, ambiguous or unknown component.
     """
     path = Path(path)
+    stream, steps = _read_checked_stream(path, merge, dt_s)
+    return _motion(path, stream, _select(path, stream, component), steps, units, response, counts_factor, dt_s,
+                   allow_zero)
+
+
+def read_ground_motions(
+    path: str | Path,
+    *,
+    units: str | None = None,
+    merge: bool = False,
+    response: str | Path | None = None,
+    counts_factor: float | None = None,
+    dt_s: float | None = None,
+    allow_zero: bool = False,
+) -> list[GroundMotion]:
+    """Every component of a record file, in file order, from one reading of the file.
+
+    The same as :func:`read_ground_motion` with each label of :func:`list_components` in
+    turn (same arguments, same checks, same results), without parsing the file once per
+    component: a pair or a pair with its vertical from a CSMIP V2 file or a MiniSEED
+    stream reads it once instead of four times.
+
+    Raises
+    ------
+    RecordError
+        As :func:`read_ground_motion`, for the file or for any of its components.
+    """
+    path = Path(path)
+    stream, steps = _read_checked_stream(path, merge, dt_s)
+    return [_motion(path, stream, trace, steps, units, response, counts_factor, dt_s, allow_zero)
+            for trace in list(stream)]
+
+
+def _read_checked_stream(path: Path, merge: bool, dt_s: float | None):
+    """(stream, processing steps of merging) of a record file: the checks before a component is chosen."""
     _check_path(path)
     if dt_s is not None and not (math.isfinite(dt_s) and dt_s > 0):
         raise _fail(path, f"the time step given, {dt_s:g} s, is not positive", RecordOptionError, given=dt_s,
@@ -473,9 +508,13 @@ def read_ground_motion(
     stream = _read_stream(path, dt_s)
     if len(stream) == 0:
         raise _fail(path, "holds no data")
-    components = [_label(trace) for trace in stream]
     steps = _check_gaps(path, stream, merge)
-    trace = _select(path, stream, component)
+    return stream, steps
+
+
+def _motion(path: Path, stream, trace, steps, units, response, counts_factor, dt_s, allow_zero) -> GroundMotion:
+    """One component (``trace`` of ``stream``) of a record file as a :class:`GroundMotion` in m/s²."""
+    components = [_label(item) for item in stream]
     if np.ma.isMaskedArray(trace.data):
         raise _fail(path, "data are masked (gaps), not merged", GapsError)
     if trace.stats.npts < MIN_SAMPLES:
@@ -507,7 +546,7 @@ def read_ground_motion(
         trace=result,
         units_source=units_source,
         provenance=provenance,
-        processing=steps + unit_steps,
+        processing=list(steps) + unit_steps,
         component=label,
         components=components,
     )

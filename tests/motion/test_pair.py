@@ -259,3 +259,22 @@ def test_cli_hints_name_the_option_that_fixes_the_mistake(pairs_dir):
         lines = result.output.strip().splitlines()
         assert result.exit_code == 2 and len(lines) == 1, result.output
         assert lines[0].endswith(message), lines[0]
+
+
+def test_a_file_of_several_channels_is_parsed_once(records_dir, monkeypatch):
+    """read_ground_motions: every channel from one parse, each equal to its own read_ground_motion."""
+    import isolator.motion.read as read
+
+    v2 = records_dir / "other" / "ce89486SampleInput.v2"
+    calls = []
+    original = read._read_stream
+    monkeypatch.setattr(read, "_read_stream", lambda path, dt_s: calls.append(path) or original(path, dt_s))
+    every = read_ground_motion_pair(v2, component="all")
+    assert len(calls) == 1  # it was 4: the list of channels, then once per channel
+    for axis, label in (("x", "180"), ("y", "90"), ("z", "Up")):
+        alone = read_ground_motion(v2, component=label)
+        motion = every.components[axis]
+        np.testing.assert_array_equal(motion.acceleration_m_s2, alone.acceleration_m_s2)
+        assert (motion.component, motion.components, motion.units_source, motion.processing) == \
+            (alone.component, alone.components, alone.units_source, alone.processing)
+        assert motion.provenance == alone.provenance
