@@ -163,9 +163,12 @@ def flag_hint(err) -> str:
         if isinstance(given, (int, float)) else "drop --dt to use the file's time step",
         errors.ComponentMismatchError: "pass --resample to put them on the union of their sample times"
         if getattr(err, "kind", "") == "dt" else "pass --trim to cut them to their common window (or --resample)",
-        # (a --pair or --vertical file's message says itself what to give)
-        errors.ComponentError: "choose one with --component (or give the full trace id)"
-        if getattr(err, "parameter", "component") == "component" else "",
+        errors.ComponentError: {  # by what the error concerns: X's component, the --pair or the --vertical file
+            "component": "choose one with --component (or give the full trace id)",
+            "second_file": "give --pair a file of one component, or read the pair from that file alone with "
+                           "--component pair",
+            "vertical": "give --vertical a file of one component, or a file with one vertical channel",
+        }.get(getattr(err, "parameter", "component"), ""),
         errors.GapsError: "pass --merge to join the segments, filling gaps by linear interpolation",
         errors.CountsError: "give the instrument response with --response, or --counts-factor with --units",
         errors.InstrumentResponseError: "check the StationXML file given with --response",

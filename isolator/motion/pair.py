@@ -180,8 +180,9 @@ def _vertical_channel(path: Path, merge: bool) -> str | None:
     vertical = [label for label in labels if _label_is_vertical(label)]
     if len(vertical) != 1:
         raise ComponentError(f"{path}: holds {len(labels)} components ({', '.join(labels)}), "
-                             f"{'no' if not vertical else len(vertical)} vertical; --vertical takes a file's one "
-                             "vertical channel", path=path, parameter="vertical")
+                             f"{'no' if not vertical else len(vertical)} vertical; the vertical of a pair is a "
+                             "file of one component or the one vertical channel of a file", path=path,
+                             parameter="vertical")
     return vertical[0]
 
 
@@ -402,8 +403,8 @@ def read_ground_motion_pair(
             labels = list_components(y, merge=merge)
             if len(labels) > 1:
                 raise ComponentError(f"{y}: holds {len(labels)} components ({', '.join(labels)}); the second "
-                                     "horizontal (--pair) is a one-component file: read a pair from this file "
-                                     "alone with --component pair", path=y, parameter="pair")
+                                     "horizontal of a pair is a file of one component", path=y,
+                                     parameter="second_file")
             horizontal.append(read_ground_motion(y, allow_zero=True, **options))
         for motion in horizontal:
             if is_vertical(motion):

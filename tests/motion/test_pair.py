@@ -205,14 +205,15 @@ def test_vertical_file_of_several_channels_gives_its_vertical(records_dir, tmp_p
         np.testing.assert_array_equal(pair.components[axis].acceleration_m_s2,
                                       every.components[axis].acceleration_m_s2)
     # a second horizontal given as a file of several channels: one line saying what to do
-    with pytest.raises(RecordError, match=r"holds 3 components .*--pair.* one-component file") as caught:
+    with pytest.raises(RecordError, match=r"holds 3 components .*; the second horizontal of a pair is a file of "
+                                          r"one component") as caught:
         read_ground_motion_pair(x, v2)
-    assert caught.value.parameter == "pair"
+    assert caught.value.parameter == "second_file"
     # a vertical file of several channels with no vertical among them
     two = tmp_path / "two.v2"  # the two horizontal channels only
     two.write_text((x.read_text() + y.read_text()).replace("(1 Chns of  3 at Sta)", "(2 Chns of  3 at Sta)", 1))
-    with pytest.raises(RecordError, match=r"holds 2 components .* no vertical; --vertical takes a file's one "
-                                          r"vertical channel") as caught:
+    with pytest.raises(RecordError, match=r"holds 2 components .* no vertical; the vertical of a pair is a file "
+                                          r"of one component or the one vertical channel of a file") as caught:
         read_ground_motion_pair(x, y, two)
     assert caught.value.parameter == "vertical"
 
@@ -251,7 +252,8 @@ def test_cli_hints_name_the_option_that_fixes_the_mistake(pairs_dir):
     x, y = folder / "RSN723_SUPER.B_B-PTS225.AT2", folder / "RSN723_SUPER.B_B-PTS315.AT2"
     cases = {
         ("--component", "all"): "a pair from one file needs two horizontal components (or give the second file)",
-        ("--vertical", str(y), "--trim"): "component 315 is not a vertical (Up, UD, HNZ …)",
+        ("--vertical", str(y), "--trim"): "component 315 is not a vertical (Up, UD, HNZ …); give --vertical a "
+                                          "file of one component, or a file with one vertical channel",
         ("--pair", str(x)): "is given as both X and Y; a pair is two different horizontal components",
     }
     for extra, message in cases.items():
