@@ -296,10 +296,12 @@ def station_sets(files, component: str | None) -> dict[str, tuple[str, ...]]:
 
     Files of one component each (PEER AT2, SMC, …) that sit in one folder and whose headers
     name the same network, station and event form a set when it holds exactly two
-    horizontal components with different labels and different samples, and at most one
-    vertical.  Anything else (one file of the station, the same component twice, as
-    ``TAK000.AT2`` beside ``RSN1120_KOBE_TAK000.AT2``, a header without station or event, a
-    file that cannot be read) leaves the files alone, analysed one component each.
+    horizontal components with different labels, and at most one vertical.  Only the
+    headers are read (a few lines a file).  Anything else (one file of the station, the same
+    component twice, as ``TAK000.AT2`` beside ``RSN1120_KOBE_TAK000.AT2``, a header without
+    station or event, a file that cannot be read) leaves the files alone, analysed one
+    component each; two files of one motion under different labels are refused when the
+    pair is read (an error row).
 
     Returns
     -------
@@ -310,32 +312,44 @@ def station_sets(files, component: str | None) -> dict[str, tuple[str, ...]]:
     """
     if component not in (None, *SET_COMPONENTS):
         return {}
-    from isolator.motion import read_ground_motion
-
     groups: dict = {}
     for path in files:
-        if Path(path).suffix.lower() not in _ONE_COMPONENT_SUFFIXES or _knet_set_member(path)[0]:
-            continue
-        try:
-            motion = read_ground_motion(path, allow_zero=True)
-        except Exception:  # noqa: BLE001 - unreadable here: analysed alone, its rows say why
-            continue
-        prov = motion.provenance
-        station, event = prov.get("station", ""), prov.get("event", prov.get("event_origin_time", ""))
-        if not station or not event:
-            continue
-        key = (os.path.dirname(os.path.abspath(path)), prov.get("network", ""), station, event)
-        samples = hashlib.sha256(motion.acceleration_m_s2.tobytes()).hexdigest()
-        groups.setdefault(key, []).append((path, motion.component, is_vertical(motion.component), samples))
+        header = _station_header(path)
+        if header is not None:
+            key, label = header
+            groups.setdefault(key, []).append((path, label, is_vertical(label)))
     sets = {}
     for items in groups.values():
         horizontal = sorted(item for item in items if not item[2])
         vertical = [item for item in items if item[2]]
-        if len(horizontal) != 2 or len(vertical) > 1 or horizontal[0][1] == horizontal[1][1] \
-                or horizontal[0][3] == horizontal[1][3]:
+        if len(horizontal) != 2 or len(vertical) > 1 or horizontal[0][1] == horizontal[1][1]:
             continue
         sets[horizontal[0][0]] = (horizontal[1][0], *(item[0] for item in vertical))
     return sets
+
+
+def _station_header(path: str):
+    """((folder, network, station, event), component label) from the header of a PEER AT2 or USGS SMC
+    file (a few lines read, not the samples), or None: another format, no station or event in the
+    header, a file that cannot be read (its rows will say why)."""
+    from isolator.io.at2 import _read_at2
+    from isolator.io.smc import _read_smc
+    from isolator.motion.read import _label, _provenance
+
+    readers = {".at2": _read_at2, ".smc": _read_smc}
+    reader = readers.get(Path(path).suffix.lower())
+    if reader is None or not os.path.isfile(path):
+        return None
+    try:
+        trace = reader(path, headonly=True)[0]
+        label = _label(trace)
+        prov = _provenance(Path(path), trace, label)
+    except Exception:  # noqa: BLE001 - not this format, damaged: analysed alone, its rows say why
+        return None
+    station, event = prov.get("station", ""), prov.get("event", prov.get("event_origin_time", ""))
+    if not station or not event:
+        return None
+    return (os.path.dirname(os.path.abspath(path)), prov.get("network", ""), station, event), label
 
 
 def set_digest(path: str, partners: tuple = ()) -> str:

@@ -176,3 +176,35 @@ def test_a_changed_partner_file_recomputes_the_pair_rows(records_dir, tmp_path):
     assert changed.n_resumed == 0
     assert set(changed.table["row_key"]).isdisjoint(first.table["row_key"])
     assert changed.table["pga_y_m_s2"].iloc[0] == pytest.approx(2 * first.table["pga_y_m_s2"].iloc[0], rel=1e-6)
+
+
+def test_a_station_set_with_its_vertical_file(records_dir, tmp_path):
+    """Three AT2 files of one station (the vertical made here from the 315 file: label UP, half its
+    samples): 'pair' takes the horizontals, 'all' adds the vertical (the 2-D engine with n(t))."""
+    from isolator.batch import ReadOptions, station_sets
+
+    designs = tmp_path / "designs.toml"
+    designs.write_text(DESIGNS)
+    x, y = _pts(records_dir)
+    folder = tmp_path / "pts"
+    folder.mkdir()
+    for path in (x, y):
+        (folder / path.name).write_bytes(path.read_bytes())
+    lines = y.read_text().splitlines()
+    title = lines[1].rsplit(",", 1)[0] + ", UP"
+    values = [" ".join(f"{0.5 * float(v):.7E}" for v in line.split()) for line in lines[4:]]
+    (folder / "RSN723_SUPER.B_B-PTSUP.AT2").write_text("\n".join([lines[0], title, *lines[2:4], *values]) + "\n")
+    files = sorted(str(p) for p in folder.iterdir())
+    sets = station_sets(files, "all")
+    assert sets == {str(folder / x.name): (str(folder / y.name), str(folder / "RSN723_SUPER.B_B-PTSUP.AT2"))}
+    options = ReadOptions(trim=True)
+    result = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, component="all", options=options)
+    assert result.n_failed == 0 and len(result.table) == 2
+    row = result.table.set_index("design_name").loc["FP"]
+    assert row["model"] == "2d+vertical" and row["component_z"] == "UP"
+    assert row["record_files"] == f"{x.name}; {y.name}; RSN723_SUPER.B_B-PTSUP.AT2"
+    pair = result.table.set_index("design_name")
+    plain = run_batch([str(folder)], designs, tmp_path / "t2.csv", jobs=1, options=options)
+    assert set(plain.table["model"]) == {"2d", "2d+mu(v)"}  # the default: the horizontals only
+    assert pair.loc["FP", "peak_displacement_m"] != plain.table.set_index("design_name").loc["FP",
+                                                                                           "peak_displacement_m"]
