@@ -332,20 +332,12 @@ def _station_header(path: str):
     """((folder, network, station, event), component label) from the header of a PEER AT2 or USGS SMC
     file (a few lines read, not the samples), or None: another format, no station or event in the
     header, a file that cannot be read (its rows will say why)."""
-    from isolator.io.at2 import _read_at2
-    from isolator.io.smc import _read_smc
-    from isolator.motion.read import _label, _provenance
+    from isolator.motion.read import read_header
 
-    readers = {".at2": _read_at2, ".smc": _read_smc}
-    reader = readers.get(Path(path).suffix.lower())
-    if reader is None or not os.path.isfile(path):
+    header = read_header(path)
+    if header is None:
         return None
-    try:
-        trace = reader(path, headonly=True)[0]
-        label = _label(trace)
-        prov = _provenance(Path(path), trace, label)
-    except Exception:  # noqa: BLE001 - not this format, damaged: analysed alone, its rows say why
-        return None
+    label, prov = header
     station, event = prov.get("station", ""), prov.get("event", prov.get("event_origin_time", ""))
     if not station or not event:
         return None

@@ -381,6 +381,31 @@ def _check_path(path: Path) -> None:
         raise _fail(path, "file is empty", RecordNotFoundError)
 
 
+def read_header(path: str | Path) -> tuple[str, dict] | None:
+    """(component label, provenance) of a PEER AT2 or USGS SMC file from its header alone.
+
+    A few lines are read, not the samples (a fraction of a millisecond): what a batch needs
+    to find the files of one station among many.  None for another format, or for a file
+    that is not what its suffix says or cannot be read (reading it in full says why).
+    """
+    from isolator.io.at2 import _is_at2, _read_at2
+    from isolator.io.smc import _is_smc, _read_smc
+
+    path = Path(path)
+    formats = {".at2": (_is_at2, _read_at2), ".smc": (_is_smc, _read_smc)}.get(path.suffix.lower())
+    if formats is None or not path.is_file():
+        return None
+    detect, reader = formats
+    try:
+        if not detect(str(path)):  # a bounded look at the file's head first: text, the format's header
+            return None
+        trace = reader(str(path), headonly=True)[0]
+        label = _label(trace)
+        return label, _provenance(path, trace, label)
+    except Exception:  # noqa: BLE001 - any reader failure: not a header we can use here
+        return None
+
+
 def list_components(path: str | Path, *, merge: bool = False) -> list[str]:
     """Components (channels) a record file holds, as accepted by ``component=``.
 

@@ -280,3 +280,19 @@ def test_a_file_of_several_channels_is_parsed_once(records_dir, monkeypatch):
         assert (motion.component, motion.components, motion.units_source, motion.processing) == \
             (alone.component, alone.components, alone.units_source, alone.processing)
         assert motion.provenance == alone.provenance
+
+
+def test_read_header_reads_the_header_only(pairs_dir, tmp_path):
+    from isolator.motion.read import read_header
+
+    path = pairs_dir / "superstitionhills1987_PTS" / "RSN723_SUPER.B_B-PTS225.AT2"
+    label, provenance = read_header(path)
+    full = read_ground_motion(path)
+    assert label == full.component == "225"
+    assert (provenance["station"], provenance["event"]) == (full.provenance["station"], full.provenance["event"])
+    # not a header: another format, binary bytes under an AT2 name, a folder
+    assert read_header(pairs_dir / "lahabra2014_WLT" / "CIWLT.V2") is None
+    junk = tmp_path / "junk.AT2"
+    junk.write_bytes(bytes(range(256)) * 1000)
+    assert read_header(junk) is None
+    assert read_header(tmp_path) is None
