@@ -10,9 +10,9 @@ reading:
 * stuck: the stick test ``|κX + a_g| ≤ µs n`` is a quadratic inequality in local
   time (a_g, n and κ = n/R are linear), solved in closed form for the first
   break-away (or uplift) instant — no stepping while stuck;
-* a start from rest runs in the START form, then (slow sliding) in the POLAR form, then in
-  Cartesian form; a decelerating block whose predicted stop is within about two steps
-  switches to the LOG form and
+* a start from rest runs in the START form, then in the POLAR form (speed and direction, every
+  slide); a decelerating block whose predicted stop is within about two steps hands over,
+  through the Cartesian form (which also carries free flight), to the LOG form and
   reaches V = 0 exactly (to r = ``r_min``, then the last bit at constant
   deceleration, an error of order r_min³ in X and the energies; the stop instant τ
   is error-controlled like X); there the stick test decides: stick, or restart in the direction
@@ -118,10 +118,10 @@ _LEAVE = 0.01
 _STABLE = 12.0
 #: START form kept above SC_R_SWITCH_LO only while the slaved direction lags F by less than this [rad]
 _LAG_MAX = 1e-3
-#: POLAR form below r = _POLAR_ENTER·|F|·(sample step), Cartesian above _POLAR_LEAVE·|F|·(sample step);
-#: POLAR steps kept below _STABLE_POLAR·r/|F| (the direction relaxes at the rate e·F/r)
-_POLAR_ENTER = 5.0
-_POLAR_LEAVE = 10.0
+#: POLAR steps kept below _STABLE_POLAR·r/|F| (the direction relaxes at the rate e·F/r).  The POLAR form
+#: carries every slide, slow or fast: it takes the same steps as the Cartesian form where both work, and
+#: each costs 255 ns against 430 (docs/planar.md, "Speed"); the Cartesian form is left for flight and as
+#: the hand-over to the LOG form
 _STABLE_POLAR = 5.0
 
 
@@ -411,11 +411,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = f[7]
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
-                    if (r <= r_min and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try) \
-                            or r > _POLAR_LEAVE * fm * hi:
-                        # a stop, the approach to one, or fast sliding: the Cartesian branch takes over
-                        # (and, until it has taken a step, does not hand back: rounding must not ping-pong)
-                        polar_ok = r > _POLAR_LEAVE * fm * hi
+                    if (r <= r_min and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
+                        # a stop, or the approach to one: the Cartesian branch takes over (and, until it has
+                        # taken a step, does not hand back: rounding must not ping-pong)
+                        polar_ok = False
                         y[2] *= r
                         y[3] *= r
                         y[7] = 0.0
@@ -469,8 +468,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         y[3] *= r
                         x = tau
                         rhs(CARTESIAN, tau, y, prm, frc, f)
-                    elif polar_ok and r < _POLAR_ENTER * fm * hi and not (
-                            rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
+                    elif polar_ok and not (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
                         y[2] /= r
                         y[3] /= r
                         y[7] = r

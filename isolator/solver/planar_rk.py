@@ -28,7 +28,7 @@ integrated in one of four forms (``mode``), each regular where it is used:
   turning rate of F; :func:`start_direction`) until r reaches a switch value where
   the error of that direction is below the integration tolerance (measured in
   docs/planar.md).
-* ``POLAR`` (3): slow sliding.  Speed r (component 7) and direction e = V/|V|
+* ``POLAR`` (3): sliding.  Speed r (component 7) and direction e = V/|V|
   (components 2, 3) as separate variables: r' = e·F − µ(r) n − c r,
   e' = (F − (e·F) e)/r, X' = r e; the stiff mode is e relaxing onto F at the
   rate e·F/r.
