@@ -416,15 +416,15 @@ def read_ground_motion_pair(
             if not is_vertical(vertical[0]) and vertical[0].component.lower() not in ("", "unnamed"):
                 raise ComponentError(f"{z}: component {vertical[0].component} is not a vertical (Up, UD, HNZ …)",
                                      path=z, parameter="vertical")
+    if all(motion.pga_m_s2 == 0.0 for motion in horizontal):  # the record's fault: no ground motion at all
+        source = horizontal[0].provenance.get("path", str(x))
+        raise RecordValuesError(f"{source}: every horizontal component is zero: no ground motion", path=source)
     if len(horizontal) == 2 and _same_motion(*horizontal):
         first, second = (_where(m) for m in horizontal)
         path = horizontal[1].provenance.get("path", "")
         what = "is given as both X and Y" if first == second else f"is the same motion as {first} (the same samples)"
         raise ComponentError(f"{path or x}: {second} {what}; a pair is two different horizontal components",
                              path=path, parameter="pair")
-    if all(motion.pga_m_s2 == 0.0 for motion in horizontal):  # the record's fault: no ground motion at all
-        source = horizontal[0].provenance.get("path", str(x))
-        raise RecordValuesError(f"{source}: every horizontal component is zero: no ground motion", path=source)
     motions = dict(zip(("x", "y"), horizontal, strict=False))
     if vertical:
         motions["z"] = vertical[0]

@@ -296,3 +296,11 @@ def test_read_header_reads_the_header_only(pairs_dir, tmp_path):
     junk.write_bytes(bytes(range(256)) * 1000)
     assert read_header(junk) is None
     assert read_header(tmp_path) is None
+
+
+def test_two_zero_components_are_no_ground_motion_not_one_motion_twice(tmp_path):
+    x, y = tmp_path / "x.txt", tmp_path / "y.txt"
+    for path in (x, y):
+        path.write_text("0 0\n0.01 0\n0.02 0\n0.03 0\n")
+    with pytest.raises(RecordError, match="every horizontal component is zero"):
+        read_ground_motion_pair(x, y, units="g")
