@@ -13,18 +13,9 @@ import os
 import time
 from pathlib import Path
 
-from isolator.batch.plan import ReadOptions, Task
+from isolator.batch.plan import ReadOptions, Task, file_version
 
 _PAIR_CACHE: dict = {}
-
-
-def _version(path: str):
-    """(size, modification time, inode) of a file, or None."""
-    try:
-        stat = os.stat(path)
-    except OSError:
-        return None
-    return stat.st_size, stat.st_mtime_ns, stat.st_ino
 
 
 def read_pair(path: str, component: str, options: ReadOptions, partners: tuple = ()):
@@ -37,7 +28,7 @@ def read_pair(path: str, component: str, options: ReadOptions, partners: tuple =
     every component by the one factor that brings the larger horizontal PGA to the target.
     """
     # a file rewritten since it was cached (same name, other content) is read again
-    key = (component, options) + tuple((os.path.abspath(p), _version(p)) for p in (path, *partners))
+    key = (component, options) + tuple((os.path.abspath(p), file_version(p)) for p in (path, *partners))
     if key in _PAIR_CACHE:
         return _PAIR_CACHE[key]
     from isolator.errors import ComponentError, MissingUnitsError

@@ -225,16 +225,11 @@ def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[
 
 
 def is_vertical(label: str) -> bool:
-    """True for a vertical component label (Z, UD, U-D, Up, Down, Vert; channel code ending in Z)."""
-    text = label.upper()
-    orientation = re.search(r"\(([^)]*)\)", text)
-    names = [text.split(" (")[0].strip()] + ([orientation.group(1).strip()] if orientation else [])
-    for name in names:
-        if name in ("Z", "UD", "U-D", "UP", "DOWN", "VERT", "VERTICAL", "V"):
-            return True
-        if len(name) == 3 and name.isalpha() and name.endswith("Z"):
-            return True
-    return False
+    """True for a vertical component label (Z, UD, U-D, Up, Down, Vert; channel code ending in Z):
+    :func:`isolator.motion.pair.label_is_vertical`."""
+    from isolator.motion.pair import label_is_vertical
+
+    return label_is_vertical(label)
 
 
 #: Suffixes of formats that hold one component per file: never listed at planning.
@@ -377,6 +372,16 @@ class ReadOptions:
 
 
 _DIGESTS: dict = {}
+
+
+def file_version(path: str):
+    """(size, modification time, inode) of a file, or None: a file rewritten since it was
+    cached (same name, other content) is read again."""
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return None
+    return stat.st_size, stat.st_mtime_ns, stat.st_ino
 
 
 def record_digest(path: str) -> str:

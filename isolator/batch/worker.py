@@ -9,7 +9,7 @@ from pathlib import Path
 
 from isolator.batch.pairs import read_pair
 from isolator.batch.pairs import record_columns as pair_record_columns
-from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, _one_line
+from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, _one_line, file_version
 
 _MOTION_CACHE: dict = {}
 
@@ -21,12 +21,7 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     and ``--dt`` for one-column text files that give no time step: a file that states
     them is read as it says, so that one batch can mix formats.
     """
-    try:  # a file rewritten since it was cached (same name, other content) is read again
-        stat = os.stat(path)
-        version = (stat.st_size, stat.st_mtime_ns, stat.st_ino)
-    except OSError:
-        version = None
-    key = (os.path.abspath(path), version, component, options)
+    key = (os.path.abspath(path), file_version(path), component, options)
     if key in _MOTION_CACHE:
         return _MOTION_CACHE[key]
     from isolator.errors import MissingTimeStepError, MissingUnitsError

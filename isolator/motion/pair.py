@@ -157,12 +157,18 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
     return horizontal, vertical
 
 
-def _label_is_vertical(label: str) -> bool:
-    """:func:`is_vertical` for a label of :func:`list_components` (``HNZ (Up)``, ``UD``, ``HN1 (90)`` …)."""
-    words = label.split()
-    if words and len(words[0]) == 3 and words[0].isalpha() and words[0][2].upper() == "Z":
-        return True
-    return any(token in VERTICAL_NAMES for token in re.findall(r"[a-z0-9-]+", label.lower()))
+def label_is_vertical(label: str) -> bool:
+    """True for a vertical component label of :func:`list_components` (Z, UD, U-D, Up, Down, Vert, or
+    a channel code ending in Z: ``HNZ (Up)``); the label-level twin of :func:`is_vertical`."""
+    text = label.upper()
+    orientation = re.search(r"\(([^)]*)\)", text)
+    names = [text.split(" (")[0].strip()] + ([orientation.group(1).strip()] if orientation else [])
+    for name in names:
+        if name in ("Z", "UD", "U-D", "UP", "DOWN", "VERT", "VERTICAL", "V"):
+            return True
+        if len(name) == 3 and name.isalpha() and name.endswith("Z"):
+            return True
+    return False
 
 
 def _vertical_channel(path: Path, merge: bool) -> str | None:
@@ -177,7 +183,7 @@ def _vertical_channel(path: Path, merge: bool) -> str | None:
     labels = list_components(path, merge=merge)
     if len(labels) <= 1:
         return None
-    vertical = [label for label in labels if _label_is_vertical(label)]
+    vertical = [label for label in labels if label_is_vertical(label)]
     if len(vertical) != 1:
         raise ComponentError(f"{path}: holds {len(labels)} components ({', '.join(labels)}), "
                              f"{'no' if not vertical else len(vertical)} vertical; the vertical of a pair is a "
@@ -400,12 +406,13 @@ def read_ground_motion_pair(
                                  "with a second file give one component (or none)", path=x)
         horizontal = [read_ground_motion(x, component=component, allow_zero=y is not None, **options)]
         if y is not None:
-            labels = list_components(y, merge=merge)
-            if len(labels) > 1:
+            second = read_ground_motions(y, allow_zero=True, **options)  # the file parsed once
+            if len(second) > 1:
+                labels = [motion.component for motion in second]
                 raise ComponentError(f"{y}: holds {len(labels)} components ({', '.join(labels)}); the second "
                                      "horizontal of a pair is a file of one component", path=y,
                                      parameter="second_file")
-            horizontal.append(read_ground_motion(y, allow_zero=True, **options))
+            horizontal.append(second[0])
         for motion in horizontal:
             if is_vertical(motion):
                 raise ComponentError(f"{motion.provenance.get('path')}: component {motion.component} is vertical; "
