@@ -97,6 +97,23 @@ def _pts(records_dir):
     return folder / "RSN723_SUPER.B_B-PTS225.AT2", folder / "RSN723_SUPER.B_B-PTS315.AT2"
 
 
+def _pts_copy(records_dir, tmp_path):
+    """(designs file, a folder holding copies of the two PTS files, X, Y) in tmp_path."""
+    designs = tmp_path / "designs.toml"
+    designs.write_text(DESIGNS)
+    x, y = _pts(records_dir)
+    folder = tmp_path / "pts"
+    folder.mkdir()
+    for path in (x, y):
+        (folder / path.name).write_bytes(path.read_bytes())
+    return designs, folder, x, y
+
+
+def _scaled_values(at2_lines, factor):
+    """The value lines of an AT2 file (after its four header lines), every sample times ``factor``."""
+    return [" ".join(f"{factor * float(v):.7E}" for v in line.split()) for line in at2_lines[4:]]
+
+
 def test_station_sets_pair_the_two_horizontals_of_one_station(records_dir, tmp_path):
     from isolator.batch import station_sets
 
@@ -157,20 +174,14 @@ def test_batch_analyses_two_files_of_one_station_as_a_pair(records_dir, tmp_path
 def test_a_changed_partner_file_recomputes_the_pair_rows(records_dir, tmp_path):
     from isolator.batch import ReadOptions
 
-    designs = tmp_path / "designs.toml"
-    designs.write_text(DESIGNS)
-    x, y = _pts(records_dir)
-    folder = tmp_path / "pts"
-    folder.mkdir()
-    for path in (x, y):
-        (folder / path.name).write_bytes(path.read_bytes())
+    designs, folder, x, y = _pts_copy(records_dir, tmp_path)
     options = ReadOptions(trim=True)
     first = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, options=options)
     again = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, options=options)
     assert again.n_resumed == 2
     # the Y file changes (its samples scaled by 2, in the header's units): the pair's rows are recomputed
     lines = (folder / y.name).read_text().splitlines()
-    scaled = lines[:4] + [" ".join(f"{2 * float(v):.7E}" for v in line.split()) for line in lines[4:]]
+    scaled = lines[:4] + _scaled_values(lines, 2.0)
     (folder / y.name).write_text("\n".join(scaled) + "\n")
     changed = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, options=options)
     assert changed.n_resumed == 0
@@ -183,16 +194,10 @@ def test_a_station_set_with_its_vertical_file(records_dir, tmp_path):
     samples): 'pair' takes the horizontals, 'all' adds the vertical (the 2-D engine with n(t))."""
     from isolator.batch import ReadOptions, station_sets
 
-    designs = tmp_path / "designs.toml"
-    designs.write_text(DESIGNS)
-    x, y = _pts(records_dir)
-    folder = tmp_path / "pts"
-    folder.mkdir()
-    for path in (x, y):
-        (folder / path.name).write_bytes(path.read_bytes())
+    designs, folder, x, y = _pts_copy(records_dir, tmp_path)
     lines = y.read_text().splitlines()
     title = lines[1].rsplit(",", 1)[0] + ", UP"
-    values = [" ".join(f"{0.5 * float(v):.7E}" for v in line.split()) for line in lines[4:]]
+    values = _scaled_values(lines, 0.5)
     (folder / "RSN723_SUPER.B_B-PTSUP.AT2").write_text("\n".join([lines[0], title, *lines[2:4], *values]) + "\n")
     files = sorted(str(p) for p in folder.iterdir())
     sets = station_sets(files, "all")
