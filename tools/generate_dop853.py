@@ -54,7 +54,7 @@ from isolator.solver.planar_rk import CARTESIAN, FASTMATH, LOG, POLAR, START, de
 '''
 
 DISPATCH = '''
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dop853_step(mode, x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
 
@@ -106,7 +106,7 @@ def _step(name: str, out: list[str]) -> None:
     w = out.append
     w("")
     w("")
-    w("@njit(cache=True, fastmath=FASTMATH)")
+    w("@njit(cache=True, fastmath=FASTMATH, _nrt=False)")
     w(f"def _step_{name.lower()}(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):")
     w(f'    """The DOP853 step in the {name} form (see :func:`dop853_step`)."""')
     w("    " + ", ".join(f"y{j}" for j in range(NSTATE)) + " = (" + ", ".join(f"y[{j}]" for j in range(NSTATE)) + ")")

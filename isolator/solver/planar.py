@@ -342,13 +342,12 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         _warm_up()
     n = ax.size
     nz = np.full(n, g) if az is None else g + az
-    steps = np.diff(times)
-    pga = float(np.max(np.hypot(ax, ay)))
+    pga = math.sqrt(float(np.max(ax * ax + ay * ay)))
     # the speed the larger of µs g and the PGA gives in the shortest time scale of the
     # problem: the sample step, or the system's own 1/ω and 1/c when they are shorter
-    n_max = float(np.max(nz))
+    n_max = g if az is None else float(np.max(nz))
     kappa_max = n_max * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
-    t_scale = float(np.median(steps))
+    t_scale = float(np.median(np.diff(times)) if time_s is not None else times[1] - times[0])
     if kappa_max > 0.0:
         t_scale = min(t_scale, 1.0 / math.sqrt(kappa_max))
     if prm[_rk.P_C] > 0.0:
@@ -385,7 +384,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     e_in, e_f, e_v = (float(summary[j]) for j in (_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = 0.5 * kappa_end * float(out_x[-1, 0] ** 2 + out_x[-1, 1] ** 2)
-    model, reason = select_model(has_y=bool(np.any(ay != 0.0)), has_z=az is not None,
+    model, reason = select_model(has_y=bool(ay.any()), has_z=az is not None,
                                  velocity_dependent=velocity_dependent)
     return PairResponse(
         time_s=times,

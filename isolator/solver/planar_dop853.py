@@ -16,7 +16,7 @@ from numba import njit
 from isolator.solver.planar_rk import CARTESIAN, FASTMATH, LOG, POLAR, START, derivative
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def _step_cartesian(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """The DOP853 step in the CARTESIAN form (see :func:`dop853_step`)."""
     y0, y1, y2, y3, y4, y5, y6, y7 = (y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7])
@@ -238,7 +238,7 @@ def _step_cartesian(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     return True, err
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def _step_polar(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """The DOP853 step in the POLAR form (see :func:`dop853_step`)."""
     y0, y1, y2, y3, y4, y5, y6, y7 = (y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7])
@@ -460,7 +460,7 @@ def _step_polar(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     return True, err
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def _step_log(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """The DOP853 step in the LOG form (see :func:`dop853_step`)."""
     y0, y1, y2, y3, y4, y5, y6, y7 = (y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7])
@@ -682,7 +682,7 @@ def _step_log(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     return True, err
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def _step_start(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """The DOP853 step in the START form (see :func:`dop853_step`)."""
     y0, y1, y2, y3, y4, y5, y6, y7 = (y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7])
@@ -904,7 +904,7 @@ def _step_start(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     return True, err
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def dop853_step(mode, x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     """One DOP853 step of length ``h`` (may be negative) from (x, y) with y' = f0.
 

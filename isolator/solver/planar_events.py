@@ -52,19 +52,19 @@ PH_FLIGHT = 4
 PH_POLAR = 5  #: sliding slowly: speed and direction angle (POLAR form)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def kappa_at(tau, prm, frc):
     """κ [1/s²] at local time τ of the interval."""
     return forcing(tau, 0.0, 0.0, prm, frc)[3]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def kappa_of(nn, prm):
     """κ [1/s²] of a block in contact under the normal acceleration n: n/R (pendulum) or K/M."""
     return nn * prm[P_INV_R] if prm[P_PENDULUM] > 0.0 else prm[P_KAPPA]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def holds_at(x1, x2, a_x, a_y, nn, prm):
     """Static friction holds a block at rest at X under ground acceleration a and normal n:
     n > 0 and |κX + a_g| ≤ µs n, with κ = n/R (pendulum) or K/M.
@@ -81,7 +81,7 @@ def holds_at(x1, x2, a_x, a_y, nn, prm):
     return norm(gx, gy) <= prm[P_MU_S] * nn
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def stuck_until(x1, x2, tau0, length, prm, frc):
     """First instant in [τ0, τ0 + length] where a stuck block must move.
 
@@ -141,7 +141,7 @@ def stuck_until(x1, x2, tau0, length, prm, frc):
     return u_b, False
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def velocity(phase, x, tau, y, prm, frc):
     """Relative velocity (V_x, V_y) [m/s] in any phase."""
     if phase == PH_STUCK:
@@ -159,7 +159,7 @@ def velocity(phase, x, tau, y, prm, frc):
     return y[2], y[3]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def start_lag(tau, y, prm, frc):
     """|sin θ|, the angle by which the slaved (START form) velocity trails F [-]."""
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
@@ -170,7 +170,7 @@ def start_lag(tau, y, prm, frc):
     return abs(fx * v2 - fy * v1) / (fm * abs(y[2]))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def transmitted(phase, x, tau, y, prm, frc):
     """Absolute acceleration of the mass (a_x, a_y) [m/s²]: a_g when stuck, else −(friction + κX + cV)."""
     axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
@@ -191,7 +191,7 @@ def transmitted(phase, x, tau, y, prm, frc):
     return -fr * e1 - kap * y[0] - c * v1, -fr * e2 - kap * y[1] - c * v2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def rate_of_peak(which, mode, y, d):
     # d|X|²/2 dt (which 0) or d|V|²/2 dt (which 1) from a state and its derivative
     if which == 0:
@@ -208,7 +208,7 @@ def rate_of_peak(which, mode, y, d):
     return -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def peak_value(which, mode, y):
     if which == 0:
         return norm(y[0], y[1])
@@ -219,7 +219,7 @@ def peak_value(which, mode, y):
     return abs(y[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def acceleration_peak_rate(mode, x, y, d, prm, frc):
     """Transmitted acceleration of a sliding block in CARTESIAN, POLAR or LOG form: (|a|, a·a').
 
@@ -278,7 +278,7 @@ def acceleration_peak_rate(mode, x, y, d, prm, frc):
     return norm(a1, a2), a1 * ad1 + a2 * ad2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def acceleration_bound(n0, n1, x_top, v_top, prm):
     """An upper bound of the transmitted acceleration |a| = |µ(r) n e + κX + cV| [m/s²] over a step.
 
@@ -292,7 +292,7 @@ def acceleration_bound(n0, n1, x_top, v_top, prm):
     return mu * n_top + kappa_of(n_top, prm) * x_top + prm[P_C] * v_top
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def tangent_bound(a0, g0, a1, g1, h):
     """Where the tangents at both ends of a step meet: the largest value a concave norm can take
     inside it, from its values a0, a1 and the rates of its square's half, g0 > 0 ≥ g1, over a
@@ -309,7 +309,7 @@ def tangent_bound(a0, g0, a1, g1, h):
     return a0 + s0 * t
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def locate_peak(which, mode, x, y, f, h, v0, g0, v1, g1, span, prm, frc, yb, fb, atol, rtol, work):
     """Largest |X| (which 0), |V| (1) or transmitted |a| (2, not in START form) inside a step
     where its rate goes from + to −.
@@ -374,7 +374,7 @@ def locate_peak(which, mode, x, y, f, h, v0, g0, v1, g1, span, prm, frc, yb, fb,
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def land_on(mode, x, y, f, h, coord, target, end, end_rate, prm, frc, yb, fb, atol, rtol, work):
     """Fraction θ of a step at which component ``coord`` of the state reaches ``target``.
 
@@ -434,7 +434,7 @@ def land_on(mode, x, y, f, h, coord, target, end, end_rate, prm, frc, yb, fb, at
     return hi
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def hermite_crossing(y0, d0, y1, d1, target):
     """Fraction θ ∈ (0, 1) of a step where the cubic Hermite interpolant of one component reaches ``target``.
 
@@ -457,7 +457,7 @@ def hermite_crossing(y0, d0, y1, d1, target):
     return 0.5 * (lo + hi)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def coast_to_rest(tau, y, r, rdot, target, prm, frc):
     """The last speed r [m/s] of a stop in closed form, at the constant deceleration rdot < 0 [m/s²].
 
@@ -486,7 +486,7 @@ def coast_to_rest(tau, y, r, rdot, target, prm, frc):
     return dtt
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def record_event(ev_t, ev_k, n_ev, time, kind):
     """Log an event (time [s], kind) while the arrays have room; returns the new count."""
     if n_ev < ev_t.shape[0]:
@@ -495,7 +495,7 @@ def record_event(ev_t, ev_k, n_ev, time, kind):
     return n_ev + 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def at_rest(tau, y, prm, frc, f):
     """The block is at rest at τ: stick (returns PH_STUCK) or restart from rest (PH_START)."""
     y[2] = 0.0
@@ -506,7 +506,7 @@ def at_rest(tau, y, prm, frc, f):
     return PH_START
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def lift_off(phase, x, tau, y, prm, frc, f):
     """Uplift: n reaches 0; the state becomes Cartesian, the phase FLIGHT."""
     v1, v2 = velocity(phase, x, tau, y, prm, frc)
@@ -517,7 +517,7 @@ def lift_off(phase, x, tau, y, prm, frc, f):
     return PH_FLIGHT
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def land(tau, y, prm, frc, f):
     """Landing: n becomes positive; slide on, or (at rest) stick or start."""
     frc[6] = 1.0
@@ -527,7 +527,7 @@ def land(tau, y, prm, frc, f):
     return at_rest(tau, y, prm, frc, f)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def mode_of(phase):
     """The integration form (mode) of a phase."""
     if phase == PH_APPROACH:
@@ -539,26 +539,26 @@ def mode_of(phase):
     return CARTESIAN
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def force_scale(tau, y, r, prm, frc):
     """|F| + µ(r) n [m/s²]: the force scale of the stop and LOG-entry tests."""
     return force_norm(tau, y, prm, frc) + friction_force(tau, r, prm, frc)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction_force(tau, r, prm, frc):
     """µ(r) n [m/s²] at local time τ (0 where n ≤ 0)."""
     nn = frc[4] + frc[5] * tau
     return friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def ground_norm(tau, frc):
     """|a_g| [m/s²] at local time τ of the interval."""
     return norm(frc[0] + frc[1] * tau, frc[2] + frc[3] * tau)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def force_norm(tau, y, prm, frc):
     """|F| = |−κX − a_g| [m/s²]."""
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)

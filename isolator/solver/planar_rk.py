@@ -39,6 +39,13 @@ pendulum), friction ``µ n |V|`` and viscous ``c |V|²``.
 
 The DOP853 step that integrates them is :mod:`isolator.solver.planar_dop853` (generated,
 unrolled); :func:`step_factor` is its step-size controller.
+
+Every compiled function the record loop calls (here, in ``planar_dop853`` and in
+``planar_events``) is ``@njit(..., _nrt=False)``: none allocates, and without numba's
+reference counting an array argument costs nothing, where it otherwise costs an atomic
+increment and decrement per call — measured at ≈ 9 % of the samples of a profile of the
+engine and a 1.2–1.3× slower record (docs/planar.md).  Only ``planar_kernel`` (which
+allocates its work arrays) keeps it.
 """
 
 from __future__ import annotations
@@ -72,7 +79,7 @@ P_INV_R = 8
 P_PENDULUM = 9
 P_SIZE = 10
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def norm(a, b):
     """√(a² + b²): the length of a plane vector.  Not ``math.hypot``, which guards
     against overflow and underflow at a tenth of a DOP853 step's cost; the forces,
@@ -80,7 +87,7 @@ def norm(a, b):
     return math.sqrt(a * a + b * b)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction_coefficient(r, prm):
     """µ(|V|) [-]: constant µk, or µ_fast − (µ_fast − µ_slow) e^{−a |V|}."""
     if prm[P_VELDEP] > 0.0:
@@ -88,7 +95,7 @@ def friction_coefficient(r, prm):
     return prm[P_MU_K]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def friction_slope(r, prm):
     """dµ/d|V| [s/m]: 0 for constant µk, a (µ_fast − µ_slow) e^{−a |V|} for µ(v)."""
     if prm[P_VELDEP] > 0.0:
@@ -96,7 +103,7 @@ def friction_slope(r, prm):
     return 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def forcing(tau, x1, x2, prm, frc):
     """Ground and normal force at local time τ.
 
@@ -127,7 +134,7 @@ def forcing(tau, x1, x2, prm, frc):
     return axx, ayy, nn, kap, kdot, -kap * x1 - axx, -kap * x2 - ayy
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
     """Direction of a slow (START form) velocity: F/|F| lagging by θ.
 
@@ -163,7 +170,7 @@ def start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c):
     return cos_t * e1 + sin_t * e2, -sin_t * e1 + cos_t * e2
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def derivative(mode, x, x1, x2, y2, y3, y7, prm, frc):
     """Derivative of the state in ``mode`` at independent variable ``x``.
 
@@ -222,7 +229,7 @@ def derivative(mode, x, x1, x2, y2, y3, y7, prm, frc):
             (-(axx * y2 + ayy * y3) * r + pin) * rw, fr * r * rw, c * r * r * rw, rw)
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def rhs(mode, x, y, prm, frc, d):
     """Derivative of the state ``y`` in ``mode`` at ``x``, into ``d`` (see :func:`derivative`).
 
@@ -233,19 +240,19 @@ def rhs(mode, x, y, prm, frc, d):
     return ok
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def step_factor(err):
     """Step-size factor after a step with scaled error ``err`` (order 8 controller): 0.9 err^(−1/8) in [0.2, 10]."""
     return factor_of_root(eighth_root(max(err, 1e-10)))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def factor_of_root(root):
     """The order-8 step factor from root = max(err, 1e-10)^(1/8): 0.9/root in [0.2, 10] (err = 0 gives 10)."""
     return min(10.0, max(0.2, 0.9 / root))
 
 
-@njit(cache=True, fastmath=FASTMATH)
+@njit(cache=True, fastmath=FASTMATH, _nrt=False)
 def eighth_root(err):
     """err^(1/8) as three square roots (a third of the cost of ``pow`` here)."""
     return math.sqrt(math.sqrt(math.sqrt(err)))
