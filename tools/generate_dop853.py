@@ -48,7 +48,16 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.planar_rk import CARTESIAN, FASTMATH, LOG, POLAR, START, derivative
+from isolator.solver.planar_rk import (
+    CARTESIAN,
+    FASTMATH,
+    LOG,
+    POLAR,
+    derivative_cartesian,
+    derivative_log,
+    derivative_polar,
+    derivative_start,
+)
 
 
 '''
@@ -100,8 +109,8 @@ def _combination(coefficients, stages, j):
 
 
 def _step(name: str, out: list[str]) -> None:
-    """One step function, with the form ``name`` (a constant of planar_rk) fixed: numba folds
-    the other forms' branches of ``derivative`` away."""
+    """One step function, with the form ``name`` (a constant of planar_rk) fixed: every stage
+    calls that form's own right-hand side (``derivative_polar`` …), which LLVM inlines."""
     a, b, c, e3, e5 = dop.A, dop.B, dop.C, dop.E3, dop.E5
     w = out.append
     w("")
@@ -117,8 +126,8 @@ def _step(name: str, out: list[str]) -> None:
         args = []
         for j in DYNAMIC:
             args.append(f"y{j} + h * ({_combination(a[s, :s], range(s), j)})")
-        w("    ok, " + ", ".join(f"k{s}_{j}" for j in range(NSTATE)) + " = derivative(")
-        w(f"        {name}, x + {float(c[s])!r} * h,")
+        w("    ok, " + ", ".join(f"k{s}_{j}" for j in range(NSTATE)) + f" = derivative_{name.lower()}(")
+        w(f"        x + {float(c[s])!r} * h,")
         for arg in args:
             w(f"        {arg},")
         w("        prm, frc)")
@@ -127,7 +136,7 @@ def _step(name: str, out: list[str]) -> None:
     w("    # the 8th-order solution and its derivative (the first stage of the next step)")
     for j in range(NSTATE):
         w(f"    n{j} = y{j} + h * ({_combination(b, range(N_STAGES), j)})")
-    w("    ok, " + ", ".join(f"k12_{j}" for j in range(NSTATE)) + " = derivative(" + name + ", x + h, "
+    w("    ok, " + ", ".join(f"k12_{j}" for j in range(NSTATE)) + f" = derivative_{name.lower()}(x + h, "
       + ", ".join(f"n{j}" for j in DYNAMIC) + ", prm, frc)")
     w("    if not ok:")
     w("        return False, np.inf")

@@ -178,7 +178,8 @@ def derivative(mode, x, x1, x2, y2, y3, y7, prm, frc):
     y2, y3, y7 (velocity, direction or speed, and τ in LOG form, per ``mode``); the
     energies (components 4–6) are quadratures.  |V| is ``sqrt(v1² + v2²)``, not
     ``hypot``: speeds here are far from overflow and underflow, and ``hypot`` costs
-    a sixth of a step.
+    a sixth of a step.  The unrolled DOP853 steps call the form's own function
+    (:func:`derivative_cartesian` …), small enough for LLVM to inline into every stage.
 
     Returns
     -------
@@ -186,37 +187,68 @@ def derivative(mode, x, x1, x2, y2, y3, y7, prm, frc):
         ``(ok, d0, …, d7)``: ok is False where the form is not valid (the speed no
         longer decreases in LOG form, a non-positive speed in POLAR form).
     """
-    c = prm[P_C]
-    tau = y7 if mode == LOG else x
-    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, x1, x2, prm, frc)
-    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
     if mode == CARTESIAN:
-        r = math.sqrt(y2 * y2 + y3 * y3)
-        fr_r = 0.0  # µ n / |V|
-        fr = 0.0
-        if nn > 0.0 and r > 0.0:
-            fr = friction_coefficient(r, prm) * nn
-            fr_r = fr / r
-        return (True, y2, y3, fx - (fr_r + c) * y2, fy - (fr_r + c) * y3, -(axx * y2 + ayy * y3) + pin,
-                fr * r, c * r * r, 0.0)
+        return derivative_cartesian(x, x1, x2, y2, y3, y7, prm, frc)
     if mode == START:
-        r = y2
-        fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
-        e1, e2 = start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c)
-        return (True, r * e1, r * e2, e1 * fx + e2 * fy - fr - c * r, 0.0, -(axx * e1 + ayy * e2) * r + pin,
-                fr * abs(r), c * r * r, 0.0)
+        return derivative_start(x, x1, x2, y2, y3, y7, prm, frc)
     if mode == POLAR:
-        # speed r (component 7) and direction e = V/|V| (components 2, 3, as in LOG form);
-        # e' = (F − (e·F) e)/r, the direction's relaxation rate e·F/r is the stiff mode
-        r = y7
-        if not r > 0.0:
-            return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-        fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
-        ef = y2 * fx + y3 * fy
-        ir = 1.0 / r
-        return (True, r * y2, r * y3, (fx - ef * y2) * ir, (fy - ef * y3) * ir, -(axx * y2 + ayy * y3) * r + pin,
-                fr * r, c * r * r, ef - fr - c * r)
-    # LOG: independent variable s = ln r
+        return derivative_polar(x, x1, x2, y2, y3, y7, prm, frc)
+    return derivative_log(x, x1, x2, y2, y3, y7, prm, frc)
+
+
+@njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
+def derivative_cartesian(x, x1, x2, y2, y3, y7, prm, frc):
+    """:func:`derivative` in CARTESIAN form: V = (y2, y3)."""
+    c = prm[P_C]
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(x, x1, x2, prm, frc)
+    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
+    r = math.sqrt(y2 * y2 + y3 * y3)
+    fr_r = 0.0  # µ n / |V|
+    fr = 0.0
+    if nn > 0.0 and r > 0.0:
+        fr = friction_coefficient(r, prm) * nn
+        fr_r = fr / r
+    return (True, y2, y3, fx - (fr_r + c) * y2, fy - (fr_r + c) * y3, -(axx * y2 + ayy * y3) + pin,
+            fr * r, c * r * r, 0.0)
+
+
+@njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
+def derivative_start(x, x1, x2, y2, y3, y7, prm, frc):
+    """:func:`derivative` in START form: speed y2, direction slaved to F (:func:`start_direction`)."""
+    c = prm[P_C]
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(x, x1, x2, prm, frc)
+    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
+    r = y2
+    fr = friction_coefficient(abs(r), prm) * nn if nn > 0.0 else 0.0
+    e1, e2 = start_direction(r, x1, x2, fx, fy, kap, kdot, frc, fr, c)
+    return (True, r * e1, r * e2, e1 * fx + e2 * fy - fr - c * r, 0.0, -(axx * e1 + ayy * e2) * r + pin,
+            fr * abs(r), c * r * r, 0.0)
+
+
+@njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
+def derivative_polar(x, x1, x2, y2, y3, y7, prm, frc):
+    """:func:`derivative` in POLAR form: speed r (component 7) and direction e = V/|V|
+    (components 2, 3, as in LOG form); e' = (F − (e·F) e)/r, the direction's relaxation
+    rate e·F/r is the stiff mode."""
+    r = y7
+    if not r > 0.0:
+        return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    c = prm[P_C]
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(x, x1, x2, prm, frc)
+    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
+    fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
+    ef = y2 * fx + y3 * fy
+    ir = 1.0 / r
+    return (True, r * y2, r * y3, (fx - ef * y2) * ir, (fy - ef * y3) * ir, -(axx * y2 + ayy * y3) * r + pin,
+            fr * r, c * r * r, ef - fr - c * r)
+
+
+@njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
+def derivative_log(x, x1, x2, y2, y3, y7, prm, frc):
+    """:func:`derivative` in LOG form: independent variable s = ln r, τ = y7."""
+    c = prm[P_C]
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(y7, x1, x2, prm, frc)
+    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
     r = math.exp(x)
     fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
     ef = y2 * fx + y3 * fy
