@@ -11,7 +11,7 @@ Methods (:data:`PAIR_METHODS`)
 ------------------------------
 ``planar engine simulate_pair (ours)``
     :func:`isolator.solver.planar.simulate_pair` (DOP853 between exactly located
-    events, rtol 1e-12).
+    events, its default rtol 1e-11).
 ``independent reference (solve_ivp DOP853/Radau, rtol 1e-12)``
     :func:`isolator.bench.planar_reference.reference_pair`, the **truth** of every
     2-D row: it shares no code with the engine; its own error is ~1e-14 of the

@@ -1,7 +1,7 @@
 """A one-line note for the user while something slow and silent runs: the first compilation of an engine.
 
 numba compiles the 1-D kernel and the 2-D engine on their first use after installation
-(the 2-D engine in about 30 s on a 2-core machine) and caches the machine code on disk;
+(the 2-D engine in about 40 s on a 2-core machine) and caches the machine code on disk;
 later runs load it in a fraction of a second.  Without a word, a first run looks like a
 hang.  The command line sets :data:`ENABLED`; the library then prints one line on stderr
 if loading takes longer than :data:`NOTE_AFTER_S`, and nothing when the cache answers.

@@ -285,7 +285,7 @@ def _warm_up() -> None:
     global _READY
     if _READY:
         return
-    with note_if_slow("compiling the 2-D engine (its first use after installation takes about 30 s; "
+    with note_if_slow("compiling the 2-D engine (its first use after installation takes about 40 s; "
                       "the machine code is cached for later runs)"):
         simulate_pair(np.array([0.0, 2.0, 0.0]), np.array([0.0, 1.0, 0.0]), 0.01, mu_static=0.05,
                       radius_m=2.0, az_m_s2=np.array([0.0, 1.0, 0.0]), _timed=False)
