@@ -52,10 +52,13 @@ from isolator.solver.planar_rk import (
     CARTESIAN,
     FASTMATH,
     LOG,
+    P_RATE,
+    P_VELDEP,
     POLAR,
     derivative_cartesian,
     derivative_log,
     derivative_polar,
+    derivative_polar_q,
     derivative_start,
 )
 
@@ -96,6 +99,8 @@ def dop853_step(mode, x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):
     if mode == CARTESIAN:
         return _step_cartesian(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
     if mode == POLAR:
+        if prm[P_VELDEP] > 0.0:
+            return _step_polar_mu_v(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
         return _step_polar(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
     if mode == LOG:
         return _step_log(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol)
@@ -108,25 +113,42 @@ def _combination(coefficients, stages, j):
     return " + ".join(terms) if terms else "0.0"
 
 
-def _step(name: str, out: list[str]) -> None:
+def _step(name: str, out: list[str], auxiliary: bool = False) -> None:
     """One step function, with the form ``name`` (a constant of planar_rk) fixed: every stage
-    calls that form's own right-hand side (``derivative_polar`` …), which LLVM inlines."""
+    calls that form's own right-hand side (``derivative_polar`` …), which LLVM inlines.
+
+    ``auxiliary`` (POLAR with µ(v) only): q = e^{−a r} is carried through the stages as a ninth
+    variable (q' = −a q ṙ, from q = e^{−a r} at the step start), so that a stage needs no ``exp``
+    (``derivative_polar_q``); the end of the step takes the exact form again (``derivative_polar``),
+    so ``fnew`` is the state's own derivative."""
     a, b, c, e3, e5 = dop.A, dop.B, dop.C, dop.E3, dop.E5
     w = out.append
+    suffix = "_mu_v" if auxiliary else ""
+    stage_rhs = f"derivative_{name.lower()}" + ("_q" if auxiliary else "")
     w("")
     w("")
     w("@njit(cache=True, fastmath=FASTMATH, _nrt=False)")
-    w(f"def _step_{name.lower()}(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):")
-    w(f'    """The DOP853 step in the {name} form (see :func:`dop853_step`)."""')
+    w(f"def _step_{name.lower()}{suffix}(x, y, f0, h, prm, frc, ynew, fnew, atol, rtol):")
+    if auxiliary:
+        w(f'    """The DOP853 step in the {name} form with µ(v), e^(−a|V|) carried through the stages (see')
+        w('    :func:`dop853_step`)."""')
+    else:
+        w(f'    """The DOP853 step in the {name} form (see :func:`dop853_step`)."""')
     w("    " + ", ".join(f"y{j}" for j in range(NSTATE)) + " = (" + ", ".join(f"y[{j}]" for j in range(NSTATE)) + ")")
     w("    " + ", ".join(f"k0_{j}" for j in range(NSTATE)) + " = (" + ", ".join(f"f0[{j}]" for j in range(NSTATE))
       + ")")
+    if auxiliary:
+        w("    yq = math.exp(-prm[P_RATE] * y7)")
+        w("    k0_q = -prm[P_RATE] * yq * k0_7")
     for s in range(1, N_STAGES):
         w(f"    # stage {s + 1}: c = {float(c[s])!r}")
         args = []
         for j in DYNAMIC:
             args.append(f"y{j} + h * ({_combination(a[s, :s], range(s), j)})")
-        w("    ok, " + ", ".join(f"k{s}_{j}" for j in range(NSTATE)) + f" = derivative_{name.lower()}(")
+        if auxiliary:
+            args.append(f"yq + h * ({_combination(a[s, :s], range(s), 'q')})")
+        outs = [f"k{s}_{j}" for j in range(NSTATE)] + ([f"k{s}_q"] if auxiliary else [])
+        w("    ok, " + ", ".join(outs) + f" = {stage_rhs}(")
         w(f"        x + {float(c[s])!r} * h,")
         for arg in args:
             w(f"        {arg},")
@@ -168,6 +190,7 @@ def source() -> str:
     out = [HEADER.rstrip("\n")]
     for name in ("CARTESIAN", "POLAR", "LOG", "START"):
         _step(name, out)
+    _step("POLAR", out, auxiliary=True)
     out.append("")
     out.append("")
     out.append(DISPATCH.strip("\n"))

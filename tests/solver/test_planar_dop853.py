@@ -49,21 +49,52 @@ CASES = [
 ]
 
 
-@pytest.mark.parametrize("mode, x, state, h", CASES, ids=["cartesian", "polar", "start", "log"])
-def test_step_equals_scipy_dop853(mode, x, state, h):
+def _constant_friction(prm):
+    prm = prm.copy()
+    prm[rk.P_VELDEP] = 0.0
+    return prm
+
+
+@pytest.mark.parametrize("mode, x, state, h, constant", [case + (False,) for case in CASES]
+                         + [CASES[1] + (True,)], ids=["cartesian", "polar", "start", "log", "polar-constant-mu"])
+def test_step_equals_scipy_dop853(mode, x, state, h, constant):
     prm, frc = _system()
+    if constant:
+        prm = _constant_friction(prm)
     y = np.array(state, dtype=float)
     f0 = np.empty(rk.NSTATE)
     assert rk.rhs(mode, x, y, prm, frc, f0)
-
-    def fun(t, z):
-        d = np.empty(rk.NSTATE)
-        assert rk.rhs(mode, t, z, prm, frc, d)
-        return d
-
     stages = np.empty((dop.N_STAGES + 1, rk.NSTATE))
-    expected, f_expected = rk_step(fun, x, y, f0, h, dop.A[:dop.N_STAGES, :dop.N_STAGES], dop.B,
-                                   dop.C[:dop.N_STAGES], stages)
+    tableau = (dop.A[:dop.N_STAGES, :dop.N_STAGES], dop.B, dop.C[:dop.N_STAGES])
+    if mode == rk.POLAR and prm[rk.P_VELDEP] > 0.0:
+        # µ(v) in POLAR form: the step carries q = e^(−a r) through its stages (q' = −a q ṙ, a ninth
+        # variable, from q = e^(−a r) at the start); the same tableau on that augmented system
+        a = prm[rk.P_RATE]
+
+        def fun(t, z):
+            d = np.empty(rk.NSTATE)
+            assert rk.rhs(mode, t, z[:rk.NSTATE], prm, frc, d)
+            mu = prm[rk.P_MU_FAST] - (prm[rk.P_MU_FAST] - prm[rk.P_MU_SLOW]) * z[-1]
+            n = frc[4] + frc[5] * t
+            # rhs used e^(−a r): put µ(q) in its place in ṙ and the friction power
+            fr_exact = rk.friction_coefficient(z[7], prm) * n
+            d[7] += fr_exact - mu * n
+            d[5] += (mu * n - fr_exact) * z[7]
+            return np.append(d, -a * z[-1] * d[7])
+
+        z0 = np.append(y, np.exp(-a * y[7]))
+        stages9 = np.empty((dop.N_STAGES + 1, rk.NSTATE + 1))
+        z_new, _ = rk_step(fun, x, z0, fun(x, z0), h, *tableau, stages9)
+        expected = z_new[:rk.NSTATE]
+        stages[:] = stages9[:, :rk.NSTATE]
+        f_expected = np.empty(rk.NSTATE)  # the step ends on the exact form's derivative
+        assert rk.rhs(mode, x + h, expected, prm, frc, f_expected)
+        # and the augmented method is the plain one to within its own error (≈ err·tolerance)
+        plain = rk_step(lambda t, z: _rhs(mode, t, z, prm, frc), x, y, f0, h, *tableau,
+                        np.empty((dop.N_STAGES + 1, rk.NSTATE)))[0]
+        np.testing.assert_allclose(expected, plain, rtol=0, atol=1e-12)
+    else:
+        expected, f_expected = rk_step(lambda t, z: _rhs(mode, t, z, prm, frc), x, y, f0, h, *tableau, stages)
     rtol = 1e-9
     atol = np.full(rk.NSTATE, 1e-12)
     atol[7] = np.inf if mode in (rk.CARTESIAN, rk.START) else 1e-12
@@ -85,6 +116,12 @@ def test_step_equals_scipy_dop853(mode, x, state, h):
     np.testing.assert_allclose(fnew, f_expected, rtol=1e-12, atol=1e-15)
     assert err == pytest.approx(err_expected, rel=1e-6)
     assert 1e-4 < err_expected < 1.0
+
+
+def _rhs(mode, t, z, prm, frc):
+    d = np.empty(rk.NSTATE)
+    assert rk.rhs(mode, t, z, prm, frc, d)
+    return d
 
 
 def test_step_refuses_a_stage_outside_the_form():
