@@ -115,7 +115,7 @@ def _combination(coefficients, stages, j):
 
 def _step(name: str, out: list[str], auxiliary: bool = False) -> None:
     """One step function, with the form ``name`` (a constant of planar_rk) fixed: every stage
-    calls that form's own right-hand side (``derivative_polar`` …), which LLVM inlines.
+    calls that form's own right-hand side (``derivative_polar`` …), which numba inlines.
 
     ``auxiliary`` (POLAR with µ(v) only): q = e^{−a r} is carried through the stages as a ninth
     variable (q' = −a q ṙ, from q = e^{−a r} at the step start), so that a stage needs no ``exp``
