@@ -231,17 +231,7 @@ def derivative_polar(x, x1, x2, y2, y3, y7, prm, frc):
     """:func:`derivative` in POLAR form: speed r (component 7) and direction e = V/|V|
     (components 2, 3, as in LOG form); e' = (F − (e·F) e)/r, the direction's relaxation
     rate e·F/r is the stiff mode."""
-    r = y7
-    if not r > 0.0:
-        return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    c = prm[P_C]
-    axx, ayy, nn, kap, kdot, fx, fy = forcing(x, x1, x2, prm, frc)
-    pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
-    fr = friction_coefficient(r, prm) * nn if nn > 0.0 else 0.0
-    ef = y2 * fx + y3 * fy
-    ir = 1.0 / r
-    return (True, r * y2, r * y3, (fx - ef * y2) * ir, (fy - ef * y3) * ir, -(axx * y2 + ayy * y3) * r + pin,
-            fr * r, c * r * r, ef - fr - c * r)
+    return polar_with_friction(friction_coefficient(y7, prm), x, x1, x2, y2, y3, y7, prm, frc)
 
 
 @njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
@@ -249,18 +239,26 @@ def derivative_polar_q(x, x1, x2, y2, y3, y7, q, prm, frc):
     """:func:`derivative_polar` for µ(v) with q = e^{−a r} given (an auxiliary variable of the
     step, q' = −a q ṙ): µ = µ_fast − (µ_fast − µ_slow) q without an ``exp``, which costs ≈ 20 % of
     a µ(v) record otherwise (docs/planar.md).  Returns the derivative and q'."""
+    ok, d0, d1, d2, d3, d4, d5, d6, d7 = polar_with_friction(
+        prm[P_MU_FAST] - (prm[P_MU_FAST] - prm[P_MU_SLOW]) * q, x, x1, x2, y2, y3, y7, prm, frc)
+    return ok, d0, d1, d2, d3, d4, d5, d6, d7, -prm[P_RATE] * q * d7
+
+
+@njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
+def polar_with_friction(mu, x, x1, x2, y2, y3, y7, prm, frc):
+    """The POLAR form's derivative (:func:`derivative_polar`) with the friction coefficient µ
+    given: the one body of :func:`derivative_polar` and :func:`derivative_polar_q`."""
     r = y7
     if not r > 0.0:
-        return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     c = prm[P_C]
     axx, ayy, nn, kap, kdot, fx, fy = forcing(x, x1, x2, prm, frc)
     pin = 0.5 * kdot * (x1 * x1 + x2 * x2)
-    fr = (prm[P_MU_FAST] - (prm[P_MU_FAST] - prm[P_MU_SLOW]) * q) * nn if nn > 0.0 else 0.0
+    fr = mu * nn if nn > 0.0 else 0.0
     ef = y2 * fx + y3 * fy
     ir = 1.0 / r
-    rdot = ef - fr - c * r
     return (True, r * y2, r * y3, (fx - ef * y2) * ir, (fy - ef * y3) * ir, -(axx * y2 + ayy * y3) * r + pin,
-            fr * r, c * r * r, rdot, -prm[P_RATE] * q * rdot)
+            fr * r, c * r * r, ef - fr - c * r)
 
 
 @njit(cache=True, fastmath=FASTMATH, _nrt=False, inline="always")
