@@ -459,12 +459,19 @@ def hermite_crossing(y0, d0, y1, d1, target):
 
 @njit(cache=True, _nrt=False)
 def coast_to_rest(tau, y, r, rdot, target, prm, frc):
-    """The last speed r [m/s] of a stop in closed form, at the constant deceleration rdot < 0 [m/s²].
+    """The last speed r [m/s] of a stop in closed form: r(t) = r + ṙ t + ½ r̈ t², direction e fixed.
 
-    ``y[2], y[3]`` hold the direction e = V/|V|; X and the energies advance by the
-    time to rest r/(−rdot) (at most to ``target``): X by ½ r e dt, the input energy by the
-    ground's work and ½κ'|X|² dt at the mid-point, the friction and viscous energies by
-    µ(0) n ½ r dt and c r² dt/3.  The error is O(r³) in X and the energies.
+    ``y[2], y[3]`` hold the direction e = V/|V|, ``rdot`` < 0 the deceleration [m/s²].  The speed's
+    second derivative is r̈ = |F⊥|²/r + e·Ḟ − d(µn)/dt − c ṙ, with Ḟ = −κ'X − κ r e − a_g' (F⊥ the
+    part of F across e; µ at the speed r, n and a_g linear in the interval).  The time to rest,
+    the smallest root, is exact for a collinear motion under linear forcing (no spring, no
+    dashpot); otherwise it errs by about the duration r/|ṙ| times (turn² + O(r)), and X by
+    r²/|ṙ| times the turn, where turn = |de/ds| = |F⊥|/|ṙ| (tests/solver/test_planar_events.py):
+    the kernel calls it at r = ``R_MIN_FACTOR`` of the speed scale (isolator.solver.planar) once
+    the direction has settled (:func:`settled`), at a hundredth of that otherwise.
+    X advances by the distance D = r t + ½ṙ t² + r̈ t³/6 along e (at most to ``target``), the
+    input energy by the ground's work −a_g·e D at the mid-time and ½κ'|X|² t at the mid-point,
+    the friction and viscous energies by µ(0) n D and c r² t/3.
 
     Returns
     -------
@@ -473,15 +480,26 @@ def coast_to_rest(tau, y, r, rdot, target, prm, frc):
     """
     if not rdot < 0.0:
         return 0.0
-    dtt = min(r / (-rdot), target - tau)
-    axx, ayy, nn, _, kdot, _, _ = forcing(tau, y[0], y[1], prm, frc)
-    half = 0.5 * r * dtt
+    axx, ayy, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    e1 = y[2]
+    e2 = y[3]
+    f_across = e1 * fy - e2 * fx
+    rddot = f_across * f_across / r - kdot * (e1 * y[0] + e2 * y[1]) - kap * r - (e1 * frc[1] + e2 * frc[3]) \
+        - prm[P_C] * rdot
+    if nn > 0.0 and frc[6] > 0.0:
+        rddot -= friction_slope(r, prm) * rdot * nn + friction_coefficient(r, prm) * frc[5]
+    # smallest positive root of r + ṙt + ½r̈t² (the stable form); a discriminant kept ≥ ṙ²/4 bounds
+    # the time at 4/3 of the constant-deceleration one where r̈ > 0 would keep the speed from zero
+    disc = max(rdot * rdot - 2.0 * rddot * r, 0.25 * rdot * rdot)
+    dtt = min(2.0 * r / (-rdot + math.sqrt(disc)), target - tau)
+    dist = max(dtt * (r + dtt * (0.5 * rdot + dtt * rddot / 6.0)), 0.0)
+    tm = tau + 0.5 * dtt
     # the work of the vertical motion ½κ'|X|² dt, at the mid-point position
-    y[4] += 0.5 * kdot * ((y[0] + 0.5 * half * y[2]) ** 2 + (y[1] + 0.5 * half * y[3]) ** 2) * dtt
-    y[0] += half * y[2]
-    y[1] += half * y[3]
-    y[4] -= (axx * y[2] + ayy * y[3]) * half
-    y[5] += friction_coefficient(0.0, prm) * max(nn, 0.0) * half
+    y[4] += 0.5 * kdot * ((y[0] + 0.5 * dist * e1) ** 2 + (y[1] + 0.5 * dist * e2) ** 2) * dtt
+    y[0] += dist * e1
+    y[1] += dist * e2
+    y[4] -= ((frc[0] + frc[1] * tm) * e1 + (frc[2] + frc[3] * tm) * e2) * dist
+    y[5] += friction_coefficient(0.0, prm) * max(nn, 0.0) * dist
     y[6] += prm[P_C] * r * r * dtt / 3.0
     return dtt
 
@@ -543,6 +561,26 @@ def mode_of(phase):
 def force_scale(tau, y, r, prm, frc):
     """|F| + µ(r) n [m/s²]: the force scale of the stop and LOG-entry tests."""
     return force_norm(tau, y, prm, frc) + friction_force(tau, r, prm, frc)
+
+
+#: a stop's direction has settled when it turns by less than this angle per unit of ln r [rad]
+SETTLED_TURN = 0.01
+
+
+@njit(cache=True, _nrt=False)
+def settled(tau, y, f, prm, frc):
+    """Has the direction of a stop (LOG form: e = (y[2], y[3]), ``f`` = d/ds) settled?
+
+    True when it turns by less than :data:`SETTLED_TURN` per unit of s = ln r (|de/ds| = |F⊥|/|ṙ|)
+    and the force F = −κX − a_g is not behind the motion (e·F ≥ 0: behind, e sits near its
+    unstable equilibrium −F/|F| and turns ever faster as r falls).  Then the closed-form finish
+    along a fixed direction (:func:`coast_to_rest`) errs in the stop instant by about its duration
+    r/|ṙ| times turn², and in X by O(r²) times that.
+    """
+    if norm(f[2], f[3]) > SETTLED_TURN:
+        return False
+    _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return y[2] * fx + y[3] * fy >= 0.0
 
 
 @njit(cache=True, _nrt=False)

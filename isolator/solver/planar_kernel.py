@@ -13,9 +13,9 @@ reading:
 * a start from rest runs in the START form, then in the POLAR form (speed and direction, every
   slide); a decelerating block whose predicted stop is within about two steps hands over,
   through the Cartesian form (which also carries free flight), to the LOG form and
-  reaches V = 0 exactly (to r = ``r_min``, then the last bit at constant
-  deceleration, an error of order r_min³ in X and the energies; the stop instant τ
-  is error-controlled like X); there the stick test decides: stick, or restart in the direction
+  reaches V = 0 exactly (to r = ``r_min``, or a hundredth of it while the direction still
+  turns, then the last bit in closed form with the speed quadratic in time; the stop
+  instant τ is error-controlled like X); there the stick test decides: stick, or restart in the direction
   of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
 * peaks of |X| and |V| between step ends are located (secant on X·V and V·A with
   DOP853 sub-steps from the step start);
@@ -57,6 +57,7 @@ from isolator.solver.planar_events import (
     peak_value,
     rate_of_peak,
     record_event,
+    settled,
     start_lag,
     stuck_until,
     tangent_bound,
@@ -123,6 +124,11 @@ _LAG_MAX = 1e-3
 #: each costs 255 ns against 430 (docs/planar.md, "Speed"); the Cartesian form is left for flight and as
 #: the hand-over to the LOG form
 _STABLE_POLAR = 5.0
+#: a stop whose direction has not settled at r_min (:func:`settled`) is finished in closed form from this
+#: fraction of r_min instead: its direction still turns by a finite angle per unit of ln r, which the
+#: finish along a fixed direction turns into an error of the stop instant ∝ r_min (measured: 6e-8 s on
+#: Hector Mine at r_min, 4e-15 s at this fraction of it).  So is a stop reached outside the LOG form
+_R_MIN_BEHIND = 1e-2
 #: the speed and direction of a slide (POLAR form) are held to this multiple of the velocity tolerance
 #: rtol·max|V|, X and the energies to rtol itself: 10-17 % fewer steps on the bench pairs, while every
 #: peak and residual stays within 5.5e-11 of the reference's peak (`python -m benchmarks.planar_accuracy`)
@@ -177,7 +183,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     r_min = scales[SC_R_MIN]
     r_switch = scales[SC_R_SWITCH]
     r_switch_lo = scales[SC_R_SWITCH_LO]
+    r_floor = r_min * _R_MIN_BEHIND  #: the finish of a stop outside the LOG form, and of an unsettled one
     s_end = math.log(r_min)
+    s_floor = math.log(r_floor)
+    s_stop = s_end  #: where the current approach to a stop hands over to the closed-form finish
     peak_x = 0.0
     peak_v = 0.0
     peak_a = norm(ax[0], ay[0])
@@ -335,8 +344,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 r = math.exp(x)
                 rdot = r / f[7]
                 fscale = force_scale(y[7], y, r, prm, frc)
-                if x <= s_end or rdot > -_LEAVE * fscale:
-                    if x > s_end:
+                if x <= s_stop and s_stop > s_floor and not settled(y[7], y, f, prm, frc):
+                    s_stop = s_floor  # the direction still turns: on to the old, deeper finish
+                if x <= s_stop or rdot > -_LEAVE * fscale:
+                    if x > s_stop:
                         # the speed no longer falls fast: back to Cartesian form (a turn, not a stop)
                         y[2] *= r
                         y[3] *= r
@@ -346,7 +357,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         h_sugg = r / max(fscale, 1e-300)
                         continue
                 else:
-                    ds = max(ds_sugg, s_end - x)
+                    ds = max(ds_sugg, s_stop - x)
                     atol[7] = rtol * hi  # the stop instant is error-controlled too
                     ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
                     n_steps += 1
@@ -395,9 +406,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         # no growth right after a rejection (Hairer & Wanner's facmax = 1)
                         ds_sugg = ds * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
                     just_rejected = False
-                    if hit or x > s_end:
+                    if hit or x > s_stop:
                         continue
-                # the stop: the last speed r_min in closed form (constant deceleration)
+                    if s_stop > s_floor and not settled(y[7], y, f, prm, frc):
+                        s_stop = s_floor  # the direction still turns: on to the old, deeper finish
+                        continue
+                # the stop: the last speed r_min in closed form (the speed quadratic in time)
                 r = math.exp(x)
                 dtt = coast_to_rest(tau, y, r, r / f[7], target, prm, frc)
                 tau += dtt
@@ -416,7 +430,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = f[7]
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
-                    if (r <= r_min and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
+                    if (r <= r_floor and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < 2.0 * (-rdot) * h_try):
                         # a stop, or the approach to one: the Cartesian branch takes over (and, until it has
                         # taken a step, does not hand back: rounding must not ping-pong)
                         polar_ok = False
@@ -431,7 +445,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fm = force_norm(tau, y, prm, frc)
                     fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
-                    if r <= r_min and rdot <= 0.0:
+                    if r <= r_floor and rdot <= 0.0:
                         if r > 0.0:
                             # the last speed in closed form, as at the end of the LOG form (a slide can get
                             # here when the approach to the stop was never predicted two steps ahead)
@@ -467,6 +481,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         x = math.log(r)
                         if rhs(LOG, x, y, prm, frc, f):
                             phase = PH_APPROACH
+                            s_stop = s_end
                             ds_sugg = -0.5
                             continue
                         y[2] *= r
