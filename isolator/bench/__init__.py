@@ -11,7 +11,8 @@ recorded accelerogram) and ``setting`` the method's knob (time step [s] or relat
 tolerance [-]).  The output carries ``X`` and ``X'`` at the case's output times, the
 peak (records) or amplitude A (harmonic), the residual displacement and the
 slip-time ratio ζ.  :func:`run_bench` times every method (median of several runs in
-one process) and measures its errors against the reference:
+one process; on a 2-D case ours and OpenSees at the record's dt in alternation, so that
+their ratio comes from one stretch of time) and measures its errors against the reference:
 
 * **baselines** are compared with our exact solver;
 * **our solver** is compared with the tightest event-located ``solve_ivp`` run

@@ -82,6 +82,37 @@ def time_method(function, case, setting, repeats: int, budget_s: float = 2.0, mi
     return statistics.median(times), out
 
 
+#: our runs between two runs of the baseline in :func:`time_interleaved`
+OURS_PER_BASELINE_RUN = 10
+
+
+def time_interleaved(ours, baseline, case, setting, rounds: int, ours_per_round: int = OURS_PER_BASELINE_RUN):
+    """Median wall times [s] of ``ours`` and ``baseline`` (at ``setting``), timed in alternation.
+
+    Each of ``rounds`` rounds runs ours ``ours_per_round`` times, then the baseline once: both
+    medians come from the same stretch of time, so their ratio does not carry the drift of a
+    shared machine's speed between two separate measurements (it moved by ±25 % from minute to
+    minute on the 2-core bench machine, docs/planar.md).
+
+    Returns
+    -------
+    tuple
+        ``(ours_seconds, ours_output, ours_runs, baseline_seconds, baseline_output, baseline_runs)``.
+    """
+    ours_times, base_times = [], []
+    ours_out = base_out = None
+    for _ in range(max(1, rounds)):
+        for _ in range(max(1, ours_per_round)):
+            start = time.perf_counter()
+            ours_out = ours(case, None)
+            ours_times.append(time.perf_counter() - start)
+        start = time.perf_counter()
+        base_out = baseline(case, setting)
+        base_times.append(time.perf_counter() - start)
+    return (statistics.median(ours_times), ours_out, len(ours_times),
+            statistics.median(base_times), base_out, len(base_times))
+
+
 def warm_up() -> None:
     """Compile or load every numba function once, so that timings measure solving."""
     case = harmonic_case("warm-up", 1.5, 1.0, 0.5, 0.25, 0.2, n_periods=1)
@@ -108,7 +139,16 @@ def _failed_row(method: str, case, setting, note: str) -> dict:
 def run_pair_case(case, quick: bool, repeats: int, progress: Callable[[str], None] | None = None) -> list[dict]:
     """The rows of one 2-D case: ours and every baseline against the truth (the independent reference)."""
     runs: list[int] = []
-    seconds, ours = time_method(planar_solver, case, None, repeats, count=runs)
+    headline = next((m for m in pair_methods(quick) if m.name == OPENSEES), None)
+    timed = {}  #: (method, setting) -> (seconds, output, runs) of the baseline timed alongside ours
+    if headline is not None and OPENSEES_HEADLINE_SETTING in headline.settings and headline.available()[0]:
+        # ours and OpenSees at the record's dt in alternation: the headline ratio from one stretch of time
+        seconds, ours, n_ours, base_seconds, base_out, n_base = time_interleaved(
+            planar_solver, headline.function, case, OPENSEES_HEADLINE_SETTING, repeats)
+        runs.append(n_ours)
+        timed[(OPENSEES, OPENSEES_HEADLINE_SETTING)] = (base_seconds, base_out, n_base)
+    else:
+        seconds, ours = time_method(planar_solver, case, None, repeats, count=runs)
     truth_seconds, truth = time_method(reference_solver, case, None, 1)
     rows = [{"method": PAIR_OURS, "case": case.name, "setting": "-", "seconds": seconds, "runs": runs[-1],
              **pair_errors(ours, truth), "n_events": ours.n_events},
@@ -123,7 +163,11 @@ def run_pair_case(case, quick: bool, repeats: int, progress: Callable[[str], Non
             if not available:
                 rows.append(_failed_row(method.name, case, setting, why))
                 continue
-            seconds, out = time_method(method.function, case, setting, repeats, count=runs)
+            if (method.name, setting) in timed:
+                seconds, out, n_runs = timed[(method.name, setting)]
+                runs.append(n_runs)
+            else:
+                seconds, out = time_method(method.function, case, setting, repeats, count=runs)
             rows.append({"method": method.name, "case": case.name, "setting": setting, "seconds": seconds,
                          "runs": runs[-1], **pair_errors(out, truth), "n_events": out.n_events})
             if progress:

@@ -94,7 +94,7 @@ def opensees_summary(pareto: list[dict]) -> list[str]:
     """Summary lines of the 2-D cases: ours against OpenSees at the record's dt, measured in one run.
 
     One line per 2-D case, then the medians over the cases (time ratio = OpenSees'
-    median time over ours; error ratio = OpenSees' trajectory (peak) error over ours,
+    median time over ours, the two timed in alternation where OpenSees runs; error ratio = OpenSees' trajectory (peak) error over ours,
     both against the independent reference).
     """
     pairs = [p for p in pareto if "opensees_time_ratio" in p]
@@ -107,7 +107,7 @@ def opensees_summary(pareto: list[dict]) -> list[str]:
     for p in ran:
         lines.append(f"2-D {p['case']}: ours {p['seconds'] * 1e3:.3g} ms (median of {p.get('ours_runs')}), "
                      f"{_speed_words(1.0 / p['opensees_time_ratio'])} than OpenSees at the record's dt "
-                     f"(median of {p.get('opensees_runs')}), trajectory error {p['error']:.1e}: "
+                     f"(median of {p.get('opensees_runs')}, interleaved with ours), trajectory error {p['error']:.1e}: "
                      f"{p['opensees_error_ratio']:.2g}× lower (peak: {p['opensees_peak_error_ratio']:.2g}× lower)")
     time_ratio = statistics.median(p["opensees_time_ratio"] for p in ran)
     error_ratio = statistics.median(p["opensees_error_ratio"] for p in ran)

@@ -10,6 +10,7 @@ import json
 import math
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -101,6 +102,35 @@ def test_without_openseespy_the_rows_say_so_and_the_bench_runs(monkeypatch, tmp_
         "2-D vs OpenSees: not measured (openseespy not installed, or it does not load here)"]
     assert "openseespy not installed" in bench.rows_markdown(rows)
     assert "openseespy not installed" in bench.rows_to_csv(rows)
+
+
+def test_ours_and_the_headline_baseline_are_timed_in_alternation(monkeypatch):
+    """The headline ratio comes from one stretch of time: ours ×10, OpenSees once, repeated; the
+    OpenSees dt/1 row reuses those runs (it is not timed a second time)."""
+    calls = []
+    t = np.arange(201) * 0.01
+    case = bench.pair_case("synthetic pair", 4.0 * np.sin(5.0 * t), 3.0 * np.cos(4.0 * t), 0.01)
+    ours_output = bench.planar_solver(case)
+
+    def ours(c, setting=None):
+        calls.append("o")
+        return ours_output
+
+    def theirs(c, setting):
+        calls.append(f"b{setting}")
+        return replace(ours_output, displacement=ours_output.displacement * 1.01)
+
+    methods = [replace(m, function=theirs, available=lambda: (True, "")) if m.name == bench.OPENSEES else m
+               for m in bench.pair_methods(True)]
+    monkeypatch.setattr(bench.harness, "pair_methods", lambda quick=False: methods)
+    monkeypatch.setattr(bench.harness, "planar_solver", ours)
+    rows = bench.run_pair_case(case, quick=True, repeats=3)
+    assert "".join(c[0] for c in calls) == ("o" * 10 + "b") * 3  # no further OpenSees run
+    assert set(c for c in calls if c != "o") == {"bdt/1"}
+    row = next(r for r in rows if r["method"] == bench.OPENSEES)
+    assert row["runs"] == 3 and rows[0]["runs"] == 30 and row["seconds"] > 0.0
+    _, _, n_ours, _, _, n_base = bench.harness.time_interleaved(ours, theirs, case, "dt/1", 2, 4)
+    assert (n_ours, n_base) == (8, 2)
 
 
 def test_bench_reference_is_the_tests_reference():
