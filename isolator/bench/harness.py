@@ -82,8 +82,9 @@ def time_method(function, case, setting, repeats: int, budget_s: float = 2.0, mi
     return statistics.median(times), out
 
 
-#: our runs between two runs of the baseline in :func:`time_interleaved`
-OURS_PER_BASELINE_RUN = 10
+#: our runs between two runs of the baseline in :func:`time_interleaved`, and its rounds per repeat
+OURS_PER_BASELINE_RUN = 5
+ROUNDS_PER_REPEAT = 2
 
 
 def time_interleaved(ours, baseline, case, setting, rounds: int, ours_per_round: int = OURS_PER_BASELINE_RUN):
@@ -92,7 +93,8 @@ def time_interleaved(ours, baseline, case, setting, rounds: int, ours_per_round:
     Each of ``rounds`` rounds runs ours ``ours_per_round`` times, then the baseline once: both
     medians come from the same stretch of time, so their ratio does not carry the drift of a
     shared machine's speed between two separate measurements (it moved by ±25 % from minute to
-    minute on the 2-core bench machine, docs/planar.md).
+    minute on the 2-core bench machine, in episodes of a tenth of a second to a few seconds;
+    docs/planar.md).
 
     Returns
     -------
@@ -144,7 +146,7 @@ def run_pair_case(case, quick: bool, repeats: int, progress: Callable[[str], Non
     if headline is not None and OPENSEES_HEADLINE_SETTING in headline.settings and headline.available()[0]:
         # ours and OpenSees at the record's dt in alternation: the headline ratio from one stretch of time
         seconds, ours, n_ours, base_seconds, base_out, n_base = time_interleaved(
-            planar_solver, headline.function, case, OPENSEES_HEADLINE_SETTING, repeats)
+            planar_solver, headline.function, case, OPENSEES_HEADLINE_SETTING, ROUNDS_PER_REPEAT * repeats)
         runs.append(n_ours)
         timed[(OPENSEES, OPENSEES_HEADLINE_SETTING)] = (base_seconds, base_out, n_base)
     else:
