@@ -192,8 +192,11 @@ def test_energy_balance_harmonic_with_spring_and_dashpot():
        c=st.floats(0.0, 3.0))
 def test_energy_balance_random(seed, mu_s, ratio, kappa, c):
     a = _synthetic_record(n=300, pga_g=0.5, seed=seed)
+    # steps of at most half a sample: a longer step can hide a stop and its restart (V = 0 twice), and
+    # the friction work of the missed stop breaks the balance (seed 214, c = 2.625: 3.4e-6, 22 events
+    # instead of 24)
     r = reference_record(a, 0.01, mu_static=mu_s, mu_kinetic=ratio * mu_s,
-                         stiffness_per_mass=kappa, damping_per_mass=c)
+                         stiffness_per_mass=kappa, damping_per_mass=c, max_step_s=0.005)
     lhs, rhs, _ = _balance(r)
     assert abs(lhs - rhs) <= 1e-8 * max(abs(lhs), 1e-12)
     # sticking states have zero velocity; stick condition holds at stick events
