@@ -15,7 +15,8 @@ reading:
   through the Cartesian form (which also carries free flight), to the LOG form and
   reaches V = 0 exactly (to r = ``r_min``, or a hundredth of it while the direction still
   turns, then the last bit in closed form with the speed quadratic in time; the stop
-  instant τ is error-controlled like X); there the stick test decides: stick, or restart in the direction
+  instant τ is error-controlled in the LOG form, and carries the POLAR speed's tolerance
+  over the deceleration from before it: ~1e-9–1e-8 s); there the stick test decides: stick, or restart in the direction
   of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
 * peaks of |X| and |V| between step ends are located (secant on X·V and V·A with
   DOP853 sub-steps from the step start);
@@ -117,7 +118,7 @@ _ENTER = 0.02
 _LEAVE = 0.01
 #: ... and when the stop is predicted within this many steps (|V| < AHEAD·|d|V|/dt|·h).  One rather than
 #: two: the LOG form's first steps, where the direction has not settled, are its most expensive (ABY
-#: 691 → 199 LOG steps, 7 % less time on PTS, 12 % on PTS µ(v), 2-5 % on ABY and YER); the stop's
+#: 691 → 199 LOG steps, 7 % less time on PTS, 13 % on PTS µ(v), 3 % on ABY and YER); the stop's
 #: instant is then as precise as the POLAR speed before it (≈ 1e-10 m/s over the deceleration: up to
 #: 9e-9 s on the bench pairs, against ≈ 2e-9 s), peaks, residuals and histories unchanged to 1e-11
 #: of the peak (docs/planar.md)
@@ -135,7 +136,7 @@ _STABLE_POLAR = 5.0
 #: fraction of r_min instead: its direction still turns by a finite angle per unit of ln r, which the
 #: finish along a fixed direction turns into an error of the stop instant ∝ r_min (measured: 6e-8 s on
 #: Hector Mine at r_min, 4e-15 s at this fraction of it).  So is a stop reached outside the LOG form
-_R_MIN_BEHIND = 1e-2
+_R_FLOOR_FRACTION = 1e-2
 #: the speed and direction of a slide (POLAR form) are held to this multiple of the velocity tolerance
 #: rtol·max|V|, X and the energies to rtol itself: 10-17 % fewer steps on the bench pairs, while every
 #: peak and residual stays within 5.5e-11 of the reference's peak (`python -m benchmarks.planar_accuracy`)
@@ -190,7 +191,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     r_min = scales[SC_R_MIN]
     r_switch = scales[SC_R_SWITCH]
     r_switch_lo = scales[SC_R_SWITCH_LO]
-    r_floor = r_min * _R_MIN_BEHIND  #: the finish of a stop outside the LOG form, and of an unsettled one
+    r_floor = r_min * _R_FLOOR_FRACTION  #: the finish of a stop outside the LOG form, and of an unsettled one
     s_end = math.log(r_min)
     s_floor = math.log(r_floor)
     s_stop = s_end  #: where the current approach to a stop hands over to the closed-form finish
