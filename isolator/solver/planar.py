@@ -52,10 +52,11 @@ DEFAULT_RTOL = 1e-11
 #: from R_SWITCH_LO_FACTOR on, the hand-over comes earlier where the slaved direction lags F by > 1e-3
 R_SWITCH_FACTOR = 1e-3
 R_SWITCH_LO_FACTOR = 1e-4
-#: LOG form → closed-form finish of a stop (the speed quadratic in time), as a fraction of the same
-#: speed: the finish errs by ~R_MIN_FACTOR³ of that speed times the sample step in X, and of the sample
-#: step in its duration.  1e-5 rather than 1e-7 (and a finish at constant deceleration): 3-5 % fewer
-#: steps, the bench pairs unchanged to 8e-13 of their peak (docs/planar.md)
+#: LOG form → closed-form finish of a stop (the speed quadratic in time, planar_events.coast_to_rest),
+#: as a fraction of the same speed, once the stop's direction has settled (planar_events.settled; a
+#: hundredth of it otherwise): the finish errs by its duration times the direction's turn² in the stop
+#: instant and by r²/|ṙ| times the turn in X.  1e-5 rather than 1e-7 (and a finish at constant
+#: deceleration): 4 % fewer steps, the bench pairs unchanged to 3e-14 of their peak (docs/planar.md)
 R_MIN_FACTOR = 1e-5
 
 _STATUS_MESSAGES = (
