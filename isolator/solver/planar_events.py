@@ -271,7 +271,7 @@ def acceleration_peak_rate(mode, x, y, d, prm, frc):
     frd = 0.0
     if frc[6] > 0.0 and nn > 0.0:
         fr = friction_coefficient(r, prm) * nn
-        frd = friction_slope(r, prm) * rdot * nn + friction_coefficient(r, prm) * frc[5]
+        frd = friction_rate(r, rdot, nn, prm, frc)
     c = prm[P_C]
     ad1 = -frd * e1 - fr * ed1 - kdot * y[0] - kap * v1 - c * vd1
     ad2 = -frd * e2 - fr * ed2 - kdot * y[1] - kap * v2 - c * vd2
@@ -486,8 +486,7 @@ def coast_to_rest(tau, y, r, rdot, target, prm, frc):
     f_across = e1 * fy - e2 * fx
     rddot = f_across * f_across / r - kdot * (e1 * y[0] + e2 * y[1]) - kap * r - (e1 * frc[1] + e2 * frc[3]) \
         - prm[P_C] * rdot
-    if nn > 0.0 and frc[6] > 0.0:
-        rddot -= friction_slope(r, prm) * rdot * nn + friction_coefficient(r, prm) * frc[5]
+    rddot -= friction_rate(r, rdot, nn, prm, frc)
     # smallest positive root of r + ṙt + ½r̈t² (the stable form); a discriminant kept ≥ ṙ²/4 bounds
     # the time at 4/3 of the constant-deceleration one where r̈ > 0 would keep the speed from zero
     disc = max(rdot * rdot - 2.0 * rddot * r, 0.25 * rdot * rdot)
@@ -575,12 +574,21 @@ def settled(tau, y, f, prm, frc):
     and the force F = −κX − a_g is not behind the motion (e·F ≥ 0: behind, e sits near its
     unstable equilibrium −F/|F| and turns ever faster as r falls).  Then the closed-form finish
     along a fixed direction (:func:`coast_to_rest`) errs in the stop instant by about its duration
-    r/|ṙ| times turn², and in X by O(r²) times that.
+    r/|ṙ| times turn², and in X by r²/|ṙ| times the turn.
     """
     if norm(f[2], f[3]) > SETTLED_TURN:
         return False
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
     return y[2] * fx + y[3] * fy >= 0.0
+
+
+@njit(cache=True, _nrt=False)
+def friction_rate(r, rdot, nn, prm, frc):
+    """d(µ(r) n)/dt [m/s³] of a block sliding at speed r [m/s] with ṙ = ``rdot`` [m/s²] under the
+    normal acceleration ``nn`` [m/s²] (its rate is ``frc[5]``); 0 out of contact."""
+    if frc[6] > 0.0 and nn > 0.0:
+        return friction_slope(r, prm) * rdot * nn + friction_coefficient(r, prm) * frc[5]
+    return 0.0
 
 
 @njit(cache=True, _nrt=False)
