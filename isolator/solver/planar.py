@@ -251,6 +251,7 @@ def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per
 
 
 def _samples(name: str, values, n: int | None = None) -> np.ndarray:
+    # finiteness is checked with the record's scan (:func:`_not_finite` names the array)
     arr = np.ascontiguousarray(values, dtype=np.float64)
     if arr.ndim != 1:
         raise RecordInputError(f"{name} must be one-dimensional, got shape {arr.shape}")
@@ -258,9 +259,13 @@ def _samples(name: str, values, n: int | None = None) -> np.ndarray:
         raise RecordInputError(f"{name}: a record needs at least two samples")
     if n is not None and arr.size != n:
         raise RecordInputError(f"{name} has {arr.size} samples, the first component {n}")
-    if not np.all(np.isfinite(arr)):
-        raise RecordInputError(f"{name} holds NaN or infinite values")
     return arr
+
+
+def _not_finite(**arrays) -> RecordInputError:
+    """The error for the first of ``arrays`` that holds NaN or infinite values."""
+    name = next((k for k, v in arrays.items() if v is not None and not np.all(np.isfinite(v))), "the record")
+    return RecordInputError(f"{name} holds NaN or infinite values")
 
 
 def _times(n: int, dt_s, time_s) -> np.ndarray:
@@ -345,10 +350,12 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         _warm_up()
     n = ax.size
     nz = np.full(n, g) if az is None else g + az
-    pga = math.sqrt(float(np.max(ax * ax + ay * ay)))
+    finite, pga2, n_max, has_y = _pk.scan_record(ax, ay, nz)
+    if not finite:
+        raise _not_finite(ax_m_s2=ax, ay_m_s2=ay, az_m_s2=az)
+    pga = math.sqrt(pga2)
     # the speed the larger of µs g and the PGA gives in the shortest time scale of the
     # problem: the sample step, or the system's own 1/ω and 1/c when they are shorter
-    n_max = g if az is None else float(np.max(nz))
     kappa_max = n_max * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
     t_scale = float(np.median(np.diff(times)) if time_s is not None else times[1] - times[0])
     if kappa_max > 0.0:
@@ -369,11 +376,12 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     out_en = np.empty((3, n))
     summary = np.zeros(_pl.S_SIZE)
     capacity = 64 + n // 4
+    local_times = times if times[0] == 0.0 else times - times[0]
     while True:
         ev_t = np.empty(capacity)
         ev_k = np.empty(capacity, dtype=np.int8)
         start = time.perf_counter()
-        _pk.planar_kernel(times - times[0], ax, ay, nz, prm, scales, float(rtol), refresh, out_x, out_v, out_a,
+        _pk.planar_kernel(local_times, ax, ay, nz, prm, scales, float(rtol), refresh, out_x, out_v, out_a,
                           out_en, ev_t, ev_k, summary)
         elapsed = time.perf_counter() - start
         n_events = int(summary[_pl.S_N_EVENTS])
@@ -387,7 +395,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     e_in, e_f, e_v = (float(summary[j]) for j in (_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = 0.5 * kappa_end * float(out_x[-1, 0] ** 2 + out_x[-1, 1] ** 2)
-    model, reason = select_model(has_y=bool(ay.any()), has_z=az is not None,
+    model, reason = select_model(has_y=has_y, has_z=az is not None,
                                  velocity_dependent=velocity_dependent)
     return PairResponse(
         time_s=times,

@@ -20,6 +20,7 @@ from isolator.solver.planar import (
     simulate_motion,
     simulate_pair,
 )
+from isolator.solver.planar_kernel import scan_record
 from isolator.solver.record import RecordInputError, Response, simulate_record
 from isolator.solver.system import InvalidSystemError
 from tests.planar_reference import reference_pair
@@ -363,6 +364,25 @@ def test_invalid_records_raise_record_errors():
         simulate_pair(np.zeros(5), np.zeros(5), 0.01, az_m_s2=np.full(5, np.nan), mu_static=0.05)
     with pytest.raises(RecordInputError, match="increasing"):
         simulate_pair(np.zeros(3), np.zeros(3), time_s=[0.0, 0.02, 0.01], mu_static=0.05)
+
+
+@pytest.mark.parametrize("bad", ["ax_m_s2", "ay_m_s2", "az_m_s2"])
+@pytest.mark.parametrize("value", [np.nan, np.inf, -np.inf])
+def test_a_non_finite_sample_is_named_by_its_component(bad, value):
+    # one pass over the record finds it (scan_record); the error names the array that holds it
+    arrays = {name: np.zeros(6) for name in ("ax_m_s2", "ay_m_s2", "az_m_s2")}
+    arrays[bad][4] = value
+    with pytest.raises(RecordInputError, match=f"{bad} holds NaN or infinite values"):
+        simulate_pair(arrays["ax_m_s2"], arrays["ay_m_s2"], 0.01, az_m_s2=arrays["az_m_s2"], mu_static=0.05)
+
+
+def test_the_record_scan_gives_the_pga_the_largest_normal_force_and_whether_a_y_moves():
+    ax = np.array([0.0, 3.0, -1.0, 0.5])
+    ay = np.array([0.0, 0.0, -4.0, 0.0])
+    nz = np.array([9.0, 10.5, 8.0, 9.5])
+    assert scan_record(ax, ay, nz) == (True, 17.0, 10.5, True)
+    assert scan_record(ax, np.zeros(4), nz)[3] is False
+    assert scan_record(ax, ay, np.array([9.0, np.nan, 8.0, 9.5]))[0] is False
 
 
 def test_frequent_uplift_keeps_the_energy_balance_and_pairs_uplifts_with_landings():
