@@ -94,8 +94,8 @@ def opensees_summary(pareto: list[dict]) -> list[str]:
     """Summary lines of the 2-D cases: ours against OpenSees at the record's dt, measured in one run.
 
     One line per 2-D case, then the medians over the cases (time ratio = OpenSees'
-    median time over ours, the two timed in alternation where OpenSees runs; error ratio = OpenSees' trajectory (peak) error over ours,
-    both against the independent reference).
+    median time over ours, the two timed in alternation where OpenSees runs; error ratio =
+    OpenSees' trajectory (peak) error over ours, both against the independent reference).
     """
     pairs = [p for p in pareto if "opensees_time_ratio" in p]
     if not pairs:

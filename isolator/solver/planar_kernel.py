@@ -152,6 +152,13 @@ _R_FLOOR_FRACTION = 1e-2
 _POLAR_VELOCITY_TOL = 10.0
 
 
+@njit(cache=True, _nrt=False, inline="always")
+def _stop_ahead(r, rdot, fscale, h):
+    """Does a slide at speed r [m/s] decelerate fast (ṙ < −_ENTER·(|F| + µn)) towards a stop predicted
+    within _AHEAD steps of h [s]?  Then the LOG form takes over (from POLAR form, through the Cartesian)."""
+    return rdot < -_ENTER * fscale and r < _AHEAD * (-rdot) * h
+
+
 @njit(cache=True, _nrt=False)
 def scan_record(ax, ay, nz):
     """One pass over a record before it is solved.
@@ -479,7 +486,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = f[7]
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
-                    if (r <= r_floor and rdot <= 0.0) or (rdot < -_ENTER * fscale and r < _AHEAD * (-rdot) * h_try):
+                    if (r <= r_floor and rdot <= 0.0) or _stop_ahead(r, rdot, fscale, h_try):
                         # a stop, or the approach to one: the Cartesian branch takes over (and, until it has
                         # taken a step, does not hand back: rounding must not ping-pong)
                         polar_ok = False
@@ -524,7 +531,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         rhs(START, tau, y, prm, frc, f)
                         continue
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
-                    if rdot < -_ENTER * fscale and r < _AHEAD * (-rdot) * h_try:
+                    if _stop_ahead(r, rdot, fscale, h_try):
                         y[2] /= r
                         y[3] /= r
                         y[7] = tau
@@ -538,7 +545,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         y[3] *= r
                         x = tau
                         rhs(CARTESIAN, tau, y, prm, frc, f)
-                    elif polar_ok and not (rdot < -_ENTER * fscale and r < _AHEAD * (-rdot) * h_try):
+                    elif polar_ok:
                         y[2] /= r
                         y[3] /= r
                         y[7] = r
