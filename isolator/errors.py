@@ -24,14 +24,26 @@ Hierarchy::
     │   ├── CountsError               integer counts without a response or a counts factor
     │   ├── InstrumentResponseError   the instrument response cannot be removed
     │   └── RecordOptionError         a reading option that is wrong in itself (``parameter`` says which)
+    ├── MotionError                   a ground-motion operation that cannot be done (array, processing, scaling)
     ├── UnitsError                    an acceleration unit isolator does not know
     ├── DesignError                   a design file or mapping that is not a valid isolator
     ├── InvalidSystemError            solver parameters out of their domain (µk > µs, α ≤ 0 …)
     ├── RecordInputError              arrays the solver cannot take (non-uniform time, NaN …)
-    └── BatchError                    a batch that cannot be planned (designs file, record patterns, grid)
+    ├── BatchError                    a batch that cannot be planned (designs file, record patterns, grid)
+    ├── ReviewError                   a review input (parameter, code, scaling, period range) that cannot be used
+    │   ├── TargetError               an invalid target spectrum file
+    │   └── SuiteError                an invalid suite (file, pair, duplicate, mismatched components)
+    └── CacheEntryError               a damaged regime-map cache entry (never reaches the user: the map is recomputed)
+
+:func:`one_line` is the one place a message (or an exception's text) is folded onto one line.
 """
 
 from __future__ import annotations
+
+
+def one_line(message) -> str:
+    """``message`` (any object: an exception, a string) as one line, runs of white space as one blank [-]."""
+    return " ".join(str(message).split())
 
 
 class IsolatorError(ValueError):
@@ -41,7 +53,7 @@ class IsolatorError(ValueError):
     parameter: str = ""
 
     def __init__(self, message: str = "", *, parameter: str | None = None):
-        super().__init__(" ".join(str(message).split()))
+        super().__init__(one_line(message))
         if parameter is not None:
             self.parameter = parameter
 
@@ -172,3 +184,25 @@ class RecordInputError(IsolatorError):
 
 class BatchError(IsolatorError):
     """A batch that cannot be planned: designs file, record patterns, grid specification, scheduler."""
+
+
+class MotionError(IsolatorError):
+    """A ground-motion operation that cannot be done: an array that is not a record, a processing
+    parameter out of range (band-pass corners, resampling step, trim window), a filter on unequal
+    steps, a scaling target outside [1e-6 g, 50 g] or a record of zeros to scale."""
+
+
+class ReviewError(IsolatorError):
+    """A review input (target, suite, parameter, code, scaling method) that cannot be used."""
+
+
+class TargetError(ReviewError):
+    """An invalid target spectrum file."""
+
+
+class SuiteError(ReviewError):
+    """An invalid suite (file, pair, duplicate, mismatched components)."""
+
+
+class CacheEntryError(IsolatorError):
+    """A damaged or foreign regime-map cache entry; the map is recomputed (never shown to the user)."""

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from isolator.atomic import atomic_path
+from isolator.errors import CacheEntryError
 from isolator.metrics import FORCE_NAMES
 from isolator.metrics import REGIMES as REGIME_NAMES
 
@@ -193,10 +194,6 @@ class RegimeMap:
         if rmap.content_key() != stored_key:
             raise CacheEntryError("content key does not match its arrays")
         return rmap
-
-
-class CacheEntryError(ValueError):
-    """A cached map that is damaged or does not hold what its name says (it is recomputed)."""
 
 
 _ARRAY_KINDS = {"k": "f", "alpha": "f", "amplitude": "f", "zeta": "f", "rho_ev": "f", "rho_vf": "f",

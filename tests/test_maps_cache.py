@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from isolator.maps import CacheEntryError, RegimeMap, cache_dir, regime_map
+from isolator.errors import CacheEntryError
+from isolator.maps import RegimeMap, cache_dir, regime_map
 from isolator.parallel import available_cores, capped_workers
 
 FRAME = {"k_range": (0.0, 2.0), "alpha_range": (0.0, 4.0), "n_k": 8, "n_alpha": 8}

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from isolator.batch.plan import BatchError, Task, _one_line
+from isolator.batch.plan import BatchError, Task
 from isolator.batch.worker import run_task
+from isolator.errors import one_line
 from isolator.parallel import process_pool, warm_up
 
 
@@ -92,7 +93,7 @@ def _iterate_dask(tasks: list[Task], address: str, function=run_task):
     try:
         client = Client(address, timeout=10, security=security)
     except (OSError, TimeoutError, ValueError) as err:
-        raise BatchError(f"scheduler {address}: cannot connect ({_one_line(err)})", parameter="scheduler") from None
+        raise BatchError(f"scheduler {address}: cannot connect ({one_line(err)})", parameter="scheduler") from None
     try:
         futures = {}
         for task in tasks:

@@ -2,15 +2,19 @@
 
 from __future__ import annotations
 
-import glob as _glob
 import hashlib
 import itertools
 import json
 import math
 import os
-import re
 from dataclasses import dataclass
 from pathlib import Path
+
+from isolator.errors import BatchError, one_line
+
+# file discovery lives with the records (isolator.motion.files); its names stay importable from the batch
+from isolator.motion.components import label_is_vertical as is_vertical  # noqa: F401
+from isolator.motion.files import SET_COMPONENTS, expand_records, record_components, station_sets  # noqa: F401
 
 #: Numeric design keys a --grid may sweep.
 GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kinetic", "damping_Ns_per_m",
@@ -19,10 +23,6 @@ GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kineti
 #: Columns that measure time: they differ between two runs of the same batch.
 TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
 
-#: Files a folder holds that are never records (a batch's own lock and MAC files, and the checksum
-#: lists that travel with record folders, included).
-_NOT_RECORDS = re.compile(r"^(readme.*|(sha\d*sums|md5sums)(\.txt)?"
-                          r"|.*\.(md|json|toml|pdf|png|parquet|py|xml|zip|gz|lock|jsonl))$", re.IGNORECASE)
 #: Largest batch planned [rows]: 1,800 rows take ~7 s on 2 cores, so a million rows is about
 #: an hour; larger sweeps are refused before anything is allocated (split them).
 MAX_PLAN_ROWS = 1_000_000
@@ -31,11 +31,6 @@ MAX_PLAN_ROWS = 1_000_000
 ROW_SCHEMA_VERSION = 2
 
 
-from isolator.errors import BatchError  # noqa: E402,F401 - defined with the other typed errors
-
-
-def _one_line(message) -> str:
-    return " ".join(str(message).split())
 
 
 def parse_grid(spec: str) -> tuple[str, list[float]]:
@@ -150,7 +145,7 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
                 try:
                     Design.from_mapping(swept, source=label)
                 except DesignError as err:
-                    error = _one_line(err)
+                    error = one_line(err)
             else:
                 swept, error = {"value": mapping}, f"{label}: a design must be a table of keys"
             digest = _design_hash(swept)
@@ -160,183 +155,6 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
             cases.append(DesignCase(index=len(cases), file_index=file_index, mapping=swept, source=label,
                                     design_hash=digest, error=error))
     return cases
-
-
-def _is_output(path, outputs) -> bool:
-    """True if ``path`` is one of the batch's outputs, its part files, lock or report folder."""
-    real = os.path.realpath(path)
-    for output in outputs:
-        out = os.path.realpath(output)
-        if real in (out, out + ".lock") or real.startswith(out + ".parts" + os.sep) or \
-                real.startswith(out.rstrip(os.sep) + os.sep):
-            return True
-    return False
-
-
-def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[str]:
-    """Record files from files, folders (recursively, sorted) and glob patterns.
-
-    A literal path that does not exist is kept (its rows will say why); a glob that
-    matches nothing and an empty folder are user mistakes.  Files of the batch itself
-    (``outputs``: the table, its ``.parts/`` and lock, the summary, chart and reports
-    folder) and any ``*.parts`` folder are never records, so that ``-o`` may sit inside
-    the records folder.
-
-    Raises
-    ------
-    BatchError
-    """
-    files: list[str] = []
-    outputs = [str(item) for item in outputs if item]
-    excluded = [] if excluded is None else excluded
-
-    def wanted(path) -> bool:
-        if _is_output(path, outputs):
-            excluded.append(str(path))  # run_batch checks that such a file is the batch's own
-            return False
-        return True
-
-    for argument in arguments:
-        argument = str(argument)
-        if os.path.isdir(argument):
-            found = sorted(str(p) for p in Path(argument).rglob("*")
-                           if p.is_file() and not any(part.startswith(".") or part.endswith(".parts")
-                                                      for part in p.relative_to(argument).parts[:-1])
-                           and not p.name.startswith(".") and not _NOT_RECORDS.match(p.name) and wanted(p))
-            if not found:
-                raise BatchError(f"{argument}: folder holds no record files")
-            files.extend(found)
-        elif _glob.has_magic(argument) and not os.path.lexists(argument):
-            found = sorted(p for p in _glob.glob(argument, recursive=True) if os.path.isfile(p) and wanted(p))
-            if not found:
-                raise BatchError(f"{argument}: no file matches this pattern")
-            files.extend(found)
-        else:  # a literal path, even with [ ] * ? in its name, names exactly that file
-            files.append(argument)
-    unique, seen = [], set()
-    for path in files:
-        key = os.path.abspath(path)
-        if key not in seen:
-            seen.add(key)
-            unique.append(path)
-    if not unique:
-        raise BatchError("no record given")
-    return unique
-
-
-def is_vertical(label: str) -> bool:
-    """True for a vertical component label (Z, UD, U-D, Up, Down, Vert; channel code ending in Z):
-    :func:`isolator.motion.pair.label_is_vertical`."""
-    from isolator.motion.pair import label_is_vertical
-
-    return label_is_vertical(label)
-
-
-#: Suffixes of formats that hold one component per file: never listed at planning.
-_ONE_COMPONENT_SUFFIXES = frozenset({".at2", ".smc", ".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy",
-                                     ".sac"})
-#: Analyses of a whole file: its two horizontal components ("pair") or with the vertical ("all").
-SET_COMPONENTS = ("pair", "all")
-
-
-def _knet_set_member(path: str) -> tuple[bool, bool]:
-    """(belongs to a K-NET/KiK-net set of two horizontals, is the set's first existing file)."""
-    from isolator.motion.pair import _knet_siblings
-
-    siblings = _knet_siblings(Path(path))
-    if siblings is None:
-        return False, False
-    horizontal = [p for p in siblings if not p.suffix.upper().startswith(".UD")]
-    if len(horizontal) != 2:
-        return False, False
-    return True, os.path.abspath(siblings[0]) == os.path.abspath(path)
-
-
-def record_components(path: str, component: str | None) -> list[str | None]:
-    """Components to analyse in a file.
-
-    * ``None`` (the default): ``["pair"]`` for a file with two horizontal components
-      (a multi-channel file, or the first file of a K-NET set), ``[]`` for the other
-      files of that set, ``[None]`` (the file's one component) otherwise;
-    * ``"pair"`` / ``"all"``: the same, the vertical included for ``"all"``;
-    * ``"all-horizontal"``: every horizontal component of a multi-component file, one by one;
-    * any other label: ``[component]``.
-
-    A file that cannot be listed gives ``[None]`` (or ``[component]``): the read then
-    fails with the file's message, in the rows.
-    """
-    if component not in (None, "all-horizontal", *SET_COMPONENTS):
-        return [component]
-    knet, first = _knet_set_member(path)
-    if knet and component != "all-horizontal":
-        return [component or "pair"] if first else []
-    if component is None and Path(path).suffix.lower() in _ONE_COMPONENT_SUFFIXES:
-        return [None]
-    from isolator.motion import RecordError, list_components
-
-    try:
-        labels = list_components(path)
-    except (RecordError, ValueError, OSError):
-        return [component if component in SET_COMPONENTS else None]
-    horizontal = [label for label in labels if not is_vertical(label)]
-    if component == "all-horizontal":
-        return horizontal if len(labels) > 1 and horizontal else [None]
-    if len(horizontal) == 2:
-        return [component or "pair"]
-    return [component if component in SET_COMPONENTS else None]
-
-
-def station_sets(files, component: str | None) -> dict[str, tuple[str, ...]]:
-    """Pairs made of several one-component files: one station's horizontals (and vertical).
-
-    Files of one component each (PEER AT2, SMC, …) that sit in one folder and whose headers
-    name the same network, station and event form a set when it holds exactly two
-    horizontal components with different labels, and at most one vertical.  Only the
-    headers are read (a few lines a file).  Anything else (one file of the station, the same
-    component twice, as ``TAK000.AT2`` beside ``RSN1120_KOBE_TAK000.AT2``, a header without
-    station or event, a file that cannot be read) leaves the files alone, analysed one
-    component each; two files of one motion under different labels are refused when the
-    pair is read (an error row).
-
-    Returns
-    -------
-    dict
-        ``{x path: (y path,) or (y path, z path)}`` for the first horizontal (sorted) of
-        each set; the other members of a set are the keys' partners.  Empty unless
-        ``component`` is None, ``"pair"`` or ``"all"``.
-    """
-    if component not in (None, *SET_COMPONENTS):
-        return {}
-    groups: dict = {}
-    for path in files:
-        header = _station_header(path)
-        if header is not None:
-            key, label = header
-            groups.setdefault(key, []).append((path, label, is_vertical(label)))
-    sets = {}
-    for items in groups.values():
-        horizontal = sorted(item for item in items if not item[2])
-        vertical = [item for item in items if item[2]]
-        if len(horizontal) != 2 or len(vertical) > 1 or horizontal[0][1] == horizontal[1][1]:
-            continue
-        sets[horizontal[0][0]] = (horizontal[1][0], *(item[0] for item in vertical))
-    return sets
-
-
-def _station_header(path: str):
-    """((folder, network, station, event), component label) from the header of a PEER AT2 or USGS SMC
-    file (a few lines read, not the samples), or None: another format, no station or event in the
-    header, a file that cannot be read (its rows will say why)."""
-    from isolator.motion.read import read_header
-
-    header = read_header(path)
-    if header is None:
-        return None
-    label, prov = header
-    station, event = prov.get("station", ""), prov.get("event", prov.get("event_origin_time", ""))
-    if not station or not event:
-        return None
-    return (os.path.dirname(os.path.abspath(path)), prov.get("network", ""), station, event), label
 
 
 def set_digest(path: str, partners: tuple = ()) -> str:

@@ -9,7 +9,8 @@ from pathlib import Path
 
 from isolator.batch.pairs import read_pair
 from isolator.batch.pairs import record_columns as pair_record_columns
-from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, _one_line, file_version
+from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, file_version
+from isolator.errors import one_line
 
 _MOTION_CACHE: dict = {}
 
@@ -168,7 +169,7 @@ def row_error(err: Exception, record: str, design_source: str | None) -> str:
     from isolator.units import UnitsError
 
     def named(owner: str, message: str) -> str:
-        message = _one_line(message)
+        message = one_line(message)
         return message if message.startswith(owner) else f"{owner}: {message}"
 
     if isinstance(err, (RecordError, RecordInputError, UnitsError)):

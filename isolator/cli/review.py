@@ -55,8 +55,8 @@ def review(
     import sys
 
     from isolator.design import Design, DesignError
+    from isolator.errors import ReviewError
     from isolator.motion import RecordError
-    from isolator.review.errors import ReviewError
     from isolator.review.examples import resolve_example
     from isolator.review.run import CODES
     from isolator.review.scaling import SCALING_METHODS

@@ -29,7 +29,26 @@ from isolator.io._common import head_lines, looks_like_text, read_head
 FORMATS = {"PEER_AT2": ("isolator.io.at2", "_is_at2"), "CSMIP_V2": ("isolator.io.v2", "_is_v2"),
            "USGS_SMC": ("isolator.io.smc", "_is_smc"), "ISOLATOR_TEXT": ("isolator.io.text", "_is_text")}
 
-__all__ = ["FORMATS", "detect", "head_lines", "looks_like_text", "numeric_columns", "read_head"]
+__all__ = ["FORMATS", "claims", "detect", "head_lines", "looks_like_text", "numeric_columns", "read_head"]
+
+
+def claims(path, fmt: str) -> bool:
+    """True when the strict detector of our format ``fmt`` (a key of :data:`FORMATS`) claims ``path``.
+
+    The detector reads a bounded head of the file (the obspy plugin's ``isFormat``), so a
+    caller can check a file is what its suffix says before reading it.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file [-].
+    fmt : str
+        ``"PEER_AT2"``, ``"CSMIP_V2"``, ``"USGS_SMC"`` or ``"ISOLATOR_TEXT"`` [-].
+    """
+    import importlib
+
+    module, detector = FORMATS[fmt]
+    return bool(getattr(importlib.import_module(module), detector)(path))
 
 
 def detect(path) -> str | None:
@@ -49,12 +68,7 @@ def detect(path) -> str | None:
     str or None
         ``"PEER_AT2"``, ``"CSMIP_V2"``, ``"USGS_SMC"``, ``"ISOLATOR_TEXT"`` or None [-].
     """
-    import importlib
-
-    for name, (module, detector) in FORMATS.items():
-        if getattr(importlib.import_module(module), detector)(path):
-            return name
-    return None
+    return next((name for name in FORMATS if claims(path, name)), None)
 
 
 def numeric_columns(head: bytes) -> int | None:
@@ -65,7 +79,6 @@ def numeric_columns(head: bytes) -> int | None:
     head : bytes
         The first bytes of the file (:func:`read_head`) [-].
     """
-    from isolator.io.text import _is_comment, _numeric_fields
+    from isolator.io.text import numeric_columns as columns  # obspy loads with the reader: not at import
 
-    lines = [line for line in head_lines(head) if not _is_comment(line)]
-    return _numeric_fields(lines[0]) if lines else None
+    return columns(head)

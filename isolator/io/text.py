@@ -75,6 +75,18 @@ def _numeric_fields(line: str) -> int | None:
     return len(fields)
 
 
+def numeric_columns(head: bytes) -> int | None:
+    """Number of numeric columns of the first non-comment line of a file's head, or None (not numbers).
+
+    Parameters
+    ----------
+    head : bytes
+        The first bytes of the file (:func:`isolator.io.read_head`) [-].
+    """
+    lines = [line for line in head_lines(head) if not _is_comment(line)]
+    return _numeric_fields(lines[0]) if lines else None
+
+
 def _is_text(filename_or_buf) -> bool:
     """True only for a text record that carries isolator's ``# units:`` metadata (strict).
 

@@ -19,8 +19,10 @@ Processing methods (:meth:`GroundMotion.demeaned`, :meth:`~GroundMotion.tapered`
 :meth:`~GroundMotion.bandpassed`, …) use obspy's Trace methods and return a new object.
 """
 
+from isolator.errors import ComponentMismatchError, RecordError
+from isolator.motion.components import UNNAMED_COMPONENT
 from isolator.motion.examples import EXAMPLE_RECORDS, resolve_record
-from isolator.motion.ground_motion import MIN_SAMPLES, UNNAMED_COMPONENT, GroundMotion
+from isolator.motion.ground_motion import MAX_ABS_ACCELERATION_G, MIN_SAMPLES, GroundMotion
 from isolator.motion.measures import (
                                       PREDOMINANT_PERIODS_S,
                                       IntensityMeasures,
@@ -30,11 +32,9 @@ from isolator.motion.measures import (
                                       significant_duration_s,
                                       velocity_m_s,
 )
-from isolator.motion.pair import ComponentMismatchError, MotionPair, read_ground_motion_pair
+from isolator.motion.pair import MotionPair, read_ground_motion_pair
 from isolator.motion.read import (
-                                      MAX_ABS_ACCELERATION_G,
                                       TEXT_SUFFIXES,
-                                      RecordError,
                                       list_components,
                                       read_ground_motion,
                                       read_ground_motions,

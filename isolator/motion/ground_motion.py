@@ -13,33 +13,14 @@ from typing import Any
 
 import numpy as np
 
+from isolator.errors import MotionError, RecordInputError
+from isolator.motion.components import UNNAMED_COMPONENT  # noqa: F401 - the name callers know it by
 from isolator.motion.measures import IntensityMeasures, intensity_measures
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
 
 MIN_SAMPLES = 2  # a record needs at least two samples to have a time step
 MIN_TARGET_PGA_G = 1e-6  # [g] a smaller target PGA is below any accelerometer's noise
-UNNAMED_COMPONENT = "unnamed"  # label of the one component of a file that names none
-
-
-def _component_names(trace) -> dict[str, str]:
-    """Channel code and orientation/component name of a trace, whatever its format."""
-    stats = trace.stats
-    orientation = ""
-    for key, attribute in (("peer_at2", "component"), ("csmip_v2", "orientation"), ("usgs_smc", "component"),
-                           ("isolator_text", "component")):
-        if key in stats:
-            orientation = str(stats[key].get(attribute, "") or "")
-            break
-    return {"channel": stats.channel or "", "orientation": orientation}
-
-
-def _label(trace) -> str:
-    """How a component is shown to the user: channel code, orientation, or both."""
-    names = _component_names(trace)
-    channel, orientation = names["channel"], names["orientation"]
-    if channel and orientation and orientation.lower() != channel.lower():
-        return f"{channel} ({orientation})"
-    return channel or orientation or UNNAMED_COMPONENT
+MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units (and as a scaling target)
 
 
 @dataclass(frozen=True, eq=False)  # compared and hashed by identity: it wraps a mutable Trace
@@ -118,21 +99,21 @@ class GroundMotion:
 
         data = np.array(acceleration_m_s2, dtype=np.float64)
         if data.ndim != 1 or data.size < MIN_SAMPLES:
-            raise ValueError(f"need a 1-D array of at least {MIN_SAMPLES} samples")
+            raise MotionError(f"need a 1-D array of at least {MIN_SAMPLES} samples")
         sample_times_s = None
         if time_s is not None:
-            from isolator.solver.record import RecordInputError, sample_timing
+            from isolator.solver.record import sample_timing
 
             if np.shape(time_s) != data.shape:
-                raise ValueError(f"time_s {np.shape(time_s)} and acceleration {data.shape} differ in shape")
+                raise MotionError(f"time_s {np.shape(time_s)} and acceleration {data.shape} differ in shape")
             try:
                 dt_s, sample_times_s = sample_timing(time_s)
             except RecordInputError as err:
-                raise ValueError(str(err)) from None
+                raise MotionError(str(err)) from None
         if dt_s is None or not dt_s > 0:
-            raise ValueError(f"dt_s = {dt_s} s is not positive")
+            raise MotionError(f"dt_s = {dt_s} s is not positive")
         if not np.all(np.isfinite(data)):
-            raise ValueError("acceleration holds NaN or infinite values")
+            raise MotionError("acceleration holds NaN or infinite values")
         trace = Trace(data=data)
         trace.stats.delta = float(dt_s)
         trace.stats.units = "m/s2"
@@ -190,7 +171,7 @@ class GroundMotion:
 
     def _require_uniform(self, what: str) -> None:
         if self.sample_times_s is not None:
-            raise ValueError(f"{what} needs evenly spaced samples; this record's steps are unequal "
+            raise MotionError(f"{what} needs evenly spaced samples; this record's steps are unequal "
                              "(resample it first: resampled(dt_s, method='linear'))")
 
     @property
@@ -281,7 +262,7 @@ class GroundMotion:
         self._require_uniform("band-pass")
         nyquist_hz = 0.5 / self.dt_s
         if not 0 < freqmin_hz < freqmax_hz < nyquist_hz:
-            raise ValueError(
+            raise MotionError(
                 f"band-pass needs 0 < freqmin < freqmax < Nyquist = {nyquist_hz:g} Hz "
                 f"(got {freqmin_hz:g}, {freqmax_hz:g})"
             )
@@ -304,7 +285,7 @@ class GroundMotion:
             record sampled at ``t0 + k dt``.
         """
         if not dt_s > 0:
-            raise ValueError(f"target dt_s = {dt_s} s is not positive")
+            raise MotionError(f"target dt_s = {dt_s} s is not positive")
         if self.sample_times_s is not None and method == "linear":
             times_s = self.sample_times_s
             grid_s = dt_s * np.arange(int(math.floor(times_s[-1] / dt_s * (1 + 1e-12))) + 1)
@@ -322,7 +303,7 @@ class GroundMotion:
             options = {"a": 20} if method == "lanczos" else {}
             trace.interpolate(sampling_rate=1.0 / dt_s, method=method, **options)
         else:
-            raise ValueError(f"unknown resampling method {method!r} (fft, linear, lanczos)")
+            raise MotionError(f"unknown resampling method {method!r} (fft, linear, lanczos)")
         return self._derived(trace, {"step": "resample", "dt_s": dt_s, "method": method})
 
     def trimmed(self, start_s: float | None = None, end_s: float | None = None) -> GroundMotion:
@@ -340,7 +321,7 @@ class GroundMotion:
         trace.trim(None if start_s is None else origin + start_s, None if end_s is None else origin + end_s,
                    nearest_sample=True)
         if trace.stats.npts < MIN_SAMPLES:
-            raise ValueError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
+            raise MotionError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
         return self._derived(trace, {"step": "trim", "start_s": start_s, "end_s": end_s})
 
     def _trimmed_by_times(self, start_s: float | None, end_s: float | None) -> GroundMotion:
@@ -349,7 +330,7 @@ class GroundMotion:
         first = 0 if start_s is None else int(np.argmin(np.abs(times_s - start_s)))
         last = times_s.size - 1 if end_s is None else int(np.argmin(np.abs(times_s - end_s)))
         if last - first + 1 < MIN_SAMPLES:
-            raise ValueError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
+            raise MotionError(f"trimming to [{start_s}, {end_s}] s leaves fewer than {MIN_SAMPLES} samples")
         trace = self.trace.copy()
         trace.data = np.ascontiguousarray(self.trace.data[first:last + 1])
         trace.stats.starttime = self.trace.stats.starttime + float(times_s[first])
@@ -361,7 +342,7 @@ class GroundMotion:
     def scaled(self, factor: float) -> GroundMotion:
         """Multiply the acceleration by ``factor`` [-]."""
         if not math.isfinite(factor):
-            raise ValueError(f"scale factor {factor} is not finite")
+            raise MotionError(f"scale factor {factor} is not finite")
         trace = self.trace.copy()
         trace.data = trace.data * float(factor)
         return self._derived(trace, {"step": "scale", "factor": float(factor)})
@@ -370,17 +351,16 @@ class GroundMotion:
         """Scale so that the peak ground acceleration equals ``pga_m_s2`` [m/s²]."""
         current_m_s2 = self.pga_m_s2
         if not current_m_s2 > 0:
-            raise ValueError("cannot scale a record of zeros to a PGA")
+            raise MotionError("cannot scale a record of zeros to a PGA")
         if not pga_m_s2 > 0:
-            raise ValueError(f"target PGA {pga_m_s2} m/s² is not positive")
-        from isolator.motion.read import MAX_ABS_ACCELERATION_G
+            raise MotionError(f"target PGA {pga_m_s2} m/s² is not positive")
         from isolator.units import STANDARD_GRAVITY
 
         pga_g = pga_m_s2 / STANDARD_GRAVITY
         if pga_g > MAX_ABS_ACCELERATION_G:  # what the reader refuses is not reachable by scaling either
-            raise ValueError(f"target PGA {pga_g:g} g exceeds {MAX_ABS_ACCELERATION_G:g} g")
+            raise MotionError(f"target PGA {pga_g:g} g exceeds {MAX_ABS_ACCELERATION_G:g} g")
         if pga_g < MIN_TARGET_PGA_G:
-            raise ValueError(f"target PGA {pga_g:g} g is below {MIN_TARGET_PGA_G:g} g (instrument noise; "
+            raise MotionError(f"target PGA {pga_g:g} g is below {MIN_TARGET_PGA_G:g} g (instrument noise; "
                              "the record's measures underflow)")
         scaled = self.scaled(pga_m_s2 / current_m_s2)
         last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2))

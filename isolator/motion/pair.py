@@ -21,20 +21,17 @@ which the solvers take as they are).  Either is recorded in :attr:`MotionPair.pr
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from isolator.errors import ComponentError, ComponentMismatchError, RecordValuesError
+from isolator.motion.components import is_vertical, label_is_vertical
+from isolator.motion.files import knet_siblings
 from isolator.motion.ground_motion import GroundMotion
 from isolator.motion.read import list_components, read_ground_motion, read_ground_motions
 
-#: Orientation names of a vertical component (lower case tokens of a component label).
-VERTICAL_NAMES = frozenset({"up", "down", "ud", "u-d", "vert", "vertical", "z", "v", "dwn"})
-#: K-NET (.NS/.EW/.UD) and KiK-net (1: borehole, 2: surface) file suffixes of one set.
-KNET_SUFFIXES = {"": ("NS", "EW", "UD"), "1": ("NS1", "EW1", "UD1"), "2": ("NS2", "EW2", "UD2")}
 #: Relative tolerance on equal time steps and on start times (fraction of the step).
 TIME_TOLERANCE = 1e-6
 PAIR_CHOICES = ("pair", "all")
@@ -110,33 +107,9 @@ class MotionPair:
                 for name, motion in self.components.items()}
 
 
-def is_vertical(motion: GroundMotion) -> bool:
-    """True when the component's label or channel code names the vertical (Up, UD, HNZ, …)."""
-    channel = str(motion.provenance.get("channel", "") or "")
-    if len(channel) == 3 and channel[2].upper() == "Z":
-        return True
-    tokens = re.findall(r"[a-z0-9-]+", motion.component.lower())
-    return any(token in VERTICAL_NAMES for token in tokens)
-
-
-def _knet_siblings(path: Path) -> list[Path] | None:
-    """The files of a K-NET / KiK-net set that ``path`` belongs to, or None if it is not one."""
-    suffix = path.suffix.lstrip(".").upper()
-    for names in KNET_SUFFIXES.values():
-        if suffix in names:
-            siblings = []
-            for name in names:
-                candidates = [path.with_suffix("." + name), path.with_suffix("." + name.lower())]
-                found = next((c for c in candidates if c.exists()), None)
-                if found is not None:
-                    siblings.append(found)
-            return siblings
-    return None
-
-
 def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMotion], list[GroundMotion]]:
     """Horizontal and vertical components of one multi-channel file (or K-NET set)."""
-    siblings = _knet_siblings(path)
+    siblings = knet_siblings(path)
     if siblings is not None:
         motions = [read_ground_motion(p, allow_zero=True, **options) for p in siblings]
     else:
@@ -155,20 +128,6 @@ def _read_set(path: Path, component: str, options: dict) -> tuple[list[GroundMot
         raise ComponentError(f"{path}: holds {len(vertical)} vertical component(s) ({names}); the pair with its "
                              "vertical ('all') needs one", path=path, parameter="pair")
     return horizontal, vertical
-
-
-def label_is_vertical(label: str) -> bool:
-    """True for a vertical component label of :func:`list_components` (Z, UD, U-D, Up, Down, Vert, or
-    a channel code ending in Z: ``HNZ (Up)``); the label-level twin of :func:`is_vertical`."""
-    text = label.upper()
-    orientation = re.search(r"\(([^)]*)\)", text)
-    names = [text.split(" (")[0].strip()] + ([orientation.group(1).strip()] if orientation else [])
-    for name in names:
-        if name in ("Z", "UD", "U-D", "UP", "DOWN", "VERT", "VERTICAL", "V"):
-            return True
-        if len(name) == 3 and name.isalpha() and name.endswith("Z"):
-            return True
-    return False
 
 
 def _vertical_channel(path: Path, merge: bool) -> str | None:

@@ -32,11 +32,12 @@ from isolator.errors import (
     TimeStepConflictError,
     UnitsConflictError,
     UnitsError,
+    one_line,
 )
-from isolator.motion.ground_motion import MIN_SAMPLES, GroundMotion, _component_names, _label
+from isolator.motion.components import axis_letter, component_label, component_names
+from isolator.motion.ground_motion import MAX_ABS_ACCELERATION_G, MIN_SAMPLES, GroundMotion
 from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 
-MAX_ABS_ACCELERATION_G = 50.0  # [g] larger peaks are refused as a sign of wrong units
 #: Time steps a record may have [s]: accelerograms sample at 100 Hz to 1 kHz (dt 0.001 to
 #: 0.05 s).  Below 10 µs (100 kHz) a time step is a corrupt header (DT= 1e-300 made the
 #: predominant period sit on its search floor and A0 = 0); above 0.5 s the record cannot
@@ -49,17 +50,15 @@ _SAC_NOT_ACCELERATION = {6: "displacement (IDISP)", 7: "velocity (IVEL)"}
 _SAC_IACC = 8  #: SAC ``idep`` of acceleration (nm/s² by the SAC convention)
 
 
+#: Formats whose header alone names the station and the component, by file suffix (:func:`read_header`).
+_HEADER_FORMATS = {".at2": "PEER_AT2", ".smc": "USGS_SMC"}
 _FORMAT_NAMES = {"PEER_AT2": "PEER AT2", "ISOLATOR_TEXT": "plain text", "CSMIP_V2": "CSMIP V2",
                  "USGS_SMC": "USGS SMC"}
 
 
-def _one_line(message: str) -> str:
-    return " ".join(str(message).split())
-
-
 def _fail(path: Path | str, message: str, kind: type[RecordError] = RecordFormatError, **attributes) -> RecordError:
     """A typed record error whose one-line message starts with the file's name."""
-    return kind(_one_line(f"{path}: {message}"), path=str(path), **attributes)
+    return kind(one_line(f"{path}: {message}"), path=str(path), **attributes)
 
 
 def _read_stream(path: Path, dt_s: float | None):
@@ -104,7 +103,7 @@ def _read_stream(path: Path, dt_s: float | None):
                 raise
             raise err.located(path, _FORMAT_NAMES.get(fmt, "")) from None
         except Exception as err:  # obspy's readers raise many types for damaged files
-            reason = _one_line(err) or type(err).__name__
+            reason = one_line(err) or type(err).__name__
             if fmt in _FORMAT_NAMES:  # our readers' messages say exactly what is wrong
                 raise _fail(path, f"{_FORMAT_NAMES[fmt]}: {reason}") from None
             raise _fail(path, f"cannot be read with obspy: {reason}") from None
@@ -117,29 +116,11 @@ def _plain_numeric(head: bytes) -> bool:
     return numeric_columns(head) in (1, 2)
 
 
-def _axis_letter(name: str) -> str:
-    """N, E or Z for an orientation name: azimuths on the N-S (0, 180, 360) or E-W (90, 270)
-    axis, K-NET's NS/EW/UD, Up/Down; "" otherwise."""
-    name = name.strip().upper()
-    if name in ("NS", "N-S"):
-        return "N"
-    if name in ("EW", "E-W"):
-        return "E"
-    if name in ("UD", "U-D", "UP", "DOWN", "VERT", "Z"):
-        return "Z"
-    try:
-        azimuth_deg = float(name)
-    except ValueError:
-        return ""
-    remainder = azimuth_deg % 180.0
-    return "N" if remainder == 0.0 else ("E" if remainder == 90.0 else "")
-
-
 def _matches(trace, wanted: str) -> bool:
-    names = _component_names(trace)
+    names = component_names(trace)
     channel = names["channel"]
-    candidates = {trace.id, channel, names["orientation"], _label(trace)}
-    candidates.add(_axis_letter(names["orientation"]) or _axis_letter(channel))
+    candidates = {trace.id, channel, names["orientation"], component_label(trace)}
+    candidates.add(axis_letter(names["orientation"]) or axis_letter(channel))
     if len(channel) == 3:
         candidates.add(channel[2])
     wanted = wanted.strip().lower()
@@ -147,7 +128,7 @@ def _matches(trace, wanted: str) -> bool:
 
 
 def _select(path: Path, stream, component: str | None):
-    labels = [_label(trace) for trace in stream]
+    labels = [component_label(trace) for trace in stream]
     if component is None:
         if len(stream) == 1:
             return stream[0]
@@ -156,7 +137,7 @@ def _select(path: Path, stream, component: str | None):
     if not chosen:
         raise _fail(path, f"no component {component!r} (choices: {', '.join(labels)})", ComponentError, given=component)
     if len(chosen) > 1:
-        names = ", ".join(f"{_label(t)} = {t.id}" for t in chosen)
+        names = ", ".join(f"{component_label(t)} = {t.id}" for t in chosen)
         raise _fail(path, f"component {component!r} is ambiguous: it matches {names}; the full trace id is unique",
                     ComponentError, given=component)
     return chosen[0]
@@ -245,7 +226,7 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
                 warnings.simplefilter("ignore")
                 corrected.remove_response(inventory=inventory, output="ACC")
         except Exception as err:
-            raise _fail(path, f"cannot remove the instrument response from {response}: {_one_line(err)}",
+            raise _fail(path, f"cannot remove the instrument response from {response}: {one_line(err)}",
                         InstrumentResponseError, given=str(response)) from None
         steps.append({"step": "remove_response", "inventory": str(response), "output": "ACC"})
         return corrected.data.astype(np.float64), f"instrument response ({Path(response).name}, output ACC)", steps
@@ -384,23 +365,27 @@ def _check_path(path: Path) -> None:
 def read_header(path: str | Path) -> tuple[str, dict] | None:
     """(component label, provenance) of a PEER AT2 or USGS SMC file from its header alone.
 
-    A few lines are read, not the samples (a fraction of a millisecond): what a batch needs
+    A few lines are read, not the samples (about a millisecond, through :func:`obspy.read` with
+    ``headonly=True``): what a batch needs
     to find the files of one station among many.  None for another format, or for a file
     that is not what its suffix says or cannot be read (reading it in full says why).
     """
-    from isolator.io.at2 import _is_at2, _read_at2
-    from isolator.io.smc import _is_smc, _read_smc
+    import obspy
+
+    from isolator.io import claims
+    from isolator.io._common import literal_pattern
 
     path = Path(path)
-    formats = {".at2": (_is_at2, _read_at2), ".smc": (_is_smc, _read_smc)}.get(path.suffix.lower())
-    if formats is None or not path.is_file():
+    fmt = _HEADER_FORMATS.get(path.suffix.lower())
+    if fmt is None or not path.is_file():
         return None
-    detect, reader = formats
     try:
-        if not detect(str(path)):  # a bounded look at the file's head first: text, the format's header
+        if not claims(path, fmt):  # a bounded look at the file's head first: text, the format's header
             return None
-        trace = reader(str(path), headonly=True)[0]
-        label = _label(trace)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            trace = obspy.read(literal_pattern(path), format=fmt, headonly=True)[0]
+        label = component_label(trace)
         return label, _provenance(path, trace, label)
     except Exception:  # noqa: BLE001 - any reader failure: not a header we can use here
         return None
@@ -430,7 +415,7 @@ def list_components(path: str | Path, *, merge: bool = False) -> list[str]:
     _check_path(path)
     stream = _read_stream(path, None)
     _check_gaps(path, stream, merge)
-    return [_label(trace) for trace in stream]
+    return [component_label(trace) for trace in stream]
 
 
 def read_ground_motion(
@@ -539,7 +524,7 @@ def _read_checked_stream(path: Path, merge: bool, dt_s: float | None):
 
 def _motion(path: Path, stream, trace, steps, units, response, counts_factor, dt_s, allow_zero) -> GroundMotion:
     """One component (``trace`` of ``stream``) of a record file as a :class:`GroundMotion` in m/s²."""
-    components = [_label(item) for item in stream]
+    components = [component_label(item) for item in stream]
     if np.ma.isMaskedArray(trace.data):
         raise _fail(path, "data are masked (gaps), not merged", GapsError)
     if trace.stats.npts < MIN_SAMPLES:
@@ -556,7 +541,7 @@ def _motion(path: Path, stream, trace, steps, units, response, counts_factor, dt
     acceleration_m_s2, units_source, unit_steps = _to_m_s2(path, trace, units, response, counts_factor)
     acceleration_m_s2 = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
     _check_values(path, acceleration_m_s2, float(trace.stats.delta), allow_zero)
-    label = _label(trace)
+    label = component_label(trace)
     result = trace.copy() if response is None else trace
     result.data = acceleration_m_s2
     result.stats.units = "m/s2"

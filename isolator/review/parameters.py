@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from isolator.review.errors import ReviewError
+from isolator.errors import ReviewError
 
 
 @dataclass(frozen=True)

@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from isolator.errors import ReviewError
 from isolator.review import checks as C
 from isolator.review import parameters as P
 from isolator.review.bounds import friction_bounds
 from isolator.review.codes import asce7_22, en15129
-from isolator.review.errors import ReviewError
 from isolator.review.scaling import SCALING_METHODS, period_grid, scale_factors, suite_mean
 from isolator.review.spectra import pair_spectra, rotd50
 from isolator.serialize import json_safe

@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.review.errors import SuiteError
+from isolator.errors import SuiteError
 
 SUITE_KEYS = {"units", "trim", "pair", "name", "description"}
 PAIR_KEYS = {"name", "x", "y", "z", "units", "trim"}
@@ -269,9 +269,10 @@ def specs_from_records(arguments, *, units: str | None = None, trim: bool = Fals
     (list of PairSpec, list of {"name", "error"})
         The pairs, and the files that could not be placed in a pair (with the reason).
     """
-    from isolator.batch import BatchError, expand_records, is_vertical
-    from isolator.motion import RecordError, list_components, read_ground_motion
-    from isolator.units import UnitsError
+    from isolator.errors import BatchError, RecordError, UnitsError
+    from isolator.motion import list_components, read_ground_motion
+    from isolator.motion.components import label_is_vertical as is_vertical
+    from isolator.motion.files import expand_records
 
     try:
         files = expand_records(arguments)

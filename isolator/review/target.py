@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.review.errors import TargetError
+from isolator.errors import TargetError
 
 TARGET_KEYS = {"name", "S_MS", "S_M1", "S_DS", "S_D1", "T_L", "a_g_g", "S", "T_B", "T_C", "T_D", "spectrum_csv"}
 

@@ -225,7 +225,7 @@ def _iterate_dask(todo: dict, address: str):
     """(key, result) on a Dask cluster through the batch executor."""
     from isolator.batch.executors import _iterate_dask as iterate
     from isolator.batch.plan import BatchError
-    from isolator.review.errors import ReviewError
+    from isolator.errors import ReviewError
 
     tasks = [dict(task, key=key) for key, task in todo.items()]
     try:

@@ -75,7 +75,7 @@ def test_en_damping_correction(beta, divisor):
 
 
 def test_parameters_resolve_with_marks_and_the_090_reading():
-    from isolator.review.errors import ReviewError
+    from isolator.errors import ReviewError
     from isolator.review.parameters import PARAMETERS, resolve, table
 
     asce = resolve("asce7-22")

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from isolator.review.errors import SuiteError
+from isolator.errors import SuiteError
 from isolator.review.suite import load_suite
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "isolator" / "data" / "suites" / "example"

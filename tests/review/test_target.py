@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from isolator.review.errors import TargetError
+from isolator.errors import TargetError
 from isolator.review.target import load_target, two_period_target
 
 
