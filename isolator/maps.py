@@ -274,7 +274,7 @@ def _evaluate(points: list[tuple], eta: float, mu_s: float, mu_k: float, workers
 
 def _refine_chunk(jobs, *, eta, mu_s, mu_k, rel_tol) -> list[tuple]:
     """Bisect each (k, α_lo, α_hi, from, to) change of regime to the α where it happens."""
-    from isolator.solver.harmonic import bisect_change, harmonic_regime
+    from isolator.solver.thresholds import bisect_change, harmonic_regime
 
     out = []
     for k, lo, hi, r_lo, r_hi in jobs:
@@ -292,7 +292,7 @@ def refine_boundaries(rmap: RegimeMap, workers: int | None = None, rel_tol: floa
 
     Fills ``boundary_k``, ``boundary_alpha``, ``boundary_kind`` (in place, also returned).  A
     window narrower than the grid step that no grid point falls into is not seen (as in
-    :func:`isolator.solver.harmonic.harmonic_thresholds` with a coarse grid).
+    :func:`isolator.solver.thresholds.harmonic_thresholds` with a coarse grid).
     """
     jobs = []
     for j, k in enumerate(rmap.k):
@@ -486,7 +486,7 @@ def triple_point(eta: float, mu_s: float, mu_k: float | None = None, alpha_max: 
         k = eta * math.sqrt(alpha * mu_s)
         return k * harmonic_response(alpha, k, eta, mu_s, mu_k, samples_per_period=2).amplitude - mu_k
 
-    from isolator.solver.harmonic import bisect_change
+    from isolator.solver.thresholds import bisect_change
 
     alphas = np.geomspace(1.0 + 1e-6, alpha_max, n_scan)
     values = [excess(a) for a in alphas]

@@ -96,3 +96,60 @@ def test_batch_retries_by_type_not_by_text(tmp_path):
     assert motion.dt_s == 0.02 and "gal" in motion.units_source  # the file's own units and step win
     with pytest.raises(errors.MissingTimeStepError):
         _read_motion(str(one_column), None, ReadOptions(units="g"))
+
+
+def test_motion_review_and_cache_errors_are_isolator_errors(tmp_path):
+    """Every typed error of the motion, the review and the map cache is caught as IsolatorError."""
+    from isolator.motion import GroundMotion
+
+    motion = GroundMotion.from_array(np.sin(np.arange(200) * 0.1), 0.01)
+    bad_calls = [lambda: GroundMotion.from_array([1.0], 0.01), lambda: GroundMotion.from_array([1.0, 2.0], 0.0),
+                 lambda: motion.bandpassed(1.0, 80.0), lambda: motion.resampled(-1.0),
+                 lambda: motion.trimmed(0.0, 0.001), lambda: motion.scaled(float("nan")),
+                 lambda: motion.scaled_to_pga(-1.0), lambda: motion.resampled(0.02, method="cubic")]
+    for call in bad_calls:
+        with pytest.raises(errors.IsolatorError) as caught:
+            call()
+        assert type(caught.value) is errors.MotionError and "\n" not in str(caught.value)
+    from isolator.review.parameters import resolve
+    from isolator.review.target import load_target
+
+    with pytest.raises(errors.IsolatorError) as caught:
+        resolve("asce7-22", {"no_such_parameter": 1})
+    assert type(caught.value) is errors.ReviewError
+    target = tmp_path / "target.toml"
+    target.write_text('name = "t"\nS_MS = 1.0\n')
+    with pytest.raises(errors.IsolatorError) as caught:
+        load_target(target)
+    assert isinstance(caught.value, errors.TargetError) and isinstance(caught.value, errors.ReviewError)
+    assert issubclass(errors.SuiteError, errors.ReviewError) and issubclass(errors.CacheEntryError, errors.IsolatorError)
+    # the review's errors come from isolator.errors only: the old module is gone
+    with pytest.raises(ImportError):
+        __import__("isolator.review.errors")
+
+
+def test_a_typed_error_no_command_caught_is_still_one_line_and_exit_2(capsys):
+    """The command group turns any IsolatorError a command lets through into one line and exit 2;
+    any other exception (a bug) keeps its traceback."""
+    import typer
+
+    from isolator.cli.common import OneLineErrors
+
+    app = typer.Typer(cls=OneLineErrors, add_completion=False)
+
+    @app.command()
+    def scale(factor: float) -> None:
+        if factor < 0:
+            raise errors.MotionError(f"target PGA {factor} m/s²\nis not positive")
+        raise RuntimeError("a bug")
+
+    @app.command()
+    def other() -> None:  # two commands: the group takes the command name
+        pass
+
+    with pytest.raises(SystemExit) as stop:
+        app(["scale", "--", "-1"])
+    assert stop.value.code == 2
+    assert capsys.readouterr().err == "error: target PGA -1.0 m/s² is not positive\n"
+    with pytest.raises(RuntimeError):
+        app(["scale", "1"])

@@ -56,3 +56,155 @@ def test_the_report_loads_only_what_it_uses(tmp_path):
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "r.pdf").is_file()  # the report was written: the list is not vacuous
     assert done.stdout.split() == []
+
+
+# ---- layering: the AST import graph of the package (imports inside functions and __init__ included) ----
+
+#: Circles still open, each a set of modules.  Issue 21 closes them; remove a line when its circle
+#: is cut (the test fails on a stale line, so the list only shrinks).
+ALLOWED_CIRCLES = [
+    {"isolator.analysis", "isolator.pair_analysis"},  # H1: pair_analysis goes into the one analysis
+]
+#: Private names still imported across modules, as (importer, source module, name); the same rule.
+ALLOWED_PRIVATE = {
+    ("isolator.batch.run", "isolator.batch.executors", "_iterate_dask"),  # H1: parallel.iterate
+    ("isolator.batch.run", "isolator.batch.executors", "_iterate_local"),
+    ("isolator.review.worker", "isolator.batch.executors", "_iterate_dask"),
+    ("isolator.review.worker", "isolator.batch.executors", "_iterate_local"),
+    ("isolator.batch.run", "isolator.batch.store", "_existing_rows"),  # H1: batch store
+    ("isolator.batch.run", "isolator.batch.store", "_table_is_ours"),
+}
+
+
+def _modules(package: Path) -> dict[str, Path]:
+    out = {}
+    for path in package.rglob("*.py"):
+        name = ".".join(path.relative_to(package.parent).with_suffix("").parts)
+        out[name.removesuffix(".__init__")] = path
+    return out
+
+
+def _longest_module(modules, dotted: str) -> str | None:
+    while dotted and dotted not in modules:
+        dotted = dotted.rpartition(".")[0]
+    return dotted or None
+
+
+def import_graph(package: Path = ROOT / "isolator"):
+    """(edges {module: set of modules it imports}, [(importer, source, private name)]) from the AST.
+
+    Every ``import`` and ``from … import`` counts, wherever it sits (a function body, a package's
+    ``__init__``); a relative import is resolved against the importing module's package.
+    """
+    import ast
+
+    modules = _modules(package)
+    edges, private = {}, []
+    for name, path in modules.items():
+        base = name if path.name == "__init__.py" else name.rpartition(".")[0]
+        targets = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                targets.update(filter(None, (_longest_module(modules, alias.name) for alias in node.names)))
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    parts = base.split(".")
+                    parts = parts[: len(parts) - node.level + 1]
+                    source = ".".join(parts + ([node.module] if node.module else []))
+                else:
+                    source = node.module or ""
+                for alias in node.names:
+                    full = f"{source}.{alias.name}"
+                    target = full if full in modules else _longest_module(modules, source)
+                    if target is None:
+                        continue
+                    targets.add(target)
+                    if alias.name.startswith("_") and not alias.name.startswith("__") and full not in modules \
+                            and target != name:
+                        private.append((name, target, alias.name))
+        targets.discard(name)
+        edges[name] = targets
+    return edges, private
+
+
+def circles(edges) -> list[set]:
+    """Strongly connected components of more than one module (Tarjan, iterative)."""
+    index, low, on_stack, stack, found, counter = {}, {}, set(), [], [], [0]
+    for root in edges:
+        if root in index:
+            continue
+        work = [(root, iter(sorted(edges[root])))]
+        index[root] = low[root] = counter[0]
+        counter[0] += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is not None:
+                if child not in index:
+                    index[child] = low[child] = counter[0]
+                    counter[0] += 1
+                    stack.append(child)
+                    on_stack.add(child)
+                    work.append((child, iter(sorted(edges.get(child, ())))))
+                elif child in on_stack:
+                    low[node] = min(low[node], index[child])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[node])
+            if low[node] == index[node]:
+                component = set()
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    component.add(member)
+                    if member == node:
+                        break
+                if len(component) > 1:
+                    found.append(component)
+    return found
+
+
+def test_the_graph_finds_a_circle_and_a_private_import(tmp_path):
+    """The checker itself: a two-module circle through a function-level import, a private name, a
+    package's __init__ importing its child that imports the package back."""
+    package = tmp_path / "pkg"
+    (package / "sub").mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    (package / "a.py").write_text("from pkg.b import public\n")
+    (package / "b.py").write_text("def public():\n    from pkg.a import _hidden\n")
+    (package / "c.py").write_text("import pkg.a\n")
+    (package / "sub" / "__init__.py").write_text("from .leaf import thing\n")
+    (package / "sub" / "leaf.py").write_text("from pkg.sub import other\n")
+    edges, private = import_graph(package)
+    assert sorted(map(sorted, circles(edges))) == [["pkg.a", "pkg.b"], ["pkg.sub", "pkg.sub.leaf"]]
+    assert private == [("pkg.b", "pkg.a", "_hidden")]
+
+
+def test_no_import_circle_in_the_package():
+    found = circles(import_graph()[0])
+    unexpected = [sorted(c) for c in found if c not in ALLOWED_CIRCLES]
+    assert not unexpected, f"import circles: {unexpected}"
+    stale = [sorted(c) for c in ALLOWED_CIRCLES if c not in found]
+    assert not stale, f"circles cut: remove them from ALLOWED_CIRCLES: {stale}"
+
+
+def test_no_private_name_imported_from_another_module():
+    private = set(import_graph()[1])
+    assert not private - ALLOWED_PRIVATE, f"private imports: {sorted(private - ALLOWED_PRIVATE)}"
+    assert not ALLOWED_PRIVATE - private, f"fixed: remove them from ALLOWED_PRIVATE: {sorted(ALLOWED_PRIVATE - private)}"
+
+
+def test_the_layers_fixed_in_issue_21_stay_fixed():
+    """Edges that made the circles of issue 21: they must not come back (each is an upward import)."""
+    edges = import_graph()[0]
+    upward = [("isolator.motion.ground_motion", "isolator.motion.read"),
+              ("isolator.solver.harmonic", "isolator.solver.thresholds"),
+              ("isolator.bench.cases", "isolator.bench.methods"), ("isolator.bench.methods", "isolator.bench.cases"),
+              ("isolator.bench.pairs", "isolator.bench.methods"),
+              ("isolator.report.pair", "isolator.report.pdf"), ("isolator.review.suite", "isolator.batch")]
+    assert [edge for edge in upward if edge[1] in edges[edge[0]]] == []
+    # the package's lowest modules import nothing of the package above them
+    assert edges["isolator.errors"] == set() and edges["isolator.motion.components"] == set()

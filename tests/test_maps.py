@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from isolator.maps import IN_PROCESS_POINTS, REGIME_NAMES, design_frame, nice_ceiling, regime_map, triple_point
-from isolator.solver.harmonic import harmonic_response, harmonic_thresholds
+from isolator.solver.harmonic import harmonic_response
+from isolator.solver.thresholds import harmonic_thresholds
 
 
 @pytest.fixture(autouse=True)

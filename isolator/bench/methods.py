@@ -17,25 +17,13 @@ from numba import njit
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from isolator.bench.cases import HARMONIC_PHASE, BenchCase
+from isolator.bench.base import HARMONIC_PHASE, BenchCase, MethodOutput
 
 #: stick displacement of the Newmark elastic-plastic slider [m for records; A0 for harmonic]
 ELASTIC_PLASTIC_YIELD_DISPLACEMENT = 1e-4
 #: regularisation velocity of the tanh friction law [m/s for records; sqrt(g A0) for harmonic]
 TANH_VELOCITY = 1e-3
 OURS = "exact event-driven (ours)"
-
-
-@dataclass
-class MethodOutput:
-    """What every method returns (units of the case)."""
-
-    displacement: np.ndarray  #: X at ``case.output_time``
-    velocity: np.ndarray  #: X' at ``case.output_time``
-    peak: float  #: records: max |X|; harmonic: A = half peak-to-peak on the last period
-    residual: float  #: X at the end of the run
-    slip_ratio: float  #: slip time / window length (ζ, Eq. 3)
-    n_events: int = -1  #: break-aways + stops, when the method knows them
 
 
 def _window_peak(case: BenchCase, x_window: np.ndarray) -> float:

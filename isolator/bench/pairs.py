@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.bench.methods import MethodOutput
+from isolator.bench.base import MethodOutput
 from isolator.units import STANDARD_GRAVITY as STANDARD_GRAVITY_M_S2
 
 PAIR_OURS = "planar engine simulate_pair (ours)"

@@ -13,6 +13,8 @@ from contextlib import contextmanager
 import typer
 from typer.core import TyperGroup
 
+from isolator.errors import IsolatorError, one_line
+
 try:  # typer ≥ 0.20 carries its own copy of click: its exceptions are not click's
     from typer._click import exceptions as click_exceptions
 except ImportError:  # pragma: no cover - older typer over click
@@ -21,7 +23,7 @@ except ImportError:  # pragma: no cover - older typer over click
 
 def usage_line(err) -> str:
     """One line for a usage mistake: ``error: … (see 'isolator CMD --help')``."""
-    message = " ".join(err.format_message().split())
+    message = one_line(err.format_message())
     context = getattr(err, "ctx", None)
     command = context.command_path if context is not None else "isolator"
     hint = f" (see '{command} --help')" if isinstance(err, click_exceptions.UsageError) else ""
@@ -106,6 +108,13 @@ class OneLineErrors(TyperGroup):
                     raise
                 typer.echo("interrupted", err=True)
                 sys.exit(130)
+            except Exception as err:
+                # a typed error of the library that a command did not turn into its own line: still
+                # one line and exit 2, never a traceback (a bug, any other type, keeps its traceback)
+                if not standalone_mode or not isinstance(err, IsolatorError):
+                    raise
+                typer.echo(f"error: {one_line(error_line(err))}", err=True)
+                sys.exit(2)
         if not standalone_mode:
             return result
         sys.exit(result if isinstance(result, int) else 0)
@@ -232,7 +241,7 @@ def echo_table(rows) -> None:
 
 def user_error(message: str) -> None:
     """End the command with one line on stderr and exit code 2."""
-    typer.echo(f"error: {' '.join(str(message).split())}", err=True)
+    typer.echo(f"error: {one_line(message)}", err=True)
     raise typer.Exit(2)
 
 

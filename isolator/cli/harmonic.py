@@ -66,8 +66,8 @@ def threshold(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Regime thresholds along α: α_SS = 1, α_SL and every transition up to --alpha-max."""
-    from isolator.solver.harmonic import harmonic_thresholds
     from isolator.solver.system import InvalidSystemError
+    from isolator.solver.thresholds import harmonic_thresholds
 
     try:
         result = harmonic_thresholds(k, eta, mu_s, mu_k, alpha_max=alpha_max, n_grid=grid)

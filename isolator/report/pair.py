@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from isolator.atomic import atomic_path
+from isolator.report.layout import caption, fmt, table, tail
+from isolator.report.layout import page as layout_page
 from isolator.report.pair_figures import pair_response_page
-from isolator.report.pdf import _caption, _table, _tail, fmt
-from isolator.report.pdf import _page as pdf_page
 from isolator.serialize import json_safe
 from isolator.units import STANDARD_GRAVITY
 
@@ -27,7 +27,7 @@ PAGE_TITLES = ("1  Summary (bidirectional)", "2  Ground motion", "3  Isolator re
 
 
 def _page(number: int, subtitle: str):
-    return pdf_page(number, subtitle, titles=PAGE_TITLES)
+    return layout_page(number, subtitle, PAGE_TITLES)
 
 
 def _planar(values) -> np.ndarray:
@@ -61,18 +61,18 @@ def _summary_page(analysis, numbers: dict, label: str, command: str):
     design_rows += [("damper", f"γ = {fmt(d.damping_Ns_per_m)} N·s/m"),
                     ("displacement capacity", "not given" if d.displacement_capacity_m is None
                      else f"{fmt(d.displacement_capacity_m)} m")]
-    y = _table(fig, 0.05, 0.875, "Design", design_rows)
+    y = table(fig, 0.05, 0.875, "Design", design_rows)
     files = list(dict.fromkeys(Path(c["path"]).name for c in record["components"].values()))
-    record_rows = [("file" if len(files) == 1 else f"file {i + 1}", _tail(name, 34)) for i, name in enumerate(files)]
-    record_rows += [(axis, f"{_tail(c['component'], 14)}, PGA {fmt(c['pga_m_s2'] / STANDARD_GRAVITY)} g")
+    record_rows = [("file" if len(files) == 1 else f"file {i + 1}", tail(name, 34)) for i, name in enumerate(files)]
+    record_rows += [(axis, f"{tail(c['component'], 14)}, PGA {fmt(c['pga_m_s2'] / STANDARD_GRAVITY)} g")
                     for axis, c in record["components"].items()]
     record_rows.append(("samples", f"{record['npts']} × {fmt(record['dt_s'])} s"
                                    + ("" if record["uniform_sampling"] else " (mean; unequal steps)")))
-    record_rows += [("units from", _tail(c["units_source"], 40)) for c in list(record["components"].values())[:1]]
+    record_rows += [("units from", tail(c["units_source"], 40)) for c in list(record["components"].values())[:1]]
     record_rows += [("processing", step["step"]) for step in record["processing"]]
     if record["scaling"]:
-        record_rows.append(("scaling", _tail(record["scaling"], 48)))
-    _table(fig, 0.52, 0.875, "Ground motion", record_rows)
+        record_rows.append(("scaling", tail(record["scaling"], 48)))
+    table(fig, 0.52, 0.875, "Ground motion", record_rows)
     result_rows = [
         ("peak displacement (resultant)", f"{fmt(results['peak_displacement_m'])} m"),
         ("demand / capacity", fmt(results["displacement_demand_ratio"], 3)),
@@ -91,13 +91,13 @@ def _summary_page(analysis, numbers: dict, label: str, command: str):
         ("energy balance error", f"{fmt(results['energy_balance_error_J_per_kg'], 2)} J/kg"),
         ("solver", f"{fmt(results['solver_seconds'] * 1e3, 3)} ms, {results['solver_status']}"),
     ]
-    y = _table(fig, 0.05, min(y, 0.66), "Results", result_rows, width=0.9)
+    y = table(fig, 0.05, min(y, 0.66), "Results", result_rows, width=0.9)
     fig.text(0.05, y, "Verdicts", fontsize=9.5, weight="bold", va="top")
     y -= 0.02
     for sentence in numbers["verdicts"]:
         fig.text(0.05, y, textwrap.fill("• " + sentence, 120), fontsize=8, va="top")
         y -= 0.03
-    _caption(fig, f"isolator: {textwrap.shorten(command, 140)}.  Resultant = Euclidean norm in the horizontal "
+    caption(fig, f"isolator: {textwrap.shorten(command, 140)}.  Resultant = Euclidean norm in the horizontal "
                   "plane; X and Y are the first and second horizontal components as read.  Energies per unit mass.")
     return fig
 
@@ -114,7 +114,7 @@ def _ground_page(analysis, label: str):
         ax.set_ylabel(f"{axis}: {motion.component}  [g]")
         ax.set_xlim(motion.time_s[0], motion.time_s[-1])
     axes[-1].set_xlabel("time  [s]")
-    _caption(fig, "Ground acceleration of each component as analysed (after the processing listed on page 1), "
+    caption(fig, "Ground acceleration of each component as analysed (after the processing listed on page 1), "
                   "linear between samples.  Z is up positive: the normal force per unit mass is n = g + a_z.")
     return fig
 
@@ -158,7 +158,7 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
             fig.subplots_adjust(left=0.1, right=0.96, top=0.93, bottom=0.08, hspace=0.45, wspace=0.32)
             pair_response_page(fig, _Planar(analysis.response), analysis.design.mass_kg,
                                capacity_m=analysis.design.displacement_capacity_m, labels=labels)
-            _caption(fig, f"Model {numbers['model']}: {numbers['model_reason']}.  Top: the orbit of the bearing "
+            caption(fig, f"Model {numbers['model']}: {numbers['model_reason']}.  Top: the orbit of the bearing "
                           "(relative displacement X_x against X_y), with the displacement-capacity circle where the "
                           "design gives one.  Middle: resultant |X| and each component.  Bottom: isolator force "
                           "(−M × absolute acceleration of the mass) against displacement, in each direction.")

@@ -8,7 +8,6 @@ harmonic regime map and the A(α) curve.  Both files are written atomically.
 
 from __future__ import annotations
 
-import math
 import textwrap
 from pathlib import Path
 
@@ -17,65 +16,21 @@ import numpy as np
 from isolator.atomic import atomic_path
 from isolator.metrics import REGIME_WORDS, slip_intervals
 from isolator.report import figures
+from isolator.report.layout import caption, fmt, page, table, tail
 from isolator.report.summary import Analysis, summary_dict, verdicts, write_json
 from isolator.units import STANDARD_GRAVITY
 
-A4_IN = (8.27, 11.69)
 PAGE_TITLES = ("1  Summary", "2  Ground motion", "3  Isolator response", "4  Harmonic regime map")
-
-
-def fmt(value, digits: int = 4) -> str:
-    """A number for a reader: ``digits`` significant figures, 'n/a' for None/NaN, '∞' for inf."""
-    if value is None:
-        return "n/a"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    value = float(value)
-    if math.isnan(value):
-        return "n/a"
-    if math.isinf(value):
-        return "inf"
-    return format(value, f".{digits}g")
-
-
-def _tail(text: str, width: int) -> str:
-    """``text`` cut at the front to ``width`` characters (file names keep their end)."""
-    return text if len(text) <= width else "…" + text[-(width - 1):]
-
-
-def _page(number: int, subtitle: str, titles=PAGE_TITLES):
-    fig = figures.new_figure(figsize=A4_IN)
-    fig.text(0.05, 0.975, titles[number - 1], fontsize=13, weight="bold", va="top")
-    fig.text(0.95, 0.975, textwrap.shorten(subtitle, 80, placeholder="…"), fontsize=7.5, va="top", ha="right",
-             color="0.35")
-    return fig
-
-
-def _caption(fig, text: str, y: float = 0.012) -> None:
-    fig.text(0.05, y, textwrap.fill(text, 150), fontsize=7.2, va="bottom", ha="left", color="0.15")
-
-
-def _table(fig, x: float, y: float, title: str, rows, width: float = 0.43, line: float = 0.0145) -> float:
-    """Rows of (name, value) text at figure coordinates; returns the y below the table."""
-    fig.text(x, y, title, fontsize=9.5, weight="bold", va="top")
-    y -= line * 1.35
-    for name, value in rows:
-        fig.text(x, y, name, fontsize=7.8, va="top")
-        fig.text(x + 0.42 * width, y, value, fontsize=7.8, va="top")
-        y -= line
-    return y - line * 0.6
 
 
 def _summary_page(a: Analysis, summary: dict, command: str):
     record_name = Path(a.record_label).name if Path(a.record_label).is_file() else a.record_label
-    fig = _page(1, f"{a.design.name} | {record_name}")
+    fig = page(1, f"{a.design.name} | {record_name}", PAGE_TITLES)
     d, p, r, im = a.design, a.adaptation.point, a.response, a.adaptation.intensity
     eng = a.engineering
     fig.text(0.05, 0.945, "Friction isolator - engineering review", fontsize=11, va="top")
     design_rows = [("name", textwrap.shorten(d.name, 38, placeholder="…")),
-                   ("design file", _tail(Path(d.source).name, 38)),
+                   ("design file", tail(Path(d.source).name, 38)),
                    ("type", "friction pendulum" if d.is_pendulum else "flat slider with spring"),
                    ("mass M", f"{d.mass_kg:.6g} kg  (W = {fmt(d.weight_N / 1e3)} kN)")]
     if d.description:
@@ -88,14 +43,14 @@ def _summary_page(a: Analysis, summary: dict, command: str):
                     ("isolated period T", f"{fmt(d.isolated_period_s)} s"),
                     ("paper configuration", a.adaptation.system.configuration)]
     prov = a.motion.provenance
-    record_rows = [("record", _tail(record_name, 40))]
+    record_rows = [("record", tail(record_name, 40))]
     for key, name in (("event", "event"), ("date", "date"), ("station", "station"),
                       ("station_name", "station name"), ("event_origin_time", "event origin (UTC)"),
                       ("starttime", "record start (UTC)"),
                       ("magnitude", "magnitude")):
         if key in prov:
             value = prov[key]
-            record_rows.append((name, _tail(fmt(value, 3) if isinstance(value, float) else str(value), 40)))
+            record_rows.append((name, tail(fmt(value, 3) if isinstance(value, float) else str(value), 40)))
     record_rows += [("component", a.motion.component or "-"), ("format", str(prov.get("format", "-"))),
                     ("units from", textwrap.shorten(a.motion.units_source, 40, placeholder="…")),
                     ("samples", f"{a.motion.npts} × {fmt(a.motion.dt_s)} s = {fmt(a.motion.duration_s)} s")]
@@ -111,9 +66,9 @@ def _summary_page(a: Analysis, summary: dict, command: str):
                ("Arias intensity", f"{fmt(im.arias_m_s)} m/s"), ("duration D5-95", f"{fmt(im.d5_95_s)} s"),
                ("predominant period", f"{fmt(im.predominant_period_s, 3)} s"),
                ("A0 = PGV²/PGA", f"{fmt(p.a0_m)} m"), ("Ω = PGA/PGV", f"{fmt(p.omega_rad_s)} rad/s")]
-    y = _table(fig, 0.05, 0.915, "Design", design_rows)
-    y = _table(fig, 0.05, y, "Record", record_rows)
-    y_left = _table(fig, 0.05, y, "Intensity measures", im_rows)
+    y = table(fig, 0.05, 0.915, "Design", design_rows)
+    y = table(fig, 0.05, y, "Record", record_rows)
+    y_left = table(fig, 0.05, y, "Intensity measures", im_rows)
 
     point_rows = [("alpha = PGA/(µs g)", fmt(p.alpha)), ("k = K A0/(M g)", fmt(p.k)),
                   ("eta = (γ/M) sqrt(A0/g)", fmt(p.eta)), ("µs / µk", f"{fmt(p.mu_s)} / {fmt(p.mu_k)}")]
@@ -134,8 +89,8 @@ def _summary_page(a: Analysis, summary: dict, command: str):
                                       f"{fmt(r.energy_viscous_J_per_kg * d.mass_kg / 1e3)} kJ"),
         ("energy balance error", f"{r.energy_balance_error_J_per_kg * d.mass_kg:.2e} J"),
     ]
-    y = _table(fig, 0.53, 0.915, "Equivalent harmonic point (paper, Eq. 6)", point_rows)
-    y = _table(fig, 0.53, y, "Key results (exact solver)", result_rows)
+    y = table(fig, 0.53, 0.915, "Equivalent harmonic point (paper, Eq. 6)", point_rows)
+    y = table(fig, 0.53, y, "Key results (exact solver)", result_rows)
     rc, hc = a.record_class, a.harmonic_class
     fig.text(0.53, y, "Classification", fontsize=9.5, weight="bold", va="top")
     y -= 0.02
@@ -179,7 +134,7 @@ def _summary_page(a: Analysis, summary: dict, command: str):
         for j, line in enumerate(wrapped):
             fig.text(0.06, y, ("• " if j == 0 else "  ") + line, fontsize=7.8, va="top")
             y -= 0.0135
-    _caption(fig, f"isolator {summary['software']['version']}, {a.created_utc}.  Command: {command}  "
+    caption(fig, f"isolator {summary['software']['version']}, {a.created_utc}.  Command: {command}  "
                   "Exact event-driven solution of M. Nicolas (2017)'s friction-spring-dashpot block, the record "
                   "taken as linear between samples.  Definitions: regime from the slip-time ratio ζ over D5-95 "
                   "(ST never slides, SL slides the whole window); A = half peak-to-peak relative displacement / A0; "
@@ -230,14 +185,14 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
             pdf.savefig(fig)
 
             # page 2: the record
-            fig = _page(2, label)
+            fig = page(2, label, PAGE_TITLES)
             fig.subplots_adjust(left=0.11, right=0.95, top=0.93, bottom=0.1, hspace=0.38)
             window = rc.window_s
             periods = np.geomspace(0.05, max(6.0, 1.5 * min(d.isolated_period_s, 20.0)), 120)
             psa = a.motion.response_spectrum(periods)
             figures.record_page(fig, a.motion, window, periods, psa, d.isolated_period_s,
                                 a.engineering["effective_period_s"])
-            _caption(fig, "Ground acceleration as used in the analysis (after the processing listed on page 1); "
+            caption(fig, "Ground acceleration as used in the analysis (after the processing listed on page 1); "
                           "velocity by trapezoidal integration from rest; displacement by double integration "
                           "with a least-squares quadratic baseline removed (display only: the solver uses the "
                           "acceleration).  Grey band: strong-motion window D5-95 (5 % to 95 % of the Arias "
@@ -247,11 +202,11 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
             pdf.savefig(fig)
 
             # page 3: the response
-            fig = _page(3, label)
+            fig = page(3, label, PAGE_TITLES)
             fig.subplots_adjust(left=0.1, right=0.96, top=0.93, bottom=0.1, hspace=0.42, wspace=0.3)
             energies = figures.response_page(fig, r, d.mass_kg, slip_intervals(r))
             final = {name: values[-1] / 1e3 for name, values in energies.items()}
-            _caption(fig, "Exact response (closed forms between stick/slip events).  Shaded: the block slides "
+            caption(fig, "Exact response (closed forms between stick/slip events).  Shaded: the block slides "
                           f"relative to the ground ({fmt(r.slip_time_s)} s in all, {r.n_events} events).  "
                           "Transmitted acceleration = absolute acceleration of the supported mass; isolator "
                           "force = -M × that acceleration (friction + spring + damper).  Energy curves: "
@@ -263,7 +218,7 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
             pdf.savefig(fig)
 
             # page 4: the map
-            fig = _page(4, label)
+            fig = page(4, label, PAGE_TITLES)
             grid = fig.add_gridspec(2, 1, height_ratios=[1.35, 1], left=0.1, right=0.66, top=0.93,
                                     bottom=0.11, hspace=0.3)
             ax_map = fig.add_subplot(grid[0])
@@ -276,7 +231,7 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
             figures.draw_amplitude_curve(ax_amp, alphas, amplitudes, regimes, steady=steady, alpha_record=p.alpha,
                                          amplitude_record=rc.amplitude, k=p.k, eta=p.eta)
             ax_amp.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
-            _caption(fig, f"Top: the paper's (k, α) map (Figs. 5-7) at the design's η, µs, µk, zoomed to the "
+            caption(fig, f"Top: the paper's (k, α) map (Figs. 5-7) at the design's η, µs, µk, zoomed to the "
                           f"design, {map_resolution} × {map_resolution} steady harmonic solutions.  Regime "
                           "boundaries are every change of regime along α; grey: A > 1; colours: the dominant "
                           "force (largest of kA, ηAω, µk, Eq. 5); ρ = 1 curves where they cross the frame.  The "

@@ -15,7 +15,7 @@ import numpy as np
 
 from isolator.atomic import atomic_path
 from isolator.report import figures
-from isolator.report.pdf import A4_IN, fmt
+from isolator.report.layout import A4_IN, fmt
 
 TITLES = ("1  Design review: checks", "2  Target and suite spectra", "3  Analyses per pair and bound",
           "4  Orbits and bounding envelope", "5  The paper's measures (context, not a verdict)")

@@ -25,10 +25,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from isolator.errors import InvalidSystemError
 from isolator.serialize import finite_or_none
 from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
 from isolator.solver.segments import harmonic_h1, ramp_basis, segment_state, state_from_basis
-from isolator.solver.system import InvalidSystemError, classify_configuration
+from isolator.solver.system import classify_configuration
 
 PHASE_DEFAULT = 0.5 * math.pi  #: φ of the paper: zero ground acceleration at t = 0 [rad]
 MAX_SUBHARMONIC = 8  #: longest steady cycle looked for, in forcing periods
@@ -407,7 +408,22 @@ def force_ratios(k: float, eta: float, alpha: float, mu_s: float, mu_k: float, a
 MAX_DIMENSIONLESS = 1e6
 
 
-def _validate(alpha, k, eta, mu_s, mu_k):
+def validate_harmonic_parameters(alpha: float, k: float, eta: float, mu_s: float, mu_k: float) -> None:
+    """Refuse dimensionless parameters outside the harmonic problem's domain (paper, Eq. 2).
+
+    Parameters
+    ----------
+    alpha, k, eta : float
+        Forcing level, stiffness and damping of Eq. 2, finite, ≥ 0 and ≤ :data:`MAX_DIMENSIONLESS`;
+        α > 0 [-].
+    mu_s, mu_k : float
+        Static and kinetic friction coefficients, 0 ≤ µk ≤ µs, µs > 0 [-].
+
+    Raises
+    ------
+    InvalidSystemError
+        One line naming the parameter and the bound it breaks.
+    """
     for name, value in (("alpha", alpha), ("k", k), ("eta", eta), ("mu_s", mu_s)):
         if not math.isfinite(value) or value < 0.0:
             raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
@@ -463,7 +479,7 @@ def harmonic_response(alpha: float, k: float, eta: float, mu_s: float, mu_k: flo
     """
     mu_k = mu_s if mu_k is None else mu_k
     alpha, k, eta, mu_s, mu_k = (float(alpha), float(k), float(eta), float(mu_s), float(mu_k))
-    _validate(alpha, k, eta, mu_s, mu_k)
+    validate_harmonic_parameters(alpha, k, eta, mu_s, mu_k)
     omega, period, piece_max = _discretisation(alpha, k, eta, mu_s)
     boundary_states = np.zeros((max_periods + 1, _STATE_SIZE))
     amplitudes = np.zeros(max_periods)
@@ -571,7 +587,7 @@ def harmonic_transient(alpha: float, k: float, eta: float, mu_s: float, mu_k: fl
     """
     mu_k = mu_s if mu_k is None else mu_k
     alpha, k, eta, mu_s, mu_k = (float(alpha), float(k), float(eta), float(mu_s), float(mu_k))
-    _validate(alpha, k, eta, mu_s, mu_k)
+    validate_harmonic_parameters(alpha, k, eta, mu_s, mu_k)
     n_periods = int(n_periods)
     if n_periods < 1:
         raise InvalidSystemError(f"n_periods must be >= 1, got {n_periods}")
@@ -612,7 +628,3 @@ def alpha_sl_friction_only(mu_s: float, mu_k: float | None = None) -> float:
     """
     mu_k = mu_s if mu_k is None else mu_k
     return math.sqrt(1.0 + (math.pi ** 2 / 4.0) * (mu_k / mu_s) ** 2)
-
-
-# the regime thresholds along α live in their own module; re-exported here for callers
-from isolator.solver.thresholds import RegimeThresholds, bisect_change, harmonic_regime, harmonic_thresholds  # noqa: E402,F401

@@ -12,8 +12,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.solver.harmonic import MAX_DIMENSIONLESS, MAX_PERIODS_DEFAULT, _validate, harmonic_response
-from isolator.solver.system import InvalidSystemError
+from isolator.errors import InvalidSystemError
+from isolator.solver.harmonic import (
+    MAX_DIMENSIONLESS,
+    MAX_PERIODS_DEFAULT,
+    harmonic_response,
+    validate_harmonic_parameters,
+)
 
 #: Largest grid of an α scan (each point a harmonic response, ~0.5 ms: about 10 s).
 MAX_THRESHOLD_GRID = 20_000
@@ -128,7 +133,7 @@ def harmonic_thresholds(k: float, eta: float, mu_s: float, mu_k: float | None = 
     if not 4 <= n_grid <= MAX_THRESHOLD_GRID:
         raise InvalidSystemError(f"the α grid must have 4 to {MAX_THRESHOLD_GRID} points (each is a harmonic "
                                  f"response, ~0.5 ms), got {n_grid}")
-    _validate(1.0, float(k), float(eta), float(mu_s), float(mu_k))
+    validate_harmonic_parameters(1.0, float(k), float(eta), float(mu_s), float(mu_k))
     # the first grid point sits just above 1 so that the ST → moving step is at α_SS = 1;
     # narrow windows open at the sub- and super-harmonic resonances √k = n ω and
     # ω = n √k (ω² = α µs), so those values of α join the grid

@@ -8,12 +8,8 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from isolator.solver.harmonic import (
-    alpha_sl_friction_only,
-    force_ratios,
-    harmonic_response,
-    harmonic_thresholds,
-)
+from isolator.solver.harmonic import alpha_sl_friction_only, force_ratios, harmonic_response
+from isolator.solver.thresholds import harmonic_thresholds
 from tests.reference import reference_harmonic
 
 MU = 0.25  # µs of the paper's figures
