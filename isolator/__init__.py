@@ -9,7 +9,9 @@ stay instant)::
 
     simulate_record(acceleration_m_s2, dt_s, mu_static=..., ...) -> Response
     simulate_pair(ax_m_s2, ay_m_s2, dt_s, mu_static=..., az_m_s2=None, radius_m=None, ...) -> PairResponse
-    simulate_motion(ax, ay=None, az=None, dt_s, **system) -> Response | PairResponse (the model the scene needs)
+    simulate(Scene(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=..., isolator={...})) -> SolverResult
+        (the model registry, isolator.solver.models: select_model(scene) once, then that model;
+        simulate_motion(ax, ay=None, az=None, dt_s, **isolator) is the same on arrays)
     harmonic_response(alpha, k, eta, mu_s, mu_k=None) -> HarmonicResponse
     harmonic_thresholds(k, eta, mu_s, mu_k=None, alpha_max=6) -> RegimeThresholds
     System(mu_static, mu_kinetic, stiffness_per_mass, damping_per_mass, gravity_m_s2)
@@ -28,7 +30,11 @@ _EXPORTS = {
     "Response": "isolator.solver.record",
     "simulate_pair": "isolator.solver.planar",
     "PairResponse": "isolator.solver.planar",
-    "simulate_motion": "isolator.solver.planar",
+    "simulate_motion": "isolator.solver.models",
+    "simulate": "isolator.solver.models",
+    "select_model": "isolator.solver.models",
+    "Scene": "isolator.solver.models",
+    "SolverResult": "isolator.solver.models",
     "harmonic_response": "isolator.solver.harmonic",
     "HarmonicResponse": "isolator.solver.harmonic",
     "harmonic_thresholds": "isolator.solver.harmonic",

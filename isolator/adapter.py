@@ -170,7 +170,7 @@ def engineering_quantities(design: Design, response) -> dict:
 
 
 def motion_keywords(design: Design) -> dict:
-    """The isolator keywords of :func:`isolator.solver.planar.simulate_motion` for a design (per unit mass).
+    """The isolator keywords of :class:`isolator.solver.models.Scene` of a design (per unit mass).
 
     A friction pendulum is given by its radius (κ = g/R, or n(t)/R with a vertical
     record); any other design by K/M.  µ(v) is passed when the design gives it, which

@@ -335,20 +335,19 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     isolator.solver.record.RecordInputError
         A motion the solver cannot take.
     """
-    from isolator.adapter import adapt, engineering_quantities
+    from isolator.adapter import adapt, engineering_quantities, motion_keywords
     from isolator.metrics import classify_record, compare
-    from isolator.solver.record import simulate_record
+    from isolator.solver.models import Scene, select_model, simulate
 
-    if getattr(motion, "y", None) is not None or getattr(motion, "z", None) is not None \
-            or getattr(design, "velocity_dependent", False):
+    scene = Scene.of(motion, motion_keywords(design), design)
+    if select_model(scene)[0] != MODEL_1D:
         from isolator.pair_analysis import analyse_pair
 
         return analyse_pair(design, motion, record_label=record_label, scaling_note=scaling_note)
     motion = getattr(motion, "x", motion)  # a MotionPair of one component is that component
     adaptation = adapt(design, motion, intensity)
     point = adaptation.point
-    response = simulate_record(motion.acceleration_m_s2, motion.dt_s, time_s=motion.sample_times_s,
-                               system=adaptation.system)
+    response = simulate(scene)
     record_class = classify_record(response, point, design, window_s=window_s)
     harmonic_response = harmonic_class = None
     harmonic_seconds = 0.0

@@ -168,15 +168,9 @@ def analyse_pair(design, motions, *, record_label: str = "", scaling_note: str =
     PairAnalysis
     """
     from isolator.adapter import engineering_quantities, motion_keywords
-    from isolator.solver.planar import simulate_motion
+    from isolator.solver.models import Scene, simulate
 
-    parts = getattr(motions, "components", None)
-    if not isinstance(parts, dict):
-        parts = {"x": motions}
-    response = simulate_motion(parts["x"].acceleration_m_s2,
-                               parts["y"].acceleration_m_s2 if "y" in parts else None,
-                               parts["z"].acceleration_m_s2 if "z" in parts else None, motions.dt_s,
-                               time_s=motions.sample_times_s, **motion_keywords(design))
+    response = simulate(Scene.of(motions, motion_keywords(design), design))
     return PairAnalysis(design=design, motions=motions, response=response,
                         engineering=engineering_quantities(design, response), record_label=record_label,
                         scaling_note=scaling_note,

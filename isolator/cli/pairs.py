@@ -58,7 +58,7 @@ def load_motion_set_for_cli(record, pair=None, vertical=None, component=None, un
 
 def system_keywords(*, mu_s, mu_k=None, stiffness_per_mass=0.0, damping_per_mass=0.0, gravity=None,
                     radius_m=None, mu_slow=None, mu_fast=None, rate_s_per_m=None) -> dict:
-    """The friction-isolator keywords of :func:`isolator.solver.planar.simulate_motion` from the options."""
+    """The friction-isolator keywords of :func:`isolator.solver.models.simulate_motion` from the options."""
     if radius_m is not None and stiffness_per_mass:
         user_error("give either --radius-m (a pendulum) or --stiffness-per-mass, not both")
     velocity = [mu_slow, mu_fast, rate_s_per_m]
@@ -71,8 +71,8 @@ def system_keywords(*, mu_s, mu_k=None, stiffness_per_mass=0.0, damping_per_mass
 
 
 def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, system: dict):
-    """Run :func:`~isolator.solver.planar.simulate_motion` (the model the scene needs); errors end the command."""
-    from isolator.solver.planar import simulate_motion
+    """Run :func:`~isolator.solver.models.simulate_motion` (the model the scene needs); errors end the command."""
+    from isolator.solver.models import simulate_motion
     from isolator.solver.record import RecordInputError
     from isolator.solver.system import InvalidSystemError
 

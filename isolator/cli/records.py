@@ -127,7 +127,6 @@ def simulate(
         system_keywords,
         wants_set,
     )
-    from isolator.pair_analysis import response_summary
     from isolator.solver.system import InvalidSystemError, System
 
     system = system_keywords(mu_s=mu_s, mu_k=mu_k, stiffness_per_mass=stiffness_per_mass,
@@ -167,7 +166,7 @@ def simulate(
         record_group = {**record_dict(motion, str(record)), "uniform_sampling": motion.is_uniform}
 
     # the analysis schema's slice for a record without a design: model and why, record, response keys
-    results = response_summary(result)
+    results = result.summary()
     summary = {"schema_version": SCHEMA_VERSION, "model": results.pop("model"),
                "model_reason": results.pop("model_reason"), "record": record_group, **results}
     if out_csv:

@@ -73,8 +73,9 @@ def _ground_measures(ax, ay, dt):
 
 
 def simulate(task: dict):
-    """Run the pair engine on a task (imported here so workers load it once)."""
-    from isolator.solver.planar import simulate_pair
+    """Run the model the pair needs (:func:`isolator.solver.models.simulate`) on a task."""
+    from isolator.solver.models import Scene
+    from isolator.solver.models import simulate as run_model
 
     p = task["design"]
     kwargs = {"mu_static": p["mu_static"], "damping_per_mass": p["damping_per_mass"], "gravity_m_s2": p["gravity_m_s2"]}
@@ -88,7 +89,7 @@ def simulate(task: dict):
         kwargs["mu_kinetic"] = p["mu_kinetic"]
     f = task["factor"]
     az = None if task["az"] is None else f * task["az"]
-    return simulate_pair(f * task["ax"], f * task["ay"], task["dt"], az_m_s2=az, **kwargs)
+    return run_model(Scene(ax_m_s2=f * task["ax"], ay_m_s2=f * task["ay"], az_m_s2=az, dt_s=task["dt"], isolator=kwargs))
 
 
 def analyse_task(task: dict) -> dict:

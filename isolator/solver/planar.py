@@ -20,9 +20,9 @@ separation itself is not modelled (contact resumes as soon as n > 0).
 The integration (DOP853 between events, stops and break-aways located exactly) is in
 :mod:`isolator.solver.planar_kernel`; accuracy and speed are measured in docs/planar.md.
 
-:func:`simulate_motion` is the one entry point that models only what the scene needs:
-one component, constant µ and no vertical runs the exact 1-D kernel
-(:func:`isolator.solver.record.simulate_record`); anything else runs this engine.
+In the model registry (:mod:`isolator.solver.models`) this is the ``2d`` model
+(:func:`scene_needs`, :func:`simulate_scene`): the registry runs it for any scene the
+exact 1-D kernel does not cover.
 """
 
 from __future__ import annotations
@@ -33,12 +33,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from isolator.errors import RecordInputError
 from isolator.solver import planar_kernel as _pk
 from isolator.solver import planar_layout as _pl
 from isolator.solver import planar_rk as _rk
+from isolator.solver.base import SolverResult
 from isolator.solver.events import EVENT_NAMES
 from isolator.solver.notice import note_if_slow
-from isolator.solver.record import RecordInputError, Response, simulate_record
 from isolator.solver.system import InvalidSystemError, classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
@@ -68,49 +69,24 @@ _STATUS_MESSAGES = (
 )
 
 
-@dataclass
-class PairResponse:
-    """Response of the planar engine (SI units; energies per unit mass [J/kg]).
+@dataclass(kw_only=True)
+class PairResponse(SolverResult):
+    """Response of the planar engine (model ``2d``; SI units; energies per unit mass [J/kg]).
 
-    Resultant quantities use the Euclidean norm in the horizontal plane; the
+    The fields of :class:`~isolator.solver.base.SolverResult` with (N, 2) histories;
+    resultant quantities use the Euclidean norm in the horizontal plane; the
     ``_x``/``_y`` residuals are along the two input components.  The energy input
     is the work of −M a_g on the relative motion plus, on a pendulum with a
-    vertical record, the work ½∫κ'|X|² dt of the vertical motion; the balance
-    ``input = kinetic + potential + friction + viscous`` holds to
-    ``energy_balance_error_J_per_kg``.
+    vertical record, the work ½∫κ'|X|² dt of the vertical motion.
     """
 
-    time_s: np.ndarray
-    ground_acceleration_m_s2: np.ndarray  #: (N, 2)
+    EVENT_NAMES = PLANAR_EVENT_NAMES
+
     vertical_acceleration_m_s2: np.ndarray | None  #: (N,) or None
-    displacement_m: np.ndarray  #: (N, 2), block minus ground
-    velocity_m_s: np.ndarray  #: (N, 2)
-    absolute_acceleration_m_s2: np.ndarray  #: (N, 2), acceleration of the mass (transmitted)
-    event_time_s: np.ndarray
-    event_kind: np.ndarray  #: codes into PLANAR_EVENT_NAMES
-    peak_displacement_m: float
-    residual_displacement_m: float
     residual_displacement_x_m: float
     residual_displacement_y_m: float
-    peak_velocity_m_s: float
-    peak_transmitted_acceleration_m_s2: float
-    slip_time_s: float  #: time with V ≠ 0 (sliding or in flight) [s]
     uplift_time_s: float  #: time with n = g + a_z ≤ 0 [s]
     n_uplifts: int
-    n_events: int
-    energy_input_J_per_kg: float
-    energy_friction_J_per_kg: float
-    energy_viscous_J_per_kg: float
-    energy_kinetic_final_J_per_kg: float
-    energy_potential_final_J_per_kg: float
-    energy_balance_error_J_per_kg: float
-    #: cumulative energies at the samples [J/kg], rows: input, friction, viscous
-    energy_history_J_per_kg: np.ndarray
-    solver_seconds: float
-    status: int
-    message: str
-    model: str
-    model_reason: str
     configuration: str = "1"
     n_steps: int = 0
     #: where the integration work went: rejected steps, steps in the START and LOG forms, Cartesian
@@ -118,58 +94,26 @@ class PairResponse:
     work: dict | None = None
 
     @property
-    def event_names(self) -> list[str]:
-        """Event kinds as words (breakaway, stick, reversal, uplift, landing)."""
-        return [PLANAR_EVENT_NAMES[k] for k in self.event_kind]
-
-    @property
     def resultant_displacement_m(self) -> np.ndarray:
         """|X| at the samples [m]."""
         return np.hypot(self.displacement_m[:, 0], self.displacement_m[:, 1])
 
-    def summary(self) -> dict:
-        """Scalar results; the keys of :meth:`Response.summary` where the quantity is the same."""
-        return {
-            "model": self.model,
-            "model_reason": self.model_reason,
-            "peak_displacement_m": self.peak_displacement_m,
-            "residual_displacement_m": self.residual_displacement_m,
-            "residual_displacement_x_m": self.residual_displacement_x_m,
-            "residual_displacement_y_m": self.residual_displacement_y_m,
-            "peak_velocity_m_s": self.peak_velocity_m_s,
-            "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
-            "slip_time_s": self.slip_time_s,
-            "uplift_time_s": self.uplift_time_s,
-            "n_uplifts": self.n_uplifts,
-            "n_events": self.n_events,
-            "energy_input_J_per_kg": self.energy_input_J_per_kg,
-            "energy_friction_J_per_kg": self.energy_friction_J_per_kg,
-            "energy_viscous_J_per_kg": self.energy_viscous_J_per_kg,
-            "energy_kinetic_final_J_per_kg": self.energy_kinetic_final_J_per_kg,
-            "energy_potential_final_J_per_kg": self.energy_potential_final_J_per_kg,
-            "energy_balance_error_J_per_kg": self.energy_balance_error_J_per_kg,
-            "solver_seconds": self.solver_seconds,
-            "configuration": self.configuration,
-            "solver_status": self.message,
-        }
-
 
 # ---------------------------------------------------------------------------------------
-# model selection
+# the registry's entry points (isolator.solver.models)
 # ---------------------------------------------------------------------------------------
-def select_model(*, has_y: bool, has_z: bool, velocity_dependent: bool) -> tuple[str, str]:
-    """The model a scene needs, and why (issue 10, "model only what the scene needs").
+MODEL_NAME = "2d"
+
+
+def model_label(*, has_y: bool, has_z: bool, velocity_dependent: bool) -> tuple[str, str]:
+    """The 2-D model's name for a scene, with its suffixes, and why the scene needs it.
 
     Returns
     -------
     tuple of str
-        ``(model, reason)``; model is ``"1d-exact"`` (one component, constant µ, no
-        vertical: the exact closed-form kernel) or ``"2d"`` with the suffixes
-        ``"+vertical"`` (n = g + a_z) and ``"+mu(v)"`` (velocity-dependent friction).
+        ``("2d" + "+vertical" (n = g + a_z) + "+mu(v)" (velocity-dependent friction), reason)``.
     """
-    if not (has_y or has_z or velocity_dependent):
-        return "1d-exact", "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
-    name = "2d" + ("+vertical" if has_z else "") + ("+mu(v)" if velocity_dependent else "")
+    name = MODEL_NAME + ("+vertical" if has_z else "") + ("+mu(v)" if velocity_dependent else "")
     needs = []
     if has_y:
         needs.append("two horizontal components (coupled friction)")
@@ -177,10 +121,32 @@ def select_model(*, has_y: bool, has_z: bool, velocity_dependent: bool) -> tuple
         needs.append("a vertical component (normal force n = g + a_z)")
     if velocity_dependent:
         needs.append("velocity-dependent friction µ(v)")
-    reason = "the 2-D engine, for " + " and ".join(needs)
+    reason = "the 2-D engine, for " + (" and ".join(needs) or "one horizontal component")
     if not has_y:
         reason += ", with the second horizontal component zero"
     return name, reason
+
+
+def scene_needs(scene) -> tuple[str, str]:
+    """``(model, reason)`` of the 2-D engine for a scene: it takes any single-surface rigid-block scene.
+
+    Parameters
+    ----------
+    scene : isolator.solver.base.Scene
+    """
+    return model_label(has_y=scene.has_y, has_z=scene.has_z, velocity_dependent=scene.velocity_dependent)
+
+
+def simulate_scene(scene) -> PairResponse:
+    """The 2-D engine's response to a scene (:func:`simulate_pair`; a missing a_y is zero).
+
+    Parameters
+    ----------
+    scene : isolator.solver.base.Scene
+    """
+    ax = np.asarray(scene.ax_m_s2, dtype=np.float64)
+    ay = np.zeros_like(ax) if scene.ay_m_s2 is None else scene.ay_m_s2
+    return simulate_pair(ax, ay, scene.dt_s, time_s=scene.time_s, az_m_s2=scene.az_m_s2, **scene.isolator)
 
 
 # ---------------------------------------------------------------------------------------
@@ -395,8 +361,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     e_in, e_f, e_v = (float(summary[j]) for j in (_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = 0.5 * kappa_end * float(out_x[-1, 0] ** 2 + out_x[-1, 1] ** 2)
-    model, reason = select_model(has_y=has_y, has_z=az is not None,
-                                 velocity_dependent=velocity_dependent)
+    model, reason = model_label(has_y=has_y, has_z=az is not None, velocity_dependent=velocity_dependent)
     return PairResponse(
         time_s=times,
         ground_acceleration_m_s2=np.column_stack((ax, ay)),
@@ -435,45 +400,3 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
             ("stability_limited", _pl.S_STEPS_LIMITED), ("land_substeps", _pl.S_SUB_LAND),
             ("peak_substeps", _pl.S_SUB_PEAK))},
     )
-
-
-def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, **system):
-    """Response to one component, a pair, or a pair and a vertical, with the model the scene needs.
-
-    One component, constant friction and no vertical → the exact 1-D kernel
-    (:func:`simulate_record`, a :class:`Response`, equal or unequal steps); anything else → the
-    2-D engine (:func:`simulate_pair`, a :class:`PairResponse`; a single component
-    runs with a_y = 0).  ``model`` and ``model_reason`` say which ran and why.
-
-    Parameters
-    ----------
-    ax_m_s2, ay_m_s2, az_m_s2 : array_like
-        Ground acceleration [m/s²]; ``ay``/``az`` optional.
-    dt_s, time_s
-        Sampling, as in :func:`simulate_pair`.
-    **system
-        The keywords of :func:`simulate_pair` (mu_static, mu_kinetic, radius_m, …).
-    """
-    velocity_dependent = any(system.get(k) is not None for k in ("mu_slow", "mu_fast", "rate_s_per_m"))
-    model, reason = select_model(has_y=ay_m_s2 is not None, has_z=az_m_s2 is not None,
-                                 velocity_dependent=velocity_dependent)
-    if model == "1d-exact":  # the exact kernel takes unequal steps too, interval by interval
-        kwargs = dict(system)
-        kwargs.pop("rtol", None)
-        radius = kwargs.pop("radius_m", None)
-        if radius is not None:
-            _parameters(kwargs.get("mu_static", 0.0), kwargs.get("mu_kinetic"),
-                        kwargs.get("stiffness_per_mass", 0.0), radius, kwargs.get("damping_per_mass", 0.0),
-                        kwargs.get("gravity_m_s2"), None, None, None)
-            g = kwargs.get("gravity_m_s2") or STANDARD_GRAVITY
-            kwargs["stiffness_per_mass"] = float(g) / float(radius)
-        result: Response = simulate_record(ax_m_s2, dt_s, time_s=time_s, **kwargs)
-        result.model = model
-        result.model_reason = reason
-        return result
-    ax = np.asarray(ax_m_s2, dtype=np.float64)
-    ay = np.zeros_like(ax) if ay_m_s2 is None else ay_m_s2
-    result = simulate_pair(ax, ay, dt_s, time_s=time_s, az_m_s2=az_m_s2, **system)
-    result.model = model  # the 2-D engine ran, whatever the values of a_y (simulate_pair looks at them)
-    result.model_reason = reason
-    return result

@@ -18,93 +18,52 @@ import numpy as np
 
 from isolator.errors import RecordInputError  # noqa: E402,F401 - defined with the other typed errors
 from isolator.solver import kernel as _kernel
-from isolator.solver.events import EVENT_NAMES
+from isolator.solver.base import SolverResult
 from isolator.solver.notice import note_if_slow
-from isolator.solver.system import System
+from isolator.solver.system import InvalidSystemError, System
+
+#: The model this module is in the registry (:mod:`isolator.solver.models`), and why a scene needs it.
+MODEL_NAME = "1d-exact"
+MODEL_REASON = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
 
 
-@dataclass
-class Response:
-    """Exact response of the block to a record (a bag of arrays and numbers, SI units).
+@dataclass(kw_only=True)
+class Response(SolverResult):
+    """Exact response of the block to one component (model ``1d-exact``; SI units).
 
-    Energies are per unit mass [J/kg = m²/s²]: ``energy_input_J_per_kg`` is the work of
-    the inertia force -M a_g on the relative motion, ``energy_friction_J_per_kg`` and
-    ``energy_viscous_J_per_kg`` are dissipated, and the balance
-    ``input = kinetic + potential + friction + viscous`` holds to
-    ``energy_balance_error_J_per_kg``.
+    The fields of :class:`~isolator.solver.base.SolverResult` (histories of shape (N,),
+    along the record), the isolator (``system``), the displacement at each event and the
+    sub-steps per sample interval.  One component moves along X: its residual is
+    ``residual_displacement_x_m`` (signed), Y is zero, and it never lifts off.
     """
 
     system: System
-    time_s: np.ndarray
-    ground_acceleration_m_s2: np.ndarray
-    displacement_m: np.ndarray  #: X, block minus ground, positive along the record
-    velocity_m_s: np.ndarray
-    absolute_acceleration_m_s2: np.ndarray  #: acceleration of the mass (transmitted)
-    event_time_s: np.ndarray
-    event_kind: np.ndarray  #: codes into EVENT_NAMES: 0 breakaway, 1 stick, 2 reversal
     event_displacement_m: np.ndarray
-    peak_displacement_m: float
-    residual_displacement_m: float
-    peak_velocity_m_s: float
-    peak_transmitted_acceleration_m_s2: float
-    slip_time_s: float
-    n_events: int
-    energy_input_J_per_kg: float
-    energy_friction_J_per_kg: float
-    energy_viscous_J_per_kg: float
-    energy_kinetic_final_J_per_kg: float
-    energy_potential_final_J_per_kg: float
-    energy_balance_error_J_per_kg: float
-    #: cumulative energies per unit mass at the samples [J/kg], rows: input, friction, viscous
-    energy_history_J_per_kg: np.ndarray
-    status: int = 0
-    message: str = "ok"
-    solver_seconds: float = 0.0
     substeps_per_interval: int = 1
-    #: which model ran (see :func:`isolator.solver.planar.select_model`) and why
-    model: str = "1d-exact"
-    model_reason: str = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
+    model: str = MODEL_NAME
+    model_reason: str = MODEL_REASON
+    uplift_time_s = 0.0  #: a block under one horizontal component never lifts off [s]
+    n_uplifts = 0
 
     @property
-    def event_names(self) -> list[str]:
-        """Event kinds as words: breakaway, stick, reversal."""
-        return [EVENT_NAMES[k] for k in self.event_kind]
+    def residual_displacement_x_m(self) -> float:
+        """Signed residual along the record [m]."""
+        return self.residual_displacement_m
+
+    @property
+    def residual_displacement_y_m(self) -> float:
+        """No motion across the record [m]."""
+        return 0.0
+
+    @property
+    def configuration(self) -> str:
+        """The paper's configuration of the isolator (1 to 4)."""
+        return self.system.configuration
 
     @property
     def sliding(self) -> np.ndarray:
         """True at the samples where the block slides relative to the ground."""
         return self.velocity_m_s != 0.0
-
-    def summary(self) -> dict:
-        """The response's numbers, named as in the analysis schema (``docs/schema.md``).
-
-        ``isolator simulate --json``, the batch rows and the report JSON all carry these
-        keys (SI units in the names, energies per unit mass in J/kg).  The keys of a
-        2-D response (:meth:`isolator.solver.planar.PairResponse.summary`) are here too:
-        one component moves along X (``residual_displacement_x_m`` is the signed
-        residual, Y is zero) and never lifts off.
-        """
-        return {
-            "peak_displacement_m": self.peak_displacement_m,
-            "residual_displacement_m": self.residual_displacement_m,
-            "residual_displacement_x_m": self.residual_displacement_m,
-            "residual_displacement_y_m": 0.0,
-            "uplift_time_s": 0.0,
-            "n_uplifts": 0,
-            "peak_velocity_m_s": self.peak_velocity_m_s,
-            "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
-            "slip_time_s": self.slip_time_s,
-            "n_events": int(self.n_events),
-            "energy_input_J_per_kg": self.energy_input_J_per_kg,
-            "energy_friction_J_per_kg": self.energy_friction_J_per_kg,
-            "energy_viscous_J_per_kg": self.energy_viscous_J_per_kg,
-            "energy_balance_error_J_per_kg": self.energy_balance_error_J_per_kg,
-            "solver_seconds": self.solver_seconds,
-            "configuration": self.system.configuration,
-            "solver_status": self.message,
-            "model": self.model,
-            "model_reason": self.model_reason,
-        }
 
 
 #: Steps that differ from their mean by less than this fraction are one uniform step:
@@ -292,3 +251,51 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
         solver_seconds=elapsed,
         substeps_per_interval=n_sub,
     )
+
+
+# ---------------------------------------------------------------------------------------
+# the registry's entry points (isolator.solver.models)
+# ---------------------------------------------------------------------------------------
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` when a scene is one component under constant friction and no vertical; else None.
+
+    Parameters
+    ----------
+    scene : isolator.solver.base.Scene
+    """
+    if scene.has_y or scene.has_z or scene.velocity_dependent:
+        return None
+    return MODEL_NAME, MODEL_REASON
+
+
+def simulate_scene(scene) -> Response:
+    """The exact 1-D response to a scene (:func:`simulate_record`; a pendulum's radius gives K/M = g/R).
+
+    Parameters
+    ----------
+    scene : isolator.solver.base.Scene
+        One component; the isolator keywords of :func:`isolator.solver.planar.simulate_pair`
+        (``rtol`` is not used: the kernel is exact).
+
+    Raises
+    ------
+    InvalidSystemError
+        An invalid isolator (a radius ≤ 0, a radius and a stiffness together, …).
+    RecordInputError
+        A record the kernel cannot take.
+    """
+    kwargs = {key: value for key, value in scene.isolator.items() if value is not None}
+    kwargs.pop("rtol", None)
+    radius = kwargs.pop("radius_m", None)
+    if radius is not None:
+        if kwargs.get("stiffness_per_mass"):
+            raise InvalidSystemError("give radius_m (friction pendulum) or stiffness_per_mass, not both")
+        try:
+            radius = float(radius)
+        except (TypeError, ValueError):
+            raise InvalidSystemError(f"radius_m must be a number, got {radius!r}") from None
+        if not math.isfinite(radius) or radius <= 0.0:
+            raise InvalidSystemError(f"radius_m must be a finite number > 0, got {radius!r}")
+        system = System(**{**kwargs, "stiffness_per_mass": 0.0})  # validates µ, c and g first
+        kwargs["stiffness_per_mass"] = system.gravity_m_s2 / radius
+    return simulate_record(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, **kwargs)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from isolator.batch import record_components, run_batch
-from isolator.solver.planar import simulate_motion
+from isolator.solver.models import simulate_motion
 
 DESIGNS = """
 [[design]]

@@ -13,7 +13,7 @@ from isolator.cli import app
 from isolator.design import Design
 from isolator.motion import read_ground_motion_pair
 from isolator.pair_analysis import analyse_pair
-from isolator.solver.planar import simulate_motion
+from isolator.solver.models import simulate_motion
 
 DESIGN = """name = "FP R2"
 mass_kg = 1000.0

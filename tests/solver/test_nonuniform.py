@@ -138,7 +138,7 @@ def test_linear_spectrum_of_collinear_samples_is_unchanged():
 
 
 def test_simulate_motion_keeps_a_non_uniform_single_component_on_the_exact_kernel():
-    from isolator.solver.planar import simulate_motion
+    from isolator.solver.models import simulate_motion
 
     acc, dt = synthetic_record(n=400)
     values, times, original = with_collinear_samples(acc, dt, seed=7)

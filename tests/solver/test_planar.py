@@ -14,14 +14,9 @@ import numpy as np
 import pytest
 
 from isolator.motion import read_ground_motion
-from isolator.solver.planar import (
-    PairResponse,
-    select_model,
-    simulate_motion,
-    simulate_pair,
-)
+from isolator.solver.planar import simulate_pair
 from isolator.solver.planar_kernel import scan_record
-from isolator.solver.record import RecordInputError, Response, simulate_record
+from isolator.solver.record import RecordInputError, simulate_record
 from isolator.solver.system import InvalidSystemError
 from tests.planar_reference import reference_pair
 
@@ -314,29 +309,6 @@ def test_non_uniform_sampling_is_the_piecewise_linear_signal():
     ref = reference_pair(t2, ax2 * (1 + 0.3 * np.sin(t2)), ay2, mu_s=0.06, mu_k=0.05, radius=2.0)
     r = simulate_pair(ax2 * (1 + 0.3 * np.sin(t2)), ay2, time_s=t2, **system)
     _compare(ref, r, 1e-9)
-
-
-def test_select_model_and_simulate_motion_dispatch():
-    assert select_model(has_y=False, has_z=False, velocity_dependent=False)[0] == "1d-exact"
-    assert select_model(has_y=True, has_z=False, velocity_dependent=False)[0] == "2d"
-    assert select_model(has_y=True, has_z=True, velocity_dependent=True)[0] == "2d+vertical+mu(v)"
-    name, reason = select_model(has_y=False, has_z=False, velocity_dependent=True)
-    assert name == "2d+mu(v)" and "zero" in reason
-    t, ax, ay = synthetic_pair(n=300)
-    dt = t[1] - t[0]
-    one = simulate_motion(ax, dt_s=dt, mu_static=0.06, radius_m=2.0)
-    assert isinstance(one, Response) and one.model == "1d-exact" and one.summary()["model"] == "1d-exact"
-    two = simulate_motion(ax, ay, dt_s=dt, mu_static=0.06, radius_m=2.0)
-    assert isinstance(two, PairResponse) and two.model == "2d" and two.summary()["model_reason"]
-    # a single component on a non-uniform grid stays on the exact 1-D kernel (unequal steps are exact there)
-    t2 = np.sort(np.concatenate((t, t[:-1] + 0.3 * dt)))
-    nonuniform = simulate_motion(np.interp(t2, t, ax), time_s=t2, mu_static=0.06, radius_m=2.0)
-    assert isinstance(nonuniform, Response) and nonuniform.model == "1d-exact"
-    assert _rel(nonuniform.peak_displacement_m, one.peak_displacement_m) <= 1e-12
-    mu_v = simulate_motion(ax, dt_s=dt, mu_static=0.06, mu_slow=0.04, mu_fast=0.08, rate_s_per_m=10.0)
-    assert mu_v.model == "2d+mu(v)"
-    keys = set(one.summary()) - {"configuration"}
-    assert keys <= set(two.summary())
 
 
 @pytest.mark.parametrize("kwargs, word", [

@@ -1,0 +1,141 @@
+"""The solver model registry: which model a scene needs, chosen once, and the run of it.
+
+In the manner of ``scipy.integrate._ivp`` (``METHODS`` and one ``OdeResult``): every
+caller — ``isolator simulate``, the analysis, the report, the batch, the review — builds a
+:class:`~isolator.solver.base.Scene` and calls :func:`simulate`; none of them chooses a
+model.  Every model returns a :class:`~isolator.solver.base.SolverResult` (one set of
+summary keys, :data:`~isolator.solver.base.SUMMARY_KEYS`) whose ``model`` and
+``model_reason`` say which model ran and why.
+
+How to add a model
+------------------
+1. Write a module under ``isolator/solver/`` with two functions::
+
+       def scene_needs(scene: Scene) -> tuple[str, str] | None:
+           '''(model name, reason) when this model is the one the scene needs, else None.'''
+
+       def simulate_scene(scene: Scene) -> MyResult:   # MyResult subclasses SolverResult
+           ...
+
+   ``MyResult`` is a ``@dataclass(kw_only=True)`` subclass of
+   :class:`~isolator.solver.base.SolverResult`; scalars beyond the common ones go in its
+   ``EXTRA_SUMMARY_KEYS`` (and in ``docs/schema.md``).  What the model needs beyond the
+   equivalent single bearing (floors, bearing surfaces) it reads from ``scene.design``;
+   import nothing from this module (the registry imports the models, not the reverse).
+2. Add one line to :data:`MODELS` **above** the models it specialises: :func:`select_model`
+   asks the models in this order and takes the first that answers (``2d``, the general
+   rigid-block engine, is last).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from isolator.solver import planar, record
+from isolator.solver.base import SUMMARY_KEYS, Scene, SolverResult
+
+
+@dataclass(frozen=True)
+class Model:
+    """One entry of the registry.
+
+    Attributes
+    ----------
+    name : str
+        Registry key, and the first part of the ``model`` a result reports (``"2d"`` runs as
+        ``"2d+vertical+mu(v)"`` …).
+    needs : callable
+        ``needs(scene) -> (model, reason)`` when the scene needs this model, else None.
+    run : callable
+        ``run(scene) -> SolverResult``.
+    description : str
+        One line for the documentation.
+    """
+
+    name: str
+    needs: Callable
+    run: Callable
+    description: str
+
+
+#: The models, most specific first: :func:`select_model` takes the first whose ``needs`` answers.
+MODELS: dict[str, Model] = {model.name: model for model in (
+    Model(record.MODEL_NAME, record.scene_needs, record.simulate_scene,
+          "rigid block on one surface under one component, constant friction: closed forms between events"),
+    Model(planar.MODEL_NAME, planar.scene_needs, planar.simulate_scene,
+          "rigid block on one surface in the plane: coupled friction, µ(v), n(t) = g + a_z (DOP853 between events)"),
+)}
+
+
+def _choose(scene: Scene) -> tuple[Model, str, str]:
+    for model in MODELS.values():
+        answer = model.needs(scene)
+        if answer is not None:
+            return model, answer[0], answer[1]
+    raise LookupError("no solver model takes this scene")  # pragma: no cover - "2d" takes every scene
+
+
+def select_model(scene: Scene) -> tuple[str, str]:
+    """The model a scene needs, and why (issue 10, "model only what the scene needs").
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    tuple of str
+        ``(model, reason)``, e.g. ``("1d-exact", "one horizontal component, …")`` or
+        ``("2d+vertical", "the 2-D engine, for …")``.
+    """
+    _, name, reason = _choose(scene)
+    return name, reason
+
+
+def simulate(scene: Scene) -> SolverResult:
+    """Run the model the scene needs (:func:`select_model`) and say which ran and why.
+
+    Parameters
+    ----------
+    scene : Scene
+
+    Returns
+    -------
+    SolverResult
+        The model's result; ``model`` and ``model_reason`` as :func:`select_model` gives them.
+
+    Raises
+    ------
+    isolator.solver.system.InvalidSystemError
+        An invalid isolator.
+    isolator.errors.RecordInputError
+        A motion the model cannot take.
+    """
+    model, name, reason = _choose(scene)
+    result = model.run(scene)
+    result.model = name
+    result.model_reason = reason
+    return result
+
+
+def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=None, design=None,
+                    **isolator) -> SolverResult:
+    """:func:`simulate` on arrays: one component, a pair, or a pair and a vertical.
+
+    Parameters
+    ----------
+    ax_m_s2, ay_m_s2, az_m_s2 : array_like
+        Ground acceleration [m/s²]; ``ay``/``az`` optional.
+    dt_s : float, optional
+        Sample interval [s]; or give ``time_s`` [s].
+    design : Design, optional
+        For models that need more than the isolator keywords.
+    **isolator
+        The keywords of :func:`isolator.solver.planar.simulate_pair` (mu_static, mu_kinetic, radius_m, …).
+    """
+    return simulate(Scene(ax_m_s2=ax_m_s2, ay_m_s2=ay_m_s2, az_m_s2=az_m_s2, dt_s=dt_s, time_s=time_s,
+                          isolator=isolator, design=design))
+
+
+__all__ = ["MODELS", "SUMMARY_KEYS", "Model", "Scene", "SolverResult", "select_model", "simulate", "simulate_motion"]
