@@ -56,6 +56,8 @@ DESIGN_KEYS = {
     "lambda_spec_max": "λ for permitted manufacturing variation, maximum [-], >= 1",
     "lambda_spec_min": "λ for permitted manufacturing variation, minimum [-], 0 < λ <= 1",
     "plan": "table: plan dimensions b_m, d_m [m], eccentricity_m [m], y_m [m] or P_T [-] (torsion factor)",
+    "superstructure": "table: damping_ratio and [[superstructure.floor]] entries (isolator.superstructure)",
+    "bearing_position": "array of tables: x_m, y_m [m] from the centre of mass, gravity_load_N [N] (optional)",
 }
 
 #: keys of the optional ``[plan]`` table
@@ -214,6 +216,10 @@ class Design:
     displacement_capacity_m: float | None = None
     property_factors: dict = field(default_factory=dict)
     plan: dict | None = None
+    #: the building above the isolation plane (:class:`isolator.superstructure.Superstructure`), if any
+    superstructure: object = None
+    #: the bearings' positions and gravity loads (:class:`isolator.superstructure.BearingLayout`), if any
+    bearing_layout: object = None
 
     # ---- construction ----------------------------------------------------------------
 
@@ -338,11 +344,16 @@ class Design:
         capacity = number("displacement_capacity_m", strict=True)
         factors = _property_factors(mapping, number, fail, mu_kinetic)
         plan = _plan(mapping.get("plan"), fail)
+        from isolator.superstructure import parse_bearing_layout, parse_superstructure
+
+        superstructure = parse_superstructure(mapping.get("superstructure"), mass_kg, g, source)
+        bearing_layout = parse_bearing_layout(mapping.get("bearing_position"), mass_kg * g, source)
         return cls(name=name.strip(), mass_kg=mass_kg, mu_static=mu_static, mu_kinetic=mu_kinetic,
                    radius_m=radius_m, stiffness_N_per_m=stiffness, damping_Ns_per_m=damping,
                    damping_ratio_input=damping_ratio, description=description, source=source,
                    gravity_m_s2=g, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate,
-                   displacement_capacity_m=capacity, property_factors=factors, plan=plan)
+                   displacement_capacity_m=capacity, property_factors=factors, plan=plan,
+                   superstructure=superstructure, bearing_layout=bearing_layout)
 
     def with_friction_factor(self, factor: float, label: str) -> Design:
         """The same design with every friction coefficient multiplied by ``factor`` (a property bound).
@@ -481,6 +492,8 @@ class Design:
             "displacement_capacity_m": self.displacement_capacity_m,
             "property_factors": dict(self.property_factors),
             "plan": None if self.plan is None else dict(self.plan),
+            "superstructure": None if self.superstructure is None else self.superstructure.as_dict(),
+            "bearing_position": None if self.bearing_layout is None else self.bearing_layout.as_dict(),
         }
 
 

@@ -112,7 +112,8 @@ def test_every_key_is_documented():
                                 "mu_kinetic", "damping_Ns_per_m", "damping_ratio", "mu_slow", "mu_fast",
                                 "rate_s_per_m", "displacement_capacity_m", "lambda_max", "lambda_min", "mu_upper",
                                 "mu_lower", "lambda_ae_max", "lambda_ae_min", "lambda_test_max", "lambda_test_min",
-                                "lambda_spec_max", "lambda_spec_min", "plan"}
+                                "lambda_spec_max", "lambda_spec_min", "plan",
+                                "superstructure", "bearing_position"}
 
 
 REVIEW_INVALID = [
