@@ -271,6 +271,9 @@ class BuildingResponse:
     message: str = "ok"
     solver_seconds: float = 0.0
     substeps_per_interval: int = 1
+    #: pieces evaluated by their Taylor series and interior extrema located (the work beyond e^{Ãh} products)
+    n_series_pieces: int = 0
+    n_extrema_located: int = 0
     bearing_layout: object = None
     model: str = MODEL_NAME
     model_reason: str = MODEL_REASON
@@ -497,6 +500,19 @@ def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingR
     mon = system.mon_modes
     mon_d = np.ascontiguousarray(np.stack([mon[k] @ system.a_modes[k] for k in range(2)]))
     hold_d = system.ell_hold @ system.a_modes[0]
+    # ℓ Ã^j for the Taylor coefficients of the monitored functionals, the hold force and v_b
+    n_pow = _bk.N_TAYLOR + 2
+    mon_pow = np.empty((2, n_pow, mon.shape[1], size))
+    vb_pow = np.empty((2, n_pow, size))
+    hold_pow = np.empty((n_pow, size))
+    for mode in range(2):
+        rows = np.vstack([mon[mode], np.eye(size)[1], system.ell_hold])
+        for j in range(n_pow):
+            mon_pow[mode, j] = rows[:-2]
+            vb_pow[mode, j] = rows[-2]
+            if mode == 0:
+                hold_pow[j] = rows[-1]
+            rows = rows @ system.a_modes[mode]
     n = acc.size
     n_mon = mon.shape[1]
     out_state = np.empty((n, size))
@@ -513,7 +529,8 @@ def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingR
         ev_x = np.empty(capacity)
         start = time.perf_counter()
         _bk.building_kernel(acc, dt, n_sub, kernel_times, h_max, system.a_modes, phi, p_in, p_vis, system.q_in,
-                            system.q_vis, mon, mon_d, system.ell_hold, hold_d, system.mu_static * weight,
+                            system.q_vis, mon, mon_d, mon_pow, system.ell_hold, hold_d, hold_pow, vb_pow,
+                            system.mu_static * weight,
                             system.mu_kinetic * weight, 0, 1, system.AG, system.BG, system.F, out_state, out_mon,
                             out_energy, peak_max, peak_min, ev_time, ev_kind, ev_x, summary)
         elapsed = time.perf_counter() - start
@@ -560,5 +577,7 @@ def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingR
         message=message,
         solver_seconds=elapsed,
         substeps_per_interval=n_sub,
+        n_series_pieces=int(summary[_bk.S_N_SERIES]),
+        n_extrema_located=int(summary[_bk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
     )

@@ -58,7 +58,9 @@ S_E_VISCOUS = 2
 S_SLIP_TIME = 3
 S_N_EVENTS = 4
 S_STATUS = 5
-SUMMARY_SIZE = 6
+S_N_SERIES = 6  #: pieces evaluated by their Taylor series (events, partial pieces)
+S_N_LOCATED = 7  #: interior extrema located (peaks and hold force)
+SUMMARY_SIZE = 8
 
 
 @njit(cache=True)
@@ -88,12 +90,12 @@ def _state_at(kry, tau, out):
 
 
 @njit(cache=True)
-def _coefficients(kry, ell, out):
-    # out[j] = ℓ · k_j
-    for j in range(kry.shape[0]):
+def _coefficients(rows, w0, out):
+    # out[j] = (ℓ Ã^j) · w0: the Taylor coefficients of ℓ·w(τ) from the precomputed rows ℓÃ^j
+    for j in range(rows.shape[0]):
         acc = 0.0
-        for i in range(kry.shape[1]):
-            acc += ell[i] * kry[j, i]
+        for i in range(rows.shape[1]):
+            acc += rows[j, i] * w0[i]
         out[j] = acc
 
 
@@ -113,6 +115,7 @@ def _poly_root(c, shift, target, sign, lo, hi):
     a = lo
     b = hi
     t = 0.5 * (a + b)
+    resolution = 4e-16 * max(abs(hi), abs(lo), 1e-300)
     f_lo = sign * (_poly(c, shift, lo) - target)
     f_hi = sign * (_poly(c, shift, hi) - target)
     if f_lo != f_hi and f_lo > 0.0 >= f_hi:
@@ -127,13 +130,14 @@ def _poly_root(c, shift, target, sign, lo, hi):
             a = t
         else:
             b = t
-        if b - a <= 4e-16 * max(abs(b), 1e-300):
+        # rounding of the instant: relative to the piece (a few 1e-16 of it, ~1e-19 s)
+        if b - a <= resolution:
             return b
         df = sign * _poly(c, shift + 1, t)
         t_new = t - f / df if df != 0.0 else 0.5 * (a + b)
         if not (a < t_new < b):
             t_new = 0.5 * (a + b)
-        elif abs(t_new - t) <= 2e-16 * abs(t):
+        elif abs(t_new - t) <= resolution:
             return t_new
         t = t_new
     return t
@@ -185,8 +189,14 @@ def _matvec(m, v, out):
 
 
 @njit(cache=True)
-def _monitor(kry, have_kry, a_mat, w0, length, y0, y1, d0, d1, mon, mon_d, peak_max, peak_min, coef):
-    """Update the signed extremes of the monitored functionals over one piece (interior extrema located)."""
+def _monitor(mon_pow, w0, length, y0, y1, d0, d1, peak_max, peak_min, coef):
+    """Update the signed extremes of the monitored functionals over one piece (interior extrema located).
+
+    On a piece the slope of each functional changes sign at most once (pieces are short against
+    every time scale), so |y| exceeds its ends by at most ~length × max|ẏ| and only an interior
+    extremum that could beat the running extreme is located, as a root of ẏ's Taylor polynomial.
+    """
+    located = 0
     for k in range(y0.shape[0]):
         lo_v = min(y0[k], y1[k])
         hi_v = max(y0[k], y1[k])
@@ -198,10 +208,8 @@ def _monitor(kry, have_kry, a_mat, w0, length, y0, y1, d0, d1, mon, mon_d, peak_
         interior_max = d0[k] > 0.0 and d1[k] < 0.0 and hi_v + reach > peak_max[k]
         interior_min = d0[k] < 0.0 and d1[k] > 0.0 and lo_v - reach < peak_min[k]
         if interior_max or interior_min:
-            if not have_kry[0]:
-                _krylov(a_mat, w0, kry)
-                have_kry[0] = True
-            _coefficients(kry, mon[k], coef)
+            located += 1
+            _coefficients(mon_pow[:, k, :], w0, coef)
             sign = 1.0 if d0[k] > 0.0 else -1.0
             t_e = _poly_root(coef, 1, 0.0, sign, 0.0, length)
             v_e = _poly(coef, 0, t_e)
@@ -209,11 +217,13 @@ def _monitor(kry, have_kry, a_mat, w0, length, y0, y1, d0, d1, mon, mon_d, peak_
                 peak_max[k] = v_e
             if v_e < peak_min[k]:
                 peak_min[k] = v_e
+    return located
 
 
 @njit(cache=True)
 def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes, pvis_modes, q_in, q_vis,
-                    mon_modes, mon_d_modes, ell_hold, ell_hold_d, mu_s_w, mu_k_w, idx_xb, idx_vb, idx_ag,
+                    mon_modes, mon_d_modes, mon_pow, ell_hold, ell_hold_d, hold_pow, vb_pow, mu_s_w, mu_k_w,
+                    idx_xb, idx_vb, idx_ag,
                     idx_bg, idx_f, out_state, out_mon, out_energy, peak_max, peak_min, ev_time, ev_kind, ev_x,
                     summary):
     """Exact response of the slab + shear building on the friction isolation plane.
@@ -238,8 +248,12 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
         The quadratic forms of the input and viscous powers [W].
     mon_modes, mon_d_modes : float64[2, K, N]
         Monitored functionals ℓ and their derivatives ℓÃ, per mode.
+    mon_pow : float64[2, N_TAYLOR + 2, K, N]
+        ℓ Ã^j per mode: the Taylor coefficients of every functional are mon_pow[mode, j] · w0.
     ell_hold, ell_hold_d : float64[N]
         The hold force D and its derivative (stuck mode) [N, N/s].
+    hold_pow, vb_pow : float64[N_TAYLOR + 2, N], float64[2, N_TAYLOR + 2, N]
+        ℓ_D Ã_stuck^j and e_vb Ã^j per mode.
     mu_s_w, mu_k_w : float
         µs W and µk W [N].
     idx_xb, idx_vb, idx_ag, idx_bg, idx_f : int
@@ -273,6 +287,9 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
     mode = 0
     s = 0.0
     x_stuck = 0.0
+    y0_valid = False
+    n_located = 0
+    n_series = 0
     n_ev = 0
     status = 0
     e_in = 0.0
@@ -303,6 +320,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
         h = dt_i / n_sub_i
         b = (acc[i + 1] - a0) / dt_i
         events_here = 0
+        y0_valid = False  # ȧ_g changes from one interval to the next
         for jsub in range(n_sub_i):
             w[idx_ag] = a0 + b * (jsub * h)
             w[idx_bg] = b
@@ -318,6 +336,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                     _matvec(phi_modes[mode], w, w1)
                 else:
                     _krylov(am, w, kry)
+                    n_series += 1
                     have_kry[0] = True
                     _state_at(kry, rem, w1)
                 if mode == 0:
@@ -343,10 +362,8 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                         t_ext = -1.0
                         h_ext = 0.0
                         if hd0 * hd1 < 0.0 and max(abs(h0), abs(h1)) + reach > mu_s_w:
-                            if not have_kry[0]:
-                                _krylov(am, w, kry)
-                                have_kry[0] = True
-                            _coefficients(kry, ell_hold, coef)
+                            n_located += 1
+                            _coefficients(hold_pow, w, coef)
                             t_ext = _poly_root(coef, 1, 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, rem)
                             h_ext = _poly(coef, 0, t_ext)
                         if t_ext >= 0.0 and abs(h_ext) > mu_s_w:
@@ -358,10 +375,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                             if t_ext >= 0.0:
                                 lo_seg = t_ext
                         if hit_sign != 0.0:
-                            if not have_kry[0]:
-                                _krylov(am, w, kry)
-                                have_kry[0] = True
-                            _coefficients(kry, ell_hold, coef)
+                            _coefficients(hold_pow, w, coef)
                             # root of hit·D − µs W from < 0 to >= 0: written as −(hit·D − µs W) from > 0
                             t_event = _poly_root(coef, 0, hit_sign * mu_s_w, -hit_sign, lo_seg, seg_hi)
                 else:
@@ -377,37 +391,26 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                             # from rest: the velocity first grows, and the stop lies after its maximum;
                             # a start that cannot move in direction s is a stop at once
                             if av0 > 0.0 and av1 < 0.0:
-                                if not have_kry[0]:
-                                    _krylov(am, w, kry)
-                                    have_kry[0] = True
-                                for j in range(coef.shape[0]):
-                                    coef[j] = kry[j, idx_vb]
+                                _coefficients(vb_pow[mode], w, coef)
                                 lo_seg = _poly_root(coef, 1, 0.0, s, 0.0, rem)
                             else:
                                 t_event = 0.0
                                 seg_hi = -1.0
                     elif av0 < 0.0 and av1 > 0.0 and min(v0, v1) - 2.0 * rem * max(abs(av0), abs(av1)) <= 0.0:
                         # an interior minimum of s·v_b: does it reach zero?
-                        if not have_kry[0]:
-                            _krylov(am, w, kry)
-                            have_kry[0] = True
-                        for j in range(coef.shape[0]):
-                            coef[j] = kry[j, idx_vb]
+                        _coefficients(vb_pow[mode], w, coef)
                         t_min = _poly_root(coef, 1, 0.0, -s, 0.0, rem)
                         if s * _poly(coef, 0, t_min) <= 0.0:
                             seg_hi = t_min
                     if seg_hi >= 0.0:
-                        if not have_kry[0]:
-                            _krylov(am, w, kry)
-                            have_kry[0] = True
-                        for j in range(coef.shape[0]):
-                            coef[j] = kry[j, idx_vb]
+                        _coefficients(vb_pow[mode], w, coef)
                         t_event = _poly_root(coef, 0, 0.0, s, lo_seg, seg_hi)
                 piece = rem if t_event < 0.0 else t_event
                 # ---- advance to the end of the piece (or the event) ----
                 if t_event >= 0.0:
                     if not have_kry[0]:
                         _krylov(am, w, kry)
+                        n_series += 1
                         have_kry[0] = True
                     _state_at(kry, piece, we)
                     if mode == 0:
@@ -434,6 +437,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                     else:
                         if not have_kry[0]:
                             _krylov(am, w, kry)
+                            n_series += 1
                             have_kry[0] = True
                         de_in = _quadratic_integral(kry, q_in, piece)
                         de_v = _quadratic_integral(kry, q_vis, piece)
@@ -442,13 +446,18 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                     if mode == 1:
                         e_f += w[idx_f] * (we[idx_xb] - w[idx_xb])
                         slip_time += piece
-                    # peaks over the piece
-                    _matvec(mon_modes[mode], w, y0)
-                    _matvec(mon_d_modes[mode], w, d0)
+                    # peaks over the piece (the values at its start are the last piece's end values
+                    # while the mode and the sample interval are unchanged)
+                    if not y0_valid:
+                        _matvec(mon_modes[mode], w, y0)
+                        _matvec(mon_d_modes[mode], w, d0)
                     _matvec(mon_modes[mode], we, y1)
                     _matvec(mon_d_modes[mode], we, d1)
-                    _monitor(kry, have_kry, am, w, piece, y0, y1, d0, d1, mon_modes[mode], mon_d_modes[mode],
-                             peak_max, peak_min, coef)
+                    n_located += _monitor(mon_pow[mode], w, piece, y0, y1, d0, d1, peak_max, peak_min, coef)
+                    for k in range(nk):
+                        y0[k] = y1[k]
+                        d0[k] = d1[k]
+                    y0_valid = True
                 else:
                     _matvec(mon_modes[mode], we, y1)
                     for k in range(nk):
@@ -460,6 +469,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                 if t_event < 0.0:
                     break
                 # ---- the event ----
+                y0_valid = False
                 events_here += 1
                 t_abs = t_i + jsub * h + tau
                 hold = _dot(ell_hold, w)
@@ -516,3 +526,5 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
     summary[S_SLIP_TIME] = slip_time
     summary[S_N_EVENTS] = n_ev
     summary[S_STATUS] = status
+    summary[S_N_SERIES] = n_series
+    summary[S_N_LOCATED] = n_located
