@@ -8,6 +8,7 @@ import numpy as np
 
 from isolator.review import checks as C
 from isolator.review.codes import asce7_22, en15129
+from isolator.review.selection import selection_rows
 
 BOUNDS = ("lower", "upper")
 
@@ -24,6 +25,7 @@ def _per_bound(results: dict, n_for_mean: int) -> dict:
         "peak_displacement_max_m": max((r["peak_displacement_m"] for r in ok), default=math.nan),
         "n_uplifts": int(sum(r.get("n_uplifts", 0) for r in ok)),
         "models": sorted({r.get("model", "") for r in ok}),
+        "spread": {key: C.spread([r[key] for r in ok]) for key in ("peak_displacement_m", "base_shear_coefficient")},
     }
 
 
@@ -58,6 +60,7 @@ def assess(review, designs: dict) -> None:
         "residual_displacement_m": residual,
         "D_TM": {"value": d_tm_value, "rha_m": rha_d_tm, "elf_floor_m": floor,
                  "governs": "ELF floor" if floor > rha_d_tm else "response history"}}}
+    review.design_values["spread"] = {b: values[b]["spread"] for b in values}
     review.checks = (_asce_checks if code == "asce7-22" else _en_checks)(review, values, designs)
 
 
@@ -77,7 +80,7 @@ def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, ba
                        + (f", {len(review.suite.failed)} failed" if review.suite.failed else ""), "pairs"),
             C.at_least("suite_spectrum", clause_spectrum, ratio, review.min_ratio_required,
                        f"min over {review.grid_s.size} log-spaced periods {lo:.3g}–{hi:.3g} s of the average scaled "
-                       f"{basis} / target, at T = {t_min:.3g} s; scaling '{review.scaling}'", "×target")]
+                       f"{basis} / target, at T = {t_min:.3g} s; " + _scaling_words(review), "×target")]
     if review.code == "asce7-22" and p.get("mean_ratio_min"):
         rows.append(C.at_least("suite_spectrum_mean", "ASCE 7-22 16.2.3.2 (interpretation)",
                                float(np.mean(review.suite_ratio)), p["mean_ratio_min"],
@@ -91,7 +94,18 @@ def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, ba
                         "×"))
     rows.append(C.usable_band([(pair.name, pair.high_pass_hz) for pair in review.suite.pairs], hi,
                               p["usable_band_factor"]))
+    rows += selection_rows(review.suite.pairs, list(review.factors.values()), mu_lower=review.bounds.mu_lower,
+                           gravity_m_s2=review.design.gravity_m_s2, controlling=review.target.controlling, params=p,
+                           closest=review.suite.closest)
     return rows
+
+
+def _scaling_words(review) -> str:
+    basis = review.trace.get("run", {}).get("scaling_basis", review.scaling)
+    return {"common": "scaling 'common': holds by construction (the factor is the smallest that passes)",
+            "fit": "scaling 'fit': the common factor on the fitted shapes makes it hold",
+            "given": "the engineer's factors, not rescaled: a real check of the suite",
+            "matched": "spectrally matched records, not rescaled (16.2.3.3)"}.get(basis, f"scaling '{basis}'")
 
 
 def _common_back(review, values: dict, d_tm_design: float) -> list:
@@ -111,14 +125,8 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
     rows.append(C.at_most("transmitted_over_pga", "isolation effectiveness (practice)", ratio,
                           p["transmitted_over_pga_max"],
                           "largest peak transmitted acceleration / resultant PGA of the scaled pair, any bound", "-"))
-    if any(pair.az_m_s2 is not None for pair in review.suite.pairs):
-        n_up = sum(v["n_uplifts"] for v in values.values())
-        with_z = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
-        rows.append(C.at_most("uplift", "bearing uplift (ASCE 7-22 17.2.4.7) [U]", n_up, 0,
-                              f"uplifts counted over {with_z} pair(s) with a vertical component", "events"))
-    else:
-        rows.append(C.check("uplift", "bearing uplift (ASCE 7-22 17.2.4.7) [U]", C.NOT_CHECKED,
-                            note="no vertical components in the suite"))
+    rows.append(C.uplift(sum(v["n_uplifts"] for v in values.values()),
+                         sum(pair.az_m_s2 is not None for pair in review.suite.pairs)))
     return rows
 
 
@@ -134,6 +142,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                           f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest single "
                           f"analysis {largest:.3g} m" + (
                               "; " + capacity_note if capacity_note else ""), "m"))
+    rows += C.record_capacity(review.analyses, cap)
     rows.append(C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
                           f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
                           f"{p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"))
@@ -147,13 +156,11 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     elf_vb = max(elf[b]["V_b_over_W"] for b in ("lower", "upper"))
     rows.append(C.at_least("base_shear_elf_floor", "ASCE 7-22 17.6.4.2", env["V_b_over_W"], p["f_below"] * elf_vb,
                            f"RHA isolation-system shear / W ({env['V_b_bound']} bound) ≥ {p['f_below']:g} V_b/W (ELF "
-                           f"{elf_vb:.4g})", "W"))
+                           f"{elf_vb:.4g})", "V/W"))
     v_s = max(elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper"))
-    v_act = asce7_22.activation_shear_over_w(designs["upper"].mu_static, design.mu_static)
-    rows.append(C.check("superstructure_shear", "ASCE 7-22 17.6.4.2 / 17.5.4.3", C.NOT_CHECKED, v_s,
-                        p["f_above_rha"] * v_s if math.isfinite(v_s) else None,
-                        f"needs a superstructure model; ELF V_s/W = {v_s:.4g} (R_I = {p['R_I']:g}), activation "
-                        f"limit V_b ≥ {v_act:.4g} W (17.5.4.3)", "W"))
+    rows.append(C.superstructure_shear(v_s, p["f_above_rha"]))
+    rows += asce7_22.requirement_rows(elf, p, mu_static_lower=designs["lower"].mu_static,
+                                      mu_static_upper=designs["upper"].mu_static, mu_static_nominal=design.mu_static)
     rows.append(C.check("separation", "ASCE 7-22 17.2.5.2 [U]", C.NOT_CHECKED, None, d_tm["value"],
                         "the moat (separation to retaining walls) must be ≥ the design total displacement; not an "
                         "input of the review", "m"))
@@ -171,6 +178,7 @@ def _en_checks(review, values: dict, designs: dict) -> list:
     rows = _common_front(review, p["n_records_min_en"], "EN 1998-1 3.2.3.1.2", "EN 1998-1 3.2.3.1.2(4)",
                          "component spectra")
     d_tm = env["D_TM"]["rha_m"]
+    rows += C.record_capacity(review.analyses, cap, clause="EN 15129 (capacity, each analysis)")
     rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_tm, cap,
                           f"γ_x = {p['gamma_x']:g} × design displacement {d_tm:.4g} m (torsion factor "
                           f"{review.design_values['torsion']['factor']:.4g}); {env['rule']} of {env['n']} pairs"

@@ -53,6 +53,8 @@ class Review:
     timing: dict = field(default_factory=dict)
     created_utc: str = ""
     paper_map: dict | None = None  #: the paper's regime map and the pairs' equivalent points (context)
+    trace: dict = field(default_factory=dict)  #: software, inputs {path: sha256}, run (the arguments)
+    required_ratio: float | None = None  #: suite average / target required (110 % for a matched suite)
 
     # ---- JSON ------------------------------------------------------------------------------
 
@@ -75,8 +77,9 @@ class Review:
             "target": self.target.as_dict(),
             "suite": {"source": self.suite.source, "pairs": [
                 {"name": p.name, "files": p.files, "components": p.component_names, "dt_s": p.dt_s, "npts": p.npts,
-                 "high_pass_hz": p.high_pass_hz, "processing": p.processing} for p in self.suite.pairs],
-                "failed": self.suite.failed},
+                 "high_pass_hz": p.high_pass_hz, "processing": p.processing, "metadata": p.metadata,
+                 "scale_factor_given": p.scale_factor, "matched": p.matched} for p in self.suite.pairs],
+                "failed": self.suite.failed, "closest_motions": self.suite.closest},
             "parameters": P.table(self.code, self.parameters),
             "property_bounds": self.bounds.as_dict(),
             "period_range_s": list(self.period_range_s),
@@ -101,8 +104,10 @@ class Review:
             "design_base_shear_coefficient": {"value": env["V_b_over_W"], "governing_bound": env["V_b_bound"]},
             "checks": self.checks,
             "check_counts": C.status_counts(self.checks),
+            "spread": self.design_values.get("spread", {}),
             "notes": self.notes,
             "timing_s": self.timing,
+            **self.trace,
         })
 
     @property
@@ -111,6 +116,8 @@ class Review:
 
     @property
     def min_ratio_required(self) -> float:
+        if self.required_ratio is not None:
+            return self.required_ratio
         return self.parameters["min_ratio"] if self.code == "asce7-22" else self.parameters["en_min_ratio"]
 
 
@@ -220,7 +227,8 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     weak = [p.name for p, s in zip(suite.pairs, on_grid, strict=False) if not np.all(np.asarray(s) > 0)]
     if weak:
         raise ReviewError(f"pair '{weak[0]}' has a zero spectrum in the period range: it cannot be scaled")
-    factors = scale_factors(np.array(on_grid), target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask)
+    factors, scaling_basis, required = _factors(suite, scaling, np.array(on_grid), target_grid, required, fit_mask,
+                                                code, params, notes)
     ratio = suite_mean(np.array(on_grid), factors) / target_grid
     names = suite.names
     key = "rotd100_m_s2" if code == "asce7-22" else None
@@ -259,16 +267,49 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                      + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))
 
     paper_map = _paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution else None
+    from isolator.review.trace import input_hashes, software
+
+    trace = {"software": software(), "inputs": input_hashes(design, target, suite),
+             "run": {"suite_arguments": list(suite.arguments), **suite.options, "nominal": nominal,
+                     "parameter_overrides": dict(parameters or {}), "scaling_basis": scaling_basis}}
     review = Review(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
                     bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
                     factors=dict(zip(names, map(float, factors), strict=False)), spectra=spectra, suite_ratio=ratio,
                     analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing, paper_map=paper_map,
+                    trace=trace, required_ratio=required,
                     created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
     from isolator.review.assess import assess
 
     assess(review, designs)
     timing["total"] = time.perf_counter() - clock
     return review
+
+
+def _factors(suite, scaling, spectra, target_grid, required, fit_mask, code, params, notes):
+    """The scale factors as analysed, how they were formed, and the ratio the suite must reach.
+
+    ``given`` (and any spectrally matched suite) uses the suite's factors unchanged (1 where a matched
+    pair gives none); ``common`` / ``fit`` compute them (:func:`isolator.review.scaling.scale_factors`).
+    """
+    from isolator.review.scaling import given_factors
+
+    names = suite.names
+    if suite.matched:
+        if code == "asce7-22":
+            required = params["spectral_matching_min"]
+        given = [1.0 if f is None else f for f in suite.given_factors]
+        if scaling != "given":
+            notes.append(f"spectrally matched suite: the records are not rescaled (scaling '{scaling}' not applied)")
+        return np.asarray(given, dtype=np.float64), "matched", required
+    if scaling == "given":
+        try:
+            return given_factors(names, suite.given_factors), "given", required
+        except ValueError as err:
+            raise ReviewError(str(err)) from None
+    if any(f is not None for f in suite.given_factors):
+        notes.append(f"the suite's scale_factor values are not used (scaling '{scaling}'); scaling 'given' checks them")
+    return (scale_factors(spectra, target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask), scaling,
+            required)
 
 
 def _safe_target(target, periods):

@@ -10,7 +10,12 @@ spectra (RotD100 for ASCE 7; the components' PSA for EN 1998) is nowhere below
   over the log-spaced grid (log least squares, the PEER NGA-West2 tool's choice), then one common
   k as above on the f_i-scaled spectra; :math:`SF_i = k f_i`.
 
-Both are exact on the grid (no iteration).  The grid is ``grid_points`` log-spaced periods from the
+* ``given`` — the engineer's factors from SUITE.toml (``scale_factor`` per pair), used as they are:
+  the check then tests the designer's suite, it is not met by construction.  Spectrally matched
+  suites (``matched = true``, 16.2.3.3) are never rescaled either (factor 1 unless given) and the
+  average must reach ``spectral_matching_min`` (1.10) × target over the range.
+
+``common`` and ``fit`` are exact on the grid (no iteration).  The grid is ``grid_points`` log-spaced periods from the
 lower to the upper end of the range inclusive, plus the T_M values inside it.
 """
 
@@ -18,7 +23,16 @@ from __future__ import annotations
 
 import numpy as np
 
-SCALING_METHODS = ("common", "fit")
+SCALING_METHODS = ("common", "fit", "given")
+
+
+def given_factors(names, factors) -> np.ndarray:
+    """The engineer's factors of a suite, one per pair; ``ValueError`` naming the first pair without one."""
+    missing = [name for name, f in zip(names, factors, strict=True) if f is None]
+    if missing:
+        raise ValueError(f"scaling 'given' needs a scale_factor for every pair; pair '{missing[0]}' has none"
+                         + (f" (and {len(missing) - 1} more)" if len(missing) > 1 else ""))
+    return np.asarray(factors, dtype=np.float64)
 
 
 def period_grid(lo_s: float, hi_s: float, points: int = 300, extra_s=()) -> tuple[np.ndarray, np.ndarray]:
@@ -62,7 +76,7 @@ def scale_factors(spectra, target_g, *, method: str = "common", min_ratio: float
     target = np.asarray(target_g, dtype=np.float64)
     if s.ndim == 2:
         s = s[:, None, :]
-    if method not in SCALING_METHODS:
+    if method not in ("common", "fit"):
         raise ValueError(f"scaling method must be one of {', '.join(SCALING_METHODS)}, got {method!r}")
     if np.any(s <= 0) or np.any(target <= 0):
         raise ValueError("spectra and target must be > 0 on the grid")

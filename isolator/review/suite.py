@@ -11,6 +11,15 @@ A suite is given either as SUITE.toml::
     z = "…"                # optional vertical
     units = "g"            # optional, this pair's units
     trim = true            # optional, this pair only
+    scale_factor = 1.83    # optional: the engineer's factor (``--scaling given`` checks it, never rescales)
+    matched = true         # optional: spectrally matched (not rescaled; the 110 % rule of 16.2.3.3 applies)
+    rotate_to_fault_normal_deg = 35.0   # optional: fault strike [°]; x, y become fault-normal, fault-parallel
+    azimuth_x_deg = 180.0  # optional: azimuth of x (and azimuth_y_deg of y) when the component name has none
+    magnitude = 7.1        # optional metadata: moment magnitude, closest distance [km], mechanism,
+    distance_km = 12.0     #   V_s30 [m/s], velocity pulse (true/false); shown on page 3, checked
+    mechanism = "strike-slip"  # against the target's controlling magnitude and distance ranges
+    vs30_m_s = 360.0
+    pulse = false
 
 (paths relative to the suite file), or as files, folders and globs of records, grouped into pairs
 by station and event (a multi-channel file is one station: its two horizontals and its vertical).
@@ -22,12 +31,19 @@ Rules (REVIEW_RULES 1.4 and issue 11):
 * two components of different length are trimmed to the common span only when the suite asks
   (``trim``), and the trim is recorded in the pair's processing; otherwise the suite is refused
   with one line naming the pair; different time steps are always refused;
-* a record that cannot be read fails its pair only (reported), not the review.
+* a record that cannot be read fails its pair only (reported), not the review;
+* the same *motion* twice — a pair that is a rotation, a scaling, a time shift or a resampling of
+  another — is refused naming both (:func:`isolator.review.selection.closest_motions`);
+* ``rotate_to_fault_normal_deg`` (the fault strike) rotates both components to the fault-normal
+  (x, azimuth strike + 90°) and fault-parallel (y, azimuth strike) directions; the azimuths of the
+  recorded components come from their names (``270``, ``HN1 (90)``, ``N55W``, ``EW``) or from
+  ``azimuth_x_deg`` / ``azimuth_y_deg``; the rotation is recorded in the pair's processing.
 """
 
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import re
 from dataclasses import dataclass, field
@@ -38,7 +54,9 @@ import numpy as np
 from isolator.errors import SuiteError
 
 SUITE_KEYS = {"units", "trim", "pair", "name", "description"}
-PAIR_KEYS = {"name", "x", "y", "z", "units", "trim"}
+METADATA_KEYS = ("magnitude", "distance_km", "mechanism", "vs30_m_s", "pulse")
+PAIR_KEYS = {"name", "x", "y", "z", "units", "trim", "scale_factor", "matched", "rotate_to_fault_normal_deg",
+             "azimuth_x_deg", "azimuth_y_deg", *METADATA_KEYS}
 _CHECKSUMS_RE = re.compile(r"^(SHA\d*SUMS|MD5SUMS)(\.txt)?$", re.IGNORECASE)
 _CORNER_RE = re.compile(r"(-?\d+)\s*POLE\s*@\s*([0-9.]+)", re.IGNORECASE)
 
@@ -64,6 +82,11 @@ class PairSpec:
     z: ComponentSpec | None = None
     units: str | None = None
     trim: bool = False
+    scale_factor: float | None = None  #: the engineer's factor (SUITE.toml), checked, never changed
+    matched: bool = False  #: spectrally matched record (16.2.3.3)
+    strike_deg: float | None = None  #: rotate to fault-normal / fault-parallel for this strike [°]
+    azimuths_deg: tuple = (None, None)  #: azimuths of x and y when their names carry none [°]
+    metadata: dict = field(default_factory=dict)  #: magnitude, distance_km, mechanism, vs30_m_s, pulse
 
 
 @dataclass
@@ -81,6 +104,10 @@ class Pair:
     provenance: dict = field(default_factory=dict)
     high_pass_hz: float | None = None  #: the largest high-pass corner stated by the files (AT2 headers)
     sample_hashes: dict = field(default_factory=dict)
+    paths: list = field(default_factory=list)  #: the files read (for the input hashes)
+    scale_factor: float | None = None  #: the engineer's factor from SUITE.toml
+    matched: bool = False  #: spectrally matched (16.2.3.3)
+    metadata: dict = field(default_factory=dict)  #: magnitude, distance_km, mechanism, vs30_m_s, pulse
 
     @property
     def npts(self) -> int:
@@ -108,6 +135,19 @@ class Suite:
     failed: list  #: [{"name": …, "error": …}]
     source: str
     specs: list = field(default_factory=list)
+    arguments: list = field(default_factory=list)  #: what load_suite was given (a SUITE.toml, or files)
+    options: dict = field(default_factory=dict)  #: units, trim given to load_suite (files and folders)
+    closest: dict | None = None  #: the two pairs with the closest motion signatures and their distance
+
+    @property
+    def given_factors(self) -> list:
+        """The engineer's scale factor of each pair (None where the suite gives none)."""
+        return [p.scale_factor for p in self.pairs]
+
+    @property
+    def matched(self) -> bool:
+        """Every pair is spectrally matched (16.2.3.3); a mixed suite is refused when read."""
+        return bool(self.pairs) and all(p.matched for p in self.pairs)
 
     @property
     def names(self) -> list[str]:
@@ -134,6 +174,50 @@ def high_pass_corner_hz(motion) -> float | None:
     corners = [float(f) for poles, f in _CORNER_RE.findall("\n".join(stats.peer_at2.get("header_lines", [])))
                if int(poles) < 0 and float(f) > 0]
     return max(corners) if corners else None
+
+
+_QUADRANT_RE = re.compile(r"^([NS])\s*(\d{1,2}(?:\.\d+)?)\s*([EW])$")
+_NAMED_AZIMUTH = {"N": 0.0, "NS": 0.0, "E": 90.0, "EW": 90.0, "S": 180.0, "SN": 180.0, "W": 270.0, "WE": 270.0}
+
+
+def component_azimuth_deg(name) -> float | None:
+    """Azimuth of a horizontal component from its name, clockwise from north [°] (``None`` when unknown).
+
+    ``270``, ``HN1 (90)``, ``YER360`` (the trailing three digits of PEER names), ``N55W`` (= 305),
+    ``S01W`` (= 181), ``E``, ``NS``, ``EW``.
+    """
+    if not name:
+        return None
+    text = str(name).strip().upper()
+    inner = re.search(r"\((\d{1,3}(?:\.\d+)?)\)", text)
+    if inner:
+        return float(inner.group(1)) % 360.0
+    if text in _NAMED_AZIMUTH:
+        return _NAMED_AZIMUTH[text]
+    quadrant = _QUADRANT_RE.match(text)
+    if quadrant:
+        base, angle, side = quadrant.group(1), float(quadrant.group(2)), quadrant.group(3)
+        sign = 1.0 if (base == "N") == (side == "E") else -1.0
+        return ((0.0 if base == "N" else 180.0) + sign * angle) % 360.0
+    digits = re.search(r"(\d{1,3})$", text)
+    if digits and (len(digits.group(1)) == 3 or text == digits.group(1)) and int(digits.group(1)) <= 360:
+        return float(digits.group(1)) % 360.0
+    return None
+
+
+def rotate_to_fault(ax, ay, azimuth_x_deg: float, azimuth_y_deg: float, strike_deg: float):
+    """The fault-normal and fault-parallel accelerations of a pair (both components, any orientation).
+
+    The ground vector G solves G·u_x = a_x, G·u_y = a_y (u the horizontal unit vector of an azimuth,
+    clockwise from north); fault-normal = G·u(strike + 90°), fault-parallel = G·u(strike) [m/s²].
+    """
+    def unit(azimuth):
+        angle = math.radians(azimuth)
+        return np.array([math.sin(angle), math.cos(angle)])  # (east, north)
+
+    basis = np.vstack([unit(azimuth_x_deg), unit(azimuth_y_deg)])
+    ground = np.linalg.solve(basis, np.vstack([ax, ay]))  # rows: east, north
+    return unit(strike_deg + 90.0) @ ground, unit(strike_deg) @ ground
 
 
 def _sample_hash(acceleration: np.ndarray) -> str:
@@ -178,6 +262,23 @@ def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
         processing.append({"step": "trim to the common span (suite asked: trim = true)",
                            "samples": {k: v for k, v in lengths.items()}, "kept": n})
     arrays = {key: np.ascontiguousarray(m.acceleration_m_s2[:n], dtype=np.float64) for key, m in motions.items()}
+    if spec.strike_deg is not None:
+        azimuths = [given if given is not None else component_azimuth_deg(motions[key].component)
+                    for key, given in zip(("x", "y"), spec.azimuths_deg, strict=True)]
+        for key, azimuth in zip(("x", "y"), azimuths, strict=True):
+            if azimuth is None:
+                raise SuiteError(f"pair '{spec.name}': the azimuth of component {key} "
+                                 f"('{motions[key].component}') is not in its name; give azimuth_{key}_deg "
+                                 "to rotate to the fault-normal direction")
+        gap = (azimuths[1] - azimuths[0]) % 180.0
+        if abs(gap - 90.0) > 1.0:
+            raise SuiteError(f"pair '{spec.name}': components at azimuths {azimuths[0]:g}° and {azimuths[1]:g}° "
+                             "are not orthogonal (within 1°); they cannot be rotated")
+        arrays["x"], arrays["y"] = (np.ascontiguousarray(a) for a in rotate_to_fault(
+            arrays["x"], arrays["y"], azimuths[0], azimuths[1], spec.strike_deg))
+        processing.append({"step": "rotated to fault-normal (x) / fault-parallel (y)", "strike_deg": spec.strike_deg,
+                           "azimuth_x_deg": azimuths[0], "azimuth_y_deg": azimuths[1],
+                           "fault_normal_azimuth_deg": (spec.strike_deg + 90.0) % 360.0})
     corners = [c for c in (high_pass_corner_hz(m) for m in motions.values()) if c is not None]
     provenance = {key: dict(m.provenance) for key, m in motions.items()}
     for m in motions.values():
@@ -186,7 +287,8 @@ def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
                 dt_s=float(motions["x"].dt_s), files={k: specs[k].label() for k in motions},
                 component_names={k: m.component for k, m in motions.items()}, processing=processing,
                 provenance=provenance, high_pass_hz=max(corners) if corners else None,
-                sample_hashes=hashes)
+                sample_hashes=hashes, paths=sorted({s.path for s in specs.values() if s is not None}),
+                scale_factor=spec.scale_factor, matched=spec.matched, metadata=dict(spec.metadata))
 
 
 # ---- SUITE.toml --------------------------------------------------------------------------
@@ -251,8 +353,44 @@ def specs_from_toml(path) -> list[PairSpec]:
         specs.append(PairSpec(name=name.strip(), x=_component(table["x"], path.parent, f"{where} x"),
                               y=_component(table["y"], path.parent, f"{where} y"),
                               z=_component(table["z"], path.parent, f"{where} z") if "z" in table else None,
-                              units=pair_units, trim=pair_trim))
+                              units=pair_units, trim=pair_trim, **_pair_options(table, f"{where} ('{name}')")))
     return specs
+
+
+def _number(table: dict, key: str, where: str, *, positive: bool = True, upper: float | None = None):
+    value = table.get(key)
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or (
+            positive and value <= 0) or (not positive and value < 0) or (upper is not None and value > upper):
+        bound = f"in (0, {upper:g}]" if upper is not None else ("> 0" if positive else "≥ 0")
+        raise SuiteError(f"{where}: '{key}' must be a number {bound}, got {value!r}")
+    return float(value)
+
+
+def _pair_options(table: dict, where: str) -> dict:
+    """scale_factor, matched, the fault rotation and the metadata of a [[pair]] table, checked."""
+    matched = table.get("matched", False)
+    if not isinstance(matched, bool):
+        raise SuiteError(f"{where}: 'matched' must be true or false")
+    strike = table.get("rotate_to_fault_normal_deg")
+    if strike is not None:
+        strike = _number(table, "rotate_to_fault_normal_deg", where, positive=False, upper=360.0)
+    azimuths = tuple(_number(table, f"azimuth_{k}_deg", where, positive=False, upper=360.0) for k in ("x", "y"))
+    if strike is None and any(a is not None for a in azimuths):
+        raise SuiteError(f"{where}: azimuth_x_deg / azimuth_y_deg serve rotate_to_fault_normal_deg, which is absent")
+    metadata = {"magnitude": _number(table, "magnitude", where, upper=10.0),
+                "distance_km": _number(table, "distance_km", where, positive=False),
+                "vs30_m_s": _number(table, "vs30_m_s", where)}
+    mechanism = table.get("mechanism")
+    if mechanism is not None and (not isinstance(mechanism, str) or not mechanism.strip()):
+        raise SuiteError(f"{where}: 'mechanism' must be a non-empty text (e.g. \"strike-slip\", \"reverse\")")
+    pulse = table.get("pulse")
+    if pulse is not None and not isinstance(pulse, bool):
+        raise SuiteError(f"{where}: 'pulse' must be true or false")
+    metadata.update(mechanism=mechanism.strip() if mechanism else None, pulse=pulse)
+    return {"scale_factor": _number(table, "scale_factor", where), "matched": matched, "strike_deg": strike,
+            "azimuths_deg": azimuths, "metadata": {k: v for k, v in metadata.items() if v is not None}}
 
 
 # ---- files, folders, globs ---------------------------------------------------------------
@@ -374,4 +512,26 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
             name, error = failed[0]["name"], str(failed[0]["error"])
             detail = f": {error}" if error.startswith(name) else f": {name}: {error}"
         raise SuiteError(f"suite {source}: no pair could be read{detail}")
-    return Suite(pairs=pairs, failed=failed, source=source, specs=specs)
+    matched = [p.name for p in pairs if p.matched]
+    if matched and len(matched) < len(pairs):
+        other = next(p.name for p in pairs if not p.matched)
+        raise SuiteError(f"suite {source}: pair '{matched[0]}' is spectrally matched and pair '{other}' is not; a "
+                         "suite is either amplitude-scaled (16.2.3.2) or spectrally matched (16.2.3.3)")
+    closest = _refuse_same_motions(pairs)
+    return Suite(pairs=pairs, failed=failed, source=source, specs=specs, arguments=[str(a) for a in arguments],
+                 options={"units": units, "trim": trim}, closest=closest)
+
+
+def _refuse_same_motions(pairs: list) -> dict | None:
+    """One line naming both pairs' files when two pairs are the same motion (rotated, scaled, shifted,
+    resampled); otherwise the closest two pairs (:func:`isolator.review.selection.closest_motions`)."""
+    from isolator.review.selection import SAME_MOTION_TOLERANCE, closest_motions
+
+    closest = closest_motions(pairs)
+    if closest is not None and closest["distance"] <= SAME_MOTION_TOLERANCE:
+        distance = closest["distance"]
+        a, b = (next(p for p in pairs if p.name == name) for name in closest["pairs"])
+        raise SuiteError(f"the same motion twice: pair '{b.name}' ({b.files['x']}, {b.files['y']}) is a rotation, "
+                         f"scaling, time shift or resampling of pair '{a.name}' ({a.files['x']}, {a.files['y']}) "
+                         f"(motion signatures {distance:.2g} apart)")
+    return closest

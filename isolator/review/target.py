@@ -15,7 +15,9 @@ TARGET.toml holds one of
 * ``spectrum_csv = "file"`` — two columns, period [s] and Sa [g], interpolated linearly in
   log–log, refused outside its period range.
 
-An optional ``name`` labels it in the report.
+An optional ``name`` labels it in the report.  Optional ``magnitude_range = [6.5, 7.5]`` and
+``distance_km_range = [0, 30]`` give the controlling earthquake (the deaggregation's magnitude and
+distance ranges) against which the suite's record metadata is checked (ASCE 7-22 17.3.2 [U]).
 """
 
 from __future__ import annotations
@@ -28,7 +30,9 @@ import numpy as np
 
 from isolator.errors import TargetError
 
-TARGET_KEYS = {"name", "S_MS", "S_M1", "S_DS", "S_D1", "T_L", "a_g_g", "S", "T_B", "T_C", "T_D", "spectrum_csv"}
+RANGE_KEYS = ("magnitude_range", "distance_km_range")
+TARGET_KEYS = {"name", "S_MS", "S_M1", "S_DS", "S_D1", "T_L", "a_g_g", "S", "T_B", "T_C", "T_D", "spectrum_csv",
+               *RANGE_KEYS}
 
 
 @dataclass(frozen=True)
@@ -53,6 +57,7 @@ class Target:
     source: str = "<target>"
     periods_s: np.ndarray = field(default_factory=lambda: np.empty(0))
     sa_table_g: np.ndarray = field(default_factory=lambda: np.empty(0))
+    controlling: dict = field(default_factory=dict)  #: magnitude_range, distance_km_range ([lo, hi])
 
     def sa_g(self, periods_s, *, clip: bool = False) -> np.ndarray:
         """Target spectral acceleration at the periods [g].
@@ -96,7 +101,7 @@ class Target:
                                                                    if self.periods_s.size else math.inf)
 
     def as_dict(self) -> dict:
-        out = {"kind": self.kind, "name": self.name, "source": self.source, **self.parameters}
+        out = {"kind": self.kind, "name": self.name, "source": self.source, **self.parameters, **self.controlling}
         if self.kind == "table":
             out["periods_s"] = self.periods_s.tolist()
             out["sa_g"] = self.sa_table_g.tolist()
@@ -155,6 +160,27 @@ def _read_csv(path: Path, source: str):
 
 
 def load_target(path) -> Target:
+    """Read TARGET.toml (see the module docstring), with the controlling magnitude and distance ranges."""
+    import dataclasses
+
+    from isolator.design import load_toml
+
+    mapping = load_toml(Path(path), "target file", TargetError)
+    controlling = {}
+    for key in RANGE_KEYS:
+        if key not in mapping:
+            continue
+        value = mapping[key]
+        if not (isinstance(value, list) and len(value) == 2 and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v >= 0
+                for v in value) and value[0] <= value[1]):
+            raise TargetError(f"{path}: key '{key}' must be [low, high] with 0 ≤ low ≤ high, got {value!r}")
+        controlling[key] = [float(v) for v in value]
+    target = _load_spectrum(path)
+    return dataclasses.replace(target, controlling=controlling) if controlling else target
+
+
+def _load_spectrum(path) -> Target:
     """Read TARGET.toml (see the module docstring).
 
     Raises

@@ -35,7 +35,11 @@ def test_status_logic_and_missing_limits():
     assert C.at_most("a", "c", 3.0, None)["status"] == "not checked"
     assert C.at_least("a", "c", 3.0, 2.0)["status"] == "pass"
     band = C.usable_band([("p1", 0.08), ("p2", None)], range_hi_s=4.0)
-    assert band["status"] == "pass" and band["value"] == pytest.approx(10.0) and "p2" in band["note"]
+    # one corner unknown: not checked for that pair, and the row says how many (never a pass on half the suite)
+    assert band["status"] == "not checked" and band["value"] == pytest.approx(10.0) and "p2" in band["note"]
+    assert "1 of 2 pair(s)" in band["note"]
+    assert C.usable_band([("p1", 0.08), ("p2", 0.05)], range_hi_s=4.0)["status"] == "pass"
+    assert C.usable_band([("p1", 0.3), ("p2", None)], range_hi_s=4.0)["status"] == "fail"  # a known one falls short
     assert C.usable_band([("p1", 0.3)], range_hi_s=4.0)["status"] == "fail"  # 1/(1.25 × 0.3) = 2.7 s
     assert C.usable_band([("p1", None)], range_hi_s=4.0)["status"] == "not checked"
 

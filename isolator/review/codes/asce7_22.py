@@ -156,3 +156,98 @@ def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float) ->
 def restoring_force_ratio(design, displacement_m: float) -> float:
     """(F(D) − F(D/2)) / W of the bilinear model (17.2.4.4): K D / (2W); D/(2R) for a friction pendulum."""
     return design.stiffness_N_per_m * 0.5 * displacement_m / design.weight_N
+
+
+def activation_superstructure_shear_over_w(v_activation_over_w: float, beta: float, params: dict) -> float:
+    """V_st/W of Eq. 17.5-8 with V_b = the force that fully activates the isolation system (17.5.4.3(3)) [-]."""
+    exponent = 1.0 - (3.5 if params["abrupt_hysteresis"] else 2.5) * beta
+    return v_activation_over_w * params["Ws_over_W"] ** exponent
+
+
+def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_static_upper: float,
+                     mu_static_nominal: float, story_drift_ratio: float | None = None,
+                     bearing_axial_loads_N: dict | None = None) -> list[dict]:
+    """The Chapter 17 requirements beside the response-history checks, each with its clause and status.
+
+    ``pass`` / ``fail`` only where the review computes the quantity; otherwise ``not checked`` naming
+    what is missing.  ``story_drift_ratio`` (largest story drift / story height over the analyses) and
+    ``bearing_axial_loads_N`` (``{"min": …, "max": …}`` over the analyses) are the hooks for a
+    superstructure and bearing layout model.
+
+    Parameters
+    ----------
+    elf : dict
+        Per bound ("lower", "upper"): the ELF values (``T_M_s``, ``beta_M``, ``V_s_over_W``).
+    params : dict
+        The review's parameters (``wind_shear_over_W``, ``drift_limit_rha``, ``Ws_over_W``, …).
+    mu_static_lower, mu_static_upper, mu_static_nominal : float
+        Breakaway friction of each bound [-].
+    """
+    from isolator.review import checks as C
+
+    rows = []
+    wind = params.get("wind_shear_over_W")
+    if wind is None:
+        rows.append(C.check("wind_restraint", "ASCE 7-22 17.2.4.2", C.NOT_CHECKED, None, mu_static_lower,
+                            "needs the design wind base shear / W (--set wind_shear_over_W=…); the isolation system "
+                            f"must not slide under wind: lower-bound breakaway µs = {mu_static_lower:.4g}", "V/W"))
+    else:
+        rows.append(C.at_most("wind_restraint", "ASCE 7-22 17.2.4.2", wind, mu_static_lower,
+                              "design wind base shear / W ≤ lower-bound breakaway friction µs (no sliding under wind; "
+                              "friction as the wind restraint, a reading of the clause)", "V/W"))
+    rows.append(C.check("fire_resistance", "ASCE 7-22 17.2.4.3", C.NOT_CHECKED, note="the isolation system's fire "
+                        "rating is not an input of the review"))
+    rows.append(C.check("displacement_restraint", "ASCE 7-22 17.2.4.5", C.NOT_CHECKED,
+                        note="no displacement restraint is an input or modelled: the bearings alone must accommodate "
+                             "the total displacement (D_TM_capacity; each analysis in record_capacity)"))
+    if bearing_axial_loads_N is None:
+        rows.append(C.check("vertical_load_stability", "ASCE 7-22 17.2.4.6", C.NOT_CHECKED,
+                            note="needs each bearing's maximum and minimum vertical load (dead, live, seismic "
+                                 "overturning) at the total displacement: a superstructure and bearing layout"))
+    else:
+        rows.append(C.check("vertical_load_stability", "ASCE 7-22 17.2.4.6", C.NOT_CHECKED,
+                            bearing_axial_loads_N.get("max"), None,
+                            "bearing axial loads are known; the bearings' tested vertical-load capacity at the "
+                            "total displacement is not an input", "N"))
+    rows.append(C.check("inspection_replacement", "ASCE 7-22 17.2.4.8", C.NOT_CHECKED,
+                        note="access for inspection and replacement: reviewer's list"))
+    t_m = [elf[b].get("T_M_s", math.nan) for b in ("lower", "upper") if b in elf]
+    t_text = ", ".join(f"{t:.3g} s" for t in t_m if math.isfinite(t)) or "undefined"
+    rows.append(C.check("analysis_procedure", "ASCE 7-22 17.4", C.NOT_CHECKED, max(t_m, default=None), None,
+                        "response-history analysis is used (17.4.2 permits it for any isolated structure) [U]; the ELF "
+                        "limits of 17.4.1 (S_1, site class, height, stories, regularity) need site and structure data; "
+                        f"T_M = {t_text}", "s"))
+    rows.append(C.check("V_s_fixed_base_limit", "ASCE 7-22 17.5.4.3(1) [U]", C.NOT_CHECKED,
+                        note="V_s ≥ the fixed-base ELF shear of W_s at T_M: needs the superstructure's "
+                             "fixed-base seismic coefficient (R, I_e)"))
+    v_s = {b: elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper") if b in elf}
+    if wind is None:
+        rows.append(C.check("V_s_wind_limit", "ASCE 7-22 17.5.4.3(2) [U]", C.NOT_CHECKED, None, None,
+                            "V_s ≥ the factored design wind base shear: needs wind_shear_over_W", "V/W"))
+    else:
+        lowest = min(v_s.values(), default=math.nan)
+        rows.append(C.at_least("V_s_wind_limit", "ASCE 7-22 17.5.4.3(2) [U]", lowest, wind,
+                               "smaller ELF V_s/W of the two bounds ≥ the (factored) design wind base shear / W",
+                               "V/W"))
+    v_act = activation_shear_over_w(mu_static_upper, mu_static_nominal)
+    margins = {}
+    for b, value in v_s.items():
+        beta = elf[b].get("beta_M", math.nan)
+        if math.isfinite(value) and math.isfinite(beta):
+            margins[b] = (value, activation_superstructure_shear_over_w(v_act, beta, params))
+    if margins:
+        b = min(margins, key=lambda k: margins[k][0] / margins[k][1])
+        rows.append(C.at_least("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", margins[b][0], margins[b][1],
+                               f"ELF V_s/W ({b} bound) ≥ V_st of Eq. 17.5-8 with V_b = the activation force "
+                               f"max(µs upper, 1.5 µs nominal) W = {v_act:.4g} W", "V/W"))
+    else:
+        rows.append(C.check("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", C.NOT_CHECKED, None, None,
+                            "no ELF V_s (the ELF found no sliding)", "V/W"))
+    limit = params.get("drift_limit_rha")
+    if story_drift_ratio is None:
+        rows.append(C.check("story_drift", "ASCE 7-22 17.6.4.4 [U]", C.NOT_CHECKED, None, limit,
+                            "needs the superstructure's story drifts (a superstructure model)", "h_sx"))
+    else:
+        rows.append(C.at_most("story_drift", "ASCE 7-22 17.6.4.4 [U]", story_drift_ratio, limit,
+                              "largest story drift ratio over the analyses (RHA limit)", "h_sx"))
+    return rows

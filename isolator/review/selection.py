@@ -1,0 +1,215 @@
+r"""Record selection: the same motion twice, records that cannot matter, records that are not earthquakes.
+
+Three looks at a suite before (and after) it is scaled (REVIEW_RULES 1.4; ASCE 7-22 17.3.2 [U]):
+
+* **The same motion twice.** A pair that is a rotation, an amplitude scaling, a time shift or a
+  resampling of another is the same ground motion counted twice in the suite mean. Byte-equal
+  samples are refused by :mod:`isolator.review.suite`; here two pairs are compared by a *motion
+  signature* that each of those four operations leaves unchanged (up to the resampling's
+  band-limit):
+
+  - the shape of the 5 %-damped RotD100 spectrum at :data:`SIGNATURE_PERIODS_S` (RotD100 is
+    exactly rotation-invariant, scales with the amplitude and ignores a time shift), normalised by
+    its geometric mean;
+  - the significant duration D5–95 of the resultant Arias intensity (rotation-, scale- and
+    shift-invariant);
+  - the orbit's shape: the ratio of the eigenvalues of ∫ a aᵀ dt (the 2 × 2 covariance of the two
+    horizontal accelerations), and of the peak resultant velocity to the peak resultant acceleration
+    times D5–95 (both rotation- and scale-invariant).
+
+  Two pairs whose signatures agree within :data:`SAME_MOTION_TOLERANCE` are refused, naming both.
+  Real different records differ by far more: the closest two of the 12 shared pairs
+  (``../shared/records/pairs``) are 0.53 apart; a copy of Superstition Hills PTS rotated by 30°,
+  scaled by 1.7 or shifted by 3 s is within 2e-6, resampled from 0.01 s to 0.005 s within 0.011 and to
+  0.02 s (linear interpolation, the short periods lose energy) within 0.043
+  (``tests/review/test_selection.py``).
+* **Records that cannot matter.** A scaled pair whose resultant PGA is below µ_lower g ×
+  ``weak_pga_fraction`` (0.1: a tenth of the acceleration that starts sliding) barely moves the
+  isolator and only dilutes the suite mean.
+* **Not an earthquake record.** A pure or nearly pure sinusoid has a narrow Fourier spectrum:
+  Vanmarcke's bandwidth δ = √(1 − λ₁²/(λ₀λ₂)) (spectral moments λ_k of the one-sided power
+  spectrum) is below ``bandwidth_min`` (0.25; recorded earthquake motions give 0.5–0.9).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: periods of the signature spectrum [s]: long enough for a resampling of 0.01 s records not to matter
+SIGNATURE_PERIODS_S = np.geomspace(0.25, 6.0, 24)
+#: largest difference of two signatures that counts as the same motion (see the module docstring)
+SAME_MOTION_TOLERANCE = 0.1
+
+
+def resultant_arias_window(ax, ay, dt_s: float) -> tuple[float, float]:
+    """(t5, t95) of the resultant Arias intensity ∫(a_x² + a_y²) dt [s] (0, 0 for a motionless pair)."""
+    energy = np.concatenate([[0.0], np.cumsum(0.5 * ((ax ** 2 + ay ** 2)[1:] + (ax ** 2 + ay ** 2)[:-1]) * dt_s)])
+    if not energy[-1] > 0:
+        return 0.0, 0.0
+    t = np.arange(ax.size) * dt_s
+    t5, t95 = np.interp([0.05 * energy[-1], 0.95 * energy[-1]], energy, t)
+    return float(t5), float(t95)
+
+
+def motion_signature(ax_m_s2, ay_m_s2, dt_s: float) -> dict:
+    """The invariants of a pair under rotation, scaling, time shift and resampling.
+
+    Returns
+    -------
+    dict
+        ``shape`` (ln RotD100 at :data:`SIGNATURE_PERIODS_S` minus its mean [-]), ``duration_s``
+        (D5–95 of the resultant [s]), ``eigen_ratio`` (smaller / larger eigenvalue of ∫ a aᵀ dt [-]),
+        ``pgv_over_pga_duration`` (peak resultant velocity / (peak resultant acceleration × D5–95) [-]).
+    """
+    from isolator.review.spectra import pair_spectra
+
+    ax = np.asarray(ax_m_s2, dtype=np.float64)
+    ay = np.asarray(ay_m_s2, dtype=np.float64)
+    rotd = pair_spectra(ax, ay, dt_s, SIGNATURE_PERIODS_S)["rotd100_m_s2"]
+    with np.errstate(divide="ignore"):
+        logs = np.log(rotd)
+    shape = logs - logs.mean() if np.all(np.isfinite(logs)) else np.full(logs.size, np.nan)
+    t5, t95 = resultant_arias_window(ax, ay, dt_s)
+    cov = np.array([[np.dot(ax, ax), np.dot(ax, ay)], [np.dot(ax, ay), np.dot(ay, ay)]]) * dt_s
+    eig = np.linalg.eigvalsh(cov)
+    vx = np.concatenate([[0.0], np.cumsum(0.5 * (ax[1:] + ax[:-1]) * dt_s)])
+    vy = np.concatenate([[0.0], np.cumsum(0.5 * (ay[1:] + ay[:-1]) * dt_s)])
+    pga = float(np.max(np.hypot(ax, ay)))
+    duration = t95 - t5
+    return {"shape": shape, "duration_s": duration, "eigen_ratio": float(eig[0] / eig[1]) if eig[1] > 0 else 0.0,
+            "pgv_over_pga_duration": float(np.max(np.hypot(vx, vy))) / (pga * duration) if pga * duration > 0
+            else 0.0}
+
+
+def signature_distance(a: dict, b: dict) -> float:
+    """How far apart two signatures are [-]: the largest of the spectral-shape difference (max |Δ ln|), the
+    relative differences of D5–95 and of the velocity measure, and the difference of the eigenvalue ratios."""
+    if not (np.all(np.isfinite(a["shape"])) and np.all(np.isfinite(b["shape"]))):
+        return math.inf
+    parts = [float(np.max(np.abs(a["shape"] - b["shape"]))), abs(a["eigen_ratio"] - b["eigen_ratio"])]
+    for key in ("duration_s", "pgv_over_pga_duration"):
+        big = max(a[key], b[key])
+        parts.append(abs(a[key] - b[key]) / big if big > 0 else 0.0)
+    return max(parts)
+
+
+def spectral_bandwidth(acceleration, dt_s: float) -> float:
+    """Vanmarcke's bandwidth δ = √(1 − λ₁²/(λ₀λ₂)) of a record's one-sided power spectrum [-].
+
+    δ → 0 for a pure sinusoid, ≈ 0.5–0.9 for recorded earthquake motions.  Zero-padded to a power of two
+    (≥ 2 n samples) so a sinusoid's leakage does not widen it.
+    """
+    a = np.asarray(acceleration, dtype=np.float64)
+    if a.size < 4 or not np.any(a):
+        return 0.0
+    n = 1 << int(math.ceil(math.log2(2 * a.size)))
+    power = np.abs(np.fft.rfft(a, n)) ** 2
+    f = np.fft.rfftfreq(n, dt_s)
+    l0, l1, l2 = (float(np.sum(power * f ** k)) for k in (0, 1, 2))
+    if l0 <= 0 or l2 <= 0:
+        return 0.0
+    return math.sqrt(max(0.0, 1.0 - l1 * l1 / (l0 * l2)))
+
+
+def closest_motions(pairs) -> dict | None:
+    """The two pairs of the suite whose motion signatures are closest: {"pairs": [a, b], "distance": d}."""
+    signatures = [motion_signature(p.ax_m_s2, p.ay_m_s2, p.dt_s) for p in pairs]
+    best = None
+    for i in range(len(pairs)):
+        for j in range(i + 1, len(pairs)):
+            distance = signature_distance(signatures[i], signatures[j])
+            if best is None or distance < best["distance"]:
+                best = {"pairs": [pairs[i].name, pairs[j].name], "distance": distance}
+    return best
+
+
+def _in_range(value, bounds) -> bool:
+    return bounds[0] <= value <= bounds[1]
+
+
+def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, controlling: dict,
+                   params: dict, closest: dict | None) -> list[dict]:
+    """The record-selection rows of a review (clauses of ASCE 7-22 17.3.2 [U] and practice).
+
+    Parameters
+    ----------
+    pairs : list of isolator.review.suite.Pair
+    factors : sequence of float
+        The scale factor of each pair as analysed [-].
+    mu_lower : float
+        Lower-bound kinetic friction [-].
+    gravity_m_s2 : float
+    controlling : dict
+        The target's ``magnitude_range`` and ``distance_km_range`` ([lo, hi]), either may be absent.
+    params : dict
+        ``weak_pga_fraction``, ``bandwidth_min``.
+    closest : dict or None
+        :func:`closest_motions` of the suite.
+
+    Returns
+    -------
+    list of dict
+        ``record_selection``, ``distinct_motions``, ``record_strength``, ``record_nature`` rows.
+    """
+    from isolator.review import checks as C
+
+    rows = []
+    outside, unknown, looked = [], [], []
+    for key, label in (("magnitude", "magnitude_range"), ("distance_km", "distance_km_range")):
+        bounds = controlling.get(label)
+        if bounds is None:
+            continue
+        looked.append(f"{key} in {bounds[0]:g}–{bounds[1]:g}")
+        for p in pairs:
+            value = p.metadata.get(key)
+            if value is None:
+                unknown.append(f"{p.name} ({key})")
+            elif not _in_range(value, bounds):
+                outside.append(f"{p.name}: {key} {value:g}")
+    shown = sorted({k for p in pairs for k in p.metadata})
+    tail = (f"; metadata given: {', '.join(shown)}" if shown else "; no pair gives metadata") + (
+        " (mechanism, V_s30 and pulse are shown, not checked: the target states no counterpart)")
+    clause = "ASCE 7-22 17.3.2 [U]"
+    if not looked:
+        rows.append(C.check("record_selection", clause, C.NOT_CHECKED, None, None,
+                            "the target gives no controlling magnitude_range / distance_km_range" + tail))
+    elif outside:
+        rows.append(C.check("record_selection", clause, C.FAIL, len(outside), 0,
+                            f"outside the controlling {' and '.join(looked)}: {', '.join(outside)}"
+                            + (f"; unknown for {len(unknown)}" if unknown else "") + tail, "pairs"))
+    elif unknown:
+        rows.append(C.check("record_selection", clause, C.NOT_CHECKED, 0, 0,
+                            f"{' and '.join(looked)}: unknown for {len(unknown)} of {len(pairs)} pair(s) "
+                            f"({', '.join(unknown[:6])}{'…' if len(unknown) > 6 else ''})" + tail, "pairs"))
+    else:
+        rows.append(C.check("record_selection", clause, C.PASS, 0, 0,
+                            f"every pair within the controlling {' and '.join(looked)}" + tail, "pairs"))
+    if closest is None:
+        rows.append(C.check("distinct_motions", "ASCE 7-22 17.3.2 (one motion counted once)", C.NOT_CHECKED,
+                            note="one pair: nothing to compare"))
+    else:
+        rows.append(C.at_least("distinct_motions", "ASCE 7-22 17.3.2 (one motion counted once)", closest["distance"],
+                               SAME_MOTION_TOLERANCE,
+                               f"closest two pairs {closest['pairs'][0]} / {closest['pairs'][1]}: motion signatures "
+                               "(RotD100 shape, D5–95, orbit shape; invariant under rotation, scaling, time shift) "
+                               "apart by the value", "-"))
+    floor = params["weak_pga_fraction"] * mu_lower
+    pgas = {p.name: f * float(np.max(np.hypot(p.ax_m_s2, p.ay_m_s2))) / gravity_m_s2
+            for p, f in zip(pairs, factors, strict=True)}
+    weak = [f"{name} {value:.3g} g" for name, value in pgas.items() if value < floor]
+    rows.append(C.check("record_strength", "record selection (practice)", C.FAIL if weak else C.PASS,
+                        min(pgas.values()), floor,
+                        f"scaled resultant PGA ≥ {params['weak_pga_fraction']:g} µ_lower g; "
+                        + (f"cannot move the isolator, only dilute the mean: {', '.join(weak)}" if weak
+                           else "every pair can move the isolator"), "g"))
+    widths = {f"{p.name} {k}": spectral_bandwidth(a, p.dt_s) for p in pairs
+              for k, a in (("x", p.ax_m_s2), ("y", p.ay_m_s2))}
+    narrow = [f"{name} δ = {value:.2f}" for name, value in widths.items() if value < params["bandwidth_min"]]
+    rows.append(C.check("record_nature", "record selection (practice)", C.FAIL if narrow else C.PASS,
+                        min(widths.values()), params["bandwidth_min"],
+                        "Vanmarcke bandwidth δ of each component (a sinusoid has δ ≈ 0, recorded motions 0.5–0.9); "
+                        + (f"not an earthquake record: {', '.join(narrow)}" if narrow else "every component broad-band"),
+                        "-"))
+    return rows
