@@ -22,16 +22,17 @@ def _parse_set(items) -> dict:
 
 @app.command("review")
 def review(
-    design: str = typer.Option(..., "--design", "-d", help="Design file (TOML) with the friction bounds "
+    design: str = typer.Option(None, "--design", "-d", help="Design file (TOML) with the friction bounds "
                                "(lambda_max/lambda_min, mu_upper/mu_lower or the λ_ae/λ_test/λ_spec factors), "
                                "displacement_capacity_m and an optional \\[plan] table."),
-    target: str = typer.Option(..., "--target", "-t", help="TARGET.toml (S_MS, S_M1, T_L; or spectrum_csv), or "
+    target: str = typer.Option(None, "--target", "-t", help="TARGET.toml (S_MS, S_M1, T_L; or spectrum_csv), or "
                                "`example` for the bundled MCE_R target."),
-    suite: list[str] = typer.Option(..., "--suite", "-s", help="SUITE.toml, or record files, folders and globs "
+    suite: list[str] = typer.Option(None, "--suite", "-s", help="SUITE.toml, or record files, folders and globs "
                                     "grouped into pairs by station (repeatable); `example` for the bundled suite."),
     code: str = typer.Option("asce7-22", "--code", help="asce7-22 or en15129."),
-    scaling: str = typer.Option("common", "--scaling", help="common (one factor for all pairs) or fit (shape "
-                                "factor per pair, then a common factor)."),
+    scaling: str = typer.Option("common", "--scaling", help="common (one factor for all pairs), fit (shape "
+                                "factor per pair, then a common factor) or given (the suite's scale_factor values, "
+                                "checked, never rescaled)."),
     output: str = typer.Option(None, "--output", "-o", help="PDF to write (default reports/review_DESIGN.pdf); "
                                "the JSON goes beside it, the analysis cache in a folder beside it."),
     as_json: bool = typer.Option(False, "--json", help="Print the review's JSON on stdout."),
@@ -44,6 +45,8 @@ def review(
     trim: bool = typer.Option(False, "--trim", help="Trim the components of a pair to their common span when "
                               "their lengths differ (files and folders given to --suite)."),
     no_cache: bool = typer.Option(False, "--no-cache", help="Analyse everything again (ignore and keep no cache)."),
+    verify: str = typer.Option(None, "--verify", help="Re-check a review JSON: the same input files (SHA-256) and, "
+                               "run again, the same numbers; exit 1 when not."),
 ) -> None:
     """Code-based design review over a ground-motion suite scaled to a target, at both property bounds.
 
@@ -62,6 +65,12 @@ def review(
     from isolator.review.scaling import SCALING_METHODS
     from isolator.units import UnitsError
 
+    if verify is not None:
+        _verify(verify, jobs)
+        return
+    for flag, value in (("--design", design), ("--target", target), ("--suite", suite)):
+        if not value:
+            _user_error(f"missing option {flag}")
     if code not in CODES:
         _user_error(f"--code must be one of {', '.join(CODES)}, got {code!r}")
     if scaling not in SCALING_METHODS:
@@ -118,6 +127,31 @@ def review(
     for c in out["checks"]:
         value = "n/a" if c["value"] is None else f"{c['value']:.4g}"
         limit = "n/a" if c["limit"] is None else f"{c['limit']:.4g}"
-        typer.echo(f"{c['status']:<12} {c['id']:<{width}}  {value} vs {limit} {c['unit']}  [{c['clause']}]")
+        where = f"  ({c['pair']}, {c['bound']})" if "pair" in c else ""
+        typer.echo(f"{c['status']:<12} {c['id']:<{width}}  {value} vs {limit} {c['unit']}  [{c['clause']}]{where}")
     typer.echo(f"checks   {counts['pass']} pass, {counts['fail']} fail, {counts['not checked']} not checked")
 
+
+
+def _verify(path: str, jobs) -> None:
+    """``--verify``: one line per changed input or number not reproduced; exit 1 unless all agree."""
+    from isolator.design import DesignError
+    from isolator.motion import RecordError
+    from isolator.review.errors import ReviewError
+    from isolator.review.trace import verify_review
+    from isolator.units import UnitsError
+
+    try:
+        result = verify_review(path, jobs=jobs)
+    except (DesignError, ReviewError, RecordError, UnitsError) as err:
+        _user_error(str(err))
+    for changed in result["changed_inputs"]:
+        typer.echo(f"changed  {changed}")
+    for difference in result["differences"][:20]:
+        typer.echo(f"differs  {difference}")
+    if len(result["differences"]) > 20:
+        typer.echo(f"differs  … and {len(result['differences']) - 20} more")
+    if not result["ok"]:
+        typer.echo(f"verify   {path}: NOT reproduced")
+        raise typer.Exit(1)
+    typer.echo(f"verify   {path}: same inputs (SHA-256), same numbers (relative {1e-9:g})")

@@ -14,8 +14,8 @@ Three looks at a suite before (and after) it is scaled (REVIEW_RULES 1.4; ASCE 7
   - the significant duration D5–95 of the resultant Arias intensity (rotation-, scale- and
     shift-invariant);
   - the orbit's shape: the ratio of the eigenvalues of ∫ a aᵀ dt (the 2 × 2 covariance of the two
-    horizontal accelerations), and of the peak resultant velocity to the peak resultant acceleration
-    times D5–95 (both rotation- and scale-invariant).
+    horizontal accelerations; rotation-, scale- and shift-invariant).  Peak values are left out: a
+    resampling moves the PGA by several per cent.
 
   Two pairs whose signatures agree within :data:`SAME_MOTION_TOLERANCE` are refused, naming both.
   Real different records differ by far more: the closest two of the 12 shared pairs
@@ -60,8 +60,7 @@ def motion_signature(ax_m_s2, ay_m_s2, dt_s: float) -> dict:
     -------
     dict
         ``shape`` (ln RotD100 at :data:`SIGNATURE_PERIODS_S` minus its mean [-]), ``duration_s``
-        (D5–95 of the resultant [s]), ``eigen_ratio`` (smaller / larger eigenvalue of ∫ a aᵀ dt [-]),
-        ``pgv_over_pga_duration`` (peak resultant velocity / (peak resultant acceleration × D5–95) [-]).
+        (D5–95 of the resultant [s]), ``eigen_ratio`` (smaller / larger eigenvalue of ∫ a aᵀ dt [-]).
     """
     from isolator.review.spectra import pair_spectra
 
@@ -74,24 +73,17 @@ def motion_signature(ax_m_s2, ay_m_s2, dt_s: float) -> dict:
     t5, t95 = resultant_arias_window(ax, ay, dt_s)
     cov = np.array([[np.dot(ax, ax), np.dot(ax, ay)], [np.dot(ax, ay), np.dot(ay, ay)]]) * dt_s
     eig = np.linalg.eigvalsh(cov)
-    vx = np.concatenate([[0.0], np.cumsum(0.5 * (ax[1:] + ax[:-1]) * dt_s)])
-    vy = np.concatenate([[0.0], np.cumsum(0.5 * (ay[1:] + ay[:-1]) * dt_s)])
-    pga = float(np.max(np.hypot(ax, ay)))
-    duration = t95 - t5
-    return {"shape": shape, "duration_s": duration, "eigen_ratio": float(eig[0] / eig[1]) if eig[1] > 0 else 0.0,
-            "pgv_over_pga_duration": float(np.max(np.hypot(vx, vy))) / (pga * duration) if pga * duration > 0
-            else 0.0}
+    return {"shape": shape, "duration_s": t95 - t5, "eigen_ratio": float(eig[0] / eig[1]) if eig[1] > 0 else 0.0}
 
 
 def signature_distance(a: dict, b: dict) -> float:
     """How far apart two signatures are [-]: the largest of the spectral-shape difference (max |Δ ln|), the
-    relative differences of D5–95 and of the velocity measure, and the difference of the eigenvalue ratios."""
+    relative difference of D5–95 and the difference of the eigenvalue ratios."""
     if not (np.all(np.isfinite(a["shape"])) and np.all(np.isfinite(b["shape"]))):
         return math.inf
     parts = [float(np.max(np.abs(a["shape"] - b["shape"]))), abs(a["eigen_ratio"] - b["eigen_ratio"])]
-    for key in ("duration_s", "pgv_over_pga_duration"):
-        big = max(a[key], b[key])
-        parts.append(abs(a[key] - b[key]) / big if big > 0 else 0.0)
+    big = max(a["duration_s"], b["duration_s"])
+    parts.append(abs(a["duration_s"] - b["duration_s"]) / big if big > 0 else 0.0)
     return max(parts)
 
 

@@ -1,0 +1,159 @@
+"""Record selection: the same motion refused (rotated, scaled, shifted, resampled copies), weak and sinusoidal
+records flagged, metadata against the controlling ranges, the fault-normal rotation, the engineer's own factors."""
+
+from __future__ import annotations
+
+import math
+import shutil
+
+import numpy as np
+import pytest
+
+from isolator.review.errors import SuiteError
+from isolator.review.selection import (
+    SAME_MOTION_TOLERANCE,
+    closest_motions,
+    motion_signature,
+    selection_rows,
+    signature_distance,
+    spectral_bandwidth,
+)
+from isolator.review.suite import Pair, component_azimuth_deg, load_suite, rotate_to_fault
+from tests.review.conftest import EXAMPLE, SHORT
+
+G = 9.80665
+
+
+def write_at2(path, acceleration_g, dt_s, component="0"):
+    """A PEER AT2 file of the samples [g] (the component name closes the title line)."""
+    values = np.asarray(acceleration_g, dtype=np.float64)
+    lines = ["PEER NGA STRONG MOTION DATABASE RECORD", f"copy, 1/1/2000, test, {component}",
+             "ACCELERATION TIME SERIES IN UNITS OF G", f"NPTS= {values.size}, DT= {dt_s:.6f} SEC"]
+    lines += ["".join(f"{v:15.7E}" for v in values[i:i + 5]) for i in range(0, values.size, 5)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def _suite_toml(folder, pairs):
+    body = ""
+    for name, x, y, extra in pairs:
+        body += f'[[pair]]\nname = "{name}"\nx = "{x}"\ny = "{y}"\n{extra}\n'
+    path = folder / "suite.toml"
+    path.write_text(body)
+    return path
+
+
+@pytest.mark.parametrize("change", ["rotated 30°", "scaled 1.7", "shifted 3 s"])
+def test_a_rotated_scaled_or_shifted_copy_is_refused_naming_both(tmp_path, change):
+    folder, x, y, _ = SHORT[0]
+    original = load_suite(_suite_toml(tmp_path, [("YER", EXAMPLE / folder / x, EXAMPLE / folder / y, "")])).pairs[0]
+    ax, ay, dt = original.ax_m_s2 / G, original.ay_m_s2 / G, original.dt_s
+    if change.startswith("rotated"):
+        c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+        ax, ay = c * ax - s * ay, s * ax + c * ay
+    elif change.startswith("scaled"):
+        ax, ay = 1.7 * ax, 1.7 * ay
+    else:
+        zeros = np.zeros(int(round(3.0 / dt)))
+        ax, ay = np.concatenate([zeros, ax]), np.concatenate([zeros, ay])
+    write_at2(tmp_path / "cx.AT2", ax, dt)
+    write_at2(tmp_path / "cy.AT2", ay, dt)
+    other = SHORT[1]
+    path = _suite_toml(tmp_path, [("YER", EXAMPLE / folder / x, EXAMPLE / folder / y, ""),
+                                  ("ABY", EXAMPLE / other[0] / other[1], EXAMPLE / other[0] / other[2], ""),
+                                  ("copy", tmp_path / "cx.AT2", tmp_path / "cy.AT2", "")])
+    with pytest.raises(SuiteError) as info:
+        load_suite(path)
+    message = str(info.value)
+    assert "same motion" in message and "\n" not in message
+    assert x in message and "cx.AT2" in message and "'copy'" in message and "'YER'" in message
+
+
+def test_resampled_copies_stay_close_and_real_pairs_stay_apart():
+    suite = load_suite(EXAMPLE / "suite.toml")
+    closest = closest_motions(suite.pairs)
+    assert closest["distance"] > 4 * SAME_MOTION_TOLERANCE  # 8 real pairs of 8 earthquakes are far apart
+    p = suite.pairs[0]
+    base = motion_signature(p.ax_m_s2, p.ay_m_s2, p.dt_s)
+    t = np.arange(p.npts) * p.dt_s
+    for factor in (0.5, 2.0):  # linear resampling to dt/2 and 2 dt
+        t2 = np.arange(0.0, t[-1], p.dt_s * factor)
+        copy = motion_signature(np.interp(t2, t, p.ax_m_s2), np.interp(t2, t, p.ay_m_s2), p.dt_s * factor)
+        assert signature_distance(base, copy) < SAME_MOTION_TOLERANCE / 2
+    # the exact invariances
+    c, s = math.cos(1.0), math.sin(1.0)
+    rotated = motion_signature(c * p.ax_m_s2 - s * p.ay_m_s2, s * p.ax_m_s2 + c * p.ay_m_s2, p.dt_s)
+    assert signature_distance(base, rotated) < 1e-9
+
+
+def _pair(name, ax, ay, dt, **metadata):
+    return Pair(name=name, ax_m_s2=np.asarray(ax, float), ay_m_s2=np.asarray(ay, float), az_m_s2=None, dt_s=dt,
+                files={"x": f"{name}x", "y": f"{name}y"}, component_names={}, metadata=metadata)
+
+
+def test_sinusoid_and_weak_records_are_flagged_and_metadata_checked():
+    from isolator.review.parameters import resolve
+
+    t = np.arange(0.0, 20.0, 0.01)
+    sine = _pair("circle", 3.0 * np.sin(2 * np.pi * t), 3.0 * np.cos(2 * np.pi * t), 0.01, magnitude=7.0,
+                 distance_km=10.0)
+    assert spectral_bandwidth(sine.ax_m_s2, 0.01) < 0.15
+    suite = load_suite(EXAMPLE / "suite.toml")
+    real = suite.pairs[1]
+    real.metadata = {"magnitude": 7.3, "distance_km": 45.0}
+    params = resolve("asce7-22")
+    rows = {r["id"]: r for r in selection_rows(
+        [sine, real], [1.0, 0.01], mu_lower=0.04, gravity_m_s2=G,
+        controlling={"magnitude_range": [6.5, 7.5], "distance_km_range": [0.0, 30.0]}, params=params,
+        closest=closest_motions([sine, real]))}
+    assert rows["record_nature"]["status"] == "fail" and "circle x" in rows["record_nature"]["note"]
+    weak = 0.01 * float(np.max(np.hypot(real.ax_m_s2, real.ay_m_s2))) / G
+    assert weak < 0.1 * 0.04  # the scaled real pair is below a tenth of the sliding acceleration
+    assert rows["record_strength"]["status"] == "fail" and rows["record_strength"]["value"] == pytest.approx(weak)
+    assert real.name in rows["record_strength"]["note"]
+    assert rows["record_selection"]["status"] == "fail" and "distance_km 45" in rows["record_selection"]["note"]
+    assert rows["distinct_motions"]["status"] == "pass"
+    none = {r["id"]: r for r in selection_rows([real], [1.0], mu_lower=0.04, gravity_m_s2=G, controlling={},
+                                               params=params, closest=None)}
+    assert none["record_selection"]["status"] == "not checked" and none["distinct_motions"]["status"] == "not checked"
+    assert none["record_strength"]["status"] == none["record_nature"]["status"] == "pass"
+
+
+@pytest.mark.parametrize("name, azimuth", [("270", 270.0), ("HN1 (90)", 90.0), ("YER360", 0.0), ("N55W", 305.0),
+                                           ("S01W", 181.0), ("S35E", 145.0), ("EW", 90.0), ("N", 0.0), ("HN1", None)])
+def test_component_azimuths_from_names(name, azimuth):
+    assert component_azimuth_deg(name) == azimuth
+
+
+def test_rotation_to_fault_normal_both_components_recorded(tmp_path):
+    folder, x, y, _ = SHORT[0]  # Landers YER: x = 270, y = 360
+    plain = load_suite(_suite_toml(tmp_path, [("YER", EXAMPLE / folder / x, EXAMPLE / folder / y, "")])).pairs[0]
+    rotated = load_suite(_suite_toml(tmp_path, [("YER", EXAMPLE / folder / x, EXAMPLE / folder / y,
+                                                 "rotate_to_fault_normal_deg = 30.0")])).pairs[0]
+    step = rotated.processing[-1]
+    assert step["strike_deg"] == 30.0 and step["azimuth_x_deg"] == 270.0 and step["azimuth_y_deg"] == 0.0
+    # by hand: east = −a_270, north = a_360; FN azimuth 120°: (sin 120, cos 120) · (east, north)
+    east, north = -plain.ax_m_s2, plain.ay_m_s2
+    fn = math.sin(math.radians(120)) * east + math.cos(math.radians(120)) * north
+    fp = math.sin(math.radians(30)) * east + math.cos(math.radians(30)) * north
+    assert np.allclose(rotated.ax_m_s2, fn, atol=1e-12) and np.allclose(rotated.ay_m_s2, fp, atol=1e-12)
+    assert np.allclose(np.hypot(rotated.ax_m_s2, rotated.ay_m_s2), np.hypot(plain.ax_m_s2, plain.ay_m_s2))
+    a, b = rotate_to_fault(np.array([1.0]), np.array([0.0]), 90.0, 0.0, 0.0)  # east motion, strike north
+    assert a[0] == pytest.approx(1.0) and b[0] == pytest.approx(0.0, abs=1e-15)
+
+
+def test_suite_keys_checked_and_a_mixed_matched_suite_refused(tmp_path):
+    (a, ax, ay, _), (b, bx, by, _) = SHORT[0], SHORT[1]
+    base = [("A", EXAMPLE / a / ax, EXAMPLE / a / ay, "matched = true"), ("B", EXAMPLE / b / bx, EXAMPLE / b / by, "")]
+    with pytest.raises(SuiteError, match="spectrally matched and pair 'B' is not"):
+        load_suite(_suite_toml(tmp_path, base))
+    for extra, words in (("scale_factor = -1.0", "'scale_factor' must be a number > 0"),
+                         ("magnitude = 12.0", "'magnitude' must be a number in"),
+                         ("pulse = 1", "'pulse' must be true or false"),
+                         ("azimuth_x_deg = 10.0", "serve rotate_to_fault_normal_deg")):
+        with pytest.raises(SuiteError, match=words):
+            load_suite(_suite_toml(tmp_path, [("A", EXAMPLE / a / ax, EXAMPLE / a / ay, extra)]))
+    shutil.copy(EXAMPLE / a / ax, tmp_path / "x.AT2")
+    write_at2(tmp_path / "y.AT2", np.linspace(0.0, 0.1, 10), 0.02, component="UNK")
+    with pytest.raises(SuiteError, match="not in its name; give azimuth_y_deg"):
+        load_suite(_suite_toml(tmp_path, [("A", tmp_path / "x.AT2", tmp_path / "y.AT2",
+                                           "trim = true\nrotate_to_fault_normal_deg = 10.0")]))
