@@ -117,7 +117,7 @@ def review(
         typer.echo(json.dumps(out, indent=2))
         return
     counts = out["check_counts"]
-    typer.echo(f"review   {output} (5 pages), numbers in {Path(output).with_suffix('.json')}")
+    typer.echo(f"review   {output} ({out['pdf_pages']} pages), numbers in {Path(output).with_suffix('.json')}")
     typer.echo(f"pairs    {len(out['suite']['pairs'])} read, {len(out['suite']['failed'])} failed; scale factors "
                f"{min(out['scale_factors'].values()):.4g}–{max(out['scale_factors'].values()):.4g} ({scaling}), "
                f"range {out['period_range_s'][0]:.4g}–{out['period_range_s'][1]:.4g} s")
@@ -138,7 +138,7 @@ def _verify(path: str, jobs) -> None:
     from isolator.design import DesignError
     from isolator.motion import RecordError
     from isolator.review.errors import ReviewError
-    from isolator.review.trace import verify_review
+    from isolator.review.verify import verify_review
     from isolator.units import UnitsError
 
     try:

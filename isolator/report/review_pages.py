@@ -1,12 +1,18 @@
 """The review PDF: rendering only (every number comes from :meth:`isolator.review.run.Review.to_dict`).
 
-Pages: 1 checks (clause, value, limit, status) with the parameters used and their marks; 2 target
-and suite spectra with the period range and the floor; 3 the per-pair table at both bounds; 4
-orbits of the governing pairs and the bounding envelope; 5 the paper's measures, labelled as such.
+Pages, in order: the summary (the design's and the target's inputs echoed, the headline counts) and the
+checks (clause, value, limit, unit, status, the whole note), flowing over as many pages as they need,
+then the parameters used with their marks, the notes and the traceability table (software, command,
+SHA-256 of every input file); the target and suite spectra (range, floor, T_M of both bounds marked);
+the analyses per pair and bound (a numbered key with the full pair names and their metadata; analyses
+past the displacement capacity marked; the spread per bound); orbits and the bounding envelope; and,
+as an appendix, the paper's measures.  Every page's footer carries the software version, the commit and
+a digest of the input hashes.  Text is never cut: it wraps, at 7 pt or more.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import textwrap
 from pathlib import Path
@@ -17,187 +23,441 @@ from isolator.atomic import atomic_path
 from isolator.report import figures
 from isolator.report.layout import A4_IN, fmt
 
-TITLES = ("1  Design review: checks", "2  Target and suite spectra", "3  Analyses per pair and bound",
-          "4  Orbits and bounding envelope", "5  The paper's measures (context, not a verdict)")
 STATUS_COLOUR = {"pass": "#1a7f37", "fail": "#c62828", "not checked": "#6e6e6e"}
 BOUND_COLOUR = {"lower": "#1f77b4", "upper": "#d62728", "nominal": "#7f7f7f"}
+NOTE_PT = 7.0  #: the smallest type on any page [pt]
+#: characters per line of 7 pt text across the page's width (DejaVu Sans, measured on the rendered pages)
+CHARS_FULL = 140
+LINE = 0.0118  #: one 7-7.5 pt line [figure fraction]
+TOP, BOTTOM = 0.935, 0.055  #: where the flowing text starts and stops [figure fraction]
 
 
 def short(text, width: int) -> str:
-    """``text`` cut to ``width`` characters with an ellipsis (long names must not overprint)."""
+    """``text`` cut to ``width`` characters with an ellipsis (only for labels whose full text is printed
+    elsewhere on the same page, e.g. a plot title)."""
     text = " ".join(str(text).split())
     return text if len(text) <= width else text[: width - 1] + "…"
 
 
-def _page(number: int, subtitle: str):
+def wrap(text, width: int) -> list[str]:
+    """``text`` wrapped at ``width`` characters (never cut)."""
+    return textwrap.wrap(" ".join(str(text).split()), width, break_long_words=True, break_on_hyphens=False) or [""]
+
+
+def inputs_digest(inputs: dict) -> str:
+    """SHA-256 of the sorted ``path  sha256`` lines of the inputs (one number for the footer)."""
+    text = "\n".join(f"{path}  {digest}" for path, digest in sorted(inputs.items()))
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def footer_text(r: dict, page: int) -> str:
+    """The footer of every page: software, commit, inputs digest, date, page."""
+    sw = r.get("software") or {}
+    commit = sw.get("commit")
+    commit_text = (f"commit {commit[:12]}" + (" (with uncommitted changes)" if sw.get("dirty") else "")
+                   if commit else "not run from a git checkout")
+    inputs = r.get("inputs") or {}
+    return (f"isolator {sw.get('version', '?')}, {commit_text} · {r['created_utc']} · inputs: {len(inputs)} files, "
+            f"digest {inputs_digest(inputs)[:16]} (each file's SHA-256 in the traceability table and the JSON) · "
+            f"page {page}")
+
+
+class Flow:
+    """Text pages that continue on a new page when full (rows are never cut, notes wrap)."""
+
+    def __init__(self, pdf, r: dict, counter: list):
+        self.pdf, self.r, self.counter = pdf, r, counter
+        self.fig = None
+        self.y = TOP
+
+    def page(self, title: str, subtitle: str = "") -> None:
+        self.close()
+        self.counter[0] += 1
+        self.fig = new_page(title, subtitle)
+        self.y = TOP
+        self.title = title
+
+    def need(self, height: float) -> None:
+        if self.fig is None or self.y - height < BOTTOM:
+            self.page(self.title + (" (continued)" if not self.title.endswith("(continued)") else ""))
+
+    def text(self, x: float, text: str, size: float = NOTE_PT, **kwargs) -> None:
+        self.fig.text(x, self.y, text, fontsize=size, va="top", **kwargs)
+
+    def heading(self, text: str) -> None:
+        self.need(4 * LINE)
+        self.y -= 0.4 * LINE
+        self.text(0.05, text, 9.5, weight="bold")
+        self.y -= 1.45 * LINE
+
+    def paragraph(self, text: str, x: float = 0.05, width: int = CHARS_FULL, size: float = NOTE_PT,
+                  color="0.1") -> None:
+        for line in wrap(text, width):
+            self.need(LINE)
+            self.text(x, line, size, color=color)
+            self.y -= LINE
+
+    def close(self) -> None:
+        if self.fig is not None:
+            add_footer(self.fig, self.r, self.counter[0])
+            self.pdf.savefig(self.fig)
+            self.fig = None
+
+
+def new_page(title: str, subtitle: str = ""):
     fig = figures.new_figure(figsize=A4_IN)
-    fig.text(0.05, 0.975, TITLES[number - 1], fontsize=13, weight="bold", va="top")
-    fig.text(0.95, 0.952, short(subtitle, 95), fontsize=7.5, va="top", ha="right", color="0.35")
+    fig.text(0.05, 0.975, title, fontsize=13, weight="bold", va="top")
+    if subtitle:
+        lines = wrap(subtitle, 120)
+        for k, line in enumerate(lines[:2]):
+            fig.text(0.95, 0.952 - k * 0.011, line, fontsize=7.5, va="top", ha="right", color="0.35")
     return fig
 
 
-def _caption(fig, text: str, y: float = 0.012) -> None:
-    fig.text(0.05, y, textwrap.fill(text, 150), fontsize=7.0, va="bottom", ha="left", color="0.15")
+def add_footer(fig, r: dict, page: int) -> None:
+    for k, line in enumerate(reversed(wrap(footer_text(r, page), 150))):
+        fig.text(0.05, 0.012 + k * 0.011, line, fontsize=NOTE_PT, va="bottom", ha="left", color="0.35")
 
 
-def _checks_page(r: dict, command: str):
-    fig = _page(1, f"{r['design']['name']} | {r['target']['name']}")
-    y = 0.935
-    lines = [("Design", short(r["design"]["name"], 80) + f"  ({short(Path(r['design']['source']).name, 40)})"),
-             ("Target", short(r["target"]["name"], 90)),
-             ("Suite", f"{len(r['suite']['pairs'])} pairs read, {len(r['suite']['failed'])} failed  "
-                       f"({short(r['suite']['source'], 70)})"),
-             ("Code, scaling", f"{r['code']}, '{r['scaling']}' scale factors on {r['spectrum_basis']}"),
-             ("Friction bounds", f"µ lower {fmt(r['property_bounds']['mu_lower'])}, nominal "
-                                 f"{fmt(r['property_bounds']['mu_nominal'])}, upper "
-                                 f"{fmt(r['property_bounds']['mu_upper'])}  (λ_min {fmt(r['property_bounds']['lambda_min'])},"
-                                 f" λ_max {fmt(r['property_bounds']['lambda_max'])})"),
-             ("Bounds basis", r["property_bounds"]["basis"]),
-             ("Period range", f"{fmt(r['period_range_s'][0])} – {fmt(r['period_range_s'][1])} s "
-                              f"({r['period_grid']['n']} periods); suite min ratio {fmt(r['suite_min_ratio'])} "
-                              f"(required {fmt(r['min_ratio_required'])})"),
-              ("Displacements", f"D_M {fmt(r['design_displacement_m']['value'])} m "
-                                     f"({r['design_displacement_m']['rule']} of {r['design_displacement_m']['n']}, "
-                                     f"{r['design_displacement_m']['governing_bound']} bound); total "
-                                     f"{fmt(r['design_total_displacement_m']['value'])} m; ELF D_TM "
-                                     f"{fmt(r['D_TM_m'])} m")]
+def _caption(fig, text: str, y: float = 0.04) -> None:
+    """A figure page's caption, wrapped, above the footer."""
+    lines = wrap(text, CHARS_FULL)
+    for k, line in enumerate(reversed(lines)):
+        fig.text(0.05, y + k * LINE, line, fontsize=NOTE_PT, va="bottom", ha="left", color="0.15")
+
+
+# ---- the summary, the checks, the parameters, the notes, the traceability -------------------------------
+
+def _design_lines(r: dict) -> list[tuple[str, str]]:
+    d, b = r["design"], r["property_bounds"]
+    g = d["gravity_m_s2"]
+    weight = d["mass_kg"] * g
+    kind = (f"friction pendulum, R = {fmt(d['radius_m'])} m (pendulum period {fmt(d['isolated_period_s'])} s)"
+            if d["radius_m"] else f"flat slider with spring K = {fmt(d['stiffness_N_per_m'] / 1e3)} kN/m")
+    friction = f"µs = {fmt(d['mu_static'])}, µk = {fmt(d['mu_kinetic'])} (nominal)"
+    if d.get("mu_fast") is not None:
+        friction += (f"; µ(v): µ_slow {fmt(d['mu_slow'])}, µ_fast {fmt(d['mu_fast'])}, "
+                     f"a = {fmt(d['rate_s_per_m'])} s/m")
+    plan = d.get("plan")
+    plan_text = ("none: D_TM = " + fmt(r["torsion"]["factor"]) + " D_M (the floor of Eq. 17.5-3)" if not plan else
+                 f"b × d = {fmt(plan['b_m'])} × {fmt(plan['d_m'])} m, eccentricity "
+                 f"{fmt(plan.get('eccentricity_m', 0.0))} m, "
+                 + (f"y = {fmt(plan['y_m'])} m" if "y_m" in plan else "y = half the plan dimension (assumed)")
+                 + (f", P_T = {fmt(plan['P_T'])}" if "P_T" in plan else "")
+                 + f" → D_TM/D_M = {fmt(r['torsion']['factor'])}")
+    lines = [("Design", f"{d['name']}  (file {d['source']})"),
+             ("Weight, isolator", f"W = {fmt(weight / 1e3)} kN (M = {fmt(d['mass_kg'])} kg); {kind}"),
+             ("Friction", friction),
+             ("Property bounds", f"µ lower {fmt(b['mu_lower'])} (λ_min {fmt(b['lambda_min'])}), nominal "
+                                 f"{fmt(b['mu_nominal'])}, upper {fmt(b['mu_upper'])} (λ_max {fmt(b['lambda_max'])}); "
+                                 f"{b['basis']}"),
+             ("Capacity", f"{fmt(d['displacement_capacity_m'])} m (bearing displacement, resultant)"
+              if d["displacement_capacity_m"] else "not given (displacement_capacity_m)"),
+             ("Plan", plan_text)]
+    if d.get("damping_Ns_per_m"):
+        lines.insert(3, ("Damper", f"γ = {fmt(d['damping_Ns_per_m'] / 1e3)} kN·s/m (ratio {fmt(d['damping_ratio'])})"))
+    return lines
+
+
+def _target_text(t: dict) -> str:
+    kind = t["kind"]
+    if kind == "asce7-two-period":
+        text = f"two-period MCE_R: S_MS = {fmt(t['S_MS'])} g, S_M1 = {fmt(t['S_M1'])} g, T_L = {fmt(t['T_L'])} s"
+        if "from_design_values" in t:
+            text += " (1.5 × the design values)"
+    elif kind == "en1998-elastic":
+        text = (f"EN 1998-1 elastic: a_g = {fmt(t['a_g_g'])} g, S = {fmt(t['S'])}, T_B/T_C/T_D = "
+                f"{fmt(t['T_B'])}/{fmt(t['T_C'])}/{fmt(t['T_D'])} s")
+    else:
+        text = f"table {t.get('spectrum_csv')} ({len(t.get('periods_s', []))} periods)"
+    for key, label, unit in (("magnitude_range", "controlling M", ""), ("distance_km_range", "distance", " km")):
+        if key in t:
+            text += f"; {label} {fmt(t[key][0])}–{fmt(t[key][1])}{unit}"
+    return f"{t['name']}: {text}  (file {t['source']})"
+
+
+def _summary(flow: Flow, r: dict) -> None:
+    flow.page("Design review: summary and checks", f"{r['design']['name']} | {r['target']['name']}")
+    suite = r["suite"]
+    basis = r.get("run", {}).get("scaling_basis", r["scaling"])
+    words = {"common": "one common factor computed by the tool", "fit": "shape factors fitted, then a common factor",
+             "given": "the engineer's factors from the suite, not rescaled",
+             "matched": "spectrally matched records, not rescaled"}.get(basis, basis)
+    d, dt = r["design_displacement_m"], r["design_total_displacement_m"]
+    lines = _design_lines(r) + [
+        ("Target", _target_text(r["target"])),
+        ("Suite", f"{len(suite['pairs'])} pairs read, {len(suite['failed'])} failed  ({suite['source']})"),
+        ("Code, scaling", f"{r['code']}; {basis}: {words}; spectra {r['spectrum_basis']}"),
+        ("Period range", f"{fmt(r['period_range_s'][0])} – {fmt(r['period_range_s'][1])} s ({r['period_grid']['n']} "
+                         f"periods); suite min ratio {fmt(r['suite_min_ratio'])} (required "
+                         f"{fmt(r['min_ratio_required'])})"),
+        ("Design values", f"D_M {fmt(d['value'])} m ({d['rule']} of {d['n']}, {d['governing_bound']} bound); total "
+                          f"{fmt(dt['value'])} m ({dt['governs']} governs); ELF D_TM {fmt(r['D_TM_m'])} m; V/W "
+                          f"{fmt(r['design_base_shear_coefficient']['value'])} "
+                          f"({r['design_base_shear_coefficient']['governing_bound']} bound)")]
     for name, value in lines:
-        fig.text(0.05, y, name, fontsize=7.8, weight="bold", va="top")
-        fig.text(0.2, y, short(value, 105), fontsize=7.8, va="top")
-        y -= 0.0155
-    y -= 0.008
-    columns = ((0.05, "check"), (0.225, "clause"), (0.49, "value"), (0.6, "limit"), (0.7, "status"), (0.79, "unit"))
-    for x, head in columns:
-        fig.text(x, y, head, fontsize=7.8, weight="bold", va="top")
-    y -= 0.016
-    for row in r["checks"]:
-        status = row["status"]
-        cells = (short(row["id"], 26), short(row["clause"], 42), fmt(row["value"]), fmt(row["limit"]),
-                 status, short(row.get("unit", ""), 10))
-        for (x, _), cell in zip(columns, cells, strict=False):
-            fig.text(x, y, cell, fontsize=7.4, va="top", color=STATUS_COLOUR[status] if cell == status else "black",
-                     weight="bold" if cell == status else "normal")
-        y -= 0.0118
-        fig.text(0.07, y, short(row["note"], 150), fontsize=6.2, va="top", color="0.35")
-        y -= 0.0128
+        for k, line in enumerate(wrap(value, 104)):
+            flow.need(LINE)
+            if k == 0:
+                flow.text(0.05, name, 7.6, weight="bold")
+            flow.text(0.2, line, 7.6)
+            flow.y -= LINE
     counts = r["check_counts"]
-    fig.text(0.05, y - 0.004, f"{counts['pass']} pass, {counts['fail']} fail, {counts['not checked']} not checked",
-             fontsize=8.2, weight="bold", va="top")
-    y -= 0.026
-    fig.text(0.05, y, "Parameters used (mark from REVIEW_RULES: U = unverified, a parameter; S = secondary source)",
-             fontsize=7.8, weight="bold", va="top")
-    y -= 0.0145
-    params = r["parameters"]
-    half = (len(params) + 1) // 2
-    for i, p in enumerate(params):
-        x = 0.05 if i < half else 0.52
-        yy = y - (i % half) * 0.0112
-        flag = " [U]" if "U" in p["mark"].split("/") else f" [{p['mark']}]"
-        value = "none" if p["value"] is None else (fmt(p["value"]) if not isinstance(p["value"], str) else p["value"])
-        fig.text(x, yy, short(f"{p['name']} = {value}{flag}  {p['rule']}", 78), fontsize=6.3, va="top")
-    y -= half * 0.0112 + 0.006
-    lines = textwrap.wrap("Notes: " + " · ".join(r["notes"]), 145) if r["notes"] else []
-    for line in lines[:4]:  # the JSON has them all
-        fig.text(0.05, y, line, fontsize=6.3, va="top", color="0.25")
-        y -= 0.011
-    _caption(fig, f"{r['created_utc']} · {short(command, 200)} · every number on this page is in the JSON beside "
-                  "the PDF.  'not checked' = the review lacks the input (named in the note).")
-    return fig
+    flow.y -= 0.5 * LINE
+    flow.need(2 * LINE)
+    flow.fig.text(0.05, flow.y, f"{counts['pass']} pass", fontsize=10, weight="bold", va="top",
+                  color=STATUS_COLOUR["pass"])
+    flow.fig.text(0.16, flow.y, f"{counts['fail']} fail", fontsize=10, weight="bold", va="top",
+                  color=STATUS_COLOUR["fail"])
+    flow.fig.text(0.26, flow.y, f"{counts['not checked']} not checked", fontsize=10, weight="bold", va="top",
+                  color=STATUS_COLOUR["not checked"])
+    flow.fig.text(0.46, flow.y, "every row below is counted; 'not checked' names what the review lacks",
+                  fontsize=NOTE_PT, va="top", color="0.3")
+    flow.y -= 1.8 * LINE
+
+
+CHECK_COLUMNS = ((0.05, "check"), (0.245, "clause"), (0.5, "value"), (0.6, "limit"), (0.69, "unit"),
+                 (0.76, "status"))
+
+
+def _check_header(flow: Flow) -> None:
+    for x, head in CHECK_COLUMNS:
+        flow.text(x, head, 7.6, weight="bold")
+    flow.y -= 1.15 * LINE
+
+
+def _checks(flow: Flow, r: dict) -> None:
+    _check_header(flow)
+    for row in r["checks"]:
+        note = wrap(row["note"], 128) if row["note"] else []
+        clause = wrap(row["clause"], 36)
+        height = (max(1, len(clause)) + len(note)) * LINE + 0.25 * LINE
+        if flow.y - height < BOTTOM:
+            flow.need(height + 2 * LINE)
+            _check_header(flow)
+        status = row["status"]
+        cells = (row["id"], clause[0], fmt(row["value"]), fmt(row["limit"]), row.get("unit", ""), status)
+        for (x, _), cell in zip(CHECK_COLUMNS, cells, strict=True):
+            flow.text(x, cell, 7.4, color=STATUS_COLOUR[status] if cell == status else "black",
+                      weight="bold" if cell == status else "normal")
+        flow.y -= LINE
+        for line in clause[1:]:
+            flow.text(0.245, line, 7.4)
+            flow.y -= LINE
+        for line in note:
+            flow.text(0.07, line, NOTE_PT, color="0.3")
+            flow.y -= LINE
+        flow.y -= 0.25 * LINE
+
+
+def _parameters(flow: Flow, r: dict) -> None:
+    flow.heading("Parameters used (marks: U = unverified, a parameter by rule; S = secondary source; practice, "
+                 "convention, interpretation, input)")
+    for p in r["parameters"]:
+        value = "none" if p["value"] is None else (p["value"] if isinstance(p["value"], str) else fmt(p["value"]))
+        changed = "" if p["value"] == p["default"] else f" (default {fmt(p['default'])})"
+        flow.paragraph(f"{p['name']} = {value}{changed} [{p['mark']}] — {p['rule']}: {p['meaning']}", x=0.05)
+
+
+def _notes(flow: Flow, r: dict) -> None:
+    if not r["notes"]:
+        return
+    flow.heading("Notes")
+    for note in r["notes"]:
+        flow.paragraph("• " + note)
+
+
+def _traceability(flow: Flow, r: dict, command: str) -> None:
+    flow.heading("Traceability")
+    sw = r.get("software") or {}
+    flow.paragraph(f"Software: isolator {sw.get('version')}; commit {sw.get('commit') or 'none (not a git checkout)'}"
+                   + (" with uncommitted changes" if sw.get("dirty") else "") + f"; run {r['created_utc']}.")
+    if command:
+        flow.paragraph(f"Command: {command}")
+    flow.paragraph("Input files and their SHA-256 (isolator review --verify on the JSON re-checks them and reruns "
+                   "the numbers):")
+    for path, digest in (r.get("inputs") or {}).items():
+        lines = wrap(path, 56)
+        flow.need(len(lines) * LINE)
+        flow.text(0.05, digest, NOTE_PT, family="monospace")
+        for line in lines:
+            flow.text(0.56, line, NOTE_PT)
+            flow.y -= LINE
 
 
 def _spectra_page(review, r: dict):
-    fig = _page(2, r["target"]["name"])
+    fig = new_page("Target and suite spectra", r["target"]["name"])
     s = review.spectra
-    ax = fig.add_axes([0.1, 0.47, 0.84, 0.43])
+    ax = fig.add_axes([0.1, 0.5, 0.84, 0.41])
     lo, hi = r["period_range_s"]
     for values in s["pairs_scaled_g"].values():
         ax.loglog(s["periods_s"], values, color="0.6", lw=0.6)
     ax.loglog([], [], color="0.6", lw=0.6, label=f"scaled pairs ({r['spectrum_basis']})")
     ax.loglog(s["periods_s"], s["suite_mean_scaled_g"], color="k", lw=1.8, label="suite average (scaled)")
-    ax.loglog(s["periods_s"], s["target_g"], color="#d62728", lw=1.6, label="target")
-    ax.loglog(s["periods_s"], r["min_ratio_required"] * s["target_g"], color="#d62728", lw=1.0, ls="--",
-              label=f"floor {fmt(r['min_ratio_required'])} × target")
+    ax.loglog(s["periods_s"], s["target_g"], color="#d62728", lw=2.6, alpha=0.55, label="target")
+    same = abs(r["min_ratio_required"] - 1.0) < 1e-12
+    # drawn over the target in a dark dashed line, so that it stays visible where the two coincide (ratio 1)
+    ax.loglog(s["periods_s"], r["min_ratio_required"] * s["target_g"], color="#5a0000", lw=1.0, ls=(0, (4, 3)),
+              zorder=5, label=f"required floor {fmt(r['min_ratio_required'])} × target"
+              + (" (on the target)" if same else ""))
     if "rotd50" in s:
         mean50 = np.mean(list(s["rotd50"]["pairs_scaled_g"].values()), axis=0)
         ax.loglog(s["rotd50"]["periods_s"], mean50, color="#2ca02c", lw=1.0, ls=":",
                   label="suite average RotD50 (information)")
     ax.axvspan(lo, hi, color="#ffe2b0", alpha=0.6, label=f"range {fmt(lo, 3)}–{fmt(hi, 3)} s")
+    top = ax.get_ylim()[1]
+    for b, style in (("upper", (0, (1, 1.5))), ("lower", (0, (5, 2)))):
+        t_m = r["elf"].get(b, {}).get("T_M_s")
+        if t_m is None or not np.isfinite(t_m):
+            continue
+        for axis in (ax,):
+            axis.axvline(t_m, color=BOUND_COLOUR[b], lw=1.1, ls=style, label=f"T_M({b}) = {fmt(t_m, 3)} s")
+        ax.text(t_m, top, f" T_M({b})", rotation=90, va="top", ha="right" if b == "upper" else "left",
+                fontsize=7.5, color=BOUND_COLOUR[b])
     ax.set_xlabel("period T [s]")
     ax.set_ylabel("5 %-damped spectral acceleration [g]")
     ax.legend(loc="lower left")
-    ax2 = fig.add_axes([0.1, 0.1, 0.84, 0.27])
+    ax2 = fig.add_axes([0.1, 0.18, 0.84, 0.24])
     ax2.semilogx(review.grid_s, review.suite_ratio, color="k", lw=1.2, label="suite average / target")
-    ax2.axhline(r["min_ratio_required"], color="#d62728", ls="--", lw=1.0, label="required")
+    ax2.axhline(r["min_ratio_required"], color="#5a0000", ls=(0, (4, 3)), lw=1.0,
+                label=f"required {fmt(r['min_ratio_required'])}")
+    for b in ("upper", "lower"):
+        t_m = r["elf"].get(b, {}).get("T_M_s")
+        if t_m is not None and np.isfinite(t_m):
+            ax2.axvline(t_m, color=BOUND_COLOUR[b], lw=1.0, ls=":", label=f"T_M({b})")
     ax2.set_xlabel("period T [s] (the grid of the check)")
     ax2.set_ylabel("ratio [-]")
     ax2.legend(loc="best")
+    if r["code"] == "asce7-22":
+        rule = (f"ASCE 7-22 17.3.3: {fmt(review.parameters['range_lo_factor'])} T_M(upper) to "
+                f"{fmt(review.parameters['range_hi_factor'])} T_M(lower)")
+    else:
+        rule = (f"EN 1998-1 3.2.3.1.2(4): {fmt(review.parameters['en_range_lo_factor'])} T(upper) to "
+                f"{fmt(review.parameters['en_range_hi_factor'])} T(lower)")
     _caption(fig, f"Top: target, scaled spectra of the pairs and their average; shaded: the scaling period range "
-                  f"(ASCE 7-22 17.3.3: {fmt(review.parameters.get('range_lo_factor', 0.2))} T_M upper bound to "
-                  f"{fmt(review.parameters.get('range_hi_factor', 2.0))} T_M lower bound).  Bottom: the ratio on the "
-                  f"{r['period_grid']['n']} periods of the check (log-spaced, both ends and the T_M values included); "
-                  f"minimum {fmt(r['suite_min_ratio'])} at {fmt(r['suite_min_ratio_period_s'], 3)} s.  Spectra: "
-                  f"{r['spectrum_conventions']}.")
+                  f"({rule}); vertical lines: T_M of the upper-bound (dotted) and lower-bound (dashed) properties.  "
+                  f"Bottom: the ratio on the {r['period_grid']['n']} periods of the check (log-spaced, both ends and "
+                  f"the T_M values included); minimum {fmt(r['suite_min_ratio'])} at "
+                  f"{fmt(r['suite_min_ratio_period_s'], 3)} s.  Spectra: {r['spectrum_conventions']}.")
     return fig
 
 
-def _pairs_page(r: dict):
-    fig = _page(3, r["design"]["name"])
-    bounds = [b for b in ("lower", "upper") if b in r["bounds"]]
-    columns = [(0.05, "pair", None), (0.33, "SF", None)]
-    x = 0.39
-    for b in bounds:
-        for key, head in (("peak_displacement_m", "D [m]"), ("base_shear_coefficient", "V/W"),
-                          ("residual_displacement_m", "res. [m]")):
-            columns.append((x, f"{head} {b[:2]}", (b, key)))
-            x += 0.093
-    y = 0.93
-    for x, head, _ in columns:
-        fig.text(x, y, head, fontsize=7.6, weight="bold", va="top")
-    y -= 0.017
+def pair_key(r: dict) -> dict:
+    """Pair name → its number in the key (#1, #2, … in the suite's order)."""
+    return {name: k + 1 for k, name in enumerate(r["scale_factors"])}
+
+
+def _metadata_text(meta: dict) -> str:
+    parts = []
+    if "magnitude" in meta:
+        parts.append(f"M {fmt(meta['magnitude'], 3)}")
+    if "distance_km" in meta:
+        parts.append(f"R {fmt(meta['distance_km'], 3)} km")
+    if "mechanism" in meta:
+        parts.append(meta["mechanism"])
+    if "vs30_m_s" in meta:
+        parts.append(f"V_s30 {fmt(meta['vs30_m_s'], 4)} m/s")
+    if "pulse" in meta:
+        parts.append("pulse" if meta["pulse"] else "no pulse")
+    return ", ".join(parts) if parts else "no metadata given"
+
+
+def _pairs(flow: Flow, r: dict) -> None:
+    flow.page("Analyses per pair and bound", r["design"]["name"])
+    key = pair_key(r)
+    bounds = [b for b in ("lower", "nominal", "upper") if b in r["bounds"]]
+    cap = r["design"]["displacement_capacity_m"]
+    columns = [(0.05, "#"), (0.09, "SF")]
+    groups = []
+    x = 0.16
+    for quantity, unit, step in (("D", "m", 0.092), ("V/W", "-", 0.083)):
+        groups.append((x, f"{quantity} [{unit}] at the bound"))
+        for b in bounds:
+            columns.append((x, b))
+            x += step
+    flow.heading("Peak resultant displacement D and base shear coefficient V/W of each analysis")
+    for x, head in groups:
+        flow.text(x, head, 7.2, weight="bold")
+    flow.y -= LINE
+    for x, head in columns:
+        flow.text(x, head, 7.2, weight="bold")
+    flow.y -= 1.15 * LINE
+    beyond = 0
     for name, factor in r["scale_factors"].items():
-        fig.text(0.05, y, short(name, 40), fontsize=7.2, va="top")
-        fig.text(0.33, y, fmt(factor), fontsize=7.2, va="top")
-        for x, _, where in columns[2:]:
-            result = r["bounds"][where[0]]["pairs"].get(name, {})
-            text = "failed" if "error" in result else fmt(result.get(where[1]))
-            fig.text(x, y, text, fontsize=7.2, va="top")
-        y -= 0.0135
-    y -= 0.006
+        flow.need(LINE)
+        flow.text(0.05, f"#{key[name]}", 7.4)
+        flow.text(0.09, fmt(factor), 7.4)
+        x = 0.16
+        for quantity in ("peak_displacement_m", "base_shear_coefficient"):
+            for b in bounds:
+                result = r["bounds"][b]["pairs"].get(name, {})
+                value = result.get(quantity)
+                over = quantity == "peak_displacement_m" and cap and value is not None and value > cap
+                beyond += bool(over)
+                text = "failed" if "error" in result else fmt(value) + (" *" if over else "")
+                flow.text(x, text, 7.4, color=STATUS_COLOUR["fail"] if over else "black",
+                          weight="bold" if over else "normal")
+                x += 0.092 if quantity == "peak_displacement_m" else 0.083
+        flow.y -= LINE
+    flow.y -= 0.3 * LINE
+    if cap:
+        flow.paragraph(f"* beyond the displacement capacity {fmt(cap)} m ({beyond} analyses; each is a failing "
+                       "record_capacity row on the checks pages).  No restrainer is modelled: past the capacity the "
+                       "analysis continues as if the bearing surface were unbounded, so those numbers are not "
+                       "physical and the suite mean that uses them is an extrapolation.", color=STATUS_COLOUR["fail"])
+    flow.heading("Suite values and spread per bound (D and V/W over the analyses that ran)")
+    heads = ((0.05, "bound"), (0.14, "µ"), (0.22, "rule"), (0.32, "D suite [m]"), (0.42, "std [m]"), (0.5, "CV"),
+             (0.57, "max/mean"), (0.66, "V/W suite"), (0.75, "std"), (0.82, "CV"), (0.88, "max/mean"))
+    for x, head in heads:
+        flow.text(x, head, 7.2, weight="bold")
+    flow.y -= 1.15 * LINE
     for b in bounds:
         v = r["bounds"][b]
-        fig.text(0.05, y, f"suite value, {b} bound (µ = {fmt(v['mu'])}): {v['rule']} of {v['n']}: D = "
-                          f"{fmt(v['D_M_m'])} m, V/W = {fmt(v['base_shear_coefficient'])}, residual = "
-                          f"{fmt(v['residual_displacement_m'])} m, max D = {fmt(v['peak_displacement_max_m'])} m",
-                 fontsize=7.4, va="top")
-        y -= 0.015
+        sd = r.get("spread", {}).get(b, {})
+        d, vw = sd.get("peak_displacement_m", {}), sd.get("base_shear_coefficient", {})
+        cells = (b, fmt(v["mu"]), f"{v['rule']} of {v['n']}", fmt(v["D_M_m"]), fmt(d.get("std")), fmt(d.get("cv"), 3),
+                 fmt(d.get("max_over_mean"), 3), fmt(v["base_shear_coefficient"]), fmt(vw.get("std")),
+                 fmt(vw.get("cv"), 3), fmt(vw.get("max_over_mean"), 3))
+        flow.need(LINE)
+        for (x, _), cell in zip(heads, cells, strict=True):
+            flow.text(x, cell, 7.4)
+        flow.y -= LINE
+    flow.paragraph("Suite value: mean of ≥ n_for_mean analyses, else the maximum.  std: sample standard deviation; "
+                   "CV = std/mean.  D: peak resultant isolator displacement (vector sum of the two directions, 2-D "
+                   "analysis of the scaled pair); V/W: peak transmitted (absolute) acceleration of the supported mass "
+                   "/ g, the base shear coefficient of the isolation system.")
+    flow.heading("Equivalent lateral force reference values (ASCE 7-22 17.5)")
     for b in ("lower", "upper"):
+        if b not in r["elf"]:
+            continue
         e = r["elf"][b]
-        fig.text(0.05, y, f"ELF {b}: T_M = {fmt(e['T_M_s'])} s, β_M = {fmt(e['beta_M'])}, B_M = {fmt(e['B_M'])}, "
-                          f"D_M = {fmt(e['D_M_m'])} m, D_TM = {fmt(e.get('D_TM_m'))} m, V_b/W = "
-                          f"{fmt(e['V_b_over_W'])}", fontsize=7.4, va="top")
-        y -= 0.015
+        flow.paragraph(f"ELF {b} bound (µ = {fmt(e['mu'])}): T_M = {fmt(e['T_M_s'])} s, β_M = {fmt(e['beta_M'])}, "
+                       f"B_M = {fmt(e['B_M'])}, D_M = {fmt(e['D_M_m'])} m, D_TM = {fmt(e.get('D_TM_m'))} m, V_b/W = "
+                       f"{fmt(e['V_b_over_W'])}" + (f", V_s/W = {fmt(e['V_s_over_W'])}" if "V_s_over_W" in e else ""))
     models = sorted({res.get("model", "") for b in bounds for res in r["bounds"][b]["pairs"].values()})
-    fig.text(0.05, y, f"Engine: {', '.join(m for m in models if m) or 'n/a'}; torsion: "
-                      f"{short(r['torsion']['basis'], 110)}", fontsize=7.2, va="top")
-    y -= 0.02
-    for pair in r["suite"]["pairs"]:
-        steps = [s.get("step", "") for s in pair["processing"] if "trim" in s.get("step", "")]
+    flow.paragraph(f"Engine: {', '.join(m for m in models if m) or 'n/a'}; torsion: {r['torsion']['basis']}.")
+    flow.heading("Key to the pairs: names, metadata, processing")
+    by_name = {p["name"]: p for p in r["suite"]["pairs"]}
+    for name, number in key.items():
+        pair = by_name.get(name, {})
+        steps = [s.get("step", "") for s in pair.get("processing", []) if any(
+            word in s.get("step", "") for word in ("trim", "rotated"))]
+        text = f"#{number}  {name} — {_metadata_text(pair.get('metadata', {}))}"
+        if pair.get("scale_factor_given") is not None:
+            text += f"; given factor {fmt(pair['scale_factor_given'])}"
+        if pair.get("matched"):
+            text += "; spectrally matched"
         if steps:
-            fig.text(0.05, y, short(f"{pair['name']}: {steps[0]}", 150), fontsize=6.6, va="top", color="0.3")
-            y -= 0.012
+            text += "; " + "; ".join(steps)
+        text += f"; files: {', '.join(pair.get('files', {}).values())}"
+        flow.paragraph(text)
     for failure in r["suite"]["failed"]:
-        fig.text(0.05, y, short(f"not read: {failure['name']}: {failure['error']}", 160), fontsize=6.6, va="top",
-                 color="#c62828")
-        y -= 0.012
-    _caption(fig, "D: peak resultant isolator displacement (vector sum of the two directions, 2-D analysis of the "
-                  "scaled pair); V/W: peak transmitted (absolute) acceleration of the supported mass / g, the base "
-                  "shear coefficient of the isolation system; res.: resultant residual displacement.  lo/up: lower "
-                  "and upper property bounds.  Suite value: mean of ≥ n_for_mean analyses, else the maximum.")
-    return fig
+        flow.paragraph(f"not read: {failure['name']}: {failure['error']}", color=STATUS_COLOUR["fail"])
 
 
 def _orbits_page(review, r: dict):
-    fig = _page(4, r["design"]["name"])
+    fig = new_page("Orbits and bounding envelope", r["design"]["name"])
+    key = pair_key(r)
     cap = r["design"]["displacement_capacity_m"]
     theta = np.linspace(0, 2 * np.pi, 200)
     for i, b in enumerate(("lower", "upper")):
@@ -213,10 +473,10 @@ def _orbits_page(review, r: dict):
             ax.plot(cap * np.cos(theta), cap * np.sin(theta), color="k", ls="--", lw=0.9, label="capacity")
             ax.legend(loc="upper right")
         ax.set_aspect("equal", adjustable="datalim")
-        ax.set_title(short(f"{b} bound: {name} (D = {fmt(ok[name]['peak_displacement_m'], 3)} m)", 52))
+        ax.set_title(f"{b} bound: #{key[name]} (D = {fmt(ok[name]['peak_displacement_m'], 3)} m)", fontsize=8.5)
         ax.set_xlabel("X_x [m]")
         ax.set_ylabel("X_y [m]")
-    ax = fig.add_axes([0.1, 0.13, 0.85, 0.35])
+    ax = fig.add_axes([0.1, 0.2, 0.85, 0.3])
     names = list(r["scale_factors"])
     xs = np.arange(len(names))
     width = 0.27
@@ -227,18 +487,19 @@ def _orbits_page(review, r: dict):
     if cap:
         ax.axhline(cap, color="k", ls="--", lw=1.0, label="capacity")
     ax.axhline(r["design_total_displacement_m"]["value"], color="k", lw=1.2, label="design total displacement")
-    ax.set_xticks(xs, [short(n, 16) for n in names], rotation=35, ha="right", fontsize=6.8)
+    ax.set_xticks(xs, [f"#{key[n]}" for n in names], fontsize=7.5)
     ax.set_ylabel("peak resultant displacement [m]")
-    ax.legend(loc="upper left", fontsize=6.8, ncol=2)
+    ax.legend(loc="upper left", fontsize=7, ncol=2)
     _caption(fig, "Top: orbit (X_x against X_y) of the pair with the largest displacement at each bound, with the "
                   "displacement-capacity circle.  Bottom: the bounding envelope — each pair at the lower, nominal and "
                   "upper bound; dotted: the suite value of each bound; solid: the design total displacement "
-                  "(torsion and ELF floor included).")
+                  "(torsion and ELF floor included); dashed: the capacity.  Pairs: "
+                  + "; ".join(f"#{k} {n}" for n, k in key.items()) + ".")
     return fig
 
 
 def _paper_page(review, r: dict):
-    fig = _page(5, r["design"]["name"])
+    fig = new_page("Appendix A  The paper's measures (context, not a verdict)", r["design"]["name"])
     fig.text(0.05, 0.93, textwrap.fill(
         "These are the measures of the paper behind isolator (Nicolas 2017), shown for context.  They are NOT "
         "design checks.  A = peak relative displacement / A0 with A0 = PGV²/PGA of the (resultant, scaled) ground "
@@ -266,14 +527,14 @@ def _paper_page(review, r: dict):
                                 title=f"harmonic regime map, {pm['bound']} µ, η = {fmt(pm['eta'], 3)}")
         axm.scatter([p[0] for p in pm["points"].values()], [p[1] for p in pm["points"].values()], marker="*",
                     s=40, color="k", zorder=5, label="pairs (equivalent points)")
-        axm.legend(loc="upper right", fontsize=6.5)
+        axm.legend(loc="upper right", fontsize=7)
     fig.text(0.05, y, "pair", fontsize=7.4, weight="bold", va="top")
     for x, head in ((0.4, "α lo"), (0.48, "A lo"), (0.56, "slip lo"), (0.66, "α up"), (0.74, "A up"),
                     (0.82, "slip up")):
         fig.text(x, y, head, fontsize=7.4, weight="bold", va="top")
     y -= 0.015
     for name in r["scale_factors"]:
-        fig.text(0.05, y, short(name, 50), fontsize=7.0, va="top")
+        fig.text(0.05, y, f"#{pair_key(r)[name]}", fontsize=7.0, va="top")
         for x0, b in ((0.4, "lower"), (0.66, "upper")):
             v = r["bounds"].get(b, {}).get("pairs", {}).get(name, {})
             for dx, key in ((0.0, "paper_alpha"), (0.08, "paper_A"), (0.16, "paper_slip_ratio")):
@@ -282,26 +543,45 @@ def _paper_page(review, r: dict):
     _caption(fig, "Right: the paper's (k, α) regime map of the steady harmonic response (one component) at the "
                   "design's friction, with each scaled pair placed at its equivalent harmonic point (k = K A0/(M g), "
                   "α = PGA/(µs g)); regions and shading as in the single-record report.  The map classifies a "
-                  "harmonic motion in one direction; the pairs were analysed in 2-D: context only.")
+                  "harmonic motion in one direction; the pairs were analysed in 2-D: context only.  Pairs numbered as in the "
+                  "key of the analyses page.")
     return fig
 
 
 def write_review_pdf(review, pdf_path, *, command: str = "") -> dict:
-    """Write the review PDF and its JSON (same name, ``.json``) atomically; return the JSON dict."""
+    """Write the review PDF and its JSON (same name, ``.json``) atomically; return the JSON dict (with
+    ``pdf`` and ``pdf_pages``)."""
     from matplotlib.backends.backend_pdf import PdfPages
 
     r = review.to_dict()
     r["command"] = command
     pdf_path = Path(pdf_path)
+    counter = [0]
     with atomic_path(pdf_path) as tmp, PdfPages(tmp) as pdf:
-        for make in (lambda: _checks_page(r, command), lambda: _spectra_page(review, r),
-                     lambda: _pairs_page(r), lambda: _orbits_page(review, r),
-                     lambda: _paper_page(review, r)):
-            fig = make()
+        flow = Flow(pdf, r, counter)
+        _summary(flow, r)
+        _checks(flow, r)
+        _parameters(flow, r)
+        _notes(flow, r)
+        _traceability(flow, r, command)
+        flow.close()
+
+        def figure_page(fig):
+            counter[0] += 1
+            add_footer(fig, r, counter[0])
             pdf.savefig(fig)
+
+        figure_page(_spectra_page(review, r))
+        _pairs(flow, r)
+        flow.close()
+        figure_page(_orbits_page(review, r))
+        figure_page(_paper_page(review, r))
         info = pdf.infodict()
         info["Title"] = f"isolator review: {r['design']['name']}"
+        sw = r.get("software") or {}
+        info["Creator"] = f"isolator {sw.get('version')}" + (f" ({sw['commit'][:12]})" if sw.get("commit") else "")
     r["pdf"] = str(pdf_path)
+    r["pdf_pages"] = counter[0]
     with atomic_path(pdf_path.with_suffix(".json")) as tmp:
         tmp.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     return r

@@ -64,7 +64,7 @@ def restoring_force(ratio: float, minimum: float = 0.025, *, displacement_m=None
     note = "F(D) − F(D/2) per unit weight at the design displacement of each bound (the smaller is shown)"
     if radius_m is not None and displacement_m is not None:
         note += f"; FPS: D = {displacement_m:.4g} m vs {2 * minimum:g} R = {2 * minimum * radius_m:.4g} m"
-    return at_least("restoring_force", clause, ratio, minimum, note, "W")
+    return at_least("restoring_force", clause, ratio, minimum, note, "×W")
 
 
 def usable_band(pairs: list, range_hi_s: float, factor: float = 1.25) -> dict:

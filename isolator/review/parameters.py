@@ -54,7 +54,7 @@ PARAMETERS = {p.name: p for p in [
     Parameter("D_M_form", "SaM", "U", "ASCE 7-22 17.5.3.1",
               "D_M = g S_a(T_M) T_M²/(4π² B_M) ('SaM') or g S_M1 T_M/(4π² B_M) ('SM1')", ("asce7-22",)),
     Parameter("accidental_e", 0.05, "S", "ASCE 7-22 17.5.3.3",
-              "accidental eccentricity as a fraction of the plan dimension ⟂ loading", ("asce7-22",)),
+              "accidental eccentricity as a fraction of the plan dimension perpendicular to the loading", ("asce7-22",)),
     Parameter("D_TM_floor", 1.15, "S", "ASCE 7-22 17.5.3.3 (Eq. 17.5-3)", "D_TM ≥ floor × D_M", ("asce7-22",)),
     Parameter("P_T_min", 1.0, "S", "ASCE 7-22 17.5.3.3", "P_T not taken below this", ("asce7-22",)),
     Parameter("abrupt_hysteresis", False, "S", "ASCE 7-22 17.5.4.2 (Eq. 17.5-8)",

@@ -68,23 +68,39 @@ def test_rerun_is_served_from_the_cache(inputs, review):
     assert again.to_dict()["design_displacement_m"] == review.to_dict()["design_displacement_m"]
 
 
-def test_pdf_page_one_numbers_equal_the_json(review, tmp_path):
+def test_pdf_checks_pages_numbers_equal_the_json_and_read_well(review, tmp_path):
+    """The checks pages hold every row's id, value and limit as in the JSON; the inputs are echoed; no text run
+    below 7 pt (tick-label exponents aside); no internal references; every page carries the version and the
+    inputs digest; the paper's measures are an appendix."""
     from pypdf import PdfReader
 
-    from isolator.report.review_pages import write_review_pdf
+    from isolator.report.review_pages import inputs_digest, write_review_pdf
 
     out = write_review_pdf(review, tmp_path / "r.pdf", command="isolator review …")
     saved = json.loads((tmp_path / "r.json").read_text())
     assert saved["checks"] == out["checks"]
     reader = PdfReader(tmp_path / "r.pdf")
-    assert len(reader.pages) == 5
-    text = reader.pages[0].extract_text()
+    assert len(reader.pages) == saved["pdf_pages"] >= 6
+    texts = [page.extract_text() for page in reader.pages]
+    checks = " ".join(t for t in texts if "Design review: summary and checks" in t)
     for c in saved["checks"]:
-        assert c["id"] in text and fmt(c["value"]) in text and fmt(c["limit"]) in text
-    assert fmt(saved["design_displacement_m"]["value"]) in text
-    assert fmt(saved["suite_min_ratio"]) in text and fmt(saved["D_TM_m"]) in text
-    assert "cut it short" not in text and "A very long design name" in text  # shortened, not overprinted
-    assert "[U]" in text
+        assert c["id"] in checks and fmt(c["value"]) in checks and fmt(c["limit"]) in checks
+    assert fmt(saved["design_displacement_m"]["value"]) in checks
+    assert fmt(saved["suite_min_ratio"]) in checks and fmt(saved["D_TM_m"]) in checks
+    flat = " ".join(checks.split())
+    assert "if nothing cut it short" in flat  # the design's name in full (wrapped), never cut
+    for echo in ("W = 9807 kN", "R = 2.5 m", "µs = 0.06, µk = 0.05", "capacity", "S_MS = 1.5 g", "[U]"):
+        assert echo in flat, echo
+    digest = inputs_digest(saved["inputs"])[:16]
+    for text in texts:
+        assert f"isolator {saved['software']['version']}" in text and digest in " ".join(text.split())
+        assert "(issue" not in text
+    assert texts[-1].startswith("Appendix A") or "Appendix A" in texts[-1]
+    sizes = []
+    for page in reader.pages:
+        page.extract_text(visitor_text=lambda text, cm, tm, font, size: sizes.append((size * abs(tm[0] or 1), text)))
+    small = [(size, text) for size, text in sizes if len(text.strip()) >= 3 and size < 7.0 - 1e-9]
+    assert not small, small[:5]
 
 
 def _cli(*args):

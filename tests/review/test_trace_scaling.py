@@ -11,7 +11,8 @@ from isolator.design import Design
 from isolator.review.run import run_review
 from isolator.review.suite import load_suite
 from isolator.review.target import load_target
-from isolator.review.trace import input_hashes, software, verify_review
+from isolator.review.trace import input_hashes, software
+from isolator.review.verify import verify_review
 from tests.review.conftest import EXAMPLE, SHORT
 
 
