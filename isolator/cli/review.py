@@ -136,8 +136,8 @@ def review(
 def _verify(path: str, jobs) -> None:
     """``--verify``: one line per changed input or number not reproduced; exit 1 unless all agree."""
     from isolator.design import DesignError
+    from isolator.errors import ReviewError
     from isolator.motion import RecordError
-    from isolator.review.errors import ReviewError
     from isolator.review.verify import verify_review
     from isolator.units import UnitsError
 

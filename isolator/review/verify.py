@@ -64,11 +64,11 @@ def verify_review(json_path, *, jobs: int | None = None) -> dict:
 
     Raises
     ------
-    isolator.review.errors.ReviewError
+    isolator.errors.ReviewError
         The JSON cannot be read or is not a review JSON.
     """
     from isolator.design import Design
-    from isolator.review.errors import ReviewError
+    from isolator.errors import ReviewError
     from isolator.review.run import run_review
     from isolator.review.suite import load_suite
     from isolator.review.target import load_target

@@ -9,7 +9,7 @@ import shutil
 import numpy as np
 import pytest
 
-from isolator.review.errors import SuiteError
+from isolator.errors import SuiteError
 from isolator.review.selection import (
     SAME_MOTION_TOLERANCE,
     closest_motions,

@@ -49,7 +49,7 @@ def test_given_factors_equal_to_common_reproduce_its_displacements(review, given
 
 
 def test_given_needs_every_factor(inputs):
-    from isolator.review.errors import ReviewError
+    from isolator.errors import ReviewError
 
     with pytest.raises(ReviewError, match="needs a scale_factor for every pair; pair 'landers1992_YER' has none"):
         run_review(Design.from_toml(inputs / "design.toml"), load_target(inputs / "target.toml"),
