@@ -19,10 +19,10 @@ Three looks at a suite before (and after) it is scaled (REVIEW_RULES 1.4; ASCE 7
 
   Two pairs whose signatures agree within :data:`SAME_MOTION_TOLERANCE` are refused, naming both.
   Real different records differ by far more: the closest two of the 12 shared pairs
-  (``../shared/records/pairs``) are 0.53 apart; a copy of Superstition Hills PTS rotated by 30°,
-  scaled by 1.7 or shifted by 3 s is within 2e-6, resampled from 0.01 s to 0.005 s within 0.011 and to
-  0.02 s (linear interpolation, the short periods lose energy) within 0.043
-  (``tests/review/test_selection.py``).
+  (``../shared/records/pairs``) are 0.53 apart; a copy of the La Habra CIWLT pair (dt = 0.02 s)
+  rotated by 30°, scaled by 1.7 or shifted by 3 s is within 2e-6, linearly resampled to 0.01 s within
+  0.004 and to 0.04 s within 0.043 (the short periods lose energy); ``tests/review/test_selection.py``
+  checks the same on the bundled suite.
 * **Records that cannot matter.** A scaled pair whose resultant PGA is below µ_lower g ×
   ``weak_pga_fraction`` (0.1: a tenth of the acceleration that starts sliding) barely moves the
   isolator and only dilutes the suite mean.
