@@ -38,6 +38,8 @@ from isolator.serialize import json_safe
 SCHEMA_VERSION = 1
 #: The solver model of a one-component analysis (the name :func:`isolator.solver.planar.select_model` gives it).
 MODEL_1D = "1d-exact"
+#: The model of a one-component analysis of a design with a superstructure (:mod:`isolator.solver.building`).
+MODEL_1D_BUILDING = "1d-building"
 #: Why a one-component analysis runs it.
 MODEL_1D_REASON = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
 #: Fields of a :class:`~isolator.metrics.Classification` written flat as ``<field>_record`` / ``<field>_harmonic``.
@@ -340,7 +342,8 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     from isolator.solver.models import Scene, select_model, simulate
 
     scene = Scene.of(motion, motion_keywords(design), design)
-    if select_model(scene)[0] != MODEL_1D:
+    one_component = not (scene.has_y or scene.has_z)  # the 1-D building raises on a pair, in analyse_pair
+    if select_model(scene)[0] not in (MODEL_1D, MODEL_1D_BUILDING) or not one_component:
         from isolator.pair_analysis import analyse_pair
 
         return analyse_pair(design, motion, record_label=record_label, scaling_note=scaling_note)
@@ -355,8 +358,8 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
         harmonic_response, harmonic_class, harmonic_seconds = _harmonic_at(point)
     disagreements = [] if harmonic_class is None else compare(record_class, harmonic_class)
     return Analysis(
-        design=design, motion=motion, adaptation=adaptation, response=response, model=MODEL_1D,
-        model_reason=MODEL_1D_REASON,
+        design=design, motion=motion, adaptation=adaptation, response=response, model=response.model,
+        model_reason=response.model_reason,
         record_class=record_class, harmonic=harmonic_response, harmonic_class=harmonic_class,
         engineering=engineering_quantities(design, response), disagreements=disagreements,
         record_label=record_label, scaling_note=scaling_note,

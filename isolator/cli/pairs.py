@@ -70,14 +70,14 @@ def system_keywords(*, mu_s, mu_k=None, stiffness_per_mass=0.0, damping_per_mass
     return {key: value for key, value in keywords.items() if value is not None}
 
 
-def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, system: dict):
+def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, system: dict, design=None):
     """Run :func:`~isolator.solver.models.simulate_motion` (the model the scene needs); errors end the command."""
     from isolator.solver.models import simulate_motion
     from isolator.solver.record import RecordInputError
     from isolator.solver.system import InvalidSystemError
 
     try:
-        return simulate_motion(x, y, z, dt_s, time_s=time_s, **system)
+        return simulate_motion(x, y, z, dt_s, time_s=time_s, design=design, **system)
     except InvalidSystemError as err:
         user_error(str(err))
     except RecordInputError as err:

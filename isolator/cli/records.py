@@ -83,7 +83,9 @@ def info(
 def simulate(
     record: str = typer.Argument(..., help="Record file (X): PEER AT2, plain text (time, acceleration), "
                                  "MiniSEED, SAC, K-NET, CSMIP V2, USGS SMC …"),
-    mu_s: float = typer.Option(..., "--mu-s", help="Static friction coefficient µs."),
+    mu_s: float = typer.Option(None, "--mu-s", help="Static friction coefficient µs (or give --design)."),
+    design: str = typer.Option(None, "--design", help="Design file (TOML) instead of the isolator options; "
+                               "with a [superstructure] the building on the isolation plane is solved."),
     mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
     stiffness_per_mass: float = typer.Option(0.0, "--stiffness-per-mass", help="K/M [1/s²] (g/R for a pendulum)."),
     damping_per_mass: float = typer.Option(0.0, "--damping-per-mass", help="γ/M [1/s]."),
@@ -117,16 +119,49 @@ def simulate(
     (--mu-slow/--mu-fast/--rate-s-per-m) → the 2-D engine.  Records are linear
     between samples (unequal steps allowed).  Energies are per unit mass (J/kg).
     """
+    the_design = None
+    if design is not None:
+        the_design, system, nominal = _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass,
+                                                       radius_m, mu_slow, mu_fast, rate_s_per_m, gravity)
+    elif mu_s is None:
+        user_error("Missing option '--mu-s' (the isolator), or give --design DESIGN.toml "
+                   "(see 'isolator simulate --help')")
+    if design is None:
+        system, nominal = _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, radius_m,
+                                           mu_slow, mu_fast, rate_s_per_m)
+    streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
+    check_outputs([None if out_csv == "-" else out_csv], [record, response, pair, vertical, design], streams=[out_csv])
+    _simulate_and_print(record, pair, vertical, component, trim, resample, units, merge, dt, response,
+                        counts_factor, as_json, out_csv, streamed, system, nominal, the_design)
+
+
+def _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass, radius_m, mu_slow, mu_fast,
+                     rate_s_per_m, gravity):
+    """The design file's isolator keywords, its nominal system; refuses isolator options beside it."""
+    from isolator.adapter import motion_keywords
+    from isolator.design import Design, DesignError
+    from isolator.units import STANDARD_GRAVITY
+
+    given = [name for name, value in (("--mu-s", mu_s), ("--mu-k", mu_k), ("--radius-m", radius_m),
+                                      ("--mu-slow", mu_slow), ("--mu-fast", mu_fast),
+                                      ("--rate-s-per-m", rate_s_per_m)) if value is not None]
+    given += [name for name, value in (("--stiffness-per-mass", stiffness_per_mass),
+                                       ("--damping-per-mass", damping_per_mass)) if value]
+    if given:
+        user_error(f"give the isolator with --design or with {given[0]} and its other options, not both")
+    try:
+        the_design = Design.from_toml(design, gravity_m_s2=STANDARD_GRAVITY if gravity is None else gravity)
+    except DesignError as err:
+        user_error(str(err))
+    return the_design, motion_keywords(the_design), the_design.system()
+
+
+def _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, radius_m, mu_slow, mu_fast,
+                     rate_s_per_m):
+    """The isolator keywords and nominal system of the command-line options (checked before any file is read)."""
     import math
 
-    from isolator.cli.pairs import (
-        history_columns,
-        load_motion_set_for_cli,
-        result_rows,
-        solve,
-        system_keywords,
-        wants_set,
-    )
+    from isolator.cli.pairs import system_keywords
     from isolator.solver.system import InvalidSystemError, System
 
     system = system_keywords(mu_s=mu_s, mu_k=mu_k, stiffness_per_mass=stiffness_per_mass,
@@ -141,9 +176,13 @@ def simulate(
                          damping_per_mass=damping_per_mass, **kwargs)
     except InvalidSystemError as err:
         user_error(error_line(err))
-    streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
-    check_outputs([None if out_csv == "-" else out_csv], [record, response, pair, vertical], streams=[out_csv])
+    return system, nominal
+
+
+def _simulate_and_print(record, pair, vertical, component, trim, resample, units, merge, dt, response,
+                        counts_factor, as_json, out_csv, streamed, system, nominal, the_design) -> None:
     from isolator.analysis import SCHEMA_VERSION, record_dict
+    from isolator.cli.pairs import history_columns, load_motion_set_for_cli, result_rows, solve, wants_set
 
     if wants_set(pair, vertical, component):
         motions = load_motion_set_for_cli(record, pair, vertical, component, units, merge, dt, response,
@@ -151,7 +190,7 @@ def simulate(
         parts = motions.components
         result = solve(record, parts["x"].acceleration_m_s2, parts["y"].acceleration_m_s2 if "y" in parts else None,
                        parts["z"].acceleration_m_s2 if "z" in parts else None, dt_s=motions.dt_s,
-                       time_s=motions.sample_times_s, system=system)
+                       time_s=motions.sample_times_s, system=system, design=the_design)
         described = ", ".join(f"{axis} = {m.component}" for axis, m in parts.items())
         samples = (motions.npts, motions.dt_s, motions.sample_times_s is None)
         record_group = {"label": str(record), "components": motions.describe(), "npts": motions.npts,
@@ -160,7 +199,7 @@ def simulate(
     else:
         motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
         result = solve(record, motion.acceleration_m_s2, dt_s=motion.dt_s, time_s=motion.sample_times_s,
-                       system=system)
+                       system=system, design=the_design)
         described = f"{motion.component}, units from {motion.units_source}"
         samples = (motion.npts, motion.dt_s, motion.is_uniform)
         record_group = {**record_dict(motion, str(record)), "uniform_sampling": motion.is_uniform}
@@ -188,7 +227,27 @@ def simulate(
                                                     f"K/M = {nominal.stiffness_per_mass:g} 1/s², "
                                                     f"γ/M = {nominal.damping_per_mass:g} 1/s)"),
         *result_rows(result, summary),
+        *_building_rows(summary),
     ] + ([("time histories", out_csv, "")] if out_csv else []))
+
+
+def _building_rows(summary: dict) -> list[tuple[str, str, str]]:
+    """Table rows of the building above the isolators (model 1d-building), none otherwise."""
+    if "story_drift_ratio" not in summary:
+        return []
+
+    def listed(values, scale=1.0):
+        return ", ".join(f"{scale * v:.4g}" for v in values)
+
+    rows = [("story drift ratio", listed(summary["story_drift_ratio"]), "per story, bottom to top"),
+            ("floor peak acc.", listed(summary["floor_peak_acceleration_m_s2"]), "m/s², per floor, absolute"),
+            ("superstructure shear", f"{summary['superstructure_shear_coefficient']:.4g}", "× W_s (peak 1st story)"),
+            ("base shear", f"{summary['base_shear_coefficient']:.4g}", "× W (peak isolator force)")]
+    if summary.get("bearing_axial_load_min_N") is not None:
+        rows += [("bearing load max", listed(summary["bearing_axial_load_max_N"], 1e-3), "kN, compression +"),
+                 ("bearing load min", listed(summary["bearing_axial_load_min_N"], 1e-3), "kN, tension −"),
+                 ("bearings uplifted", f"{summary['n_bearings_uplifted']}", "")]
+    return rows
 
 
 def _is_stdout(path: str) -> bool:

@@ -39,8 +39,9 @@ import numpy as np
 
 from isolator.errors import InvalidSystemError, RecordInputError
 from isolator.solver import building_kernel as _bk
-from isolator.solver.events import EVENT_NAMES
+from isolator.solver.base import SolverResult
 from isolator.solver.record import sample_timing
+from isolator.solver.system import System
 from isolator.units import STANDARD_GRAVITY
 
 #: Most sub-steps per sample interval (a slab far lighter than the first story's stiffness asks for more).
@@ -235,41 +236,34 @@ def van_loan(a_mat: np.ndarray, q_mat: np.ndarray, h: float) -> np.ndarray:
     return big[n:, n:].T @ big[:n, n:]
 
 
-@dataclass
-class BuildingResponse:
-    """Exact response of the building on its isolation plane to one record (SI units).
+@dataclass(kw_only=True)
+class BuildingResponse(SolverResult):
+    """Exact response of the building on its isolation plane to one record (model ``1d-building``, SI units).
 
-    Histories are at the samples; peaks are exact (located between samples).  Energies are
-    per unit of the total isolated mass [J/kg], as for the rigid block.
+    The fields of :class:`~isolator.solver.base.SolverResult` describe the isolator (the slab
+    relative to the ground, energies per unit of the total mass); ``absolute_acceleration_m_s2``
+    is the isolator force over the total mass (the rigid block's transmitted acceleration).
+    ``system`` is the equivalent single bearing (per unit of the total mass), ``building`` the
+    building's matrices.  Histories are at the samples; peaks are exact (located between samples).
     """
 
-    system: BuildingSystem
-    time_s: np.ndarray
-    ground_acceleration_m_s2: np.ndarray
-    displacement_m: np.ndarray  #: x_b, the isolator's displacement (slab − ground)
-    velocity_m_s: np.ndarray
+    EXTRA_SUMMARY_KEYS = ("energy_strain_final_J_per_kg", "story_drift_m", "story_drift_ratio",
+                          "floor_peak_acceleration_m_s2", "superstructure_shear_coefficient",
+                          "base_shear_coefficient", "bearing_axial_load_max_N", "bearing_axial_load_min_N",
+                          "n_bearings_uplifted")
+
+    system: System
+    building: BuildingSystem
     floor_displacement_m: np.ndarray  #: (samples × floors) relative to the slab
     floor_velocity_m_s: np.ndarray
     floor_absolute_acceleration_m_s2: np.ndarray  #: (samples × floors)
     superstructure_shear_N: np.ndarray  #: 1ᵀ(K_s u + C_s u̇) at the samples
     isolator_force_N: np.ndarray  #: spring + dashpot + friction on the slab
     overturning_moment_Nm: np.ndarray  #: Σ F_i H_i, F_i = −m_i a_i (compresses the +x bearings)
-    event_time_s: np.ndarray
-    event_kind: np.ndarray
     event_displacement_m: np.ndarray
     peak_max: np.ndarray = field(repr=False)
     peak_min: np.ndarray = field(repr=False)
-    slip_time_s: float = 0.0
-    energy_input_J: float = 0.0
-    energy_friction_J: float = 0.0
-    energy_viscous_J: float = 0.0
-    energy_kinetic_final_J: float = 0.0
-    energy_strain_final_J: float = 0.0
-    energy_potential_final_J: float = 0.0
-    energy_history_J: np.ndarray = field(default=None, repr=False)
-    status: int = 0
-    message: str = "ok"
-    solver_seconds: float = 0.0
+    energy_strain_final_J_per_kg: float = 0.0
     substeps_per_interval: int = 1
     #: pieces evaluated by their Taylor series and interior extrema located (the work beyond e^{Ãh} products)
     n_series_pieces: int = 0
@@ -277,26 +271,25 @@ class BuildingResponse:
     bearing_layout: object = None
     model: str = MODEL_NAME
     model_reason: str = MODEL_REASON
+    uplift_time_s = 0.0  #: the isolator does not lift off in this model [s]
+    n_uplifts = 0
 
     def _peak(self, key) -> np.ndarray:
-        sl = _monitor_slices(self.system.n_floors)[key]
+        sl = _monitor_slices(self.building.n_floors)[key]
         return np.maximum(self.peak_max[sl], -self.peak_min[sl])
 
     @property
-    def n_events(self) -> int:
-        return int(self.event_time_s.size)
+    def residual_displacement_x_m(self) -> float:
+        return self.residual_displacement_m
 
     @property
-    def event_names(self) -> list[str]:
-        return [EVENT_NAMES[k] for k in self.event_kind]
+    def residual_displacement_y_m(self) -> float:
+        return 0.0
 
     @property
-    def peak_displacement_m(self) -> float:
-        return float(self._peak("x_b"))
-
-    @property
-    def peak_velocity_m_s(self) -> float:
-        return float(self._peak("v_b"))
+    def configuration(self) -> str:
+        """The paper's configuration of the equivalent single bearing (1 to 4)."""
+        return self.system.configuration
 
     @property
     def story_drift_m(self) -> np.ndarray:
@@ -306,7 +299,7 @@ class BuildingResponse:
     @property
     def story_drift_ratio(self) -> np.ndarray:
         """Peak drift / story height, bottom to top [-]."""
-        return self.story_drift_m / self.system.story_heights_m
+        return self.story_drift_m / self.building.story_heights_m
 
     @property
     def floor_peak_acceleration_m_s2(self) -> np.ndarray:
@@ -316,24 +309,23 @@ class BuildingResponse:
     @property
     def superstructure_shear_coefficient(self) -> float:
         """Peak first-story shear (spring + damper, = Σ floor inertia forces) / W_s [-]."""
-        return float(self._peak("shear")) / self.system.superstructure_weight_N
+        return float(self._peak("shear")) / self.building.superstructure_weight_N
 
     @property
     def base_shear_coefficient(self) -> float:
         """Peak isolator force (spring + dashpot + friction) / W [-]."""
-        return float(self._peak("isolator_force")) / self.system.weight_N
+        return float(self._peak("isolator_force")) / self.building.weight_N
 
     @property
     def overturning_moment_extremes_Nm(self) -> tuple[float, float]:
         """(max, min) of the overturning moment over time [N·m] (exact)."""
-        k = _monitor_slices(self.system.n_floors)["moment"]
+        k = _monitor_slices(self.building.n_floors)["moment"]
         return float(self.peak_max[k]), float(self.peak_min[k])
 
     @property
     def energy_balance_error_J(self) -> float:
-        return self.energy_input_J - (self.energy_kinetic_final_J + self.energy_strain_final_J
-                                      + self.energy_potential_final_J + self.energy_friction_J
-                                      + self.energy_viscous_J)
+        """input − (kinetic + strain + potential + friction + viscous) [J]."""
+        return self.energy_balance_error_J_per_kg * self.building.total_mass_kg
 
     def bearing_loads(self) -> dict | None:
         """Axial loads of the bearings (:func:`isolator.superstructure.bearing_axial_loads`), extremes exact.
@@ -355,42 +347,72 @@ class BuildingResponse:
         out["n_bearings_uplifted"] = int(np.sum(low < 0.0))
         return out
 
-    def summary(self) -> dict:
-        """The response's numbers under the analysis schema's names (``docs/schema.md``, ``docs/building.md``)."""
-        mass = self.system.total_mass_kg
-        peak_force = float(self._peak("isolator_force"))
-        out = {
-            "peak_displacement_m": self.peak_displacement_m,
-            "residual_displacement_m": float(self.displacement_m[-1]),
-            "residual_displacement_x_m": float(self.displacement_m[-1]),
-            "residual_displacement_y_m": 0.0,
-            "uplift_time_s": 0.0,
-            "n_uplifts": 0,
-            "peak_velocity_m_s": self.peak_velocity_m_s,
-            # the rigid block's "transmitted acceleration" is its force per mass: here the isolator force / M
-            "peak_transmitted_acceleration_m_s2": peak_force / mass,
-            "slip_time_s": self.slip_time_s,
-            "n_events": self.n_events,
-            "energy_input_J_per_kg": self.energy_input_J / mass,
-            "energy_friction_J_per_kg": self.energy_friction_J / mass,
-            "energy_viscous_J_per_kg": self.energy_viscous_J / mass,
-            "energy_balance_error_J_per_kg": self.energy_balance_error_J / mass,
-            "solver_seconds": self.solver_seconds,
-            "solver_status": self.message,
-            "model": self.model,
-            "model_reason": self.model_reason,
-            "story_drift_m": self.story_drift_m.tolist(),
-            "story_drift_ratio": self.story_drift_ratio.tolist(),
-            "floor_peak_acceleration_m_s2": self.floor_peak_acceleration_m_s2.tolist(),
-            "superstructure_shear_coefficient": self.superstructure_shear_coefficient,
-            "base_shear_coefficient": self.base_shear_coefficient,
-        }
+    @property
+    def bearing_axial_load_max_N(self) -> list | None:
         loads = self.bearing_loads()
-        if loads is not None:
-            out["bearing_axial_load_max_N"] = loads["bearing_axial_load_max_N"]
-            out["bearing_axial_load_min_N"] = loads["bearing_axial_load_min_N"]
-            out["n_bearings_uplifted"] = loads["n_bearings_uplifted"]
+        return None if loads is None else loads["bearing_axial_load_max_N"]
+
+    @property
+    def bearing_axial_load_min_N(self) -> list | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["bearing_axial_load_min_N"]
+
+    @property
+    def n_bearings_uplifted(self) -> int | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["n_bearings_uplifted"]
+
+    def summary(self) -> dict:
+        """:meth:`SolverResult.summary`, the per-story and per-floor arrays as lists."""
+        out = super().summary()
+        for key in ("story_drift_m", "story_drift_ratio", "floor_peak_acceleration_m_s2"):
+            out[key] = [float(v) for v in out[key]]
         return out
+
+
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` when the scene's design has a superstructure; else None.
+
+    A superstructure is never dropped: a pair, a vertical or µ(v) with one raise in
+    :func:`simulate_scene` (the 2-D building is not written yet) rather than running the rigid block.
+    """
+    design = scene.design
+    if design is None or getattr(design, "superstructure", None) is None:
+        return None
+    return MODEL_NAME, MODEL_REASON
+
+
+def simulate_scene(scene) -> BuildingResponse:
+    """The exact 1-D building response to a scene (:func:`simulate_building`).
+
+    The isolator keywords of the scene (µs, µk, ``radius_m`` or ``stiffness_per_mass``,
+    ``damping_per_mass``, ``gravity_m_s2``: per unit of the total mass) scale by the design's
+    ``mass_kg``; the floors and the bearing layout come from the design.
+
+    Raises
+    ------
+    InvalidSystemError
+        A second horizontal component, a vertical or µ(v): the building model is 1-D with constant friction.
+    """
+    design = scene.design
+    if scene.has_y or scene.has_z or scene.velocity_dependent:
+        given = "a second horizontal component" if scene.has_y else ("a vertical component" if scene.has_z
+                                                                      else "velocity-dependent friction")
+        raise InvalidSystemError(f"{design.source}: a design with a [superstructure] is analysed under one "
+                                 f"horizontal component with constant friction (the 1-D building); {given} "
+                                 "needs the 2-D building, not available yet")
+    iso = {key: value for key, value in scene.isolator.items() if value is not None}
+    g = float(iso.get("gravity_m_s2", design.gravity_m_s2))
+    mass = design.mass_kg
+    if iso.get("radius_m") is not None:
+        stiffness = mass * g / float(iso["radius_m"])
+    else:
+        stiffness = mass * float(iso.get("stiffness_per_mass", 0.0))
+    return simulate_building(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure,
+                             total_mass_kg=mass, stiffness_N_per_m=stiffness, mu_static=float(iso["mu_static"]),
+                             mu_kinetic=iso.get("mu_kinetic"), damping_Ns_per_m=mass * float(
+                                 iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
+                             bearing_layout=design.bearing_layout)
 
 
 _READY = False
@@ -548,31 +570,48 @@ def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingR
     x_b, v_b = out_state[:, 0], out_state[:, 1]
     u_last, ud_last = out_state[-1, 2:2 + nf], out_state[-1, 2 + nf:2 + 2 * nf]
     kinetic = 0.5 * system.slab_mass_kg * v_b[-1] ** 2 + 0.5 * float(system.masses_kg @ (v_b[-1] + ud_last) ** 2)
+    mass = system.total_mass_kg
+    e_in, e_f, e_v = (float(summary[k]) for k in (_bk.S_E_INPUT, _bk.S_E_FRICTION, _bk.S_E_VISCOUS))
+    strain = float(0.5 * u_last @ system.stiffness_matrix @ u_last)
+    potential = float(0.5 * system.isolator_stiffness_N_per_m * x_b[-1] ** 2)
+    force = out_mon[:, sl["isolator_force"]]
+    peak_force = float(max(peak_max[sl["isolator_force"]], -peak_min[sl["isolator_force"]]))
+    equivalent = System(mu_static=system.mu_static, mu_kinetic=system.mu_kinetic,
+                        stiffness_per_mass=system.isolator_stiffness_N_per_m / mass,
+                        damping_per_mass=system.isolator_damping_Ns_per_m / mass, gravity_m_s2=system.gravity_m_s2)
     return BuildingResponse(
-        system=system,
+        system=equivalent,
+        building=system,
         time_s=t0 + (dt * np.arange(n) if relative is None else relative),
         ground_acceleration_m_s2=acc,
         displacement_m=x_b.copy(),
         velocity_m_s=v_b.copy(),
+        absolute_acceleration_m_s2=force / mass,
+        event_time_s=t0 + ev_time[:n_events],
+        event_kind=ev_kind[:n_events],
+        event_displacement_m=ev_x[:n_events],
+        peak_displacement_m=float(max(peak_max[sl["x_b"]], -peak_min[sl["x_b"]])),
+        residual_displacement_m=float(x_b[-1]),
+        peak_velocity_m_s=float(max(peak_max[sl["v_b"]], -peak_min[sl["v_b"]])),
+        peak_transmitted_acceleration_m_s2=peak_force / mass,
+        slip_time_s=float(summary[_bk.S_SLIP_TIME]),
+        n_events=n_events,
+        energy_input_J_per_kg=e_in / mass,
+        energy_friction_J_per_kg=e_f / mass,
+        energy_viscous_J_per_kg=e_v / mass,
+        energy_kinetic_final_J_per_kg=float(kinetic) / mass,
+        energy_potential_final_J_per_kg=potential / mass,
+        energy_strain_final_J_per_kg=strain / mass,
+        energy_balance_error_J_per_kg=(e_in - (float(kinetic) + strain + potential + e_f + e_v)) / mass,
+        energy_history_J_per_kg=out_energy / mass,
         floor_displacement_m=out_state[:, 2:2 + nf].copy(),
         floor_velocity_m_s=out_state[:, 2 + nf:2 + 2 * nf].copy(),
         floor_absolute_acceleration_m_s2=out_mon[:, sl["floor_acc"]].copy(),
         superstructure_shear_N=out_mon[:, sl["shear"]].copy(),
-        isolator_force_N=out_mon[:, sl["isolator_force"]].copy(),
+        isolator_force_N=force.copy(),
         overturning_moment_Nm=out_mon[:, sl["moment"]].copy(),
-        event_time_s=t0 + ev_time[:n_events],
-        event_kind=ev_kind[:n_events],
-        event_displacement_m=ev_x[:n_events],
         peak_max=peak_max,
         peak_min=peak_min,
-        slip_time_s=float(summary[_bk.S_SLIP_TIME]),
-        energy_input_J=float(summary[_bk.S_E_INPUT]),
-        energy_friction_J=float(summary[_bk.S_E_FRICTION]),
-        energy_viscous_J=float(summary[_bk.S_E_VISCOUS]),
-        energy_kinetic_final_J=float(kinetic),
-        energy_strain_final_J=float(0.5 * u_last @ system.stiffness_matrix @ u_last),
-        energy_potential_final_J=float(0.5 * system.isolator_stiffness_N_per_m * x_b[-1] ** 2),
-        energy_history_J=out_energy,
         status=status,
         message=message,
         solver_seconds=elapsed,

@@ -178,11 +178,11 @@ def test_real_records_against_solve_ivp(records_dir, name):
     assert _rel(ours.floor_displacement_m, ref["u"]) <= 1e-9
     assert _rel(ours.floor_velocity_m_s, ref["ud"]) <= 1e-9
     assert ours.story_drift_m == pytest.approx(ref["drift_peak"], rel=1e-9)
-    e_in, e_f, e_v = ref["energy"]
-    assert ours.energy_input_J == pytest.approx(e_in, rel=1e-9)
-    assert ours.energy_friction_J == pytest.approx(e_f, rel=1e-9)
-    assert ours.energy_viscous_J == pytest.approx(e_v, abs=1e-9 * e_in)
-    assert abs(ours.energy_balance_error_J) <= 1e-9 * ours.energy_input_J
+    e_in, e_f, e_v = ref["energy"] / ours.building.total_mass_kg  # J/kg
+    assert ours.energy_input_J_per_kg == pytest.approx(e_in, rel=1e-9)
+    assert ours.energy_friction_J_per_kg == pytest.approx(e_f, rel=1e-9)
+    assert ours.energy_viscous_J_per_kg == pytest.approx(e_v, abs=1e-9 * e_in)
+    assert abs(ours.energy_balance_error_J_per_kg) <= 1e-9 * ours.energy_input_J_per_kg
 
 
 def test_whole_record_energy_balance(records_dir):
@@ -193,9 +193,10 @@ def test_whole_record_energy_balance(records_dir):
     r = simulate_building(motion.acceleration_m_s2, motion.dt_s, superstructure=s, total_mass_kg=1.9e6,
                           stiffness_N_per_m=1.9e6 * G / 2.5, mu_static=0.07, mu_kinetic=0.05, damping_Ns_per_m=2e5)
     assert r.n_events > 10
-    assert abs(r.energy_balance_error_J) <= 1e-9 * r.energy_input_J
+    assert abs(r.energy_balance_error_J_per_kg) <= 1e-9 * r.energy_input_J_per_kg
     # the energy history at the samples ends at the totals, and the peaks bound the sampled histories
-    assert r.energy_history_J[:, -1] == pytest.approx([r.energy_input_J, r.energy_friction_J, r.energy_viscous_J])
+    assert r.energy_history_J_per_kg[:, -1] == pytest.approx(
+        [r.energy_input_J_per_kg, r.energy_friction_J_per_kg, r.energy_viscous_J_per_kg])
     assert r.peak_displacement_m >= np.max(np.abs(r.displacement_m))
     drift = np.diff(np.column_stack([np.zeros(motion.npts), r.floor_displacement_m]), axis=1)
     assert np.all(r.story_drift_m >= np.max(np.abs(drift), axis=0))
@@ -235,7 +236,7 @@ def test_never_sliding_is_the_fixed_base_response(records_dir, stiffness_scale):
     assert r.n_events == 0 and np.all(r.displacement_m == 0.0)
     ref = _modal_fixed_base(acc, dt, s)
     assert _rel(r.floor_displacement_m, ref) <= 1e-9
-    assert r.energy_input_J > 0 and abs(r.energy_balance_error_J) <= 1e-9 * r.energy_input_J
+    assert r.energy_input_J_per_kg > 0 and abs(r.energy_balance_error_J_per_kg) <= 1e-9 * r.energy_input_J_per_kg
 
 
 def test_stiff_stories_converge_to_the_rigid_block(records_dir):
@@ -265,8 +266,8 @@ def test_no_friction_no_spring_is_a_free_linear_system(records_dir):
     ground_velocity = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * dt)])
     momentum = total * r.velocity_m_s + r.floor_velocity_m_s @ masses
     assert _rel(momentum, -total * ground_velocity) <= 1e-10
-    assert abs(r.energy_balance_error_J) <= 1e-9 * r.energy_input_J
-    assert r.event_names[:1] == ["breakaway"] and r.energy_friction_J == 0.0
+    assert abs(r.energy_balance_error_J_per_kg) <= 1e-9 * r.energy_input_J_per_kg
+    assert r.event_names[:1] == ["breakaway"] and r.energy_friction_J_per_kg == 0.0
 
 
 def test_bearing_loads_follow_the_overturning_moment():
