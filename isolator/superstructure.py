@@ -454,3 +454,42 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
         raise DesignError(f"{where}: the {len(xs)} bearing(s) do not span the plan (at least three, not on one "
                           "line, for the rigid-slab statics)")
     return BearingLayout(x_m=tuple(xs), y_m=tuple(ys), gravity_loads_N=tuple(float(v) for v in loads))
+
+
+def review_inputs(design) -> dict:
+    """The code-review inputs a design's superstructure and bearing layout fix, instead of assumed values.
+
+    For the review (ASCE 7-22 Chapter 17) to call: each value with its clause and basis, and only
+    those the design determines (an empty dict for a rigid block without a layout).
+
+    Parameters
+    ----------
+    design : isolator.design.Design
+
+    Returns
+    -------
+    dict
+        ``Ws_over_W`` (17.5.4.2, Eq. 17.5-8: W_s = g Σ m_i over W = g × mass_kg) [-];
+        ``T_fixed_s`` (the fixed-base fundamental period along x and y, for D'_M of Eq. 17.6-1) [s];
+        ``P_T`` (Eq. 17.5-4) and ``y_for_loading_x_m`` / ``y_for_loading_y_m`` (the corner distances of
+        Eq. 17.5-3) when the design has ``[[bearing_position]]`` and a ``[plan]``; ``basis``: one
+        sentence per value.
+    """
+    out: dict = {}
+    basis = []
+    s = design.superstructure
+    if s is not None:
+        out["Ws_over_W"] = s.mass_kg / design.mass_kg
+        out["T_fixed_s"] = {d: float(s.fixed_base_periods_s(d)[0]) for d in ("x", "y")}
+        basis.append(f"W_s/W = {out['Ws_over_W']:.4g} from the {s.n_floors} floors (17.5.4.2)")
+        basis.append(f"fixed-base T = {out['T_fixed_s']['x']:.4g} s (x), {out['T_fixed_s']['y']:.4g} s (y), "
+                     "from the story stiffnesses (Eq. 17.6-1)")
+    layout, plan = design.bearing_layout, design.plan
+    if layout is not None and plan is not None:
+        torsion = layout.torsion_parameters(plan["b_m"], plan["d_m"])
+        out.update({key: torsion[key] for key in ("P_T", "y_for_loading_x_m", "y_for_loading_y_m")})
+        basis.append(f"P_T = {torsion['P_T']:.4g} from the {layout.n_bearings} bearings (Eq. 17.5-4), corner "
+                     f"y = {torsion['y_for_loading_x_m']:g} / {torsion['y_for_loading_y_m']:g} m (Eq. 17.5-3)")
+    if out:
+        out["basis"] = basis
+    return out

@@ -158,3 +158,17 @@ def test_design_without_superstructure_is_unchanged():
     assert with_floors.with_friction_factor(1.2, "upper").superstructure == with_floors.superstructure
     assert with_floors.as_dict()["superstructure"]["fixed_base_periods_x_s"] == pytest.approx(
         [2 * math.pi * math.sqrt(5e5 / 1e9)])
+
+
+def test_review_inputs_from_the_design():
+    floors = [{"mass_kg": 3e5, "story_height_m": 4.0, "stiffness_x_N_per_m": 6e8, "stiffness_y_N_per_m": 1.5e8}]
+    d = building(floors, bearing_position=SQUARE, plan={"b_m": 10.0, "d_m": 10.0})
+    from isolator.superstructure import review_inputs
+
+    out = review_inputs(d)
+    assert out["Ws_over_W"] == pytest.approx(0.3)
+    assert out["T_fixed_s"]["x"] == pytest.approx(2 * math.pi * math.sqrt(3e5 / 6e8))
+    assert out["T_fixed_s"]["y"] == pytest.approx(2 * out["T_fixed_s"]["x"])
+    assert out["P_T"] == pytest.approx(math.sqrt(3.0)) and out["y_for_loading_x_m"] == 5.0
+    assert len(out["basis"]) == 3
+    assert review_inputs(Design.from_mapping(BASE)) == {}
