@@ -74,6 +74,8 @@ class BuildingSystem:
     q_vis: np.ndarray = field(repr=False)
     ell_hold: np.ndarray = field(repr=False)
     fastest_rate_per_s: float = 0.0  #: ‖Ã‖₁ of the balanced matrices [1/s]
+    #: propagators and Taylor rows computed for this system (per sub-step length), reused by later runs
+    cache: dict = field(default_factory=dict, repr=False)
 
     @property
     def weight_N(self) -> float:
@@ -461,9 +463,10 @@ def simulate_building(acceleration_m_s2, dt_s: float | None = None, *, time_s=No
     -------
     BuildingResponse
     """
-    system = building_system(superstructure, total_mass_kg=total_mass_kg, stiffness_N_per_m=stiffness_N_per_m,
-                             mu_static=mu_static, mu_kinetic=mu_kinetic, damping_Ns_per_m=damping_Ns_per_m,
-                             gravity_m_s2=gravity_m_s2, direction=direction)
+    system = _system_for(superstructure, total_mass_kg=float(total_mass_kg), stiffness_N_per_m=float(stiffness_N_per_m),
+                         mu_static=float(mu_static), mu_kinetic=None if mu_kinetic is None else float(mu_kinetic),
+                         damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=float(gravity_m_s2),
+                         direction=direction)
     acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
     if acc.ndim != 1 or acc.size < 2:
         raise RecordInputError("acceleration must be one-dimensional with at least two samples")
@@ -485,6 +488,43 @@ def simulate_design_building(design, acceleration_m_s2, dt_s: float | None = Non
                              mu_static=design.mu_static, mu_kinetic=design.mu_kinetic,
                              damping_Ns_per_m=design.damping_Ns_per_m, gravity_m_s2=design.gravity_m_s2,
                              direction=direction, bearing_layout=design.bearing_layout)
+
+
+def _taylor_rows(system: BuildingSystem) -> tuple:
+    """ℓÃ for the slopes and ℓÃ^j for the Taylor coefficients of the watched quantities, the hold force and v_b."""
+    size = system.size
+    mon = system.mon_modes
+    mon_d = np.ascontiguousarray(np.stack([mon[k] @ system.a_modes[k] for k in range(2)]))
+    hold_d = system.ell_hold @ system.a_modes[0]
+    n_pow = _bk.N_TAYLOR + 2
+    mon_pow = np.empty((2, n_pow, mon.shape[1], size))
+    vb_pow = np.empty((2, n_pow, size))
+    hold_pow = np.empty((n_pow, size))
+    for mode in range(2):
+        rows = np.vstack([mon[mode], np.eye(size)[1], system.ell_hold])
+        for j in range(n_pow):
+            mon_pow[mode, j] = rows[:-2]
+            vb_pow[mode, j] = rows[-2]
+            if mode == 0:
+                hold_pow[j] = rows[-1]
+            rows = rows @ system.a_modes[mode]
+    return mon_d, hold_d, mon_pow, vb_pow, hold_pow
+
+
+#: Systems built by :func:`simulate_building`, by their parameters (a review runs one system on many records).
+_SYSTEMS: dict = {}
+_SYSTEMS_MAX = 64
+
+
+def _system_for(superstructure, **parameters) -> BuildingSystem:
+    key = (superstructure, *sorted(parameters.items()))
+    system = _SYSTEMS.get(key)
+    if system is None:
+        system = building_system(superstructure, **parameters)
+        if len(_SYSTEMS) >= _SYSTEMS_MAX:
+            _SYSTEMS.pop(next(iter(_SYSTEMS)))
+        _SYSTEMS[key] = system
+    return system
 
 
 def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingResponse:
@@ -512,29 +552,19 @@ def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingR
     size = system.size
     if relative is None:
         h = dt / n_sub
-        phi = np.stack([expm(a * h) for a in system.a_modes])
-        p_in = np.stack([van_loan(a, system.q_in, h) for a in system.a_modes])
-        p_vis = np.stack([van_loan(a, system.q_vis, h) for a in system.a_modes])
+        if h not in system.cache:
+            system.cache[h] = (np.stack([expm(a * h) for a in system.a_modes]),
+                               np.stack([van_loan(a, system.q_in, h) for a in system.a_modes]),
+                               np.stack([van_loan(a, system.q_vis, h) for a in system.a_modes]))
+        phi, p_in, p_vis = system.cache[h]
         kernel_times = np.empty(0)
     else:
         phi = p_in = p_vis = np.zeros((2, size, size))
         kernel_times = np.ascontiguousarray(relative)
+    if "rows" not in system.cache:
+        system.cache["rows"] = _taylor_rows(system)
     mon = system.mon_modes
-    mon_d = np.ascontiguousarray(np.stack([mon[k] @ system.a_modes[k] for k in range(2)]))
-    hold_d = system.ell_hold @ system.a_modes[0]
-    # ℓ Ã^j for the Taylor coefficients of the monitored functionals, the hold force and v_b
-    n_pow = _bk.N_TAYLOR + 2
-    mon_pow = np.empty((2, n_pow, mon.shape[1], size))
-    vb_pow = np.empty((2, n_pow, size))
-    hold_pow = np.empty((n_pow, size))
-    for mode in range(2):
-        rows = np.vstack([mon[mode], np.eye(size)[1], system.ell_hold])
-        for j in range(n_pow):
-            mon_pow[mode, j] = rows[:-2]
-            vb_pow[mode, j] = rows[-2]
-            if mode == 0:
-                hold_pow[j] = rows[-1]
-            rows = rows @ system.a_modes[mode]
+    mon_d, hold_d, mon_pow, vb_pow, hold_pow = system.cache["rows"]
     n = acc.size
     n_mon = mon.shape[1]
     out_state = np.empty((n, size))

@@ -145,30 +145,33 @@ def _poly_root(c, shift, target, sign, lo, hi):
 
 @njit(cache=True)
 def _quadratic_integral(kry, q_mat, tau):
-    # ∫₀^τ wᵀ Q w dσ with w = Σ k_j σ^j / j!
+    # ∫₀^τ wᵀ Q w dσ with w = Σ k_j σ^j / j!:  Σ_jk (k_jᵀ Q k_k) a_j a_k τ / (j + k + 1), a_j = τ^j / j!
     nj = kry.shape[0] - 1
     n = kry.shape[1]
-    y = np.zeros((nj, n))
-    for j in range(nj):
+    a = np.empty(nj)
+    a[0] = 1.0
+    for j in range(1, nj):
+        a[j] = a[j - 1] * tau / j
+    # z = Σ_k a_k/(j+k+1) … is not separable: form y_k = Q k_k once, then the double sum
+    y = np.empty((nj, n))
+    for k in range(nj):
         for i in range(n):
             acc = 0.0
-            for k in range(n):
-                acc += q_mat[i, k] * kry[j, k]
-            y[j, i] = acc
+            for m in range(n):
+                acc += q_mat[i, m] * kry[k, m]
+            y[k, i] = acc
     total = 0.0
-    fact_j = 1.0
     for j in range(nj):
-        if j > 0:
-            fact_j *= j
-        fact_k = 1.0
+        if a[j] == 0.0:
+            break
         for k in range(nj):
-            if k > 0:
-                fact_k *= k
+            if a[k] == 0.0:
+                break
             s = 0.0
             for i in range(n):
                 s += kry[j, i] * y[k, i]
-            total += s * tau ** (j + k + 1) / (fact_j * fact_k * (j + k + 1))
-    return total
+            total += s * a[j] * a[k] / (j + k + 1)
+    return total * tau
 
 
 @njit(cache=True)
