@@ -296,3 +296,30 @@ def test_bearing_loads_follow_the_overturning_moment():
     summary = r.summary()
     assert summary["n_bearings_uplifted"] == 4
     assert summary["superstructure_shear_coefficient"] > 0 and len(summary["story_drift_ratio"]) == 2
+
+
+def test_unequal_steps_and_mirror(records_dir):
+    # samples inserted on the straight line between samples change nothing (the record is the same
+    # piecewise-linear signal): the non-uniform path equals the uniform one to rounding; a mirrored
+    # record mirrors the response exactly
+    acc, dt = real_segment(records_dir, "RSN1044_NORTHR_NWH360.AT2", 2.0, 8.0)
+    s = make_superstructure([3e5, 2e5, 1.5e5], [5e8, 4e8, 2e8], 0.05)
+    kwargs = {"superstructure": s, "total_mass_kg": 1e6, "stiffness_N_per_m": 1e6 * G / 2.0, "mu_static": 0.07,
+              "mu_kinetic": 0.05, "damping_Ns_per_m": 1e5}
+    uniform = simulate_building(acc, dt, **kwargs)
+    t = dt * np.arange(acc.size)
+    rng = np.random.default_rng(3)
+    extra = np.sort(rng.uniform(t[0], t[-1], 300))
+    t_all = np.union1d(t, extra)
+    acc_all = np.interp(t_all, t, acc)
+    dense = simulate_building(acc_all, time_s=t_all, **kwargs)
+    keep = np.searchsorted(t_all, t)
+    assert uniform.n_events >= 5 and dense.event_names == uniform.event_names
+    assert np.max(np.abs(dense.event_time_s - uniform.event_time_s)) <= 1e-9
+    assert _rel(dense.displacement_m[keep], uniform.displacement_m) <= 1e-9
+    assert _rel(dense.floor_displacement_m[keep], uniform.floor_displacement_m) <= 1e-9
+    assert dense.story_drift_m == pytest.approx(uniform.story_drift_m, rel=1e-9)
+    assert dense.energy_input_J_per_kg == pytest.approx(uniform.energy_input_J_per_kg, rel=1e-9)
+    mirrored = simulate_building(-acc, dt, **kwargs)
+    assert np.array_equal(mirrored.displacement_m, -uniform.displacement_m)
+    assert np.array_equal(mirrored.story_drift_m, uniform.story_drift_m)
