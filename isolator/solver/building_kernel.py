@@ -399,7 +399,10 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                             else:
                                 t_event = 0.0
                                 seg_hi = -1.0
-                    elif av0 < 0.0 and av1 > 0.0 and min(v0, v1) - 2.0 * rem * max(abs(av0), abs(av1)) <= 0.0:
+                    elif v0 > 0.0 and av0 < 0.0 and av1 > 0.0 and min(v0, v1) - 2.0 * rem * max(abs(av0),
+                                                                                        abs(av1)) <= 0.0:
+                        # (not from rest: with µs = µk the net force at a break-away is zero and the start's
+                        # acceleration is rounding; the velocity that grew to v1 > 0 did not stop)
                         # an interior minimum of s·v_b: does it reach zero?
                         _coefficients(vb_pow[mode], w, coef)
                         t_min = _poly_root(coef, 1, 0.0, -s, 0.0, rem)

@@ -148,6 +148,8 @@ CASES = {
                                    {"radius_m": 2.0}, 0.0, 0.06, 0.042),
     "3 stories, flat slider + spring + dashpot": ("IELC180.AT2", 1.0, 3.0, [3e5, 2.5e5, 2e5], [6e8, 4.5e8, 3e8],
                                                   0.03, 1.0e6, {"stiffness_N_per_m": 2.0e6}, 4.0e5, 0.08, 0.06),
+    "2 stiff stories (T1 = 0.06 s), µs = µk": ("IELC180.AT2", 1.5, 2.5, [3e5, 2e5], [6e9, 4e9], 0.05, 7e5,
+                                                {"radius_m": 2.0}, 0.0, 0.05, 0.05),
     "6 stories, pendulum": ("RSN1044_NORTHR_NWH360.AT2", 2.5, 3.0, [2e5] * 6, [8e8, 7e8, 6e8, 5e8, 4e8, 3e8], 0.05,
                             1.6e6, {"radius_m": 3.0}, 0.0, 0.05, 0.04),
 }
