@@ -30,9 +30,10 @@ def review(
     suite: list[str] = typer.Option(None, "--suite", "-s", help="SUITE.toml, or record files, folders and globs "
                                     "grouped into pairs by station (repeatable); `example` for the bundled suite."),
     code: str = typer.Option("asce7-22", "--code", help="asce7-22 or en15129."),
-    scaling: str = typer.Option("common", "--scaling", help="common (one factor for all pairs), fit (shape "
+    scaling: str = typer.Option(None, "--scaling", help="common (one factor for all pairs), fit (shape "
                                 "factor per pair, then a common factor) or given (the suite's scale_factor values, "
-                                "checked, never rescaled)."),
+                                "checked, never rescaled). Default: given when every pair of the suite gives its "
+                                "scale_factor, else common."),
     output: str = typer.Option(None, "--output", "-o", help="PDF to write (default reports/review_DESIGN.pdf); "
                                "the JSON goes beside it, the analysis cache in a folder beside it."),
     as_json: bool = typer.Option(False, "--json", help="Print the review's JSON on stdout."),
@@ -62,7 +63,7 @@ def review(
     from isolator.motion import RecordError
     from isolator.review.examples import resolve_example
     from isolator.review.run import CODES
-    from isolator.review.scaling import SCALING_METHODS
+    from isolator.review.scaling import SCALING_METHODS, default_scaling
     from isolator.units import UnitsError
 
     if verify is not None:
@@ -73,7 +74,7 @@ def review(
             _user_error(f"missing option {flag}")
     if code not in CODES:
         _user_error(f"--code must be one of {', '.join(CODES)}, got {code!r}")
-    if scaling not in SCALING_METHODS:
+    if scaling is not None and scaling not in SCALING_METHODS:
         _user_error(f"--scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
     if jobs is not None and jobs < 1:
         _user_error(f"--jobs must be ≥ 1, got {jobs}")
@@ -96,6 +97,11 @@ def review(
         if Path(output).resolve() in inputs or Path(output).with_suffix(".json").resolve() in inputs:
             _user_error(f"--output {output}: would overwrite an input")
         the_suite = load_suite(suite_args, units=units, trim=trim)
+        if scaling is None:
+            try:
+                scaling = default_scaling(the_suite.names, the_suite.given_factors)
+            except ValueError as err:
+                raise ReviewError(f"{suite_args[0]}: {err}") from None
     except (DesignError, ReviewError, RecordError, UnitsError) as err:
         _user_error(str(err))
     from isolator.report.review_pages import write_review_pdf

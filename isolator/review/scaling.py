@@ -26,6 +26,20 @@ import numpy as np
 SCALING_METHODS = ("common", "fit", "given")
 
 
+def default_scaling(names, factors) -> str:
+    """The scaling a suite asks for when none is named: ``given`` when every pair gives its factor (the tool then
+    checks the engineer's suite and never rescales it), ``common`` when none does; ``ValueError`` naming the first
+    pair without a factor when only some give one."""
+    given = [f is not None for f in factors]
+    if all(given) and given:
+        return "given"
+    if any(given):
+        missing = next(name for name, g in zip(names, given, strict=True) if not g)
+        raise ValueError(f"pair '{missing}' gives no scale_factor while other pairs do: give every pair its factor, "
+                         "or choose --scaling common or fit to compute them")
+    return "common"
+
+
 def given_factors(names, factors) -> np.ndarray:
     """The engineer's factors of a suite, one per pair; ``ValueError`` naming the first pair without one."""
     missing = [name for name, f in zip(names, factors, strict=True) if f is None]

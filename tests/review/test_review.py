@@ -95,7 +95,11 @@ def test_pdf_checks_pages_numbers_equal_the_json_and_read_well(review, tmp_path)
     for text in texts:
         assert f"isolator {saved['software']['version']}" in text and digest in " ".join(text.split())
         assert "(issue" not in text
-    assert texts[-1].startswith("Appendix A") or "Appendix A" in texts[-1]
+    assert "Appendix A" in texts[-1]
+    pairs_text = " ".join(t for t in texts if "Analyses per pair and bound" in t)
+    for row in saved["checks"]:  # every analysis past the capacity is marked in the table
+        if row["id"] == "record_capacity" and row["status"] == "fail":
+            assert f"{fmt(row['value'])} *" in pairs_text
     sizes = []
     for page in reader.pages:
         page.extract_text(visitor_text=lambda text, cm, tm, font, size: sizes.append((size * abs(tm[0] or 1), text)))

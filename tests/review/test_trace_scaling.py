@@ -132,3 +132,22 @@ def test_cli_verify_exit_codes(given, tmp_path):
     assert len(result.output.strip().splitlines()) == 1
     result = CliRunner().invoke(app, ["review", "--target", "example", "--suite", "example"])
     assert result.exit_code == 2 and "missing option --design" in result.output
+
+
+def test_default_scaling_follows_the_suite(given, inputs, tmp_path):
+    from typer.testing import CliRunner
+
+    from isolator.cli import app
+    from isolator.review.scaling import default_scaling
+
+    assert default_scaling(["a", "b"], [1.2, 0.9]) == "given"
+    assert default_scaling(["a", "b"], [None, None]) == "common"
+    with pytest.raises(ValueError, match="pair 'b' gives no scale_factor while other pairs do"):
+        default_scaling(["a", "b"], [1.2, None])
+    _, path, out = given
+    result = CliRunner().invoke(app, ["review", "--design", str(inputs / "design.toml"), "--target",
+                                      str(inputs / "target.toml"), "--suite", str(path), "-o", str(tmp_path / "r.pdf"),
+                                      "--json", "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    cli = json.loads(result.stdout)
+    assert cli["run"]["scaling_basis"] == "given" and cli["scale_factors"] == out.to_dict()["scale_factors"]
