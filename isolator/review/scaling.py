@@ -36,7 +36,7 @@ def default_scaling(names, factors) -> str:
     if any(given):
         missing = next(name for name, g in zip(names, given, strict=True) if not g)
         raise ValueError(f"pair '{missing}' gives no scale_factor while other pairs do: give every pair its factor, "
-                         "or choose --scaling common or fit to compute them")
+                         "or have them computed (scaling common or fit)")
     return "common"
 
 

@@ -189,7 +189,7 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
     wind = params.get("wind_shear_over_W")
     if wind is None:
         rows.append(C.check("wind_restraint", "ASCE 7-22 17.2.4.2", C.NOT_CHECKED, None, mu_static_lower,
-                            "needs the design wind base shear / W (--set wind_shear_over_W=…); the isolation system "
+                            "needs the design wind base shear / W (parameter wind_shear_over_W); the isolation system "
                             f"must not slide under wind: lower-bound breakaway µs = {mu_static_lower:.4g}", "V/W"))
     else:
         rows.append(C.at_most("wind_restraint", "ASCE 7-22 17.2.4.2", wind, mu_static_lower,
