@@ -440,8 +440,10 @@ def _pairs(flow: Flow, r: dict) -> None:
     by_name = {p["name"]: p for p in r["suite"]["pairs"]}
     for name, number in key.items():
         pair = by_name.get(name, {})
-        steps = [s.get("step", "") for s in pair.get("processing", []) if any(
-            word in s.get("step", "") for word in ("trim", "rotated"))]
+        steps = [s.get("step", "") + (f" (strike {fmt(s['strike_deg'])}°, recorded azimuths "
+                                      f"{fmt(s['azimuth_x_deg'])}° / {fmt(s['azimuth_y_deg'])}°)"
+                                      if "strike_deg" in s else "")
+                 for s in pair.get("processing", []) if any(word in s.get("step", "") for word in ("trim", "rotated"))]
         text = f"#{number}  {name} — {_metadata_text(pair.get('metadata', {}))}"
         if pair.get("scale_factor_given") is not None:
             text += f"; given factor {fmt(pair['scale_factor_given'])}"
