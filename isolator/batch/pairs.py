@@ -23,40 +23,32 @@ def read_pair(path: str, component: str, options: ReadOptions, partners: tuple =
 
     ``partners`` are the other files of a set of one-component files (Y, and Z:
     :func:`isolator.batch.plan.station_sets`); without them the file holds the components.
-    ``--units`` is tried only when the file does not state its units (read once without
-    it, again with it when that fails), as for one component; ``--scale-to-pga`` scales
-    every component by the one factor that brings the larger horizontal PGA to the target.
+    ``--units`` and ``--dt`` go only to the files that do not state them, file by file, as
+    for one component (:func:`~isolator.motion.read_motion` with ``defaults=True``);
+    ``--scale-to-pga`` scales every component by the one factor that brings the larger
+    horizontal PGA to the target (:meth:`~isolator.motion.MotionPair.scaled_to_pga`).
     """
     # a file rewritten since it was cached (same name, other content) is read again
     key = (component, options) + tuple((os.path.abspath(p), file_version(p)) for p in (path, *partners))
     if key in _PAIR_CACHE:
         return _PAIR_CACHE[key]
-    from isolator.errors import ComponentError, MissingUnitsError
-    from isolator.motion import read_ground_motion_pair
+    from isolator.errors import ComponentError
+    from isolator.motion import RecordOptions, read_motion
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
-    align = {"trim": options.trim, "resample": options.resample, "dt_s": options.dt_s}
-    if partners:
-        if component == "all" and len(partners) < 2:
-            raise ComponentError(f"{path}: its station has no vertical component among the records given "
-                                 f"(beside {Path(partners[0]).name}); 'all' needs one", path=path)
-        files = {"y": partners[0], "z": partners[1] if component == "all" else None}
-    else:
-        files = {"component": component}
-    try:
-        motions = read_ground_motion_pair(path, **files, **align)
-    except MissingUnitsError:
-        if options.units is None:
-            raise
-        motions = read_ground_motion_pair(path, **files, units=options.units, **align)
+    if partners and component == "all" and len(partners) < 2:
+        raise ComponentError(f"{path}: its station has no vertical component among the records given "
+                             f"(beside {Path(partners[0]).name}); 'all' needs one", path=path)
+    files = {"pair": partners[0], "vertical": partners[1] if component == "all" else None} if partners \
+        else {"component": component}
+    # the batch's units and time step only go to the files that need them, file by file, as for one component
+    motions = read_motion(path, RecordOptions(**files, units=options.units, dt_s=options.dt_s, defaults=True,
+                                              trim=options.trim, resample=options.resample))
     factor = 1.0
     if options.scale_to_pga_g is not None:
-        largest = max(motions.x.pga_m_s2, motions.y.pga_m_s2)
-        if not largest > 0:
-            raise ValueError("cannot scale a record of zeros to a PGA")
-        factor = options.scale_to_pga_g * STANDARD_GRAVITY / largest
-        motions = motions.scaled(factor)
+        motions = motions.scaled_to_pga(options.scale_to_pga_g * STANDARD_GRAVITY)
+        factor = motions.processing[-1]["factor"]
     result = (motions, factor, time.perf_counter() - start)
     if len(_PAIR_CACHE) >= 4:
         _PAIR_CACHE.pop(next(iter(_PAIR_CACHE)))

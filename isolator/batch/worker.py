@@ -25,24 +25,14 @@ def _read_motion(path: str, component: str | None, options: ReadOptions):
     key = (os.path.abspath(path), file_version(path), component, options)
     if key in _MOTION_CACHE:
         return _MOTION_CACHE[key]
-    from isolator.errors import MissingTimeStepError, MissingUnitsError
     from isolator.metrics import strong_motion_window_s
-    from isolator.motion import read_ground_motion
+    from isolator.motion import RecordOptions, read_motion
     from isolator.units import STANDARD_GRAVITY
 
     start = time.perf_counter()
-    given: dict = {}
-    # the batch's units and time step only go to the files that need them: retried by error type
-    fallbacks = {MissingUnitsError: ("units", options.units), MissingTimeStepError: ("dt_s", options.dt_s)}
-    for _ in range(len(fallbacks) + 1):
-        try:
-            motion = read_ground_motion(path, component=component, **given)
-            break
-        except (MissingUnitsError, MissingTimeStepError) as err:
-            name, value = fallbacks[type(err)]
-            if value is None or name in given:
-                raise
-            given[name] = value
+    # the batch's units and time step only go to the files that need them (read_motion, defaults=True)
+    motion = read_motion(path, RecordOptions(component=component, units=options.units, dt_s=options.dt_s,
+                                             defaults=True))
     factor = 1.0
     if options.scale_to_pga_g is not None:
         original = motion.pga_m_s2
@@ -128,10 +118,7 @@ def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, wi
     from isolator.analysis import analyse
     from isolator.pair_analysis import PairAnalysis
 
-    note = f"Record scaled to PGA {task.options.scale_to_pga_g:g} g (factor {factor:.4g})." \
-        if task.options.scale_to_pga_g is not None else ""
-    if task.component in SET_COMPONENTS and task.options.scale_to_pga_g is not None:
-        note = f"Record scaled by {factor:.4g} (larger horizontal PGA to {task.options.scale_to_pga_g:g} g)."
+    note = motion.scaling_note  # from the motion's processing (a component's or a pair's scaling step)
     # the record's intensity measures and window are computed once per record, not per design
     analysis = analyse(design, motion, intensity=measures, window_s=window,
                        harmonic=task.options.harmonic or bool(task.reports_dir), record_label=task.record,

@@ -58,14 +58,11 @@ def _pair_report(the_design, design, record, record_path, record_label, pair, ve
     if scale_to_pga is not None:
         if not scale_to_pga > 0:
             user_error(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
-        horizontal = [m for axis, m in getattr(motions, "components", {"x": motions}).items() if axis != "z"]
-        largest = max(m.pga_m_s2 for m in horizontal)
-        if not largest > 0:
-            user_error(f"{record_label}: cannot scale a record of zeros to a PGA")
-        factor = scale_to_pga * STANDARD_GRAVITY / largest
-        motions = motions.scaled(factor)
-        scaling_note = (f"Scaled by {factor:.4g}: the larger horizontal PGA {largest / STANDARD_GRAVITY:.4g} g to "
-                        f"{scale_to_pga:g} g.")
+        try:
+            motions = motions.scaled_to_pga(scale_to_pga * STANDARD_GRAVITY)  # a pair: its larger horizontal
+        except ValueError as err:
+            user_error(f"{record_label}: {err}")
+        scaling_note = motions.scaling_note
     output = _output_pdf(output, record, design, "_pair")
     try:
         analysis = analyse(the_design, motions, record_label=record_label, scaling_note=scaling_note)
@@ -159,13 +156,11 @@ def report(
     if scale_to_pga is not None:
         from isolator.units import STANDARD_GRAVITY
 
-        original_g = motion.pga_m_s2 / STANDARD_GRAVITY
         try:
             motion = motion.scaled_to_pga(scale_to_pga * STANDARD_GRAVITY)
         except ValueError as err:
             user_error(f"{record_label}: {err}")
-        scaling_note = (f"Record scaled to the design PGA {scale_to_pga:g} g (from {original_g:.4g} g, "
-                        f"factor {scale_to_pga / original_g:.4g}).")
+        scaling_note = motion.scaling_note
     from isolator.analysis import analyse
     from isolator.solver.record import RecordInputError
 

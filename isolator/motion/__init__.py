@@ -23,6 +23,7 @@ from isolator.errors import ComponentMismatchError, RecordError
 from isolator.motion.components import UNNAMED_COMPONENT
 from isolator.motion.examples import EXAMPLE_RECORDS, resolve_record
 from isolator.motion.ground_motion import MAX_ABS_ACCELERATION_G, MIN_SAMPLES, GroundMotion
+from isolator.motion.load import RecordOptions, read_motion
 from isolator.motion.measures import (
                                       PREDOMINANT_PERIODS_S,
                                       IntensityMeasures,
@@ -41,7 +42,7 @@ from isolator.motion.read import (
 )
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
 
-__all__ = ["DEFAULT_DAMPING_RATIO", "EXAMPLE_RECORDS", "MAX_ABS_ACCELERATION_G", "MIN_SAMPLES",
+__all__ = ["RecordOptions", "read_motion", "DEFAULT_DAMPING_RATIO", "EXAMPLE_RECORDS", "MAX_ABS_ACCELERATION_G", "MIN_SAMPLES",
            "PREDOMINANT_PERIODS_S", "TEXT_SUFFIXES", "UNNAMED_COMPONENT", "GroundMotion", "IntensityMeasures",
            "RecordError", "ComponentMismatchError", "MotionPair", "read_ground_motion_pair", "arias_intensity_m_s", "displacement_m", "intensity_measures", "list_components",
            "pseudo_acceleration_spectrum", "read_ground_motion", "read_ground_motions", "resolve_record", "significant_duration_s",

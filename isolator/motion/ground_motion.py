@@ -348,23 +348,80 @@ class GroundMotion:
         return self._derived(trace, {"step": "scale", "factor": float(factor)})
 
     def scaled_to_pga(self, pga_m_s2: float) -> GroundMotion:
-        """Scale so that the peak ground acceleration equals ``pga_m_s2`` [m/s²]."""
-        current_m_s2 = self.pga_m_s2
-        if not current_m_s2 > 0:
-            raise MotionError("cannot scale a record of zeros to a PGA")
-        if not pga_m_s2 > 0:
-            raise MotionError(f"target PGA {pga_m_s2} m/s² is not positive")
-        from isolator.units import STANDARD_GRAVITY
+        """Scale so that the peak ground acceleration equals ``pga_m_s2`` [m/s²].
 
-        pga_g = pga_m_s2 / STANDARD_GRAVITY
-        if pga_g > MAX_ABS_ACCELERATION_G:  # what the reader refuses is not reachable by scaling either
-            raise MotionError(f"target PGA {pga_g:g} g exceeds {MAX_ABS_ACCELERATION_G:g} g")
-        if pga_g < MIN_TARGET_PGA_G:
-            raise MotionError(f"target PGA {pga_g:g} g is below {MIN_TARGET_PGA_G:g} g (instrument noise; "
-                             "the record's measures underflow)")
-        scaled = self.scaled(pga_m_s2 / current_m_s2)
-        last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2))
+        The step appended to :attr:`processing` is ``{"step": "scale", "factor",
+        "target_pga_m_s2", "from_pga_m_s2"}``; :attr:`scaling_note` says it in words.
+
+        Raises
+        ------
+        MotionError
+            A record of zeros, or a target outside [:data:`MIN_TARGET_PGA_G`,
+            :data:`MAX_ABS_ACCELERATION_G`] g (see :func:`pga_scale_factor`).
+        """
+        current_m_s2 = self.pga_m_s2
+        scaled = self.scaled(pga_scale_factor(current_m_s2, pga_m_s2))
+        last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2), from_pga_m_s2=current_m_s2)
         return GroundMotion(trace=scaled.trace, units_source=self.units_source, provenance=self.provenance,
                             processing=[*self.processing, last], component=self.component,
                             components=list(self.components))
 
+    @property
+    def scaling_note(self) -> str:
+        """The last scaling to a PGA in :attr:`processing`, in one sentence; "" when none [-]."""
+        return scaling_note(self.processing)
+
+
+def pga_scale_factor(current_pga_m_s2: float, target_pga_m_s2: float) -> float:
+    """The factor that brings a record's PGA to a target: ``target / current`` [-].
+
+    The one place the target is checked, for a component (:meth:`GroundMotion.scaled_to_pga`)
+    and a pair (:meth:`~isolator.motion.MotionPair.scaled_to_pga`).
+
+    Parameters
+    ----------
+    current_pga_m_s2 : float
+        The record's PGA (a pair: its larger horizontal PGA) [m/s²].
+    target_pga_m_s2 : float
+        The PGA wanted, in [:data:`MIN_TARGET_PGA_G`, :data:`MAX_ABS_ACCELERATION_G`] g [m/s²].
+
+    Raises
+    ------
+    MotionError
+        A record of zeros; a target that is not positive, above 50 g (what the reader refuses
+        is not reachable by scaling either) or below 1e-6 g (instrument noise).
+    """
+    from isolator.units import STANDARD_GRAVITY
+
+    if not current_pga_m_s2 > 0:
+        raise MotionError("cannot scale a record of zeros to a PGA")
+    if not target_pga_m_s2 > 0:
+        raise MotionError(f"target PGA {target_pga_m_s2} m/s² is not positive")
+    target_g = target_pga_m_s2 / STANDARD_GRAVITY
+    if target_g > MAX_ABS_ACCELERATION_G:
+        raise MotionError(f"target PGA {target_g:g} g exceeds {MAX_ABS_ACCELERATION_G:g} g")
+    if target_g < MIN_TARGET_PGA_G:
+        raise MotionError(f"target PGA {target_g:g} g is below {MIN_TARGET_PGA_G:g} g (instrument noise; "
+                          "the record's measures underflow)")
+    return target_pga_m_s2 / current_pga_m_s2
+
+
+def scaling_note(processing: list) -> str:
+    """One sentence for the last scaling to a PGA among processing steps ("" when there is none).
+
+    Parameters
+    ----------
+    processing : list of dict
+        :attr:`GroundMotion.processing` or :attr:`~isolator.motion.MotionPair.processing` [-].
+    """
+    from isolator.units import STANDARD_GRAVITY
+
+    step = next((s for s in reversed(processing) if "target_pga_m_s2" in s), None)
+    if step is None:
+        return ""
+    target_g, factor = step["target_pga_m_s2"] / STANDARD_GRAVITY, step["factor"]
+    from_g = step.get("from_pga_m_s2", step["target_pga_m_s2"] / factor) / STANDARD_GRAVITY
+    if step.get("measured_on"):
+        return (f"Record scaled to the design PGA {target_g:g} g by one factor {factor:.4g} on every component "
+                f"(its {step['measured_on']} PGA was {from_g:.4g} g).")
+    return f"Record scaled to the design PGA {target_g:g} g (from {from_g:.4g} g, factor {factor:.4g})."

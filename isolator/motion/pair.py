@@ -29,7 +29,7 @@ import numpy as np
 from isolator.errors import ComponentError, ComponentMismatchError, RecordValuesError
 from isolator.motion.components import is_vertical, label_is_vertical
 from isolator.motion.files import knet_siblings
-from isolator.motion.ground_motion import GroundMotion
+from isolator.motion.ground_motion import GroundMotion, pga_scale_factor, scaling_note
 from isolator.motion.read import list_components, read_ground_motion, read_ground_motions
 
 #: Relative tolerance on equal time steps and on start times (fraction of the step).
@@ -98,6 +98,37 @@ class MotionPair:
         """All components multiplied by one ``factor`` [-] (keeps the direction of shaking)."""
         return MotionPair(*(None if m is None else m.scaled(factor) for m in (self.x, self.y, self.z)),
                           processing=list(self.processing))
+
+    @property
+    def horizontal_pga_m_s2(self) -> float:
+        """The larger PGA of the horizontal components [m/s²]."""
+        return max(m.pga_m_s2 for axis, m in self.components.items() if axis != "z")
+
+    def scaled_to_pga(self, pga_m_s2: float) -> MotionPair:
+        """Every component scaled by the one factor that brings the larger horizontal PGA to ``pga_m_s2`` [m/s²].
+
+        One factor keeps the direction of shaking and the ratio of the vertical to the
+        horizontals.  The step ``{"step": "scale_to_pga", "factor", "target_pga_m_s2",
+        "from_pga_m_s2", "measured_on"}`` is appended to :attr:`processing` (each component
+        records its ``scale`` step); :attr:`scaling_note` says it in words.
+
+        Raises
+        ------
+        MotionError
+            Every horizontal component is zero, or the target is outside [1e-6, 50] g
+            (:func:`~isolator.motion.ground_motion.pga_scale_factor`).
+        """
+        current_m_s2 = self.horizontal_pga_m_s2
+        factor = pga_scale_factor(current_m_s2, pga_m_s2)
+        scaled = self.scaled(factor)
+        step = {"step": "scale_to_pga", "factor": float(factor), "target_pga_m_s2": float(pga_m_s2),
+                "from_pga_m_s2": current_m_s2, "measured_on": "larger horizontal"}
+        return MotionPair(scaled.x, scaled.y, scaled.z, processing=[*self.processing, step])
+
+    @property
+    def scaling_note(self) -> str:
+        """The scaling to a PGA in :attr:`processing`, in one sentence; "" when none [-]."""
+        return scaling_note(self.processing)
 
     def describe(self) -> dict:
         """Path, component label, PGA and units source of each component (for JSON output)."""
@@ -315,6 +346,7 @@ def read_ground_motion_pair(
     dt_s: float | None = None,
     trim: bool = False,
     resample: bool = False,
+    defaults: bool = False,
 ) -> MotionPair:
     """Read the horizontal components (and the vertical) of one station into a :class:`MotionPair`.
 
@@ -330,7 +362,7 @@ def read_ground_motion_pair(
         For one multi-channel ``x``: ``"pair"`` (the two horizontals, the default) or
         ``"all"`` (with the vertical).  With ``y`` or ``z`` given: the component to
         take from ``x`` when it holds several [-].
-    units, merge, response, counts_factor, dt_s
+    units, merge, response, counts_factor, dt_s, defaults
         As for :func:`~isolator.motion.read_ground_motion`, applied to each file [-].
     trim, resample : bool
         Repair components that differ (see :func:`align`) [-].
@@ -348,7 +380,7 @@ def read_ground_motion_pair(
         The components differ in time step, length or start time (one line saying which).
     """
     options = {"units": units, "merge": merge, "response": response, "counts_factor": counts_factor,
-               "dt_s": dt_s}
+               "dt_s": dt_s, "defaults": defaults}
     x = Path(x)
     vertical: list[GroundMotion] = []
     if y is None and z is None:

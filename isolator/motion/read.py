@@ -23,6 +23,7 @@ from isolator.errors import (
     CountsError,
     GapsError,
     InstrumentResponseError,
+    MissingTimeStepError,
     MissingUnitsError,
     RecordError,
     RecordFormatError,
@@ -428,6 +429,7 @@ def read_ground_motion(
     counts_factor: float | None = None,
     dt_s: float | None = None,
     allow_zero: bool = False,
+    defaults: bool = False,
 ) -> GroundMotion:
     """Read a record file into a :class:`GroundMotion` in m/s².
 
@@ -457,6 +459,12 @@ def read_ground_motion(
     allow_zero : bool, optional
         Accept a record whose samples are all zero (one component of a pair may be at
         rest; a pair refuses only when every horizontal component is zero) [-].
+    defaults : bool, optional
+        ``units`` and ``dt_s`` only for a file that does not state them (a batch that
+        mixes formats): the file is read as it is, and again with the units (the time
+        step) when it raises :class:`~isolator.errors.MissingUnitsError`
+        (:class:`~isolator.errors.MissingTimeStepError`).  Without it they must agree
+        with a file that states its own [-].
 
     Returns
     -------
@@ -473,6 +481,10 @@ def read_ground_motion(
         unknown or conflicting units, ambiguous or unknown component.
     """
     path = Path(path)
+    if defaults and counts_factor is None:  # a counts factor needs its units, always
+        return with_defaults(lambda **given: read_ground_motion(
+            path, component=component, merge=merge, response=response, allow_zero=allow_zero, **given),
+            units=units, dt_s=dt_s)
     stream, steps = _read_checked_stream(path, merge, dt_s)
     return _motion(path, stream, _select(path, stream, component), steps, units, response, counts_factor, dt_s,
                    allow_zero)
@@ -487,6 +499,7 @@ def read_ground_motions(
     counts_factor: float | None = None,
     dt_s: float | None = None,
     allow_zero: bool = False,
+    defaults: bool = False,
 ) -> list[GroundMotion]:
     """Every component of a record file, in file order, from one reading of the file.
 
@@ -501,9 +514,43 @@ def read_ground_motions(
         As :func:`read_ground_motion`, for the file or for any of its components.
     """
     path = Path(path)
+    if defaults and counts_factor is None:
+        return with_defaults(lambda **given: read_ground_motions(
+            path, merge=merge, response=response, allow_zero=allow_zero, **given), units=units, dt_s=dt_s)
     stream, steps = _read_checked_stream(path, merge, dt_s)
     return [_motion(path, stream, trace, steps, units, response, counts_factor, dt_s, allow_zero)
             for trace in list(stream)]
+
+
+def with_defaults(read, *, units: str | None = None, dt_s: float | None = None):
+    """``read(**given)`` as the file says first, then with the units or the time step its typed error
+    asks for (:class:`MissingUnitsError`: ``units``; :class:`MissingTimeStepError`: ``dt_s``).
+
+    Parameters
+    ----------
+    read : callable
+        Reads the file; takes ``units=`` and ``dt_s=`` keywords [-].
+    units : str, optional
+        Units for a file that does not state them [-].
+    dt_s : float, optional
+        Time step for a one-column file that gives none [s].
+
+    Raises
+    ------
+    RecordError
+        The error of the last reading (a missing value that was not given is raised as it is).
+    """
+    fallbacks = ((MissingUnitsError, "units", units), (MissingTimeStepError, "dt_s", dt_s))
+    given: dict = {}
+    for _ in range(len(fallbacks) + 1):  # each fallback is added once: at most three readings
+        try:
+            return read(**given)
+        except (MissingUnitsError, MissingTimeStepError) as err:
+            name, value = next((name, value) for kind, name, value in fallbacks if isinstance(err, kind))
+            if value is None or name in given:
+                raise
+            given[name] = value
+    raise AssertionError("unreachable: the last reading returns or raises")  # pragma: no cover
 
 
 def _read_checked_stream(path: Path, merge: bool, dt_s: float | None):
