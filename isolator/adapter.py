@@ -68,7 +68,7 @@ def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float) -> Dime
     -------
     DimensionlessPoint
     """
-    from isolator.solver.record import RecordInputError
+    from isolator.errors import RecordInputError
 
     # the record's fault, not the design's: a record of zeros (or scaled to nothing) has no
     # equivalent harmonic motion (A0 = PGV²/PGA, Eq. 6 of the paper needs A0 > 0)

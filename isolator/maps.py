@@ -384,9 +384,9 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
     RegimeMap
     """
     mu_k = mu_s if mu_k is None else float(mu_k)
+    from isolator.errors import InvalidSystemError
     from isolator.parallel import capped_workers
     from isolator.solver.harmonic import MAX_DIMENSIONLESS
-    from isolator.solver.system import InvalidSystemError
 
     for name, (low, high) in (("k", k_range), ("alpha", alpha_range)):
         if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high <= MAX_DIMENSIONLESS):

@@ -153,3 +153,33 @@ def test_a_typed_error_no_command_caught_is_still_one_line_and_exit_2(capsys):
     assert capsys.readouterr().err == "error: target PGA -1.0 m/s² is not positive\n"
     with pytest.raises(RuntimeError):
         app(["scale", "1"])
+
+
+#: Modules that still import a typed error from another module than isolator.errors (H1's files of
+#: issue 21, being rewritten); remove a line when its module is fixed (a stale line fails).
+ERRORS_IMPORTED_ELSEWHERE = {"batch/executors.py", "batch/run.py", "batch/worker.py", "cli/batch.py", "cli/pairs.py",
+                             "cli/records.py", "cli/report.py", "cli/review.py", "review/worker.py",
+                             "solver/planar.py"}
+
+
+def test_errors_are_imported_from_isolator_errors_only():
+    """Every import of a typed error names isolator.errors (the one place they are defined), not a module
+    that re-exports it (isolator.motion.RecordError, isolator.solver.system.InvalidSystemError …)."""
+    defined = {name for name, kind in inspect.getmembers(errors, inspect.isclass)
+               if issubclass(kind, Exception) and kind.__module__ == "isolator.errors"}
+    assert {"MotionError", "ReviewError", "RecordError", "BatchError"} <= defined
+    offenders = set()
+    for path in PACKAGE.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("isolator") \
+                    and node.module != "isolator.errors" and {a.name for a in node.names} & defined:
+                offenders.add(path.relative_to(PACKAGE).as_posix())
+    assert not offenders - ERRORS_IMPORTED_ELSEWHERE, sorted(offenders - ERRORS_IMPORTED_ELSEWHERE)
+    assert not ERRORS_IMPORTED_ELSEWHERE - offenders, f"fixed: remove {sorted(ERRORS_IMPORTED_ELSEWHERE - offenders)}"
+    # and every error class is defined there, nowhere else in the package (but the output errors of
+    # atomic.py, OSErrors by design: docs/errors.md)
+    elsewhere = [f"{path.relative_to(PACKAGE)}: {node.name}" for path in PACKAGE.rglob("*.py")
+                 if path.name not in ("errors.py", "atomic.py")
+                 for node in ast.walk(ast.parse(path.read_text()))
+                 if isinstance(node, ast.ClassDef) and node.name.endswith("Error")]
+    assert elsewhere == []

@@ -28,7 +28,6 @@ that computes rows (:func:`run_task`) is the same for both.
 from isolator.batch.charts import SUMMARY_RESPONSES, design_chart, suite_summary
 from isolator.batch.plan import (
                                  GRID_KEYS,
-                                 BatchError,
                                  DesignCase,
                                  ReadOptions,
                                  Task,
@@ -46,6 +45,7 @@ from isolator.batch.plan import (
 from isolator.batch.run import BatchResult, run_batch
 from isolator.batch.store import COLUMNS, TIMING_COLUMNS, PartStore, comparable, to_table, write_table_atomically
 from isolator.batch.worker import run_task
+from isolator.errors import BatchError
 
 __all__ = ["COLUMNS", "GRID_KEYS", "SUMMARY_RESPONSES", "TIMING_COLUMNS", "BatchError", "BatchResult",
            "DesignCase", "PartStore", "ReadOptions", "Task", "comparable", "design_chart", "expand_designs",

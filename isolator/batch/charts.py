@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 
 from isolator.atomic import atomic_path
-from isolator.batch.plan import GRID_KEYS, BatchError
+from isolator.batch.plan import GRID_KEYS
+from isolator.errors import BatchError
 from isolator.metrics import REGIMES
 
 #: Responses summarised per design across records.

@@ -123,7 +123,8 @@ def expand_designs(mappings: list, grids: list[tuple[str, list[float]]], source:
     e.g. ``"FPS [radius_m=2, mu_static=0.06]"``.  Invalid designs keep their
     :class:`~isolator.design.DesignError` message in ``error``.
     """
-    from isolator.design import Design, DesignError
+    from isolator.design import Design
+    from isolator.errors import DesignError
 
     n_cases = len(mappings) * math.prod(len(values) for _, values in grids)
     if n_cases > MAX_PLAN_ROWS:

@@ -22,9 +22,9 @@ def harmonic(
     resonance, and reports the regime (ST stick, SS stick-slip, SL permanent slip),
     ζ, A, ẋ_rms, the energies per period and the force ratios of Eq. 5.
     """
+    from isolator.errors import InvalidSystemError
     from isolator.metrics import REGIME_WORDS
     from isolator.solver.harmonic import harmonic_response
-    from isolator.solver.system import InvalidSystemError
 
     try:
         response = harmonic_response(alpha, k, eta, mu_s, mu_k)
@@ -66,7 +66,7 @@ def threshold(
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object instead of a table."),
 ) -> None:
     """Regime thresholds along α: α_SS = 1, α_SL and every transition up to --alpha-max."""
-    from isolator.solver.system import InvalidSystemError
+    from isolator.errors import InvalidSystemError
     from isolator.solver.thresholds import harmonic_thresholds
 
     try:

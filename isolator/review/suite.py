@@ -485,8 +485,7 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
     SuiteError
         Duplicated samples, mismatched components, a malformed SUITE.toml, or no pair at all.
     """
-    from isolator.motion import RecordError
-    from isolator.units import UnitsError
+    from isolator.errors import RecordError, UnitsError
 
     arguments = [arguments] if isinstance(arguments, (str, os.PathLike)) else list(arguments)
     tomls = [a for a in arguments if str(a).lower().endswith(".toml")]

@@ -108,7 +108,7 @@ def linear_peak_displacement(acceleration_m_s2, dt_s: float, period_s: float, da
     # pieces no longer than a quarter of the damped period keep the velocity unimodal
     n_sub = max(1, math.ceil(dt_s / (0.25 * period_s)))
     if n_sub > MAX_SUBSTEPS_PER_SAMPLE:
-        from isolator.solver.record import RecordInputError
+        from isolator.errors import RecordInputError
 
         raise RecordInputError(
             f"time step {dt_s:g} s is {dt_s / period_s:.4g} times the spectral period {period_s:g} s: the "
