@@ -15,8 +15,9 @@ obspy format name         module                      files
 ``USGS_SMC``              :mod:`isolator.io.smc`      USGS SMC corrected accelerograms (cm/s²)
 ========================  ==========================  =====================================
 
-The readers only parse; they raise :class:`ValueError` with a one-line message (without
-the file name) for malformed content, or a typed :mod:`isolator.errors` error where the
+The readers only parse; they raise :class:`~isolator.errors.RecordFormatError` (a
+:class:`ValueError`, as obspy's readers raise) with a one-line message without the file
+name for malformed content, or another typed :mod:`isolator.errors` error where the
 caller can act on it (:class:`~isolator.errors.MissingTimeStepError`).  Units, component choice and every check on the
 values belong to :func:`isolator.motion.read_ground_motion`, which names the file.
 """

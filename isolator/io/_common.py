@@ -18,6 +18,8 @@ from typing import IO
 
 import numpy as np
 
+from isolator.errors import RecordFormatError
+
 CHUNK_LINES = 65536  # lines parsed per numpy call; bounds the temporary text held in memory
 DETECT_BYTES = 8192  # bytes looked at by the format detectors
 
@@ -150,7 +152,7 @@ def split_numbers(line: str) -> list[str]:
         if "".join(found) == "".join(line.split()):
             return found
     bad = next((t for t in tokens if not _is_number(t)), line.strip())
-    raise ValueError(f"non-numeric value {bad[:30]!r}")
+    raise RecordFormatError(f"non-numeric value {bad[:30]!r}")
 
 
 def _is_number(token: str) -> bool:
@@ -178,7 +180,7 @@ def numbers_from_lines(lines: list[str]) -> np.ndarray:
         try:
             values.extend(parse_float(t) for t in split_numbers(line))
         except ValueError as err:
-            raise ValueError(f"{err} on data line {index + 1}") from None
+            raise RecordFormatError(f"{err} on data line {index + 1}") from None
     return np.asarray(values, dtype=np.float64)
 
 

@@ -27,6 +27,7 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core.util import AttribDict
 
+from isolator.errors import RecordFormatError
 from isolator.io._common import (
     head_lines,
     iter_line_chunks,
@@ -132,7 +133,7 @@ def _read_values(stream, npts: int, first_line_number: int) -> tuple[np.ndarray,
             slow = True
         if not slow:
             if count + values.size > npts:
-                raise ValueError(f"holds more than the header's NPTS={npts} values")
+                raise RecordFormatError(f"holds more than the header's NPTS={npts} values")
             data[count:count + values.size] = values
             count += values.size
             line_number += len(chunk)
@@ -150,13 +151,13 @@ def _read_values(stream, npts: int, first_line_number: int) -> tuple[np.ndarray,
                 if _TRAILER_RE.match(line):
                     trailer.append(line.strip())
                     continue
-                raise ValueError(f"{err} on line {line_number}") from None
+                raise RecordFormatError(f"{err} on line {line_number}") from None
             if count + len(tokens) > npts:
-                raise ValueError(f"holds more than the header's NPTS={npts} values")
+                raise RecordFormatError(f"holds more than the header's NPTS={npts} values")
             data[count:count + len(tokens)] = [parse_float(t) for t in tokens]
             count += len(tokens)
     if count < npts:
-        raise ValueError(f"truncated: {count} values but the header says NPTS={npts}")
+        raise RecordFormatError(f"truncated: {count} values but the header says NPTS={npts}")
     return data, trailer
 
 
@@ -198,22 +199,22 @@ def _read_at2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
             if npts_dt is not None or len(header) >= MAX_HEADER_LINES:
                 break
         if not header:
-            raise ValueError("file is empty")
+            raise RecordFormatError("file is empty")
         if npts_dt is None:
-            raise ValueError(
+            raise RecordFormatError(
                 f"not a PEER AT2 file: no 'NPTS=…, DT=…' line in the first {MAX_HEADER_LINES} lines"
             )
         npts, dt_s = npts_dt
         header_text = "\n".join(header[:-1])
         if _NOT_ACCELERATION_RE.search(header_text) and not re.search("ACCELERATION", header_text, re.I):
-            raise ValueError("PEER file holds velocity or displacement, not acceleration")
+            raise RecordFormatError("PEER file holds velocity or displacement, not acceleration")
         stated = _UNITS_STATED_RE.search(header_text)
         if stated and stated.group(1).upper().rstrip(".,") not in ("G", "G'S"):
-            raise ValueError(f"header states units {stated.group(1)!r}; a PEER AT2 file is in g")
+            raise RecordFormatError(f"header states units {stated.group(1)!r}; a PEER AT2 file is in g")
         if not dt_s > 0:
-            raise ValueError(f"header DT={dt_s:g} s is not positive")
+            raise RecordFormatError(f"header DT={dt_s:g} s is not positive")
         if npts < 1:
-            raise ValueError(f"header NPTS={npts} holds no samples")
+            raise RecordFormatError(f"header NPTS={npts} holds no samples")
         if headonly:
             data, trailer = np.empty(0, dtype=np.float64), []
         else:

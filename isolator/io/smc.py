@@ -18,6 +18,7 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
+from isolator.errors import RecordFormatError
 from isolator.io._common import looks_like_text, open_text, parse_float, read_head
 
 TEXT_LINES = 11
@@ -84,25 +85,25 @@ def _read_smc(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
     with open_text(filename_or_buf) as stream:
         lines = [line.rstrip("\r\n") for line in stream]
     if not lines or not any(line.strip() for line in lines):
-        raise ValueError("file is empty")
+        raise RecordFormatError("file is empty")
     kind = lines[0].strip()
     if not re.search(r"\bCORRECTED ACCELEROGRAM", kind, re.IGNORECASE) or kind.startswith("0"):
-        raise ValueError(f"SMC data type {kind!r} is not a corrected accelerogram")
+        raise RecordFormatError(f"SMC data type {kind!r} is not a corrected accelerogram")
     header_end = TEXT_LINES + INT_LINES + REAL_LINES
     if len(lines) < header_end:
-        raise ValueError("truncated SMC header")
+        raise RecordFormatError("truncated SMC header")
     try:
         ints = [int(v) for line in lines[TEXT_LINES:TEXT_LINES + INT_LINES] for v in line.split()]
         reals = [parse_float(v) for line in lines[TEXT_LINES + INT_LINES:header_end] for v in line.split()]
     except ValueError:
-        raise ValueError("malformed SMC integer or real header") from None
+        raise RecordFormatError("malformed SMC integer or real header") from None
     if len(ints) < 17 or len(reals) < 2:
-        raise ValueError("malformed SMC integer or real header")
+        raise RecordFormatError("malformed SMC integer or real header")
     npts, rate_hz = ints[16], reals[1]
     if npts == INT_MISSING or npts < 1:
-        raise ValueError("SMC header gives no number of samples")
+        raise RecordFormatError("SMC header gives no number of samples")
     if rate_hz >= REAL_MISSING or not rate_hz > 0:
-        raise ValueError(f"SMC sampling rate {rate_hz:g} Hz is not positive")
+        raise RecordFormatError(f"SMC sampling rate {rate_hz:g} Hz is not positive")
     index = header_end
     comments = []
     while index < len(lines) and lines[index].startswith("|"):
@@ -117,14 +118,14 @@ def _read_smc(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
             if not field:
                 continue
             if filled >= npts:
-                raise ValueError(f"holds more than the header's NPTS={npts} values")
+                raise RecordFormatError(f"holds more than the header's NPTS={npts} values")
             try:
                 data[filled] = parse_float(field)
             except ValueError:
-                raise ValueError(f"non-numeric value {field!r} on line {number}") from None
+                raise RecordFormatError(f"non-numeric value {field!r} on line {number}") from None
             filled += 1
     if filled < npts:
-        raise ValueError(f"truncated: {filled} values but the header says NPTS={npts}")
+        raise RecordFormatError(f"truncated: {filled} values but the header says NPTS={npts}")
 
     info = AttribDict()
     info.text_header = lines[:TEXT_LINES]

@@ -39,7 +39,7 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
-from isolator.errors import MissingTimeStepError, TimeStepConflictError
+from isolator.errors import MissingTimeStepError, RecordFormatError, TimeStepConflictError
 from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
 from isolator.units import ACCELERATION_UNITS_TO_M_S2
 
@@ -168,9 +168,9 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     with open_text(filename_or_buf) as stream:
         comments, names, delimiter, ncols, skip = _layout(stream)
     if ncols == 0:
-        raise ValueError("no numeric data lines")
+        raise RecordFormatError("no numeric data lines")
     if ncols > 2:
-        raise ValueError(
+        raise RecordFormatError(
             f"{ncols} columns; expected 1 (acceleration, with a time step) or 2 (time, acceleration)"
         )
     with open_text(filename_or_buf) as stream:
@@ -183,7 +183,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
             message = str(err).splitlines()[0].rstrip(".;")
             message = re.sub(r";\s*use `usecols`.*$", "", message)
             message = message.replace("could not convert string", "non-numeric value")
-            raise ValueError(message) from None
+            raise RecordFormatError(message) from None
     meta = _metadata(comments)
     info = AttribDict()
     info.comments = comments
@@ -196,11 +196,11 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         if time_s.size >= 2:
             steps_s = np.diff(time_s)
             if not np.all(np.isfinite(time_s)):
-                raise ValueError("non-finite value in the time column")
+                raise RecordFormatError("non-finite value in the time column")
             bad = np.flatnonzero(steps_s <= 0)
             if bad.size:
                 i = int(bad[0])
-                raise ValueError(
+                raise RecordFormatError(
                     f"time column does not increase at data row {i + 2} "
                     f"(t = {time_s[i]:g} s then {time_s[i + 1]:g} s)"
                 )
@@ -230,7 +230,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         if dt_s is None:
             raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
     if not dt_s > 0:
-        raise ValueError(f"time step dt = {dt_s:g} s is not positive")
+        raise RecordFormatError(f"time step dt = {dt_s:g} s is not positive")
     info.t0_s = t0_s
     trace = Trace(data=np.ascontiguousarray(acceleration, dtype=np.float64))
     trace.stats.delta = float(dt_s)

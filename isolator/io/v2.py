@@ -19,6 +19,7 @@ import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
+from isolator.errors import RecordFormatError
 from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
 
 FIELD_WIDTH = 10  # characters per value in the data blocks (8F10.x)
@@ -71,16 +72,16 @@ def _fixed_width_values(lines: list[str], count: int, first_line_number: int) ->
             if not field:
                 continue
             if filled >= count:
-                raise ValueError(f"more values than announced on line {first_line_number + offset}")
+                raise RecordFormatError(f"more values than announced on line {first_line_number + offset}")
             try:
                 values[filled] = parse_float(field)
             except ValueError:
-                raise ValueError(
+                raise RecordFormatError(
                     f"non-numeric value {field!r} on line {first_line_number + offset}"
                 ) from None
             filled += 1
     if filled < count:
-        raise ValueError(f"truncated: {filled} values but the header says {count}")
+        raise RecordFormatError(f"truncated: {filled} values but the header says {count}")
     return values
 
 
@@ -138,11 +139,11 @@ def _read_v2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
         block = lines[index + 1:index + 1 + nlines]
         if kind == "accel":
             if not dt_s > 0:
-                raise ValueError(f"DT={dt_s:g} s is not positive on line {index + 1}")
+                raise RecordFormatError(f"DT={dt_s:g} s is not positive on line {index + 1}")
             units_text = (match.group(4) or "").strip().lower()
             units = _UNITS.get(units_text.replace(" ", ""))
             if units is None:
-                raise ValueError(f"unknown acceleration units {units_text!r} on line {index + 1}")
+                raise RecordFormatError(f"unknown acceleration units {units_text!r} on line {index + 1}")
             data = _fixed_width_values(block, count, index + 2)
             info = AttribDict()
             info.text_header = text_header
@@ -166,11 +167,11 @@ def _read_v2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
             traces.append(trace)
         index += 1 + nlines
     if not traces:
-        raise ValueError("no 'points of accel data' block found")
+        raise RecordFormatError("no 'points of accel data' block found")
     # the first header states the channels the file holds ("(3 Chns of  3 at Sta)"): a file cut
     # between channels must not pass for a file of fewer channels
     stated = next((m for m in map(_CHANNELS_RE.search, lines[:25]) if m), None)
     if stated is not None and len(traces) < int(stated.group(1)):
-        raise ValueError(f"truncated: the header states {int(stated.group(1))} channels but "
+        raise RecordFormatError(f"truncated: the header states {int(stated.group(1))} channels but "
                          f"{len(traces)} were found")
     return Stream(traces)
