@@ -111,6 +111,10 @@ def test_motion_review_and_cache_errors_are_isolator_errors(tmp_path):
         with pytest.raises(errors.IsolatorError) as caught:
             call()
         assert type(caught.value) is errors.MotionError and "\n" not in str(caught.value)
+    from isolator.motion import resolve_record
+
+    with pytest.raises(errors.RecordNotFoundError, match="unknown example record 'example:none'"):
+        resolve_record("example:none")
     from isolator.review.parameters import resolve
     from isolator.review.target import load_target
 

@@ -5,6 +5,8 @@
 
 from __future__ import annotations
 
+from isolator.errors import RecordNotFoundError
+
 #: Record names that resolve without a file of the user's: (module, path parts, label).
 EXAMPLE_RECORDS = {
     "example:knet": ("obspy.io.nied", ("tests", "data", "test.knet"),
@@ -27,18 +29,20 @@ def resolve_record(argument: str) -> tuple[str, str]:
 
     Raises
     ------
-    ValueError
+    RecordNotFoundError
         An unknown ``example:`` name, or the bundled file missing from the installation.
     """
     if not argument.startswith("example:"):
         return argument, argument
     if argument not in EXAMPLE_RECORDS:
-        raise ValueError(f"unknown example record {argument!r} (choose one of: {', '.join(EXAMPLE_RECORDS)})")
+        raise RecordNotFoundError(f"unknown example record {argument!r} (choose one of: "
+                                  f"{', '.join(EXAMPLE_RECORDS)})", path=argument)
     import importlib
     from pathlib import Path
 
     module, parts, label = EXAMPLE_RECORDS[argument]
     path = Path(importlib.import_module(module).__file__).parent.joinpath(*parts)
     if not path.is_file():
-        raise ValueError(f"{argument}: the bundled file {path} is missing from this installation")
+        raise RecordNotFoundError(f"{argument}: the bundled file {path} is missing from this installation",
+                                  path=argument)
     return str(path), label
