@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import RecordInputError  # noqa: E402,F401 - defined with the other typed errors
+from isolator.errors import InvalidSystemError, RecordInputError  # noqa: F401 - defined with the other typed errors
 from isolator.solver import kernel as _kernel
 from isolator.solver.base import SolverResult
 from isolator.solver.notice import note_if_slow
-from isolator.solver.system import InvalidSystemError, System
+from isolator.solver.system import System
 
 #: The model this module is in the registry (:mod:`isolator.solver.models`), and why a scene needs it.
 MODEL_NAME = "1d-exact"
