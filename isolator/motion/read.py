@@ -366,15 +366,13 @@ def _check_path(path: Path) -> None:
 def read_header(path: str | Path) -> tuple[str, dict] | None:
     """(component label, provenance) of a PEER AT2 or USGS SMC file from its header alone.
 
-    A few lines are read, not the samples (about a millisecond, through :func:`obspy.read` with
-    ``headonly=True``): what a batch needs
+    A few lines are read, not the samples (a fraction of a millisecond, the format's obspy
+    reader with ``headonly=True``, :func:`isolator.io.read_header`): what a batch needs
     to find the files of one station among many.  None for another format, or for a file
     that is not what its suffix says or cannot be read (reading it in full says why).
     """
-    import obspy
-
     from isolator.io import claims
-    from isolator.io._common import literal_pattern
+    from isolator.io import read_header as read_format_header
 
     path = Path(path)
     fmt = _HEADER_FORMATS.get(path.suffix.lower())
@@ -385,7 +383,7 @@ def read_header(path: str | Path) -> tuple[str, dict] | None:
             return None
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            trace = obspy.read(literal_pattern(path), format=fmt, headonly=True)[0]
+            trace = read_format_header(path, fmt)
         label = component_label(trace)
         return label, _provenance(path, trace, label)
     except Exception:  # noqa: BLE001 - any reader failure: not a header we can use here
