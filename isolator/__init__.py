@@ -16,6 +16,8 @@ stay instant)::
     harmonic_thresholds(k, eta, mu_s, mu_k=None, alpha_max=6) -> RegimeThresholds
     System(mu_static, mu_kinetic, stiffness_per_mass, damping_per_mass, gravity_m_s2)
     read_ground_motion(path, component=None, units=None, ...) -> GroundMotion
+    read_motion(path, RecordOptions(component=..., pair=..., vertical=..., units=..., defaults=...))
+        -> GroundMotion or MotionPair;  motion.scaled_to_pga(pga_m_s2) (a pair: its larger horizontal)
     Design.from_toml(path) -> Design;  adapt(design, motion) -> Adaptation (System, (α, k, η))
     classify_record(response, point) / classify_harmonic(harmonic_response) -> Classification
     regime_map(eta, mu_s, mu_k, k_range=..., alpha_range=...) -> RegimeMap (cached)
@@ -37,11 +39,14 @@ _EXPORTS = {
     "SolverResult": "isolator.solver.models",
     "harmonic_response": "isolator.solver.harmonic",
     "HarmonicResponse": "isolator.solver.harmonic",
-    "harmonic_thresholds": "isolator.solver.harmonic",
+    "harmonic_thresholds": "isolator.solver.thresholds",
     "System": "isolator.solver.system",
     "pseudo_acceleration_spectrum": "isolator.solver.linear",
     "read_ground_motion": "isolator.motion",
+    "read_motion": "isolator.motion",
+    "RecordOptions": "isolator.motion",
     "GroundMotion": "isolator.motion",
+    "MotionPair": "isolator.motion",
     "Design": "isolator.design",
     "adapt": "isolator.adapter",
     "classify_record": "isolator.metrics",
@@ -51,6 +56,7 @@ _EXPORTS = {
     "Analysis": "isolator.analysis",
     "IsolatorError": "isolator.errors",
     "RecordError": "isolator.errors",
+    "MotionError": "isolator.errors",
 }
 
 __all__ = sorted(_EXPORTS)
