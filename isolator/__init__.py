@@ -25,8 +25,6 @@ stay instant)::
 
 from __future__ import annotations
 
-__version__ = "0.1.0"
-
 _EXPORTS = {
     "simulate_record": "isolator.solver.record",
     "Response": "isolator.solver.record",
@@ -63,6 +61,17 @@ __all__ = sorted(_EXPORTS)
 
 
 def __getattr__(name: str):
+    if name == "__version__":
+        # the installed distribution's version (pyproject.toml), looked up on first use only:
+        # importlib.metadata costs ~0.1-0.3 s to import, which `import isolator` must not pay
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            found = version("isolator")
+        except PackageNotFoundError:  # a source tree run without being installed
+            found = "0+unknown"
+        globals()["__version__"] = found
+        return found
     if name in _EXPORTS:
         import importlib
 

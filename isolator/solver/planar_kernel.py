@@ -1,6 +1,7 @@
 """The compiled planar (2-D) record loop: coupled friction, µ(v), n(t) = g + a_z, uplift.
 
-Pure arrays in, arrays out (numba, cached on disk).  The motion between events has
+Pure arrays in, arrays out (numba, cached on disk); its tuning constants and the pieces
+its loop repeats are in :mod:`planar_control`, compiled into it.  The motion between events has
 no closed form; it is integrated by the DOP853 steps of :mod:`planar_rk` with these
 rules, which make the answer depend on the record only through its piecewise-linear
 reading:
@@ -30,6 +31,22 @@ import math
 import numpy as np
 from numba import njit
 
+from isolator.solver.planar_control import (
+    ENTER_LOG,
+    KINK_STEP,
+    LAG_MAX_RAD,
+    LEAVE_LOG,
+    POLAR_VELOCITY_TOL,
+    R_FLOOR_FRACTION,
+    STABLE_CARTESIAN,
+    STABLE_POLAR,
+    come_to_rest,
+    enter_polar,
+    leave_log,
+    peak_in_step,
+    stop_ahead,
+    store_sample,
+)
 from isolator.solver.planar_dop853 import dop853_step
 from isolator.solver.planar_events import (
     PH_APPROACH,
@@ -40,7 +57,6 @@ from isolator.solver.planar_events import (
     PH_STUCK,
     acceleration_bound,
     acceleration_peak_rate,
-    at_rest,
     coast_to_rest,
     force_norm,
     force_scale,
@@ -53,7 +69,6 @@ from isolator.solver.planar_events import (
     land,
     land_on,
     lift_off,
-    locate_peak,
     mode_of,
     peak_value,
     rate_of_peak,
@@ -61,15 +76,12 @@ from isolator.solver.planar_events import (
     settled,
     start_lag,
     stuck_until,
-    tangent_bound,
     transmitted,
     velocity,
 )
 from isolator.solver.planar_layout import (
     EV_BREAKAWAY,
     EV_LANDING,
-    EV_REVERSAL,
-    EV_STICK,
     EV_UPLIFT,
     MAX_EVENTS_PER_INTERVAL,
     MAX_STEPS_PER_INTERVAL,
@@ -112,51 +124,6 @@ from isolator.solver.planar_rk import (
     rhs,
     step_factor,
 )
-
-#: approach-to-stop switch: enter LOG when d|V|/dt < -ENTER·(µn + |F|), leave above -LEAVE·(…)
-_ENTER = 0.02
-_LEAVE = 0.01
-#: ... and when the stop is predicted within this many steps (|V| < AHEAD·|d|V|/dt|·h).  One rather than
-#: two: the LOG form's first steps, where the direction has not settled, are its most expensive (ABY
-#: 691 → 199 LOG steps, 7 % less time on PTS, 13 % on PTS µ(v), 3 % on ABY and YER); the stop's
-#: instant is then as precise as the POLAR speed before it (≈ 1e-10 m/s over the deceleration: up to
-#: 9e-9 s on the bench pairs, against ≈ 2e-9 s), peaks, residuals and histories unchanged to 1e-11
-#: of the peak (docs/planar.md)
-_AHEAD = 1.0
-#: h·(|F| + µn)/|V| kept below this in Cartesian form (DOP853's real stability interval is ≈ [−6, 0])
-_STABLE = 12.0
-#: START form kept above SC_R_SWITCH_LO only while the slaved direction lags F by less than this [rad]
-_LAG_MAX = 1e-3
-#: POLAR steps kept below _STABLE_POLAR·r/|F| (the direction relaxes at the rate e·F/r).  The POLAR form
-#: carries every slide, slow or fast: it takes the same steps as the Cartesian form where both work, and
-#: each costs 255 ns against 430 (docs/planar.md, "Speed"); the Cartesian form is left for flight and as
-#: the hand-over to the LOG form.  3 rather than 5: DOP853's error estimate on the stiff direction grows
-#: fast beyond h·|F|/r ≈ 3 (a slow slide's steps settle at 2.5–3.5), and a step tried at 5 was rejected
-#: in most slow slides (ABY: 723 → 622 rejections, 1.5 % fewer steps)
-_STABLE_POLAR = 3.0
-#: the first POLAR step of a sample interval is tried at this fraction of the suggested step: the
-#: forcing's slope jumps at the sample, and with it the direction's lag behind F, whose relaxation the
-#: suggestion (from the interval before) did not see; a third of those steps was rejected at 1 (ABY:
-#: 622 → 446 rejections, 2.4 % fewer steps, YER 1.6 %, PTS 0.3 % more; 0.7 cost PTS 3 % more)
-_KINK_STEP = 0.8
-#: a stop whose direction has not settled at r_min (:func:`settled`) is finished in closed form from this
-#: fraction of r_min instead: its direction still turns by a finite angle per unit of ln r, which the
-#: finish along a fixed direction turns into an error of the stop instant ∝ r_min (measured: 6e-8 s on
-#: Hector Mine at r_min, 4e-15 s at this fraction of it).  So is a stop reached outside the LOG form
-_R_FLOOR_FRACTION = 1e-2
-#: the speed and direction of a slide (POLAR form) are held to this multiple of the velocity tolerance
-#: rtol·max|V|, X and the energies to rtol itself: 10-17 % fewer steps on the bench pairs, while every
-#: peak and residual stays within 5.5e-11 of the reference's peak (`python -m benchmarks.planar_accuracy`)
-#: and two samplings of 20 white-noise pairs agree to 2.7e-10 (100 gave 1.2e-10 and 7e-10: too near 1e-9;
-#: 20 gave 1.9e-9 on one of 100 such pairs, against 5.0e-10 at 10)
-_POLAR_VELOCITY_TOL = 10.0
-
-
-@njit(cache=True, _nrt=False, inline="always")
-def _stop_ahead(r, rdot, fscale, h):
-    """Does a slide at speed r [m/s] decelerate fast (ṙ < −_ENTER·(|F| + µn)) towards a stop predicted
-    within _AHEAD steps of h [s]?  Then the LOG form takes over (from POLAR form, through the Cartesian)."""
-    return rdot < -_ENTER * fscale and r < _AHEAD * (-rdot) * h
 
 
 @njit(cache=True, _nrt=False)
@@ -233,7 +200,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     r_min = scales[SC_R_MIN]
     r_switch = scales[SC_R_SWITCH]
     r_switch_lo = scales[SC_R_SWITCH_LO]
-    r_floor = r_min * _R_FLOOR_FRACTION  #: the finish of a stop outside the LOG form, and of an unsettled one
+    r_floor = r_min * R_FLOOR_FRACTION  #: the finish of a stop outside the LOG form, and of an unsettled one
     s_end = math.log(r_min)
     s_floor = math.log(r_floor)
     s_stop = s_end  #: where the current approach to a stop hands over to the closed-form finish
@@ -261,15 +228,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     same_state = False  #: the state has not moved since the last transmitted-acceleration check
     polar_ok = True
     failed_at = -1
-    out_x[0, 0] = 0.0
-    out_x[0, 1] = 0.0
-    out_v[0, 0] = 0.0
-    out_v[0, 1] = 0.0
-    out_a[0, 0] = ax[0]
-    out_a[0, 1] = ay[0]
-    out_en[0, 0] = 0.0
-    out_en[1, 0] = 0.0
-    out_en[2, 0] = 0.0
+    store_sample(0, 0.0, 0.0, ax[0], ay[0], y, out_x, out_v, out_a, out_en)  # at rest, y = 0
     for i in range(n - 1):
         if phase == PH_STUCK and holds_at(y[0], y[1], ax[i], ay[i], nz[i], prm) and holds_at(
                 y[0], y[1], ax[i + 1], ay[i + 1], nz[i + 1], prm):
@@ -277,16 +236,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if nz[i + 1] != nz[i]:  # κ = n/R changes: the work ½κ'|X|² of the vertical motion
                 y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (
                     kappa_of(nz[i + 1], prm) - kappa_of(nz[i], prm))
-            out_x[i + 1, 0] = y[0]
-            out_x[i + 1, 1] = y[1]
-            out_v[i + 1, 0] = 0.0
-            out_v[i + 1, 1] = 0.0
-            out_a[i + 1, 0] = ax[i + 1]
-            out_a[i + 1, 1] = ay[i + 1]
+            store_sample(i + 1, 0.0, 0.0, ax[i + 1], ay[i + 1], y, out_x, out_v, out_a, out_en)
             peak_a = max(peak_a, norm(ax[i + 1], ay[i + 1]))
-            out_en[0, i + 1] = y[4]
-            out_en[1, i + 1] = y[5]
-            out_en[2, i + 1] = y[6]
             continue
         hi = t[i + 1] - t[i]
         t0 = t[i]
@@ -330,7 +281,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         atol[6] = atol[4]
         events_here = 0
         if phase == PH_POLAR and h_sugg > 0.0:
-            h_sugg *= _KINK_STEP
+            h_sugg *= KINK_STEP
         steps_here = 0
         while tau < hi:
             steps_here += 1
@@ -398,22 +349,18 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 fscale = force_scale(y[7], y, r, prm, frc)
                 if x <= s_stop and s_stop > s_floor and not settled(y[7], y, f, prm, frc):
                     s_stop = s_floor  # the direction still turns: on to the old, deeper finish
-                if x <= s_stop or rdot > -_LEAVE * fscale:
+                if x <= s_stop or rdot > -LEAVE_LOG * fscale:
                     if x > s_stop:
                         # the speed no longer falls fast: back to Cartesian form (a turn, not a stop)
-                        y[2] *= r
-                        y[3] *= r
-                        x = y[7]
+                        x = leave_log(tau, y, r, prm, frc, f)
                         phase = PH_SLIDE
-                        rhs(CARTESIAN, tau, y, prm, frc, f)
                         h_sugg = r / max(fscale, 1e-300)
                         continue
                 else:
                     ds = max(ds_sugg, s_stop - x)
-                    # the stop instant is error-controlled too, to what the POLAR form holds the speed to,
-                    # over the deceleration: it is no more precise than that speed before it, and rtol·hi
-                    # alone spent LOG steps on nothing (ABY 203 → 162 LOG steps, 0.8 % fewer in all)
-                    speed_tol = _POLAR_VELOCITY_TOL * rtol * max(peak_v, scales[SC_V_FLOOR])
+                    # the stop instant is error-controlled too, to what the POLAR form holds the speed to over
+                    # the deceleration: it is no more precise than that speed before it (docs/dev-notes.md)
+                    speed_tol = POLAR_VELOCITY_TOL * rtol * max(peak_v, scales[SC_V_FLOOR])
                     atol[7] = max(rtol * hi, speed_tol / max(-rdot, 1e-300))
                     ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
                     n_steps += 1
@@ -424,11 +371,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         just_rejected = True
                         same_state = True  # a rejected step leaves the state as it was
                         if abs(ds_sugg) < 1e-9:
-                            y[2] *= r
-                            y[3] *= r
-                            x = y[7]
+                            x = leave_log(tau, y, r, prm, frc, f)
                             phase = PH_SLIDE
-                            rhs(CARTESIAN, tau, y, prm, frc, f)
                             h_sugg = r / max(fscale, 1e-300)
                         continue
                     hit = False
@@ -442,16 +386,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         hit = True
                     a_lo, g0 = acceleration_peak_rate(LOG, x, y, f, prm, frc)
                     a_hi, g1 = acceleration_peak_rate(LOG, x + ds, ynew, fnew, prm, frc)
-                    if g0 > 0.0 >= g1 and tangent_bound(a_lo, g0, a_hi, g1, ynew[7] - y[7]) > peak_a:
-                        peak_a = max(peak_a, locate_peak(2, LOG, x, y, f, ds, a_lo, g0, a_hi, g1, ynew[7] - y[7],
-                                                         prm, frc, yb, fb, atol, rtol, work))
-                    g0 = rate_of_peak(0, LOG, y, f)
-                    g1 = rate_of_peak(0, LOG, ynew, fnew)
-                    v0 = norm(y[0], y[1])
-                    v1 = norm(ynew[0], ynew[1])
-                    if g0 > 0.0 >= g1 and tangent_bound(v0, g0, v1, g1, ynew[7] - y[7]) > peak_x:
-                        peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, ds, v0, g0, v1, g1, ynew[7] - y[7], prm,
-                                                          frc, yb, fb, atol, rtol, work))
+                    peak_a = peak_in_step(peak_a, 2, LOG, x, y, f, ds, a_lo, g0, a_hi, g1, ynew[7] - y[7], prm, frc,
+                                          yb, fb, atol, rtol, work)
+                    peak_x = peak_in_step(peak_x, 0, LOG, x, y, f, ds, norm(y[0], y[1]), rate_of_peak(0, LOG, y, f),
+                                          norm(ynew[0], ynew[1]), rate_of_peak(0, LOG, ynew, fnew), ynew[7] - y[7],
+                                          prm, frc, yb, fb, atol, rtol, work)
                     slip += ynew[7] - y[7]
                     x += ds
                     y[:] = ynew
@@ -473,9 +412,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 tau += dtt
                 slip += dtt
                 peak_x = max(peak_x, norm(y[0], y[1]))
-                phase = at_rest(tau, y, prm, frc, f)
+                phase, n_ev = come_to_rest(tau, t0 + tau, y, prm, frc, f, ev_t, ev_k, n_ev)
                 x = tau
-                n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                 events_here += 1
                 h_sugg = 0.01 * hi
             else:
@@ -486,7 +424,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fscale = fm + friction_force(tau, r, prm, frc)
                     rdot = f[7]
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
-                    if (r <= r_floor and rdot <= 0.0) or _stop_ahead(r, rdot, fscale, h_try):
+                    if (r <= r_floor and rdot <= 0.0) or stop_ahead(r, rdot, fscale, h_try):
                         # a stop, or the approach to one: the Cartesian branch takes over (and, until it has
                         # taken a step, does not hand back: rounding must not ping-pong)
                         polar_ok = False
@@ -511,10 +449,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             tau += dtt
                             slip += dtt
                             peak_x = max(peak_x, norm(y[0], y[1]))
-                        phase = at_rest(tau, y, prm, frc, f)
+                        phase, n_ev = come_to_rest(tau, t0 + tau, y, prm, frc, f, ev_t, ev_k, n_ev)
                         x = tau
-                        n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau,
-                                             EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                         events_here += 1
                         h_sugg = 0.01 * hi
                         if events_here > MAX_EVENTS_PER_INTERVAL:
@@ -522,7 +458,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                             phase = PH_STUCK
                             break
                         continue
-                    if r < 0.5 * r_switch_lo and not rdot < -_ENTER * fscale:
+                    if r < 0.5 * r_switch_lo and not rdot < -ENTER_LOG * fscale:
                         # too slow for the Cartesian form (the direction is stiff): slaved-direction form
                         # (a slide that decelerates goes on to the LOG form below, which locates its stop)
                         y[2] = r
@@ -531,7 +467,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         rhs(START, tau, y, prm, frc, f)
                         continue
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
-                    if _stop_ahead(r, rdot, fscale, h_try):
+                    if stop_ahead(r, rdot, fscale, h_try):
                         y[2] /= r
                         y[3] /= r
                         y[7] = tau
@@ -546,23 +482,20 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         x = tau
                         rhs(CARTESIAN, tau, y, prm, frc, f)
                     elif polar_ok:
-                        y[2] /= r
-                        y[3] /= r
-                        y[7] = r
+                        enter_polar(tau, y, y[2], y[3], r, prm, frc, f)
                         phase = PH_POLAR
-                        rhs(POLAR, tau, y, prm, frc, f)
                         continue
                 hmax = target - tau
                 h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
                 if phase == PH_SLIDE:
                     # slow sliding: the direction relaxes at the rate ~ µn/|V|; DOP853 is
                     # stable for h·rate up to ≈ 6, so stay inside rather than be rejected
-                    h_stable = _STABLE * r / max(fscale, 1e-300)
+                    h_stable = STABLE_CARTESIAN * r / max(fscale, 1e-300)
                     if h_stable < h:
                         h = h_stable
                         n_lim += 1
                 elif phase == PH_POLAR:
-                    h_stable = _STABLE_POLAR * y[7] / max(fm, 1e-300)
+                    h_stable = STABLE_POLAR * y[7] / max(fm, 1e-300)
                     if h_stable < h:
                         h = h_stable
                         n_lim += 1
@@ -570,7 +503,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 atol[7] = np.inf
                 atol[3] = atol[2] if mode == CARTESIAN else np.inf
                 if mode == POLAR:
-                    atol[2] *= _POLAR_VELOCITY_TOL
+                    atol[2] *= POLAR_VELOCITY_TOL
                     atol[7] = atol[2]
                     atol[2] /= y[7]
                     atol[3] = atol[2]
@@ -592,9 +525,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
                     peak_x = max(peak_x, norm(y[0], y[1]))
-                    phase = at_rest(tau, y, prm, frc, f)
+                    phase, n_ev = come_to_rest(tau, t0 + tau, y, prm, frc, f, ev_t, ev_k, n_ev)
                     x = tau
-                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_STICK if phase == PH_STUCK else EV_REVERSAL)
                     events_here += 1
                     h_sugg = 0.01 * hi
                     if events_here > MAX_EVENTS_PER_INTERVAL:
@@ -615,26 +547,22 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
-                turns = 0  #: bit 1: |X| may peak inside the step, bit 2: |V| may
-                for which in range(2):
-                    g0 = rate_of_peak(which, mode, y, f)
-                    g1 = rate_of_peak(which, mode, ynew, fnew)
-                    if g0 > 0.0 >= g1:
-                        turns |= 1 << which
-                        v0 = peak_value(which, mode, y)
-                        v1 = peak_value(which, mode, ynew)
-                        if tangent_bound(v0, g0, v1, g1, h) > (peak_x if which == 0 else peak_v):
-                            best = locate_peak(which, mode, tau, y, f, h, v0, g0, v1, g1, h, prm, frc, yb, fb, atol,
-                                               rtol, work)
-                            if which == 0:
-                                peak_x = max(peak_x, best)
-                            else:
-                                peak_v = max(peak_v, best)
+                # |X| and |V| may peak inside the step where the rates of their squares go from + to −
+                gx0, gx1 = rate_of_peak(0, mode, y, f), rate_of_peak(0, mode, ynew, fnew)
+                gv0, gv1 = rate_of_peak(1, mode, y, f), rate_of_peak(1, mode, ynew, fnew)
+                x_turns = gx0 > 0.0 >= gx1
+                v_turns = gv0 > 0.0 >= gv1
+                if x_turns:
+                    peak_x = peak_in_step(peak_x, 0, mode, tau, y, f, h, peak_value(0, mode, y), gx0,
+                                          peak_value(0, mode, ynew), gx1, h, prm, frc, yb, fb, atol, rtol, work)
+                if v_turns:
+                    peak_v = peak_in_step(peak_v, 1, mode, tau, y, f, h, peak_value(1, mode, y), gv0,
+                                          peak_value(1, mode, ynew), gv1, h, prm, frc, yb, fb, atol, rtol, work)
                 if mode != START:
                     # |a| ≤ µ n + κ|X| + c|V| over the step (|X| and |V| at most their values at the ends, or the
                     # running peaks where they may peak inside): not above the peak so far, nothing to locate
-                    x_top = peak_x if turns & 1 else max(norm(y[0], y[1]), norm(ynew[0], ynew[1]))
-                    v_top = peak_v if turns & 2 else max(peak_value(1, mode, y), peak_value(1, mode, ynew))
+                    x_top = peak_x if x_turns else max(norm(y[0], y[1]), norm(ynew[0], ynew[1]))
+                    v_top = peak_v if v_turns else max(peak_value(1, mode, y), peak_value(1, mode, ynew))
                     if acceleration_bound(frc[4] + frc[5] * tau, frc[4] + frc[5] * (tau + h), x_top, v_top,
                                           prm) <= peak_a:
                         acc_i = -1  # the end's value is not computed (the next step computes its start)
@@ -648,9 +576,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         a_end, g_end = acceleration_peak_rate(mode, tau + h, ynew, fnew, prm, frc)
                         acc_i = i
                         acc_tau = target if h == hmax else tau + h
-                        if g0 > 0.0 >= g_end and tangent_bound(a_lo, g0, a_end, g_end, h) > peak_a:
-                            peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm,
-                                                             frc, yb, fb, atol, rtol, work))
+                        peak_a = peak_in_step(peak_a, 2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm, frc, yb,
+                                              fb, atol, rtol, work)
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
@@ -677,41 +604,24 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                 x = tau
                 polar_ok = True
                 if phase == PH_START and (y[2] >= r_switch or (
-                        y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > _LAG_MAX)):
+                        y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > LAG_MAX_RAD)):
                     v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
-                    y[7] = y[2]
-                    y[2] = v1 / y[7]
-                    y[3] = v2 / y[7]
+                    enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
                     phase = PH_POLAR
-                    rhs(POLAR, tau, y, prm, frc, f)
         if failed_at >= 0:
             break
-        out_x[i + 1, 0] = y[0]
-        out_x[i + 1, 1] = y[1]
         v1, v2 = velocity(phase, x, hi, y, prm, frc)
-        out_v[i + 1, 0] = v1
-        out_v[i + 1, 1] = v2
         if phase == PH_STUCK:
             a1, a2 = ax[i + 1], ay[i + 1]
         else:
             a1, a2 = transmitted(phase, x, hi, y, prm, frc)
-        out_a[i + 1, 0] = a1
-        out_a[i + 1, 1] = a2
+        store_sample(i + 1, v1, v2, a1, a2, y, out_x, out_v, out_a, out_en)
         peak_a = max(peak_a, norm(a1, a2))
-        out_en[0, i + 1] = y[4]
-        out_en[1, i + 1] = y[5]
-        out_en[2, i + 1] = y[6]
     if failed_at >= 0:
-        for j in range(failed_at + 1, n):
-            out_x[j, 0] = np.nan
-            out_x[j, 1] = np.nan
-            out_v[j, 0] = np.nan
-            out_v[j, 1] = np.nan
-            out_a[j, 0] = np.nan
-            out_a[j, 1] = np.nan
-            out_en[0, j] = np.nan
-            out_en[1, j] = np.nan
-            out_en[2, j] = np.nan
+        out_x[failed_at + 1:] = np.nan
+        out_v[failed_at + 1:] = np.nan
+        out_a[failed_at + 1:] = np.nan
+        out_en[:, failed_at + 1:] = np.nan
     if n_ev > ev_t.shape[0]:
         status |= STATUS_EVENTS_TRUNCATED
     summary[S_PEAK_X] = peak_x
