@@ -1,10 +1,9 @@
 """The compiled planar (2-D) record loop: coupled friction, µ(v), n(t) = g + a_z, uplift.
 
-Pure arrays in, arrays out (numba, cached on disk); its tuning constants and the pieces
-its loop repeats are in :mod:`planar_control`, compiled into it.  The motion between events has
-no closed form; it is integrated by the DOP853 steps of :mod:`planar_rk` with these
-rules, which make the answer depend on the record only through its piecewise-linear
-reading:
+Pure arrays in, arrays out (numba, cached on disk); its tuning constants and the pieces its loop
+repeats are in :mod:`planar_control`, compiled into it.  The motion between events has no closed
+form; the DOP853 steps of :mod:`planar_rk` integrate it with these rules, which make the answer
+depend on the record only through its piecewise-linear reading:
 
 * no step crosses a sample (the forcing has a kink there) nor an instant where
   n = g + a_z changes sign (exact: n is linear in the interval);
@@ -19,8 +18,7 @@ reading:
   instant τ is held in the LOG form, as before it, to the POLAR speed's tolerance over
   the deceleration: ~1e-9–1e-8 s); there the stick test decides: stick, or restart in
   the direction of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
-* peaks of |X| and |V| between step ends are located (secant on X·V and V·A with
-  DOP853 sub-steps from the step start);
+* peaks of |X|, |V| and |a| between step ends are located (secant, DOP853 sub-steps from the step start);
 * loops are bounded: steps per interval, events per interval (chatter guard).
 """
 
@@ -618,10 +616,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         store_sample(i + 1, v1, v2, a1, a2, y, out_x, out_v, out_a, out_en)
         peak_a = max(peak_a, norm(a1, a2))
     if failed_at >= 0:
-        out_x[failed_at + 1:] = np.nan
-        out_v[failed_at + 1:] = np.nan
-        out_a[failed_at + 1:] = np.nan
-        out_en[:, failed_at + 1:] = np.nan
+        for j in range(failed_at + 1, n):
+            out_x[j, 0] = np.nan
+            out_x[j, 1] = np.nan
+            out_v[j, 0] = np.nan
+            out_v[j, 1] = np.nan
+            out_a[j, 0] = np.nan
+            out_a[j, 1] = np.nan
+            out_en[0, j] = np.nan
+            out_en[1, j] = np.nan
+            out_en[2, j] = np.nan
     if n_ev > ev_t.shape[0]:
         status |= STATUS_EVENTS_TRUNCATED
     summary[S_PEAK_X] = peak_x
