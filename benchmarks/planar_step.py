@@ -7,7 +7,7 @@ Usage (from the repository root)::
 Times ``isolator.solver.planar_dop853.dop853_step`` called in a compiled loop on a fixed
 state (a friction pendulum R = 2 m, µ = 0.06, a ground acceleration ramp), the best of
 ``--repeat`` runs: the floor of what a step costs, without the record loop around it.
-docs/planar.md quotes its output.
+docs/performance.md quotes its output.
 """
 
 from __future__ import annotations

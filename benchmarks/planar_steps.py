@@ -18,7 +18,7 @@ Cartesian and POLAR steps, how the step h compares with the time scales of slow 
   nearest singularity of the solution, which bounds the step of any method of order 8
   (explicit or implicit) at a fixed tolerance.
 
-docs/planar.md ("Attempted: …") quotes its output.
+docs/dev-notes.md quotes its output.
 """
 
 from __future__ import annotations

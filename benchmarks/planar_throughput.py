@@ -11,7 +11,7 @@ prints the median solver time (numba machine code already loaded), samples per
 second, the number of DOP853 steps (and of them: rejected, in the START form after a
 break-away, in the LOG form approaching a stop; plus the sub-steps that land on
 instants and locate peaks), the events, the fraction of the record spent sliding and
-the solver time per DOP853 step or sub-step.  docs/planar.md quotes its output.
+the solver time per DOP853 step or sub-step.  docs/performance.md quotes its output.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 Warm: the first run (numba's disk cache loaded, matplotlib imported) is not counted; then the
 median of ``--runs`` runs, each from reading the suite to the written PDF and JSON, without the
-analysis cache (every analysis recomputed).  Prints a table; docs/review.md quotes it.
+analysis cache (every analysis recomputed).  Prints a table; docs/performance.md quotes it.
 
     PYTHONPATH=$PWD python benchmarks/review_time.py --jobs 2 --runs 5
 """

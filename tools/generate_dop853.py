@@ -8,7 +8,7 @@ Usage (from the repository root)::
 Why generated: the step is 12 stages of a Runge–Kutta tableau on 8 state components.
 Written as loops over arrays it spends most of its time on loads, stores and zero
 coefficients; unrolled with the coefficients as literals, numba keeps every stage in
-registers (1.5× faster per step, see docs/planar.md).  The coefficients are scipy's
+registers (1.5× faster per step, see docs/dev-notes.md).  The coefficients are scipy's
 (``scipy.integrate._ivp.dop853_coefficients``, Hairer's DOP853), printed with ``repr``
 so that the literals are the same doubles.  ``tests/solver/test_planar_dop853.py``
 checks that the module is up to date and that a step equals the loop form of the same
