@@ -132,7 +132,8 @@ def _elf(design, mu, target, code, params) -> dict:
 
 def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = "common", jobs: int | None = None,
                scheduler: str | None = None, parameters: dict | None = None, cache_dir=None,
-               nominal: bool = True, rotd50_points: int = 0, paper_map_resolution: int = 0) -> Review:
+               nominal: bool = True, rotd50_points: int = 0, paper_map_resolution: int = 0,
+               spectra_source=None, analysis_cache=None) -> Review:
     """Review a design over a suite scaled to a target, at its lower and upper property bounds.
 
     Parameters
@@ -158,6 +159,12 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     paper_map_resolution : int
         Grid points per axis of the paper's harmonic regime map around the pairs' equivalent points
         (context only, cached on disk; 0: none).
+    spectra_source : callable, optional
+        ``(pair, periods_s) -> dict`` returning what :func:`~isolator.review.spectra.pair_spectra` returns for
+        the pair at those periods (a design search shares one memo of spectra over its candidates).
+    analysis_cache : object, optional
+        An analysis cache with ``get(key)``/``put(key, result)`` used instead of the folder ``cache_dir``
+        (a design search shares one in memory over the candidates of equal analyses).
 
     Returns
     -------
@@ -215,7 +222,8 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     on_grid, on_plot = [], []
     for pair in suite.pairs:
         both = np.concatenate([grid, plot])
-        s = pair_spectra(pair.ax_m_s2, pair.ay_m_s2, pair.dt_s, both)
+        s = (spectra_source(pair, both) if spectra_source is not None
+             else pair_spectra(pair.ax_m_s2, pair.ay_m_s2, pair.dt_s, both))
         split = grid.size
         if code == "asce7-22":
             on_grid.append(s["rotd100_m_s2"][:split] / g)
@@ -252,7 +260,8 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
             tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": pair.az_m_s2, "dt": pair.dt_s,
                                  "factor": float(f), "design": dp})
     start = time.perf_counter()
-    results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler, cache=Cache(cache_dir))
+    results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler,
+                                     cache=analysis_cache if analysis_cache is not None else Cache(cache_dir))
     timing["analyses"] = time.perf_counter() - start
     timing["analyses_cached"] = n_cached
     timing["analyses_total"] = len(tasks)
