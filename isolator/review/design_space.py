@@ -75,7 +75,8 @@ COLUMNS = ("candidate", "error", "passes", "first_failing_check", "n_failing_che
            "base_shear_governing_bound", "elf_total_displacement_m", "superstructure_shear_over_W",
            "restoring_force_over_W", "restoring_force_limit_over_W", "restoring_force_margin",
            "residual_displacement_m", "period_range_lo_s", "period_range_hi_s", "scale_factor_min",
-           "scale_factor_max", "paper_k", "paper_alpha", "review_seconds", "key")
+           "scale_factor_max", "paper_k", "paper_alpha", "paper_eta", "analyses_cached", "review_seconds",
+           "spectra_seconds", "analyses_seconds", "key")
 
 
 class DesignSearchError(IsolatorError):
@@ -306,7 +307,10 @@ def candidate_row(review, values: dict) -> dict:
     design = review.design
     nominal = review.analyses.get("nominal") or review.analyses.get("lower") or {}
     g = design.gravity_m_s2
-    points = [(design.stiffness_per_mass * a["paper_A0_m"] / g, a["paper_alpha"]) for a in nominal.values()
+    # the paper's dimensionless point of each pair (k = K A0/(M g), α = PGA/(µs g), η = c sqrt(A0/g)), as the
+    # review's page 5 places them
+    points = [(design.stiffness_per_mass * a["paper_A0_m"] / g, a["paper_alpha"],
+               design.damping_per_mass * math.sqrt(a["paper_A0_m"] / g)) for a in nominal.values()
               if "error" not in a and math.isfinite(a.get("paper_A0_m", math.nan)) and a["paper_A0_m"] > 0]
     factors = list(r["scale_factors"].values())
     row = {
@@ -338,6 +342,7 @@ def candidate_row(review, values: dict) -> dict:
         "scale_factor_max": max(factors),
         "paper_k": float(np.median([p[0] for p in points])) if points else None,
         "paper_alpha": float(np.median([p[1] for p in points])) if points else None,
+        "paper_eta": float(np.median([p[2] for p in points])) if points else None,
     }
     row.update({f"check_{cid}": s for cid, s in status.items()})
     return row
@@ -376,19 +381,23 @@ def review_group(context: dict, group: list[dict], memo: SpectraMemo | None = No
     cache = MemoryCache()
     rows = []
     for item in group:
-        start = time.perf_counter()
+        start, spectra_before = time.perf_counter(), memo.seconds
         values, mapping = item["values"], item["mapping"]
+        analyses_s = 0.0
         try:
             design = Design.from_mapping(mapping, source=context["source"])
             review = run_review(design, context["target"], context["suite"], code=context["code"],
                                 scaling=context["scaling"], jobs=1, parameters=context["parameters"],
                                 spectra_source=memo, analysis_cache=cache)
             row = candidate_row(review, values)
+            analyses_s = review.timing.get("analyses", 0.0)
+            row["analyses_cached"] = review.timing.get("analyses_cached", 0)
         except (DesignError, ReviewError) as err:
             row = error_row(values, mapping, " ".join(str(err).split()))
         except (ValueError, ArithmeticError) as err:  # a numerical failure of one candidate is its row, not a crash
             row = error_row(values, mapping, f"{type(err).__name__}: {' '.join(str(err).split())}")
-        row.update(candidate=item["index"], key=item["key"], review_seconds=time.perf_counter() - start)
+        row.update(candidate=item["index"], key=item["key"], review_seconds=time.perf_counter() - start,
+                   spectra_seconds=memo.seconds - spectra_before, analyses_seconds=analyses_s)
         rows.append(row)
     memo.forget()
     return rows
@@ -530,6 +539,7 @@ class DesignSearch:
     parameters: dict
     target_name: str
     suite_source: str
+    mappings: list = field(default_factory=list)  #: the design table of each candidate
     n_resumed: int = 0
     n_lost: int = 0
     timing: dict = field(default_factory=dict)
@@ -729,7 +739,7 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
     ordered = [rows[c.index] for c in candidates]
     return DesignSearch(design=design, vary=ranges, objective=objective, rows=ordered, code=code, scaling=scaling,
                         parameters=dict(parameters or {}), target_name=getattr(target, "name", ""),
-                        suite_source=str(suite.source), n_resumed=n_resumed, n_lost=n_lost,
+                        suite_source=str(suite.source), mappings=[c.mapping for c in candidates], n_resumed=n_resumed, n_lost=n_lost,
                         timing={"reviews": time.perf_counter() - clock})
 
 
@@ -788,3 +798,159 @@ def chart_data(result: DesignSearch) -> dict:
 
 def _number(value) -> float:
     return float(value) if isinstance(value, (int, float)) and value is not None else math.nan
+
+
+def paper_context(data: dict, result: DesignSearch, resolution: int = 30, jobs: int | None = None) -> dict | None:
+    """The paper's harmonic regime map behind the candidates' (k, α) points (Nicolas 2017, Figs. 5–7).
+
+    The map is drawn at the recommended candidate's nominal friction (the first analysed candidate's when none
+    passes) with η = 0 unless the design has a damper (then the median over the suite, as the review does).
+    In the paper's variables the map depends only on η and µk/µs, so it is every candidate's map when these
+    are equal (the usual case: µs follows µk by the design's ratio); ``shared`` says whether they are.
+    """
+    from isolator.maps import design_frame, regime_map
+
+    analysed = [r for r in result.rows if r.get("error") is None and r.get("paper_k") is not None]
+    if resolution <= 0 or not analysed:
+        return None
+    anchor = next((r for r in analysed if r["candidate"] == data["recommended_candidate"]), analysed[0])
+    ratios = {round(r["mu_kinetic"] / r["mu_static"], 12) for r in analysed}
+    design = result.design
+    if design.damping_Ns_per_m > 0:
+        eta_note = "η from the design's damper (median over the suite)"
+        eta = float(anchor.get("paper_eta") or 0.0)
+    else:
+        eta_note, eta = "no damper: η = 0", 0.0
+    frame = design_frame(max(r["paper_alpha"] for r in analysed), max(r["paper_k"] for r in analysed))
+    rmap = regime_map(eta, anchor["mu_static"], anchor["mu_kinetic"], k_range=frame["k"],
+                      alpha_range=frame["alpha"], n_k=resolution, n_alpha=resolution, workers=jobs)
+    return {"map": rmap, "eta": eta, "mu_static": anchor["mu_static"], "mu_kinetic": anchor["mu_kinetic"],
+            "shared": len(ratios) == 1 and design.damping_Ns_per_m == 0, "note": eta_note}
+
+
+# ---- outputs -------------------------------------------------------------------------------------
+
+def output_paths(pdf_path) -> dict:
+    """Where a search writes: the chart PDF, the tables beside it, the recommended review, the row store."""
+    pdf = Path(pdf_path)
+    stem = pdf.with_suffix("")
+    return {"chart": pdf, "csv": stem.with_suffix(".csv"), "parquet": stem.with_suffix(".parquet"),
+            "json": stem.with_suffix(".json"), "recommended_pdf": Path(f"{stem}.recommended.pdf"),
+            "recommended_json": Path(f"{stem}.recommended.json"), "store": pdf.parent / f".{pdf.stem}.design"}
+
+
+def ranking_columns(result: DesignSearch) -> list[str]:
+    """Columns of the chart's ranking page."""
+    column = OBJECTIVES[result.objective][0]
+    first = [*result.varied_keys, column]
+    rest = [c for c in ("design_total_displacement_m", "base_shear_coefficient", "restoring_force_margin",
+                        "governing_bound") if c not in first]
+    return [*first, *rest]
+
+
+def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str = "", jobs: int | None = None,
+                  scheduler: str | None = None, paper_map_resolution: int = 30) -> dict:
+    """Write the table (CSV, Parquet, JSON), the chart PDF and the recommended candidate's full review.
+
+    Every file is written atomically.  The recommended candidate is reviewed again by
+    :func:`~isolator.review.run.run_review` with the review command's extras (RotD50, the paper's map) and
+    written by :func:`~isolator.report.review_pages.write_review_pdf`; its numbers are those of its row.
+    When no candidate passes, a recommended review left by an earlier run is removed (it would mislead).
+
+    Returns
+    -------
+    dict
+        The search JSON (:meth:`DesignSearch.to_dict`) with ``outputs`` and ``timing_s`` completed.
+    """
+    from isolator.atomic import atomic_path
+    from isolator.design import Design
+    from isolator.report.design_chart import write_design_chart
+    from isolator.report.review_pages import write_review_pdf
+    from isolator.review.run import run_review
+    from isolator.serialize import json_safe
+
+    paths = output_paths(pdf_path)
+    timing = dict(result.timing)
+    start = time.perf_counter()
+    table = result.table()
+    with atomic_path(paths["csv"]) as tmp:
+        table.to_csv(tmp, index=False)
+    with atomic_path(paths["parquet"]) as tmp:
+        _parquet_ready(table).to_parquet(tmp, index=False)
+    timing["tables"] = time.perf_counter() - start
+
+    start = time.perf_counter()
+    data = chart_data(result)
+    data["paper_map"] = paper_context(data, result, paper_map_resolution, jobs)
+    timing["paper_map"] = time.perf_counter() - start
+    start = time.perf_counter()
+    best = result.recommended()
+    column = OBJECTIVES[result.objective][0]
+    lines = [("objective", f"{result.objective}: least {OBJECTIVES[result.objective][1]}"),
+             ("candidates", f"{len(result.rows)} ({sum(bool(r.get('passes')) for r in result.rows)} pass, "
+                            f"{sum(r.get('error') is not None for r in result.rows)} not analysed)"),
+             ("code, scaling", f"{result.code}, {result.scaling}")]
+    if best is None:
+        lines.append(("recommended", "none: no candidate passes every check"))
+    else:
+        lines += [("recommended", ", ".join(f"{k} = {best[k]:.4g}" for k in result.varied_keys)),
+                  (column, f"{best[column]:.4g}"),
+                  ("D_M, D_TM", f"{best['design_displacement_m']:.4g} m, {best['design_total_displacement_m']:.4g} m"),
+                  ("V_b/W", f"{best['base_shear_coefficient']:.4g} ({best['base_shear_governing_bound']} bound)")]
+    failing = {}
+    for r in result.rows:
+        if r.get("first_failing_check"):
+            failing[r["first_failing_check"]] = failing.get(r["first_failing_check"], 0) + 1
+    lines += [(f"first fails: {k}", f"{n} candidates") for k, n in sorted(failing.items(), key=lambda kv: -kv[1])]
+    if data["paper_map"] is not None:
+        pm = data["paper_map"]
+        lines.append(("paper's map", f"µs {pm['mu_static']:.3g}, µk {pm['mu_kinetic']:.3g}, {pm['note']}"
+                      + ("; the same for every candidate" if pm["shared"] else "; at the recommended candidate")))
+    ranked = sorted((r for r in result.rows if r.get("passes") and r.get("error") is None),
+                    key=lambda r: (_number(r.get(column)), r["candidate"]))
+    subtitle = f"{result.design.name} | {result.target_name} | {result.suite_source}"
+    pages = write_design_chart(paths["chart"], data, {"subtitle": subtitle, "lines": lines}, ranked,
+                               ranking_columns(result))
+    timing["chart"] = time.perf_counter() - start
+
+    start = time.perf_counter()
+    review_out = None
+    if best is not None:
+        review = run_review(Design.from_mapping(result.mappings[best["candidate"]], source=str(result.design.source)),
+                            target, suite, code=result.code, scaling=result.scaling, jobs=jobs, scheduler=scheduler,
+                            parameters=result.parameters, rotd50_points=12, paper_map_resolution=paper_map_resolution,
+                            cache_dir=paths["store"] / "recommended")
+        review_out = write_review_pdf(review, paths["recommended_pdf"], command=command)
+    else:
+        for stale in (paths["recommended_pdf"], paths["recommended_json"]):
+            if stale.is_file():
+                stale.unlink()
+    timing["recommended_review"] = time.perf_counter() - start
+
+    result.timing = timing
+    out = result.to_dict()
+    out["outputs"] = {"chart": str(paths["chart"]), "chart_pages": pages, "csv": str(paths["csv"]),
+                      "parquet": str(paths["parquet"]), "json": str(paths["json"]),
+                      "recommended_pdf": str(paths["recommended_pdf"]) if review_out else None,
+                      "recommended_json": str(paths["recommended_json"]) if review_out else None,
+                      "store": str(paths["store"])}
+    out["command"] = command
+    with atomic_path(paths["json"]) as tmp:
+        tmp.write_text(json.dumps(json_safe(out), indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    return out
+
+
+def _parquet_ready(table):
+    """Object columns typed for Parquet (text, booleans or numbers; None stays missing)."""
+    out = table.copy()
+    for column in out.columns:
+        if out[column].dtype != object:
+            continue
+        values = out[column].dropna()
+        if len(values) and all(isinstance(v, bool) for v in values):
+            out[column] = out[column].astype("boolean")
+        elif len(values) and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
+            out[column] = out[column].astype(float)
+        else:
+            out[column] = out[column].astype("string")
+    return out
