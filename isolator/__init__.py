@@ -21,6 +21,7 @@ stay instant)::
     Design.from_toml(path) -> Design;  adapt(design, motion) -> Adaptation (System, (α, k, η))
     classify_record(response, point) / classify_harmonic(harmonic_response) -> Classification
     regime_map(eta, mu_s, mu_k, k_range=..., alpha_range=...) -> RegimeMap (cached)
+    design_search(design, target, suite, ["radius_m=1.5:4.5:13", ...]) -> DesignSearch (every candidate reviewed)
 """
 
 from __future__ import annotations
@@ -50,6 +51,7 @@ _EXPORTS = {
     "classify_record": "isolator.metrics",
     "classify_harmonic": "isolator.metrics",
     "regime_map": "isolator.maps",
+    "design_search": "isolator.review.design_space",
     "analyse": "isolator.analysis",
     "Analysis": "isolator.analysis",
     "IsolatorError": "isolator.errors",

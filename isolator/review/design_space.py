@@ -954,3 +954,7 @@ def _parquet_ready(table):
         else:
             out[column] = out[column].astype("string")
     return out
+
+
+#: the public name (``isolator.design_search``)
+design_search = search

@@ -1,0 +1,99 @@
+"""Time of a design search: the README example's suite over R × µk, every candidate reviewed, with its chart.
+
+The bundled example (``--target example --suite example --isolator data/example_review.toml``: 8 pairs)
+over ``--radii`` radii from 1.5 to 4.5 m × ``--mus`` kinetic friction coefficients from 0.03 to 0.12
+(13 × 10 = 130 candidates; each reviewed at the lower, upper and nominal friction, as ``isolator review``
+does: 130 × 8 × 3 = 3 120 bidirectional analyses, 2 080 of them at the two bounds).
+
+Warm: a first search over the four corners of the space (numba's disk cache loaded, matplotlib imported, the
+paper's regime map of the frame cached on disk) is not counted.  Each timed run starts from the loaded
+suite with an empty store (every candidate reviewed) and ends with the chart, the tables and the
+recommended candidate's full review PDF written.  The split of the review work is summed over the
+candidates (CPU seconds of the workers): spectra (the memo's computing time), analyses, and the rest of
+each review (ELF values, period grid, scaling, checks, the row).  ``--growth`` also times 1, 4 and 7 µ
+values (13, 52, 91 candidates) to show how the time grows with candidates.  Prints a table;
+docs/design_search.md quotes it.
+
+    python -m benchmarks.design_time --jobs 2 [--growth]        # from the repository root
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def one_search(radii: int, mus: int, jobs: int, out: Path) -> dict:
+    from isolator.review import load_suite, load_target, resolve_example
+    from isolator.review.design_space import search, write_outputs
+
+    target = load_target(resolve_example("target", "example"))
+    suite = load_suite(resolve_example("suite", "example"))
+    vary = [f"radius_m=1.5:4.5:{radii}", f"mu_kinetic=0.03:0.12:{mus}"] if mus > 1 else \
+        [f"radius_m=1.5:4.5:{radii}", "mu_kinetic=0.03"]
+    start = time.perf_counter()
+    result = search(ROOT / "data" / "example_review.toml", target, suite, vary, jobs=jobs, store_dir=None)
+    searched = time.perf_counter()
+    out_json = write_outputs(result, out, target, suite, jobs=jobs)
+    end = time.perf_counter()
+    rows = result.rows
+    cpu = {key: sum(r.get(key, 0.0) or 0.0 for r in rows) for key in ("review_seconds", "spectra_seconds",
+                                                                          "analyses_seconds")}
+    t = out_json["timing_s"]
+    return {"candidates": len(rows), "passing": out_json["n_passing"], "errors": out_json["n_errors"],
+            "pairs": len(suite.pairs), "search_s": searched - start, "spectra_cpu_s": cpu["spectra_seconds"],
+            "analyses_cpu_s": cpu["analyses_seconds"],
+            "rest_cpu_s": cpu["review_seconds"] - cpu["spectra_seconds"] - cpu["analyses_seconds"],
+            "tables_s": t["tables"], "paper_map_s": t["paper_map"], "chart_s": t["chart"],
+            "recommended_review_s": t["recommended_review"], "total_s": end - start,
+            "recommended": out_json["recommended"]}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--radii", type=int, default=13)
+    parser.add_argument("--mus", type=int, default=10)
+    parser.add_argument("--growth", action="store_true", help="also 1, 4 and 7 µ values")
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as folder:
+        one_search(2, 2, args.jobs, Path(folder) / "warm" / "design.pdf")  # warm-up, not counted
+        sizes = ([1, 4, 7] if args.growth else []) + [args.mus]
+        runs = [one_search(args.radii, mus, args.jobs, Path(folder) / f"run{mus}" / "design.pdf") for mus in sizes]
+    main_run = runs[-1]
+    print(f"design search: example suite ({main_run['pairs']} pairs), {args.radii} radii × {args.mus} µk = "
+          f"{main_run['candidates']} candidates × {main_run['pairs']} pairs × 3 frictions, --jobs {args.jobs}, "
+          f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}, "
+          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")
+    print(f"{main_run['passing']} pass, {main_run['errors']} not analysed; recommended (base_shear): "
+          + (", ".join(f"{k} = {main_run['recommended'][k]:.4g}" for k in ("radius_m", "mu_kinetic",
+                                                                          "base_shear_coefficient"))
+             if main_run["recommended"] else "none"))
+    print()
+    print("| stage | seconds |")
+    print("|---|---|")
+    print(f"| search, wall ({args.jobs} processes) | {main_run['search_s']:.2f} |")
+    print(f"| · spectra (CPU, summed over candidates) | {main_run['spectra_cpu_s']:.2f} |")
+    print(f"| · analyses (CPU, summed) | {main_run['analyses_cpu_s']:.2f} |")
+    print(f"| · ELF, grid, scaling, checks, row (CPU, summed) | {main_run['rest_cpu_s']:.2f} |")
+    print(f"| tables (CSV, Parquet) | {main_run['tables_s']:.2f} |")
+    print(f"| paper's regime map (cached on disk) | {main_run['paper_map_s']:.2f} |")
+    print(f"| chart PDF | {main_run['chart_s']:.2f} |")
+    print(f"| recommended candidate's review + PDF | {main_run['recommended_review_s']:.2f} |")
+    print(f"| **total** | **{main_run['total_s']:.2f}** |")
+    if args.growth:
+        print()
+        print("| candidates | search wall s | per candidate ms | total s |")
+        print("|---|---|---|---|")
+        for run in runs:
+            print(f"| {run['candidates']} | {run['search_s']:.2f} | {1000 * run['search_s'] / run['candidates']:.0f} "
+                  f"| {run['total_s']:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
