@@ -238,3 +238,10 @@ def test_spectra_memo_is_bit_identical(suite):
     memo.forget()
     assert not memo.values
     assert math.isfinite(memo.seconds)
+
+
+def test_local_processes_give_the_same_rows(inputs, suite, result):
+    parallel = search(inputs / "design.toml", TARGET, suite, VARY, parameters=PARAMETERS, jobs=2)
+    for a, b in zip(parallel.rows, result.rows, strict=True):
+        assert a["candidate"] == b["candidate"]
+        assert all(a[k] == b[k] for k in (*NUMBERS, "passes", "first_failing_check", "error"))
