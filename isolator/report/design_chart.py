@@ -22,7 +22,10 @@ NOT_ANALYSED_COLOUR = "#9e9e9e"
 FAIL_COLOURS = ("#e57373", "#ffb74d", "#ba68c8", "#4fc3f7", "#aed581", "#f06292", "#ffd54f", "#7986cb",
                 "#a1887f", "#4db6ac", "#dce775", "#90a4ae")
 LABELS = {"radius_m": "R [m]", "mu_kinetic": "µk [-]", "mu_static": "µs [-]",
-          "displacement_capacity_m": "displacement capacity [m]", "mass_kg": "M [kg]"}
+          "displacement_capacity_m": "displacement capacity [m]", "mass_kg": "M [kg]",
+          "design_total_displacement_m": "D_TM [m]", "design_displacement_m": "D_M [m]",
+          "base_shear_coefficient": "V_b/W [-]", "residual_displacement_m": "residual [m]",
+          "restoring_force_margin": "restoring margin [-]", "governing_bound": "D_M bound", "candidate": "#"}
 
 
 def state_colours(states) -> dict:
@@ -167,7 +170,7 @@ def _ranking_page(summary: dict, rows: list, columns: list):
     y = 0.93
     xs = np.linspace(0.05, 0.85, len(columns))
     for x, column in zip(xs, columns, strict=True):
-        fig.text(x, y, textwrap.shorten(column, 24), fontsize=7, weight="bold", va="top")
+        fig.text(x, y, _label(column)[:24], fontsize=7, weight="bold", va="top")
     y -= 0.016
     if not rows:
         fig.text(0.05, y, "no candidate passes every check", fontsize=8, va="top")

@@ -842,7 +842,7 @@ def output_paths(pdf_path) -> dict:
 def ranking_columns(result: DesignSearch) -> list[str]:
     """Columns of the chart's ranking page."""
     column = OBJECTIVES[result.objective][0]
-    first = [*result.varied_keys, column]
+    first = ["candidate", *result.varied_keys, column]
     rest = [c for c in ("design_total_displacement_m", "base_shear_coefficient", "restoring_force_margin",
                         "governing_bound") if c not in first]
     return [*first, *rest]
