@@ -385,7 +385,9 @@ def review_group(context: dict, group: list[dict], memo: SpectraMemo | None = No
         values, mapping = item["values"], item["mapping"]
         analyses_s = 0.0
         try:
-            design = Design.from_mapping(mapping, source=context["source"])
+            # the candidate is not the file: its source says which numbers replaced the file's
+            design = Design.from_mapping(mapping, source=f"{context['source']} with " + ", ".join(
+                f"{k}={v:.6g}" for k, v in values.items()))
             review = run_review(design, context["target"], context["suite"], code=context["code"],
                                 scaling=context["scaling"], jobs=1, parameters=context["parameters"],
                                 spectra_source=memo, analysis_cache=cache)
@@ -836,6 +838,7 @@ def output_paths(pdf_path) -> dict:
     stem = pdf.with_suffix("")
     return {"chart": pdf, "csv": stem.with_suffix(".csv"), "parquet": stem.with_suffix(".parquet"),
             "json": stem.with_suffix(".json"), "recommended_pdf": Path(f"{stem}.recommended.pdf"),
+            "recommended_toml": Path(f"{stem}.recommended.toml"),
             "recommended_json": Path(f"{stem}.recommended.json"), "store": pdf.parent / f".{pdf.stem}.design"}
 
 
@@ -862,7 +865,7 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
     dict
         The search JSON (:meth:`DesignSearch.to_dict`) with ``outputs`` and ``timing_s`` completed.
     """
-    from isolator.atomic import atomic_path
+    from isolator.atomic import atomic_path, write_text_atomically
     from isolator.design import Design
     from isolator.report.design_chart import write_design_chart
     from isolator.report.review_pages import write_review_pdf
@@ -916,13 +919,18 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
     start = time.perf_counter()
     review_out = None
     if best is not None:
-        review = run_review(Design.from_mapping(result.mappings[best["candidate"]], source=str(result.design.source)),
-                            target, suite, code=result.code, scaling=result.scaling, jobs=jobs, scheduler=scheduler,
+        # the recommended design as a design file of its own: `isolator review --design` of it reproduces the review
+        write_text_atomically(paths["recommended_toml"], design_toml(
+            result.mappings[best["candidate"]],
+            f"Recommended by `isolator design` ({result.objective}) from {result.design.source}: "
+            + ", ".join(f"{k} = {best[k]!r}" for k in result.varied_keys)))
+        review = run_review(Design.from_toml(paths["recommended_toml"]), target, suite, code=result.code,
+                            scaling=result.scaling, jobs=jobs, scheduler=scheduler,
                             parameters=result.parameters, rotd50_points=12, paper_map_resolution=paper_map_resolution,
                             cache_dir=paths["store"] / "recommended")
         review_out = write_review_pdf(review, paths["recommended_pdf"], command=command)
     else:
-        for stale in (paths["recommended_pdf"], paths["recommended_json"]):
+        for stale in (paths["recommended_pdf"], paths["recommended_json"], paths["recommended_toml"]):
             if stale.is_file():
                 stale.unlink()
     timing["recommended_review"] = time.perf_counter() - start
@@ -933,11 +941,41 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
                       "parquet": str(paths["parquet"]), "json": str(paths["json"]),
                       "recommended_pdf": str(paths["recommended_pdf"]) if review_out else None,
                       "recommended_json": str(paths["recommended_json"]) if review_out else None,
+                      "recommended_design": str(paths["recommended_toml"]) if review_out else None,
                       "store": str(paths["store"])}
     out["command"] = command
     with atomic_path(paths["json"]) as tmp:
         tmp.write_text(json.dumps(json_safe(out), indent=2, allow_nan=False) + "\n", encoding="utf-8")
     return out
+
+
+def design_toml(mapping: dict, comment: str = "") -> str:
+    """A design table as TOML text (numbers written to round-trip exactly; one level of sub-tables).
+
+    Raises
+    ------
+    DesignSearchError
+        A value TOML cannot hold here (nested deeper than one table, or not a number, text or boolean).
+    """
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, int):
+            return str(v)
+        if isinstance(v, float):
+            if not math.isfinite(v):
+                raise DesignSearchError(f"design value {v!r} cannot be written")
+            return repr(v)
+        if isinstance(v, str):
+            return json.dumps(v, ensure_ascii=False)  # a JSON string is a valid TOML basic string
+        raise DesignSearchError(f"design value {v!r} cannot be written")
+
+    lines = [f"# {line}" for line in comment.splitlines()]
+    tables = {k: v for k, v in mapping.items() if isinstance(v, dict)}
+    lines += [f"{k} = {value(v)}" for k, v in mapping.items() if k not in tables]
+    for name, table in tables.items():
+        lines += ["", f"[{name}]", *(f"{k} = {value(v)}" for k, v in table.items())]
+    return "\n".join(lines) + "\n"
 
 
 def _parquet_ready(table):

@@ -88,6 +88,12 @@ def test_json_contract_outputs_and_resume(files, tmp_path):
     assert review["design_base_shear_coefficient"]["value"] == best["base_shear_coefficient"]
     assert all(c["status"] != "fail" for c in review["checks"])
     assert (tmp_path / "reports" / "search.recommended.pdf").read_bytes()[:5] == b"%PDF-"
+    # …and its design file, which the review read (its source)
+    from isolator.design import Design
+
+    recommended = Design.from_toml(tmp_path / "reports" / "search.recommended.toml")
+    assert (recommended.radius_m, recommended.mu_kinetic) == (best["radius_m"], best["mu_kinetic"])
+    assert review["design"]["source"] == str(tmp_path / "reports" / "search.recommended.toml")
     assert out_pdf.read_bytes()[:5] == b"%PDF-"
     table = pd.read_csv(tmp_path / "reports" / "search.csv")
     assert list(table["radius_m"]) == [2.0, 2.0, 4.0, 4.0] and list(table["passes"]) == [c["passes"] for c in

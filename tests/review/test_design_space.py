@@ -245,3 +245,19 @@ def test_local_processes_give_the_same_rows(inputs, suite, result):
     for a, b in zip(parallel.rows, result.rows, strict=True):
         assert a["candidate"] == b["candidate"]
         assert all(a[k] == b[k] for k in (*NUMBERS, "passes", "first_failing_check", "error"))
+
+
+def test_design_toml_round_trips(tmp_path):
+    from dataclasses import asdict
+
+    from isolator.review.design_space import design_toml
+
+    mapping = {"name": 'FPS "R" [radius_m=2.5]', "mass_kg": 2.0e6, "radius_m": 2.5, "mu_static": 0.07 / 0.06 * 0.05,
+               "mu_kinetic": 0.05, "displacement_capacity_m": 1.0, "lambda_ae_max": 1.1, "lambda_ae_min": 1.0,
+               "lambda_test_max": 1.2, "lambda_test_min": 0.9, "lambda_spec_max": 1.15, "lambda_spec_min": 0.85,
+               "plan": {"b_m": 40.0, "d_m": 25.0, "eccentricity_m": 0.5, "y_m": 20}}
+    path = tmp_path / "d.toml"
+    path.write_text(design_toml(mapping, "two\nlines"))
+    read, direct = asdict(Design.from_toml(path)), asdict(Design.from_mapping(mapping))
+    read.pop("source"), direct.pop("source")
+    assert read == direct
