@@ -94,9 +94,8 @@ def design(
     import time
 
     from isolator.atomic import OutputError, output_lock
-    from isolator.errors import DesignError, RecordError, UnitsError
+    from isolator.errors import DesignError, RecordError, ReviewError, UnitsError
     from isolator.review.design_space import OBJECTIVES, DesignSearchError, output_paths, parse_vary
-    from isolator.review.errors import ReviewError
     from isolator.review.examples import resolve_example
     from isolator.review.run import CODES
     from isolator.review.scaling import SCALING_METHODS

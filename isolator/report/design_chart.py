@@ -14,7 +14,7 @@ import numpy as np
 
 from isolator.atomic import atomic_path
 from isolator.report import figures
-from isolator.report.pdf import A4_IN, fmt
+from isolator.report.layout import A4_IN, fmt
 
 #: colour of a state of a cell; failing checks take the colours of :data:`FAIL_COLOURS` in order
 PASS_COLOUR = "#ffffff"

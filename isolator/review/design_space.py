@@ -373,8 +373,7 @@ def review_group(context: dict, group: list[dict], memo: SpectraMemo | None = No
         One row per candidate (with ``candidate`` and ``key``).
     """
     from isolator.design import Design
-    from isolator.errors import DesignError
-    from isolator.review.errors import ReviewError
+    from isolator.errors import DesignError, ReviewError
     from isolator.review.run import PLOT_PERIODS_S, run_review
 
     memo = memo if memo is not None else _process_memo(PLOT_PERIODS_S)
