@@ -36,8 +36,11 @@ def one_search(radii: int, mus: int, jobs: int, out: Path) -> dict:
     suite = load_suite(resolve_example("suite", "example"))
     vary = [f"radius_m=1.5:4.5:{radii}", f"mu_kinetic=0.03:0.12:{mus}"] if mus > 1 else \
         [f"radius_m=1.5:4.5:{radii}", "mu_kinetic=0.03"]
+    from isolator.cli.common import collector_skips_existing_objects
+
     start = time.perf_counter()
-    result = search(ROOT / "data" / "example_review.toml", target, suite, vary, jobs=jobs, store_dir=None)
+    with collector_skips_existing_objects():  # as the command does
+        result = search(ROOT / "data" / "example_review.toml", target, suite, vary, jobs=jobs, store_dir=None)
     searched = time.perf_counter()
     out_json = write_outputs(result, out, target, suite, jobs=jobs)
     end = time.perf_counter()

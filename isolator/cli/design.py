@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app, check_outputs, echo_table, write_error
+from isolator.cli.common import app, check_outputs, collector_skips_existing_objects, echo_table, write_error
 from isolator.cli.common import user_error as _user_error
 
 #: the flag of each parameter a design-search error may name
@@ -153,9 +153,12 @@ def design(
                     stale.unlink()
             bar, callback = _progress_bar()
             try:
-                result = search(isolator_file, the_target, the_suite, ranges, objective=objective, code=code,
-                                scaling=scaling, parameters=parameters, jobs=jobs, scheduler=scheduler,
-                                store_dir=paths["store"], progress=callback)
+                # the collector skips numba's and obspy's objects: each review makes many small ones (its rows),
+                # and the forked workers inherit the frozen generation
+                with collector_skips_existing_objects():
+                    result = search(isolator_file, the_target, the_suite, ranges, objective=objective, code=code,
+                                    scaling=scaling, parameters=parameters, jobs=jobs, scheduler=scheduler,
+                                    store_dir=paths["store"], progress=callback)
             finally:
                 if bar is not None:
                     bar.stop()
