@@ -298,9 +298,9 @@ def candidate_row(review, values: dict) -> dict:
     """
     r = review.to_dict()
     checks = r["checks"]
-    status = {c["id"]: c["status"] for c in checks}
+    status = check_statuses(checks)
     failing = [c["id"] for c in checks if c["status"] == "fail"]
-    by_id = {c["id"]: c for c in checks}
+    by_id = {c["id"]: c for c in checks if "pair" not in c}  # the design-level rows (not per analysis)
     restoring = by_id.get("restoring_force") or by_id.get("restoring_capability") or {}
     r_value, r_limit = restoring.get("value"), restoring.get("limit")
     margin = (r_value / r_limit - 1.0) if (r_value is not None and r_limit) else None
@@ -319,7 +319,7 @@ def candidate_row(review, values: dict) -> dict:
         "passes": not failing,
         "first_failing_check": failing[0] if failing else None,
         "n_failing_checks": len(failing),
-        "n_not_checked": sum(s == "not checked" for s in status.values()),
+        "n_not_checked": sum(c["status"] == "not checked" for c in checks),
         "radius_m": design.radius_m,
         "mu_kinetic": design.mu_kinetic,
         "mu_static": design.mu_static,
@@ -346,6 +346,17 @@ def candidate_row(review, values: dict) -> dict:
     }
     row.update({f"check_{cid}": s for cid, s in status.items()})
     return row
+
+
+def check_statuses(checks: list) -> dict:
+    """One status per check id: ``fail`` if any of its rows fails (a check may have a row per analysis, e.g.
+    ``record_capacity``), else ``pass`` if any passes, else ``not checked``."""
+    out: dict = {}
+    for c in checks:
+        previous = out.get(c["id"])
+        if previous is None or c["status"] == "fail" or (c["status"] == "pass" and previous == "not checked"):
+            out[c["id"]] = c["status"]
+    return out
 
 
 def error_row(values: dict, mapping: dict, reason: str) -> dict:

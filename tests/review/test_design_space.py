@@ -94,8 +94,12 @@ def test_each_row_is_the_review_of_its_design(inputs, suite, result):
         assert row["period_range_lo_s"] == review["period_range_s"][0]
         assert row["scale_factor_max"] == max(review["scale_factors"].values())
         for check in review["checks"]:
-            assert row[f"check_{check['id']}"] == check["status"], check["id"]
             statuses.add(check["status"])
+            rows_of_check = {c["status"] for c in review["checks"] if c["id"] == check["id"]}
+            # a check with a row per analysis is failed by any of them
+            expected = ("fail" if "fail" in rows_of_check else "pass" if "pass" in rows_of_check
+                        else "not checked")
+            assert row[f"check_{check['id']}"] == expected, check["id"]
         failing = [c["id"] for c in review["checks"] if c["status"] == "fail"]
         assert row["passes"] is (not failing)
         assert row["first_failing_check"] == (failing[0] if failing else None)
