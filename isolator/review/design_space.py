@@ -960,31 +960,49 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
 
 
 def design_toml(mapping: dict, comment: str = "") -> str:
-    """A design table as TOML text (numbers written to round-trip exactly; one level of sub-tables).
+    """A design table as TOML text: numbers written to round-trip exactly, sub-tables (``[plan]``,
+    ``[superstructure]``) and arrays of tables (``[[superstructure.floor]]``, ``[[bearing_position]]``).
 
     Raises
     ------
     DesignSearchError
-        A value TOML cannot hold here (nested deeper than one table, or not a number, text or boolean).
+        A value TOML cannot hold (not a number, text, boolean, list or table; a non-finite number).
     """
+    import re
+
+    def key(k):
+        return k if re.fullmatch(r"[A-Za-z0-9_-]+", k) else json.dumps(k, ensure_ascii=False)
+
     def value(v):
         if isinstance(v, bool):
             return "true" if v else "false"
         if isinstance(v, int):
             return str(v)
-        if isinstance(v, float):
-            if not math.isfinite(v):
-                raise DesignSearchError(f"design value {v!r} cannot be written")
+        if isinstance(v, float) and math.isfinite(v):
             return repr(v)
         if isinstance(v, str):
             return json.dumps(v, ensure_ascii=False)  # a JSON string is a valid TOML basic string
-        raise DesignSearchError(f"design value {v!r} cannot be written")
+        if isinstance(v, list) and not any(isinstance(x, dict) for x in v):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        raise DesignSearchError(f"design value {v!r} cannot be written as TOML")
+
+    def is_tables(v):
+        return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)
+
+    def emit(table: dict, prefix: str, lines: list) -> None:
+        lines += [f"{key(k)} = {value(v)}" for k, v in table.items() if not isinstance(v, dict) and not is_tables(v)]
+        for k, v in table.items():
+            name = f"{prefix}.{key(k)}" if prefix else key(k)
+            if isinstance(v, dict):
+                lines += ["", f"[{name}]"]
+                emit(v, name, lines)
+            elif is_tables(v):
+                for item in v:
+                    lines += ["", f"[[{name}]]"]
+                    emit(item, name, lines)
 
     lines = [f"# {line}" for line in comment.splitlines()]
-    tables = {k: v for k, v in mapping.items() if isinstance(v, dict)}
-    lines += [f"{k} = {value(v)}" for k, v in mapping.items() if k not in tables]
-    for name, table in tables.items():
-        lines += ["", f"[{name}]", *(f"{k} = {value(v)}" for k, v in table.items())]
+    emit(mapping, "", lines)
     return "\n".join(lines) + "\n"
 
 

@@ -265,3 +265,10 @@ def test_design_toml_round_trips(tmp_path):
     read, direct = asdict(Design.from_toml(path)), asdict(Design.from_mapping(mapping))
     read.pop("source"), direct.pop("source")
     assert read == direct
+    # arrays of tables, nested (a building's floors) and at the top (bearing positions), and lists
+    import tomllib
+
+    nested = {"name": "b", "superstructure": {"damping_ratio": 0.05, "floor": [
+        {"mass_kg": 1e5, "story_height_m": 3.5}, {"mass_kg": 9e4, "story_height_m": 3.0}]},
+        "bearing_position": [{"x_m": -5.0, "y_m": 1.0}, {"x_m": 5.0, "y_m": 1.0}], "weird key": [1, 2.5]}
+    assert tomllib.loads(design_toml(nested)) == nested
