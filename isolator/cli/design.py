@@ -68,7 +68,8 @@ def design(
                                    "KEY=V1,V2,… (repeatable; the first two are the chart's axes), e.g. "
                                    "radius_m=1.5:4.5:13 mu_kinetic=0.03:0.12:10."),
     code: str = typer.Option("asce7-22", "--code", help="asce7-22 or en15129."),
-    scaling: str = typer.Option("common", "--scaling", help="common or fit (as for `isolator review`)."),
+    scaling: str = typer.Option(None, "--scaling", help="common, fit or given (as for `isolator review`; default: "
+                                "given when every pair of the suite gives its scale_factor, else common)."),
     objective: str = typer.Option("base_shear", "--objective", help="What the recommendation minimises among "
                                   "the candidates that pass every check: base_shear, displacement or residual."),
     output: str = typer.Option(None, "--output", "-o", help="Chart PDF (default reports/design_DESIGN.pdf); "
@@ -102,7 +103,7 @@ def design(
 
     if code not in CODES:
         _user_error(f"--code must be one of {', '.join(CODES)}, got {code!r}")
-    if scaling not in SCALING_METHODS:
+    if scaling is not None and scaling not in SCALING_METHODS:
         _user_error(f"--scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
     if objective not in OBJECTIVES:
         _user_error(f"--objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}")

@@ -223,7 +223,10 @@ def _digest(value) -> str:
 
 def search_context_key(target, suite, code: str, scaling: str, parameters: dict | None) -> str:
     """Key of everything a row depends on besides the design: target, suite samples, code, scaling, parameters."""
-    return _digest([code_version(), target.as_dict(), [(p.name, p.content_key()) for p in suite.pairs],
+    # a pair's given scale factor and its "matched" flag change a review as its samples do
+    return _digest([code_version(), target.as_dict(),
+                    [(p.name, p.content_key(), getattr(p, "scale_factor", None), getattr(p, "matched", None))
+                     for p in suite.pairs],
                     suite.failed, code, scaling, parameters or {}])
 
 
@@ -638,7 +641,7 @@ def recommend(rows: list[dict], objective: str) -> dict | None:
 
 
 def search(design, target, suite, vary, *, objective: str = "base_shear", code: str = "asce7-22",
-           scaling: str = "common", parameters: dict | None = None, jobs: int | None = None,
+           scaling: str | None = "common", parameters: dict | None = None, jobs: int | None = None,
            scheduler: str | None = None, store_dir=None, progress=None, design_mapping: dict | None = None
            ) -> DesignSearch:
     """Review every candidate of a design space (see the module docstring).
@@ -654,7 +657,8 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
     objective : {"base_shear", "displacement", "residual"}
         What the recommendation minimises (:data:`OBJECTIVES`).
     code, scaling, parameters
-        As for :func:`isolator.review.run.run_review`.
+        As for :func:`isolator.review.run.run_review`; ``scaling=None`` chooses as ``isolator review`` does
+        (``given`` when every pair of the suite gives its scale factor, else ``common``).
     jobs : int, optional
         Local worker processes (default: the idle cores).
     scheduler : str, optional
@@ -688,6 +692,13 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
                                 parameter="objective")
     if code not in CODES:
         raise DesignSearchError(f"code must be one of {', '.join(CODES)}, got {code!r}", parameter="code")
+    if scaling is None:  # as `isolator review` chooses: the suite's own factors when every pair gives one
+        from isolator.review.scaling import default_scaling
+
+        try:
+            scaling = default_scaling(suite.names, suite.given_factors)
+        except ValueError as err:
+            raise DesignSearchError(f"{suite.source}: {err}", parameter="scaling") from None
     if scaling not in SCALING_METHODS:
         raise DesignSearchError(f"scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}",
                                 parameter="scaling")
