@@ -96,7 +96,7 @@ def design(
 
     from isolator.atomic import OutputError, output_lock
     from isolator.errors import DesignError, RecordError, ReviewError, UnitsError
-    from isolator.review.design_space import OBJECTIVES, DesignSearchError, output_paths, parse_vary
+    from isolator.review.design_space import OBJECTIVES, output_paths, parse_vary
     from isolator.review.examples import resolve_example
     from isolator.review.run import CODES
     from isolator.review.scaling import SCALING_METHODS
@@ -111,7 +111,7 @@ def design(
         _user_error(f"--jobs must be ≥ 1, got {jobs}")
     try:
         ranges = [parse_vary(spec) for spec in vary]
-    except DesignSearchError as err:
+    except ReviewError as err:
         _search_error(err)
     if output is None:
         output = str(Path("reports") / f"design_{Path(isolator_file).stem}.pdf")
@@ -165,10 +165,8 @@ def design(
                     bar.stop()
             out = write_outputs(result, output, the_target, the_suite, command=command, jobs=jobs,
                                 scheduler=scheduler)
-    except DesignSearchError as err:
-        _search_error(err)
     except (DesignError, ReviewError) as err:
-        _user_error(str(err))
+        _search_error(err)
     except OutputError as err:
         write_error(err, output)
     except KeyboardInterrupt:

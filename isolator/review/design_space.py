@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.errors import IsolatorError
+from isolator.errors import ReviewError
 
 #: numbers of a design file that ``vary`` may replace
 VARY_KEYS = ("radius_m", "mu_kinetic", "mu_static", "displacement_capacity_m", "mass_kg", "stiffness_N_per_m",
@@ -79,10 +79,6 @@ COLUMNS = ("candidate", "error", "passes", "first_failing_check", "n_failing_che
            "spectra_seconds", "analyses_seconds", "key")
 
 
-class DesignSearchError(IsolatorError):
-    """A design space that cannot be searched (a range, a key, an objective); ``parameter`` names the input."""
-
-
 # ---- the design space ----------------------------------------------------------------------
 
 def parse_vary(spec: str) -> tuple[str, list[float]]:
@@ -95,11 +91,11 @@ def parse_vary(spec: str) -> tuple[str, list[float]]:
 
     Raises
     ------
-    DesignSearchError
+    ReviewError
         Unknown key, unparsable or non-finite numbers, COUNT < 1, COUNT = 1 with START ≠ STOP, repeated values.
     """
     def fail(message: str):
-        return DesignSearchError(f"{spec!r}: {message}", parameter="vary")
+        return ReviewError(f"{spec!r}: {message}", parameter="vary")
 
     if "=" not in spec:
         raise fail("expected KEY=START:STOP:COUNT or KEY=V1,V2,…, e.g. radius_m=1.5:4.5:13")
@@ -159,25 +155,25 @@ def candidate_mappings(base: dict, base_mu_kinetic: float, vary: list[tuple[str,
 
     Raises
     ------
-    DesignSearchError
+    ReviewError
         A key varied twice, a key the design's form excludes (``radius_m`` of a spring design …),
         or more than :data:`MAX_CANDIDATES` candidates.
     """
     keys = [key for key, _ in vary]
     if not keys:
-        raise DesignSearchError("nothing varies: give at least one range", parameter="vary")
+        raise ReviewError("nothing varies: give at least one range", parameter="vary")
     if len(set(keys)) != len(keys):
         twice = next(k for k in keys if keys.count(k) > 1)
-        raise DesignSearchError(f"{twice!r} is varied twice", parameter="vary")
+        raise ReviewError(f"{twice!r} is varied twice", parameter="vary")
     exclusive = (("radius_m", "stiffness_N_per_m"), ("damping_ratio", "damping_Ns_per_m"))
     for a, b in exclusive:
         for key, other in ((a, b), (b, a)):
             if key in keys and other in base:
-                raise DesignSearchError(f"{key!r} cannot vary: the design gives {other!r} (one or the other)",
+                raise ReviewError(f"{key!r} cannot vary: the design gives {other!r} (one or the other)",
                                         parameter="vary")
     n = math.prod(len(values) for _, values in vary)
     if n > MAX_CANDIDATES:
-        raise DesignSearchError(f"{n} candidates exceed {MAX_CANDIDATES}: split the search", parameter="vary")
+        raise ReviewError(f"{n} candidates exceed {MAX_CANDIDATES}: split the search", parameter="vary")
     out = []
     for combination in itertools.product(*(values for _, values in vary)):
         mapping = dict(base)
@@ -387,7 +383,7 @@ def review_group(context: dict, group: list[dict], memo: SpectraMemo | None = No
         One row per candidate (with ``candidate`` and ``key``).
     """
     from isolator.design import Design
-    from isolator.errors import DesignError, ReviewError
+    from isolator.errors import DesignError
     from isolator.review.run import PLOT_PERIODS_S, run_review
 
     memo = memo if memo is not None else _process_memo(PLOT_PERIODS_S)
@@ -478,7 +474,7 @@ def _iterate_dask(groups: list[list[dict]], context: dict, address: str):
     try:
         from distributed import Client, as_completed
     except ImportError as err:  # pragma: no cover - dask is a dependency
-        raise DesignSearchError(f"scheduler {address}: dask.distributed is not installed ({err})",
+        raise ReviewError(f"scheduler {address}: dask.distributed is not installed ({err})",
                                 parameter="scheduler") from None
     try:
         check_scheduler(address)
@@ -489,7 +485,7 @@ def _iterate_dask(groups: list[list[dict]], context: dict, address: str):
             security = Security()
         client = Client(address, timeout=10, security=security)
     except (OSError, TimeoutError, ValueError) as err:
-        raise DesignSearchError(f"scheduler {address}: cannot connect ({' '.join(str(err).split())})",
+        raise ReviewError(f"scheduler {address}: cannot connect ({' '.join(str(err).split())})",
                                 parameter="scheduler") from None
     try:
         shipped = client.scatter(context, broadcast=True)
@@ -621,11 +617,11 @@ def recommend(rows: list[dict], objective: str) -> dict | None:
 
     Raises
     ------
-    DesignSearchError
+    ReviewError
         An unknown objective.
     """
     if objective not in OBJECTIVES:
-        raise DesignSearchError(f"objective {objective!r}: choose one of {', '.join(OBJECTIVES)}",
+        raise ReviewError(f"objective {objective!r}: choose one of {', '.join(OBJECTIVES)}",
                                 parameter="objective")
     order = [OBJECTIVES[objective][0], *(c for name, (c, _) in OBJECTIVES.items() if name != objective)]
 
@@ -676,7 +672,7 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
 
     Raises
     ------
-    DesignSearchError
+    ReviewError
         A bad range, key or objective (``parameter`` names it).
     """
     from isolator.design import Design, load_toml
@@ -688,19 +684,19 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
 
     clock = time.perf_counter()
     if objective not in OBJECTIVES:
-        raise DesignSearchError(f"objective {objective!r}: choose one of {', '.join(OBJECTIVES)}",
+        raise ReviewError(f"objective {objective!r}: choose one of {', '.join(OBJECTIVES)}",
                                 parameter="objective")
     if code not in CODES:
-        raise DesignSearchError(f"code must be one of {', '.join(CODES)}, got {code!r}", parameter="code")
+        raise ReviewError(f"code must be one of {', '.join(CODES)}, got {code!r}", parameter="code")
     if scaling is None:  # as `isolator review` chooses: the suite's own factors when every pair gives one
         from isolator.review.scaling import default_scaling
 
         try:
             scaling = default_scaling(suite.names, suite.given_factors)
         except ValueError as err:
-            raise DesignSearchError(f"{suite.source}: {err}", parameter="scaling") from None
+            raise ReviewError(f"{suite.source}: {err}", parameter="scaling") from None
     if scaling not in SCALING_METHODS:
-        raise DesignSearchError(f"scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}",
+        raise ReviewError(f"scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}",
                                 parameter="scaling")
     P.resolve(code, parameters)  # a bad parameter is refused before any work
     if not isinstance(design, Design):
@@ -715,9 +711,9 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
     ranges = [parse_vary(v) if isinstance(v, str) else (str(v[0]), [float(x) for x in v[1]]) for v in vary]
     for key, values in ranges:
         if key not in VARY_KEYS:
-            raise DesignSearchError(f"{key!r} is not a number of a design file that can vary", parameter="vary")
+            raise ReviewError(f"{key!r} is not a number of a design file that can vary", parameter="vary")
         if not values or not all(math.isfinite(x) for x in values):
-            raise DesignSearchError(f"{key!r}: the values must be finite numbers", parameter="vary")
+            raise ReviewError(f"{key!r}: the values must be finite numbers", parameter="vary")
     mappings = candidate_mappings(design_mapping, design.mu_kinetic, ranges)
     keys = [k for k, _ in ranges]
     context_key = search_context_key(target, suite, code, scaling, parameters)
@@ -976,7 +972,7 @@ def design_toml(mapping: dict, comment: str = "") -> str:
 
     Raises
     ------
-    DesignSearchError
+    ReviewError
         A value TOML cannot hold (not a number, text, boolean, list or table; a non-finite number).
     """
     import re
@@ -995,7 +991,7 @@ def design_toml(mapping: dict, comment: str = "") -> str:
             return json.dumps(v, ensure_ascii=False)  # a JSON string is a valid TOML basic string
         if isinstance(v, list) and not any(isinstance(x, dict) for x in v):
             return "[" + ", ".join(value(x) for x in v) + "]"
-        raise DesignSearchError(f"design value {v!r} cannot be written as TOML")
+        raise ReviewError(f"design value {v!r} cannot be written as TOML")
 
     def is_tables(v):
         return isinstance(v, list) and v and all(isinstance(x, dict) for x in v)

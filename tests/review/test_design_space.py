@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from isolator.design import Design
+from isolator.errors import ReviewError
 from isolator.review.design_space import (
-    DesignSearchError,
     SpectraMemo,
     candidate_mappings,
     chart_data,
@@ -129,7 +129,7 @@ def test_recommend_by_hand():
             {"candidate": 3, "passes": False, "error": "no period range"}]
     assert recommend(rows, "base_shear")["candidate"] == 2
     assert recommend(rows[1:2], "base_shear") is None
-    with pytest.raises(DesignSearchError) as err:
+    with pytest.raises(ReviewError) as err:
         recommend(rows, "cheapest")
     assert err.value.parameter == "objective"
 
@@ -210,7 +210,7 @@ def test_parse_vary():
                        ("radius_m=1:2:0", "COUNT must be >= 1"), ("radius_m=1:2:1", "COUNT = 1"),
                        ("radius_m=a:2:3", "numbers"), ("radius_m=1:nan:3", "finite"), ("radius_m", "KEY="),
                        ("radius_m=1,1", "repeated"), ("name=1:2:3", "not a number")):
-        with pytest.raises(DesignSearchError, match=words) as err:
+        with pytest.raises(ReviewError, match=words) as err:
             parse_vary(bad)
         assert err.value.parameter == "vary"
 
@@ -222,9 +222,9 @@ def test_friction_follows_mu_kinetic_by_the_design_ratio():
     assert (m["mu_static"], m["mu_upper"], m["mu_lower"]) == pytest.approx((0.12, 0.075, 0.045), rel=1e-15)
     (m,) = candidate_mappings(base, 0.04, [("mu_kinetic", [0.06]), ("mu_static", [0.07])])
     assert m["mu_static"] == 0.07  # varied itself: not a follower
-    with pytest.raises(DesignSearchError, match="varied twice"):
+    with pytest.raises(ReviewError, match="varied twice"):
         candidate_mappings(base, 0.04, [("radius_m", [1.0]), ("radius_m", [2.0])])
-    with pytest.raises(DesignSearchError, match="gives 'radius_m'"):
+    with pytest.raises(ReviewError, match="gives 'radius_m'"):
         candidate_mappings(base, 0.04, [("stiffness_N_per_m", [1.0])])
 
 
