@@ -1,0 +1,512 @@
+r"""Multi-surface friction pendulums: single, double and triple bearings with rims.
+
+A design file may describe its bearing surface by surface (outer-bottom first: 1, 2, 3, 4
+in Fenz & Constantinou's numbering)::
+
+    [bearing]
+    type = "triple"            # "single" | "double" | "triple"
+
+    [[bearing.surface]]        # surface 1 (outer, bottom)
+    radius_m = 2.2
+    height_m = 0.1             # slider height: R_eff = R − h (default 0)
+    mu = 0.06                  # or mu_kinetic (+ mu_static), or mu_slow/mu_fast/rate_s_per_m
+    displacement_capacity_m = 0.42
+
+    [[bearing.surface]]        # surface 2 (inner, bottom) ... then 3 and 4
+
+Per surface: effective radius :math:`R_{eff,i} = R_i - h_i`, capacity
+:math:`d_i^* = d_i R_{eff,i}/R_i` (the displacement of the bearing's axis when the slider
+is at the rim).  The force–displacement law is the series model of
+:mod:`isolator.solver.multisurface_series`: for a triple pendulum it reproduces the five
+regimes of Fenz & Constantinou (2008) — I: sliding on 2 and 3; II: on 1 and 3; III: on 1
+and 4; IV: 1 on its rim, sliding on 2 and 4; V: 1 and 4 on their rims, sliding on 2 and
+3 — and ends at the ultimate displacement :math:`\sum_i d_i^*`, where every slider is on
+its rim.
+
+References
+----------
+D. M. Fenz, M. C. Constantinou (2008), Earthquake Engng Struct. Dyn. 37, 163–183, and
+Earthquake Spectra 24(4), 1011–1028.  ASCE 7-22 §17.2.8.4 / AASHTO GSID: effective
+stiffness and damping from the force–displacement loop.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from isolator.errors import DesignError
+from isolator.solver.multisurface_series import (
+    excursion,
+    max_regimes,
+    series_elements,
+    settle,
+    stick_window,
+    surface_matrix,
+)
+
+#: The number of surfaces of each bearing type.
+SURFACES_PER_TYPE = {"single": 1, "double": 2, "triple": 4}
+
+#: Keys of a ``[[bearing.surface]]`` entry.
+SURFACE_KEYS = {
+    "radius_m": "radius of curvature R_i [m], > 0",
+    "height_m": "height h_i of the slider over the surface (R_eff = R - h) [m], 0 <= h < R (default 0)",
+    "mu": "friction coefficient µ_i [-] (kinetic = static)",
+    "mu_kinetic": "kinetic friction coefficient µ_i [-]",
+    "mu_static": "static friction coefficient [-] >= mu_kinetic (single surface only)",
+    "mu_slow": "velocity-dependent friction µ at rest [-] (single surface only)",
+    "mu_fast": "velocity-dependent friction µ at high speed [-] (single surface only)",
+    "rate_s_per_m": "velocity-dependent friction rate [s/m] (single surface only)",
+    "displacement_capacity_m": "displacement capacity d_i on the surface [m], > 0 (required for double/triple)",
+}
+
+#: Keys of the ``[bearing]`` table.
+BEARING_KEYS = {"type": "single | double | triple", "surface": "the surfaces, [[bearing.surface]], outer-bottom first"}
+
+#: Regime names of a triple pendulum (Fenz & Constantinou 2008), from the state of the outer elements.
+TRIPLE_REGIMES = ("I", "II", "III", "IV", "V")
+
+
+@dataclass(frozen=True)
+class Surface:
+    """One concave surface of a bearing (SI units).
+
+    Attributes
+    ----------
+    radius_m : float
+        Radius of curvature R [m].
+    height_m : float
+        Slider height h [m]; R_eff = R − h.
+    mu_kinetic : float
+        Kinetic friction coefficient [-].
+    mu_static : float
+        Static friction coefficient [-] (= µk except for a single surface).
+    displacement_capacity_m : float or None
+        Capacity d on the surface [m] (None: no rim).
+    mu_slow, mu_fast, rate_s_per_m : float or None
+        Velocity-dependent friction (single surface only).
+    """
+
+    radius_m: float
+    height_m: float
+    mu_kinetic: float
+    mu_static: float
+    displacement_capacity_m: float | None
+    mu_slow: float | None = None
+    mu_fast: float | None = None
+    rate_s_per_m: float | None = None
+
+    @property
+    def effective_radius_m(self) -> float:
+        """R_eff = R − h [m]."""
+        return self.radius_m - self.height_m
+
+    @property
+    def effective_capacity_m(self) -> float:
+        """d* = d R_eff / R [m] (inf without a capacity)."""
+        if self.displacement_capacity_m is None:
+            return math.inf
+        return self.displacement_capacity_m * self.effective_radius_m / self.radius_m
+
+
+@dataclass(frozen=True)
+class Backbone:
+    """The monotonic force–displacement curve of a bearing from rest (piecewise linear).
+
+    Attributes
+    ----------
+    displacement_m : numpy.ndarray
+        Transition points x_k [m]: the start of each regime, then the ultimate
+        displacement (when the bearing has rims).
+    force_per_weight : numpy.ndarray
+        F/W at those points [-].
+    stiffness_per_weight_1_m : numpy.ndarray
+        Slope of each regime, dF/dx / W = 1/Σ R̄ [1/m] (one fewer than the points when
+        the last point is the ultimate displacement; inf for a rigid step).
+    regimes : tuple of str
+        The name of each regime (I–V for a triple pendulum; the sliding surfaces otherwise).
+    ultimate_displacement_m : float
+        Σ d_i* [m] (inf without rims).
+    """
+
+    displacement_m: np.ndarray
+    force_per_weight: np.ndarray
+    stiffness_per_weight_1_m: np.ndarray
+    regimes: tuple
+    ultimate_displacement_m: float
+
+    def force_per_weight_at(self, displacement_m: float) -> float:
+        """F/W on the backbone at x ≥ 0 [-] (the upper end of a rigid step)."""
+        x = float(displacement_m)
+        if x > self.ultimate_displacement_m:
+            raise ValueError(f"{x:g} m is beyond the ultimate displacement {self.ultimate_displacement_m:g} m")
+        k = int(np.searchsorted(self.displacement_m, x, side="right")) - 1
+        k = min(max(k, 0), self.stiffness_per_weight_1_m.size - 1)
+        return float(self.force_per_weight[k] + self.stiffness_per_weight_1_m[k] * (x - self.displacement_m[k]))
+
+
+@dataclass(frozen=True)
+class LoopProperties:
+    """Effective (equivalent-linear) properties of a bearing cycled between ±D (SI units)."""
+
+    displacement_m: float
+    effective_stiffness_N_per_m: float
+    effective_period_s: float
+    effective_damping_ratio: float
+    energy_per_cycle_J: float
+    force_at_displacement_N: float
+    regime: str  #: the backbone regime at D
+
+    def as_dict(self) -> dict:
+        return {"displacement_m": self.displacement_m,
+                "effective_stiffness_N_per_m": self.effective_stiffness_N_per_m,
+                "effective_period_s": self.effective_period_s,
+                "effective_damping_ratio": self.effective_damping_ratio,
+                "energy_per_cycle_J": self.energy_per_cycle_J,
+                "force_at_displacement_N": self.force_at_displacement_N, "regime": self.regime}
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """A friction-pendulum bearing of 1, 2 or 4 concave surfaces.
+
+    Parameters
+    ----------
+    kind : {"single", "double", "triple"}
+    surfaces : tuple of Surface
+        In file order (outer-bottom first).
+    """
+
+    kind: str
+    surfaces: tuple
+
+    # ---- the series model ---------------------------------------------------------------
+    @property
+    def effective_radii_m(self) -> np.ndarray:
+        return np.array([s.effective_radius_m for s in self.surfaces])
+
+    @property
+    def mu_kinetic(self) -> np.ndarray:
+        return np.array([s.mu_kinetic for s in self.surfaces])
+
+    @property
+    def effective_capacities_m(self) -> np.ndarray:
+        return np.array([s.effective_capacity_m for s in self.surfaces])
+
+    def elements(self):
+        """The series elements (R̄ [m], µ [-], rim c̄ [m]); see :func:`series_elements`."""
+        return series_elements(self.kind, self.effective_radii_m, self.mu_kinetic, self.effective_capacities_m)
+
+    def surface_matrix(self) -> np.ndarray:
+        """T with u = T ū (effective displacement on each real surface from the elements') [-]."""
+        return surface_matrix(self.kind, self.effective_radii_m)
+
+    @property
+    def has_rims(self) -> bool:
+        return all(s.displacement_capacity_m is not None for s in self.surfaces)
+
+    @property
+    def ultimate_displacement_m(self) -> float:
+        """Σ d_i* [m]: every slider on its rim (inf when a surface has no capacity)."""
+        return float(np.sum(self.effective_capacities_m))
+
+    @property
+    def is_simple(self) -> bool:
+        """True for one surface (today's single pendulum)."""
+        return self.kind == "single"
+
+    def regime_name(self, mask: int, rimmed: int) -> str:
+        """The name of a state: sliding elements ``mask`` and elements on a rim ``rimmed`` (bit sets).
+
+        A triple pendulum's regimes follow Fenz & Constantinou: I (inner sliding, no outer
+        on its rim), II (one outer sliding), III (both outer), IV (one outer on its rim, the
+        other sliding), V (both outer on their rims); an unloading state with one outer on
+        its rim and only the inner sliding has no name of its own (``""``).  Other types
+        name the sliding surfaces: ``"1"``, ``"2"``, ``"1+2"``.
+        """
+        if self.kind != "triple":
+            return "+".join(str(i + 1) for i in range(len(self.surfaces)) if mask >> i & 1)
+        outer_active = (mask & 1) + (mask >> 3 & 1)
+        outer_rim = (rimmed & 1) + (rimmed >> 3 & 1)
+        if mask == 0:
+            return ""
+        if outer_rim == 0:
+            return TRIPLE_REGIMES[outer_active]
+        if outer_rim == 1:
+            return "IV" if outer_active == 1 else ""
+        return "V"
+
+    def backbone(self) -> Backbone:
+        """The monotonic loading curve from rest, its transition points and regimes."""
+        rbar, mu, rim = self.elements()
+        size = max_regimes(rbar.size)
+        reg_x, reg_r, reg_rsum = np.empty(size), np.empty(size), np.empty(size)
+        reg_mask = np.zeros(size, dtype=np.int64)
+        n_reg = excursion(1.0, np.zeros(rbar.size), rbar, mu, rim, 0.0, reg_x, reg_r, reg_rsum, reg_mask)
+        rimmed = 0
+        names = []
+        slopes = []
+        for k in range(n_reg):
+            # elements that started and are no longer sliding are on their rims
+            started_before = 0
+            for j in range(k):
+                started_before |= int(reg_mask[j])
+            rimmed = started_before & ~int(reg_mask[k])
+            if reg_rsum[k] == 0.0 and k == n_reg - 1:
+                break  # the ultimate displacement: a point, not a regime
+            names.append(self.regime_name(int(reg_mask[k]), rimmed))
+            slopes.append(math.inf if reg_rsum[k] == 0.0 else 1.0 / reg_rsum[k])
+        return Backbone(displacement_m=reg_x[:n_reg].copy(), force_per_weight=reg_r[:n_reg].copy(),
+                        stiffness_per_weight_1_m=np.array(slopes), regimes=tuple(names),
+                        ultimate_displacement_m=self.ultimate_displacement_m)
+
+    def quasi_static_path(self, targets_m, *, leg_ends: list | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The force along a displacement-controlled path from rest, as a polyline.
+
+        Parameters
+        ----------
+        targets_m : sequence of float
+            Turning points of the imposed displacement [m], each within ±ultimate.
+        leg_ends : list, optional
+            Appended with the index of the vertex that ends each leg.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(x_m, force_per_weight)``: the vertices of F/W against x, in order, vertical
+            steps included (a reversal, a rigid rim).
+        """
+        rbar, mu, rim = self.elements()
+        u = np.zeros(rbar.size)
+        size = max_regimes(rbar.size)
+        reg_x, reg_r, reg_rsum = np.empty(size), np.empty(size), np.empty(size)
+        reg_mask = np.zeros(size, dtype=np.int64)
+        x = 0.0
+        xs, rs = [0.0], [0.0]
+        ultimate = self.ultimate_displacement_m
+        for target in targets_m:
+            target = float(target)
+            if abs(target) > ultimate * (1.0 + 1e-12):
+                raise ValueError(f"target {target:g} m is beyond the ultimate displacement {ultimate:g} m")
+            if target == x:
+                continue
+            s = 1.0 if target > x else -1.0
+            n_reg = excursion(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask)
+            r_end = reg_r[0]
+            for k in range(n_reg):
+                if s * (reg_x[k] - target) > 0.0:
+                    break
+                xs.append(float(reg_x[k]))
+                rs.append(float(reg_r[k]))
+                r_end = reg_r[k]
+                if reg_rsum[k] > 0.0:
+                    r_end = reg_r[k] + (target - reg_x[k]) / reg_rsum[k]
+            xs.append(target)
+            rs.append(float(r_end))
+            if leg_ends is not None:
+                leg_ends.append(len(xs) - 1)
+            settle(s, u, rbar, mu, rim, r_end)
+            x = target
+        return np.array(xs), np.array(rs)
+
+    def stick_window(self, element_displacement_m) -> tuple[float, float]:
+        """(F/W)_lo, (F/W)_hi that the stuck bearing holds at the given element state [-]."""
+        rbar, mu, rim = self.elements()
+        return stick_window(np.asarray(element_displacement_m, dtype=np.float64), rbar, mu, rim)
+
+    def loop_properties(self, displacement_m: float, weight_N: float, gravity_m_s2: float) -> LoopProperties:
+        r"""Effective stiffness, period and damping of the stable loop between ±D.
+
+        .. math::  K_{eff} = \frac{F(+D) - F(-D)}{2D},\quad
+                   \beta_{eff} = \frac{E_D}{2\pi K_{eff} D^2},\quad
+                   T_{eff} = 2\pi\sqrt{\frac{W}{g K_{eff}}}
+
+        (ASCE 7-22 §17.2.8.4, §17.8.5.2 and Eq. 17.8-1; AASHTO GSID 8.2.) The loop is the
+        quasi-static cycle −D → +D → −D after a first loading to +D (the series model's
+        loops are stable from the second half cycle); E_D is its exact polygon area.
+
+        Parameters
+        ----------
+        displacement_m : float
+            D [m], 0 < D ≤ the ultimate displacement.
+        weight_N : float
+            W = M g [N].
+        gravity_m_s2 : float
+            g [m/s²] (for the period).
+        """
+        d = abs(float(displacement_m))
+        if not d > 0.0:
+            raise ValueError("the loop needs a displacement > 0")
+        ends: list = []
+        xs, rs = self.quasi_static_path([d, -d, d, -d], leg_ends=ends)
+        # the closed loop: the last two legs, from the vertex at the end of the second leg (-D)
+        start = ends[1]
+        loop_x, loop_r = xs[start:], rs[start:]
+        area = 0.5 * float(np.sum(loop_x[:-1] * loop_r[1:] - loop_x[1:] * loop_r[:-1]))
+        r_plus, r_minus = float(rs[ends[2]]), float(rs[ends[3]])
+        k_eff = weight_N * (r_plus - r_minus) / (2.0 * d)
+        energy = abs(area) * weight_N
+        beta = energy / (2.0 * math.pi * k_eff * d * d)
+        period = 2.0 * math.pi * math.sqrt(weight_N / (gravity_m_s2 * k_eff))
+        bb = self.backbone()
+        k = int(np.searchsorted(bb.displacement_m, d, side="left")) - 1
+        regime = bb.regimes[min(max(k, 0), len(bb.regimes) - 1)]
+        return LoopProperties(d, k_eff, period, beta, energy, r_plus * weight_N, regime)
+
+    def as_dict(self) -> dict:
+        """The bearing's input and derived numbers (SI units)."""
+        bb = self.backbone()
+        return {
+            "type": self.kind,
+            "surfaces": [{"radius_m": s.radius_m, "height_m": s.height_m, "effective_radius_m": s.effective_radius_m,
+                          "mu_kinetic": s.mu_kinetic, "mu_static": s.mu_static,
+                          "displacement_capacity_m": s.displacement_capacity_m,
+                          "effective_capacity_m": None if s.displacement_capacity_m is None
+                          else s.effective_capacity_m} for s in self.surfaces],
+            "ultimate_displacement_m": self.ultimate_displacement_m,
+            "backbone_displacement_m": bb.displacement_m.tolist(),
+            "backbone_force_per_weight": bb.force_per_weight.tolist(),
+            "backbone_regimes": list(bb.regimes),
+        }
+
+    def with_friction_factor(self, factor: float) -> Bearing:
+        """Every µ_i multiplied by λ (a property bound) [-]."""
+        from dataclasses import replace
+
+        def scaled(v):
+            return None if v is None else v * factor
+
+        return replace(self, surfaces=tuple(replace(s, mu_kinetic=s.mu_kinetic * factor,
+                                                    mu_static=s.mu_static * factor, mu_slow=scaled(s.mu_slow),
+                                                    mu_fast=scaled(s.mu_fast)) for s in self.surfaces))
+
+
+def parse_bearing(table, fail) -> Bearing:
+    """Validate a ``[bearing]`` table.
+
+    Parameters
+    ----------
+    table : dict
+        The table as read from TOML.
+    fail : callable
+        ``fail(message) -> DesignError`` (prefixes the file name).
+
+    Returns
+    -------
+    Bearing
+
+    Raises
+    ------
+    DesignError
+        One line naming the key or the surface and the rule it breaks.
+    """
+    if not isinstance(table, dict):
+        raise fail("key 'bearing' must be a table ([bearing] with type and [[bearing.surface]] entries)")
+    for key in table:
+        if key not in BEARING_KEYS:
+            raise fail(f"unknown key 'bearing.{key}' (valid keys: {', '.join(BEARING_KEYS)})")
+    kind = table.get("type")
+    if kind not in SURFACES_PER_TYPE:
+        raise fail(f"key 'bearing.type' must be one of {', '.join(repr(k) for k in SURFACES_PER_TYPE)}, got {kind!r}")
+    entries = table.get("surface")
+    n = SURFACES_PER_TYPE[kind]
+    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
+        raise fail(f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}")
+    if len(entries) != n:
+        raise fail(f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}, got {len(entries)}")
+    surfaces = tuple(_surface(entry, i + 1, kind, fail) for i, entry in enumerate(entries))
+    bearing = Bearing(kind=kind, surfaces=surfaces)
+    _check_geometry(bearing, fail)
+    return bearing
+
+
+def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
+    where = f"bearing surface {index}"
+    for key in entry:
+        if key not in SURFACE_KEYS:
+            close = difflib.get_close_matches(str(key), list(SURFACE_KEYS), n=1, cutoff=0.5)
+            hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(SURFACE_KEYS)})"
+            raise fail(f"{where}: unknown key '{key}'{hint}")
+
+    def number(key, *, required=False, positive=False):
+        if key not in entry:
+            if required:
+                raise fail(f"{where}: missing key '{key}' ({SURFACE_KEYS[key]})")
+            return None
+        value = entry[key]
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise fail(f"{where}: key '{key}' must be a finite number, got {value!r}")
+        value = float(value)
+        if value < 0.0 or (positive and value == 0.0):
+            raise fail(f"{where}: key '{key}' must be {'> 0' if positive else '>= 0'}, got {value:g}")
+        return value
+
+    radius = number("radius_m", required=True, positive=True)
+    height = number("height_m") or 0.0
+    if not height < radius:
+        raise fail(f"{where}: height_m ({height:g}) must be < radius_m ({radius:g}) so that R_eff = R - h > 0")
+    forms = [f for f in (("mu",), ("mu_kinetic", "mu_static"), ("mu_slow", "mu_fast", "rate_s_per_m"))
+             if any(k in entry for k in f)]
+    if len(forms) != 1:
+        raise fail(f"{where}: give the friction one way: 'mu', or 'mu_kinetic' (+ 'mu_static'), "
+                   "or 'mu_slow', 'mu_fast' and 'rate_s_per_m'")
+    mu_slow = mu_fast = rate = None
+    if forms[0] == ("mu",):
+        mu_k = mu_s = number("mu", positive=True)
+    elif forms[0][0] == "mu_kinetic":
+        mu_k = number("mu_kinetic", required=True, positive=True)
+        mu_s = number("mu_static")
+        mu_s = mu_k if mu_s is None else mu_s
+        if mu_s < mu_k:
+            raise fail(f"{where}: mu_static ({mu_s:g}) must be >= mu_kinetic ({mu_k:g})")
+    else:
+        mu_slow = number("mu_slow", required=True)
+        mu_fast = number("mu_fast", required=True, positive=True)
+        rate = number("rate_s_per_m", required=True, positive=True)
+        if mu_slow > mu_fast:
+            raise fail(f"{where}: mu_slow ({mu_slow:g}) must not exceed mu_fast ({mu_fast:g})")
+        mu_k = mu_fast
+        mu_s = mu_slow
+    if max(mu_k, mu_s) >= 1.0:
+        raise fail(f"{where}: friction must be < 1 for a sliding surface, got {max(mu_k, mu_s):g}")
+    if kind != "single" and (mu_s != mu_k or rate is not None):
+        raise fail(f"{where}: a {kind} bearing takes one friction coefficient per surface ('mu'); static and "
+                   "velocity-dependent friction are modelled for a single surface only")
+    capacity = number("displacement_capacity_m", required=kind != "single", positive=True)
+    return Surface(radius_m=radius, height_m=height, mu_kinetic=mu_k, mu_static=mu_s,
+                   displacement_capacity_m=capacity, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate)
+
+
+def _check_geometry(bearing: Bearing, fail) -> None:
+    """The orderings the series model covers (Fenz & Constantinou 2008)."""
+    if bearing.kind != "triple":
+        return
+    s = bearing.surfaces
+    for inner, outer in ((1, 0), (2, 3)):
+        si, so = s[inner], s[outer]
+        i, o = inner + 1, outer + 1
+        if not si.effective_radius_m < so.effective_radius_m:
+            raise fail(f"bearing surface {i}: R_eff,{i} = {si.effective_radius_m:g} m must be < R_eff,{o} = "
+                       f"{so.effective_radius_m:g} m (inner surfaces are the smaller, Fenz & Constantinou 2008)")
+        if si.mu_kinetic > so.mu_kinetic:
+            raise fail(f"bearing surface {i}: mu_{i} = {si.mu_kinetic:g} must not exceed mu_{o} = {so.mu_kinetic:g} "
+                       "(the inner surfaces slide first, regime I of Fenz & Constantinou 2008)")
+        need = (so.mu_kinetic - si.mu_kinetic) * si.effective_radius_m
+        if si.effective_capacity_m < need:
+            raise fail(f"bearing surface {i}: effective capacity d*_{i} = {si.effective_capacity_m:.4g} m is too small "
+                       f"to reach regime II: it must be >= (mu_{o} - mu_{i}) R_eff,{i} = {need:.4g} m")
+
+
+def bearing_from_design_mapping(mapping: dict, fail) -> Bearing | None:
+    """The ``[bearing]`` table of a design file, validated, or None when absent."""
+    if "bearing" not in mapping:
+        return None
+    return parse_bearing(mapping["bearing"], fail)
+
+
+__all__ = ["Backbone", "Bearing", "DesignError", "LoopProperties", "Surface", "parse_bearing",
+           "bearing_from_design_mapping", "SURFACE_KEYS", "SURFACES_PER_TYPE"]
