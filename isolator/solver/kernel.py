@@ -156,7 +156,7 @@ def full_step_coefficients(h_s: float, damping_per_mass: float, stiffness_per_ma
 
 
 @njit(cache=True)
-def _viscous_integral(tau, x0, v0, p, q, c, kappa):
+def viscous_integral(tau, x0, v0, p, q, c, kappa):
     # ∫₀^τ V² dτ by composite Gauss–Legendre on the exact velocity (partial pieces only)
     rate = 0.5 * c + math.sqrt(abs(0.25 * c * c - kappa))
     n_pieces = min(4000, max(1, int(math.ceil(rate * tau))))
@@ -170,7 +170,7 @@ def _viscous_integral(tau, x0, v0, p, q, c, kappa):
 
 
 @njit(cache=True)
-def _velocity_peak(peak_v, length, x, v, v_end, acc_start, acc_end, p, q, c, kappa):
+def velocity_peak(peak_v, length, x, v, v_end, acc_start, acc_end, p, q, c, kappa):
     # The larger of peak_v and the interior extremum of |V| on a piece, which exists where
     # the acceleration changes sign; located only when it could beat the peak so far
     # (on a piece |V| moves beyond its ends by at most ~length max|A|).
@@ -329,7 +329,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     # the block slides through to the end of the piece
                     if exact_start or tau > 0.0 or not uniform:
                         int_x = e1 * x + h1 * (v - 2.0 * m * x) + p * h2 + q * h3
-                        int_v2 = _viscous_integral(rem, x, v, p, q, c, kappa) if c > 0.0 else 0.0
+                        int_v2 = viscous_integral(rem, x, v, p, q, c, kappa) if c > 0.0 else 0.0
                     else:
                         int_x = e1 * x + h1 * (v - 2.0 * m * x) + p * h2 + q * h3
                         if c > 0.0:
@@ -347,7 +347,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     e_v += c * int_v2
                     slip_time += rem
                     if t_ext < 0.0:
-                        peak_v = _velocity_peak(peak_v, rem, x, v, v1, acc0, acc1, p, q, c, kappa)
+                        peak_v = velocity_peak(peak_v, rem, x, v, v1, acc0, acc1, p, q, c, kappa)
                     # interior extremum of the transmitted acceleration -(µk g s + κX + cV)
                     if c > 0.0:
                         d0 = kappa * v + c * acc0
@@ -381,9 +381,9 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                 e_in -= a_start * (x_s - x) + b * (t_stop * x_s - int_x)
                 e_f += mu_k_g * abs(x_s - x)
                 if c > 0.0:
-                    e_v += c * _viscous_integral(t_stop, x, v, p, q, c, kappa)
+                    e_v += c * viscous_integral(t_stop, x, v, p, q, c, kappa)
                 if t_ext < 0.0:
-                    peak_v = _velocity_peak(peak_v, t_stop, x, v, 0.0, acc0, acc_s, p, q, c, kappa)
+                    peak_v = velocity_peak(peak_v, t_stop, x, v, 0.0, acc0, acc_s, p, q, c, kappa)
                 slip_time += t_stop
                 tau += t_stop
                 x = x_s

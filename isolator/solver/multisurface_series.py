@@ -177,60 +177,57 @@ def excursion(s, u, rbar, mu, rim, x0, reg_x, reg_r, reg_rsum, reg_mask):
         direction s); a rigid regime before the last is an intermediate rim.
     """
     n = u.shape[0]
-    # mirror to s = +1: positions s·ū, levels s·r
-    started = np.zeros(n, dtype=np.bool_)
-    active = np.zeros(n, dtype=np.bool_)
-    rimmed = np.zeros(n, dtype=np.bool_)
-    y = np.empty(n)
-    z = np.empty(n)
+    # mirror to s = +1: positions s·ū, levels s·r; element sets as bit masks (no allocation:
+    # this runs at every reversal of the record loop)
+    started = 0
+    active = 0
+    rimmed = 0
     for i in range(n):
-        ui = s * u[i]
-        rimmed[i] = ui >= rim[i]
-        y[i] = ui / rbar[i] + mu[i]
-        z[i] = rim[i] / rbar[i] + mu[i]
+        if s * u[i] >= rim[i]:
+            rimmed |= 1 << i
     r = math.inf
     for i in range(n):
-        if not rimmed[i] and y[i] < r:
-            r = y[i]
+        if not rimmed >> i & 1:
+            r = min(r, s * u[i] / rbar[i] + mu[i])
     x = s * x0
-    n_reg = 0
     if r == math.inf:
         # every element on its rim: rigid from the start
-        reg_x[0] = s * x
         r_hold = -math.inf
         for i in range(n):
-            r_hold = max(r_hold, z[i])
+            r_hold = max(r_hold, rim[i] / rbar[i] + mu[i])
+        reg_x[0] = s * x
         reg_r[0] = s * r_hold
         reg_rsum[0] = 0.0
         reg_mask[0] = 0
         return 1
+    n_reg = 0
     for _ in range(2 * n + 1):
         # elements that start or reach the rim at level r
         for i in range(n):
-            if not rimmed[i] and not started[i] and y[i] <= r + LEVEL_TIE:
-                started[i] = True
-                active[i] = True
-            if active[i] and z[i] <= r + LEVEL_TIE:
-                active[i] = False
-                rimmed[i] = True
+            bit = 1 << i
+            if not (rimmed | started) & bit and s * u[i] / rbar[i] + mu[i] <= r + LEVEL_TIE:
+                started |= bit
+                active |= bit
+            if active & bit and rim[i] / rbar[i] + mu[i] <= r + LEVEL_TIE:
+                active &= ~bit
+                rimmed |= bit
         rsum = 0.0
-        mask = 0
         for i in range(n):
-            if active[i]:
+            if active >> i & 1:
                 rsum += rbar[i]
-                mask |= 1 << i
         reg_x[n_reg] = s * x
         reg_r[n_reg] = s * r
         reg_rsum[n_reg] = rsum
-        reg_mask[n_reg] = mask
+        reg_mask[n_reg] = active
         n_reg += 1
         # next level: an element starts or an active one reaches its rim
         r_next = math.inf
         for i in range(n):
-            if not rimmed[i] and not started[i]:
-                r_next = min(r_next, y[i])
-            if active[i]:
-                r_next = min(r_next, z[i])
+            bit = 1 << i
+            if not (rimmed | started) & bit:
+                r_next = min(r_next, s * u[i] / rbar[i] + mu[i])
+            if active & bit:
+                r_next = min(r_next, rim[i] / rbar[i] + mu[i])
         if r_next == math.inf:
             return n_reg  # open (no rim ahead) or the ultimate displacement (rigid)
         x = x + rsum * (r_next - r)
@@ -249,8 +246,8 @@ def settle(s, u, rbar, mu, rim, r_end):
         target = s * r_end - mu[i]  # s·ū/R̄ of an element sliding at this force
         if s * u[i] / rbar[i] < target:
             ui = rbar[i] * target
-            if ui > rim[i]:
-                ui = rim[i]
+            if ui >= rim[i] - rbar[i] * LEVEL_TIE:
+                ui = rim[i]  # on the rim (a level within the tie of the rim level is the rim)
             if ui > s * u[i]:
                 u[i] = s * ui
 

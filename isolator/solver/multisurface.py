@@ -1,0 +1,262 @@
+"""Driver of the 1-D multi-surface model: a mass on a single, double or triple friction pendulum.
+
+The record is piecewise linear between its samples, as for the single pendulum
+(:mod:`isolator.solver.record`); the response to it is exact between events and the
+events are located to rounding (:mod:`isolator.solver.multisurface_kernel`).  The
+bearing is :class:`isolator.bearing.Bearing` (series model, rims, ultimate displacement).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from isolator.errors import RecordInputError
+from isolator.solver import multisurface_kernel as _ms
+from isolator.solver.kernel import max_piece_s, substeps_per_interval
+from isolator.solver.notice import note_if_slow
+from isolator.solver.record import sample_timing
+from isolator.units import STANDARD_GRAVITY
+
+MODEL_NAME = "1d-multisurface"
+
+
+@dataclass
+class MultisurfaceResponse:
+    """Exact response of a mass on a multi-surface bearing to a record (SI units, energies per unit mass).
+
+    The balance ``input = kinetic + stored + friction + viscous + impact`` holds to
+    ``energy_balance_error_J_per_kg``; ``energy_impact_J_per_kg`` is the kinetic energy
+    lost in plastic impacts on rims.
+    """
+
+    bearing: object
+    time_s: np.ndarray
+    ground_acceleration_m_s2: np.ndarray
+    displacement_m: np.ndarray
+    velocity_m_s: np.ndarray
+    absolute_acceleration_m_s2: np.ndarray
+    force_per_weight: np.ndarray  #: the bearing's F/W at the samples [-]
+    event_time_s: np.ndarray
+    event_kind: np.ndarray  #: codes into EVENT_NAMES
+    event_displacement_m: np.ndarray
+    peak_displacement_m: float
+    residual_displacement_m: float
+    peak_velocity_m_s: float
+    peak_transmitted_acceleration_m_s2: float
+    slip_time_s: float
+    n_events: int
+    energy_input_J_per_kg: float
+    energy_friction_J_per_kg: float
+    energy_viscous_J_per_kg: float
+    energy_impact_J_per_kg: float
+    energy_kinetic_final_J_per_kg: float
+    energy_potential_final_J_per_kg: float
+    energy_balance_error_J_per_kg: float
+    energy_history_J_per_kg: np.ndarray  #: rows: input, friction, viscous, impact
+    surface_peak_displacement_m: list  #: per surface, on the surface (d, not d*) [m]
+    regimes: dict  #: first time [s] each regime was entered
+    n_rim_contacts: int
+    ultimate_displacement_reached: bool
+    ultimate_displacement_m: float
+    ultimate_first_time_s: float | None
+    impact_impulse_m_s: float  #: Σ |V| lost at impacts: impulse per unit mass [m/s]
+    max_impact_velocity_m_s: float
+    element_displacement_m: np.ndarray  #: final state of the series elements [m]
+    status: int = 0
+    message: str = "ok"
+    solver_seconds: float = 0.0
+    substeps_per_interval: int = 1
+    model: str = MODEL_NAME
+    model_reason: str = "a multi-surface bearing: the exact 1-D series model with rims"
+    damping_per_mass: float = 0.0
+    gravity_m_s2: float = STANDARD_GRAVITY
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def event_names(self) -> list[str]:
+        return [_ms.EVENT_NAMES[k] for k in self.event_kind]
+
+    def summary(self) -> dict:
+        """The response's numbers under the analysis schema's names (``docs/schema.md``, ``docs/multisurface.md``)."""
+        return {
+            "peak_displacement_m": self.peak_displacement_m,
+            "residual_displacement_m": self.residual_displacement_m,
+            "residual_displacement_x_m": self.residual_displacement_m,
+            "residual_displacement_y_m": 0.0,
+            "uplift_time_s": 0.0,
+            "n_uplifts": 0,
+            "peak_velocity_m_s": self.peak_velocity_m_s,
+            "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
+            "slip_time_s": self.slip_time_s,
+            "n_events": int(self.n_events),
+            "energy_input_J_per_kg": self.energy_input_J_per_kg,
+            "energy_friction_J_per_kg": self.energy_friction_J_per_kg,
+            "energy_viscous_J_per_kg": self.energy_viscous_J_per_kg,
+            "energy_impact_J_per_kg": self.energy_impact_J_per_kg,
+            "energy_balance_error_J_per_kg": self.energy_balance_error_J_per_kg,
+            "solver_seconds": self.solver_seconds,
+            "solver_status": self.message,
+            "model": self.model,
+            "model_reason": self.model_reason,
+            "bearing_type": self.bearing.kind,
+            "surface_peak_displacement_m": list(self.surface_peak_displacement_m),
+            "regimes": dict(self.regimes),
+            "n_rim_contacts": int(self.n_rim_contacts),
+            "ultimate_displacement_reached": bool(self.ultimate_displacement_reached),
+            "ultimate_displacement_m": self.ultimate_displacement_m,
+            "impact_impulse_m_s": self.impact_impulse_m_s,
+            "max_impact_velocity_m_s": self.max_impact_velocity_m_s,
+        }
+
+
+_READY = False
+
+
+def _warm_up() -> None:
+    global _READY
+    if _READY:
+        return
+    with note_if_slow("compiling the multi-surface solver (its first use after installation takes a few "
+                      "seconds; the machine code is cached for later runs)"):
+        _run(np.array([0.0, 1.0, -1.0]), 0.01, np.empty(0), 1, math.inf, 0.0, STANDARD_GRAVITY,
+             np.array([1.0, 2.0]), np.array([0.05, 0.05]), np.array([0.1, 0.1]), np.eye(2), 8)
+    _READY = True
+
+
+def _run(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, tmat, capacity):
+    n = acc.size
+    ne = rbar.size
+    out = {name: np.empty(n) for name in ("x", "v", "a", "r")}
+    out_energy = np.empty((4, n))
+    summary = np.zeros(_ms.SUMMARY_SIZE)
+    surf_peak = np.zeros(tmat.shape[0])
+    first = np.empty(4 ** ne)
+    while True:
+        ev_time = np.empty(capacity)
+        ev_kind = np.empty(capacity, dtype=np.int8)
+        ev_x = np.empty(capacity)
+        u = np.zeros(ne)
+        surf_peak[:] = 0.0
+        start = time.perf_counter()
+        _ms.multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, tmat,
+                                out["x"], out["v"], out["a"], out["r"], out_energy, ev_time, ev_kind, ev_x,
+                                summary, surf_peak, first, u)
+        elapsed = time.perf_counter() - start
+        n_ev = int(summary[_ms.S_N_EVENTS])
+        if n_ev <= capacity:
+            return out, out_energy, summary, surf_peak, first, u, ev_time[:n_ev], ev_kind[:n_ev], ev_x[:n_ev], elapsed
+        capacity = n_ev + 16
+
+
+def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
+                     damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY) -> MultisurfaceResponse:
+    """Exact 1-D response of a mass on a multi-surface friction pendulum to a sampled record.
+
+    Parameters
+    ----------
+    acceleration_m_s2 : array_like
+        Ground acceleration [m/s²], linear between samples.
+    dt_s : float, optional
+        Sample interval [s] (or give ``time_s``).
+    bearing : isolator.bearing.Bearing
+        The bearing (its kinetic friction per surface; static and µ(v) friction are not
+        part of this model).
+    time_s : array_like, optional
+        Sample times [s], strictly increasing.
+    damping_per_mass : float
+        Supplemental linear damper γ/M [1/s].
+    gravity_m_s2 : float
+        g [m/s²] (the weight, hence the pendulum's stiffness and the friction force).
+
+    Returns
+    -------
+    MultisurfaceResponse
+    """
+    acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
+    if acc.ndim != 1 or acc.size < 2:
+        raise RecordInputError("a record needs at least two samples in one dimension")
+    if not np.all(np.isfinite(acc)):
+        raise RecordInputError("acceleration holds NaN or infinite values")
+    if time_s is not None:
+        times = np.asarray(time_s, dtype=np.float64)
+        if times.shape != acc.shape:
+            raise RecordInputError(f"time ({times.shape}) and acceleration ({acc.shape}) differ in length")
+        dt, relative = sample_timing(times)
+        t0 = float(times[0])
+    elif dt_s is not None:
+        dt = float(dt_s)
+        if not np.isfinite(dt) or dt <= 0.0:
+            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
+        relative = None
+        t0 = 0.0
+    else:
+        raise TypeError("give dt_s or time_s")
+    c = float(damping_per_mass)
+    g = float(gravity_m_s2)
+    if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
+        raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
+    rbar, mu, rim = bearing.elements()
+    tmat = bearing.surface_matrix()
+    kappa_max = g / float(np.min(rbar))  # the stiffest regime: one element of the smallest radius
+    max_piece = max_piece_s(c, kappa_max)
+    if relative is None:
+        n_sub = substeps_per_interval(dt, c, kappa_max)
+        kernel_times = np.empty(0)
+    else:
+        n_sub = 1
+        kernel_times = relative
+    _warm_up()
+    out, energy, summary, surf_peak, first, u, ev_t, ev_k, ev_x, elapsed = _run(
+        acc, dt, kernel_times, n_sub, max_piece, c, g, rbar, mu, rim, tmat, 64 + acc.size // 4)
+    status = int(summary[_ms.S_STATUS])
+    message = "ok"
+    if status & _ms.STATUS_CHATTER:
+        message = (f"chatter guard: more than {_ms.MAX_EVENTS_PER_INTERVAL} events in one sample interval; the "
+                   "bearing was held to the end of that interval")
+    e_kin = 0.5 * float(out["v"][-1]) ** 2
+    e_pot = float(g * np.sum(u * u / (2.0 * rbar)))
+    e_in, e_f, e_v, e_imp = (float(summary[k]) for k in (_ms.S_E_INPUT, _ms.S_E_FRICTION, _ms.S_E_VISCOUS,
+                                                         _ms.S_E_IMPACT))
+    ne = rbar.size
+    regimes: dict = {}
+    for code in np.flatnonzero(first >= 0.0):
+        name = bearing.regime_name(int(code) % (1 << ne), int(code) // (1 << ne))
+        if name and (name not in regimes or first[code] + t0 < regimes[name]):
+            regimes[name] = float(first[code] + t0)
+    regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
+    on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
+                                                                                 strict=True)]
+    first_ult = float(summary[_ms.S_FIRST_ULTIMATE_T])
+    return MultisurfaceResponse(
+        bearing=bearing,
+        time_s=t0 + (dt * np.arange(acc.size) if relative is None else relative),
+        ground_acceleration_m_s2=acc,
+        displacement_m=out["x"], velocity_m_s=out["v"], absolute_acceleration_m_s2=out["a"],
+        force_per_weight=out["r"],
+        event_time_s=t0 + ev_t, event_kind=ev_k, event_displacement_m=ev_x,
+        peak_displacement_m=float(summary[_ms.S_PEAK_X]),
+        residual_displacement_m=float(out["x"][-1]),
+        peak_velocity_m_s=float(summary[_ms.S_PEAK_V]),
+        peak_transmitted_acceleration_m_s2=float(summary[_ms.S_PEAK_A]),
+        slip_time_s=float(summary[_ms.S_SLIP_TIME]),
+        n_events=int(summary[_ms.S_N_EVENTS]),
+        energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
+        energy_impact_J_per_kg=e_imp, energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v + e_imp),
+        energy_history_J_per_kg=energy,
+        surface_peak_displacement_m=on_surface,
+        regimes=regimes,
+        n_rim_contacts=int(summary[_ms.S_N_RIM_CONTACTS]),
+        ultimate_displacement_reached=bool(summary[_ms.S_N_ULTIMATE] > 0),
+        ultimate_displacement_m=bearing.ultimate_displacement_m,
+        ultimate_first_time_s=None if first_ult < 0.0 else t0 + first_ult,
+        impact_impulse_m_s=float(summary[_ms.S_IMPULSE]),
+        max_impact_velocity_m_s=float(summary[_ms.S_MAX_IMPACT_V]),
+        element_displacement_m=u,
+        status=status, message=message, solver_seconds=elapsed, substeps_per_interval=n_sub,
+        damping_per_mass=c, gravity_m_s2=g,
+    )

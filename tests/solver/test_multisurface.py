@@ -1,0 +1,325 @@
+"""The 1-D multi-surface model against an independent reference, closed forms and invariances."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from isolator.bearing import parse_bearing
+from isolator.errors import DesignError
+from isolator.solver.multisurface import simulate_bearing
+from isolator.solver.record import simulate_record
+
+G = 9.80665
+
+
+def _fail(message):
+    return DesignError(message)
+
+
+def bearing(kind, surfaces):
+    return parse_bearing({"type": kind, "surface": [
+        dict({"radius_m": r, "mu": m}, **({} if d is None else {"displacement_capacity_m": d}))
+        for r, m, d in surfaces]}, _fail)
+
+
+TFP = [(2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4)]
+
+
+def expm(a):
+    """Matrix exponential by scaling and squaring of a 24-term Taylor series (‖a/2^k‖ ≤ 1/4: ~1e-16)."""
+    norm = np.max(np.sum(np.abs(a), axis=1))
+    k = max(0, int(np.ceil(np.log2(norm / 0.25)))) if norm > 0.25 else 0
+    a = a / 2.0 ** k
+    total = np.eye(a.shape[0])
+    term = np.eye(a.shape[0])
+    for j in range(1, 24):
+        term = term @ a / j
+        total = total + term
+    for _ in range(k):
+        total = total @ total
+    return total
+
+
+def pulse(amplitude_g, period_s=2.0, duration_s=12.0, dt=0.01, cycles=1.5, seed=None):
+    """A sine pulse of ``cycles`` cycles, then free motion (optionally a little noise)."""
+    t = np.arange(0.0, duration_s, dt)
+    acc = amplitude_g * G * np.sin(2 * np.pi * t / period_s) * (t < cycles * period_s)
+    if seed is not None:
+        acc = acc + 0.3 * np.random.default_rng(seed).normal(size=t.size)
+    return acc, dt
+
+
+class SeriesReference:
+    """An independent event-driven solver of the series model, written on the element states.
+
+    No excursion lists and no closed forms: the sliding set is read from the elements
+    (those at their friction level and not on their rim), the motion between events is
+    propagated with the matrix exponential (Taylor, scaling and squaring) of the augmented linear system
+    z = (x, v, 1, τ), and the events (a stop, an element starting, an element reaching its
+    rim, a break-away) are roots found by Brent's method after a scan of 8 steps per
+    sample interval.  Its error is that of expm and brentq: ~1e-14 relative.
+    """
+
+    def __init__(self, b, c=0.0, g=G):
+        self.rbar, self.mu, self.rim = b.elements()
+        self.c, self.g = c, g
+
+    def window(self, u):
+        lo, hi = -np.inf, np.inf
+        for i in range(u.size):
+            if u[i] < self.rim[i]:
+                hi = min(hi, u[i] / self.rbar[i] + self.mu[i])
+            if u[i] > -self.rim[i]:
+                lo = max(lo, u[i] / self.rbar[i] - self.mu[i])
+        return lo, hi
+
+    def active_set(self, u, s, r):
+        return [i for i in range(u.size)
+                if s * u[i] < self.rim[i] and abs(u[i] / self.rbar[i] + s * self.mu[i] - r) <= 1e-12]
+
+    def matrix(self, kappa, offset, a0, slope):
+        # z = (x, v, 1, τ): x' = v, v' = −κx − cv − (offset + a0) − slope·τ
+        return np.array([[0.0, 1.0, 0.0, 0.0],
+                         [-kappa, -self.c, -(offset + a0), -slope],
+                         [0.0, 0.0, 0.0, 0.0],
+                         [0.0, 0.0, 1.0, 0.0]])
+
+    def propagate(self, z0, t, kappa, offset, a0, slope):
+        return expm(self.matrix(kappa, offset, a0, slope) * t) @ z0
+
+    def first_event(self, z0, duration, kappa, offset, a_start, slope, s, u, active, x_reg, r_reg, rsum):
+        """The first event of a slip piece: (time from its start, what, state then)."""
+        def state(t):
+            return self.propagate(z0, t, kappa, offset, a_start, slope)
+
+        def force(xx):
+            return r_reg + (xx - x_reg) / rsum
+
+        # event functions of the state z = (x, v, 1, τ): negative before, >= 0 at the event
+        functions = [("stop", lambda z: -s * z[1])]
+        for j in range(u.size):
+            if j not in active and s * u[j] < self.rim[j]:
+                y = u[j] / self.rbar[j] + s * self.mu[j]
+                functions.append((("start", j), lambda z, y=y: s * (force(z[0]) - y)))
+        for i in active:
+            def rim_gap(z, i=i):
+                return s * (u[i] + (z[0] - x_reg) * self.rbar[i] / rsum) - self.rim[i]
+            functions.append((("rim", i), rim_gap))
+        grid = np.linspace(0.0, duration, 9)
+        step = expm(self.matrix(kappa, offset, a_start, slope) * grid[1])
+        states = [z0]
+        for _ in grid[1:]:
+            states.append(step @ states[-1])
+        first_t, first_what = duration, None
+        for what, fn in functions:
+            values = [fn(z) for z in states]
+            if what == "stop" and values[0] >= 0.0:
+                values[0] = -1.0  # a start from rest (v = 0) is not a stop
+            for a, b_, fa, fb in zip(grid[:-1], grid[1:], values[:-1], values[1:], strict=True):
+                if a >= first_t:
+                    break
+                if fa < 0.0 <= fb:
+                    root = b_
+                    if fb != 0.0 and fn(state(a)) < 0.0:
+                        root = brentq(lambda t, fn=fn: fn(state(t)), a, b_, xtol=1e-16, rtol=1e-15)
+                    if root < first_t:
+                        first_t, first_what = root, what
+                    break
+        return first_t, first_what, state(first_t)
+
+    def run(self, acc, dt):
+        g = self.g
+        n = acc.size
+        u = np.zeros(self.rbar.size)
+        x, v = 0.0, 0.0
+        stuck, s, active = True, 0.0, []
+        x_reg = r_reg = 0.0
+        out = np.zeros(n)
+        impacts = []
+        for k in range(n - 1):
+            a0, slope = acc[k], (acc[k + 1] - acc[k]) / dt
+            tau = 0.0
+            for _ in range(10_000):
+                if tau >= dt:
+                    break
+                if stuck:
+                    lo, hi = self.window(u)
+                    need_end = -(a0 + slope * dt) / g
+                    need_now = -(a0 + slope * tau) / g
+                    if lo <= need_now <= hi:
+                        if lo <= need_end <= hi:
+                            tau = dt
+                            break
+                        s = 1.0 if need_end > hi else -1.0
+                        level = hi if s > 0 else lo
+                        tau = max(tau, (-level * g - a0) / slope)
+                    else:  # beyond the window already: slides at once
+                        s = 1.0 if need_now > hi else -1.0
+                        level = hi if s > 0 else lo
+                    stuck = False
+                    active = self.active_set(u, s, level)
+                    x_reg, r_reg = x, level
+                    continue
+                rsum = sum(self.rbar[i] for i in active)
+                kappa = g / rsum
+                offset = g * r_reg - kappa * x_reg  # F/M = κ x + offset
+                z0 = np.array([x, v, 1.0, 0.0])
+                a_start = a0 + slope * tau
+
+                first_t, first_what, z = self.first_event(z0, dt - tau, kappa, offset, a_start, slope, s, u,
+                                                          active, x_reg, r_reg, rsum)
+                x_old = x_reg
+                x, v = z[0], z[1]
+                tau += first_t
+                if first_what is None:
+                    continue
+                for i in active:  # the elements up to now
+                    u[i] += (x - x_old) * self.rbar[i] / rsum
+                x_reg, r_reg = x, r_reg + (x - x_old) / rsum
+                if first_what == "stop":
+                    v = 0.0
+                    lo, hi = self.window(u)
+                    need = -(a0 + slope * tau) / g
+                    if lo <= need <= hi:
+                        stuck = True
+                    else:
+                        s = 1.0 if need > hi else -1.0
+                        level = hi if s > 0 else lo
+                        active = self.active_set(u, s, level)
+                        x_reg, r_reg = x, level
+                else:
+                    # every element that starts or reaches its rim at this force (ties: equal surfaces)
+                    r_now = r_reg
+                    for j in range(u.size):
+                        if (j not in active and s * u[j] < self.rim[j]
+                                and s * (r_now - u[j] / self.rbar[j] - s * self.mu[j]) >= -1e-12):
+                            active.append(j)
+                    for i in list(active):
+                        if s * u[i] >= self.rim[i] - 1e-12:
+                            u[i] = s * self.rim[i]
+                            active.remove(i)
+                    if not active:
+                        impacts.append((k * dt + tau, abs(v)))
+                        v = 0.0
+                        stuck = True
+            out[k + 1] = x
+        return out, impacts
+
+
+@pytest.fixture(scope="module")
+def tfp():
+    return bearing("triple", TFP)
+
+
+def test_rim_hard_case_against_the_independent_reference(tfp):
+    """A record that drives the TFP through regimes I–V, onto the ultimate rim and back."""
+    acc, dt = pulse(0.55, period_s=2.5, duration_s=9.0, dt=0.02)
+    res = simulate_bearing(acc, dt, bearing=tfp)
+    assert list(res.regimes) == ["I", "II", "III", "IV", "V"]
+    assert res.ultimate_displacement_reached and res.n_rim_contacts >= 4
+    ref_x, impacts = SeriesReference(tfp).run(acc, dt)
+    peak = np.max(np.abs(ref_x))
+    assert peak == pytest.approx(0.9, abs=1e-12)  # the reference reaches the ultimate too
+    err = np.max(np.abs(res.displacement_m - ref_x)) / peak
+    assert err <= 1e-9, err
+    # the impacts at the ultimate: same instants and impulses
+    ours = res.event_time_s[np.array(res.event_names) == "ultimate"]
+    assert len(ours) == len(impacts)
+    np.testing.assert_allclose(ours, [t for t, _ in impacts], rtol=0, atol=1e-9)
+    assert res.impact_impulse_m_s == pytest.approx(sum(vi for _, vi in impacts), rel=1e-9)
+    # it comes back: the excursion after the pulse is inside the rims again
+    assert np.max(np.abs(res.displacement_m[-200:])) < 0.752
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+def test_regimes_IV_and_V_without_the_ultimate_against_the_reference(tfp):
+    acc, dt = pulse(0.2, period_s=2.5, duration_s=9.0, dt=0.02, seed=3, cycles=1.0)
+    res = simulate_bearing(acc, dt, bearing=tfp)
+    assert "V" in res.regimes and not res.ultimate_displacement_reached
+    ref_x, impacts = SeriesReference(tfp).run(acc, dt)
+    assert not impacts
+    err = np.max(np.abs(res.displacement_m - ref_x)) / np.max(np.abs(ref_x))
+    assert err <= 1e-9, err
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+    # the peak on each real surface within its capacity; the outer ones reached it
+    caps = [0.4, 0.05, 0.05, 0.4]
+    assert all(p <= d + 1e-12 for p, d in zip(res.surface_peak_displacement_m, caps, strict=True))
+    assert res.surface_peak_displacement_m[0] == pytest.approx(0.4, abs=1e-12)
+
+
+def test_energy_balance_with_damping_and_rims(tfp):
+    acc, dt = pulse(0.6, period_s=2.0, duration_s=10.0, seed=5)
+    res = simulate_bearing(acc, dt, bearing=tfp, damping_per_mass=0.3)
+    assert res.ultimate_displacement_reached and res.energy_viscous_J_per_kg > 0
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+def test_double_with_equal_surfaces_is_the_single_pendulum_of_summed_radius():
+    acc, dt = pulse(0.3, period_s=1.5, duration_s=15.0, seed=1)
+    dbl = bearing("double", [(1.2, 0.05, 2.0), (1.2, 0.05, 2.0)])
+    res = simulate_bearing(acc, dt, bearing=dbl)
+    single = simulate_record(acc, dt, mu_static=0.05, stiffness_per_mass=G / 2.4)
+    scale = single.peak_displacement_m
+    assert np.max(np.abs(res.displacement_m - single.displacement_m)) <= 1e-12 * scale
+    assert res.peak_displacement_m == pytest.approx(single.peak_displacement_m, rel=1e-12)
+    assert res.peak_transmitted_acceleration_m_s2 == pytest.approx(single.peak_transmitted_acceleration_m_s2,
+                                                                   rel=1e-12)
+    assert res.regimes == {"1+2": res.regimes["1+2"]} and res.n_rim_contacts == 0
+
+
+def test_triple_with_huge_outer_friction_is_a_single_pendulum_on_the_inner_surfaces():
+    acc, dt = pulse(0.25, period_s=1.0, duration_s=10.0, seed=2)
+    b = bearing("triple", [(2.1, 0.9, 0.4), (0.3, 0.02, 0.5), (0.3, 0.02, 0.5), (2.1, 0.95, 0.4)])
+    res = simulate_bearing(acc, dt, bearing=b)
+    single = simulate_record(acc, dt, mu_static=0.02, stiffness_per_mass=G / 0.6)
+    assert single.peak_displacement_m > 0.05
+    assert np.max(np.abs(res.displacement_m - single.displacement_m)) <= 1e-11 * single.peak_displacement_m
+    assert list(res.regimes) == ["I"]
+
+
+def test_single_with_capacity_has_a_rim_and_matches_the_kernel_below_it():
+    acc, dt = pulse(0.4, period_s=2.0, duration_s=10.0, seed=4)
+    free = simulate_record(acc, dt, mu_static=0.05, stiffness_per_mass=G / 2.0)
+    big = simulate_bearing(acc, dt, bearing=bearing("single", [(2.0, 0.05, 10.0)]))
+    assert np.max(np.abs(big.displacement_m - free.displacement_m)) <= 1e-12 * free.peak_displacement_m
+    cap = 0.6 * free.peak_displacement_m
+    rimmed = simulate_bearing(acc, dt, bearing=bearing("single", [(2.0, 0.05, cap)]))
+    assert rimmed.ultimate_displacement_reached and rimmed.n_rim_contacts >= 1
+    assert rimmed.peak_displacement_m == pytest.approx(cap, rel=1e-14)
+    assert np.max(np.abs(rimmed.displacement_m)) <= cap * (1 + 1e-14)
+    ref_x, impacts = SeriesReference(rimmed.bearing).run(acc, dt)
+    assert np.max(np.abs(rimmed.displacement_m - ref_x)) <= 1e-9 * cap
+    assert abs(rimmed.energy_balance_error_J_per_kg) <= 1e-9 * rimmed.energy_input_J_per_kg
+
+
+def test_mirror_and_resampling_invariance(tfp):
+    acc, dt = pulse(0.5, period_s=2.5, duration_s=8.0, seed=7)
+    res = simulate_bearing(acc, dt, bearing=tfp)
+    mirror = simulate_bearing(-acc, dt, bearing=tfp)
+    assert np.max(np.abs(res.displacement_m + mirror.displacement_m)) <= 1e-12
+    # extra collinear samples in the middle of every interval: the same piecewise-linear record
+    t = np.arange(acc.size) * dt
+    t2 = np.sort(np.concatenate([t, t[:-1] + 0.37 * dt]))
+    acc2 = np.interp(t2, t, acc)
+    res2 = simulate_bearing(acc2, time_s=t2, bearing=tfp)
+    on_grid = np.searchsorted(t2, t)
+    assert np.max(np.abs(res2.displacement_m[on_grid] - res.displacement_m)) <= 1e-11
+
+
+def test_regime_times_and_summary_keys(tfp):
+    acc, dt = pulse(0.55, period_s=2.5, duration_s=9.0)
+    res = simulate_bearing(acc, dt, bearing=tfp)
+    times = list(res.regimes.values())
+    assert times == sorted(times)
+    summary = res.summary()
+    for key in ("surface_peak_displacement_m", "regimes", "n_rim_contacts", "ultimate_displacement_reached",
+                "peak_displacement_m", "peak_transmitted_acceleration_m_s2", "model", "model_reason"):
+        assert key in summary
+    assert summary["model"] == "1d-multisurface"
+    # the transmitted acceleration never exceeds the ultimate force of the backbone while sliding,
+    # except for what the ground transmits through the rigid bearing at the ultimate
+    r_ult = tfp.backbone().force_per_weight[-1]
+    sliding = res.velocity_m_s != 0.0
+    assert np.max(np.abs(res.force_per_weight[sliding])) <= r_ult + 1e-12
