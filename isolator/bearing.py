@@ -373,9 +373,37 @@ class Bearing:
             "backbone_regimes": list(bb.regimes),
         }
 
+    def effective_properties(self, displacement_m: float, mass_kg: float, gravity_m_s2: float,
+                             damping_Ns_per_m: float = 0.0) -> tuple:
+        """The fields of :class:`isolator.design.EffectiveProperties` at D, from the loop (:meth:`loop_properties`).
+
+        A supplemental damper adds π γ ω_eff D² to E_D and γ ω_eff D to the force, as for
+        the single pendulum (:meth:`isolator.design.Design.effective_properties`).  NaN when
+        D = 0 or D is beyond the ultimate displacement (the loop does not exist there).
+
+        Returns
+        -------
+        tuple
+            (D [m], K_eff [N/m], T_eff [s], β_eff [-], force at D [N]).
+        """
+        d = abs(float(displacement_m))
+        weight = mass_kg * gravity_m_s2
+        if d == 0.0 or d > self.ultimate_displacement_m:
+            nan = math.nan
+            return d, nan, nan, nan, nan
+        lp = self.loop_properties(d, weight, gravity_m_s2)
+        omega = math.sqrt(lp.effective_stiffness_N_per_m / mass_kg)
+        energy = lp.energy_per_cycle_J + math.pi * damping_Ns_per_m * omega * d * d
+        beta = energy / (2.0 * math.pi * lp.effective_stiffness_N_per_m * d * d)
+        return (d, lp.effective_stiffness_N_per_m, lp.effective_period_s, beta,
+                lp.force_at_displacement_N + damping_Ns_per_m * omega * d)
+
     def with_friction_factor(self, factor: float) -> Bearing:
         """Every µ_i multiplied by λ (a property bound) [-]."""
         from dataclasses import replace
+
+        if max(max(s.mu_kinetic, s.mu_static) for s in self.surfaces) * factor >= 1.0:
+            raise DesignError(f"a bearing surface's µ × λ ({factor:g}) must stay < 1")
 
         def scaled(v):
             return None if v is None else v * factor
@@ -501,12 +529,63 @@ def _check_geometry(bearing: Bearing, fail) -> None:
                        f"to reach regime II: it must be >= (mu_{o} - mu_{i}) R_eff,{i} = {need:.4g} m")
 
 
-def bearing_from_design_mapping(mapping: dict, fail) -> Bearing | None:
-    """The ``[bearing]`` table of a design file, validated, or None when absent."""
-    if "bearing" not in mapping:
-        return None
-    return parse_bearing(mapping["bearing"], fail)
+#: Top-level design keys that a ``[bearing]`` table replaces.
+REPLACED_DESIGN_KEYS = ("radius_m", "stiffness_N_per_m", "mu_static", "mu_kinetic", "mu_slow", "mu_fast",
+                        "rate_s_per_m", "displacement_capacity_m")
+
+
+def equivalent_single(bearing: Bearing) -> tuple[float, float]:
+    """(radius [m], µ [-]) of the single pendulum equal to the bearing where every element slides.
+
+    The regime of largest compliance on the backbone (regime III of a triple pendulum,
+    both surfaces of a double): its line F/W = x/R + µ.  It is what a single number needs
+    (the paper's dimensionless point, a design's isolated period); the response is
+    computed on the whole bearing.
+    """
+    bb = bearing.backbone()
+    compliance = [1.0 / k if k > 0 else 0.0 for k in bb.stiffness_per_weight_1_m]
+    k = int(np.argmax(compliance))
+    radius = compliance[k]
+    return radius, float(bb.force_per_weight[k] - bb.displacement_m[k] / radius)
+
+
+def equivalent_design_keys(bearing: Bearing, mapping: dict, fail) -> dict:
+    """The design mapping with the top-level keys of the bearing's equivalent single pendulum.
+
+    Parameters
+    ----------
+    bearing : Bearing
+    mapping : dict
+        The design file's table; it must not give the keys the bearing replaces.
+    fail : callable
+        ``fail(message) -> DesignError``.
+
+    Returns
+    -------
+    dict
+        ``mapping`` with ``radius_m``, the friction keys and ``displacement_capacity_m``
+        (the ultimate displacement Σ d*) of the bearing: the surface itself for a single
+        bearing, :func:`equivalent_single` for a double or triple.
+    """
+    given = [key for key in REPLACED_DESIGN_KEYS if key in mapping]
+    if given:
+        raise fail(f"key '{given[0]}' with a [bearing] table: give the radius, friction and capacity of each "
+                   "surface in [[bearing.surface]]")
+    out = {key: value for key, value in mapping.items() if key != "bearing"}
+    if bearing.is_simple:
+        s = bearing.surfaces[0]
+        out["radius_m"] = s.effective_radius_m
+        if s.rate_s_per_m is not None:
+            out.update(mu_static=s.mu_slow, mu_slow=s.mu_slow, mu_fast=s.mu_fast, rate_s_per_m=s.rate_s_per_m)
+        else:
+            out.update(mu_static=s.mu_static, mu_kinetic=s.mu_kinetic)
+    else:
+        radius, mu = equivalent_single(bearing)
+        out.update(radius_m=radius, mu_static=mu, mu_kinetic=mu)
+    if bearing.has_rims:
+        out["displacement_capacity_m"] = bearing.ultimate_displacement_m
+    return out
 
 
 __all__ = ["Backbone", "Bearing", "DesignError", "LoopProperties", "Surface", "parse_bearing",
-           "bearing_from_design_mapping", "SURFACE_KEYS", "SURFACES_PER_TYPE"]
+           "equivalent_design_keys", "equivalent_single", "SURFACE_KEYS", "SURFACES_PER_TYPE"]

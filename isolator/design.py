@@ -58,6 +58,7 @@ DESIGN_KEYS = {
     "plan": "table: plan dimensions b_m, d_m [m], eccentricity_m [m], y_m [m] or P_T [-] (torsion factor)",
     "superstructure": "table: damping_ratio and [[superstructure.floor]] entries (isolator.superstructure)",
     "bearing_position": "array of tables: x_m, y_m [m] from the centre of mass, gravity_load_N [N] (optional)",
+    "bearing": "table: type single/double/triple and [[bearing.surface]] entries (docs/multisurface.md)",
 }
 
 #: keys of the optional ``[plan]`` table
@@ -220,6 +221,7 @@ class Design:
     superstructure: object = None
     #: the bearings' positions and gravity loads (:class:`isolator.superstructure.BearingLayout`), if any
     bearing_layout: object = None
+    bearing: object = None  #: an isolator.bearing.Bearing from a [bearing] table, else None
 
     # ---- construction ----------------------------------------------------------------
 
@@ -264,6 +266,12 @@ class Design:
             close = difflib.get_close_matches(str(key), list(DESIGN_KEYS), n=1, cutoff=0.5)
             hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(DESIGN_KEYS)})"
             raise fail(f"unknown key '{key}'{hint}")
+        bearing = None
+        if "bearing" in mapping:  # surface by surface; the top-level keys become its equivalent single pendulum
+            from isolator.bearing import equivalent_design_keys, parse_bearing
+
+            bearing = parse_bearing(mapping["bearing"], fail)
+            mapping = equivalent_design_keys(bearing, mapping, fail)
 
         def number(key: str, *, minimum: float = 0.0, strict: bool = False, required: bool = False):
             if key not in mapping:
@@ -353,7 +361,7 @@ class Design:
                    damping_ratio_input=damping_ratio, description=description, source=source,
                    gravity_m_s2=g, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate,
                    displacement_capacity_m=capacity, property_factors=factors, plan=plan,
-                   superstructure=superstructure, bearing_layout=bearing_layout)
+                   superstructure=superstructure, bearing_layout=bearing_layout, bearing=bearing)
 
     def with_friction_factor(self, factor: float, label: str) -> Design:
         """The same design with every friction coefficient multiplied by ``factor`` (a property bound).
@@ -375,7 +383,8 @@ class Design:
             raise DesignError(f"{self.source}: µ × λ = {self.mu_static * factor:g} must stay < 1 ({label})")
         return replace(self, name=f"{self.name} ({label})", mu_static=self.mu_static * factor,
                        mu_kinetic=self.mu_kinetic * factor, mu_slow=None if self.mu_slow is None else self.mu_slow * factor,
-                       mu_fast=None if self.mu_fast is None else self.mu_fast * factor)
+                       mu_fast=None if self.mu_fast is None else self.mu_fast * factor,
+                       bearing=None if self.bearing is None else self.bearing.with_friction_factor(factor))
 
     @property
     def velocity_dependent(self) -> bool:
@@ -460,6 +469,9 @@ class Design:
             NaN stiffness, period and damping when D = 0 (the isolator did not slide).
         """
         d = abs(float(displacement_m))
+        if self.bearing is not None and not self.bearing.is_simple:
+            return EffectiveProperties(*self.bearing.effective_properties(d, self.mass_kg, self.gravity_m_s2,
+                                                                          self.damping_Ns_per_m))
         friction_N = self.mu_kinetic * self.weight_N
         if d == 0.0:
             nan = math.nan
@@ -494,6 +506,7 @@ class Design:
             "plan": None if self.plan is None else dict(self.plan),
             "superstructure": None if self.superstructure is None else self.superstructure.as_dict(),
             "bearing_position": None if self.bearing_layout is None else self.bearing_layout.as_dict(),
+            "bearing": None if self.bearing is None else self.bearing.as_dict(),
         }
 
 

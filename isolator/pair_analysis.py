@@ -88,6 +88,10 @@ class PairAnalysis:
             word = "within" if ratio <= 1.0 else "EXCEEDS"
             out.append(f"Peak resultant displacement {r.peak_displacement_m:.4g} m {word} the displacement "
                        f"capacity {self.design.displacement_capacity_m:.4g} m (ratio {ratio:.3g}).")
+        if getattr(r, "ultimate_displacement_reached", False):  # a bearing with rims (isolator.solver.multisurface)
+            out.append(f"The bearing REACHED its ultimate displacement {r.ultimate_displacement_m:.4g} m (every slider "
+                       f"on its rim): plastic impact(s), impulse {self.design.mass_kg * r.impact_impulse_m_s:.4g} N·s "
+                       "in all; the motion is held there, not continued past it.")
         summary = response_summary(r)
         if summary["uplift_time_s"] > 0:
             out.append(f"The bearing lifts off {summary['n_uplifts']} time(s), {summary['uplift_time_s']:.3g} s "

@@ -152,3 +152,86 @@ def test_friction_factor_scales_every_surface():
     b = triple().with_friction_factor(1.2)
     assert isinstance(b, Bearing)
     np.testing.assert_allclose(b.mu_kinetic, [0.072, 0.024, 0.024, 0.12])
+
+
+# ---- the design file's [bearing] table (isolator.design) -------------------------------------------
+
+TRIPLE_TOML = """
+name = "TFP"
+mass_kg = 1.0e5
+[bearing]
+type = "triple"
+[[bearing.surface]]
+radius_m = 2.2
+height_m = 0.1
+mu = 0.06
+displacement_capacity_m = 0.419047619047619
+[[bearing.surface]]
+radius_m = 0.3
+mu = 0.02
+displacement_capacity_m = 0.05
+[[bearing.surface]]
+radius_m = 0.3
+mu = 0.02
+displacement_capacity_m = 0.05
+[[bearing.surface]]
+radius_m = 2.2
+height_m = 0.1
+mu = 0.10
+displacement_capacity_m = 0.419047619047619
+"""
+
+
+def _design(tmp_path, text, name="d.toml"):
+    from isolator.design import Design
+
+    path = tmp_path / name
+    path.write_text(text)
+    return Design.from_toml(path)
+
+
+def test_design_file_with_a_triple_bearing(tmp_path):
+    d = _design(tmp_path, TRIPLE_TOML)
+    assert d.bearing.kind == "triple"
+    np.testing.assert_allclose(d.bearing.backbone().displacement_m, [0, 0.024, 0.12, 0.752, 0.848, 0.9], atol=1e-12)
+    # the equivalent single pendulum is regime III: R_eff,1 + R_eff,4, F/W intercept of its line
+    assert d.radius_m == pytest.approx(4.2, rel=1e-14)
+    assert d.mu_kinetic == pytest.approx(0.1 - 0.12 / 4.2, rel=1e-12)
+    assert d.displacement_capacity_m == pytest.approx(0.9, rel=1e-14)
+    assert d.as_dict()["bearing"]["type"] == "triple"
+    # effective properties from the loop, not from the equivalent bilinear model
+    lp = d.bearing.loop_properties(0.3, d.weight_N, d.gravity_m_s2)
+    eff = d.effective_properties(0.3)
+    assert eff.effective_stiffness_N_per_m == pytest.approx(lp.effective_stiffness_N_per_m, rel=1e-14)
+    assert eff.effective_damping_ratio == pytest.approx(lp.effective_damping_ratio, rel=1e-14)
+    assert math.isnan(d.effective_properties(0.95).effective_period_s)
+    upper = d.with_friction_factor(1.2, "upper bound")
+    np.testing.assert_allclose(upper.bearing.mu_kinetic, [0.072, 0.024, 0.024, 0.12])
+
+
+def test_design_file_with_a_single_bearing_is_todays_pendulum(tmp_path):
+    d = _design(tmp_path, 'name = "FP"\nmass_kg = 1000\n[bearing]\ntype = "single"\n[[bearing.surface]]\n'
+                'radius_m = 2.1\nheight_m = 0.1\nmu_kinetic = 0.05\nmu_static = 0.07\ndisplacement_capacity_m = 0.42\n')
+    assert d.bearing.is_simple and d.radius_m == pytest.approx(2.0)
+    assert (d.mu_static, d.mu_kinetic) == (0.07, 0.05)
+    assert d.displacement_capacity_m == pytest.approx(0.42 * 2.0 / 2.1)
+
+
+@pytest.mark.parametrize("extra, match", [
+    ("radius_m = 2.0\n", "key 'radius_m' with a \\[bearing\\] table"),
+    ("mu_static = 0.05\n", "key 'mu_static' with a \\[bearing\\] table"),
+])
+def test_design_file_bearing_conflicts(tmp_path, extra, match):
+    with pytest.raises(DesignError, match=match):
+        _design(tmp_path, extra + TRIPLE_TOML.replace('name = "TFP"\n', 'name = "TFP"\n'))
+
+
+def test_design_file_invalid_surface_is_one_line(tmp_path):
+    bad = TRIPLE_TOML.replace("radius_m = 0.3\nmu = 0.02\ndisplacement_capacity_m = 0.05\n[[bearing.surface]]\n"
+                              "radius_m = 0.3\nmu = 0.02",
+                              "radius_m = 0.3\nmu = 0.08\ndisplacement_capacity_m = 0.05\n[[bearing.surface]]\n"
+                              "radius_m = 0.3\nmu = 0.02", 1)
+    with pytest.raises(DesignError) as info:
+        _design(tmp_path, bad)
+    message = str(info.value)
+    assert message.startswith(str(tmp_path / "d.toml") + ": bearing surface 2: mu_2 = 0.08") and "\n" not in message

@@ -10,107 +10,115 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from isolator.errors import RecordInputError
 from isolator.solver import multisurface_kernel as _ms
+from isolator.solver.base import SolverResult
 from isolator.solver.kernel import max_piece_s, substeps_per_interval
 from isolator.solver.notice import note_if_slow
 from isolator.solver.record import sample_timing
+from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
 MODEL_NAME = "1d-multisurface"
 
 
-@dataclass
-class MultisurfaceResponse:
-    """Exact response of a mass on a multi-surface bearing to a record (SI units, energies per unit mass).
+@dataclass(kw_only=True)
+class MultisurfaceResponse(SolverResult):
+    """Exact response of a mass on a multi-surface bearing to one component (model ``1d-multisurface``).
 
-    The balance ``input = kinetic + stored + friction + viscous + impact`` holds to
-    ``energy_balance_error_J_per_kg``; ``energy_impact_J_per_kg`` is the kinetic energy
-    lost in plastic impacts on rims.
+    The fields of :class:`~isolator.solver.base.SolverResult` (SI units, energies per unit
+    mass) and the bearing's own.  The balance
+    ``input = kinetic + stored + friction + viscous + impact`` holds to
+    ``energy_balance_error_J_per_kg``; ``energy_impact_J_per_kg`` is the kinetic energy lost
+    in plastic impacts on rims; ``energy_potential_final_J_per_kg`` is the energy stored in
+    the bearing, g Σ ū_i²/(2 R̄_i).
     """
 
+    EXTRA_SUMMARY_KEYS = ("bearing_type", "surface_peak_displacement_m", "regimes", "n_rim_contacts",
+                          "ultimate_displacement_reached", "ultimate_displacement_m", "energy_impact_J_per_kg",
+                          "impact_impulse_m_s", "max_impact_velocity_m_s", "peak_force_per_weight")
+    EVENT_NAMES = _ms.EVENT_NAMES
+
     bearing: object
-    time_s: np.ndarray
-    ground_acceleration_m_s2: np.ndarray
-    displacement_m: np.ndarray
-    velocity_m_s: np.ndarray
-    absolute_acceleration_m_s2: np.ndarray
     force_per_weight: np.ndarray  #: the bearing's F/W at the samples [-]
-    event_time_s: np.ndarray
-    event_kind: np.ndarray  #: codes into EVENT_NAMES
     event_displacement_m: np.ndarray
-    peak_displacement_m: float
-    residual_displacement_m: float
-    peak_velocity_m_s: float
-    peak_transmitted_acceleration_m_s2: float
-    slip_time_s: float
-    n_events: int
-    energy_input_J_per_kg: float
-    energy_friction_J_per_kg: float
-    energy_viscous_J_per_kg: float
     energy_impact_J_per_kg: float
-    energy_kinetic_final_J_per_kg: float
-    energy_potential_final_J_per_kg: float
-    energy_balance_error_J_per_kg: float
-    energy_history_J_per_kg: np.ndarray  #: rows: input, friction, viscous, impact
-    surface_peak_displacement_m: list  #: per surface, on the surface (d, not d*) [m]
-    regimes: dict  #: first time [s] each regime was entered
+    surface_peak_displacement_m: list  #: per surface in file order, on the surface (d, not d*) [m]
+    regimes: dict  #: first time [s] each regime was entered (I–V for a triple; sliding surfaces otherwise)
     n_rim_contacts: int
     ultimate_displacement_reached: bool
     ultimate_displacement_m: float
     ultimate_first_time_s: float | None
     impact_impulse_m_s: float  #: Σ |V| lost at impacts: impulse per unit mass [m/s]
     max_impact_velocity_m_s: float
+    peak_force_per_weight: float  #: largest |F/W| of the bearing [-]
     element_displacement_m: np.ndarray  #: final state of the series elements [m]
-    status: int = 0
-    message: str = "ok"
-    solver_seconds: float = 0.0
     substeps_per_interval: int = 1
-    model: str = MODEL_NAME
-    model_reason: str = "a multi-surface bearing: the exact 1-D series model with rims"
     damping_per_mass: float = 0.0
     gravity_m_s2: float = STANDARD_GRAVITY
-    extra: dict = field(default_factory=dict)
+    model: str = MODEL_NAME
+    model_reason: str = "a multi-surface bearing: the exact 1-D series model with rims"
+    uplift_time_s = 0.0  #: one horizontal component: no lift-off [s]
+    n_uplifts = 0
 
     @property
-    def event_names(self) -> list[str]:
-        return [_ms.EVENT_NAMES[k] for k in self.event_kind]
+    def bearing_type(self) -> str:
+        return self.bearing.kind
 
-    def summary(self) -> dict:
-        """The response's numbers under the analysis schema's names (``docs/schema.md``, ``docs/multisurface.md``)."""
-        return {
-            "peak_displacement_m": self.peak_displacement_m,
-            "residual_displacement_m": self.residual_displacement_m,
-            "residual_displacement_x_m": self.residual_displacement_m,
-            "residual_displacement_y_m": 0.0,
-            "uplift_time_s": 0.0,
-            "n_uplifts": 0,
-            "peak_velocity_m_s": self.peak_velocity_m_s,
-            "peak_transmitted_acceleration_m_s2": self.peak_transmitted_acceleration_m_s2,
-            "slip_time_s": self.slip_time_s,
-            "n_events": int(self.n_events),
-            "energy_input_J_per_kg": self.energy_input_J_per_kg,
-            "energy_friction_J_per_kg": self.energy_friction_J_per_kg,
-            "energy_viscous_J_per_kg": self.energy_viscous_J_per_kg,
-            "energy_impact_J_per_kg": self.energy_impact_J_per_kg,
-            "energy_balance_error_J_per_kg": self.energy_balance_error_J_per_kg,
-            "solver_seconds": self.solver_seconds,
-            "solver_status": self.message,
-            "model": self.model,
-            "model_reason": self.model_reason,
-            "bearing_type": self.bearing.kind,
-            "surface_peak_displacement_m": list(self.surface_peak_displacement_m),
-            "regimes": dict(self.regimes),
-            "n_rim_contacts": int(self.n_rim_contacts),
-            "ultimate_displacement_reached": bool(self.ultimate_displacement_reached),
-            "ultimate_displacement_m": self.ultimate_displacement_m,
-            "impact_impulse_m_s": self.impact_impulse_m_s,
-            "max_impact_velocity_m_s": self.max_impact_velocity_m_s,
-        }
+    @property
+    def residual_displacement_x_m(self) -> float:
+        """Signed residual along the record [m]."""
+        return self.residual_displacement_m
+
+    @property
+    def residual_displacement_y_m(self) -> float:
+        return 0.0
+
+    @property
+    def configuration(self) -> str:
+        """The paper's configuration (friction + spring = 3, + damper = 4a/b/c at the stiffest regime)."""
+        rbar = self.bearing.elements()[0]
+        return classify_configuration(self.damping_per_mass, self.gravity_m_s2 / float(np.min(rbar)))
+
+    @property
+    def sliding(self) -> np.ndarray:
+        """True at the samples where the mass slides on the bearing."""
+        return self.velocity_m_s != 0.0
+
+
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` when the scene's design has a double or triple bearing; else None.
+
+    A single surface stays on today's kernels (``1d-exact``, ``2d``).  A double or triple
+    bearing under two components or a vertical is claimed too, and refused by
+    :func:`simulate_scene` in one line: the 2-D multi-surface model does not exist yet.
+    """
+    bearing = getattr(scene.design, "bearing", None)
+    if bearing is None or bearing.is_simple:
+        return None
+    n = len(bearing.surfaces)
+    return MODEL_NAME, (f"a {bearing.kind} friction pendulum ({n} surfaces): the exact 1-D series model of "
+                        "Fenz & Constantinou with rims (closed forms between events)")
+
+
+def simulate_scene(scene) -> MultisurfaceResponse:
+    """The exact 1-D response of the scene's multi-surface bearing (:func:`simulate_bearing`).
+
+    Raises
+    ------
+    RecordInputError
+        Two horizontal components or a vertical (not modelled for a double or triple bearing).
+    """
+    if scene.has_y or scene.has_z:
+        raise RecordInputError(f"a {scene.design.bearing.kind} bearing is modelled for one horizontal component "
+                               "only (1d-multisurface): give one component, without --pair or --vertical")
+    return simulate_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
+                            damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
+                            gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
 
 
 _READY = False
@@ -232,7 +240,7 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
                                                                                  strict=True)]
     first_ult = float(summary[_ms.S_FIRST_ULTIMATE_T])
     return MultisurfaceResponse(
-        bearing=bearing,
+        bearing=bearing, peak_force_per_weight=float(summary[_ms.S_PEAK_R]),
         time_s=t0 + (dt * np.arange(acc.size) if relative is None else relative),
         ground_acceleration_m_s2=acc,
         displacement_m=out["x"], velocity_m_s=out["v"], absolute_acceleration_m_s2=out["a"],
@@ -258,5 +266,6 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
         max_impact_velocity_m_s=float(summary[_ms.S_MAX_IMPACT_V]),
         element_displacement_m=u,
         status=status, message=message, solver_seconds=elapsed, substeps_per_interval=n_sub,
-        damping_per_mass=c, gravity_m_s2=g,
+        damping_per_mass=c, gravity_m_s2=g, model=MODEL_NAME,
+        model_reason=f"a {bearing.kind} bearing: the exact 1-D series model with rims",
     )

@@ -323,3 +323,70 @@ def test_regime_times_and_summary_keys(tfp):
     r_ult = tfp.backbone().force_per_weight[-1]
     sliding = res.velocity_m_s != 0.0
     assert np.max(np.abs(res.force_per_weight[sliding])) <= r_ult + 1e-12
+
+
+# ---- the registry and the analysis -----------------------------------------------------------------
+
+def _tfp_design():
+    from isolator.design import Design
+
+    return Design.from_mapping({"name": "TFP", "mass_kg": 1.0e5, "bearing": {"type": "triple", "surface": [
+        {"radius_m": r, "mu": m, "displacement_capacity_m": d} for r, m, d in TFP]}}, source="tfp.toml")
+
+
+def test_registry_runs_the_multisurface_model_for_a_triple_and_says_why():
+    from isolator.adapter import motion_keywords
+    from isolator.solver.models import Scene, select_model, simulate
+
+    design = _tfp_design()
+    acc, dt = pulse(0.55, period_s=2.5, duration_s=9.0, dt=0.02)
+    scene = Scene(ax_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design)
+    name, reason = select_model(scene)
+    assert name == "1d-multisurface" and "triple" in reason
+    res = simulate(scene)
+    direct = simulate_bearing(acc, dt, bearing=design.bearing)
+    np.testing.assert_array_equal(res.displacement_m, direct.displacement_m)
+    assert res.model == "1d-multisurface"
+    summary = res.summary()
+    assert summary["ultimate_displacement_reached"] is True and summary["regimes"]["V"] > 0
+    # a pair is refused in one line, never run on the single-surface 2-D engine
+    from isolator.errors import RecordInputError
+
+    pair = Scene(ax_m_s2=acc, ay_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design)
+    assert select_model(pair)[0] == "1d-multisurface"
+    with pytest.raises(RecordInputError, match="one horizontal component"):
+        simulate(pair)
+    # a design without [bearing] keeps today's model
+    plain = Scene(ax_m_s2=acc, dt_s=dt, isolator={"mu_static": 0.05, "radius_m": 2.0})
+    assert select_model(plain)[0] == "1d-exact"
+
+
+def test_analysis_json_carries_the_bearing_keys():
+    from isolator.analysis import analyse
+    from isolator.motion import GroundMotion
+
+    design = _tfp_design()
+    acc, dt = pulse(0.2, period_s=2.5, duration_s=9.0, dt=0.02, seed=3, cycles=1.0)
+    out = analyse(design, GroundMotion.from_array(acc, dt)).to_dict()
+    assert out["model"] == "1d-multisurface"
+    for key in ("surface_peak_displacement_m", "regimes", "n_rim_contacts", "ultimate_displacement_reached",
+                "peak_transmitted_acceleration_m_s2"):
+        assert key in out
+    assert list(out["regimes"]) == ["I", "II", "III", "IV", "V"] and out["ultimate_displacement_reached"] is False
+    assert len(out["surface_peak_displacement_m"]) == 4
+    assert out["design"]["bearing"]["type"] == "triple"
+    assert out["engineering"]["effective_period_s"] > 0
+
+
+def test_analysis_says_when_the_ultimate_displacement_is_reached():
+    from isolator.analysis import analyse
+    from isolator.motion import GroundMotion
+
+    design = _tfp_design()
+    acc, dt = pulse(0.55, period_s=2.5, duration_s=9.0, dt=0.02)
+    analysis = analyse(design, GroundMotion.from_array(acc, dt))
+    out = analysis.to_dict()
+    assert out["ultimate_displacement_reached"] is True and out["n_rim_contacts"] >= 4
+    assert any("REACHED its ultimate displacement 0.9 m" in v for v in out["verdicts"])
+    impulse = design.mass_kg * analysis.response.impact_impulse_m_s
+    assert f"{impulse:.4g} N·s" in " ".join(out["verdicts"])
