@@ -113,7 +113,7 @@ def test_every_key_is_documented():
                                 "rate_s_per_m", "displacement_capacity_m", "lambda_max", "lambda_min", "mu_upper",
                                 "mu_lower", "lambda_ae_max", "lambda_ae_min", "lambda_test_max", "lambda_test_min",
                                 "lambda_spec_max", "lambda_spec_min", "plan",
-                                "superstructure", "bearing_position"}
+                                "superstructure", "bearing_position", "bearing"}
 
 
 REVIEW_INVALID = [

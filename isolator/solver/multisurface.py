@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import RecordInputError
+from isolator.errors import DesignError, RecordInputError
 from isolator.solver import multisurface_kernel as _ms
 from isolator.solver.base import SolverResult
 from isolator.solver.kernel import max_piece_s, substeps_per_interval
@@ -112,7 +112,12 @@ def simulate_scene(scene) -> MultisurfaceResponse:
     ------
     RecordInputError
         Two horizontal components or a vertical (not modelled for a double or triple bearing).
+    DesignError
+        A superstructure on a double or triple bearing (not modelled).
     """
+    if getattr(scene.design, "superstructure", None) is not None:
+        raise DesignError(f"{scene.design.source}: a {scene.design.bearing.kind} bearing under a [superstructure] is "
+                          "not modelled (1d-multisurface carries a rigid mass)")
     if scene.has_y or scene.has_z:
         raise RecordInputError(f"a {scene.design.bearing.kind} bearing is modelled for one horizontal component "
                                "only (1d-multisurface): give one component, without --pair or --vertical")

@@ -390,3 +390,15 @@ def test_analysis_says_when_the_ultimate_displacement_is_reached():
     assert any("REACHED its ultimate displacement 0.9 m" in v for v in out["verdicts"])
     impulse = design.mass_kg * analysis.response.impact_impulse_m_s
     assert f"{impulse:.4g} N·s" in " ".join(out["verdicts"])
+
+
+def test_a_superstructure_on_a_triple_bearing_is_refused_not_ignored():
+    from dataclasses import replace
+
+    from isolator.adapter import motion_keywords
+    from isolator.solver.models import Scene, simulate
+
+    design = replace(_tfp_design(), superstructure=object())
+    acc, dt = pulse(0.2, duration_s=2.0, dt=0.02)
+    with pytest.raises(DesignError, match="tfp.toml: a triple bearing under a \\[superstructure\\] is not modelled"):
+        simulate(Scene(ax_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design))
