@@ -235,3 +235,23 @@ def test_design_file_invalid_surface_is_one_line(tmp_path):
         _design(tmp_path, bad)
     message = str(info.value)
     assert message.startswith(str(tmp_path / "d.toml") + ": bearing surface 2: mu_2 = 0.08") and "\n" not in message
+
+
+def test_report_of_a_triple_bearing_design_states_the_model_and_the_bearing_keys(records_dir, tmp_path):
+    import json
+
+    from typer.testing import CliRunner
+
+    from isolator.cli import app
+
+    design = tmp_path / "tfp.toml"
+    design.write_text(TRIPLE_TOML)
+    out = tmp_path / "tfp.pdf"
+    result = CliRunner().invoke(app, ["report", str(records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2"),
+                                      "-d", str(design), "-o", str(out), "--no-pdf"])
+    assert result.exit_code == 0, result.output
+    numbers = json.loads(out.with_suffix(".json").read_text())
+    assert numbers["model"] == "1d-multisurface" and "triple" in numbers["model_reason"]
+    assert list(numbers["regimes"]) == ["I", "II", "III"] and numbers["ultimate_displacement_reached"] is False
+    assert sum(numbers["surface_peak_displacement_m"][1:3]) < numbers["peak_displacement_m"]
+    assert abs(numbers["energy_balance_error_J_per_kg"]) <= 1e-9 * numbers["energy_input_J_per_kg"]

@@ -142,7 +142,8 @@ def report(
         if not MIN_TARGET_PGA_G <= scale_to_pga <= MAX_ABS_ACCELERATION_G:
             user_error(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
                        f"got {scale_to_pga:g}")
-    if wants_set(pair, vertical, component) or the_design.velocity_dependent:
+    multisurface = the_design.bearing is not None and not the_design.bearing.is_simple  # 1d-multisurface
+    if wants_set(pair, vertical, component) or the_design.velocity_dependent or multisurface:
         output = _output_pdf(output, record, design, "_pair")
         # the JSON sidecar too: `-o design.pdf` beside design.json must not overwrite the design file
         check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path, pair, vertical])

@@ -120,7 +120,7 @@ def simulate_scene(scene) -> MultisurfaceResponse:
                           "not modelled (1d-multisurface carries a rigid mass)")
     if scene.has_y or scene.has_z:
         raise RecordInputError(f"a {scene.design.bearing.kind} bearing is modelled for one horizontal component "
-                               "only (1d-multisurface): give one component, without --pair or --vertical")
+                               "only (1d-multisurface); the 2-D multi-surface model is not implemented")
     return simulate_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
                             damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
                             gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))

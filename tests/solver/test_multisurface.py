@@ -402,3 +402,19 @@ def test_a_superstructure_on_a_triple_bearing_is_refused_not_ignored():
     acc, dt = pulse(0.2, duration_s=2.0, dt=0.02)
     with pytest.raises(DesignError, match="tfp.toml: a triple bearing under a \\[superstructure\\] is not modelled"):
         simulate(Scene(ax_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design))
+
+
+def test_real_record_through_the_rims_against_the_reference(records_dir):
+    """Northridge NWH360 ×2.5 on the TFP: regimes I–V, the ultimate, against the reference and the balance."""
+    from isolator.motion import read_ground_motion
+
+    motion = read_ground_motion(records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2")
+    start = int(round(2.0 / motion.dt_s))
+    acc = 2.5 * motion.acceleration_m_s2[start:start + int(round(10.0 / motion.dt_s))]
+    b = bearing("triple", TFP)
+    res = simulate_bearing(acc, motion.dt_s, bearing=b)
+    assert res.ultimate_displacement_reached and list(res.regimes) == ["I", "II", "III", "IV", "V"]
+    ref_x, impacts = SeriesReference(b).run(acc, motion.dt_s)
+    assert np.max(np.abs(res.displacement_m - ref_x)) <= 1e-9 * 0.9
+    assert len(impacts) == res.event_names.count("ultimate")
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
