@@ -170,9 +170,12 @@ def _target_text(t: dict) -> str:
                 f"{fmt(t['T_B'])}/{fmt(t['T_C'])}/{fmt(t['T_D'])} s")
     else:
         text = f"table {t.get('spectrum_csv')} ({len(t.get('periods_s', []))} periods)"
-    for key, label, unit in (("magnitude_range", "controlling M", ""), ("distance_km_range", "distance", " km")):
+    for key, label, unit in (("magnitude_range", "controlling M", ""), ("distance_km_range", "distance", " km"),
+                             ("vs30_m_s_range", "V_s30", " m/s")):
         if key in t:
             text += f"; {label} {fmt(t[key][0])}–{fmt(t[key][1])}{unit}"
+    if "mechanisms" in t:
+        text += f"; mechanisms {', '.join(t['mechanisms'])}"
     return f"{t['name']}: {text}  (file {t['source']})"
 
 

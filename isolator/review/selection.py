@@ -134,7 +134,8 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
         Lower-bound kinetic friction [-].
     gravity_m_s2 : float
     controlling : dict
-        The target's ``magnitude_range`` and ``distance_km_range`` ([lo, hi]), either may be absent.
+        The target's ``magnitude_range``, ``distance_km_range``, ``vs30_m_s_range`` ([lo, hi]) and
+        ``mechanisms`` (list of texts), each may be absent.
     params : dict
         ``weak_pga_fraction``, ``bandwidth_min``.
     closest : dict or None
@@ -149,7 +150,8 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
 
     rows = []
     outside, unknown, looked = [], [], []
-    for key, label in (("magnitude", "magnitude_range"), ("distance_km", "distance_km_range")):
+    for key, label in (("magnitude", "magnitude_range"), ("distance_km", "distance_km_range"),
+                       ("vs30_m_s", "vs30_m_s_range")):
         bounds = controlling.get(label)
         if bounds is None:
             continue
@@ -160,13 +162,26 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
                 unknown.append(f"{p.name} ({key})")
             elif not _in_range(value, bounds):
                 outside.append(f"{p.name}: {key} {value:g}")
+    mechanisms = controlling.get("mechanisms")
+    if mechanisms:
+        looked.append(f"mechanism in {{{', '.join(mechanisms)}}}")
+        accepted = {m.lower() for m in mechanisms}
+        for p in pairs:
+            value = p.metadata.get("mechanism")
+            if value is None:
+                unknown.append(f"{p.name} (mechanism)")
+            elif value.lower() not in accepted:
+                outside.append(f"{p.name}: mechanism {value}")
     shown = sorted({k for p in pairs for k in p.metadata})
+    unmatched = [k for k, label in (("mechanism", "mechanisms"), ("vs30_m_s", "vs30_m_s_range"), ("pulse", None))
+                 if k in shown and (label is None or label not in controlling)]
     tail = (f"; metadata given: {', '.join(shown)}" if shown else "; no pair gives metadata") + (
-        " (mechanism, V_s30 and pulse are shown, not checked: the target states no counterpart)")
+        f" ({', '.join(unmatched)} shown, not checked: the target states no counterpart)" if unmatched else "")
     clause = "ASCE 7-22 17.3.2 [U]"
     if not looked:
         rows.append(C.check("record_selection", clause, C.NOT_CHECKED, None, None,
-                            "the target gives no controlling magnitude_range / distance_km_range" + tail))
+                            "the target gives no controlling magnitude_range / distance_km_range / vs30_m_s_range / "
+                            "mechanisms" + tail))
     elif outside:
         rows.append(C.check("record_selection", clause, C.FAIL, len(outside), 0,
                             f"outside the controlling {' and '.join(looked)}: {', '.join(outside)}"

@@ -17,7 +17,9 @@ TARGET.toml holds one of
 
 An optional ``name`` labels it in the report.  Optional ``magnitude_range = [6.5, 7.5]`` and
 ``distance_km_range = [0, 30]`` give the controlling earthquake (the deaggregation's magnitude and
-distance ranges) against which the suite's record metadata is checked (ASCE 7-22 17.3.2 [U]).
+distance ranges) against which the suite's record metadata is checked (ASCE 7-22 17.3.2 [U]); likewise
+``vs30_m_s_range = [180, 360]`` (the site's V_s30) and ``mechanisms = ["strike-slip"]`` (the controlling
+fault mechanisms; compared case-insensitively).
 """
 
 from __future__ import annotations
@@ -30,9 +32,9 @@ import numpy as np
 
 from isolator.errors import TargetError
 
-RANGE_KEYS = ("magnitude_range", "distance_km_range")
+RANGE_KEYS = ("magnitude_range", "distance_km_range", "vs30_m_s_range")
 TARGET_KEYS = {"name", "S_MS", "S_M1", "S_DS", "S_D1", "T_L", "a_g_g", "S", "T_B", "T_C", "T_D", "spectrum_csv",
-               *RANGE_KEYS}
+               "mechanisms", *RANGE_KEYS}
 
 
 @dataclass(frozen=True)
@@ -57,7 +59,7 @@ class Target:
     source: str = "<target>"
     periods_s: np.ndarray = field(default_factory=lambda: np.empty(0))
     sa_table_g: np.ndarray = field(default_factory=lambda: np.empty(0))
-    controlling: dict = field(default_factory=dict)  #: magnitude_range, distance_km_range ([lo, hi])
+    controlling: dict = field(default_factory=dict)  #: magnitude/distance_km/vs30_m_s ranges, mechanisms
 
     def sa_g(self, periods_s, *, clip: bool = False) -> np.ndarray:
         """Target spectral acceleration at the periods [g].
@@ -176,6 +178,12 @@ def load_target(path) -> Target:
                 for v in value) and value[0] <= value[1]):
             raise TargetError(f"{path}: key '{key}' must be [low, high] with 0 ≤ low ≤ high, got {value!r}")
         controlling[key] = [float(v) for v in value]
+    if "mechanisms" in mapping:
+        value = mapping["mechanisms"]
+        if not (isinstance(value, list) and value and all(isinstance(v, str) and v.strip() for v in value)):
+            raise TargetError(f"{path}: key 'mechanisms' must be a list of texts (e.g. [\"strike-slip\"]), "
+                              f"got {value!r}")
+        controlling["mechanisms"] = [v.strip() for v in value]
     target = _load_spectrum(path)
     return dataclasses.replace(target, controlling=controlling) if controlling else target
 

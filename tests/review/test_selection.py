@@ -111,6 +111,22 @@ def test_sinusoid_and_weak_records_are_flagged_and_metadata_checked():
     assert rows["record_strength"]["status"] == "fail" and rows["record_strength"]["value"] == pytest.approx(weak)
     assert real.name in rows["record_strength"]["note"]
     assert rows["record_selection"]["status"] == "fail" and "distance_km 45" in rows["record_selection"]["note"]
+    # mechanism and V_s30 against the target's: the circle says strike-slip, the real pair says nothing
+    sine.metadata.update(mechanism="Strike-Slip", vs30_m_s=400.0)
+    real.metadata.update(distance_km=20.0)
+    both = {"magnitude_range": [6.5, 7.5], "distance_km_range": [0.0, 30.0], "vs30_m_s_range": [300.0, 500.0],
+            "mechanisms": ["strike-slip"]}
+    row = selection_rows([sine, real], [1.0, 1.0], mu_lower=0.04, gravity_m_s2=G, controlling=both, params=params,
+                         closest=None)[0]
+    assert row["status"] == "not checked" and "unknown for 2 of 2" in row["note"]  # real: mechanism, V_s30
+    real.metadata.update(mechanism="reverse", vs30_m_s=350.0)
+    row = selection_rows([sine, real], [1.0, 1.0], mu_lower=0.04, gravity_m_s2=G, controlling=both, params=params,
+                         closest=None)[0]
+    assert row["status"] == "fail" and "mechanism reverse" in row["note"] and "circle" not in row["note"]
+    real.metadata.update(mechanism="strike-slip")
+    row = selection_rows([sine, real], [1.0, 1.0], mu_lower=0.04, gravity_m_s2=G, controlling=both, params=params,
+                         closest=None)[0]
+    assert row["status"] == "pass" and "pulse" not in row["note"]
     assert rows["distinct_motions"]["status"] == "pass"
     none = {r["id"]: r for r in selection_rows([real], [1.0], mu_lower=0.04, gravity_m_s2=G, controlling={},
                                                params=params, closest=None)}

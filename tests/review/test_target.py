@@ -44,3 +44,20 @@ def test_target_mistakes_are_one_line(tmp_path, text, words):
     with pytest.raises(TargetError) as info:
         load_target(path)
     assert words in str(info.value) and str(path) in str(info.value) and "\n" not in str(info.value)
+
+
+def test_controlling_ranges_and_mechanisms(tmp_path):
+    from isolator.errors import TargetError
+    from isolator.review.target import load_target
+
+    path = tmp_path / "t.toml"
+    path.write_text('S_MS = 1.5\nS_M1 = 0.9\nT_L = 8.0\nmagnitude_range = [6.5, 7.5]\nvs30_m_s_range = [180, 360]\n'
+                    'mechanisms = ["strike-slip", "reverse"]\n')
+    target = load_target(path)
+    assert target.controlling == {"magnitude_range": [6.5, 7.5], "vs30_m_s_range": [180.0, 360.0],
+                                  "mechanisms": ["strike-slip", "reverse"]}
+    assert target.as_dict()["mechanisms"] == ["strike-slip", "reverse"] and target.sa_g(1.0)[0] == 0.9
+    for bad, words in (("magnitude_range = [7.5, 6.5]", "must be \\[low, high\\]"), ("mechanisms = []", "list of texts")):
+        path.write_text(f"S_MS = 1.5\nS_M1 = 0.9\nT_L = 8.0\n{bad}\n")
+        with pytest.raises(TargetError, match=words):
+            load_target(path)
