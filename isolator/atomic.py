@@ -17,6 +17,10 @@ The rules an output obeys (``docs/security.md``):
   (:func:`refuse_overwriting_inputs`);
 - two runs that write the same output: the second is refused while the first holds
   ``<output>.lock`` (:func:`output_lock`);
+- a set of outputs that belong together (a PDF and its JSON) is written completely or not at all
+  (:func:`atomic_paths`): every file is written and flushed before the first rename;
+- a temporary file left by a run that was killed (its name carries the writer's host and pid) is
+  removed by the next run that writes into the same folder (:func:`remove_stale_temporaries`);
 - every failure to write raises :class:`OutputError`, whose message names the path.
 """
 
@@ -24,12 +28,27 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import socket
 import stat
 import tempfile
 import time
 from contextlib import contextmanager
 from pathlib import Path
+
+#: A temporary file unclaimed for this long is stale even without the writer's pid in its name
+#: (names written before the pid was added: ``.NAME.XXXXXXXX.SUFFIX``) [s].
+LEGACY_TEMPORARY_AGE_S = 3600.0
+#: ``.NAME.~HOST-PID.XXXXXXXX.SUFFIX``: the temporary file of ``NAME`` written by process PID on HOST.
+_TEMPORARY = re.compile(r"^\.(?P<name>.+)\.~(?P<host>[A-Za-z0-9-]{0,32})-(?P<pid>\d+)\.[A-Za-z0-9_]{8}(?P<suffix>.*)$")
+_LEGACY_TEMPORARY = re.compile(r"^\.(?P<name>.+)\.[a-z0-9_]{8}(?P<suffix>\.[A-Za-z0-9]+)$")
+#: The extensions isolator writes: an old temporary is recognised only with one of them.
+_OUTPUT_SUFFIXES = {".pdf", ".json", ".csv", ".png", ".svg", ".parquet", ".npz", ".jsonl", ".md", ".txt", ".key"}
+_CLEANED_FOLDERS: set[str] = set()
+
+
+def _host_tag() -> str:
+    return re.sub(r"[^A-Za-z0-9-]", "-", socket.gethostname())[:32]
 
 
 class OutputError(OSError):
@@ -140,15 +159,9 @@ def atomic_path(path, *, allow_stream: bool = False):
         return
     temporary = None
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=target.suffix)
-        os.close(handle)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(temporary, 0o666 & ~umask)
+        temporary = _temporary_beside(target)
         yield Path(temporary)
-        with open(temporary, "rb+") as stream_handle:
-            os.fsync(stream_handle.fileno())
+        _flush(temporary)
         os.replace(temporary, target)
     except OutputError:
         raise
@@ -157,6 +170,135 @@ def atomic_path(path, *, allow_stream: bool = False):
     finally:
         if temporary is not None and os.path.lexists(temporary):
             os.unlink(temporary)
+
+
+def _temporary_beside(target: Path) -> str:
+    """A new empty temporary file beside ``target``, named after it, this host and this process."""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(target.parent)
+    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.~{_host_tag()}-{os.getpid()}.",
+                                         suffix=target.suffix)
+    os.close(handle)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(temporary, 0o666 & ~umask)
+    return temporary
+
+
+def _flush(temporary) -> None:
+    with open(temporary, "rb+") as stream_handle:
+        os.fsync(stream_handle.fileno())
+
+
+def _stale(entry: os.DirEntry, now: float, host: str) -> bool:
+    match = _TEMPORARY.match(entry.name)
+    if match is not None:
+        suffix = Path(match["name"]).suffix
+        if match["suffix"] != suffix:
+            return False
+        # a writer on another host cannot be asked whether it lives: its temporary is left alone
+        return match["host"] == host and not _alive(int(match["pid"]))
+    match = _LEGACY_TEMPORARY.match(entry.name)
+    if match is None or match["suffix"] != Path(match["name"]).suffix or match["suffix"] not in _OUTPUT_SUFFIXES:
+        return False
+    try:
+        return now - entry.stat(follow_symlinks=False).st_mtime > LEGACY_TEMPORARY_AGE_S
+    except OSError:
+        return False
+
+
+def remove_stale_temporaries(folder) -> list[Path]:
+    """Remove the temporary files that killed runs left in ``folder``; return them.
+
+    A temporary file is named ``.NAME.~HOST-PID.XXXXXXXX.SUFFIX`` (:func:`atomic_path`); it is stale
+    when PID is not a live process on this host (the run that wrote it was killed before it could
+    rename or remove it).  A name of the older form without host and pid is stale once it is
+    older than :data:`LEGACY_TEMPORARY_AGE_S`.  Each folder is scanned once per process (an output
+    folder holds at most a few temporary files, a batch's ``.parts`` folder thousands of parts).
+
+    Parameters
+    ----------
+    folder : str or path-like
+        The folder to clean.
+
+    Returns
+    -------
+    list of Path
+        The files removed (empty when the folder was already cleaned by this process).
+    """
+    key = os.path.realpath(folder)
+    if key in _CLEANED_FOLDERS:
+        return []
+    _CLEANED_FOLDERS.add(key)
+    removed = []
+    now, host = time.time(), _host_tag()
+    try:
+        with os.scandir(key) as entries:
+            for entry in entries:
+                if entry.name.startswith(".") and entry.is_file(follow_symlinks=False) and _stale(entry, now, host):
+                    try:
+                        os.unlink(entry.path)
+                        removed.append(Path(entry.path))
+                    except OSError:
+                        pass  # read-only folder, or another run removed it first: nothing to do
+    except OSError:
+        pass
+    return removed
+
+
+@contextmanager
+def atomic_paths(paths):
+    """Yield temporary paths for a set of outputs; rename them all onto their targets on success.
+
+    A set of files that belong together (a review's PDF and JSON, a report's PDF and JSON) is
+    written completely or not at all: every file is written and flushed to disk before the first
+    rename, so a full disk, a write error or an exception in any of them leaves every older
+    target as it was and removes every temporary file.  (The renames themselves allocate nothing;
+    only a crash between two of them can still mix two runs, which the lock of
+    :func:`output_lock` prevents from going unnoticed.)
+
+    Parameters
+    ----------
+    paths : sequence of str or path-like
+        The outputs of the set; streams are not allowed.
+
+    Yields
+    ------
+    list of Path
+        One temporary file per output, in the order given, each with the output's extension.
+
+    Raises
+    ------
+    OutputError
+        Any failure to write (the message names the output that failed).
+    """
+    paths = [Path(path) for path in paths]
+    targets = [resolve_output(path)[0] for path in paths]
+    temporaries: list[str] = []
+    current = paths[0] if paths else None
+    try:
+        for path, target in zip(paths, targets, strict=True):
+            current = path
+            temporaries.append(_temporary_beside(target))
+        yield [Path(temporary) for temporary in temporaries]
+        for path, temporary in zip(paths, temporaries, strict=True):
+            current = path
+            _flush(temporary)
+        for path, temporary, target in zip(paths, temporaries, targets, strict=True):
+            current = path
+            os.replace(temporary, target)
+    except OutputError:
+        raise
+    except OSError as err:
+        # an error inside the caller's block names the temporary it failed on: blame its output
+        failed = next((path for path, temporary in zip(paths, temporaries, strict=False)
+                       if err.filename is not None and os.fspath(err.filename) == temporary), current)
+        raise OutputError(failed, f"cannot write ({_reason(err)}); no file of its set was written",
+                          err.errno or errno.EIO) from None
+    finally:
+        for temporary in temporaries:
+            if os.path.lexists(temporary):
+                os.unlink(temporary)
 
 
 def write_text_atomically(path, text: str) -> None:
