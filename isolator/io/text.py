@@ -64,6 +64,49 @@ def _metadata(comment_lines: list[str]) -> dict[str, str]:
     return meta
 
 
+def _units_statements(comment_lines: list[str]) -> list[str]:
+    """Every ``# units:`` value of the comments, in order (a file may state them more than once)."""
+    found = []
+    for line in comment_lines:
+        match = _META_RE.match(line.strip())
+        if match and match.group(1).strip().lower() == "units":
+            found.append(match.group(2).strip())
+    return found
+
+
+def _one_unit(comment_lines: list[str]) -> str:
+    """The file's units, stated once or the same each time; two different statements are refused.
+
+    Raises
+    ------
+    ValueError
+        The file states two different units (``# units: g`` then ``# units: cm/s2``): which one
+        holds cannot be told, and the answers differ by a factor of 980.
+    """
+    statements = _units_statements(comment_lines)
+    distinct = list(dict.fromkeys(value.lower().replace(" ", "") for value in statements))
+    if len(distinct) > 1:
+        raise ValueError(f"states its units {len(statements)} times, differently ("
+                         + ", ".join(f"'# units: {value}'" for value in statements)
+                         + "): ambiguous; keep the one line that is right")
+    return statements[0] if statements else ""
+
+
+#: Units of a length or a velocity, as a column name may end with them (``disp_mm``, ``v (cm/s)``).
+_NOT_ACCELERATION_UNITS = {"mm", "cm", "m", "in", "ft", "mm/s", "cm/s", "m/s", "in/s", "ft/s", "kine"}
+_NAME_UNIT_RE = re.compile(r"(?:[_\s]|^)\(?\[?([A-Za-z/]+)\]?\)?$")
+
+
+def _column_unit_problem(names: list[str]) -> str | None:
+    """Words for a column named in a length or velocity unit (``acc_mm``): not an acceleration."""
+    for name in names:
+        match = _NAME_UNIT_RE.search(name.strip())
+        if match and match.group(1).lower() in _NOT_ACCELERATION_UNITS:
+            return (f"column '{name}' is named in {match.group(1)}, a unit of length or velocity, not of "
+                    "acceleration; isolator reads accelerograms")
+    return None
+
+
 def _numeric_fields(line: str) -> int | None:
     """Number of numeric fields of a data line, or None if one is not a number."""
     fields = [f for f in _SPLIT_RE.split(line.strip()) if f]
@@ -105,8 +148,8 @@ def _is_text(filename_or_buf) -> bool:
         return False
     lines = head_lines(head)
     comments = [line for line in lines if _is_comment(line)]
-    units = _metadata(comments).get("units", "").strip().lower().replace(" ", "")
-    if units not in ACCELERATION_UNITS_TO_M_S2:
+    statements = [value.lower().replace(" ", "") for value in _units_statements(comments)]
+    if not any(units in ACCELERATION_UNITS_TO_M_S2 for units in statements):
         return False
     data_lines = [line for line in lines if not _is_comment(line)][:50]
     return bool(data_lines) and all(_numeric_fields(line) in (1, 2) for line in data_lines)
@@ -161,7 +204,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     Raises
     ------
     ValueError
-        One-line message: no data, a non-numeric field, a changing number of columns,
+        One-line message: two different ``# units:`` lines, no data, a non-numeric field, a changing number of columns,
         more than two columns, a time column that does not increase, a missing or
         non-positive time step, ``dt_s`` given for an unevenly spaced time column.
     """
@@ -185,6 +228,10 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
             message = message.replace("could not convert string", "non-numeric value")
             raise RecordFormatError(message) from None
     meta = _metadata(comments)
+    units = _one_unit(comments)
+    problem = _column_unit_problem((names or [])[-1:])  # the acceleration column (time may be in s)
+    if problem:
+        raise ValueError(problem)
     info = AttribDict()
     info.comments = comments
     info.metadata = meta
@@ -235,7 +282,6 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     trace = Trace(data=np.ascontiguousarray(acceleration, dtype=np.float64))
     trace.stats.delta = float(dt_s)
     trace.stats.starttime = UTCDateTime(0) + t0_s
-    units = meta.get("units", "").strip()
     if units:
         trace.stats.units = units
     trace.stats.station = meta.get("station", "")[:16]

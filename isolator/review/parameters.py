@@ -93,13 +93,82 @@ PARAMETERS = {p.name: p for p in [
 ]}
 
 
+@dataclass(frozen=True)
+class Range:
+    """The values a parameter may take, and why: a value outside is refused with the reason."""
+
+    lo: float
+    hi: float
+    reason: str
+    lo_open: bool = False  #: the lower bound itself is excluded (a factor of 0 means nothing)
+
+
+#: Every parameter's range with its reason (issue 26: ``usable_band_factor=0`` divided by zero,
+#: ``min_ratio=1e300`` overflowed, ``grid_points=1e7`` and ``range_lo_factor=1e-6`` never ended).
+RANGES = {
+    "n_pairs_min": Range(1, 1000, "a number of pairs of a suite (ASCE 7-22 17.3.2 asks 7)"),
+    "n_records_min_en": Range(1, 1000, "a number of records of a suite (EN 1998-1 3.2.3.1.2 asks 3)"),
+    "range_lo_factor": Range(0.1, 1.0, "the range starts at a fraction of T_M (ASCE 7-22 17.3.3: 0.75; Ch. 16: "
+                                       "0.2); below 0.1 the spectra reach periods no isolated structure has"),
+    "range_hi_factor": Range(1.0, 5.0, "the range ends at a multiple of T_M (ASCE 7-22 17.3.3: 1.25); beyond 5 "
+                                       "the records' usable band is usually passed"),
+    "en_range_lo_factor": Range(0.1, 1.0, "the range starts at a fraction of T_eff (EN 1998-1: 0.2)"),
+    "en_range_hi_factor": Range(1.0, 5.0, "the range ends at a multiple of T_eff (EN 1998-1: 2)"),
+    "min_ratio": Range(0.5, 2.0, "a ratio of the target (ASCE 7-22 16.2.3.2: 1.0, or 0.9 with the mean)"),
+    "mean_ratio_min": Range(0.5, 2.0, "a ratio of the target (ASCE 7-22 16.2.3.2: 1.0)"),
+    "en_min_ratio": Range(0.5, 2.0, "a ratio of the elastic spectrum (EN 1998-1 3.2.3.1.2(4): 0.9)"),
+    "spectral_matching_min": Range(0.5, 2.0, "a ratio of the target (ASCE 7-22 16.2.3.3: 1.1)"),
+    "grid_points": Range(10, 10000, "periods of the scaling range (each costs a spectrum per record; fewer than "
+                                    "10 miss the range's shape)"),
+    "sf_flag_low": Range(0.0, 1.0, "a scale factor below 1 (practice flags < 0.25)", lo_open=True),
+    "sf_flag_high": Range(1.0, 100.0, "a scale factor above 1 (practice flags > 4)"),
+    "usable_band_factor": Range(1.0, 10.0, "the lowest usable frequency is at or above the high-pass corner "
+                                           "(NGA-West2: 1.25 × the corner)"),
+    "f_ae": Range(0.0, 1.0, "a weight of the aging and environment factor (ASCE 7-22 17.2.8.4: 0.75; 1 the "
+                            "whole factor)"),
+    "restoring_min": Range(0.0, 1.0, "a fraction of the weight W (ASCE 7-22 17.2.4.4: 0.025)"),
+    "accidental_e": Range(0.0, 0.5, "a fraction of the plan dimension (ASCE 7-22 17.5.3.3: 0.05)"),
+    "D_TM_floor": Range(1.0, 2.0, "a multiple of D_M (ASCE 7-22 Eq. 17.5-3: 1.15)"),
+    "P_T_min": Range(0.0, 10.0, "a ratio of periods (ASCE 7-22 17.5.3.3: 1.0)", lo_open=True),
+    "Ws_over_W": Range(0.0, 1.0, "a fraction of the total weight", lo_open=True),
+    "R_I": Range(1.0, 2.0, "ASCE 7-22 17.5.4.2: 1 ≤ R_I ≤ 2"),
+    "n_for_mean": Range(1, 1000, "a number of analyses (ASCE 7-22 17.6.3.4: 7)"),
+    "f_disp": Range(0.0, 1.0, "a fraction of the ELF displacement (ASCE 7-22 17.6.4.1: 0.8)", lo_open=True),
+    "f_below": Range(0.0, 1.0, "a fraction of the ELF shear (ASCE 7-22 17.6.4.2: 0.9)", lo_open=True),
+    "f_above_rha": Range(0.0, 1.0, "a fraction of the ELF shear (ASCE 7-22 17.6.4.2: 0.6)", lo_open=True),
+    "D_over_R_max": Range(0.0, 1.0, "a ratio D/R of a pendulum (practice: 0.25)", lo_open=True),
+    "residual_max_m": Range(0.0, 10.0, "a displacement [m]", lo_open=True),
+    "transmitted_over_pga_max": Range(0.0, 100.0, "a ratio of accelerations (practice: 1)", lo_open=True),
+    "wind_shear_over_W": Range(0.0, 1.0, "a base shear as a fraction of the weight"),
+    "drift_limit_rha": Range(0.0, 0.1, "a story drift ratio (ASCE 7-22 17.6.4.4: 0.020)", lo_open=True),
+    "weak_pga_fraction": Range(0.0, 1.0, "a fraction of µ_lower g"),
+    "bandwidth_min": Range(0.0, 1.0, "a Vanmarcke bandwidth (between 0 and 1)"),
+    "gamma_x": Range(1.0, 3.0, "a reliability factor (EN 1998-1 10.3(2): 1.2)"),
+    "delta": Range(0.0, 1.0, "a ratio d_Ed/d_r (EN 1998-2 7.7.1: 0.5)", lo_open=True),
+}
+#: Pairs (low, high) of parameters whose low must stay below their high.
+ORDERED = (("sf_flag_low", "sf_flag_high"), ("range_lo_factor", "range_hi_factor"),
+           ("en_range_lo_factor", "en_range_hi_factor"))
+
+
+def _check_range(name: str, value) -> None:
+    bounds = RANGES.get(name)
+    if bounds is None or value is None or isinstance(value, (bool, str)):
+        return
+    below = value <= bounds.lo if bounds.lo_open else value < bounds.lo
+    if below or value > bounds.hi:
+        interval = f"{'(' if bounds.lo_open else '['}{bounds.lo:g}, {bounds.hi:g}]"
+        raise ReviewError(f"review parameter '{name}' = {value:g} is outside {interval}: {bounds.reason}")
+
+
 def resolve(code: str, overrides: dict | None = None) -> dict:
     """The parameter values of a review: defaults of ``code`` with ``overrides`` applied.
 
     Raises
     ------
     ReviewError
-        An unknown parameter name or a value of the wrong kind.
+        An unknown parameter name, a value of the wrong kind, a value outside its range
+        (:data:`RANGES`, with the reason) or a low bound at or above its high (:data:`ORDERED`).
     """
     values = {name: p.default for name, p in PARAMETERS.items() if code in p.codes}
     for name, value in (overrides or {}).items():
@@ -107,6 +176,11 @@ def resolve(code: str, overrides: dict | None = None) -> dict:
             raise ReviewError(f"unknown review parameter '{name}' (known: {', '.join(PARAMETERS)})")
         default = PARAMETERS[name].default
         values[name] = _coerce(name, value, default)
+        _check_range(name, values[name])
+    for low, high in ORDERED:
+        if low in values and high in values and values[low] >= values[high]:
+            raise ReviewError(f"review parameters '{low}' = {values[low]:g} and '{high}' = {values[high]:g}: "
+                              f"the first must be below the second")
     if code == "asce7-22" and values.get("mean_ratio_min") is None and values.get("min_ratio", 1.0) < 1.0:
         values["mean_ratio_min"] = 1.0  # REVIEW_RULES 1.5: with 0.90 also require mean ≥ 1.00
     return values

@@ -127,14 +127,33 @@ def two_period_target(S_MS: float, S_M1: float, T_L: float, name: str = "MCE_R")
     return Target("asce7-two-period", {"S_MS": float(S_MS), "S_M1": float(S_M1), "T_L": float(T_L)}, name=name)
 
 
+#: The largest spectrum table read [bytes]: a spectrum has at most thousands of rows (a larger
+#: "table" is a wrong file, and /dev/zero would fill the memory).
+MAX_TABLE_BYTES = 10_000_000
+#: Spectral accelerations of a code target [g] and its corner periods [s]: outside, T_S = S_M1/S_MS
+#: and the spectrum's shape overflow or mean nothing (issue 26: S_MS = 1e-308).
+TARGET_SA_RANGE_G = (1e-4, 10.0)
+TARGET_PERIOD_RANGE_S = (1e-3, 100.0)
+
+
 def _read_csv(path: Path, source: str):
+    from isolator.io._common import input_file_problem
+
+    problem = input_file_problem(path)  # from the metadata: a FIFO or /dev/zero is never opened
+    if problem == "no such file":
+        raise TargetError(f"{source}: spectrum_csv {path}: no such file")
+    if problem is not None:
+        raise TargetError(f"{source}: spectrum_csv {path}: {problem}")
+    if path.stat().st_size > MAX_TABLE_BYTES:
+        raise TargetError(f"{source}: spectrum_csv {path}: {path.stat().st_size} bytes is more than a spectrum "
+                          f"table holds (at most {MAX_TABLE_BYTES} bytes)")
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise TargetError(f"{source}: spectrum_csv {path}: no such file") from None
     except (OSError, UnicodeDecodeError) as err:
         raise TargetError(f"{source}: spectrum_csv {path}: cannot read ({err})") from None
-    rows = []
+    rows, headers = [], []
     for number, line in enumerate(text.splitlines(), 1):
         line = line.split("#", 1)[0].strip()
         if not line:
@@ -145,8 +164,13 @@ def _read_csv(path: Path, source: str):
         try:
             values = [float(p) for p in parts]
         except ValueError:
-            if not rows:  # a header line
+            if not rows and not headers:  # a header line
+                headers.append(number)
                 continue
+            if not rows:  # a second header line: the table is not what it seems (two tables? a note?)
+                raise TargetError(f"{path}: line {number}: a second header line ({line!r}); a spectrum table "
+                                  f"has one header line at most (line {headers[0]}), then 'period_s, sa_g' "
+                                  "rows") from None
             raise TargetError(f"{path}: line {number}: not two numbers ({line!r})") from None
         if len(values) != 2:
             raise TargetError(f"{path}: line {number}: expected 'period_s, sa_g', got {len(values)} values")
@@ -212,6 +236,14 @@ def _load_spectrum(path) -> Target:
         value = mapping[key]
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
             raise TargetError(f"{source}: key '{key}' must be a number > 0, got {value!r}")
+        if key.startswith("T_"):
+            (lo, hi), what = TARGET_PERIOD_RANGE_S, "a period [s]"
+        elif key == "S":
+            (lo, hi), what = (0.5, 5.0), "a soil factor (EN 1998-1 Table 3.2: 1 to 1.8)"
+        else:
+            (lo, hi), what = TARGET_SA_RANGE_G, "a spectral acceleration [g]"
+        if not lo <= value <= hi:
+            raise TargetError(f"{source}: key '{key}' = {value:g} is outside [{lo:g}, {hi:g}], {what}")
         return float(value)
 
     forms = {"two-period MCE_R (S_MS, S_M1, T_L)": ("S_MS", "S_M1", "T_L"),
