@@ -178,6 +178,10 @@ class InvalidSystemError(IsolatorError):
     """Solver or harmonic-problem parameters outside their domain (µk > µs, α ≤ 0, negative stiffness …)."""
 
 
+class SolverError(IsolatorError):
+    """A solver that could not finish (its step guard tripped): no answer is given, never a cut-short one."""
+
+
 class RecordInputError(IsolatorError):
     """Arrays the solver cannot take: non-uniform or non-increasing time, NaN, fewer than two samples."""
 

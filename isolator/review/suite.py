@@ -240,6 +240,7 @@ def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
     if spec.z is not None:
         motions["z"] = _read(spec.z, spec.units)
     specs = {"x": spec.x, "y": spec.y, "z": spec.z}
+    motions, time_base = one_time_base(spec, motions)
     hashes = {key: _sample_hash(m.acceleration_m_s2) for key, m in motions.items()}
     seen = {} if seen is None else seen
     for key, digest in hashes.items():
@@ -252,7 +253,7 @@ def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
         raise SuiteError(f"pair '{spec.name}': components have different time steps "
                          f"({', '.join(f'{k} {v:g} s' for k, v in dts.items())}); resample them first")
     lengths = {key: m.npts for key, m in motions.items()}
-    processing = []
+    processing = list(time_base)
     n = min(lengths.values())
     if len(set(lengths.values())) > 1:
         if not spec.trim:
@@ -289,6 +290,142 @@ def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
                 provenance=provenance, high_pass_hz=max(corners) if corners else None,
                 sample_hashes=hashes, paths=sorted({s.path for s in specs.values() if s is not None}),
                 scale_factor=spec.scale_factor, matched=spec.matched, metadata=dict(spec.metadata))
+
+
+# ---- one time base, one motion per component (issue 26) ------------------------------------
+
+#: Tolerance on a sample time's place on a uniform grid (fraction of the grid's step).
+GRID_TOLERANCE = 1e-6
+#: Largest refinement of the smallest step searched for a grid holding every sample time, and
+#: the largest growth of a record it may cause.
+MAX_GRID_REFINEMENT = 8
+#: Two components of a pair equal to this fraction of their PGA are one motion (one file in g,
+#: the other in gal, rounds differently in the last digits).
+SAME_MOTION_RTOL = 1e-6
+
+
+def uniform_exactly(motion, where: str):
+    """A record sampled at unequal steps as the same piecewise-linear signal on a uniform grid.
+
+    The grid's step divides every sample time (the smallest step or a fraction 1/k of it,
+    k ≤ :data:`MAX_GRID_REFINEMENT`); linear interpolation onto it keeps every sample and adds
+    points on the straight segments between them: the same signal, so spectra, PGA, PGV, RotD
+    and the engines give the answers the unequal samples define.
+
+    Returns
+    -------
+    (GroundMotion, dict or None)
+        The motion (itself when uniform) and the processing step (None when uniform).
+
+    Raises
+    ------
+    SuiteError
+        No such grid (sample times that share no step): the review refuses rather than read
+        the samples as equally spaced.
+    """
+    from isolator.motion import GroundMotion
+
+    if motion.is_uniform:
+        return motion, None
+    times = np.asarray(motion.time_s, dtype=np.float64)
+    times = times - times[0]
+    smallest = float(np.min(np.diff(times)))
+    for refinement in range(1, MAX_GRID_REFINEMENT + 1):
+        step = smallest / refinement
+        places = times / step
+        if np.max(np.abs(places - np.round(places))) <= GRID_TOLERANCE * refinement:
+            count = int(round(places[-1])) + 1
+            if count > MAX_GRID_REFINEMENT * times.size:
+                break
+            step = float(times[-1] / (count - 1))  # the mean step: no drift of the grid over the record
+            grid = np.arange(count) * step
+            values = np.interp(grid, times, motion.acceleration_m_s2)
+            values[np.round(places).astype(np.int64)] = motion.acceleration_m_s2  # the samples, bit for bit
+            uniform = GroundMotion.from_array(values, dt_s=step, units_source=motion.units_source,
+                                              component=motion.component, provenance=motion.provenance)
+            uniform = GroundMotion(trace=uniform.trace, units_source=motion.units_source,
+                                   provenance=motion.provenance, processing=list(motion.processing),
+                                   component=motion.component, components=list(motion.components))
+            uniform.trace.stats.starttime = motion.trace.stats.starttime
+            return uniform, {"step": "uniform_grid", "component_file": where, "dt_s": step,
+                             "npts": {"before": int(times.size), "after": count},
+                             "method": "unequal steps put on the uniform grid through every sample time; "
+                                       "linear interpolation (the same piecewise-linear signal)"}
+    raise SuiteError(f"{where}: sampled at unequal steps ({smallest:g} to {float(np.max(np.diff(times))):g} s) "
+                     "that share no common grid; the review needs equal steps (resample the record)")
+
+
+def _looks_horizontal(motion) -> bool:
+    from isolator.motion.components import axis_letter, is_vertical
+
+    if is_vertical(motion):
+        return False
+    channel = str(motion.provenance.get("channel", "") or "")
+    names = [part.strip(" ()") for part in str(motion.component).split("(")] + [channel[-1:]]
+    return any(axis_letter(name) in ("N", "E") or re.fullmatch(r"\d{1,3}(\.\d+)?", name) is not None
+               or (len(channel) == 3 and channel[2] in "NE12") for name in names if name)
+
+
+def one_time_base(spec, motions: dict) -> tuple[dict, list]:
+    """The components of a pair on one uniform time base, each a distinct motion in its place.
+
+    * unequal steps: put exactly on a uniform grid (:func:`uniform_exactly`) or refused;
+    * start times that differ (a component starting 1 s after the other): aligned on the time
+      axes to the common window when the suite asks (``trim``), refused otherwise — never paired
+      sample by sample (as ``simulate --pair`` does, :func:`isolator.motion.pair.align`);
+    * a vertical labelled as a horizontal (``090``) or a horizontal labelled vertical, and two
+      components that are one motion (one file twice, or in g and in gal), are refused.
+
+    Returns
+    -------
+    (dict, list of dict)
+        The components and the processing steps applied.
+
+    Raises
+    ------
+    SuiteError
+        One line naming the pair and the files.
+    """
+    from isolator.errors import ComponentMismatchError
+    from isolator.motion.components import is_vertical
+    from isolator.motion.pair import align
+
+    labels = {"x": spec.x.label(), "y": spec.y.label(), "z": spec.z.label() if spec.z is not None else ""}
+    steps = []
+    for key in list(motions):
+        motions[key], step = uniform_exactly(motions[key], f"pair '{spec.name}' {key} ({labels[key]})")
+        if step is not None:
+            steps.append(step)
+    if "z" in motions and _looks_horizontal(motions["z"]):
+        raise SuiteError(f"pair '{spec.name}': z ({labels['z']}) is labelled '{motions['z'].component}', a "
+                         "horizontal component; give the vertical as z")
+    for key in ("x", "y"):
+        if is_vertical(motions[key]):
+            raise SuiteError(f"pair '{spec.name}': {key} ({labels[key]}) is labelled '{motions[key].component}', "
+                             "a vertical component; give it as z")
+    keys = list(motions)
+    for i, first in enumerate(keys):
+        for second in keys[i + 1:]:
+            a, b = motions[first].acceleration_m_s2, motions[second].acceleration_m_s2
+            scale = max(float(np.max(np.abs(a))), float(np.max(np.abs(b))))
+            if a.shape == b.shape and scale > 0 and float(np.max(np.abs(a - b))) <= SAME_MOTION_RTOL * scale:
+                raise SuiteError(f"pair '{spec.name}': {first} ({labels[first]}) and {second} ({labels[second]}) "
+                                 f"are one motion (equal to {SAME_MOTION_RTOL:g} of the PGA in m/s²; one file "
+                                 "twice, or one record in two units)")
+    try:
+        align(motions)  # only asks what differs
+    except ComponentMismatchError as err:
+        if err.kind != "start":
+            return motions, steps  # time steps and lengths: refused or trimmed below, in the suite's words
+        if not spec.trim:
+            raise SuiteError(f"pair '{spec.name}': {err}; they are not paired sample by sample: set trim = true "
+                             "to align them on their time axes and use their common window") from None
+        try:
+            motions, aligned = align(motions, trim=True)
+        except ComponentMismatchError as again:
+            raise SuiteError(f"pair '{spec.name}': {again}") from None
+        steps.extend(aligned)
+    return motions, steps
 
 
 # ---- SUITE.toml --------------------------------------------------------------------------
@@ -341,9 +478,11 @@ def specs_from_toml(path) -> list[PairSpec]:
         name = table.get("name", f"pair{index}")
         if not isinstance(name, str) or not name.strip():
             raise SuiteError(f"{where}: 'name' must be a non-empty text")
-        if name in names:
-            raise SuiteError(f"{where}: name '{name}' is used twice")
-        names.add(name)
+        key = " ".join(name.split()).casefold()  # "a" and " a" name one pair in every table
+        if key in names:
+            raise SuiteError(f"{where}: name '{name}' is used twice (names are compared without case and "
+                             "surrounding or repeated spaces)")
+        names.add(key)
         pair_units = table.get("units", units)
         if pair_units is not None and not isinstance(pair_units, str):
             raise SuiteError(f"{where}: 'units' must be text")
@@ -464,6 +603,39 @@ def specs_from_records(arguments, *, units: str | None = None, trim: bool = Fals
 
 # ---- the suite ---------------------------------------------------------------------------
 
+def distinct_names(specs: list) -> list:
+    """Pairs named after one station (two events, two folders) told apart by their folders.
+
+    Names are compared without case and surrounding or repeated spaces; pairs whose names clash
+    get the shortest tail of their folder paths that tells them apart (``STA (kobe/STA)``,
+    ``STA (chichi/STA)``), so that no pair is lost where results are kept by name.
+    """
+    import dataclasses
+
+    def key(name):
+        return " ".join(name.split()).casefold()
+
+    groups: dict = {}
+    for index, spec in enumerate(specs):
+        groups.setdefault(key(spec.name), []).append(index)
+    names = [" ".join(spec.name.split()) for spec in specs]
+    for members in groups.values():
+        if len(members) < 2:
+            continue
+        folders = [Path(os.path.abspath(specs[i].x.path)).parent.parts for i in members]
+        depth = max(len(parts) for parts in folders)
+        for count in range(1, depth + 1):  # bounded by the deepest folder
+            tails = ["/".join(parts[-count:]) for parts in folders]
+            if len(set(tails)) == len(tails):
+                break
+        else:
+            tails = [Path(specs[i].x.path).name + f" #{n}" for n, i in enumerate(members, 1)]
+        for i, tail in zip(members, tails, strict=True):
+            names[i] = f"{names[i]} ({tail})"
+    return [dataclasses.replace(spec, name=name) if name != spec.name else spec
+            for spec, name in zip(specs, names, strict=True)]
+
+
 def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Suite:
     """Read a suite: a SUITE.toml, or files/folders/globs of records.
 
@@ -497,6 +669,7 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
     else:
         source = ", ".join(str(a) for a in arguments)
         specs, failed = specs_from_records(arguments, units=units, trim=trim)
+        specs = distinct_names(specs)
     pairs, seen = [], {}
     for spec in specs:
         try:

@@ -408,6 +408,10 @@ def force_ratios(k: float, eta: float, alpha: float, mu_s: float, mu_k: float, a
 MAX_DIMENSIONLESS = 1e6
 
 
+#: Static friction coefficients of the harmonic problem [-] (issue 26: µs = 1e-300 and µs = 2 were accepted).
+MU_S_RANGE = (1e-4, 1.0)
+
+
 def validate_harmonic_parameters(alpha: float, k: float, eta: float, mu_s: float, mu_k: float) -> None:
     """Refuse dimensionless parameters outside the harmonic problem's domain (paper, Eq. 2).
 
@@ -434,6 +438,10 @@ def validate_harmonic_parameters(alpha: float, k: float, eta: float, mu_s: float
         raise InvalidSystemError(f"alpha must be > 0, got {alpha!r}")
     if mu_s <= 0.0:
         raise InvalidSystemError(f"mu_s must be > 0 (α is defined relative to µs g), got {mu_s!r}")
+    if not MU_S_RANGE[0] <= mu_s < MU_S_RANGE[1]:
+        raise InvalidSystemError(f"mu_s = {mu_s:g} must lie in [{MU_S_RANGE[0]:g}, {MU_S_RANGE[1]:g}): a friction "
+                                 "coefficient (sliding isolators have 0.02-0.15; below 1e-4 the forcing period "
+                                 "2π/√(α µs) of Eq. 2 grows without bound, at 1 friction exceeds the weight)")
     if not math.isfinite(mu_k) or mu_k < 0.0 or mu_k > mu_s:
         raise InvalidSystemError(f"mu_k must lie in [0, mu_s = {mu_s}], got {mu_k!r}")
 

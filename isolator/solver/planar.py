@@ -33,14 +33,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import RecordInputError
+from isolator.errors import RecordInputError, SolverError
 from isolator.solver import planar_kernel as _pk
 from isolator.solver import planar_layout as _pl
 from isolator.solver import planar_rk as _rk
 from isolator.solver.base import SolverResult
 from isolator.solver.events import EVENT_NAMES
 from isolator.solver.notice import note_if_slow
-from isolator.solver.system import InvalidSystemError, classify_configuration
+from isolator.solver.system import (
+    InvalidSystemError,
+    check_friction_coefficient,
+    check_friction_rate,
+    classify_configuration,
+)
 from isolator.units import STANDARD_GRAVITY
 
 #: Event words of the planar engine: the 1-D vocabulary plus uplift and landing.
@@ -164,7 +169,7 @@ def _finite_nonnegative(name: str, value) -> float:
 
 def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per_mass, gravity_m_s2,
                 mu_slow, mu_fast, rate_s_per_m):
-    mu_s = _finite_nonnegative("mu_static", mu_static)
+    mu_s = check_friction_coefficient("mu_static", mu_static)
     law = (mu_slow, mu_fast, rate_s_per_m)
     velocity_dependent = any(v is not None for v in law)
     if velocity_dependent and any(v is None for v in law):
@@ -173,14 +178,14 @@ def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per
                                  f"missing {', '.join(missing)}")
     if velocity_dependent and mu_kinetic is not None:
         raise InvalidSystemError("give mu_kinetic or (mu_slow, mu_fast, rate_s_per_m), not both")
-    mu_k = mu_s if mu_kinetic is None else _finite_nonnegative("mu_kinetic", mu_kinetic)
+    mu_k = mu_s if mu_kinetic is None else check_friction_coefficient("mu_kinetic", mu_kinetic)
     if mu_k > mu_s:
         raise InvalidSystemError(f"mu_kinetic ({mu_k}) must not exceed mu_static ({mu_s})")
     slow = fast = rate = 0.0
     if velocity_dependent:
-        slow = _finite_nonnegative("mu_slow", mu_slow)
-        fast = _finite_nonnegative("mu_fast", mu_fast)
-        rate = _finite_nonnegative("rate_s_per_m", rate_s_per_m)
+        slow = check_friction_coefficient("mu_slow", mu_slow)
+        fast = check_friction_coefficient("mu_fast", mu_fast)
+        rate = check_friction_rate(rate_s_per_m)
         if slow > fast:
             raise InvalidSystemError(f"mu_slow ({slow}) must not exceed mu_fast ({fast})")
         if slow > mu_s:
@@ -249,6 +254,11 @@ def _times(n: int, dt_s, time_s) -> np.ndarray:
     if not math.isfinite(dt) or dt <= 0.0:
         raise RecordInputError(f"dt_s must be a finite number > 0, got {dt_s!r}")
     return dt * np.arange(n)
+
+
+def _first_nan_time(times: np.ndarray, displacement: np.ndarray) -> float:
+    bad = np.flatnonzero(~np.isfinite(displacement[:, 0]))
+    return float(times[bad[0]]) if bad.size else float(times[-1])
 
 
 _READY = False
@@ -356,6 +366,9 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
         capacity = n_events + 16
     status = int(summary[_pl.S_STATUS])
     messages = [text for bit, text in _STATUS_MESSAGES if status & bit]
+    if status & _pl.STATUS_STEP_LIMIT:  # the history after the guard is NaN: no answer, never a cut-short one
+        raise SolverError(f"the 2-D engine could not finish: {dict(_STATUS_MESSAGES)[_pl.STATUS_STEP_LIMIT]} "
+                          f"(at t = {_first_nan_time(times, out_x):g} s)")
     kappa_end = (max(nz[-1], 0.0) * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA])
     kappa_nominal = g * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
     e_in, e_f, e_v = (float(summary[j]) for j in (_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V))
