@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -92,6 +93,8 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
 
     from isolator.io._common import input_file_problem
 
+    if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
+        raise error_type(f"a {what} is named by a file path, got {path!r}")
     path = Path(path)
     problem = input_file_problem(path)  # before opening: a FIFO must not block, a loop is not "missing"
     if problem == "no such file":

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from isolator.atomic import atomic_path
-from isolator.errors import CacheEntryError
+from isolator.errors import CacheEntryError, InvalidSystemError
 from isolator.metrics import FORCE_NAMES
 from isolator.metrics import REGIMES as REGIME_NAMES
 
@@ -357,6 +357,10 @@ def _default_workers() -> int:
     return default_workers()
 
 
+#: Largest number of grid points along one axis of a regime map (1000 × 1000 responses: ~10 minutes).
+MAX_MAP_POINTS = 1000
+
+
 def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0.0, 6.0),
                alpha_range=(0.0, 6.0), n_k: int = 100, n_alpha: int = 100, workers: int | None = None,
                use_cache: bool = True, refine: bool = False) -> RegimeMap:
@@ -383,11 +387,20 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
     -------
     RegimeMap
     """
-    mu_k = mu_s if mu_k is None else float(mu_k)
-    from isolator.errors import InvalidSystemError
     from isolator.parallel import capped_workers
-    from isolator.solver.harmonic import MAX_DIMENSIONLESS
+    from isolator.solver.harmonic import MAX_DIMENSIONLESS, validate_harmonic_parameters
 
+    for name, value in (("n_k", n_k), ("n_alpha", n_alpha)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 2 <= value <= MAX_MAP_POINTS:
+            raise InvalidSystemError(f"{name} must be a whole number of grid points in [2, {MAX_MAP_POINTS}] "
+                                     f"(each point is a harmonic response, ~0.5 ms), got {value!r}")
+    try:
+        mu_k = mu_s if mu_k is None else float(mu_k)
+        validate_harmonic_parameters(1.0, 0.0, float(eta), float(mu_s), float(mu_k))
+    except (TypeError, ValueError) as err:
+        if isinstance(err, InvalidSystemError):
+            raise
+        raise InvalidSystemError(f"eta, mu_s and mu_k must be numbers, got {eta!r}, {mu_s!r}, {mu_k!r}") from None
     for name, (low, high) in (("k", k_range), ("alpha", alpha_range)):
         if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high <= MAX_DIMENSIONLESS):
             raise InvalidSystemError(f"the {name} range [{low:g}, {high:g}] must lie within [0, "

@@ -17,6 +17,7 @@ from isolator.errors import MotionError, RecordInputError
 from isolator.motion.components import UNNAMED_COMPONENT  # noqa: F401 - the name callers know it by
 from isolator.motion.measures import IntensityMeasures, intensity_measures
 from isolator.motion.spectra import DEFAULT_DAMPING_RATIO, pseudo_acceleration_spectrum
+from isolator.units import STANDARD_GRAVITY
 
 MIN_SAMPLES = 2  # a record needs at least two samples to have a time step
 MIN_TARGET_PGA_G = 1e-6  # [g] a smaller target PGA is below any accelerometer's noise
@@ -97,7 +98,10 @@ class GroundMotion:
         """
         from obspy import Trace
 
-        data = np.array(acceleration_m_s2, dtype=np.float64)
+        raw = np.asarray(acceleration_m_s2)
+        if raw.dtype.kind not in "biuf":  # complex, text, objects: not an accelerogram
+            raise MotionError(f"acceleration_m_s2 must hold real numbers, got {raw.dtype}")
+        data = np.array(raw, dtype=np.float64)
         if data.ndim != 1 or data.size < MIN_SAMPLES:
             raise MotionError(f"need a 1-D array of at least {MIN_SAMPLES} samples")
         sample_times_s = None
@@ -110,10 +114,15 @@ class GroundMotion:
                 dt_s, sample_times_s = sample_timing(time_s)
             except RecordInputError as err:
                 raise MotionError(str(err)) from None
-        if dt_s is None or not dt_s > 0:
-            raise MotionError(f"dt_s = {dt_s} s is not positive")
+        if isinstance(dt_s, bool) or not isinstance(dt_s, (int, float, np.integer, np.floating)):
+            raise MotionError(f"dt_s must be a number of seconds, got {dt_s!r}")
+        if not (math.isfinite(dt_s) and dt_s > 0):
+            raise MotionError(f"dt_s = {dt_s} s is not a finite positive number")
         if not np.all(np.isfinite(data)):
             raise MotionError("acceleration holds NaN or infinite values")
+        if np.max(np.abs(data)) > MAX_ABS_ACCELERATION_G * STANDARD_GRAVITY:  # what the readers refuse too
+            raise MotionError(f"|acceleration| reaches {np.max(np.abs(data)):g} m/s², above "
+                              f"{MAX_ABS_ACCELERATION_G:g} g: not an accelerogram in m/s²")
         trace = Trace(data=data)
         trace.stats.delta = float(dt_s)
         trace.stats.units = "m/s2"
@@ -356,9 +365,11 @@ class GroundMotion:
         Raises
         ------
         MotionError
-            A record of zeros, or a target outside [:data:`MIN_TARGET_PGA_G`,
+            A target that is not a number, a record of zeros, or a target outside [:data:`MIN_TARGET_PGA_G`,
             :data:`MAX_ABS_ACCELERATION_G`] g (see :func:`pga_scale_factor`).
         """
+        if isinstance(pga_m_s2, bool) or not isinstance(pga_m_s2, (int, float, np.integer, np.floating)):
+            raise MotionError(f"target PGA must be a number of m/s², got {pga_m_s2!r}")
         current_m_s2 = self.pga_m_s2
         scaled = self.scaled(pga_scale_factor(current_m_s2, pga_m_s2))
         last = dict(scaled.processing[-1], target_pga_m_s2=float(pga_m_s2), from_pga_m_s2=current_m_s2)

@@ -12,6 +12,7 @@ the mean").  It is recorded in :attr:`GroundMotion.processing` like any other st
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from pathlib import Path
 from typing import Any
@@ -417,6 +418,17 @@ def list_components(path: str | Path, *, merge: bool = False) -> list[str]:
     return [component_label(trace) for trace in stream]
 
 
+def _record_path(path) -> Path:
+    """``path`` as a Path; anything that is not a path is refused (issue 26: None was a TypeError)."""
+    from isolator.errors import RecordNotFoundError
+
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
+        raise RecordNotFoundError(f"a record is named by a file path, got {path!r}", given=path, parameter="path")
+    return Path(path)
+
+
 def read_ground_motion(
     path: str | Path,
     *,
@@ -478,7 +490,7 @@ def read_ground_motion(
         numeric column, fewer than two samples, |a| > 50 g, gaps without ``merge``,
         unknown or conflicting units, ambiguous or unknown component.
     """
-    path = Path(path)
+    path = _record_path(path)
     if defaults and counts_factor is None:  # a counts factor needs its units, always
         return with_defaults(lambda **given: read_ground_motion(
             path, component=component, merge=merge, response=response, allow_zero=allow_zero, **given),
@@ -511,7 +523,7 @@ def read_ground_motions(
     RecordError
         As :func:`read_ground_motion`, for the file or for any of its components.
     """
-    path = Path(path)
+    path = _record_path(path)
     if defaults and counts_factor is None:
         return with_defaults(lambda **given: read_ground_motions(
             path, merge=merge, response=response, allow_zero=allow_zero, **given), units=units, dt_s=dt_s)

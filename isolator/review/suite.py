@@ -659,7 +659,14 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
     """
     from isolator.errors import RecordError, UnitsError
 
-    arguments = [arguments] if isinstance(arguments, (str, os.PathLike)) else list(arguments)
+    if isinstance(arguments, (str, os.PathLike)):
+        arguments = [arguments]
+    elif isinstance(arguments, (list, tuple)) and all(isinstance(a, (str, os.PathLike)) for a in arguments):
+        arguments = list(arguments)
+    else:
+        raise SuiteError(f"a suite is a SUITE.toml or a list of record files, folders and globs, got {arguments!r}")
+    if not arguments or not all(os.fspath(a) for a in arguments):
+        raise SuiteError(f"a suite is a SUITE.toml or a list of record files, folders and globs, got {arguments!r}")
     tomls = [a for a in arguments if str(a).lower().endswith(".toml")]
     if tomls and len(arguments) > 1:
         raise SuiteError(f"{tomls[0]}: give one SUITE.toml, or record files, folders and globs, not both")

@@ -191,7 +191,7 @@ def load_target(path) -> Target:
 
     from isolator.design import load_toml
 
-    mapping = load_toml(Path(path), "target file", TargetError)
+    mapping = load_toml(path, "target file", TargetError)
     controlling = {}
     for key in RANGE_KEYS:
         if key not in mapping:

@@ -221,9 +221,27 @@ def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per
     return prm, g, velocity_dependent
 
 
+#: Relative tolerances the engine accepts: below 1e-14 the steps chase round-off (the guard trips),
+#: above 1e-3 the events are no longer located (issue 26: rtol = 0 and NaN were accepted).
+RTOL_RANGE = (1e-14, 1e-3)
+
+
+def _tolerance(rtol) -> float:
+    try:
+        value = float(rtol)
+    except (TypeError, ValueError):
+        raise InvalidSystemError(f"rtol must be a number, got {rtol!r}") from None
+    if not RTOL_RANGE[0] <= value <= RTOL_RANGE[1]:
+        raise InvalidSystemError(f"rtol = {rtol!r} must lie in [{RTOL_RANGE[0]:g}, {RTOL_RANGE[1]:g}]")
+    return value
+
+
 def _samples(name: str, values, n: int | None = None) -> np.ndarray:
     # finiteness is checked with the record's scan (:func:`_not_finite` names the array)
-    arr = np.ascontiguousarray(values, dtype=np.float64)
+    raw = np.asarray(values)
+    if raw.dtype.kind not in "biuf":  # complex, text, objects: not a record (complex was cast with a warning)
+        raise RecordInputError(f"{name} must hold real numbers, got {raw.dtype}")
+    arr = np.ascontiguousarray(raw, dtype=np.float64)
     if arr.ndim != 1:
         raise RecordInputError(f"{name} must be one-dimensional, got shape {arr.shape}")
     if arr.size < 2:
@@ -249,8 +267,11 @@ def _times(n: int, dt_s, time_s) -> np.ndarray:
             raise RecordInputError("time_s must be finite and strictly increasing")
         return times
     if dt_s is None:
-        raise TypeError("give dt_s or time_s")
-    dt = float(dt_s)
+        raise RecordInputError("give dt_s or time_s")
+    try:
+        dt = float(dt_s)
+    except (TypeError, ValueError):
+        raise RecordInputError(f"dt_s must be a number, got {dt_s!r}") from None
     if not math.isfinite(dt) or dt <= 0.0:
         raise RecordInputError(f"dt_s must be a finite number > 0, got {dt_s!r}")
     return dt * np.arange(n)
@@ -322,6 +343,7 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     ay = _samples("ay_m_s2", ay_m_s2, ax.size)
     az = None if az_m_s2 is None else _samples("az_m_s2", az_m_s2, ax.size)
     times = _times(ax.size, dt_s, time_s)
+    rtol = _tolerance(rtol)
     if _timed:
         _warm_up()
     n = ax.size

@@ -1,0 +1,78 @@
+"""The Python API under hostile arguments (issue 26): every public function refuses what it cannot take
+with a typed IsolatorError and a sentence — never a bare TypeError, ZeroDivisionError or a leaked
+RuntimeWarning, never a silent answer (the spectrum of NaN was [0.])."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from isolator.design import Design
+from isolator.errors import (
+    DesignError,
+    InvalidSystemError,
+    IsolatorError,
+    MotionError,
+    RecordInputError,
+    RecordNotFoundError,
+    SuiteError,
+    TargetError,
+)
+from isolator.maps import regime_map
+from isolator.motion import GroundMotion, pseudo_acceleration_spectrum, read_ground_motion
+from isolator.review.suite import load_suite
+from isolator.review.target import load_target
+from isolator.solver.planar import simulate_pair
+
+A = 0.3 * np.sin(np.arange(200) * 0.1)
+MOTION = GroundMotion.from_array(A, dt_s=0.01)
+
+CASES = [
+    ("simulate_pair rtol=0", lambda: simulate_pair(A, A[::-1], 0.01, mu_static=0.05, radius_m=2, rtol=0),
+     InvalidSystemError, "rtol = 0 must lie in"),
+    ("simulate_pair rtol=nan", lambda: simulate_pair(A, A[::-1], 0.01, mu_static=0.05, radius_m=2,
+                                                     rtol=float("nan")), InvalidSystemError, "rtol = nan"),
+    ("simulate_pair no dt", lambda: simulate_pair(A, A[::-1], None, mu_static=0.05, radius_m=2),
+     RecordInputError, "give dt_s or time_s"),
+    ("simulate_pair complex", lambda: simulate_pair(A + 1j, A, 0.01, mu_static=0.05, radius_m=2),
+     RecordInputError, "must hold real numbers"),
+    ("from_array text", lambda: GroundMotion.from_array("abc", dt_s=0.01), MotionError, "real numbers"),
+    ("from_array complex", lambda: GroundMotion.from_array(A + 1j, dt_s=0.01), MotionError, "real numbers"),
+    ("from_array 1e300", lambda: GroundMotion.from_array(A * 1e300, dt_s=0.01), MotionError, "not an accelerogram"),
+    ("from_array dt text", lambda: GroundMotion.from_array(A, dt_s="0.01"), MotionError, "number of seconds"),
+    ("from_array dt inf", lambda: GroundMotion.from_array(A, dt_s=float("inf")), MotionError, "finite positive"),
+    ("scaled_to_pga text", lambda: MOTION.scaled_to_pga("3"), MotionError, "must be a number"),
+    ("scaled_to_pga nan", lambda: MOTION.scaled_to_pga(float("nan")), MotionError, "not positive"),
+    ("spectrum of NaN", lambda: pseudo_acceleration_spectrum(np.full(10, np.nan), 0.01, [1.0]), MotionError,
+     "NaN or infinite"),
+    ("spectrum dt 0", lambda: pseudo_acceleration_spectrum(A, 0.0, [1.0]), MotionError, "dt_s must be"),
+    ("spectrum period < 0", lambda: pseudo_acceleration_spectrum(A, 0.01, [-1.0]), MotionError, "periods_s"),
+    ("spectrum damping 2", lambda: pseudo_acceleration_spectrum(A, 0.01, [1.0], 2.0), MotionError, "damping_ratio"),
+    ("regime_map n_k=1e5", lambda: regime_map(0.0, 0.1, n_k=1e5, use_cache=False), InvalidSystemError, "n_k must"),
+    ("regime_map n_k=0", lambda: regime_map(0.0, 0.1, n_k=0, use_cache=False), InvalidSystemError, "n_k must"),
+    ("regime_map mu_s=2", lambda: regime_map(0.0, 2.0, n_k=4, n_alpha=4, use_cache=False), InvalidSystemError,
+     "mu_s = 2"),
+    ("load_suite None", lambda: load_suite(None), SuiteError, "a suite is a SUITE.toml"),
+    ("load_suite []", lambda: load_suite([]), SuiteError, "a suite is a SUITE.toml"),
+    ("load_target None", lambda: load_target(None), TargetError, "target file is named by a file path"),
+    ("Design.from_toml None", lambda: Design.from_toml(None), DesignError, "design file is named by a file path"),
+    ("read_ground_motion None", lambda: read_ground_motion(None), RecordNotFoundError, "named by a file path"),
+]
+
+
+@pytest.mark.parametrize("call, error, words", [case[1:] for case in CASES], ids=[case[0] for case in CASES])
+def test_public_functions_raise_typed_errors_with_a_sentence(call, error, words):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)  # a leaked RuntimeWarning fails the test
+        warnings.simplefilter("error", np.exceptions.ComplexWarning)
+        with pytest.raises(error) as info:
+            call()
+    assert isinstance(info.value, IsolatorError) and words in str(info.value) and "\n" not in str(info.value)
+
+
+def test_the_spectrum_of_a_valid_record_is_unchanged_by_the_checks():
+    periods = np.array([0.2, 1.0])
+    np.testing.assert_array_equal(pseudo_acceleration_spectrum(A, 0.01, periods),
+                                  pseudo_acceleration_spectrum(list(A), 0.01, list(periods)))
