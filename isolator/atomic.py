@@ -27,6 +27,8 @@ The rules an output obeys (``docs/security.md``):
 from __future__ import annotations
 
 import errno
+import hashlib
+import hmac
 import os
 import re
 import socket
@@ -425,3 +427,47 @@ def output_lock(path):
                 os.unlink(lock)
         except OSError:
             pass
+
+
+_SECRET: bytes | None = None
+
+
+def user_secret() -> bytes:
+    """This user's key for content keys of outputs that a later run reads back (32 random bytes).
+
+    Kept in ``$ISOLATOR_CACHE_DIR/batch.key`` (or ``~/.cache/isolator/batch.key``), mode 0600 — the
+    key the batch's part lines use: whoever can write a cache folder but cannot read this key
+    cannot make an entry that passes.  Without a writable cache the key lives for this process only
+    (earlier entries are then recomputed, never trusted).
+    """
+    global _SECRET
+    if _SECRET is not None:
+        return _SECRET
+    root = os.environ.get("ISOLATOR_CACHE_DIR")
+    path = (Path(root) if root else Path.home() / ".cache" / "isolator") / "batch.key"
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        except FileExistsError:
+            key = path.read_bytes()
+        else:
+            key = os.urandom(32)
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(key)
+        if len(key) < 32:
+            raise OSError("short key")
+    except OSError:
+        key = os.urandom(32)
+    _SECRET = key
+    return key
+
+
+def keyed_digest(data: bytes) -> str:
+    """HMAC-SHA256 of ``data`` under this user's key (:func:`user_secret`)."""
+    return hmac.new(user_secret(), data, hashlib.sha256).hexdigest()
+
+
+def digest_matches(data: bytes, digest) -> bool:
+    """Whether ``digest`` is :func:`keyed_digest` of ``data`` (constant-time comparison)."""
+    return isinstance(digest, str) and hmac.compare_digest(digest, keyed_digest(data))

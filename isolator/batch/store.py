@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import hashlib
 import hmac
 import json
 import os
@@ -10,7 +9,7 @@ import time
 import uuid
 from pathlib import Path
 
-from isolator.atomic import atomic_path, write_text_atomically
+from isolator.atomic import atomic_path, keyed_digest, write_text_atomically
 from isolator.serialize import dumps, json_safe
 
 #: Columns that measure time: they differ between two runs of the same batch.
@@ -54,43 +53,10 @@ COLUMNS = (
 )
 
 
-_SECRET: bytes | None = None
-
-
-def _secret() -> bytes:
-    """This user's key for the content keys of part lines and tables (32 random bytes).
-
-    Kept in ``$ISOLATOR_CACHE_DIR/batch.key`` (or ``~/.cache/isolator/batch.key``), mode
-    0600: whoever can write a batch's ``.parts/`` folder but not read this key cannot make
-    a line that passes.  Without a writable cache the key lives for this process only
-    (earlier parts are then recomputed, never trusted).
-    """
-    global _SECRET
-    if _SECRET is not None:
-        return _SECRET
-    root = os.environ.get("ISOLATOR_CACHE_DIR")
-    path = (Path(root) if root else Path.home() / ".cache" / "isolator") / "batch.key"
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        try:
-            handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-        except FileExistsError:
-            key = path.read_bytes()
-        else:
-            key = os.urandom(32)
-            with os.fdopen(handle, "wb") as stream:
-                stream.write(key)
-        if len(key) < 32:
-            raise OSError("short key")
-    except OSError:
-        key = os.urandom(32)
-    _SECRET = key
-    return key
-
-
 def content_key(data: bytes) -> str:
-    """HMAC-SHA256 of ``data`` under this user's key (:func:`_secret`)."""
-    return hmac.new(_secret(), data, hashlib.sha256).hexdigest()
+    """HMAC-SHA256 of ``data`` under this user's key (:func:`isolator.atomic.user_secret`, shared with the
+    review cache: ``$ISOLATOR_CACHE_DIR/batch.key``, mode 0600)."""
+    return keyed_digest(data)
 
 
 def _valid_row(row, planned) -> bool:

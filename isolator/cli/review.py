@@ -92,33 +92,36 @@ def review(
         the_design = Design.from_toml(design)
         the_target = load_target(resolve_example("target", target))
         suite_args = [resolve_example("suite", s) for s in suite]
-        inputs = {Path(p).resolve() for p in (design, resolve_example("target", target), *suite_args)
-                  if Path(p).is_file()}
-        if Path(output).resolve() in inputs or Path(output).with_suffix(".json").resolve() in inputs:
-            _user_error(f"--output {output}: would overwrite an input")
+        target_file = resolve_example("target", target)
+        refuse_review_over_inputs(output, no_cache, [design, target_file, *suite_args])
         the_suite = load_suite(suite_args, units=units, trim=trim)
         if scaling is None:
             try:
                 scaling = default_scaling(the_suite.names, the_suite.given_factors)
             except ValueError as err:
                 raise ReviewError(f"{suite_args[0]}: {err}") from None
-    except (DesignError, ReviewError, RecordError, UnitsError) as err:
+        # every file the review reads (the target's table, each record) is an input too
+        refuse_review_over_inputs(output, no_cache, [design, target_file, *suite_args, *review_inputs(
+            the_target, target_file, the_suite)])
+    except (DesignError, ReviewError, RecordError, UnitsError, OSError) as err:
         _user_error(str(err))
+    from isolator.atomic import output_lock
     from isolator.report.review_pages import write_review_pdf
     from isolator.review.run import run_review
 
-    cache_dir = None if no_cache else Path(output).parent / f".{Path(output).stem}.cache"
-    try:
-        result = run_review(the_design, the_target, the_suite, code=code, scaling=scaling, jobs=jobs,
-                            scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12,
-                            paper_map_resolution=30)
-    except (DesignError, ReviewError) as err:
-        _user_error(str(err))
+    cache_dir = None if no_cache else review_cache_dir(output)
     command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
     try:
-        out = write_review_pdf(result, output, command=command)
-    except OSError as err:
-        _user_error(f"{output}: cannot write ({err.strerror or err})")
+        with output_lock(output):  # a second review on this -o is refused, naming this one
+            result = run_review(the_design, the_target, the_suite, code=code, scaling=scaling, jobs=jobs,
+                                scheduler=scheduler, parameters=parameters, cache_dir=cache_dir, rotd50_points=12,
+                                paper_map_resolution=30)
+            out = write_review_pdf(result, output, command=command)
+    except (DesignError, ReviewError) as err:
+        _user_error(str(err))
+    except OSError as err:  # OutputError (read-only folder, full disk, lock held) names its path already
+        _user_error(str(err) if str(err).startswith(str(getattr(err, "filename", None) or "\0"))
+                    else f"{output}: cannot write ({err.strerror or err})")
     if as_json:
         typer.echo(json.dumps(out, indent=2))
         return
@@ -137,6 +140,49 @@ def review(
         typer.echo(f"{c['status']:<12} {c['id']:<{width}}  {value} vs {limit} {c['unit']}  [{c['clause']}]{where}")
     typer.echo(f"checks   {counts['pass']} pass, {counts['fail']} fail, {counts['not checked']} not checked")
 
+
+
+def review_cache_dir(output) -> Path:
+    """The analysis cache of a review writing ``output``: ``.STEM.cache`` beside it."""
+    return Path(output).parent / f".{Path(output).stem}.cache"
+
+
+def review_inputs(target, target_file, suite) -> list:
+    """Every file a review reads beyond its arguments: the target's table and each record of the suite."""
+    files = []
+    table = (getattr(target, "parameters", None) or {}).get("spectrum_csv")
+    if table:
+        files.append(Path(target_file).parent / table)
+    for pair in suite.pairs:
+        files.extend(getattr(pair, "paths", None) or [])
+    files.extend(spec.path for spec in (getattr(suite, "specs", None) or ()) for spec in
+                 (spec.x, spec.y, spec.z) if spec is not None)
+    return files
+
+
+def refuse_review_over_inputs(output, no_cache: bool, inputs) -> None:
+    """Refuse a review whose PDF, JSON or cache folder would be (or hold) one of its inputs.
+
+    Raises
+    ------
+    isolator.atomic.OutputIsInputError
+        One line naming the output and the input.
+    """
+    import errno
+    import os
+
+    from isolator.atomic import OutputIsInputError, refuse_overwriting_inputs
+
+    output = Path(output)
+    refuse_overwriting_inputs([output, output.with_suffix(".json")], inputs)
+    if not no_cache:
+        cache = os.path.realpath(review_cache_dir(output))
+        for item in inputs:
+            where = os.path.realpath(item)
+            if where == cache or where.startswith(cache + os.sep):
+                raise OutputIsInputError(review_cache_dir(output), f"the review's cache folder holds an input "
+                                         f"({item}); refusing to write into it: choose another output",
+                                         errno.EEXIST)
 
 
 def _verify(path: str, jobs) -> None:

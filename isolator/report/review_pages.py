@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.atomic import atomic_path
+from isolator.atomic import atomic_paths
 from isolator.report import figures
 from isolator.report.layout import A4_IN, fmt
 
@@ -562,31 +562,32 @@ def write_review_pdf(review, pdf_path, *, command: str = "") -> dict:
     r["command"] = command
     pdf_path = Path(pdf_path)
     counter = [0]
-    with atomic_path(pdf_path) as tmp, PdfPages(tmp) as pdf:
-        flow = Flow(pdf, r, counter)
-        _summary(flow, r)
-        _checks(flow, r)
-        _parameters(flow, r)
-        _notes(flow, r)
-        _traceability(flow, r, command)
-        flow.close()
+    # the PDF and its JSON are one output set: both land, or neither (a full disk between them)
+    with atomic_paths([pdf_path, pdf_path.with_suffix(".json")]) as (tmp, tmp_json):
+        with PdfPages(tmp) as pdf:
+            flow = Flow(pdf, r, counter)
+            _summary(flow, r)
+            _checks(flow, r)
+            _parameters(flow, r)
+            _notes(flow, r)
+            _traceability(flow, r, command)
+            flow.close()
 
-        def figure_page(fig):
-            counter[0] += 1
-            add_footer(fig, r, counter[0])
-            pdf.savefig(fig)
+            def figure_page(fig):
+                counter[0] += 1
+                add_footer(fig, r, counter[0])
+                pdf.savefig(fig)
 
-        figure_page(_spectra_page(review, r))
-        _pairs(flow, r)
-        flow.close()
-        figure_page(_orbits_page(review, r))
-        figure_page(_paper_page(review, r))
-        info = pdf.infodict()
-        info["Title"] = f"isolator review: {r['design']['name']}"
-        sw = r.get("software") or {}
-        info["Creator"] = f"isolator {sw.get('version')}" + (f" ({sw['commit'][:12]})" if sw.get("commit") else "")
-    r["pdf"] = str(pdf_path)
-    r["pdf_pages"] = counter[0]
-    with atomic_path(pdf_path.with_suffix(".json")) as tmp:
-        tmp.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+            figure_page(_spectra_page(review, r))
+            _pairs(flow, r)
+            flow.close()
+            figure_page(_orbits_page(review, r))
+            figure_page(_paper_page(review, r))
+            info = pdf.infodict()
+            info["Title"] = f"isolator review: {r['design']['name']}"
+            sw = r.get("software") or {}
+            info["Creator"] = f"isolator {sw.get('version')}" + (f" ({sw['commit'][:12]})" if sw.get("commit") else "")
+        r["pdf"] = str(pdf_path)
+        r["pdf_pages"] = counter[0]
+        tmp_json.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     return r

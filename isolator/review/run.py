@@ -260,8 +260,10 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
             tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": pair.az_m_s2, "dt": pair.dt_s,
                                  "factor": float(f), "design": dp})
     start = time.perf_counter()
-    results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler,
-                                     cache=analysis_cache if analysis_cache is not None else Cache(cache_dir))
+    cache = analysis_cache if analysis_cache is not None else Cache(cache_dir)
+    results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler, cache=cache)
+    if isinstance(cache, Cache):  # entries found damaged or edited are said (an in-memory cache has none)
+        notes.extend(filter(None, [cache.note()]))
     timing["analyses"] = time.perf_counter() - start
     timing["analyses_cached"] = n_cached
     timing["analyses_total"] = len(tasks)

@@ -162,27 +162,81 @@ def warm_up() -> None:
     simulate(task)
 
 
+#: Version of a review cache entry's layout; an entry of another version is recomputed.
+CACHE_SCHEMA = "isolator-review-cache/1"
+#: Depth of nested values an analysis result may hold (a row of numbers, texts, lists, small tables).
+_MAX_DEPTH = 4
+
+
+def _plain(value, depth: int = 0) -> bool:
+    """True for JSON made of numbers, texts, booleans, None, lists and string-keyed tables (bounded depth)."""
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return True
+    if depth >= _MAX_DEPTH:
+        return False
+    if isinstance(value, list):
+        return all(_plain(item, depth + 1) for item in value)
+    if isinstance(value, dict):
+        return all(isinstance(k, str) and _plain(v, depth + 1) for k, v in value.items())
+    return False
+
+
+def _canonical(key: str, result: dict) -> bytes:
+    return json.dumps({"schema": CACHE_SCHEMA, "key": key, "result": result}, sort_keys=True,
+                      allow_nan=True).encode("utf-8")
+
+
 class Cache:
-    """One JSON file per analysis under ``directory`` (atomic writes)."""
+    """One JSON file per analysis under ``directory`` (atomic writes), each with its schema and a content key.
+
+    An entry is ``{"schema", "key", "result", "mac"}``: ``key`` the task it answers, ``mac`` the
+    HMAC-SHA256 of the rest under this user's key (:func:`isolator.atomic.keyed_digest`).  An entry
+    that is not JSON, not of this schema, for another task, holds values that are not plain numbers,
+    texts and tables, or whose content key does not match (hand-edited: issue 26 turned a capacity
+    check with an edited D into 0.001 m) is never trusted: it is recomputed and counted in
+    :attr:`rejected`.
+    """
 
     def __init__(self, directory):
         self.directory = None if directory is None else Path(directory)
+        self.rejected: list[Path] = []  #: entries found damaged or edited, recomputed
 
     def get(self, key: str):
+        from isolator.atomic import digest_matches
+
         if self.directory is None:
             return None
         path = self.directory / f"{key}.json"
         try:
-            return json.loads(path.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
+            entry = json.loads(path.read_bytes().decode("utf-8"))
+        except FileNotFoundError:
             return None
+        except (OSError, ValueError):
+            self.rejected.append(path)
+            return None
+        if not (isinstance(entry, dict) and set(entry) == {"schema", "key", "result", "mac"}
+                and entry["schema"] == CACHE_SCHEMA and entry["key"] == key and isinstance(entry["result"], dict)
+                and "error" not in entry["result"] and _plain(entry["result"])
+                and digest_matches(_canonical(key, entry["result"]), entry["mac"])):
+            self.rejected.append(path)
+            return None
+        return entry["result"]
 
     def put(self, key: str, result: dict) -> None:
         if self.directory is None or "error" in result:
             return
-        from isolator.atomic import write_text_atomically
+        from isolator.atomic import keyed_digest, write_text_atomically
 
-        write_text_atomically(self.directory / f"{key}.json", json.dumps(result, allow_nan=True))
+        entry = {"schema": CACHE_SCHEMA, "key": key, "result": result, "mac": keyed_digest(_canonical(key, result))}
+        write_text_atomically(self.directory / f"{key}.json", json.dumps(entry, allow_nan=True))
+
+    def note(self) -> str | None:
+        """A sentence for the review's notes when entries were rejected, else None."""
+        if not self.rejected:
+            return None
+        return (f"{len(self.rejected)} review cache entr{'y' if len(self.rejected) == 1 else 'ies'} in "
+                f"{self.directory} damaged, edited or from another version (e.g. {self.rejected[0].name}): "
+                "recomputed, not trusted")
 
 
 def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache: Cache | None = None):
