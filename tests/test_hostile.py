@@ -67,6 +67,18 @@ def corpus(tmp_path_factory):
     (root / "short.AT2").write_text(at2_text(_record_values(150)))  # a second component of another length
     (root / "bench_records").mkdir()
     (root / "bench_records" / "bench.csv").write_text("a record that happens to be named like a bench output\n")
+    # issue 26: targets, suites and records a review or a command must refuse
+    os.mkfifo(root / "table_pipe.csv")
+    (root / "t_zero.toml").write_text('spectrum_csv = "/dev/zero"\n')
+    (root / "t_pipe.toml").write_text('spectrum_csv = "table_pipe.csv"\n')
+    (root / "two_headers.csv").write_text("MCE_R, site B\nperiod_s,sa_g\n0.1,1.0\n1.0,0.5\n")
+    (root / "t_headers.toml").write_text('spectrum_csv = "two_headers.csv"\n')
+    (root / "t_tiny.toml").write_text("S_MS = 1e-308\nS_M1 = 0.9\nT_L = 8\n")
+    os.mkfifo(root / "suite_pipe.toml")
+    (root / "suite_names.toml").write_text('[[pair]]\nname = "a"\nx = "good.AT2"\ny = "x1.AT2"\n'
+                                           '[[pair]]\nname = " a"\nx = "short.AT2"\ny = "records/a.AT2"\n')
+    (root / "two_units.csv").write_text("# units: g\n# units: cm/s2\n" + "".join(
+        f"{0.01 * i:.2f},{v:.6f}\n" for i, v in enumerate(_record_values())))
     # a batch output whose lock is held by a live process (pid 1) on this host
     (root / "locked.csv.lock").write_text(f"pid=1 host={socket.gethostname()} since=earlier\n")
     return root
@@ -159,7 +171,7 @@ def _cases(c: Path):
         (["review", "-d", design, "--target", str(c / "nowhere.toml"), "--suite", "example", "-o",
           str(c / "out" / "r.pdf")], "no such target file"),
         (["review", "-d", str(c / "design.json"), "--target", "example", "--suite", "example", "-o",
-          str(c / "design.pdf")], "would overwrite an input"),
+          str(c / "design.pdf")], "is an input"),
         (["review", "-d", design, "--target", "example", "--suite", "example", "--set", "min_ratio=abc", "-o",
           str(c / "out" / "r.pdf")], "must be a number"),
         (["review", "-d", design, "--target", "example", "--suite", "example", "--code", "foo", "-o",
@@ -168,6 +180,37 @@ def _cases(c: Path):
           str(c / "out" / "r.pdf")], "FIFO"),
         (["review", "-d", design, "--target", "example", "--suite", "example", "--jobs", "0", "-o",
           str(c / "out" / "r.pdf")], "--jobs"),
+        # issue 26: review parameters, targets and suites; units; options that contradict each other
+        *[(["review", "-d", design, "--target", "example", "--suite", "example", "--set", setting, "-o",
+            str(c / "out" / "r.pdf")], words) for setting, words in (
+            ("usable_band_factor=0", "'usable_band_factor' = 0 is outside"),
+            ("min_ratio=1e300", "'min_ratio' = 1e+300 is outside"),
+            ("min_ratio=0", "'min_ratio' = 0 is outside"),
+            ("grid_points=1e7", "'grid_points' = 1e+07 is outside"),
+            ("grid_points=1", "'grid_points' = 1 is outside"),
+            ("range_lo_factor=1e-6", "'range_lo_factor' = 1e-06 is outside"),
+            ("f_ae=1e6", "'f_ae' = 1e+06 is outside"),
+        )],
+        (["review", "-d", design, "--target", "example", "--suite", "example", "--set", "sf_flag_low=1", "--set",
+          "sf_flag_high=1", "-o", str(c / "out" / "r.pdf")], "the first must be below"),
+        *[(["review", "-d", design, "--target", str(c / name), "--suite", "example", "-o", str(c / "out" / "r.pdf")],
+           words) for name, words in (("t_zero.toml", "character device"), ("t_pipe.toml", "FIFO"),
+                                      ("t_headers.toml", "a second header line"),
+                                      ("t_tiny.toml", "'S_MS' = 1e-308 is outside"))],
+        (["review", "-d", design, "--target", "example", "--suite", str(c / "suite_pipe.toml"), "-o",
+          str(c / "out" / "r.pdf")], "FIFO"),
+        (["review", "-d", design, "--target", "example", "--suite", str(c / "suite_names.toml"), "-o",
+          str(c / "out" / "r.pdf")], "name ' a' is used twice"),
+        (["info", str(c / "two_units.csv")], "ambiguous"),
+        (["simulate", good, "--pair", str(c / "short.AT2"), "--trim", "--resample", "--mu-s", "0.1"],
+         "give one"),
+        (["batch", good, "-d", str(c / "designs.toml"), "-o", str(c / "out" / "t.csv"), "--summary",
+          str(c / "out" / "t.csv")], "give each output its own file"),
+        (["simulate", good, "--mu-s", "1.5"], "must be < 1"),
+        (["simulate", good, "--mu-s", "0.05", "--radius-m", "2", "--mu-slow", "0.03", "--mu-fast", "0.08",
+          "--rate-s-per-m", "1e8"], "exceeds 10000 s/m"),
+        (["harmonic", "--alpha", "2", "--mu-s", "1e-300"], "must lie in [0.0001, 1)"),
+        (["threshold", "--mu-s", "2"], "must lie in [0.0001, 1)"),
         # bench
         (["bench", "--records", str(c / "nowhere"), "--out", str(c / "out" / "bench")], "no such folder"),
         (["bench", "--repeats", "0"], "'--repeats'"),
@@ -242,4 +285,16 @@ def test_damaged_cache_and_parts_are_repaired_and_said(corpus, tmp_path, monkeyp
     assert result.exit_code == 0, result.stderr
     assert result.stderr.splitlines() == [f"note: 2 damaged line(s) in {parts} skipped (truncated, corrupt or not "
                                           "written by this user); their rows are recomputed"]
+    assert result.stdout.strip().splitlines()[-1] == "1 rows, 0 failed"
+
+
+def test_worker_counts_are_capped_at_the_cores_with_a_note(corpus, tmp_path, monkeypatch):
+    from isolator.parallel import available_cores
+
+    monkeypatch.setenv("ISOLATOR_CACHE_DIR", str(tmp_path / "cache"))
+    result = RUNNER.invoke(app, ["batch", str(corpus / "records"), "-d", str(corpus / "designs.toml"), "-o",
+                                 str(tmp_path / "t.csv"), "-j", "100000", "--no-harmonic"])
+    assert result.exit_code == 0, result.stderr
+    cores = available_cores()
+    assert f"note: 100000 workers asked, {cores} used" in result.stderr
     assert result.stdout.strip().splitlines()[-1] == "1 rows, 0 failed"

@@ -54,6 +54,7 @@ def batch(
     code 1 if any row failed, 2 for a mistake in the command.
     """
     import math
+    import os
     import sys
 
     from isolator.batch import BatchError, ReadOptions, parse_grid, run_batch
@@ -88,9 +89,20 @@ def batch(
                 raise BatchError(f"{path}: must end with {suffix}")
         if chart is not None and len(grids) < 2:
             raise BatchError("--chart needs a grid sweep over two keys (two --grid options)")
+        if trim and resample:
+            raise BatchError("--trim and --resample both align the components of a pair: give one")
+        for flag, path in (("--summary", summary), ("--chart", chart)):
+            if path is not None and os.path.realpath(path) == os.path.realpath(output):
+                raise BatchError(f"{flag} {path} is the table -o {output}: give each output its own file")
     except BatchError as err:
         user_error(error_line(err))
     check_outputs([output, summary, chart], [designs, *records])
+    if jobs is not None:  # more processes than cores only add memory and contention (-j 100000 forked 1,539)
+        from isolator.parallel import capped_workers
+
+        jobs, note = capped_workers(jobs)
+        if note:
+            typer.echo(f"note: {note}", err=True)
     options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic, trim=trim,
                           resample=resample)
 

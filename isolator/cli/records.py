@@ -119,6 +119,8 @@ def simulate(
     (--mu-slow/--mu-fast/--rate-s-per-m) → the 2-D engine.  Records are linear
     between samples (unequal steps allowed).  Energies are per unit mass (J/kg).
     """
+    if trim and resample:  # both align a pair's components; which one applied was not said (issue 26)
+        user_error("--trim and --resample both align the components of a pair: give one")
     the_design = None
     if design is not None:
         the_design, system, nominal = _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass,

@@ -78,6 +78,12 @@ def review(
         _user_error(f"--scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
     if jobs is not None and jobs < 1:
         _user_error(f"--jobs must be ≥ 1, got {jobs}")
+    if jobs is not None:  # more processes than cores only add memory and contention
+        from isolator.parallel import capped_workers
+
+        jobs, note = capped_workers(jobs)
+        if note:
+            typer.echo(f"note: {note}", err=True)
     if output is None:
         output = str(Path("reports") / f"review_{Path(design).stem}.pdf")
     if Path(output).suffix.lower() != ".pdf":
