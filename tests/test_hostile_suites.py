@@ -97,7 +97,7 @@ def test_components_that_start_at_different_times_are_aligned_or_refused(tmp_pat
 
 
 @pytest.mark.parametrize("case, words", [
-    ("vertical_is_x", "are one motion"),
+    ("vertical_is_x", "the same samples twice"),
     ("g_and_gal", "are one motion (equal to 1e-06 of the PGA in m/s²; one file twice, or one record in two units)"),
     ("z_labelled_090", "z (" ),
     ("x_labelled_up", "a vertical component; give it as z"),

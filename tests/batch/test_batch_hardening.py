@@ -27,9 +27,9 @@ from test_batch import DESIGNS, read, write_record
 @pytest.fixture(autouse=True)
 def _private_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("ISOLATOR_CACHE_DIR", str(tmp_path / "cache"))
-    from isolator.batch import store
+    from isolator import atomic
 
-    monkeypatch.setattr(store, "_SECRET", None)  # this test's own key
+    monkeypatch.setattr(atomic, "_SECRET", None)  # this test's own key (shared by batch parts and review cache)
 
 
 @pytest.fixture
