@@ -76,3 +76,20 @@ def test_the_spectrum_of_a_valid_record_is_unchanged_by_the_checks():
     periods = np.array([0.2, 1.0])
     np.testing.assert_array_equal(pseudo_acceleration_spectrum(A, 0.01, periods),
                                   pseudo_acceleration_spectrum(list(A), 0.01, list(periods)))
+
+
+@pytest.mark.parametrize("jobs", [0, -1, 1.5, True, "2"])
+def test_run_review_refuses_worker_counts_that_are_not_counts(jobs):
+    from isolator.errors import ReviewError
+    from isolator.review.run import run_review
+
+    with pytest.raises(ReviewError, match="jobs must be a whole number ≥ 1"):
+        run_review(None, None, None, jobs=jobs)
+
+
+def test_a_solver_that_could_not_finish_is_the_row_of_its_design_and_record():
+    from isolator.batch.worker import row_error
+    from isolator.errors import SolverError
+
+    line = row_error(SolverError("the 2-D engine could not finish: step guard"), "r.AT2", "d.toml")
+    assert line == "d.toml under r.AT2: the 2-D engine could not finish: step guard"

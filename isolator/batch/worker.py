@@ -163,6 +163,10 @@ def row_error(err: Exception, record: str, design_source: str | None) -> str:
         return named(record, str(err))
     if isinstance(err, (DesignError, InvalidSystemError)):
         return named(design_source or record, str(err))
+    from isolator.errors import SolverError
+
+    if isinstance(err, SolverError):  # the solver could not finish this design on this record: no answer
+        return named(f"{design_source} under {record}" if design_source else record, str(err))
     if isinstance(err, OSError):
         return f"{err.filename or record}: cannot read or write ({err.strerror or type(err).__name__})"
     if isinstance(err, ValueError) and design_source is None:  # scaling a record (a sentence of ours)

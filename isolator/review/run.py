@@ -169,6 +169,12 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     Returns
     -------
     Review
+
+    Raises
+    ------
+    ReviewError
+        An unknown code or scaling method, ``jobs`` that is not a whole number ≥ 1, a parameter outside
+        its range, or every analysis failed.
     """
     import time
 
@@ -176,6 +182,8 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
 
     clock = time.perf_counter()
     timing = {}
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        raise ReviewError(f"jobs must be a whole number ≥ 1 of worker processes, got {jobs!r}")
     if code not in CODES:
         raise ReviewError(f"code must be one of {', '.join(CODES)}, got {code!r}")
     if scaling not in SCALING_METHODS:
