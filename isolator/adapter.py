@@ -116,8 +116,9 @@ def adapt(design: Design, motion, intensity=None) -> Adaptation:
     ----------
     design : Design
         The isolator.
-    motion : isolator.motion.GroundMotion
-        The ground acceleration [m/s²].
+    motion : isolator.motion.GroundMotion or isolator.motion.MotionPair
+        The ground acceleration [m/s²]: one component, or a pair (its horizontal
+        resultant places it on the paper's point, :func:`motion_intensity`).
     intensity : isolator.motion.IntensityMeasures, optional
         The motion's intensity measures if already computed (they cost a response
         spectrum; a batch computes them once per record for all its designs).
@@ -127,7 +128,7 @@ def adapt(design: Design, motion, intensity=None) -> Adaptation:
     Adaptation
     """
     if intensity is None:
-        intensity = motion.intensity_measures()
+        intensity = motion_intensity(motion)
     point = dimensionless_point(design, intensity.pga_m_s2, intensity.pgv_m_s)
     return Adaptation(design=design, system=design.system(), point=point, intensity=intensity)
 
@@ -139,8 +140,8 @@ def engineering_quantities(design: Design, response) -> dict:
     ----------
     design : Design
         The isolator.
-    response : isolator.solver.record.Response
-        Its exact response to the record.
+    response : isolator.solver.base.SolverResult
+        Its response to the record (peaks are resultants in the plane).
 
     Returns
     -------
@@ -198,3 +199,60 @@ def motion_keywords(design: Design) -> dict:
         del keywords["mu_kinetic"]
         keywords.update(mu_slow=design.mu_slow, mu_fast=design.mu_fast, rate_s_per_m=design.rate_s_per_m)
     return keywords
+
+
+#: Why a pair's horizontal intensity measures carry no predominant period.
+PAIR_PREDOMINANT_PERIOD_REASON = ("a pair's horizontal resultant has no single response spectrum: see each "
+                                  "component's spectrum")
+
+
+def motion_intensity(motion):
+    """The intensity measures that place a motion on the paper's point: of the component, or of the pair's
+    horizontal resultant.
+
+    For a pair (X, Y) the measures are those of the horizontal vector a(t) = (a_x, a_y):
+    PGA = max |a|, PGV = max |v| (trapezoidal velocity from rest), PGD = max |d| (the
+    baseline-corrected displacement of each component), Arias = the sum of the components'
+    (∫|a|² dt), D5–95 of |a|²; A0 = PGV²/PGA and Ω = PGA/PGV as for one component.  The
+    predominant period is NaN (:data:`PAIR_PREDOMINANT_PERIOD_REASON`).  A "pair" of one
+    horizontal and a vertical is its horizontal component's.
+
+    Parameters
+    ----------
+    motion : isolator.motion.GroundMotion or isolator.motion.MotionPair
+        Ground acceleration [m/s²].
+
+    Returns
+    -------
+    isolator.motion.IntensityMeasures
+    """
+    import numpy as np
+
+    from isolator.motion.measures import (
+        IntensityMeasures,
+        arias_intensity_m_s,
+        displacement_m,
+        significant_duration_s,
+        velocity_m_s,
+    )
+
+    parts = getattr(motion, "components", None)
+    if not isinstance(parts, dict):
+        return motion.intensity_measures()
+    if "y" not in parts:
+        return parts["x"].intensity_measures()
+    x, y = parts["x"], parts["y"]
+    dt, times = motion.dt_s, motion.sample_times_s
+    ax, ay = x.acceleration_m_s2, y.acceleration_m_s2
+    pga = float(np.max(np.hypot(ax, ay)))
+    pgv = float(np.max(np.hypot(velocity_m_s(ax, dt, times), velocity_m_s(ay, dt, times))))
+    pgd = float(np.max(np.hypot(displacement_m(ax, dt, times), displacement_m(ay, dt, times))))
+    both = pga > 0 and pgv > 0
+    return IntensityMeasures(
+        pga_m_s2=pga, pgv_m_s=pgv, pgd_m=pgd,
+        arias_m_s=arias_intensity_m_s(ax, dt, times) + arias_intensity_m_s(ay, dt, times),
+        d5_95_s=significant_duration_s(np.hypot(ax, ay), dt, time_s=times),
+        predominant_period_s=math.nan,
+        a0_equiv_m=pgv ** 2 / pga if both else math.nan,
+        omega_equiv_rad_s=pga / pgv if both else math.nan,
+    )

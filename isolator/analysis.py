@@ -1,25 +1,22 @@
 r"""One analysis of a design under a ground motion, and the one schema of its numbers.
 
-:func:`analyse` is the pipeline that ``isolator report``, ``isolator batch`` (and the
-code review) share::
+:func:`analyse` is the pipeline that ``isolator report``, ``isolator batch`` and the code
+review share, for one component, a pair, or a pair and a vertical::
 
-    adapt (design × motion → system, dimensionless point α, k, η)
-      → simulate (the exact solver on the record)
-      → classify the record response (regime over D5–95, A, dominant force)
-      → the harmonic problem at the equivalent point (classified by the same rules)
-      → compare → engineering quantities
-      → optionally the design on the harmonic regime map (map, triple point, A(α) curve)
+    the scene (design × motion) → the model registry chooses and runs the model it needs
+      → the paper's point (α, k, η from the horizontal PGA and PGV)
+      → classify the record response (regime and ζ over D5–95; A and the dominant force in 1-D)
+      → the harmonic problem at the equivalent point (1-D only), compared
+      → engineering quantities
+      → optionally the design on the harmonic regime map (1-D only)
 
-The result, :class:`Analysis`, holds the objects; :meth:`Analysis.to_dict` is the one
-schema (``schema_version`` :data:`SCHEMA_VERSION`, units in every dimensional key,
-JSON-safe through :func:`isolator.serialize.json_safe`).  ``isolator simulate --json``,
-the batch rows (:meth:`Analysis.row`) and the report JSON are slices of it.  The schema
-is documented in ``docs/schema.md``.
-
-The response type is open: :attr:`Analysis.model` names the solver model that produced
-:attr:`Analysis.response` and :attr:`Analysis.model_reason` says why it was chosen (one
-horizontal component → the 1-D exact solver), so that a two-component analysis can
-carry its own response type under the same schema.
+The result, :class:`Analysis`, is one type whatever the model; :meth:`Analysis.to_dict` is
+the one schema (``schema_version`` :data:`SCHEMA_VERSION`, units in every dimensional key,
+JSON-safe through :func:`isolator.serialize.json_safe`).  A measure that does not apply to
+a response (the paper's A and the harmonic comparison of a planar response) is ``null`` and
+``not_applicable`` says why.  ``isolator simulate --json``, the batch rows
+(:meth:`Analysis.row`), the review's per-pair results and the report JSON are slices of it
+(``docs/schema.md``).
 
 References
 ----------
@@ -28,39 +25,46 @@ M. Nicolas (2017), hal-01432172: Eq. 6 (α, k, η), Eq. 3 (ζ), Eq. 5 (force rat
 
 from __future__ import annotations
 
+import dataclasses
 import datetime as _dt
 import time
 from dataclasses import dataclass, field
 
 from isolator.serialize import json_safe
+from isolator.solver.base import SUMMARY_KEYS
 
-#: Version of the dict of :meth:`Analysis.to_dict` (bump on any rename or change of meaning).
-SCHEMA_VERSION = 1
-#: The solver model of a one-component analysis (the name :func:`isolator.solver.planar.select_model` gives it).
-MODEL_1D = "1d-exact"
-#: The model of a one-component analysis of a design with a superstructure (:mod:`isolator.solver.building`).
-MODEL_1D_BUILDING = "1d-building"
-#: Why a one-component analysis runs it.
-MODEL_1D_REASON = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
+#: Version of the dict of :meth:`Analysis.to_dict` (bump on any rename or change of meaning; docs/changelog.md).
+SCHEMA_VERSION = 2
 #: Fields of a :class:`~isolator.metrics.Classification` written flat as ``<field>_record`` / ``<field>_harmonic``.
 CLASSIFICATION_FIELDS = ("regime", "zeta", "amplitude", "amplified", "dominant_force", "dominant_force_rho",
                          "rho_ev", "rho_vf", "rho_ef")
-#: Keys of the batch row taken from :meth:`Analysis.to_dict` (the record and design columns are the batch's own).
+#: The solver's keys that are timings (they differ between two runs of the same analysis).
+TIMING_KEYS = ("solver_seconds", "harmonic_seconds")
+#: Keys of the batch row taken flat from :meth:`Analysis.to_dict` (the record and design columns are the batch's
+#: own; ``isolator.batch.store.COLUMNS`` is record + design + these + :data:`ROW_ENGINEERING_KEYS` + timing).
 ROW_KEYS = (
     "model", "model_reason", "alpha", "k", "eta", "configuration",
-    "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m", "residual_displacement_y_m",
-    "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2", "slip_time_s", "uplift_time_s", "n_uplifts",
-    "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
-    "energy_balance_error_J_per_kg", "solver_status", "displacement_capacity_m", "displacement_demand_ratio",
+    *(key for key in SUMMARY_KEYS if key not in ("model", "model_reason", "configuration", *TIMING_KEYS)),
+    "displacement_capacity_m", "displacement_demand_ratio", "peak_displacement_over_a0", "transmitted_over_pga",
     "window_start_s", "window_end_s", "harmonic_steady", "harmonic_status", "n_disagreements",
-    "solver_seconds", "harmonic_seconds",
     *(f"{name}_{source}" for name in CLASSIFICATION_FIELDS for source in ("record", "harmonic")),
+    *TIMING_KEYS,
 )
 #: Engineering quantities also written flat in the batch row.
 ROW_ENGINEERING_KEYS = ("effective_period_s", "effective_damping_ratio", "peak_transmitted_force_N",
                         "base_shear_coefficient")
 #: Status of the harmonic columns when the harmonic problem is not solved (``harmonic=False``).
 HARMONIC_NOT_COMPUTED = "not computed"
+#: Status of the harmonic columns of a planar response, and why.
+HARMONIC_NOT_APPLICABLE = "not applicable"
+HARMONIC_NOT_APPLICABLE_REASON = ("the paper's harmonic problem is that of a rigid block on one surface in one "
+                                  "dimension (Nicolas 2017): a planar or multi-surface response is not compared "
+                                  "with it")
+#: Why a planar response has no regime map.
+MAP_NOT_APPLICABLE_REASON = "the paper's regime map is of the one-dimensional harmonic problem"
+#: Why the one-record checks are absent when the caller added none (:meth:`Analysis.with_checks`).
+CHECKS_NOT_ADDED_REASON = ("not computed: the caller adds the one-record review checks (isolator report does for "
+                           "one component; isolator review checks a suite of pairs)")
 
 _HARMONIC_CACHE: dict = {}
 _HARMONIC_CACHE_MAX = 50_000  #: entries (a steady response with 2 samples per period: ~1 kB each)
@@ -103,52 +107,96 @@ class HarmonicMap:
                 "regime_at_design": rmap.regime_at(alpha, k)}
 
 
-@dataclass
+@dataclass(frozen=True)
 class Analysis:
-    """Everything known about one design under one ground motion (SI units).
+    """Everything known about one design under one ground motion (SI units), whatever the model.
 
     Attributes
     ----------
     design : isolator.design.Design
-    motion : isolator.motion.GroundMotion
-        The motion analysed (after any scaling).
+    motion : isolator.motion.GroundMotion or isolator.motion.MotionPair
+        The motion analysed (after any scaling): one component, or a pair (and a vertical).
     adaptation : isolator.adapter.Adaptation
-        System, dimensionless point and intensity measures.
-    response : object
-        The solver's response (:class:`isolator.solver.record.Response` for :data:`MODEL_1D`).
-    model, model_reason : str
-        The solver model used and why.
+        System, dimensionless point and intensity measures (of the horizontal resultant for a pair).
+    response : isolator.solver.base.SolverResult
+        The model's response (``response.model`` and ``model_reason`` say which ran and why).
     record_class : isolator.metrics.Classification
+        The record's classification (fields that do not apply to a planar response are None).
     harmonic : isolator.solver.harmonic.HarmonicResponse or None
-        The steady harmonic response at the equivalent point (None when not computed).
+        The steady harmonic response at the equivalent point (None when not computed or not applicable).
     harmonic_class : isolator.metrics.Classification or None
     engineering : dict
         :func:`isolator.adapter.engineering_quantities` (SI units in the keys).
-    disagreements : list of str
+    disagreements : tuple of str
         Where record and harmonic classifications differ.
+    not_applicable : dict
+        Schema key → why it is null for this analysis.
+    checks : tuple of dict or None
+        The one-record review checks, when the caller added them (:meth:`with_checks`).
     harmonic_seconds : float
         Time spent on the harmonic problem (0 when it came from the cache) [s].
     harmonic_map : HarmonicMap or None
-        The design on the regime map, when asked for.
+        The design on the regime map, when asked for (one component only).
     """
 
     design: object
     motion: object
     adaptation: object
     response: object
-    model: str
-    model_reason: str
     record_class: object
     harmonic: object
     harmonic_class: object
     engineering: dict
-    disagreements: list
+    disagreements: tuple = ()
+    not_applicable: dict = field(default_factory=dict)
+    checks: tuple | None = None
     record_label: str = ""
     scaling_note: str = ""
     created_utc: str = ""
     harmonic_seconds: float = 0.0
     harmonic_map: HarmonicMap | None = None
-    extra: dict = field(default_factory=dict)
+
+    @property
+    def model(self) -> str:
+        """The solver model that ran (:func:`isolator.solver.models.select_model`)."""
+        return self.response.model
+
+    @property
+    def model_reason(self) -> str:
+        """Why that model."""
+        return self.response.model_reason
+
+    @property
+    def is_planar(self) -> bool:
+        """The response moves in the plane ((N, 2) histories)."""
+        return self.response.is_planar
+
+    @property
+    def paper_applies(self) -> bool:
+        """The paper's measures apply: a 1-D response of a block on one surface (:func:`paper_applies`)."""
+        return paper_applies(self.response)
+
+    @property
+    def components(self) -> dict:
+        """The ground motions analysed, by axis name (``x``; ``y``, ``z`` for a pair)."""
+        parts = getattr(self.motion, "components", None)
+        return parts if isinstance(parts, dict) else {"x": self.motion}
+
+    @property
+    def displacement_demand_ratio(self) -> float | None:
+        """Peak (resultant) displacement / the design's displacement capacity (None without one) [-]."""
+        capacity = getattr(self.design, "displacement_capacity_m", None)
+        return None if capacity is None else self.response.peak_displacement_m / capacity
+
+    def with_checks(self, checks) -> Analysis:
+        """This analysis with the one-record review checks added by the caller (a new object).
+
+        Parameters
+        ----------
+        checks : list of dict
+            Rows of :func:`isolator.review.record_checks.record_checks`.
+        """
+        return dataclasses.replace(self, checks=tuple(checks))
 
     # ---- the schema ----------------------------------------------------------------
 
@@ -158,37 +206,36 @@ class Analysis:
         Returns
         -------
         dict
-            ``schema_version``, ``model``, ``model_reason``; the point (``alpha``, ``k``,
-            ``eta``, ``mu_s``, ``mu_k`` [-], ``a0_m``, ``omega_rad_s``); the response
-            (``peak_displacement_m`` …, energies in J/kg); the classifications flat
-            (``regime_record``, ``regime_harmonic``, …); ``engineering``; ``design``;
-            ``system``; ``record``; ``map`` when computed; ``verdicts``; ``software``.
+            The flat keys (:meth:`flat`), ``not_applicable``, ``disagreements``, ``engineering``,
+            ``design``, ``system``, ``record``, ``map`` when computed, ``verdicts``, ``checks``,
+            ``software``, ``created_utc``.
         """
         from isolator import __version__
 
         p = self.adaptation.point
-        motion = self.motion
-        out = self._flat()
+        out = self.flat()
+        out["not_applicable"] = dict(self.not_applicable)
+        if self.checks is None:
+            out["not_applicable"]["checks"] = CHECKS_NOT_ADDED_REASON
         out["disagreements"] = list(self.disagreements)
         out["engineering"] = dict(self.engineering)
         out["design"] = self.design.as_dict()
         out["system"] = self.adaptation.dimensional_dict()
-        out["record"] = record_dict(motion, self.record_label)
-        out["record"].update(provenance=motion.provenance, processing=list(motion.processing),
-                             scaling=self.scaling_note, intensity_measures=self.adaptation.intensity.as_dict())
+        out["record"] = record_dict(self.motion, self.record_label, scaling=self.scaling_note,
+                                    intensity=self.adaptation.intensity)
         if self.harmonic_map is not None:
             out["map"] = self.harmonic_map.to_dict(p.alpha, p.k)
         out["verdicts"] = verdicts(self)
-        out["checks"] = checks(self)
+        out["checks"] = [] if self.checks is None else [dict(row) for row in self.checks]
         out["software"] = {"name": "isolator", "version": __version__}
         out["created_utc"] = self.created_utc
         return json_safe(out)
 
-    def _flat(self) -> dict:
-        """The flat keys of the schema (identity, point, response, classifications), in schema order."""
+    def flat(self) -> dict:
+        """The flat keys of the schema (identity, point, response, demand, classifications), in schema order."""
         out: dict = {"schema_version": SCHEMA_VERSION, "model": self.model, "model_reason": self.model_reason}
-        out.update(self.adaptation.point.as_dict())
-        out["configuration"] = self.adaptation.system.configuration
+        p = self.adaptation.point
+        out.update(p.as_dict())
         out.update(self.response.summary())
         rc, hc = self.record_class, self.harmonic_class
         for name in CLASSIFICATION_FIELDS:
@@ -196,12 +243,18 @@ class Analysis:
             out[f"{name}_harmonic"] = None if hc is None else getattr(hc, name)
         out["window_start_s"], out["window_end_s"] = (float(v) for v in rc.window_s)
         out["harmonic_steady"] = None if self.harmonic is None else bool(self.harmonic.steady)
-        out["harmonic_status"] = HARMONIC_NOT_COMPUTED if self.harmonic is None else self.harmonic.status
+        if self.harmonic is not None:
+            out["harmonic_status"] = self.harmonic.status
+        else:
+            out["harmonic_status"] = HARMONIC_NOT_COMPUTED if self.paper_applies else HARMONIC_NOT_APPLICABLE
         out["harmonic_seconds"] = self.harmonic_seconds
         out["n_disagreements"] = None if hc is None else len(self.disagreements)
-        capacity = getattr(self.design, "displacement_capacity_m", None)
-        out["displacement_capacity_m"] = capacity
-        out["displacement_demand_ratio"] = None if capacity is None else self.response.peak_displacement_m / capacity
+        out["displacement_capacity_m"] = getattr(self.design, "displacement_capacity_m", None)
+        out["displacement_demand_ratio"] = self.displacement_demand_ratio
+        peak = self.response.peak_displacement_m
+        out["peak_displacement_over_a0"] = peak / p.a0_m
+        pga = self.adaptation.intensity.pga_m_s2
+        out["transmitted_over_pga"] = self.response.peak_transmitted_acceleration_m_s2 / pga if pga > 0 else None
         return out
 
     def row(self) -> dict:
@@ -210,37 +263,53 @@ class Analysis:
         Built from the same pieces as :meth:`to_dict` without its nested groups and sentences
         (a batch makes thousands of rows), through the same JSON-safe helper.
         """
-        flat = self._flat()
+        flat = self.flat()
         row = {key: flat[key] for key in ROW_KEYS}
         row.update({key: self.engineering[key] for key in ROW_ENGINEERING_KEYS})
         return json_safe(row)
 
 
-def record_dict(motion, label: str) -> dict:
-    """The ``record`` group of the schema that every output shares: label, component, units, sampling.
+def record_dict(motion, label: str, *, scaling: str = "", intensity=None) -> dict:
+    """The ``record`` group of the schema: one component or a pair, the same keys.
 
     Parameters
     ----------
-    motion : isolator.motion.GroundMotion
+    motion : isolator.motion.GroundMotion or isolator.motion.MotionPair
         The motion analysed [m/s²].
     label : str
         How the user named the record [-].
+    scaling : str
+        The sentence on scaling [-].
+    intensity : isolator.motion.IntensityMeasures, optional
+        The measures the analysis used (of the horizontal resultant for a pair).
 
     Returns
     -------
     dict
-        ``label``, ``component``, ``units_source``, ``npts``, ``dt_s`` [s], ``duration_s`` [s].
+        ``label``; ``component`` (the component's label; null for a pair); ``components`` (per axis
+        ``x``/``y``/``z``: path, component, units_source, pga_m_s2, processing); ``units_source``;
+        ``npts``; ``dt_s`` [s] (the mean step when unequal); ``duration_s`` [s]; ``uniform_sampling``;
+        ``provenance`` (of X's file); ``processing`` (the steps applied to the motion, or to the set);
+        ``scaling``; ``intensity_measures`` (when given).
     """
-    return {"label": label, "component": motion.component, "units_source": motion.units_source,
-            "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s}
-
-
-def schema_row(full: dict, keys) -> dict:
-    """A batch row from an analysis dict (:meth:`to_dict` of a pair analysis): ``keys`` and
-    :data:`ROW_ENGINEERING_KEYS`, flat."""
-    row = {key: full[key] for key in keys}
-    row.update({key: full["engineering"][key] for key in ROW_ENGINEERING_KEYS})
-    return row
+    parts = getattr(motion, "components", None)
+    if isinstance(parts, dict):
+        components = motion.describe()
+        first = parts["x"]
+        component = None
+    else:
+        first = motion
+        components = {"x": {"path": motion.provenance.get("path", ""), "component": motion.component,
+                            "pga_m_s2": motion.pga_m_s2, "units_source": motion.units_source,
+                            "processing": list(motion.processing)}}
+        component = motion.component
+    out = {"label": label, "component": component, "components": components, "units_source": first.units_source,
+           "npts": motion.npts, "dt_s": motion.dt_s, "duration_s": motion.duration_s,
+           "uniform_sampling": motion.sample_times_s is None, "provenance": dict(first.provenance),
+           "processing": list(motion.processing), "scaling": scaling}
+    if intensity is not None:
+        out["intensity_measures"] = intensity.as_dict()
+    return out
 
 
 def _harmonic_at(point) -> tuple:
@@ -302,19 +371,23 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     ----------
     design : isolator.design.Design
         The isolator.
-    motion : isolator.motion.GroundMotion
-        One horizontal component of ground acceleration [m/s²] (already scaled if asked).
+    motion : isolator.motion.GroundMotion or isolator.motion.MotionPair
+        One horizontal component, or a pair (and a vertical), of ground acceleration [m/s²]
+        (already scaled if asked).  The model is the one the scene needs
+        (:func:`isolator.solver.models.select_model`).
     intensity : isolator.motion.IntensityMeasures, optional
         The motion's intensity measures if already computed (a batch computes them once
-        per record for all its designs).
+        per record for all its designs); for a pair, those of the horizontal resultant
+        (:func:`isolator.adapter.motion_intensity`).
     window_s : tuple, optional
-        Strong-motion window (D5–95) [s] if already computed; computed otherwise.
+        Strong-motion window (D5–95) [s] on the response's time axis if already computed;
+        computed otherwise (of the horizontal resultant for a pair).
     harmonic : bool
-        Also solve and classify the harmonic problem at the equivalent point (the
-        harmonic keys are None and ``harmonic_status`` is :data:`HARMONIC_NOT_COMPUTED`
+        Also solve and classify the harmonic problem at the equivalent point (1-D responses;
+        the harmonic keys are None and ``harmonic_status`` is :data:`HARMONIC_NOT_COMPUTED`
         without it).
     map_resolution : int, optional
-        Also place the design on the regime map at this resolution (:func:`harmonic_map`).
+        Also place the design on the regime map at this resolution (:func:`harmonic_map`; 1-D).
     workers : int, optional
         Processes for the map.
     record_label : str
@@ -326,72 +399,92 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
     -------
     Analysis
 
-    A pair of components (:class:`~isolator.motion.MotionPair`) or a design with µ(v)
-    needs the 2-D engine: the analysis is then a :class:`~isolator.pair_analysis.PairAnalysis`
-    (same ``model``/``model_reason`` and response keys; no harmonic classification,
-    which is a 1-D notion), and ``intensity``, ``window_s``, ``harmonic``,
-    ``map_resolution`` do not apply.
-
     Raises
     ------
-    isolator.solver.record.RecordInputError
-        A motion the solver cannot take.
+    isolator.errors.RecordInputError
+        A motion the solver cannot take (a record of zeros: no equivalent point).
+    isolator.solver.system.InvalidSystemError
+        An isolator the solver cannot take.
     """
-    from isolator.adapter import adapt, engineering_quantities, motion_keywords
-    from isolator.metrics import classify_record, compare
-    from isolator.solver.models import Scene, select_model, simulate
+    from isolator.adapter import PAIR_PREDOMINANT_PERIOD_REASON, adapt, engineering_quantities, motion_keywords
+    from isolator.metrics import PLANAR_NOT_APPLICABLE, classify_record, compare
+    from isolator.solver.models import Scene, simulate
 
-    scene = Scene.of(motion, motion_keywords(design), design)
-    one_component = not (scene.has_y or scene.has_z)  # the 1-D building raises on a pair, in analyse_pair
-    if select_model(scene)[0] not in (MODEL_1D, MODEL_1D_BUILDING) or not one_component:
-        from isolator.pair_analysis import analyse_pair
-
-        return analyse_pair(design, motion, record_label=record_label, scaling_note=scaling_note)
-    motion = getattr(motion, "x", motion)  # a MotionPair of one component is that component
+    parts = getattr(motion, "components", None)
+    if isinstance(parts, dict) and set(parts) == {"x"}:
+        motion = parts["x"]  # a MotionPair of one component is that component
     adaptation = adapt(design, motion, intensity)
+    response = simulate(Scene.of(motion, motion_keywords(design), design))
     point = adaptation.point
-    response = simulate(scene)
     record_class = classify_record(response, point, design, window_s=window_s)
-    harmonic_response = harmonic_class = None
+    not_applicable: dict = {}
+    if isinstance(parts, dict) and "y" in parts:
+        not_applicable["record.intensity_measures.predominant_period_s"] = PAIR_PREDOMINANT_PERIOD_REASON
+    harmonic_response = harmonic_class = harmonic_map_ = None
     harmonic_seconds = 0.0
-    if harmonic:
-        harmonic_response, harmonic_class, harmonic_seconds = _harmonic_at(point)
-    disagreements = [] if harmonic_class is None else compare(record_class, harmonic_class)
+    if not paper_applies(response):
+        not_applicable.update({f"{name}_record": reason for name, reason in PLANAR_NOT_APPLICABLE.items()})
+        not_applicable.update({f"{name}_harmonic": HARMONIC_NOT_APPLICABLE_REASON for name in CLASSIFICATION_FIELDS})
+        not_applicable.update(harmonic_status=HARMONIC_NOT_APPLICABLE_REASON, map=MAP_NOT_APPLICABLE_REASON)
+    else:
+        if harmonic:
+            harmonic_response, harmonic_class, harmonic_seconds = _harmonic_at(point)
+        if map_resolution is not None:
+            harmonic_map_ = harmonic_map(point, map_resolution, workers)
+    disagreements = () if harmonic_class is None else tuple(compare(record_class, harmonic_class))
     return Analysis(
-        design=design, motion=motion, adaptation=adaptation, response=response, model=response.model,
-        model_reason=response.model_reason,
-        record_class=record_class, harmonic=harmonic_response, harmonic_class=harmonic_class,
+        design=design, motion=motion, adaptation=adaptation, response=response, record_class=record_class,
+        harmonic=harmonic_response, harmonic_class=harmonic_class,
         engineering=engineering_quantities(design, response), disagreements=disagreements,
-        record_label=record_label, scaling_note=scaling_note,
+        not_applicable=not_applicable, record_label=record_label, scaling_note=scaling_note,
         created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
-        harmonic_seconds=harmonic_seconds,
-        harmonic_map=None if map_resolution is None else harmonic_map(point, map_resolution, workers),
+        harmonic_seconds=harmonic_seconds, harmonic_map=harmonic_map_,
     )
 
 
-def checks(analysis: Analysis) -> list[dict]:
-    """The review checks that apply to one record (:func:`isolator.review.record_checks.record_checks`):
-    capacity, D/R, restoring force, transmitted/PGA, scale factor, usable band."""
-    from isolator.review.record_checks import record_checks
-
-    return record_checks(analysis.design, analysis.motion, analysis.engineering)
+def paper_applies(response) -> bool:
+    """The paper's classification, harmonic problem and map apply to ``response``: a 1-D response of a block on
+    one surface (the solver's ``system`` of µs, µk, K/M, γ/M), not a planar or multi-surface one."""
+    return not response.is_planar and getattr(response, "system", None) is not None
 
 
 def verdicts(analysis: Analysis) -> list[str]:
-    """Plain sentences on the analysis: regime, amplification, dominant force, residual displacement."""
+    """Plain sentences on the analysis: regime, the paper's A, dominant force, demand, uplift, residual.
+
+    Each sentence is written where its measure applies (the paper's A and the dominant force
+    for a 1-D response; the displacement demand and uplift for a planar one).
+    """
     from isolator.metrics import REGIME_WORDS
 
     rc, hc = analysis.record_class, analysis.harmonic_class
     eng = analysis.engineering
     p = analysis.adaptation.point
+    r = analysis.response
+    out = []
+    if not analysis.paper_applies:
+        ratio = analysis.displacement_demand_ratio
+        if ratio is not None:
+            word = "within" if ratio <= 1.0 else "EXCEEDS"
+            out.append(f"Peak resultant displacement {r.peak_displacement_m:.4g} m {word} the displacement "
+                       f"capacity {analysis.design.displacement_capacity_m:.4g} m (ratio {ratio:.3g}).")
+        if getattr(r, "ultimate_displacement_reached", False):  # a bearing with rims (isolator.solver.multisurface)
+            out.append(f"The bearing REACHED its ultimate displacement {r.ultimate_displacement_m:.4g} m (every slider "
+                       f"on its rim): plastic impact(s), impulse {analysis.design.mass_kg * r.impact_impulse_m_s:.4g} "
+                       "N·s in all; the motion is held there, not continued past it.")
+        if r.uplift_time_s > 0:
+            out.append(f"The bearing lifts off {r.n_uplifts} time(s), {r.uplift_time_s:.3g} s "
+                       "in all (n = g + a_z <= 0: no friction, no restoring force).")
+        out.append(f"Residual displacement {r.residual_displacement_m:.3g} m "
+                   f"(x {r.residual_displacement_x_m:.3g} m, y {r.residual_displacement_y_m:.3g} m).")
+        return out
     prediction = "not computed" if hc is None else f"{hc.regime} ({REGIME_WORDS[hc.regime]})"
     if rc.regime == "ST":
-        out = [f"Regime under the record: ST - the isolator never slides (alpha = PGA/(mu_s g) = {p.alpha:.3g}"
-               f"{' <= 1' if p.alpha <= 1 else ''}): the superstructure moves with the ground, not isolated; "
-               f"harmonic prediction: {prediction}."]
+        out.append(f"Regime under the record: ST - the isolator never slides (alpha = PGA/(mu_s g) = {p.alpha:.3g}"
+                   f"{' <= 1' if p.alpha <= 1 else ''}): the superstructure moves with the ground, not isolated; "
+                   f"harmonic prediction: {prediction}.")
     else:
-        out = [f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
-               f"zeta = {rc.zeta:.3f}; harmonic prediction: {prediction}."]
+        out.append(f"Regime under the record: {rc.regime} ({REGIME_WORDS[rc.regime]}), slip-time ratio over D5-95 "
+                   f"zeta = {rc.zeta:.3f}; harmonic prediction: {prediction}.")
     # the paper's measure, labelled: A is relative to A0 = PGV²/PGA, not to the ground's displacement
     out.append(f"Paper's measure A = {rc.amplitude:.3g} ({'>' if rc.amplified else '<='} 1): half peak-to-peak "
                f"displacement / A0, A0 = PGV²/PGA = {p.a0_m:.3g} m (the harmonic motion of equal PGA and PGV, "

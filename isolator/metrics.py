@@ -7,8 +7,9 @@ classified by the same rules (:func:`classify`), fed by :func:`classify_harmonic
 * **regime** (:func:`regime_from_slip`): ``ST`` if the block never slides, ``SL`` if it
   slides the whole observation window (slip-time ratio ζ = 1: no stick inside it),
   ``SS`` otherwise.  Harmonic: ζ over the steady cycle (Eq. 3).  Record: ζ over the
-  strong-motion window D5–95 (between 5 % and 95 % of the Arias intensity), from the
-  exact event times (break-away starts a slip, stick ends it).
+  strong-motion window D5–95 (between 5 % and 95 % of the Arias intensity; of the
+  horizontal resultant |a| for a pair), from the exact event times (break-away starts a
+  slip, stick ends it) — the exact slip time, in 1-D and in 2-D alike.
 * **amplification**: A = (max X − min X) / (2 A0), half the peak-to-peak relative
   displacement over the ground amplitude A0 (A0 = PGV²/PGA for a record);
   ``amplified`` when A > 1.
@@ -18,6 +19,10 @@ classified by the same rules (:func:`classify`), fed by :func:`classify_harmonic
   (µs M g at most if it never slid).  The paper's ratios ρ_ev, ρ_vf, ρ_ef (Eq. 5) at
   the equivalent point (α, k, η) with the record's A are reported too, with the
   dominance they imply (``dominant_force_rho``).
+
+A planar (2-D) or multi-surface response is classified by regime and ζ only: A, the dominant force and the
+Eq. 5 ratios are of the paper's 1-D block; they are None and :data:`PLANAR_NOT_APPLICABLE`
+says why.
 """
 
 from __future__ import annotations
@@ -31,6 +36,15 @@ import numpy as np
 REGIMES = ("ST", "SS", "SL")
 REGIME_WORDS = {"ST": "stick (no sliding)", "SS": "stick-slip", "SL": "permanent slip"}
 FORCE_NAMES = ("friction", "elastic", "viscous")
+_A_1D = ("the paper's A (half the peak-to-peak displacement / A0) is of a rigid block on one surface under one "
+         "component; not of a planar or multi-surface response (see peak_displacement_over_a0)")
+#: Classification fields that do not apply to a planar response, and why.
+PLANAR_NOT_APPLICABLE = {
+    "amplitude": _A_1D, "amplified": _A_1D,
+    "dominant_force": "the paper's force peaks (µk M g, K|X|, γ|dX/dt|) classify a block on one surface in 1-D",
+    **{name: "the paper's Eq. 5 ratios need its A, a 1-D measure"
+       for name in ("dominant_force_rho", "rho_ev", "rho_vf", "rho_ef")},
+}
 
 
 @dataclass(frozen=True)
@@ -44,16 +58,16 @@ class Classification:
     regime : str
         ``"ST"``, ``"SS"`` or ``"SL"``.
     zeta : float
-        Slip-time ratio over the observation window [-].
-    amplitude : float
-        A = half peak-to-peak relative displacement / A0 [-].
-    amplified : bool
+        Slip-time ratio over the observation window, from the exact slip time [-].
+    amplitude : float or None
+        A = half peak-to-peak relative displacement / A0 [-] (None for a planar response).
+    amplified : bool or None
         A > 1.
-    dominant_force : str
+    dominant_force : str or None
         ``"friction"``, ``"elastic"`` or ``"viscous"`` (from the force peaks).
     rho_ev, rho_vf, rho_ef : float or None
-        Eq. 5 ratios at (α, k, η) with this A (None where 0/0 or infinite).
-    dominant_force_rho : str
+        Eq. 5 ratios at (α, k, η) with this A (None where 0/0 or infinite, or planar).
+    dominant_force_rho : str or None
         Dominance implied by the Eq. 5 amplitudes kA, ηAω, µk.
     window_s : tuple
         (start, end) of the observation window [s] (dimensionless time for harmonic).
@@ -62,13 +76,13 @@ class Classification:
     source: str
     regime: str
     zeta: float
-    amplitude: float
-    amplified: bool
-    dominant_force: str
+    amplitude: float | None
+    amplified: bool | None
+    dominant_force: str | None
     rho_ev: float | None
     rho_vf: float | None
     rho_ef: float | None
-    dominant_force_rho: str
+    dominant_force_rho: str | None
     window_s: tuple = (0.0, 0.0)
 
     def as_dict(self) -> dict:
@@ -180,8 +194,9 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
 
     Parameters
     ----------
-    response : isolator.solver.record.Response
-        The exact response to the record.
+    response : isolator.solver.base.SolverResult
+        The response to the record: 1-D (all fields) or planar (regime and ζ; the rest
+        None, see :data:`PLANAR_NOT_APPLICABLE`).
     point : isolator.adapter.DimensionlessPoint
         The record's equivalent dimensionless point (gives A0 and α, k, η).
     design : Design, optional
@@ -200,8 +215,12 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
 
     t = response.time_s
     dt, unequal = sample_timing(t)
-    if window_s is None:
-        t0, t1 = strong_motion_window_s(response.ground_acceleration_m_s2, dt, time_s=unequal)
+    ground = np.asarray(response.ground_acceleration_m_s2)
+    planar = ground.ndim == 2
+    one_block = not planar and getattr(response, "system", None) is not None  # the paper's block on one surface
+    if window_s is None:  # D5–95 of the horizontal resultant: |a|² is the sum of the components' squares
+        t0, t1 = strong_motion_window_s(np.hypot(ground[:, 0], ground[:, 1]) if planar else ground, dt,
+                                        time_s=unequal)
         window_s = (t[0] + t0, t[0] + t1)
     w0, w1 = window_s
     intervals = slip_intervals(response)
@@ -216,6 +235,10 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
     else:
         zeta = min(slip / length, 1.0 - 1e-12) if length > 0 else 0.0
     # a block that slid only outside the window has ζ = 0 but moved: SS, not ST
+    if not one_block:
+        return Classification(source="record", regime=regime_from_slip(moved, zeta), zeta=float(zeta),
+                              amplitude=None, amplified=None, dominant_force=None, rho_ev=None, rho_vf=None,
+                              rho_ef=None, dominant_force_rho=None, window_s=(float(w0), float(w1)))
     x = np.asarray(response.displacement_m)
     v = np.asarray(response.velocity_m_s)
     if amplitude_window_s is not None:

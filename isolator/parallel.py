@@ -1,8 +1,9 @@
-"""Process pools: the worker count by default, the warm-up before forking, and one pool.
+"""Process pools and one way to run tasks: the worker count by default, the warm-up before forking, one pool,
+and :func:`iterate` (local processes or a dask.distributed cluster).
 
-Used by the regime maps (:mod:`isolator.maps`) and the batch runner
-(:mod:`isolator.batch`): both fork local processes that inherit the compiled solver
-functions loaded once by :func:`warm_up` in the parent.
+Used by the regime maps (:mod:`isolator.maps`), the batch runner (:mod:`isolator.batch`) and the
+review (:mod:`isolator.review`): they fork local processes that inherit the compiled solver
+functions loaded once by :func:`warm_up` in the parent, or ship their tasks to a dask cluster.
 """
 
 from __future__ import annotations
@@ -153,3 +154,138 @@ def map_interleaved(function, items: list, workers: int, chunks_per_worker: int 
     for c, result in enumerate(results):
         out[c::n_chunks] = result
     return out
+
+
+# ---------------------------------------------------------------------------------------
+# one way to run tasks: local processes or a dask.distributed cluster (batch and review)
+# ---------------------------------------------------------------------------------------
+#: Schemes of a scheduler address: plain TCP, or TLS with the certificates of dask's configuration.
+SCHEDULER_SCHEMES = ("tcp", "tls")
+
+
+def iterate(tasks: list, function, *, jobs: int = 1, scheduler: str | None = None):
+    """Yield ``(task, function(task))`` as tasks finish — or ``(task, exception)`` for a lost worker.
+
+    One interface for the batch and the review: ``jobs`` local processes (forked after
+    :func:`warm_up`; 1 runs here, in order), or the dask.distributed cluster at ``scheduler``
+    (then ``jobs`` is unused).  ``function`` and the tasks must be picklable.
+
+    Parameters
+    ----------
+    tasks : list
+        The work [-].
+    function : callable
+        ``function(task) -> result`` [-].
+    jobs : int
+        Local processes [-].
+    scheduler : str, optional
+        ``tcp://HOST:PORT`` or ``tls://HOST:PORT`` of a dask scheduler [-].
+
+    Raises
+    ------
+    isolator.errors.BatchError
+        A scheduler address that is not valid, or that cannot be reached (``parameter`` = "scheduler").
+    """
+    if scheduler:
+        yield from _iterate_dask(tasks, scheduler, function)
+    else:
+        yield from _iterate_local(tasks, max(1, int(jobs)), function)
+
+
+def _iterate_local(tasks: list, jobs: int, function):
+    warm_up()
+    if jobs <= 1:
+        for task in tasks:
+            yield task, function(task)
+        return
+    from concurrent.futures import as_completed
+
+    with process_pool(min(jobs, max(1, len(tasks)))) as pool:
+        futures = {pool.submit(function, task): task for task in tasks}
+        for future in as_completed(futures):
+            try:
+                yield futures[future], future.result()
+            except Exception as err:  # noqa: BLE001 - a lost worker: the caller reports the task, a rerun retries it
+                yield futures[future], err
+
+
+def check_scheduler(address: str) -> list[str]:
+    """Validate a scheduler address; return sentences for the user (an unencrypted remote link).
+
+    The trust model (``docs/security.md``): dask ships tasks and results as pickles, so
+    the scheduler and its workers can run code on this client and see every record.  Use
+    only a cluster you control; across a network, use ``tls://`` with the certificates of
+    dask's configuration (``distributed.comm.tls.*``).
+
+    Raises
+    ------
+    isolator.errors.BatchError
+        Not ``tcp://HOST:PORT`` or ``tls://HOST:PORT``.
+    """
+    import ipaddress
+    from urllib.parse import urlsplit
+
+    from isolator.errors import BatchError
+
+    usage = f"scheduler address {address!r}: expected tcp://HOST:PORT or tls://HOST:PORT (e.g. tls://10.0.0.5:8786)"
+    try:
+        parts = urlsplit(address)
+        port = parts.port
+    except ValueError:
+        raise BatchError(usage, parameter="scheduler") from None
+    if parts.scheme not in SCHEDULER_SCHEMES or not parts.hostname or port is None or parts.path not in ("", "/"):
+        raise BatchError(usage, parameter="scheduler")
+    if parts.scheme == "tcp":
+        host = parts.hostname
+        try:
+            loopback = ipaddress.ip_address(host).is_loopback
+        except ValueError:
+            loopback = host == "localhost"
+        if not loopback:
+            return [f"scheduler {address} is plain TCP to another machine: tasks and results travel unencrypted "
+                    "and unauthenticated, and dask's pickles let that scheduler run code here; use tls:// "
+                    "(docs/security.md)"]
+    return []
+
+
+def _security(address: str):
+    """dask's TLS settings from its configuration for a ``tls://`` address (None for tcp)."""
+    if not address.startswith("tls://"):
+        return None
+    from distributed.security import Security
+
+    from isolator.errors import BatchError
+
+    security = Security()  # reads distributed.comm.tls.* (ca-file, client cert and key) from the dask config
+    if not security.tls_ca_file:
+        raise BatchError(f"scheduler {address}: tls:// needs certificates in the dask configuration "
+                         "(distributed.comm.tls.ca-file, .client.cert, .client.key; see docs/security.md)",
+                         parameter="scheduler")
+    return security
+
+
+def _iterate_dask(tasks: list, address: str, function):
+    from distributed import Client, as_completed
+
+    from isolator.errors import BatchError
+
+    check_scheduler(address)
+    security = _security(address)
+    try:
+        client = Client(address, timeout=10, security=security)
+    except (OSError, TimeoutError, ValueError) as err:
+        raise BatchError(f"scheduler {address}: cannot connect ({' '.join(str(err).split())})",
+                         parameter="scheduler") from None
+    try:
+        futures = {}
+        for task in tasks:
+            future = client.submit(function, task, pure=False)
+            futures[future.key] = (future, task)
+        for future in as_completed([f for f, _ in futures.values()]):
+            task = futures[future.key][1]
+            try:
+                yield task, future.result()
+            except Exception as err:  # noqa: BLE001 - a lost worker: a rerun retries the task
+                yield task, err
+    finally:
+        client.close()

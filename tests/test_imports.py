@@ -75,18 +75,9 @@ def test_the_report_loads_only_what_it_uses(tmp_path):
 
 #: Circles still open, each a set of modules.  Issue 21 closes them; remove a line when its circle
 #: is cut (the test fails on a stale line, so the list only shrinks).
-ALLOWED_CIRCLES = [
-    {"isolator.analysis", "isolator.pair_analysis"},  # H1: pair_analysis goes into the one analysis
-]
+ALLOWED_CIRCLES: list = []
 #: Private names still imported across modules, as (importer, source module, name); the same rule.
-ALLOWED_PRIVATE = {
-    ("isolator.batch.run", "isolator.batch.executors", "_iterate_dask"),  # H1: parallel.iterate
-    ("isolator.batch.run", "isolator.batch.executors", "_iterate_local"),
-    ("isolator.review.worker", "isolator.batch.executors", "_iterate_dask"),
-    ("isolator.review.worker", "isolator.batch.executors", "_iterate_local"),
-    ("isolator.batch.run", "isolator.batch.store", "_existing_rows"),  # H1: batch store
-    ("isolator.batch.run", "isolator.batch.store", "_table_is_ours"),
-}
+ALLOWED_PRIVATE: set = set()
 
 
 def _modules(package: Path) -> dict[str, Path]:

@@ -7,10 +7,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from isolator.atomic import output_lock, refuse_overwriting_inputs
-from isolator.batch.executors import _iterate_dask, _iterate_local, check_scheduler
 from isolator.batch.plan import BatchError, ReadOptions, make_tasks, plan, row_key, set_digest
-from isolator.batch.store import PartStore, _existing_rows, _table_is_ours, to_table, write_table_atomically
-from isolator.parallel import default_workers
+from isolator.batch.store import PartStore, existing_rows, table_is_ours, to_table, write_table_atomically
+from isolator.batch.worker import run_task
+from isolator.parallel import check_scheduler, default_workers, iterate
 
 
 @dataclass
@@ -88,7 +88,7 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     files, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings, outputs, excluded)
     refuse_overwriting_inputs(outputs, [*files, designs_file])
     # a file among the records that an output would replace is an input unless this batch wrote it
-    refuse_overwriting_inputs([item for item in excluded if not _table_is_ours(Path(item))], excluded)
+    refuse_overwriting_inputs([item for item in excluded if not table_is_ours(Path(item))], excluded)
     notes = check_scheduler(scheduler) if scheduler else []
     with output_lock(output):  # a second run on the same -o is refused, naming this one
         return _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map_resolution, progress,
@@ -105,7 +105,7 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
             planned[row_key(path, comp, case.design_hash, options, content)] = (path, case)
     store = PartStore(output)
     done_rows = {}
-    for row in _existing_rows(output, set(planned)) + store.rows(set(planned)):
+    for row in existing_rows(output, set(planned)) + store.rows(set(planned)):
         if row.get("row_key") in planned:
             path, case = planned[row["row_key"]]
             # a reused row takes its place in this plan: positions are never part of what it is
@@ -121,8 +121,7 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
     lost, lost_messages = 0, []
     planning_seconds = time.perf_counter() - clock
     if tasks:
-        iterator = _iterate_dask(tasks, scheduler) if scheduler else _iterate_local(tasks, workers)
-        for task, result in iterator:
+        for task, result in iterate(tasks, run_task, jobs=workers, scheduler=scheduler):
             if isinstance(result, BaseException):
                 lost += 1
                 lost_messages.append(f"{task.record}: its worker was lost ({type(result).__name__}); rerun the "

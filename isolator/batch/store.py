@@ -9,15 +9,13 @@ import time
 import uuid
 from pathlib import Path
 
+from isolator.analysis import ROW_ENGINEERING_KEYS, ROW_KEYS, TIMING_KEYS
 from isolator.atomic import atomic_path, keyed_digest, write_text_atomically
 from isolator.serialize import dumps, json_safe
 
-#: Columns that measure time: they differ between two runs of the same batch.
-TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
-
-#: Column order of the table (columns of every row; a row may leave some empty).
-COLUMNS = (
-    "record", "component", "design_index", "design_name", "error", "model", "model_reason",
+#: The batch's own columns that name a row and its record (then the record's intensity measures).
+RECORD_COLUMNS = (
+    "record", "component", "design_index", "design_name", "error",
     # record provenance
     "record_format", "record_station", "record_station_name", "record_network", "record_channel",
     "record_event", "record_date", "record_starttime", "record_units_source", "record_npts", "record_dt_s",
@@ -27,31 +25,21 @@ COLUMNS = (
     # intensity measures (of the motion analysed, after scaling)
     "pga_m_s2", "pgv_m_s", "pgd_m", "arias_m_s", "d5_95_s", "predominant_period_s", "a0_equiv_m",
     "omega_equiv_rad_s",
-    # design
-    "design_file_index", "design_kind", "mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kinetic",
-    "damping_Ns_per_m", "damping_ratio", "isolated_period_s",
-    # the paper's dimensionless point
-    "alpha", "k", "eta", "configuration",
-    # simulate
-    "peak_displacement_m", "residual_displacement_m", "residual_displacement_x_m", "residual_displacement_y_m",
-    "peak_velocity_m_s", "peak_transmitted_acceleration_m_s2", "slip_time_s", "uplift_time_s", "n_uplifts",
-    "n_events", "energy_input_J_per_kg", "energy_friction_J_per_kg", "energy_viscous_J_per_kg",
-    "energy_balance_error_J_per_kg", "solver_status",
-    # engineering quantities at the peak displacement
-    "effective_period_s", "effective_damping_ratio", "peak_transmitted_force_N", "base_shear_coefficient",
-    "displacement_capacity_m", "displacement_demand_ratio",
-    # classification (record, over D5-95) and harmonic (at the equivalent point)
-    "regime_record", "zeta_record", "amplitude_record", "amplified_record", "dominant_force_record",
-    "dominant_force_rho_record", "rho_ev_record", "rho_vf_record", "rho_ef_record", "window_start_s",
-    "window_end_s",
-    "regime_harmonic", "zeta_harmonic", "amplitude_harmonic", "amplified_harmonic", "dominant_force_harmonic",
-    "dominant_force_rho_harmonic", "rho_ev_harmonic", "rho_vf_harmonic", "rho_ef_harmonic", "harmonic_steady",
-    "harmonic_status", "n_disagreements",
-    # timings (not compared between runs)
-    "read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds",
-    "row_key",
 )
+#: The design's columns.
+DESIGN_COLUMNS = ("design_file_index", "design_kind", "mass_kg", "radius_m", "stiffness_N_per_m", "mu_static",
+                  "mu_kinetic", "damping_Ns_per_m", "damping_ratio", "isolated_period_s")
+#: Columns that measure time: they differ between two runs of the same batch.
+TIMING_COLUMNS = ("read_seconds", *TIMING_KEYS, "row_seconds")
 
+#: Column order of the table (columns of every row; a row may leave some empty): record + design + the
+#: analysis' row keys (:data:`isolator.analysis.ROW_KEYS`, :data:`~isolator.analysis.ROW_ENGINEERING_KEYS`)
+#: + timing + the row's key — each name listed once, in its own module.
+COLUMNS = (
+    *RECORD_COLUMNS, *DESIGN_COLUMNS,
+    *(key for key in ROW_KEYS if key not in TIMING_KEYS), *ROW_ENGINEERING_KEYS,
+    *TIMING_COLUMNS, "row_key",
+)
 
 def content_key(data: bytes) -> str:
     """HMAC-SHA256 of ``data`` under this user's key (:func:`isolator.atomic.user_secret`, shared with the
@@ -151,7 +139,8 @@ def table_key_path(output: Path) -> Path:
     return output.with_name(f".{output.name}.key")
 
 
-def _table_is_ours(output: Path) -> bool:
+def table_is_ours(output: Path) -> bool:
+    """True when the table at ``output`` is whole and was written by this user's batch (its content key matches)."""
     try:
         stored = table_key_path(output).read_text(encoding="ascii").strip()
         return hmac.compare_digest(stored, content_key(output.read_bytes()))
@@ -159,13 +148,13 @@ def _table_is_ours(output: Path) -> bool:
         return False
 
 
-def _existing_rows(output: Path, keys: set) -> list[dict]:
+def existing_rows(output: Path, keys: set) -> list[dict]:
     """Rows of a finished table at ``output`` whose key is planned (a rerun after completion).
 
     Only a table whose content key (written beside it by :func:`write_table_atomically`)
     still matches is reused: an edited or foreign table is recomputed, never trusted.
     """
-    if not output.is_file() or not _table_is_ours(output):
+    if not output.is_file() or not table_is_ours(output):
         return []
     import pandas as pd
 

@@ -112,11 +112,12 @@ def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, wi
     """The row's slice of the analysis (:meth:`isolator.analysis.Analysis.row`); writes the report if asked.
 
     ``motion`` is a GroundMotion, or a MotionPair for a task on ``"pair"``/``"all"``;
-    :func:`~isolator.analysis.analyse` runs the model the scene needs (a pair or µ(v):
-    the 2-D engine, :class:`~isolator.pair_analysis.PairAnalysis`, no harmonic columns).
+    :func:`~isolator.analysis.analyse` runs the model the scene needs (the registry chooses;
+    a planar response leaves the harmonic columns empty, ``harmonic_status`` "not applicable").
     """
+    import dataclasses
+
     from isolator.analysis import analyse
-    from isolator.pair_analysis import PairAnalysis
 
     note = motion.scaling_note  # from the motion's processing (a component's or a pair's scaling step)
     # the record's intensity measures and window are computed once per record, not per design
@@ -125,18 +126,14 @@ def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, wi
                        scaling_note=note, map_resolution=task.map_resolution if task.reports_dir else None,
                        workers=1)
     if task.reports_dir:
-        from isolator.report.pair import write_pair_report
-        from isolator.report.pdf import write_report
+        from isolator.report.analysis_report import write_analysis_report
+        from isolator.review.record_checks import with_record_checks
 
         target = _report_path(task, case, motion)
         target.parent.mkdir(parents=True, exist_ok=True)
-        (write_pair_report if isinstance(analysis, PairAnalysis) else write_report)(analysis, target,
-                                                                                   command="isolator batch")
-    if isinstance(analysis, PairAnalysis):
-        return analysis.row()
-    if not task.options.harmonic and analysis.harmonic is not None:
-        analysis.harmonic = analysis.harmonic_class = None  # the table leaves the harmonic columns empty
-        analysis.disagreements = []
+        write_analysis_report(with_record_checks(analysis), target, command="isolator batch")
+    if not task.options.harmonic and analysis.harmonic is not None:  # the table leaves the harmonic columns empty
+        analysis = dataclasses.replace(analysis, harmonic=None, harmonic_class=None, disagreements=())
     return analysis.row()
 
 

@@ -74,7 +74,7 @@ def batch(
             raise BatchError(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
                              f"got {scale_to_pga:g}")
         if scheduler is not None:
-            from isolator.batch.executors import check_scheduler
+            from isolator.parallel import check_scheduler
 
             check_scheduler(scheduler)
         if units is not None:

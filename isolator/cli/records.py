@@ -195,16 +195,14 @@ def _simulate_and_print(record, pair, vertical, component, trim, resample, units
                        time_s=motions.sample_times_s, system=system, design=the_design)
         described = ", ".join(f"{axis} = {m.component}" for axis, m in parts.items())
         samples = (motions.npts, motions.dt_s, motions.sample_times_s is None)
-        record_group = {"label": str(record), "components": motions.describe(), "npts": motions.npts,
-                        "dt_s": motions.dt_s, "duration_s": motions.duration_s,
-                        "uniform_sampling": motions.sample_times_s is None, "processing": list(motions.processing)}
+        record_group = record_dict(motions, str(record))
     else:
         motion = load_record_for_cli(record, component, units, merge, dt, response, counts_factor)
         result = solve(record, motion.acceleration_m_s2, dt_s=motion.dt_s, time_s=motion.sample_times_s,
                        system=system, design=the_design)
         described = f"{motion.component}, units from {motion.units_source}"
         samples = (motion.npts, motion.dt_s, motion.is_uniform)
-        record_group = {**record_dict(motion, str(record)), "uniform_sampling": motion.is_uniform}
+        record_group = record_dict(motion, str(record))
 
     # the analysis schema's slice for a record without a design: model and why, record, response keys
     results = result.summary()

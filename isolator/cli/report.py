@@ -37,55 +37,40 @@ def _command_line() -> str:
     return "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
 
 
-def _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
-                 dt, trim, resample, scale_to_pga, output, no_pdf) -> None:
-    """The bidirectional report (:mod:`isolator.report.pair`) of a design under a pair (or one component with µ(v))."""
-    from pathlib import Path
-
-    from isolator.analysis import analyse
-    from isolator.cli.pairs import load_motion_set_for_cli
-    from isolator.report.pair import write_pair_json, write_pair_report
-    from isolator.solver.record import RecordInputError
-    from isolator.solver.system import InvalidSystemError
+def _scaled(motion, scale_to_pga: float | None, record_label: str):
+    """The motion scaled to ``scale_to_pga`` [g] (a pair by one factor: its larger horizontal PGA) and its note."""
+    if scale_to_pga is None:
+        return motion, ""
     from isolator.units import STANDARD_GRAVITY
 
-    if wants_set(pair, vertical, component):
-        motions = load_motion_set_for_cli(record_path, pair, vertical, component, units, merge, dt, trim=trim,
-                                          resample=resample)
-    else:
-        motions = load_record_for_cli(record_path, component, units, merge, dt)
-    scaling_note = ""
-    if scale_to_pga is not None:
-        if not scale_to_pga > 0:
-            user_error(f"--scale-to-pga must be > 0 (in g), got {scale_to_pga:g}")
-        try:
-            motions = motions.scaled_to_pga(scale_to_pga * STANDARD_GRAVITY)  # a pair: its larger horizontal
-        except ValueError as err:
-            user_error(f"{record_label}: {err}")
-        scaling_note = motions.scaling_note
-    output = _output_pdf(output, record, design, "_pair")
     try:
-        analysis = analyse(the_design, motions, record_label=record_label, scaling_note=scaling_note)
-    except (InvalidSystemError, RecordInputError) as err:
+        scaled = motion.scaled_to_pga(scale_to_pga * STANDARD_GRAVITY)
+    except ValueError as err:
         user_error(f"{record_label}: {err}")
-    json_path = Path(output).with_suffix(".json")
-    try:
-        if no_pdf:
-            numbers = write_pair_json(analysis.to_dict(), json_path)
-        else:
-            numbers = write_pair_report(analysis, output, command=_command_line())
-    except OSError as err:
-        user_error(f"{output}: cannot write ({err.strerror or err})")
-    results = numbers
-    echo_table(([] if no_pdf else [("report", output, "(3 pages)")]) + [
-        ("numbers", str(json_path), ""),
-        ("model", numbers["model"], f"({numbers['model_reason']})"),
-        ("peak displacement", f"{results['peak_displacement_m']:.4g}", "m (resultant)"),
-        ("demand / capacity", "n/a" if results["displacement_demand_ratio"] is None
-         else f"{results['displacement_demand_ratio']:.3g}", ""),
-        ("residual displacement", f"{results['residual_displacement_m']:.4g}", "m"),
-        ("peak transmitted acc.", f"{results['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
-    ])
+    return scaled, scaled.scaling_note
+
+
+def _result_rows(numbers: dict, paper: bool, pages: int | None, output: str, json_path: str, map_notes: list) -> list:
+    """The lines printed after a report: the paper's point and classification where they apply, else the demand."""
+    rows = ([] if pages is None else [("report", output, f"({pages} pages)")]) + [("numbers", json_path, "")]
+    if not paper:
+        return rows + [
+            ("model", numbers["model"], f"({numbers['model_reason']})"),
+            ("peak displacement", f"{numbers['peak_displacement_m']:.4g}", "m (resultant)"),
+            ("demand / capacity", "n/a" if numbers["displacement_demand_ratio"] is None
+             else f"{numbers['displacement_demand_ratio']:.3g}", ""),
+            ("residual displacement", f"{numbers['residual_displacement_m']:.4g}", "m"),
+            ("peak transmitted acc.", f"{numbers['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
+        ]
+    return rows + [
+        ("point", f"α = {numbers['alpha']:.4g}, k = {numbers['k']:.4g}, η = {numbers['eta']:.4g}", ""),
+        ("regime", f"{numbers['regime_record']} (record) / {numbers['regime_harmonic']} (harmonic)", ""),
+        ("amplitude A", f"{numbers['amplitude_record']:.3g} (record) / {numbers['amplitude_harmonic']:.3g} "
+                        "(harmonic)", ""),
+        ("dominant force", f"{numbers['dominant_force_record']} / {numbers['dominant_force_harmonic']}", ""),
+        ("peak displacement", f"{numbers['peak_displacement_m']:.4g}", "m"),
+        ("peak transmitted acc.", f"{numbers['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
+    ] + [("disagreement", note, "") for note in numbers["disagreements"]] + [("note", note, "") for note in map_notes]
 
 
 @app.command()
@@ -142,58 +127,40 @@ def report(
         if not MIN_TARGET_PGA_G <= scale_to_pga <= MAX_ABS_ACCELERATION_G:
             user_error(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
                        f"got {scale_to_pga:g}")
-    multisurface = the_design.bearing is not None and not the_design.bearing.is_simple  # 1d-multisurface
-    if wants_set(pair, vertical, component) or the_design.velocity_dependent or multisurface:
-        output = _output_pdf(output, record, design, "_pair")
-        # the JSON sidecar too: `-o design.pdf` beside design.json must not overwrite the design file
-        check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path, pair, vertical])
-        _pair_report(the_design, design, record, record_path, record_label, pair, vertical, component, units, merge,
-                     dt, trim, resample, scale_to_pga, output, no_pdf)
-        return
-    output = _output_pdf(output, record, design)
-    check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path])
-    motion = load_record_for_cli(record_path, component, units, merge, dt)
-    scaling_note = ""
-    if scale_to_pga is not None:
-        from isolator.units import STANDARD_GRAVITY
-
-        try:
-            motion = motion.scaled_to_pga(scale_to_pga * STANDARD_GRAVITY)
-        except ValueError as err:
-            user_error(f"{record_label}: {err}")
-        scaling_note = motion.scaling_note
     from isolator.analysis import analyse
-    from isolator.solver.record import RecordInputError
+    from isolator.report.analysis_report import write_analysis_report
+    from isolator.report.summary import write_json
+    from isolator.review.record_checks import with_record_checks
 
-    try:
-        analysis = analyse(the_design, motion, record_label=record_label, scaling_note=scaling_note,
-                           map_resolution=map_resolution)
-    except (RecordInputError, ValueError) as err:
+    as_set = wants_set(pair, vertical, component)
+    output = _output_pdf(output, record, design, "_pair" if as_set else "")
+    # the JSON sidecar too: `-o design.pdf` beside design.json must not overwrite the design file
+    check_outputs([output, str(Path(output).with_suffix(".json"))], [design, record_path, pair, vertical])
+    if as_set:
+        from isolator.cli.pairs import load_motion_set_for_cli
+
+        motion = load_motion_set_for_cli(record_path, pair, vertical, component, units, merge, dt, trim=trim,
+                                         resample=resample)
+    else:
+        motion = load_record_for_cli(record_path, component, units, merge, dt)
+    motion, scaling_note = _scaled(motion, scale_to_pga, record_label)
+    try:  # the model is the one the scene needs (the solver registry); the map applies to a 1-D response
+        analysis = with_record_checks(analyse(the_design, motion, record_label=record_label,
+                                              scaling_note=scaling_note, map_resolution=map_resolution))
+    except ValueError as err:  # RecordInputError, InvalidSystemError: the record's or the design's numbers
         user_error(f"{record_label}: {err}")
     json_path = Path(output).with_suffix(".json")
     try:
         if no_pdf:
-            from isolator.report.summary import write_json
-
-            summary = write_json(analysis, json_path)
+            numbers = write_json(analysis, json_path)
         else:
-            from isolator.report.pdf import write_report
-
             with collector_skips_existing_objects():
-                summary = write_report(analysis, output, command=_command_line())
+                numbers = write_analysis_report(analysis, output, command=_command_line())
     except OSError as err:
         write_error(err, output)
-    echo_table(([] if no_pdf else [("report", output, "(4 pages)")]) + [
-        ("numbers", str(json_path), ""),
-        ("point", f"α = {summary['alpha']:.4g}, k = {summary['k']:.4g}, η = {summary['eta']:.4g}", ""),
-        ("regime", f"{summary['regime_record']} (record) / {summary['regime_harmonic']} (harmonic)", ""),
-        ("amplitude A", f"{summary['amplitude_record']:.3g} (record) / {summary['amplitude_harmonic']:.3g} "
-                        "(harmonic)", ""),
-        ("dominant force", f"{summary['dominant_force_record']} / {summary['dominant_force_harmonic']}", ""),
-        ("peak displacement", f"{summary['peak_displacement_m']:.4g}", "m"),
-        ("peak transmitted acc.", f"{summary['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
-    ] + [("disagreement", note, "") for note in summary["disagreements"]]
-      + [("note", note, "") for note in _map_notes(analysis)])
+    paper = analysis.paper_applies
+    echo_table(_result_rows(numbers, paper, None if no_pdf else (4 if paper else 3), output, str(json_path),
+                            _map_notes(analysis)))
 
 
 def _map_notes(analysis) -> list[str]:

@@ -1,7 +1,7 @@
 """The PDF (and JSON) of a design under a pair of components: summary, ground motion, response.
 
-Rendering only: every number comes from a :class:`~isolator.pair_analysis.PairAnalysis`
-(the JSON beside the PDF is its :meth:`~isolator.pair_analysis.PairAnalysis.to_dict`).
+Rendering only: every number comes from an :class:`~isolator.analysis.Analysis` of a planar
+response (the JSON beside the PDF is its :meth:`~isolator.analysis.Analysis.to_dict`).
 Pages: 1 summary (the model that ran and why, design, components, results, verdicts),
 2 the ground motion of each component, 3 the response (orbit with the
 displacement-capacity circle, resultant displacement history, hysteresis in each
@@ -120,15 +120,15 @@ def _ground_page(analysis, label: str):
 
 
 def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
-    """Write the PDF of a :class:`~isolator.pair_analysis.PairAnalysis` and its JSON (same name, ``.json``).
+    """Write the PDF of an :class:`~isolator.analysis.Analysis` of a planar response and its JSON (``.json``).
 
-    The JSON is :meth:`~isolator.pair_analysis.PairAnalysis.to_dict` (the analysis schema)
+    The JSON is :meth:`~isolator.analysis.Analysis.to_dict` (the analysis schema)
     with ``pdf``.
 
     Parameters
     ----------
-    analysis : PairAnalysis
-        From :func:`isolator.pair_analysis.analyse_pair`.
+    analysis : isolator.analysis.Analysis
+        From :func:`isolator.analysis.analyse` on a pair (or one component with µ(v)).
     pdf_path : str or Path
         Output PDF [-]; the JSON goes beside it.
     command : str

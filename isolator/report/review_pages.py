@@ -418,7 +418,7 @@ def _pairs(flow: Flow, r: dict) -> None:
         v = r["bounds"][b]
         sd = r.get("spread", {}).get(b, {})
         d, vw = sd.get("peak_displacement_m", {}), sd.get("base_shear_coefficient", {})
-        cells = (b, fmt(v["mu"]), f"{v['rule']} of {v['n']}", fmt(v["D_M_m"]), fmt(d.get("std")), fmt(d.get("cv"), 3),
+        cells = (b, fmt(v["mu"]), f"{v['rule']} of {v['n']}", fmt(v["D_M_rha_m"]), fmt(d.get("std")), fmt(d.get("cv"), 3),
                  fmt(d.get("max_over_mean"), 3), fmt(v["base_shear_coefficient"]), fmt(vw.get("std")),
                  fmt(vw.get("cv"), 3), fmt(vw.get("max_over_mean"), 3))
         flow.need(LINE)
@@ -488,7 +488,7 @@ def _orbits_page(review, r: dict):
     for j, b in enumerate(b for b in ("lower", "nominal", "upper") if b in r["bounds"]):
         values = [r["bounds"][b]["pairs"][n].get("peak_displacement_m", np.nan) for n in names]
         ax.bar(xs + (j - 1) * width, values, width, color=BOUND_COLOUR[b], label=f"{b} (µ = {fmt(r['bounds'][b]['mu'], 3)})")
-        ax.axhline(r["bounds"][b]["D_M_m"], color=BOUND_COLOUR[b], lw=0.9, ls=":")
+        ax.axhline(r["bounds"][b]["D_M_rha_m"], color=BOUND_COLOUR[b], lw=0.9, ls=":")
     if cap:
         ax.axhline(cap, color="k", ls="--", lw=1.0, label="capacity")
     ax.axhline(r["design_total_displacement_m"]["value"], color="k", lw=1.2, label="design total displacement")
@@ -518,8 +518,8 @@ def _paper_page(review, r: dict):
         if b not in r["bounds"]:
             continue
         pairs = r["bounds"][b]["pairs"]
-        alpha = [v.get("paper_alpha", np.nan) for v in pairs.values()]
-        a = [v.get("paper_A", np.nan) for v in pairs.values()]
+        alpha = [v.get("alpha", np.nan) for v in pairs.values()]
+        a = [v.get("peak_displacement_over_a0", np.nan) for v in pairs.values()]
         ax.scatter(alpha, a, color=BOUND_COLOUR[b], label=f"{b} bound", s=18)
     ax.set_xlabel("α = PGA/(µs g) [-]")
     ax.set_ylabel("A = D / A0,  A0 = PGV²/PGA [-]")
@@ -542,7 +542,7 @@ def _paper_page(review, r: dict):
         fig.text(0.05, y, f"#{pair_key(r)[name]}", fontsize=7.0, va="top")
         for x0, b in ((0.4, "lower"), (0.66, "upper")):
             v = r["bounds"].get(b, {}).get("pairs", {}).get(name, {})
-            for dx, key in ((0.0, "paper_alpha"), (0.08, "paper_A"), (0.16, "paper_slip_ratio")):
+            for dx, key in ((0.0, "alpha"), (0.08, "peak_displacement_over_a0"), (0.16, "zeta_record")):
                 fig.text(x0 + dx, y, fmt(v.get(key), 3), fontsize=7.0, va="top")
         y -= 0.013
     _caption(fig, "Right: the paper's (k, α) regime map of the steady harmonic response (one component) at the "

@@ -1,8 +1,14 @@
-"""Design values over the suite (per bound, then the envelope) and the checks of a review."""
+"""Design values over the suite (per bound, then the envelope) and the checks of a review.
+
+:func:`assess` returns them (with the ELF values completed by D_TM); :func:`isolator.review.run.run_review`
+builds the :class:`~isolator.review.run.Review` from its inputs and these, once.  The response-history
+design displacement is ``D_M_rha_m``; the ELF's is ``elf[bound]["D_M_m"]`` (ASCE 7-22 17.5.3).
+"""
 
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -17,7 +23,7 @@ def _per_bound(results: dict, n_for_mean: int) -> dict:
     ok = [r for r in results.values() if "error" not in r]
     d = C.suite_value([r["peak_displacement_m"] for r in ok], n_for_mean)
     return {
-        "D_M_m": d["value"], "rule": d["rule"], "n": d["n"],
+        "D_M_rha_m": d["value"], "rule": d["rule"], "n": d["n"],
         "residual_displacement_m": C.suite_value([abs(r["residual_displacement_m"]) for r in ok], n_for_mean)["value"],
         "base_shear_coefficient": C.suite_value([r["base_shear_coefficient"] for r in ok], n_for_mean)["value"],
         "transmitted_over_pga": C.suite_value([r["transmitted_over_pga"] for r in ok], n_for_mean)["value"],
@@ -37,31 +43,49 @@ def _governing(values: dict, key: str) -> tuple[float, str]:
     return finite[bound], bound
 
 
-def assess(review, designs: dict) -> None:
-    """Fill ``review.design_values`` and ``review.checks`` (in place)."""
+def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
+    """The design values and checks of a review from its inputs and analyses (nothing is changed in place).
+
+    Parameters
+    ----------
+    basis : dict
+        The :class:`~isolator.review.run.Review` fields other than ``design_values`` and ``checks``
+        (``parameters``, ``code``, ``design``, ``suite``, ``elf``, ``analyses`` …).
+    designs : dict
+        Bound → the design at that bound.
+    min_ratio_required : float
+        The suite spectrum's minimum ratio to the target that the code asks [-].
+
+    Returns
+    -------
+    dict
+        ``design_values`` (per bound: ``D_M_rha_m``, rule, n, suite values; ``envelope``; ``torsion``;
+        ``elf_D_TM_m``), ``elf`` (the ELF values with ``D_TM_m``) and ``checks`` (rows with their clauses).
+    """
+    review = SimpleNamespace(**basis, min_ratio_required=min_ratio_required)
     p, code = review.parameters, review.code
     values = {b: _per_bound(review.analyses[b], p["n_for_mean"]) for b in review.analyses}
     bounded = {b: values[b] for b in values}
-    d_m, d_bound = _governing(bounded, "D_M_m")
+    d_m, d_bound = _governing(bounded, "D_M_rha_m")
     v_b, v_bound = _governing(bounded, "base_shear_coefficient")
     residual, _ = _governing(bounded, "residual_displacement_m")
     torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p})
-    for b in review.elf:
-        review.elf[b]["D_TM_m"] = review.elf[b]["D_M_m"] * torsion["factor"]
-    elf_d_tm = max((review.elf[b]["D_TM_m"] for b in BOUNDS if math.isfinite(review.elf[b]["D_TM_m"])),
-                   default=math.nan)
+    elf = {b: {**review.elf[b], "D_TM_m": review.elf[b]["D_M_m"] * torsion["factor"]} for b in review.elf}
+    elf_d_tm = max((elf[b]["D_TM_m"] for b in BOUNDS if math.isfinite(elf[b]["D_TM_m"])), default=math.nan)
     rha_d_tm = d_m * torsion["factor"]
     floor = p.get("f_disp", 0.0) * elf_d_tm if code == "asce7-22" else 0.0
     d_tm_value = max(rha_d_tm, floor) if math.isfinite(floor) else rha_d_tm
     rule = values[d_bound]["rule"] if d_bound in values else "none"
     n = values[d_bound]["n"] if d_bound in values else 0
-    review.design_values = {**values, "torsion": torsion, "elf_D_TM_m": elf_d_tm, "envelope": {
-        "D_M_m": d_m, "D_M_bound": d_bound, "rule": rule, "n": n, "V_b_over_W": v_b, "V_b_bound": v_bound,
+    design_values = {**values, "torsion": torsion, "elf_D_TM_m": elf_d_tm, "envelope": {
+        "D_M_rha_m": d_m, "D_M_bound": d_bound, "rule": rule, "n": n, "V_b_over_W": v_b, "V_b_bound": v_bound,
         "residual_displacement_m": residual,
         "D_TM": {"value": d_tm_value, "rha_m": rha_d_tm, "elf_floor_m": floor,
                  "governs": "ELF floor" if floor > rha_d_tm else "response history"}}}
-    review.design_values["spread"] = {b: values[b]["spread"] for b in values}
-    review.checks = (_asce_checks if code == "asce7-22" else _en_checks)(review, values, designs)
+    design_values["spread"] = {b: values[b]["spread"] for b in values}
+    view = SimpleNamespace(**{**vars(review), "elf": elf, "design_values": design_values})
+    checks = (_asce_checks if code == "asce7-22" else _en_checks)(view, values, designs)
+    return {"design_values": design_values, "elf": elf, "checks": checks}
 
 
 def _asce_defaults() -> dict:
@@ -138,7 +162,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     rows = _common_front(review, p["n_pairs_min"], "ASCE 7-22 17.3.2", "ASCE 7-22 17.3.3 / 16.2.3.2", "RotD100")
     capacity_note = "" if cap is not None else "no displacement_capacity_m in the design"
     largest = max(v["peak_displacement_max_m"] for v in values.values())
-    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_m"], cap,
+    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_rha_m"], cap,
                           f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest single "
                           f"analysis {largest:.3g} m" + (
                               "; " + capacity_note if capacity_note else ""), "m"))
@@ -149,9 +173,9 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     rows.append(C.at_least("D_TM_elf_floor", "ASCE 7-22 17.6.4.1", d_tm["rha_m"], d_tm["elf_floor_m"],
                            f"RHA total displacement ≥ {p['f_disp']:g} × D_TM (ELF) = {p['f_disp']:g} × "
                            f"{review.design_values['elf_D_TM_m']:.4g} m; below it the floor is used", "m"))
-    ratios = {b: asce7_22.restoring_force_ratio(designs[b], values[b]["D_M_m"]) for b in ("lower", "upper")}
+    ratios = {b: asce7_22.restoring_force_ratio(designs[b], values[b]["D_M_rha_m"]) for b in ("lower", "upper")}
     b_min = min(ratios, key=ratios.get)
-    rows.append(C.restoring_force(ratios[b_min], p["restoring_min"], displacement_m=values[b_min]["D_M_m"],
+    rows.append(C.restoring_force(ratios[b_min], p["restoring_min"], displacement_m=values[b_min]["D_M_rha_m"],
                                   radius_m=design.radius_m))
     elf_vb = max(elf[b]["V_b_over_W"] for b in ("lower", "upper"))
     rows.append(C.at_least("base_shear_elf_floor", "ASCE 7-22 17.6.4.2", env["V_b_over_W"], p["f_below"] * elf_vb,
@@ -183,7 +207,7 @@ def _en_checks(review, values: dict, designs: dict) -> list:
                           f"γ_x = {p['gamma_x']:g} × design displacement {d_tm:.4g} m (torsion factor "
                           f"{review.design_values['torsion']['factor']:.4g}); {env['rule']} of {env['n']} pairs"
                           + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
-    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_m"])
+    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_rha_m"])
               for b in ("lower", "upper")}
     b_min = min(ratios, key=ratios.get)
     rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],

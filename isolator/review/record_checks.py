@@ -64,3 +64,20 @@ def record_checks(design, motion, engineering: dict, parameters: dict | None = N
                               p["range_hi_factor"] * period, p["usable_band_factor"]))
     rows[-1]["note"] = f"needs {p['range_hi_factor']:g} × T_eff = {p['range_hi_factor'] * period:.3g} s; " + rows[-1]["note"]
     return rows
+
+
+def with_record_checks(analysis, parameters: dict | None = None):
+    """The analysis with the checks of :func:`record_checks` added (a new object; the caller adds them).
+
+    Parameters
+    ----------
+    analysis : isolator.analysis.Analysis
+        One component (a planar analysis is returned as it is: a pair's checks are the review's,
+        over a suite, and its ``checks`` key says so in ``not_applicable``).
+    parameters : dict, optional
+        Overrides of the review parameters.
+    """
+    if not analysis.paper_applies:
+        return analysis
+    return analysis.with_checks(record_checks(analysis.design, analysis.motion, analysis.engineering, parameters))
+

@@ -2,9 +2,10 @@
 
 Order of work (each step a module of this package): property bounds (bounds) → ELF reference
 values per bound (codes) → period range and grid → spectra of every pair (spectra) → scale
-factors (scaling) → every pair × bound through the 2-D engine (worker; cached, in parallel) →
-design values over the suite (mean of ≥ 7 else max) → checks.  :meth:`Review.to_dict` is the
-JSON of every number the PDF shows.
+factors (scaling) → every pair × bound through the one analysis (worker:
+:func:`isolator.analysis.analyse`, the model the scene needs; cached, in parallel) → design values
+over the suite (mean of ≥ 7 else max) and checks (assess).  The :class:`Review` is built once,
+complete; :meth:`Review.to_dict` is the JSON of every number the PDF shows.
 """
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ from isolator.review.spectra import pair_spectra, rotd50
 from isolator.serialize import json_safe
 
 CODES = ("asce7-22", "en15129")
-SCHEMA_VERSION = 1
+#: Version of :meth:`Review.to_dict` (bump on any rename or change of meaning; docs/changelog.md).
+SCHEMA_VERSION = 2
 PLOT_PERIODS_S = np.geomspace(0.05, 10.0, 90)
 
 
@@ -46,7 +48,7 @@ class Review:
     factors: dict
     spectra: dict  #: plot periods, per pair rotd100 / components, target, suite mean (scaled)
     suite_ratio: np.ndarray
-    analyses: dict  #: bound → pair → result
+    analyses: dict  #: bound → pair → result (:func:`isolator.review.worker.analyse_task`: an analysis row)
     design_values: dict
     checks: list
     notes: list = field(default_factory=list)
@@ -98,7 +100,7 @@ class Review:
             "D_TM_m": self.design_values["elf_D_TM_m"],
             "torsion": self.design_values["torsion"],
             "bounds": bounds,
-            "design_displacement_m": {"value": env["D_M_m"], "rule": env["rule"], "n": env["n"],
+            "design_displacement_m": {"value": env["D_M_rha_m"], "rule": env["rule"], "n": env["n"],
                                       "governing_bound": env["D_M_bound"]},
             "design_total_displacement_m": env["D_TM"],
             "design_base_shear_coefficient": {"value": env["V_b_over_W"], "governing_bound": env["V_b_bound"]},
@@ -178,7 +180,8 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     """
     import time
 
-    from isolator.review.worker import Cache, default_jobs, design_parameters, run_tasks, task_key
+    from isolator.review.assess import assess
+    from isolator.review.worker import Cache, default_jobs, run_tasks, task_key
 
     clock = time.perf_counter()
     timing = {}
@@ -261,12 +264,11 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     # analyses: every pair × bound (one run per distinct friction)
     tasks, index = {}, {}
     for b, d in designs.items():
-        dp = design_parameters(d)
         for pair, f in zip(suite.pairs, factors, strict=False):
-            k = task_key(pair.content_key(), f, dp)
+            k = task_key(pair.content_key(), f, d)
             index[(b, pair.name)] = k
             tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": pair.az_m_s2, "dt": pair.dt_s,
-                                 "factor": float(f), "design": dp})
+                                 "factor": float(f), "design": d})
     start = time.perf_counter()
     cache = analysis_cache if analysis_cache is not None else Cache(cache_dir)
     results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler, cache=cache)
@@ -291,17 +293,14 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     trace = {"software": software(), "inputs": input_hashes(design, target, suite),
              "run": {"suite_arguments": list(suite.arguments), **suite.options, "nominal": nominal,
                      "parameter_overrides": dict(parameters or {}), "scaling_basis": scaling_basis}}
-    review = Review(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
-                    bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
-                    factors=dict(zip(names, map(float, factors), strict=False)), spectra=spectra, suite_ratio=ratio,
-                    analyses=analyses, design_values={}, checks=[], notes=notes, timing=timing, paper_map=paper_map,
-                    trace=trace, required_ratio=required,
-                    created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
-    from isolator.review.assess import assess
-
-    assess(review, designs)
+    basis = dict(design=design, target=target, suite=suite, code=code, scaling=scaling, parameters=params,
+                 bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
+                 factors=dict(zip(names, map(float, factors), strict=False)), spectra=spectra, suite_ratio=ratio,
+                 analyses=analyses, notes=notes, timing=timing, paper_map=paper_map, trace=trace,
+                 required_ratio=required, created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
+    assessment = assess(basis, designs, min_ratio_required=required)
     timing["total"] = time.perf_counter() - clock
-    return review
+    return Review(**{**basis, **assessment})
 
 
 def _factors(suite, scaling, spectra, target_grid, required, fit_mask, code, params, notes):
@@ -343,18 +342,17 @@ def _safe_target(target, periods):
 
 def _paper_map(designs: dict, analyses: dict, resolution: int, jobs) -> dict | None:
     """The paper's harmonic regime map (Nicolas 2017, Figs. 5–7) at the nominal friction, with each pair's
-    equivalent point k = K A0/(M g), α = PGA/(µs g), A0 = PGV²/PGA of the scaled resultant motion."""
+    equivalent point (k, α) = (K A0/(M g), PGA/(µs g)), A0 = PGV²/PGA of the scaled resultant motion, and its
+    peak displacement / A0 (the analysis' ``k``, ``alpha``, ``eta``, ``peak_displacement_over_a0``)."""
     from isolator.maps import design_frame, regime_map
 
     bound = "nominal" if "nominal" in analyses else "lower"
     d = designs[bound]
-    g = d.gravity_m_s2
-    points = {name: (d.stiffness_per_mass * r["paper_A0_m"] / g, r["paper_alpha"], r["paper_A"])
-              for name, r in analyses[bound].items() if "error" not in r and r["paper_A0_m"] > 0}
+    ok = {name: r for name, r in analyses[bound].items() if "error" not in r}
+    points = {name: (r["k"], r["alpha"], r["peak_displacement_over_a0"]) for name, r in ok.items()}
     if not points:
         return None
-    etas = [d.damping_per_mass * math.sqrt(analyses[bound][n]["paper_A0_m"] / g) for n in points]
-    eta = float(np.median(etas))
+    eta = float(np.median([r["eta"] for r in ok.values()]))
     frame = design_frame(max(p[1] for p in points.values()), max(p[0] for p in points.values()))
     rmap = regime_map(eta, d.mu_static, d.mu_kinetic, k_range=frame["k"], alpha_range=frame["alpha"],
                       n_k=resolution, n_alpha=resolution, workers=jobs)

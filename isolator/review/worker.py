@@ -1,8 +1,11 @@
-"""One analysis of the review (a scaled pair × a property bound), its cache, and the executors.
+"""One analysis of the review (a scaled pair × a property bound) through :func:`isolator.analysis.analyse`, its cache.
 
-A task is a plain dict (arrays and numbers, no objects) so that local processes and a Dask
-cluster ship it alike.  Results are cached as JSON under a content key (the samples, the
-scale factor, the friction and the engine version), so an interrupted review resumes where it
+A task is a plain dict (the pair's arrays, the scale factor, the design) so that local
+processes and a Dask cluster ship it alike (:func:`isolator.parallel.iterate`).  Its result
+is the batch row of the analysis (:meth:`isolator.analysis.Analysis.row`: the same keys as
+``isolator batch`` and ``simulate --json``) with the pair's resultant PGA and PGV and its
+decimated orbit.  Results are cached as JSON under a content key (the samples, the scale
+factor, the design and the engine version), so an interrupted review resumes where it
 stopped and a rerun with the same inputs analyses nothing.
 """
 
@@ -11,37 +14,38 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
-import math
 from pathlib import Path
 
 import numpy as np
 
 #: bump when the numbers an analysis returns change meaning
-CACHE_VERSION = "review-2"
+CACHE_VERSION = "review-3"
 ORBIT_POINTS = 1500
+#: Design keys that name a design without changing its analysis (a bound's name, its file).
+_NAMING_KEYS = ("name", "source", "description")
 
 
-def design_parameters(design) -> dict:
-    """The numbers of a design the 2-D engine needs (per unit mass; SI)."""
-    return {"mu_static": design.mu_static, "mu_kinetic": design.mu_kinetic, "radius_m": design.radius_m,
-            "stiffness_per_mass": design.stiffness_per_mass, "damping_per_mass": design.damping_per_mass,
-            "gravity_m_s2": design.gravity_m_s2, "mu_slow": design.mu_slow, "mu_fast": design.mu_fast,
-            "rate_s_per_m": design.rate_s_per_m}
+def design_key(design) -> dict:
+    """What of a design determines its analyses (the cache key): :meth:`Design.as_dict` without its names."""
+    return {key: value for key, value in design.as_dict().items() if key not in _NAMING_KEYS}
 
 
-def task_key(pair_key: str, factor: float, parameters: dict) -> str:
-    """Content key of an analysis."""
-    text = json.dumps([CACHE_VERSION, _engine_version(), pair_key, repr(float(factor)), parameters], sort_keys=True)
+def task_key(pair_key: str, factor: float, design) -> str:
+    """Content key of an analysis: the pair's samples, the scale factor, the design, the engine."""
+    text = json.dumps([CACHE_VERSION, _engine_version(), pair_key, repr(float(factor)), design_key(design)],
+                      sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
 @functools.lru_cache(maxsize=1)
 def _engine_version() -> str:
-    """isolator's version and a digest of the 2-D engine's source: a changed engine misses the cache."""
+    """isolator's version and a digest of the solver's and the analysis' sources: a changed engine misses the cache."""
     from isolator import __version__
 
     digest = hashlib.sha256()
-    for path in sorted((Path(__file__).resolve().parents[1] / "solver").glob("planar*.py")):
+    package = Path(__file__).resolve().parents[1]
+    for path in sorted((package / "solver").glob("*.py")) + [package / "analysis.py", package / "metrics.py",
+                                                             package / "adapter.py"]:
         digest.update(path.read_bytes())
     return f"{__version__}+{digest.hexdigest()[:16]}"
 
@@ -57,109 +61,53 @@ def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
     return np.round(xy[rows], 6).tolist()
 
 
-def _ground_measures(ax, ay, dt):
-    """Resultant PGA [m/s²], PGV [m/s] and the D5–95 window (t5, t95) [s] of the horizontal ground motion."""
-    pga = float(np.max(np.hypot(ax, ay)))
-    vx = np.concatenate([[0.0], np.cumsum(0.5 * (ax[1:] + ax[:-1]) * dt)])
-    vy = np.concatenate([[0.0], np.cumsum(0.5 * (ay[1:] + ay[:-1]) * dt)])
-    pgv = float(np.max(np.hypot(vx, vy)))
-    energy = np.concatenate([[0.0], np.cumsum(0.5 * ((ax ** 2 + ay ** 2)[1:] + (ax ** 2 + ay ** 2)[:-1]) * dt)])
-    t = np.arange(ax.size) * dt
-    if energy[-1] > 0:
-        t5, t95 = np.interp([0.05 * energy[-1], 0.95 * energy[-1]], energy, t)
-    else:
-        t5 = t95 = 0.0
-    return pga, pgv, (float(t5), float(t95))
+def task_motion(task: dict):
+    """The scaled pair of a task as a :class:`~isolator.motion.MotionPair` [m/s²]."""
+    from isolator.motion import GroundMotion, MotionPair
 
-
-def simulate(task: dict):
-    """Run the model the pair needs (:func:`isolator.solver.models.simulate`) on a task."""
-    from isolator.solver.models import Scene
-    from isolator.solver.models import simulate as run_model
-
-    p = task["design"]
-    kwargs = {"mu_static": p["mu_static"], "damping_per_mass": p["damping_per_mass"], "gravity_m_s2": p["gravity_m_s2"]}
-    if p["radius_m"] is not None:
-        kwargs["radius_m"] = p["radius_m"]
-    else:
-        kwargs["stiffness_per_mass"] = p["stiffness_per_mass"]
-    if p["rate_s_per_m"] is not None:  # µ(v) replaces the constant kinetic friction
-        kwargs.update(mu_slow=p["mu_slow"], mu_fast=p["mu_fast"], rate_s_per_m=p["rate_s_per_m"])
-    else:
-        kwargs["mu_kinetic"] = p["mu_kinetic"]
-    f = task["factor"]
-    az = None if task["az"] is None else f * task["az"]
-    return run_model(Scene(ax_m_s2=f * task["ax"], ay_m_s2=f * task["ay"], az_m_s2=az, dt_s=task["dt"], isolator=kwargs))
+    f, dt = task["factor"], task["dt"]
+    parts = {axis: None if task[key] is None else GroundMotion.from_array(f * task[key], dt_s=dt, component=axis,
+                                                                             units_source="review suite, m/s2")
+             for axis, key in (("x", "ax"), ("y", "ay"), ("z", "az"))}
+    return MotionPair(parts["x"], parts["y"], parts["z"])
 
 
 def analyse_task(task: dict) -> dict:
-    """The numbers of one analysis (see :func:`simulate`), or ``{"error": …}``.
+    """The numbers of one analysis, or ``{"error": …}``.
 
     Returns
     -------
     dict
-        ``peak_displacement_m`` (resultant), ``residual_displacement_m`` (resultant),
-        ``residual_displacement_x_m``/``_y_m``, ``peak_velocity_m_s``,
-        ``peak_transmitted_acceleration_m_s2`` (resultant), ``base_shear_coefficient`` (= that /g),
-        ``transmitted_over_pga``, ``slip_time_s``, ``uplift_time_s``, ``n_uplifts``, ``n_events``,
-        ``model``, ``model_reason``, the paper's measures (``paper_A`` = D/A0 with A0 = PGV²/PGA of
-        the resultant ground motion, ``paper_alpha`` = PGA/(µs g), ``paper_slip_ratio`` = share of the
-        D5–95 window spent sliding, read at the samples) and ``orbit_m`` (decimated X–Y path).
+        :meth:`isolator.analysis.Analysis.row` of the design under the scaled pair (the
+        model that ran and why, the paper's point α, k, η of the resultant horizontal
+        motion, the response keys, ``zeta_record`` over its D5–95, ``peak_displacement_over_a0``,
+        ``transmitted_over_pga``, ``base_shear_coefficient`` …), plus ``pga_m_s2`` and ``pgv_m_s``
+        (the resultant's), ``orbit_m`` (decimated X–Y path) and ``analysis_seconds``.
     """
     import time
 
+    from isolator.analysis import analyse
+
     start = time.perf_counter()
     try:
-        r = simulate(task)
+        analysis = analyse(task["design"], task_motion(task), harmonic=False)
     except Exception as err:  # noqa: BLE001 - one analysis fails, the review reports it
         return {"error": f"{type(err).__name__}: {' '.join(str(err).split())}"}
-    f, dt = task["factor"], task["dt"]
-    pga, pgv, (t5, t95) = _ground_measures(f * task["ax"], f * task["ay"], dt)
-    # the paper's ζ: the share of the D5–95 window spent sliding (read at the samples)
-    window = slice(int(np.ceil(t5 / dt)), int(np.floor(t95 / dt)) + 1)
-    speed = np.hypot(*np.asarray(r.velocity_m_s, dtype=np.float64)[window].T)
-    slip_ratio = float(np.mean(speed > 0.0)) if speed.size else math.nan
-    g = task["design"]["gravity_m_s2"]
-    peak = float(r.peak_displacement_m)
-    a0 = pgv * pgv / pga if pga > 0 else math.nan
-    transmitted = float(r.peak_transmitted_acceleration_m_s2)
-    return {
-        "peak_displacement_m": peak,
-        "residual_displacement_m": float(r.residual_displacement_m),
-        "residual_displacement_x_m": float(r.residual_displacement_x_m),
-        "residual_displacement_y_m": float(r.residual_displacement_y_m),
-        "peak_velocity_m_s": float(r.peak_velocity_m_s),
-        "peak_transmitted_acceleration_m_s2": transmitted,
-        "base_shear_coefficient": transmitted / g,
-        "pga_m_s2": pga,
-        "pgv_m_s": pgv,
-        "transmitted_over_pga": transmitted / pga if pga > 0 else math.nan,
-        "slip_time_s": float(r.slip_time_s),
-        "uplift_time_s": float(getattr(r, "uplift_time_s", 0.0)),
-        "n_uplifts": int(getattr(r, "n_uplifts", 0)),
-        "n_events": int(r.n_events),
-        "model": str(getattr(r, "model", "")),
-        "model_reason": str(getattr(r, "model_reason", "")),
-        "paper_A": peak / a0 if a0 > 0 else math.nan,
-        "paper_A0_m": a0,
-        "paper_alpha": pga / (task["design"]["mu_static"] * g),
-        "paper_slip_ratio": slip_ratio,
-        "orbit_m": _decimate(np.asarray(r.displacement_m, dtype=np.float64)),
-        "seconds": time.perf_counter() - start,
-    }
+    intensity = analysis.adaptation.intensity
+    return {**analysis.row(), "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
+            "orbit_m": _decimate(np.asarray(analysis.response.displacement_m, dtype=np.float64)),
+            "analysis_seconds": time.perf_counter() - start}
 
 
 def warm_up() -> None:
     """Load the compiled engines once in the parent before workers fork."""
+    from isolator.design import Design
     from isolator.parallel import warm_up as warm_solvers
 
     warm_solvers()
     t = np.linspace(0.0, 2.0, 201)
-    task = {"ax": np.sin(5 * t), "ay": np.cos(5 * t), "az": None, "dt": 0.01, "factor": 1.0,
-            "design": {"mu_static": 0.05, "mu_kinetic": 0.05, "radius_m": 2.0, "stiffness_per_mass": 9.80665 / 2,
-                       "damping_per_mass": 0.0, "gravity_m_s2": 9.80665, "mu_slow": None, "mu_fast": None,
-                       "rate_s_per_m": None}}
-    simulate(task)
+    design = Design.from_mapping({"name": "warm-up", "mass_kg": 1.0, "radius_m": 2.0, "mu_static": 0.05})
+    analyse_task({"ax": np.sin(5 * t), "ay": np.cos(5 * t), "az": None, "dt": 0.01, "factor": 1.0, "design": design})
 
 
 #: Version of a review cache entry's layout; an entry of another version is recomputed.
@@ -242,8 +190,17 @@ class Cache:
 def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache: Cache | None = None):
     """Analyse ``{key: task}``; return ``({key: result}, n_cached)``.
 
-    Local processes (fork) when ``jobs`` > 1, a Dask cluster when ``scheduler`` is given.
+    Local processes (fork) when ``jobs`` > 1, a Dask cluster when ``scheduler`` is given
+    (:func:`isolator.parallel.iterate`; the longest records first, so that the pool finishes together).
+
+    Raises
+    ------
+    ReviewError
+        The scheduler cannot be reached.
     """
+    from isolator.errors import BatchError, ReviewError
+    from isolator.parallel import iterate
+
     cache = cache or Cache(None)
     results, todo = {}, {}
     for key, task in tasks.items():
@@ -255,39 +212,17 @@ def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache
     n_cached = len(results)
     if not todo:
         return results, n_cached
-    if scheduler:
-        iterator = _iterate_dask(todo, scheduler)
-    else:
-        iterator = _iterate_local(todo, jobs)
-    for key, result in iterator:
-        results[key] = result
-        cache.put(key, result)
-    return results, n_cached
-
-
-def _iterate_local(todo: dict, jobs: int):
-    """(key, result) on local processes through the batch executor (longest records first)."""
-    from isolator.batch.executors import _iterate_local as iterate
-
-    warm_up()
-    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)  # the pool finishes together
-    tasks = [dict(todo[key], key=key) for key in order]
-    for task, result in iterate(tasks, max(1, min(int(jobs), len(tasks))), function=analyse_task):
-        yield task["key"], _result(result)
-
-
-def _iterate_dask(todo: dict, address: str):
-    """(key, result) on a Dask cluster through the batch executor."""
-    from isolator.batch.executors import _iterate_dask as iterate
-    from isolator.batch.plan import BatchError
-    from isolator.errors import ReviewError
-
-    tasks = [dict(task, key=key) for key, task in todo.items()]
+    if not scheduler:
+        warm_up()
+    order = sorted(todo, key=lambda k: -todo[k]["ax"].size)
+    work = [dict(todo[key], key=key) for key in order]
     try:
-        for task, result in iterate(tasks, address, function=analyse_task):
-            yield task["key"], _result(result)
+        for task, result in iterate(work, analyse_task, jobs=jobs, scheduler=scheduler):
+            results[task["key"]] = _result(result)
+            cache.put(task["key"], results[task["key"]])
     except BatchError as err:
         raise ReviewError(str(err)) from None
+    return results, n_cached
 
 
 def _result(result) -> dict:
@@ -302,4 +237,3 @@ def default_jobs() -> int:
     from isolator.parallel import default_workers
 
     return default_workers()
-

@@ -16,9 +16,9 @@ import pytest
 
 from isolator.atomic import OutputIsInputError, OutputLockedError, output_lock
 from isolator.batch import BatchError, comparable, expand_designs, parse_grid, run_batch
-from isolator.batch.executors import check_scheduler
 from isolator.batch.plan import MAX_PLAN_ROWS
 from isolator.batch.store import PartStore, write_table_atomically
+from isolator.parallel import check_scheduler
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from test_batch import DESIGNS, read, write_record

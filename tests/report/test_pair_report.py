@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
+from isolator.analysis import analyse
 from isolator.cli import app
 from isolator.design import Design
 from isolator.motion import read_ground_motion_pair
-from isolator.pair_analysis import analyse_pair
 from isolator.solver.models import simulate_motion
 
 DESIGN = """name = "FP R2"
@@ -52,7 +52,7 @@ def test_orbit_draws_the_capacity_circle_and_the_histories(v2):
 
     design = Design.from_mapping({"name": "FP", "mass_kg": 1000.0, "radius_m": 2.0, "mu_static": 0.05,
                                   "displacement_capacity_m": 0.05})
-    analysis = analyse_pair(design, read_ground_motion_pair(v2))
+    analysis = analyse(design, read_ground_motion_pair(v2))
     fig = pair_response_figure(analysis.response, design.mass_kg, capacity_m=0.05, labels=("180", "90"))
     orbit = fig.axes[0]
     circle = next(line for line in orbit.get_lines() if "capacity" in str(line.get_label()))
