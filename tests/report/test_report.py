@@ -160,7 +160,7 @@ def test_report_json_without_pdf(tmp_path, knet_report):
     alone = json.loads(out.with_suffix(".json").read_text())
     beside = json.loads(with_pdf.with_suffix(".json").read_text())
     assert "pdf" not in alone and beside["pdf"] == str(with_pdf)
-    assert alone["schema_version"] == beside["schema_version"] == 1
+    assert alone["schema_version"] == beside["schema_version"] == 2
     for key in ("alpha", "k", "peak_displacement_m", "energy_input_J_per_kg", "regime_record", "regime_harmonic"):
         assert alone[key] == beside[key], key
     assert alone["map"]["regime_at_design"] == beside["map"]["regime_at_design"]

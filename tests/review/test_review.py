@@ -197,3 +197,36 @@ def test_bundled_example_uses_the_mean_of_eight_pairs():
     assert rows["usable_band"]["status"] == "not checked" and "7 of 8 pair(s)" in rows["usable_band"]["note"]
     assert all(c["clause"] for c in out["checks"])
     assert {r["model"] for r in pairs.values()} == {"2d", "2d+vertical"}
+
+
+def test_per_pair_results_are_the_rows_of_the_one_analysis(review):
+    """The review's worker keeps no pipeline of its own: each per-pair result is ``analyse(design, pair).row()``
+    (the batch's and ``simulate --json``'s names), recomputed here from the suite's arrays scaled by hand."""
+    from isolator.analysis import ROW_ENGINEERING_KEYS, ROW_KEYS, analyse
+    from isolator.motion import GroundMotion, MotionPair
+
+    out = review.to_dict()
+    for bound in ("lower", "upper"):
+        for result in out["bounds"][bound]["pairs"].values():
+            assert set(ROW_KEYS) | set(ROW_ENGINEERING_KEYS) <= set(result)
+            assert result["model"] == "2d" and result["harmonic_status"] == "not applicable"
+            assert result["amplitude_record"] is None and 0.0 <= result["zeta_record"] <= 1.0
+        # the response-history design value and the ELF value have distinct names
+        values = out["bounds"][bound]
+        assert values["D_M_rha_m"] == max(r["peak_displacement_m"] for r in values["pairs"].values())  # n < 7: max
+        assert "D_M_m" not in values and out["elf"][bound]["D_M_m"] > 0
+    pair = review.suite.pairs[0]
+    f = review.factors[pair.name]
+    design = review.design.with_friction_factor(review.bounds.lambda_max, "upper bound")
+    motion = MotionPair(GroundMotion.from_array(f * pair.ax_m_s2, dt_s=pair.dt_s),
+                        GroundMotion.from_array(f * pair.ay_m_s2, dt_s=pair.dt_s))
+    row = analyse(design, motion, harmonic=False).row()
+    got = out["bounds"]["upper"]["pairs"][pair.name]
+    for key in ("peak_displacement_m", "residual_displacement_m", "alpha", "k", "eta", "zeta_record",
+                "peak_displacement_over_a0", "transmitted_over_pga", "base_shear_coefficient", "slip_time_s"):
+        assert got[key] == pytest.approx(row[key], rel=1e-12), key
+    # the resultant PGA by hand, and the paper's α from it
+    pga = f * float(np.max(np.hypot(pair.ax_m_s2, pair.ay_m_s2)))
+    assert got["pga_m_s2"] == pytest.approx(pga, rel=1e-12)
+    assert got["alpha"] == pytest.approx(pga / (design.mu_static * design.gravity_m_s2), rel=1e-12)
+    assert got["transmitted_over_pga"] == pytest.approx(got["peak_transmitted_acceleration_m_s2"] / pga, rel=1e-12)
