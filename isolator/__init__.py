@@ -19,6 +19,7 @@ stay instant)::
     read_motion(path, RecordOptions(component=..., pair=..., vertical=..., units=..., defaults=...))
         -> GroundMotion or MotionPair;  motion.scaled_to_pga(pga_m_s2) (a pair: its larger horizontal)
     Design.from_toml(path) -> Design;  adapt(design, motion) -> Adaptation (System, (α, k, η))
+    analyse(design, motion | pair) -> Analysis (one type; .to_dict() is the schema, docs/schema.md)
     classify_record(response, point) / classify_harmonic(harmonic_response) -> Classification
     regime_map(eta, mu_s, mu_k, k_range=..., alpha_range=...) -> RegimeMap (cached)
     design_search(design, target, suite, ["radius_m=1.5:4.5:13", ...]) -> DesignSearch (every candidate reviewed)

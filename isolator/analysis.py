@@ -35,6 +35,8 @@ from isolator.solver.base import SUMMARY_KEYS
 
 #: Version of the dict of :meth:`Analysis.to_dict` (bump on any rename or change of meaning; docs/changelog.md).
 SCHEMA_VERSION = 2
+#: Which schema a JSON follows (the review's is ``"isolator.review"``, with its own version).
+SCHEMA_NAME = "isolator.analysis"
 #: Fields of a :class:`~isolator.metrics.Classification` written flat as ``<field>_record`` / ``<field>_harmonic``.
 CLASSIFICATION_FIELDS = ("regime", "zeta", "amplitude", "amplified", "dominant_force", "dominant_force_rho",
                          "rho_ev", "rho_vf", "rho_ef")
@@ -206,14 +208,14 @@ class Analysis:
         Returns
         -------
         dict
-            The flat keys (:meth:`flat`), ``not_applicable``, ``disagreements``, ``engineering``,
+            ``schema`` (:data:`SCHEMA_NAME`), the flat keys (:meth:`flat`), ``not_applicable``, ``disagreements``, ``engineering``,
             ``design``, ``system``, ``record``, ``map`` when computed, ``verdicts``, ``checks``,
             ``software``, ``created_utc``.
         """
         from isolator import __version__
 
         p = self.adaptation.point
-        out = self.flat()
+        out = {"schema": SCHEMA_NAME, **self.flat()}
         out["not_applicable"] = dict(self.not_applicable)
         if self.checks is None:
             out["not_applicable"]["checks"] = CHECKS_NOT_ADDED_REASON

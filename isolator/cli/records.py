@@ -183,7 +183,7 @@ def _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, 
 
 def _simulate_and_print(record, pair, vertical, component, trim, resample, units, merge, dt, response,
                         counts_factor, as_json, out_csv, streamed, system, nominal, the_design) -> None:
-    from isolator.analysis import SCHEMA_VERSION, record_dict
+    from isolator.analysis import SCHEMA_NAME, SCHEMA_VERSION, record_dict
     from isolator.cli.pairs import history_columns, load_motion_set_for_cli, result_rows, solve, wants_set
 
     if wants_set(pair, vertical, component):
@@ -206,7 +206,7 @@ def _simulate_and_print(record, pair, vertical, component, trim, resample, units
 
     # the analysis schema's slice for a record without a design: model and why, record, response keys
     results = result.summary()
-    summary = {"schema_version": SCHEMA_VERSION, "model": results.pop("model"),
+    summary = {"schema": SCHEMA_NAME, "schema_version": SCHEMA_VERSION, "model": results.pop("model"),
                "model_reason": results.pop("model_reason"), "record": record_group, **results}
     if out_csv:
         header, columns = history_columns(result)

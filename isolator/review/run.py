@@ -28,6 +28,8 @@ from isolator.serialize import json_safe
 CODES = ("asce7-22", "en15129")
 #: Version of :meth:`Review.to_dict` (bump on any rename or change of meaning; docs/changelog.md).
 SCHEMA_VERSION = 2
+#: Which schema the review's JSON follows (an analysis' is ``"isolator.analysis"``, with its own version).
+SCHEMA_NAME = "isolator.review"
 PLOT_PERIODS_S = np.geomspace(0.05, 10.0, 90)
 
 
@@ -71,6 +73,7 @@ class Review:
         elf = {b: {k: v for k, v in self.elf[b].items()} for b in self.elf}
         env = self.design_values["envelope"]
         return json_safe({
+            "schema": SCHEMA_NAME,
             "schema_version": SCHEMA_VERSION,
             "created_utc": self.created_utc,
             "code": self.code,
