@@ -137,7 +137,7 @@ def test_one_component_and_a_pair_give_one_type_whose_shared_keys_mean_the_same(
     # what does not apply to the planar response is null, and says why
     for key in ("amplitude_record", "amplified_record", "dominant_force_record", "rho_ev_record", "regime_harmonic"):
         assert a[key] is not None and b[key] is None and b["not_applicable"][key], key
-    assert b["harmonic_status"] == HARMONIC_NOT_APPLICABLE and "one-dimensional" in b["not_applicable"]["harmonic_status"]
+    assert b["harmonic_status"] == HARMONIC_NOT_APPLICABLE and "one dimension" in b["not_applicable"]["harmonic_status"]
     assert a["harmonic_status"] != HARMONIC_NOT_APPLICABLE and "amplitude_record" not in a["not_applicable"]
     assert b["record"]["component"] is None and a["record"]["component"] == "X"
     assert set(b["record"]["components"]) == {"x", "y"} and set(a["record"]["components"]) == {"x"}

@@ -305,12 +305,10 @@ def candidate_row(review, values: dict) -> dict:
     margin = (r_value / r_limit - 1.0) if (r_value is not None and r_limit) else None
     design = review.design
     nominal = review.analyses.get("nominal") or review.analyses.get("lower") or {}
-    g = design.gravity_m_s2
     # the paper's dimensionless point of each pair (k = K A0/(M g), α = PGA/(µs g), η = c sqrt(A0/g)), as the
     # review's page 5 places them
-    points = [(design.stiffness_per_mass * a["paper_A0_m"] / g, a["paper_alpha"],
-               design.damping_per_mass * math.sqrt(a["paper_A0_m"] / g)) for a in nominal.values()
-              if "error" not in a and math.isfinite(a.get("paper_A0_m", math.nan)) and a["paper_A0_m"] > 0]
+    points = [(a["k"], a["alpha"], a["eta"]) for a in nominal.values()  # the analysis' point (isolator.analysis)
+              if "error" not in a and a.get("k") is not None and math.isfinite(a["k"])]
     factors = list(r["scale_factors"].values())
     row = {
         **values,

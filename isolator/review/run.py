@@ -280,7 +280,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     timing["analyses"] = time.perf_counter() - start
     timing["analyses_cached"] = n_cached
     timing["analyses_total"] = len(tasks)
-    analyses = {b: {name: dict(results[index[(b, name)]], scale_factor=float(f))
+    analyses = {b: {name: _for_design(results[index[(b, name)]], designs[b], f)
                     for name, f in zip(names, factors, strict=False)} for b in designs}
     failed = sorted({name for b in analyses for name, r in analyses[b].items() if "error" in r})
     if len(failed) == len(names):
@@ -331,6 +331,18 @@ def _factors(suite, scaling, spectra, target_grid, required, fit_mask, code, par
         notes.append(f"the suite's scale_factor values are not used (scaling '{scaling}'); scaling 'given' checks them")
     return (scale_factors(spectra, target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask), scaling,
             required)
+
+
+def _for_design(result: dict, design, factor: float) -> dict:
+    """One pair's result for a design, with its scale factor: an analysis is shared by designs that differ only in
+    what does not change it (the displacement capacity, :func:`isolator.review.worker.design_key`), so the
+    demand on the capacity is this design's."""
+    out = dict(result, scale_factor=float(factor))
+    if "error" not in out:
+        capacity = design.displacement_capacity_m
+        out["displacement_capacity_m"] = capacity
+        out["displacement_demand_ratio"] = None if capacity is None else out["peak_displacement_m"] / capacity
+    return out
 
 
 def _safe_target(target, periods):

@@ -21,13 +21,14 @@ import numpy as np
 #: bump when the numbers an analysis returns change meaning
 CACHE_VERSION = "review-3"
 ORBIT_POINTS = 1500
-#: Design keys that name a design without changing its analysis (a bound's name, its file).
-_NAMING_KEYS = ("name", "source", "description")
+#: Design keys that do not change its analyses: its names, the capacity (the demand ratio is the caller's,
+#: :func:`isolator.review.run.run_review`), the property factors (a bound's friction is already applied), the plan.
+_NOT_ANALYSED = ("name", "source", "description", "displacement_capacity_m", "property_factors", "plan")
 
 
 def design_key(design) -> dict:
-    """What of a design determines its analyses (the cache key): :meth:`Design.as_dict` without its names."""
-    return {key: value for key, value in design.as_dict().items() if key not in _NAMING_KEYS}
+    """What of a design determines its analyses (the cache key): :meth:`Design.as_dict` without :data:`_NOT_ANALYSED`."""
+    return {key: value for key, value in design.as_dict().items() if key not in _NOT_ANALYSED}
 
 
 def task_key(pair_key: str, factor: float, design) -> str:
