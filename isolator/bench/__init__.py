@@ -48,11 +48,28 @@ pendulum, our planar engine (:func:`isolator.solver.planar.simulate_pair`), Open
 ``solve_ivp``, all measured against the independent reference
 :mod:`isolator.bench.planar_reference`.
 
+The building case (:mod:`isolator.bench.building`, issue 22): a 5-story shear building on
+a friction pendulum, ours (:mod:`isolator.solver.building`) against OpenSees
+(:mod:`isolator.bench.opensees_building`) and an independent ``solve_ivp`` reference
+(:mod:`isolator.bench.building_reference`).
+
 References
 ----------
 M. Nicolas (2017), hal-01432172, Eq. 2 (harmonic case), Eqs. 3 (ζ) and 15 (α_SL).
 """
 
+from isolator.bench.building import (
+                                  BUILDING_OPENSEES,
+                                  BUILDING_OURS,
+                                  BUILDING_TRUTH,
+                                  BuildingCase,
+                                  building_case,
+                                  building_cases,
+                                  building_errors,
+                                  building_markdown,
+                                  building_summary,
+                                  run_building_case,
+)
 from isolator.bench.cases import (
                                   HARMONIC_CASES,
                                   HARMONIC_PHASE,
@@ -118,7 +135,9 @@ from isolator.bench.pairs import (
                                   reference_solver,
 )
 
-__all__ = ["IVP_REGULARISED", "OPENSEES", "OURS_METHODS", "PAIR_METHODS", "PAIR_OURS", "PAIR_TRUTH",
+__all__ = ["BUILDING_OPENSEES", "BUILDING_OURS", "BUILDING_TRUTH", "BuildingCase", "building_case",
+           "building_cases", "building_errors", "building_markdown", "building_summary", "run_building_case",
+           "IVP_REGULARISED", "OPENSEES", "OURS_METHODS", "PAIR_METHODS", "PAIR_OURS", "PAIR_TRUTH",
            "REFERENCE_METHODS", "PairCase", "ivp_regularised", "opensees_solver", "opensees_summary", "pair_case",
            "pair_cases", "pair_errors", "pair_methods", "planar_solver", "reference_solver", "run_pair_case",
            "CROSS_CHECK", "ENGINEERING_ERROR", "ERROR_FLOOR", "HARMONIC_CASES", "HARMONIC_PHASE", "METHODS", "OURS",

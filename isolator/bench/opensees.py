@@ -163,7 +163,7 @@ def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, rad
         with tempfile.TemporaryDirectory() as folder:
             path = str(Path(folder) / "disp.out")
             ops.recorder("Node", "-file", path, "-time", "-precision", 17, "-node", 2, "-dof", 1, 2, "disp")
-            _analyze_record(ops, dt_s, ax.size, substeps)
+            analyze_record(ops, dt_s, ax.size, substeps)
             ops.remove("recorders")
             rows = np.loadtxt(path, ndmin=2)
     finally:
@@ -175,7 +175,7 @@ def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, rad
     return out
 
 
-def _analyze_record(ops, dt_s: float, n_samples: int, substeps: int) -> None:
+def analyze_record(ops, dt_s: float, n_samples: int, substeps: int) -> None:
     """The whole record in one analyze() call; a failing step is redone in halves from where it stopped."""
     t_end = (n_samples - 1) * dt_s
     for _ in range(MAX_RESTARTS):

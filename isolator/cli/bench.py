@@ -23,8 +23,9 @@ def bench(
 ) -> None:
     """Speed against error: our exact solver against fixed-step, Newmark, solve_ivp and OpenSees.
 
-    Runs the harmonic cases of every configuration, friction-pendulum records and real
-    pairs in 2-D (against OpenSees' singleFPBearing when openseespy imports), times
+    Runs the harmonic cases of every configuration, friction-pendulum records, real
+    pairs in 2-D (against OpenSees' singleFPBearing when openseespy imports) and a
+    5-story building on a friction pendulum (against OpenSees, same building), times
     every method (median of several runs, in this process) and measures the errors of
     peak and residual displacement, slip-time ratio and trajectory; writes the table
     (CSV, JSON, Markdown) and a log error / log time plot to --out.
@@ -57,6 +58,12 @@ def bench(
     elif not any(case.kind == "pair" for case in cases):
         typer.echo(f"note: none of the bench pairs in {records_dir}/pairs: no 2-D cases", err=True)
     rows, pareto = bench_module.run_bench(quick=quick, repeats=repeats, cases=cases, progress=progress)
+    building_cases = bench_module.building_cases(quick, records_dir)
+    if not building_cases:
+        typer.echo(f"note: the building's record is not in {records_dir}: no building case", err=True)
+    buildings = [bench_module.run_building_case(case, rounds=repeats or (3 if quick else 5), progress=progress)
+                 for case in building_cases]
+    building_lines = bench_module.building_summary(buildings)
     wall_s = time.perf_counter() - started
     machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
                "cpus": os.cpu_count(), "python": platform.python_version()}
@@ -75,13 +82,15 @@ def bench(
     except OSError:  # pragma: no cover - not on every platform
         pass
     document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto,
-                "summary_2d": summary}
+                "summary_2d": summary, "building": buildings, "summary_building": building_lines}
     try:
         write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
         write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))
         write_text_atomically(out_dir / "bench.json", dumps(document, indent=1))
         write_text_atomically(out_dir / "bench.md", bench_module.pareto_markdown(pareto) + "\n"
-                              + bench_module.rows_markdown(rows) + "".join(f"\n{line}\n" for line in summary))
+                              + bench_module.rows_markdown(rows) + "".join(f"\n{line}\n" for line in summary)
+                              + ("\n" + bench_module.building_markdown(buildings) if buildings else "")
+                              + "".join(f"\n{line}\n" for line in building_lines))
         with atomic_path(out_dir / "bench.png") as temporary:
             bench_module.plot(rows, temporary)
     except OSError as err:
@@ -92,6 +101,10 @@ def bench(
     typer.echo(bench_module.pareto_markdown(pareto))
     typer.echo(bench_module.rows_markdown(rows))
     for line in summary:
+        typer.echo(line)
+    if buildings:
+        typer.echo(bench_module.building_markdown(buildings))
+    for line in building_lines:
         typer.echo(line)
     typer.echo(f"{len(rows)} runs in {wall_s:.1f} s on {machine['processor']} ({machine['cpus']} CPUs); "
                f"written to {out_dir}/bench.csv, bench_pareto.csv, bench.json, bench.md, bench.png")
