@@ -51,7 +51,9 @@ pendulum, our planar engine (:func:`isolator.solver.planar.simulate_pair`), Open
 The building case (:mod:`isolator.bench.building`, issue 22): a 5-story shear building on
 a friction pendulum, ours (:mod:`isolator.solver.building`) against OpenSees
 (:mod:`isolator.bench.opensees_building`) and an independent ``solve_ivp`` reference
-(:mod:`isolator.bench.building_reference`).
+(:mod:`isolator.bench.building_reference`).  The triple friction pendulum
+(:mod:`isolator.bench.tfp`, issue 23): ours (:mod:`isolator.solver.multisurface`) against
+OpenSees' ``TripleFrictionPendulum`` (:mod:`isolator.bench.opensees_tfp`).
 
 References
 ----------
@@ -134,8 +136,10 @@ from isolator.bench.pairs import (
                                   planar_solver,
                                   reference_solver,
 )
+from isolator.bench.tfp import TFP_OPENSEES, TFP_OURS, TfpCase, run_tfp_case, tfp_bearing, tfp_cases, tfp_summary
 
-__all__ = ["BUILDING_OPENSEES", "BUILDING_OURS", "BUILDING_TRUTH", "BuildingCase", "building_case",
+__all__ = ["TFP_OPENSEES", "TFP_OURS", "TfpCase", "run_tfp_case", "tfp_bearing", "tfp_cases", "tfp_summary",
+           "BUILDING_OPENSEES", "BUILDING_OURS", "BUILDING_TRUTH", "BuildingCase", "building_case",
            "building_cases", "building_errors", "building_markdown", "building_summary", "run_building_case",
            "IVP_REGULARISED", "OPENSEES", "OURS_METHODS", "PAIR_METHODS", "PAIR_OURS", "PAIR_TRUTH",
            "REFERENCE_METHODS", "PairCase", "ivp_regularised", "opensees_solver", "opensees_summary", "pair_case",

@@ -25,7 +25,8 @@ def bench(
 
     Runs the harmonic cases of every configuration, friction-pendulum records, real
     pairs in 2-D (against OpenSees' singleFPBearing when openseespy imports) and a
-    5-story building on a friction pendulum (against OpenSees, same building), times
+    5-story building on a friction pendulum and a triple friction pendulum (against
+    OpenSees' models of the same), times
     every method (median of several runs, in this process) and measures the errors of
     peak and residual displacement, slip-time ratio and trajectory; writes the table
     (CSV, JSON, Markdown) and a log error / log time plot to --out.
@@ -64,6 +65,9 @@ def bench(
     buildings = [bench_module.run_building_case(case, rounds=repeats or (3 if quick else 5), progress=progress)
                  for case in building_cases]
     building_lines = bench_module.building_summary(buildings)
+    tfps = [bench_module.run_tfp_case(case, rounds=repeats or (3 if quick else 5), progress=progress)
+            for case in bench_module.tfp_cases(quick, records_dir)]
+    building_lines += bench_module.tfp_summary(tfps)
     wall_s = time.perf_counter() - started
     machine = {"platform": platform.platform(), "processor": platform.processor() or platform.machine(),
                "cpus": os.cpu_count(), "python": platform.python_version()}
@@ -82,7 +86,8 @@ def bench(
     except OSError:  # pragma: no cover - not on every platform
         pass
     document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto,
-                "summary_2d": summary, "building": buildings, "summary_building": building_lines}
+                "summary_2d": summary, "building": buildings, "triple_friction_pendulum": tfps,
+                "summary_building": building_lines}
     try:
         write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
         write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))

@@ -1,0 +1,49 @@
+"""The exact triple friction pendulum against OpenSees' TripleFrictionPendulum: time and error, one run.
+
+Usage::
+
+    pip install "isolator[bench]"      # openseespy (Linux wheels need libblas3, liblapack3)
+    python -m benchmarks.tfp_opensees   (from the repository root) [--rounds 5] [--quick]
+                                        [--records ../shared/records]
+
+The cases of ``isolator bench`` (:mod:`isolator.bench.tfp`): Fenz & Constantinou's bearing
+(R_eff 2.1/0.3/0.3/2.1 m, µ 0.06/0.02/0.02/0.10, d* 0.4/0.05/0.05/0.4 m) under a rigid mass,
+Northridge NWH360 ×1 and ×2 (first 20 s).  Ours and OpenSees (Newmark + Newton at the
+record's dt) timed in alternation; OpenSees' error against ours; ours against the tests'
+independent event-driven reference (``SeriesReference`` of tests/solver/test_multisurface.py,
+element states, matrix exponential and Brent roots; run from the repository root).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+from pathlib import Path
+
+from isolator.bench.tfp import run_tfp_case, tfp_cases, tfp_summary
+
+
+def _reference(case):
+    from tests.solver.test_multisurface import SeriesReference
+
+    x, _ = SeriesReference(case.bearing, g=case.gravity_m_s2).run(case.acceleration_m_s2, case.dt_s)
+    return x
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--records", default="../shared/records")
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args(argv)
+    for case in tfp_cases(args.quick, Path(args.records)):
+        result = run_tfp_case(case, rounds=args.rounds, reference=_reference)
+        for line in tfp_summary([result]):
+            print(line)
+        print(f"  peaks [m]: ours {result['ours']['peak_m']:.4f} (exact; sampled {result['ours']['sampled_peak_m']:.4f}), "
+              f"OpenSees {result['opensees'].get('sampled_peak_m', float('nan')):.4f} (sampled)")
+    print(f"load average (1, 5, 15 min): {os.getloadavg()}")
+
+
+if __name__ == "__main__":
+    main()
