@@ -28,7 +28,6 @@ Ours and OpenSees are timed in alternation (:func:`isolator.bench.harness.time_i
 from __future__ import annotations
 
 import math
-import statistics
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -190,24 +189,14 @@ def run_building_case(case: BuildingCase, rounds: int = 3, ours_per_round: int =
         (``seconds``, ``runs``, ``peaks``, errors) and ``time_ratio`` / ``error_ratio``
         (OpenSees over ours; None when OpenSees did not run), ``opensees_note``.
     """
-    from isolator.bench.harness import time_interleaved
-    from isolator.bench.opensees import opensees_available
+    from isolator.bench.harness import time_against_opensees
 
     say = progress or (lambda line: None)
     ours_building(case)  # compile / load the kernel and cache the system before timing
-    available, why = opensees_available()
+    say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
+    ours_s, ours_out, ours_runs, os_s, os_out, os_runs, why = time_against_opensees(
+        ours_building, opensees_building_solver, case, rounds, ours_per_round)
     result = {"case": case.name, "n_samples": int(case.acceleration_m_s2.size), "dt_s": case.dt_s}
-    if available:
-        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
-        ours_s, ours_out, ours_runs, os_s, os_out, os_runs = time_interleaved(
-            ours_building, opensees_building_solver, case, 1, rounds, ours_per_round)
-    else:
-        times = []
-        for _ in range(rounds * ours_per_round):
-            start = time.perf_counter()
-            ours_out = ours_building(case)
-            times.append(time.perf_counter() - start)
-        ours_s, ours_runs, os_out = statistics.median(times), len(times), None
     say(f"{case.name}: the independent reference (solve_ivp, once)")
     start = time.perf_counter()
     truth = reference_building(case)

@@ -115,6 +115,30 @@ def time_interleaved(ours, baseline, case, setting, rounds: int, ours_per_round:
             statistics.median(base_times), base_out, len(base_times))
 
 
+def time_against_opensees(ours, baseline, case, rounds: int, ours_per_round: int = OURS_PER_BASELINE_RUN):
+    """:func:`time_interleaved` of ours and an OpenSees ``baseline`` at the record's dt (setting 1),
+    or ours alone (``rounds × ours_per_round`` runs) when openseespy does not import here.
+
+    Returns
+    -------
+    tuple
+        ``(ours_seconds, ours_output, ours_runs, baseline_seconds, baseline_output, baseline_runs, why)``;
+        the baseline's three are None, and ``why`` the reason, when OpenSees did not run.
+    """
+    from isolator.bench.opensees import opensees_available
+
+    available, why = opensees_available()
+    if available:
+        return (*time_interleaved(ours, baseline, case, 1, rounds, ours_per_round), "")
+    times = []
+    out = None
+    for _ in range(max(1, rounds) * max(1, ours_per_round)):
+        start = time.perf_counter()
+        out = ours(case, None)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), out, len(times), None, None, None, why
+
+
 def warm_up() -> None:
     """Compile or load every numba function once, so that timings measure solving."""
     case = harmonic_case("warm-up", 1.5, 1.0, 0.5, 0.25, 0.2, n_periods=1)

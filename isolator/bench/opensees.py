@@ -132,11 +132,25 @@ def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, rad
     k_init = (mu if mu_slow is None else mu_slow) * weight / yield_m
     ops.element("singleFPBearing", 1, 1, 2, 1, radius_m, k_init, "-P", 1, "-T", 2, "-My", 2, "-Mz", 2,
                 "-orient", 0, 0, 1, 1, 0, 0)
+    apply_gravity(ops, 2, weight)
+    ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *ax.tolist())
+    ops.timeSeries("Path", 3, "-dt", dt_s, "-values", *ay.tolist())
+    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
+    ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
+    if az_m_s2 is not None:
+        ops.timeSeries("Path", 4, "-dt", dt_s, "-values", *np.asarray(az_m_s2, dtype=float).tolist())
+        ops.pattern("UniformExcitation", 4, 3, "-accel", 4)
+    (rows,) = run_transient(ops, dt_s, ax.size, substeps, [("-node", 2, "-dof", 1, 2, "disp")])
+    return on_samples(rows, dt_s, ax.size, 2)
+
+
+def apply_gravity(ops, node: int, weight_N: float, numberer: str = "Plain") -> None:
+    """The weight on ``node`` as a static load in 10 steps, held constant from time 0 on."""
     ops.timeSeries("Linear", 1)
     ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
+    ops.load(node, 0.0, 0.0, -weight_N, 0.0, 0.0, 0.0)
     ops.system("BandGeneral")
-    ops.numberer("Plain")
+    ops.numberer(numberer)
     ops.constraints("Plain")
     ops.test("NormDispIncr", 1e-12, 25)
     ops.integrator("LoadControl", 0.1)
@@ -145,15 +159,14 @@ def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, rad
     ops.analyze(10)
     ops.loadConst("-time", 0.0)
     ops.wipeAnalysis()
-    ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *ax.tolist())
-    ops.timeSeries("Path", 3, "-dt", dt_s, "-values", *ay.tolist())
-    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
-    if az_m_s2 is not None:
-        ops.timeSeries("Path", 4, "-dt", dt_s, "-values", *np.asarray(az_m_s2, dtype=float).tolist())
-        ops.pattern("UniformExcitation", 4, 3, "-accel", 4)
+
+
+def run_transient(ops, dt_s: float, n_samples: int, substeps: int, recorders: list,
+                  numberer: str = "Plain") -> list:
+    """Newmark (½, ¼) + Newton over the record; the rows of each Node recorder (``recorders``:
+    the arguments after ``-file … -time -precision 17``), read back; the model is wiped after."""
     ops.system("BandGeneral")
-    ops.numberer("Plain")
+    ops.numberer(numberer)
     ops.constraints("Plain")
     ops.test("NormDispIncr", 1e-10, 25)
     ops.integrator("Newmark", 0.5, 0.25)
@@ -161,17 +174,22 @@ def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, rad
     ops.analysis("Transient")
     try:
         with tempfile.TemporaryDirectory() as folder:
-            path = str(Path(folder) / "disp.out")
-            ops.recorder("Node", "-file", path, "-time", "-precision", 17, "-node", 2, "-dof", 1, 2, "disp")
-            analyze_record(ops, dt_s, ax.size, substeps)
+            paths = [str(Path(folder) / f"out{i}.txt") for i in range(len(recorders))]
+            for path, args in zip(paths, recorders, strict=True):
+                ops.recorder("Node", "-file", path, "-time", "-precision", 17, *args)
+            analyze_record(ops, dt_s, n_samples, substeps)
             ops.remove("recorders")
-            rows = np.loadtxt(path, ndmin=2)
+            return [np.loadtxt(path, ndmin=2) for path in paths]
     finally:
         ops.wipe()
+
+
+def on_samples(rows: np.ndarray, dt_s: float, n_samples: int, n_columns: int) -> np.ndarray:
+    """The recorder's rows that fall on the record's samples (zero at t = 0, the state at rest)."""
     index = np.rint(rows[:, 0] / dt_s).astype(int)
-    on_sample = (np.abs(rows[:, 0] - index * dt_s) < 1e-9 * dt_s) & (index >= 0) & (index < ax.size)
-    out = np.zeros((ax.size, 2))
-    out[index[on_sample]] = rows[on_sample, 1:3]
+    on_sample = (np.abs(rows[:, 0] - index * dt_s) < 1e-9 * dt_s) & (index >= 0) & (index < n_samples)
+    out = np.zeros((n_samples, n_columns))
+    out[index[on_sample]] = rows[on_sample, 1:1 + n_columns]
     return out
 
 

@@ -21,7 +21,7 @@ openseespy the way an engineer would, on the rigid-block set-up of
   no Rayleigh damping;
 * the ground acceleration as a ``UniformExcitation`` along x; Newmark (γ = 1/2, β = 1/4)
   + Newton at the record's dt, a failed step redone in halves
-  (:func:`isolator.bench.opensees.analyze_record`).
+  (:func:`isolator.bench.opensees.run_transient`).
 
 The friction of ``singleFPBearing`` is Coulomb with the element's elastic stick branch
 (u_y); this, not the step, is most of its error (docs/bench.md).
@@ -31,17 +31,16 @@ openseespy is optional (``pip install "isolator[bench]"``).
 
 from __future__ import annotations
 
-import tempfile
-from pathlib import Path
-
 import numpy as np
 
 from isolator.bench.opensees import (
     OPENSEES_YIELD_DISPLACEMENT_M,
     VERTICAL_STIFFNESS_PER_WEIGHT,
     OpenSeesUnavailable,
-    analyze_record,
+    apply_gravity,
+    on_samples,
     opensees_available,
+    run_transient,
 )
 
 
@@ -154,54 +153,18 @@ def opensees_building(dt_s: float, acceleration_m_s2, *, masses_kg, stiffnesses_
             ops.uniaxialMaterial("Elastic", material, 0.0, float(between[i, j]))
             ops.element("zeroLength", element, floor_nodes[i], floor_nodes[j], "-mat", material, "-dir", 1)
 
-    ops.timeSeries("Linear", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
-    ops.system("BandGeneral")
-    ops.numberer("RCM")
-    ops.constraints("Plain")
-    ops.test("NormDispIncr", 1e-12, 25)
-    ops.integrator("LoadControl", 0.1)
-    ops.algorithm("Newton")
-    ops.analysis("Static")
-    ops.analyze(10)
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
+    apply_gravity(ops, 2, weight, numberer="RCM")
     ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *acc.tolist())
     ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    ops.system("BandGeneral")
-    ops.numberer("RCM")
-    ops.constraints("Plain")
-    ops.test("NormDispIncr", 1e-10, 25)
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.algorithm("Newton")
-    ops.analysis("Transient")
     nodes = [2, *floor_nodes]
-    try:
-        with tempfile.TemporaryDirectory() as folder:
-            disp_path = str(Path(folder) / "disp.out")
-            acc_path = str(Path(folder) / "accel.out")
-            ops.recorder("Node", "-file", disp_path, "-time", "-precision", 17, "-node", *nodes, "-dof", 1, "disp")
-            # -timeSeries adds the ground's acceleration: absolute accelerations
-            ops.recorder("Node", "-file", acc_path, "-time", "-precision", 17, "-timeSeries", 2, "-node",
-                         *floor_nodes, "-dof", 1, "accel")
-            analyze_record(ops, dt_s, acc.size, substeps)
-            ops.remove("recorders")
-            disp_rows = np.loadtxt(disp_path, ndmin=2)
-            acc_rows = np.loadtxt(acc_path, ndmin=2)
-    finally:
-        ops.wipe()
-    disp = _on_samples(disp_rows, dt_s, acc.size, n + 1)
-    floor_acc = _on_samples(acc_rows, dt_s, acc.size, n)
+    # -timeSeries adds the ground's acceleration: absolute accelerations
+    disp_rows, acc_rows = run_transient(ops, dt_s, acc.size, substeps,
+                                        [("-node", *nodes, "-dof", 1, "disp"),
+                                         ("-timeSeries", 2, "-node", *floor_nodes, "-dof", 1, "accel")],
+                                        numberer="RCM")
+    disp = on_samples(disp_rows, dt_s, acc.size, n + 1)
+    floor_acc = on_samples(acc_rows, dt_s, acc.size, n)
     floor_acc[0] = acc[0]  # at rest before the record: the floors move with the ground
     return {"slab_displacement_m": disp[:, 0], "floor_displacement_m": disp[:, 1:] - disp[:, :1],
             "floor_absolute_acceleration_m_s2": floor_acc}
 
-
-def _on_samples(rows: np.ndarray, dt_s: float, n_samples: int, n_columns: int) -> np.ndarray:
-    """The recorder's rows that fall on the record's samples (zero at t = 0, the state at rest)."""
-    index = np.rint(rows[:, 0] / dt_s).astype(int)
-    on_sample = (np.abs(rows[:, 0] - index * dt_s) < 1e-9 * dt_s) & (index >= 0) & (index < n_samples)
-    out = np.zeros((n_samples, n_columns))
-    out[index[on_sample]] = rows[on_sample, 1:1 + n_columns]
-    return out

@@ -18,17 +18,16 @@ is held along y (a zero second component gives the same answer).
 
 from __future__ import annotations
 
-import tempfile
-from pathlib import Path
-
 import numpy as np
 
 from isolator.bench.opensees import (
     OPENSEES_YIELD_DISPLACEMENT_M,
     VERTICAL_STIFFNESS_PER_WEIGHT,
     OpenSeesUnavailable,
-    analyze_record,
+    apply_gravity,
+    on_samples,
     opensees_available,
+    run_transient,
 )
 
 #: the element's convergence tolerance (its documentation recommends 1e-10 … 1e-3)
@@ -114,42 +113,12 @@ def opensees_tfp(dt_s: float, ax_m_s2, ay_m_s2=None, *, bearing, gravity_m_s2: f
     ops.uniaxialMaterial("Elastic", 2, 10.0 * weight)  # rotations are fixed at node 2: any small value
     ops.element("TripleFrictionPendulum", 1, 1, 2, 1, 2, 3, 1, 2, 2, 2, *lengths, *capacities, weight, yield_m,
                 1e-3 * weight, 1e-3 * weight, ELEMENT_TOLERANCE)
-    ops.timeSeries("Linear", 1)
-    ops.pattern("Plain", 1, 1)
-    ops.load(2, 0.0, 0.0, -weight, 0.0, 0.0, 0.0)
-    ops.system("BandGeneral")
-    ops.numberer("Plain")
-    ops.constraints("Plain")
-    ops.test("NormDispIncr", 1e-12, 25)
-    ops.integrator("LoadControl", 0.1)
-    ops.algorithm("Newton")
-    ops.analysis("Static")
-    ops.analyze(10)
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
+    apply_gravity(ops, 2, weight)
     ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *ax.tolist())
     ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
     if planar:
         ops.timeSeries("Path", 3, "-dt", dt_s, "-values", *np.asarray(ay_m_s2, dtype=float).tolist())
         ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
-    ops.system("BandGeneral")
-    ops.numberer("Plain")
-    ops.constraints("Plain")
-    ops.test("NormDispIncr", 1e-10, 25)
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.algorithm("Newton")
-    ops.analysis("Transient")
-    try:
-        with tempfile.TemporaryDirectory() as folder:
-            path = str(Path(folder) / "disp.out")
-            ops.recorder("Node", "-file", path, "-time", "-precision", 17, "-node", 2, "-dof", 1, 2, "disp")
-            analyze_record(ops, dt_s, ax.size, substeps)
-            ops.remove("recorders")
-            rows = np.loadtxt(path, ndmin=2)
-    finally:
-        ops.wipe()
-    index = np.rint(rows[:, 0] / dt_s).astype(int)
-    on_sample = (np.abs(rows[:, 0] - index * dt_s) < 1e-9 * dt_s) & (index >= 0) & (index < ax.size)
-    out = np.zeros((ax.size, 2))
-    out[index[on_sample]] = rows[on_sample, 1:3]
+    (rows,) = run_transient(ops, dt_s, ax.size, substeps, [("-node", 2, "-dof", 1, 2, "disp")])
+    out = on_samples(rows, dt_s, ax.size, 2)
     return out if planar else out[:, 0]

@@ -19,8 +19,6 @@ and ×2 (regimes I–V, below the ultimate 0.9 m).
 
 from __future__ import annotations
 
-import statistics
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -107,23 +105,13 @@ def run_tfp_case(case: TfpCase, rounds: int = 3, ours_per_round: int = 5, refere
         ``case``, ``regimes`` (ours), ``ours`` / ``opensees`` entries (seconds, runs, peaks,
         errors), ``time_ratio`` and ``error_ratio`` (None when not measured).
     """
-    from isolator.bench.harness import time_interleaved
-    from isolator.bench.opensees import opensees_available
+    from isolator.bench.harness import time_against_opensees
 
     say = progress or (lambda line: None)
     ours_tfp(case)  # load the kernel before timing
-    available, why = opensees_available()
-    if available:
-        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
-        ours_s, ours_res, ours_runs, os_s, os_x, os_runs = time_interleaved(
-            ours_tfp, opensees_tfp_solver, case, 1, rounds, ours_per_round)
-    else:
-        times = []
-        for _ in range(rounds * ours_per_round):
-            start = time.perf_counter()
-            ours_res = ours_tfp(case)
-            times.append(time.perf_counter() - start)
-        ours_s, ours_runs, os_x = statistics.median(times), len(times), None
+    say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
+    ours_s, ours_res, ours_runs, os_s, os_x, os_runs, why = time_against_opensees(
+        ours_tfp, opensees_tfp_solver, case, rounds, ours_per_round)
     x = np.asarray(ours_res.displacement_m)
     ours = {"method": TFP_OURS, "seconds": ours_s, "runs": ours_runs, "peak_m": float(ours_res.peak_displacement_m),
             "sampled_peak_m": float(np.max(np.abs(x)))}
