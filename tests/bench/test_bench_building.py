@@ -106,9 +106,10 @@ def test_reference_agrees_with_ours_and_the_tests_reference(records_dir):
 
 @needs_opensees
 def test_opensees_building_converges_to_ours_when_the_plane_holds(records_dir):
-    # µ = 5: the plane never slides, the building is the fixed-base linear structure (on the bearing's
-    # stiff elastic branch); Newmark's error shrinks with its step towards ours
-    case = replace(_case(records_dir, 4.0), mu=5.0)
+    # µ = 0.9 under half the record: the plane never slides, the building is the fixed-base linear
+    # structure (on the bearing's stiff elastic branch); Newmark's error shrinks with its step towards ours
+    case = _case(records_dir, 4.0)
+    case = replace(case, mu=0.9, acceleration_m_s2=0.5 * case.acceleration_m_s2)
     ours = building_bench.ours_building(case)
     assert float(np.max(np.abs(ours["slab"]))) == 0.0
     err = {}
