@@ -7,7 +7,8 @@ samples; what it does in several places lives here, compiled into it
 * :func:`stop_ahead` — the test that hands a decelerating slide to the LOG form;
 * :func:`peak_in_step` — the peak bracket: a rate of |X|, |V| or |a| that goes from + to −
   inside a step brackets a peak, located (:func:`~isolator.solver.planar_events.locate_peak`)
-  only when the tangents at the step's ends can beat the running peak;
+  only when the tangents at the step's ends can beat the running peak (the LOG form's steps;
+  the main step writes it out, where this form compiled slower);
 * :func:`come_to_rest` — a stop: stick or restart, and its event;
 * :func:`leave_log` — from the LOG form back to the Cartesian one (a turn, not a stop);
 * :func:`enter_polar` — into the POLAR form (speed and direction) from a velocity;

@@ -1,25 +1,13 @@
 """The compiled planar (2-D) record loop: coupled friction, µ(v), n(t) = g + a_z, uplift.
 
-Pure arrays in, arrays out (numba, cached on disk); its tuning constants and the pieces its loop
-repeats are in :mod:`planar_control`, compiled into it.  The motion between events has no closed
-form; the DOP853 steps of :mod:`planar_rk` integrate it with these rules, which make the answer
-depend on the record only through its piecewise-linear reading:
-
-* no step crosses a sample (the forcing has a kink there) nor an instant where
-  n = g + a_z changes sign (exact: n is linear in the interval);
-* stuck: the stick test ``|κX + a_g| ≤ µs n`` is a quadratic inequality in local
-  time (a_g, n and κ = n/R are linear), solved in closed form for the first
-  break-away (or uplift) instant — no stepping while stuck;
-* a start from rest runs in the START form, then in the POLAR form (speed and direction, every
-  slide); a decelerating block whose predicted stop is within about one step hands over,
-  through the Cartesian form (which also carries free flight), to the LOG form and
-  reaches V = 0 exactly (to r = ``r_min``, or a hundredth of it while the direction still
-  turns, then the last bit in closed form with the speed quadratic in time; the stop
-  instant τ is held in the LOG form, as before it, to the POLAR speed's tolerance over
-  the deceleration: ~1e-9–1e-8 s); there the stick test decides: stick, or restart in
-  the direction of −(κX + a_g) (a "reversal", which in 2-D needs an exactly collinear motion);
-* peaks of |X|, |V| and |a| between step ends are located (secant, DOP853 sub-steps from the step start);
-* loops are bounded: steps per interval, events per interval (chatter guard).
+Pure arrays in, arrays out (numba, cached on disk); the tuning constants and the pieces the loop
+repeats are in :mod:`planar_control`, compiled into it.  The DOP853 steps of :mod:`planar_rk`
+integrate the motion between events; the answer depends on the record only through its
+piecewise-linear reading: no step crosses a sample nor an instant where n changes sign; stuck,
+the first break-away is a root of a quadratic in local time (no stepping); a start runs in the
+START form, a slide in the POLAR form, the approach to a stop in the LOG form down to V = 0 and
+the last bit in closed form, then the stick test decides (stick, or a reversal); peaks of |X|,
+|V| and |a| between step ends are located; every loop is bounded.  docs/planar.md, "Method".
 """
 
 from __future__ import annotations
@@ -67,6 +55,7 @@ from isolator.solver.planar_events import (
     land,
     land_on,
     lift_off,
+    locate_peak,
     mode_of,
     peak_value,
     rate_of_peak,
@@ -74,6 +63,7 @@ from isolator.solver.planar_events import (
     settled,
     start_lag,
     stuck_until,
+    tangent_bound,
     transmitted,
     velocity,
 )
@@ -546,21 +536,28 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     fnew[:] = fb
                     h *= theta
                 # |X| and |V| may peak inside the step where the rates of their squares go from + to −
-                gx0, gx1 = rate_of_peak(0, mode, y, f), rate_of_peak(0, mode, ynew, fnew)
-                gv0, gv1 = rate_of_peak(1, mode, y, f), rate_of_peak(1, mode, ynew, fnew)
-                x_turns = gx0 > 0.0 >= gx1
-                v_turns = gv0 > 0.0 >= gv1
-                if x_turns:
-                    peak_x = peak_in_step(peak_x, 0, mode, tau, y, f, h, peak_value(0, mode, y), gx0,
-                                          peak_value(0, mode, ynew), gx1, h, prm, frc, yb, fb, atol, rtol, work)
-                if v_turns:
-                    peak_v = peak_in_step(peak_v, 1, mode, tau, y, f, h, peak_value(1, mode, y), gv0,
-                                          peak_value(1, mode, ynew), gv1, h, prm, frc, yb, fb, atol, rtol, work)
+                # the peak brackets of :func:`peak_in_step`, written out here: in the helper's form this hot
+                # path compiled 2-6 % slower (least of 61 calls, interleaved; docs/dev-notes.md)
+                turns = 0  #: bit 1: |X| may peak inside the step, bit 2: |V| may
+                for which in range(2):
+                    g0 = rate_of_peak(which, mode, y, f)
+                    g1 = rate_of_peak(which, mode, ynew, fnew)
+                    if g0 > 0.0 >= g1:
+                        turns |= 1 << which
+                        v0 = peak_value(which, mode, y)
+                        v1 = peak_value(which, mode, ynew)
+                        if tangent_bound(v0, g0, v1, g1, h) > (peak_x if which == 0 else peak_v):
+                            best = locate_peak(which, mode, tau, y, f, h, v0, g0, v1, g1, h, prm, frc, yb, fb, atol,
+                                               rtol, work)
+                            if which == 0:
+                                peak_x = max(peak_x, best)
+                            else:
+                                peak_v = max(peak_v, best)
                 if mode != START:
                     # |a| ≤ µ n + κ|X| + c|V| over the step (|X| and |V| at most their values at the ends, or the
                     # running peaks where they may peak inside): not above the peak so far, nothing to locate
-                    x_top = peak_x if x_turns else max(norm(y[0], y[1]), norm(ynew[0], ynew[1]))
-                    v_top = peak_v if v_turns else max(peak_value(1, mode, y), peak_value(1, mode, ynew))
+                    x_top = peak_x if turns & 1 else max(norm(y[0], y[1]), norm(ynew[0], ynew[1]))
+                    v_top = peak_v if turns & 2 else max(peak_value(1, mode, y), peak_value(1, mode, ynew))
                     if acceleration_bound(frc[4] + frc[5] * tau, frc[4] + frc[5] * (tau + h), x_top, v_top,
                                           prm) <= peak_a:
                         acc_i = -1  # the end's value is not computed (the next step computes its start)
@@ -574,8 +571,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         a_end, g_end = acceleration_peak_rate(mode, tau + h, ynew, fnew, prm, frc)
                         acc_i = i
                         acc_tau = target if h == hmax else tau + h
-                        peak_a = peak_in_step(peak_a, 2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm, frc, yb,
-                                              fb, atol, rtol, work)
+                        if g0 > 0.0 >= g_end and tangent_bound(a_lo, g0, a_end, g_end, h) > peak_a:
+                            peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm,
+                                                             frc, yb, fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
