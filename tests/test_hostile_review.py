@@ -26,7 +26,8 @@ RUNNER = CliRunner()
 DESIGN = ('name = "d"\nmass_kg = 1e6\nradius_m = 2.0\nmu_static = 0.06\nlambda_max = 1.2\nlambda_min = 0.9\n'
           'displacement_capacity_m = 0.5\n')
 #: JSON keys that hold wall-clock measures or the command line: they differ between two equal runs.
-TIMING_KEYS = {"timing", "timing_s", "created_utc", "command", "solver_seconds", "seconds", "pdf"}
+TIMING_KEYS = {"timing", "timing_s", "created_utc", "command", "solver_seconds", "harmonic_seconds", "seconds",
+               "analysis_seconds", "pdf"}
 
 
 def _pair_values(k: int):
