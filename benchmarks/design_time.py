@@ -31,7 +31,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def one_search(radii: int, mus: int, jobs: int, out: Path) -> dict:
     from isolator.review import load_suite, load_target, resolve_example
-    from isolator.review.design_space import search, write_outputs
+    from isolator.review.design_outputs import write_outputs
+    from isolator.review.design_space import search
 
     target = load_target(resolve_example("target", "example"))
     suite = load_suite(resolve_example("suite", "example"))

@@ -96,7 +96,8 @@ def design(
 
     from isolator.atomic import OutputError, output_lock
     from isolator.errors import DesignError, RecordError, ReviewError, UnitsError
-    from isolator.review.design_space import OBJECTIVES, output_paths, parse_vary
+    from isolator.review.design_grid import OBJECTIVES, parse_vary
+    from isolator.review.design_outputs import output_paths
     from isolator.review.examples import resolve_example
     from isolator.review.run import CODES
     from isolator.review.scaling import SCALING_METHODS
@@ -142,7 +143,8 @@ def design(
     except (DesignError, ReviewError, RecordError, UnitsError) as err:
         _user_error(str(err))
 
-    from isolator.review.design_space import search, write_outputs
+    from isolator.review.design_outputs import write_outputs
+    from isolator.review.design_space import search
 
     command = "isolator " + " ".join(shlex.quote(arg) for arg in sys.argv[1:])
     bar, callback = None, None

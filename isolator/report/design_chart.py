@@ -192,7 +192,7 @@ def write_design_chart(pdf_path, data: dict, summary: dict, ranked: list, column
     ----------
     pdf_path : path-like
     data : dict
-        :func:`isolator.review.design_space.chart_data` (with an optional ``paper_map``).
+        :func:`isolator.review.design_outputs.chart_data` (with an optional ``paper_map``).
     summary : dict
         ``subtitle`` (text) and ``lines`` ((name, value) rows printed beside the paper's map).
     ranked : list of dict

@@ -33,7 +33,7 @@ def record_checks(design, motion, engineering: dict, parameters: dict | None = N
     list of dict
         {id, clause, status, value, limit, unit, note}.
     """
-    from isolator.review.suite import high_pass_corner_hz
+    from isolator.review.suite_components import high_pass_corner_hz
 
     p = resolve("asce7-22", parameters)
     d = float(engineering["peak_displacement_m"])

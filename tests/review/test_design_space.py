@@ -10,14 +10,10 @@ import pytest
 
 from isolator.design import Design
 from isolator.errors import ReviewError
-from isolator.review.design_space import (
-    SpectraMemo,
-    candidate_mappings,
-    chart_data,
-    parse_vary,
-    recommend,
-    search,
-)
+from isolator.review.design_grid import candidate_mappings, parse_vary, recommend
+from isolator.review.design_outputs import chart_data
+from isolator.review.design_space import search
+from isolator.review.design_workers import SpectraMemo
 from isolator.review.spectra import pair_spectra
 from isolator.review.suite import load_suite
 from isolator.review.target import two_period_target
@@ -254,7 +250,7 @@ def test_local_processes_give_the_same_rows(inputs, suite, result):
 def test_design_toml_round_trips(tmp_path):
     from dataclasses import asdict
 
-    from isolator.review.design_space import design_toml
+    from isolator.review.design_outputs import design_toml
 
     mapping = {"name": 'FPS "R" [radius_m=2.5]', "mass_kg": 2.0e6, "radius_m": 2.5, "mu_static": 0.07 / 0.06 * 0.05,
                "mu_kinetic": 0.05, "displacement_capacity_m": 1.0, "lambda_ae_max": 1.1, "lambda_ae_min": 1.0,

@@ -18,7 +18,8 @@ from isolator.review.selection import (
     signature_distance,
     spectral_bandwidth,
 )
-from isolator.review.suite import Pair, component_azimuth_deg, load_suite, rotate_to_fault
+from isolator.review.suite import Pair, load_suite
+from isolator.review.suite_components import component_azimuth_deg, rotate_to_fault
 from tests.review.conftest import EXAMPLE, SHORT
 
 G = 9.80665
