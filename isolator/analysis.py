@@ -403,11 +403,17 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
 
     Raises
     ------
+    isolator.errors.DesignError
+        ``design`` is not a :class:`~isolator.design.Design`.
+    isolator.errors.MotionError
+        ``motion`` is not a ground motion or pair; ``window_s`` is not two finite times in
+        order; ``harmonic`` is not a bool.
     isolator.errors.RecordInputError
         A motion the solver cannot take (a record of zeros: no equivalent point).
     isolator.solver.system.InvalidSystemError
-        An isolator the solver cannot take.
+        An isolator the solver cannot take; a ``map_resolution`` or ``workers`` out of range.
     """
+    _check_arguments(design, motion, window_s, harmonic, workers)
     from isolator.adapter import PAIR_PREDOMINANT_PERIOD_REASON, adapt, engineering_quantities, motion_keywords
     from isolator.metrics import PLANAR_NOT_APPLICABLE, classify_record, compare
     from isolator.solver.models import Scene, simulate
@@ -442,6 +448,31 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
         created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
         harmonic_seconds=harmonic_seconds, harmonic_map=harmonic_map_,
     )
+
+
+def _check_arguments(design, motion, window_s, harmonic, workers) -> None:
+    """Refuse what :func:`analyse` cannot take with a typed error and a sentence (never a bare AttributeError)."""
+    import math
+
+    from isolator.design import Design
+    from isolator.errors import DesignError, InvalidSystemError, MotionError
+    from isolator.motion import GroundMotion, MotionPair
+
+    if not isinstance(design, Design):
+        raise DesignError(f"analyse needs an isolator.design.Design, got {type(design).__name__}")
+    if not isinstance(motion, (GroundMotion, MotionPair)):
+        raise MotionError(f"analyse needs a GroundMotion or a MotionPair, got {type(motion).__name__}")
+    if not isinstance(harmonic, bool):
+        raise MotionError(f"harmonic must be True or False, got {harmonic!r}")
+    if window_s is not None:
+        try:
+            start, end = (float(value) for value in window_s)
+        except (TypeError, ValueError):
+            raise MotionError(f"window_s must be two times (start, end) in seconds, got {window_s!r}") from None
+        if not (math.isfinite(start) and math.isfinite(end) and start < end):
+            raise MotionError(f"window_s = {window_s!r} must be two finite times in seconds with start < end")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise InvalidSystemError(f"workers must be a whole number ≥ 1, got {workers!r}")
 
 
 def paper_applies(response) -> bool:

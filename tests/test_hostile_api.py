@@ -93,3 +93,99 @@ def test_a_solver_that_could_not_finish_is_the_row_of_its_design_and_record():
 
     line = row_error(SolverError("the 2-D engine could not finish: step guard"), "r.AT2", "d.toml")
     assert line == "d.toml under r.AT2: the 2-D engine could not finish: step guard"
+
+
+def _design():
+    return Design.from_mapping({"name": "d", "mass_kg": 1000.0, "mu_static": 0.05, "radius_m": 2.0})
+
+
+#: The 1-D solvers share one record check (:func:`isolator.solver.record.record_timing`): each refuses the same
+#: hostile records with the same typed error and sentence, and no RuntimeWarning leaks (the tests run with
+#: warnings as errors).  Before the shared check, dt 1e300 was an OverflowError, both dt and time a silent
+#: choice of time, complex a ComplexWarning, 1e300 values an overflow RuntimeWarning in the energies.
+RECORD_CASES = [
+    ("dt 1e300", dict(dt_s=1e300), "outside the solver's range"),
+    ("dt text", dict(dt_s="0.01"), "dt must be a number of seconds"),
+    ("dt and time disagree", dict(dt_s=0.01, time_s=0.02 * np.arange(A.size)), "disagree"),
+    ("complex", dict(acceleration_m_s2=A + 1j), "must hold real numbers"),
+    ("1e300 values", dict(acceleration_m_s2=A * 1e300), "not a ground acceleration"),
+    ("neither dt nor time", dict(dt_s=None), "give dt_s or time_s"),
+    ("time steps 1e300", dict(dt_s=None, time_s=1e300 * np.arange(A.size)), "the solver takes steps in"),
+    ("one sample", dict(acceleration_m_s2=[0.1]), "at least two samples"),
+    ("NaN", dict(acceleration_m_s2=np.r_[A, np.nan]), "NaN or infinite"),
+]
+
+
+def _solvers():
+    from isolator.bearing import parse_bearing
+    from isolator.solver.building import simulate_building
+    from isolator.solver.multisurface import simulate_bearing
+    from isolator.solver.record import simulate_record
+    from isolator.superstructure import Floor, Superstructure
+
+    bearing = parse_bearing({"type": "double", "surface": [{"radius_m": 2.0, "mu": 0.05, "displacement_capacity_m": 0.5}] * 2},
+                            DesignError)
+    building = Superstructure(floors=(Floor(1.0, 1.0, 100.0, 100.0),), damping_ratio=0.05, gravity_m_s2=9.81)
+    return {
+        "simulate_record": lambda **kw: simulate_record(mu_static=0.05, stiffness_per_mass=4.9, **kw),
+        "simulate_bearing": lambda **kw: simulate_bearing(bearing=bearing, **kw),
+        "simulate_building": lambda **kw: simulate_building(superstructure=building, total_mass_kg=2.0,
+                                                            stiffness_N_per_m=10.0, mu_static=0.1, **kw),
+    }
+
+
+@pytest.mark.parametrize("solver", ["simulate_record", "simulate_bearing", "simulate_building"])
+@pytest.mark.parametrize("bad, words", [case[1:] for case in RECORD_CASES], ids=[case[0] for case in RECORD_CASES])
+def test_the_1d_solvers_share_one_record_check(solver, bad, words):
+    call = _solvers()[solver]
+    kwargs = {"acceleration_m_s2": A, "dt_s": 0.01, **bad}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(RecordInputError) as info:
+            call(**kwargs)
+    assert words in str(info.value) and "\n" not in str(info.value)
+
+
+def test_dt_and_time_that_agree_give_the_answer_of_either():
+    from isolator.solver.record import simulate_record
+
+    times = 0.01 * np.arange(A.size) + 3.0
+    both = simulate_record(5 * A, 0.01, time_s=times, mu_static=0.05, stiffness_per_mass=4.9)
+    one = simulate_record(5 * A, 0.01, mu_static=0.05, stiffness_per_mass=4.9)
+    assert both.peak_displacement_m == one.peak_displacement_m > 0.0
+    assert both.time_s[0] == 3.0
+
+
+@pytest.mark.parametrize("args, error, words", [
+    ((None, MOTION), DesignError, "analyse needs an isolator.design.Design, got NoneType"),
+    (("design.toml", MOTION), DesignError, "got str"),
+    ((True, None), DesignError, "got bool"),
+    (("D", A), DesignError, "got str"),
+])
+def test_analyse_refuses_a_design_that_is_not_one(args, error, words):
+    from isolator.analysis import analyse
+
+    with pytest.raises(error, match=words) as info:
+        analyse(*args)
+    assert isinstance(info.value, IsolatorError)
+
+
+@pytest.mark.parametrize("motion, kwargs, words", [
+    (None, {}, "analyse needs a GroundMotion or a MotionPair, got NoneType"),
+    (A, {}, "got ndarray"),
+    (MOTION, {"window_s": (2.0, 1.0)}, "start < end"),
+    (MOTION, {"window_s": "x"}, "two times"),
+    (MOTION, {"harmonic": "yes"}, "harmonic must be True or False"),
+])
+def test_analyse_refuses_a_motion_or_option_that_is_not_one(motion, kwargs, words):
+    from isolator.analysis import analyse
+
+    with pytest.raises(MotionError, match=words):
+        analyse(_design(), motion, **kwargs)
+
+
+def test_analyse_refuses_a_worker_count_that_is_not_one():
+    from isolator.analysis import analyse
+
+    with pytest.raises(InvalidSystemError, match="workers must be a whole number"):
+        analyse(_design(), MOTION, workers=0)

@@ -37,10 +37,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from isolator.errors import InvalidSystemError, RecordInputError
+from isolator.errors import InvalidSystemError
 from isolator.solver import building_kernel as _bk
 from isolator.solver.base import SolverResult
-from isolator.solver.record import sample_timing
+from isolator.solver.record import record_timing
 from isolator.solver.system import System
 from isolator.units import STANDARD_GRAVITY
 
@@ -433,8 +433,8 @@ def _warm_up() -> None:
         s = Superstructure(floors=(Floor(1.0, 1.0, 100.0, 100.0),), damping_ratio=0.05, gravity_m_s2=9.81)
         for times in (None, [0.0, 0.01, 0.03]):
             acc = np.array([0.0, 5.0, -5.0])
-            _run(building_system(s, total_mass_kg=2.0, stiffness_N_per_m=10.0, mu_static=0.1), acc,
-                 None if times else 0.01, times, None)
+            _run(building_system(s, total_mass_kg=2.0, stiffness_N_per_m=10.0, mu_static=0.1),
+                 record_timing(acc, None if times else 0.01, times), None)
     _READY = True
 
 
@@ -467,15 +467,9 @@ def simulate_building(acceleration_m_s2, dt_s: float | None = None, *, time_s=No
                          mu_static=float(mu_static), mu_kinetic=None if mu_kinetic is None else float(mu_kinetic),
                          damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=float(gravity_m_s2),
                          direction=direction)
-    acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
-    if acc.ndim != 1 or acc.size < 2:
-        raise RecordInputError("acceleration must be one-dimensional with at least two samples")
-    if not np.all(np.isfinite(acc)):
-        raise RecordInputError("acceleration holds NaN or infinite values")
-    if time_s is None and dt_s is None:
-        raise TypeError("give dt_s or time_s")
+    timing = record_timing(acceleration_m_s2, dt_s, time_s)
     _warm_up()
-    return _run(system, acc, dt_s, time_s, bearing_layout)
+    return _run(system, timing, bearing_layout)
 
 
 def simulate_design_building(design, acceleration_m_s2, dt_s: float | None = None, *, time_s=None,
@@ -527,20 +521,10 @@ def _system_for(superstructure, **parameters) -> BuildingSystem:
     return system
 
 
-def _run(system: BuildingSystem, acc, dt_s, time_s, bearing_layout) -> BuildingResponse:
+def _run(system: BuildingSystem, timing, bearing_layout) -> BuildingResponse:
     from scipy.linalg import expm
 
-    if time_s is not None:
-        times = np.asarray(time_s, dtype=np.float64)
-        if times.shape != acc.shape:
-            raise RecordInputError(f"time ({times.shape}) and acceleration ({acc.shape}) differ in length")
-        dt, relative = sample_timing(times)
-        t0 = float(times[0])
-    else:
-        dt = float(dt_s)
-        if not (math.isfinite(dt) and dt > 0.0):
-            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
-        relative, t0 = None, 0.0
+    acc, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
     h_max = _bk.THETA / system.fastest_rate_per_s if system.fastest_rate_per_s > 0 else math.inf
     longest = dt if relative is None else float(np.max(np.diff(relative)))
     n_sub = max(1, math.ceil(longest / h_max))

@@ -19,7 +19,7 @@ from isolator.solver import multisurface_kernel as _ms
 from isolator.solver.base import SolverResult
 from isolator.solver.kernel import max_piece_s, substeps_per_interval
 from isolator.solver.notice import note_if_slow
-from isolator.solver.record import sample_timing
+from isolator.solver.record import record_timing
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
@@ -189,25 +189,8 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
     -------
     MultisurfaceResponse
     """
-    acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
-    if acc.ndim != 1 or acc.size < 2:
-        raise RecordInputError("a record needs at least two samples in one dimension")
-    if not np.all(np.isfinite(acc)):
-        raise RecordInputError("acceleration holds NaN or infinite values")
-    if time_s is not None:
-        times = np.asarray(time_s, dtype=np.float64)
-        if times.shape != acc.shape:
-            raise RecordInputError(f"time ({times.shape}) and acceleration ({acc.shape}) differ in length")
-        dt, relative = sample_timing(times)
-        t0 = float(times[0])
-    elif dt_s is not None:
-        dt = float(dt_s)
-        if not np.isfinite(dt) or dt <= 0.0:
-            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
-        relative = None
-        t0 = 0.0
-    else:
-        raise TypeError("give dt_s or time_s")
+    timing = record_timing(acceleration_m_s2, dt_s, time_s)
+    acc, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
     c = float(damping_per_mass)
     g = float(gravity_m_s2)
     if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):

@@ -102,6 +102,107 @@ def sample_timing(time_s) -> tuple[float, np.ndarray | None]:
     return dt, np.ascontiguousarray(times - times[0])
 
 
+#: The solver's range of a sample interval [s]: below, steps are rounding noise of a time column; above, a
+#: sample interval is hours long, not a ground-motion record, and the exact kernel's sub-steps (bounded by
+#: the oscillator's period) would be unbounded in number.
+SOLVER_DT_RANGE_S = (1e-9, 1e4)
+#: The solver's bound on |a| [m/s²] (about 1e5 g, far above any accelerogram: the readers refuse 50 g):
+#: below it, displacements, velocities and energies (squares of them) stay finite in float64.
+SOLVER_MAX_ABS_ACCELERATION_M_S2 = 1e6
+
+
+@dataclass(frozen=True)
+class RecordTiming:
+    """A record the 1-D solvers can take: its samples and time base (:func:`record_timing`).
+
+    Attributes
+    ----------
+    acceleration_m_s2 : numpy.ndarray
+        The samples, float64, contiguous, shape (N,) [m/s²].
+    dt_s : float
+        The (mean) sample interval [s].
+    relative_time_s : numpy.ndarray or None
+        Sample times from the first one for unequal steps; None for a uniform record [s].
+    t0_s : float
+        Time of the first sample [s] (0 with ``dt_s``).
+    """
+
+    acceleration_m_s2: np.ndarray
+    dt_s: float
+    relative_time_s: np.ndarray | None
+    t0_s: float
+
+
+def record_timing(acceleration_m_s2, dt_s=None, time_s=None) -> RecordTiming:
+    """Check a sampled record and its time base for the exact solvers (record, multi-surface, building).
+
+    Parameters
+    ----------
+    acceleration_m_s2 : array_like
+        Samples [m/s²]: real, one-dimensional, at least two, finite, |a| ≤
+        :data:`SOLVER_MAX_ABS_ACCELERATION_M_S2`.
+    dt_s : float, optional
+        Sample interval [s] in :data:`SOLVER_DT_RANGE_S`.
+    time_s : array_like, optional
+        Sample times [s], finite and strictly increasing, one per sample.  With ``dt_s``
+        too, ``dt_s`` must be their mean step (to ``UNIFORM_STEP_REL_TOLERANCE``).
+
+    Returns
+    -------
+    RecordTiming
+
+    Raises
+    ------
+    RecordInputError
+        Samples that are not real numbers (complex, text), not 1-D, fewer than two,
+        non-finite or beyond the bound; neither ``dt_s`` nor ``time_s``, or both and they
+        disagree; a ``dt_s`` that is not a number or is out of range; times of another
+        length, non-finite, not increasing, or steps out of range.
+    """
+    raw = np.asarray(acceleration_m_s2)
+    if raw.dtype.kind not in "biuf":  # complex would be cast with a warning, text and objects not at all
+        raise RecordInputError(f"acceleration must hold real numbers, got {raw.dtype}")
+    acc = np.ascontiguousarray(raw, dtype=np.float64)
+    if acc.ndim != 1:
+        raise RecordInputError(f"acceleration must be one-dimensional, got shape {acc.shape}")
+    if acc.size < 2:
+        raise RecordInputError("a record needs at least two samples")
+    if not np.all(np.isfinite(acc)):
+        raise RecordInputError("acceleration holds NaN or infinite values")
+    peak = float(np.max(np.abs(acc)))
+    if peak > SOLVER_MAX_ABS_ACCELERATION_M_S2:
+        raise RecordInputError(f"|acceleration| reaches {peak:g} m/s², above the solver's "
+                               f"{SOLVER_MAX_ABS_ACCELERATION_M_S2:g} m/s² (about 1e5 g): not a ground acceleration")
+    low, high = SOLVER_DT_RANGE_S
+    given_dt = None
+    if dt_s is not None:
+        if isinstance(dt_s, bool) or not isinstance(dt_s, (int, float, np.integer, np.floating)):
+            raise RecordInputError(f"dt must be a number of seconds, got {dt_s!r}")
+        given_dt = float(dt_s)
+        if not (math.isfinite(given_dt) and given_dt > 0.0):
+            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
+    if time_s is not None:
+        times_raw = np.asarray(time_s)
+        if times_raw.dtype.kind not in "biuf":
+            raise RecordInputError(f"time must hold real numbers, got {times_raw.dtype}")
+        times = np.asarray(times_raw, dtype=np.float64)
+        if times.shape != acc.shape:
+            raise RecordInputError(f"time ({times.shape}) and acceleration ({acc.shape}) differ in length")
+        dt, relative = sample_timing(times)
+        steps = np.diff(times)
+        if float(np.min(steps)) < low or float(np.max(steps)) > high:
+            raise RecordInputError(f"time steps from {float(np.min(steps)):g} to {float(np.max(steps)):g} s: "
+                                   f"the solver takes steps in [{low:g}, {high:g}] s")
+        if given_dt is not None and abs(given_dt - dt) > UNIFORM_STEP_REL_TOLERANCE * dt:
+            raise RecordInputError(f"dt = {given_dt:g} s and time (mean step {dt:g} s) disagree: give one of them")
+        return RecordTiming(acc, dt, relative, float(times[0]))
+    if given_dt is None:
+        raise RecordInputError("give dt_s or time_s")
+    if not low <= given_dt <= high:
+        raise RecordInputError(f"dt = {given_dt:g} s is outside the solver's range [{low:g}, {high:g}] s")
+    return RecordTiming(acc, given_dt, None, 0.0)
+
+
 _KERNEL_READY = False
 
 
@@ -153,34 +254,24 @@ def simulate_record(acceleration_m_s2, dt_s: float | None = None, *, time_s=None
     Response
         Sampled displacement, velocity and absolute acceleration, the exact event list,
         peaks (exact, including between samples), slip time and energies.
+
+    Raises
+    ------
+    RecordInputError
+        A record the solver cannot take (:func:`record_timing`: complex or non-finite
+        samples, |a| beyond the solver's bound, ``dt_s`` out of range or disagreeing with
+        ``time_s`` …).
+    InvalidSystemError
+        Neither a ``system`` nor ``mu_static``; parameters outside their domain.
     """
     if system is None:
         if mu_static is None:
-            raise TypeError("give a System or mu_static")
+            raise InvalidSystemError("give a System or mu_static")
         kwargs = {} if gravity_m_s2 is None else {"gravity_m_s2": gravity_m_s2}
         system = System(mu_static=mu_static, mu_kinetic=mu_kinetic,
                         stiffness_per_mass=stiffness_per_mass, damping_per_mass=damping_per_mass, **kwargs)
-    acc = np.ascontiguousarray(acceleration_m_s2, dtype=np.float64)
-    if acc.ndim != 1:
-        raise RecordInputError(f"acceleration must be one-dimensional, got shape {acc.shape}")
-    if acc.size < 2:
-        raise RecordInputError("a record needs at least two samples")
-    if not np.all(np.isfinite(acc)):
-        raise RecordInputError("acceleration holds NaN or infinite values")
-    if time_s is not None:
-        times = np.asarray(time_s, dtype=np.float64)
-        if times.shape != acc.shape:
-            raise RecordInputError(f"time ({times.shape}) and acceleration ({acc.shape}) differ in length")
-        dt, relative_times = sample_timing(times)
-        t0 = float(times[0])
-    elif dt_s is not None:
-        dt = float(dt_s)
-        if not np.isfinite(dt) or dt <= 0.0:
-            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
-        t0 = 0.0
-        relative_times = None
-    else:
-        raise TypeError("give dt_s or time_s")
+    timing = record_timing(acceleration_m_s2, dt_s, time_s)
+    acc, dt, relative_times, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
 
     c = system.damping_per_mass
     kappa = system.stiffness_per_mass
