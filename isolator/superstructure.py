@@ -52,6 +52,8 @@ from isolator.errors import DesignError
 SUPERSTRUCTURE_KEYS = {
     "damping_ratio": "classical damping ratio ζ in every fixed-base mode [-], 0 <= ζ < 1",
     "floor": "array of tables [[superstructure.floor]], bottom to top",
+    "response_modification_R": "R of the seismic force-resisting system above the isolation (ASCE 7-22 Table "
+                               "12.2-1) [-], > 0, optional: the review's R_I = 3R/8 within [1, 2] (17.5.4.2)",
 }
 #: keys of one ``[[superstructure.floor]]`` entry
 FLOOR_KEYS = {
@@ -65,6 +67,8 @@ BEARING_KEYS = {
     "x_m": "bearing position along x from the centre of mass [m]",
     "y_m": "bearing position along y from the centre of mass [m]",
     "gravity_load_N": "gravity load on the bearing [N], > 0 (default: equal shares of W = g × mass_kg)",
+    "axial_capacity_N": "the bearing's vertical load capacity at the total maximum displacement [N], > 0, optional "
+                        "(the review's stability row, ASCE 7-22 17.2.4.6)",
 }
 #: The bearings' gravity loads, when given, must add up to W within this fraction [-].
 GRAVITY_SUM_TOLERANCE = 0.01
@@ -97,6 +101,8 @@ class Superstructure:
     floors: tuple
     damping_ratio: float
     gravity_m_s2: float
+    #: R of the lateral system above the isolation (ASCE 7-22 Table 12.2-1), if given (the review's R_I)
+    response_modification_R: float | None = None
 
     @property
     def n_floors(self) -> int:
@@ -179,6 +185,7 @@ class Superstructure:
     def as_dict(self) -> dict:
         """The superstructure's input and derived numbers (SI units)."""
         out = {"damping_ratio": self.damping_ratio, "mass_kg": self.mass_kg, "weight_N": self.weight_N,
+               "response_modification_R": self.response_modification_R,
                "floors": [{"mass_kg": f.mass_kg, "story_height_m": f.story_height_m,
                            "stiffness_x_N_per_m": f.stiffness_x_N_per_m,
                            "stiffness_y_N_per_m": f.stiffness_y_N_per_m} for f in self.floors]}
@@ -202,6 +209,8 @@ class BearingLayout:
     x_m: tuple
     y_m: tuple
     gravity_loads_N: tuple
+    #: each bearing's vertical load capacity at the total maximum displacement [N], if given (17.2.4.6)
+    axial_capacities_N: tuple | None = None
 
     @property
     def n_bearings(self) -> int:
@@ -250,7 +259,8 @@ class BearingLayout:
                 "y_for_loading_y_m": float(np.max(np.abs(x)))}
 
     def as_dict(self) -> dict:
-        return {"x_m": list(self.x_m), "y_m": list(self.y_m), "gravity_load_N": list(self.gravity_loads_N)}
+        return {"x_m": list(self.x_m), "y_m": list(self.y_m), "gravity_load_N": list(self.gravity_loads_N),
+                "axial_capacity_N": None if self.axial_capacities_N is None else list(self.axial_capacities_N)}
 
 
 def bearing_axial_loads(layout: BearingLayout, moment_x_Nm, time_s, *, moment_y_Nm=None,
@@ -397,7 +407,9 @@ def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, sourc
     if not floors_mass < total_mass_kg:
         raise DesignError(f"{where}: the floors weigh {floors_mass:g} kg, not less than the design's mass_kg = "
                           f"{total_mass_kg:g} kg (the total isolated mass: the base slab is the rest)")
-    return Superstructure(floors=tuple(floors), damping_ratio=zeta, gravity_m_s2=float(gravity_m_s2))
+    r = _number(table, "response_modification_R", where, SUPERSTRUCTURE_KEYS, required=False)
+    return Superstructure(floors=tuple(floors), damping_ratio=zeta, gravity_m_s2=float(gravity_m_s2),
+                          response_modification_R=r)
 
 
 def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
@@ -425,13 +437,14 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
     where = f"{source}: [[bearing_position]]"
     if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
         raise DesignError(f"{where} must be an array of tables with x_m, y_m (and gravity_load_N)")
-    xs, ys, loads = [], [], []
+    xs, ys, loads, capacities = [], [], [], []
     for number, entry in enumerate(entries, start=1):
         here = f"{source}: bearing_position {number}"
         _unknown(entry, BEARING_KEYS, here)
         xs.append(_number(entry, "x_m", here, BEARING_KEYS, positive=False))
         ys.append(_number(entry, "y_m", here, BEARING_KEYS, positive=False))
         loads.append(_number(entry, "gravity_load_N", here, BEARING_KEYS, required=False))
+        capacities.append(_number(entry, "axial_capacity_N", here, BEARING_KEYS, required=False))
         for other in range(number - 1):
             if xs[other] == xs[-1] and ys[other] == ys[-1]:
                 raise DesignError(f"{here}: at the same place as bearing_position {other + 1} "
@@ -453,7 +466,12 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
     if len(xs) < 3 or spread < 3:
         raise DesignError(f"{where}: the {len(xs)} bearing(s) do not span the plan (at least three, not on one "
                           "line, for the rigid-slab statics)")
-    return BearingLayout(x_m=tuple(xs), y_m=tuple(ys), gravity_loads_N=tuple(float(v) for v in loads))
+    if any(c is not None for c in capacities) and not all(c is not None for c in capacities):
+        missing = [c is not None for c in capacities].index(False) + 1
+        raise DesignError(f"{source}: bearing_position {missing}: missing key 'axial_capacity_N' (give it for every "
+                          "bearing or for none)")
+    return BearingLayout(x_m=tuple(xs), y_m=tuple(ys), gravity_loads_N=tuple(float(v) for v in loads),
+                         axial_capacities_N=tuple(capacities) if capacities and capacities[0] is not None else None)
 
 
 def review_inputs(design) -> dict:

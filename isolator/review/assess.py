@@ -22,7 +22,7 @@ BOUNDS = ("lower", "upper")
 def _per_bound(results: dict, n_for_mean: int) -> dict:
     ok = [r for r in results.values() if "error" not in r]
     d = C.suite_value([r["peak_displacement_m"] for r in ok], n_for_mean)
-    return {
+    return {**_structure_values(results, n_for_mean), **{
         "D_M_rha_m": d["value"], "rule": d["rule"], "n": d["n"],
         "residual_displacement_m": C.suite_value([abs(r["residual_displacement_m"]) for r in ok], n_for_mean)["value"],
         "base_shear_coefficient": C.suite_value([r["base_shear_coefficient"] for r in ok], n_for_mean)["value"],
@@ -32,7 +32,36 @@ def _per_bound(results: dict, n_for_mean: int) -> dict:
         "n_uplifts": int(sum(r.get("n_uplifts", 0) for r in ok)),
         "models": sorted({r.get("model", "") for r in ok}),
         "spread": {key: C.spread([r[key] for r in ok]) for key in ("peak_displacement_m", "base_shear_coefficient")},
-    }
+    }}
+
+
+def _per_item(ok: list, key: str, n_for_mean: int, *, smallest: bool = False) -> list[float]:
+    """The suite value of each entry of a per-story / per-floor / per-bearing list (mean of ≥ n, else the most
+    unfavourable: the maximum, or the minimum when ``smallest``)."""
+    size = len(ok[0][key])
+    sign = -1.0 if smallest else 1.0
+    return [sign * C.suite_value([sign * r[key][i] for r in ok], n_for_mean)["value"] for i in range(size)]
+
+
+def _structure_values(results: dict, n_for_mean: int) -> dict:
+    """A building's suite values per bound (story drift ratios, floor accelerations, superstructure shear, bearing
+    loads) from the analyses' rows; empty when the analyses carry none (a rigid block)."""
+    ok = {name: r for name, r in results.items() if "error" not in r and r.get("story_drift_ratio") is not None}
+    if not ok:
+        return {}
+    rows = list(ok.values())
+    out = {"story_drift_ratio": _per_item(rows, "story_drift_ratio", n_for_mean),
+           "floor_peak_acceleration_m_s2": _per_item(rows, "floor_peak_acceleration_m_s2", n_for_mean),
+           "superstructure_shear_coefficient": C.suite_value([r["superstructure_shear_coefficient"] for r in rows],
+                                                             n_for_mean)["value"]}
+    if all(r.get("bearing_axial_load_min_N") is not None for r in rows):
+        out["bearing_axial_load_min_N"] = _per_item(rows, "bearing_axial_load_min_N", n_for_mean, smallest=True)
+        out["bearing_axial_load_max_N"] = _per_item(rows, "bearing_axial_load_max_N", n_for_mean)
+        lifted = [name for name, r in ok.items() if r.get("n_bearings_uplifted")]
+        single = min(((min(r["bearing_axial_load_min_N"]), name) for name, r in ok.items()))
+        out["uplift_analyses"] = lifted
+        out["bearing_axial_load_min_single_N"] = {"value": single[0], "pair": single[1]}
+    return out
 
 
 def _governing(values: dict, key: str) -> tuple[float, str]:
@@ -71,13 +100,19 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     residual, _ = _governing(bounded, "residual_displacement_m")
     torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p})
     elf = {b: {**review.elf[b], "D_TM_m": review.elf[b]["D_M_m"] * torsion["factor"]} for b in review.elf}
+    for b in elf:  # a flexible superstructure: D'_M of Eq. 17.6-1 may replace D_M in the 17.6.4.1 floor
+        if "D_M_prime_m" in elf[b]:
+            elf[b]["D_TM_prime_m"] = elf[b]["D_M_prime_m"] * torsion["factor"]
     elf_d_tm = max((elf[b]["D_TM_m"] for b in BOUNDS if math.isfinite(elf[b]["D_TM_m"])), default=math.nan)
+    floor_key = "D_TM_prime_m" if all("D_TM_prime_m" in elf[b] for b in BOUNDS) else "D_TM_m"
+    elf_floor_basis = max((elf[b][floor_key] for b in BOUNDS if math.isfinite(elf[b][floor_key])), default=math.nan)
     rha_d_tm = d_m * torsion["factor"]
-    floor = p.get("f_disp", 0.0) * elf_d_tm if code == "asce7-22" else 0.0
+    floor = p.get("f_disp", 0.0) * elf_floor_basis if code == "asce7-22" else 0.0
     d_tm_value = max(rha_d_tm, floor) if math.isfinite(floor) else rha_d_tm
     rule = values[d_bound]["rule"] if d_bound in values else "none"
     n = values[d_bound]["n"] if d_bound in values else 0
-    design_values = {**values, "torsion": torsion, "elf_D_TM_m": elf_d_tm, "envelope": {
+    design_values = {**values, "torsion": torsion, "elf_D_TM_m": elf_d_tm, "elf_floor_basis": {
+        "key": floor_key, "value_m": elf_floor_basis}, "structure": _structure_envelope(values), "envelope": {
         "D_M_rha_m": d_m, "D_M_bound": d_bound, "rule": rule, "n": n, "V_b_over_W": v_b, "V_b_bound": v_bound,
         "residual_displacement_m": residual,
         "D_TM": {"value": d_tm_value, "rha_m": rha_d_tm, "elf_floor_m": floor,
@@ -86,6 +121,34 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     view = SimpleNamespace(**{**vars(review), "elf": elf, "design_values": design_values})
     checks = (_asce_checks if code == "asce7-22" else _en_checks)(view, values, designs)
     return {"design_values": design_values, "elf": elf, "checks": checks}
+
+
+def _structure_envelope(values: dict) -> dict:
+    """The building's design values over the bounds: the larger (smaller for the bearings' least load) of each
+    story, floor and bearing, and the bound that governs the largest."""
+    built = {b: v for b, v in values.items() if "story_drift_ratio" in v}
+    if not built:
+        return {}
+
+    def envelope(key, pick=max):
+        per = list(zip(*(built[b][key] for b in built), strict=True))
+        return [pick(items) for items in per]
+
+    out = {"story_drift_ratio": envelope("story_drift_ratio"),
+           "floor_peak_acceleration_m_s2": envelope("floor_peak_acceleration_m_s2")}
+    drift_bound = max(built, key=lambda b: max(built[b]["story_drift_ratio"]))
+    out["story_drift_bound"] = drift_bound
+    shear_bound = max(built, key=lambda b: built[b]["superstructure_shear_coefficient"])
+    out["superstructure_shear_coefficient"] = built[shear_bound]["superstructure_shear_coefficient"]
+    out["superstructure_shear_bound"] = shear_bound
+    if all("bearing_axial_load_min_N" in v for v in built.values()):
+        out["bearing_axial_load_min_N"] = envelope("bearing_axial_load_min_N", min)
+        out["bearing_axial_load_max_N"] = envelope("bearing_axial_load_max_N")
+        out["uplift_analyses"] = [f"{name} ({b})" for b, v in built.items() for name in v["uplift_analyses"]]
+        single = min(((v["bearing_axial_load_min_single_N"]["value"], v["bearing_axial_load_min_single_N"]["pair"], b)
+                      for b, v in built.items()))
+        out["bearing_axial_load_min_single_N"] = {"value": single[0], "pair": single[1], "bound": single[2]}
+    return out
 
 
 def _asce_defaults() -> dict:
@@ -136,7 +199,9 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
     p, design = review.parameters, review.design
     env = review.design_values["envelope"]
     rows = []
-    if design.is_pendulum:
+    if asce7_22.is_multisurface(design):
+        rows.append(_surface_d_over_r(review, p["D_over_R_max"]))
+    elif design.is_pendulum:
         rows.append(C.at_most("D_over_R", "small-angle pendulum (practice)", d_tm_design / design.radius_m,
                               p["D_over_R_max"], f"design total displacement / R = {design.radius_m:g} m", "-"))
     else:
@@ -149,9 +214,46 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
     rows.append(C.at_most("transmitted_over_pga", "isolation effectiveness (practice)", ratio,
                           p["transmitted_over_pga_max"],
                           "largest peak transmitted acceleration / resultant PGA of the scaled pair, any bound", "-"))
-    rows.append(C.uplift(sum(v["n_uplifts"] for v in values.values()),
-                         sum(pair.az_m_s2 is not None for pair in review.suite.pairs)))
+    rows.append(_uplift_row(review, values))
     return rows
+
+
+def _uplift_row(review, values: dict) -> dict:
+    """17.2.4.7 from the bearings' axial loads (a building with [[bearing_position]]), else not checked."""
+    s = review.design_values.get("structure", {})
+    n_vertical = sum(v["n_uplifts"] for v in values.values())
+    n_pairs = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
+    if "bearing_axial_load_min_N" not in s:
+        return C.uplift(n_vertical, n_pairs)
+    loads = s["bearing_axial_load_min_N"]
+    k = int(np.argmin(loads))
+    env = review.design_values["envelope"]
+    single = s["bearing_axial_load_min_single_N"]
+    lifted = s["uplift_analyses"]
+    detail = (f"bearing {k + 1}'s least load, {env['rule']} of {env['n']} analyses per bound, the smaller bound; "
+              f"{len(lifted)} analysis(es) lift a bearing"
+              + (f" ({', '.join(lifted[:4])}{' …' if len(lifted) > 4 else ''})" if lifted else "")
+              + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)")
+    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail)
+
+
+def _surface_d_over_r(review, limit: float) -> dict:
+    """D/R of a double or triple pendulum, surface by surface: the largest d_i/R_i over the analyses (each surface's
+    peak displacement on its own radius)."""
+    radii = [surface.radius_m for surface in review.design.bearing.surfaces]
+    worst, where = math.nan, ""
+    for bound, results in review.analyses.items():
+        for name, r in results.items():
+            peaks = r.get("surface_peak_displacement_m")
+            if "error" in r or not peaks:
+                continue
+            ratios = [d / radius for d, radius in zip(peaks, radii, strict=True)]
+            i = int(np.argmax(ratios))
+            if not ratios[i] <= worst:
+                worst, where = ratios[i], f"surface {i + 1}, {name}, {bound} bound"
+    return C.at_most("D_over_R", "small-angle pendulum (practice)", worst, limit,
+                     f"largest peak displacement on a surface / its radius over the analyses ({where})"
+                     if where else "no analysis gave the surfaces' peak displacements", "-")
 
 
 def _asce_checks(review, values: dict, designs: dict) -> list:
@@ -166,25 +268,58 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                           f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest single "
                           f"analysis {largest:.3g} m" + (
                               "; " + capacity_note if capacity_note else ""), "m"))
-    rows += C.record_capacity(review.analyses, cap)
-    rows.append(C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
-                          f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
-                          f"{p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"))
-    rows.append(C.at_least("D_TM_elf_floor", "ASCE 7-22 17.6.4.1", d_tm["rha_m"], d_tm["elf_floor_m"],
-                           f"RHA total displacement ≥ {p['f_disp']:g} × D_TM (ELF) = {p['f_disp']:g} × "
-                           f"{review.design_values['elf_D_TM_m']:.4g} m; below it the floor is used", "m"))
+    reached = C.ultimate_reached(review.analyses)
+    rows[-1] = C.never_pass_at_ultimate(rows[-1], reached)
+    rows += C.record_capacity(review.analyses, cap, mass_kg=design.mass_kg)
+    d_tm_row = C.never_pass_at_ultimate(
+        C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
+                  f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
+                  f"{p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"), reached)
+    beyond = [b for b in ("lower", "upper") if elf[b].get("beyond_ultimate")]
+    if beyond and d_tm_row["status"] != C.FAIL:
+        d_tm_row = {**d_tm_row, "status": C.FAIL, "note": d_tm_row["note"] + f"; the ELF demand of the "
+                    f"{' and '.join(beyond)} bound exceeds the bearing's ultimate displacement"}
+    rows.append(d_tm_row)
+    basis = review.design_values["elf_floor_basis"]
+    prime = basis["key"] == "D_TM_prime_m"
+    rows.append(C.at_least("D_TM_elf_floor", "ASCE 7-22 17.6.4.1" + (" (Eq. 17.6-1)" if prime else ""), d_tm["rha_m"],
+                           d_tm["elf_floor_m"],
+                           f"RHA total displacement ≥ {p['f_disp']:g} × "
+                           + (f"D'_TM (ELF, D'_M = D_M/√(1 + (T/T_M)²), T = {review.structure['T_fixed_s']:.4g} s "
+                              f"the superstructure's fixed-base period) = {p['f_disp']:g} × {basis['value_m']:.4g} m"
+                              if prime else f"D_TM (ELF) = {p['f_disp']:g} × {review.design_values['elf_D_TM_m']:.4g} m")
+                           + "; below it the floor is used", "m"))
     ratios = {b: asce7_22.restoring_force_ratio(designs[b], values[b]["D_M_rha_m"]) for b in ("lower", "upper")}
-    b_min = min(ratios, key=ratios.get)
+    b_min = min(ratios, key=lambda b: ratios[b] if math.isfinite(ratios[b]) else math.inf)
     rows.append(C.restoring_force(ratios[b_min], p["restoring_min"], displacement_m=values[b_min]["D_M_rha_m"],
-                                  radius_m=design.radius_m))
+                                  radius_m=None if asce7_22.is_multisurface(design) else design.radius_m))
     elf_vb = max(elf[b]["V_b_over_W"] for b in ("lower", "upper"))
     rows.append(C.at_least("base_shear_elf_floor", "ASCE 7-22 17.6.4.2", env["V_b_over_W"], p["f_below"] * elf_vb,
                            f"RHA isolation-system shear / W ({env['V_b_bound']} bound) ≥ {p['f_below']:g} V_b/W (ELF "
                            f"{elf_vb:.4g})", "V/W"))
     v_s = max(elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper"))
-    rows.append(C.superstructure_shear(v_s, p["f_above_rha"]))
-    rows += asce7_22.requirement_rows(elf, p, mu_static_lower=designs["lower"].mu_static,
-                                      mu_static_upper=designs["upper"].mu_static, mu_static_nominal=design.mu_static)
+    activation = {b: asce7_22.activation_force_per_weight(designs[b]) for b in designs}
+    rows.append(_superstructure_shear_row(review, v_s, activation))
+    s = review.design_values.get("structure", {})
+    drift = s.get("story_drift_ratio")
+    story = int(np.argmax(drift)) if drift else 0
+    layout = design.bearing_layout
+    loads = None if "bearing_axial_load_max_N" not in s else {
+        "max": s["bearing_axial_load_max_N"],
+        "capacity": None if layout is None or layout.axial_capacities_N is None else list(layout.axial_capacities_N),
+        "note": f"{env['rule']} of {env['n']} analyses per bound, the larger bound"}
+    rows += asce7_22.requirement_rows(
+        elf, p, mu_static_lower=asce7_22.breakaway_force_per_weight(designs["lower"]),
+        mu_static_upper=activation["upper"], mu_static_nominal=activation.get("nominal", activation["lower"]),
+        story_drift_ratio=drift[story] if drift else None,
+        story_drift_note=(f"story {story + 1} of {len(drift)} (from the bottom), {env['rule']} of {env['n']} analyses "
+                          f"per bound, {s.get('story_drift_bound')} bound; limit drift_limit_rha [U]") if drift else "",
+        bearing_axial_loads_N=loads)
+    accel = s.get("floor_peak_acceleration_m_s2")
+    rows.append(C.floor_acceleration(
+        max(accel) if accel else None,
+        ("per floor, bottom to top: " + ", ".join(f"{a:.3g}" for a in accel)
+         + f" m/s² ({env['rule']} of {env['n']} per bound, the larger bound)") if accel else ""))
     rows.append(C.check("separation", "ASCE 7-22 17.2.5.2 [U]", C.NOT_CHECKED, None, d_tm["value"],
                         "the moat (separation to retaining walls) must be ≥ the design total displacement; not an "
                         "input of the review", "m"))
@@ -193,6 +328,28 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                         f"{review.bounds.lambda_min:.3g} / λ_max {review.bounds.lambda_max:.3g}; reviewer's list",
                         "m"))
     return rows + _common_back(review, values, d_tm["value"])
+
+
+def _superstructure_shear_row(review, v_s: float, activation: dict) -> dict:
+    """17.6.4.2: the suite's superstructure shear / R_I against f_above V_s and the 17.5.4.3 limits it computes."""
+    p, elf = review.parameters, review.elf
+    limits = {}
+    v_act = asce7_22.activation_shear_over_w(activation["upper"], activation.get("nominal", activation["lower"]))
+    act = [asce7_22.activation_superstructure_shear_over_w(v_act, elf[b]["beta_M"], p)
+           for b in ("lower", "upper") if math.isfinite(elf[b].get("beta_M", math.nan))]
+    if act:
+        limits[f"17.5.4.3(3) activation V_st/W = {max(act):.4g}"] = max(act)
+    if p.get("wind_shear_over_W") is not None:
+        limits[f"17.5.4.3(2) wind V/W = {p['wind_shear_over_W']:.4g}"] = p["wind_shear_over_W"]
+    s = review.design_values.get("structure", {})
+    coefficient = s.get("superstructure_shear_coefficient")
+    ws = p.get("Ws_over_W", 1.0)
+    rha = None if coefficient is None else coefficient * ws
+    env = review.design_values["envelope"]
+    note = (f"first-story shear / W_s {coefficient:.4g} × W_s/W {ws:.4g}, {env['rule']} of {env['n']} analyses per "
+            f"bound, {s.get('superstructure_shear_bound')} bound; f_above_rha = {p['f_above_rha']:g} (regular; 0.8 "
+            "irregular); 17.5.4.3(1) not computed (V_s_fixed_base_limit)") if rha is not None else ""
+    return C.superstructure_shear(v_s, p["f_above_rha"], rha, limits=limits, r_i=p["R_I"], note=note)
 
 
 def _en_checks(review, values: dict, designs: dict) -> list:

@@ -25,16 +25,20 @@ def _finite_or_none(value):
     return None if isinstance(value, float) and not math.isfinite(value) else value
 
 
+def _missing(number) -> bool:
+    return number is None or (isinstance(number, float) and math.isnan(number))
+
+
 def at_most(id_, clause, value, limit, note="", unit="") -> dict:
-    """value ≤ limit passes (no limit or no value: not checked)."""
-    if limit is None or value is None or (isinstance(value, float) and math.isnan(value)):
+    """value ≤ limit passes (no limit or no value — None or NaN: not checked)."""
+    if _missing(limit) or _missing(value):
         return check(id_, clause, NOT_CHECKED, value, limit, note, unit)
     return check(id_, clause, PASS if value <= limit else FAIL, value, limit, note, unit)
 
 
 def at_least(id_, clause, value, limit, note="", unit="") -> dict:
-    """value ≥ limit passes (no limit or no value: not checked)."""
-    if limit is None or value is None or (isinstance(value, float) and math.isnan(value)):
+    """value ≥ limit passes (no limit or no value — None or NaN: not checked)."""
+    if _missing(limit) or _missing(value):
         return check(id_, clause, NOT_CHECKED, value, limit, note, unit)
     return check(id_, clause, PASS if value >= limit else FAIL, value, limit, note, unit)
 
@@ -101,7 +105,8 @@ def usable_band(pairs: list, range_hi_s: float, factor: float = 1.25) -> dict:
     return check("usable_band", clause, PASS, shortest, range_hi_s, note, "s")
 
 
-def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_load_N: float | None = None) -> dict:
+def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_load_N: float | None = None, *,
+           detail: str = "") -> dict:
     """Bearing uplift (ASCE 7-22 17.2.4.7 [U]): from overturning, so from the bearings' axial loads.
 
     Parameters
@@ -114,6 +119,8 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
     min_axial_load_N : float, optional
         Smallest bearing axial compression over every analysis [N] — the hook for a superstructure and
         bearing layout model (positive: compression).  Without it the row is ``not checked``.
+    detail : str
+        What the value is (suite rule, bearing, bound) and how many analyses lifted a bearing.
     """
     clause = "ASCE 7-22 17.2.4.7 [U]"
     vertical = (f"the rigid block's normal force g + a_z vanished in {n_vertical_exceedances} episode(s) over "
@@ -125,38 +132,117 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
                      "uplift comes from overturning: needs the bearings' axial loads (a superstructure and bearing "
                      "layout); " + vertical, "N")
     return at_least("uplift", clause, float(min_axial_load_N), 0.0,
-                    "smallest bearing axial compression over the analyses (uplift if < 0); " + vertical, "N")
+                    "smallest bearing axial compression (uplift if < 0; 17.2.4.7 permits local uplift only where "
+                    "the resulting deflections cause no overstress or instability)"
+                    + (f": {detail}" if detail else "") + "; " + vertical, "N")
 
 
 def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: float | None = None,
-                         clause: str = "ASCE 7-22 17.6.4.2") -> dict:
-    """RHA superstructure shear ≥ ``f_above`` × ELF V_s (17.6.4.2); not checked without an RHA superstructure.
+                         clause: str = "ASCE 7-22 17.6.4.2", *, limits: dict | None = None, r_i: float = 1.0,
+                         note: str = "") -> dict:
+    """RHA superstructure design shear ≥ ``f_above`` × ELF V_s and ≥ the 17.5.4.3 limits (17.6.4.2).
 
-    The limit is ``f_above`` × the ELF V_s/W; the value is the response-history superstructure shear /W
-    — never the ELF V_s itself.
+    The value is the response-history superstructure shear / W reduced by R_I (the elastic first-story shear of
+    the suite, divided by R_I as for the ELF V_s = V_st / R_I [U]) — never the ELF V_s itself; without it the
+    row is ``not checked``.
+
+    Parameters
+    ----------
+    v_s_elf_over_w : float
+        ELF V_s / W (Eq. 17.5-6), the larger bound [-].
+    f_above : float
+        17.6.4.2's fraction of V_s for response-history analysis (0.6 regular, 0.8 irregular) [-].
+    rha_over_w : float, optional
+        The suite's elastic superstructure shear / W (design value, larger bound) [-].
+    limits : dict, optional
+        The 17.5.4.3 limits that the review computes, name → V/W [-]: the limit is the largest of these
+        and ``f_above`` × V_s, and the note names which governs.
+    r_i : float
+        R_I of 17.5.4.2 [-].
+    note : str
+        What the value is made of (suite rule, bound).
     """
-    limit = f_above * v_s_elf_over_w if v_s_elf_over_w is not None and math.isfinite(v_s_elf_over_w) else None
-    if rha_over_w is None:
+    candidates = {}
+    if v_s_elf_over_w is not None and math.isfinite(v_s_elf_over_w):
+        candidates[f"{f_above:g} × ELF V_s/W = {f_above:g} × {v_s_elf_over_w:.4g}"] = f_above * v_s_elf_over_w
+    for name, value in (limits or {}).items():
+        if value is not None and math.isfinite(value):
+            candidates[name] = value
+    limit, governs = (max(candidates.values()), max(candidates, key=candidates.get)) if candidates else (None, "")
+    if rha_over_w is None or not math.isfinite(rha_over_w):
         return check("superstructure_shear", clause, NOT_CHECKED, None, limit,
-                     f"needs the superstructure shear of the response histories (a superstructure model); limit "
-                     f"{f_above:g} × ELF V_s/W = {f_above:g} × {v_s_elf_over_w:.4g}", "V/W")
-    return at_least("superstructure_shear", clause, rha_over_w, limit,
-                    f"RHA superstructure shear / W ≥ {f_above:g} × ELF V_s/W", "V/W")
+                     "needs the superstructure shear of the response histories (a design with a [superstructure] "
+                     f"analysed by the building model); limit {governs or 'none (no ELF V_s)'}", "V/W")
+    value = rha_over_w / r_i
+    return at_least("superstructure_shear", clause, value, limit,
+                    f"RHA superstructure shear / W ÷ R_I = {rha_over_w:.4g} / {r_i:g} [U: RHA forces reduced by R_I]"
+                    + (f" ({note})" if note else "") + f" ≥ the largest of 17.6.4.2 and the 17.5.4.3 limits: "
+                    f"{governs} governs", "V/W")
 
 
-def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASCE 7-22 17.2.4.5 / 17.6.3.4 [U]"
-                    ) -> list[dict]:
-    """One ``fail`` row per analysis (pair × bound) whose peak displacement exceeds the capacity.
+def story_drift(drift_ratio: float | None, limit: float | None, note: str = "",
+                clause: str = "ASCE 7-22 17.6.4.4 [U]") -> dict:
+    """Largest story drift / story height of the suite ≤ ``limit`` (0.020 with RHA; 17.6.4.4 [U])."""
+    if drift_ratio is None or not math.isfinite(drift_ratio):
+        return check("story_drift", clause, NOT_CHECKED, None, limit,
+                     "needs the superstructure's story drifts (a design with a [superstructure] analysed by the "
+                     "building model)", "h_sx")
+    return at_most("story_drift", clause, drift_ratio, limit, note, "h_sx")
+
+
+def floor_acceleration(peak_m_s2: float | None, note: str = "",
+                       clause: str = "ASCE 7-22 13.3.1 (nonstructural components; reported) [U]") -> dict:
+    """The suite's largest absolute floor acceleration: reported for the nonstructural components (no Ch. 17 limit),
+    so always ``not checked``, with the value when the building model gave it."""
+    if peak_m_s2 is None or not math.isfinite(peak_m_s2):
+        return check("floor_acceleration", clause, NOT_CHECKED, None, None,
+                     "needs the floors' accelerations (a design with a [superstructure])", "m/s²")
+    return check("floor_acceleration", clause, NOT_CHECKED, peak_m_s2, None,
+                 "reported, not a Chapter 17 check (the input of Chapter 13's nonstructural forces): " + note, "m/s²")
+
+
+def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, note: str = "",
+                            clause: str = "ASCE 7-22 17.2.4.6") -> dict:
+    """Each bearing's largest axial compression (suite value) ≤ its vertical load capacity at the total displacement.
+
+    The value is the largest demand ratio P_max / capacity over the bearings; ``not checked`` without the loads
+    (a superstructure and ``[[bearing_position]]``) or the capacities (``axial_capacity_N``).
+    """
+    if max_load_N is None:
+        return check("vertical_load_stability", clause, NOT_CHECKED,
+                     note="needs each bearing's maximum vertical load (dead, live, seismic overturning) at the total "
+                          "displacement: a [superstructure] and [[bearing_position]] analysed by the building model")
+    if capacities_N is None:
+        return check("vertical_load_stability", clause, NOT_CHECKED, max(max_load_N), None,
+                     "bearing axial loads are known (largest shown) but the design gives no axial_capacity_N in "
+                     "[[bearing_position]] (the bearings' vertical load capacity at the total displacement)", "N")
+    ratios = [p / c for p, c in zip(max_load_N, capacities_N, strict=True)]
+    k = int(np.argmax(ratios))
+    return at_most("vertical_load_stability", clause, ratios[k], 1.0,
+                   f"bearing {k + 1}: P_max {max_load_N[k]:.4g} N / capacity {capacities_N[k]:.4g} N (gravity share "
+                   "as given + overturning of the floors' inertia forces; the factored combinations of 2.3.6 are the "
+                   "engineer's gravity_load_N)" + (f"; {note}" if note else ""), "×capacity")
+
+
+def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASCE 7-22 17.2.4.5 / 17.6.3.4 [U]",
+                    *, mass_kg: float | None = None) -> list[dict]:
+    """One ``fail`` row per analysis (pair × bound) whose peak displacement exceeds the capacity, or that reached
+    the bearing's ultimate displacement (a double or triple pendulum's rims: ``ultimate_displacement_reached``).
 
     When none does, one ``pass`` row with the largest single displacement; ``not checked`` without a
-    capacity.  Beyond the capacity the analysed motion is not physical: no restrainer is modelled.
+    capacity.  Beyond the capacity the analysed motion is not physical: no restrainer is modelled.  At the
+    ultimate displacement the bearing's rims stop the motion (plastic impact): its peak equals the capacity,
+    so it never passes.
 
     Parameters
     ----------
     analyses : dict
-        bound → pair → result (``peak_displacement_m``; failed analyses carry ``error``).
+        bound → pair → result (``peak_displacement_m``; ``ultimate_displacement_reached`` and
+        ``impact_impulse_m_s`` for a bearing with rims; failed analyses carry ``error``).
     capacity_m : float or None
-        Displacement capacity of the bearing [m].
+        Displacement capacity of the bearing [m] (a double or triple pendulum's ultimate Σ d*).
+    mass_kg : float, optional
+        The isolated mass M [kg], for the impulse M Σ|V| in the note.
     """
     rows = []
     largest, where = -math.inf, ""
@@ -167,7 +253,15 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
                 continue
             if d > largest:
                 largest, where = d, f"{name}, {bound} bound"
-            if capacity_m is not None and d > capacity_m:
+            if r.get("ultimate_displacement_reached"):
+                impulse = r.get("impact_impulse_m_s")
+                said = "" if impulse is None else (f"; impulse {impulse * mass_kg:.4g} N·s" if mass_kg
+                                                   else f"; impulse {impulse:.4g} m/s per unit mass")
+                rows.append(check("record_capacity", clause, FAIL, d, capacity_m,
+                                  f"{name}, {bound} bound: the bearing REACHED its ultimate displacement (every slider "
+                                  f"on its rim; plastic impact{said}): the demand is at least the capacity",
+                                  "m") | {"pair": name, "bound": bound})
+            elif capacity_m is not None and d > capacity_m:
                 rows.append(check("record_capacity", clause, FAIL, d, capacity_m,
                                   f"{name}, {bound} bound: D = {d:.4g} m > capacity {capacity_m:.4g} m; the result "
                                   "assumes no restrainer (none is modelled) and is not physical beyond the capacity",
@@ -181,6 +275,23 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
                       f"no displacement_capacity_m in the design; largest single analysis {where}", "m")]
     return [check("record_capacity", clause, PASS, largest, capacity_m,
                   f"every analysis within the capacity; largest {where}", "m")]
+
+
+def ultimate_reached(analyses: dict) -> list[str]:
+    """"pair (bound)" of every analysis that reached the bearing's ultimate displacement."""
+    return [f"{name} ({bound})" for bound, results in analyses.items() for name, r in results.items()
+            if "error" not in r and r.get("ultimate_displacement_reached")]
+
+
+def never_pass_at_ultimate(row: dict, reached: list[str]) -> dict:
+    """A capacity row that cannot pass when an analysis reached the ultimate displacement (its peak is held at the
+    rim, so the suite value understates the demand): ``fail``, naming the analyses."""
+    if not reached or row["status"] == FAIL:
+        return row
+    return {**row, "status": FAIL,
+            "note": row["note"] + f"; {len(reached)} analysis(es) reached the bearing's ultimate displacement "
+                                  f"({', '.join(reached[:4])}{' …' if len(reached) > 4 else ''}): their peaks are "
+                                  "held at the rims, so the suite value understates the demand"}
 
 
 def spread(values) -> dict:

@@ -213,8 +213,49 @@ def _coerce(name: str, value, default):
     return number
 
 
-def table(code: str, values: dict) -> list[dict]:
-    """Rows {name, value, default, mark, rule, meaning} of the parameters used."""
+#: Parameters a design's superstructure fixes (ASCE 7-22 17.5.4.2): then they are the design's, not assumed.
+FROM_DESIGN = ("Ws_over_W", "R_I")
+
+
+def from_design(code: str, values: dict, design, overrides: dict | None = None) -> tuple[dict, dict]:
+    """The parameter values with those the design's ``[superstructure]`` fixes, and where each came from.
+
+    ``Ws_over_W`` = Σ m_i / ``mass_kg`` (W_s = g Σ m_i, 17.5.4.2) whenever the design has a superstructure;
+    ``R_I`` = 3R/8 within [1, 2] (17.5.4.2) when it gives ``response_modification_R``.
+
+    Returns
+    -------
+    tuple
+        ``(values, sources)``: ``sources`` maps a parameter taken from the design to the sentence that says how.
+
+    Raises
+    ------
+    ReviewError
+        ``--set`` of a parameter the design fixes (the design and the override would disagree silently).
+    """
+    s = getattr(design, "superstructure", None)
+    if code != "asce7-22" or s is None:
+        return values, {}
+    fixed = {"Ws_over_W": (s.mass_kg / design.mass_kg,
+                           f"the design's {s.n_floors} floors: Σ m_i / mass_kg = {s.mass_kg:.6g} / "
+                           f"{design.mass_kg:.6g} kg (17.5.4.2)")}
+    r = getattr(s, "response_modification_R", None)
+    if r is not None:
+        fixed["R_I"] = (min(max(3.0 * r / 8.0, 1.0), 2.0),
+                        f"3R/8 within [1, 2] with the design's R = {r:g} (17.5.4.2)")
+    clash = [name for name in fixed if name in (overrides or {})]
+    if clash:
+        raise ReviewError(f"review parameter '{clash[0]}' is fixed by the design's [superstructure] "
+                          f"({fixed[clash[0]][0]:.4g}: {fixed[clash[0]][1]}); remove --set {clash[0]}")
+    return {**values, **{name: value for name, (value, _) in fixed.items()}}, \
+        {name: basis for name, (_, basis) in fixed.items()}
+
+
+def table(code: str, values: dict, sources: dict | None = None) -> list[dict]:
+    """Rows {name, value, default, mark, rule, meaning, source} of the parameters used (``source``: "design …"
+    for a value the design fixes, "set" for an override, "default" otherwise — the caller knows overrides)."""
+    sources = sources or {}
     return [{"name": name, "value": values[name], "default": PARAMETERS[name].default, "mark": PARAMETERS[name].mark,
-             "rule": PARAMETERS[name].rule, "meaning": PARAMETERS[name].meaning}
+             "rule": PARAMETERS[name].rule, "meaning": PARAMETERS[name].meaning,
+             **({"source": f"design: {sources[name]}"} if name in sources else {})}
             for name in values if name in PARAMETERS]

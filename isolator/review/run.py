@@ -31,6 +31,8 @@ SCHEMA_VERSION = 2
 #: Which schema the review's JSON follows (an analysis' is ``"isolator.analysis"``, with its own version).
 SCHEMA_NAME = "isolator.review"
 PLOT_PERIODS_S = np.geomspace(0.05, 10.0, 90)
+#: Errors of an analysis that say the engine cannot take the scene (not a record's fault): the review stops.
+ENGINE_REFUSALS = ("InvalidSystemError:",)
 
 
 @dataclass
@@ -59,6 +61,8 @@ class Review:
     paper_map: dict | None = None  #: the paper's regime map and the pairs' equivalent points (context)
     trace: dict = field(default_factory=dict)  #: software, inputs {path: sha256}, run (the arguments)
     required_ratio: float | None = None  #: suite average / target required (110 % for a matched suite)
+    parameter_sources: dict = field(default_factory=dict)  #: parameters the design fixes → how (17.5.4.2)
+    structure: dict = field(default_factory=dict)  #: the superstructure's ELF inputs (W_s/W, T_fixed, R_I)
 
     # ---- JSON ------------------------------------------------------------------------------
 
@@ -85,7 +89,7 @@ class Review:
                  "high_pass_hz": p.high_pass_hz, "processing": p.processing, "metadata": p.metadata,
                  "scale_factor_given": p.scale_factor, "matched": p.matched} for p in self.suite.pairs],
                 "failed": self.suite.failed, "closest_motions": self.suite.closest},
-            "parameters": P.table(self.code, self.parameters),
+            "parameters": P.table(self.code, self.parameters, self.parameter_sources),
             "property_bounds": self.bounds.as_dict(),
             "period_range_s": list(self.period_range_s),
             "period_grid": {"n": int(self.grid_s.size), "lo_s": float(self.grid_s[0]), "hi_s": float(self.grid_s[-1]),
@@ -107,6 +111,7 @@ class Review:
                                       "governing_bound": env["D_M_bound"]},
             "design_total_displacement_m": env["D_TM"],
             "design_base_shear_coefficient": {"value": env["V_b_over_W"], "governing_bound": env["V_b_bound"]},
+            "structure": {**self.structure, **self.design_values.get("structure", {})},
             "checks": self.checks,
             "check_counts": C.status_counts(self.checks),
             "spread": self.design_values.get("spread", {}),
@@ -126,13 +131,36 @@ class Review:
         return self.parameters["min_ratio"] if self.code == "asce7-22" else self.parameters["en_min_ratio"]
 
 
-def _elf(design, mu, target, code, params) -> dict:
+def _elf(design, mu, target, code, params, t_fixed_s: float | None = None) -> dict:
+    """The ELF values of one bound; with a superstructure also D'_M of Eq. 17.6-1 at its fixed-base period."""
     if code == "en15129":  # the effective period of the isolated system at its design displacement, η damping
         return asce7_22.elf_displacement(design, mu, target, form="SaM", reduction=en15129.damping_divisor)
     out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"))
     if code == "asce7-22" and out["D_M_m"] > 0:
         out.update(asce7_22.superstructure_shear(out["V_b_over_W"], out["beta_M"], params))
+    if t_fixed_s is not None:
+        out["T_fixed_s"] = t_fixed_s
+        out["D_M_prime_m"] = asce7_22.displacement_with_flexible_superstructure(out["D_M_m"], t_fixed_s,
+                                                                                out["T_M_s"])
     return out
+
+
+def structure_inputs(design) -> dict:
+    """The superstructure's ELF inputs (ASCE 7-22 17.5.4.2, Eq. 17.6-1) of a design; empty for a rigid block.
+
+    ``T_fixed_s`` is the shorter of the fixed-base fundamental periods along x and y
+    (:meth:`isolator.superstructure.Superstructure.fixed_base_periods_s`): the larger D'_M, the stricter floor.
+    """
+    from isolator.superstructure import review_inputs
+
+    found = review_inputs(design)
+    if "T_fixed_s" not in found:
+        return {}
+    periods = found["T_fixed_s"]
+    s = design.superstructure
+    return {"n_floors": s.n_floors, "Ws_over_W": found["Ws_over_W"], "T_fixed_x_s": periods["x"],
+            "T_fixed_y_s": periods["y"], "T_fixed_s": min(periods.values()),
+            "response_modification_R": s.response_modification_R, "basis": found["basis"]}
 
 
 def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = "common", jobs: int | None = None,
@@ -195,6 +223,8 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     if scaling not in SCALING_METHODS:
         raise ReviewError(f"scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
     params = P.resolve(code, parameters)
+    params, sources = P.from_design(code, params, design, parameters)
+    structure = structure_inputs(design)
     notes = []
     bounds = friction_bounds(design, code=code, f_ae=params.get("f_ae", 0.75))
     designs = {"lower": design.with_friction_factor(bounds.lambda_min, "lower bound"),
@@ -207,7 +237,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     # ELF reference values per bound (17.5)
     # ELF at the kinetic friction; with µ(v), at µ_fast (the friction of seismic sliding speeds)
     elf = {b: _elf(designs[b], designs[b].mu_fast if designs[b].velocity_dependent else designs[b].mu_kinetic,
-                   target, code, params) for b in designs}
+                   target, code, params, structure.get("T_fixed_s")) for b in designs}
     if design.velocity_dependent:
         notes.append("velocity-dependent friction: the ELF values use µ_fast of each bound; the analyses µ(v)")
     for b in designs:
@@ -283,6 +313,11 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     analyses = {b: {name: _for_design(results[index[(b, name)]], designs[b], f)
                     for name, f in zip(names, factors, strict=False)} for b in designs}
     failed = sorted({name for b in analyses for name, r in analyses[b].items() if "error" in r})
+    refused = [(b, name, r["error"]) for b in analyses for name, r in analyses[b].items()
+               if r.get("error", "").startswith(ENGINE_REFUSALS)]
+    if refused:  # the engine cannot take this design under the suite's motions: never drop floors or surfaces
+        b, name, error = refused[0]
+        raise ReviewError(f"the engine refuses the design under pair '{name}' ({b} bound): {error.split(': ', 1)[-1]}")
     if len(failed) == len(names):
         first = next(r["error"] for b in analyses for r in analyses[b].values() if "error" in r)
         raise ReviewError(f"every analysis failed ({first})")
@@ -300,7 +335,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                  bounds=bounds, elf=elf, period_range_s=(float(lo), float(hi)), grid_s=grid,
                  factors=dict(zip(names, map(float, factors), strict=False)), spectra=spectra, suite_ratio=ratio,
                  analyses=analyses, notes=notes, timing=timing, paper_map=paper_map, trace=trace,
-                 required_ratio=required, created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
+                 required_ratio=required, parameter_sources=sources, structure=structure, created_utc=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"))
     assessment = assess(basis, designs, min_ratio_required=required)
     timing["total"] = time.perf_counter() - clock
     return Review(**{**basis, **assessment})

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 #: bump when the numbers an analysis returns change meaning
-CACHE_VERSION = "review-3"
+CACHE_VERSION = "review-4"
 ORBIT_POINTS = 1500
 #: Design keys that do not change its analyses: its names, the capacity (the demand ratio is the caller's,
 #: :func:`isolator.review.run.run_review`), the property factors (a bound's friction is already applied), the plan.
@@ -83,11 +83,16 @@ def analyse_task(task: dict) -> dict:
         model that ran and why, the paper's point α, k, η of the resultant horizontal
         motion, the response keys, ``zeta_record`` over its D5–95, ``peak_displacement_over_a0``,
         ``transmitted_over_pga``, ``base_shear_coefficient`` …), plus ``pga_m_s2`` and ``pgv_m_s``
-        (the resultant's), ``orbit_m`` (decimated X–Y path) and ``analysis_seconds``.
+        (the resultant's), ``orbit_m`` (decimated X–Y path) and ``analysis_seconds``; and the model's own
+        summary keys (``EXTRA_SUMMARY_KEYS``: a building's ``story_drift_ratio``,
+        ``superstructure_shear_coefficient``, ``floor_peak_acceleration_m_s2``, bearing axial loads; a
+        multi-surface bearing's ``ultimate_displacement_reached``, ``impact_impulse_m_s``,
+        ``surface_peak_displacement_m`` …), which the review's rows read.
     """
     import time
 
     from isolator.analysis import analyse
+    from isolator.serialize import json_safe
 
     start = time.perf_counter()
     try:
@@ -95,7 +100,11 @@ def analyse_task(task: dict) -> dict:
     except Exception as err:  # noqa: BLE001 - one analysis fails, the review reports it
         return {"error": f"{type(err).__name__}: {' '.join(str(err).split())}"}
     intensity = analysis.adaptation.intensity
-    return {**analysis.row(), "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
+    row = analysis.row()
+    response = analysis.response
+    extra = {key: value for key, value in json_safe(response.summary()).items()
+             if key in response.EXTRA_SUMMARY_KEYS and key not in row}
+    return {**row, **extra, "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
             "orbit_m": _decimate(np.asarray(analysis.response.displacement_m, dtype=np.float64)),
             "analysis_seconds": time.perf_counter() - start}
 

@@ -44,13 +44,33 @@ def damping_coefficient(beta: float) -> float:
 
 
 def effective_properties(design, mu: float, displacement_m: float) -> tuple[float, float, float]:
-    """k_M [N/m], T_M [s], β_M [-] of the bilinear model at a displacement (friction µ, spring K, damper γ)."""
+    """k_M [N/m], T_M [s], β_M [-] at a displacement (17.5.3.2).
+
+    A single surface: the bilinear model (friction µ, spring K, damper γ).  A double or triple
+    friction pendulum: the bearing's own stable loop between ±D (:meth:`isolator.design.Design.effective_properties`,
+    ``Bearing.loop_properties``; its µ_i are those of the bound, ``mu`` is not used); NaN beyond the
+    bearing's ultimate displacement, where no loop exists.
+    """
     d = float(displacement_m)
+    if is_multisurface(design):
+        props = design.effective_properties(d)
+        return props.effective_stiffness_N_per_m, props.effective_period_s, props.effective_damping_ratio
     w = design.weight_N
     k = design.stiffness_N_per_m + mu * w / d
     omega = math.sqrt(k / design.mass_kg)
     energy = 4.0 * mu * w * d + math.pi * design.damping_Ns_per_m * omega * d * d
     return k, 2.0 * math.pi / omega, energy / (2.0 * math.pi * k * d * d)
+
+
+def is_multisurface(design) -> bool:
+    """True for a double or triple friction pendulum (a ``[bearing]`` of more than one surface)."""
+    bearing = getattr(design, "bearing", None)
+    return bearing is not None and not bearing.is_simple
+
+
+def ultimate_displacement_m(design) -> float:
+    """The bearing's ultimate displacement Σ d_i* of a double or triple pendulum [m]; inf otherwise."""
+    return design.bearing.ultimate_displacement_m if is_multisurface(design) else math.inf
 
 
 def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", reduction=None) -> dict:
@@ -87,10 +107,17 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", re
         return g * float(target.sa_g(t, clip=True)[0]) * t * t / (4.0 * math.pi ** 2 * b)
 
     notes = []
-    grid = np.geomspace(1e-5, 50.0, 400)
+    ultimate = ultimate_displacement_m(design)
+    top = min(50.0, ultimate)
+    grid = np.geomspace(1e-5, top, 400)
     gap = np.array([image(d) - d for d in grid])
     crossings = np.flatnonzero((gap[:-1] > 0) & (gap[1:] <= 0))
-    if gap[-1] > 0:
+    beyond_ultimate = bool(gap[-1] > 0 and math.isfinite(ultimate))
+    if beyond_ultimate:
+        notes.append(f"the ELF demand exceeds the bearing's ultimate displacement {ultimate:.4g} m (every slider on "
+                     "its rim): no D_M within the bearing")
+        d_m = math.nan
+    elif gap[-1] > 0:
         notes.append("no ELF fixed point below 50 m: the isolator has no restoring capacity at this demand")
         d_m = math.nan
     elif crossings.size == 0:
@@ -105,14 +132,50 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", re
             notes.append(f"{crossings.size} ELF fixed points; the largest is used")
     if not d_m > 0:
         return {"D_M_m": d_m, "T_M_s": math.nan, "beta_M": math.nan, "B_M": math.nan, "k_M_N_per_m": math.nan,
-                "V_b_over_W": math.nan if math.isnan(d_m) else mu, "mu": mu, "form": form, "notes": notes}
+                "V_b_over_W": math.nan if math.isnan(d_m) else breakaway_force_per_weight(design, mu), "mu": mu,
+                "form": form, "notes": notes, "beyond_ultimate": beyond_ultimate}
     k, t, beta = effective_properties(design, mu, d_m)
+    if is_multisurface(design):
+        regime = design.bearing.loop_properties(d_m, design.weight_N, g).regime
+        notes.append(f"T_M, β_M from the {design.bearing.kind} pendulum's loop between ±D_M (regime {regime} at D_M)")
     if t > target.long_period_s:
         notes.append(f"T_M = {t:.3g} s exceeds T_L = {target.long_period_s:g} s: the S_aM and S_M1 forms differ")
     if beta > B_M_TABLE[-1][0]:
         notes.append(f"β_M = {beta:.3g} beyond Table 17.5-1: B_M held at {B_M_TABLE[-1][1]}")
     return {"D_M_m": d_m, "T_M_s": t, "beta_M": beta, "B_M": reduction(beta), "k_M_N_per_m": k,
-            "V_b_over_W": k * d_m / design.weight_N, "mu": mu, "form": "SM1" if use_sm1 else "SaM", "notes": notes}
+            "V_b_over_W": k * d_m / design.weight_N, "mu": mu, "form": "SM1" if use_sm1 else "SaM", "notes": notes,
+            "beyond_ultimate": False}
+
+
+def displacement_with_flexible_superstructure(d_m: float, t_fixed_s: float, t_m_s: float) -> float:
+    """D'_M = D_M / sqrt(1 + (T/T_M)²) of Eq. 17.6-1 [m], T the superstructure's fixed-base period [s]."""
+    if not (math.isfinite(d_m) and math.isfinite(t_m_s) and t_m_s > 0):
+        return math.nan
+    return d_m / math.sqrt(1.0 + (t_fixed_s / t_m_s) ** 2)
+
+
+def breakaway_force_per_weight(design, mu_static: float | None = None) -> float:
+    """The force per unit weight at which the isolation system starts to slide [-].
+
+    µs for a single surface (``mu_static`` when given, else the design's); for a double or triple
+    pendulum the backbone's force at rest (the smallest friction of the first sliding surfaces).
+    """
+    if is_multisurface(design):
+        return float(design.bearing.backbone().force_per_weight[0])
+    return design.mu_static if mu_static is None else mu_static
+
+
+def activation_force_per_weight(design) -> float:
+    """The force per unit weight that fully activates the isolation system (17.5.4.3(3)) [-].
+
+    µs for a single surface; for a double or triple pendulum the backbone's force at the start of the
+    regime where every element of largest compliance slides (regime III of a triple pendulum).
+    """
+    if not is_multisurface(design):
+        return design.mu_static
+    bb = design.bearing.backbone()
+    compliance = [1.0 / k if k > 0 else 0.0 for k in bb.stiffness_per_weight_1_m]
+    return float(bb.force_per_weight[int(np.argmax(compliance))])
 
 
 def torsion_factor(plan: dict | None, params: dict) -> dict:
@@ -154,7 +217,14 @@ def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float) ->
 
 
 def restoring_force_ratio(design, displacement_m: float) -> float:
-    """(F(D) − F(D/2)) / W of the bilinear model (17.2.4.4): K D / (2W); D/(2R) for a friction pendulum."""
+    """(F(D) − F(D/2)) / W (17.2.4.4): K D / (2W) of the bilinear model, D/(2R) for a friction pendulum; on a
+    double or triple pendulum's backbone (loading from rest), NaN beyond its ultimate displacement."""
+    if is_multisurface(design):
+        d = float(displacement_m)
+        backbone = design.bearing.backbone()
+        if not (math.isfinite(d) and 0.0 <= d <= backbone.ultimate_displacement_m):
+            return math.nan
+        return backbone.force_per_weight_at(d) - backbone.force_per_weight_at(0.5 * d)
     return design.stiffness_N_per_m * 0.5 * displacement_m / design.weight_N
 
 
@@ -166,13 +236,15 @@ def activation_superstructure_shear_over_w(v_activation_over_w: float, beta: flo
 
 def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_static_upper: float,
                      mu_static_nominal: float, story_drift_ratio: float | None = None,
-                     bearing_axial_loads_N: dict | None = None) -> list[dict]:
+                     story_drift_note: str = "", bearing_axial_loads_N: dict | None = None) -> list[dict]:
     """The Chapter 17 requirements beside the response-history checks, each with its clause and status.
 
     ``pass`` / ``fail`` only where the review computes the quantity; otherwise ``not checked`` naming
     what is missing.  ``story_drift_ratio`` (largest story drift / story height over the analyses) and
     ``bearing_axial_loads_N`` (``{"min": …, "max": …}`` over the analyses) are the hooks for a
-    superstructure and bearing layout model.
+    superstructure and bearing layout model: ``story_drift_ratio`` the design value (suite rule, envelope of
+    the bounds, largest story) with ``story_drift_note`` saying which; ``bearing_axial_loads_N``
+    ``{"max": [per bearing], "capacity": [per bearing] or None, "note": …}``.
 
     Parameters
     ----------
@@ -181,7 +253,9 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
     params : dict
         The review's parameters (``wind_shear_over_W``, ``drift_limit_rha``, ``Ws_over_W``, …).
     mu_static_lower, mu_static_upper, mu_static_nominal : float
-        Breakaway friction of each bound [-].
+        Breakaway force / W of the lower bound (the wind row) and the force / W that fully activates the
+        isolation system at the upper and nominal properties (17.5.4.3(3)) [-]: µs of a single surface
+        (:func:`breakaway_force_per_weight`, :func:`activation_force_per_weight`).
     """
     from isolator.review import checks as C
 
@@ -200,15 +274,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
     rows.append(C.check("displacement_restraint", "ASCE 7-22 17.2.4.5", C.NOT_CHECKED,
                         note="no displacement restraint is an input or modelled: the bearings alone must accommodate "
                              "the total displacement (D_TM_capacity; each analysis in record_capacity)"))
-    if bearing_axial_loads_N is None:
-        rows.append(C.check("vertical_load_stability", "ASCE 7-22 17.2.4.6", C.NOT_CHECKED,
-                            note="needs each bearing's maximum and minimum vertical load (dead, live, seismic "
-                                 "overturning) at the total displacement: a superstructure and bearing layout"))
-    else:
-        rows.append(C.check("vertical_load_stability", "ASCE 7-22 17.2.4.6", C.NOT_CHECKED,
-                            bearing_axial_loads_N.get("max"), None,
-                            "bearing axial loads are known; the bearings' tested vertical-load capacity at the "
-                            "total displacement is not an input", "N"))
+    loads = bearing_axial_loads_N or {}
+    rows.append(C.vertical_load_stability(loads.get("max"), loads.get("capacity"), loads.get("note", "")))
     rows.append(C.check("inspection_replacement", "ASCE 7-22 17.2.4.8", C.NOT_CHECKED,
                         note="access for inspection and replacement: reviewer's list"))
     t_m = [elf[b].get("T_M_s", math.nan) for b in ("lower", "upper") if b in elf]
@@ -243,11 +310,5 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
     else:
         rows.append(C.check("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", C.NOT_CHECKED, None, None,
                             "no ELF V_s (the ELF found no sliding)", "V/W"))
-    limit = params.get("drift_limit_rha")
-    if story_drift_ratio is None:
-        rows.append(C.check("story_drift", "ASCE 7-22 17.6.4.4 [U]", C.NOT_CHECKED, None, limit,
-                            "needs the superstructure's story drifts (a superstructure model)", "h_sx"))
-    else:
-        rows.append(C.at_most("story_drift", "ASCE 7-22 17.6.4.4 [U]", story_drift_ratio, limit,
-                              "largest story drift ratio over the analyses (RHA limit)", "h_sx"))
+    rows.append(C.story_drift(story_drift_ratio, params.get("drift_limit_rha"), story_drift_note))
     return rows
