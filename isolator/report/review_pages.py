@@ -142,8 +142,10 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
     plan_text = ("none: D_TM = " + fmt(r["torsion"]["factor"]) + " D_M (the floor of Eq. 17.5-3)" if not plan else
                  f"b × d = {fmt(plan['b_m'])} × {fmt(plan['d_m'])} m, eccentricity "
                  f"{fmt(plan.get('eccentricity_m', 0.0))} m, "
-                 + (f"y = {fmt(plan['y_m'])} m" if "y_m" in plan else "y = half the plan dimension (assumed)")
-                 + (f", P_T = {fmt(plan['P_T'])}" if "P_T" in plan else "")
+                 + (f"y = {fmt(plan['y_m'])} m" if "y_m" in plan else
+                    "y = the farthest bearing (the bearing layout)" if "layout" in r["torsion"]["basis"]
+                    else "y = half the plan dimension (assumed)")
+                 + f", P_T = {fmt(r['torsion'].get('P_T'))}"
                  + f" → D_TM/D_M = {fmt(r['torsion']['factor'])}")
     lines = [("Design", f"{d['name']}  (file {d['source']})"),
              ("Weight, isolator", f"W = {fmt(weight / 1e3)} kN (M = {fmt(d['mass_kg'])} kg); {kind}"),
@@ -154,8 +156,39 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
              ("Capacity", f"{fmt(d['displacement_capacity_m'])} m (bearing displacement, resultant)"
               if d["displacement_capacity_m"] else "not given (displacement_capacity_m)"),
              ("Plan", plan_text)]
+    lines += _structure_lines(r)
     if d.get("damping_Ns_per_m"):
         lines.insert(3, ("Damper", f"γ = {fmt(d['damping_Ns_per_m'] / 1e3)} kN·s/m (ratio {fmt(d['damping_ratio'])})"))
+    return lines
+
+
+def _structure_lines(r: dict) -> list[tuple[str, str]]:
+    """The superstructure, the bearing layout and a multi-surface bearing, when the design has them."""
+    d, s = r["design"], r.get("structure") or {}
+    lines = []
+    bearing = d.get("bearing")
+    if bearing and bearing["type"] != "single":
+        surfaces = "; ".join(f"{i}: R_eff {fmt(x['effective_radius_m'])} m, µ {fmt(x['mu_kinetic'])}, d* "
+                             f"{fmt(x['effective_capacity_m'])} m" for i, x in enumerate(bearing["surfaces"], 1))
+        lines.append(("Bearing", f"{bearing['type']} friction pendulum ({surfaces}); ultimate "
+                                 f"{fmt(bearing['ultimate_displacement_m'])} m = the capacity; λ on every µ_i"))
+    sup = d.get("superstructure")
+    if sup:
+        lines.append(("Superstructure", f"{len(sup['floors'])} floors, W_s/W = {fmt(s.get('Ws_over_W'))}, fixed-base "
+                                        f"T = {fmt(s.get('T_fixed_x_s'))} s (x), {fmt(s.get('T_fixed_y_s'))} s (y), "
+                                        f"ζ = {fmt(sup['damping_ratio'])}"
+                      + (f", R = {fmt(sup['response_modification_R'])}" if sup.get("response_modification_R") else "")))
+        if s.get("story_drift_ratio"):
+            lines.append(("Floors (suite)", "drift ratio per story " + ", ".join(fmt(v) for v in s["story_drift_ratio"])
+                          + "; peak acceleration per floor " + ", ".join(fmt(v) for v in
+                                                                        s["floor_peak_acceleration_m_s2"]) + " m/s²"))
+    layout = d.get("bearing_position")
+    if layout:
+        lines.append(("Bearings", f"{len(layout['x_m'])} positions"
+                      + ("" if layout.get("axial_capacity_N") is None else ", with axial capacities")
+                      + (f"; least suite load {fmt(min(s['bearing_axial_load_min_N']) / 1e3)} kN, largest "
+                         f"{fmt(max(s['bearing_axial_load_max_N']) / 1e3)} kN" if s.get("bearing_axial_load_min_N")
+                         else "")))
     return lines
 
 
@@ -259,7 +292,8 @@ def _parameters(flow: Flow, r: dict) -> None:
     for p in r["parameters"]:
         value = "none" if p["value"] is None else (p["value"] if isinstance(p["value"], str) else fmt(p["value"]))
         changed = "" if p["value"] == p["default"] else f" (default {fmt(p['default'])})"
-        flow.paragraph(f"{p['name']} = {value}{changed} [{p['mark']}] — {p['rule']}: {p['meaning']}", x=0.05)
+        source = f" — from the {p['source']}" if p.get("source") else ""
+        flow.paragraph(f"{p['name']} = {value}{changed} [{p['mark']}]{source} — {p['rule']}: {p['meaning']}", x=0.05)
 
 
 def _notes(flow: Flow, r: dict) -> None:

@@ -15,6 +15,7 @@ import numpy as np
 from isolator.review import checks as C
 from isolator.review.codes import asce7_22, en15129
 from isolator.review.selection import selection_rows
+from isolator.superstructure import review_inputs
 
 BOUNDS = ("lower", "upper")
 
@@ -98,7 +99,7 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     d_m, d_bound = _governing(bounded, "D_M_rha_m")
     v_b, v_bound = _governing(bounded, "base_shear_coefficient")
     residual, _ = _governing(bounded, "residual_displacement_m")
-    torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p})
+    torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p}, review_inputs(review.design))
     elf = {b: {**review.elf[b], "D_TM_m": review.elf[b]["D_M_m"] * torsion["factor"]} for b in review.elf}
     for b in elf:  # a flexible superstructure: D'_M of Eq. 17.6-1 may replace D_M in the 17.6.4.1 floor
         if "D_M_prime_m" in elf[b]:

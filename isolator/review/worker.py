@@ -52,7 +52,9 @@ def _engine_version() -> str:
 
 
 def _decimate(xy: np.ndarray, points: int = ORBIT_POINTS) -> list:
-    """At most ``points`` rows of an orbit, keeping the row of the peak resultant."""
+    """At most ``points`` rows of an orbit, keeping the row of the peak resultant (a 1-D path: y = 0)."""
+    if xy.ndim == 1:
+        xy = np.column_stack([xy, np.zeros_like(xy)])
     n = xy.shape[0]
     if n <= points:
         rows = np.arange(n)

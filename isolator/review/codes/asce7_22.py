@@ -178,30 +178,49 @@ def activation_force_per_weight(design) -> float:
     return float(bb.force_per_weight[int(np.argmax(compliance))])
 
 
-def torsion_factor(plan: dict | None, params: dict) -> dict:
+def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) -> dict:
     """D_TM / D_M of Eq. 17.5-3 (the larger of the two loading directions), with its basis.
 
-    ``e`` = actual eccentricity + ``accidental_e`` × the plan dimension ⟂ loading; ``y`` the given
-    distance or, when absent, half the plan dimension ⟂ loading (a corner bearing); ``P_T`` the given
-    value, not below ``P_T_min`` (absent: ``P_T_min``, the most conservative). No [plan]: the floor.
+    ``e`` = actual eccentricity + ``accidental_e`` × the plan dimension ⟂ loading (``b_m`` along x,
+    ``d_m`` along y); ``y`` the given ``y_m``, else the design's bearing layout's farthest bearing ⟂
+    loading, else half the plan dimension ⟂ loading (a corner bearing, assumed); ``P_T`` the given value,
+    else the layout's (Eq. 17.5-4), else ``P_T_min`` (the most conservative) — never below ``P_T_min``.
+    No [plan]: the floor.
+
+    Parameters
+    ----------
+    plan : dict or None
+        The design's ``[plan]`` table.
+    params : dict
+        ``accidental_e``, ``D_TM_floor``, ``P_T_min``.
+    layout : dict, optional
+        From the design's ``[[bearing_position]]`` (:func:`isolator.superstructure.review_inputs`): ``P_T``,
+        ``y_for_loading_x_m`` (max |y|), ``y_for_loading_y_m`` (max |x|) [m].
     """
     floor = params["D_TM_floor"]
     if plan is None:
         return {"factor": floor, "basis": f"no [plan] in the design: D_TM = {floor:g} D_M (the floor of Eq. 17.5-3)",
                 "assumed": True}
+    layout = layout or {}
     b, d = plan["b_m"], plan["d_m"]
-    p_t = max(plan.get("P_T", params["P_T_min"]), params["P_T_min"])
+    p_t_source = "given" if "P_T" in plan else ("the bearing layout" if "P_T" in layout else "assumed")
+    p_t = max(plan.get("P_T", layout.get("P_T", params["P_T_min"])), params["P_T_min"])
     factors = []
-    for perpendicular in (b, d):
+    # perpendicular b (along x): loading along y, y measured along x; perpendicular d: loading along x
+    for perpendicular, layout_y in ((b, layout.get("y_for_loading_y_m")), (d, layout.get("y_for_loading_x_m"))):
         e = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * perpendicular
-        y = plan.get("y_m", 0.5 * perpendicular)
+        y = plan.get("y_m", layout_y if layout_y is not None else 0.5 * perpendicular)
         factors.append(1.0 + (y / p_t ** 2) * 12.0 * e / (b * b + d * d))
     raw = max(factors)
+    y_source = "given" if "y_m" in plan else ("the bearing layout" if "y_for_loading_x_m" in layout else "assumed")
     return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t,
-            "basis": f"Eq. 17.5-3 with b = {b:g} m, d = {d:g} m, P_T = {p_t:g}"
-                     + ("" if "y_m" in plan else ", y = half the plan dimension (corner bearing, assumed)")
+            "basis": f"Eq. 17.5-3 with b = {b:g} m, d = {d:g} m, P_T = {p_t:.4g} ({p_t_source})"
+                     + {"given": "",
+                        "the bearing layout": ", y = the farthest bearing perpendicular to the loading (the bearing "
+                                              "layout)",
+                        "assumed": ", y = half the plan dimension (corner bearing, assumed)"}[y_source]
                      + (f"; floor {floor:g} governs" if raw < floor else ""),
-            "assumed": "y_m" not in plan or "P_T" not in plan}
+            "assumed": y_source == "assumed" or p_t_source == "assumed"}
 
 
 def superstructure_shear(v_b_over_w: float, beta: float, params: dict) -> dict:
