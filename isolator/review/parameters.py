@@ -246,7 +246,7 @@ def from_design(code: str, values: dict, design, overrides: dict | None = None) 
     clash = [name for name in fixed if name in (overrides or {})]
     if clash:
         raise ReviewError(f"review parameter '{clash[0]}' is fixed by the design's [superstructure] "
-                          f"({fixed[clash[0]][0]:.4g}: {fixed[clash[0]][1]}); remove --set {clash[0]}")
+                          f"({fixed[clash[0]][0]:.4g}: {fixed[clash[0]][1]}); do not override it")
     return {**values, **{name: value for name, (value, _) in fixed.items()}}, \
         {name: basis for name, (_, basis) in fixed.items()}
 

@@ -131,7 +131,7 @@ class Review:
         return self.parameters["min_ratio"] if self.code == "asce7-22" else self.parameters["en_min_ratio"]
 
 
-def _elf(design, mu, target, code, params, t_fixed_s: float | None = None) -> dict:
+def elf_values(design, mu, target, code, params, t_fixed_s: float | None = None) -> dict:
     """The ELF values of one bound; with a superstructure also D'_M of Eq. 17.6-1 at its fixed-base period."""
     if code == "en15129":  # the effective period of the isolated system at its design displacement, η damping
         return asce7_22.elf_displacement(design, mu, target, form="SaM", reduction=en15129.damping_divisor)
@@ -236,7 +236,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
 
     # ELF reference values per bound (17.5)
     # ELF at the kinetic friction; with µ(v), at µ_fast (the friction of seismic sliding speeds)
-    elf = {b: _elf(designs[b], designs[b].mu_fast if designs[b].velocity_dependent else designs[b].mu_kinetic,
+    elf = {b: elf_values(designs[b], designs[b].mu_fast if designs[b].velocity_dependent else designs[b].mu_kinetic,
                    target, code, params, structure.get("T_fixed_s")) for b in designs}
     if design.velocity_dependent:
         notes.append("velocity-dependent friction: the ELF values use µ_fast of each bound; the analyses µ(v)")

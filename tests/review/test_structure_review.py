@@ -22,7 +22,7 @@ from isolator.review import checks as C
 from isolator.review import parameters as P
 from isolator.review import worker
 from isolator.review.codes import asce7_22
-from isolator.review.run import _elf, run_review, structure_inputs
+from isolator.review.run import elf_values, run_review, structure_inputs
 from isolator.review.suite import load_suite
 from isolator.review.target import two_period_target
 
@@ -63,7 +63,7 @@ def test_the_superstructure_fixes_ws_over_w_and_r_i():
     assert values["R_I"] == 2.0  # 3 × 8 / 8 = 3, not above 2 (17.5.4.2)
     rows = {row["name"]: row for row in P.table("asce7-22", values, sources)}
     assert rows["Ws_over_W"]["source"].startswith("design: ") and "source" not in rows["f_disp"]
-    with pytest.raises(ReviewError, match="fixed by the design's .superstructure.*remove --set Ws_over_W"):
+    with pytest.raises(ReviewError, match="fixed by the design's .superstructure.*do not override it"):
         P.from_design("asce7-22", values, design, {"Ws_over_W": 0.5})
     low_r = Design.from_mapping({**_building_mapping(), "superstructure": {**_building_mapping()["superstructure"],
                                                                             "response_modification_R": 2.0}})
@@ -90,7 +90,7 @@ def test_elf_with_the_superstructure_by_hand():
     t_fixed = 2 * math.pi / math.sqrt(min(np.linalg.eigvals(stiffness / m[:, None]).real))
     assert structure["T_fixed_s"] == pytest.approx(t_fixed, rel=1e-12) and structure["T_fixed_s"] == pytest.approx(
         0.4907, abs=1e-4)
-    elf = _elf(design, design.mu_kinetic, TARGET, "asce7-22", params, structure["T_fixed_s"])
+    elf = elf_values(design, design.mu_kinetic, TARGET, "asce7-22", params, structure["T_fixed_s"])
     ws = 7.4e6 / 9.3e6
     v_st = elf["V_b_over_W"] * ws ** (1 - 2.5 * elf["beta_M"])
     assert elf["V_st_over_W"] == pytest.approx(v_st, rel=1e-14) and elf["V_s_over_W"] == pytest.approx(v_st / 2.0)
