@@ -223,7 +223,8 @@ def _uplift_row(review, values: dict) -> dict:
     """17.2.4.7 from the bearings' axial loads (a building with [[bearing_position]]), else not checked."""
     s = review.design_values.get("structure", {})
     n_vertical = sum(v["n_uplifts"] for v in values.values())
-    n_pairs = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
+    n_pairs = 0 if review.parameters.get("horizontal_only") else sum(pair.az_m_s2 is not None
+                                                                     for pair in review.suite.pairs)
     if "bearing_axial_load_min_N" not in s:
         return C.uplift(n_vertical, n_pairs)
     loads = s["bearing_axial_load_min_N"]
@@ -299,7 +300,8 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                            f"RHA isolation-system shear / W ({env['V_b_bound']} bound) ≥ {p['f_below']:g} V_b/W (ELF "
                            f"{elf_vb:.4g})", "V/W"))
     v_s = max(elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper"))
-    activation = {b: asce7_22.activation_force_per_weight(designs[b]) for b in designs}
+    activation = {b: asce7_22.activation_force_per_weight(designs[b]) for b in ("lower", "upper")}
+    activation["nominal"] = asce7_22.activation_force_per_weight(design)  # analysed or not: the design's own
     rows.append(_superstructure_shear_row(review, v_s, activation))
     s = review.design_values.get("structure", {})
     drift = s.get("story_drift_ratio")
@@ -311,7 +313,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
         "note": f"{env['rule']} of {env['n']} analyses per bound, the larger bound"}
     rows += asce7_22.requirement_rows(
         elf, p, mu_static_lower=asce7_22.breakaway_force_per_weight(designs["lower"]),
-        mu_static_upper=activation["upper"], mu_static_nominal=activation.get("nominal", activation["lower"]),
+        mu_static_upper=activation["upper"], mu_static_nominal=activation["nominal"],
         story_drift_ratio=drift[story] if drift else None,
         story_drift_note=(f"story {story + 1} of {len(drift)} (from the bottom), {env['rule']} of {env['n']} analyses "
                           f"per bound, {s.get('story_drift_bound')} bound; limit drift_limit_rha [U]") if drift else "",
@@ -335,7 +337,7 @@ def _superstructure_shear_row(review, v_s: float, activation: dict) -> dict:
     """17.6.4.2: the suite's superstructure shear / R_I against f_above V_s and the 17.5.4.3 limits it computes."""
     p, elf = review.parameters, review.elf
     limits = {}
-    v_act = asce7_22.activation_shear_over_w(activation["upper"], activation.get("nominal", activation["lower"]))
+    v_act = asce7_22.activation_shear_over_w(activation["upper"], activation["nominal"])
     act = [asce7_22.activation_superstructure_shear_over_w(v_act, elf[b]["beta_M"], p)
            for b in ("lower", "upper") if math.isfinite(elf[b].get("beta_M", math.nan))]
     if act:

@@ -83,6 +83,9 @@ PARAMETERS = {p.name: p for p in [
               "design (factored) wind base shear / W; none: the wind rows are not checked", ("asce7-22",)),
     Parameter("drift_limit_rha", 0.020, "U", "ASCE 7-22 17.6.4.4", "story drift ratio limit with RHA",
               ("asce7-22",)),
+    Parameter("horizontal_only", False, "input", "ASCE 7-22 17.3.2 (pairs of horizontal components)",
+              "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
+              "building); false: a vertical is analysed or the review refuses it"),
     Parameter("weak_pga_fraction", 0.1, "practice", "record selection (practice)",
               "a scaled pair with resultant PGA < fraction × µ_lower g can hardly move the isolator"),
     Parameter("bandwidth_min", 0.25, "practice", "record selection (practice)",

@@ -32,7 +32,7 @@ SCHEMA_VERSION = 2
 SCHEMA_NAME = "isolator.review"
 PLOT_PERIODS_S = np.geomspace(0.05, 10.0, 90)
 #: Errors of an analysis that say the engine cannot take the scene (not a record's fault): the review stops.
-ENGINE_REFUSALS = ("InvalidSystemError:",)
+ENGINE_REFUSALS = ("InvalidSystemError:", "DesignError:")
 
 
 @dataclass
@@ -296,11 +296,16 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
 
     # analyses: every pair × bound (one run per distinct friction)
     tasks, index = {}, {}
+    horizontal_only = bool(params.get("horizontal_only"))
+    if horizontal_only and any(pair.az_m_s2 is not None for pair in suite.pairs):
+        notes.append("horizontal_only: the suite's vertical components are not analysed")
     for b, d in designs.items():
         for pair, f in zip(suite.pairs, factors, strict=False):
-            k = task_key(pair.content_key(), f, d)
+            vertical = None if horizontal_only else pair.az_m_s2
+            dropped = vertical is None and pair.az_m_s2 is not None  # a different analysis: a different key
+            k = task_key(pair.content_key() + (":horizontal-only" if dropped else ""), f, d)
             index[(b, pair.name)] = k
-            tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": pair.az_m_s2, "dt": pair.dt_s,
+            tasks.setdefault(k, {"ax": pair.ax_m_s2, "ay": pair.ay_m_s2, "az": vertical, "dt": pair.dt_s,
                                  "factor": float(f), "design": d})
     start = time.perf_counter()
     cache = analysis_cache if analysis_cache is not None else Cache(cache_dir)
@@ -317,7 +322,10 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                if r.get("error", "").startswith(ENGINE_REFUSALS)]
     if refused:  # the engine cannot take this design under the suite's motions: never drop floors or surfaces
         b, name, error = refused[0]
-        raise ReviewError(f"the engine refuses the design under pair '{name}' ({b} bound): {error.split(': ', 1)[-1]}")
+        vertical = next(p.az_m_s2 is not None for p in suite.pairs if p.name == name) and not horizontal_only
+        raise ReviewError(f"the engine refuses the design under pair '{name}' ({b} bound): {error.split(': ', 1)[-1]}"
+                          + ("; the pair has a vertical component (review parameter horizontal_only = true analyses "
+                             "the horizontal components only)" if vertical else ""))
     if len(failed) == len(names):
         first = next(r["error"] for b in analyses for r in analyses[b].values() if "error" in r)
         raise ReviewError(f"every analysis failed ({first})")
@@ -325,7 +333,12 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         notes.append(f"analysis of pair '{name}' failed: "
                      + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))
 
-    paper_map = _paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution else None
+    rigid_block = design.superstructure is None and not asce7_22.is_multisurface(design)
+    paper_map = (_paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution and rigid_block
+                 else None)
+    if paper_map_resolution and not rigid_block:
+        notes.append("the paper's harmonic regime map (Appendix A) is that of a rigid block on one surface: not drawn "
+                     "for a building or a multi-surface bearing")
     from isolator.review.trace import input_hashes, software
 
     trace = {"software": software(), "inputs": input_hashes(design, target, suite),

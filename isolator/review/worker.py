@@ -104,8 +104,9 @@ def analyse_task(task: dict) -> dict:
     intensity = analysis.adaptation.intensity
     row = analysis.row()
     response = analysis.response
-    extra = {key: value for key, value in json_safe(response.summary()).items()
-             if key in response.EXTRA_SUMMARY_KEYS and key not in row}
+    extra = {key: value.tolist() if isinstance(value, np.ndarray) else value
+             for key, value in response.summary().items() if key in response.EXTRA_SUMMARY_KEYS and key not in row}
+    extra = json_safe(extra)
     return {**row, **extra, "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
             "orbit_m": _decimate(np.asarray(analysis.response.displacement_m, dtype=np.float64)),
             "analysis_seconds": time.perf_counter() - start}

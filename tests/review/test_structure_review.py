@@ -301,3 +301,25 @@ def test_triple_pendulum_review_reads_the_rims(inputs, monkeypatch):
     assert by_id["D_over_R"]["value"] == pytest.approx(max(
         max(d / s["radius_m"] for d, s in zip(a["surface_peak_displacement_m"], FC_SURFACES, strict=True))
         for b in r.analyses for a in r.analyses[b].values()), rel=1e-14)
+
+
+def test_horizontal_only_drops_the_verticals_said_and_keyed(tmp_path):
+    """Loma Prieta APEEL2 (x, y, z) on the rigid block: '2d+vertical' by default, '2d' with horizontal_only, a note,
+    and a cache key of its own (a cached vertical analysis is never reused for the horizontal one)."""
+    from tests.review.conftest import EXAMPLE
+
+    folder = EXAMPLE / "lomaprieta1989_APEEL2"
+    (tmp_path / "suite.toml").write_text(
+        f'[[pair]]\nname = "apeel2"\nx = "{folder / "np01002p_4225a_a.smc"}"\ny = "{folder / "np01002p_4225c_a.smc"}"\n'
+        f'z = "{folder / "np01002p_4225b_a.smc"}"\ntrim = true\n')
+    suite = load_suite(tmp_path / "suite.toml")
+    design = Design.from_mapping({"name": "fps", "mass_kg": 1.0e6, "radius_m": 2.5, "mu_static": 0.06})
+    cache = tmp_path / "cache"
+    both = run_review(design, TARGET, suite, jobs=1, nominal=False, cache_dir=cache)
+    flat = run_review(design, TARGET, suite, jobs=1, nominal=False, cache_dir=cache,
+                      parameters={"horizontal_only": "true"})
+    assert {a["model"] for b in both.analyses for a in both.analyses[b].values()} == {"2d+vertical"}
+    assert {a["model"] for b in flat.analyses for a in flat.analyses[b].values()} == {"2d"}
+    assert flat.timing["analyses_cached"] == 0 and any("horizontal_only" in n for n in flat.notes)
+    uplift = {row["id"]: row for row in flat.checks}["uplift"]
+    assert "no vertical components" in uplift["note"]
