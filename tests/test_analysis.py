@@ -179,11 +179,11 @@ def test_checks_are_added_by_the_caller_and_say_so_when_absent(one_and_pair):
 
 def test_batch_columns_are_record_design_analysis_and_timing_listed_once():
     from isolator.analysis import ROW_ENGINEERING_KEYS, ROW_KEYS, TIMING_KEYS
-    from isolator.batch.store import COLUMNS, DESIGN_COLUMNS, RECORD_COLUMNS, TIMING_COLUMNS
+    from isolator.batch.store import COLUMNS, DESIGN_COLUMNS, MODEL_COLUMNS, RECORD_COLUMNS, TIMING_COLUMNS
 
     assert len(COLUMNS) == len(set(COLUMNS))
-    assert set(COLUMNS) == {*RECORD_COLUMNS, *DESIGN_COLUMNS, *ROW_KEYS, *ROW_ENGINEERING_KEYS, *TIMING_COLUMNS,
-                            "row_key"}
+    assert set(COLUMNS) == {*RECORD_COLUMNS, *DESIGN_COLUMNS, *ROW_KEYS, *ROW_ENGINEERING_KEYS, *MODEL_COLUMNS,
+                            *TIMING_COLUMNS, "row_key", "row_schema"}
     assert set(TIMING_KEYS) <= set(TIMING_COLUMNS) and not set(RECORD_COLUMNS) & set(ROW_KEYS)
 
 

@@ -10,6 +10,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from isolator.batch.store import ROW_SCHEMA
 from isolator.errors import BatchError, one_line
 
 # file discovery lives with the records (isolator.motion.files); its names stay importable from the batch
@@ -20,17 +21,9 @@ from isolator.motion.files import SET_COMPONENTS, expand_records, record_compone
 GRID_KEYS = ("mass_kg", "radius_m", "stiffness_N_per_m", "mu_static", "mu_kinetic", "damping_Ns_per_m",
              "damping_ratio")
 
-#: Columns that measure time: they differ between two runs of the same batch.
-TIMING_COLUMNS = ("read_seconds", "solver_seconds", "harmonic_seconds", "row_seconds")
-
 #: Largest batch planned [rows]: 1,800 rows take ~7 s on 2 cores, so a million rows is about
 #: an hour; larger sweeps are refused before anything is allocated (split them).
 MAX_PLAN_ROWS = 1_000_000
-#: Version of what a row holds: part of every row key, so that rows of an older isolator
-#: whose columns meant something else are never reused.
-ROW_SCHEMA_VERSION = 2
-
-
 
 
 def parse_grid(spec: str) -> tuple[str, list[float]]:
@@ -234,8 +227,9 @@ def row_key(record_path: str, component: str | None, design_hash: str, options: 
 
     The record (absolute path and the SHA-256 of its content: a file changed since an
     earlier run is recomputed), the component asked, the design's own keys and values
-    (``design_hash``), the read options that change results, and
-    :data:`ROW_SCHEMA_VERSION`.
+    (``design_hash``), the read options that change results, and what a row holds
+    (:data:`isolator.batch.store.ROW_SCHEMA`: the analysis schema's version and the columns), so
+    that a row stored by an isolator of another schema is recomputed.
 
     Parameters
     ----------
@@ -244,7 +238,7 @@ def row_key(record_path: str, component: str | None, design_hash: str, options: 
     """
     content = record_digest(record_path) if content is None else content
     text = "\0".join([os.path.abspath(record_path), content, component or "", design_hash, options.fingerprint(),
-                      str(ROW_SCHEMA_VERSION)])
+                      ROW_SCHEMA])
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 

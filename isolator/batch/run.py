@@ -8,7 +8,7 @@ from pathlib import Path
 
 from isolator.atomic import output_lock, refuse_overwriting_inputs
 from isolator.batch.plan import BatchError, ReadOptions, make_tasks, plan, row_key, set_digest
-from isolator.batch.store import PartStore, existing_rows, table_is_ours, to_table, write_table_atomically
+from isolator.batch.store import ROW_SCHEMA, PartStore, existing_rows, table_is_ours, to_table, write_table_atomically
 from isolator.batch.worker import run_task
 from isolator.parallel import check_scheduler, default_workers, iterate
 
@@ -105,12 +105,17 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
             planned[row_key(path, comp, case.design_hash, options, content)] = (path, case)
     store = PartStore(output)
     done_rows = {}
-    for row in existing_rows(output, set(planned)) + store.rows(set(planned)):
+    finished, n_other_schema = existing_rows(output, set(planned))
+    for row in finished + store.rows(set(planned)):
         if row.get("row_key") in planned:
             path, case = planned[row["row_key"]]
             # a reused row takes its place in this plan: positions are never part of what it is
             done_rows[row["row_key"]] = {**row, "record": path, "design_index": case.index,
                                          "design_file_index": case.file_index}
+    n_other_schema += store.other_schema
+    if n_other_schema:
+        notes.append(f"{n_other_schema} stored row(s) of {output} were written under another schema (this isolator "
+                     f"writes row_schema {ROW_SCHEMA}): recomputed, not reused")
     if store.damaged:
         notes.append(f"{store.damaged} damaged line(s) in {store.directory} skipped (truncated, corrupt or not "
                      "written by this user); their rows are recomputed")

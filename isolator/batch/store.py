@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import hashlib
 import hmac
 import json
 import os
+import re
 import time
 import uuid
 from pathlib import Path
 
-from isolator.analysis import ROW_ENGINEERING_KEYS, ROW_KEYS, TIMING_KEYS
+from isolator.analysis import ROW_ENGINEERING_KEYS, ROW_KEYS, SCHEMA_VERSION, TIMING_KEYS
 from isolator.atomic import atomic_path, keyed_digest, write_text_atomically
 from isolator.serialize import dumps, json_safe
 
@@ -32,14 +34,72 @@ DESIGN_COLUMNS = ("design_file_index", "design_kind", "mass_kg", "radius_m", "st
 #: Columns that measure time: they differ between two runs of the same batch.
 TIMING_COLUMNS = ("read_seconds", *TIMING_KEYS, "row_seconds")
 
+#: Scalar results that only some models give (the building above the isolators, docs/building.md; a double
+#: or triple pendulum, docs/multisurface.md), under the analysis schema's names; empty in the other rows.
+#: ``regimes_reached`` is the schema's ``regimes`` (a dict) as text: the regimes entered, in order of entry.
+MODEL_COLUMNS = (
+    "superstructure_shear_coefficient", "n_bearings_uplifted", "energy_strain_final_J_per_kg",
+    "bearing_type", "regimes_reached", "n_rim_contacts", "ultimate_displacement_reached", "ultimate_displacement_m",
+    "impact_impulse_m_s", "max_impact_velocity_m_s", "energy_impact_J_per_kg", "peak_force_per_weight",
+)
+#: Lists of the analysis schema (per story and floor bottom to top, per bearing and per surface in file
+#: order), written as one numbered column per item: ``story_drift_ratio_1`` is the bottom story.  As many
+#: numbered columns as the longest list of the table (:func:`list_columns`).
+LIST_COLUMNS = ("story_drift_m", "story_drift_ratio", "floor_peak_acceleration_m_s2", "bearing_axial_load_max_N",
+                "bearing_axial_load_min_N", "surface_peak_displacement_m")
+
 #: Column order of the table (columns of every row; a row may leave some empty): record + design + the
 #: analysis' row keys (:data:`isolator.analysis.ROW_KEYS`, :data:`~isolator.analysis.ROW_ENGINEERING_KEYS`)
-#: + timing + the row's key — each name listed once, in its own module.
+#: + the models' own + timing + the row's key and schema — each name listed once, in its own module; the
+#: numbered columns of :data:`LIST_COLUMNS` follow.
 COLUMNS = (
     *RECORD_COLUMNS, *DESIGN_COLUMNS,
-    *(key for key in ROW_KEYS if key not in TIMING_KEYS), *ROW_ENGINEERING_KEYS,
-    *TIMING_COLUMNS, "row_key",
+    *(key for key in ROW_KEYS if key not in TIMING_KEYS), *ROW_ENGINEERING_KEYS, *MODEL_COLUMNS,
+    *TIMING_COLUMNS, "row_key", "row_schema",
 )
+
+#: What a row holds: the analysis schema's version and a digest of the column list.  Part of every row key
+#: (:func:`isolator.batch.plan.row_key`) and written in the ``row_schema`` column: a row stored by an
+#: isolator whose schema or columns differ is recomputed, never reused with columns missing or meaning
+#: something else.
+ROW_SCHEMA = f"{SCHEMA_VERSION}:" + hashlib.sha256("\0".join((*COLUMNS, *LIST_COLUMNS)).encode()).hexdigest()[:8]
+
+_COLUMN_SET = frozenset(COLUMNS)
+_LIST_COLUMN = re.compile(r"^(" + "|".join(re.escape(key) for key in LIST_COLUMNS) + r")_([1-9][0-9]{0,3})$")
+
+
+def is_column(name) -> bool:
+    """True for a column of the table: one of :data:`COLUMNS` or a numbered :data:`LIST_COLUMNS` column."""
+    return isinstance(name, str) and (name in _COLUMN_SET or _LIST_COLUMN.match(name) is not None)
+
+
+def list_columns(counts: dict) -> list[str]:
+    """The numbered columns for lists of the given lengths (``{key: n}``), in :data:`LIST_COLUMNS` order."""
+    return [f"{key}_{i}" for key in LIST_COLUMNS for i in range(1, int(counts.get(key, 0)) + 1)]
+
+
+def model_columns(flat: dict) -> dict:
+    """The row's :data:`MODEL_COLUMNS` and numbered :data:`LIST_COLUMNS` from the analysis' flat keys.
+
+    Parameters
+    ----------
+    flat : dict
+        :meth:`isolator.analysis.Analysis.flat` (the keys a model does not give are left out).
+
+    Returns
+    -------
+    dict
+        Column → value: the scalars as the analysis holds them, each list item in its numbered column.
+    """
+    out = {key: flat[key] for key in MODEL_COLUMNS if flat.get(key) is not None}
+    regimes = flat.get("regimes")
+    if isinstance(regimes, dict):
+        out["regimes_reached"] = ", ".join(sorted(regimes, key=lambda name: regimes[name]))
+    for key in LIST_COLUMNS:
+        values = flat.get(key)
+        if values is not None:
+            out.update({f"{key}_{i}": value for i, value in enumerate(values, start=1)})
+    return out
 
 def content_key(data: bytes) -> str:
     """HMAC-SHA256 of ``data`` under this user's key (:func:`isolator.atomic.user_secret`, shared with the
@@ -51,11 +111,13 @@ def _valid_row(row, planned) -> bool:
     """A part row holds only known columns with JSON scalars, and a planned key."""
     if not isinstance(row, dict) or row.get("row_key") not in planned:
         return False
-    return all(key in _COLUMN_SET and (value is None or isinstance(value, (str, int, float, bool)))
+    return all(is_column(key) and (value is None or isinstance(value, (str, int, float, bool)))
                for key, value in row.items())
 
 
-_COLUMN_SET = frozenset(COLUMNS)
+def other_schema(row) -> bool:
+    """A stored row written under another :data:`ROW_SCHEMA` (an older isolator wrote none)."""
+    return isinstance(row, dict) and row.get("row_schema") != ROW_SCHEMA
 
 
 def _canonical(row) -> bytes:
@@ -68,13 +130,16 @@ class PartStore:
     Each line is ``{"row": {…}, "key": HMAC}``: a line whose content key does not match
     (truncated, bit-flipped, crafted), that is not JSON or not UTF-8, or whose row holds
     unknown columns, nested values or a key outside the plan, is skipped and counted in
-    :attr:`damaged`; its row is then recomputed.
+    :attr:`damaged`; its row is then recomputed.  A whole row written under another
+    :data:`ROW_SCHEMA` (its key is not planned: the schema is part of every key) is counted
+    in :attr:`other_schema`, not as damage.
     """
 
     def __init__(self, output):
         output = Path(output)
         self.directory = output.with_name(output.name + ".parts")
         self.damaged = 0  #: part lines skipped by the last :meth:`rows`
+        self.other_schema = 0  #: rows of another schema met by the last :meth:`rows` (recomputed)
 
     def rows(self, planned=None) -> list[dict]:
         """Rows of every complete part that pass the checks (see the class docstring).
@@ -84,7 +149,7 @@ class PartStore:
         planned : set of str, optional
             Row keys of the current plan; rows outside it are ignored (not counted as damaged).
         """
-        self.damaged = 0
+        self.damaged = self.other_schema = 0
         if not self.directory.is_dir():
             return []
         rows = []
@@ -106,7 +171,8 @@ class PartStore:
                     self.damaged += 1
                     continue
                 if planned is not None and isinstance(row, dict) and row.get("row_key") not in planned:
-                    continue  # another plan's row: not ours to use, not damage
+                    self.other_schema += other_schema(row)
+                    continue  # another plan's (or schema's) row: not ours to use, not damage
                 if not _valid_row(row, planned if planned is not None else {row.get("row_key")}):
                     self.damaged += 1
                     continue
@@ -148,44 +214,57 @@ def table_is_ours(output: Path) -> bool:
         return False
 
 
-def existing_rows(output: Path, keys: set) -> list[dict]:
+def existing_rows(output: Path, keys: set) -> tuple[list[dict], int]:
     """Rows of a finished table at ``output`` whose key is planned (a rerun after completion).
 
     Only a table whose content key (written beside it by :func:`write_table_atomically`)
     still matches is reused: an edited or foreign table is recomputed, never trusted.
+
+    Returns
+    -------
+    tuple
+        (the rows, how many of the table's rows were written under another :data:`ROW_SCHEMA`).
     """
     if not output.is_file() or not table_is_ours(output):
-        return []
+        return [], 0
     import pandas as pd
 
     try:
         table = pd.read_parquet(output) if output.suffix.lower() == ".parquet" else pd.read_csv(
             output, keep_default_na=False, na_values=[""])
     except Exception:  # noqa: BLE001 - an unreadable old table is simply recomputed
-        return []
-    if "row_key" not in table.columns:
-        return []
-    if any(column not in _COLUMN_SET for column in table.columns):
-        return []
+        return [], 0
+    schemas = table["row_schema"].astype(object) if "row_schema" in table.columns else None
+    n_other = len(table) if schemas is None else int((schemas != ROW_SCHEMA).sum())
+    if "row_key" not in table.columns or any(not is_column(column) for column in table.columns):
+        return [], n_other
     table = table[table["row_key"].isin(keys)]
     table = table.astype(object).where(table.notna(), None)
     rows = table.to_dict("records")
     for row in rows:
         if row.get("error") is None:
             row["error"] = ""
-    return rows
+    return rows, n_other
 
 
 def to_table(rows: list[dict]):
-    """Rows → DataFrame in the column order of :data:`COLUMNS`, sorted by record, component, design."""
+    """Rows → DataFrame: :data:`COLUMNS`, then the numbered :data:`LIST_COLUMNS` as long as the longest list of
+    the rows; sorted by record, component, design."""
     import pandas as pd
 
     table = pd.DataFrame(rows)
-    for column in COLUMNS:
-        if column not in table.columns:
-            table[column] = None
-    extra = [c for c in table.columns if c not in COLUMNS]
-    table = table[list(COLUMNS) + extra]
+    numbered = [column for column in table.columns if column not in _COLUMN_SET and is_column(column)]
+    counts: dict = {}
+    for column in numbered:
+        key, number = _LIST_COLUMN.match(column).groups()
+        counts[key] = max(counts.get(key, 0), int(number))
+    order = [*COLUMNS, *list_columns(counts)]
+    missing = [column for column in order if column not in table.columns]
+    if missing:  # added at once (one column at a time fragments the frame), empty as None
+        table = pd.concat([table, pd.DataFrame({column: pd.Series([None] * len(table), index=table.index,
+                                                                  dtype=object) for column in missing})], axis=1)
+    extra = [c for c in table.columns if c not in order]
+    table = table[order + extra]
     table["error"] = table["error"].fillna("").astype(str)
     table = table.sort_values(["record", "component", "design_index"], kind="mergesort").reset_index(drop=True)
     return table

@@ -10,7 +10,9 @@ from pathlib import Path
 from isolator.batch.pairs import read_pair
 from isolator.batch.pairs import record_columns as pair_record_columns
 from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, file_version
+from isolator.batch.store import ROW_SCHEMA, model_columns
 from isolator.errors import one_line
+from isolator.serialize import json_safe
 
 _MOTION_CACHE: dict = {}
 
@@ -134,7 +136,8 @@ def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, wi
         write_analysis_report(with_record_checks(analysis), target, command="isolator batch")
     if not task.options.harmonic and analysis.harmonic is not None:  # the table leaves the harmonic columns empty
         analysis = dataclasses.replace(analysis, harmonic=None, harmonic_class=None, disagreements=())
-    return analysis.row()
+    # the building's and the multi-surface bearing's own numbers (absent for other models)
+    return {**analysis.row(), **model_columns(json_safe(analysis.flat()))}
 
 
 def row_error(err: Exception, record: str, design_source: str | None) -> str:
@@ -176,7 +179,7 @@ def run_task(task: Task) -> list[dict]:
     """Rows of one task (the function both executors run).  Never raises for a bad record or design."""
     from isolator.design import Design
 
-    base = {"record": task.record, "component": task.component or ""}
+    base = {"record": task.record, "component": task.component or "", "row_schema": ROW_SCHEMA}
     try:
         if task.component in SET_COMPONENTS:  # the file's components together (isolator.batch.pairs)
             motion, factor, read_seconds = read_pair(task.record, task.component, task.options, task.partners)
@@ -194,7 +197,7 @@ def run_task(task: Task) -> list[dict]:
         record_cols = _record_columns(task.record, task.component, motion, measures, factor, read_seconds)
     rows = []
     for case, key in task.designs:
-        row = {**record_cols, "row_key": key}
+        row = {**record_cols, "row_key": key, "row_schema": ROW_SCHEMA}
         if case.error:
             rows.append({**row, **_design_columns(case), "error": case.error})
             continue
