@@ -129,6 +129,7 @@ def report(
                        f"got {scale_to_pga:g}")
     from isolator.analysis import analyse
     from isolator.report.analysis_report import write_analysis_report
+    from isolator.report.model_pages import n_model_pages
     from isolator.report.summary import write_json
     from isolator.review.record_checks import with_record_checks
 
@@ -159,7 +160,8 @@ def report(
     except OSError as err:
         write_error(err, output)
     paper = analysis.paper_applies
-    echo_table(_result_rows(numbers, paper, None if no_pdf else (4 if paper else 3), output, str(json_path),
+    pages = (4 if paper else 3) + n_model_pages(numbers)  # the building's, a multi-surface bearing's page
+    echo_table(_result_rows(numbers, paper, None if no_pdf else pages, output, str(json_path),
                             _map_notes(analysis)))
 
 

@@ -60,3 +60,10 @@ def table(fig, x: float, y: float, title: str, rows, width: float = 0.43, line: 
         fig.text(x + 0.42 * width, y, value, fontsize=7.8, va="top")
         y -= line
     return y - line * 0.6
+
+
+def cells(fig, y: float, columns, texts, *, bold: bool = False, colour="k", size: float = 7.6) -> None:
+    """One row of a table: ``texts`` at the figure x positions ``columns``, at height ``y``."""
+    for x, text in zip(columns, texts, strict=True):
+        fig.text(x, y, text, fontsize=size, va="top", weight="bold" if bold else "normal",
+                 color=colour(x) if callable(colour) else colour)

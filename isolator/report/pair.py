@@ -19,6 +19,7 @@ import numpy as np
 from isolator.atomic import atomic_path
 from isolator.report.layout import caption, fmt, table, tail
 from isolator.report.layout import page as layout_page
+from isolator.report.model_pages import model_pages
 from isolator.report.pair_figures import pair_response_page
 from isolator.serialize import json_safe
 from isolator.units import STANDARD_GRAVITY
@@ -163,6 +164,8 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
                           "design gives one.  Middle: resultant |X| and each component.  Bottom: isolator force "
                           "(−M × absolute acceleration of the mass) against displacement, in each direction.")
             pdf.savefig(fig)
+            for fig in model_pages(analysis, numbers, label, len(PAGE_TITLES) + 1):  # building, multi-surface bearing
+                pdf.savefig(fig)
             info = pdf.infodict()
             info["Title"] = f"isolator bidirectional review: {label}"
     numbers["pdf"] = str(pdf_path)

@@ -17,6 +17,7 @@ from isolator.atomic import atomic_path
 from isolator.metrics import REGIME_WORDS, slip_intervals
 from isolator.report import figures
 from isolator.report.layout import caption, fmt, page, table, tail
+from isolator.report.model_pages import model_pages
 from isolator.report.summary import Analysis, summary_dict, verdicts, write_json
 from isolator.units import STANDARD_GRAVITY
 
@@ -240,6 +241,8 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
                           f"Harmonic prediction at the star: {hc.regime} ({REGIME_WORDS[hc.regime]}), A = "
                           f"{fmt(hc.amplitude, 3)}; the record: {rc.regime}, A = {fmt(rc.amplitude, 3)}.")
             pdf.savefig(fig)
+            for fig in model_pages(a, summary, label, len(PAGE_TITLES) + 1):  # the building's page
+                pdf.savefig(fig)
             info = pdf.infodict()
             info["Title"] = f"isolator review: {label}"
             info["Creator"] = f"isolator {summary['software']['version']}"

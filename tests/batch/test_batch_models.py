@@ -20,72 +20,11 @@ from isolator.batch import ReadOptions, comparable, run_batch
 from isolator.batch.store import COLUMNS, LIST_COLUMNS, MODEL_COLUMNS, ROW_SCHEMA, PartStore, is_column
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _model_designs import BUILDING, RECORD, RIGID_BLOCK, SCALE_G, TRIPLE, designs_file_text  # noqa: E402
 from test_batch import read  # noqa: E402
 from test_batch_hardening import suite  # noqa: E402, F401 - the two synthetic records and two designs
 
-MODEL_DESIGNS = """
-[[design]]
-name = "FPS"
-mass_kg = 1.6e6
-radius_m = 2.5
-mu_static = 0.06
-
-[[design]]
-name = "three stories on a narrow layout"
-mass_kg = 1.6e6
-radius_m = 2.5
-mu_static = 0.06
-mu_kinetic = 0.05
-[design.superstructure]
-damping_ratio = 0.05
-[[design.superstructure.floor]]
-mass_kg = 4.0e5
-story_height_m = 4.0
-stiffness_x_N_per_m = 6.0e8
-[[design.superstructure.floor]]
-mass_kg = 4.0e5
-story_height_m = 3.5
-stiffness_x_N_per_m = 5.0e8
-[[design.superstructure.floor]]
-mass_kg = 3.0e5
-story_height_m = 3.5
-stiffness_x_N_per_m = 4.0e8
-[[design.bearing_position]]
-x_m = -2.0
-y_m = -6.0
-[[design.bearing_position]]
-x_m = 2.0
-y_m = -6.0
-[[design.bearing_position]]
-x_m = 2.0
-y_m = 6.0
-[[design.bearing_position]]
-x_m = -2.5
-y_m = 6.0
-
-[[design]]
-name = "TFP of Fenz and Constantinou"
-mass_kg = 1.0e5
-[design.bearing]
-type = "triple"
-[[design.bearing.surface]]
-radius_m = 2.1
-mu = 0.06
-displacement_capacity_m = 0.4
-[[design.bearing.surface]]
-radius_m = 0.3
-mu = 0.02
-displacement_capacity_m = 0.05
-[[design.bearing.surface]]
-radius_m = 0.3
-mu = 0.02
-displacement_capacity_m = 0.05
-[[design.bearing.surface]]
-radius_m = 2.1
-mu = 0.10
-displacement_capacity_m = 0.4
-"""
-SCALE_G = 1.5
+MODEL_DESIGNS = designs_file_text(RIGID_BLOCK, BUILDING, TRIPLE)
 
 
 @pytest.fixture(autouse=True)
@@ -107,7 +46,7 @@ def model_batch(records_dir, tmp_path_factory):
     folder = tmp_path_factory.mktemp("models")
     designs = folder / "designs.toml"
     designs.write_text(MODEL_DESIGNS)
-    record = records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2"
+    record = records_dir / RECORD
     result = run_batch([str(record)], designs, folder / "t.csv", options=ReadOptions(scale_to_pga_g=SCALE_G),
                        jobs=1)
     assert result.n_failed == 0, list(result.table["error"])
@@ -209,7 +148,7 @@ def test_model_columns_survive_a_resume(records_dir, tmp_path):
     """A finished table with numbered columns is reused as it is (its columns are known on reading)."""
     designs = tmp_path / "designs.toml"
     designs.write_text(MODEL_DESIGNS)
-    record = records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2"
+    record = records_dir / RECORD
     out = tmp_path / "t.csv"
     run_batch([str(record)], designs, out, options=ReadOptions(scale_to_pga_g=SCALE_G), jobs=1)
     first = read(out)

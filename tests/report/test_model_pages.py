@@ -1,0 +1,178 @@
+"""The report's pages of the building above the isolators and of a triple pendulum: what they draw is the
+analysis' own numbers (the drift profile is ``story_drift_ratio``; the backbone's points are
+``Bearing.backbone()``'s transition points; the loop is the response's samples), on a real record
+(Northridge NWH360 scaled to 1.5 g: the building's bearings lift off, the triple pendulum passes regimes
+I-V to its ultimate displacement)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from _model_designs import BUILDING, RECORD, SCALE_G, TRIPLE
+from typer.testing import CliRunner
+
+from isolator.analysis import analyse
+from isolator.cli import app
+from isolator.design import Design
+from isolator.motion import read_ground_motion
+from isolator.report.bearing_page import LOOP_LABEL, POINTS_LABEL, bearing_page, surface_rows
+from isolator.report.building_page import building_page, drift_limit
+from isolator.report.layout import fmt
+from isolator.units import STANDARD_GRAVITY
+
+pypdf = pytest.importorskip("pypdf")
+runner = CliRunner()
+
+
+@pytest.fixture(autouse=True)
+def _cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("ISOLATOR_CACHE_DIR", str(tmp_path / "cache"))
+
+
+@pytest.fixture(scope="module")
+def motion(records_dir):
+    return read_ground_motion(records_dir / RECORD).scaled_to_pga(SCALE_G * STANDARD_GRAVITY)
+
+
+def _design(tmp_path_factory, text: str, name: str):
+    path = tmp_path_factory.mktemp("designs") / name
+    path.write_text(text)
+    return path, Design.from_toml(path)
+
+
+@pytest.fixture(scope="module")
+def building(tmp_path_factory, motion):
+    path, design = _design(tmp_path_factory, BUILDING, "building.toml")
+    analysis = analyse(design, motion, harmonic=False)
+    return path, analysis, analysis.to_dict()
+
+
+@pytest.fixture(scope="module")
+def triple(tmp_path_factory, motion):
+    path, design = _design(tmp_path_factory, TRIPLE, "tfp.toml")
+    analysis = analyse(design, motion, harmonic=False)
+    return path, analysis, analysis.to_dict()
+
+
+def _axes(fig, title: str):
+    return next(ax for ax in fig.axes if ax.get_title() == title)
+
+
+def _line(ax, label: str):
+    return next(line for line in ax.get_lines() if str(line.get_label()).startswith(label))
+
+
+def _texts(fig) -> str:
+    return " ".join(text.get_text() for text in fig.texts)
+
+
+def test_building_page_draws_the_analysis_profiles_and_loads(building):
+    _, analysis, numbers = building
+    fig = building_page(5, "label", numbers, analysis.response)
+    drift = _axes(fig, "Story drift ratio profile")
+    x, y = _line(drift, "story drift ratio (peak)").get_data()
+    np.testing.assert_array_equal(x, numbers["story_drift_ratio"])
+    np.testing.assert_allclose(y, [2.0, 5.75, 9.25], rtol=1e-15)  # mid-heights of stories 4, 3.5, 3.5 m
+    limit = _line(drift, "limit")
+    assert drift_limit()["ratio"] == 0.020 and list(limit.get_xdata()) == [0.020, 0.020]
+    assert "drift_limit_rha [U]" in limit.get_label() and "17.6.4.4" in limit.get_label()
+    acc = _axes(fig, "Floor acceleration profile")
+    x, y = _line(acc, "floor peak absolute acceleration").get_data()
+    np.testing.assert_allclose(x * STANDARD_GRAVITY, numbers["floor_peak_acceleration_m_s2"], rtol=1e-15)
+    np.testing.assert_allclose(y, [4.0, 7.5, 11.0], rtol=1e-15)
+    # the bearings: one bar per bearing from its minimum to its maximum load, tension flagged
+    bars = next(ax for ax in fig.axes if ax.get_ylabel().startswith("axial load")).patches
+    np.testing.assert_allclose([bar.get_y() * 1e3 for bar in bars], numbers["bearing_axial_load_min_N"], rtol=1e-12)
+    np.testing.assert_allclose([(bar.get_y() + bar.get_height()) * 1e3 for bar in bars],
+                               numbers["bearing_axial_load_max_N"], rtol=1e-12)
+    flagged = [t for ax in fig.axes for t in ax.texts if t.get_text() == "uplift"]
+    assert len(flagged) == numbers["n_bearings_uplifted"] > 0
+    text = _texts(fig)
+    assert fmt(numbers["superstructure_shear_coefficient"]) in text and fmt(numbers["base_shear_coefficient"]) in text
+    assert f"{numbers['n_bearings_uplifted']} of 4 bearing(s) go into tension" in text
+    for ratio in numbers["story_drift_ratio"]:
+        assert fmt(ratio, 3) in text
+
+
+def test_building_report_has_the_building_page(records_dir, building, tmp_path):
+    path, analysis, numbers = building
+    out = tmp_path / "building.pdf"
+    result = runner.invoke(app, ["report", str(records_dir / RECORD), "-d", str(path), "--scale-to-pga",
+                                 str(SCALE_G), "-o", str(out), "--map-resolution", "8"])
+    assert result.exit_code == 0, result.output
+    assert "(5 pages)" in result.stdout
+    written = json.loads(out.with_suffix(".json").read_text())
+    assert written["story_drift_ratio"] == numbers["story_drift_ratio"]
+    assert written["bearing_axial_load_min_N"] == numbers["bearing_axial_load_min_N"]
+    pages = pypdf.PdfReader(str(out)).pages
+    assert len(pages) == 5
+    last = " ".join(pages[4].extract_text().split())
+    assert "The building above the isolators" in last and "drift_limit_rha" in last
+
+
+def test_triple_pendulum_page_draws_the_backbone_and_the_loop(triple):
+    _, analysis, numbers = triple
+    response, backbone = analysis.response, analysis.design.bearing.backbone()
+    fig = bearing_page(4, "label", numbers, response, analysis.design.mass_kg)
+    ax = _axes(fig, "Backbone and force-displacement loop")
+    x, r = _line(ax, POINTS_LABEL).get_data()
+    np.testing.assert_array_equal(x, backbone.displacement_m)
+    np.testing.assert_array_equal(r, backbone.force_per_weight)
+    np.testing.assert_allclose(x, [0.0, 0.024, 0.120, 0.752, 0.848, 0.900], atol=1e-12)  # Fenz & Constantinou
+    assert [t.get_text() for t in ax.texts] == ["I", "II", "III", "IV", "V", "ultimate"]
+    # the loop: samples of the response (decimated to the page, extremes kept)
+    lx, lr = _line(ax, LOOP_LABEL).get_data()
+    pairs = set(zip(response.displacement_m, response.force_per_weight, strict=True))
+    assert all((a, b) in pairs for a, b in zip(lx, lr, strict=True))
+    assert np.max(np.abs(lx)) == np.max(np.abs(response.displacement_m))
+    assert np.max(np.abs(lr)) == np.max(np.abs(response.force_per_weight))
+    # the surfaces against their capacities, the regimes and the ultimate with its impulse
+    rows = surface_rows(numbers)
+    assert [row[6] for row in rows] == numbers["surface_peak_displacement_m"]
+    assert [row[4] for row in rows] == [0.4, 0.05, 0.05, 0.4]
+    text = _texts(fig)
+    assert numbers["ultimate_displacement_reached"] and "ULTIMATE DISPLACEMENT REACHED" in text
+    assert f"impulse {fmt(analysis.design.mass_kg * numbers['impact_impulse_m_s'])} N·s" in text
+    assert f"Rim contacts: {numbers['n_rim_contacts']}" in text and numbers["n_rim_contacts"] > 0
+    for name, time in numbers["regimes"].items():
+        assert f"{name} at {fmt(time, 4)} s" in text
+    assert list(numbers["regimes"]) == ["I", "II", "III", "IV", "V"]
+
+
+def test_double_pendulum_page_names_the_sliding_surfaces(motion):
+    design = Design.from_mapping({"name": "DCFP", "mass_kg": 1.0e5, "bearing": {"type": "double", "surface": [
+        {"radius_m": 2.2, "mu": 0.04, "displacement_capacity_m": 0.3},
+        {"radius_m": 2.2, "mu": 0.07, "displacement_capacity_m": 0.3}]}})
+    analysis = analyse(design, motion.scaled_to_pga(0.4 * STANDARD_GRAVITY), harmonic=False)
+    numbers = analysis.to_dict()
+    fig = bearing_page(4, "label", numbers, analysis.response)
+    ax = _axes(fig, "Backbone and force-displacement loop")
+    backbone = design.bearing.backbone()
+    np.testing.assert_array_equal(_line(ax, POINTS_LABEL).get_xdata(), backbone.displacement_m)
+    assert [t.get_text() for t in ax.texts][: len(backbone.regimes)] == [f"{n} slide" for n in backbone.regimes]
+    assert "Sliding surfaces (first time)" in _texts(fig)
+
+
+def test_triple_report_scaled_to_a_pga_on_one_component(records_dir, triple, tmp_path):
+    """`--scale-to-pga` on the report of a double or triple bearing (one component): the scaled record's numbers."""
+    from isolator.solver.multisurface import simulate_bearing
+
+    path, analysis, numbers = triple
+    out = tmp_path / "tfp.pdf"
+    result = runner.invoke(app, ["report", str(records_dir / RECORD), "-d", str(path), "--scale-to-pga",
+                                 str(SCALE_G), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "(4 pages)" in result.stdout
+    written = json.loads(out.with_suffix(".json").read_text())
+    motion = read_ground_motion(records_dir / RECORD).scaled_to_pga(SCALE_G * STANDARD_GRAVITY)
+    direct = simulate_bearing(motion.acceleration_m_s2, motion.dt_s, bearing=analysis.design.bearing)
+    assert written["peak_displacement_m"] == pytest.approx(direct.peak_displacement_m, rel=1e-12)
+    assert written["surface_peak_displacement_m"] == numbers["surface_peak_displacement_m"]
+    assert written["record"]["scaling"].startswith("Record scaled to the design PGA 1.5 g")
+    assert written["record"]["intensity_measures"]["pga_m_s2"] == pytest.approx(SCALE_G * STANDARD_GRAVITY, rel=1e-12)
+    pages = pypdf.PdfReader(str(out)).pages
+    assert len(pages) == 4
+    last = " ".join(pages[3].extract_text().split())
+    assert "backbone" in last and "ULTIMATE DISPLACEMENT REACHED" in last
