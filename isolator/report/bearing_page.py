@@ -18,6 +18,7 @@ import numpy as np
 
 from isolator.report.figures import PIXELS_PER_AXIS, extreme_indices, plot_decimated
 from isolator.report.layout import caption, cells, fmt, page
+from isolator.units import STANDARD_GRAVITY
 
 #: The label of the response's loop on the page (tests find the line by it).
 LOOP_LABEL = "response: F/W against displacement"
@@ -104,6 +105,20 @@ def draw_displacement_history(ax, time_s, displacement_m, bearing: dict, ultimat
     ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), frameon=False, ncol=2, fontsize=6.8, borderaxespad=0.2)
 
 
+def loop_force_per_weight(response) -> tuple[np.ndarray, str]:
+    """The force per weight the loop draws, and what it is in words.
+
+    The solver's bearing F/W at the samples (``force_per_weight``) where the response holds it; else
+    −(absolute acceleration)/g, which is (F + γV)/W: the bearing's F/W when the design has no damper.
+    """
+    force = getattr(response, "force_per_weight", None)
+    if force is not None:
+        return np.asarray(force), "the solver's F/W at the samples"
+    gravity = float(getattr(response, "gravity_m_s2", STANDARD_GRAVITY))
+    return (-np.asarray(response.absolute_acceleration_m_s2) / gravity,
+            "−(absolute acceleration)/g at the samples, = (F + γV)/W: F/W without a damper")
+
+
 def surface_rows(numbers: dict) -> list[tuple]:
     """Per surface (file order): number, R, R_eff, µ, capacity d on the surface, peak on the surface, peak/d.
 
@@ -159,7 +174,8 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
     mass = float(numbers["design"]["mass_kg"] if mass_kg is None else mass_kg)
     fig = page(1, label, (f"{number}  The {bearing['type']} pendulum: backbone, surfaces, rims",))
     ax_loop = fig.add_axes((0.1, 0.56, 0.85, 0.37))
-    draw_backbone_and_loop(ax_loop, bearing, response.displacement_m, response.force_per_weight)
+    force, force_words = loop_force_per_weight(response)
+    draw_backbone_and_loop(ax_loop, bearing, response.displacement_m, force)
     ax_hist = fig.add_axes((0.1, 0.36, 0.8, 0.14))
     first_ultimate = getattr(response, "ultimate_first_time_s", None)
     draw_displacement_history(ax_hist, response.time_s, response.displacement_m, bearing, first_ultimate)
@@ -187,9 +203,10 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
             f"ULTIMATE DISPLACEMENT REACHED{when}: {fmt(numbers['ultimate_displacement_m'])} m (every slider on "
             f"its rim), a rigid stop with plastic impact(s): impulse {fmt(mass * numbers['impact_impulse_m_s'])} "
             f"N·s in all (M × Σ|V| = {fmt(mass)} kg × {fmt(numbers['impact_impulse_m_s'])} m/s), largest impact "
-            f"velocity {fmt(numbers['max_impact_velocity_m_s'])} m/s, energy lost in impacts "
-            f"{fmt(mass * numbers['energy_impact_J_per_kg'] / 1e3)} kJ.  The motion is held there, never "
-            "continued past it.")
+            f"velocity {fmt(numbers['max_impact_velocity_m_s'])} m/s"
+            + ("" if numbers.get("energy_impact_J_per_kg") is None else
+               f", energy lost in impacts {fmt(mass * numbers['energy_impact_J_per_kg'] / 1e3)} kJ")
+            + ".  The motion is held there, never continued past it.")
     else:
         sentences.append(f"The ultimate displacement {fmt(numbers['ultimate_displacement_m'])} m was not reached "
                          f"(peak {fmt(numbers['peak_displacement_m'])} m, "
@@ -202,7 +219,7 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
                      weight="bold" if sentence.startswith("ULTIMATE") else "normal")
             y -= 0.0135
     caption(fig, f"Model {numbers['model']}: {numbers['model_reason']}.  Top: the bearing's force per weight "
-                  "against its displacement under the record (the solver's F/W at the samples) over the backbone "
+                  f"against its displacement under the record ({force_words}) over the backbone "
                   "from rest (piecewise linear, its transition points marked with the regime that starts there, "
                   "mirrored for negative displacements; dotted: ± the ultimate displacement Σ d_i*).  Middle: the "
                   "displacement with the transition displacements (dotted) and ± the ultimate (solid).  Table: each surface's peak displacement on "
