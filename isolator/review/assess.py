@@ -25,7 +25,8 @@ def _per_bound(results: dict, n_for_mean: int) -> dict:
     d = C.suite_value([r["peak_displacement_m"] for r in ok], n_for_mean)
     return {**_structure_values(results, n_for_mean), **{
         "D_M_rha_m": d["value"], "rule": d["rule"], "n": d["n"],
-        "residual_displacement_m": C.suite_value([abs(r["residual_displacement_m"]) for r in ok], n_for_mean)["value"],
+        "residual_displacement_m": C.suite_value([abs(r["residual_displacement_m"]) for r in ok
+                                                  if r["residual_displacement_m"] is not None], n_for_mean)["value"],
         "base_shear_coefficient": C.suite_value([r["base_shear_coefficient"] for r in ok], n_for_mean)["value"],
         "transmitted_over_pga": C.suite_value([r["transmitted_over_pga"] for r in ok], n_for_mean)["value"],
         "transmitted_over_pga_max": max((r["transmitted_over_pga"] for r in ok), default=math.nan),
