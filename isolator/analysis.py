@@ -496,13 +496,15 @@ def verdicts(analysis: Analysis) -> list[str]:
     out = []
     if not analysis.paper_applies:
         ratio = analysis.displacement_demand_ratio
-        if ratio is not None:
+        reached = getattr(r, "ultimate_displacement_reached", False)  # a bearing with rims (solver.multisurface)
+        if ratio is not None and not reached:  # at the rim the ratio is 1 by construction: the sentence below
             word = "within" if ratio <= 1.0 else "EXCEEDS"
             out.append(f"Peak resultant displacement {r.peak_displacement_m:.4g} m {word} the displacement "
                        f"capacity {analysis.design.displacement_capacity_m:.4g} m (ratio {ratio:.3g}).")
-        if getattr(r, "ultimate_displacement_reached", False):  # a bearing with rims (isolator.solver.multisurface)
-            out.append(f"The bearing REACHED its ultimate displacement {r.ultimate_displacement_m:.4g} m (every slider "
-                       f"on its rim): plastic impact(s), impulse {analysis.design.mass_kg * r.impact_impulse_m_s:.4g} "
+        if reached:
+            out.append(f"The bearing REACHED its ultimate displacement {r.ultimate_displacement_m:.4g} m (its "
+                       "displacement capacity: every slider on its rim): plastic impact(s), impulse "
+                       f"{analysis.design.mass_kg * r.impact_impulse_m_s:.4g} "
                        "N·s in all; the motion is held there, not continued past it.")
         if r.uplift_time_s > 0:
             out.append(f"The bearing lifts off {r.n_uplifts} time(s), {r.uplift_time_s:.3g} s "

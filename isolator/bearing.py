@@ -40,6 +40,7 @@ import numpy as np
 
 from isolator.errors import DesignError
 from isolator.solver.multisurface_series import (
+    STATIC_FRICTION_REASON,
     excursion,
     max_regimes,
     series_elements,
@@ -192,6 +193,11 @@ class Bearing:
     @property
     def mu_kinetic(self) -> np.ndarray:
         return np.array([s.mu_kinetic for s in self.surfaces])
+
+    @property
+    def mu_static(self) -> np.ndarray:
+        """Static friction per surface (= element) [-]; above µk only on a single surface."""
+        return np.array([s.mu_static for s in self.surfaces])
 
     @property
     def effective_capacities_m(self) -> np.ndarray:
@@ -501,9 +507,14 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
         mu_s = mu_slow
     if max(mu_k, mu_s) >= 1.0:
         raise fail(f"{where}: friction must be < 1 for a sliding surface, got {max(mu_k, mu_s):g}")
-    if kind != "single" and (mu_s != mu_k or rate is not None):
-        raise fail(f"{where}: a {kind} bearing takes one friction coefficient per surface ('mu'); static and "
-                   "velocity-dependent friction are modelled for a single surface only")
+    if kind != "single" and rate is not None:
+        raise fail(f"{where}: velocity-dependent friction (mu_slow, mu_fast, rate_s_per_m) is not modelled on a "
+                   f"{kind} bearing: each surface's friction would follow its own slider's velocity, so the force "
+                   "is no longer piecewise linear in the displacement and the exact 1-D solution does not apply; "
+                   "give 'mu'")
+    if kind != "single" and mu_s != mu_k:
+        raise fail(f"{where}: mu_static ({mu_s:g}) > mu_kinetic ({mu_k:g}) is not modelled on a {kind} bearing: "
+                   f"{STATIC_FRICTION_REASON}; give 'mu' (or mu_static = mu_kinetic)")
     capacity = number("displacement_capacity_m", required=kind != "single", positive=True)
     return Surface(radius_m=radius, height_m=height, mu_kinetic=mu_k, mu_static=mu_s,
                    displacement_capacity_m=capacity, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate)

@@ -25,6 +25,11 @@ How to add a model
 2. Add one line to :data:`MODELS` **above** the models it specialises: :func:`select_model`
    asks the models in this order and takes the first that answers (``2d``, the general
    rigid-block engine, is last).
+
+One choice depends on a result: a single pendulum with a ``displacement_capacity_m`` under one
+component is ``1d-exact`` (its reason says so), and when that run's peak reaches the capacity
+the multi-surface module runs the scene again with the rim; that result has ``rerun`` true and
+keeps its own ``model`` (``1d-multisurface``) and ``model_reason`` (:func:`simulate`).
 """
 
 from __future__ import annotations
@@ -118,8 +123,8 @@ def simulate(scene: Scene) -> SolverResult:
     """
     model, name, reason = _choose(scene)
     result = model.run(scene)
-    result.model = name
-    result.model_reason = reason
+    if not getattr(result, "rerun", False):  # a model that ran the scene again on another names that one itself
+        result.model, result.model_reason = name, reason
     return result
 
 

@@ -16,8 +16,10 @@ import numpy as np
 
 from isolator.errors import DesignError, RecordInputError
 from isolator.solver import multisurface_kernel as _ms
+from isolator.solver import record as _record
 from isolator.solver.base import SolverResult
 from isolator.solver.kernel import max_piece_s, substeps_per_interval
+from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
 from isolator.solver.record import record_timing
 from isolator.solver.system import classify_configuration
@@ -57,6 +59,10 @@ class MultisurfaceResponse(SolverResult):
     max_impact_velocity_m_s: float
     peak_force_per_weight: float  #: largest |F/W| of the bearing [-]
     element_displacement_m: np.ndarray  #: final state of the series elements [m]
+    #: True when the registry's first model (``1d-exact``, a single pendulum) reached the
+    #: capacity and the scene was run again here; :func:`isolator.solver.models.simulate`
+    #: then keeps this result's ``model`` and ``model_reason``
+    rerun: bool = False
     substeps_per_interval: int = 1
     damping_per_mass: float = 0.0
     gravity_m_s2: float = STANDARD_GRAVITY
@@ -90,23 +96,83 @@ class MultisurfaceResponse(SolverResult):
         return self.velocity_m_s != 0.0
 
 
-def scene_needs(scene) -> tuple[str, str] | None:
-    """``(model, reason)`` when the scene's design has a double or triple bearing; else None.
+def rim_of_single(scene):
+    """The single pendulum with its rim that a one-component scene describes, or None.
 
-    A single surface stays on today's kernels (``1d-exact``, ``2d``).  A double or triple
-    bearing under two components or a vertical is claimed too, and refused by
-    :func:`simulate_scene` in one line: the 2-D multi-surface model does not exist yet.
+    A design with a ``displacement_capacity_m`` and one surface (no ``[bearing]``, or
+    ``type = "single"``), a restoring stiffness > 0, constant friction, one horizontal
+    component, no vertical and no superstructure.  Its friction, radius (R = g/κ for a
+    spring), damping and gravity are the scene's isolator keywords (what ``1d-exact`` runs);
+    a ``[bearing]`` single gives its own surface (R, h, d: the rim at d* = d R_eff/R).
+
+    Returns
+    -------
+    isolator.bearing.Bearing or None
+    """
+    # the design layer's class, imported here: isolator.bearing imports the solver package's series functions
+    from isolator.bearing import Bearing, Surface
+
+    design = scene.design
+    capacity = getattr(design, "displacement_capacity_m", None)
+    if (capacity is None or scene.has_y or scene.has_z or scene.velocity_dependent
+            or getattr(design, "superstructure", None) is not None):
+        return None
+    bearing = getattr(design, "bearing", None)
+    if bearing is not None:
+        return bearing if bearing.is_simple and bearing.has_rims else None
+    iso = scene.isolator
+    g = float(iso.get("gravity_m_s2") or STANDARD_GRAVITY)
+    radius = iso.get("radius_m")
+    if radius is None:
+        kappa = iso.get("stiffness_per_mass")
+        if not kappa or not kappa > 0.0:
+            return None  # a flat slider without restoring force: no pendulum, no rim modelled
+        radius = g / float(kappa)
+    mu_s = float(iso["mu_static"])
+    mu_k = float(iso.get("mu_kinetic") if iso.get("mu_kinetic") is not None else mu_s)
+    return Bearing(kind="single", surfaces=(Surface(radius_m=float(radius), height_m=0.0, mu_kinetic=mu_k,
+                                                    mu_static=mu_s, displacement_capacity_m=float(capacity)),))
+
+
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` for a double or triple bearing, or a single pendulum with a capacity; else None.
+
+    A double or triple bearing: ``1d-multisurface``.  Under two components or a vertical
+    it is claimed too, and refused by :func:`simulate_scene` in one line: the 2-D
+    multi-surface model does not exist yet.
+
+    A single pendulum with a displacement capacity under one component
+    (:func:`rim_of_single`): ``1d-exact``, today's kernel, **and the choice depends on its
+    result** — when its peak reaches the capacity the scene is run again on
+    ``1d-multisurface`` with the rim, and that result says so (``model``,
+    ``model_reason``).  Any other single surface: None (today's kernels).
     """
     bearing = getattr(scene.design, "bearing", None)
     if bearing is None or bearing.is_simple:
-        return None
+        single = rim_of_single(scene)
+        if single is None:
+            return None
+        return RIM_FIRST_MODEL, (f"{_record.MODEL_REASON}; a displacement capacity of "
+                                 f"{single.ultimate_displacement_m:.4g} m: if the peak reaches it, the run is redone "
+                                 f"with the rim ({MODEL_NAME}), a choice made on the result")
     n = len(bearing.surfaces)
     return MODEL_NAME, (f"a {bearing.kind} friction pendulum ({n} surfaces): the exact 1-D series model of "
                         "Fenz & Constantinou with rims (closed forms between events)")
 
 
-def simulate_scene(scene) -> MultisurfaceResponse:
+#: The model a single pendulum with a capacity runs first (today's exact 1-D kernel).
+RIM_FIRST_MODEL = _record.MODEL_NAME
+
+
+def simulate_scene(scene) -> SolverResult:
     """The exact 1-D response of the scene's multi-surface bearing (:func:`simulate_bearing`).
+
+    A single pendulum with a capacity (:func:`rim_of_single`) runs on today's kernel
+    (:func:`isolator.solver.record.simulate_scene`); if its peak reaches the capacity,
+    the plate it ran on does not exist there, and the scene is run again on the rim model
+    (:func:`simulate_bearing`, equal to today's kernel up to the first rim contact).  That
+    result has ``rerun`` true and its own ``model``/``model_reason``, which the registry
+    keeps.
 
     Raises
     ------
@@ -115,6 +181,26 @@ def simulate_scene(scene) -> MultisurfaceResponse:
     DesignError
         A superstructure on a double or triple bearing (not modelled).
     """
+    damping = float(scene.isolator.get("damping_per_mass") or 0.0)
+    gravity = float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY)
+    bearing = getattr(scene.design, "bearing", None)
+    if bearing is None or bearing.is_simple:
+        single = rim_of_single(scene)
+        if single is None:  # pragma: no cover - scene_needs answers only for these scenes
+            raise LookupError("the multi-surface model takes no such scene")
+        free = _record.simulate_scene(scene)
+        capacity = single.ultimate_displacement_m
+        if free.peak_displacement_m < capacity:
+            return free
+        rimmed = simulate_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, bearing=single,
+                                  damping_per_mass=damping, gravity_m_s2=gravity)
+        rimmed.rerun = True
+        rimmed.model = MODEL_NAME
+        rimmed.model_reason = (f"a single pendulum that reached its displacement capacity {capacity:.4g} m: on "
+                               f"{RIM_FIRST_MODEL} (an unbounded plate) its peak was "
+                               f"{free.peak_displacement_m:.4g} m, so the run was redone with the rim "
+                               "(the exact 1-D series model, plastic impact at the capacity); chosen on that result")
+        return rimmed
     if getattr(scene.design, "superstructure", None) is not None:
         raise DesignError(f"{scene.design.source}: a {scene.design.bearing.kind} bearing under a [superstructure] is "
                           "not modelled (1d-multisurface carries a rigid mass)")
@@ -122,8 +208,7 @@ def simulate_scene(scene) -> MultisurfaceResponse:
         raise RecordInputError(f"a {scene.design.bearing.kind} bearing is modelled for one horizontal component "
                                "only (1d-multisurface); the 2-D multi-surface model is not implemented")
     return simulate_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
-                            damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
-                            gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
+                            damping_per_mass=damping, gravity_m_s2=gravity)
 
 
 _READY = False
@@ -136,11 +221,12 @@ def _warm_up() -> None:
     with note_if_slow("compiling the multi-surface solver (its first use after installation takes a few "
                       "seconds; the machine code is cached for later runs)"):
         _run(np.array([0.0, 1.0, -1.0]), 0.01, np.empty(0), 1, math.inf, 0.0, STANDARD_GRAVITY,
-             np.array([1.0, 2.0]), np.array([0.05, 0.05]), np.array([0.1, 0.1]), np.eye(2), 8)
+             np.array([1.0, 2.0]), np.array([0.05, 0.05]), np.array([0.05, 0.05]), np.array([0.1, 0.1]),
+             np.eye(2), 8)
     _READY = True
 
 
-def _run(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, tmat, capacity):
+def _run(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_static, rim, tmat, capacity):
     n = acc.size
     ne = rbar.size
     out = {name: np.empty(n) for name in ("x", "v", "a", "r")}
@@ -155,7 +241,7 @@ def _run(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, tmat, capacity):
         u = np.zeros(ne)
         surf_peak[:] = 0.0
         start = time.perf_counter()
-        _ms.multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, tmat,
+        _ms.multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_static, rim, tmat,
                                 out["x"], out["v"], out["a"], out["r"], out_energy, ev_time, ev_kind, ev_x,
                                 summary, surf_peak, first, u)
         elapsed = time.perf_counter() - start
@@ -176,8 +262,8 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
     dt_s : float, optional
         Sample interval [s] (or give ``time_s``).
     bearing : isolator.bearing.Bearing
-        The bearing (its kinetic friction per surface; static and µ(v) friction are not
-        part of this model).
+        The bearing (kinetic friction per surface; static friction above kinetic on a
+        single surface only; µ(v) is not part of this model).
     time_s : array_like, optional
         Sample times [s], strictly increasing.
     damping_per_mass : float
@@ -196,6 +282,12 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
     if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
         raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
     rbar, mu, rim = bearing.elements()
+    if any(surface.rate_s_per_m is not None for surface in bearing.surfaces):
+        raise ValueError("velocity-dependent friction is not part of the 1-D multi-surface model (closed forms "
+                         "need constant friction per surface)")
+    if rbar.size > 1 and np.any(bearing.mu_static != mu):
+        raise ValueError(f"static friction above kinetic on a {bearing.kind} bearing is not modelled: "
+                         f"{STATIC_FRICTION_REASON}")
     tmat = bearing.surface_matrix()
     kappa_max = g / float(np.min(rbar))  # the stiffest regime: one element of the smallest radius
     max_piece = max_piece_s(c, kappa_max)
@@ -207,7 +299,7 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
         kernel_times = relative
     _warm_up()
     out, energy, summary, surf_peak, first, u, ev_t, ev_k, ev_x, elapsed = _run(
-        acc, dt, kernel_times, n_sub, max_piece, c, g, rbar, mu, rim, tmat, 64 + acc.size // 4)
+        acc, dt, kernel_times, n_sub, max_piece, c, g, rbar, mu, bearing.mu_static, rim, tmat, 64 + acc.size // 4)
     status = int(summary[_ms.S_STATUS])
     message = "ok"
     if status & _ms.STATUS_CHATTER:

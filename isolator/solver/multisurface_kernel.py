@@ -19,8 +19,10 @@ form of :mod:`isolator.solver.segments` (the single pendulum's), and the events 
   rim): a plastic impact, V → 0, the impulse per unit mass |V| and the energy ½V²
   reported; at the ultimate displacement the bearing then holds any outward force;
 * **stick / break-away** — the stuck bearing holds F/W in the window of
-  :func:`isolator.solver.multisurface_series.stick_window`; with a piecewise-linear
-  record the break-away is linear in time, hence exact.
+  :func:`isolator.solver.multisurface_series.stick_window` (static friction); with a
+  piecewise-linear record the break-away is linear in time, hence exact.  A single
+  element with µs > µk then slides at µk (the force drops, as in
+  :mod:`isolator.solver.kernel`).
 
 Energies per unit mass: input −∫a_g V dt and the bearing's friction work
 g Σ µ_i |Δū_i| in closed form, the stored energy g Σ ū_i²/(2R̄_i), viscous c∫V² by
@@ -143,7 +145,7 @@ def _enter_excursion(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, g
 
 
 @njit(cache=True)
-def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, tmat,
+def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_static, rim, tmat,
                         out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x,
                         summary, surf_peak, state_first_time, u):
     """Exact response of a mass on a multi-surface bearing to a sampled record.
@@ -163,7 +165,12 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, t
     c, g : float
         Damping per unit mass [1/s] and gravity [m/s²].
     rbar, mu, rim : float64[ne]
-        The series elements (radius [m], friction [-], rim [m]).
+        The series elements (radius [m], kinetic friction [-], rim [m]).
+    mu_static : float64[ne]
+        Static friction [-] (>= ``mu``): the stuck bearing's window.  Above ``mu`` only for
+        one element (a single pendulum): the force then drops from the static to the
+        kinetic level at the break-away, as in :mod:`isolator.solver.kernel`; in a series
+        of massless sliders such a drop would stop the others (the caller refuses it).
     tmat : float64[ns, ne]
         Displacement on each real surface from the elements' [-].
     out_x, out_v, out_a, out_r : float64[n]
@@ -226,7 +233,12 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, t
     impulse = 0.0
     max_imp_v = 0.0
     first_ult = -1.0
-    r_lo, r_hi = stick_window(u, rbar, mu, rim)
+    r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
+    # at a break-away the net force on the mass is exactly zero unless the friction drops there
+    exact_breakaway = True
+    for e in range(ne):
+        if mu_static[e] != mu[e]:
+            exact_breakaway = False
     for j in range(state_first_time.shape[0]):
         state_first_time[j] = -1.0
     out_x[0] = x
@@ -288,7 +300,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, t
                         level = f_hi if s > 0.0 else f_lo
                         tb = (level + a_sub) / (-b) if b != 0.0 else tau
                         tb = min(max(tb, tau), h)
-                        exact_start = True
+                        exact_start = exact_breakaway
                     else:
                         # already beyond the window (a record that starts there, or the force
                         # after an impact): a jump, not a crossing
@@ -325,7 +337,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, t
                             first_ult = t_sub + tau
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, kind, x)
                     _surface_peaks(u, tmat, surf_peak)
-                    r_lo, r_hi = stick_window(u, rbar, mu, rim)
+                    r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
                     stuck = True
                     events_here += 1
                     if events_here > MAX_EVENTS_PER_INTERVAL:
@@ -474,7 +486,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, t
                 peak_r = max(peak_r, abs(r_end))
                 settle(s, u, rbar, mu, rim, r_end)
                 _surface_peaks(u, tmat, surf_peak)
-                r_lo, r_hi = stick_window(u, rbar, mu, rim)
+                r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
                 need = -(a_sub + b * tau)
                 if g * r_lo <= need <= g * r_hi:
                     stuck = True
@@ -501,7 +513,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, rim, t
             if events_here > MAX_EVENTS_PER_INTERVAL:
                 break
         if status & STATUS_CHATTER and stuck and r_lo == -math.inf:
-            r_lo, r_hi = stick_window(u, rbar, mu, rim)
+            r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
         i += 1
         out_x[i] = x
         out_v[i] = v

@@ -67,6 +67,15 @@ from numba import njit
 #: or stop together (equal inner surfaces), without a spurious regime of rounding length.
 LEVEL_TIE = 1e-13
 
+#: Why static friction above kinetic is refused on a double or triple bearing (one clause): the
+#: excursion below assumes that the force only grows while the mass moves one way.
+STATIC_FRICTION_REASON = (
+    "its sliders are massless, so the drop from static to kinetic friction when this surface breaks away is "
+    "an instant drop of the one force through the bearing, below the level at which the other surfaces were "
+    "sliding: they stop (or slide back), must break away again, and the force is no longer a known function of "
+    "the displacement along an excursion, which the exact series solution needs (the answer would depend on "
+    "the slider masses the model leaves out)")
+
 #: Largest number of regimes in one excursion: each element starts once and stops once.
 def max_regimes(n_elements: int) -> int:
     """Room for the regimes of one excursion of ``n_elements`` elements (2n + 1)."""

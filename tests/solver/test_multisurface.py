@@ -64,20 +64,29 @@ class SeriesReference:
 
     def __init__(self, b, c=0.0, g=G):
         self.rbar, self.mu, self.rim = b.elements()
+        self.mu_s = np.array([surface.mu_static for surface in b.surfaces])  # the stuck window
         self.c, self.g = c, g
 
     def window(self, u):
         lo, hi = -np.inf, np.inf
         for i in range(u.size):
             if u[i] < self.rim[i]:
-                hi = min(hi, u[i] / self.rbar[i] + self.mu[i])
+                hi = min(hi, u[i] / self.rbar[i] + self.mu_s[i])
             if u[i] > -self.rim[i]:
-                lo = max(lo, u[i] / self.rbar[i] - self.mu[i])
+                lo = max(lo, u[i] / self.rbar[i] - self.mu_s[i])
         return lo, hi
 
-    def active_set(self, u, s, r):
-        return [i for i in range(u.size)
-                if s * u[i] < self.rim[i] and abs(u[i] / self.rbar[i] + s * self.mu[i] - r) <= 1e-12]
+    def break_away(self, u, s, level):
+        """The elements that break away at the window's bound ``level`` and the force they then slide at.
+
+        With static friction (one element) the force drops to the kinetic level at once.
+        """
+        active = [i for i in range(u.size)
+                  if s * u[i] < self.rim[i] and abs(u[i] / self.rbar[i] + s * self.mu_s[i] - level) <= 1e-12]
+        if np.any(self.mu_s != self.mu):
+            assert len(active) == 1
+            return active, u[active[0]] / self.rbar[active[0]] + s * self.mu[active[0]]
+        return active, level
 
     def matrix(self, kappa, offset, a0, slope):
         # z = (x, v, 1, τ): x' = v, v' = −κx − cv − (offset + a0) − slope·τ
@@ -159,8 +168,8 @@ class SeriesReference:
                         s = 1.0 if need_now > hi else -1.0
                         level = hi if s > 0 else lo
                     stuck = False
-                    active = self.active_set(u, s, level)
-                    x_reg, r_reg = x, level
+                    active, r_reg = self.break_away(u, s, level)
+                    x_reg = x
                     continue
                 rsum = sum(self.rbar[i] for i in active)
                 kappa = g / rsum
@@ -187,8 +196,8 @@ class SeriesReference:
                     else:
                         s = 1.0 if need > hi else -1.0
                         level = hi if s > 0 else lo
-                        active = self.active_set(u, s, level)
-                        x_reg, r_reg = x, level
+                        active, r_reg = self.break_away(u, s, level)
+                        x_reg = x
                 else:
                     # every element that starts or reaches its rim at this force (ties: equal surfaces)
                     r_now = r_reg
@@ -418,3 +427,110 @@ def test_real_record_through_the_rims_against_the_reference(records_dir):
     assert np.max(np.abs(res.displacement_m - ref_x)) <= 1e-9 * 0.9
     assert len(impacts) == res.event_names.count("ultimate")
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+# ---- a single pendulum: static friction, and the rim at its displacement capacity ---------------
+
+NWH360 = "RSN1044_NORTHR_NWH360.AT2"
+
+
+def single(radius_m, mu_kinetic, mu_static, capacity_m):
+    return parse_bearing({"type": "single", "surface": [{"radius_m": radius_m, "mu_kinetic": mu_kinetic,
+                                                         "mu_static": mu_static,
+                                                         "displacement_capacity_m": capacity_m}]}, _fail)
+
+
+def test_single_with_static_friction_is_the_kernel_below_its_rim_and_the_reference_on_it():
+    acc, dt = pulse(0.4, period_s=2.0, duration_s=10.0, seed=4)
+    free = simulate_record(acc, dt, mu_static=0.08, mu_kinetic=0.05, stiffness_per_mass=G / 2.0)
+    kinetic = simulate_record(acc, dt, mu_static=0.05, stiffness_per_mass=G / 2.0)
+    assert np.max(np.abs(free.displacement_m - kinetic.displacement_m)) > 1e-4  # static friction matters here
+    big = simulate_bearing(acc, dt, bearing=single(2.0, 0.05, 0.08, 10.0))
+    assert np.max(np.abs(big.displacement_m - free.displacement_m)) <= 1e-12 * free.peak_displacement_m
+    assert big.event_names.count("breakaway") == free.event_names.count("breakaway")
+    cap = 0.6 * free.peak_displacement_m
+    rimmed = simulate_bearing(acc, dt, bearing=single(2.0, 0.05, 0.08, cap))
+    assert rimmed.ultimate_displacement_reached and rimmed.peak_displacement_m == pytest.approx(cap, rel=1e-14)
+    ref_x, impacts = SeriesReference(rimmed.bearing).run(acc, dt)
+    assert np.max(np.abs(rimmed.displacement_m - ref_x)) <= 1e-9 * cap
+    assert len(impacts) == rimmed.event_names.count("ultimate") >= 1
+    # the friction work is µk g × travel: the balance closes only with the drop to µk at each break-away
+    assert abs(rimmed.energy_balance_error_J_per_kg) <= 1e-9 * rimmed.energy_input_J_per_kg
+
+
+def test_static_friction_on_a_double_is_refused_by_the_solver_too():
+    from dataclasses import replace
+
+    b = bearing("double", [(1.2, 0.05, 0.3), (1.5, 0.06, 0.3)])
+    b = replace(b, surfaces=(replace(b.surfaces[0], mu_static=0.07), b.surfaces[1]))
+    acc, dt = pulse(0.3, duration_s=2.0)
+    with pytest.raises(ValueError, match="static friction above kinetic on a double bearing is not modelled: its "
+                                         "sliders are massless"):
+        simulate_bearing(acc, dt, bearing=b)
+
+
+def _fps_design(capacity_m):
+    from isolator.design import Design
+
+    return Design.from_mapping({"name": "FPS", "mass_kg": 1.0e5, "radius_m": 2.0, "mu_static": 0.08,
+                                "mu_kinetic": 0.05, "displacement_capacity_m": capacity_m}, source="fps.toml")
+
+
+def _northridge_x3(records_dir):
+    from isolator.motion import read_ground_motion
+
+    motion = read_ground_motion(records_dir / "at2" / NWH360)
+    start = int(round(2.0 / motion.dt_s))
+    return 3.0 * motion.acceleration_m_s2[start:start + int(round(12.0 / motion.dt_s))], motion.dt_s
+
+
+def test_single_pendulum_past_its_capacity_on_a_real_record_is_rerun_with_the_rim(records_dir):
+    """Northridge NWH360 (2–14 s) × 3 on R = 2 m, µs/µk = 0.08/0.05, capacity 0.6 m: the plate ends there."""
+    from isolator.adapter import motion_keywords
+    from isolator.solver.models import Scene, select_model, simulate
+
+    acc, dt = _northridge_x3(records_dir)
+    design = _fps_design(0.6)
+    scene = Scene(ax_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design)
+    name, reason = select_model(scene)
+    assert name == "1d-exact" and "a displacement capacity of 0.6 m: if the peak reaches it, the run is redone" in reason
+    res = simulate(scene)
+    free = simulate_record(acc, dt, mu_static=0.08, mu_kinetic=0.05, stiffness_per_mass=G / 2.0)
+    assert free.peak_displacement_m > 1.0  # today's kernel: an unbounded plate, 1.1 m
+    assert res.model == "1d-multisurface" and res.rerun
+    assert f"on 1d-exact (an unbounded plate) its peak was {free.peak_displacement_m:.4g} m" in res.model_reason
+    assert res.ultimate_displacement_reached and res.n_rim_contacts >= 1 and res.impact_impulse_m_s > 0
+    assert res.peak_displacement_m == pytest.approx(0.6, rel=1e-14)
+    assert np.max(np.abs(res.displacement_m)) <= 0.6 * (1 + 1e-14)
+    # up to the first rim contact it is today's kernel
+    before = res.time_s < res.ultimate_first_time_s
+    assert np.count_nonzero(before) > 50
+    assert np.max(np.abs(res.displacement_m[before] - free.displacement_m[before])) <= 1e-12 * 0.6
+    assert np.max(np.abs(res.displacement_m - free.displacement_m)) > 0.1  # and then it is not
+    # on the rim and after: the independent reference (static friction, rim, plastic impacts)
+    ref_x, impacts = SeriesReference(res.bearing).run(acc, dt)
+    assert np.max(np.abs(res.displacement_m - ref_x)) <= 1e-9 * 0.6
+    assert len(impacts) == res.event_names.count("ultimate")
+    assert res.impact_impulse_m_s == pytest.approx(sum(v for _, v in impacts), rel=1e-9)
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+    # a capacity the motion does not reach: today's kernel and its result, unchanged
+    roomy = _fps_design(1.5)
+    kept = simulate(Scene(ax_m_s2=acc, dt_s=dt, isolator=motion_keywords(roomy), design=roomy))
+    assert kept.model == "1d-exact" and "1.5 m" in kept.model_reason and not hasattr(kept, "rerun")
+    np.testing.assert_array_equal(kept.displacement_m, free.displacement_m)
+
+
+def test_the_analysis_of_a_single_pendulum_at_its_rim_says_it_reached_the_capacity(records_dir):
+    from isolator.analysis import analyse
+    from isolator.motion import GroundMotion
+
+    acc, dt = _northridge_x3(records_dir)
+    design = _fps_design(0.6)
+    analysis = analyse(design, GroundMotion.from_array(acc, dt))
+    out = analysis.to_dict()
+    assert out["model"] == "1d-multisurface" and out["ultimate_displacement_reached"] is True
+    assert out["displacement_demand_ratio"] == pytest.approx(1.0, rel=1e-14)  # the bearing's, not a plate's
+    text = " ".join(out["verdicts"])
+    assert "REACHED its ultimate displacement 0.6 m (its displacement capacity" in text
+    assert "EXCEEDS" not in text and "within the displacement capacity" not in text
+    assert f"{design.mass_kg * analysis.response.impact_impulse_m_s:.4g} N·s" in text
