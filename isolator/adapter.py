@@ -37,6 +37,12 @@ class DimensionlessPoint:
         A0 = PGV²/PGA, the equivalent harmonic ground-displacement amplitude [m].
     omega_rad_s : float
         Ω = PGA/PGV, the equivalent angular frequency [rad/s].
+    regime : str or None
+        For a double or triple bearing, the backbone regime whose line gives the single
+        pendulum of the point (:meth:`isolator.bearing.Bearing.point_regime`); None for one
+        surface.
+    regime_reason : str
+        Which regime and why, in one sentence ("" for one surface).
     """
 
     alpha: float
@@ -46,14 +52,23 @@ class DimensionlessPoint:
     mu_k: float
     a0_m: float
     omega_rad_s: float
+    regime: str | None = None
+    regime_reason: str = ""
 
     def as_dict(self) -> dict:
         return {"alpha": self.alpha, "k": self.k, "eta": self.eta, "mu_s": self.mu_s, "mu_k": self.mu_k,
-                "a0_m": self.a0_m, "omega_rad_s": self.omega_rad_s}
+                "a0_m": self.a0_m, "omega_rad_s": self.omega_rad_s, "point_regime": self.regime,
+                "point_regime_reason": self.regime_reason}
 
 
-def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float) -> DimensionlessPoint:
+def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float, *,
+                        regimes_entered=None) -> DimensionlessPoint:
     """The paper's (α, k, η) of a design under a motion of given PGA and PGV.
+
+    For a double or triple bearing the paper's single pendulum is a line of the bearing's
+    backbone: the regime the motion reached when its ``regimes_entered`` are given
+    (:meth:`isolator.bearing.Bearing.point_regime`), else the design's equivalent (every
+    element sliding: regime III of a triple).  k = A0/R and α = PGA/(µ g) on that line.
 
     Parameters
     ----------
@@ -63,6 +78,8 @@ def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float) -> Dime
         Peak ground acceleration [m/s²], > 0.
     pgv_m_s : float
         Peak ground velocity [m/s], > 0.
+    regimes_entered : mapping, optional
+        The response's ``regimes`` (name → first time [s]) of a double or triple bearing.
 
     Returns
     -------
@@ -81,14 +98,29 @@ def dimensionless_point(design: Design, pga_m_s2: float, pgv_m_s: float) -> Dime
         raise RecordInputError(f"the record's equivalent amplitude PGV²/PGA = {a0_m:g} m is not a positive "
                                f"finite number (PGA = {pga_m_s2:g} m/s², PGV = {pgv_m_s:g} m/s): a motion that "
                                "small is below floating-point resolution")
+    mu_s, mu_k = design.mu_static, design.mu_kinetic
+    k = design.stiffness_N_per_m * a0_m / (design.mass_kg * g)
+    regime, reason = None, ""
+    bearing = design.bearing
+    if bearing is not None and not bearing.is_simple:
+        if regimes_entered is None:
+            regime = "III" if bearing.kind == "triple" else "+".join(str(i + 1) for i in range(len(bearing.surfaces)))
+            reason = (f"before the response: the design's equivalent single pendulum (every element sliding, regime "
+                      f"{regime})")
+        else:
+            regime, radius, mu, reason = bearing.point_regime(regimes_entered)
+            mu_s = mu_k = mu
+            k = a0_m / radius
     return DimensionlessPoint(
-        alpha=pga_m_s2 / (design.mu_static * g),
-        k=design.stiffness_N_per_m * a0_m / (design.mass_kg * g),
+        alpha=pga_m_s2 / (mu_s * g),
+        k=k,
         eta=design.damping_per_mass * math.sqrt(a0_m / g),
-        mu_s=design.mu_static,
-        mu_k=design.mu_kinetic,
+        mu_s=mu_s,
+        mu_k=mu_k,
         a0_m=a0_m,
         omega_rad_s=pga_m_s2 / pgv_m_s,
+        regime=regime,
+        regime_reason=reason,
     )
 
 
@@ -100,6 +132,20 @@ class Adaptation:
     system: object  #: isolator.solver.system.System (per unit mass)
     point: DimensionlessPoint
     intensity: object  #: isolator.motion.IntensityMeasures
+
+    def on_response(self, response) -> Adaptation:
+        """This adaptation with the paper's point on the regime the response reached (a new object).
+
+        Only a double or triple bearing's point changes (:func:`dimensionless_point` with the
+        response's ``regimes``); any other design's point does not depend on the response.
+        """
+        bearing = self.design.bearing
+        regimes = getattr(response, "regimes", None)
+        if bearing is None or bearing.is_simple or regimes is None:
+            return self
+        point = dimensionless_point(self.design, self.intensity.pga_m_s2, self.intensity.pgv_m_s,
+                                    regimes_entered=regimes)
+        return Adaptation(design=self.design, system=self.system, point=point, intensity=self.intensity)
 
     def dimensional_dict(self) -> dict:
         """K [N/m], γ [N·s/m], µs, µk, M [kg]: the dimensional system."""

@@ -423,6 +423,7 @@ def analyse(design, motion, *, intensity=None, window_s: tuple | None = None, ha
         motion = parts["x"]  # a MotionPair of one component is that component
     adaptation = adapt(design, motion, intensity)
     response = simulate(Scene.of(motion, motion_keywords(design), design))
+    adaptation = adaptation.on_response(response)  # a double or triple: the point on the regime reached
     point = adaptation.point
     record_class = classify_record(response, point, design, window_s=window_s)
     not_applicable: dict = {}

@@ -270,6 +270,64 @@ class Bearing:
                         stiffness_per_weight_1_m=np.array(slopes), regimes=tuple(names),
                         ultimate_displacement_m=self.ultimate_displacement_m)
 
+    def point_regime(self, regimes_entered) -> tuple[str, float, float, str]:
+        """The backbone regime a motion reached, as a single pendulum: its line F/W = x/R + µ.
+
+        The regime reached is the last one along the backbone among those the motion
+        entered (``regimes_entered``: the response's ``regimes``, name → first time [s]).
+        Its line's compliance R = Σ R̄ of the sliding elements and its F/W intercept µ
+        make the single pendulum of the paper's point (Nicolas 2017, Eq. 6: k = A0/R,
+        α = PGA/(µ g)).  Past the rims (regimes IV and V of a triple, a double's last
+        surface after the first's rim) the line's intercept is ≤ 0 — the bearing stiffens,
+        no pendulum has that line — and the point is taken on the last regime before them
+        with an intercept > 0; the reason says so.
+
+        Parameters
+        ----------
+        regimes_entered : mapping or sequence of str
+            Names of the regimes the motion entered (first times as values, if a mapping).
+
+        Returns
+        -------
+        tuple
+            ``(regime, radius_m, mu, reason)``: the regime the point is taken on, R [m],
+            µ [-], and one sentence.
+        """
+        bb = self.backbone()
+        times = dict(regimes_entered) if isinstance(regimes_entered, dict) else dict.fromkeys(regimes_entered)
+        reached = [k for k, name in enumerate(bb.regimes) if name in times]
+        if not reached:
+            k = 0
+            top = None
+        else:
+            top = max(reached)
+            k = top
+        while k > 0 and not self._pendulum_line(bb, k)[1] > 0.0:
+            k -= 1
+        radius, mu = self._pendulum_line(bb, k)
+        name = bb.regimes[k]
+        line = f"R = {radius:.4g} m (sum of the sliding elements' R), mu = {mu:.4g} (the line's F/W intercept)"
+        if top is None:
+            reason = f"the bearing never slid: the point is on regime {name}, where sliding begins: {line}"
+        elif top == k:
+            when = times.get(name)
+            at = "" if when is None else f" (first at {when:.4g} s)"
+            reason = f"the motion reached regime {name}{at}: the point is on its line, {line}"
+        else:
+            reason = (f"the motion reached regime {bb.regimes[top]}, whose line has an F/W intercept <= 0 (the bearing "
+                      f"stiffens at the rims: no single pendulum has it): the point is on regime {name}, the last "
+                      f"reached with a pendulum's line, {line}")
+        return name, radius, mu, reason
+
+    @staticmethod
+    def _pendulum_line(bb: Backbone, k: int) -> tuple[float, float]:
+        # (R [m], µ [-]) of regime k's line F/W = x/R + µ; (0, -inf) for a rigid step
+        slope = float(bb.stiffness_per_weight_1_m[k])
+        if not (math.isfinite(slope) and slope > 0.0):
+            return 0.0, -math.inf
+        radius = 1.0 / slope
+        return radius, float(bb.force_per_weight[k] - bb.displacement_m[k] / radius)
+
     def quasi_static_path(self, targets_m, *, leg_ends: list | None = None) -> tuple[np.ndarray, np.ndarray]:
         """The force along a displacement-controlled path from rest, as a polyline.
 

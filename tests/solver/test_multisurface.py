@@ -534,3 +534,61 @@ def test_the_analysis_of_a_single_pendulum_at_its_rim_says_it_reached_the_capaci
     assert "REACHED its ultimate displacement 0.6 m (its displacement capacity" in text
     assert "EXCEEDS" not in text and "within the displacement capacity" not in text
     assert f"{design.mass_kg * analysis.response.impact_impulse_m_s:.4g} N·s" in text
+
+
+# ---- the paper's point on the regime the motion reached; a double's regimes ---------------------
+
+def test_a_doubles_regimes_name_the_surfaces_that_slid_and_its_point_is_on_the_last_line():
+    """µ1 < µ2: surface 1 slides alone, then both; the line of both is F/W = x/(R1+R2) + (µ1R1 + µ2R2)/(R1+R2)."""
+    from isolator.adapter import dimensionless_point
+
+    r1, r2, mu1, mu2 = 1.5, 1.0, 0.04, 0.08
+    dbl = bearing("double", [(r1, mu1, 0.5), (r2, mu2, 0.5)])
+    small = simulate_bearing(*pulse(0.06, period_s=2.0, duration_s=6.0), bearing=dbl)
+    assert list(small.regimes) == ["1"]  # only surface 1 slid
+    acc, dt = pulse(0.12, period_s=2.0, duration_s=8.0)
+    res = simulate_bearing(acc, dt, bearing=dbl)
+    assert list(res.regimes)[:2] == ["1", "1+2"] and not res.ultimate_displacement_reached
+    assert res.surface_peak_displacement_m[1] > 0 and res.surface_peak_displacement_m[0] > res.surface_peak_displacement_m[1]
+    name, radius, mu, reason = dbl.point_regime(res.regimes)
+    assert name == "1+2" and radius == pytest.approx(r1 + r2, rel=1e-14)
+    assert mu == pytest.approx((mu1 * r1 + mu2 * r2) / (r1 + r2), rel=1e-13)
+    assert dbl.point_regime(small.regimes)[:3] == ("1", pytest.approx(r1), pytest.approx(mu1, rel=1e-13))
+    # on the paper's point: k = A0/R and alpha = PGA/(µ g) of that line
+    from isolator.design import Design
+
+    design = Design.from_mapping({"name": "D", "mass_kg": 1e5, "bearing": {"type": "double", "surface": [
+        {"radius_m": r1, "mu": mu1, "displacement_capacity_m": 0.5},
+        {"radius_m": r2, "mu": mu2, "displacement_capacity_m": 0.5}]}})
+    point = dimensionless_point(design, 3.0, 0.5, regimes_entered=small.regimes)
+    assert point.regime == "1" and point.k == pytest.approx(0.5 ** 2 / 3.0 / r1, rel=1e-13)
+    assert point.alpha == pytest.approx(3.0 / (mu1 * G), rel=1e-13) and "reached regime 1" in point.regime_reason
+
+
+def test_the_analysis_takes_the_papers_point_on_the_regime_the_triple_reached():
+    from isolator.adapter import motion_intensity
+    from isolator.analysis import analyse
+    from isolator.motion import GroundMotion
+
+    design = _tfp_design()
+    cases = {"I": pulse(0.03, period_s=2.5, duration_s=6.0, dt=0.02),
+             "V": pulse(0.2, period_s=2.5, duration_s=9.0, dt=0.02, seed=3, cycles=1.0)}
+    lines = {"I": (0.6, 0.02), "II": (2.4, 0.06 - 0.024 / 2.4), "III": (4.2, 0.10 - 0.120 / 4.2)}
+    for top, (acc, dt) in cases.items():
+        motion = GroundMotion.from_array(acc, dt)
+        analysis = analyse(design, motion)
+        out = analysis.to_dict()
+        assert list(out["regimes"])[-1] == top
+        im = motion_intensity(motion)
+        a0 = im.pgv_m_s ** 2 / im.pga_m_s2
+        on = "I" if top == "I" else "III"  # past III the lines stiffen (F/W intercepts < 0): the point stays on III
+        radius, mu = lines[on]
+        assert out["point_regime"] == on
+        assert out["k"] == pytest.approx(a0 / radius, rel=1e-12)
+        assert out["alpha"] == pytest.approx(im.pga_m_s2 / (mu * G), rel=1e-12)
+        assert out["mu_s"] == pytest.approx(mu, rel=1e-12)
+        assert (f"the motion reached regime {top}" in out["point_regime_reason"])
+    assert "intercept <= 0" in out["point_regime_reason"]
+    # a single pendulum's point has no regime
+    plain = analyse(_fps_design(2.0), GroundMotion.from_array(*pulse(0.2, duration_s=4.0)))
+    assert plain.to_dict()["point_regime"] is None
