@@ -111,6 +111,8 @@ class Surface:
         """d* = d R_eff / R [m] (inf without a capacity)."""
         if self.displacement_capacity_m is None:
             return math.inf
+        if self.height_m == 0.0:
+            return self.displacement_capacity_m  # d exactly (d R/R may round away from d)
         return self.displacement_capacity_m * self.effective_radius_m / self.radius_m
 
 

@@ -238,6 +238,13 @@ def excursion(s, u, rbar, mu, rim, x0, reg_x, reg_r, reg_rsum, reg_mask):
             if active & bit:
                 r_next = min(r_next, rim[i] / rbar[i] + mu[i])
         if r_next == math.inf:
+            if rsum == 0.0 and rimmed == (1 << n) - 1:
+                # the ultimate displacement: every element on its rim, x = s Σ c̄ exactly (not the
+                # rounded sum of the regimes' travels), so a peak there equals the capacity
+                total = 0.0
+                for i in range(n):
+                    total += rim[i]
+                reg_x[n_reg - 1] = s * total
             return n_reg  # open (no rim ahead) or the ultimate displacement (rigid)
         x = x + rsum * (r_next - r)
         r = r_next

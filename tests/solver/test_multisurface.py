@@ -500,8 +500,7 @@ def test_single_pendulum_past_its_capacity_on_a_real_record_is_rerun_with_the_ri
     assert res.model == "1d-multisurface" and res.rerun
     assert f"on 1d-exact (an unbounded plate) its peak was {free.peak_displacement_m:.4g} m" in res.model_reason
     assert res.ultimate_displacement_reached and res.n_rim_contacts >= 1 and res.impact_impulse_m_s > 0
-    assert res.peak_displacement_m == pytest.approx(0.6, rel=1e-14)
-    assert np.max(np.abs(res.displacement_m)) <= 0.6 * (1 + 1e-14)
+    assert res.peak_displacement_m == 0.6 and np.max(np.abs(res.displacement_m)) == 0.6  # the rim, exactly
     # up to the first rim contact it is today's kernel
     before = res.time_s < res.ultimate_first_time_s
     assert np.count_nonzero(before) > 50
@@ -529,7 +528,7 @@ def test_the_analysis_of_a_single_pendulum_at_its_rim_says_it_reached_the_capaci
     analysis = analyse(design, GroundMotion.from_array(acc, dt))
     out = analysis.to_dict()
     assert out["model"] == "1d-multisurface" and out["ultimate_displacement_reached"] is True
-    assert out["displacement_demand_ratio"] == pytest.approx(1.0, rel=1e-14)  # the bearing's, not a plate's
+    assert out["displacement_demand_ratio"] == 1.0  # the bearing's at its rim, not a plate's
     text = " ".join(out["verdicts"])
     assert "REACHED its ultimate displacement 0.6 m (its displacement capacity" in text
     assert "EXCEEDS" not in text and "within the displacement capacity" not in text
