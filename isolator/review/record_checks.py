@@ -77,7 +77,14 @@ def with_record_checks(analysis, parameters: dict | None = None):
     parameters : dict, optional
         Overrides of the review parameters.
     """
-    if not analysis.paper_applies:
+    r = analysis.response
+    at_rim = getattr(r, "ultimate_displacement_reached", False) and getattr(r, "bearing_type", "") == "single"
+    if not analysis.paper_applies and not at_rim:  # a single pendulum rerun with its rim keeps its checks
         return analysis
-    return analysis.with_checks(record_checks(analysis.design, analysis.motion, analysis.engineering, parameters))
+    rows = record_checks(analysis.design, analysis.motion, analysis.engineering, parameters)
+    if at_rim:  # its peak is the capacity because the rim stopped it (solver.multisurface): not a demand within it
+        rows[0].update(status=C.FAIL, note=f"the bearing REACHED its displacement capacity (rim, plastic impact(s), "
+                                             f"impulse {analysis.design.mass_kg * r.impact_impulse_m_s:.4g} N·s); "
+                                             f"{r.model_reason}")
+    return analysis.with_checks(rows)
 

@@ -591,3 +591,19 @@ def test_the_analysis_takes_the_papers_point_on_the_regime_the_triple_reached():
     # a single pendulum's point has no regime
     plain = analyse(_fps_design(2.0), GroundMotion.from_array(*pulse(0.2, duration_s=4.0)))
     assert plain.to_dict()["point_regime"] is None
+
+
+def test_the_one_record_checks_of_a_single_pendulum_at_its_rim_fail_the_capacity(records_dir):
+    """Its peak is the capacity (the rim stopped it): the capacity row fails, it does not pass at ratio 1."""
+    from isolator.analysis import analyse
+    from isolator.motion import GroundMotion
+    from isolator.review.record_checks import with_record_checks
+
+    acc, dt = _northridge_x3(records_dir)
+    rows = {row["id"]: row for row in with_record_checks(analyse(_fps_design(0.6),
+                                                                 GroundMotion.from_array(acc, dt))).to_dict()["checks"]}
+    cap = rows["displacement_capacity"]
+    assert cap["status"] == "fail" and cap["value"] == 0.6 and "REACHED its displacement capacity" in cap["note"]
+    assert rows["D_over_R"]["value"] == pytest.approx(0.3)
+    roomy = with_record_checks(analyse(_fps_design(1.5), GroundMotion.from_array(acc, dt))).to_dict()["checks"]
+    assert {row["id"]: row["status"] for row in roomy}["displacement_capacity"] == "pass"
