@@ -31,8 +31,10 @@ SCHEMA_VERSION = 2
 #: Which schema the review's JSON follows (an analysis' is ``"isolator.analysis"``, with its own version).
 SCHEMA_NAME = "isolator.review"
 PLOT_PERIODS_S = np.geomspace(0.05, 10.0, 90)
-#: Errors of an analysis that say the engine cannot take the scene (not a record's fault): the review stops.
-ENGINE_REFUSALS = ("InvalidSystemError:", "DesignError:")
+#: Errors of an analysis that say the engine cannot take the scene or finish it (a design it does not model, a
+#: double/triple bearing's rim in the plane, a step guard): the review stops rather than leave the pair out of
+#: every suite value (the pair that reaches a rim is the one the capacity rows need).
+ENGINE_REFUSALS = ("InvalidSystemError:", "DesignError:", "SolverError:")
 
 
 @dataclass
