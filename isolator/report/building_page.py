@@ -81,8 +81,10 @@ def _frame_profile(ax, x_top: float, floors, xlabel: str, ylabel: str, title: st
     ax.legend(loc="upper left", bbox_to_anchor=(0.0, -0.16), frameon=False, fontsize=6.8)
 
 
-def draw_acceleration_profile(ax, floor_acceleration_m_s2, story_heights_m, pga_m_s2: float | None) -> None:
-    """Peak absolute floor acceleration against floor height [g], the ground's PGA at height 0.
+def draw_acceleration_profile(ax, floor_acceleration_m_s2, story_heights_m, pga_m_s2: float | None, *,
+                              resultant: bool = False) -> None:
+    """Peak absolute floor acceleration against floor height [g], the ground's PGA at height 0 (that of the
+    horizontal resultant for a pair: ``resultant``).
 
     The line labelled ``"floor peak absolute acceleration"`` has x equal to the analysis'
     ``floor_peak_acceleration_m_s2`` / g and y the floor heights.
@@ -93,7 +95,8 @@ def draw_acceleration_profile(ax, floor_acceleration_m_s2, story_heights_m, pga_
     top = float(np.max(acc_g))
     if pga_m_s2 is not None:
         ax.plot([pga_m_s2 / STANDARD_GRAVITY], [0.0], "s", color="0.4", ms=4.5,
-                label=f"ground PGA {fmt(pga_m_s2 / STANDARD_GRAVITY, 3)} g", clip_on=False)
+                label=f"ground PGA{' (horizontal resultant)' if resultant else ''} "
+                      f"{fmt(pga_m_s2 / STANDARD_GRAVITY, 3)} g", clip_on=False)
         top = max(top, pga_m_s2 / STANDARD_GRAVITY)
     _frame_profile(ax, top, floors, "peak absolute acceleration  [g]", "floor height  [m]",
                    "Floor acceleration profile")
@@ -140,7 +143,7 @@ def draw_bearing_plan(ax, x_m, y_m, uplifted) -> None:
     ax.set_xlim(-span, span)
     ax.set_ylim(-span, span)
     ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel("x (along the record)  [m]")
+    ax.set_xlabel("x (along the first component)  [m]")
     ax.set_ylabel("y  [m]")
     ax.set_title("Layout (plan)")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False, fontsize=6.8)
@@ -171,8 +174,10 @@ def building_page(number: int, label: str, numbers: dict, response=None):
     ax_drift = fig.add_axes((0.1, 0.69, 0.35, 0.24))
     draw_drift_profile(ax_drift, numbers["story_drift_ratio"], heights, limit)
     ax_acc = fig.add_axes((0.6, 0.69, 0.35, 0.24))
-    pga = (numbers.get("record") or {}).get("intensity_measures", {}).get("pga_m_s2")
-    draw_acceleration_profile(ax_acc, numbers["floor_peak_acceleration_m_s2"], heights, pga)
+    record = numbers.get("record") or {}
+    pga = record.get("intensity_measures", {}).get("pga_m_s2")
+    draw_acceleration_profile(ax_acc, numbers["floor_peak_acceleration_m_s2"], heights, pga,
+                              resultant=len(record.get("components") or {}) > 1)
 
     y = 0.585
     fig.text(0.05, y, "Stories and floors (bottom to top; peaks over the record, exact)", fontsize=9.5,
@@ -199,7 +204,7 @@ def building_page(number: int, label: str, numbers: dict, response=None):
               ("base shear coefficient V_b/W (peak isolator force: spring, dashpot, friction)",
                fmt(numbers["base_shear_coefficient"])),
               ("W_s / W (floors' weight over the whole isolated weight)", fmt(weight_ratio)),
-              ("fixed-base periods along x [s]", ", ".join(fmt(t, 3) for t in structure["fixed_base_periods_x_s"][:6])),
+              *_period_rows(structure),
               ("modal damping ratio ζ", fmt(structure["damping_ratio"])),
               ("story drift limit (response history)", f"{fmt(limit['ratio'], 3)} h_sx, {limit['rule']}"),
               ("  its review parameter", f"{limit['name']} [{limit['mark']}], at its default")]
@@ -240,6 +245,15 @@ def building_page(number: int, label: str, numbers: dict, response=None):
                   "their heights, distributed over the layout by rigid-slab statics (docs/building.md); a "
                   "negative minimum is tension (uplift), not released by the model.")
     return fig
+
+
+def _period_rows(structure: dict) -> list[tuple]:
+    """The fixed-base periods (the six longest) along x, and along y where the stories differ [s]."""
+    x, y = structure["fixed_base_periods_x_s"][:6], structure["fixed_base_periods_y_s"][:6]
+    if x == y:
+        return [("fixed-base periods along x and y [s]", ", ".join(fmt(t, 3) for t in x))]
+    return [("fixed-base periods along x [s]", ", ".join(fmt(t, 3) for t in x)),
+            ("fixed-base periods along y [s]", ", ".join(fmt(t, 3) for t in y))]
 
 
 def _uplift_timing(response) -> dict:
