@@ -27,10 +27,20 @@ POINTS_LABEL = "backbone transition points"
 
 
 def has_multisurface_bearing(numbers: dict) -> bool:
-    """True when the analysis is of a double or triple bearing (``surface_peak_displacement_m`` is a list)."""
-    bearing = (numbers.get("design") or {}).get("bearing") or {}
-    return isinstance(numbers.get("surface_peak_displacement_m"), list) and bearing.get("type") in ("double",
-                                                                                                   "triple")
+    """True when the response is the series model's (``surface_peak_displacement_m`` is a list): a double or
+    triple bearing, or a single pendulum rerun with its rim when it reached its displacement capacity."""
+    return isinstance(numbers.get("surface_peak_displacement_m"), list)
+
+
+def bearing_dict(numbers: dict, response=None) -> dict:
+    """The bearing drawn (:meth:`isolator.bearing.Bearing.as_dict`): the design's ``[bearing]``, else the
+    response's own (a single pendulum rerun with its rim has no ``[bearing]`` table)."""
+    bearing = (numbers.get("design") or {}).get("bearing")
+    if bearing is None and getattr(response, "bearing", None) is not None:
+        bearing = response.bearing.as_dict()
+    if bearing is None:
+        raise ValueError("a multi-surface page needs the bearing: the design's [bearing] or the response's")
+    return bearing
 
 
 def backbone_polyline(bearing: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -119,14 +129,14 @@ def loop_force_per_weight(response) -> tuple[np.ndarray, str]:
             "−(absolute acceleration)/g at the samples, = (F + γV)/W: F/W without a damper")
 
 
-def surface_rows(numbers: dict) -> list[tuple]:
+def surface_rows(numbers: dict, bearing: dict) -> list[tuple]:
     """Per surface (file order): number, R, R_eff, µ, capacity d on the surface, peak on the surface, peak/d.
 
     The peaks (``surface_peak_displacement_m``) and the capacities are both on the surface (d, not d*):
     their ratio is that of the effective values.
     """
     rows = []
-    surfaces = numbers["design"]["bearing"]["surfaces"]
+    surfaces = bearing["surfaces"]
     for i, (surface, peak) in enumerate(zip(surfaces, numbers["surface_peak_displacement_m"], strict=True)):
         capacity = surface["displacement_capacity_m"]
         ratio = None if not capacity else peak / capacity
@@ -135,10 +145,9 @@ def surface_rows(numbers: dict) -> list[tuple]:
     return rows
 
 
-def regime_sentence(numbers: dict) -> str:
+def regime_sentence(numbers: dict, bearing: dict) -> str:
     """Which regimes the motion reached and when (``regimes``: first time each was entered), and which not."""
     regimes = numbers.get("regimes") or {}
-    bearing = numbers["design"]["bearing"]
     reached = ", ".join(f"{name} at {fmt(time, 4)} s" for name, time in sorted(regimes.items(),
                                                                                 key=lambda item: item[1]))
     missing = [name for name in bearing["backbone_regimes"] if name not in regimes]
@@ -170,9 +179,11 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
     -------
     matplotlib.figure.Figure
     """
-    bearing = numbers["design"]["bearing"]
+    bearing = bearing_dict(numbers, response)
     mass = float(numbers["design"]["mass_kg"] if mass_kg is None else mass_kg)
-    fig = page(1, label, (f"{number}  The {bearing['type']} pendulum: backbone, surfaces, rims",))
+    title = ("The pendulum and its rim" if bearing["type"] == "single"
+             else f"The {bearing['type']} pendulum: backbone, surfaces, rims")
+    fig = page(1, label, (f"{number}  {title}",))
     ax_loop = fig.add_axes((0.1, 0.56, 0.85, 0.37))
     force, force_words = loop_force_per_weight(response)
     draw_backbone_and_loop(ax_loop, bearing, response.displacement_m, force)
@@ -181,27 +192,32 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
     draw_displacement_history(ax_hist, response.time_s, response.displacement_m, bearing, first_ultimate)
 
     y = 0.3
-    fig.text(0.05, y, "Surfaces (file order: 1 outer bottom, 2 inner bottom, 3 inner top, 4 outer top)",
-             fontsize=9.5, weight="bold", va="top")
+    order = {"triple": " (file order: 1 outer bottom, 2 inner bottom, 3 inner top, 4 outer top)",
+             "double": " (file order: 1 bottom, 2 top)"}.get(bearing["type"], "")
+    fig.text(0.05, y, f"Surface{'s' if len(bearing['surfaces']) > 1 else ''}{order}", fontsize=9.5, weight="bold",
+             va="top")
     y -= 0.02
     columns = (0.06, 0.14, 0.23, 0.32, 0.4, 0.5, 0.6, 0.72, 0.82)
     head = ("surface", "R [m]", "R_eff [m]", "µ", "d [m]", "d* [m]", "peak [m]", "peak / d", "")
     cells(fig, y, columns, head, bold=True)
-    for i, r_eff, reff, mu, capacity, capacity_eff, peak, ratio in surface_rows(numbers):
+    for i, r_eff, reff, mu, capacity, capacity_eff, peak, ratio in surface_rows(numbers, bearing):
         y -= 0.0135
         at_rim = ratio is not None and ratio >= 1.0 - 1e-9
         cells(fig, y, columns, (str(i), fmt(r_eff), fmt(reff), fmt(mu, 3), fmt(capacity), fmt(capacity_eff),
                                 fmt(peak), fmt(ratio, 3), "on its rim" if at_rim else ""),
               colour="tab:red" if at_rim else "k")
     y -= 0.025
-    sentences = [regime_sentence(numbers),
-                 f"Rim contacts: {numbers['n_rim_contacts']} (a slider reaching its capacity d* on a surface; "
-                 "it stops there while the force pushes outward and the force passes to the other surfaces)."]
+    single = bearing["type"] == "single"
+    sentences = [regime_sentence(numbers, bearing),
+                 f"Rim contacts: {numbers['n_rim_contacts']} " + (
+                     "(the slider reaching the displacement capacity: a rigid stop)." if single else
+                     "(a slider reaching its capacity d* on a surface; it stops there while the force pushes "
+                     "outward and the force passes to the other surfaces).")]
     if numbers["ultimate_displacement_reached"]:
         when = "" if first_ultimate is None else f" first at {fmt(first_ultimate, 4)} s"
         sentences.append(
-            f"ULTIMATE DISPLACEMENT REACHED{when}: {fmt(numbers['ultimate_displacement_m'])} m (every slider on "
-            f"its rim), a rigid stop with plastic impact(s): impulse {fmt(mass * numbers['impact_impulse_m_s'])} "
+            f"ULTIMATE DISPLACEMENT REACHED{when}: {fmt(numbers['ultimate_displacement_m'])} m "
+            f"({'the displacement capacity' if single else 'every slider on its rim'}), a rigid stop with plastic impact(s): impulse {fmt(mass * numbers['impact_impulse_m_s'])} "
             f"N·s in all (M × Σ|V| = {fmt(mass)} kg × {fmt(numbers['impact_impulse_m_s'])} m/s), largest impact "
             f"velocity {fmt(numbers['max_impact_velocity_m_s'])} m/s"
             + ("" if numbers.get("energy_impact_J_per_kg") is None else
@@ -211,7 +227,12 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
         sentences.append(f"The ultimate displacement {fmt(numbers['ultimate_displacement_m'])} m was not reached "
                          f"(peak {fmt(numbers['peak_displacement_m'])} m, "
                          f"{fmt(numbers['peak_displacement_m'] / numbers['ultimate_displacement_m'], 3)} of it).")
-    sentences.append(f"Peak bearing force {fmt(numbers['peak_force_per_weight'])} W.")
+    peak_words = f"Peak bearing force {fmt(numbers['peak_force_per_weight'])} W (peak_force_per_weight)"
+    held = float(np.max(np.abs(force))) if np.size(force) else 0.0
+    if held > numbers["peak_force_per_weight"] * (1.0 + 1e-9):  # a rim's reaction while the bearing is held there
+        peak_words += (f"; the loop's largest |F/W| at the samples is {fmt(held)}, the rim's reaction while the "
+                       "bearing is held on it")
+    sentences.append(peak_words + ".")
     for sentence in sentences:
         for j, line in enumerate(textwrap.wrap(sentence, 112)):
             fig.text(0.06, y, ("• " if j == 0 else "  ") + line, fontsize=7.8, va="top",

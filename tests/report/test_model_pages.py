@@ -129,7 +129,7 @@ def test_triple_pendulum_page_draws_the_backbone_and_the_loop(triple):
     assert np.max(np.abs(lx)) == np.max(np.abs(response.displacement_m))
     assert np.max(np.abs(lr)) == np.max(np.abs(response.force_per_weight))
     # the surfaces against their capacities, the regimes and the ultimate with its impulse
-    rows = surface_rows(numbers)
+    rows = surface_rows(numbers, numbers["design"]["bearing"])
     assert [row[6] for row in rows] == numbers["surface_peak_displacement_m"]
     assert [row[4] for row in rows] == [0.4, 0.05, 0.05, 0.4]
     text = _texts(fig)
@@ -176,3 +176,28 @@ def test_triple_report_scaled_to_a_pga_on_one_component(records_dir, triple, tmp
     assert len(pages) == 4
     last = " ".join(pages[3].extract_text().split())
     assert "backbone" in last and "ULTIMATE DISPLACEMENT REACHED" in last
+
+
+def test_single_pendulum_rerun_with_its_rim_gets_the_page(motion, tmp_path, records_dir):
+    """A single pendulum whose peak reaches its displacement capacity is rerun with the rim (1d-multisurface):
+    the page draws its own bearing (no [bearing] table in the design) and states the impacts."""
+    design_path = tmp_path / "fp.toml"
+    design_path.write_text('name = "FP rim"\nmass_kg = 1.0e5\nradius_m = 2.0\nmu_static = 0.06\n'
+                           'mu_kinetic = 0.05\ndisplacement_capacity_m = 0.6\n')
+    analysis = analyse(Design.from_toml(design_path), motion, harmonic=False)
+    numbers = analysis.to_dict()
+    assert analysis.model == "1d-multisurface" and numbers["design"]["bearing"] is None
+    fig = bearing_page(4, "label", numbers, analysis.response)
+    ax = _axes(fig, "Backbone and force-displacement loop")
+    backbone = analysis.response.bearing.backbone()
+    np.testing.assert_array_equal(_line(ax, POINTS_LABEL).get_xdata(), [0.0, 0.6])
+    np.testing.assert_array_equal(_line(ax, POINTS_LABEL).get_ydata(), backbone.force_per_weight)
+    assert backbone.force_per_weight[1] == pytest.approx(0.05 + 0.6 / 2.0, rel=1e-15)  # µk + d/R
+    text = _texts(fig)
+    assert "ULTIMATE DISPLACEMENT REACHED" in text and "(the displacement capacity)" in text
+    assert f"Rim contacts: {numbers['n_rim_contacts']}" in text and numbers["n_rim_contacts"] > 0
+    out = tmp_path / "fp.pdf"
+    result = runner.invoke(app, ["report", str(records_dir / RECORD), "-d", str(design_path), "--scale-to-pga",
+                                 str(SCALE_G), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "(4 pages)" in result.stdout and len(pypdf.PdfReader(str(out)).pages) == 4
