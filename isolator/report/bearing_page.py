@@ -228,7 +228,8 @@ def bearing_page(number: int, label: str, numbers: dict, response=None, mass_kg:
                          f"(peak {fmt(numbers['peak_displacement_m'])} m, "
                          f"{fmt(numbers['peak_displacement_m'] / numbers['ultimate_displacement_m'], 3)} of it).")
     peak_words = f"Peak bearing force {fmt(numbers['peak_force_per_weight'])} W (peak_force_per_weight)"
-    held = float(np.max(np.abs(force))) if np.size(force) else 0.0
+    magnitude = np.hypot(force[:, 0], force[:, 1]) if np.ndim(force) == 2 else np.abs(force)
+    held = float(np.max(magnitude)) if np.size(magnitude) else 0.0
     if held > numbers["peak_force_per_weight"] * (1.0 + 1e-9):  # a rim's reaction while the bearing is held there
         peak_words += (f"; the loop's largest |F/W| at the samples is {fmt(held)}, the rim's reaction while the "
                        "bearing is held on it")
