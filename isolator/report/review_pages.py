@@ -135,6 +135,9 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
     kind = (f"friction pendulum, R = {fmt(d['radius_m'])} m (pendulum period {fmt(d['isolated_period_s'])} s)"
             if d["radius_m"] else f"flat slider with spring K = {fmt(d['stiffness_N_per_m'] / 1e3)} kN/m")
     friction = f"µs = {fmt(d['mu_static'])}, µk = {fmt(d['mu_kinetic'])} (nominal)"
+    if (d.get("bearing") or {}).get("type") in ("double", "triple"):  # the top-level numbers are its equivalent
+        kind = f"equivalent single pendulum R = {fmt(d['radius_m'])} m (all surfaces sliding; see Bearing)"
+        friction += " of the equivalent single pendulum; the analyses and the ELF use the bearing's surfaces"
     if d.get("mu_fast") is not None:
         friction += (f"; µ(v): µ_slow {fmt(d['mu_slow'])}, µ_fast {fmt(d['mu_fast'])}, "
                      f"a = {fmt(d['rate_s_per_m'])} s/m")
