@@ -48,10 +48,11 @@ pendulum, our planar engine (:func:`isolator.solver.planar.simulate_pair`), Open
 ``solve_ivp``, all measured against the independent reference
 :mod:`isolator.bench.planar_reference`.
 
-The building case (:mod:`isolator.bench.building`, issue 22): a 5-story shear building on
-a friction pendulum, ours (:mod:`isolator.solver.building`) against OpenSees
+The building cases (:mod:`isolator.bench.building`, issue 22): a 5-story shear building on
+a friction pendulum under one component (1-D) and under a pair (2-D), ours
+(:mod:`isolator.solver.building`, the registry's ``2d-building``) against OpenSees' 3-D model
 (:mod:`isolator.bench.opensees_building`) and an independent ``solve_ivp`` reference
-(:mod:`isolator.bench.building_reference`).  The triple friction pendulum
+(:mod:`isolator.bench.building_reference`, :mod:`isolator.bench.planar_building_reference`).  The triple friction pendulum
 (:mod:`isolator.bench.tfp`, issue 23): ours (:mod:`isolator.solver.multisurface`) against
 OpenSees' ``TripleFrictionPendulum`` (:mod:`isolator.bench.opensees_tfp`).
 
@@ -63,7 +64,9 @@ M. Nicolas (2017), hal-01432172, Eq. 2 (harmonic case), Eqs. 3 (ζ) and 15 (α_S
 from isolator.bench.building import (
                                   BUILDING_OPENSEES,
                                   BUILDING_OURS,
+                                  BUILDING_OURS_2D,
                                   BUILDING_TRUTH,
+                                  BUILDING_TRUTH_2D,
                                   BuildingCase,
                                   building_case,
                                   building_cases,
@@ -139,7 +142,8 @@ from isolator.bench.pairs import (
 from isolator.bench.tfp import TFP_OPENSEES, TFP_OURS, TfpCase, run_tfp_case, tfp_bearing, tfp_cases, tfp_summary
 
 __all__ = ["TFP_OPENSEES", "TFP_OURS", "TfpCase", "run_tfp_case", "tfp_bearing", "tfp_cases", "tfp_summary",
-           "BUILDING_OPENSEES", "BUILDING_OURS", "BUILDING_TRUTH", "BuildingCase", "building_case",
+           "BUILDING_OPENSEES", "BUILDING_OURS", "BUILDING_OURS_2D", "BUILDING_TRUTH", "BUILDING_TRUTH_2D",
+           "BuildingCase", "building_case",
            "building_cases", "building_errors", "building_markdown", "building_summary", "run_building_case",
            "IVP_REGULARISED", "OPENSEES", "OURS_METHODS", "PAIR_METHODS", "PAIR_OURS", "PAIR_TRUTH",
            "REFERENCE_METHODS", "PairCase", "ivp_regularised", "opensees_solver", "opensees_summary", "pair_case",

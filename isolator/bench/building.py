@@ -1,33 +1,40 @@
-r"""The building case of the bench (issue 22): ours against OpenSees on a 5-story building.
+r"""The building cases of the bench (issue 22): ours against OpenSees on a 5-story building, 1-D and 2-D.
 
 A 5-story shear building (5 floors of 500 t, story height 3.5 m, equal story stiffnesses
-giving a fixed-base T1 = 0.5 s, ζ = 5 % in every fixed-base mode) on a 500 t base slab
-(M = 3000 t) on a friction pendulum R = 2.5 m, µ = 0.06 (Coulomb, µs = µk), one horizontal
-direction of a real record.
+giving a fixed-base T1 = 0.5 s along x — and 0.4 s along y in 2-D —, ζ = 5 % in every
+fixed-base mode) on a 500 t base slab (M = 3000 t) on a friction pendulum R = 2.5 m,
+µ = 0.06 (Coulomb, µs = µk): one horizontal component of a real record (1-D), or a real
+pair (2-D: both components, coupled friction on the isolation plane).
 
 Three solutions of the same equations (docs/building.md), at the record's samples:
 
-``exact 1-D building (ours)``
-    :func:`isolator.solver.building.simulate_building` (model ``1d-building``): exact
-    propagation between events located to rounding.
-``independent reference (solve_ivp DOP853 + events, rtol 1e-12)``
-    :func:`isolator.bench.building_reference.building_reference` (no code shared with ours):
+``exact 1-D building (ours)`` / ``exact 2-D building (ours)``
+    :func:`isolator.solver.building.simulate_building` (model ``1d-building``), or the
+    registry's ``2d-building`` model under a pair: exact propagation between events
+    located to rounding.
+``independent reference``
+    :func:`isolator.bench.building_reference.building_reference` in 1-D,
+    :func:`isolator.bench.planar_building_reference.planar_building_reference` in 2-D
+    (solve_ivp at rtol 1e-12 with located events; no code shared with ours):
     **our error** is our discrepancy with it.
 ``OpenSees singleFPBearing + zeroLength stories, Newmark + Newton``
     :func:`isolator.bench.opensees_building.opensees_building` at the record's dt:
     **its error** is measured against ours (ours is within ~1e-10 of the reference, so
-    ours stands for the truth at OpenSees' level of error).
+    ours stands for the truth at OpenSees' level of error), and against the reference
+    when ours is not available (the 2-D building before its engine landed).
 
-Errors, each relative to the reference solution's largest value over the samples:
-``slab`` (x_b, the isolator's displacement), ``drift`` (u_i − u_{i−1}, all stories),
-``floor_acc`` (absolute floor accelerations, all floors), and the relative error of the
-sampled peaks (isolator displacement, each story drift, each floor acceleration: the worst).
+Errors, each relative to the reference solution's largest value over the samples (in 2-D
+the length of the vector difference over the largest resultant): ``slab`` (x_b, the
+isolator's displacement), ``drift`` (u_i − u_{i−1}, all stories), ``floor_acc`` (absolute
+floor accelerations, all floors), and the relative error of the sampled peaks (isolator
+displacement, each story drift, each floor acceleration, resultants in 2-D: the worst).
 Ours and OpenSees are timed in alternation (:func:`isolator.bench.harness.time_interleaved`).
 """
 
 from __future__ import annotations
 
 import math
+import statistics
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,7 +44,11 @@ import numpy as np
 from isolator.units import STANDARD_GRAVITY as STANDARD_GRAVITY_M_S2
 
 BUILDING_OURS = "exact 1-D building (ours)"
+BUILDING_OURS_2D = "exact 2-D building (ours)"
 BUILDING_TRUTH = "independent reference (solve_ivp DOP853 + events, rtol 1e-12)"
+BUILDING_TRUTH_2D = "independent reference (solve_ivp DOP853/Radau + events, rtol 1e-12)"
+#: the registry's name of the 2-D building model (issue 22)
+PLANAR_BUILDING_MODEL = "2d-building"
 BUILDING_OPENSEES = "OpenSees singleFPBearing + zeroLength stories, Newmark + Newton"
 
 #: The bench's building: 5 floors of 500 t, 3.5 m stories, fixed-base T1 = 0.5 s, ζ = 5 %, slab 500 t.
@@ -45,6 +56,8 @@ N_FLOORS = 5
 FLOOR_MASS_KG = 5.0e5
 STORY_HEIGHT_M = 3.5
 FIXED_BASE_PERIOD_S = 0.5
+#: fixed-base T1 along y of the 2-D case [s] (the two directions differ, as in a real building)
+FIXED_BASE_PERIOD_Y_S = 0.4
 DAMPING_RATIO = 0.05
 SLAB_MASS_KG = 5.0e5
 RADIUS_M = 2.5
@@ -52,6 +65,10 @@ MU = 0.06
 #: (label, file under --records, seconds kept) of the full and the quick run
 BUILDING_RECORD = ("RSN1044_NORTHR_NWH360", "at2/RSN1044_NORTHR_NWH360.AT2")
 BUILDING_SECONDS = {"full": 20.0, "quick": 8.0}
+#: (label, folder under --records, x file, y file) of the 2-D case: Superstition Hills 1987, Parachute Test Site
+BUILDING_PAIR = ("superstitionhills1987_PTS", "pairs/superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2",
+                 "RSN723_SUPER.B_B-PTS315.AT2")
+BUILDING_PAIR_SECONDS = {"full": 20.0, "quick": 4.0}
 
 
 def uniform_story_stiffness(n_floors: int, floor_mass_kg: float, period_s: float) -> float:
@@ -76,6 +93,13 @@ class BuildingCase:
     radius_m: float
     mu: float
     gravity_m_s2: float = STANDARD_GRAVITY_M_S2
+    #: the second horizontal component [m/s²] (2-D), or None (1-D, along x)
+    acceleration_y_m_s2: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def planar(self) -> bool:
+        """Both horizontal components (the 2-D building)."""
+        return self.acceleration_y_m_s2 is not None
 
     @property
     def isolator_stiffness_N_per_m(self) -> float:
@@ -83,44 +107,101 @@ class BuildingCase:
         return self.gravity_m_s2 * self.total_mass_kg / self.radius_m
 
 
-def building_case(name: str, acceleration_m_s2, dt_s: float, *, n_floors: int = N_FLOORS,
+def building_case(name: str, acceleration_m_s2, dt_s: float, *, acceleration_y_m_s2=None, n_floors: int = N_FLOORS,
                   floor_mass_kg: float = FLOOR_MASS_KG, story_height_m: float = STORY_HEIGHT_M,
-                  period_s: float = FIXED_BASE_PERIOD_S, damping_ratio: float = DAMPING_RATIO,
-                  slab_mass_kg: float = SLAB_MASS_KG, radius_m: float = RADIUS_M, mu: float = MU) -> BuildingCase:
-    """A uniform shear building case (equal floors and stories, fixed-base T1 = ``period_s``)."""
+                  period_s: float = FIXED_BASE_PERIOD_S, period_y_s: float | None = None,
+                  damping_ratio: float = DAMPING_RATIO, slab_mass_kg: float = SLAB_MASS_KG, radius_m: float = RADIUS_M,
+                  mu: float = MU) -> BuildingCase:
+    """A uniform shear building case (equal floors and stories, fixed-base T1 = ``period_s`` along x and
+    ``period_y_s`` along y, default the same), 2-D when ``acceleration_y_m_s2`` is given (trimmed to the
+    shorter component)."""
     from isolator.superstructure import Floor, Superstructure
 
     k = uniform_story_stiffness(n_floors, floor_mass_kg, period_s)
-    floors = tuple(Floor(floor_mass_kg, story_height_m, k, k) for _ in range(n_floors))
+    k_y = k if period_y_s is None else uniform_story_stiffness(n_floors, floor_mass_kg, period_y_s)
+    floors = tuple(Floor(floor_mass_kg, story_height_m, k, k_y) for _ in range(n_floors))
     structure = Superstructure(floors=floors, damping_ratio=damping_ratio, gravity_m_s2=STANDARD_GRAVITY_M_S2)
-    return BuildingCase(name, np.ascontiguousarray(acceleration_m_s2, dtype=float), float(dt_s), structure,
-                        n_floors * floor_mass_kg + slab_mass_kg, radius_m, mu)
+    ax = np.ascontiguousarray(acceleration_m_s2, dtype=float)
+    ay = None
+    if acceleration_y_m_s2 is not None:
+        ay = np.ascontiguousarray(acceleration_y_m_s2, dtype=float)
+        n = min(ax.size, ay.size)
+        ax, ay = ax[:n], ay[:n]
+    return BuildingCase(name, ax, float(dt_s), structure, n_floors * floor_mass_kg + slab_mass_kg, radius_m, mu,
+                        acceleration_y_m_s2=ay)
 
 
 def building_cases(quick: bool, records_dir: Path) -> list[BuildingCase]:
-    """The building case when its record is in ``records_dir`` (first 8 s quick, 20 s full)."""
+    """The building cases whose records are in ``records_dir``: 1-D (NWH360, first 8 s quick, 20 s full)
+    and 2-D (the PTS pair, first 4 s quick, 20 s full)."""
     from isolator.motion import read_ground_motion
 
+    key = "quick" if quick else "full"
+    cases = []
     label, rel = BUILDING_RECORD
     path = Path(records_dir) / rel
-    if not path.is_file():
-        return []
-    motion = read_ground_motion(path)
-    seconds = BUILDING_SECONDS["quick" if quick else "full"]
-    acc = motion.acceleration_m_s2[:round(seconds / motion.dt_s) + 1]
-    return [building_case(f"building {label} 0-{seconds:g} s (5 stories, T1=0.5 s, FP R=2.5 m, mu=0.06)",
-                          acc, motion.dt_s)]
+    if path.is_file():
+        motion = read_ground_motion(path)
+        seconds = BUILDING_SECONDS[key]
+        acc = motion.acceleration_m_s2[:round(seconds / motion.dt_s) + 1]
+        cases.append(building_case(f"building {label} 0-{seconds:g} s (5 stories, T1=0.5 s, FP R=2.5 m, mu=0.06)",
+                                   acc, motion.dt_s))
+    label, folder, fx, fy = BUILDING_PAIR
+    paths = [Path(records_dir) / folder / f for f in (fx, fy)]
+    if all(p.is_file() for p in paths):
+        mx, my = (read_ground_motion(p) for p in paths)
+        seconds = BUILDING_PAIR_SECONDS[key]
+        keep = round(seconds / mx.dt_s) + 1
+        if abs(mx.dt_s - my.dt_s) <= 1e-9 * mx.dt_s:
+            cases.append(building_case(
+                f"2-D building pair {label} 0-{seconds:g} s (5 stories, T1=0.5/0.4 s, FP R=2.5 m, mu=0.06)",
+                mx.acceleration_m_s2[:keep], mx.dt_s, acceleration_y_m_s2=my.acceleration_m_s2[:keep],
+                period_y_s=FIXED_BASE_PERIOD_Y_S))
+    return cases
 
 
 def _histories(slab, floor_disp, floor_acc) -> dict:
-    """The compared histories: slab displacement, story drifts, floor absolute accelerations."""
+    """The compared histories: slab displacement, story drifts, floor absolute accelerations
+    ((N,), (N, n), (N, n) in 1-D; (N, 2), (N, n, 2), (N, n, 2) in 2-D)."""
     floor_disp = np.asarray(floor_disp, dtype=float)
-    drift = np.diff(np.concatenate([np.zeros((floor_disp.shape[0], 1)), floor_disp], axis=1), axis=1)
+    ground = np.zeros((floor_disp.shape[0], 1) + floor_disp.shape[2:])
+    drift = np.diff(np.concatenate([ground, floor_disp], axis=1), axis=1)
     return {"slab": np.asarray(slab, dtype=float), "drift": drift, "floor_acc": np.asarray(floor_acc, dtype=float)}
 
 
+def is_planar(histories: dict) -> bool:
+    """The histories are 2-D: the slab's displacement has an (x, y) axis."""
+    return np.asarray(histories["slab"]).ndim == 2
+
+
+def _magnitude(values, planar: bool) -> np.ndarray:
+    """|values|: the absolute value in 1-D, the length of the (x, y) vector (last axis) in 2-D."""
+    values = np.asarray(values, dtype=float)
+    return np.hypot(values[..., 0], values[..., 1]) if planar else np.abs(values)
+
+
+def planar_building_available() -> tuple[bool, str]:
+    """(True, "") when the registry has the 2-D building model, else (False, why)."""
+    from isolator.solver.models import MODELS
+
+    if PLANAR_BUILDING_MODEL in MODELS:
+        return True, ""
+    return False, f"the {PLANAR_BUILDING_MODEL} model is not in the solver registry (not on this branch)"
+
+
+def _bench_design(case: BuildingCase):
+    """The design the registry's models read for the case (its superstructure, mass, g; no bearing layout)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(superstructure=case.superstructure, mass_kg=case.total_mass_kg,
+                           gravity_m_s2=case.gravity_m_s2, bearing_layout=None, source="bench building")
+
+
 def ours_building(case: BuildingCase, setting=None) -> dict:
-    """Ours: :func:`isolator.solver.building.simulate_building` (exact)."""
+    """Ours: :func:`isolator.solver.building.simulate_building` (exact), or the registry's
+    ``2d-building`` model under the case's pair."""
+    if case.planar:
+        return _ours_planar_building(case)
     from isolator.solver.building import simulate_building
 
     r = simulate_building(case.acceleration_m_s2, case.dt_s, superstructure=case.superstructure,
@@ -132,11 +213,39 @@ def ours_building(case: BuildingCase, setting=None) -> dict:
     return out
 
 
+def _ours_planar_building(case: BuildingCase) -> dict:
+    """Ours in 2-D: the registry's ``2d-building`` model on the case's pair (exact resultant peaks)."""
+    from isolator.solver.base import Scene
+    from isolator.solver.models import simulate
+
+    scene = Scene(ax_m_s2=case.acceleration_m_s2, ay_m_s2=case.acceleration_y_m_s2, dt_s=case.dt_s,
+                  isolator={"mu_static": case.mu, "mu_kinetic": case.mu, "radius_m": case.radius_m,
+                            "gravity_m_s2": case.gravity_m_s2}, design=_bench_design(case))
+    r = simulate(scene)
+    if r.model != PLANAR_BUILDING_MODEL:
+        raise RuntimeError(f"the registry ran {r.model!r} for the 2-D building, not {PLANAR_BUILDING_MODEL!r}")
+    out = _histories(r.displacement_m, r.floor_displacement_m, r.floor_absolute_acceleration_m_s2)
+    out["exact_peaks"] = {"slab": float(r.peak_displacement_m), "drift": np.asarray(r.story_drift_m),
+                          "floor_acc": np.asarray(r.floor_peak_acceleration_m_s2)}
+    return out
+
+
 def reference_building(case: BuildingCase, setting=None) -> dict:
-    """The independent reference (:mod:`isolator.bench.building_reference`)."""
+    """The independent reference (:mod:`isolator.bench.building_reference`, in 2-D
+    :mod:`isolator.bench.planar_building_reference`)."""
+    s = case.superstructure
+    if case.planar:
+        from isolator.bench.planar_building_reference import planar_building_reference
+
+        r = planar_building_reference(
+            case.acceleration_m_s2, case.acceleration_y_m_s2, case.dt_s, masses_kg=s.masses_kg,
+            stiffness_matrices=(s.stiffness_matrix("x"), s.stiffness_matrix("y")),
+            damping_matrices=(s.damping_matrix("x"), s.damping_matrix("y")), total_mass_kg=case.total_mass_kg,
+            isolator_stiffness_N_per_m=case.isolator_stiffness_N_per_m, mu_static=case.mu, mu_kinetic=case.mu,
+            gravity_m_s2=case.gravity_m_s2)
+        return _histories(r["slab_displacement_m"], r["floor_displacement_m"], r["floor_absolute_acceleration_m_s2"])
     from isolator.bench.building_reference import building_reference
 
-    s = case.superstructure
     r = building_reference(case.acceleration_m_s2, case.dt_s, masses_kg=s.masses_kg,
                            stiffness_matrix=s.stiffness_matrix(), damping_matrix=s.damping_matrix(),
                            total_mass_kg=case.total_mass_kg, isolator_stiffness_N_per_m=case.isolator_stiffness_N_per_m,
@@ -149,27 +258,31 @@ def opensees_building_solver(case: BuildingCase, setting=1) -> dict:
     from isolator.bench.opensees_building import opensees_building
 
     s = case.superstructure
-    r = opensees_building(case.dt_s, case.acceleration_m_s2, masses_kg=s.masses_kg,
-                          stiffnesses_N_per_m=s.story_stiffnesses(), damping_matrix=s.damping_matrix(),
+    r = opensees_building(case.dt_s, case.acceleration_m_s2, case.acceleration_y_m_s2, masses_kg=s.masses_kg,
+                          stiffnesses_N_per_m=s.story_stiffnesses("x"), damping_matrix=s.damping_matrix("x"),
+                          stiffnesses_y_N_per_m=s.story_stiffnesses("y"), damping_matrix_y=s.damping_matrix("y"),
                           total_mass_kg=case.total_mass_kg, radius_m=case.radius_m, mu=case.mu,
                           gravity_m_s2=case.gravity_m_s2, substeps=int(setting or 1))
     return _histories(r["slab_displacement_m"], r["floor_displacement_m"], r["floor_absolute_acceleration_m_s2"])
 
 
 def sampled_peaks(histories: dict) -> dict:
-    """Peaks over the samples: |x_b|, per story |drift|, per floor |a| (m, m, m/s²)."""
-    return {"slab": float(np.max(np.abs(histories["slab"]))),
-            "drift": np.max(np.abs(histories["drift"]), axis=0),
-            "floor_acc": np.max(np.abs(histories["floor_acc"]), axis=0)}
+    """Peaks over the samples: |x_b|, per story |drift|, per floor |a| (m, m, m/s²; resultants in 2-D)."""
+    planar = is_planar(histories)
+    return {"slab": float(np.max(_magnitude(histories["slab"], planar))),
+            "drift": np.max(_magnitude(histories["drift"], planar), axis=0),
+            "floor_acc": np.max(_magnitude(histories["floor_acc"], planar), axis=0)}
 
 
 def building_errors(histories: dict, truth: dict) -> dict:
-    """Trajectory errors (max over samples / the truth's largest value) and the worst sampled-peak error."""
+    """Trajectory errors (max over samples / the truth's largest value; vector differences in 2-D) and the
+    worst sampled-peak error."""
     out = {}
+    planar = is_planar(truth)
     peaks, true_peaks = sampled_peaks(histories), sampled_peaks(truth)
     for key in ("slab", "drift", "floor_acc"):
-        scale = max(float(np.max(np.abs(truth[key]))), 1e-300)
-        out[f"error_{key}"] = float(np.max(np.abs(histories[key] - truth[key]))) / scale
+        scale = max(float(np.max(_magnitude(truth[key], planar))), 1e-300)
+        out[f"error_{key}"] = float(np.max(_magnitude(histories[key] - truth[key], planar))) / scale
         out[f"error_peak_{key}"] = float(np.max(np.abs(np.atleast_1d(peaks[key]) - np.atleast_1d(true_peaks[key]))
                                                 / np.maximum(np.atleast_1d(true_peaks[key]), 1e-300)))
     out["error_max"] = max(out["error_slab"], out["error_drift"], out["error_floor_acc"])
@@ -181,43 +294,65 @@ def run_building_case(case: BuildingCase, rounds: int = 3, ours_per_round: int =
 
     Ours and OpenSees (at the record's dt) are timed in alternation, ``rounds`` rounds of
     ``ours_per_round`` runs of ours then one of OpenSees (medians); the reference runs once.
+    When ours cannot run (a 2-D case on a branch without the ``2d-building`` model), OpenSees
+    runs ``rounds`` times alone and its error is measured against the reference.
 
     Returns
     -------
     dict
-        ``case``, ``n_samples``, ``dt_s``, ``ours`` / ``reference`` / ``opensees`` entries
-        (``seconds``, ``runs``, ``peaks``, errors) and ``time_ratio`` / ``error_ratio``
-        (OpenSees over ours; None when OpenSees did not run), ``opensees_note``.
+        ``case``, ``planar``, ``n_samples``, ``dt_s``, ``ours`` / ``reference`` / ``opensees``
+        entries (``seconds``, ``runs``, ``peaks``, errors; ``seconds`` None and a ``note`` for
+        a method that did not run) and ``time_ratio`` / ``error_ratio`` (OpenSees over ours;
+        None when either did not run).
     """
     from isolator.bench.harness import time_against_opensees
+    from isolator.bench.opensees import opensees_available
 
     say = progress or (lambda line: None)
-    ours_building(case)  # compile / load the kernel and cache the system before timing
-    say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
-    ours_s, ours_out, ours_runs, os_s, os_out, os_runs, why = time_against_opensees(
-        ours_building, opensees_building_solver, case, rounds, ours_per_round)
-    result = {"case": case.name, "n_samples": int(case.acceleration_m_s2.size), "dt_s": case.dt_s}
+    ours_method = BUILDING_OURS_2D if case.planar else BUILDING_OURS
+    ours_ok, ours_why = planar_building_available() if case.planar else (True, "")
+    result = {"case": case.name, "planar": case.planar, "n_samples": int(case.acceleration_m_s2.size),
+              "dt_s": case.dt_s, "time_ratio": None, "error_ratio": None}
+    ours_out = os_out = None
+    if ours_ok:
+        ours_building(case)  # compile / load the kernel and cache the system before timing
+        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
+        ours_s, ours_out, ours_runs, os_s, os_out, os_runs, os_why = time_against_opensees(
+            ours_building, opensees_building_solver, case, rounds, ours_per_round)
+    else:
+        os_ok, os_why = opensees_available()
+        if os_ok:
+            say(f"{case.name}: OpenSees alone ({ours_why}), {rounds} runs")
+            times = []
+            for _ in range(max(1, rounds)):
+                start = time.perf_counter()
+                os_out = opensees_building_solver(case, 1)
+                times.append(time.perf_counter() - start)
+            os_s, os_runs = statistics.median(times), len(times)
     say(f"{case.name}: the independent reference (solve_ivp, once)")
     start = time.perf_counter()
     truth = reference_building(case)
     ref_s = time.perf_counter() - start
-    ours_errors = building_errors(ours_out, truth)
-    result["ours"] = {"method": BUILDING_OURS, "seconds": ours_s, "runs": ours_runs,
-                      "peaks": _listed(ours_out["exact_peaks"]), "sampled_peaks": _listed(sampled_peaks(ours_out)),
-                      **ours_errors}
-    result["reference"] = {"method": BUILDING_TRUTH, "seconds": ref_s, "runs": 1,
-                           "sampled_peaks": _listed(sampled_peaks(truth))}
+    if ours_out is not None:
+        result["ours"] = {"method": ours_method, "seconds": ours_s, "runs": ours_runs,
+                          "peaks": _listed(ours_out["exact_peaks"]),
+                          "sampled_peaks": _listed(sampled_peaks(ours_out)), **building_errors(ours_out, truth)}
+    else:
+        result["ours"] = {"method": ours_method, "seconds": None, "note": ours_why}
+    result["reference"] = {"method": BUILDING_TRUTH_2D if case.planar else BUILDING_TRUTH, "seconds": ref_s,
+                           "runs": 1, "sampled_peaks": _listed(sampled_peaks(truth))}
     if os_out is None:
-        result["opensees"] = {"method": BUILDING_OPENSEES, "seconds": None, "note": why}
-        result["time_ratio"] = result["error_ratio"] = None
+        result["opensees"] = {"method": BUILDING_OPENSEES, "seconds": None, "note": os_why}
         return result
-    os_errors = building_errors(os_out, ours_out)
     os_vs_truth = building_errors(os_out, truth)
+    os_errors = building_errors(os_out, ours_out) if ours_out is not None else os_vs_truth
     result["opensees"] = {"method": BUILDING_OPENSEES, "setting": "dt/1", "seconds": os_s, "runs": os_runs,
+                          "errors_against": "ours" if ours_out is not None else "the reference",
                           "sampled_peaks": _listed(sampled_peaks(os_out)), **os_errors,
                           "error_max_vs_reference": os_vs_truth["error_max"]}
-    result["time_ratio"] = os_s / ours_s
-    result["error_ratio"] = os_errors["error_max"] / max(ours_errors["error_max"], 1e-16)
+    if ours_out is not None:
+        result["time_ratio"] = os_s / ours_s
+        result["error_ratio"] = os_errors["error_max"] / max(result["ours"]["error_max"], 1e-16)
     return result
 
 
@@ -228,17 +363,23 @@ def _listed(peaks: dict) -> dict:
 def building_summary(results: list[dict]) -> list[str]:
     """One line per building case: ours against OpenSees, time and error ratios, measured in this run."""
     lines = []
+    what = "largest error (isolator displacement, drifts, floor accelerations)"
     for r in results:
         ours, os_ = r["ours"], r["opensees"]
+        if ours["seconds"] is None:
+            theirs = (f"OpenSees {os_['seconds'] * 1e3:.3g} ms (median of {os_['runs']}), {what} "
+                      f"{os_['error_max']:.1e} vs the reference" if os_["seconds"] is not None
+                      else f"OpenSees not run ({os_.get('note')})")
+            lines.append(f"{r['case']}: ours not run ({ours.get('note')}); {theirs}")
+            continue
         if r["time_ratio"] is None:
             lines.append(f"{r['case']}: ours {ours['seconds'] * 1e3:.3g} ms, error {ours['error_max']:.1e} against "
                          f"the reference; vs OpenSees: not measured ({os_.get('note')})")
             continue
         lines.append(f"{r['case']}: ours {ours['seconds'] * 1e3:.3g} ms (median of {ours['runs']}), "
                      f"{r['time_ratio']:.3g}× faster than OpenSees at the record's dt ({os_['seconds'] * 1e3:.3g} ms, "
-                     f"median of {os_['runs']}, interleaved); largest error (isolator displacement, drifts, floor "
-                     f"accelerations) ours {ours['error_max']:.1e} vs the reference, OpenSees {os_['error_max']:.1e} "
-                     f"vs ours: {r['error_ratio']:.2g}× lower")
+                     f"median of {os_['runs']}, interleaved); {what} ours {ours['error_max']:.1e} vs the reference, "
+                     f"OpenSees {os_['error_max']:.1e} vs ours: {r['error_ratio']:.2g}× lower")
     return lines
 
 

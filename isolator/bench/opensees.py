@@ -108,40 +108,85 @@ def opensees_pair(dt_s: float, ax_m_s2, ay_m_s2, az_m_s2=None, *, mu: float, rad
     RuntimeError
         When OpenSees does not converge even at 1e-8 of the step.
     """
+    ops = load_opensees()
+    mass = 1.0
+    weight = mass * gravity_m_s2
+    isolated_mass_model(ops, mass, mass, planar=True)
+    if mu_slow is None:
+        ops.frictionModel("Coulomb", 1, mu)
+    else:
+        ops.frictionModel("VelDependent", 1, mu_slow, mu_fast, rate_s_per_m)
+    single_fp_bearing(ops, weight, radius_m, (mu if mu_slow is None else mu_slow) * weight / yield_m)
+    (rows,) = shake(ops, dt_s, (ax_m_s2, ay_m_s2, az_m_s2), weight, substeps, [("-node", 2, "-dof", 1, 2, "disp")])
+    return on_samples(rows, dt_s, len(ax_m_s2), 2)
+
+
+def load_opensees():
+    """The ``openseespy.opensees`` module.
+
+    Raises
+    ------
+    OpenSeesUnavailable
+        When openseespy does not import (with the reason).
+    """
     ok, why = opensees_available()
     if not ok:
         raise OpenSeesUnavailable(why)
     import openseespy.opensees as ops
 
-    ax = np.asarray(ax_m_s2, dtype=float)
-    ay = np.asarray(ay_m_s2, dtype=float)
-    mass = 1.0
-    weight = mass * gravity_m_s2
+    return ops
+
+
+def isolated_mass_model(ops, horizontal_mass_kg: float, vertical_mass_kg: float, *, planar: bool) -> None:
+    """A fresh 3-D model (ndm 3, ndf 6): node 1 the ground (fixed), node 2 the isolated mass above it.
+
+    Node 2 carries ``horizontal_mass_kg`` along x and y and ``vertical_mass_kg`` along z
+    [kg]; it moves along x, along y when ``planar`` (held otherwise) and vertically on the
+    bearing's stiff vertical material; its rotations are fixed.  Both nodes sit at the origin
+    (the bearings are zero-length elements).
+    """
     ops.wipe()
     ops.model("basic", "-ndm", 3, "-ndf", 6)
     ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0, "-mass", mass, mass, mass, 0.0, 0.0, 0.0)
+    ops.node(2, 0.0, 0.0, 0.0, "-mass", horizontal_mass_kg, horizontal_mass_kg, vertical_mass_kg, 0.0, 0.0, 0.0)
     ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0, 0, 1, 1, 1)
-    ops.uniaxialMaterial("Elastic", 1, VERTICAL_STIFFNESS_PER_WEIGHT * weight)  # stiff vertical spring
+    ops.fix(2, 0, 0 if planar else 1, 0, 1, 1, 1)
+
+
+def single_fp_bearing(ops, weight_N: float, radius_m: float, k_init_N_per_m: float,
+                      tolerance_N: float | None = None) -> None:
+    """Element 1, a ``singleFPBearing`` from node 1 to node 2 on friction model 1 (defined by the caller).
+
+    Reff = ``radius_m``, kInit = ``k_init_N_per_m``; material 1 (elastic, a static deflection
+    of 0.1 µm under ``weight_N``) along the axis, material 2 (zero stiffness) in torsion and
+    bending; the axis along global z.  ``tolerance_N``: the element's own equilibrium
+    tolerance (``-iter 25 tol``, a force [N]; OpenSees' default 1e-12 suits a weight of order 1,
+    not a building's 3e7 N, where it fails to converge and every such step is redone in halves).
+    """
+    ops.uniaxialMaterial("Elastic", 1, VERTICAL_STIFFNESS_PER_WEIGHT * weight_N)  # stiff vertical spring
     ops.uniaxialMaterial("Elastic", 2, 0.0)
-    if mu_slow is None:
-        ops.frictionModel("Coulomb", 1, mu)
-    else:
-        ops.frictionModel("VelDependent", 1, mu_slow, mu_fast, rate_s_per_m)
-    k_init = (mu if mu_slow is None else mu_slow) * weight / yield_m
-    ops.element("singleFPBearing", 1, 1, 2, 1, radius_m, k_init, "-P", 1, "-T", 2, "-My", 2, "-Mz", 2,
-                "-orient", 0, 0, 1, 1, 0, 0)
-    apply_gravity(ops, 2, weight)
-    ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *ax.tolist())
-    ops.timeSeries("Path", 3, "-dt", dt_s, "-values", *ay.tolist())
-    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
-    if az_m_s2 is not None:
-        ops.timeSeries("Path", 4, "-dt", dt_s, "-values", *np.asarray(az_m_s2, dtype=float).tolist())
-        ops.pattern("UniformExcitation", 4, 3, "-accel", 4)
-    (rows,) = run_transient(ops, dt_s, ax.size, substeps, [("-node", 2, "-dof", 1, 2, "disp")])
-    return on_samples(rows, dt_s, ax.size, 2)
+    iteration = () if tolerance_N is None else ("-iter", 25, tolerance_N)
+    ops.element("singleFPBearing", 1, 1, 2, 1, radius_m, k_init_N_per_m, "-P", 1, "-T", 2, "-My", 2, "-Mz", 2,
+                "-orient", 0, 0, 1, 1, 0, 0, *iteration)
+
+
+def shake(ops, dt_s: float, components, weight_N: float, substeps: int, recorders: list,
+          numberer: str = "Plain") -> list:
+    """Gravity on node 2, then the record: the rows of each Node recorder (:func:`run_transient`).
+
+    ``components`` are the ground accelerations [m/s²] along x, y and z (``None`` for a
+    direction without one), applied as ``UniformExcitation`` patterns on time series 2, 3, 4.
+    """
+    apply_gravity(ops, 2, weight_N, numberer=numberer)
+    n_samples = 0
+    for direction, acc in enumerate(components, start=1):
+        if acc is None:
+            continue
+        values = np.asarray(acc, dtype=float)
+        n_samples = values.size
+        ops.timeSeries("Path", 1 + direction, "-dt", dt_s, "-values", *values.tolist())
+        ops.pattern("UniformExcitation", 1 + direction, direction, "-accel", 1 + direction)
+    return run_transient(ops, dt_s, n_samples, substeps, recorders, numberer=numberer)
 
 
 def apply_gravity(ops, node: int, weight_N: float, numberer: str = "Plain") -> None:

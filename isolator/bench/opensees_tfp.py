@@ -23,11 +23,10 @@ import numpy as np
 from isolator.bench.opensees import (
     OPENSEES_YIELD_DISPLACEMENT_M,
     VERTICAL_STIFFNESS_PER_WEIGHT,
-    OpenSeesUnavailable,
-    apply_gravity,
+    isolated_mass_model,
+    load_opensees,
     on_samples,
-    opensees_available,
-    run_transient,
+    shake,
 )
 
 #: the element's convergence tolerance (its documentation recommends 1e-10 … 1e-3)
@@ -91,34 +90,18 @@ def opensees_tfp(dt_s: float, ax_m_s2, ay_m_s2=None, *, bearing, gravity_m_s2: f
     OpenSeesUnavailable
         When openseespy does not import.
     """
-    ok, why = opensees_available()
-    if not ok:
-        raise OpenSeesUnavailable(why)
-    import openseespy.opensees as ops
-
+    ops = load_opensees()
     (mu1, mu2, mu3), lengths, capacities = tfp_arguments(bearing)
-    ax = np.asarray(ax_m_s2, dtype=float)
     planar = ay_m_s2 is not None
     mass = 1.0
     weight = mass * gravity_m_s2
-    ops.wipe()
-    ops.model("basic", "-ndm", 3, "-ndf", 6)
-    ops.node(1, 0.0, 0.0, 0.0)
-    ops.node(2, 0.0, 0.0, 0.0, "-mass", mass, mass, mass, 0.0, 0.0, 0.0)
-    ops.fix(1, 1, 1, 1, 1, 1, 1)
-    ops.fix(2, 0, 0 if planar else 1, 0, 1, 1, 1)
+    isolated_mass_model(ops, mass, mass, planar=planar)
     for tag, mu in ((1, mu1), (2, mu2), (3, mu3)):
         ops.frictionModel("Coulomb", tag, mu)
     ops.uniaxialMaterial("Elastic", 1, VERTICAL_STIFFNESS_PER_WEIGHT * weight)
     ops.uniaxialMaterial("Elastic", 2, 10.0 * weight)  # rotations are fixed at node 2: any small value
     ops.element("TripleFrictionPendulum", 1, 1, 2, 1, 2, 3, 1, 2, 2, 2, *lengths, *capacities, weight, yield_m,
                 1e-3 * weight, 1e-3 * weight, ELEMENT_TOLERANCE)
-    apply_gravity(ops, 2, weight)
-    ops.timeSeries("Path", 2, "-dt", dt_s, "-values", *ax.tolist())
-    ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
-    if planar:
-        ops.timeSeries("Path", 3, "-dt", dt_s, "-values", *np.asarray(ay_m_s2, dtype=float).tolist())
-        ops.pattern("UniformExcitation", 3, 2, "-accel", 3)
-    (rows,) = run_transient(ops, dt_s, ax.size, substeps, [("-node", 2, "-dof", 1, 2, "disp")])
-    out = on_samples(rows, dt_s, ax.size, 2)
+    (rows,) = shake(ops, dt_s, (ax_m_s2, ay_m_s2), weight, substeps, [("-node", 2, "-dof", 1, 2, "disp")])
+    out = on_samples(rows, dt_s, len(ax_m_s2), 2)
     return out if planar else out[:, 0]
