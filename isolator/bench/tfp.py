@@ -1,15 +1,19 @@
-"""The triple friction pendulum cases of the bench (issue 23): ours against OpenSees' element.
+"""The triple friction pendulum cases of the bench (issue 23): ours against OpenSees' element, 1-D and 2-D.
 
 The bearing of Fenz & Constantinou's example (issue 23): R_eff = 2.1/0.3/0.3/2.1 m,
-µ = 0.06/0.02/0.02/0.10, d* = 0.4/0.05/0.05/0.4 m (h = 0), under a rigid mass, one
+µ = 0.06/0.02/0.02/0.10, d* = 0.4/0.05/0.05/0.4 m (h = 0), under a rigid mass: one
 horizontal component of Northridge NWH360 (first 20 s; quick: 10 s), ×1 (regimes I–III)
-and ×2 (regimes I–V, below the ultimate 0.9 m).
+and ×2 (regimes I–V, below the ultimate 0.9 m); and (2-D) the Superstition Hills PTS pair
+×1 (first 20 s, peak ≈ 0.68 m: below the inner rims, which the 2-D model does not cross;
+quick: 8 s).
 
 ``exact multisurface (ours)``
-    :func:`isolator.solver.multisurface.simulate_bearing` (model ``1d-multisurface``).
+    :func:`isolator.solver.multisurface.simulate_bearing` (model ``1d-multisurface``); in 2-D
+    the registry's ``2d-multisurface`` model.
 ``OpenSees TripleFrictionPendulum, Newmark + Newton``
-    :func:`isolator.bench.opensees_tfp.opensees_tfp` at the record's dt; **its error is
-    measured against ours**.
+    :func:`isolator.bench.opensees_tfp.opensees_tfp` at the record's dt (the element is 3-D:
+    a pair is its bidirectional input); **its error is measured against ours** (vector
+    differences in 2-D).
 
 **Our error** is measured against an independent reference when one is given to
 :func:`run_tfp_case` (``benchmarks/tfp_opensees.py`` passes the tests' event-driven
@@ -19,6 +23,8 @@ and ×2 (regimes I–V, below the ultimate 0.9 m).
 
 from __future__ import annotations
 
+import statistics
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -33,6 +39,13 @@ TFP_SURFACES = ((2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.
 TFP_RECORD = ("RSN1044_NORTHR_NWH360", "at2/RSN1044_NORTHR_NWH360.AT2")
 TFP_SECONDS = {"full": 20.0, "quick": 10.0}
 TFP_SCALES = {"full": (1.0, 2.0), "quick": (2.0,)}
+#: (label, folder under --records, x file, y file) of the 2-D case, its seconds and scale
+TFP_PAIR = ("superstitionhills1987_PTS", "pairs/superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2",
+            "RSN723_SUPER.B_B-PTS315.AT2")
+TFP_PAIR_SECONDS = {"full": 20.0, "quick": 8.0}
+TFP_PAIR_SCALE = 1.0
+#: the registry's name of the 2-D multi-surface model (issue 23)
+PLANAR_TFP_MODEL = "2d-multisurface"
 
 
 def tfp_bearing():
@@ -51,84 +64,157 @@ class TfpCase:
     dt_s: float
     bearing: object = field(repr=False)
     gravity_m_s2: float = STANDARD_GRAVITY_M_S2
+    #: the second horizontal component [m/s²] (2-D), or None (1-D)
+    acceleration_y_m_s2: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def planar(self) -> bool:
+        """Both horizontal components."""
+        return self.acceleration_y_m_s2 is not None
 
 
 def tfp_cases(quick: bool, records_dir: Path) -> list[TfpCase]:
-    """The TFP cases whose record is in ``records_dir``."""
+    """The TFP cases whose records are in ``records_dir``: 1-D (NWH360) and 2-D (the PTS pair)."""
     from isolator.motion import read_ground_motion
 
+    key = "quick" if quick else "full"
+    cases = []
     label, rel = TFP_RECORD
     path = Path(records_dir) / rel
-    if not path.is_file():
-        return []
-    motion = read_ground_motion(path)
-    key = "quick" if quick else "full"
-    acc = motion.acceleration_m_s2[:round(TFP_SECONDS[key] / motion.dt_s) + 1]
-    return [TfpCase(f"TFP {label} x{scale:g} 0-{TFP_SECONDS[key]:g} s", scale * acc, motion.dt_s, tfp_bearing())
-            for scale in TFP_SCALES[key]]
+    if path.is_file():
+        motion = read_ground_motion(path)
+        acc = motion.acceleration_m_s2[:round(TFP_SECONDS[key] / motion.dt_s) + 1]
+        cases += [TfpCase(f"TFP {label} x{scale:g} 0-{TFP_SECONDS[key]:g} s", scale * acc, motion.dt_s,
+                          tfp_bearing()) for scale in TFP_SCALES[key]]
+    label, folder, fx, fy = TFP_PAIR
+    paths = [Path(records_dir) / folder / f for f in (fx, fy)]
+    if all(p.is_file() for p in paths):
+        mx, my = (read_ground_motion(p) for p in paths)
+        keep = min(mx.acceleration_m_s2.size, my.acceleration_m_s2.size, round(TFP_PAIR_SECONDS[key] / mx.dt_s) + 1)
+        if abs(mx.dt_s - my.dt_s) <= 1e-9 * mx.dt_s:
+            cases.append(TfpCase(f"TFP 2-D pair {label} x{TFP_PAIR_SCALE:g} 0-{TFP_PAIR_SECONDS[key]:g} s",
+                                 TFP_PAIR_SCALE * mx.acceleration_m_s2[:keep], mx.dt_s, tfp_bearing(),
+                                 acceleration_y_m_s2=TFP_PAIR_SCALE * my.acceleration_m_s2[:keep]))
+    return cases
+
+
+def planar_tfp_available() -> tuple[bool, str]:
+    """(True, "") when the registry has the 2-D multi-surface model, else (False, why)."""
+    from isolator.solver.models import MODELS
+
+    if PLANAR_TFP_MODEL in MODELS:
+        return True, ""
+    return False, f"the {PLANAR_TFP_MODEL} model is not in the solver registry (not on this branch)"
 
 
 def ours_tfp(case: TfpCase, setting=None):
-    """Ours: the exact 1-D multisurface solver (its response)."""
+    """Ours: the exact 1-D multisurface solver, or the registry's ``2d-multisurface`` under a pair (its response)."""
+    if case.planar:
+        from types import SimpleNamespace
+
+        from isolator.solver.base import Scene
+        from isolator.solver.models import simulate
+
+        design = SimpleNamespace(bearing=case.bearing, superstructure=None, source="bench TFP")
+        r = simulate(Scene(ax_m_s2=case.acceleration_m_s2, ay_m_s2=case.acceleration_y_m_s2, dt_s=case.dt_s,
+                           isolator={"gravity_m_s2": case.gravity_m_s2}, design=design))
+        if r.model != PLANAR_TFP_MODEL:
+            raise RuntimeError(f"the registry ran {r.model!r} for the 2-D TFP, not {PLANAR_TFP_MODEL!r}")
+        return r
     from isolator.solver.multisurface import simulate_bearing
 
     return simulate_bearing(case.acceleration_m_s2, case.dt_s, bearing=case.bearing, gravity_m_s2=case.gravity_m_s2)
 
 
 def opensees_tfp_solver(case: TfpCase, setting=1) -> np.ndarray:
-    """OpenSees' element at ``setting`` steps per sample (displacements at the samples)."""
+    """OpenSees' element at ``setting`` steps per sample (displacements at the samples, (N, 2) in 2-D)."""
     from isolator.bench.opensees_tfp import opensees_tfp
 
-    return opensees_tfp(case.dt_s, case.acceleration_m_s2, bearing=case.bearing, gravity_m_s2=case.gravity_m_s2,
-                        substeps=int(setting or 1))
+    return opensees_tfp(case.dt_s, case.acceleration_m_s2, case.acceleration_y_m_s2, bearing=case.bearing,
+                        gravity_m_s2=case.gravity_m_s2, substeps=int(setting or 1))
+
+
+def _length(x: np.ndarray) -> np.ndarray:
+    """|x| per sample: the absolute value (N,), or the length of the (x, y) vector (N, 2)."""
+    return np.hypot(x[:, 0], x[:, 1]) if x.ndim == 2 else np.abs(x)
 
 
 def trajectory_errors(x, truth) -> dict:
-    """Trajectory error (max |x − x_ref| / max |x_ref|) and sampled-peak error (relative)."""
+    """Trajectory error (max |x − x_ref| / max |x_ref|, vector differences in 2-D) and sampled-peak error."""
     x, truth = np.asarray(x, dtype=float), np.asarray(truth, dtype=float)
-    scale = max(float(np.max(np.abs(truth))), 1e-300)
-    return {"error_trajectory": float(np.max(np.abs(x - truth))) / scale,
-            "error_peak": abs(float(np.max(np.abs(x))) - float(np.max(np.abs(truth)))) / scale}
+    scale = max(float(np.max(_length(truth))), 1e-300)
+    return {"error_trajectory": float(np.max(_length(x - truth))) / scale,
+            "error_peak": abs(float(np.max(_length(x))) - float(np.max(_length(truth)))) / scale}
 
 
 def run_tfp_case(case: TfpCase, rounds: int = 3, ours_per_round: int = 5, reference=None, progress=None) -> dict:
     """Ours and OpenSees timed in alternation, OpenSees' error against ours, ours against ``reference``.
 
+    When ours cannot run (a 2-D case on a branch without the ``2d-multisurface`` model) OpenSees
+    runs ``rounds`` times alone, against ``reference`` when one is given.
+
     Parameters
     ----------
     reference : callable, optional
-        ``reference(case) -> displacement at the samples`` [m], independent of ours.
+        ``reference(case) -> displacement at the samples`` [m] ((N, 2) in 2-D), independent of ours.
 
     Returns
     -------
     dict
-        ``case``, ``regimes`` (ours), ``ours`` / ``opensees`` entries (seconds, runs, peaks,
-        errors), ``time_ratio`` and ``error_ratio`` (None when not measured).
+        ``case``, ``planar``, ``regimes`` (ours), ``ours`` / ``opensees`` entries (seconds,
+        runs, peaks, errors; ``seconds`` None and a ``note`` for a method that did not run),
+        ``time_ratio`` and ``error_ratio`` (None when not measured).
     """
     from isolator.bench.harness import time_against_opensees
+    from isolator.bench.opensees import opensees_available
 
     say = progress or (lambda line: None)
-    ours_tfp(case)  # load the kernel before timing
-    say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
-    ours_s, ours_res, ours_runs, os_s, os_x, os_runs, why = time_against_opensees(
-        ours_tfp, opensees_tfp_solver, case, rounds, ours_per_round)
-    x = np.asarray(ours_res.displacement_m)
-    ours = {"method": TFP_OURS, "seconds": ours_s, "runs": ours_runs, "peak_m": float(ours_res.peak_displacement_m),
-            "sampled_peak_m": float(np.max(np.abs(x)))}
+    ours_ok, ours_why = planar_tfp_available() if case.planar else (True, "")
+    result = {"case": case.name, "planar": case.planar, "n_samples": int(case.acceleration_m_s2.size), "regimes": [],
+              "time_ratio": None, "error_ratio": None}
+    ours_res = os_x = None
+    if ours_ok:
+        ours_tfp(case)  # load the kernel before timing
+        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
+        ours_s, ours_res, ours_runs, os_s, os_x, os_runs, os_why = time_against_opensees(
+            ours_tfp, opensees_tfp_solver, case, rounds, ours_per_round)
+    else:
+        os_ok, os_why = opensees_available()
+        if os_ok:
+            say(f"{case.name}: OpenSees alone ({ours_why}), {rounds} runs")
+            times = []
+            for _ in range(max(1, rounds)):
+                start = time.perf_counter()
+                os_x = opensees_tfp_solver(case, 1)
+                times.append(time.perf_counter() - start)
+            os_s, os_runs = statistics.median(times), len(times)
+    truth = None
     if reference is not None:
         say(f"{case.name}: the independent reference")
-        ours.update(trajectory_errors(x, reference(case)))
-    result = {"case": case.name, "n_samples": int(x.size), "regimes": list(getattr(ours_res, "regimes", {}) or {}),
-              "ours": ours}
+        truth = np.asarray(reference(case), dtype=float)
+    if ours_res is not None:
+        x = np.asarray(ours_res.displacement_m)
+        ours = {"method": TFP_OURS, "seconds": ours_s, "runs": ours_runs,
+                "peak_m": float(ours_res.peak_displacement_m), "sampled_peak_m": float(np.max(_length(x)))}
+        if truth is not None:
+            ours.update(trajectory_errors(x, truth))
+        result["regimes"] = list(getattr(ours_res, "regimes", {}) or {})
+    else:
+        x = None
+        ours = {"method": TFP_OURS, "seconds": None, "note": ours_why}
+    result["ours"] = ours
     if os_x is None:
-        result["opensees"] = {"method": TFP_OPENSEES, "seconds": None, "note": why}
-        result["time_ratio"] = result["error_ratio"] = None
+        result["opensees"] = {"method": TFP_OPENSEES, "seconds": None, "note": os_why}
         return result
+    against = x if x is not None else truth
     result["opensees"] = {"method": TFP_OPENSEES, "setting": "dt/1", "seconds": os_s, "runs": os_runs,
-                          "sampled_peak_m": float(np.max(np.abs(os_x))), **trajectory_errors(os_x, x)}
-    result["time_ratio"] = os_s / ours_s
-    result["error_ratio"] = (result["opensees"]["error_trajectory"] / max(ours["error_trajectory"], 1e-16)
-                             if "error_trajectory" in ours else None)
+                          "sampled_peak_m": float(np.max(_length(os_x))),
+                          "errors_against": "ours" if x is not None else ("the reference" if truth is not None else None),
+                          **(trajectory_errors(os_x, against) if against is not None else {})}
+    if x is not None:
+        result["time_ratio"] = os_s / ours_s
+        result["error_ratio"] = (result["opensees"]["error_trajectory"] / max(ours["error_trajectory"], 1e-16)
+                                 if "error_trajectory" in ours else None)
     return result
 
 
@@ -137,7 +223,15 @@ def tfp_summary(results: list[dict]) -> list[str]:
     lines = []
     for r in results:
         ours, os_ = r["ours"], r["opensees"]
-        head = f"{r['case']} (regimes {'-'.join(r['regimes'])}): ours {ours['seconds'] * 1e3:.3g} ms (median of {ours['runs']})"
+        if ours["seconds"] is None:
+            theirs = (f"OpenSees {os_['seconds'] * 1e3:.3g} ms (median of {os_['runs']}), peak {os_['sampled_peak_m']:.4f} m"
+                      if os_["seconds"] is not None else f"OpenSees not run ({os_.get('note')})")
+            if os_.get("errors_against"):
+                theirs += f", trajectory error {os_['error_trajectory']:.1e} vs {os_['errors_against']}"
+            lines.append(f"{r['case']}: ours not run ({ours.get('note')}); {theirs}")
+            continue
+        regimes = f" (regimes {'-'.join(r['regimes'])})" if r['regimes'] else ""
+        head = f"{r['case']}{regimes}: ours {ours['seconds'] * 1e3:.3g} ms (median of {ours['runs']})"
         if r["time_ratio"] is None:
             lines.append(f"{head}; vs OpenSees: not measured ({os_.get('note')})")
             continue

@@ -87,3 +87,75 @@ def test_run_tfp_case_without_opensees(records_dir, monkeypatch):
     monkeypatch.setattr(opensees_module, "opensees_available", lambda: (False, "openseespy not installed"))
     result = tfp_bench.run_tfp_case(_case(records_dir, 2.0, 1.0), rounds=1, ours_per_round=1)
     assert result["time_ratio"] is None and result["opensees"]["note"] == "openseespy not installed"
+
+
+def _pair_case(records_dir, seconds):
+    from isolator.motion import read_ground_motion
+
+    _, folder, fx, fy = tfp_bench.TFP_PAIR
+    mx, my = (read_ground_motion(records_dir / folder / f) for f in (fx, fy))
+    keep = round(seconds / mx.dt_s) + 1
+    return tfp_bench.TfpCase("test pair", mx.acceleration_m_s2[:keep], mx.dt_s, tfp_bench.tfp_bearing(),
+                             acceleration_y_m_s2=my.acceleration_m_s2[:keep])
+
+
+@needs_opensees
+def test_opensees_tfp_in_2d_with_a_zero_second_component_is_its_1d_answer(records_dir):
+    case = _case(records_dir, 6.0, 2.0)
+    one = tfp_bench.opensees_tfp_solver(case)
+    two = tfp_bench.opensees_tfp_solver(tfp_bench.TfpCase("zero y", case.acceleration_m_s2, case.dt_s, case.bearing,
+                                                          acceleration_y_m_s2=np.zeros_like(case.acceleration_m_s2)))
+    assert two.shape == (one.size, 2) and float(np.max(np.abs(two[:, 1]))) == 0.0
+    np.testing.assert_allclose(two[:, 0], one, rtol=0, atol=1e-12 * float(np.max(np.abs(one))))
+    assert float(np.max(np.abs(one))) > 0.1
+
+
+def test_2d_case_without_our_engine(records_dir, monkeypatch):
+    # the 2-D TFP case on a branch without the 2d-multisurface model: ours is a note, OpenSees (when it
+    # runs) is measured against the reference given, no ratio is claimed
+    monkeypatch.setattr(tfp_bench, "planar_tfp_available", lambda: (False, "not here"))
+    case = _pair_case(records_dir, 2.0)
+    truth = np.zeros((case.acceleration_m_s2.size, 2))
+    truth[:, 0] = 1.0  # a stand-in reference: OpenSees' error against it is |x − (1, 0)| / 1
+    result = tfp_bench.run_tfp_case(case, rounds=1, reference=lambda c: truth)
+    assert result["planar"] and result["ours"]["seconds"] is None and result["time_ratio"] is None
+    (line,) = tfp_bench.tfp_summary([result])
+    assert "ours not run (not here)" in line
+    if OPENSEES_OK:
+        x = tfp_bench.opensees_tfp_solver(case)
+        assert result["opensees"]["errors_against"] == "the reference"
+        assert result["opensees"]["error_trajectory"] == pytest.approx(float(np.max(np.hypot(x[:, 0] - 1.0, x[:, 1]))))
+
+
+def test_both_sides_see_the_same_pair(monkeypatch):
+    # ours (through the registry's Scene, with the bench's bearing) and OpenSees receive the case's components
+    import isolator.bench.opensees_tfp as opensees_tfp_module
+    import isolator.solver.models as models
+
+    t = np.arange(40) * 0.01
+    case = tfp_bench.TfpCase("same", np.sin(4 * t), 0.01, tfp_bench.tfp_bearing(), acceleration_y_m_s2=np.cos(2 * t))
+    seen = {}
+
+    def fake_opensees(dt_s, ax, ay=None, **kwargs):
+        seen["opensees"] = (dt_s, ax, ay, kwargs["bearing"])
+        raise RuntimeError("stop")
+
+    def fake_simulate(scene):
+        seen["ours"] = (scene.dt_s, scene.ax_m_s2, scene.ay_m_s2, scene.design.bearing)
+        raise RuntimeError("stop")
+
+    monkeypatch.setattr(opensees_tfp_module, "opensees_tfp", fake_opensees)
+    monkeypatch.setattr(models, "simulate", fake_simulate)
+    for run in (tfp_bench.opensees_tfp_solver, tfp_bench.ours_tfp):
+        with pytest.raises(RuntimeError, match="stop"):
+            run(case)
+    for dt_s, ax, ay, bearing in seen.values():
+        assert dt_s == case.dt_s and ax is case.acceleration_m_s2 and ay is case.acceleration_y_m_s2
+        assert bearing is case.bearing
+    assert set(seen) == {"opensees", "ours"}
+
+
+def test_2d_errors_are_vector_differences():
+    truth = np.column_stack([np.sin(np.linspace(0, 3, 31)), np.cos(np.linspace(0, 3, 31))])
+    e = tfp_bench.trajectory_errors(truth + [0.03, 0.04], truth)
+    assert e["error_trajectory"] == pytest.approx(0.05 / float(np.max(np.hypot(*truth.T))), rel=1e-12)
