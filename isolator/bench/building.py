@@ -34,7 +34,6 @@ Ours and OpenSees are timed in alternation (:func:`isolator.bench.harness.time_i
 from __future__ import annotations
 
 import math
-import statistics
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -305,30 +304,15 @@ def run_building_case(case: BuildingCase, rounds: int = 3, ours_per_round: int =
         a method that did not run) and ``time_ratio`` / ``error_ratio`` (OpenSees over ours;
         None when either did not run).
     """
-    from isolator.bench.harness import time_against_opensees
-    from isolator.bench.opensees import opensees_available
+    from isolator.bench.harness import time_ours_and_opensees
 
     say = progress or (lambda line: None)
     ours_method = BUILDING_OURS_2D if case.planar else BUILDING_OURS
     ours_ok, ours_why = planar_building_available() if case.planar else (True, "")
     result = {"case": case.name, "planar": case.planar, "n_samples": int(case.acceleration_m_s2.size),
               "dt_s": case.dt_s, "time_ratio": None, "error_ratio": None}
-    ours_out = os_out = None
-    if ours_ok:
-        ours_building(case)  # compile / load the kernel and cache the system before timing
-        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
-        ours_s, ours_out, ours_runs, os_s, os_out, os_runs, os_why = time_against_opensees(
-            ours_building, opensees_building_solver, case, rounds, ours_per_round)
-    else:
-        os_ok, os_why = opensees_available()
-        if os_ok:
-            say(f"{case.name}: OpenSees alone ({ours_why}), {rounds} runs")
-            times = []
-            for _ in range(max(1, rounds)):
-                start = time.perf_counter()
-                os_out = opensees_building_solver(case, 1)
-                times.append(time.perf_counter() - start)
-            os_s, os_runs = statistics.median(times), len(times)
+    ours_s, ours_out, ours_runs, os_s, os_out, os_runs, os_why = time_ours_and_opensees(
+        ours_building, opensees_building_solver, case, rounds, ours_per_round, "" if ours_ok else ours_why, say)
     say(f"{case.name}: the independent reference (solve_ivp, once)")
     start = time.perf_counter()
     truth = reference_building(case)

@@ -139,6 +139,36 @@ def time_against_opensees(ours, baseline, case, rounds: int, ours_per_round: int
     return statistics.median(times), out, len(times), None, None, None, why
 
 
+def time_ours_and_opensees(ours, baseline, case, rounds: int, ours_per_round: int, ours_missing: str = "",
+                           progress=None):
+    """:func:`time_against_opensees` after one untimed run of ours (numba's code loaded, caches filled);
+    or, when ours cannot run here (``ours_missing`` says why), the OpenSees ``baseline`` alone,
+    ``rounds`` runs (median).
+
+    Returns
+    -------
+    tuple
+        As :func:`time_against_opensees`; ours' three are None when ours did not run.
+    """
+    from isolator.bench.opensees import opensees_available
+
+    say = progress or (lambda line: None)
+    if not ours_missing:
+        ours(case, None)
+        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
+        return time_against_opensees(ours, baseline, case, rounds, ours_per_round)
+    available, why = opensees_available()
+    if not available:
+        return None, None, None, None, None, None, why
+    say(f"{case.name}: OpenSees alone ({ours_missing}), {rounds} runs")
+    times, out = [], None
+    for _ in range(max(1, rounds)):
+        start = time.perf_counter()
+        out = baseline(case, 1)
+        times.append(time.perf_counter() - start)
+    return None, None, None, statistics.median(times), out, len(times), ""
+
+
 def warm_up() -> None:
     """Compile or load every numba function once, so that timings measure solving."""
     case = harmonic_case("warm-up", 1.5, 1.0, 0.5, 0.25, 0.2, n_periods=1)

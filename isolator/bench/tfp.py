@@ -23,8 +23,6 @@ quick: 8 s).
 
 from __future__ import annotations
 
-import statistics
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -165,29 +163,14 @@ def run_tfp_case(case: TfpCase, rounds: int = 3, ours_per_round: int = 5, refere
         runs, peaks, errors; ``seconds`` None and a ``note`` for a method that did not run),
         ``time_ratio`` and ``error_ratio`` (None when not measured).
     """
-    from isolator.bench.harness import time_against_opensees
-    from isolator.bench.opensees import opensees_available
+    from isolator.bench.harness import time_ours_and_opensees
 
     say = progress or (lambda line: None)
     ours_ok, ours_why = planar_tfp_available() if case.planar else (True, "")
     result = {"case": case.name, "planar": case.planar, "n_samples": int(case.acceleration_m_s2.size), "regimes": [],
               "time_ratio": None, "error_ratio": None}
-    ours_res = os_x = None
-    if ours_ok:
-        ours_tfp(case)  # load the kernel before timing
-        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
-        ours_s, ours_res, ours_runs, os_s, os_x, os_runs, os_why = time_against_opensees(
-            ours_tfp, opensees_tfp_solver, case, rounds, ours_per_round)
-    else:
-        os_ok, os_why = opensees_available()
-        if os_ok:
-            say(f"{case.name}: OpenSees alone ({ours_why}), {rounds} runs")
-            times = []
-            for _ in range(max(1, rounds)):
-                start = time.perf_counter()
-                os_x = opensees_tfp_solver(case, 1)
-                times.append(time.perf_counter() - start)
-            os_s, os_runs = statistics.median(times), len(times)
+    ours_s, ours_res, ours_runs, os_s, os_x, os_runs, os_why = time_ours_and_opensees(
+        ours_tfp, opensees_tfp_solver, case, rounds, ours_per_round, "" if ours_ok else ours_why, say)
     truth = None
     if reference is not None:
         say(f"{case.name}: the independent reference")
