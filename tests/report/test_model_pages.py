@@ -10,7 +10,7 @@ import json
 
 import numpy as np
 import pytest
-from _model_designs import BUILDING, RECORD, SCALE_G, TRIPLE
+from _model_designs import BUILDING, RECORD, SCALE_G, TRIPLE, designs_file_text
 from typer.testing import CliRunner
 
 from isolator.analysis import analyse
@@ -201,3 +201,46 @@ def test_single_pendulum_rerun_with_its_rim_gets_the_page(motion, tmp_path, reco
                                  str(SCALE_G), "-o", str(out)])
     assert result.exit_code == 0, result.output
     assert "(4 pages)" in result.stdout and len(pypdf.PdfReader(str(out)).pages) == 4
+
+
+PAIR = ("pairs/landers1992_YER/RSN900_LANDERS_YER270.AT2",
+        "pairs/landers1992_YER/RSN900_LANDERS_YER360.AT2")
+
+
+def test_building_under_a_pair_report_and_batch_columns(records_dir, building, tmp_path):
+    """The 2-D building (a pair): the pair report's fourth page and the batch row carry the analysis' lists."""
+    from isolator.batch import run_batch
+    from isolator.errors import InvalidSystemError
+    from isolator.motion import read_ground_motion_pair
+
+    path, _, _ = building
+    x, y = (records_dir / name for name in PAIR)
+    design = Design.from_toml(path)
+    try:
+        analysis = analyse(design, read_ground_motion_pair(x, y), harmonic=False)
+    except InvalidSystemError as err:  # main without the 2-D building model (docs/building.md)
+        pytest.skip(f"no 2-D building model here: {err}")
+    numbers = analysis.to_dict()
+    assert analysis.model.startswith("2d") and analysis.is_planar
+    fig = building_page(4, "label", numbers, analysis.response)
+    drift_x, _ = _line(_axes(fig, "Story drift ratio profile"), "story drift ratio (peak)").get_data()
+    np.testing.assert_array_equal(drift_x, numbers["story_drift_ratio"])
+    acc_x, _ = _line(_axes(fig, "Floor acceleration profile"), "floor peak absolute acceleration").get_data()
+    np.testing.assert_allclose(acc_x * STANDARD_GRAVITY, numbers["floor_peak_acceleration_m_s2"], rtol=1e-15)
+    out = tmp_path / "pair.pdf"
+    result = runner.invoke(app, ["report", str(x), "--pair", str(y), "-d", str(path), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "(4 pages)" in result.stdout
+    written = json.loads(out.with_suffix(".json").read_text())
+    assert written["story_drift_ratio"] == numbers["story_drift_ratio"]
+    last = " ".join(pypdf.PdfReader(str(out)).pages[3].extract_text().split())
+    assert "The building above the isolators" in last and "horizontal resultant" in last
+    designs = tmp_path / "designs.toml"
+    designs.write_text(designs_file_text(BUILDING))
+    table = run_batch([str(x), str(y)], designs, tmp_path / "t.csv", jobs=1).table
+    assert len(table) == 1 and table.loc[0, "error"] == "" and table.loc[0, "model"] == analysis.model
+    for key in ("story_drift_ratio", "floor_peak_acceleration_m_s2", "bearing_axial_load_min_N"):
+        assert [table.loc[0, f"{key}_{i}"] for i in range(1, len(numbers[key]) + 1)] == pytest.approx(
+            numbers[key], rel=1e-15, abs=0.0), key
+    assert table.loc[0, "superstructure_shear_coefficient"] == pytest.approx(
+        numbers["superstructure_shear_coefficient"], rel=1e-15)
