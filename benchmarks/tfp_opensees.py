@@ -10,9 +10,10 @@ The cases of ``isolator bench`` (:mod:`isolator.bench.tfp`): Fenz & Constantinou
 (R_eff 2.1/0.3/0.3/2.1 m, µ 0.06/0.02/0.02/0.10, d* 0.4/0.05/0.05/0.4 m) under a rigid mass,
 Northridge NWH360 ×1 and ×2 (first 20 s), and the Superstition Hills PTS pair ×1 (first 20 s,
 2-D).  Ours and OpenSees (Newmark + Newton at the record's dt) timed in alternation; OpenSees'
-error against ours; in 1-D ours against the tests' independent event-driven reference
-(``SeriesReference`` of tests/solver/test_multisurface.py, element states, matrix exponential
-and Brent roots; run from the repository root).  ``--only-2d`` runs the pair alone.
+error against ours; ours against the tests' independent references (1-D: ``SeriesReference`` of
+tests/solver/test_multisurface.py, element states, matrix exponential and Brent roots; 2-D:
+``PlanarSeriesReference`` of tests/solver/test_planar_multisurface.py, solve_ivp with events, when
+those tests are on the branch; run from the repository root).  ``--only-2d`` runs the pair alone.
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ from __future__ import annotations
 import argparse
 import os
 from pathlib import Path
+
+import numpy as np
 
 from isolator.bench.tfp import run_tfp_case, tfp_cases, tfp_summary
 
@@ -29,6 +32,22 @@ def _reference(case):
 
     x, _ = SeriesReference(case.bearing, g=case.gravity_m_s2).run(case.acceleration_m_s2, case.dt_s)
     return x
+
+
+def _planar_reference(case):
+    """The tests' independent 2-D reference (``PlanarSeriesReference`` of tests/solver/test_planar_multisurface.py:
+    solve_ivp on (X, V, ū_k) with events, rtol 1e-12), or None where those tests are not on this branch."""
+    try:
+        from tests.solver.test_planar_multisurface import PlanarSeriesReference
+    except ImportError:
+        return None
+
+    def reference(c):
+        t = c.dt_s * np.arange(c.acceleration_m_s2.size)
+        x, _, _ = PlanarSeriesReference(c.bearing, g=c.gravity_m_s2).run(t, c.acceleration_m_s2, c.acceleration_y_m_s2)
+        return x
+
+    return reference
 
 
 def main(argv=None) -> None:
@@ -41,7 +60,7 @@ def main(argv=None) -> None:
     for case in tfp_cases(args.quick, Path(args.records)):
         if args.only_2d and not case.planar:
             continue
-        result = run_tfp_case(case, rounds=args.rounds, reference=None if case.planar else _reference)
+        result = run_tfp_case(case, rounds=args.rounds, reference=_planar_reference(case) if case.planar else _reference)
         for line in tfp_summary([result]):
             print(line)
         ours = result["ours"]
