@@ -373,13 +373,15 @@ class BuildingResponse(SolverResult):
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
-    """``(model, reason)`` when the scene's design has a superstructure; else None.
+    """``(model, reason)`` when the scene's design has a superstructure and one horizontal component; else None.
 
-    A superstructure is never dropped: a pair, a vertical or µ(v) with one raise in
-    :func:`simulate_scene` (the 2-D building is not written yet) rather than running the rigid block.
+    A pair, a vertical or µ(v) with a superstructure goes to the 2-D building
+    (:mod:`isolator.solver.planar_building`, registered above this model), never to the rigid block.
     """
     design = scene.design
     if design is None or getattr(design, "superstructure", None) is None:
+        return None
+    if scene.has_y or scene.has_z or scene.velocity_dependent:
         return None
     return MODEL_NAME, MODEL_REASON
 
@@ -394,15 +396,12 @@ def simulate_scene(scene) -> BuildingResponse:
     Raises
     ------
     InvalidSystemError
-        A second horizontal component, a vertical or µ(v): the building model is 1-D with constant friction.
+        A second horizontal component, a vertical or µ(v): those scenes are the 2-D building's.
     """
     design = scene.design
     if scene.has_y or scene.has_z or scene.velocity_dependent:
-        given = "a second horizontal component" if scene.has_y else ("a vertical component" if scene.has_z
-                                                                      else "velocity-dependent friction")
-        raise InvalidSystemError(f"{design.source}: a design with a [superstructure] is analysed under one "
-                                 f"horizontal component with constant friction (the 1-D building); {given} "
-                                 "needs the 2-D building, not available yet")
+        raise InvalidSystemError(f"{design.source}: the 1-D building takes one horizontal component with constant "
+                                 "friction; this scene is the 2-D building's (model '2d-building')")
     iso = {key: value for key, value in scene.isolator.items() if value is not None}
     g = float(iso.get("gravity_m_s2", design.gravity_m_s2))
     mass = design.mass_kg

@@ -37,7 +37,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from isolator.solver import building, multisurface, planar, record
+from isolator.solver import building, multisurface, planar, planar_building, record
 from isolator.solver.base import SUMMARY_KEYS, Scene, SolverResult
 
 
@@ -68,6 +68,8 @@ class Model:
 MODELS: dict[str, Model] = {model.name: model for model in (
     Model(multisurface.MODEL_NAME, multisurface.scene_needs, multisurface.simulate_scene,
           "mass on a double or triple friction pendulum (series model, rims), one component: closed forms"),
+    Model(planar_building.MODEL_NAME, planar_building.scene_needs, planar_building.simulate_scene,
+          "shear building on the isolation plane under a pair: friction coupled in the plane, Taylor series pieces"),
     Model(building.MODEL_NAME, building.scene_needs, building.simulate_scene,
           "shear building on the isolation plane under one component: exact linear propagation between events"),
     Model(record.MODEL_NAME, record.scene_needs, record.simulate_scene,

@@ -70,11 +70,14 @@ def test_registry_selects_the_building_only_with_floors(records_dir):
     assert result.model == "1d-building"
     assert np.array_equal(result.displacement_m, direct.displacement_m)
     assert BUILDING_KEYS <= result.summary().keys()
-    # a pair or a vertical is refused in one line, never run as the rigid block
+    # a pair is the 2-D building's, a vertical is refused in one line: never run as the rigid block
     pair = Scene(ax_m_s2=motion.acceleration_m_s2, ay_m_s2=0 * motion.acceleration_m_s2, dt_s=motion.dt_s,
                  isolator=motion_keywords(design), design=design)
-    with pytest.raises(InvalidSystemError, match="one horizontal component"):
-        simulate(pair)
+    assert select_model(pair)[0] == "2d-building"
+    vertical = Scene(ax_m_s2=motion.acceleration_m_s2, az_m_s2=0 * motion.acceleration_m_s2, dt_s=motion.dt_s,
+                     isolator=motion_keywords(design), design=design)
+    with pytest.raises(InvalidSystemError, match="vertical component with a superstructure is not modelled"):
+        simulate(vertical)
 
 
 def test_upper_bound_friction_reaches_the_building(records_dir):

@@ -1,0 +1,514 @@
+r"""A linear shear building on the friction isolation plane under two horizontal components (2-D).
+
+The model (issue 22, ``docs/building.md``).  The superstructure of
+:class:`isolator.superstructure.Superstructure` responds independently along x and y (story
+stiffnesses k_x,i and k_y,i, classical damping per direction); the two directions meet only in
+the isolation plane, whose friction acts against the slab's sliding velocity **vector**:
+
+.. math::
+
+    M (\ddot u_d + \mathbf 1 (\ddot X_d + a_d)) + C_{s,d} \dot u_d + K_{s,d} u_d &= 0 \\
+    m_b (\ddot X + a_g) &= S(u, \dot u) - K X - c \dot X - \mu_k N \,\dot X/|\dot X|
+
+with X the slab's displacement relative to the ground (a plane vector), S the first story's
+shear vector (spring and damper), K = W/R for a pendulum (or the design's spring), c the
+optional dashpot and N = W = g × ``mass_kg``.  While stuck, the floors respond as the
+fixed-base structure and the friction holds D = S − K X − m_b a_g while |D| ≤ µs N
+(Euclidean norm); it breaks away at the first instant |D| = µs N; a stop (|Ẋ| → 0) sticks if
+|D| ≤ µs N and restarts towards D otherwise.
+
+The solution is propagated piece by piece by the Taylor series of the exact solution
+(:mod:`isolator.solver.planar_building_kernel`): linear phases are exact to rounding, the
+friction direction's series follows from the recurrences of a square root and a quotient,
+and each piece is as long as its series reaches rounding.  Events and interior peaks are
+roots of those polynomials; energies are exact integrals of them.
+
+Outputs: the keys of the 1-D building (:class:`isolator.solver.building.BuildingResponse`),
+resultants in the plane: ``story_drift_m`` and ``story_drift_ratio`` (peak over time of the
+resultant drift per story), ``floor_peak_acceleration_m_s2`` (resultant, absolute),
+``superstructure_shear_coefficient``, ``base_shear_coefficient`` and, with a bearing layout,
+the bearings' axial loads from the overturning in both directions.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from isolator.errors import InvalidSystemError, RecordInputError
+from isolator.solver import planar_building_kernel as _pk
+from isolator.solver.base import SolverResult
+from isolator.solver.building import BuildingResponse, building_system
+from isolator.solver.record import sample_timing
+from isolator.solver.system import System
+from isolator.units import STANDARD_GRAVITY
+
+#: The solver model's name in the registry.
+MODEL_NAME = "2d-building"
+MODEL_REASON = ("a superstructure above the isolation plane under two horizontal components: the 2-D building "
+                "(friction coupled in the plane)")
+#: Most pieces of the series over the whole record, per sample interval on average (a guard, not a limit met).
+DIRECTIONS = ("x", "y")
+
+
+@dataclass
+class PlanarBuildingSystem:
+    """The matrices of one building on its isolation plane, both directions (SI units)."""
+
+    n_floors: int
+    masses_kg: np.ndarray
+    slab_mass_kg: float
+    total_mass_kg: float
+    floor_heights_m: np.ndarray
+    story_heights_m: np.ndarray
+    stiffness_matrices: tuple  #: K_s along x and y [N/m]
+    damping_matrices: tuple  #: C_s along x and y [N·s/m]
+    isolator_stiffness_N_per_m: float
+    isolator_damping_Ns_per_m: float
+    mu_static: float
+    mu_kinetic: float
+    gravity_m_s2: float
+    a_mat: np.ndarray = field(repr=False)  #: [phase (stuck, sliding), direction, m, m]
+    g_vec: np.ndarray = field(repr=False)
+    p_vec: np.ndarray = field(repr=False)
+    l_d: np.ndarray = field(repr=False)
+    fastest_rate_per_s: float = 0.0
+
+    @property
+    def weight_N(self) -> float:
+        return self.total_mass_kg * self.gravity_m_s2
+
+    @property
+    def superstructure_weight_N(self) -> float:
+        return float(self.masses_kg.sum()) * self.gravity_m_s2
+
+
+def planar_building_system(superstructure, *, total_mass_kg: float, stiffness_N_per_m: float, mu_static: float,
+                           mu_kinetic: float | None = None, damping_Ns_per_m: float = 0.0,
+                           gravity_m_s2: float = STANDARD_GRAVITY) -> PlanarBuildingSystem:
+    """The 2-D system: the 1-D building's matrices (:func:`building_system`) along x and along y.
+
+    Parameters are those of :func:`isolator.solver.building.building_system`.
+    """
+    per_direction = [building_system(superstructure, total_mass_kg=total_mass_kg, stiffness_N_per_m=stiffness_N_per_m,
+                                     mu_static=mu_static, mu_kinetic=mu_kinetic, damping_Ns_per_m=damping_Ns_per_m,
+                                     gravity_m_s2=gravity_m_s2, direction=d) for d in DIRECTIONS]
+    first = per_direction[0]
+    n = first.n_floors
+    m = 2 * n + 2
+    a_mat = np.zeros((2, 2, m, m))
+    g_vec = np.zeros((2, 2, m))
+    p_vec = np.zeros((2, m))
+    l_d = np.zeros((2, m))
+    for d, system in enumerate(per_direction):
+        for phase in range(2):
+            a_mat[phase, d] = system.a_modes[phase][:m, :m]
+            g_vec[phase, d] = system.a_modes[phase][:m, system.AG]
+        # the friction force F_d along the sliding velocity: the 1-D friction column (f = s µk W)
+        p_vec[d] = system.a_modes[1][:m, system.F]
+        # the force on the slab other than friction, D = 1ᵀ(K_s u + C_s u̇) − K x_b − c v_b − m_b a_g
+        l_d[d] = system.ell_hold[:m]
+        l_d[d, 1] = -system.isolator_damping_Ns_per_m
+    return PlanarBuildingSystem(
+        n_floors=n, masses_kg=first.masses_kg, slab_mass_kg=first.slab_mass_kg, total_mass_kg=first.total_mass_kg,
+        floor_heights_m=first.floor_heights_m, story_heights_m=first.story_heights_m,
+        stiffness_matrices=tuple(s.stiffness_matrix for s in per_direction),
+        damping_matrices=tuple(s.damping_matrix for s in per_direction),
+        isolator_stiffness_N_per_m=first.isolator_stiffness_N_per_m,
+        isolator_damping_Ns_per_m=first.isolator_damping_Ns_per_m, mu_static=first.mu_static,
+        mu_kinetic=first.mu_kinetic, gravity_m_s2=first.gravity_m_s2, a_mat=a_mat, g_vec=g_vec, p_vec=p_vec, l_d=l_d,
+        fastest_rate_per_s=max(s.fastest_rate_per_s for s in per_direction))
+
+
+def _watched(system: PlanarBuildingSystem, layout) -> tuple:
+    """Rows of the watched quantities (resultants; signed overturning moments and bearing loads)."""
+    n = system.n_floors
+    m = 2 * n + 2
+    nk = 2 * n + 4
+    m1 = np.zeros((nk, 2, m))
+    m2 = np.zeros((nk, 2, m))
+    m3 = np.zeros((nk, 2))
+    m_b = system.slab_mass_kg
+    moment_rows = np.zeros(m)  # −Σ m_i H_i (ü_i + v̇_b) on ż, −Σ m_i H_i on a_d
+    mh = system.masses_kg * system.floor_heights_m
+    moment_rows[1] = -mh.sum()
+    moment_rows[2 + n:] = -mh
+    n_bearings = 0 if layout is None else layout.n_bearings
+    nj = 2 + n_bearings
+    sig1 = np.zeros((nj, 2, m))
+    sig2 = np.zeros((nj, 2, m))
+    sig3 = np.zeros((nj, 2))
+    coefficients = None if layout is None else np.stack([layout.overturning_coefficients(d) for d in DIRECTIONS])
+    for d in range(2):
+        k_row = system.stiffness_matrices[d].sum(axis=0)
+        c_row = system.damping_matrices[d].sum(axis=0)
+        m1[0, d, 0] = 1.0
+        m1[1, d, 1] = 1.0
+        for i in range(n):
+            m1[2 + i, d, 2 + i] = 1.0
+            if i > 0:
+                m1[2 + i, d, 1 + i] = -1.0
+            m2[2 + n + i, d, 1] = 1.0
+            m2[2 + n + i, d, 2 + n + i] = 1.0
+            m3[2 + n + i, d] = 1.0
+        for k in (2 + 2 * n, 3 + 2 * n):
+            m1[k, d, 2:2 + n] = k_row
+            m1[k, d, 2 + n:] = c_row
+        m2[3 + 2 * n, d, 1] = -m_b
+        m3[3 + 2 * n, d] = -m_b
+        sig2[d, d] = moment_rows
+        sig3[d, d] = -mh.sum()
+        for j in range(n_bearings):
+            sig2[2 + j, d] = coefficients[d, j] * moment_rows
+            sig3[2 + j, d] = -coefficients[d, j] * mh.sum()
+    return m1, m2, m3, sig1, sig2, sig3
+
+
+@dataclass(kw_only=True)
+class PlanarBuildingResponse(SolverResult):
+    """Response of the building on its isolation plane to a pair (SI units; energies per unit of the total mass).
+
+    The histories of the slab are (N, 2); ``floor_displacement_m`` and ``floor_velocity_m_s`` are
+    (N, floors, 2), relative to the slab; ``floor_absolute_acceleration_m_s2`` (N, floors, 2).
+    Peaks are of the resultants in the plane, exact (located between samples).
+    """
+
+    EXTRA_SUMMARY_KEYS = BuildingResponse.EXTRA_SUMMARY_KEYS
+
+    system: System
+    building: PlanarBuildingSystem
+    floor_displacement_m: np.ndarray
+    floor_velocity_m_s: np.ndarray
+    floor_absolute_acceleration_m_s2: np.ndarray
+    superstructure_shear_N: np.ndarray  #: (N, 2) first story's spring + damper shear
+    isolator_force_N: np.ndarray  #: (N, 2) spring + dashpot + friction on the slab
+    overturning_moment_Nm: np.ndarray  #: (N, 2): Σ F_i H_i from the loading along x and along y
+    event_displacement_m: np.ndarray  #: (events, 2)
+    peak_resultants: np.ndarray = field(repr=False)
+    signed_max: np.ndarray = field(repr=False)
+    signed_min: np.ndarray = field(repr=False)
+    energy_strain_final_J_per_kg: float = 0.0
+    n_pieces: int = 0
+    n_extrema_located: int = 0
+    bearing_layout: object = None
+    residual_displacement_x_m: float = 0.0
+    residual_displacement_y_m: float = 0.0
+    model: str = MODEL_NAME
+    model_reason: str = MODEL_REASON
+    uplift_time_s = 0.0  #: no vertical in this model [s]
+    n_uplifts = 0
+
+    @property
+    def configuration(self) -> str:
+        """The paper's configuration of the equivalent single bearing (1 to 4)."""
+        return self.system.configuration
+
+    @property
+    def story_drift_m(self) -> np.ndarray:
+        """Peak resultant drift per story, bottom to top [m] (exact)."""
+        n = self.building.n_floors
+        return self.peak_resultants[2:2 + n].copy()
+
+    @property
+    def story_drift_ratio(self) -> np.ndarray:
+        """Peak resultant drift / story height, bottom to top [-]."""
+        return self.story_drift_m / self.building.story_heights_m
+
+    @property
+    def floor_peak_acceleration_m_s2(self) -> np.ndarray:
+        """Peak resultant absolute acceleration per floor, bottom to top [m/s²] (exact)."""
+        n = self.building.n_floors
+        return self.peak_resultants[2 + n:2 + 2 * n].copy()
+
+    @property
+    def superstructure_shear_coefficient(self) -> float:
+        """Peak resultant first-story shear (spring + damper) / W_s [-]."""
+        n = self.building.n_floors
+        return float(self.peak_resultants[2 + 2 * n]) / self.building.superstructure_weight_N
+
+    @property
+    def base_shear_coefficient(self) -> float:
+        """Peak resultant isolator force (spring + dashpot + friction) / W [-]."""
+        n = self.building.n_floors
+        return float(self.peak_resultants[3 + 2 * n]) / self.building.weight_N
+
+    @property
+    def energy_balance_error_J(self) -> float:
+        """input − (kinetic + strain + potential + friction + viscous) [J]."""
+        return self.energy_balance_error_J_per_kg * self.building.total_mass_kg
+
+    def bearing_loads(self) -> dict | None:
+        """Axial loads of the bearings (:func:`isolator.superstructure.bearing_axial_loads`), extremes exact.
+
+        The overturning from both directions, P_k = P_k,g + ΔP_k,x M_x + ΔP_k,y M_y; the maximum and
+        minimum of each bearing are located between samples; the uplift start and duration come from
+        the samples (linear between them).
+        """
+        if self.bearing_layout is None:
+            return None
+        from isolator.superstructure import bearing_axial_loads
+
+        out = bearing_axial_loads(self.bearing_layout, self.overturning_moment_Nm[:, 0], self.time_s,
+                                  moment_y_Nm=self.overturning_moment_Nm[:, 1])
+        gravity = np.asarray(self.bearing_layout.gravity_loads_N)
+        high = gravity + self.signed_max[2:]
+        low = gravity + self.signed_min[2:]
+        out["bearing_axial_load_max_N"] = high.tolist()
+        out["bearing_axial_load_min_N"] = low.tolist()
+        out["n_bearings_uplifted"] = int(np.sum(low < 0.0))
+        return out
+
+    @property
+    def bearing_axial_load_max_N(self) -> list | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["bearing_axial_load_max_N"]
+
+    @property
+    def bearing_axial_load_min_N(self) -> list | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["bearing_axial_load_min_N"]
+
+    @property
+    def n_bearings_uplifted(self) -> int | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["n_bearings_uplifted"]
+
+    def summary(self) -> dict:
+        """:meth:`SolverResult.summary`, the per-story and per-floor arrays as lists."""
+        out = super().summary()
+        for key in ("story_drift_m", "story_drift_ratio", "floor_peak_acceleration_m_s2"):
+            out[key] = [float(v) for v in out[key]]
+        return out
+
+
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` when the scene's design has a superstructure and the scene more than one component.
+
+    A vertical or µ(v) with a superstructure is refused in :func:`simulate_scene` (never dropped).
+    """
+    design = scene.design
+    if design is None or getattr(design, "superstructure", None) is None:
+        return None
+    if not (scene.has_y or scene.has_z or scene.velocity_dependent):
+        return None
+    return MODEL_NAME, MODEL_REASON
+
+
+def simulate_scene(scene) -> PlanarBuildingResponse:
+    """The 2-D building's response to a scene (:func:`simulate_planar_building`; a missing a_y is zero).
+
+    Raises
+    ------
+    InvalidSystemError
+        A vertical component or µ(v): not in the 2-D building yet (said in one line).
+    """
+    design = scene.design
+    if scene.has_z or scene.velocity_dependent:
+        given = "a vertical component" if scene.has_z else "velocity-dependent friction (µ(v))"
+        raise InvalidSystemError(f"{design.source}: a design with a [superstructure] is analysed with constant "
+                                 f"friction and no vertical (the 1-D and 2-D buildings); {given} with a "
+                                 "superstructure is not modelled yet")
+    iso = {key: value for key, value in scene.isolator.items() if value is not None}
+    g = float(iso.get("gravity_m_s2", design.gravity_m_s2))
+    mass = design.mass_kg
+    if iso.get("radius_m") is not None:
+        stiffness = mass * g / float(iso["radius_m"])
+    else:
+        stiffness = mass * float(iso.get("stiffness_per_mass", 0.0))
+    ax = np.asarray(scene.ax_m_s2, dtype=np.float64)
+    ay = np.zeros_like(ax) if scene.ay_m_s2 is None else scene.ay_m_s2
+    return simulate_planar_building(ax, ay, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure,
+                                    total_mass_kg=mass, stiffness_N_per_m=stiffness,
+                                    mu_static=float(iso["mu_static"]), mu_kinetic=iso.get("mu_kinetic"),
+                                    damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
+                                    bearing_layout=design.bearing_layout)
+
+
+_READY = False
+
+
+def _warm_up() -> None:
+    # load (or compile) the kernel on a tiny problem so that solver_seconds measures solving
+    global _READY
+    if _READY:
+        return
+    from isolator.solver.notice import note_if_slow
+    from isolator.superstructure import Floor, Superstructure
+
+    with note_if_slow("compiling the 2-D building solver (its first use after installation takes a few seconds; "
+                      "the machine code is cached for later runs)"):
+        s = Superstructure(floors=(Floor(1.0, 1.0, 100.0, 100.0),), damping_ratio=0.05, gravity_m_s2=9.81)
+        acc = np.array([0.0, 5.0, -5.0])
+        system = planar_building_system(s, total_mass_kg=2.0, stiffness_N_per_m=10.0, mu_static=0.1)
+        _run(system, acc, acc[::-1].copy(), 0.01, None, None)
+    _READY = True
+
+
+def _check_component(name: str, values) -> np.ndarray:
+    acc = np.ascontiguousarray(values, dtype=np.float64)
+    if acc.ndim != 1 or acc.size < 2:
+        raise RecordInputError(f"{name} must be one-dimensional with at least two samples")
+    if not np.all(np.isfinite(acc)):
+        raise RecordInputError(f"{name} holds NaN or infinite values")
+    return acc
+
+
+def simulate_planar_building(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, time_s=None, superstructure,
+                             total_mass_kg: float, stiffness_N_per_m: float, mu_static: float,
+                             mu_kinetic: float | None = None, damping_Ns_per_m: float = 0.0,
+                             gravity_m_s2: float = STANDARD_GRAVITY, bearing_layout=None) -> PlanarBuildingResponse:
+    """Response of a shear building on a friction isolation plane to two horizontal components.
+
+    Parameters
+    ----------
+    ax_m_s2, ay_m_s2 : array_like
+        Ground acceleration along x and y [m/s²], linear between samples, one time base.
+    dt_s : float, optional
+        Sample interval [s] (or ``time_s``).
+    time_s : array_like, optional
+        Sample times [s]; unequal steps are solved interval by interval.
+    superstructure : isolator.superstructure.Superstructure
+    total_mass_kg, stiffness_N_per_m, mu_static, mu_kinetic, damping_Ns_per_m, gravity_m_s2
+        As for :func:`isolator.solver.building.simulate_building`.
+    bearing_layout : isolator.superstructure.BearingLayout, optional
+        For the bearings' axial loads.
+
+    Returns
+    -------
+    PlanarBuildingResponse
+    """
+    system = planar_building_system(superstructure, total_mass_kg=float(total_mass_kg),
+                                    stiffness_N_per_m=float(stiffness_N_per_m), mu_static=float(mu_static),
+                                    mu_kinetic=None if mu_kinetic is None else float(mu_kinetic),
+                                    damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=float(gravity_m_s2))
+    ax = _check_component("ax", ax_m_s2)
+    ay = _check_component("ay", ay_m_s2)
+    if ax.shape != ay.shape:
+        raise RecordInputError(f"the two components differ in length ({ax.size} and {ay.size} samples)")
+    if time_s is None and dt_s is None:
+        raise TypeError("give dt_s or time_s")
+    _warm_up()
+    return _run(system, ax, ay, dt_s, time_s, bearing_layout)
+
+
+def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> PlanarBuildingResponse:
+    if time_s is not None:
+        times = np.asarray(time_s, dtype=np.float64)
+        if times.shape != ax.shape:
+            raise RecordInputError(f"time ({times.shape}) and acceleration ({ax.shape}) differ in length")
+        dt, relative = sample_timing(times)
+        t0 = float(times[0])
+    else:
+        dt = float(dt_s)
+        if not (math.isfinite(dt) and dt > 0.0):
+            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
+        relative, t0 = None, 0.0
+    rate = system.fastest_rate_per_s
+    h_max = _pk.THETA / rate if rate > 0 else math.inf
+    n = system.n_floors
+    m = 2 * n + 2
+    weights = np.ones(m)
+    weights[0] = weights[2:2 + n] = max(rate, 1e-300)
+    weight = system.weight_N
+    shortest = dt if relative is None else float(np.min(np.diff(relative)))
+    v_ref = max(system.mu_static * system.gravity_m_s2, float(np.max(np.abs(ax))), float(np.max(np.abs(ay))),
+                1e-12) * shortest
+    m1, m2, m3, sig1, sig2, sig3 = _watched(system, bearing_layout)
+    n_samples = ax.size
+    nk, nj = m1.shape[0], sig1.shape[0]
+    out_state = np.empty((n_samples, 2, m))
+    out_mon = np.empty((n_samples, nk, 2))
+    out_sig = np.empty((n_samples, nj))
+    out_energy = np.empty((3, n_samples))
+    peak_sq = np.empty(nk)
+    sig_max = np.empty(nj)
+    sig_min = np.empty(nj)
+    summary = np.zeros(_pk.SUMMARY_SIZE)
+    c_floor = np.ascontiguousarray(np.stack(system.damping_matrices))
+    kernel_times = np.empty(0) if relative is None else np.ascontiguousarray(relative)
+    capacity = 64 + n_samples // 4
+    while True:
+        ev_time = np.empty(capacity)
+        ev_kind = np.empty(capacity, dtype=np.int8)
+        ev_x = np.empty((capacity, 2))
+        start = time.perf_counter()
+        _pk.building2d_kernel(ax, ay, dt, kernel_times, h_max, system.a_mat, system.g_vec, system.p_vec, system.l_d,
+                              weights, system.slab_mass_kg, system.total_mass_kg, system.masses_kg,
+                              system.isolator_damping_Ns_per_m, c_floor, system.mu_static * weight,
+                              system.mu_kinetic * weight, v_ref, m1, m2, m3, sig1, sig2, sig3, out_state, out_mon,
+                              out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x, summary)
+        elapsed = time.perf_counter() - start
+        n_events = int(summary[_pk.S_N_EVENTS])
+        if n_events <= capacity:
+            break
+        capacity = n_events + 16
+    status = int(summary[_pk.S_STATUS])
+    message = "ok"
+    if status & _pk.STATUS_CHATTER:
+        message = (f"chatter guard: more than {_pk.MAX_EVENTS_PER_INTERVAL} events in one sample interval; the "
+                   "static friction held the slab to the end of that interval")
+    elif status & _pk.STATUS_PIECES:
+        message = (f"more than {_pk.MAX_PIECES_PER_INTERVAL} series pieces in one sample interval: that interval "
+                   "was not finished")
+    x_b = out_state[:, :, 0]
+    v_b = out_state[:, :, 1]
+    u = np.transpose(out_state[:, :, 2:2 + n], (0, 2, 1))
+    ud = np.transpose(out_state[:, :, 2 + n:], (0, 2, 1))
+    mass = system.total_mass_kg
+    v_end, ud_end, u_end = v_b[-1], ud[-1], u[-1]
+    kinetic = 0.5 * system.slab_mass_kg * float(v_end @ v_end) + 0.5 * float(
+        system.masses_kg @ np.sum((v_end[None, :] + ud_end) ** 2, axis=1))
+    strain = sum(0.5 * float(u_end[:, d] @ system.stiffness_matrices[d] @ u_end[:, d]) for d in range(2))
+    potential = 0.5 * system.isolator_stiffness_N_per_m * float(x_b[-1] @ x_b[-1])
+    e_in, e_f, e_v = (float(summary[k]) for k in (_pk.S_E_INPUT, _pk.S_E_FRICTION, _pk.S_E_VISCOUS))
+    peaks = np.sqrt(peak_sq)
+    force = out_mon[:, 3 + 2 * n, :]
+    equivalent = System(mu_static=system.mu_static, mu_kinetic=system.mu_kinetic,
+                        stiffness_per_mass=system.isolator_stiffness_N_per_m / mass,
+                        damping_per_mass=system.isolator_damping_Ns_per_m / mass, gravity_m_s2=system.gravity_m_s2)
+    return PlanarBuildingResponse(
+        system=equivalent,
+        building=system,
+        time_s=t0 + (dt * np.arange(n_samples) if relative is None else relative),
+        ground_acceleration_m_s2=np.column_stack([ax, ay]),
+        displacement_m=x_b.copy(),
+        velocity_m_s=v_b.copy(),
+        absolute_acceleration_m_s2=force / mass,
+        event_time_s=t0 + ev_time[:n_events],
+        event_kind=ev_kind[:n_events],
+        event_displacement_m=ev_x[:n_events].copy(),
+        peak_displacement_m=float(peaks[0]),
+        residual_displacement_m=float(math.hypot(*x_b[-1])),
+        residual_displacement_x_m=float(x_b[-1, 0]),
+        residual_displacement_y_m=float(x_b[-1, 1]),
+        peak_velocity_m_s=float(peaks[1]),
+        peak_transmitted_acceleration_m_s2=float(peaks[3 + 2 * n]) / mass,
+        slip_time_s=float(summary[_pk.S_SLIP_TIME]),
+        n_events=n_events,
+        energy_input_J_per_kg=e_in / mass,
+        energy_friction_J_per_kg=e_f / mass,
+        energy_viscous_J_per_kg=e_v / mass,
+        energy_kinetic_final_J_per_kg=kinetic / mass,
+        energy_potential_final_J_per_kg=potential / mass,
+        energy_strain_final_J_per_kg=strain / mass,
+        energy_balance_error_J_per_kg=(e_in - (kinetic + strain + potential + e_f + e_v)) / mass,
+        energy_history_J_per_kg=out_energy / mass,
+        floor_displacement_m=u.copy(),
+        floor_velocity_m_s=ud.copy(),
+        floor_absolute_acceleration_m_s2=out_mon[:, 2 + n:2 + 2 * n, :].copy(),
+        superstructure_shear_N=out_mon[:, 2 + 2 * n, :].copy(),
+        isolator_force_N=force.copy(),
+        overturning_moment_Nm=out_sig[:, :2].copy(),
+        peak_resultants=peaks,
+        signed_max=sig_max.copy(),
+        signed_min=sig_min.copy(),
+        status=status,
+        message=message,
+        solver_seconds=elapsed,
+        n_pieces=int(summary[_pk.S_N_PIECES]),
+        n_extrema_located=int(summary[_pk.S_N_LOCATED]),
+        bearing_layout=bearing_layout,
+    )

@@ -1,0 +1,774 @@
+r"""The compiled loop of the 2-D building: Taylor series of the exact solution, piece by piece.
+
+Pure arrays in, arrays out (numba, cached on disk).  Per horizontal direction d the state is
+
+    z_d = [x_b, v_b, u_1..u_n, u̇_1..u̇_n]
+
+(slab displacement and velocity relative to the ground, floor displacements and velocities
+relative to the slab) and, in each phase, z_d' = A z_d + g a_d(t) + p F_d(t), with a_d linear
+between samples and F the friction force on the slab (its direction couples x and y):
+
+* ``STUCK``: the slab holds (x_b fixed, v_b = 0); A is the fixed-base floors' matrix, F absent;
+* ``START``: leaving rest (|V| < r_sw): F = µk N D/|D|, with D the force on the slab other
+  than friction (the velocity of a block leaving rest turns onto D within a time ∝ |V|: its
+  slow manifold; the lag it neglects is ∝ |V| and is measured in the tests);
+* ``SLIDE``: F = µk N V/|V|;
+* ``FINISH``: the last ~1e-10 v_ref of a stop, F frozen in the direction of V (linear).
+
+In every phase the solution is the Taylor series z(τ) = Σ Z_k τ^k whose coefficients follow
+from the recurrence Z_{k+1} = (A Z_k + g a_k + p F_k)/(k + 1), where F_k comes from the series
+of |V| = sqrt(V·V) and V/|V| (the classical recurrences of a square root and a quotient).  In
+the linear phases (stuck, finish, a collinear slide) the series is that of the exact solution;
+in every phase a piece is only as long as the series reaches rounding (the last two terms
+below ~1e-16 of the state, the Jorba–Zou rule) and at most THETA / ‖A‖ (balanced).  Events
+(break-away |D| = µs N, stop, the hand-overs between phases) and the interior extremes of the
+watched quantities are roots of these polynomials, found by safeguarded Newton (events) or
+Illinois (extremes); energies over a piece are exact integrals of the series' products.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2).
+N_ORDER = 22
+N_SERIES = N_ORDER + 3
+#: Longest piece, as ‖A_bal‖₁ h [-].
+THETA = 0.75
+#: truncation tolerance of a piece, relative to the state's size
+TRUNC_EPS = 1e-16
+MAX_EVENTS_PER_INTERVAL = 1000
+MAX_PIECES_PER_INTERVAL = 200000
+
+STUCK = 0
+START = 1
+SLIDE = 2
+FINISH = 3
+
+BREAKAWAY = 0
+STICK = 1
+REVERSAL = 2
+
+STATUS_CHATTER = 1
+STATUS_EVENTS_TRUNCATED = 2
+STATUS_PIECES = 4
+
+# functions whose upward zero crossing is an event
+PHI_BREAK = 0  # |D|² − (µs N)²
+PHI_STOP_START = 1  # −D·V
+PHI_SWITCH = 2  # |V|² − r_sw²
+PHI_HALF = 3  # r0/2 − e0·V
+PHI_STOP_FINISH = 4  # −e0·V
+
+# summary vector
+S_E_INPUT = 0
+S_E_FRICTION = 1
+S_E_VISCOUS = 2
+S_SLIP_TIME = 3
+S_N_EVENTS = 4
+S_STATUS = 5
+S_N_PIECES = 6
+S_N_LOCATED = 7
+SUMMARY_SIZE = 8
+
+
+@njit(cache=True)
+def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs):
+    """Normalised Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force."""
+    m = z.shape[1]
+    ns = zs.shape[1]
+    mat = 0 if mode == STUCK else 1
+    # scratch series for the direction: w (V or D), s = w·w, r = sqrt(s), e = w / r
+    ws = np.zeros((2, ns))
+    ss = np.zeros(ns)
+    rs = np.zeros(ns)
+    es = np.zeros((2, ns))
+    for d in range(2):
+        for i in range(m):
+            zs[d, 0, i] = z[d, i]
+    for k in range(ns - 1):
+        # the friction coefficients of order k
+        if mode == STUCK:
+            fs[0, k] = 0.0
+            fs[1, k] = 0.0
+        elif mode == FINISH:
+            for d in range(2):
+                fs[d, k] = mu_k_n * e_frozen[d] if k == 0 else 0.0
+        else:
+            for d in range(2):
+                if mode == SLIDE:
+                    ws[d, k] = zs[d, k, 1]
+                else:
+                    acc = -slab_mass * (a0[d] if k == 0 else (b[d] if k == 1 else 0.0))
+                    for i in range(m):
+                        acc += l_d[d, i] * zs[d, k, i]
+                    ws[d, k] = acc
+            acc = 0.0
+            for j in range(k + 1):
+                acc += ws[0, j] * ws[0, k - j] + ws[1, j] * ws[1, k - j]
+            ss[k] = acc
+            if k == 0:
+                rs[0] = math.sqrt(ss[0])
+            else:
+                acc = ss[k]
+                for j in range(1, k):
+                    acc -= rs[j] * rs[k - j]
+                rs[k] = acc / (2.0 * rs[0]) if rs[0] > 0.0 else 0.0
+            for d in range(2):
+                acc = ws[d, k]
+                for j in range(k):
+                    acc -= es[d, j] * rs[k - j]
+                es[d, k] = acc / rs[0] if rs[0] > 0.0 else 0.0
+                fs[d, k] = mu_k_n * es[d, k]
+        for d in range(2):
+            ak = a0[d] if k == 0 else (b[d] if k == 1 else 0.0)
+            inv = 1.0 / (k + 1)
+            for i in range(m):
+                acc = g_vec[mat, d, i] * ak + p_vec[d, i] * fs[d, k] if mat == 1 else g_vec[mat, d, i] * ak
+                for c in range(m):
+                    acc += a_mat[mat, d, i, c] * zs[d, k, c]
+                zs[d, k + 1, i] = acc * inv
+    for d in range(2):
+        fs[d, ns - 1] = 0.0
+
+
+@njit(cache=True)
+def _piece_limit(zs, weights, floor_scale):
+    """Longest τ for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
+    n_last = N_ORDER
+    size = floor_scale
+    top1 = 0.0
+    top2 = 0.0
+    for d in range(2):
+        for i in range(zs.shape[2]):
+            size = max(size, abs(zs[d, 0, i]) * weights[i])
+            top1 = max(top1, abs(zs[d, n_last, i]) * weights[i])
+            top2 = max(top2, abs(zs[d, n_last - 1, i]) * weights[i])
+    limit = 1e300
+    if top1 > 0.0:
+        limit = min(limit, (TRUNC_EPS * size / top1) ** (1.0 / n_last))
+    if top2 > 0.0:
+        limit = min(limit, (TRUNC_EPS * size / top2) ** (1.0 / (n_last - 1)))
+    return limit
+
+
+@njit(cache=True)
+def _eval(zs, tau, z, zd, zdd):
+    """z(τ), ż(τ), z̈(τ) of both directions from the series (Horner)."""
+    m = zs.shape[2]
+    for d in range(2):
+        for i in range(m):
+            acc = zs[d, N_ORDER, i]
+            accd = (N_ORDER + 1) * zs[d, N_ORDER + 1, i]
+            accdd = (N_ORDER + 1) * (N_ORDER + 2) * zs[d, N_ORDER + 2, i]
+            for k in range(N_ORDER - 1, -1, -1):
+                acc = zs[d, k, i] + acc * tau
+                accd = (k + 1) * zs[d, k + 1, i] + accd * tau
+                accdd = (k + 1) * (k + 2) * zs[d, k + 2, i] + accdd * tau
+            z[d, i] = acc
+            zd[d, i] = accd
+            zdd[d, i] = accdd
+
+
+@njit(cache=True)
+def _dot(a, b):
+    acc = 0.0
+    for i in range(a.shape[0]):
+        acc += a[i] * b[i]
+    return acc
+
+
+@njit(cache=True)
+def _phi(kind, z, zd, a, b, l_d, slab_mass, target, e0, out):
+    """Value and slope of the event function ``kind`` at a point (its upward zero crossing is the event)."""
+    dx = _dot(l_d[0], z[0]) - slab_mass * a[0]
+    dy = _dot(l_d[1], z[1]) - slab_mass * a[1]
+    ddx = _dot(l_d[0], zd[0]) - slab_mass * b[0]
+    ddy = _dot(l_d[1], zd[1]) - slab_mass * b[1]
+    vx = z[0, 1]
+    vy = z[1, 1]
+    avx = zd[0, 1]
+    avy = zd[1, 1]
+    if kind == PHI_BREAK:
+        out[0] = dx * dx + dy * dy - target * target
+        out[1] = 2.0 * (dx * ddx + dy * ddy)
+    elif kind == PHI_STOP_START:
+        out[0] = -(dx * vx + dy * vy)
+        out[1] = -(ddx * vx + ddy * vy + dx * avx + dy * avy)
+    elif kind == PHI_SWITCH:
+        out[0] = vx * vx + vy * vy - target * target
+        out[1] = 2.0 * (vx * avx + vy * avy)
+    elif kind == PHI_HALF:
+        out[0] = target - (e0[0] * vx + e0[1] * vy)
+        out[1] = -(e0[0] * avx + e0[1] * avy)
+    else:
+        out[0] = -(e0[0] * vx + e0[1] * vy)
+        out[1] = -(e0[0] * avx + e0[1] * avy)
+
+
+@njit(cache=True)
+def _phi_at(kind, zs, tau, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
+    _eval(zs, tau, z, zd, zdd)
+    a = np.empty(2)
+    a[0] = a0[0] + b[0] * tau
+    a[1] = a0[1] + b[1] * tau
+    _phi(kind, z, zd, a, b, l_d, slab_mass, target, e0, out)
+
+
+@njit(cache=True)
+def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
+    """The instant in (lo, hi] where φ rises through zero (φ(lo) ≤ 0 < or = φ(hi)); safeguarded Newton."""
+    a = lo
+    c = hi
+    _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    f_lo = out[0]
+    _phi_at(kind, zs, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    f_hi = out[0]
+    t = 0.5 * (lo + hi)
+    if f_hi != f_lo:
+        guess = lo + (hi - lo) * (-f_lo) / (f_hi - f_lo)
+        if lo < guess < hi:
+            t = guess
+    resolution = 4e-16 * max(abs(hi), abs(lo), 1e-300)
+    for _ in range(200):
+        _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        f = out[0]
+        if f == 0.0:
+            return t
+        if f < 0.0:
+            a = t
+        else:
+            c = t
+        if c - a <= resolution:
+            return c
+        t_new = t - f / out[1] if out[1] != 0.0 else 0.5 * (a + c)
+        if not (a < t_new < c):
+            t_new = 0.5 * (a + c)
+        elif abs(t_new - t) <= resolution:
+            return max(t_new, a)
+        t = t_new
+    return c
+
+
+@njit(cache=True)
+def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, from_rest, z, zd, zdd, out, counter):
+    """First upward zero crossing of φ in [0, length], or −1.
+
+    From the values and slopes at both ends and the one interior maximum, located when the slope
+    falls through zero and φ could reach zero there (as the 1-D kernels do).  ``from_rest``: φ(0) = 0
+    is the start, not a crossing (a block leaving rest): a crossing after the first maximum counts.
+    """
+    _phi_at(kind, zs, 0.0, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    f0 = out[0]
+    s0 = out[1]
+    if f0 > 0.0 and not from_rest:
+        return 0.0
+    _phi_at(kind, zs, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    f1 = out[0]
+    s1 = out[1]
+    if from_rest:
+        # leaving rest: φ first falls (e.g. −D·V) — a stop needs φ back up through zero
+        if f1 <= 0.0:
+            return -1.0
+        if s0 < 0.0 and s1 > 0.0:
+            lo = _slope_root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out, -1.0)
+            counter[0] += 1
+            return _root(kind, zs, lo, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        return 0.0  # it cannot leave rest in this direction: at once
+    if f1 > 0.0:
+        return _root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    reach = 2.0 * length * max(abs(s0), abs(s1))
+    if s0 > 0.0 and s1 < 0.0 and max(f0, f1) + reach > 0.0:
+        counter[0] += 1
+        t_m = _slope_root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out, 1.0)
+        _phi_at(kind, zs, t_m, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        if out[0] > 0.0:
+            return _root(kind, zs, 0.0, t_m, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    return -1.0
+
+
+@njit(cache=True)
+def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out, sign):
+    """Where φ' changes sign (sign = +1: from + to −, a maximum), by Illinois on the slope."""
+    _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    fa = sign * out[1]
+    _phi_at(kind, zs, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    fc = sign * out[1]
+    a = lo
+    c = hi
+    side = 0
+    for _ in range(200):
+        if c - a <= 4e-16 * max(abs(c), 1e-300) or fa == fc:
+            break
+        t = (a * fc - c * fa) / (fc - fa)
+        if not (a < t < c):
+            t = 0.5 * (a + c)
+        _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        f = sign * out[1]
+        if f == 0.0:
+            return t
+        if f > 0.0:
+            a = t
+            fa = f
+            if side == 1:
+                fc *= 0.5
+            side = 1
+        else:
+            c = t
+            fc = f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return 0.5 * (a + c)
+
+
+@njit(cache=True)
+def _monitors(z, zd, zdd, a, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope):
+    """Watched quantities at a point: resultant pairs val[k, d] (slope[k, d]) and signed sval[j]."""
+    nk = m1.shape[0]
+    for k in range(nk):
+        for d in range(2):
+            val[k, d] = _dot(m1[k, d], z[d]) + _dot(m2[k, d], zd[d]) + m3[k, d] * a[d]
+            slope[k, d] = _dot(m1[k, d], zd[d]) + _dot(m2[k, d], zdd[d]) + m3[k, d] * b[d]
+    for j in range(sig1.shape[0]):
+        v = 0.0
+        s = 0.0
+        for d in range(2):
+            v += _dot(sig1[j, d], z[d]) + _dot(sig2[j, d], zd[d]) + sig3[j, d] * a[d]
+            s += _dot(sig1[j, d], zd[d]) + _dot(sig2[j, d], zdd[d]) + sig3[j, d] * b[d]
+        sval[j] = v
+        sslope[j] = s
+
+
+@njit(cache=True)
+def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope):
+    """Slope of one watched quantity at τ: kind 0 the resultant's ½|P|², 1 a signed value, −1 its negative."""
+    _eval(zs, tau, z, zd, zdd)
+    a = np.empty(2)
+    a[0] = a0[0] + b[0] * tau
+    a[1] = a0[1] + b[1] * tau
+    _monitors(z, zd, zdd, a, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    if kind == 0:
+        return val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1], val[k, 0] ** 2 + val[k, 1] ** 2
+    return kind * sslope[k], kind * sval[k]
+
+
+@njit(cache=True)
+def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope):
+    """The interior maximum of a watched quantity in [0, length] (its slope from + to −), by Illinois."""
+    a = 0.0
+    c = length
+    fa, _ = _monitor_slope_at(zs, a, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval,
+                              sslope)
+    fc, _ = _monitor_slope_at(zs, c, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval,
+                              sslope)
+    best = -1e300
+    side = 0
+    for _ in range(200):
+        if c - a <= 4e-16 * max(c, 1e-300) or fa == fc:
+            break
+        t = (a * fc - c * fa) / (fc - fa)
+        if not (a < t < c):
+            t = 0.5 * (a + c)
+        f, v = _monitor_slope_at(zs, t, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope,
+                                 sval, sslope)
+        best = max(best, v)
+        if f == 0.0:
+            break
+        if f > 0.0:
+            a = t
+            fa = f
+            if side == 1:
+                fc *= 0.5
+            side = 1
+        else:
+            c = t
+            fc = f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return best
+
+
+@njit(cache=True)
+def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, out):
+    """Exact integrals over [0, τ] of the input, friction and viscous powers from the series."""
+    nt = N_ORDER + 1
+    pin = np.zeros(nt + 1)
+    pfr = np.zeros(nt)
+    pvis = np.zeros(nt)
+    y = np.zeros((nt, nf))
+    for d in range(2):
+        # input: −a_d (M V + Σ m_i u̇_i) = −a_d × (total relative momentum)
+        for k in range(nt):
+            mom = total_mass * zs[d, k, 1]
+            for i in range(nf):
+                mom += masses[i] * zs[d, k, 2 + nf + i]
+            pin[k] -= a0[d] * mom
+            pin[k + 1] -= b[d] * mom
+        # viscous: c V² + u̇ᵀ C u̇
+        for k in range(nt):
+            for i in range(nf):
+                acc = 0.0
+                for j in range(nf):
+                    acc += c_floor[d, i, j] * zs[d, k, 2 + nf + j]
+                y[k, i] = acc
+        for ell in range(nt):
+            acc = 0.0
+            for j in range(ell + 1):
+                acc += c_iso * zs[d, j, 1] * zs[d, ell - j, 1]
+                for i in range(nf):
+                    acc += zs[d, j, 2 + nf + i] * y[ell - j, i]
+            pvis[ell] += acc
+        if mode != STUCK:
+            for ell in range(nt):
+                acc = 0.0
+                for j in range(ell + 1):
+                    acc += fs[d, j] * zs[d, ell - j, 1]
+                pfr[ell] += acc
+    # Horner on Σ c_k τ^{k+1}/(k+1)
+    e_in = 0.0
+    e_f = 0.0
+    e_v = 0.0
+    for k in range(nt, -1, -1):
+        e_in = e_in * tau + pin[k] / (k + 1)
+    e_in *= tau
+    for k in range(nt - 1, -1, -1):
+        e_f = e_f * tau + pfr[k] / (k + 1)
+        e_v = e_v * tau + pvis[k] / (k + 1)
+    out[0] = e_in
+    out[1] = e_f * tau
+    out[2] = e_v * tau
+
+
+@njit(cache=True)
+def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
+                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3,
+                      out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
+                      summary):
+    """Response of the slab + shear building on the friction isolation plane to two horizontal components.
+
+    Parameters
+    ----------
+    ax, ay : float64[n]
+        Ground acceleration [m/s²], linear between samples.
+    dt : float
+        Sample interval [s] of a uniform record (``times`` empty).
+    times : float64[n] or float64[0]
+        Sample times from the first [s] for a non-uniform record.
+    h_max : float
+        Longest piece [s].
+    a_mat : float64[2, 2, m, m]
+        A of the stuck (0) and sliding (1) phases, per direction.
+    g_vec : float64[2, 2, m]
+        The column of the ground acceleration, per phase and direction.
+    p_vec : float64[2, m]
+        The column of the friction force (sliding), per direction.
+    l_d : float64[2, m]
+        The force on the slab other than friction: D_d = l_d · z_d − m_b a_d [N].
+    weights : float64[m]
+        Weights of the state's components for the truncation rule (rates on displacements).
+    slab_mass, total_mass : float
+        [kg].
+    masses : float64[nf]
+        Floor masses [kg].
+    c_iso : float
+        Isolator dashpot [N·s/m].
+    c_floor : float64[2, nf, nf]
+        C_s per direction.
+    mu_s_n, mu_k_n : float
+        µs N and µk N [N].
+    v_ref : float
+        Velocity scale [m/s]: the hand-over from START at 1e-4 v_ref, the stop's finish below 1e-10 v_ref.
+    m1, m2, m3 : arrays
+        Watched resultants: value_d = m1[k, d]·z_d + m2[k, d]·ż_d + m3[k, d] a_d.
+    sig1, sig2, sig3 : arrays
+        Watched signed values: Σ_d (sig1[j, d]·z_d + sig2[j, d]·ż_d + sig3[j, d] a_d).
+    out_state : float64[n, 2, m]
+    out_mon : float64[n, K, 2]
+    out_sig : float64[n, J]
+    out_energy : float64[3, n]
+        Cumulative input, friction and viscous energies [J].
+    peak_sq : float64[K]
+        Peak of the squared resultants.
+    sig_max, sig_min : float64[J]
+    ev_time, ev_kind, ev_x : arrays
+        Events: time from the first sample [s], kind, (x, y) of the slab [m].
+    summary : float64[SUMMARY_SIZE]
+    """
+    uniform = times.shape[0] == 0
+    n = ax.shape[0]
+    m = a_mat.shape[2]
+    nk = m1.shape[0]
+    nj = sig1.shape[0]
+    zs = np.zeros((2, N_SERIES, m))
+    fs = np.zeros((2, N_SERIES))
+    w = np.zeros((2, m))
+    z = np.zeros((2, m))
+    zd = np.zeros((2, m))
+    zdd = np.zeros((2, m))
+    val = np.zeros((nk, 2))
+    slope = np.zeros((nk, 2))
+    sval = np.zeros(max(nj, 1))
+    sslope = np.zeros(max(nj, 1))
+    val1 = np.zeros((nk, 2))
+    slope1 = np.zeros((nk, 2))
+    sval1 = np.zeros(max(nj, 1))
+    sslope1 = np.zeros(max(nj, 1))
+    val2 = np.zeros((nk, 2))
+    slope2 = np.zeros((nk, 2))
+    sval2 = np.zeros(max(nj, 1))
+    sslope2 = np.zeros(max(nj, 1))
+    out2 = np.zeros(2)
+    energy = np.zeros(3)
+    counter = np.zeros(1, dtype=np.int64)
+    e0 = np.zeros(2)
+    a0 = np.zeros(2)
+    b = np.zeros(2)
+    a1 = np.zeros(2)
+    floor_scale = 1e-6 * v_ref
+    r_switch = 1e-4 * v_ref
+    r_finish = 1e-10 * v_ref
+    mode = STUCK
+    x_stuck = np.zeros(2)
+    from_rest = False
+    half_target = 0.0
+    n_ev = 0
+    status = 0
+    n_pieces = 0
+    e_in = 0.0
+    e_f = 0.0
+    e_v = 0.0
+    slip_time = 0.0
+    # the first sample: at rest, stuck
+    a0[0] = ax[0]
+    a0[1] = ay[0]
+    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+    _eval(zs, 0.0, z, zd, zdd)
+    _monitors(z, zd, zdd, a0, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    for k in range(nk):
+        peak_sq[k] = val[k, 0] ** 2 + val[k, 1] ** 2
+        out_mon[0, k, 0] = val[k, 0]
+        out_mon[0, k, 1] = val[k, 1]
+    for j in range(nj):
+        sig_max[j] = sval[j]
+        sig_min[j] = sval[j]
+        out_sig[0, j] = sval[j]
+    for d in range(2):
+        for i in range(m):
+            out_state[0, d, i] = 0.0
+    for i in range(n - 1):
+        if uniform:
+            t_i = i * dt
+            dt_i = dt
+        else:
+            t_i = times[i]
+            dt_i = times[i + 1] - t_i
+        b[0] = (ax[i + 1] - ax[i]) / dt_i
+        b[1] = (ay[i + 1] - ay[i]) / dt_i
+        tau = 0.0
+        events_here = 0
+        for _guard in range(MAX_PIECES_PER_INTERVAL):
+            if tau >= dt_i:
+                break
+            a0[0] = ax[i] + b[0] * tau
+            a0[1] = ay[i] + b[1] * tau
+            rem = dt_i - tau
+            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+            n_pieces += 1
+            length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
+            if mode == FINISH:
+                # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
+                _eval(zs, 0.0, z, zd, zdd)
+                rdot = abs(e0[0] * zd[0, 1] + e0[1] * zd[1, 1])
+                r_now = e0[0] * z[0, 1] + e0[1] * z[1, 1]
+                if rdot > 0.0:
+                    length = min(length, 4.0 * r_now / rdot)
+            if length < rem and length < 1e-15 * dt_i:
+                length = min(rem, 1e-15 * dt_i)
+            # ---- event in this piece? ----
+            t_event = -1.0
+            kind_phi = -1
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                pass
+            elif mode == STUCK:
+                t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
+                                          zdd, out2, counter)
+                kind_phi = PHI_BREAK
+            elif mode == START:
+                t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
+                                          zd, zdd, out2, counter)
+                kind_phi = PHI_STOP_START
+                t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                                       slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter)
+                if t_sw > 0.0:
+                    t_event = t_sw
+                    kind_phi = PHI_SWITCH
+            elif mode == SLIDE:
+                t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
+                                          zd, zdd, out2, counter)
+                kind_phi = PHI_HALF
+            else:
+                t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
+                                          zd, zdd, out2, counter)
+                kind_phi = PHI_STOP_FINISH
+            piece = length if t_event < 0.0 else t_event
+            # ---- values at both ends, energies, peaks ----
+            _eval(zs, 0.0, z, zd, zdd)
+            _monitors(z, zd, zdd, a0, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+            _eval(zs, piece, z, zd, zdd)
+            a1[0] = a0[0] + b[0] * piece
+            a1[1] = a0[1] + b[1] * piece
+            _monitors(z, zd, zdd, a1, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+            if piece > 0.0:
+                _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy)
+                e_in += energy[0]
+                e_f += energy[1]
+                e_v += energy[2]
+                if mode != STUCK:
+                    slip_time += piece
+            for k in range(nk):
+                g0 = val[k, 0] ** 2 + val[k, 1] ** 2
+                g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
+                peak_sq[k] = max(peak_sq[k], g0, g1)
+                s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
+                s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
+                reach = 4.0 * piece * max(abs(s0), abs(s1))
+                if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
+                    counter[0] += 1
+                    best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0, z, zd, zdd, val2,
+                                       slope2, sval2, sslope2)
+                    peak_sq[k] = max(peak_sq[k], best)
+            for j in range(nj):
+                sig_max[j] = max(sig_max[j], sval[j], sval1[j])
+                sig_min[j] = min(sig_min[j], sval[j], sval1[j])
+                reach = 2.0 * piece * max(abs(sslope[j]), abs(sslope1[j]))
+                if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
+                        sig_max[j]:
+                    counter[0] += 1
+                    best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1, z, zd, zdd, val2,
+                                       slope2, sval2, sslope2)
+                    sig_max[j] = max(sig_max[j], best)
+                if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
+                        sig_min[j]:
+                    counter[0] += 1
+                    best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1, z, zd, zdd, val2,
+                                       slope2, sval2, sslope2)
+                    sig_min[j] = min(sig_min[j], -best)
+            # the state at the piece's end
+            _eval(zs, piece, z, zd, zdd)
+            for d in range(2):
+                for c in range(m):
+                    w[d, c] = z[d, c]
+            if mode == STUCK:
+                for d in range(2):
+                    w[d, 0] = x_stuck[d]
+                    w[d, 1] = 0.0
+            tau = dt_i if (t_event < 0.0 and length == rem) else tau + piece
+            if piece > 0.0:
+                from_rest = False
+            a1[0] = ax[i] + b[0] * tau
+            a1[1] = ay[i] + b[1] * tau
+            if t_event < 0.0:
+                # hand-overs that are not events: SLIDE slowing to a stop enters FINISH; FINISH that did not stop
+                if mode == SLIDE:
+                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                    half_target = 0.5 * r
+                    if r > 0.0:
+                        e0[0] = w[0, 1] / r
+                        e0[1] = w[1, 1] / r
+                elif mode == FINISH:
+                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                    if r > 0.0:
+                        mode = SLIDE
+                        e0[0] = w[0, 1] / r
+                        e0[1] = w[1, 1] / r
+                        half_target = 0.5 * r
+                continue
+            # ---- the event ----
+            if kind_phi == PHI_SWITCH:
+                mode = SLIDE
+                r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                e0[0] = w[0, 1] / r
+                e0[1] = w[1, 1] / r
+                half_target = 0.5 * r
+                continue
+            if kind_phi == PHI_HALF:
+                r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                if r > 0.0:
+                    e0[0] = w[0, 1] / r
+                    e0[1] = w[1, 1] / r
+                half_target = 0.5 * r
+                if r < r_finish:
+                    # decelerating below r_finish: finish the stop with the friction's direction frozen
+                    _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+                    _eval(zs, 0.0, z, zd, zdd)
+                    if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
+                        mode = FINISH
+                continue
+            # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
+            events_here += 1
+            for d in range(2):
+                w[d, 1] = 0.0
+            dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
+            dy = _dot(l_d[1], w[1]) - slab_mass * a1[1]
+            hold = math.sqrt(dx * dx + dy * dy)
+            if mode == STUCK:
+                kind = BREAKAWAY
+                mode = START
+                from_rest = True
+            elif hold <= mu_s_n:
+                kind = STICK
+                mode = STUCK
+                x_stuck[0] = w[0, 0]
+                x_stuck[1] = w[1, 0]
+            else:
+                kind = REVERSAL
+                mode = START
+                from_rest = True
+            if n_ev < ev_time.shape[0]:
+                ev_time[n_ev] = t_i + tau
+                ev_kind[n_ev] = kind
+                ev_x[n_ev, 0] = w[0, 0]
+                ev_x[n_ev, 1] = w[1, 0]
+            n_ev += 1
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                status |= STATUS_CHATTER
+                mode = STUCK
+                x_stuck[0] = w[0, 0]
+                x_stuck[1] = w[1, 0]
+        else:
+            status |= STATUS_PIECES
+        # ---- sample i + 1 ----
+        a1[0] = ax[i + 1]
+        a1[1] = ay[i + 1]
+        _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+        _eval(zs, 0.0, z, zd, zdd)
+        _monitors(z, zd, zdd, a1, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+        for d in range(2):
+            for c in range(m):
+                out_state[i + 1, d, c] = w[d, c]
+        for k in range(nk):
+            out_mon[i + 1, k, 0] = val[k, 0]
+            out_mon[i + 1, k, 1] = val[k, 1]
+            peak_sq[k] = max(peak_sq[k], val[k, 0] ** 2 + val[k, 1] ** 2)
+        for j in range(nj):
+            out_sig[i + 1, j] = sval[j]
+            sig_max[j] = max(sig_max[j], sval[j])
+            sig_min[j] = min(sig_min[j], sval[j])
+        out_energy[0, i + 1] = e_in
+        out_energy[1, i + 1] = e_f
+        out_energy[2, i + 1] = e_v
+    if n_ev > ev_time.shape[0]:
+        status |= STATUS_EVENTS_TRUNCATED
+    summary[S_E_INPUT] = e_in
+    summary[S_E_FRICTION] = e_f
+    summary[S_E_VISCOUS] = e_v
+    summary[S_SLIP_TIME] = slip_time
+    summary[S_N_EVENTS] = n_ev
+    summary[S_STATUS] = status
+    summary[S_N_PIECES] = n_pieces
+    summary[S_N_LOCATED] = counter[0]
