@@ -50,7 +50,6 @@ from isolator.units import STANDARD_GRAVITY
 MODEL_NAME = "2d-building"
 MODEL_REASON = ("a superstructure above the isolation plane under two horizontal components: the 2-D building "
                 "(friction coupled in the plane)")
-#: Most pieces of the series over the whole record, per sample interval on average (a guard, not a limit met).
 DIRECTIONS = ("x", "y")
 
 

@@ -482,7 +482,7 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     mu_s_n, mu_k_n : float
         µs N and µk N [N].
     v_ref : float
-        Velocity scale [m/s]: the hand-over from START at 1e-4 v_ref, the stop's finish below 1e-10 v_ref.
+        Velocity scale [m/s]: the hand-over from START at 1e-5 v_ref, the stop's finish below 1e-10 v_ref.
     m1, m2, m3 : arrays
         Watched resultants: value_d = m1[k, d]·z_d + m2[k, d]·ż_d + m3[k, d] a_d.
     sig1, sig2, sig3 : arrays
@@ -530,7 +530,7 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     b = np.zeros(2)
     a1 = np.zeros(2)
     floor_scale = 1e-6 * v_ref
-    r_switch = 1e-4 * v_ref
+    r_switch = 1e-5 * v_ref
     r_finish = 1e-10 * v_ref
     mode = STUCK
     x_stuck = np.zeros(2)
