@@ -385,3 +385,40 @@ def test_bearing_loads_by_hand_on_a_square():
     assert loads["n_bearings_uplifted"] == int(np.sum(np.array(loads["bearing_axial_load_min_N"]) < 0))
     assert loads["n_bearings_uplifted"] >= 1
     assert r.summary()["n_bearings_uplifted"] == loads["n_bearings_uplifted"]
+
+
+def test_pair_with_a_design_runs_end_to_end(records_dir, tmp_path):
+    # the registry, the analysis and `isolator simulate --pair --design --json` run the 2-D building
+    import json
+
+    from typer.testing import CliRunner
+
+    from isolator.analysis import analyse
+    from isolator.cli import app
+    from isolator.design import Design
+    from isolator.motion import MotionPair, read_ground_motion
+
+    from .test_building_registry import BUILDING_KEYS, TOML
+
+    design_file = tmp_path / "building.toml"
+    design_file.write_text(TOML)
+    folder = records_dir / "pairs" / "hectormine1999_ABY"
+    x_path, y_path = sorted(folder.glob("*.AT2"))
+    design = Design.from_toml(design_file)
+    pair = MotionPair(read_ground_motion(x_path), read_ground_motion(y_path))
+    data = analyse(design, pair, harmonic=False).to_dict()
+    assert data["model"] == "2d-building"
+    flat = data if "story_drift_ratio" in data else {**data, **data.get("response", {})}
+    assert BUILDING_KEYS <= flat.keys() and len(flat["bearing_axial_load_max_N"]) == 4
+    direct = simulate_planar_building(pair.x.acceleration_m_s2, pair.y.acceleration_m_s2, pair.dt_s,
+                                      superstructure=design.superstructure, total_mass_kg=design.mass_kg,
+                                      stiffness_N_per_m=design.stiffness_N_per_m, mu_static=design.mu_static,
+                                      mu_kinetic=design.mu_kinetic, damping_Ns_per_m=design.damping_Ns_per_m,
+                                      bearing_layout=design.bearing_layout)
+    assert flat["story_drift_m"] == pytest.approx(direct.story_drift_m.tolist(), rel=1e-12)
+    result = CliRunner().invoke(app, ["simulate", str(x_path), "--pair", str(y_path), "--design", str(design_file),
+                                      "--json"])
+    assert result.exit_code == 0, result.output
+    cli = json.loads(result.stdout)
+    assert cli["model"] == "2d-building" and BUILDING_KEYS <= cli.keys()
+    assert cli["bearing_axial_load_min_N"] == pytest.approx(direct.bearing_axial_load_min_N, rel=1e-12)
