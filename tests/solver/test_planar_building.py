@@ -129,15 +129,15 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
             for f in peak_fns:
                 f.direction = -1.0
             if stuck:
-                def brk(t, y, *r):
+                def brk(t, y, *r, a0=a0, b=b):
                     d_vec = hold(y, a0 + b * t)
                     return d_vec @ d_vec - (mu_s * weight) ** 2
                 brk.terminal, brk.direction = True, 1.0
                 fns = [brk]
                 method = "DOP853"
             else:
-                def speed(t, y, *r):
-                    return math.hypot(y[nq], y[nq + q]) - (V_EPS if slow else V_SWITCH)
+                def speed(t, y, *r, level=V_EPS if slow else V_SWITCH):
+                    return math.hypot(y[nq], y[nq + q]) - level
                 speed.terminal, speed.direction = True, -1.0
                 fns = [speed]
                 if slow:
