@@ -102,10 +102,17 @@ def planar_building_system(superstructure, *, total_mass_kg: float, stiffness_N_
     g_vec = np.zeros((2, 2, m))
     p_vec = np.zeros((2, m))
     l_d = np.zeros((2, m))
+    shift = np.zeros((m, m))  # u' = u̇ (and x_b' = v_b sliding): the kernel writes these rows without products
+    shift[2:2 + n, 2 + n:] = np.eye(n)
     for d, system in enumerate(per_direction):
         for phase in range(2):
             a_mat[phase, d] = system.a_modes[phase][:m, :m]
             g_vec[phase, d] = system.a_modes[phase][:m, system.AG]
+            expected = shift.copy()
+            expected[0, 1] = float(phase == 1)
+            rows = [0, *range(2, 2 + n)]
+            if not (np.array_equal(a_mat[phase, d][rows], expected[rows]) and not np.any(g_vec[phase, d][rows])):
+                raise AssertionError("the building's matrices lost the structure the 2-D kernel relies on")
         # the friction force F_d along the sliding velocity: the 1-D friction column (f = s µk W)
         p_vec[d] = system.a_modes[1][:m, system.F]
         # the force on the slab other than friction, D = 1ᵀ(K_s u + C_s u̇) − K x_b − c v_b − m_b a_g

@@ -33,8 +33,8 @@ import math
 import numpy as np
 from numba import njit
 
-#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2).
-N_ORDER = 22
+#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.
+N_ORDER = 18
 N_SERIES = N_ORDER + 3
 #: Longest piece, as ‖A_bal‖₁ h [-].
 THETA = 0.75
@@ -76,16 +76,14 @@ SUMMARY_SIZE = 8
 
 
 @njit(cache=True)
-def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs):
-    """Normalised Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force."""
+def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs, ws, ss, rs, es):
+    """Normalised Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force.
+
+    ws, ss, rs, es: scratch series of the direction's vector w (V or D), s = w·w, r = sqrt(s), e = w / r.
+    """
     m = z.shape[1]
     ns = zs.shape[1]
     mat = 0 if mode == STUCK else 1
-    # scratch series for the direction: w (V or D), s = w·w, r = sqrt(s), e = w / r
-    ws = np.zeros((2, ns))
-    ss = np.zeros(ns)
-    rs = np.zeros(ns)
-    es = np.zeros((2, ns))
     for d in range(2):
         for i in range(m):
             zs[d, 0, i] = z[d, i]
@@ -123,10 +121,17 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                     acc -= es[d, j] * rs[k - j]
                 es[d, k] = acc / rs[0] if rs[0] > 0.0 else 0.0
                 fs[d, k] = mu_k_n * es[d, k]
+        nf = (m - 2) // 2
         for d in range(2):
             ak = a0[d] if k == 0 else (b[d] if k == 1 else 0.0)
             inv = 1.0 / (k + 1)
+            # displacement rows: x_b' = v_b (sliding; 0 stuck), u' = u̇ (the matrices' structure, checked in Python)
+            zs[d, k + 1, 0] = zs[d, k, 1] * inv if mat == 1 else 0.0
+            for i in range(2, 2 + nf):
+                zs[d, k + 1, i] = zs[d, k, i + nf] * inv
             for i in range(m):
+                if i == 0 or 2 <= i < 2 + nf:
+                    continue
                 acc = g_vec[mat, d, i] * ak + p_vec[d, i] * fs[d, k] if mat == 1 else g_vec[mat, d, i] * ak
                 for c in range(m):
                     acc += a_mat[mat, d, i, c] * zs[d, k, c]
@@ -159,6 +164,13 @@ def _piece_limit(zs, weights, floor_scale):
 def _eval(zs, tau, z, zd, zdd):
     """z(τ), ż(τ), z̈(τ) of both directions from the series (Horner)."""
     m = zs.shape[2]
+    if tau == 0.0:
+        for d in range(2):
+            for i in range(m):
+                z[d, i] = zs[d, 0, i]
+                zd[d, i] = zs[d, 1, i]
+                zdd[d, i] = 2.0 * zs[d, 2, i]
+        return
     for d in range(2):
         for i in range(m):
             acc = zs[d, N_ORDER, i]
@@ -182,10 +194,10 @@ def _dot(a, b):
 
 
 @njit(cache=True)
-def _phi(kind, z, zd, a, b, l_d, slab_mass, target, e0, out):
+def _phi(kind, z, zd, ax_now, ay_now, b, l_d, slab_mass, target, e0, out):
     """Value and slope of the event function ``kind`` at a point (its upward zero crossing is the event)."""
-    dx = _dot(l_d[0], z[0]) - slab_mass * a[0]
-    dy = _dot(l_d[1], z[1]) - slab_mass * a[1]
+    dx = _dot(l_d[0], z[0]) - slab_mass * ax_now
+    dy = _dot(l_d[1], z[1]) - slab_mass * ay_now
     ddx = _dot(l_d[0], zd[0]) - slab_mass * b[0]
     ddy = _dot(l_d[1], zd[1]) - slab_mass * b[1]
     vx = z[0, 1]
@@ -212,10 +224,7 @@ def _phi(kind, z, zd, a, b, l_d, slab_mass, target, e0, out):
 @njit(cache=True)
 def _phi_at(kind, zs, tau, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
     _eval(zs, tau, z, zd, zdd)
-    a = np.empty(2)
-    a[0] = a0[0] + b[0] * tau
-    a[1] = a0[1] + b[1] * tau
-    _phi(kind, z, zd, a, b, l_d, slab_mass, target, e0, out)
+    _phi(kind, z, zd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, b, l_d, slab_mass, target, e0, out)
 
 
 @njit(cache=True)
@@ -254,19 +263,21 @@ def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
 
 
 @njit(cache=True)
-def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, from_rest, z, zd, zdd, out, counter):
+def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, from_rest, z, zd, zdd, out, counter,
+                    z_lo, zd_lo, z_hi, zd_hi):
     """First upward zero crossing of φ in [0, length], or −1.
 
     From the values and slopes at both ends and the one interior maximum, located when the slope
     falls through zero and φ could reach zero there (as the 1-D kernels do).  ``from_rest``: φ(0) = 0
     is the start, not a crossing (a block leaving rest): a crossing after the first maximum counts.
+    z_lo, zd_lo, z_hi, zd_hi: the state and its rate at 0 and at ``length``.
     """
-    _phi_at(kind, zs, 0.0, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    _phi(kind, z_lo, zd_lo, a0[0], a0[1], b, l_d, slab_mass, target, e0, out)
     f0 = out[0]
     s0 = out[1]
     if f0 > 0.0 and not from_rest:
         return 0.0
-    _phi_at(kind, zs, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    _phi(kind, z_hi, zd_hi, a0[0] + b[0] * length, a0[1] + b[1] * length, b, l_d, slab_mass, target, e0, out)
     f1 = out[0]
     s1 = out[1]
     if from_rest:
@@ -326,18 +337,18 @@ def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd,
 
 
 @njit(cache=True)
-def _monitors(z, zd, zdd, a, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope):
+def _monitors(z, zd, zdd, ax_now, ay_now, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope):
     """Watched quantities at a point: resultant pairs val[k, d] (slope[k, d]) and signed sval[j]."""
     nk = m1.shape[0]
     for k in range(nk):
         for d in range(2):
-            val[k, d] = _dot(m1[k, d], z[d]) + _dot(m2[k, d], zd[d]) + m3[k, d] * a[d]
+            val[k, d] = _dot(m1[k, d], z[d]) + _dot(m2[k, d], zd[d]) + m3[k, d] * (ax_now if d == 0 else ay_now)
             slope[k, d] = _dot(m1[k, d], zd[d]) + _dot(m2[k, d], zdd[d]) + m3[k, d] * b[d]
     for j in range(sig1.shape[0]):
         v = 0.0
         s = 0.0
         for d in range(2):
-            v += _dot(sig1[j, d], z[d]) + _dot(sig2[j, d], zd[d]) + sig3[j, d] * a[d]
+            v += _dot(sig1[j, d], z[d]) + _dot(sig2[j, d], zd[d]) + sig3[j, d] * (ax_now if d == 0 else ay_now)
             s += _dot(sig1[j, d], zd[d]) + _dot(sig2[j, d], zdd[d]) + sig3[j, d] * b[d]
         sval[j] = v
         sslope[j] = s
@@ -347,10 +358,8 @@ def _monitors(z, zd, zdd, a, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, 
 def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope):
     """Slope of one watched quantity at τ: kind 0 the resultant's ½|P|², 1 a signed value, −1 its negative."""
     _eval(zs, tau, z, zd, zdd)
-    a = np.empty(2)
-    a[0] = a0[0] + b[0] * tau
-    a[1] = a0[1] + b[1] * tau
-    _monitors(z, zd, zdd, a, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    _monitors(z, zd, zdd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval,
+              sslope)
     if kind == 0:
         return val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1], val[k, 0] ** 2 + val[k, 1] ** 2
     return kind * sslope[k], kind * sval[k]
@@ -394,13 +403,12 @@ def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd,
 
 
 @njit(cache=True)
-def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, out):
-    """Exact integrals over [0, τ] of the input, friction and viscous powers from the series."""
+def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, out, pin, pfr, pvis, y):
+    """Exact integrals over [0, τ] of the input, friction and viscous powers from the series (scratch pin … y)."""
     nt = N_ORDER + 1
-    pin = np.zeros(nt + 1)
-    pfr = np.zeros(nt)
-    pvis = np.zeros(nt)
-    y = np.zeros((nt, nf))
+    pin[:] = 0.0
+    pfr[:] = 0.0
+    pvis[:] = 0.0
     for d in range(2):
         # input: −a_d (M V + Σ m_i u̇_i) = −a_d × (total relative momentum)
         for k in range(nt):
@@ -522,6 +530,20 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     slope2 = np.zeros((nk, 2))
     sval2 = np.zeros(max(nj, 1))
     sslope2 = np.zeros(max(nj, 1))
+    zl = np.zeros((2, m))
+    zdl = np.zeros((2, m))
+    zddl = np.zeros((2, m))
+    zh = np.zeros((2, m))
+    zdh = np.zeros((2, m))
+    zddh = np.zeros((2, m))
+    ws = np.zeros((2, N_SERIES))
+    ss = np.zeros(N_SERIES)
+    rs = np.zeros(N_SERIES)
+    es = np.zeros((2, N_SERIES))
+    pin = np.zeros(N_ORDER + 2)
+    pfr = np.zeros(N_ORDER + 1)
+    pvis = np.zeros(N_ORDER + 1)
+    ysc = np.zeros((N_ORDER + 1, masses.shape[0]))
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
@@ -546,9 +568,9 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     # the first sample: at rest, stuck
     a0[0] = ax[0]
     a0[1] = ay[0]
-    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
     _eval(zs, 0.0, z, zd, zdd)
-    _monitors(z, zd, zdd, a0, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    _monitors(z, zd, zdd, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     for k in range(nk):
         peak_sq[k] = val[k, 0] ** 2 + val[k, 1] ** 2
         out_mon[0, k, 0] = val[k, 0]
@@ -571,24 +593,26 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         b[1] = (ay[i + 1] - ay[i]) / dt_i
         tau = 0.0
         events_here = 0
+        start_valid = False  # the slopes at a piece's start hold the interval's ȧ_g
         for _guard in range(MAX_PIECES_PER_INTERVAL):
             if tau >= dt_i:
                 break
             a0[0] = ax[i] + b[0] * tau
             a0[1] = ay[i] + b[1] * tau
             rem = dt_i - tau
-            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
             n_pieces += 1
             length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
+            _eval(zs, 0.0, zl, zdl, zddl)
             if mode == FINISH:
                 # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
-                _eval(zs, 0.0, z, zd, zdd)
-                rdot = abs(e0[0] * zd[0, 1] + e0[1] * zd[1, 1])
-                r_now = e0[0] * z[0, 1] + e0[1] * z[1, 1]
+                rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
+                r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
                 if rdot > 0.0:
                     length = min(length, 4.0 * r_now / rdot)
             if length < rem and length < 1e-15 * dt_i:
                 length = min(rem, 1e-15 * dt_i)
+            _eval(zs, length, zh, zdh, zddh)
             # ---- event in this piece? ----
             t_event = -1.0
             kind_phi = -1
@@ -596,35 +620,47 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                 pass
             elif mode == STUCK:
                 t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
-                                          zdd, out2, counter)
+                                          zdd, out2, counter, zl, zdl, zh, zdh)
                 kind_phi = PHI_BREAK
             elif mode == START:
                 t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
-                                          zd, zdd, out2, counter)
+                                          zd, zdd, out2, counter, zl, zdl, zh, zdh)
                 kind_phi = PHI_STOP_START
+                if t_event >= 0.0:
+                    _eval(zs, t_event, zh, zdh, zddh)
                 t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
-                                       slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter)
+                                       slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
                 if t_sw > 0.0:
                     t_event = t_sw
                     kind_phi = PHI_SWITCH
             elif mode == SLIDE:
                 t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
-                                          zd, zdd, out2, counter)
+                                          zd, zdd, out2, counter, zl, zdl, zh, zdh)
                 kind_phi = PHI_HALF
             else:
                 t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
-                                          zd, zdd, out2, counter)
+                                          zd, zdd, out2, counter, zl, zdl, zh, zdh)
                 kind_phi = PHI_STOP_FINISH
             piece = length if t_event < 0.0 else t_event
+            if t_event >= 0.0:
+                _eval(zs, piece, zh, zdh, zddh)
             # ---- values at both ends, energies, peaks ----
-            _eval(zs, 0.0, z, zd, zdd)
-            _monitors(z, zd, zdd, a0, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-            _eval(zs, piece, z, zd, zdd)
+            if start_valid:
+                for k in range(nk):
+                    for d in range(2):
+                        val[k, d] = val1[k, d]
+                        slope[k, d] = slope1[k, d]
+                for j in range(nj):
+                    sval[j] = sval1[j]
+                    sslope[j] = sslope1[j]
+            else:
+                _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
             a1[0] = a0[0] + b[0] * piece
             a1[1] = a0[1] + b[1] * piece
-            _monitors(z, zd, zdd, a1, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+            _monitors(zh, zdh, zddh, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
             if piece > 0.0:
-                _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy)
+                _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
+                          pin, pfr, pvis, ysc)
                 e_in += energy[0]
                 e_f += energy[1]
                 e_v += energy[2]
@@ -659,15 +695,15 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                                        slope2, sval2, sslope2)
                     sig_min[j] = min(sig_min[j], -best)
             # the state at the piece's end
-            _eval(zs, piece, z, zd, zdd)
             for d in range(2):
                 for c in range(m):
-                    w[d, c] = z[d, c]
+                    w[d, c] = zh[d, c]
             if mode == STUCK:
                 for d in range(2):
                     w[d, 0] = x_stuck[d]
                     w[d, 1] = 0.0
             tau = dt_i if (t_event < 0.0 and length == rem) else tau + piece
+            start_valid = t_event < 0.0
             if piece > 0.0:
                 from_rest = False
             a1[0] = ax[i] + b[0] * tau
@@ -682,6 +718,7 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         e0[1] = w[1, 1] / r
                 elif mode == FINISH:
                     r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                    start_valid = False
                     if r > 0.0:
                         mode = SLIDE
                         e0[0] = w[0, 1] / r
@@ -704,7 +741,7 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                 half_target = 0.5 * r
                 if r < r_finish:
                     # decelerating below r_finish: finish the stop with the friction's direction frozen
-                    _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
+                    _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
                     _eval(zs, 0.0, z, zd, zdd)
                     if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
                         mode = FINISH
@@ -743,22 +780,24 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         else:
             status |= STATUS_PIECES
         # ---- sample i + 1 ----
-        a1[0] = ax[i + 1]
-        a1[1] = ay[i + 1]
-        _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs)
-        _eval(zs, 0.0, z, zd, zdd)
-        _monitors(z, zd, zdd, a1, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+        if not start_valid:
+            # the last piece ended in an event: the watched values in the new phase
+            a1[0] = ax[i + 1]
+            a1[1] = ay[i + 1]
+            _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+            _eval(zs, 0.0, z, zd, zdd)
+            _monitors(z, zd, zdd, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
         for d in range(2):
             for c in range(m):
                 out_state[i + 1, d, c] = w[d, c]
         for k in range(nk):
-            out_mon[i + 1, k, 0] = val[k, 0]
-            out_mon[i + 1, k, 1] = val[k, 1]
-            peak_sq[k] = max(peak_sq[k], val[k, 0] ** 2 + val[k, 1] ** 2)
+            out_mon[i + 1, k, 0] = val1[k, 0]
+            out_mon[i + 1, k, 1] = val1[k, 1]
+            peak_sq[k] = max(peak_sq[k], val1[k, 0] ** 2 + val1[k, 1] ** 2)
         for j in range(nj):
-            out_sig[i + 1, j] = sval[j]
-            sig_max[j] = max(sig_max[j], sval[j])
-            sig_min[j] = min(sig_min[j], sval[j])
+            out_sig[i + 1, j] = sval1[j]
+            sig_max[j] = max(sig_max[j], sval1[j])
+            sig_min[j] = min(sig_min[j], sval1[j])
         out_energy[0, i + 1] = e_in
         out_energy[1, i + 1] = e_f
         out_energy[2, i + 1] = e_v

@@ -248,7 +248,7 @@ def _run_case(records_dir, name):
 def test_real_pairs_against_solve_ivp(records_dir, name):
     ours, ref = _run_case(records_dir, name)
     assert ours.message == "ok"
-    assert ours.n_events >= 2, "the case must slide"
+    assert ours.n_events >= 1 and ours.slip_time_s > 0.2, "the case must slide"
     assert ours.event_names == [kind for _, kind in ref["events"]]
     assert np.max(np.abs(ours.event_time_s - [t for t, _ in ref["events"]])) <= 1e-8
     assert _rel(ours.displacement_m, ref["X"]) <= 1e-9
