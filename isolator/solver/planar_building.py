@@ -51,6 +51,8 @@ MODEL_NAME = "2d-building"
 MODEL_REASON = ("a superstructure above the isolation plane under two horizontal components: the 2-D building "
                 "(friction coupled in the plane)")
 DIRECTIONS = ("x", "y")
+#: status bit: the state became non-finite (never seen; guarded so that it can never read as "ok")
+STATUS_NON_FINITE = 8
 
 
 @dataclass
@@ -459,6 +461,10 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
     elif status & _pk.STATUS_PIECES:
         message = (f"more than {_pk.MAX_PIECES_PER_INTERVAL} series pieces in one sample interval: that interval "
                    "was not finished")
+    if not (np.all(np.isfinite(out_state)) and np.all(np.isfinite(out_energy))):
+        # never reported as "ok": a non-finite state is a defect to report, not a result
+        status |= STATUS_NON_FINITE
+        message = "the 2-D building's state became non-finite (NaN or inf): no result"
     x_b = out_state[:, :, 0]
     v_b = out_state[:, :, 1]
     u = np.transpose(out_state[:, :, 2:2 + n], (0, 2, 1))
