@@ -422,3 +422,32 @@ def test_pair_with_a_design_runs_end_to_end(records_dir, tmp_path):
     cli = json.loads(result.stdout)
     assert cli["model"] == "2d-building" and BUILDING_KEYS <= cli.keys()
     assert cli["bearing_axial_load_min_N"] == pytest.approx(direct.bearing_axial_load_min_N, rel=1e-12)
+
+
+def test_unequal_steps_mirror_and_bad_input(records_dir):
+    # samples inserted on the straight line between samples change nothing (the same piecewise-linear
+    # signal): the non-uniform path equals the uniform one; y → −y mirrors the response exactly
+    from isolator.errors import RecordInputError
+
+    (acc_x, acc_y), dt = pair_segment(records_dir, "hectormine1999_ABY", 8.0, 4.0, scale=2.0)
+    uniform = simulate_planar_building(acc_x, acc_y, dt, **BUILDING)
+    t = dt * np.arange(acc_x.size)
+    extra = np.sort(np.random.default_rng(5).uniform(t[0], t[-1], 150))
+    t_all = np.union1d(t, extra)
+    dense = simulate_planar_building(np.interp(t_all, t, acc_x), np.interp(t_all, t, acc_y), time_s=t_all,
+                                     **BUILDING)
+    keep = np.searchsorted(t_all, t)
+    assert uniform.n_events >= 4 and dense.event_names == uniform.event_names
+    assert np.max(np.abs(dense.event_time_s - uniform.event_time_s)) <= 1e-9
+    assert _rel(dense.displacement_m[keep], uniform.displacement_m) <= 1e-9
+    assert _rel(dense.floor_displacement_m[keep], uniform.floor_displacement_m) <= 1e-9
+    assert dense.story_drift_m == pytest.approx(uniform.story_drift_m, rel=1e-9)
+    assert dense.energy_input_J_per_kg == pytest.approx(uniform.energy_input_J_per_kg, rel=1e-9)
+    mirrored = simulate_planar_building(acc_x, -acc_y, dt, **BUILDING)
+    assert np.array_equal(mirrored.displacement_m[:, 0], uniform.displacement_m[:, 0])
+    assert np.array_equal(mirrored.displacement_m[:, 1], -uniform.displacement_m[:, 1])
+    assert np.array_equal(mirrored.story_drift_m, uniform.story_drift_m)
+    with pytest.raises(RecordInputError, match="differ in length"):
+        simulate_planar_building(acc_x, acc_y[:-1], dt, **BUILDING)
+    with pytest.raises(RecordInputError, match="NaN"):
+        simulate_planar_building(acc_x, np.full_like(acc_y, np.nan), dt, **BUILDING)
