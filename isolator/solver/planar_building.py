@@ -76,6 +76,8 @@ class PlanarBuildingSystem:
     g_vec: np.ndarray = field(repr=False)
     p_vec: np.ndarray = field(repr=False)
     l_d: np.ndarray = field(repr=False)
+    #: the largest |eigenvalue| of the stuck and sliding matrices [1/s]: a piece turns the fastest mode by
+    #: at most THETA rad (the series' own truncation rule bounds its length too)
     fastest_rate_per_s: float = 0.0
 
     @property
@@ -128,7 +130,8 @@ def planar_building_system(superstructure, *, total_mass_kg: float, stiffness_N_
         isolator_stiffness_N_per_m=first.isolator_stiffness_N_per_m,
         isolator_damping_Ns_per_m=first.isolator_damping_Ns_per_m, mu_static=first.mu_static,
         mu_kinetic=first.mu_kinetic, gravity_m_s2=first.gravity_m_s2, a_mat=a_mat, g_vec=g_vec, p_vec=p_vec, l_d=l_d,
-        fastest_rate_per_s=max(s.fastest_rate_per_s for s in per_direction))
+        fastest_rate_per_s=max(float(np.max(np.abs(np.linalg.eigvals(a_mat[phase, d])))) for phase in range(2)
+                               for d in range(2)))
 
 
 def _watched(system: PlanarBuildingSystem, layout) -> tuple:
