@@ -20,7 +20,7 @@ from the recurrence Z_{k+1} = (A Z_k + g a_k + p F_k)/(k + 1), where F_k comes f
 of |V| = sqrt(V·V) and V/|V| (the classical recurrences of a square root and a quotient).  In
 the linear phases (stuck, finish, a collinear slide) the series is that of the exact solution;
 in every phase a piece is only as long as the series reaches rounding (the last two terms
-below ~1e-16 of the state, the Jorba–Zou rule) and at most THETA / ‖A‖ (balanced).  Events
+below ~1e-16 of the state, the Jorba–Zou rule) and at most THETA / ρ(A), ρ the largest |eigenvalue|.  Events
 (break-away |D| = µs N, stop, the hand-overs between phases) and the interior extremes of the
 watched quantities are roots of these polynomials, found by safeguarded Newton (events) or
 Illinois (extremes); energies over a piece are exact integrals of the series' products.
@@ -36,7 +36,7 @@ from numba import njit
 #: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.
 N_ORDER = 18
 N_SERIES = N_ORDER + 3
-#: Longest piece, as ‖A_bal‖₁ h [-].
+#: Longest piece, as ρ(A) h [-] (the angle the fastest mode turns).
 THETA = 0.75
 #: truncation tolerance of a piece, relative to the state's size
 TRUNC_EPS = 1e-16
