@@ -451,3 +451,19 @@ def test_unequal_steps_mirror_and_bad_input(records_dir):
         simulate_planar_building(acc_x, acc_y[:-1], dt, **BUILDING)
     with pytest.raises(RecordInputError, match="NaN"):
         simulate_planar_building(acc_x, np.full_like(acc_y, np.nan), dt, **BUILDING)
+
+
+def test_no_friction_no_spring_is_a_free_linear_system(records_dir):
+    # µ = 0 and no pendulum: no horizontal force on the system, so the total relative momentum is
+    # −M_total × the ground velocity in each direction (exact trapezoid of the piecewise-linear record)
+    (acc_x, acc_y), dt = pair_segment(records_dir, "hectormine1999_ABY", 8.0, 6.0, taper_s=0.0)
+    masses = np.array([3e5, 2e5, 1e5])
+    total = 9e5
+    r = simulate_planar_building(acc_x, acc_y, dt, superstructure=make_superstructure(masses, [5e8, 4e8, 2e8]),
+                                 total_mass_kg=total, stiffness_N_per_m=0.0, mu_static=0.0)
+    for d, acc in enumerate((acc_x, acc_y)):
+        ground_velocity = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * dt)])
+        momentum = total * r.velocity_m_s[:, d] + r.floor_velocity_m_s[:, :, d] @ masses
+        assert _rel(momentum, -total * ground_velocity) <= 1e-10
+    assert abs(r.energy_balance_error_J_per_kg) <= 1e-9 * r.energy_input_J_per_kg
+    assert r.energy_friction_J_per_kg == 0.0 and r.message == "ok"
