@@ -304,8 +304,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                         "limits of 17.4.1 (S_1, site class, height, stories, regularity) need site and structure data; "
                         f"T_M = {t_text}", "s"))
     rows.append(C.check("V_s_fixed_base_limit", "ASCE 7-22 17.5.4.3(1) [U]", C.NOT_CHECKED,
-                        note="V_s ≥ the fixed-base ELF shear of W_s at T_M: needs the superstructure's "
-                             "fixed-base seismic coefficient (R, I_e)"))
+                        note="V_s ≥ the fixed-base ELF shear of W_s at T_M (Section 12.8): needs I_e and the "
+                             "fixed-base C_s rules, and which R applies (R or R_I) is not confirmed [U]"))
     v_s = {b: elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper") if b in elf}
     if wind is None:
         rows.append(C.check("V_s_wind_limit", "ASCE 7-22 17.5.4.3(2) [U]", C.NOT_CHECKED, None, None,
