@@ -72,6 +72,8 @@ def draw_backbone_and_loop(ax, bearing: dict, displacement_m, force_per_weight) 
     keep = extreme_indices(PIXELS_PER_AXIS, x, r)  # the loop's extremes kept, a page's resolution
     ax.plot(x[keep], r[keep], color="0.35", lw=0.6, label=LOOP_LABEL + (" (resultants)" if planar else ""))
     bx, br = backbone_polyline(bearing)
+    if planar:  # resultants are never negative: the backbone from rest outward
+        bx, br = bx[bx.size // 2:], br[br.size // 2:]
     ax.plot(bx, br, color="tab:red", lw=1.2, ls="--", label="backbone from rest (Fenz & Constantinou series model)")
     px = np.asarray(bearing["backbone_displacement_m"], dtype=np.float64)
     pr = np.asarray(bearing["backbone_force_per_weight"], dtype=np.float64)
@@ -85,7 +87,7 @@ def draw_backbone_and_loop(ax, bearing: dict, displacement_m, force_per_weight) 
         ax.annotate(text, (xk, rk), textcoords="offset points", xytext=(-4, 6), ha="right", fontsize=7.5,
                     color="tab:red", weight="bold")
     if math.isfinite(ultimate):
-        for sign in (1.0, -1.0):
+        for sign in (1.0,) if planar else (1.0, -1.0):
             ax.axvline(sign * ultimate, color="tab:red", lw=0.8, ls=":")
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.axvline(0.0, color="0.6", lw=0.5)
@@ -99,13 +101,14 @@ def draw_displacement_history(ax, time_s, displacement_m, bearing: dict, ultimat
     """The bearing's displacement over time with the backbone's transition displacements (±)."""
     t = np.asarray(time_s, dtype=np.float64)
     x = np.asarray(displacement_m, dtype=np.float64)
-    if x.ndim == 2:
+    planar = x.ndim == 2
+    if planar:
         x = np.hypot(x[:, 0], x[:, 1])
-    plot_decimated(ax, t, x, color="k", lw=0.7, label="displacement")
+    plot_decimated(ax, t, x, color="k", lw=0.7, label="resultant displacement" if planar else "displacement")
     points = bearing["backbone_displacement_m"]
     for k, xk in enumerate(points[1:], start=1):
         last = k == len(points) - 1 and math.isfinite(float(bearing["ultimate_displacement_m"]))
-        for sign in (1.0, -1.0):  # dotted: where a regime starts; solid: the ultimate displacement
+        for sign in (1.0,) if planar else (1.0, -1.0):  # dotted: where a regime starts; solid: the ultimate
             ax.axhline(sign * xk, color="tab:red", lw=0.6, ls="-" if last else ":")
     if ultimate_first_time_s is not None:
         ax.axvline(ultimate_first_time_s, color="tab:red", lw=1.0, label="ultimate displacement first reached")

@@ -244,3 +244,42 @@ def test_building_under_a_pair_report_and_batch_columns(records_dir, building, t
             numbers[key], rel=1e-15, abs=0.0), key
     assert table.loc[0, "superstructure_shear_coefficient"] == pytest.approx(
         numbers["superstructure_shear_coefficient"], rel=1e-15)
+
+
+def test_triple_pendulum_under_a_pair_report_and_batch_columns(records_dir, triple, tmp_path):
+    """The 2-D triple pendulum (a pair): the page draws Bearing.backbone() over the resultant loop; the pair
+    report's fourth page and the batch pair row carry the analysis' per-surface values."""
+    from isolator.batch import run_batch
+    from isolator.errors import RecordInputError
+    from isolator.motion import read_ground_motion_pair
+
+    path, _, _ = triple
+    x, y = (records_dir / name for name in PAIR)
+    design = Design.from_toml(path)
+    try:
+        analysis = analyse(design, read_ground_motion_pair(x, y), harmonic=False)
+    except RecordInputError as err:  # main without the 2-D multi-surface model (docs/multisurface.md)
+        pytest.skip(f"no 2-D multi-surface model here: {err}")
+    numbers = analysis.to_dict()
+    assert analysis.is_planar and len(numbers["surface_peak_displacement_m"]) == 4
+    fig = bearing_page(4, "label", numbers, analysis.response)
+    ax = _axes(fig, "Backbone and force-displacement loop")
+    np.testing.assert_array_equal(_line(ax, POINTS_LABEL).get_xdata(), design.bearing.backbone().displacement_m)
+    lx, _ = _line(ax, LOOP_LABEL).get_data()
+    assert np.max(lx) == pytest.approx(numbers["peak_displacement_m"], rel=1e-2)  # resultant, at the samples
+    assert numbers["regimes"] and all(f"{name} at {fmt(t, 4)} s" in _texts(fig)
+                                      for name, t in numbers["regimes"].items())
+    out = tmp_path / "pair.pdf"
+    result = runner.invoke(app, ["report", str(x), "--pair", str(y), "-d", str(path), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "(4 pages)" in result.stdout
+    assert json.loads(out.with_suffix(".json").read_text())["surface_peak_displacement_m"] == numbers[
+        "surface_peak_displacement_m"]
+    designs = tmp_path / "designs.toml"
+    designs.write_text(designs_file_text(TRIPLE))
+    table = run_batch([str(x), str(y)], designs, tmp_path / "t.csv", jobs=1).table
+    assert table.loc[0, "error"] == "" and table.loc[0, "model"] == analysis.model
+    assert [table.loc[0, f"surface_peak_displacement_m_{i}"] for i in range(1, 5)] == pytest.approx(
+        numbers["surface_peak_displacement_m"], rel=1e-15, abs=0.0)
+    assert table.loc[0, "n_rim_contacts"] == numbers["n_rim_contacts"]
+    assert table.loc[0, "regimes_reached"] == ", ".join(sorted(numbers["regimes"], key=numbers["regimes"].get))
