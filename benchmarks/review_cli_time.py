@@ -1,6 +1,6 @@
 """Wall and CPU time of the README's review command, as a user runs it: a fresh process, launch to exit.
 
-    .venv/bin/python benchmarks/review_cli_time.py                      # data/example_building.toml, 5 runs
+    .venv/bin/python benchmarks/review_cli_time.py --set horizontal_only=true   # data/example_building.toml
     .venv/bin/python benchmarks/review_cli_time.py --design data/example_review.toml --runs 7
 
 Runs ``isolator review --design DESIGN --target example --suite example -o TMP/review.pdf --no-cache``
@@ -51,6 +51,9 @@ def main(argv=None) -> int:
     parser.add_argument("--design", default="data/example_building.toml")
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--jobs", type=int, default=None, help="passed on as --jobs (default: the command's)")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="review parameters, passed on (the building needs horizontal_only=true: the example "
+                             "suite's Loma Prieta pair has a vertical)")
     args = parser.parse_args(argv)
     if args.runs < 1:
         parser.error("--runs must be ≥ 1")
@@ -60,6 +63,8 @@ def main(argv=None) -> int:
                                  "-o", str(out / "review.pdf"), "--no-cache"]
         if args.jobs is not None:
             command += ["--jobs", str(args.jobs)]
+        for setting in args.set:
+            command += ["--set", setting]
         load_before = os.getloadavg()
         _run(command)  # warm-up
         runs = [_run(command) for _ in range(args.runs)]
