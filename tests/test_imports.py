@@ -212,3 +212,20 @@ def test_the_layers_fixed_in_issue_21_stay_fixed():
     assert [edge for edge in upward if edge[1] in edges[edge[0]]] == []
     # the package's lowest modules import nothing of the package above them
     assert edges["isolator.errors"] == set() and edges["isolator.motion.components"] == set()
+
+
+@pytest.mark.parametrize("module", ["isolator.review.suite", "isolator.review.suite_specs",
+                                    "isolator.review.suite_components"])
+def test_suite_reading_never_reaches_batch(module):
+    """Reading a suite (SUITE.toml, files into pairs, one time base) is below batch: no import path, direct or
+    through other modules, from a suite module leads into ``isolator.batch`` (imports inside functions count)."""
+    edges = import_graph()[0]
+    assert module in edges  # the module exists under this name: the check is not vacuous
+    reached, todo = set(), [module]
+    while todo:
+        for target in edges.get(todo.pop(), ()):
+            if target not in reached:
+                reached.add(target)
+                todo.append(target)
+    assert "isolator.errors" in reached  # the walk follows edges
+    assert sorted(name for name in reached if name == "isolator.batch" or name.startswith("isolator.batch.")) == []
