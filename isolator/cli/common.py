@@ -245,6 +245,19 @@ def user_error(message: str) -> None:
     raise typer.Exit(2)
 
 
+def check_static_friction(value, flag: str = "--mu-s") -> None:
+    """Refuse µs = 0 given on the command line (one line naming ``flag``, exit 2).
+
+    A design file's ``mu_static`` must be > 0, and ``harmonic`` and ``threshold`` define α
+    relative to µs g; a 0 on the command line is the same mistake (no friction isolator at
+    all), not a frictionless isolator to run without a word (issue 26).  Negative, non-finite
+    and ≥ 1 values are refused by :class:`isolator.solver.system.System`.
+    """
+    if value is not None and value == 0.0:
+        user_error(f"{flag} 0 is no friction at all: a friction isolator needs µs > 0, as a design file's "
+                   "mu_static (sliding isolators have 0.02-0.15)")
+
+
 def check_outputs(outputs, inputs, *, streams=()) -> None:
     """Before any work: refuse outputs that resolve to an input or are not regular files.
 

@@ -8,6 +8,7 @@ from isolator.cli.common import (
     RECORD_HELP,
     app,
     check_outputs,
+    check_static_friction,
     echo_json,
     echo_table,
     error_line,
@@ -129,6 +130,7 @@ def simulate(
         user_error("Missing option '--mu-s' (the isolator), or give --design DESIGN.toml "
                    "(see 'isolator simulate --help')")
     if design is None:
+        check_static_friction(mu_s)
         system, nominal = _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, radius_m,
                                            mu_slow, mu_fast, rate_s_per_m)
     streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
