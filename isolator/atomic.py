@@ -167,11 +167,32 @@ def atomic_path(path, *, allow_stream: bool = False):
         os.replace(temporary, target)
     except OutputError:
         raise
-    except OSError as err:
+    except Exception as raised:
+        err = write_failure(raised)
+        if err is None:
+            raise
         raise OutputError(path, f"cannot write ({_reason(err)})", err.errno or errno.EIO) from None
     finally:
         if temporary is not None and os.path.lexists(temporary):
             os.unlink(temporary)
+
+
+def write_failure(raised: BaseException) -> OSError | None:
+    """The OSError behind an exception raised while writing, or None when it is not a write failure.
+
+    A writer can hide the disk's error behind its own: after ENOSPC, matplotlib's PDF writer
+    closes its page stream and raises ``zlib.error`` from that close, with the OSError as its
+    context.  That is still a full disk, and is reported as one (one line naming the output),
+    not as a 100-line traceback.  The chain is followed a bounded number of links.
+    """
+    seen = raised
+    for _ in range(8):
+        if seen is None:
+            return None
+        if isinstance(seen, OSError):
+            return seen
+        seen = seen.__cause__ or seen.__context__
+    return None
 
 
 def _temporary_beside(target: Path) -> str:
@@ -291,16 +312,46 @@ def atomic_paths(paths):
             os.replace(temporary, target)
     except OutputError:
         raise
-    except OSError as err:
-        # an error inside the caller's block names the temporary it failed on: blame its output
+    except Exception as raised:
+        err = write_failure(raised)
+        if err is None:
+            raise
+        # an error inside the caller's block names the temporary it failed on: blame its output; a write to an
+        # open stream names none: blame the temporary written last (the one being written when it failed)
         failed = next((path for path, temporary in zip(paths, temporaries, strict=False)
-                       if err.filename is not None and os.fspath(err.filename) == temporary), current)
+                       if err.filename is not None and os.fspath(err.filename) == temporary), None)
+        if failed is None:
+            failed = _written_last(paths, temporaries) or current
         raise OutputError(failed, f"cannot write ({_reason(err)}); no file of its set was written",
                           err.errno or errno.EIO) from None
     finally:
         for temporary in temporaries:
             if os.path.lexists(temporary):
                 os.unlink(temporary)
+
+
+def dump_json(data, path) -> None:
+    """Write ``data`` to ``path`` as strict JSON (no NaN; two-space indent, a final newline).
+
+    Meant for a temporary of :func:`atomic_path` or :func:`atomic_paths`: the JSON of an
+    output set is written beside its PDF and both land together.
+    """
+    import json
+
+    with open(path, "w", encoding="utf-8") as stream:
+        json.dump(data, stream, indent=2, allow_nan=False)
+        stream.write("\n")
+
+
+def _written_last(paths, temporaries) -> Path | None:
+    """The output whose temporary was modified last (ties: the later in the set), or None."""
+    stamps = []
+    for index, (path, temporary) in enumerate(zip(paths, temporaries, strict=False)):
+        try:
+            stamps.append((os.stat(temporary).st_mtime_ns, index, path))
+        except OSError:
+            continue
+    return max(stamps)[2] if stamps else None
 
 
 def write_text_atomically(path, text: str) -> None:

@@ -128,6 +128,7 @@ def report(
             user_error(f"--scale-to-pga must lie in [{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g, "
                        f"got {scale_to_pga:g}")
     from isolator.analysis import analyse
+    from isolator.atomic import output_lock
     from isolator.report.analysis_report import write_analysis_report
     from isolator.report.model_pages import n_model_pages
     from isolator.report.summary import write_json
@@ -145,19 +146,22 @@ def report(
     else:
         motion = load_record_for_cli(record_path, component, units, merge, dt)
     motion, scaling_note = _scaled(motion, scale_to_pga, record_label)
-    try:  # the model is the one the scene needs (the solver registry); the map applies to a 1-D response
-        analysis = with_record_checks(analyse(the_design, motion, record_label=record_label,
-                                              scaling_note=scaling_note, map_resolution=map_resolution))
-    except ValueError as err:  # RecordInputError, InvalidSystemError: the record's or the design's numbers
-        user_error(f"{record_label}: {err}")
     json_path = Path(output).with_suffix(".json")
     try:
-        if no_pdf:
-            numbers = write_json(analysis, json_path)
-        else:
-            with collector_skips_existing_objects():
-                numbers = write_analysis_report(analysis, output, command=_command_line())
-    except OSError as err:
+        # a second report (or review) on this -o is refused, naming this one; the PDF and the JSON are written
+        # as one set (isolator.atomic.atomic_paths): both, or neither and the older set left whole
+        with output_lock(output):
+            try:  # the model is the one the scene needs (the solver registry); the map applies to a 1-D response
+                analysis = with_record_checks(analyse(the_design, motion, record_label=record_label,
+                                                      scaling_note=scaling_note, map_resolution=map_resolution))
+            except ValueError as err:  # RecordInputError, InvalidSystemError: the record's or the design's numbers
+                user_error(f"{record_label}: {err}")
+            if no_pdf:
+                numbers = write_json(analysis, json_path)
+            else:
+                with collector_skips_existing_objects():
+                    numbers = write_analysis_report(analysis, output, command=_command_line())
+    except OSError as err:  # OutputError (lock held, read-only folder, full disk) names its path
         write_error(err, output)
     paper = analysis.paper_applies
     pages = (4 if paper else 3) + n_model_pages(numbers)  # the building's, a multi-surface bearing's page

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.atomic import atomic_path
+from isolator.atomic import atomic_path, atomic_paths, dump_json
 from isolator.report.layout import caption, fmt, table, tail
 from isolator.report.layout import page as layout_page
 from isolator.report.model_pages import model_pages
@@ -151,7 +151,7 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
     labels = tuple(m.component for m in list(analysis.components.values())[:2])
     if len(labels) < 2:
         labels = (labels[0], "Y (zero)")
-    with atomic_path(pdf_path) as tmp_pdf:
+    with atomic_paths([pdf_path, pdf_path.with_suffix(".json")]) as (tmp_pdf, tmp_json):  # both files or neither
         with PdfPages(tmp_pdf) as pdf:
             for fig in (_summary_page(analysis, numbers, label, command), _ground_page(analysis, label)):
                 pdf.savefig(fig)
@@ -168,8 +168,9 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
                 pdf.savefig(fig)
             info = pdf.infodict()
             info["Title"] = f"isolator bidirectional review: {label}"
-    numbers["pdf"] = str(pdf_path)
-    return write_pair_json(numbers, pdf_path.with_suffix(".json"))
+        numbers["pdf"] = str(pdf_path)
+        dump_json(json_safe(numbers), tmp_json)
+    return numbers
 
 
 def write_pair_json(numbers: dict, json_path) -> dict:

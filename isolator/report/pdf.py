@@ -13,12 +13,12 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.atomic import atomic_path
+from isolator.atomic import atomic_paths, dump_json
 from isolator.metrics import REGIME_WORDS, slip_intervals
 from isolator.report import figures
 from isolator.report.layout import caption, fmt, page, table, tail
 from isolator.report.model_pages import model_pages
-from isolator.report.summary import Analysis, summary_dict, verdicts, write_json
+from isolator.report.summary import Analysis, summary_dict, verdicts
 from isolator.units import STANDARD_GRAVITY
 
 PAGE_TITLES = ("1  Summary", "2  Ground motion", "3  Isolator response", "4  Harmonic regime map")
@@ -180,7 +180,7 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
     rmap, triple, map_resolution = hmap.regime_map, hmap.triple_point, hmap.resolution
     alphas, amplitudes, regimes, steady = hmap.alphas, hmap.amplitudes, hmap.regimes, hmap.steady
 
-    with atomic_path(pdf_path) as tmp_pdf:
+    with atomic_paths([pdf_path, json_path]) as (tmp_pdf, tmp_json):  # one set: both files or neither
         with PdfPages(tmp_pdf) as pdf:
             fig = _summary_page(a, summary, command)
             pdf.savefig(fig)
@@ -246,4 +246,5 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
             info = pdf.infodict()
             info["Title"] = f"isolator review: {label}"
             info["Creator"] = f"isolator {summary['software']['version']}"
-    return write_json(a, json_path, pdf_path)
+        dump_json(summary, tmp_json)
+    return summary
