@@ -3,11 +3,12 @@ r"""Response spectra of record pairs: 5 %-damped PSA per component, RotD100 and 
 The oscillator ``u'' + 2ζωu' + ω²u = −a_g(t)`` starts at rest and the record is linear
 between samples (first-order hold), so one step of the solver's closed-form ramp segment
 (:func:`isolator.solver.segments.ramp_basis`, the Nigam–Jennings recurrence of
-:mod:`isolator.solver.linear`, REVIEW_RULES 1.2) is exact.  Conventions, stated in every
-review: peaks are taken at the sample instants, with each sample interval cut into
-``ceil(20 dt / T)`` equal pieces for periods shorter than 20 samples (a sampled sine of
-≥ 20 points per period reads its peak within 1 − cos(π/20) = 1.2 %); no padding, no
-filtering.
+:mod:`isolator.solver.linear`, REVIEW_RULES 1.2) is exact.  The peaks are those of the
+continuous response, between samples included: each sample interval is cut into
+``ceil(8 dt / T)`` equal pieces, and an extremum inside a piece is located to rounding from
+the closed form (:func:`_interior_peak`; the resultant's maxima by :func:`_vector_peak`).
+So the spectra of one piecewise-linear signal do not depend on how it is sampled (extra
+collinear samples change them by rounding only: issue 26).  No padding, no filtering.
 
 .. math::  PSA(T) = \omega^2 \max_t |u(t)|,\qquad
            RotD100(T) = \omega^2 \max_t \sqrt{u_x(t)^2 + u_y(t)^2}
@@ -24,31 +25,127 @@ import math
 import numpy as np
 from numba import njit
 
+from isolator.solver.events import secant_guess, segment_root
 from isolator.solver.linear import ramp_step
-from isolator.solver.segments import ramp_basis
+from isolator.solver.segments import ramp_basis, segment_state
 
-#: minimum number of recurrence steps per oscillator period (see the module docstring)
-STEPS_PER_PERIOD = 20
+#: Pieces per oscillator period at least (each sample interval is cut into ``ceil(8 dt / T)`` equal pieces).  A
+#: piece of at most T/8 is shorter than half a damped period, so the relative acceleration (a damped sinusoid
+#: between samples) changes sign at most once in it: the velocity is monotone on at most two parts, and each
+#: part holds at most one extremum of the displacement, located exactly (:func:`_interior_peak`).
+STEPS_PER_PERIOD = 8
+#: Points per piece at which d|u|²/dt is looked at for the resultant's maxima where its derivative turns inside
+#: the piece (RotD100, see :func:`_vector_peak`).
+VECTOR_CHECKS = 4
 ROTD50_ANGLES_DEG = np.arange(180.0)
 
 
 @njit(cache=True)
 def _coefficients(omega, zeta, dt, n_sub):
-    """κ = ω², m = −ζω, the piece length h = dt/n_sub and the ramp basis (E0, E1, H1, H2) over h."""
+    """κ = ω², c = 2ζω, m = −ζω, the piece length h = dt/n_sub and the ramp basis (E0, E1, H1, H2) over h."""
     kappa = omega * omega
     c = 2.0 * zeta * omega
     h = dt / n_sub
     e0, e1, h1, h2, _ = ramp_basis(h, c, kappa)
-    return kappa, -0.5 * c, h, e0, e1, h1, h2
+    return kappa, c, -0.5 * c, h, e0, e1, h1, h2
+
+
+@njit(cache=True, inline="always")
+def _may_exceed(x0, x1, v0, v1, a0, a1, h, peak):
+    """Whether |u| inside a piece may exceed ``peak``: its ends plus twice a Taylor bound of the excursion."""
+    return max(abs(x0), abs(x1)) + 2.0 * h * (max(abs(v0), abs(v1)) + h * max(abs(a0), abs(a1))) > peak
+
+
+@njit(cache=True)
+def _interior_peak(x0, v0, v1, a0, a1, p, q, h, c, kappa):
+    """The largest |u| at an extremum strictly inside one piece (0 if none), exact.
+
+    u'' + c u' + κ u = p + q τ on [0, h], from (x0, v0); v1, a1 the velocity and relative
+    acceleration at h.  The acceleration is a damped sinusoid (it solves the homogeneous
+    equation), so on a piece shorter than half a period it changes sign at most once: the
+    velocity is monotone on each side of that instant, and every zero of the velocity (an
+    extremum of u) is bracketed by a sign change, then located to rounding
+    (:func:`isolator.solver.events.segment_root`, Newton in a bracket).
+    """
+    s0 = v0 if v0 != 0.0 else a0  # the sign of v just after τ = 0
+    best = 0.0
+    if s0 * v1 < 0.0:  # one zero of v
+        sign = 1.0 if s0 > 0.0 else -1.0
+        t = segment_root(0, sign, 0.0, h, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, v0, v1))
+        best = abs(segment_state(t, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)[0])
+    elif a0 * a1 < 0.0 and s0 != 0.0:  # v turns inside: it may cross zero twice
+        sign_a = 1.0 if a0 > 0.0 else -1.0
+        ta = segment_root(1, sign_a, 0.0, h, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, a0, a1))
+        _, va, _, _ = segment_state(ta, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)
+        if va * s0 < 0.0:
+            sign = 1.0 if s0 > 0.0 else -1.0
+            t1 = segment_root(0, sign, 0.0, ta, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, 0.5 * ta)
+            t2 = segment_root(0, -sign, ta, h, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, 0.5 * (ta + h))
+            best = max(abs(segment_state(t1, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)[0]),
+                       abs(segment_state(t2, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)[0]))
+    return best
+
+
+@njit(cache=True, inline="always")
+def _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa):
+    """(u_x, u_y, g = u·u', g' = |u'|² + u·u'') at τ of a piece."""
+    ux, vx, ax, _ = segment_state(t, x1, v1, p1, q1, 0.0, 0.0, c, kappa, 0.0)
+    uy, vy, ay, _ = segment_state(t, x2, v2, p2, q2, 0.0, 0.0, c, kappa, 0.0)
+    return ux, uy, ux * vx + uy * vy, vx * vx + vy * vy + ux * ax + uy * ay
+
+
+@njit(cache=True)
+def _vector_peak(x1, v1, x2, v2, p1, q1, p2, q2, h, c, kappa, checks):
+    """The largest |(u_x, u_y)|² at a maximum inside one piece (0 if none).
+
+    Maxima of |u|² are where g = u·u' falls through zero.  g is looked at at ``checks`` + 1
+    points of the piece and each fall is located to rounding by Newton in its bracket
+    (g' = |u'|² + u·u'', closed form).  The caller asks for one check (the piece's ends)
+    when g falls between them, and :data:`VECTOR_CHECKS` when g' changes sign in the piece
+    (g may then rise and fall inside); near the peak of a response |u|² is dominated by the
+    oscillator, g' ≈ |u'|² − κ|u|² < 0, and g falls once.
+    """
+    best = 0.0
+    t_lo = 0.0
+    _, _, g_lo, _ = _pair_state(0.0, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
+    for k in range(1, checks + 1):
+        t_hi = h * k / checks
+        _, _, g_hi, _ = _pair_state(t_hi, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
+        if g_lo > 0.0 and g_hi < 0.0:
+            a = t_lo
+            b = t_hi
+            t = t_lo + (t_hi - t_lo) * g_lo / (g_lo - g_hi)
+            for _ in range(200):
+                ux, uy, g, dg = _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
+                if g == 0.0:
+                    break
+                if g > 0.0:
+                    a = t
+                else:
+                    b = t
+                if b - a <= 4e-16 * b:
+                    break
+                t_new = t - g / dg if dg != 0.0 else 0.5 * (a + b)
+                if not (a < t_new < b):
+                    t_new = 0.5 * (a + b)
+                elif abs(t_new - t) <= 2e-16 * t:
+                    t = t_new
+                    break
+                t = t_new
+            ux, uy, _, _ = _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
+            best = max(best, ux * ux + uy * uy)
+        t_lo = t_hi
+        g_lo = g_hi
+    return best
 
 
 @njit(cache=True)
 def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
-    """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| at the (sub)sample instants → out[:, 0:3]."""
+    """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| over time, between samples included → out[:, 0:3]."""
     n = ax.shape[0]
     for k in range(omegas.shape[0]):
         n_sub = n_subs[k]
-        kappa, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
+        kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
         x1 = 0.0
         v1 = 0.0
         x2 = 0.0
@@ -60,12 +157,34 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
             b1 = (ax[i + 1] - ax[i]) / dt
             b2 = (ay[i + 1] - ay[i]) / dt
             for j in range(n_sub):
-                x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
-                x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
+                f1 = -(ax[i] + b1 * (j * h))
+                f2 = -(ay[i] + b2 * (j * h))
+                y1, w1 = ramp_step(x1, v1, f1, -b1, e0, e1, h1, h2, m, kappa)
+                y2, w2 = ramp_step(x2, v2, f2, -b2, e0, e1, h1, h2, m, kappa)
+                a1s = f1 - c * v1 - kappa * x1
+                a1e = f1 - b1 * h - c * w1 - kappa * y1
+                a2s = f2 - c * v2 - kappa * x2
+                a2e = f2 - b2 * h - c * w2 - kappa * y2
+                if _may_exceed(x1, y1, v1, w1, a1s, a1e, h, p1):
+                    p1 = max(p1, _interior_peak(x1, v1, w1, a1s, a1e, f1, -b1, h, c, kappa))
+                if _may_exceed(x2, y2, v2, w2, a2s, a2e, h, p2):
+                    p2 = max(p2, _interior_peak(x2, v2, w2, a2s, a2e, f2, -b2, h, c, kappa))
+                # |u|² rises then falls inside (g = u·u' from + to −), or g' = |u'|² + u·u'' turns inside
+                g_start = x1 * v1 + x2 * v2
+                g_end = y1 * w1 + y2 * w2
+                falls = g_start > 0.0 and g_end < 0.0
+                turns = ((v1 * v1 + v2 * v2 + x1 * a1s + x2 * a2s) * (w1 * w1 + w2 * w2 + y1 * a1e + y2 * a2e) < 0.0)
+                if falls or turns:
+                    r_ends = math.sqrt(max(x1 * x1 + x2 * x2, y1 * y1 + y2 * y2))
+                    reach = 2.0 * h * (math.sqrt(max(v1 * v1 + v2 * v2, w1 * w1 + w2 * w2))
+                                       + h * math.sqrt(max(a1s * a1s + a2s * a2s, a1e * a1e + a2e * a2e)))
+                    if (r_ends + reach) ** 2 > pv:
+                        pv = max(pv, _vector_peak(x1, v1, x2, v2, f1, -b1, f2, -b2, h, c, kappa,
+                                                  VECTOR_CHECKS if turns else 1))
+                x1, v1, x2, v2 = y1, w1, y2, w2
                 p1 = max(p1, abs(x1))
                 p2 = max(p2, abs(x2))
-                r2 = x1 * x1 + x2 * x2
-                pv = max(pv, r2)
+                pv = max(pv, x1 * x1 + x2 * x2)
         out[k, 0] = p1
         out[k, 1] = p2
         out[k, 2] = math.sqrt(pv)
@@ -73,9 +192,9 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
 
 @njit(cache=True)
 def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
-    """Peak |u_x cos θ + u_y sin θ| for each angle θ at one period → out[:]."""
+    """Peak |u_x cos θ + u_y sin θ| over time (between samples included) for each angle θ at one period → out[:]."""
     n = ax.shape[0]
-    kappa, m, h, e0, e1, h1, h2 = _coefficients(omega, zeta, dt, n_sub)
+    kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omega, zeta, dt, n_sub)
     x1 = 0.0
     v1 = 0.0
     x2 = 0.0
@@ -86,11 +205,29 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
         b1 = (ax[i + 1] - ax[i]) / dt
         b2 = (ay[i + 1] - ay[i]) / dt
         for j in range(n_sub):
-            x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
-            x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
+            f1 = -(ax[i] + b1 * (j * h))
+            f2 = -(ay[i] + b2 * (j * h))
+            y1, w1 = ramp_step(x1, v1, f1, -b1, e0, e1, h1, h2, m, kappa)
+            y2, w2 = ramp_step(x2, v2, f2, -b2, e0, e1, h1, h2, m, kappa)
+            a1s = f1 - c * v1 - kappa * x1
+            a1e = f1 - b1 * h - c * w1 - kappa * y1
+            a2s = f2 - c * v2 - kappa * x2
+            a2e = f2 - b2 * h - c * w2 - kappa * y2
             for a in range(out.shape[0]):
-                u = abs(x1 * cosines[a] + x2 * sines[a])
-                out[a] = max(out[a], u)
+                cs = cosines[a]
+                sn = sines[a]
+                # the rotated component is the response to the rotated record (the equation is linear)
+                u0 = x1 * cs + x2 * sn
+                u1 = y1 * cs + y2 * sn
+                s0 = v1 * cs + v2 * sn
+                s1 = w1 * cs + w2 * sn
+                g0 = a1s * cs + a2s * sn
+                g1 = a1e * cs + a2e * sn
+                if _may_exceed(u0, u1, s0, s1, g0, g1, h, out[a]):
+                    out[a] = max(out[a], _interior_peak(u0, s0, s1, g0, g1, f1 * cs + f2 * sn, -(b1 * cs + b2 * sn),
+                                                        h, c, kappa))
+                out[a] = max(out[a], abs(u1))
+            x1, v1, x2, v2 = y1, w1, y2, w2
 
 
 def _prepare(ax, ay, dt_s, periods_s, damping_ratio):
