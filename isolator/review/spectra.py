@@ -25,9 +25,9 @@ import math
 import numpy as np
 from numba import njit
 
-from isolator.solver.events import secant_guess, segment_root
+from isolator.solver.events import secant_guess
 from isolator.solver.linear import ramp_step
-from isolator.solver.segments import ramp_basis, segment_state
+from isolator.solver.segments import ramp_basis
 
 #: Pieces per oscillator period at least (each sample interval is cut into ``ceil(8 dt / T)`` equal pieces).  A
 #: piece of at most T/8 is shorter than half a damped period, so the relative acceleration (a damped sinusoid
@@ -52,8 +52,86 @@ def _coefficients(omega, zeta, dt, n_sub):
 
 @njit(cache=True, inline="always")
 def _may_exceed(x0, x1, v0, v1, a0, a1, h, peak):
-    """Whether |u| inside a piece may exceed ``peak``: its ends plus twice a Taylor bound of the excursion."""
+    """Whether |u| inside a piece may exceed ``peak`` (cheap, never false where it can).
+
+    With no sign change of the acceleration, v is monotone: u has an interior extremum only
+    if v changes sign, and it exceeds the nearer end by at most min(τ|v0|, (h − τ)|v1|) ≤
+    h|v0||v1|/(|v0| + |v1|).  Otherwise (v turns inside) a Taylor bound of the excursion.
+    """
+    if a0 * a1 >= 0.0:
+        if v0 * v1 >= 0.0:
+            return False
+        return max(abs(x0), abs(x1)) + h * abs(v0) * abs(v1) / (abs(v0) + abs(v1)) > peak
     return max(abs(x0), abs(x1)) + 2.0 * h * (max(abs(v0), abs(v1)) + h * max(abs(a0), abs(a1))) > peak
+
+
+@njit(cache=True, inline="always")
+def _piece(tau, x0, v0, p, q, c, kappa):
+    """(u, u', u'', jerk) at τ of u'' + c u' + κ u = p + q τ from (x0, v0), underdamped (c² < 4κ), closed form.
+
+    u = (p − c q/κ)/κ + q τ/κ + e^{mτ}(A cos ω_d τ + B sin ω_d τ), m = −c/2, ω_d² = κ − m²:
+    the ramp segment of :func:`isolator.solver.segments.segment_state` written for a spectrum's
+    oscillator (ζ < 1), one exponential and one sine and cosine per call.
+    """
+    m = -0.5 * c
+    wd = math.sqrt(kappa - m * m)
+    a_h = x0 - (p - c * q / kappa) / kappa
+    b_h = (v0 - q / kappa - m * a_h) / wd
+    e = math.exp(m * tau)
+    cs = math.cos(wd * tau)
+    sn = math.sin(wd * tau)
+    # each derivative of e^{mτ}(A cos + B sin) is e^{mτ}(A' cos + B' sin), A' = mA + ω_d B, B' = mB − ω_d A
+    a1 = m * a_h + wd * b_h
+    b1 = m * b_h - wd * a_h
+    a2 = m * a1 + wd * b1
+    b2 = m * b1 - wd * a1
+    a3 = m * a2 + wd * b2
+    b3 = m * b2 - wd * a2
+    return ((p - c * q / kappa) / kappa + q * tau / kappa + e * (a_h * cs + b_h * sn),
+            q / kappa + e * (a1 * cs + b1 * sn), e * (a2 * cs + b2 * sn), e * (a3 * cs + b3 * sn))
+
+
+@njit(cache=True)
+def _piece_root(which, sign, lo, hi, x0, v0, p, q, c, kappa):
+    """The zero of u' (which = 1) or u'' (which = 2) in [lo, hi], where sign·f falls from > 0 to ≤ 0.
+
+    Newton from the secant, kept inside the bracket (bisection otherwise), to rounding; at most
+    200 iterations.
+    """
+    f_lo = sign * _piece(lo, x0, v0, p, q, c, kappa)[which]
+    f_hi = sign * _piece(hi, x0, v0, p, q, c, kappa)[which]
+    a = lo
+    b = hi
+    t = secant_guess(lo, hi, f_lo, f_hi)
+    if not (lo < t < hi):
+        t = 0.5 * (lo + hi)
+    for _ in range(200):
+        state = _piece(t, x0, v0, p, q, c, kappa)
+        t, a, b, done = _newton_in_bracket(t, sign * state[which], sign * state[which + 1], a, b)
+        if done:
+            break
+    return t
+
+
+@njit(cache=True, inline="always")
+def _newton_in_bracket(t, f, df, a, b):
+    """One step of Newton's method kept inside [a, b] where f falls through zero: (t, a, b, converged).
+
+    The bracket shrinks to the side of t where f keeps its sign; a Newton step that leaves it is
+    replaced by bisection; converged when the bracket or the step reaches rounding.
+    """
+    if f == 0.0:
+        return t, a, b, True
+    if f > 0.0:
+        a = t
+    else:
+        b = t
+    if b - a <= 4e-16 * b:
+        return b, a, b, True
+    t_new = t - f / df if df != 0.0 else 0.5 * (a + b)
+    if not (a < t_new < b):
+        return 0.5 * (a + b), a, b, False
+    return t_new, a, b, abs(t_new - t) <= 2e-16 * t
 
 
 @njit(cache=True)
@@ -64,33 +142,30 @@ def _interior_peak(x0, v0, v1, a0, a1, p, q, h, c, kappa):
     acceleration at h.  The acceleration is a damped sinusoid (it solves the homogeneous
     equation), so on a piece shorter than half a period it changes sign at most once: the
     velocity is monotone on each side of that instant, and every zero of the velocity (an
-    extremum of u) is bracketed by a sign change, then located to rounding
-    (:func:`isolator.solver.events.segment_root`, Newton in a bracket).
+    extremum of u) is bracketed by a sign change, then located to rounding (:func:`_piece_root`).
     """
     s0 = v0 if v0 != 0.0 else a0  # the sign of v just after τ = 0
     best = 0.0
     if s0 * v1 < 0.0:  # one zero of v
-        sign = 1.0 if s0 > 0.0 else -1.0
-        t = segment_root(0, sign, 0.0, h, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, v0, v1))
-        best = abs(segment_state(t, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)[0])
-    elif a0 * a1 < 0.0 and s0 != 0.0:  # v turns inside: it may cross zero twice
-        sign_a = 1.0 if a0 > 0.0 else -1.0
-        ta = segment_root(1, sign_a, 0.0, h, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, a0, a1))
-        _, va, _, _ = segment_state(ta, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)
+        t = _piece_root(1, 1.0 if s0 > 0.0 else -1.0, 0.0, h, x0, v0, p, q, c, kappa)
+        best = abs(_piece(t, x0, v0, p, q, c, kappa)[0])
+    elif a0 * a1 < 0.0 and s0 != 0.0 and min(abs(v0), abs(v1)) <= 2.0 * h * max(abs(a0), abs(a1)):
+        # v turns inside and comes near zero (it moves by at most ~h max|a| in the piece): it may cross zero twice
+        ta = _piece_root(2, 1.0 if a0 > 0.0 else -1.0, 0.0, h, x0, v0, p, q, c, kappa)
+        va = _piece(ta, x0, v0, p, q, c, kappa)[1]
         if va * s0 < 0.0:
             sign = 1.0 if s0 > 0.0 else -1.0
-            t1 = segment_root(0, sign, 0.0, ta, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, 0.5 * ta)
-            t2 = segment_root(0, -sign, ta, h, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0, 0.5 * (ta + h))
-            best = max(abs(segment_state(t1, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)[0]),
-                       abs(segment_state(t2, x0, v0, p, q, 0.0, 0.0, c, kappa, 0.0)[0]))
+            t1 = _piece_root(1, sign, 0.0, ta, x0, v0, p, q, c, kappa)
+            t2 = _piece_root(1, -sign, ta, h, x0, v0, p, q, c, kappa)
+            best = max(abs(_piece(t1, x0, v0, p, q, c, kappa)[0]), abs(_piece(t2, x0, v0, p, q, c, kappa)[0]))
     return best
 
 
 @njit(cache=True, inline="always")
 def _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa):
     """(u_x, u_y, g = u·u', g' = |u'|² + u·u'') at τ of a piece."""
-    ux, vx, ax, _ = segment_state(t, x1, v1, p1, q1, 0.0, 0.0, c, kappa, 0.0)
-    uy, vy, ay, _ = segment_state(t, x2, v2, p2, q2, 0.0, 0.0, c, kappa, 0.0)
+    ux, vx, ax, _ = _piece(t, x1, v1, p1, q1, c, kappa)
+    uy, vy, ay, _ = _piece(t, x2, v2, p2, q2, c, kappa)
     return ux, uy, ux * vx + uy * vy, vx * vx + vy * vy + ux * ax + uy * ay
 
 
@@ -116,22 +191,10 @@ def _vector_peak(x1, v1, x2, v2, p1, q1, p2, q2, h, c, kappa, checks):
             b = t_hi
             t = t_lo + (t_hi - t_lo) * g_lo / (g_lo - g_hi)
             for _ in range(200):
-                ux, uy, g, dg = _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
-                if g == 0.0:
+                _, _, g, dg = _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
+                t, a, b, done = _newton_in_bracket(t, g, dg, a, b)
+                if done:
                     break
-                if g > 0.0:
-                    a = t
-                else:
-                    b = t
-                if b - a <= 4e-16 * b:
-                    break
-                t_new = t - g / dg if dg != 0.0 else 0.5 * (a + b)
-                if not (a < t_new < b):
-                    t_new = 0.5 * (a + b)
-                elif abs(t_new - t) <= 2e-16 * t:
-                    t = t_new
-                    break
-                t = t_new
             ux, uy, _, _ = _pair_state(t, x1, v1, x2, v2, p1, q1, p2, q2, c, kappa)
             best = max(best, ux * ux + uy * uy)
         t_lo = t_hi
@@ -141,11 +204,22 @@ def _vector_peak(x1, v1, x2, v2, p1, q1, p2, q2, h, c, kappa, checks):
 
 @njit(cache=True)
 def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
-    """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| over time, between samples included → out[:, 0:3]."""
+    """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| over time, between samples included → out[:, 0:3].
+
+    Two passes per period: the recurrence, keeping the state at every piece end and the peaks
+    there; then only the pieces whose inside may exceed those peaks are searched
+    (:func:`_interior_peak`, :func:`_vector_peak`): a handful per period, not every piece
+    where a running maximum grew.
+    """
     n = ax.shape[0]
+    g1 = np.max(np.abs(ax))
+    g2 = np.max(np.abs(ay))
+    gv = np.sqrt(np.max(ax * ax + ay * ay))
     for k in range(omegas.shape[0]):
         n_sub = n_subs[k]
         kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
+        states = np.empty(((n - 1) * n_sub + 1, 4))
+        states[0, :] = 0.0
         x1 = 0.0
         v1 = 0.0
         x2 = 0.0
@@ -153,14 +227,47 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
         p1 = 0.0
         p2 = 0.0
         pv = 0.0
+        s1 = 0.0
+        s2 = 0.0
+        sv = 0.0
+        piece = 0
         for i in range(n - 1):
             b1 = (ax[i + 1] - ax[i]) / dt
             b2 = (ay[i + 1] - ay[i]) / dt
             for j in range(n_sub):
+                x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
+                x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
+                piece += 1
+                states[piece, 0] = x1
+                states[piece, 1] = v1
+                states[piece, 2] = x2
+                states[piece, 3] = v2
+                p1 = max(p1, abs(x1))
+                p2 = max(p2, abs(x2))
+                pv = max(pv, x1 * x1 + x2 * x2)
+                s1 = max(s1, abs(v1))
+                s2 = max(s2, abs(v2))
+                sv = max(sv, v1 * v1 + v2 * v2)
+        # a piece whose ends are below these cannot hold a higher peak: its inside exceeds its ends by at most
+        # 2h(max|u'| + h max|u''|), with |u''| ≤ max|a_g| + c max|u'| + κ max|u| (the bounds of _may_exceed)
+        low1 = p1 - 2.0 * h * (s1 + h * (g1 + c * s1 + kappa * p1))
+        low2 = p2 - 2.0 * h * (s2 + h * (g2 + c * s2 + kappa * p2))
+        rv = math.sqrt(pv)
+        low_v = rv - 2.0 * h * (math.sqrt(sv) + h * (gv + c * math.sqrt(sv) + kappa * rv))
+        low_v2 = low_v * low_v if low_v > 0.0 else -1.0
+        piece = 0
+        for i in range(n - 1):
+            b1 = (ax[i + 1] - ax[i]) / dt
+            b2 = (ay[i + 1] - ay[i]) / dt
+            for j in range(n_sub):
+                x1, v1, x2, v2 = states[piece, 0], states[piece, 1], states[piece, 2], states[piece, 3]
+                y1, w1, y2, w2 = states[piece + 1, 0], states[piece + 1, 1], states[piece + 1, 2], states[piece + 1, 3]
+                piece += 1
+                if (max(abs(x1), abs(y1)) <= low1 and max(abs(x2), abs(y2)) <= low2
+                        and max(x1 * x1 + x2 * x2, y1 * y1 + y2 * y2) <= low_v2):
+                    continue
                 f1 = -(ax[i] + b1 * (j * h))
                 f2 = -(ay[i] + b2 * (j * h))
-                y1, w1 = ramp_step(x1, v1, f1, -b1, e0, e1, h1, h2, m, kappa)
-                y2, w2 = ramp_step(x2, v2, f2, -b2, e0, e1, h1, h2, m, kappa)
                 a1s = f1 - c * v1 - kappa * x1
                 a1e = f1 - b1 * h - c * w1 - kappa * y1
                 a2s = f2 - c * v2 - kappa * x2
@@ -172,19 +279,26 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
                 # |u|² rises then falls inside (g = u·u' from + to −), or g' = |u'|² + u·u'' turns inside
                 g_start = x1 * v1 + x2 * v2
                 g_end = y1 * w1 + y2 * w2
-                falls = g_start > 0.0 and g_end < 0.0
-                turns = ((v1 * v1 + v2 * v2 + x1 * a1s + x2 * a2s) * (w1 * w1 + w2 * w2 + y1 * a1e + y2 * a2e) < 0.0)
-                if falls or turns:
-                    r_ends = math.sqrt(max(x1 * x1 + x2 * x2, y1 * y1 + y2 * y2))
+                dg_start = v1 * v1 + v2 * v2 + x1 * a1s + x2 * a2s
+                dg_end = w1 * w1 + w2 * w2 + y1 * a1e + y2 * a2e
+                r0 = math.sqrt(x1 * x1 + x2 * x2)
+                r1 = math.sqrt(y1 * y1 + y2 * y2)
+                if dg_start * dg_end >= 0.0:  # g monotone: a maximum inside only where it falls through zero
+                    if not (g_start > 0.0 and g_end < 0.0):
+                        continue
+                    # |u| rises at g0/r0 and falls at |g1|/r1 (radial speeds): above its ends by at most
+                    # h s0 s1/(s0 + s1), doubled for the radial speed's own variation
+                    s0 = g_start / r0
+                    s1 = -g_end / r1
+                    if (max(r0, r1) + 2.0 * h * s0 * s1 / (s0 + s1)) ** 2 <= pv:
+                        continue
+                    pv = max(pv, _vector_peak(x1, v1, x2, v2, f1, -b1, f2, -b2, h, c, kappa, 1))
+                elif min(abs(g_start), abs(g_end)) <= 2.0 * h * max(abs(dg_start), abs(dg_end)):
+                    # g turns inside and comes near zero (it moves by at most ~h max|g'|): it may fall through zero
                     reach = 2.0 * h * (math.sqrt(max(v1 * v1 + v2 * v2, w1 * w1 + w2 * w2))
                                        + h * math.sqrt(max(a1s * a1s + a2s * a2s, a1e * a1e + a2e * a2e)))
-                    if (r_ends + reach) ** 2 > pv:
-                        pv = max(pv, _vector_peak(x1, v1, x2, v2, f1, -b1, f2, -b2, h, c, kappa,
-                                                  VECTOR_CHECKS if turns else 1))
-                x1, v1, x2, v2 = y1, w1, y2, w2
-                p1 = max(p1, abs(x1))
-                p2 = max(p2, abs(x2))
-                pv = max(pv, x1 * x1 + x2 * x2)
+                    if (max(r0, r1) + reach) ** 2 > pv:
+                        pv = max(pv, _vector_peak(x1, v1, x2, v2, f1, -b1, f2, -b2, h, c, kappa, VECTOR_CHECKS))
         out[k, 0] = p1
         out[k, 1] = p2
         out[k, 2] = math.sqrt(pv)
