@@ -233,3 +233,29 @@ def test_the_same_signal_sampled_two_ways_gives_the_same_review(reviewed, tmp_pa
         for quantity, stats in quantities.items():
             for stat, value in stats.items():
                 assert refined["spread"][bound][quantity][stat] == pytest.approx(value, rel=1e-9), (bound, quantity)
+
+def test_two_concurrent_reviews_on_one_output_one_wins_and_the_set_is_its_own(tmp_path):
+    """Two real `isolator review` processes started together on one -o: one writes, the other is refused in one
+    line naming the holder (exit 2); the PDF and the JSON left are both the winner's (each run reviews a design
+    of its own name: the JSON's design and the PDF's title say which run wrote them)."""
+    suite = _make_suite(tmp_path / "s")
+    output = tmp_path / "out" / "r.pdf"
+    runs = {}
+    for name in ("first", "second"):
+        design = tmp_path / "s" / f"{name}.toml"
+        design.write_text(DESIGN.replace('name = "d"', f'name = "{name}"'))
+        arguments = ["review", "-d", str(design), "-t", "example", "-s", str(suite), "-o", str(output), "-j", "1",
+                     "--no-cache"]
+        runs[name] = subprocess.Popen([sys.executable, "-c", f"from isolator.cli import app; app({arguments!r})"],
+                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    done = {name: (process.wait(timeout=600), *process.communicate()) for name, process in runs.items()}
+    codes = sorted(code for code, _, _ in done.values())
+    assert codes == [0, 2], {name: (code, err[-500:]) for name, (code, _, err) in done.items()}
+    winner = next(name for name, (code, _, _) in done.items() if code == 0)
+    loser = "second" if winner == "first" else "first"
+    refusal = done[loser][2]
+    assert len(refusal.splitlines()) == 1 and refusal.startswith("error: ") and "Traceback" not in refusal
+    assert f"is being written by process {runs[winner].pid}" in refusal
+    assert json.loads(output.with_suffix(".json").read_text())["design"]["name"] == winner
+    assert f"/Title (isolator review: {winner})".encode() in output.read_bytes()
+    assert sorted(p.name for p in output.parent.iterdir()) == ["r.json", "r.pdf"]  # no lock, no temporary
