@@ -38,6 +38,9 @@ STEPS_PER_PERIOD = 8
 #: the piece (RotD100, see :func:`_vector_peak`).
 VECTOR_CHECKS = 4
 ROTD50_ANGLES_DEG = np.arange(180.0)
+#: Pieces per block of the second pass: a block whose piece ends all lie below the peaks less their margin is
+#: skipped whole.
+BLOCK = 64
 
 
 @njit(cache=True)
@@ -218,8 +221,11 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
     for k in range(omegas.shape[0]):
         n_sub = n_subs[k]
         kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
-        states = np.empty(((n - 1) * n_sub + 1, 4))
+        total = (n - 1) * n_sub
+        states = np.empty((total + 1, 4))
         states[0, :] = 0.0
+        # per block of BLOCK pieces, the largest |u_x|, |u_y| and |u|² at the ends of its pieces
+        blocks = np.zeros((total // BLOCK + 1, 3))
         x1 = 0.0
         v1 = 0.0
         x2 = 0.0
@@ -248,6 +254,11 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
                 s1 = max(s1, abs(v1))
                 s2 = max(s2, abs(v2))
                 sv = max(sv, v1 * v1 + v2 * v2)
+                # the state ends piece `piece - 1` and starts piece `piece`: it belongs to both their blocks
+                for block in ((piece - 1) // BLOCK, piece // BLOCK):
+                    blocks[block, 0] = max(blocks[block, 0], abs(x1))
+                    blocks[block, 1] = max(blocks[block, 1], abs(x2))
+                    blocks[block, 2] = max(blocks[block, 2], x1 * x1 + x2 * x2)
         # a piece whose ends are below these cannot hold a higher peak: its inside exceeds its ends by at most
         # 2h(max|u'| + h max|u''|), with |u''| ≤ max|a_g| + c max|u'| + κ max|u| (the bounds of _may_exceed)
         low1 = p1 - 2.0 * h * (s1 + h * (g1 + c * s1 + kappa * p1))
@@ -255,14 +266,16 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
         rv = math.sqrt(pv)
         low_v = rv - 2.0 * h * (math.sqrt(sv) + h * (gv + c * math.sqrt(sv) + kappa * rv))
         low_v2 = low_v * low_v if low_v > 0.0 else -1.0
-        piece = 0
-        for i in range(n - 1):
-            b1 = (ax[i + 1] - ax[i]) / dt
-            b2 = (ay[i + 1] - ay[i]) / dt
-            for j in range(n_sub):
+        for block in range(blocks.shape[0]):
+            if blocks[block, 0] <= low1 and blocks[block, 1] <= low2 and blocks[block, 2] <= low_v2:
+                continue
+            for piece in range(block * BLOCK, min(total, (block + 1) * BLOCK)):
+                i = piece // n_sub
+                j = piece - i * n_sub
+                b1 = (ax[i + 1] - ax[i]) / dt
+                b2 = (ay[i + 1] - ay[i]) / dt
                 x1, v1, x2, v2 = states[piece, 0], states[piece, 1], states[piece, 2], states[piece, 3]
                 y1, w1, y2, w2 = states[piece + 1, 0], states[piece + 1, 1], states[piece + 1, 2], states[piece + 1, 3]
-                piece += 1
                 if (max(abs(x1), abs(y1)) <= low1 and max(abs(x2), abs(y2)) <= low2
                         and max(x1 * x1 + x2 * x2, y1 * y1 + y2 * y2) <= low_v2):
                     continue
@@ -306,23 +319,58 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
 
 @njit(cache=True)
 def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
-    """Peak |u_x cos θ + u_y sin θ| over time (between samples included) for each angle θ at one period → out[:]."""
+    """Peak |u_x cos θ + u_y sin θ| over time (between samples included) for each angle θ at one period → out[:].
+
+    As :func:`_pair_peaks`: the recurrence with the peaks at the piece ends, then only the pieces whose ends
+    may reach an angle's peak are searched, each rotated component being the response to the rotated record
+    (the equation is linear).
+    """
     n = ax.shape[0]
     kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omega, zeta, dt, n_sub)
+    states = np.empty(((n - 1) * n_sub + 1, 4))
+    states[0, :] = 0.0
     x1 = 0.0
     v1 = 0.0
     x2 = 0.0
     v2 = 0.0
+    sv = 0.0
     for a in range(out.shape[0]):
         out[a] = 0.0
+    piece = 0
     for i in range(n - 1):
         b1 = (ax[i + 1] - ax[i]) / dt
         b2 = (ay[i + 1] - ay[i]) / dt
         for j in range(n_sub):
+            x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
+            x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
+            piece += 1
+            states[piece, 0] = x1
+            states[piece, 1] = v1
+            states[piece, 2] = x2
+            states[piece, 3] = v2
+            sv = max(sv, v1 * v1 + v2 * v2)
+            for a in range(out.shape[0]):
+                out[a] = max(out[a], abs(x1 * cosines[a] + x2 * sines[a]))
+    # an angle's component exceeds its piece ends by at most 2h(max|u'| + h max|u''|) (see _may_exceed)
+    r_max = 0.0
+    for a in range(out.shape[0]):
+        r_max = max(r_max, out[a])
+    speed = math.sqrt(sv)
+    margin = 2.0 * h * (speed + h * (np.sqrt(np.max(ax * ax + ay * ay)) + c * speed + kappa * r_max))
+    low = out - margin
+    lowest = np.min(low)
+    piece = 0
+    for i in range(n - 1):
+        b1 = (ax[i + 1] - ax[i]) / dt
+        b2 = (ay[i + 1] - ay[i]) / dt
+        for j in range(n_sub):
+            x1, v1, x2, v2 = states[piece, 0], states[piece, 1], states[piece, 2], states[piece, 3]
+            y1, w1, y2, w2 = states[piece + 1, 0], states[piece + 1, 1], states[piece + 1, 2], states[piece + 1, 3]
+            piece += 1
+            if max(x1 * x1 + x2 * x2, y1 * y1 + y2 * y2) <= lowest * abs(lowest):  # |u_θ| ≤ |u| at every angle
+                continue
             f1 = -(ax[i] + b1 * (j * h))
             f2 = -(ay[i] + b2 * (j * h))
-            y1, w1 = ramp_step(x1, v1, f1, -b1, e0, e1, h1, h2, m, kappa)
-            y2, w2 = ramp_step(x2, v2, f2, -b2, e0, e1, h1, h2, m, kappa)
             a1s = f1 - c * v1 - kappa * x1
             a1e = f1 - b1 * h - c * w1 - kappa * y1
             a2s = f2 - c * v2 - kappa * x2
@@ -330,9 +378,10 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
             for a in range(out.shape[0]):
                 cs = cosines[a]
                 sn = sines[a]
-                # the rotated component is the response to the rotated record (the equation is linear)
                 u0 = x1 * cs + x2 * sn
                 u1 = y1 * cs + y2 * sn
+                if max(abs(u0), abs(u1)) <= low[a]:
+                    continue
                 s0 = v1 * cs + v2 * sn
                 s1 = w1 * cs + w2 * sn
                 g0 = a1s * cs + a2s * sn
@@ -340,8 +389,6 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
                 if _may_exceed(u0, u1, s0, s1, g0, g1, h, out[a]):
                     out[a] = max(out[a], _interior_peak(u0, s0, s1, g0, g1, f1 * cs + f2 * sn, -(b1 * cs + b2 * sn),
                                                         h, c, kappa))
-                out[a] = max(out[a], abs(u1))
-            x1, v1, x2, v2 = y1, w1, y2, w2
 
 
 def _prepare(ax, ay, dt_s, periods_s, damping_ratio):
