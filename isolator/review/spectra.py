@@ -206,6 +206,31 @@ def _vector_peak(x1, v1, x2, v2, p1, q1, p2, q2, h, c, kappa, checks):
 
 
 @njit(cache=True)
+def _pair_states(ax, ay, dt, n_sub, kappa, m, h, e0, e1, h1, h2):
+    """(u_x, u_x', u_y, u_y') at the start of every piece and the end of the last, by the exact recurrence."""
+    n = ax.shape[0]
+    states = np.empty(((n - 1) * n_sub + 1, 4))
+    states[0, :] = 0.0
+    x1 = 0.0
+    v1 = 0.0
+    x2 = 0.0
+    v2 = 0.0
+    piece = 0
+    for i in range(n - 1):
+        b1 = (ax[i + 1] - ax[i]) / dt
+        b2 = (ay[i + 1] - ay[i]) / dt
+        for j in range(n_sub):
+            x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
+            x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
+            piece += 1
+            states[piece, 0] = x1
+            states[piece, 1] = v1
+            states[piece, 2] = x2
+            states[piece, 3] = v2
+    return states
+
+
+@njit(cache=True)
 def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
     """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| over time, between samples included → out[:, 0:3].
 
@@ -222,43 +247,28 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
         n_sub = n_subs[k]
         kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omegas[k], zeta, dt, n_sub)
         total = (n - 1) * n_sub
-        states = np.empty((total + 1, 4))
-        states[0, :] = 0.0
+        states = _pair_states(ax, ay, dt, n_sub, kappa, m, h, e0, e1, h1, h2)
         # per block of BLOCK pieces, the largest |u_x|, |u_y| and |u|² at the ends of its pieces
         blocks = np.zeros((total // BLOCK + 1, 3))
-        x1 = 0.0
-        v1 = 0.0
-        x2 = 0.0
-        v2 = 0.0
         p1 = 0.0
         p2 = 0.0
         pv = 0.0
         s1 = 0.0
         s2 = 0.0
         sv = 0.0
-        piece = 0
-        for i in range(n - 1):
-            b1 = (ax[i + 1] - ax[i]) / dt
-            b2 = (ay[i + 1] - ay[i]) / dt
-            for j in range(n_sub):
-                x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
-                x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
-                piece += 1
-                states[piece, 0] = x1
-                states[piece, 1] = v1
-                states[piece, 2] = x2
-                states[piece, 3] = v2
-                p1 = max(p1, abs(x1))
-                p2 = max(p2, abs(x2))
-                pv = max(pv, x1 * x1 + x2 * x2)
-                s1 = max(s1, abs(v1))
-                s2 = max(s2, abs(v2))
-                sv = max(sv, v1 * v1 + v2 * v2)
-                # the state ends piece `piece - 1` and starts piece `piece`: it belongs to both their blocks
-                for block in ((piece - 1) // BLOCK, piece // BLOCK):
-                    blocks[block, 0] = max(blocks[block, 0], abs(x1))
-                    blocks[block, 1] = max(blocks[block, 1], abs(x2))
-                    blocks[block, 2] = max(blocks[block, 2], x1 * x1 + x2 * x2)
+        for piece in range(1, total + 1):
+            x1, v1, x2, v2 = states[piece, 0], states[piece, 1], states[piece, 2], states[piece, 3]
+            p1 = max(p1, abs(x1))
+            p2 = max(p2, abs(x2))
+            pv = max(pv, x1 * x1 + x2 * x2)
+            s1 = max(s1, abs(v1))
+            s2 = max(s2, abs(v2))
+            sv = max(sv, v1 * v1 + v2 * v2)
+            # the state ends piece `piece - 1` and starts piece `piece`: it belongs to both their blocks
+            for block in ((piece - 1) // BLOCK, piece // BLOCK):
+                blocks[block, 0] = max(blocks[block, 0], abs(x1))
+                blocks[block, 1] = max(blocks[block, 1], abs(x2))
+                blocks[block, 2] = max(blocks[block, 2], x1 * x1 + x2 * x2)
         # a piece whose ends are below these cannot hold a higher peak: its inside exceeds its ends by at most
         # 2h(max|u'| + h max|u''|), with |u''| ≤ max|a_g| + c max|u'| + κ max|u| (the bounds of _may_exceed)
         low1 = p1 - 2.0 * h * (s1 + h * (g1 + c * s1 + kappa * p1))
@@ -327,30 +337,15 @@ def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
     """
     n = ax.shape[0]
     kappa, c, m, h, e0, e1, h1, h2 = _coefficients(omega, zeta, dt, n_sub)
-    states = np.empty(((n - 1) * n_sub + 1, 4))
-    states[0, :] = 0.0
-    x1 = 0.0
-    v1 = 0.0
-    x2 = 0.0
-    v2 = 0.0
+    states = _pair_states(ax, ay, dt, n_sub, kappa, m, h, e0, e1, h1, h2)
     sv = 0.0
     for a in range(out.shape[0]):
         out[a] = 0.0
-    piece = 0
-    for i in range(n - 1):
-        b1 = (ax[i + 1] - ax[i]) / dt
-        b2 = (ay[i + 1] - ay[i]) / dt
-        for j in range(n_sub):
-            x1, v1 = ramp_step(x1, v1, -(ax[i] + b1 * (j * h)), -b1, e0, e1, h1, h2, m, kappa)
-            x2, v2 = ramp_step(x2, v2, -(ay[i] + b2 * (j * h)), -b2, e0, e1, h1, h2, m, kappa)
-            piece += 1
-            states[piece, 0] = x1
-            states[piece, 1] = v1
-            states[piece, 2] = x2
-            states[piece, 3] = v2
-            sv = max(sv, v1 * v1 + v2 * v2)
-            for a in range(out.shape[0]):
-                out[a] = max(out[a], abs(x1 * cosines[a] + x2 * sines[a]))
+    for piece in range(1, states.shape[0]):
+        x1, v1, x2, v2 = states[piece, 0], states[piece, 1], states[piece, 2], states[piece, 3]
+        sv = max(sv, v1 * v1 + v2 * v2)
+        for a in range(out.shape[0]):
+            out[a] = max(out[a], abs(x1 * cosines[a] + x2 * sines[a]))
     # an angle's component exceeds its piece ends by at most 2h(max|u'| + h max|u''|) (see _may_exceed)
     r_max = 0.0
     for a in range(out.shape[0]):
