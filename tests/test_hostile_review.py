@@ -259,3 +259,78 @@ def test_two_concurrent_reviews_on_one_output_one_wins_and_the_set_is_its_own(tm
     assert json.loads(output.with_suffix(".json").read_text())["design"]["name"] == winner
     assert f"/Title (isolator review: {winner})".encode() in output.read_bytes()
     assert sorted(p.name for p in output.parent.iterdir()) == ["r.json", "r.pdf"]  # no lock, no temporary
+
+
+# ---------------------------------------------------------------- issue 26, Tests: what was not yet tested
+def test_a_real_kill_9_during_a_review_then_the_resume_gives_the_same_review(reviewed, tmp_path):
+    """A review process killed by SIGKILL once it has cached some analyses (a real kill, not a built state): the next
+    run takes over the dead run's lock, removes nothing it needs, reuses the cache, and its JSON equals a clean
+    run's apart from timings; no lock or temporary is left."""
+    import signal
+    import time
+
+    folder, output = reviewed
+    target = tmp_path / "r.pdf"
+    arguments = ["review", "-d", str(folder / "design.toml"), "-t", "example", "-s", str(folder / "suite.toml"),
+                 "-o", str(target), "-j", "1"]
+    process = subprocess.Popen([sys.executable, "-c", f"from isolator.cli import app; app({arguments!r})"],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    cache = tmp_path / ".r.cache"
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and process.poll() is None and len(list(cache.glob("*.json"))) < 2:
+        time.sleep(0.02)
+    if process.poll() is not None:
+        pytest.skip("the review finished before it could be killed (machine too fast for this small suite)")
+    process.send_signal(signal.SIGKILL)
+    assert process.wait(timeout=60) == -signal.SIGKILL
+    assert (tmp_path / "r.pdf.lock").exists() and not target.exists()  # the dead run's trace
+    from isolator import atomic
+
+    atomic._CLEANED_FOLDERS.discard(os.path.realpath(tmp_path))  # the next run is a new process
+    result = _review(folder, target)
+    assert result.exit_code == 0, result.stderr
+    resumed = json.loads(target.with_suffix(".json").read_text())
+    assert _differences(_numbers(resumed), _numbers(json.loads(output.with_suffix(".json").read_text()))) == []
+    assert resumed["timing_s"]["analyses_cached"] >= 1  # the killed run's analyses were reused
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".r.cache", "r.json", "r.pdf"]
+
+
+def test_a_full_disk_under_a_review_leaves_the_older_set_whole(tmp_path):
+    """A review whose PDF does not fit on a real 256 KiB tmpfs: one line naming the output, exit 2, the older PDF
+    and JSON left whole, no temporary and no lock."""
+    if sys.platform != "linux" or os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root on Linux")
+    suite = _make_suite(tmp_path / "s")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", str(disk)]).returncode != 0:
+        pytest.skip("cannot mount a tmpfs here")
+    try:
+        (disk / "r.pdf").write_bytes(b"old pdf")
+        (disk / "r.json").write_text('{"run": "old"}')
+        (disk / "filler").write_bytes(b"\0" * 200_000)
+        result = _review(suite.parent, disk / "r.pdf", "--no-cache")
+        _one_line(result, "No space left on device")
+        assert str(disk / "r.") in result.stderr
+        assert (disk / "r.pdf").read_bytes() == b"old pdf" and (disk / "r.json").read_text() == '{"run": "old"}'
+        assert sorted(p.name for p in disk.iterdir()) == ["filler", "r.json", "r.pdf"]
+    finally:
+        subprocess.run(["umount", "-l", str(disk)], check=False)
+
+
+@pytest.mark.parametrize("kind", ["target", "suite"])
+def test_an_example_in_the_working_folder_is_read_not_the_bundled_one(tmp_path, monkeypatch, kind):
+    """`--target example` / `--suite example` with a ./example in the working folder read that one (here a folder
+    that is no target and holds no record: the error names it), never the bundled example silently."""
+    suite = _make_suite(tmp_path / "s")
+    (tmp_path / "w" / "example").mkdir(parents=True)
+    monkeypatch.chdir(tmp_path / "w")
+    args = ["review", "-d", str(tmp_path / "s" / "design.toml"), "-o", str(tmp_path / "out" / "r.pdf"),
+            "-t", "example" if kind == "target" else "example", "-s", "example" if kind == "suite" else str(suite)]
+    if kind == "suite":
+        args[args.index("-t") + 1] = str(Path(__file__).resolve().parents[1] / "isolator" / "data" / "targets"
+                                         / "example.toml")
+    result = RUNNER.invoke(app, args)
+    assert result.exit_code == 2, result.stderr
+    assert len(result.stderr.splitlines()) == 1 and "Traceback" not in result.stderr
+    assert "example" in result.stderr and "isolator/data" not in result.stderr
