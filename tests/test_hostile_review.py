@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_hostile_outputs import small_disk as small_disk  # the 256 KiB tmpfs fixture
 from typer.testing import CliRunner
 
 from isolator.cli import app
@@ -295,27 +296,18 @@ def test_a_real_kill_9_during_a_review_then_the_resume_gives_the_same_review(rev
     assert sorted(p.name for p in tmp_path.iterdir()) == [".r.cache", "r.json", "r.pdf"]
 
 
-def test_a_full_disk_under_a_review_leaves_the_older_set_whole(tmp_path):
+def test_a_full_disk_under_a_review_leaves_the_older_set_whole(tmp_path, small_disk):
     """A review whose PDF does not fit on a real 256 KiB tmpfs: one line naming the output, exit 2, the older PDF
     and JSON left whole, no temporary and no lock."""
-    if sys.platform != "linux" or os.geteuid() != 0:
-        pytest.skip("mounting a small tmpfs needs root on Linux")
     suite = _make_suite(tmp_path / "s")
-    disk = tmp_path / "disk"
-    disk.mkdir()
-    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", str(disk)]).returncode != 0:
-        pytest.skip("cannot mount a tmpfs here")
-    try:
-        (disk / "r.pdf").write_bytes(b"old pdf")
-        (disk / "r.json").write_text('{"run": "old"}')
-        (disk / "filler").write_bytes(b"\0" * 200_000)
-        result = _review(suite.parent, disk / "r.pdf", "--no-cache")
-        _one_line(result, "No space left on device")
-        assert str(disk / "r.") in result.stderr
-        assert (disk / "r.pdf").read_bytes() == b"old pdf" and (disk / "r.json").read_text() == '{"run": "old"}'
-        assert sorted(p.name for p in disk.iterdir()) == ["filler", "r.json", "r.pdf"]
-    finally:
-        subprocess.run(["umount", "-l", str(disk)], check=False)
+    (small_disk / "r.pdf").write_bytes(b"old pdf")
+    (small_disk / "r.json").write_text('{"run": "old"}')
+    (small_disk / "filler").write_bytes(b"\0" * 200_000)
+    result = _review(suite.parent, small_disk / "r.pdf", "--no-cache")
+    _one_line(result, "No space left on device")
+    assert str(small_disk / "r.") in result.stderr
+    assert (small_disk / "r.pdf").read_bytes() == b"old pdf" and (small_disk / "r.json").read_text() == '{"run": "old"}'
+    assert sorted(p.name for p in small_disk.iterdir()) == ["filler", "r.json", "r.pdf"]
 
 
 @pytest.mark.parametrize("kind", ["target", "suite"])
