@@ -219,8 +219,11 @@ def classify_record(response, point, design=None, *, window_s: tuple | None = No
     planar = ground.ndim == 2
     one_block = not planar and getattr(response, "system", None) is not None  # the paper's block on one surface
     if window_s is None:  # D5–95 of the horizontal resultant: |a|² is the sum of the components' squares
-        t0, t1 = strong_motion_window_s(np.hypot(ground[:, 0], ground[:, 1]) if planar else ground, dt,
-                                        time_s=unequal)
+        from isolator.motion.measures import energy_window_s
+
+        window = energy_window_s([ground[:, 0], ground[:, 1]] if planar else [ground], dt, (0.05, 0.95),
+                                 time_s=unequal)  # exact for the piecewise-linear components
+        t0, t1 = (0.0, float(t[-1] - t[0])) if window is None else window  # a record of zeros: the whole record
         window_s = (t[0] + t0, t[0] + t1)
     w0, w1 = window_s
     intervals = slip_intervals(response)

@@ -37,6 +37,8 @@ import math
 
 import numpy as np
 
+from isolator.motion.measures import energy_window_s
+
 #: periods of the signature spectrum [s]: long enough for a resampling of 0.01 s records not to matter
 SIGNATURE_PERIODS_S = np.geomspace(0.25, 6.0, 24)
 #: largest difference of two signatures that counts as the same motion (see the module docstring)
@@ -44,13 +46,16 @@ SAME_MOTION_TOLERANCE = 0.1
 
 
 def resultant_arias_window(ax, ay, dt_s: float) -> tuple[float, float]:
-    """(t5, t95) of the resultant Arias intensity ∫(a_x² + a_y²) dt [s] (0, 0 for a motionless pair)."""
-    energy = np.concatenate([[0.0], np.cumsum(0.5 * ((ax ** 2 + ay ** 2)[1:] + (ax ** 2 + ay ** 2)[:-1]) * dt_s)])
-    if not energy[-1] > 0:
-        return 0.0, 0.0
-    t = np.arange(ax.size) * dt_s
-    t5, t95 = np.interp([0.05 * energy[-1], 0.95 * energy[-1]], energy, t)
-    return float(t5), float(t95)
+    """(t5, t95) of the resultant Arias intensity ∫(a_x² + a_y²) dt [s] (0, 0 for a motionless pair).
+
+    Exact for the piecewise-linear pair (:func:`isolator.motion.measures.energy_window_s`)."""
+    window = energy_window_s([ax, ay], dt_s, (0.05, 0.95))
+    return (0.0, 0.0) if window is None else (window[0], window[1])
+
+
+def _product_integral(a, b, dt_s: float) -> float:
+    """∫ a b dt of two piecewise-linear records on one time base, exact [unit_a·unit_b·s]."""
+    return float(dt_s * np.sum(2.0 * a[:-1] * b[:-1] + a[:-1] * b[1:] + a[1:] * b[:-1] + 2.0 * a[1:] * b[1:]) / 6.0)
 
 
 def motion_signature(ax_m_s2, ay_m_s2, dt_s: float) -> dict:
@@ -71,7 +76,8 @@ def motion_signature(ax_m_s2, ay_m_s2, dt_s: float) -> dict:
         logs = np.log(rotd)
     shape = logs - logs.mean() if np.all(np.isfinite(logs)) else np.full(logs.size, np.nan)
     t5, t95 = resultant_arias_window(ax, ay, dt_s)
-    cov = np.array([[np.dot(ax, ax), np.dot(ax, ay)], [np.dot(ax, ay), np.dot(ay, ay)]]) * dt_s
+    xy = _product_integral(ax, ay, dt_s)
+    cov = np.array([[_product_integral(ax, ax, dt_s), xy], [xy, _product_integral(ay, ay, dt_s)]])
     eig = np.linalg.eigvalsh(cov)
     return {"shape": shape, "duration_s": t95 - t5, "eigen_ratio": float(eig[0] / eig[1]) if eig[1] > 0 else 0.0}
 
@@ -87,18 +93,52 @@ def signature_distance(a: dict, b: dict) -> float:
     return max(parts)
 
 
+#: upper end of the band of the bandwidth's spectral moments [Hz]: a fixed band, so that a record and the
+#: same piecewise-linear signal sampled finer give one δ (the band of engineering interest of recorded motions)
+BANDWIDTH_BAND_HZ = 25.0
+
+
+def _end_ramp(u, h: float):
+    """∫₀ʰ (1 − s/h) e^{ius} ds for angular frequencies u [rad/s] (series where uh is small)."""
+    uh = u * h
+    out = np.empty(u.shape, dtype=np.complex128)
+    small = np.abs(uh) < 0.1
+    x = 1j * uh[small]
+    series = np.zeros(x.shape, dtype=np.complex128)
+    term_factorial = 2.0
+    for k in range(10):  # h Σ (iuh)^k / (k + 2)!: 10 terms reach rounding for |uh| < 0.1
+        series += x ** k / term_factorial
+        term_factorial *= k + 3
+    out[small] = h * series
+    big = ~small
+    ub = u[big]
+    out[big] = 1j / ub - (np.exp(1j * ub * h) - 1.0) / (h * ub * ub)
+    return out
+
+
 def spectral_bandwidth(acceleration, dt_s: float) -> float:
     """Vanmarcke's bandwidth δ = √(1 − λ₁²/(λ₀λ₂)) of a record's one-sided power spectrum [-].
 
-    δ → 0 for a pure sinusoid, ≈ 0.5–0.9 for recorded earthquake motions.  Zero-padded to a power of two
-    (≥ 2 n samples) so a sinusoid's leakage does not widen it.
+    δ → 0 for a pure sinusoid, ≈ 0.5–0.9 for recorded earthquake motions.  The spectrum is the exact
+    Fourier transform of the record read as piecewise linear on its duration (the samples' DFT times
+    the linear interpolant's sinc², less the two half-ramps that interpolant would have outside the
+    record), and the moments are taken on 0 – :data:`BANDWIDTH_BAND_HZ`, on the grid 1/(n dt) of a
+    zero-padding to n ≥ 2 × samples (a power of two, so a sinusoid's leakage does not widen it): a record
+    and the same signal sampled at dt/2 (collinear midpoints) share that grid and give one δ to rounding
+    (issue 26; the samples' DFT up to each sampling's own Nyquist frequency differed by 2.7e-2).
     """
     a = np.asarray(acceleration, dtype=np.float64)
-    if a.size < 4 or not np.any(a):
+    if a.size < 4 or not np.any(a) or not dt_s > 0:
         return 0.0
     n = 1 << int(math.ceil(math.log2(2 * a.size)))
-    power = np.abs(np.fft.rfft(a, n)) ** 2
-    f = np.fft.rfftfreq(n, dt_s)
+    df = 1.0 / (n * dt_s)
+    f = np.arange(int(BANDWIDTH_BAND_HZ / df) + 1) * df
+    dft = np.fft.fft(a, n)[np.arange(f.size) % n]  # the DFT is periodic in 1/dt
+    u = 2.0 * math.pi * f
+    duration_s = (a.size - 1) * dt_s
+    spectrum = (dt_s * dft * np.sinc(f * dt_s) ** 2 - a[0] * _end_ramp(u, dt_s)
+                - a[-1] * np.exp(-1j * u * duration_s) * np.conj(_end_ramp(u, dt_s)))
+    power = np.abs(spectrum) ** 2
     l0, l1, l2 = (float(np.sum(power * f ** k)) for k in (0, 1, 2))
     if l0 <= 0 or l2 <= 0:
         return 0.0

@@ -174,3 +174,59 @@ def test_suite_keys_checked_and_a_mixed_matched_suite_refused(tmp_path):
     with pytest.raises(SuiteError, match="not in its name; give azimuth_y_deg"):
         load_suite(_suite_toml(tmp_path, [("A", tmp_path / "x.AT2", tmp_path / "y.AT2",
                                            "trim = true\nrotate_to_fault_normal_deg = 10.0")]))
+
+
+# ---------------------------------------------------------------- issue 26: one answer per piecewise-linear signal
+def _broadband(n=1200, dt=0.01, seed=3):
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) * dt
+    return np.convolve(rng.normal(size=n + 9), np.ones(10) / 10, "valid")[:n] * np.exp(-((t - 4.0) / 2.5) ** 2) + 0.2
+
+
+def _refined(a):
+    """The same piecewise-linear signal at dt/2: a collinear midpoint in every interval."""
+    out = np.empty(2 * a.size - 1)
+    out[0::2], out[1::2] = a, 0.5 * (a[:-1] + a[1:])
+    return out
+
+
+def test_bandwidth_is_the_piecewise_linear_signals_own_against_a_segment_by_segment_transform():
+    """δ from an independent transform (each linear segment integrated in closed form, no DFT, no sinc) on the
+    same frequency grid and band, and δ of the same signal sampled at dt/2, equal the function's δ."""
+    from isolator.review.selection import BANDWIDTH_BAND_HZ
+
+    a, dt = _broadband(), 0.01
+    n = 1 << int(math.ceil(math.log2(2 * a.size)))
+    f = np.arange(int(BANDWIDTH_BAND_HZ * n * dt) + 1) / (n * dt)
+    u = 2.0 * np.pi * f[1:, None]
+    t0 = np.arange(a.size - 1) * dt
+    slope = np.diff(a) / dt
+    e = np.exp(-1j * u * dt)
+    i0 = (e - 1.0) / (-1j * u)
+    i1 = dt * e / (-1j * u) - (e - 1.0) / (-1j * u) ** 2
+    spectrum = np.concatenate([[np.sum(dt * (a[:-1] + a[1:]) / 2.0)],
+                               np.sum(np.exp(-1j * u * t0) * (a[:-1] * i0 + slope * i1), axis=1)])
+    power = np.abs(spectrum) ** 2
+    l0, l1, l2 = (np.sum(power * f ** k) for k in (0, 1, 2))
+    reference = math.sqrt(1.0 - l1 * l1 / (l0 * l2))
+    assert spectral_bandwidth(a, dt) == pytest.approx(reference, rel=1e-10)
+    assert spectral_bandwidth(_refined(a), dt / 2) == pytest.approx(reference, rel=1e-10)
+
+
+def test_resultant_arias_window_and_orbit_are_exact_for_the_piecewise_linear_pair():
+    """A ramp a = t on [0, 1] s has ∫a² = t³/3: the fraction p is reached at t = p^(1/3) exactly (the trapezoidal
+    rule on two samples would put 5 % at 0.05 s); a pair and its dt/2 refinement share the window and the orbit."""
+    from isolator.motion.measures import arias_window_s, energy_window_s
+    from isolator.review.selection import resultant_arias_window
+
+    start, end = arias_window_s(np.array([0.0, 1.0]), 1.0)
+    assert (start, end) == (pytest.approx(0.05 ** (1 / 3), rel=1e-14), pytest.approx(0.95 ** (1 / 3), rel=1e-14))
+    assert energy_window_s([np.array([0.0, 3.0]), np.array([0.0, 4.0])], 2.0, (0.5,))[0] == pytest.approx(
+        2.0 * 0.5 ** (1 / 3), rel=1e-14)  # resultant 5t/2 on [0, 2] s
+    ax, ay, dt = _broadband(seed=4), _broadband(seed=5), 0.01
+    coarse = resultant_arias_window(ax, ay, dt)
+    fine = resultant_arias_window(_refined(ax), _refined(ay), dt / 2)
+    assert fine == (pytest.approx(coarse[0], rel=1e-12), pytest.approx(coarse[1], rel=1e-12))
+    a, b = motion_signature(ax, ay, dt), motion_signature(_refined(ax), _refined(ay), dt / 2)
+    assert b["eigen_ratio"] == pytest.approx(a["eigen_ratio"], rel=1e-12)
+    assert b["duration_s"] == pytest.approx(a["duration_s"], rel=1e-12)
