@@ -238,8 +238,35 @@ def van_loan(a_mat: np.ndarray, q_mat: np.ndarray, h: float) -> np.ndarray:
     return big[n:, n:].T @ big[:n, n:]
 
 
+class BuildingKeys:
+    """The keys a building result derives from its ``bearing_loads()`` and its per-story arrays, shared by the
+    1-D (:class:`BuildingResponse`) and 2-D (``planar_building.PlanarBuildingResponse``) building results."""
+
+    @property
+    def bearing_axial_load_max_N(self) -> list | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["bearing_axial_load_max_N"]
+
+    @property
+    def bearing_axial_load_min_N(self) -> list | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["bearing_axial_load_min_N"]
+
+    @property
+    def n_bearings_uplifted(self) -> int | None:
+        loads = self.bearing_loads()
+        return None if loads is None else loads["n_bearings_uplifted"]
+
+    def summary(self) -> dict:
+        """:meth:`SolverResult.summary`, the per-story and per-floor arrays as lists."""
+        out = super().summary()
+        for key in ("story_drift_m", "story_drift_ratio", "floor_peak_acceleration_m_s2"):
+            out[key] = [float(v) for v in out[key]]
+        return out
+
+
 @dataclass(kw_only=True)
-class BuildingResponse(SolverResult):
+class BuildingResponse(BuildingKeys, SolverResult):
     """Exact response of the building on its isolation plane to one record (model ``1d-building``, SI units).
 
     The fields of :class:`~isolator.solver.base.SolverResult` describe the isolator (the slab
@@ -349,27 +376,6 @@ class BuildingResponse(SolverResult):
         out["n_bearings_uplifted"] = int(np.sum(low < 0.0))
         return out
 
-    @property
-    def bearing_axial_load_max_N(self) -> list | None:
-        loads = self.bearing_loads()
-        return None if loads is None else loads["bearing_axial_load_max_N"]
-
-    @property
-    def bearing_axial_load_min_N(self) -> list | None:
-        loads = self.bearing_loads()
-        return None if loads is None else loads["bearing_axial_load_min_N"]
-
-    @property
-    def n_bearings_uplifted(self) -> int | None:
-        loads = self.bearing_loads()
-        return None if loads is None else loads["n_bearings_uplifted"]
-
-    def summary(self) -> dict:
-        """:meth:`SolverResult.summary`, the per-story and per-floor arrays as lists."""
-        out = super().summary()
-        for key in ("story_drift_m", "story_drift_ratio", "floor_peak_acceleration_m_s2"):
-            out[key] = [float(v) for v in out[key]]
-        return out
 
 
 def scene_needs(scene) -> tuple[str, str] | None:

@@ -41,7 +41,7 @@ import numpy as np
 from isolator.errors import InvalidSystemError, RecordInputError
 from isolator.solver import planar_building_kernel as _pk
 from isolator.solver.base import SolverResult
-from isolator.solver.building import BuildingResponse, building_system
+from isolator.solver.building import BuildingKeys, BuildingResponse, building_system
 from isolator.solver.record import sample_timing
 from isolator.solver.system import System
 from isolator.units import STANDARD_GRAVITY
@@ -179,7 +179,7 @@ def _watched(system: PlanarBuildingSystem, layout) -> tuple:
 
 
 @dataclass(kw_only=True)
-class PlanarBuildingResponse(SolverResult):
+class PlanarBuildingResponse(BuildingKeys, SolverResult):
     """Response of the building on its isolation plane to a pair (SI units; energies per unit of the total mass).
 
     The histories of the slab are (N, 2); ``floor_displacement_m`` and ``floor_velocity_m_s`` are
@@ -272,27 +272,6 @@ class PlanarBuildingResponse(SolverResult):
         out["n_bearings_uplifted"] = int(np.sum(low < 0.0))
         return out
 
-    @property
-    def bearing_axial_load_max_N(self) -> list | None:
-        loads = self.bearing_loads()
-        return None if loads is None else loads["bearing_axial_load_max_N"]
-
-    @property
-    def bearing_axial_load_min_N(self) -> list | None:
-        loads = self.bearing_loads()
-        return None if loads is None else loads["bearing_axial_load_min_N"]
-
-    @property
-    def n_bearings_uplifted(self) -> int | None:
-        loads = self.bearing_loads()
-        return None if loads is None else loads["n_bearings_uplifted"]
-
-    def summary(self) -> dict:
-        """:meth:`SolverResult.summary`, the per-story and per-floor arrays as lists."""
-        out = super().summary()
-        for key in ("story_drift_m", "story_drift_ratio", "floor_peak_acceleration_m_s2"):
-            out[key] = [float(v) for v in out[key]]
-        return out
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
