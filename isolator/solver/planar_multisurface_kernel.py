@@ -294,7 +294,13 @@ def _set_frc(frc, raw, s1, s2, inv_r):
 
 @njit(cache=True)
 def _one_group_r(x1, x2, e1, e2, s, rc, mue):
-    # r of the sliding group(s) of a one-group phase: (X − S)/R̄ + µ e
+    # r of the sliding group(s) of a one-group phase: (X − S)/R̄ + µ e.  Groups sliding as one along a
+    # collinear motion (s[4] = 1) keep the direction e0 = (s[2], s[3]) of their tangent circles: the
+    # direction of a decelerating slide is unstable as |V| → 0 (it sits near −F/|F|) and turns away from
+    # the line by the amplified rounding before a stop, which must not enter the groups' state
+    if s[4] > 0.0:
+        e1 = s[2]
+        e2 = s[3]
     return (x1 - s[0]) / rc + mue * e1, (x2 - s[1]) / rc + mue * e2
 
 
@@ -302,6 +308,9 @@ def _one_group_r(x1, x2, e1, e2, s, rc, mue):
 def _one_group_settle(ub, comp, x1, x2, e1, e2, s, rc, mue, rb, mu):
     # the groups of a one-group phase at X: ū_k = R̄_k (r − µ_k e)
     r1, r2 = _one_group_r(x1, x2, e1, e2, s, rc, mue)
+    if s[4] > 0.0:
+        e1 = s[2]
+        e2 = s[3]
     for k in range(rb.shape[0]):
         if comp >> k & 1:
             ub[k, 0] = rb[k] * (r1 - mu[k] * e1)
@@ -591,6 +600,9 @@ def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, 
     else:
         e1, e2 = _slaved(tau, y, prm, frc)
     _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
+    if s[4] > 0.0:
+        e1 = s[2]
+        e2 = s[3]
     d1 = r1 - ub[kj, 0] / rb[kj]
     d2 = r2 - ub[kj, 1] / rb[kj]
     dn = math.sqrt(d1 * d1 + d2 * d2)
@@ -598,6 +610,10 @@ def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, 
     comp |= 1 << kj
     if cross < COLLINEAR and e1 * d1 + e2 * d2 > 0.0:
         # tangent circles along the motion: one pendulum of the summed compliance
+        if s[4] == 0.0:
+            s[2] = e1
+            s[3] = e2
+            s[4] = 1.0
         rc = 0.0
         rmu = 0.0
         s[0] = y[0]
@@ -652,6 +668,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     mue = mu[k]
     s[0] = x1 - ub[k, 0]
     s[1] = x2 - ub[k, 1]
+    s[4] = 0.0
     prm[P_MU_S] = mue
     prm[P_MU_K] = mue
     prm[P_INV_R] = 1.0 / rc
@@ -727,7 +744,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     prm = np.zeros(P_SIZE)
     prm[P_PENDULUM] = 1.0
     prm[P_C] = c
-    s = np.zeros(2)  #: centre S of a one-group phase [m]
+    s = np.zeros(5)  #: centre S of a one-group phase [m], direction e0 and flag of a collinear one (see _one_group_r)
     for j in range(first.shape[0]):
         first[j] = -1.0
     phase = PH_STUCK
@@ -838,6 +855,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 mue = mu[kb]
                 s[0] = X1 - ub[kb, 0]
                 s[1] = X2 - ub[kb, 1]
+                s[4] = 0.0
                 prm[P_MU_S] = mue
                 prm[P_MU_K] = mue
                 prm[P_INV_R] = 1.0 / rc
@@ -882,6 +900,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     mue = mu[kb]
                     s[0] = my[M_X] - ub[kb, 0]
                     s[1] = my[M_X + 1] - ub[kb, 1]
+                    s[4] = 0.0
                     prm[P_MU_S] = mue
                     prm[P_MU_K] = mue
                     prm[P_INV_R] = 1.0 / rc
@@ -1027,6 +1046,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 mue = mu[kb]
                 s[0] = my[M_X] - ub[kb, 0]
                 s[1] = my[M_X + 1] - ub[kb, 1]
+                s[4] = 0.0
                 prm[P_MU_S] = mue
                 prm[P_MU_K] = mue
                 prm[P_INV_R] = 1.0 / rc

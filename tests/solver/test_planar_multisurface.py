@@ -63,6 +63,14 @@ def test_zero_second_component_is_the_1d_model(b):
         assert abs(two.regimes[name] - one.regimes[name]) <= 1e-9
     np.testing.assert_allclose(two.surface_peak_displacement_m, one.surface_peak_displacement_m, rtol=0, atol=1e-9)
     assert abs(two.energy_balance_error_J_per_kg) <= 1e-9 * two.energy_input_J_per_kg
+    # the same collinear record along other azimuths: the tangent circles are found through rounding
+    for degrees in (35.0, 123.0):
+        theta = np.radians(degrees)
+        rot = simulate_bearing_pair(np.cos(theta) * acc, np.sin(theta) * acc, 0.01, bearing=b)
+        assert abs(rot.peak_displacement_m - peak) <= 1e-9 * peak
+        along = rot.displacement_m[:, 0] * np.cos(theta) + rot.displacement_m[:, 1] * np.sin(theta)
+        assert np.max(np.abs(along - one.displacement_m)) <= 1e-9 * peak
+        assert list(rot.regimes) == list(one.regimes)
 
 
 @pytest.mark.parametrize("b", [TFP, TFP4], ids=["tfp", "tfp-4-frictions"])
