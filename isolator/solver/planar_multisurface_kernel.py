@@ -22,7 +22,7 @@ support point, in the direction V, of the intersection D of the friction discs. 
 * **two or more groups sliding** (the support point at a corner of D, or on a point several
   circles share): differentiating |r − b_k| = µ_k gives e_k·ṙ = λ_k/R̄_k, hence
   V = C ṙ with the compliance C = Σ_active R̄_k e_k e_kᵀ, ṙ = C⁻¹ V.  The state
-  (X, V, r, ū_k, energies) is integrated with a DOP853 step written here (scipy's tableau);
+  (X, V, r, ū_k, energies) is integrated with a DOP853 step written here (scipy's tableau, written out in planar_multisurface_tableau);
 * a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
 * when a group joins along the direction of the sliding ones (|e_a × e_j| < COLLINEAR: a
@@ -48,8 +48,8 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop
 
+from isolator.solver import planar_multisurface_tableau as _dop
 from isolator.solver.planar_control import (
     ENTER_LOG,
     LAG_MAX_RAD,
@@ -121,6 +121,10 @@ MAX_STEPS_PER_INTERVAL = 200000
 
 #: two sliding groups whose directions differ by less than this [rad] slide as one (tangent circles)
 COLLINEAR = 1e-9
+#: sliding groups whose normals all lie within this angle [rad] of each other slide on as one: a corner
+#: closing towards tangency (a straightening motion) is stiff (the split of the velocity relaxes at a
+#: rate ∝ 1/angle); the state then errs by about R̄ µ × this angle [m] (docs/multisurface.md)
+MERGE_ANGLE = 1e-4
 
 # summary layout
 S_PEAK_X = 0
@@ -136,7 +140,8 @@ S_N_STEPS = 9
 S_N_REJECTED = 10
 S_FAIL_T = 11  #: time of a rim contact or a failure [s] (-1: none)
 S_STEPS_MULTI = 12
-S_SIZE = 13
+S_N_MERGED = 13  #: corners that closed below MERGE_ANGLE (the groups then slid as one)
+S_SIZE = 14
 
 # scales (as the planar driver builds them)
 SC_R_MIN = 0
@@ -154,9 +159,9 @@ M_EF = 7
 M_EV = 8
 M_U = 9
 
-_A = np.ascontiguousarray(_dop.A[:_dop.N_STAGES, :_dop.N_STAGES])
+_A = np.ascontiguousarray(_dop.A)
 _B = np.ascontiguousarray(_dop.B)
-_C = np.ascontiguousarray(_dop.C[:_dop.N_STAGES])
+_C = np.ascontiguousarray(_dop.C)
 _E3 = np.ascontiguousarray(_dop.E3)
 _E5 = np.ascontiguousarray(_dop.E5)
 _NS = _dop.N_STAGES
@@ -584,6 +589,28 @@ def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol
 
 
 @njit(cache=True)
+def _closing_corner(my, rb, comp):
+    """The common normal of the sliding groups when all their normals lie within MERGE_ANGLE, else (0, 0)."""
+    f1 = 0.0
+    f2 = 0.0
+    first_k = True
+    for k in range(rb.shape[0]):
+        if comp >> k & 1:
+            e1 = my[M_R] - my[M_U + 2 * k] / rb[k]
+            e2 = my[M_R + 1] - my[M_U + 2 * k + 1] / rb[k]
+            en = math.sqrt(e1 * e1 + e2 * e2)
+            e1 /= en
+            e2 /= en
+            if first_k:
+                f1 = e1
+                f2 = e2
+                first_k = False
+            elif abs(f1 * e2 - f2 * e1) > MERGE_ANGLE or f1 * e1 + f2 * e2 < 0.0:
+                return 0.0, 0.0
+    return f1, f2
+
+
+@njit(cache=True)
 def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, my, mf, c):
     """Group kj joins the sliding group(s) of a one-group phase: a composite along a collinear motion, else
     the multi-group state.  Returns (phase, comp, rc, mue)."""
@@ -608,7 +635,7 @@ def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, 
     dn = math.sqrt(d1 * d1 + d2 * d2)
     cross = abs(e1 * d2 - e2 * d1) / dn
     comp |= 1 << kj
-    if cross < COLLINEAR and e1 * d1 + e2 * d2 > 0.0:
+    if cross < MERGE_ANGLE and e1 * d1 + e2 * d2 > 0.0:
         # tangent circles along the motion: one pendulum of the summed compliance
         if s[4] == 0.0:
             s[2] = e1
@@ -770,6 +797,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     n_steps = 0
     n_rej = 0
     n_multi = 0
+    n_merged = 0
     just_rejected = False
     e_in = 0.0  #: energies of the phases already closed [J/kg]
     e_f = 0.0
@@ -1012,6 +1040,39 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         fac = min(1.0, fac)
                     h_sugg = h * fac
                     just_rejected = False
+                    e01, e02 = _closing_corner(my, rb, comp)
+                    if e01 != 0.0 or e02 != 0.0:
+                        # the corner closes (a motion that straightens: the circles approach tangency, where the
+                        # corner's dynamics is stiff): the groups slide on as one along their common normal
+                        e_in += my[M_EIN]
+                        e_f += my[M_EF]
+                        e_v += my[M_EV]
+                        rc = 0.0
+                        rmu = 0.0
+                        s[0] = my[M_X]
+                        s[1] = my[M_X + 1]
+                        for k in range(ng):
+                            if comp >> k & 1:
+                                rc += rb[k]
+                                rmu += rb[k] * mu[k]
+                                s[0] -= ub[k, 0]
+                                s[1] -= ub[k, 1]
+                        mue = rmu / rc
+                        s[2] = e01
+                        s[3] = e02
+                        s[4] = 1.0
+                        prm[P_MU_S] = mue
+                        prm[P_MU_K] = mue
+                        prm[P_INV_R] = 1.0 / rc
+                        _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+                        y[:] = 0.0
+                        y[0] = my[M_X]
+                        y[1] = my[M_X + 1]
+                        x = tau
+                        ein_corr = 0.0
+                        enter_polar(tau, y, my[M_V], my[M_V + 1], norm(my[M_V], my[M_V + 1]), prm, frc, f)
+                        phase = PH_POLAR
+                        n_merged += 1
                     continue
                 events_here += 1
                 h_sugg = -1.0
@@ -1435,3 +1496,4 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     summary[S_N_REJECTED] = n_rej
     summary[S_FAIL_T] = fail_t
     summary[S_STEPS_MULTI] = n_multi
+    summary[S_N_MERGED] = n_merged

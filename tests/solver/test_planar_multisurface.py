@@ -40,6 +40,20 @@ def rotate(a, b, theta):
     return c * a - s * b, s * a + c * b
 
 
+def test_the_written_out_tableau_is_scipys():
+    from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
+
+    from isolator.solver import planar_multisurface_tableau as ours
+
+    n = scipy_tableau.N_STAGES
+    assert ours.N_STAGES == n
+    np.testing.assert_array_equal(ours.A, scipy_tableau.A[:n, :n])
+    np.testing.assert_array_equal(ours.B, scipy_tableau.B)
+    np.testing.assert_array_equal(ours.C, scipy_tableau.C[:n])
+    np.testing.assert_array_equal(ours.E3, scipy_tableau.E3)
+    np.testing.assert_array_equal(ours.E5, scipy_tableau.E5)
+
+
 def test_groups_of_equal_friction():
     rb, mu, rim, members = element_groups(TFP)
     np.testing.assert_allclose(rb, [1.8, 0.6, 1.8])
