@@ -25,9 +25,10 @@ support point, in the direction V, of the intersection D of the friction discs. 
   (X, V, r, ū_k, energies) is integrated with a DOP853 step written here (scipy's tableau, written out in planar_multisurface_tableau);
 * a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
-* when a group joins along the direction of the sliding ones (|e_a × e_j| < COLLINEAR: a
+* when a group joins along the direction of the sliding ones (|e_a × e_j| < MERGE_ANGLE: a
   collinear motion, e.g. a pair whose second component is zero) the circles are tangent and
-  C is singular: the groups then slide as one pendulum of radius Σ R̄ and friction
+  C is singular, and when the normals of the sliding groups close to within MERGE_ANGLE (a
+  corner closing towards tangency, whose dynamics is stiff): the groups then slide as one pendulum of radius Σ R̄ and friction
   Σ R̄_k µ_k / Σ R̄ along that direction, which is the 1-D series model exactly;
 * **stuck**: holds while −a_g/n ∈ D; the break-away is the first root of a quadratic in local
   time per group (a_g linear); after a stop the stick test is the same, otherwise the group
@@ -119,8 +120,6 @@ STATUS_SINGULAR = 16  #: the compliance of the sliding groups became singular (n
 MAX_EVENTS_PER_INTERVAL = 1000
 MAX_STEPS_PER_INTERVAL = 200000
 
-#: two sliding groups whose directions differ by less than this [rad] slide as one (tangent circles)
-COLLINEAR = 1e-9
 #: sliding groups whose normals all lie within this angle [rad] of each other slide on as one: a corner
 #: closing towards tangency (a straightening motion) is stiff (the split of the velocity relaxes at a
 #: rate ∝ 1/angle); the state then errs by about R̄ µ × this angle [m] (docs/multisurface.md)
