@@ -37,7 +37,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from isolator.solver import building, multisurface, planar, planar_building, record
+from isolator.solver import building, multisurface, planar, planar_building, planar_multisurface, record
 from isolator.solver.base import SUMMARY_KEYS, Scene, SolverResult
 
 
@@ -66,6 +66,8 @@ class Model:
 
 #: The models, most specific first: :func:`select_model` takes the first whose ``needs`` answers.
 MODELS: dict[str, Model] = {model.name: model for model in (
+    Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
+          "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
     Model(multisurface.MODEL_NAME, multisurface.scene_needs, multisurface.simulate_scene,
           "mass on a double or triple friction pendulum (series model, rims), one component: closed forms"),
     Model(planar_building.MODEL_NAME, planar_building.scene_needs, planar_building.simulate_scene,

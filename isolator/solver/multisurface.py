@@ -137,9 +137,8 @@ def rim_of_single(scene):
 def scene_needs(scene) -> tuple[str, str] | None:
     """``(model, reason)`` for a double or triple bearing, or a single pendulum with a capacity; else None.
 
-    A double or triple bearing: ``1d-multisurface``.  Under two components or a vertical
-    it is claimed too, and refused by :func:`simulate_scene` in one line: the 2-D
-    multi-surface model does not exist yet.
+    A double or triple bearing: ``1d-multisurface``.  Under two components or a vertical it
+    is the 2-D model's (:mod:`isolator.solver.planar_multisurface`).
 
     A single pendulum with a displacement capacity under one component
     (:func:`rim_of_single`): ``1d-exact``, today's kernel, **and the choice depends on its
@@ -155,6 +154,8 @@ def scene_needs(scene) -> tuple[str, str] | None:
         return RIM_FIRST_MODEL, (f"{_record.MODEL_REASON}; a displacement capacity of "
                                  f"{single.ultimate_displacement_m:.4g} m: if the peak reaches it, the run is redone "
                                  f"with the rim ({MODEL_NAME}), a choice made on the result")
+    if scene.has_y or scene.has_z:
+        return None  # the 2-D model's (isolator.solver.planar_multisurface)
     n = len(bearing.surfaces)
     return MODEL_NAME, (f"a {bearing.kind} friction pendulum ({n} surfaces): the exact 1-D series model of "
                         "Fenz & Constantinou with rims (closed forms between events)")
@@ -206,7 +207,7 @@ def simulate_scene(scene) -> SolverResult:
                           "not modelled (1d-multisurface carries a rigid mass)")
     if scene.has_y or scene.has_z:
         raise RecordInputError(f"a {scene.design.bearing.kind} bearing is modelled for one horizontal component "
-                               "only (1d-multisurface); the 2-D multi-surface model is not implemented")
+                               "only (1d-multisurface); the 2-D model is 2d-multisurface")
     return simulate_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
                             damping_per_mass=damping, gravity_m_s2=gravity)
 

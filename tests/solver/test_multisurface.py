@@ -358,12 +358,13 @@ def test_registry_runs_the_multisurface_model_for_a_triple_and_says_why():
     assert res.model == "1d-multisurface"
     summary = res.summary()
     assert summary["ultimate_displacement_reached"] is True and summary["regimes"]["V"] > 0
-    # a pair is refused in one line, never run on the single-surface 2-D engine
-    from isolator.errors import RecordInputError
+    # a pair runs on the 2-D multi-surface model (never the single-surface 2-D engine); this one reaches a
+    # rim, which 2d-multisurface refuses with the time rather than run past it
+    from isolator.errors import SolverError
 
     pair = Scene(ax_m_s2=acc, ay_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design)
-    assert select_model(pair)[0] == "1d-multisurface"
-    with pytest.raises(RecordInputError, match="one horizontal component"):
+    assert select_model(pair)[0] == "2d-multisurface"
+    with pytest.raises(SolverError, match="reaches a rim at t = "):
         simulate(pair)
     # a design without [bearing] keeps today's model
     plain = Scene(ax_m_s2=acc, dt_s=dt, isolator={"mu_static": 0.05, "radius_m": 2.0})

@@ -1,0 +1,320 @@
+"""Driver of the 2-D multi-surface model: a mass on a double or triple friction pendulum in the plane.
+
+Model ``2d-multisurface``: the series model of Fenz & Constantinou (the elements of
+:meth:`isolator.bearing.Bearing.elements`, the same R̄_i, µ_i and rims as the 1-D model
+``1d-multisurface``) with every element a rigid–plastic element with linear hardening in the
+horizontal plane, coupled through the one force vector the massless sliders carry; the
+method is in :mod:`isolator.solver.planar_multisurface_kernel` and docs/multisurface.md.
+
+Not modelled here, each refused in one line: a rim contact in the plane (the run stops with
+a :class:`~isolator.errors.SolverError` naming the time: never past a rim silently), a
+vertical component, a superstructure.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from isolator.errors import DesignError, RecordInputError, SolverError
+from isolator.solver import planar_multisurface_kernel as _pm
+from isolator.solver.base import SolverResult
+from isolator.solver.notice import note_if_slow
+from isolator.solver.planar import R_MIN_FACTOR, R_SWITCH_FACTOR, R_SWITCH_LO_FACTOR
+from isolator.solver.record import sample_timing
+from isolator.solver.system import classify_configuration
+from isolator.units import STANDARD_GRAVITY
+
+MODEL_NAME = "2d-multisurface"
+#: relative tolerance of the DOP853 steps (the planar engine's default)
+DEFAULT_RTOL = 1e-11
+#: two friction coefficients closer than this (relative) make one group: equal circles slide together
+MU_TIE = 1e-12
+
+
+@dataclass(kw_only=True)
+class PlanarMultisurfaceResponse(SolverResult):
+    """Response of a mass on a double or triple friction pendulum to two components (model ``2d-multisurface``).
+
+    The fields of :class:`~isolator.solver.base.SolverResult` with (N, 2) histories, and the
+    bearing's keys of the 1-D model (:class:`isolator.solver.multisurface.MultisurfaceResponse`):
+    ``surface_peak_displacement_m`` (peak |u_i| on each real surface, on the surface, taken at
+    the integration steps' ends and the events), ``regimes`` (first time each set of sliding
+    surfaces was entered, named as in 1-D), ``n_rim_contacts`` (0: a rim contact stops the run),
+    ``ultimate_displacement_reached`` (False, for the same reason).
+    """
+
+    EXTRA_SUMMARY_KEYS = ("bearing_type", "surface_peak_displacement_m", "regimes", "n_rim_contacts",
+                          "ultimate_displacement_reached", "ultimate_displacement_m", "energy_impact_J_per_kg",
+                          "impact_impulse_m_s", "max_impact_velocity_m_s", "peak_force_per_weight")
+    EVENT_NAMES = _pm.EVENT_NAMES
+
+    bearing: object
+    residual_displacement_x_m: float
+    residual_displacement_y_m: float
+    surface_peak_displacement_m: list
+    regimes: dict
+    element_displacement_m: np.ndarray  #: final state of the series elements, (n_elements, 2) [m]
+    ultimate_displacement_m: float
+    peak_force_per_weight: float
+    n_steps: int = 0
+    n_rim_contacts: int = 0
+    ultimate_displacement_reached: bool = False
+    energy_impact_J_per_kg: float = 0.0
+    impact_impulse_m_s: float = 0.0
+    max_impact_velocity_m_s: float = 0.0
+    damping_per_mass: float = 0.0
+    gravity_m_s2: float = STANDARD_GRAVITY
+    uplift_time_s = 0.0
+    n_uplifts = 0
+    model: str = MODEL_NAME
+    model_reason: str = "a multi-surface bearing under two horizontal components: the 2-D series model"
+
+    @property
+    def bearing_type(self) -> str:
+        return self.bearing.kind
+
+    @property
+    def configuration(self) -> str:
+        rbar = self.bearing.elements()[0]
+        return classify_configuration(self.damping_per_mass, self.gravity_m_s2 / float(np.min(rbar)))
+
+
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` for a double or triple bearing under two components (or a vertical); else None."""
+    bearing = getattr(scene.design, "bearing", None)
+    if bearing is None or bearing.is_simple or not (scene.has_y or scene.has_z):
+        return None
+    name = MODEL_NAME + ("+vertical" if scene.has_z else "")
+    return name, (f"a {bearing.kind} friction pendulum ({len(bearing.surfaces)} surfaces) under "
+                  + ("two horizontal components" if scene.has_y else "a vertical component")
+                  + ": the series model of Fenz & Constantinou in the plane (coupled friction on every surface)")
+
+
+def simulate_scene(scene) -> PlanarMultisurfaceResponse:
+    """The 2-D response of the scene's multi-surface bearing (:func:`simulate_bearing_pair`).
+
+    Raises
+    ------
+    RecordInputError
+        A vertical component (not modelled for a double or triple bearing in the plane).
+    DesignError
+        A superstructure on a double or triple bearing.
+    """
+    kind = scene.design.bearing.kind
+    if getattr(scene.design, "superstructure", None) is not None:
+        raise DesignError(f"{scene.design.source}: a {kind} bearing under a [superstructure] is not modelled "
+                          "(2d-multisurface carries a rigid mass)")
+    if scene.has_z:
+        raise RecordInputError(f"a {kind} bearing under a vertical component is not modelled (2d-multisurface takes "
+                               "the two horizontal components; the normal force is the weight)")
+    ax = np.asarray(scene.ax_m_s2, dtype=np.float64)
+    ay = np.zeros_like(ax) if scene.ay_m_s2 is None else scene.ay_m_s2
+    return simulate_bearing_pair(ax, ay, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
+                                 damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
+                                 gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
+
+
+def element_groups(bearing):
+    """The series elements gathered into groups of equal friction (equal circles: they slide together).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(rbar_group [m], mu_group [-], rim_group [m], members)``: per group the summed R̄, the
+        friction, the rim on |ū_group| (the nearest of its elements' rims, ū_i = R̄_i ū_group / R̄_group);
+        ``members[i] = (group of element i, R̄_i)``.
+    """
+    rbar, mu, rim = bearing.elements()
+    groups: list[list[int]] = []
+    for i, m in enumerate(mu):
+        for g in groups:
+            if abs(mu[g[0]] - m) <= MU_TIE * max(m, mu[g[0]]):
+                g.append(i)
+                break
+        else:
+            groups.append([i])
+    rb = np.array([sum(rbar[i] for i in g) for g in groups])
+    mg = np.array([mu[g[0]] for g in groups])
+    rg = np.array([min(rim[i] * rb[k] / rbar[i] for i in g) for k, g in enumerate(groups)])
+    members = np.empty((rbar.size, 2))
+    for k, g in enumerate(groups):
+        for i in g:
+            members[i] = (k, rbar[i])
+    return rb, mg, rg, members
+
+
+_READY = False
+
+
+def _warm_up() -> None:
+    global _READY
+    if _READY:
+        return
+    with note_if_slow("compiling the 2-D multi-surface solver (its first use after installation takes a minute or "
+                      "so; the machine code is cached for later runs)"):
+        _run(np.array([0.0, 0.01, 0.02]), np.array([0.0, 1.0, -1.0]), np.array([0.0, 0.5, 0.0]),
+             np.full(3, STANDARD_GRAVITY), np.array([1.0, 2.0]), np.array([0.02, 0.05]), np.array([1.0, 1.0]),
+             np.array([[0.0, 1.0], [1.0, 2.0]]), np.eye(2), 0.0, np.array([1e-8, 1e-6, 1e-9, 1e-6, 1e-7]),
+             DEFAULT_RTOL, 8)
+    _READY = True
+
+
+def _run(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, capacity):
+    n = t.size
+    out_x = np.empty((n, 2))
+    out_v = np.empty((n, 2))
+    out_a = np.empty((n, 2))
+    out_en = np.empty((3, n))
+    summary = np.zeros(_pm.S_SIZE)
+    surf_peak = np.zeros(tmat.shape[0])
+    first = np.empty(1 << members.shape[0])
+    while True:
+        ev_t = np.empty(capacity)
+        ev_k = np.empty(capacity, dtype=np.int8)
+        ub = np.zeros((rb.size, 2))
+        surf_peak[:] = 0.0
+        start = time.perf_counter()
+        _pm.planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, out_x, out_v,
+                                       out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
+        elapsed = time.perf_counter() - start
+        n_ev = int(summary[_pm.S_N_EVENTS])
+        if n_ev <= capacity:
+            return out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t[:n_ev], ev_k[:n_ev], elapsed
+        capacity = n_ev + 16
+
+
+def _samples(name, values, size=None):
+    a = np.ascontiguousarray(values, dtype=np.float64)
+    if a.ndim != 1 or a.size < 2:
+        raise RecordInputError(f"{name}: a record needs at least two samples in one dimension")
+    if size is not None and a.size != size:
+        raise RecordInputError(f"{name}: {a.size} samples, the first component has {size}")
+    if not np.all(np.isfinite(a)):
+        raise RecordInputError(f"{name}: acceleration holds NaN or infinite values")
+    return a
+
+
+def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
+                          damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
+                          rtol: float = DEFAULT_RTOL) -> PlanarMultisurfaceResponse:
+    """Response of a mass on a multi-surface friction pendulum to two horizontal components.
+
+    Parameters
+    ----------
+    ax_m_s2, ay_m_s2 : array_like
+        Ground acceleration along x and y [m/s²], linear between samples.
+    dt_s : float, optional
+        Sample interval [s] (or give ``time_s``).
+    bearing : isolator.bearing.Bearing
+        The bearing (kinetic friction per surface).
+    time_s : array_like, optional
+        Sample times [s], strictly increasing.
+    damping_per_mass : float
+        Supplemental linear damper γ/M [1/s] (isotropic in the plane).
+    gravity_m_s2 : float
+        g [m/s²].
+    rtol : float
+        Relative tolerance of the DOP853 steps.
+
+    Returns
+    -------
+    PlanarMultisurfaceResponse
+
+    Raises
+    ------
+    SolverError
+        A slider reached its rim (the rim in the plane is not modelled), or the step guard tripped.
+    """
+    ax = _samples("ax_m_s2", ax_m_s2)
+    ay = _samples("ay_m_s2", ay_m_s2, ax.size)
+    if time_s is not None:
+        times = np.asarray(time_s, dtype=np.float64)
+        if times.shape != ax.shape:
+            raise RecordInputError(f"time ({times.shape}) and acceleration ({ax.shape}) differ in length")
+        sample_timing(times)
+        t0 = float(times[0])
+        local = times - t0
+    elif dt_s is not None:
+        dt = float(dt_s)
+        if not math.isfinite(dt) or dt <= 0.0:
+            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
+        t0 = 0.0
+        local = dt * np.arange(ax.size)
+    else:
+        raise TypeError("give dt_s or time_s")
+    c = float(damping_per_mass)
+    g = float(gravity_m_s2)
+    if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
+        raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
+    rb, mu, rim, members = element_groups(bearing)
+    tmat = bearing.surface_matrix()
+    # speed scales as the planar engine builds them (docs/planar.md), for the stiffest group
+    pga = float(np.max(np.hypot(ax, ay)))
+    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(g / float(np.min(rb))))
+    if c > 0.0:
+        t_scale = min(t_scale, 1.0 / c)
+    vref = max(float(np.max(mu)) * g, pga, 1e-12) * t_scale
+    scales = np.array([R_MIN_FACTOR * vref, R_SWITCH_FACTOR * vref, 1e-3 * vref * t_scale, 1e-3 * vref,
+                       R_SWITCH_LO_FACTOR * vref])
+    _warm_up()
+    nz = np.full(ax.size, g)
+    out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t, ev_k, elapsed = _run(
+        local, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, float(rtol), 64 + ax.size // 4)
+    status = int(summary[_pm.S_STATUS])
+    fail_t = t0 + float(summary[_pm.S_FAIL_T])
+    if status & _pm.STATUS_RIM:
+        raise SolverError(f"the {bearing.kind} bearing reaches a rim at t = {fail_t:.6g} s: the rim in the plane is "
+                          "not modelled by 2d-multisurface (the run stops there rather than run past it)")
+    if status & (_pm.STATUS_STEP_LIMIT | _pm.STATUS_SINGULAR | _pm.STATUS_CHATTER):
+        raise SolverError(f"the 2-D multi-surface solver could not finish at t = {fail_t:.6g} s "
+                          f"(status {status}: step guard, event guard or singular compliance)")
+    elements = np.array([members[i, 1] / rb[int(members[i, 0])] * ub[int(members[i, 0])]
+                         for i in range(members.shape[0])])
+    regimes: dict = {}
+    for code in np.flatnonzero(first >= 0.0):
+        name = bearing.regime_name(int(code), 0)
+        if name and (name not in regimes or first[code] + t0 < regimes[name]):
+            regimes[name] = float(first[code] + t0)
+    regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
+    on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
+                                                                                 strict=True)]
+    e_in, e_f, e_v = (float(summary[k]) for k in (_pm.S_E_IN, _pm.S_E_F, _pm.S_E_V))
+    e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
+    e_pot = float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rb)))
+    peak_a = float(summary[_pm.S_PEAK_A])
+    return PlanarMultisurfaceResponse(
+        bearing=bearing,
+        time_s=t0 + local,
+        ground_acceleration_m_s2=np.column_stack((ax, ay)),
+        displacement_m=out_x, velocity_m_s=out_v, absolute_acceleration_m_s2=out_a,
+        event_time_s=t0 + ev_t, event_kind=ev_k,
+        peak_displacement_m=float(summary[_pm.S_PEAK_X]),
+        residual_displacement_m=float(math.hypot(out_x[-1, 0], out_x[-1, 1])),
+        residual_displacement_x_m=float(out_x[-1, 0]),
+        residual_displacement_y_m=float(out_x[-1, 1]),
+        peak_velocity_m_s=float(summary[_pm.S_PEAK_V]),
+        peak_transmitted_acceleration_m_s2=peak_a,
+        slip_time_s=float(summary[_pm.S_SLIP_TIME]),
+        n_events=int(summary[_pm.S_N_EVENTS]),
+        energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
+        energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v),
+        energy_history_J_per_kg=out_en,
+        surface_peak_displacement_m=on_surface,
+        regimes=regimes,
+        element_displacement_m=elements,
+        ultimate_displacement_m=bearing.ultimate_displacement_m,
+        peak_force_per_weight=peak_a / g if c == 0.0 else float(np.max(np.hypot(*(out_a.T + c * out_v.T)))) / g,
+        n_steps=int(summary[_pm.S_N_STEPS]),
+        status=status, message="ok", solver_seconds=elapsed,
+        damping_per_mass=c, gravity_m_s2=g,
+        model=MODEL_NAME, model_reason=f"a {bearing.kind} bearing: the series model in the plane",
+    )
+
+
+__all__ = ["MODEL_NAME", "PlanarMultisurfaceResponse", "element_groups", "scene_needs", "simulate_bearing_pair",
+           "simulate_scene"]

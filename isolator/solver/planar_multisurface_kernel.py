@@ -1,0 +1,1498 @@
+r"""The compiled record loop of a multi-surface friction pendulum in the plane (model ``2d-multisurface``).
+
+Per unit mass, X and V in the horizontal plane relative to the ground; the bearing is the
+series model of :mod:`isolator.solver.multisurface_series` with every element a rigid–plastic
+element with linear hardening *in the plane*.  In units of the weight (r = F/(M n), n = g)
+element k has the back-force b_k = ū_k/R̄_k (a vector) and the friction circle of radius µ_k
+around it:
+
+* stuck:   |r − b_k| ≤ µ_k;
+* sliding: r − b_k = µ_k e_k with ū̇_k = λ_k e_k, λ_k ≥ 0;
+
+the bearing's displacement is X = Σ ū_k and the mass obeys X'' = −n r − c V − a_g.  The
+rate problem (the v_k = ū̇_k minimise Σ µ_k |v_k| + b_k·v_k with Σ v_k = V) makes r the
+support point, in the direction V, of the intersection D of the friction discs.  So:
+
+* **one group sliding** (the support point on one circle's arc): r = b_a + µ_a V/|V| with
+  ū_a = X − S (S the displacement of the stuck elements), i.e. exactly the planar rigid block
+  on a pendulum of radius R̄_a centred at S.  It is integrated with the planar engine's own
+  DOP853 steps (:mod:`isolator.solver.planar_dop853`: START, POLAR, Cartesian and LOG forms,
+  the stop finished by :func:`~isolator.solver.planar_events.coast_to_rest`) with the centre
+  folded into the forcing, a_g* = a_g − (n/R̄_a) S;
+* **two or more groups sliding** (the support point at a corner of D, or on a point several
+  circles share): differentiating |r − b_k| = µ_k gives e_k·ṙ = λ_k/R̄_k, hence
+  V = C ṙ with the compliance C = Σ_active R̄_k e_k e_kᵀ, ṙ = C⁻¹ V.  The state
+  (X, V, r, ū_k, energies) is integrated with a DOP853 step written here (scipy's tableau, written out in planar_multisurface_tableau);
+* a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
+  by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
+* when a group joins along the direction of the sliding ones (|e_a × e_j| < MERGE_ANGLE: a
+  collinear motion, e.g. a pair whose second component is zero) the circles are tangent and
+  C is singular, and when the normals of the sliding groups close to within MERGE_ANGLE (a
+  corner closing towards tangency, whose dynamics is stiff): the groups then slide as one pendulum of radius Σ R̄ and friction
+  Σ R̄_k µ_k / Σ R̄ along that direction, which is the 1-D series model exactly;
+* **stuck**: holds while −a_g/n ∈ D; the break-away is the first root of a quadratic in local
+  time per group (a_g linear); after a stop the stick test is the same, otherwise the group
+  whose circle −a_g/n has left starts (a reversal).
+
+Elements of equal friction start together from rest (equal circles) and stay together: they
+are one *group* (R̄ summed, ū shared in proportion to R̄), which is how the inner surfaces of
+a triple pendulum with µ2 = µ3 slide in regime I.
+
+The rim |ū_k| = c̄_k is **not** modelled in the plane: the first step that would cross one
+stops the run with ``STATUS_RIM`` and its time (the driver raises a SolverError); the motion
+never runs past a rim silently.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from isolator.solver import planar_multisurface_tableau as _dop
+from isolator.solver.planar_control import (
+    ENTER_LOG,
+    LAG_MAX_RAD,
+    LEAVE_LOG,
+    POLAR_VELOCITY_TOL,
+    R_FLOOR_FRACTION,
+    STABLE_CARTESIAN,
+    STABLE_POLAR,
+    enter_polar,
+    leave_log,
+    stop_ahead,
+)
+from isolator.solver.planar_dop853 import dop853_step
+from isolator.solver.planar_events import (
+    PH_APPROACH,
+    PH_POLAR,
+    PH_SLIDE,
+    PH_START,
+    coast_to_rest,
+    force_scale,
+    land_on,
+    locate_peak,
+    peak_value,
+    rate_of_peak,
+    settled,
+    start_lag,
+    tangent_bound,
+    velocity,
+)
+from isolator.solver.planar_rk import (
+    CARTESIAN,
+    LOG,
+    NSTATE,
+    P_C,
+    P_INV_R,
+    P_MU_K,
+    P_MU_S,
+    P_PENDULUM,
+    P_SIZE,
+    POLAR,
+    START,
+    forcing,
+    norm,
+    rhs,
+    start_direction,
+    step_factor,
+)
+
+# phases: the planar engine's codes for the one-group forms, and two of our own
+PH_STUCK = 0
+PH_MULTI = 10  #: two or more groups sliding (corner of D): the Cartesian state of this module
+
+# event kinds
+EV_BREAKAWAY = 0
+EV_STICK = 1
+EV_REVERSAL = 2
+EV_JOIN = 3  #: a group starts sliding while others slide
+EV_LEAVE = 4  #: a group stops sliding while others slide
+EVENT_NAMES = ("breakaway", "stick", "reversal", "join", "leave")
+
+STATUS_CHATTER = 1
+STATUS_EVENTS_TRUNCATED = 2
+STATUS_STEP_LIMIT = 4
+STATUS_RIM = 8  #: a slider reached its rim: not modelled in 2-D, the run stops there
+STATUS_SINGULAR = 16  #: the compliance of the sliding groups became singular (no answer after it)
+
+MAX_EVENTS_PER_INTERVAL = 1000
+MAX_STEPS_PER_INTERVAL = 200000
+
+#: sliding groups whose normals all lie within this angle [rad] of each other slide on as one: a corner
+#: closing towards tangency (a straightening motion) is stiff (the split of the velocity relaxes at a
+#: rate ∝ 1/angle); the state then errs by about R̄ µ × this angle [m] (docs/multisurface.md)
+MERGE_ANGLE = 1e-4
+
+# summary layout
+S_PEAK_X = 0
+S_PEAK_V = 1
+S_PEAK_A = 2
+S_SLIP_TIME = 3
+S_E_IN = 4
+S_E_F = 5
+S_E_V = 6
+S_N_EVENTS = 7
+S_STATUS = 8
+S_N_STEPS = 9
+S_N_REJECTED = 10
+S_FAIL_T = 11  #: time of a rim contact or a failure [s] (-1: none)
+S_STEPS_MULTI = 12
+S_N_MERGED = 13  #: corners that closed below MERGE_ANGLE (the groups then slid as one)
+S_SIZE = 14
+
+# scales (as the planar driver builds them)
+SC_R_MIN = 0
+SC_R_SWITCH = 1
+SC_X_FLOOR = 2
+SC_V_FLOOR = 3
+SC_R_SWITCH_LO = 4
+
+# the Cartesian multi-group state: X, V, r, energies, then ū of each group
+M_X = 0
+M_V = 2
+M_R = 4
+M_EIN = 6
+M_EF = 7
+M_EV = 8
+M_U = 9
+
+_A = np.ascontiguousarray(_dop.A)
+_B = np.ascontiguousarray(_dop.B)
+_C = np.ascontiguousarray(_dop.C)
+_E3 = np.ascontiguousarray(_dop.E3)
+_E5 = np.ascontiguousarray(_dop.E5)
+_NS = _dop.N_STAGES
+
+
+@njit(cache=True)
+def _forcing(tau, raw):
+    # raw = (a_x0, a_x', a_y0, a_y', n0, n')
+    return raw[0] + raw[1] * tau, raw[2] + raw[3] * tau, raw[4] + raw[5] * tau
+
+
+@njit(cache=True)
+def multi_rhs(tau, y, raw, rb, mu, mask, c, d):
+    """Derivative of the multi-group state (see the module docstring); False where C is singular."""
+    ng = rb.shape[0]
+    axx, ayy, nn = _forcing(tau, raw)
+    c11 = 0.0
+    c12 = 0.0
+    c22 = 0.0
+    for k in range(ng):
+        if mask >> k & 1:
+            e1 = y[M_R] - y[M_U + 2 * k] / rb[k]
+            e2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
+            en = math.sqrt(e1 * e1 + e2 * e2)
+            e1 /= en
+            e2 /= en
+            c11 += rb[k] * e1 * e1
+            c12 += rb[k] * e1 * e2
+            c22 += rb[k] * e2 * e2
+    det = c11 * c22 - c12 * c12
+    trace = c11 + c22
+    if not det > 1e-24 * trace * trace:
+        return False
+    v1 = y[M_V]
+    v2 = y[M_V + 1]
+    rd1 = (c22 * v1 - c12 * v2) / det
+    rd2 = (-c12 * v1 + c11 * v2) / det
+    fric = 0.0
+    for k in range(ng):
+        if mask >> k & 1:
+            e1 = y[M_R] - y[M_U + 2 * k] / rb[k]
+            e2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
+            en = math.sqrt(e1 * e1 + e2 * e2)
+            e1 /= en
+            e2 /= en
+            lam = rb[k] * (e1 * rd1 + e2 * rd2)
+            d[M_U + 2 * k] = lam * e1
+            d[M_U + 2 * k + 1] = lam * e2
+            fric += mu[k] * lam
+        else:
+            d[M_U + 2 * k] = 0.0
+            d[M_U + 2 * k + 1] = 0.0
+    d[M_X] = v1
+    d[M_X + 1] = v2
+    d[M_V] = -nn * y[M_R] - c * v1 - axx
+    d[M_V + 1] = -nn * y[M_R + 1] - c * v2 - ayy
+    d[M_R] = rd1
+    d[M_R + 1] = rd2
+    d[M_EIN] = -(axx * v1 + ayy * v2)
+    d[M_EF] = nn * fric
+    d[M_EV] = c * (v1 * v1 + v2 * v2)
+    return True
+
+
+@njit(cache=True)
+def multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt):
+    """One DOP853 step (scipy's tableau and error norm) of the multi-group state; (ok, err)."""
+    m = y.shape[0]
+    for j in range(m):
+        kk[0, j] = f0[j]
+    for s in range(1, _NS):
+        for j in range(m):
+            acc = 0.0
+            for q in range(s):
+                acc += _A[s, q] * kk[q, j]
+            yt[j] = y[j] + h * acc
+        if not multi_rhs(tau + _C[s] * h, yt, raw, rb, mu, mask, c, kk[s]):
+            return False, np.inf
+    for j in range(m):
+        acc = 0.0
+        for q in range(_NS):
+            acc += _B[q] * kk[q, j]
+        ynew[j] = y[j] + h * acc
+    if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
+        return False, np.inf
+    for j in range(m):
+        kk[_NS, j] = fnew[j]
+    e5 = 0.0
+    e3 = 0.0
+    for j in range(m):
+        sc = atol[j] + rtol * max(abs(y[j]), abs(ynew[j]))
+        a5 = 0.0
+        a3 = 0.0
+        for q in range(_NS + 1):
+            a5 += _E5[q] * kk[q, j]
+            a3 += _E3[q] * kk[q, j]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return True, 0.0
+    err = abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * m)
+    if not err < np.inf:
+        return False, np.inf
+    return True, err
+
+
+@njit(cache=True)
+def _lambda(y, d, rb, k):
+    # λ_k = R̄_k e_k·ṙ of group k in the multi-group state
+    e1 = y[M_R] - y[M_U + 2 * k] / rb[k]
+    e2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
+    en = math.sqrt(e1 * e1 + e2 * e2)
+    return rb[k] * (e1 * d[M_R] + e2 * d[M_R + 1]) / en
+
+
+@njit(cache=True)
+def _outside(r1, r2, ub, rb, mu, j):
+    # |r − b_j|² − µ_j² (> 0: r is outside the friction circle of group j)
+    d1 = r1 - ub[j, 0] / rb[j]
+    d2 = r2 - ub[j, 1] / rb[j]
+    return d1 * d1 + d2 * d2 - mu[j] * mu[j]
+
+
+@njit(cache=True)
+def _set_frc(frc, raw, s1, s2, inv_r):
+    # the one-group forcing: a_g* = a_g − (n/R̄) S, so that the planar pendulum is centred at S
+    frc[0] = raw[0] - raw[4] * inv_r * s1
+    frc[1] = raw[1] - raw[5] * inv_r * s1
+    frc[2] = raw[2] - raw[4] * inv_r * s2
+    frc[3] = raw[3] - raw[5] * inv_r * s2
+    frc[4] = raw[4]
+    frc[5] = raw[5]
+    frc[6] = 1.0
+
+
+@njit(cache=True)
+def _one_group_r(x1, x2, e1, e2, s, rc, mue):
+    # r of the sliding group(s) of a one-group phase: (X − S)/R̄ + µ e.  Groups sliding as one along a
+    # collinear motion (s[4] = 1) keep the direction e0 = (s[2], s[3]) of their tangent circles: the
+    # direction of a decelerating slide is unstable as |V| → 0 (it sits near −F/|F|) and turns away from
+    # the line by the amplified rounding before a stop, which must not enter the groups' state
+    if s[4] > 0.0:
+        e1 = s[2]
+        e2 = s[3]
+    return (x1 - s[0]) / rc + mue * e1, (x2 - s[1]) / rc + mue * e2
+
+
+@njit(cache=True)
+def _one_group_settle(ub, comp, x1, x2, e1, e2, s, rc, mue, rb, mu):
+    # the groups of a one-group phase at X: ū_k = R̄_k (r − µ_k e)
+    r1, r2 = _one_group_r(x1, x2, e1, e2, s, rc, mue)
+    if s[4] > 0.0:
+        e1 = s[2]
+        e2 = s[3]
+    for k in range(rb.shape[0]):
+        if comp >> k & 1:
+            ub[k, 0] = rb[k] * (r1 - mu[k] * e1)
+            ub[k, 1] = rb[k] * (r2 - mu[k] * e2)
+
+
+@njit(cache=True)
+def _direction(phase, x, tau, y, prm, frc):
+    v1, v2 = velocity(phase, x, tau, y, prm, frc)
+    vn = norm(v1, v2)
+    if vn > 0.0:
+        return v1 / vn, v2 / vn, vn
+    return 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def _holds(ub, rb, mu, axx, ayy, nn):
+    # −a_g/n inside every friction circle (the stuck bearing holds)
+    worst = -1.0
+    worst_k = -1
+    for k in range(rb.shape[0]):
+        d1 = -axx / nn - ub[k, 0] / rb[k]
+        d2 = -ayy / nn - ub[k, 1] / rb[k]
+        ex = math.sqrt(d1 * d1 + d2 * d2) - mu[k]
+        if ex > 0.0 and (worst_k < 0 or ex > worst):
+            worst = ex
+            worst_k = k
+    return worst_k
+
+
+@njit(cache=True)
+def _breakaway(ub, rb, mu, raw, tau0, tau1):
+    # first τ in [τ0, τ1] where −a_g/n leaves a friction circle: |a_g + n b_k|² − (µ_k n)² = 0,
+    # a quadratic in τ (a_g and n linear); returns (τ, group) or (-1, -1)
+    best = -1.0
+    best_k = -1
+    for k in range(rb.shape[0]):
+        b1 = ub[k, 0] / rb[k]
+        b2 = ub[k, 1] / rb[k]
+        w0x = raw[0] + raw[4] * b1
+        w1x = raw[1] + raw[5] * b1
+        w0y = raw[2] + raw[4] * b2
+        w1y = raw[3] + raw[5] * b2
+        qa = w1x * w1x + w1y * w1y - (mu[k] * raw[5]) ** 2
+        qb = 2.0 * (w0x * w1x + w0y * w1y) - 2.0 * mu[k] * mu[k] * raw[4] * raw[5]
+        qc = w0x * w0x + w0y * w0y - (mu[k] * raw[4]) ** 2
+        if (qa * tau0 + qb) * tau0 + qc > 0.0:
+            root = tau0
+        else:
+            root = -1.0
+            disc = qb * qb - 4.0 * qa * qc
+            if disc >= 0.0:
+                sq = math.sqrt(disc)
+                c0 = np.inf
+                c1 = np.inf
+                if qa != 0.0:
+                    # the stable pair of roots
+                    qq = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
+                    c0 = qq / qa
+                    c1 = qc / qq if qq != 0.0 else np.inf
+                elif qb != 0.0:
+                    c0 = -qc / qb
+                for tr in (c0, c1):
+                    # an upward crossing inside the stretch: q grows there
+                    if tau0 <= tr <= tau1 and (root < 0.0 or tr < root) and 2.0 * qa * tr + qb >= 0.0:
+                        root = tr
+        if root >= 0.0 and (best_k < 0 or root < best):
+            best = root
+            best_k = k
+    return best, best_k
+
+
+@njit(cache=True)
+def _record(ev_t, ev_k, n_ev, t, kind):
+    if n_ev < ev_t.shape[0]:
+        ev_t[n_ev] = t
+        ev_k[n_ev] = kind
+    return n_ev + 1
+
+
+@njit(cache=True)
+def _over_rim(ub, rb, rim, comp):
+    for k in range(rb.shape[0]):
+        if comp >> k & 1 and ub[k, 0] * ub[k, 0] + ub[k, 1] * ub[k, 1] > rim[k] * rim[k]:
+            return True
+    return False
+
+
+@njit(cache=True)
+def _surface_peaks(ub, rb, members, tmat, surf_peak):
+    # |u| on every real surface: u = T ū with ū of element i = (R̄_i / R̄_group) ū_group
+    ne = members.shape[0]
+    for j in range(tmat.shape[0]):
+        s1 = 0.0
+        s2 = 0.0
+        for i in range(ne):
+            if tmat[j, i] != 0.0:
+                g = int(members[i, 0])
+                w = members[i, 1] / rb[g]
+                s1 += tmat[j, i] * w * ub[g, 0]
+                s2 += tmat[j, i] * w * ub[g, 1]
+        v = math.sqrt(s1 * s1 + s2 * s2)
+        if v > surf_peak[j]:
+            surf_peak[j] = v
+
+
+@njit(cache=True)
+def _element_mask(mask, members):
+    out = 0
+    for i in range(members.shape[0]):
+        if mask >> int(members[i, 0]) & 1:
+            out |= 1 << i
+    return out
+
+
+@njit(cache=True)
+def _corr_xy(x1a, x2a, x1b, x2b, s, rc, raw):
+    # −∫ (n/R̄) S·V dt over a piece from X_a to X_b: the planar steps count the work of a_g* = a_g − (n/R̄) S
+    # (exact with n constant: the model takes no vertical record)
+    return -raw[4] / rc * (s[0] * (x1b - x1a) + s[1] * (x2b - x2a))
+
+
+@njit(cache=True)
+def _slaved(tau, y, prm, frc):
+    # the direction of a START-form velocity (slaved to F)
+    _, _, nn, kap, kdot, fx, fy = forcing(tau, y[0], y[1], prm, frc)
+    return start_direction(abs(y[2]), y[0], y[1], fx, fy, kap, kdot, frc, prm[P_MU_K] * nn, prm[P_C])
+
+
+@njit(cache=True)
+def _r_of(mode, xv, yv, prm, frc, s, rc, mue):
+    # r = F/(M n) of the sliding group(s) in a one-group form at independent variable xv
+    if mode == LOG or mode == POLAR:
+        e1 = yv[2]
+        e2 = yv[3]
+    elif mode == CARTESIAN:
+        vn = norm(yv[2], yv[3])
+        e1 = yv[2] / vn if vn > 0.0 else 0.0
+        e2 = yv[3] / vn if vn > 0.0 else 0.0
+    else:
+        e1, e2 = _slaved(xv, yv, prm, frc)
+    return _one_group_r(yv[0], yv[1], e1, e2, s, rc, mue)
+
+
+@njit(cache=True)
+def _joins_in_step(mode, x, y, f, h, theta_max, prm, frc, yb, fb, atol, rtol, s, rc, mue, ub, rb, mu, comp, ynew,
+                   fnew):
+    """The first group whose friction circle the sliding group's r reaches inside a step: (θ, group) or (2, -1).
+
+    Illinois secant on g(θ) = |r − b_j|² − µ_j² of DOP853 sub-steps from the step start, to 1e-13 of the step.
+    """
+    best = 2.0
+    best_k = -1
+    for j in range(rb.shape[0]):
+        if comp >> j & 1:
+            continue
+        r1, r2 = _r_of(mode, x + h, ynew, prm, frc, s, rc, mue)
+        g1 = _outside(r1, r2, ub, rb, mu, j)
+        if not g1 > 0.0:
+            continue
+        r1, r2 = _r_of(mode, x, y, prm, frc, s, rc, mue)
+        g0 = _outside(r1, r2, ub, rb, mu, j)
+        lo = 0.0
+        hi = 1.0
+        glo = min(g0, 0.0)
+        ghi = g1
+        side = 0
+        th = 1.0
+        for _ in range(80):
+            th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+            if not (lo < th < hi):
+                th = 0.5 * (lo + hi)
+            dop853_step(mode, x, y, f, th * h, prm, frc, yb, fb, atol, rtol)
+            r1, r2 = _r_of(mode, x + th * h, yb, prm, frc, s, rc, mue)
+            gv = _outside(r1, r2, ub, rb, mu, j)
+            if gv > 0.0:
+                hi = th
+                ghi = gv
+                if side == 1:
+                    glo *= 0.5
+                side = 1
+            else:
+                lo = th
+                glo = gv
+                if side == -1:
+                    ghi *= 0.5
+                side = -1
+            if hi - lo <= 1e-13:
+                break
+        if hi < best and hi <= theta_max:
+            best = hi
+            best_k = j
+    return best, best_k
+
+
+@njit(cache=True)
+def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt):
+    """Fraction θ of a multi-group step where group k leaves (kind 0: λ_k = 0) or joins (kind 1)."""
+    ng = rb.shape[0]
+    ub = np.empty((ng, 2))
+    for q in range(ng):
+        ub[q, 0] = my[M_U + 2 * q]
+        ub[q, 1] = my[M_U + 2 * q + 1]
+    if kind == 0:
+        g0 = -_lambda(my, mf, rb, k)
+    else:
+        g0 = _outside(my[M_R], my[M_R + 1], ub, rb, mu, k)
+    if g0 >= 0.0:
+        return 0.0
+    lo = 0.0
+    hi = 1.0
+    glo = g0
+    multi_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+    ghi = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
+    side = 0
+    for _ in range(80):
+        th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+        if not (lo < th < hi):
+            th = 0.5 * (lo + hi)
+        multi_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+        gv = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
+        if gv > 0.0:
+            hi = th
+            ghi = gv
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        else:
+            lo = th
+            glo = gv
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        if hi - lo <= 1e-13:
+            break
+    return hi
+
+
+@njit(cache=True)
+def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt):
+    """Largest |y[o:o+2]| inside a multi-group step where its rate goes from + to −: Illinois secant on
+    the rate of its square over DOP853 sub-steps."""
+    lo = 0.0
+    hi = 1.0
+    glo = g0
+    ghi = g1
+    best = 0.0
+    side = 0
+    for _ in range(60):
+        th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+        if not (lo < th < hi):
+            th = 0.5 * (lo + hi)
+        multi_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+        best = max(best, norm(myb[o], myb[o + 1]))
+        gv = myb[o] * mfb[o] + myb[o + 1] * mfb[o + 1]
+        if gv > 0.0:
+            lo = th
+            glo = gv
+            if side == -1:
+                ghi *= 0.5
+            side = -1
+        else:
+            hi = th
+            ghi = gv
+            if side == 1:
+                glo *= 0.5
+            side = 1
+        if hi - lo <= 1e-12:
+            break
+    return best
+
+
+@njit(cache=True)
+def _closing_corner(my, rb, comp):
+    """The common normal of the sliding groups when all their normals lie within MERGE_ANGLE, else (0, 0)."""
+    f1 = 0.0
+    f2 = 0.0
+    first_k = True
+    for k in range(rb.shape[0]):
+        if comp >> k & 1:
+            e1 = my[M_R] - my[M_U + 2 * k] / rb[k]
+            e2 = my[M_R + 1] - my[M_U + 2 * k + 1] / rb[k]
+            en = math.sqrt(e1 * e1 + e2 * e2)
+            e1 /= en
+            e2 /= en
+            if first_k:
+                f1 = e1
+                f2 = e2
+                first_k = False
+            elif abs(f1 * e2 - f2 * e1) > MERGE_ANGLE or f1 * e1 + f2 * e2 < 0.0:
+                return 0.0, 0.0
+    return f1, f2
+
+
+@njit(cache=True)
+def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, my, mf, c):
+    """Group kj joins the sliding group(s) of a one-group phase: a composite along a collinear motion, else
+    the multi-group state.  Returns (phase, comp, rc, mue)."""
+    mode = START if phase == PH_START else (LOG if phase == PH_APPROACH else (
+        POLAR if phase == PH_POLAR else CARTESIAN))
+    r1, r2 = _r_of(mode, x, y, prm, frc, s, rc, mue)
+    if mode == LOG or mode == POLAR:
+        e1 = y[2]
+        e2 = y[3]
+    elif mode == CARTESIAN:
+        vn = norm(y[2], y[3])
+        e1 = y[2] / vn
+        e2 = y[3] / vn
+    else:
+        e1, e2 = _slaved(tau, y, prm, frc)
+    _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
+    if s[4] > 0.0:
+        e1 = s[2]
+        e2 = s[3]
+    d1 = r1 - ub[kj, 0] / rb[kj]
+    d2 = r2 - ub[kj, 1] / rb[kj]
+    dn = math.sqrt(d1 * d1 + d2 * d2)
+    cross = abs(e1 * d2 - e2 * d1) / dn
+    comp |= 1 << kj
+    if cross < MERGE_ANGLE and e1 * d1 + e2 * d2 > 0.0:
+        # tangent circles along the motion: one pendulum of the summed compliance
+        if s[4] == 0.0:
+            s[2] = e1
+            s[3] = e2
+            s[4] = 1.0
+        rc = 0.0
+        rmu = 0.0
+        s[0] = y[0]
+        s[1] = y[1]
+        for k in range(rb.shape[0]):
+            if comp >> k & 1:
+                rc += rb[k]
+                rmu += rb[k] * mu[k]
+                s[0] -= ub[k, 0]
+                s[1] -= ub[k, 1]
+        mue = rmu / rc
+        prm[P_MU_S] = mue
+        prm[P_MU_K] = mue
+        prm[P_INV_R] = 1.0 / rc
+        _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+        rhs(mode, x, y, prm, frc, f)
+        return phase, comp, rc, mue
+    v1, v2 = velocity(phase, x, tau, y, prm, frc)
+    my[M_X] = y[0]
+    my[M_X + 1] = y[1]
+    my[M_V] = v1
+    my[M_V + 1] = v2
+    my[M_R] = r1
+    my[M_R + 1] = r2
+    for k in range(rb.shape[0]):
+        my[M_U + 2 * k] = ub[k, 0]
+        my[M_U + 2 * k + 1] = ub[k, 1]
+    multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
+    return PH_MULTI, comp, rc, mue
+
+
+@njit(cache=True)
+def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev, e_in, e_f, e_v,
+             ein_corr, members, tmat, surf_peak, first):
+    """The mass is at rest at X = y[0:2] (its last direction e): settle the groups, then stick or restart."""
+    e_in += y[4] + ein_corr
+    e_f += y[5]
+    e_v += y[6]
+    _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
+    _surface_peaks(ub, rb, members, tmat, surf_peak)
+    axx, ayy, nn = _forcing(tau, raw)
+    k = _holds(ub, rb, mu, axx, ayy, nn)
+    x1 = y[0]
+    x2 = y[1]
+    y[:] = 0.0
+    y[0] = x1
+    y[1] = x2
+    if k < 0:
+        return PH_STUCK, 0, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_STICK), e_in, e_f, e_v
+    comp = 1 << k
+    rc = rb[k]
+    mue = mu[k]
+    s[0] = x1 - ub[k, 0]
+    s[1] = x2 - ub[k, 1]
+    s[4] = 0.0
+    prm[P_MU_S] = mue
+    prm[P_MU_K] = mue
+    prm[P_INV_R] = 1.0 / rc
+    _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+    rhs(START, tau, y, prm, frc, f)
+    em = _element_mask(comp, members)
+    if first[em] < 0.0:
+        first[em] = t0 + tau
+    return PH_START, comp, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_REVERSAL), e_in, e_f, e_v
+
+
+@njit(cache=True)
+def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol,
+                               out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
+    """Response of a mass on a multi-surface bearing to a piecewise-linear pair of components.
+
+    Parameters
+    ----------
+    t : float64[n]
+        Sample times [s] from 0, strictly increasing.
+    ax, ay : float64[n]
+        Ground acceleration [m/s²].
+    nz : float64[n]
+        n = g + a_z [m/s²] (g without a vertical record).
+    rb, mu, rim : float64[ng]
+        Per group: R̄ [m] (summed over its elements), µ [-], rim on |ū| [m].
+    members : float64[ne, 2]
+        Per series element: its group and its R̄ [m].
+    tmat : float64[ns, ne]
+        Real surfaces from the elements (u = T ū).
+    c : float
+        Damping per unit mass [1/s].
+    scales : float64[5]
+        Speed and tolerance scales (SC_*).
+    rtol : float
+        Relative tolerance of the DOP853 steps.
+    out_x, out_v, out_a : float64[n, 2]
+        X [m], V [m/s], transmitted acceleration −n r − cV [m/s²] at the samples.
+    out_en : float64[3, n]
+        Cumulative input, friction and viscous energy [J/kg].
+    ev_t, ev_k : arrays
+        Events (time, kind) while room lasts.
+    summary : float64[S_SIZE]
+    surf_peak : float64[ns]
+        Largest |u| per real surface (effective geometry) at step ends [m].
+    first : float64[2**ne]
+        First time each set of sliding elements was entered [s] (-1: never).
+    ub : float64[ng, 2]
+        Group displacements (in: zero; out: the final state) [m].
+    """
+    n = t.shape[0]
+    ng = rb.shape[0]
+    nm = M_U + 2 * ng
+    y = np.zeros(NSTATE)
+    f = np.zeros(NSTATE)
+    ynew = np.zeros(NSTATE)
+    fnew = np.zeros(NSTATE)
+    yb = np.zeros(NSTATE)
+    fb = np.zeros(NSTATE)
+    atol = np.full(NSTATE, np.inf)
+    my = np.zeros(nm)
+    mf = np.zeros(nm)
+    mynew = np.zeros(nm)
+    mfnew = np.zeros(nm)
+    myb = np.zeros(nm)
+    mfb = np.zeros(nm)
+    matol = np.full(nm, np.inf)
+    kk = np.zeros((_NS + 1, nm))
+    yt = np.zeros(nm)
+    frc = np.zeros(7)
+    work = np.zeros(2)
+    raw = np.zeros(6)
+    prm = np.zeros(P_SIZE)
+    prm[P_PENDULUM] = 1.0
+    prm[P_C] = c
+    s = np.zeros(5)  #: centre S of a one-group phase [m], direction e0 and flag of a collinear one (see _one_group_r)
+    for j in range(first.shape[0]):
+        first[j] = -1.0
+    phase = PH_STUCK
+    comp = 0  #: the sliding groups (bit set)
+    rc = 1.0
+    mue = 0.0
+    x = 0.0
+    h_sugg = -1.0
+    ds_sugg = -0.5
+    r_min = scales[SC_R_MIN]
+    r_switch = scales[SC_R_SWITCH]
+    r_switch_lo = scales[SC_R_SWITCH_LO]
+    r_floor = r_min * R_FLOOR_FRACTION
+    s_end = math.log(r_min)
+    s_floor = math.log(r_floor)
+    s_stop = s_end
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_a = norm(ax[0], ay[0])
+    slip = 0.0
+    n_ev = 0
+    status = 0
+    n_steps = 0
+    n_rej = 0
+    n_multi = 0
+    n_merged = 0
+    just_rejected = False
+    e_in = 0.0  #: energies of the phases already closed [J/kg]
+    e_f = 0.0
+    e_v = 0.0
+    ein_corr = 0.0  #: −∫(n/R̄) S·V dt of the current one-group phase (y[4] counts the work of a_g*)
+    fail_t = -1.0
+    out_x[0, 0] = 0.0
+    out_x[0, 1] = 0.0
+    out_v[0, 0] = 0.0
+    out_v[0, 1] = 0.0
+    out_a[0, 0] = ax[0]
+    out_a[0, 1] = ay[0]
+    out_en[0, 0] = 0.0
+    out_en[1, 0] = 0.0
+    out_en[2, 0] = 0.0
+    X1 = 0.0  #: X of a stuck bearing
+    X2 = 0.0
+    failed = False
+    for i in range(n - 1):
+        hi = t[i + 1] - t[i]
+        inv_hi = 1.0 / hi
+        raw[0] = ax[i]
+        raw[1] = (ax[i + 1] - ax[i]) * inv_hi
+        raw[2] = ay[i]
+        raw[3] = (ay[i + 1] - ay[i]) * inv_hi
+        raw[4] = nz[i]
+        raw[5] = (nz[i + 1] - nz[i]) * inv_hi
+        if phase == PH_STUCK and _holds(ub, rb, mu, ax[i], ay[i], nz[i]) < 0 and _holds(
+                ub, rb, mu, ax[i + 1], ay[i + 1], nz[i + 1]) < 0:
+            # |a_g + n b| − µ n is convex in τ: held at both ends, held throughout
+            out_x[i + 1, 0] = X1
+            out_x[i + 1, 1] = X2
+            out_v[i + 1, 0] = 0.0
+            out_v[i + 1, 1] = 0.0
+            out_a[i + 1, 0] = ax[i + 1]
+            out_a[i + 1, 1] = ay[i + 1]
+            out_en[0, i + 1] = e_in
+            out_en[1, i + 1] = e_f
+            out_en[2, i + 1] = e_v
+            peak_a = max(peak_a, norm(ax[i + 1], ay[i + 1]))
+            continue
+        tau = 0.0
+        if phase == PH_APPROACH:
+            y[7] = 0.0
+        elif phase != PH_STUCK:
+            x = 0.0
+        if phase != PH_STUCK and phase != PH_MULTI:
+            _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+            rhs(START if phase == PH_START else (LOG if phase == PH_APPROACH else (
+                POLAR if phase == PH_POLAR else CARTESIAN)), x, y, prm, frc, f)
+        elif phase == PH_MULTI:
+            multi_rhs(0.0, my, raw, rb, mu, comp, c, mf)
+        events_here = 0
+        steps_here = 0
+        while tau < hi:
+            steps_here += 1
+            if steps_here > MAX_STEPS_PER_INTERVAL:
+                status |= STATUS_STEP_LIMIT
+                fail_t = t[i] + tau
+                failed = True
+                break
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                status |= STATUS_CHATTER
+                fail_t = t[i] + tau
+                failed = True
+                break
+            target = hi
+            # ------------------------------------------------------------------ stuck
+            if phase == PH_STUCK:
+                tb, kb = _breakaway(ub, rb, mu, raw, tau, target)
+                if kb < 0:
+                    tau = target
+                    break
+                axx, ayy, nn = _forcing(tb, raw)
+                kx = _holds(ub, rb, mu, axx, ayy, nn)
+                if kx >= 0:
+                    # the circle −a_g/n is furthest outside (a record that starts beyond several)
+                    kb = kx
+                peak_a = max(peak_a, norm(ax[i] + raw[1] * tau, ay[i] + raw[3] * tau), norm(axx, ayy))
+                tau = tb
+                comp = 1 << kb
+                rc = rb[kb]
+                mue = mu[kb]
+                s[0] = X1 - ub[kb, 0]
+                s[1] = X2 - ub[kb, 1]
+                s[4] = 0.0
+                prm[P_MU_S] = mue
+                prm[P_MU_K] = mue
+                prm[P_INV_R] = 1.0 / rc
+                _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+                y[:] = 0.0
+                y[0] = X1
+                y[1] = X2
+                y[4] = 0.0
+                ein_corr = 0.0
+                x = tau
+                phase = PH_START
+                rhs(START, tau, y, prm, frc, f)
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_BREAKAWAY)
+                em = _element_mask(comp, members)
+                if first[em] < 0.0:
+                    first[em] = t[i] + tau
+                events_here += 1
+                h_sugg = 0.01 * hi
+                continue
+            # ------------------------------------------------------------------ several groups
+            if phase == PH_MULTI:
+                vmag = norm(my[M_V], my[M_V + 1])
+                if vmag < r_switch_lo:
+                    # too slow for the corner (the cone of the sliding directions closes on a stop): the
+                    # group with the largest share goes on alone (the one-group forms locate the stop)
+                    best = -1.0
+                    kb = -1
+                    for k in range(ng):
+                        if comp >> k & 1:
+                            lam = _lambda(my, mf, rb, k)
+                            if lam > best:
+                                best = lam
+                                kb = k
+                    for k in range(ng):
+                        ub[k, 0] = my[M_U + 2 * k]
+                        ub[k, 1] = my[M_U + 2 * k + 1]
+                    e_in += my[M_EIN]
+                    e_f += my[M_EF]
+                    e_v += my[M_EV]
+                    comp = 1 << kb
+                    rc = rb[kb]
+                    mue = mu[kb]
+                    s[0] = my[M_X] - ub[kb, 0]
+                    s[1] = my[M_X + 1] - ub[kb, 1]
+                    s[4] = 0.0
+                    prm[P_MU_S] = mue
+                    prm[P_MU_K] = mue
+                    prm[P_INV_R] = 1.0 / rc
+                    _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+                    y[:] = 0.0
+                    y[0] = my[M_X]
+                    y[1] = my[M_X + 1]
+                    x = tau
+                    ein_corr = 0.0
+                    if vmag > 0.0:
+                        y[2] = my[M_V]
+                        y[3] = my[M_V + 1]
+                        phase = PH_SLIDE
+                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                    else:
+                        phase = PH_START
+                        rhs(START, tau, y, prm, frc, f)
+                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
+                    events_here += 1
+                    continue
+                hmax = target - tau
+                h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
+                for j in range(2):
+                    matol[M_X + j] = rtol * max(peak_x, scales[SC_X_FLOOR])
+                    matol[M_V + j] = rtol * max(peak_v, scales[SC_V_FLOOR])
+                    matol[M_R + j] = rtol * 1e-3
+                for k in range(ng):
+                    matol[M_U + 2 * k] = matol[M_X]
+                    matol[M_U + 2 * k + 1] = matol[M_X]
+                etol = rtol * max(abs(my[M_EIN]) + my[M_EF] + my[M_EV], scales[SC_V_FLOOR] ** 2)
+                matol[M_EIN] = etol
+                matol[M_EF] = etol
+                matol[M_EV] = etol
+                ok, err = multi_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt)
+                n_steps += 1
+                n_multi += 1
+                if not ok or err > 1.0:
+                    n_rej += 1
+                    h_sugg = h * (0.25 if not ok else step_factor(err))
+                    just_rejected = True
+                    if h_sugg < 1e-14 * hi:
+                        status |= STATUS_SINGULAR
+                        fail_t = t[i] + tau
+                        failed = True
+                        break
+                    continue
+                # events inside the step: a sliding group's λ reaching 0, a stuck one's circle reached
+                theta = 2.0
+                kind = -1
+                which = -1
+                for k in range(ng):
+                    if comp >> k & 1:
+                        if _lambda(mynew, mfnew, rb, k) < 0.0:
+                            th = _locate_multi(0, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                                               kk, yt)
+                            if th < theta:
+                                theta = th
+                                kind = EV_LEAVE
+                                which = k
+                    else:
+                        for q in range(2):
+                            ub[k, q] = my[M_U + 2 * k + q]
+                        if _outside(mynew[M_R], mynew[M_R + 1], ub, rb, mu, k) > 0.0:
+                            th = _locate_multi(1, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                                               kk, yt)
+                            if th < theta:
+                                theta = th
+                                kind = EV_JOIN
+                                which = k
+                if kind >= 0:
+                    ok2, _ = multi_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                                        kk, yt)
+                    mynew[:] = myb
+                    mfnew[:] = mfb
+                    h = theta * h
+                for wp in range(2):
+                    o = M_X if wp == 0 else M_V
+                    g0 = my[o] * mf[o] + my[o + 1] * mf[o + 1]
+                    g1 = mynew[o] * mfnew[o] + mynew[o + 1] * mfnew[o + 1]
+                    v0 = norm(my[o], my[o + 1])
+                    v1 = norm(mynew[o], mynew[o + 1])
+                    if g0 > 0.0 >= g1 and tangent_bound(v0, g0 / max(v0, 1e-300), v1, g1 / max(v1, 1e-300), h) > (
+                            peak_x if wp == 0 else peak_v):
+                        best = _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                                           kk, yt)
+                        if wp == 0:
+                            peak_x = max(peak_x, best)
+                        else:
+                            peak_v = max(peak_v, best)
+                tau = target if (kind < 0 and h == hmax) else tau + h
+                slip += h
+                my[:] = mynew
+                mf[:] = mfnew
+                peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
+                peak_v = max(peak_v, norm(my[M_V], my[M_V + 1]))
+                peak_a = max(peak_a, norm(mf[M_V] + ax[i] + raw[1] * tau, mf[M_V + 1] + ay[i] + raw[3] * tau))
+                for k in range(ng):
+                    ub[k, 0] = my[M_U + 2 * k]
+                    ub[k, 1] = my[M_U + 2 * k + 1]
+                _surface_peaks(ub, rb, members, tmat, surf_peak)
+                if _over_rim(ub, rb, rim, comp):
+                    status |= STATUS_RIM
+                    fail_t = t[i] + tau
+                    failed = True
+                    break
+                if kind < 0:
+                    fac = step_factor(err)
+                    if just_rejected:
+                        fac = min(1.0, fac)
+                    h_sugg = h * fac
+                    just_rejected = False
+                    e01, e02 = _closing_corner(my, rb, comp)
+                    if e01 != 0.0 or e02 != 0.0:
+                        # the corner closes (a motion that straightens: the circles approach tangency, where the
+                        # corner's dynamics is stiff): the groups slide on as one along their common normal
+                        e_in += my[M_EIN]
+                        e_f += my[M_EF]
+                        e_v += my[M_EV]
+                        rc = 0.0
+                        rmu = 0.0
+                        s[0] = my[M_X]
+                        s[1] = my[M_X + 1]
+                        for k in range(ng):
+                            if comp >> k & 1:
+                                rc += rb[k]
+                                rmu += rb[k] * mu[k]
+                                s[0] -= ub[k, 0]
+                                s[1] -= ub[k, 1]
+                        mue = rmu / rc
+                        s[2] = e01
+                        s[3] = e02
+                        s[4] = 1.0
+                        prm[P_MU_S] = mue
+                        prm[P_MU_K] = mue
+                        prm[P_INV_R] = 1.0 / rc
+                        _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+                        y[:] = 0.0
+                        y[0] = my[M_X]
+                        y[1] = my[M_X + 1]
+                        x = tau
+                        ein_corr = 0.0
+                        enter_polar(tau, y, my[M_V], my[M_V + 1], norm(my[M_V], my[M_V + 1]), prm, frc, f)
+                        phase = PH_POLAR
+                        n_merged += 1
+                    continue
+                events_here += 1
+                h_sugg = -1.0
+                if kind == EV_JOIN:
+                    comp |= 1 << which
+                    multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
+                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
+                    em = _element_mask(comp, members)
+                    if first[em] < 0.0:
+                        first[em] = t[i] + tau
+                    continue
+                # a group leaves
+                comp &= ~(1 << which)
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
+                em = _element_mask(comp, members)
+                if first[em] < 0.0:
+                    first[em] = t[i] + tau
+                n_left = 0
+                kb = -1
+                for k in range(ng):
+                    if comp >> k & 1:
+                        n_left += 1
+                        kb = k
+                if n_left >= 2:
+                    multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
+                    continue
+                # one group left: the planar pendulum forms
+                e_in += my[M_EIN]
+                e_f += my[M_EF]
+                e_v += my[M_EV]
+                rc = rb[kb]
+                mue = mu[kb]
+                s[0] = my[M_X] - ub[kb, 0]
+                s[1] = my[M_X + 1] - ub[kb, 1]
+                s[4] = 0.0
+                prm[P_MU_S] = mue
+                prm[P_MU_K] = mue
+                prm[P_INV_R] = 1.0 / rc
+                _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
+                y[:] = 0.0
+                y[0] = my[M_X]
+                y[1] = my[M_X + 1]
+                vmag = norm(my[M_V], my[M_V + 1])
+                x = tau
+                ein_corr = 0.0
+                enter_polar(tau, y, my[M_V], my[M_V + 1], vmag, prm, frc, f)
+                phase = PH_POLAR
+                continue
+            # ------------------------------------------------------------------ one group: planar forms
+            if phase == PH_APPROACH:
+                r = math.exp(x)
+                rdot = r / f[7]
+                fscale = force_scale(y[7], y, r, prm, frc)
+                if x <= s_stop and s_stop > s_floor and not settled(y[7], y, f, prm, frc):
+                    s_stop = s_floor
+                if x > s_stop and rdot > -LEAVE_LOG * fscale:
+                    x = leave_log(tau, y, r, prm, frc, f)
+                    phase = PH_SLIDE
+                    h_sugg = r / max(fscale, 1e-300)
+                    continue
+                if x > s_stop:
+                    ds = max(ds_sugg, s_stop - x)
+                    speed_tol = POLAR_VELOCITY_TOL * rtol * max(peak_v, scales[SC_V_FLOOR])
+                    atol[0] = rtol * max(peak_x, scales[SC_X_FLOOR])
+                    atol[1] = atol[0]
+                    atol[2] = np.inf
+                    atol[3] = np.inf
+                    atol[4] = rtol * max(abs(y[4]) + y[5] + y[6] + abs(e_in), scales[SC_V_FLOOR] ** 2)
+                    atol[5] = atol[4]
+                    atol[6] = atol[4]
+                    atol[7] = max(rtol * hi, speed_tol / max(-rdot, 1e-300))
+                    ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
+                    n_steps += 1
+                    if not ok or err > 1.0:
+                        n_rej += 1
+                        ds_sugg = ds * (0.25 if not ok else step_factor(err))
+                        just_rejected = True
+                        if abs(ds_sugg) < 1e-9:
+                            x = leave_log(tau, y, r, prm, frc, f)
+                            phase = PH_SLIDE
+                            h_sugg = r / max(fscale, 1e-300)
+                        continue
+                    hit = ynew[7] >= target
+                    theta = 1.0
+                    if hit:
+                        theta = land_on(LOG, x, y, f, ds, 7, target, ynew[7], fnew[7], prm, frc, yb, fb, atol,
+                                        rtol, work)
+                    th_j, kj = _joins_in_step(LOG, x, y, f, ds, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue,
+                                              ub, rb, mu, comp, ynew, fnew)
+                    if kj >= 0:
+                        theta = th_j
+                        hit = False
+                    if theta < 1.0 or kj >= 0:
+                        dop853_step(LOG, x, y, f, theta * ds, prm, frc, ynew, fnew, atol, rtol)
+                    g0 = rate_of_peak(0, LOG, y, f)
+                    g1 = rate_of_peak(0, LOG, ynew, fnew)
+                    if g0 > 0.0 >= g1:
+                        v0 = norm(y[0], y[1])
+                        v1 = norm(ynew[0], ynew[1])
+                        if tangent_bound(v0, g0, v1, g1, ynew[7] - y[7]) > peak_x:
+                            peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, theta * ds, v0, g0, v1, g1,
+                                                             ynew[7] - y[7], prm, frc, yb, fb, atol, rtol, work))
+                    if hit:
+                        ynew[7] = target
+                    ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw)
+                    slip += ynew[7] - y[7]
+                    x += theta * ds
+                    y[:] = ynew
+                    f[:] = fnew
+                    tau = y[7]
+                    peak_x = max(peak_x, norm(y[0], y[1]))
+                    if not hit and kj < 0:
+                        ds_sugg = ds * (min(1.0, step_factor(err)) if just_rejected else step_factor(err))
+                    just_rejected = False
+                    if kj >= 0:
+                        r = math.exp(x)
+                        phase, comp, rc, mue = _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub,
+                                                     rb, mu, my, mf, c)
+                        if phase == PH_MULTI:
+                            e_in += y[4] + ein_corr
+                            e_f += y[5]
+                            e_v += y[6]
+                            my[M_EIN] = 0.0
+                            my[M_EF] = 0.0
+                            my[M_EV] = 0.0
+                        n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
+                        em = _element_mask(comp, members)
+                        if first[em] < 0.0:
+                            first[em] = t[i] + tau
+                        events_here += 1
+                        h_sugg = -1.0
+                        continue
+                    if hit or x > s_stop:
+                        continue
+                    if s_stop > s_floor and not settled(y[7], y, f, prm, frc):
+                        s_stop = s_floor
+                        continue
+                # the stop: the last speed in closed form
+                r = math.exp(x)
+                x0_1 = y[0]
+                x0_2 = y[1]
+                dtt = coast_to_rest(tau, y, r, r / f[7], target, prm, frc)
+                ein_corr += _corr_xy(x0_1, x0_2, y[0], y[1], s, rc, raw)
+                tau += dtt
+                slip += dtt
+                peak_x = max(peak_x, norm(y[0], y[1]))
+                phase, comp, rc, mue, n_ev, e_in, e_f, e_v = _at_rest(
+                    tau, t[i], y, y[2], y[3], f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev,
+                    e_in, e_f, e_v, ein_corr, members, tmat, surf_peak, first)
+                ein_corr = 0.0
+                if phase == PH_STUCK:
+                    X1 = y[0]
+                    X2 = y[1]
+                    axx, ayy, nn = _forcing(tau, raw)
+                    peak_a = max(peak_a, norm(axx, ayy))
+                x = tau
+                s_stop = s_end
+                events_here += 1
+                h_sugg = 0.01 * hi
+                continue
+            # START, POLAR, SLIDE (Cartesian)
+            mode = START if phase == PH_START else (POLAR if phase == PH_POLAR else CARTESIAN)
+            fm = 0.0
+            if phase == PH_POLAR:
+                r = y[7]
+                fscale = force_scale(tau, y, r, prm, frc)
+                fm = fscale - mue * (raw[4] + raw[5] * tau)
+                rdot = f[7]
+                h_try = h_sugg if h_sugg > 0.0 else target - tau
+                if (r <= r_floor and rdot <= 0.0) or stop_ahead(r, rdot, fscale, h_try):
+                    y[2] *= r
+                    y[3] *= r
+                    y[7] = 0.0
+                    phase = PH_SLIDE
+                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                    continue
+            if phase == PH_SLIDE:
+                r = norm(y[2], y[3])
+                fscale = force_scale(tau, y, r, prm, frc)
+                rdot = (y[2] * f[2] + y[3] * f[3]) / r if r > 0.0 else 0.0
+                if r <= r_floor and rdot <= 0.0:
+                    x0_1 = y[0]
+                    x0_2 = y[1]
+                    e1 = 0.0
+                    e2 = 0.0
+                    if r > 0.0:
+                        y[2] /= r
+                        y[3] /= r
+                        e1 = y[2]
+                        e2 = y[3]
+                        dtt = coast_to_rest(tau, y, r, rdot, target, prm, frc)
+                        ein_corr += _corr_xy(x0_1, x0_2, y[0], y[1], s, rc, raw)
+                        tau += dtt
+                        slip += dtt
+                        peak_x = max(peak_x, norm(y[0], y[1]))
+                    phase, comp, rc, mue, n_ev, e_in, e_f, e_v = _at_rest(
+                        tau, t[i], y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev,
+                        e_in, e_f, e_v, ein_corr, members, tmat, surf_peak, first)
+                    ein_corr = 0.0
+                    if phase == PH_STUCK:
+                        X1 = y[0]
+                        X2 = y[1]
+                    x = tau
+                    events_here += 1
+                    h_sugg = 0.01 * hi
+                    continue
+                if r < 0.5 * r_switch_lo and not rdot < -ENTER_LOG * fscale:
+                    y[2] = r
+                    y[3] = 0.0
+                    phase = PH_START
+                    rhs(START, tau, y, prm, frc, f)
+                    continue
+                h_try = h_sugg if h_sugg > 0.0 else target - tau
+                if stop_ahead(r, rdot, fscale, h_try):
+                    y[2] /= r
+                    y[3] /= r
+                    y[7] = tau
+                    x = math.log(r)
+                    if rhs(LOG, x, y, prm, frc, f):
+                        phase = PH_APPROACH
+                        s_stop = s_end
+                        ds_sugg = -0.5
+                        continue
+                    y[2] *= r
+                    y[3] *= r
+                    x = tau
+                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                else:
+                    enter_polar(tau, y, y[2], y[3], r, prm, frc, f)
+                    phase = PH_POLAR
+                    mode = POLAR
+                    fm = fscale - mue * (raw[4] + raw[5] * tau)
+            hmax = target - tau
+            h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
+            if phase == PH_SLIDE:
+                h_stable = STABLE_CARTESIAN * r / max(fscale, 1e-300)
+                h = min(h, h_stable)
+            elif phase == PH_POLAR:
+                h_stable = STABLE_POLAR * y[7] / max(fm, 1e-300)
+                h = min(h, h_stable)
+            atol[0] = rtol * max(peak_x, scales[SC_X_FLOOR])
+            atol[1] = atol[0]
+            atol[4] = rtol * max(abs(y[4]) + y[5] + y[6] + abs(e_in), scales[SC_V_FLOOR] ** 2)
+            atol[5] = atol[4]
+            atol[6] = atol[4]
+            atol[2] = rtol * max(peak_v, scales[SC_V_FLOOR])
+            atol[7] = np.inf
+            atol[3] = atol[2] if mode == CARTESIAN else np.inf
+            if mode == POLAR:
+                atol[2] *= POLAR_VELOCITY_TOL
+                atol[7] = atol[2]
+                atol[2] /= y[7]
+                atol[3] = atol[2]
+            ok, err = dop853_step(mode, tau, y, f, h, prm, frc, ynew, fnew, atol, rtol)
+            n_steps += 1
+            if not ok or err > 1.0:
+                n_rej += 1
+                h_sugg = h * (0.25 if not ok else step_factor(err))
+                just_rejected = True
+                continue
+            theta = 1.0
+            restop = mode == START and ynew[2] < 0.0 and fnew[2] < 0.0
+            if restop:
+                theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], fnew[2], prm, frc, yb, fb, atol, rtol, work)
+            th_j, kj = _joins_in_step(mode, tau, y, f, h, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue, ub, rb,
+                                      mu, comp, ynew, fnew)
+            if kj >= 0:
+                theta = th_j
+                restop = False
+            if theta < 1.0:
+                dop853_step(mode, tau, y, f, theta * h, prm, frc, ynew, fnew, atol, rtol)
+                h *= theta
+            if restop:
+                ynew[2] = 0.0
+            ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw)
+            for which in range(2):
+                # |X| and |V| may peak inside the step (the planar engine's bracket and secant)
+                g0 = rate_of_peak(which, mode, y, f)
+                g1 = rate_of_peak(which, mode, ynew, fnew)
+                if g0 > 0.0 >= g1:
+                    v0 = peak_value(which, mode, y)
+                    v1 = peak_value(which, mode, ynew)
+                    if tangent_bound(v0, g0, v1, g1, h) > (peak_x if which == 0 else peak_v):
+                        best = locate_peak(which, mode, tau, y, f, h, v0, g0, v1, g1, h, prm, frc, yb, fb, atol,
+                                           rtol, work)
+                        if which == 0:
+                            peak_x = max(peak_x, best)
+                        else:
+                            peak_v = max(peak_v, best)
+            tau = target if (h == hmax and theta == 1.0) else tau + h
+            y[:] = ynew
+            f[:] = fnew
+            slip += h
+            peak_x = max(peak_x, norm(y[0], y[1]))
+            e1, e2, vn = _direction(phase, tau, tau, y, prm, frc)
+            peak_v = max(peak_v, vn)
+            r1, r2 = _one_group_r(y[0], y[1], e1, e2, s, rc, mue)
+            nn_t = raw[4] + raw[5] * tau
+            vv1, vv2 = velocity(phase, tau, tau, y, prm, frc)
+            peak_a = max(peak_a, norm(nn_t * r1 + c * vv1, nn_t * r2 + c * vv2))
+            if vn > 0.0:
+                _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
+                _surface_peaks(ub, rb, members, tmat, surf_peak)
+                if _over_rim(ub, rb, rim, comp):
+                    status |= STATUS_RIM
+                    fail_t = t[i] + tau
+                    failed = True
+                    break
+            if kj < 0 and not restop:
+                fac = step_factor(err)
+                if just_rejected:
+                    fac = min(1.0, fac)
+                h_sugg = h * fac
+            just_rejected = False
+            x = tau
+            if restop:
+                e1, e2 = _slaved(tau, y, prm, frc)
+                phase, comp, rc, mue, n_ev, e_in, e_f, e_v = _at_rest(
+                    tau, t[i], y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev, e_in,
+                    e_f, e_v, ein_corr, members, tmat, surf_peak, first)
+                ein_corr = 0.0
+                if phase == PH_STUCK:
+                    X1 = y[0]
+                    X2 = y[1]
+                events_here += 1
+                h_sugg = 0.01 * hi
+                continue
+            if kj >= 0:
+                phase, comp, rc, mue = _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
+                                             my, mf, c)
+                if phase == PH_MULTI:
+                    e_in += y[4] + ein_corr
+                    e_f += y[5]
+                    e_v += y[6]
+                    my[M_EIN] = 0.0
+                    my[M_EF] = 0.0
+                    my[M_EV] = 0.0
+                    multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
+                em = _element_mask(comp, members)
+                if first[em] < 0.0:
+                    first[em] = t[i] + tau
+                events_here += 1
+                h_sugg = -1.0
+                continue
+            if phase == PH_START and (y[2] >= r_switch or (
+                    y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > LAG_MAX_RAD)):
+                v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
+                enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
+                phase = PH_POLAR
+        if failed:
+            break
+        # ---- the sample
+        if phase == PH_STUCK:
+            out_x[i + 1, 0] = X1
+            out_x[i + 1, 1] = X2
+            out_v[i + 1, 0] = 0.0
+            out_v[i + 1, 1] = 0.0
+            out_a[i + 1, 0] = ax[i + 1]
+            out_a[i + 1, 1] = ay[i + 1]
+            out_en[0, i + 1] = e_in
+            out_en[1, i + 1] = e_f
+            out_en[2, i + 1] = e_v
+            peak_a = max(peak_a, norm(ax[i + 1], ay[i + 1]))
+        elif phase == PH_MULTI:
+            out_x[i + 1, 0] = my[M_X]
+            out_x[i + 1, 1] = my[M_X + 1]
+            out_v[i + 1, 0] = my[M_V]
+            out_v[i + 1, 1] = my[M_V + 1]
+            out_a[i + 1, 0] = mf[M_V] + ax[i + 1]
+            out_a[i + 1, 1] = mf[M_V + 1] + ay[i + 1]
+            out_en[0, i + 1] = e_in + my[M_EIN]
+            out_en[1, i + 1] = e_f + my[M_EF]
+            out_en[2, i + 1] = e_v + my[M_EV]
+        else:
+            v1, v2 = velocity(phase, x, hi, y, prm, frc)
+            e1, e2, vn = _direction(phase, x, hi, y, prm, frc)
+            r1, r2 = _one_group_r(y[0], y[1], e1, e2, s, rc, mue)
+            out_x[i + 1, 0] = y[0]
+            out_x[i + 1, 1] = y[1]
+            out_v[i + 1, 0] = v1
+            out_v[i + 1, 1] = v2
+            out_a[i + 1, 0] = -nz[i + 1] * r1 - c * v1
+            out_a[i + 1, 1] = -nz[i + 1] * r2 - c * v2
+            out_en[0, i + 1] = e_in + y[4] + ein_corr
+            out_en[1, i + 1] = e_f + y[5]
+            out_en[2, i + 1] = e_v + y[6]
+            peak_a = max(peak_a, norm(out_a[i + 1, 0], out_a[i + 1, 1]))
+    if failed:
+        for j in range(n):
+            if j > i:
+                out_x[j, 0] = np.nan
+                out_x[j, 1] = np.nan
+    # final element state and energies
+    if phase == PH_MULTI:
+        for k in range(ng):
+            ub[k, 0] = my[M_U + 2 * k]
+            ub[k, 1] = my[M_U + 2 * k + 1]
+        e_in += my[M_EIN]
+        e_f += my[M_EF]
+        e_v += my[M_EV]
+    elif phase != PH_STUCK:
+        e1, e2, vn = _direction(phase, x, tau, y, prm, frc)
+        if vn > 0.0:
+            _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
+        e_in += y[4] + ein_corr
+        e_f += y[5]
+        e_v += y[6]
+    if n_ev > ev_t.shape[0]:
+        status |= STATUS_EVENTS_TRUNCATED
+    summary[S_PEAK_X] = peak_x
+    summary[S_PEAK_V] = peak_v
+    summary[S_PEAK_A] = peak_a
+    summary[S_SLIP_TIME] = slip
+    summary[S_E_IN] = e_in
+    summary[S_E_F] = e_f
+    summary[S_E_V] = e_v
+    summary[S_N_EVENTS] = n_ev
+    summary[S_STATUS] = status
+    summary[S_N_STEPS] = n_steps
+    summary[S_N_REJECTED] = n_rej
+    summary[S_FAIL_T] = fail_t
+    summary[S_STEPS_MULTI] = n_multi
+    summary[S_N_MERGED] = n_merged

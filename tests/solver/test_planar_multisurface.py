@@ -1,0 +1,446 @@
+"""The 2-D multi-surface model (double and triple friction pendulums in the plane).
+
+Truths: the exact 1-D model ``1d-multisurface`` (a pair whose second component is zero, and a
+collinear pair rotated), the planar single pendulum ``simulate_pair`` (a double with equal
+friction is one pendulum of radius R1 + R2), rotation invariance, the energy balance.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from isolator.bearing import parse_bearing
+from isolator.errors import DesignError, SolverError
+from isolator.solver.multisurface import simulate_bearing
+from isolator.solver.planar import simulate_pair
+from isolator.solver.planar_multisurface import element_groups, simulate_bearing_pair
+
+G = 9.80665
+
+
+def bearing(kind, surfaces):
+    return parse_bearing({"type": kind, "surface": [
+        {"radius_m": r, "mu": m, "displacement_capacity_m": d} for r, m, d in surfaces]}, DesignError)
+
+
+TFP = bearing("triple", [(2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4)])
+#: a triple whose four surfaces have four frictions (no groups: every join is a corner of two circles)
+TFP4 = bearing("triple", [(2.1, 0.07, 0.4), (0.3, 0.02, 0.05), (0.35, 0.03, 0.06), (2.1, 0.10, 0.4)])
+
+
+def pulse_pair(ax_g=0.25, ay_g=0.2, dt=0.01, duration=10.0, until=4.0):
+    t = np.arange(0.0, duration, dt)
+    on = t < until
+    return 0.0 + ax_g * G * np.sin(2 * np.pi * t / 2.0) * on, ay_g * G * np.cos(2 * np.pi * t / 1.7) * on, dt
+
+
+def rotate(a, b, theta):
+    c, s = np.cos(theta), np.sin(theta)
+    return c * a - s * b, s * a + c * b
+
+
+def test_the_written_out_tableau_is_scipys():
+    from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
+
+    from isolator.solver import planar_multisurface_tableau as ours
+
+    n = scipy_tableau.N_STAGES
+    assert ours.N_STAGES == n
+    np.testing.assert_array_equal(ours.A, scipy_tableau.A[:n, :n])
+    np.testing.assert_array_equal(ours.B, scipy_tableau.B)
+    np.testing.assert_array_equal(ours.C, scipy_tableau.C[:n])
+    np.testing.assert_array_equal(ours.E3, scipy_tableau.E3)
+    np.testing.assert_array_equal(ours.E5, scipy_tableau.E5)
+
+
+def test_groups_of_equal_friction():
+    rb, mu, rim, members = element_groups(TFP)
+    np.testing.assert_allclose(rb, [1.8, 0.6, 1.8])
+    np.testing.assert_allclose(mu, [0.06, 0.02, 0.10])
+    assert [int(g) for g in members[:, 0]] == [0, 1, 1, 2]
+
+
+@pytest.mark.parametrize("b", [TFP, TFP4], ids=["tfp", "tfp-4-frictions"])
+def test_zero_second_component_is_the_1d_model(b):
+    t = np.arange(0.0, 12.0, 0.01)
+    acc = 0.25 * G * np.sin(2 * np.pi * t / 2.0) * (t < 3.0)
+    one = simulate_bearing(acc, 0.01, bearing=b)
+    two = simulate_bearing_pair(acc, np.zeros_like(acc), 0.01, bearing=b)
+    peak = one.peak_displacement_m
+    assert set(one.regimes) >= {"I", "II", "III"}
+    assert abs(two.peak_displacement_m - peak) <= 1e-9 * peak
+    assert np.max(np.abs(two.displacement_m[:, 0] - one.displacement_m)) <= 1e-9 * peak
+    assert np.all(two.displacement_m[:, 1] == 0.0)
+    assert list(two.regimes) == list(one.regimes)
+    for name in one.regimes:
+        assert abs(two.regimes[name] - one.regimes[name]) <= 1e-9
+    np.testing.assert_allclose(two.surface_peak_displacement_m, one.surface_peak_displacement_m, rtol=0, atol=1e-9)
+    assert abs(two.energy_balance_error_J_per_kg) <= 1e-9 * two.energy_input_J_per_kg
+    # the same collinear record along other azimuths: the tangent circles are found through rounding
+    for degrees in (35.0, 123.0):
+        theta = np.radians(degrees)
+        rot = simulate_bearing_pair(np.cos(theta) * acc, np.sin(theta) * acc, 0.01, bearing=b)
+        assert abs(rot.peak_displacement_m - peak) <= 1e-9 * peak
+        along = rot.displacement_m[:, 0] * np.cos(theta) + rot.displacement_m[:, 1] * np.sin(theta)
+        assert np.max(np.abs(along - one.displacement_m)) <= 1e-9 * peak
+        assert list(rot.regimes) == list(one.regimes)
+
+
+@pytest.mark.parametrize("b", [TFP, TFP4], ids=["tfp", "tfp-4-frictions"])
+def test_rotation_invariance_and_energy_balance_in_the_plane(b):
+    ax, ay, dt = pulse_pair()
+    res = simulate_bearing_pair(ax, ay, dt, bearing=b)
+    assert set(res.regimes) >= {"I", "II", "III"}  # the corners of two and three circles are reached
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+    theta = 0.7
+    rx, ry = rotate(ax, ay, theta)
+    rot = simulate_bearing_pair(rx, ry, dt, bearing=b)
+    x = np.column_stack(rotate(res.displacement_m[:, 0], res.displacement_m[:, 1], theta))
+    peak = res.peak_displacement_m
+    assert np.max(np.abs(x - rot.displacement_m)) <= 1e-9 * peak
+    assert abs(rot.peak_displacement_m - peak) <= 1e-9 * peak
+    # mirror y -> -y
+    mir = simulate_bearing_pair(ax, -ay, dt, bearing=b)
+    assert np.max(np.abs(mir.displacement_m[:, 1] + res.displacement_m[:, 1])) <= 1e-9 * peak
+
+
+def test_double_with_equal_friction_is_the_single_pendulum_of_summed_radius():
+    dbl = bearing("double", [(1.5, 0.05, 0.5), (2.5, 0.05, 0.5)])
+    ax, ay, dt = pulse_pair()
+    res = simulate_bearing_pair(ax, ay, dt, bearing=dbl)
+    ref = simulate_pair(ax, ay, dt, mu_static=0.05, radius_m=4.0)
+    peak = ref.peak_displacement_m
+    assert abs(res.peak_displacement_m - peak) <= 1e-9 * peak
+    assert np.max(np.abs(res.displacement_m - ref.displacement_m)) <= 1e-9 * peak
+    assert abs(res.peak_velocity_m_s - ref.peak_velocity_m_s) <= 1e-9 * ref.peak_velocity_m_s
+    # each surface carries its share R_i / (R1 + R2) of the displacement
+    assert res.surface_peak_displacement_m[0] / res.surface_peak_displacement_m[1] == pytest.approx(1.5 / 2.5,
+                                                                                                   rel=1e-9)
+
+
+def test_a_rim_contact_is_refused_with_its_time():
+    ax, ay, dt = pulse_pair(0.6, 0.5)
+    with pytest.raises(SolverError, match=r"reaches a rim at t = [0-9.]+ s"):
+        simulate_bearing_pair(ax, ay, dt, bearing=TFP)
+
+
+def test_registry_runs_the_2d_model_for_a_pair_and_refuses_a_vertical():
+    from isolator.errors import RecordInputError
+    from isolator.solver.models import Scene, select_model, simulate
+
+    class _Design:
+        bearing = TFP
+        superstructure = None
+        source = "tfp.toml"
+
+    ax, ay, dt = pulse_pair(duration=6.0)
+    scene = Scene(ax_m_s2=ax, ay_m_s2=ay, dt_s=dt, isolator={"mu_static": 0.06, "radius_m": 4.2}, design=_Design())
+    name, reason = select_model(scene)
+    assert name == "2d-multisurface" and "triple" in reason
+    res = simulate(scene)
+    direct = simulate_bearing_pair(ax, ay, dt, bearing=TFP)
+    np.testing.assert_array_equal(res.displacement_m, direct.displacement_m)
+    summary = res.summary()
+    for key in ("surface_peak_displacement_m", "regimes", "n_rim_contacts", "ultimate_displacement_reached",
+                "peak_displacement_m", "peak_transmitted_acceleration_m_s2"):
+        assert key in summary
+    vertical = Scene(ax_m_s2=ax, ay_m_s2=ay, az_m_s2=0.1 * ax, dt_s=dt, isolator={}, design=_Design())
+    assert select_model(vertical)[0] == "2d-multisurface+vertical"
+    with pytest.raises(RecordInputError, match="vertical component is not modelled"):
+        simulate(vertical)
+
+
+# ---------------------------------------------------------------------------------------------------
+# an independent reference: scipy solve_ivp on a differently written formulation
+# ---------------------------------------------------------------------------------------------------
+class PlanarSeriesReference:
+    """The series model in the plane, written on (X, V, ū_k) and solved by scipy ``solve_ivp``.
+
+    Shares no code with the kernel.  Groups of equal friction are merged here again (equal
+    circles).  The force r = F/W is never integrated while one or two groups slide:
+
+    * one group a: r = ū_a/R̄_a + µ_a V/|V|, ū̇_a = V (DOP853 at rtol 1e-12, Radau below
+      |V| = ``v_switch`` where V/|V| is stiff; the stop at |V| = ``v_eps`` finished at constant
+      deceleration; a start from rest at |V| = v_eps along the net force, after the time the
+      net force needs to give that speed);
+    * two groups: r is the intersection of their friction circles (closed form, the point
+      nearest the previous one), V = λ_a e_a + λ_b e_b solved for λ (2 × 2), ū̇_k = λ_k e_k;
+    * three or more: r is a state, ṙ = (Σ R̄_k e_k e_kᵀ)⁻¹ V (numpy solve);
+    * events (terminal, ``solve_ivp``): a stuck group's circle reached, a λ reaching 0, the
+      speed switches and the stop; stuck, the break-away is the first sign change of
+      |a_g + g b_k|² − (µ_k g)² on a 65-point grid, polished by brentq.
+
+    Restarted at every sample (no step straddles a kink of the record).  Collinear motion
+    (tangent circles) is outside it: it raises.
+    """
+
+    def __init__(self, b, g=G, rtol=1e-12, v_eps=1e-11, v_switch=1e-3, corner_step=1e-3):
+        self.corner_step = corner_step
+        rbar, mu, _ = b.elements()
+        self.rb, self.mu = [], []
+        for r, m in zip(rbar, mu, strict=True):
+            for k, mk in enumerate(self.mu):
+                if abs(mk - m) <= 1e-12 * m:
+                    self.rb[k] += r
+                    break
+            else:
+                self.rb.append(r)
+                self.mu.append(m)
+        self.rb, self.mu = np.array(self.rb), np.array(self.mu)
+        self.g, self.rtol, self.v_eps, self.v_switch = g, rtol, v_eps, v_switch
+
+    # -- geometry
+    def centre(self, u, k):
+        return u[k] / self.rb[k]
+
+    def corner(self, u, a, b, near):
+        ca, cb = self.centre(u, a), self.centre(u, b)
+        d = cb - ca
+        dist = np.linalg.norm(d)
+        ra, rb_ = self.mu[a], self.mu[b]
+        along = (ra * ra - rb_ * rb_ + dist * dist) / (2.0 * dist)
+        h = np.sqrt(max(ra * ra - along * along, 0.0))
+        mid = ca + along * d / dist
+        perp = np.array([-d[1], d[0]]) / dist
+        p1, p2 = mid + h * perp, mid - h * perp
+        return p1 if np.linalg.norm(p1 - near) <= np.linalg.norm(p2 - near) else p2
+
+    def run(self, t, ax, ay):
+        from scipy.integrate import solve_ivp
+        from scipy.optimize import brentq
+
+        ng = self.rb.size
+        g = self.g
+        X, V = np.zeros(2), np.zeros(2)
+        u = np.zeros((ng, 2))
+        r = np.zeros(2)
+        active: list[int] = []
+        slow = True
+        peak_x = 0.0
+        out_x = np.zeros((t.size, 2))
+        events = []
+        atol = 1e-16
+        for i in range(t.size - 1):
+            t0, t1 = t[i], t[i + 1]
+            sx, sy = (ax[i + 1] - ax[i]) / (t1 - t0), (ay[i + 1] - ay[i]) / (t1 - t0)
+
+            def acc(tt, i=i, t0=t0, sx=sx, sy=sy):
+                return np.array([ax[i] + sx * (tt - t0), ay[i] + sy * (tt - t0)])
+
+            tt = t0
+            for _ in range(500):
+                if tt >= t1:
+                    break
+                if not active:
+                    def excess(s, k, u=u):
+                        w = acc(s) + g * self.centre(u, k)
+                        return w @ w - (self.mu[k] * g) ** 2
+                    def excess_now(s, k, u=u):
+                        return np.linalg.norm(-acc(s) / g - self.centre(u, k)) - self.mu[k]
+                    grid = np.linspace(tt, t1, 65)
+                    best = None
+                    for k in range(ng):
+                        vals = np.array([excess(s, k) for s in grid])
+                        if vals[0] > 0.0:
+                            tb = tt
+                        else:
+                            pos = np.nonzero(vals > 0.0)[0]
+                            if pos.size == 0:
+                                continue
+                            j = pos[0]
+                            tb = brentq(lambda s, k=k: excess(s, k), grid[j - 1], grid[j], xtol=1e-15, rtol=1e-15)
+                        # the earliest; at a tie (a record that starts beyond several circles) the circle
+                        # −a_g/g is furthest outside
+                        if best is None or tb < best[0] or (tb == best[0] and excess_now(tb, k) > excess_now(tb, best[1])):
+                            best = (tb, k)
+                    if best is None:
+                        break
+                    tb, k = best
+                    X, V, tt = self.start(tb, X, u, k, acc, t1)
+                    active = [k]
+                    slow = True
+                    events.append((tt, "breakaway"))
+                    continue
+                tt, X, V, u, r, active, slow, peak_x = self.slide(tt, t1, X, V, u, r, active, slow, acc, peak_x,
+                                                                  events, solve_ivp, atol)
+            out_x[i + 1] = X
+        return out_x, peak_x, events
+
+    def start(self, tb, X, u, k, acc, t_end):
+        # the first v_eps of speed along the net force (X frozen): r' = |F| − µ g =: p + q s
+        g = self.g
+
+        def excess(s):
+            return np.linalg.norm(-(g * self.centre(u, k) + acc(s))) - self.mu[k] * g
+        delta = 1e-7 * (t_end - tb) if t_end > tb else 1e-9
+        p = max(excess(tb), 0.0)
+        q = (excess(tb + delta) - excess(tb)) / delta
+        s = 2.0 * self.v_eps / (p + np.sqrt(p * p + 2.0 * q * self.v_eps)) if q > 0.0 else self.v_eps / p
+        s = min(s, max(t_end - tb, 0.0))
+        force = -(g * self.centre(u, k) + acc(tb))
+        direction = force / np.linalg.norm(force)
+        dist = 0.5 * p * s * s + q * s ** 3 / 6.0
+        u[k] = u[k] + direction * dist
+        return X + direction * dist, self.v_eps * direction, tb + s
+
+    def slide(self, tt, t1, X, V, u, r, active, slow, acc, peak_x, events, solve_ivp, atol):
+        g = self.g
+        ng = self.rb.size
+        na = len(active)
+        stuck = [k for k in range(ng) if k not in active]
+        if na == 2:
+            r = self.corner(u, active[0], active[1], r)
+
+        def unpack(y):
+            Xy, Vy = y[0:2], y[2:4]
+            uy = u.copy()
+            for j, k in enumerate(active):
+                uy[k] = y[4 + 2 * j:6 + 2 * j]
+            ry = y[4 + 2 * na:6 + 2 * na] if na >= 3 else None
+            return Xy, Vy, uy, ry
+
+        def force_and_rates(s, y):
+            Xy, Vy, uy, ry = unpack(y)
+            if na == 1:
+                a = active[0]
+                speed = np.hypot(*Vy)
+                rr = self.centre(uy, a) + self.mu[a] * Vy / speed
+                return rr, [Vy], [speed], None
+            if na == 2:
+                rr = self.corner(uy, active[0], active[1], r)
+            else:
+                rr = ry
+            es = [(rr - self.centre(uy, k)) / np.linalg.norm(rr - self.centre(uy, k)) for k in active]
+            if na == 2:
+                lam = np.linalg.solve(np.column_stack(es), Vy)
+                return rr, [lam[j] * es[j] for j in range(2)], list(lam), None
+            comp = sum(self.rb[k] * np.outer(e, e) for k, e in zip(active, es, strict=True))
+            rdot = np.linalg.solve(comp, Vy)
+            lam = [self.rb[k] * (e @ rdot) for k, e in zip(active, es, strict=True)]
+            return rr, [lam[j] * es[j] for j in range(na)], lam, rdot
+
+        def rhs(s, y):
+            Xy, Vy, uy, ry = unpack(y)
+            rr, rates, lam, rdot = force_and_rates(s, y)
+            dv = -g * rr - acc(s)
+            out = [Vy, dv] + rates
+            if na >= 3:
+                out.append(rdot)
+            return np.concatenate(out)
+
+        y0 = [X, V] + [u[k] for k in active] + ([r] if na >= 3 else [])
+        y0 = np.concatenate(y0)
+        evs = []
+
+        def make_join(k):
+            def ev(s, y):
+                rr, _, _, _ = force_and_rates(s, y)
+                d = rr - self.centre(u, k)
+                return d @ d - self.mu[k] ** 2
+            ev.terminal, ev.direction = True, 1.0
+            return ev
+
+        def make_leave(j):
+            def ev(s, y):
+                return force_and_rates(s, y)[2][j]
+            ev.terminal, ev.direction = True, -1.0
+            return ev
+
+        for k in stuck:
+            evs.append(make_join(k))
+        if na >= 2:
+            for j in range(na):
+                evs.append(make_leave(j))
+        use_slow = na == 1 and slow
+        if na == 1:
+            def ev_switch(s, y):
+                return np.hypot(y[2], y[3]) - self.v_switch
+            ev_switch.terminal, ev_switch.direction = True, (1.0 if use_slow else -1.0)
+            evs.append(ev_switch)
+            if use_slow:
+                def ev_stop(s, y):
+                    return np.hypot(y[2], y[3]) - self.v_eps
+                ev_stop.terminal, ev_stop.direction = True, -1.0
+                evs.append(ev_stop)
+
+        def ev_peak(s, y):
+            return y[0] * y[2] + y[1] * y[3]
+        ev_peak.direction = -1.0
+        evs.append(ev_peak)
+        # at a corner the circles' intersection moves fast where they meet at a small angle: short steps keep
+        # the trial stages of a step from pulling the circles apart
+        sol = solve_ivp(rhs, (tt, t1), y0, method="Radau" if use_slow else "DOP853", rtol=self.rtol, atol=atol,
+                        events=evs, max_step=self.corner_step if na >= 2 else np.inf)
+        if sol.status < 0:
+            raise RuntimeError(sol.message)
+        for yv in sol.y.T:
+            peak_x = max(peak_x, np.hypot(yv[0], yv[1]))
+        for ye in sol.y_events[-1]:
+            peak_x = max(peak_x, np.hypot(ye[0], ye[1]))
+        yend = sol.y[:, -1]
+        X, V, u_new, r_new = unpack(yend)
+        u = u_new
+        if na == 2:
+            r = self.corner(u, active[0], active[1], r)
+        elif na >= 3:
+            r = r_new
+        else:
+            r = force_and_rates(sol.t[-1], yend)[0]
+        tt = sol.t[-1]
+        if sol.status != 1:
+            return t1, X, V, u, r, active, slow, peak_x
+        fired = [j for j, te in enumerate(sol.t_events[:-1]) if len(te)]
+        j = fired[0]
+        if j < len(stuck):
+            k = stuck[j]
+            e_a = V / np.linalg.norm(V) if na == 1 else None
+            if e_a is not None:
+                d = r - self.centre(u, k)
+                if abs(e_a[0] * d[1] - e_a[1] * d[0]) / np.linalg.norm(d) < 1e-6:
+                    raise RuntimeError("reference: collinear join (tangent circles) is outside its formulation")
+            events.append((tt, "join"))
+            return tt, X, V, u, r, active + [k], slow, peak_x
+        j -= len(stuck)
+        if na >= 2 and j < na:
+            events.append((tt, "leave"))
+            left = [k for n_, k in enumerate(active) if n_ != j]
+            return tt, X, V, u, r, left, False, peak_x
+        # single group: switch between slow and fast, or the stop
+        if use_slow and len(sol.t_events[-2]):
+            speed = np.hypot(*V)
+            rate = V @ rhs(tt, yend)[2:4] / speed
+            dt = min(speed / max(-rate, 1e-300), t1 - tt)
+            a = active[0]
+            step = 0.5 * dt * V
+            X = X + step
+            u[a] = u[a] + step
+            tt += dt
+            peak_x = max(peak_x, np.hypot(*X))
+            need = -acc(tt) / g
+            worst, kb = 0.0, -1
+            for k in range(self.rb.size):
+                ex = np.linalg.norm(need - self.centre(u, k)) - self.mu[k]
+                if ex > worst:
+                    worst, kb = ex, k
+            if kb < 0:
+                events.append((tt, "stick"))
+                return tt, X, np.zeros(2), u, r, [], True, peak_x
+            X, V, tt = self.start(tt, X, u, kb, acc, t1)
+            events.append((tt, "reversal"))
+            return tt, X, V, u, r, [kb], True, peak_x
+        return tt, X, V, u, r, active, not slow, peak_x
+
+
+def test_against_an_independent_solve_ivp_reference():
+    # regimes I-III in the plane: corners of two and three circles, groups leaving, reversals and sticks
+    # (measured: peak 6e-14, history 4.8e-13 of the peak; a 2.8 s cut of the 3 s pulse: 4e-14, 5.1e-12)
+    events = {"join", "leave", "reversal", "stick"}
+    ax, ay, dt = pulse_pair(0.22, 0.18, duration=6.0, until=1.3)
+    t = dt * np.arange(ax.size)
+    res = simulate_bearing_pair(ax, ay, dt, bearing=TFP)
+    ref_x, ref_peak, ref_events = PlanarSeriesReference(TFP).run(t, ax, ay)
+    assert events <= {name for _, name in ref_events}
+    assert set(res.regimes) == {"I", "II", "III"}
+    assert abs(res.peak_displacement_m - ref_peak) <= 1e-9 * ref_peak
+    assert np.max(np.abs(res.displacement_m - ref_x)) <= 1e-9 * ref_peak
