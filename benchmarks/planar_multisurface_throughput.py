@@ -1,14 +1,20 @@
-"""Throughput of the 2-D multi-surface kernel (triple friction pendulum) on the real pairs.
+"""Throughput and accuracy of the 2-D multi-surface model (triple friction pendulum) on the real pairs.
 
 Runs :func:`isolator.solver.planar_multisurface.simulate_bearing_pair` on every pair of
-../shared/records/pairs (both horizontals, trimmed to the shorter) for Fenz &
-Constantinou's triple pendulum (R_eff = 2.1/0.3/0.3/2.1 m, µ = 0.06/0.02/0.02/0.10,
-d* = 0.4/0.05/0.05/0.4 m), each pair at its own amplitude, and prints per pair the samples
-per second of the compiled kernel (kernel time only, median of --repeat runs), the DOP853
-steps, the events and the regimes reached; a pair that drives a slider to its rim is
-reported as such (the rim in the plane is not modelled: the run stops there).
+../shared/records/pairs (both horizontals, trimmed to the shorter) for Fenz & Constantinou's
+triple pendulum (R_eff = 2.1/0.3/0.3/2.1 m, µ = 0.06/0.02/0.02/0.10, d* = 0.4/0.05/0.05/0.4 m),
+each pair at its own amplitude times ``--scale``, and prints per pair the method that ran
+("events": the event-driven kernel, exact between events; "steps": the implicit steps, which
+``method="auto"`` runs where the events cannot be resolved), the samples per second of the
+compiled code (solver time only, median of --repeat runs; for "steps" it includes the event-driven
+attempt), the steps, the peak and the regimes; a pair that drives a slider to its rim is reported
+as such (the rim in the plane is not modelled: the run stops there).
 
-    python -m benchmarks.planar_multisurface_throughput [--repeat 5]
+With ``--accuracy`` it also prints each answer's largest distance from two references, as a
+fraction of the peak: the implicit steps at a 10× tighter tolerance (their convergence), and the
+event-driven kernel where it finishes with its energy balance closed (an independent method).
+
+    python -m benchmarks.planar_multisurface_throughput [--repeat 5] [--scale 2] [--accuracy]
 """
 
 from __future__ import annotations
@@ -16,45 +22,72 @@ from __future__ import annotations
 import argparse
 import statistics
 
+import numpy as np
+
 from benchmarks.planar_throughput import SOURCES, load
+
+
+def _distance(a, b, peak):
+    ok = np.isfinite(a[:, 0]) & np.isfinite(b[:, 0])
+    return float(np.max(np.hypot(*(a[ok] - b[ok]).T))) / peak
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5, help="runs per pair (median)")
+    parser.add_argument("--scale", type=float, default=1.0, help="factor on both components")
+    parser.add_argument("--method", default="auto", choices=("auto", "events", "steps"))
+    parser.add_argument("--accuracy", action="store_true", help="distances from the two references")
     args = parser.parse_args(argv)
 
     from isolator.bearing import parse_bearing
     from isolator.errors import DesignError, SolverError
-    from isolator.solver.planar_multisurface import simulate_bearing_pair
+    from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, EVENTS_BALANCE_TOL, simulate_bearing_pair
 
     tfp = parse_bearing({"type": "triple", "surface": [
         {"radius_m": r, "mu": m, "displacement_capacity_m": d}
         for r, m, d in ((2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4))]}, DesignError)
-    print(f"{'pair':26s} {'samples':>8s} {'M samples/s':>12s} {'steps':>7s} {'events':>7s} {'peak x [m]':>10s}  regimes")
+    print(f"scale {args.scale:g}, method {args.method}, step tolerance {DEFAULT_STEP_TOL:g}")
+    print(f"{'pair':26s} {'samples':>8s} {'method':>6s} {'M samples/s':>12s} {'steps':>7s} {'peak x [m]':>10s} "
+          + (f"{'vs tol/10':>10s} {'vs events':>10s} " if args.accuracy else "") + " regimes")
     rates = []
     total_n = 0
     total_t = 0.0
     for folder in SOURCES:
         dt, ax, ay, _ = load(folder)
+        ax = args.scale * ax
+        ay = args.scale * ay
         try:
             times = []
             for _ in range(args.repeat):
-                res = simulate_bearing_pair(ax, ay, dt, bearing=tfp)
+                res = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method)
                 times.append(res.solver_seconds)
         except SolverError as exc:
-            print(f"{folder:26s} {ax.size:8d}   {str(exc)[:70]}")
+            print(f"{folder:26s} {ax.size:8d}   {str(exc)[:90]}")
             continue
         t = statistics.median(times)
         rate = ax.size / t / 1e6
         rates.append(rate)
         total_n += ax.size
         total_t += t
-        print(f"{folder:26s} {ax.size:8d} {rate:12.2f} {res.n_steps:7d} {res.n_events:7d} "
-              f"{res.peak_displacement_m:10.4f}  {' '.join(res.regimes)}")
+        how = "steps" if "implicit steps" in res.model_reason else "events"
+        extra = ""
+        if args.accuracy:
+            peak = res.peak_displacement_m
+            fine = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="steps", step_tol=DEFAULT_STEP_TOL / 10)
+            extra = f"{_distance(res.displacement_m, fine.displacement_m, peak):10.1e} "
+            try:
+                ev = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="events")
+                closed = abs(ev.energy_balance_error_J_per_kg) <= EVENTS_BALANCE_TOL * ev.energy_input_J_per_kg
+                extra += f"{_distance(res.displacement_m, ev.displacement_m, peak):10.1e} " if closed else (
+                    f"{'(imbal.)':>10s} ")
+            except SolverError:
+                extra += f"{'(stops)':>10s} "
+        print(f"{folder:26s} {ax.size:8d} {how:>6s} {rate:12.3f} {res.n_steps:7d} {res.peak_displacement_m:10.4f} "
+              f"{extra} {' '.join(res.regimes)}")
     if rates:
-        print(f"median {statistics.median(rates):.2f} M samples/s, slowest {min(rates):.2f}, "
-              f"all samples / all time {total_n / total_t / 1e6:.2f} M samples/s")
+        print(f"median {statistics.median(rates):.3f} M samples/s, slowest {min(rates):.3f}, "
+              f"all samples / all time {total_n / total_t / 1e6:.3f} M samples/s")
     return 0
 
 

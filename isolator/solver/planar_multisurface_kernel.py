@@ -139,7 +139,8 @@ S_N_STEPS = 9
 S_N_REJECTED = 10
 S_FAIL_T = 11  #: time of a rim contact or a failure [s] (-1: none)
 S_STEPS_MULTI = 12
-S_N_MERGED = 13  #: corners that closed below MERGE_ANGLE (the groups then slid as one)
+S_N_MERGED = 13  #: groups made to slide as one along a fixed direction (a join along the motion, a corner closing
+#: below MERGE_ANGLE) or a slow corner left to one group: exact for a collinear record only
 S_SIZE = 14
 
 # scales (as the planar driver builds them)
@@ -346,9 +347,11 @@ def _holds(ub, rb, mu, axx, ayy, nn):
 
 
 @njit(cache=True)
-def _breakaway(ub, rb, mu, raw, tau0, tau1):
-    # first τ in [τ0, τ1] where −a_g/n leaves a friction circle: |a_g + n b_k|² − (µ_k n)² = 0,
-    # a quadratic in τ (a_g and n linear); returns (τ, group) or (-1, -1)
+def breakaway(ub, rb, mu, raw, tau0, tau1):
+    """First τ in [τ0, τ1] where −a_g/n leaves a friction circle (a stuck bearing breaks away).
+
+    |a_g + n b_k|² − (µ_k n)² = 0 is a quadratic in τ (a_g and n linear, raw = (a_x, a_x', a_y, a_y',
+    n, n')); returns (τ, group) or (-1, -1)."""
     best = -1.0
     best_k = -1
     for k in range(rb.shape[0]):
@@ -404,7 +407,8 @@ def _over_rim(ub, rb, rim, comp):
 
 
 @njit(cache=True)
-def _surface_peaks(ub, rb, members, tmat, surf_peak):
+def surface_peaks(ub, rb, members, tmat, surf_peak):
+    """Raise surf_peak [m] to |u| of every real surface at the groups' displacements ub (u = T ū)."""
     # |u| on every real surface: u = T ū with ū of element i = (R̄_i / R̄_group) ū_group
     ne = members.shape[0]
     for j in range(tmat.shape[0]):
@@ -422,7 +426,8 @@ def _surface_peaks(ub, rb, members, tmat, surf_peak):
 
 
 @njit(cache=True)
-def _element_mask(mask, members):
+def element_mask(mask, members):
+    """The bit set of series elements of a bit set of groups."""
     out = 0
     for i in range(members.shape[0]):
         if mask >> int(members[i, 0]) & 1:
@@ -679,7 +684,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     e_f += y[5]
     e_v += y[6]
     _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
-    _surface_peaks(ub, rb, members, tmat, surf_peak)
+    surface_peaks(ub, rb, members, tmat, surf_peak)
     axx, ayy, nn = _forcing(tau, raw)
     k = _holds(ub, rb, mu, axx, ayy, nn)
     x1 = y[0]
@@ -700,7 +705,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     prm[P_INV_R] = 1.0 / rc
     _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
     rhs(START, tau, y, prm, frc, f)
-    em = _element_mask(comp, members)
+    em = element_mask(comp, members)
     if first[em] < 0.0:
         first[em] = t0 + tau
     return PH_START, comp, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_REVERSAL), e_in, e_f, e_v
@@ -866,7 +871,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
             target = hi
             # ------------------------------------------------------------------ stuck
             if phase == PH_STUCK:
-                tb, kb = _breakaway(ub, rb, mu, raw, tau, target)
+                tb, kb = breakaway(ub, rb, mu, raw, tau, target)
                 if kb < 0:
                     tau = target
                     break
@@ -896,7 +901,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 phase = PH_START
                 rhs(START, tau, y, prm, frc, f)
                 n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_BREAKAWAY)
-                em = _element_mask(comp, members)
+                em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
                 events_here += 1
@@ -907,7 +912,9 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 vmag = norm(my[M_V], my[M_V + 1])
                 if vmag < r_switch_lo:
                     # too slow for the corner (the cone of the sliding directions closes on a stop): the
-                    # group with the largest share goes on alone (the one-group forms locate the stop)
+                    # group with the largest share goes on alone (the one-group forms locate the stop); an
+                    # approximation, counted with the merges
+                    n_merged += 1
                     best = -1.0
                     kb = -1
                     for k in range(ng):
@@ -1027,7 +1034,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 for k in range(ng):
                     ub[k, 0] = my[M_U + 2 * k]
                     ub[k, 1] = my[M_U + 2 * k + 1]
-                _surface_peaks(ub, rb, members, tmat, surf_peak)
+                surface_peaks(ub, rb, members, tmat, surf_peak)
                 if _over_rim(ub, rb, rim, comp):
                     status |= STATUS_RIM
                     fail_t = t[i] + tau
@@ -1079,14 +1086,14 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     comp |= 1 << which
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
                     n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
-                    em = _element_mask(comp, members)
+                    em = element_mask(comp, members)
                     if first[em] < 0.0:
                         first[em] = t[i] + tau
                     continue
                 # a group leaves
                 comp &= ~(1 << which)
                 n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
-                em = _element_mask(comp, members)
+                em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
                 n_left = 0
@@ -1190,6 +1197,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         r = math.exp(x)
                         phase, comp, rc, mue = _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub,
                                                      rb, mu, my, mf, c)
+                        if phase != PH_MULTI:
+                            n_merged += 1
                         if phase == PH_MULTI:
                             e_in += y[4] + ein_corr
                             e_f += y[5]
@@ -1198,7 +1207,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             my[M_EF] = 0.0
                             my[M_EV] = 0.0
                         n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
-                        em = _element_mask(comp, members)
+                        em = element_mask(comp, members)
                         if first[em] < 0.0:
                             first[em] = t[i] + tau
                         events_here += 1
@@ -1374,7 +1383,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
             peak_a = max(peak_a, norm(nn_t * r1 + c * vv1, nn_t * r2 + c * vv2))
             if vn > 0.0:
                 _one_group_settle(ub, comp, y[0], y[1], e1, e2, s, rc, mue, rb, mu)
-                _surface_peaks(ub, rb, members, tmat, surf_peak)
+                surface_peaks(ub, rb, members, tmat, surf_peak)
                 if _over_rim(ub, rb, rim, comp):
                     status |= STATUS_RIM
                     fail_t = t[i] + tau
@@ -1402,6 +1411,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
             if kj >= 0:
                 phase, comp, rc, mue = _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
                                              my, mf, c)
+                if phase != PH_MULTI:
+                    n_merged += 1
                 if phase == PH_MULTI:
                     e_in += y[4] + ein_corr
                     e_f += y[5]
@@ -1411,7 +1422,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     my[M_EV] = 0.0
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
                 n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
-                em = _element_mask(comp, members)
+                em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
                 events_here += 1

@@ -1,0 +1,432 @@
+r"""The robust method of the 2-D multi-surface model: implicit steps on the smooth formulation.
+
+The event-driven kernel (:mod:`isolator.solver.planar_multisurface_kernel`) follows the sliding set
+from event to event.  Where three friction circles meet at small angles, or two sliding circles
+close towards tangency while the motion curves, the sliding set changes faster than events can be
+resolved (a group joins and leaves in turn) and its compliance matrix becomes singular; the kernel
+then stops with a status.  This module integrates the same model without any event:
+
+per unit mass and in units of the weight (n = g), with the groups' displacements ū_k, their
+back-forces b_k = ū_k/R̄_k and friction circles of radius µ_k, one **backward-Euler step** of length
+h from (X, V, ū) is the minimiser of a strictly convex function of the force r (its dual):
+
+    Ψ(r) = g |r|²/2 + α Σ_k R̄_k (|r − b_k| − µ_k)₊² / 2 − p·r,   α = (1 + c h)/h²,  p = V/h − ā,
+
+(ā the mean ground acceleration over the step), after which every group slides by the exact
+return of its rigid–plastic element with linear hardening, δ_k = R̄_k (|r − b_k| − µ_k)₊ (r − b_k)/|r − b_k|,
+X ← X + Σ δ_k, V ← Σ δ_k / h.  This is the incremental variational form of the model (the δ_k minimise
+Σ_k [g|ū_k + δ_k|²/(2R̄_k) + g µ_k |δ_k|] + (1 + ch)|Σδ_k|²/(2h²) − p·Σδ_k, and r is its Lagrange
+multiplier): whatever the geometry of the circles — corners at any angle, tangency, three circles
+through one point, a stop, a stick — the step has exactly one answer, found by Newton's method on a
+2-D strongly convex function (bounded iterations, backtracking).  r is the projection-type answer of
+the time-discrete problem, so a stick is exact (V = 0, r = −ā/g inside every circle) and no event
+needs locating.
+
+The step is first order; each step is taken twice (h, then two halves of h/2), the difference is
+the local error estimate that sets the step size (relative tolerance ``tol`` of the peak
+displacement and velocity), and the two are combined (Richardson, 2·y_{h/2} − y_h) for second-order
+accuracy where the motion is smooth.  The error is measured against the event-driven kernel on the
+records it finishes (docs/multisurface.md) and converges with ``tol``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from isolator.solver.planar_multisurface_kernel import (
+    EV_BREAKAWAY,
+    EV_STICK,
+    S_E_F,
+    S_E_IN,
+    S_E_V,
+    S_FAIL_T,
+    S_N_EVENTS,
+    S_N_REJECTED,
+    S_N_STEPS,
+    S_PEAK_A,
+    S_PEAK_V,
+    S_PEAK_X,
+    S_SLIP_TIME,
+    S_STATUS,
+    S_STEPS_MULTI,
+    STATUS_EVENTS_TRUNCATED,
+    STATUS_RIM,
+    STATUS_STEP_LIMIT,
+    breakaway,
+    element_mask,
+    surface_peaks,
+)
+
+#: the Newton iteration on Ψ (2-D, strongly convex) stops after this many iterations at the latest
+MAX_NEWTON = 60
+#: accepted plus rejected steps allowed inside one sample interval (the loop's bound: at most 1/H_MIN_FRACTION
+#: accepted steps of the smallest length, each after at most a few rejected ones)
+MAX_STEPS_PER_INTERVAL = 3_000_000
+#: smallest step as a fraction of the sample interval: there the step is taken whatever its error
+#: estimate (progress is guaranteed; counted in the summary's S_STEPS_MULTI slot)
+H_MIN_FRACTION = 1e-6
+
+# the state vector: X, V, energies (input, friction, viscous), then ū of each group
+Y_X = 0
+Y_V = 2
+Y_EIN = 4
+Y_EF = 5
+Y_EV = 6
+Y_U = 7
+
+
+@njit(cache=True)
+def _psi_grad(rx, ry, y, rb, mu, alpha, px, py, g):
+    # Ψ(r) of the module docstring and its gradient F = g r + α ΔX(r) − p
+    acc = 0.5 * g * (rx * rx + ry * ry) - px * rx - py * ry
+    fx = g * rx - px
+    fy = g * ry - py
+    for k in range(rb.shape[0]):
+        d1 = rx - y[Y_U + 2 * k] / rb[k]
+        d2 = ry - y[Y_U + 2 * k + 1] / rb[k]
+        dn = math.sqrt(d1 * d1 + d2 * d2)
+        ex = dn - mu[k]
+        if ex > 0.0:
+            acc += 0.5 * alpha * rb[k] * ex * ex
+            fx += alpha * rb[k] * ex * d1 / dn
+            fy += alpha * rb[k] * ex * d2 / dn
+    return acc, fx, fy
+
+
+@njit(cache=True)
+def _held(y, rb, mu, r1, r2):
+    # r = (r1, r2) inside every friction circle
+    for k in range(rb.shape[0]):
+        d1 = r1 - y[Y_U + 2 * k] / rb[k]
+        d2 = r2 - y[Y_U + 2 * k + 1] / rb[k]
+        if d1 * d1 + d2 * d2 > mu[k] * mu[k]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def step_force(y, rb, mu, alpha, px, py, g, rx, ry):
+    """The force r/W of one backward-Euler step: the minimiser of Ψ (module docstring), by Newton's method
+    from the guess (rx, ry), the step cut back until Ψ or |∇Ψ| decreases.  Returns (rx, ry, iterations)."""
+    ng = rb.shape[0]
+    # stuck: p/g inside every circle is the answer (Ψ's gradient g r − p vanishes there)
+    if _held(y, rb, mu, px / g, py / g):
+        return px / g, py / g, 0
+    # one group sliding has a closed form: r − b_k ∥ p − g b_k, |r − b_k| = (|p − g b_k| + αR̄µ)/(g + αR̄); it is
+    # the answer when that r lies inside every other circle, else the nearest such point starts Newton (the
+    # valley of Ψ is curved along a circle: from far away the Cartesian steps crawl)
+    best = np.inf
+    for k in range(ng):
+        b1 = y[Y_U + 2 * k] / rb[k]
+        b2 = y[Y_U + 2 * k + 1] / rb[k]
+        q1 = px - g * b1
+        q2 = py - g * b2
+        qn = math.sqrt(q1 * q1 + q2 * q2)
+        if not qn > g * mu[k]:
+            continue  # p/g inside circle k: group k does not slide alone
+        w = alpha * rb[k]
+        rho = (qn + w * mu[k]) / (g + w)
+        cx = b1 + rho * q1 / qn
+        cy = b2 + rho * q2 / qn
+        worst = 0.0
+        for j in range(ng):
+            if j != k:
+                d1 = cx - y[Y_U + 2 * j] / rb[j]
+                d2 = cy - y[Y_U + 2 * j + 1] / rb[j]
+                worst = max(worst, math.sqrt(d1 * d1 + d2 * d2) - mu[j])
+        if worst == 0.0:
+            return cx, cy, 0
+        if worst < best:
+            best = worst
+            rx = cx
+            ry = cy
+    # |∇Ψ| below this is the rounding of its terms (g r and p)
+    f_floor = 1e-15 * (abs(px) + abs(py) + g)
+    r_scale = 0.0
+    for k in range(ng):
+        r_scale = max(r_scale, mu[k])
+    psi0, fx, fy = _psi_grad(rx, ry, y, rb, mu, alpha, px, py, g)
+    it = 0
+    for it in range(1, MAX_NEWTON + 1):
+        f0 = math.sqrt(fx * fx + fy * fy)
+        if f0 <= f_floor:
+            break
+        h11 = g
+        h12 = 0.0
+        h22 = g
+        for k in range(ng):
+            d1 = rx - y[Y_U + 2 * k] / rb[k]
+            d2 = ry - y[Y_U + 2 * k + 1] / rb[k]
+            dn = math.sqrt(d1 * d1 + d2 * d2)
+            if dn > mu[k]:
+                w = alpha * rb[k]
+                q = mu[k] / dn
+                e1 = d1 / dn
+                e2 = d2 / dn
+                h11 += w * ((1.0 - q) + q * e1 * e1)
+                h12 += w * q * e1 * e2
+                h22 += w * ((1.0 - q) + q * e2 * e2)
+        det = h11 * h22 - h12 * h12  # ≥ g² > 0: Ψ is g-strongly convex
+        s1 = -(h22 * fx - h12 * fy) / det
+        s2 = -(-h12 * fx + h11 * fy) / det
+        if abs(s1) + abs(s2) <= 4e-16 * (abs(rx) + abs(ry) + r_scale):
+            # the correction is below the rounding of r
+            break
+        slope = fx * s1 + fy * s2
+        t = 1.0
+        moved = False
+        for _ in range(60):
+            psi1, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, alpha, px, py, g)
+            if psi1 <= psi0 + 1e-4 * t * slope or math.sqrt(gx * gx + gy * gy) <= (1.0 - 1e-4 * t) * f0:
+                moved = True
+                break
+            t *= 0.5
+        if not moved:
+            # neither decreases above rounding: r is the minimiser to the precision of Ψ
+            break
+        rx += t * s1
+        ry += t * s2
+        psi0 = psi1
+        fx = gx
+        fy = gy
+    return rx, ry, it
+
+
+@njit(cache=True)
+def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rguess, out, rout):
+    """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout.
+
+    Returns the bit set of the groups that slid."""
+    alpha = (1.0 + c * h) / (h * h)
+    px = y[Y_V] / h - abar_x
+    py = y[Y_V + 1] / h - abar_y
+    rx, ry, _ = step_force(y, rb, mu, alpha, px, py, g, rguess[0], rguess[1])
+    rout[0] = rx
+    rout[1] = ry
+    dx1 = 0.0
+    dx2 = 0.0
+    fric = 0.0
+    mask = 0
+    for k in range(rb.shape[0]):
+        u1 = y[Y_U + 2 * k]
+        u2 = y[Y_U + 2 * k + 1]
+        d1 = rx - u1 / rb[k]
+        d2 = ry - u2 / rb[k]
+        dn = math.sqrt(d1 * d1 + d2 * d2)
+        if dn > mu[k]:
+            lam = rb[k] * (dn - mu[k])
+            v1 = lam * d1 / dn
+            v2 = lam * d2 / dn
+            out[Y_U + 2 * k] = u1 + v1
+            out[Y_U + 2 * k + 1] = u2 + v2
+            dx1 += v1
+            dx2 += v2
+            fric += g * mu[k] * lam
+            mask |= 1 << k
+        else:
+            out[Y_U + 2 * k] = u1
+            out[Y_U + 2 * k + 1] = u2
+    out[Y_X] = y[Y_X] + dx1
+    out[Y_X + 1] = y[Y_X + 1] + dx2
+    # V from the momentum balance rather than ΣΔ/h (equal in exact arithmetic): the slips' rounding divided
+    # by a small step would swamp the error estimate
+    if mask:
+        out[Y_V] = (y[Y_V] - h * (g * rx + abar_x)) / (1.0 + c * h)
+        out[Y_V + 1] = (y[Y_V + 1] - h * (g * ry + abar_y)) / (1.0 + c * h)
+    else:
+        out[Y_V] = 0.0
+        out[Y_V + 1] = 0.0
+    out[Y_EIN] = y[Y_EIN] - (abar_x * dx1 + abar_y * dx2)
+    out[Y_EF] = y[Y_EF] + fric
+    out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
+    return mask
+
+
+@njit(cache=True)
+def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales,
+                                out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
+    """Response of a mass on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
+
+    The arguments are those of :func:`~isolator.solver.planar_multisurface_kernel.planar_multisurface_kernel`
+    with g [m/s²] for its n = g (no vertical), ``tol`` the relative tolerance of the local error
+    estimate and ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
+    Events (breakaway, stick) are recorded at the end of the step in which they happen.
+    """
+    n = t.shape[0]
+    ng = rb.shape[0]
+    ny = Y_U + 2 * ng
+    y = np.zeros(ny)
+    y1 = np.zeros(ny)
+    yh = np.zeros(ny)
+    y2 = np.zeros(ny)
+    r1 = np.zeros(2)
+    rh = np.zeros(2)
+    r2 = np.zeros(2)
+    r = np.zeros(2)
+    raw = np.zeros(6)
+    raw[4] = g
+    for j in range(first.shape[0]):
+        first[j] = -1.0
+    x_floor = scales[0]
+    v_floor = scales[1]
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_a = math.sqrt(ax[0] * ax[0] + ay[0] * ay[0])
+    slip = 0.0
+    n_ev = 0
+    n_steps = 0
+    n_rej = 0
+    n_floor = 0
+    status = 0
+    fail_t = -1.0
+    moving = False
+    h_sugg = -1.0
+    out_x[0, 0] = 0.0
+    out_x[0, 1] = 0.0
+    out_v[0, 0] = 0.0
+    out_v[0, 1] = 0.0
+    out_a[0, 0] = ax[0]
+    out_a[0, 1] = ay[0]
+    out_en[0, 0] = 0.0
+    out_en[1, 0] = 0.0
+    out_en[2, 0] = 0.0
+    last = 0
+    for i in range(n - 1):
+        hi = t[i + 1] - t[i]
+        slope_x = (ax[i + 1] - ax[i]) / hi
+        slope_y = (ay[i + 1] - ay[i]) / hi
+        raw[0] = ax[i]
+        raw[1] = slope_x
+        raw[2] = ay[i]
+        raw[3] = slope_y
+        tau = 0.0
+        h = hi if (h_sugg <= 0.0 or h_sugg > hi) else h_sugg
+        steps_here = 0
+        while tau < hi:
+            steps_here += 1
+            if steps_here > MAX_STEPS_PER_INTERVAL:
+                status |= STATUS_STEP_LIMIT
+                fail_t = t[i] + tau
+                break
+            if not moving:
+                # at rest: it holds (exactly: X, ū and the energies stay) until −a_g/g leaves a friction circle,
+                # the first root of a quadratic per group, where the steps start again with a small one
+                for k in range(ng):
+                    ub[k, 0] = y[Y_U + 2 * k]
+                    ub[k, 1] = y[Y_U + 2 * k + 1]
+                tb, kb = breakaway(ub, rb, mu, raw, tau, hi)
+                if kb < 0:
+                    a1 = ax[i + 1]
+                    a2 = ay[i + 1]
+                    peak_a = max(peak_a, math.sqrt(a1 * a1 + a2 * a2))
+                    r[0] = -a1 / g
+                    r[1] = -a2 / g
+                    tau = hi
+                    break
+                tau = tb
+                h = min(h, 1e-3 * hi)
+                moving = True
+                n_ev += 1
+                if n_ev <= ev_t.shape[0]:
+                    ev_t[n_ev - 1] = t[i] + tau
+                    ev_k[n_ev - 1] = EV_BREAKAWAY
+            h = min(h, hi - tau)
+            last_step = h >= hi - tau
+            # mean ground acceleration over [τ, τ+h], its halves (linear inside the sample interval)
+            am_x = ax[i] + slope_x * (tau + 0.5 * h)
+            am_y = ay[i] + slope_y * (tau + 0.5 * h)
+            m1 = be_step(y, h, am_x, am_y, g, c, rb, mu, r, y1, r1)
+            mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h), g, c,
+                         rb, mu, r1, yh, rh)
+            m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
+                         c, rb, mu, rh, y2, r2)
+            xs = tol * max(peak_x, x_floor)
+            vs = tol * max(peak_v, v_floor)
+            err = 0.0
+            for j in range(2):
+                err = max(err, abs(y2[Y_X + j] - y1[Y_X + j]) / xs, abs(y2[Y_V + j] - y1[Y_V + j]) / vs)
+            for k in range(2 * ng):
+                err = max(err, abs(y2[Y_U + k] - y1[Y_U + k]) / xs)
+            n_steps += 1
+            if err > 1.0:
+                if h > H_MIN_FRACTION * hi:
+                    n_rej += 1
+                    h = max(h * max(0.1, 0.9 / math.sqrt(err)), H_MIN_FRACTION * hi)
+                    continue
+                n_floor += 1
+            # accepted: the Richardson combination of the two answers (second order) where the same groups slid
+            # in the three solves and the velocity kept its sense; across a change of the sliding set (a stop, a
+            # start, a join) or a reversal (the friction turns over) the error expansion does not hold and the
+            # two half steps are kept
+            if m1 == mh and mh == m2 and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 == 0):
+                for j in range(ny):
+                    y[j] = 2.0 * y2[j] - y1[j]
+            else:
+                for j in range(ny):
+                    y[j] = y2[j]
+            r[0] = r2[0]
+            r[1] = r2[1]
+            tau = hi if last_step else tau + h
+            vn = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
+            if m1 | m2:
+                slip += h
+                em = element_mask(m2 if m2 else m1, members)
+                if first[em] < 0.0:
+                    first[em] = t[i] + tau
+            if vn == 0.0 and _held(y, rb, mu, -(ax[i] + slope_x * tau) / g, -(ay[i] + slope_y * tau) / g):
+                # at rest with −a_g/g inside every circle: stuck (the quadratic then finds the break-away); a
+                # rest of the steps with −a_g/g outside a circle is left to the next step
+                n_ev += 1
+                if n_ev <= ev_t.shape[0]:
+                    ev_t[n_ev - 1] = t[i] + tau
+                    ev_k[n_ev - 1] = EV_STICK
+                moving = False
+            peak_x = max(peak_x, math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2))
+            peak_v = max(peak_v, vn)
+            a1 = -g * r[0] - c * y[Y_V]
+            a2 = -g * r[1] - c * y[Y_V + 1]
+            peak_a = max(peak_a, math.sqrt(a1 * a1 + a2 * a2))
+            for k in range(ng):
+                ub[k, 0] = y[Y_U + 2 * k]
+                ub[k, 1] = y[Y_U + 2 * k + 1]
+                if ub[k, 0] ** 2 + ub[k, 1] ** 2 > rim[k] * rim[k]:
+                    status |= STATUS_RIM
+                    fail_t = t[i] + tau
+            if status:
+                break
+            surface_peaks(ub, rb, members, tmat, surf_peak)
+            h = h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
+        if status:
+            break
+        h_sugg = h
+        out_x[i + 1, 0] = y[Y_X]
+        out_x[i + 1, 1] = y[Y_X + 1]
+        out_v[i + 1, 0] = y[Y_V]
+        out_v[i + 1, 1] = y[Y_V + 1]
+        out_a[i + 1, 0] = -g * r[0] - c * y[Y_V]
+        out_a[i + 1, 1] = -g * r[1] - c * y[Y_V + 1]
+        out_en[0, i + 1] = y[Y_EIN]
+        out_en[1, i + 1] = y[Y_EF]
+        out_en[2, i + 1] = y[Y_EV]
+        last = i + 1
+    for j in range(last + 1, n):
+        out_x[j, 0] = np.nan
+        out_x[j, 1] = np.nan
+    if n_ev > ev_t.shape[0]:
+        status |= STATUS_EVENTS_TRUNCATED
+    summary[S_PEAK_X] = peak_x
+    summary[S_PEAK_V] = peak_v
+    summary[S_PEAK_A] = peak_a
+    summary[S_SLIP_TIME] = slip
+    summary[S_E_IN] = y[Y_EIN]
+    summary[S_E_F] = y[Y_EF]
+    summary[S_E_V] = y[Y_EV]
+    summary[S_N_EVENTS] = n_ev
+    summary[S_STATUS] = status
+    summary[S_N_STEPS] = n_steps
+    summary[S_N_REJECTED] = n_rej
+    summary[S_FAIL_T] = fail_t
+    summary[S_STEPS_MULTI] = n_floor
