@@ -7,6 +7,8 @@ friction is one pendulum of radius R1 + R2), rotation invariance, the energy bal
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -491,16 +493,39 @@ def test_method_is_checked():
         simulate_bearing_pair(ax, ay, dt, bearing=TFP, method="steps", step_tol=0.0)
 
 
-def test_auto_leaves_a_reduced_run_to_the_steps():
-    # the pulse in the plane: the event-driven kernel finishes, but slides nearly tangent groups as one along a fixed
-    # direction (exact only for a collinear record): "auto" answers with the implicit steps, which agree with the
-    # independent reference above (test_implicit_steps_against_the_independent_reference_and_converging)
+@pytest.mark.parametrize("b", [TFP, TFP4], ids=["tfp", "tfp-4-frictions"])
+def test_events_and_steps_agree_where_the_events_are_exact(b):
+    # the pulse in the plane (corners of two and three circles, no reduction): "auto" keeps the event-driven kernel,
+    # and the implicit steps land on it within their tolerance (measured 2.0e-7 and 3.3e-7 of the peak)
     ax, ay, dt = pulse_pair()
-    events = simulate_bearing_pair(ax, ay, dt, bearing=TFP4, method="events")
-    auto = simulate_bearing_pair(ax, ay, dt, bearing=TFP4)
-    steps = simulate_bearing_pair(ax, ay, dt, bearing=TFP4, method="steps")
-    if "exact between events" in auto.model_reason:
-        np.testing.assert_array_equal(auto.displacement_m, events.displacement_m)
-    else:
-        assert "collinear" in auto.model_reason or "imbalance" in auto.model_reason
-        np.testing.assert_array_equal(auto.displacement_m, steps.displacement_m)
+    auto = simulate_bearing_pair(ax, ay, dt, bearing=b)
+    events = simulate_bearing_pair(ax, ay, dt, bearing=b, method="events")
+    steps = simulate_bearing_pair(ax, ay, dt, bearing=b, method="steps")
+    assert "exact between events" in auto.model_reason
+    np.testing.assert_array_equal(auto.displacement_m, events.displacement_m)
+    assert np.max(np.hypot(*(steps.displacement_m - events.displacement_m).T)) <= 1e-6 * events.peak_displacement_m
+
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "isolator" / "data" / "suites" / "example"
+
+
+@pytest.mark.parametrize("folder, x, y, why", [
+    ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2", "stopped at"),
+    ("lomaprieta1989_APEEL2", "np01002p_4225a_a.smc", "np01002p_4225c_a.smc", "exact only for a collinear"),
+])
+def test_auto_answers_real_pairs_with_the_steps_where_the_events_fail(folder, x, y, why):
+    # Superstition Hills PTS: the event kernel stops (three circles at small angles, status 1); Loma Prieta APEEL2:
+    # it finishes with its energy closed but through reductions exact only for a collinear record, 29 % off the
+    # converged steps from 4.5 s on.  "auto" answers with the steps, converged: 1e-7 vs 1e-8 measured 2.2e-7 (PTS)
+    # and 2.3e-7 (APEEL2) of the peak
+    from isolator.motion import read_ground_motion
+
+    mx, my = (read_ground_motion(EXAMPLE / folder / name) for name in (x, y))
+    n = min(mx.npts, my.npts)
+    ax, ay, dt = mx.acceleration_m_s2[:n], my.acceleration_m_s2[:n], mx.dt_s
+    auto = simulate_bearing_pair(ax, ay, dt, bearing=TFP)
+    assert "implicit steps" in auto.model_reason and why in auto.model_reason, auto.model_reason
+    assert {"I", "II", "III"} <= set(auto.regimes) or folder.startswith("loma")
+    fine = simulate_bearing_pair(ax, ay, dt, bearing=TFP, method="steps", step_tol=1e-8)
+    assert np.max(np.hypot(*(auto.displacement_m - fine.displacement_m).T)) <= 1e-6 * fine.peak_displacement_m
+    assert abs(auto.energy_balance_error_J_per_kg) <= 1e-5 * auto.energy_input_J_per_kg
