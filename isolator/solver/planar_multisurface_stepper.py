@@ -150,7 +150,8 @@ def step_force(y, rb, mu, alpha, px, py, g, rx, ry):
         r_scale = max(r_scale, mu[k])
     psi0, fx, fy = _psi_grad(rx, ry, y, rb, mu, alpha, px, py, g)
     it = 0
-    for it in range(1, MAX_NEWTON + 1):
+    while it < MAX_NEWTON:
+        it += 1
         f0 = math.sqrt(fx * fx + fy * fy)
         if f0 <= f_floor:
             break
