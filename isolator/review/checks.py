@@ -164,7 +164,8 @@ def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: floa
     """
     candidates = {}
     if v_s_elf_over_w is not None and math.isfinite(v_s_elf_over_w):
-        candidates[f"{f_above:g} × ELF V_s/W = {f_above:g} × {v_s_elf_over_w:.4g}"] = f_above * v_s_elf_over_w
+        candidates[f"17.6.4.2 {f_above:g} × ELF V_s/W = {f_above:g} × {v_s_elf_over_w:.4g} = "
+                   f"{f_above * v_s_elf_over_w:.4g}"] = f_above * v_s_elf_over_w
     for name, value in (limits or {}).items():
         if value is not None and math.isfinite(value):
             candidates[name] = value
@@ -176,8 +177,8 @@ def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: floa
     value = rha_over_w / r_i
     return at_least("superstructure_shear", clause, value, limit,
                     f"RHA superstructure shear / W ÷ R_I = {rha_over_w:.4g} / {r_i:g} [U: RHA forces reduced by R_I]"
-                    + (f" ({note})" if note else "") + f" ≥ the largest of 17.6.4.2 and the 17.5.4.3 limits: "
-                    f"{governs} governs", "V/W")
+                    + (f" ({note})" if note else "") + " ≥ the largest of 17.6.4.2 and the 17.5.4.3 limits: "
+                    + "; ".join(candidates) + f" — {governs} governs", "V/W")
 
 
 def story_drift(drift_ratio: float | None, limit: float | None, note: str = "",
