@@ -248,8 +248,9 @@ def test_superstructure_shear_is_the_floors_inertia(pts_building):
 
 @pytest.fixture(scope="module")
 def review(design, tmp_path_factory):
-    """The example building reviewed over two pairs of the example suite (PTS, Landers YER), lower and upper bounds:
-    the ELF does not depend on the suite, and with 2 < 7 analyses every suite value is the maximum (17.6.3.4)."""
+    """The example building reviewed as docs/review.md says (``horizontal_only``) over three pairs of the example
+    suite (PTS, Landers YER, Loma Prieta APEEL2 whose vertical is left out), lower and upper bounds: the ELF does
+    not depend on the suite, and with 3 < 7 analyses every suite value is the maximum (17.6.3.4)."""
     from isolator.review import load_suite, load_target, resolve_example, run_review
 
     folder = tmp_path_factory.mktemp("suite")
@@ -259,9 +260,13 @@ def review(design, tmp_path_factory):
         f"y = \"{SUITE / 'superstitionhills1987_PTS' / 'RSN723_SUPER.B_B-PTS315.AT2'}\"\ntrim = true\n"
         "[[pair]]\nname = \"YER\"\n"
         f"x = \"{SUITE / 'landers1992_YER' / 'RSN900_LANDERS_YER270.AT2'}\"\n"
-        f"y = \"{SUITE / 'landers1992_YER' / 'RSN900_LANDERS_YER360.AT2'}\"\n")
+        f"y = \"{SUITE / 'landers1992_YER' / 'RSN900_LANDERS_YER360.AT2'}\"\n"
+        "[[pair]]\nname = \"APEEL2\"\ntrim = true\n"
+        f"x = \"{SUITE / 'lomaprieta1989_APEEL2' / 'np01002p_4225a_a.smc'}\"\n"
+        f"y = \"{SUITE / 'lomaprieta1989_APEEL2' / 'np01002p_4225c_a.smc'}\"\n"
+        f"z = \"{SUITE / 'lomaprieta1989_APEEL2' / 'np01002p_4225b_a.smc'}\"\n")
     result = run_review(design, load_target(resolve_example("target", "example")), load_suite(folder / "suite.toml"),
-                        jobs=1, nominal=False)
+                        jobs=1, nominal=False, parameters={"horizontal_only": True})
     return result.to_dict()
 
 
@@ -294,7 +299,8 @@ def test_review_building_rows_are_their_hand_values(review):
     """Each building row's value and limit, recomputed from the analyses' rows of the JSON and the hand ELF."""
     bounds = ("lower", "upper")
     pairs = {b: list(review["bounds"][b]["pairs"].values()) for b in bounds}
-    assert all(len(rows) == 2 and all("error" not in r for r in rows) for rows in pairs.values())
+    assert all(len(rows) == 3 and all("error" not in r for r in rows) for rows in pairs.values())
+    assert {r["model"] for b in bounds for r in pairs[b]} == {"2d-building"}
     elf = {"lower": hand_elf(MU_KINETIC * LAMBDA_MIN), "upper": hand_elf(MU_KINETIC * LAMBDA_MAX)}
 
     # 17.6.4.2: the RHA first-story shear over W_s × W_s/W ÷ R_I (fewer than 7 analyses: the maximum), larger bound
@@ -344,3 +350,25 @@ def test_review_building_rows_are_their_hand_values(review):
     peak = max(max(max(r["floor_peak_acceleration_m_s2"]) for r in pairs[b]) for b in bounds)
     assert row["status"] == "not checked" and row["value"] == pytest.approx(peak, rel=1e-12)
     assert row["unit"] == "m/s²"
+
+
+def test_review_notes_say_what_the_rows_computed(review, design):
+    """What an engineer reads beside a pass: the bearing loads are unfactored (the design cannot carry factored
+    loads: its gravity loads must add up to W), the left-out vertical is said, the spectra's peaks are the continuous
+    response's (issue 26), not the samples'."""
+    from isolator.errors import DesignError
+    from isolator.superstructure import parse_bearing_layout
+
+    stability = _row(review, "vertical_load_stability")
+    assert "unfactored" in stability["note"] and "not applied [U]" in stability["note"]
+    assert "are the engineer's gravity_load_N" not in stability["note"]
+    share = TOTAL_MASS_KG * G / 20  # 1.2 × the share on every bearing (a factored dead load) is refused
+    with pytest.raises(DesignError, match="add up to"):
+        parse_bearing_layout([{"x_m": x, "y_m": y, "gravity_load_N": 1.2 * share}
+                              for x, y in zip(BEARING_X_M, BEARING_Y_M, strict=True)], TOTAL_MASS_KG * G)
+    uplift = _row(review, "uplift")
+    assert "unfactored" in uplift["note"] and "not applied [U]" in uplift["note"]
+    assert "the verticals of 1 pair(s) not analysed (horizontal_only)" in uplift["note"]
+    assert "no vertical components" not in uplift["note"]
+    assert "between samples included" in review["spectrum_conventions"]
+    assert "sample instants" not in review["spectrum_conventions"]

@@ -225,10 +225,11 @@ def _uplift_row(review, values: dict) -> dict:
     """17.2.4.7 from the bearings' axial loads (a building with [[bearing_position]]), else not checked."""
     s = review.design_values.get("structure", {})
     n_vertical = sum(v["n_uplifts"] for v in values.values())
-    n_pairs = 0 if review.parameters.get("horizontal_only") else sum(pair.az_m_s2 is not None
-                                                                     for pair in review.suite.pairs)
+    with_vertical = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
+    dropped = with_vertical if review.parameters.get("horizontal_only") else 0
+    n_pairs = with_vertical - dropped
     if "bearing_axial_load_min_N" not in s:
-        return C.uplift(n_vertical, n_pairs)
+        return C.uplift(n_vertical, n_pairs, n_verticals_not_analysed=dropped)
     loads = s["bearing_axial_load_min_N"]
     k = int(np.argmin(loads))
     env = review.design_values["envelope"]
@@ -238,7 +239,7 @@ def _uplift_row(review, values: dict) -> dict:
               f"{len(lifted)} analysis(es) lift a bearing"
               + (f" ({', '.join(lifted[:4])}{' …' if len(lifted) > 4 else ''})" if lifted else "")
               + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)")
-    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail)
+    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail, n_verticals_not_analysed=dropped)
 
 
 def _surface_d_over_r(review, limit: float) -> dict:
