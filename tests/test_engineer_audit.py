@@ -372,3 +372,19 @@ def test_review_notes_say_what_the_rows_computed(review, design):
     assert "no vertical components" not in uplift["note"]
     assert "between samples included" in review["spectrum_conventions"]
     assert "sample instants" not in review["spectrum_conventions"]
+
+
+def test_the_docs_table_of_the_example_is_the_hand_values():
+    """docs/review.md prints the example building's ELF inputs: each figure there is the hand value, rounded."""
+    text = (ROOT / "docs" / "review.md").read_text(encoding="utf-8")
+    lower, upper = hand_elf(MU_KINETIC * LAMBDA_MIN), hand_elf(MU_KINETIC * LAMBDA_MAX)
+    figures = [f"| W_s/W | {hand_ws_over_w():.4f} |", f"| R_I | {hand_r_i():g} |",
+               f"| T (fixed base) | {hand_fixed_base_periods_s()[0]:.4f} s |", f"| P_T | {hand_p_t():.3f} |",
+               f"| D_TM/D_M | {hand_torsion_factor():.3f} |"]
+    for elf, mu in ((lower, "lower µ 0.03825"), (upper, "upper µ 0.07418")):
+        assert f"{MU_KINETIC * (LAMBDA_MIN if mu.startswith('lower') else LAMBDA_MAX):.4g}" in mu
+        figures.append(f"({mu}) | {elf['D_M_m']:.4f} m, {elf['T_M_s']:.3f} s, {elf['beta_M']:.4f} |")
+        figures.append(f"| {elf['V_b_over_W']:.4f}, {elf['V_st_over_W']:.4f}, {elf['V_s_over_W']:.5f} |")
+    figures.append(f"| {lower['D_M_prime_m']:.4f} m, {upper['D_M_prime_m']:.4f} m |")
+    for figure in figures:
+        assert figure in text, figure
