@@ -388,3 +388,27 @@ def test_the_docs_table_of_the_example_is_the_hand_values():
     figures.append(f"| {lower['D_M_prime_m']:.4f} m, {upper['D_M_prime_m']:.4f} m |")
     for figure in figures:
         assert figure in text, figure
+
+
+def _keys(node, out: set, named: bool = False) -> set:
+    """Every key of a JSON tree, but the names that are data (pairs, paths, parameter overrides)."""
+    if isinstance(node, dict):
+        for key, value in node.items():
+            if not named:
+                out.add(key)
+            _keys(value, out, named=key in ("pairs", "inputs", "scale_factors", "parameter_overrides", "files",
+                                            "components", "samples") and isinstance(value, dict))
+    elif isinstance(node, list):
+        for item in node:
+            _keys(item, out)
+    return out
+
+
+def test_every_key_of_the_review_json_is_documented(review):
+    """docs/schema.md names every key the example building's review writes (the classification keys by their
+    ``<field>_record`` / ``<field>_harmonic`` stem)."""
+    text = (ROOT / "docs" / "schema.md").read_text(encoding="utf-8")
+    missing = sorted(key for key in _keys(review, set())
+                     if f"`{key}`" not in text
+                     and not (key.rsplit("_", 1)[-1] in ("record", "harmonic") and f"`{key.rsplit('_', 1)[0]}`" in text))
+    assert not missing, missing
