@@ -307,13 +307,24 @@ def test_review_building_rows_are_their_hand_values(review):
     rha = max(max(r["superstructure_shear_coefficient"] for r in pairs[b]) for b in bounds)
     row = _row(review, "superstructure_shear")
     assert row["value"] == pytest.approx(rha * hand_ws_over_w() / hand_r_i(), rel=1e-12)
-    # limit: the largest of 0.6 V_s (the larger bound) and 17.5.4.3(3): V_st with V_b = the activation force
-    # max(µs upper, 1.5 µs nominal) W = max(0.089, 0.09) W, at each bound's β_M
+    # limit: the largest of 0.6 V_s (the larger bound), 17.5.4.3(3): V_st with V_b = the activation force
+    # max(µs upper, 1.5 µs nominal) W = max(0.089, 0.09) W, at each bound's β_M, and 17.5.4.3(1): the fixed-base
+    # C_s W_s at T_M (12.8.1.1 with R = 8, I_e = 1, S_DS = 2/3 × 1.5 = 1.0 g, S_D1 = 2/3 × 0.9 = 0.6 g: at
+    # T_M ≈ 3.1–3.6 s S_D1/(T R) = 0.021–0.024 < 0.044 S_DS I_e, so C_s = 0.044 by Eq. 12.8-5)
     activation = max(MU_STATIC * LAMBDA_MAX, 1.5 * MU_STATIC)
     v_st_activation = max(activation * hand_ws_over_w() ** (1 - 2.5 * elf[b]["beta_M"]) for b in bounds)
-    limit = max(0.6 * max(elf[b]["V_s_over_W"] for b in bounds), v_st_activation)
-    assert row["limit"] == pytest.approx(limit, rel=1e-9)
+    s_ds, s_d1 = 2.0 / 3.0 * S_MS, 2.0 / 3.0 * S_M1
+    c_s = {b: max(min(s_ds / R_SYSTEM, s_d1 / (elf[b]["T_M_s"] * R_SYSTEM)), 0.044 * s_ds, 0.01) for b in bounds}
+    assert c_s["lower"] == c_s["upper"] == pytest.approx(0.044)
+    fixed_base = max(c_s.values()) * hand_ws_over_w()
+    limit = max(0.6 * max(elf[b]["V_s_over_W"] for b in bounds), v_st_activation, fixed_base)
+    assert row["limit"] == pytest.approx(limit, rel=1e-9) and limit == pytest.approx(v_st_activation, rel=1e-12)
     assert row["status"] == ("pass" if row["value"] >= limit else "fail") and row["unit"] == "V/W"
+    # 17.5.4.3(1) on its own row: the ELF V_s/W with the smaller margin (the upper bound's) ≥ C_s W_s/W
+    row = _row(review, "V_s_fixed_base_limit")
+    assert row["limit"] == pytest.approx(fixed_base, rel=1e-12)
+    assert row["value"] == pytest.approx(min(elf[b]["V_s_over_W"] for b in bounds), rel=1e-9)
+    assert row["status"] == "pass"
 
     # 17.6.4.4: the largest story's drift ratio (max over the pairs, larger bound)
     drift = max(max(max(r["story_drift_ratio"]) for r in pairs[b]) for b in bounds)
