@@ -78,6 +78,15 @@ def review(
         _user_error(f"--scaling must be one of {', '.join(SCALING_METHODS)}, got {scaling!r}")
     if jobs is not None and jobs < 1:
         _user_error(f"--jobs must be ≥ 1, got {jobs}")
+    if scheduler is not None:  # refused before any input is read, as batch does
+        from isolator.cli.common import error_line
+        from isolator.errors import BatchError
+        from isolator.parallel import check_scheduler
+
+        try:
+            check_scheduler(scheduler)
+        except BatchError as err:
+            _user_error(error_line(err))
     if jobs is not None:  # more processes than cores only add memory and contention
         from isolator.parallel import capped_workers
 

@@ -10,13 +10,12 @@ direction).  Both files are written atomically.
 
 from __future__ import annotations
 
-import json
 import textwrap
 from pathlib import Path
 
 import numpy as np
 
-from isolator.atomic import atomic_path, atomic_paths, dump_json
+from isolator.atomic import atomic_paths, dump_json
 from isolator.report.layout import caption, fmt, table, tail
 from isolator.report.layout import page as layout_page
 from isolator.report.model_pages import model_pages
@@ -172,11 +171,3 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
         dump_json(json_safe(numbers), tmp_json)
     return numbers
 
-
-def write_pair_json(numbers: dict, json_path) -> dict:
-    """Write the numbers of a pair analysis (``to_dict()``) as JSON, atomically; returns them."""
-    with atomic_path(json_path) as tmp_json:
-        with open(tmp_json, "w") as stream:
-            json.dump(json_safe(numbers), stream, indent=2, allow_nan=False)
-            stream.write("\n")
-    return numbers

@@ -15,6 +15,7 @@ import numpy as np
 from isolator.review import checks as C
 from isolator.review.codes import asce7_22, en15129
 from isolator.review.selection import selection_rows
+from isolator.review.target import design_values
 from isolator.superstructure import review_inputs
 
 BOUNDS = ("lower", "upper")
@@ -224,10 +225,11 @@ def _uplift_row(review, values: dict) -> dict:
     """17.2.4.7 from the bearings' axial loads (a building with [[bearing_position]]), else not checked."""
     s = review.design_values.get("structure", {})
     n_vertical = sum(v["n_uplifts"] for v in values.values())
-    n_pairs = 0 if review.parameters.get("horizontal_only") else sum(pair.az_m_s2 is not None
-                                                                     for pair in review.suite.pairs)
+    with_vertical = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
+    dropped = with_vertical if review.parameters.get("horizontal_only") else 0
+    n_pairs = with_vertical - dropped
     if "bearing_axial_load_min_N" not in s:
-        return C.uplift(n_vertical, n_pairs)
+        return C.uplift(n_vertical, n_pairs, n_verticals_not_analysed=dropped)
     loads = s["bearing_axial_load_min_N"]
     k = int(np.argmin(loads))
     env = review.design_values["envelope"]
@@ -237,7 +239,7 @@ def _uplift_row(review, values: dict) -> dict:
               f"{len(lifted)} analysis(es) lift a bearing"
               + (f" ({', '.join(lifted[:4])}{' …' if len(lifted) > 4 else ''})" if lifted else "")
               + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)")
-    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail)
+    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail, n_verticals_not_analysed=dropped)
 
 
 def _surface_d_over_r(review, limit: float) -> dict:
@@ -303,7 +305,9 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     v_s = max(elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper"))
     activation = {b: asce7_22.activation_force_per_weight(designs[b]) for b in ("lower", "upper")}
     activation["nominal"] = asce7_22.activation_force_per_weight(design)  # analysed or not: the design's own
-    rows.append(_superstructure_shear_row(review, v_s, activation))
+    r_fixed = design.superstructure.response_modification_R if design.superstructure is not None else None
+    fixed_base = asce7_22.fixed_base_limits(elf, design_values(review.target), r_fixed, p)
+    rows.append(_superstructure_shear_row(review, v_s, activation, fixed_base))
     s = review.design_values.get("structure", {})
     drift = s.get("story_drift_ratio")
     story = int(np.argmax(drift)) if drift else 0
@@ -318,7 +322,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
         story_drift_ratio=drift[story] if drift else None,
         story_drift_note=(f"story {story + 1} of {len(drift)} (from the bottom), {env['rule']} of {env['n']} analyses "
                           f"per bound, {s.get('story_drift_bound')} bound; limit drift_limit_rha [U]") if drift else "",
-        bearing_axial_loads_N=loads)
+        bearing_axial_loads_N=loads, fixed_base=fixed_base)
     accel = s.get("floor_peak_acceleration_m_s2")
     rows.append(C.floor_acceleration(
         max(accel) if accel else None,
@@ -334,10 +338,17 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     return rows + _common_back(review, values, d_tm["value"])
 
 
-def _superstructure_shear_row(review, v_s: float, activation: dict) -> dict:
+def _superstructure_shear_row(review, v_s: float, activation: dict, fixed_base: dict) -> dict:
     """17.6.4.2: the suite's superstructure shear / R_I against f_above V_s and the 17.5.4.3 limits it computes."""
     p, elf = review.parameters, review.elf
     limits = {}
+    per = fixed_base["per_bound"]
+    if per:
+        b = max(per, key=lambda k: per[k]["V_over_W"])
+        limits[f"17.5.4.3(1) fixed-base C_s W_s/W = {per[b]['C_s']:.4g} × {p['Ws_over_W']:.4g} = "
+               f"{per[b]['V_over_W']:.4g} (T_M {per[b]['T_M_s']:.4g} s, {b} bound, R = "
+               f"{review.design.superstructure.response_modification_R:g}, I_e = {p['importance_factor_Ie']:g})"] = \
+            per[b]["V_over_W"]
     v_act = asce7_22.activation_shear_over_w(activation["upper"], activation["nominal"])
     act = [asce7_22.activation_superstructure_shear_over_w(v_act, elf[b]["beta_M"], p)
            for b in ("lower", "upper") if math.isfinite(elf[b].get("beta_M", math.nan))]
@@ -352,7 +363,9 @@ def _superstructure_shear_row(review, v_s: float, activation: dict) -> dict:
     env = review.design_values["envelope"]
     note = (f"first-story shear / W_s {coefficient:.4g} × W_s/W {ws:.4g}, {env['rule']} of {env['n']} analyses per "
             f"bound, {s.get('superstructure_shear_bound')} bound; f_above_rha = {p['f_above_rha']:g} (regular; 0.8 "
-            "irregular); 17.5.4.3(1) not computed (V_s_fixed_base_limit)") if rha is not None else ""
+            "irregular)" + ("" if per else f"; 17.5.4.3(1) not computed: {fixed_base['missing']}")
+            + ("" if p.get("wind_shear_over_W") is not None else "; 17.5.4.3(2) not computed: needs wind_shear_over_W")
+            ) if rha is not None else ""
     return C.superstructure_shear(v_s, p["f_above_rha"], rha, limits=limits, r_i=p["R_I"], note=note)
 
 

@@ -106,7 +106,7 @@ def usable_band(pairs: list, range_hi_s: float, factor: float = 1.25) -> dict:
 
 
 def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_load_N: float | None = None, *,
-           detail: str = "") -> dict:
+           detail: str = "", n_verticals_not_analysed: int = 0) -> dict:
     """Bearing uplift (ASCE 7-22 17.2.4.7 [U]): from overturning, so from the bearings' axial loads.
 
     Parameters
@@ -121,19 +121,24 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
         bearing layout model (positive: compression).  Without it the row is ``not checked``.
     detail : str
         What the value is (suite rule, bearing, bound) and how many analyses lifted a bearing.
+    n_verticals_not_analysed : int
+        Pairs whose vertical the review left out (parameter ``horizontal_only``) [-].
     """
     clause = "ASCE 7-22 17.2.4.7 [U]"
     vertical = (f"the rigid block's normal force g + a_z vanished in {n_vertical_exceedances} episode(s) over "
                 f"{n_pairs_with_vertical} pair(s) with a vertical (vertical ground acceleration ≤ −1 g: a ground "
                 "quantity, not bearing uplift)"
-                if n_pairs_with_vertical else "no vertical components in the suite")
+                if n_pairs_with_vertical else
+                f"the verticals of {n_verticals_not_analysed} pair(s) not analysed (horizontal_only)"
+                if n_verticals_not_analysed else "no vertical components in the suite")
     if min_axial_load_N is None:
         return check("uplift", clause, NOT_CHECKED, None, 0.0,
                      "uplift comes from overturning: needs the bearings' axial loads (a superstructure and bearing "
                      "layout); " + vertical, "N")
     return at_least("uplift", clause, float(min_axial_load_N), 0.0,
                     "smallest bearing axial compression (uplift if < 0; 17.2.4.7 permits local uplift only where "
-                    "the resulting deflections cause no overstress or instability)"
+                    "the resulting deflections cause no overstress or instability; unfactored gravity share, the "
+                    "minimum-load combination of 2.3.6 — 0.9D − E_v — not applied [U])"
                     + (f": {detail}" if detail else "") + "; " + vertical, "N")
 
 
@@ -164,7 +169,8 @@ def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: floa
     """
     candidates = {}
     if v_s_elf_over_w is not None and math.isfinite(v_s_elf_over_w):
-        candidates[f"{f_above:g} × ELF V_s/W = {f_above:g} × {v_s_elf_over_w:.4g}"] = f_above * v_s_elf_over_w
+        candidates[f"17.6.4.2 {f_above:g} × ELF V_s/W = {f_above:g} × {v_s_elf_over_w:.4g} = "
+                   f"{f_above * v_s_elf_over_w:.4g}"] = f_above * v_s_elf_over_w
     for name, value in (limits or {}).items():
         if value is not None and math.isfinite(value):
             candidates[name] = value
@@ -176,8 +182,8 @@ def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: floa
     value = rha_over_w / r_i
     return at_least("superstructure_shear", clause, value, limit,
                     f"RHA superstructure shear / W ÷ R_I = {rha_over_w:.4g} / {r_i:g} [U: RHA forces reduced by R_I]"
-                    + (f" ({note})" if note else "") + f" ≥ the largest of 17.6.4.2 and the 17.5.4.3 limits: "
-                    f"{governs} governs", "V/W")
+                    + (f" ({note})" if note else "") + " ≥ the largest of 17.6.4.2 and the 17.5.4.3 limits: "
+                    + "; ".join(candidates) + f" — {governs} governs", "V/W")
 
 
 def story_drift(drift_ratio: float | None, limit: float | None, note: str = "",
@@ -219,9 +225,10 @@ def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, 
     ratios = [p / c for p, c in zip(max_load_N, capacities_N, strict=True)]
     k = int(np.argmax(ratios))
     return at_most("vertical_load_stability", clause, ratios[k], 1.0,
-                   f"bearing {k + 1}: P_max {max_load_N[k]:.4g} N / capacity {capacities_N[k]:.4g} N (gravity share "
-                   "as given + overturning of the floors' inertia forces; the factored combinations of 2.3.6 are the "
-                   "engineer's gravity_load_N)" + (f"; {note}" if note else ""), "×capacity")
+                   f"bearing {k + 1}: P_max {max_load_N[k]:.4g} N / capacity {capacities_N[k]:.4g} N (unfactored: the "
+                   "bearing's gravity share of W = g × mass_kg + the overturning of the floors' inertia forces; the "
+                   "factored combination of 2.3.6 that 17.2.4.6 names — dead-load factor, E_v, live load — is not "
+                   "applied [U])" + (f"; {note}" if note else ""), "×capacity")
 
 
 def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASCE 7-22 17.2.4.5 / 17.6.3.4 [U]",

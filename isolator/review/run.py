@@ -98,8 +98,8 @@ class Review:
                             "spacing": "log", "includes": "both ends and the T_M values inside the range",
                             "periods_s": self.grid_s.tolist(), "suite_ratio": self.suite_ratio.tolist()},
             "spectrum_basis": "RotD100" if self.code == "asce7-22" else "components (mean of both)",
-            "spectrum_conventions": "5 % damping; exact first-order-hold recurrence; peaks at the sample "
-                                    "instants (≥ 20 per period); no padding, no filtering",
+            "spectrum_conventions": "5 % damping; exact first-order-hold recurrence; peaks of the continuous "
+                                    "response, between samples included; no padding, no filtering",
             "scale_factors": dict(self.factors),
             "min_ratio_required": self.min_ratio_required,
             "suite_min_ratio": float(np.min(self.suite_ratio)),

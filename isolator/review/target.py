@@ -110,6 +110,24 @@ class Target:
         return out
 
 
+def design_values(target: Target) -> dict | None:
+    """S_DS, S_D1 [g] and T_L [s] of the design spectrum behind a two-period target, with their basis.
+
+    The design spectrum is 2/3 of the MCE_R (ASCE 7-22 11.4.5: S_DS = 2/3 S_MS, S_D1 = 2/3 S_M1); a target
+    read from ``S_DS``, ``S_D1`` returns the values as given.  ``None`` for an EN 1998-1 or tabulated target:
+    neither gives the 12.8.1.1 coefficients (the fixed-base C_s of ASCE 7-22 17.5.4.3(1) is then not computed).
+    """
+    if target.kind != "asce7-two-period":
+        return None
+    p = target.parameters
+    given = p.get("from_design_values")
+    if given:
+        return {"S_DS": float(given["S_DS"]), "S_D1": float(given["S_D1"]), "T_L": p["T_L"],
+                "basis": "S_DS, S_D1 as given in the target"}
+    return {"S_DS": 2.0 * p["S_MS"] / 3.0, "S_D1": 2.0 * p["S_M1"] / 3.0, "T_L": p["T_L"],
+            "basis": "S_DS = 2/3 S_MS, S_D1 = 2/3 S_M1 of the MCE_R target (ASCE 7-22 11.4.5)"}
+
+
 def two_period_target(S_MS: float, S_M1: float, T_L: float, name: str = "MCE_R") -> Target:
     """The ASCE 7-22 two-period MCE_R spectrum (11.4.5.1 with 11.4.6).
 

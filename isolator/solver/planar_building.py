@@ -412,7 +412,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
     out_state = np.empty((n_samples, 2, m))
     out_mon = np.empty((n_samples, nk, 2))
     out_sig = np.empty((n_samples, nj))
-    out_energy = np.empty((3, n_samples))
+    out_energy = np.zeros((3, n_samples))  # the kernel writes from sample 1 on; at sample 0 no work is done yet
     peak_sq = np.empty(nk)
     sig_max = np.empty(nj)
     sig_min = np.empty(nj)

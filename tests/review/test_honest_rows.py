@@ -41,6 +41,8 @@ def test_rows_that_used_to_pass_on_nothing(review):
     assert shear["status"] == "not checked" and shear["value"] is None  # the ELF V_s is not compared with itself
     assert shear["limit"] == pytest.approx(0.6 * v_s)
     assert rows["uplift"]["status"] == "not checked" and "axial loads" in rows["uplift"]["note"]
+    fixed = rows["V_s_fixed_base_limit"]  # a rigid block: no superstructure, so no R for the fixed-base ELF
+    assert fixed["status"] == "not checked" and "response_modification_R" in fixed["note"]
     assert rows["usable_band"]["status"] == "not checked" and "3 of 3" in rows["usable_band"]["note"]
     # 17.5.4.3(3) computed by hand: W_s/W = 1 makes V_st = the activation force max(µs upper, 1.5 µs nominal)
     act = rows["V_s_activation_limit"]

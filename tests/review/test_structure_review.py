@@ -171,9 +171,26 @@ def _assert_building_rows(r, *, n_stories, n_bearings, ws, r_i, mu_static, capac
     v_s = max(r.elf[b]["V_s_over_W"] for b in ("lower", "upper"))
     v_act = max(r.bounds.lambda_max * mu_static, 1.5 * mu_static)  # 17.5.4.3(3): max(µs upper, 1.5 µs nominal)
     act = max(v_act * ws ** (1 - 2.5 * r.elf[b]["beta_M"]) for b in ("lower", "upper"))
+    # 17.5.4.3(1): C_s of 12.8.1.1 at T_M with the superstructure's R, I_e = 1, S_DS = 1.0, S_D1 = 0.6 (2/3 of the
+    # target's 1.5, 0.9), T_L = 8 s, times W_s/W; written out here, independent of asce7_22
+    r_sup = r.design.superstructure.response_modification_R
+
+    def c_s(t):
+        return max(min(1.0 / r_sup, 0.6 / (t * r_sup) if t <= 8.0 else 0.6 * 8.0 / (t * t * r_sup)), 0.044)
+
+    fixed = {b: c_s(r.elf[b]["T_M_s"]) * ws for b in ("lower", "upper")}
+    b_fixed = min(fixed, key=lambda b: r.elf[b]["V_s_over_W"] / fixed[b])
+    row = rows["V_s_fixed_base_limit"]
+    assert row["limit"] == pytest.approx(fixed[b_fixed], rel=1e-14)
+    assert row["value"] == pytest.approx(r.elf[b_fixed]["V_s_over_W"], rel=1e-14)
+    assert row["status"] == ("pass" if row["value"] >= row["limit"] else "fail")
+    assert f"R = {r_sup:g} (not R_I)" in row["note"] and "I_e = 1" in row["note"]
+    limit = max(0.6 * v_s, act, max(fixed.values()))
     row = rows["superstructure_shear"]
-    assert row["value"] == pytest.approx(shear, rel=1e-14) and row["limit"] == pytest.approx(max(0.6 * v_s, act))
-    assert row["status"] == ("pass" if shear >= max(0.6 * v_s, act) else "fail") and "17.6.4.2" in row["clause"]
+    assert row["value"] == pytest.approx(shear, rel=1e-14) and row["limit"] == pytest.approx(limit, rel=1e-14)
+    assert row["status"] == ("pass" if shear >= limit else "fail") and "17.6.4.2" in row["clause"]
+    assert "17.5.4.3(1) fixed-base" in row["note"] and "17.5.4.3(3) activation" in row["note"]
+    assert "17.5.4.3(2) not computed" in row["note"] and "17.5.4.3(1) not computed" not in row["note"]
     # 17.2.4.7: the least suite value of a bearing's minimum load; 17.2.4.6: the largest P_max / capacity
     least = min(-_suite_value([-a["bearing_axial_load_min_N"][k] for a in per[b]], n) for b in bounds
                 for k in range(n_bearings))
@@ -330,7 +347,7 @@ def test_horizontal_only_drops_the_verticals_said_and_keyed(tmp_path):
     assert {a["model"] for b in flat.analyses for a in flat.analyses[b].values()} == {"2d"}
     assert flat.timing["analyses_cached"] == 0 and any("horizontal_only" in n for n in flat.notes)
     uplift = {row["id"]: row for row in flat.checks}["uplift"]
-    assert "no vertical components" in uplift["note"]
+    assert "the verticals of 1 pair(s) not analysed (horizontal_only)" in uplift["note"]  # the suite has one
 
 
 # ---- end to end on real pairs, through the models the registry runs -------------------------------------------

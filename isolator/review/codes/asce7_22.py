@@ -253,9 +253,101 @@ def activation_superstructure_shear_over_w(v_activation_over_w: float, beta: flo
     return v_activation_over_w * params["Ws_over_W"] ** exponent
 
 
+def fixed_base_seismic_coefficient(s_ds: float, s_d1: float, t_l: float, period_s: float, r: float,
+                                   i_e: float) -> dict:
+    """C_s of the equivalent lateral force of a fixed-base structure (ASCE 7-22 12.8.1.1) [-], and which equation
+    governs.
+
+    ::
+
+        C_s = S_DS / (R/I_e)                                     (12.8-2)
+            ≤ S_D1 / (T (R/I_e))          for T ≤ T_L            (12.8-3)
+            ≤ S_D1 T_L / (T² (R/I_e))     for T > T_L            (12.8-4)
+        C_s ≥ max(0.044 S_DS I_e, 0.01)                          (12.8-5)
+
+    The minimum 0.5 S_1/(R/I_e) of Eq. 12.8-6 (sites with S_1 ≥ 0.6 g) needs the mapped S_1, which the review's
+    target does not give: not applied (said in the row).
+
+    Parameters
+    ----------
+    s_ds, s_d1 : float
+        Design spectral accelerations at short periods and at 1 s [g].
+    t_l : float
+        Long-period transition period [s].
+    period_s : float
+        The period T [s] (> 0): T_M for 17.5.4.3(1).
+    r : float
+        Response modification coefficient R of the fixed-base structure (Table 12.2-1) [-], > 0.
+    i_e : float
+        Importance factor I_e (Table 1.5-2) [-], > 0.
+
+    Returns
+    -------
+    dict
+        ``C_s`` [-] and ``equation`` (the one that governs, e.g. ``"12.8-3"``).
+    """
+    if not (period_s > 0 and r > 0 and i_e > 0):
+        raise ValueError(f"period {period_s!r}, R {r!r} and I_e {i_e!r} must be > 0")
+    ratio = r / i_e
+    plateau = s_ds / ratio
+    if period_s <= t_l:
+        cap, cap_eq = s_d1 / (period_s * ratio), "12.8-3"
+    else:
+        cap, cap_eq = s_d1 * t_l / (period_s * period_s * ratio), "12.8-4"
+    c_s, equation = (plateau, "12.8-2") if plateau <= cap else (cap, cap_eq)
+    minimum = max(0.044 * s_ds * i_e, 0.01)
+    if c_s < minimum:
+        c_s, equation = minimum, "12.8-5 (0.044 S_DS I_e)" if 0.044 * s_ds * i_e >= 0.01 else "12.8-5 (0.01)"
+    return {"C_s": c_s, "equation": equation}
+
+
+def fixed_base_limits(elf: dict, design_spectrum: dict | None, r: float | None, params: dict) -> dict:
+    """17.5.4.3(1): per bound, the fixed-base ELF force of W_s at T_M over W, C_s(T_M) × W_s/W [-].
+
+    Parameters
+    ----------
+    elf : dict
+        Per bound: ``T_M_s``.
+    design_spectrum : dict or None
+        ``S_DS``, ``S_D1`` [g], ``T_L`` [s] and ``basis`` (:func:`isolator.review.target.design_values`).
+    r : float or None
+        The superstructure's R (the design's ``response_modification_R``): 12.8 sizes a fixed-base structure,
+        so its own R applies, not R_I [U].
+    params : dict
+        ``importance_factor_Ie``, ``Ws_over_W``.
+
+    Returns
+    -------
+    dict
+        ``per_bound``: bound → {``C_s``, ``equation``, ``T_M_s``, ``V_over_W``}; ``basis`` (one sentence);
+        ``missing``: why nothing was computed (then ``per_bound`` is empty).
+    """
+    if r is None:
+        return {"per_bound": {}, "missing": "needs the superstructure's R (response_modification_R in the design's "
+                                            "[superstructure]) for the fixed-base ELF of Section 12.8"}
+    if design_spectrum is None:
+        return {"per_bound": {}, "missing": "needs S_DS, S_D1 and T_L (a two-period target): the target gives no "
+                                            "12.8.1.1 coefficients"}
+    i_e, ws = params["importance_factor_Ie"], params["Ws_over_W"]
+    per = {}
+    for b in ("lower", "upper"):
+        t_m = elf.get(b, {}).get("T_M_s", math.nan)
+        if math.isfinite(t_m) and t_m > 0:
+            c = fixed_base_seismic_coefficient(design_spectrum["S_DS"], design_spectrum["S_D1"], design_spectrum["T_L"],
+                                               t_m, r, i_e)
+            per[b] = {**c, "T_M_s": t_m, "V_over_W": c["C_s"] * ws}
+    basis = (f"C_s of 12.8.1.1 at T = T_M with the superstructure's R = {r:g} (not R_I) and I_e = {i_e:g} "
+             f"(importance_factor_Ie [U]); S_DS = {design_spectrum['S_DS']:.4g} g, S_D1 = "
+             f"{design_spectrum['S_D1']:.4g} g, T_L = {design_spectrum['T_L']:g} s ({design_spectrum['basis']}); "
+             f"× W_s/W = {ws:.4g}; Eq. 12.8-6 (0.5 S_1/(R/I_e) where S_1 ≥ 0.6 g) not applied: S_1 is not an input")
+    return {"per_bound": per, "basis": basis,
+            "missing": None if per else "no ELF T_M (the ELF found no sliding)"}
+
+
 def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_static_upper: float,
                      mu_static_nominal: float, story_drift_ratio: float | None = None,
-                     story_drift_note: str = "", bearing_axial_loads_N: dict | None = None) -> list[dict]:
+                     story_drift_note: str = "", bearing_axial_loads_N: dict | None = None,
+                     fixed_base: dict | None = None) -> list[dict]:
     """The Chapter 17 requirements beside the response-history checks, each with its clause and status.
 
     ``pass`` / ``fail`` only where the review computes the quantity; otherwise ``not checked`` naming
@@ -275,6 +367,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         Breakaway force / W of the lower bound (the wind row) and the force / W that fully activates the
         isolation system at the upper and nominal properties (17.5.4.3(3)) [-]: µs of a single surface
         (:func:`breakaway_force_per_weight`, :func:`activation_force_per_weight`).
+    fixed_base : dict, optional
+        17.5.4.3(1)'s limits (:func:`fixed_base_limits`); without it the row is ``not checked``.
     """
     from isolator.review import checks as C
 
@@ -303,10 +397,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                         "response-history analysis is used (17.4.2 permits it for any isolated structure) [U]; the ELF "
                         "limits of 17.4.1 (S_1, site class, height, stories, regularity) need site and structure data; "
                         f"T_M = {t_text}", "s"))
-    rows.append(C.check("V_s_fixed_base_limit", "ASCE 7-22 17.5.4.3(1) [U]", C.NOT_CHECKED,
-                        note="V_s ≥ the fixed-base ELF shear of W_s at T_M (Section 12.8): needs I_e and the "
-                             "fixed-base C_s rules, and which R applies (R or R_I) is not confirmed [U]"))
     v_s = {b: elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper") if b in elf}
+    rows.append(_fixed_base_row(v_s, fixed_base))
     if wind is None:
         rows.append(C.check("V_s_wind_limit", "ASCE 7-22 17.5.4.3(2) [U]", C.NOT_CHECKED, None, None,
                             "V_s ≥ the factored design wind base shear: needs wind_shear_over_W", "V/W"))
@@ -331,3 +423,20 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                             "no ELF V_s (the ELF found no sliding)", "V/W"))
     rows.append(C.story_drift(story_drift_ratio, params.get("drift_limit_rha"), story_drift_note))
     return rows
+
+
+def _fixed_base_row(v_s: dict, fixed_base: dict | None) -> dict:
+    """17.5.4.3(1): ELF V_s/W ≥ C_s(T_M) W_s/W of the fixed-base structure, the bound with the smaller margin."""
+    from isolator.review import checks as C
+
+    clause, fixed_base = "ASCE 7-22 17.5.4.3(1) [U]", fixed_base or {}
+    per = {b: f for b, f in fixed_base.get("per_bound", {}).items() if math.isfinite(v_s.get(b, math.nan))}
+    if not per:
+        why = fixed_base.get("missing") or "needs the fixed-base structure's R and the design spectrum"
+        return C.check("V_s_fixed_base_limit", clause, C.NOT_CHECKED, None, None,
+                       f"V_s ≥ the fixed-base ELF force of W_s at T_M (Section 12.8): {why}", "V/W")
+    b = min(per, key=lambda k: v_s[k] / per[k]["V_over_W"])
+    f = per[b]
+    return C.at_least("V_s_fixed_base_limit", clause, v_s[b], f["V_over_W"],
+                      f"ELF V_s/W ({b} bound) ≥ C_s W_s/W with C_s = {f['C_s']:.4g} at T_M = {f['T_M_s']:.4g} s "
+                      f"(Eq. {f['equation']} governs); {fixed_base['basis']}", "V/W")
