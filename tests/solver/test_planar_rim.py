@@ -391,3 +391,36 @@ def test_a_pair_below_the_capacity_is_todays_2d_run_bit_for_bit(records_dir):
                 "event_time_s"):
         np.testing.assert_array_equal(getattr(res, key), getattr(free, key))
     assert res.peak_displacement_m == free.peak_displacement_m == pytest.approx(0.8135803309086524, rel=1e-13)
+
+
+# ---- the review ------------------------------------------------------------------------------------------------
+def test_a_review_whose_suite_reaches_the_capacity_shows_the_rim_and_fails_the_capacity(tmp_path):
+    """Three short real pairs of the bundled suite on R = 2.5 m, µk = 0.05, capacity 0.25 m: analyses at the upper
+    bound reach the rim (2d+rim), and the capacity rows fail with the impulse stated."""
+    from isolator.design import Design
+    from isolator.review.run import run_review
+    from isolator.review.suite import load_suite
+    from isolator.review.target import two_period_target
+    from tests.review.conftest import DESIGN, EXAMPLE, SHORT
+
+    body = "".join(f'[[pair]]\nname = "{name}"\nx = "{EXAMPLE / name / x}"\ny = "{EXAMPLE / name / y}"\n{extra}\n'
+                   for name, x, y, extra in SHORT)
+    (tmp_path / "suite.toml").write_text(body)
+    (tmp_path / "design.toml").write_text(DESIGN.replace("displacement_capacity_m = 0.5",
+                                                         "displacement_capacity_m = 0.25"))
+    design = Design.from_toml(tmp_path / "design.toml")
+    out = run_review(design, two_period_target(1.5, 0.9, 8.0), load_suite(tmp_path / "suite.toml"), jobs=1,
+                     cache_dir=tmp_path / "cache").to_dict()
+    upper = out["bounds"]["upper"]["pairs"]
+    rimmed = {name: r for name, r in upper.items() if r.get("ultimate_displacement_reached")}
+    assert rimmed, {name: r["peak_displacement_m"] for name, r in upper.items()}
+    for r in rimmed.values():
+        assert r["model"] == "2d+rim" and r["n_rim_contacts"] >= 1 and r["impact_impulse_m_s"] > 0.0
+        assert r["peak_displacement_m"] == pytest.approx(0.25, rel=1e-12)
+    rows = [c for c in out["checks"] if c["id"] == "record_capacity" and c.get("bound") == "upper"]
+    assert {c["pair"] for c in rows} >= set(rimmed)
+    for c in rows:
+        if c["pair"] in rimmed:
+            impulse = design.mass_kg * upper[c["pair"]]["impact_impulse_m_s"]
+            assert c["status"] == "fail" and f"impulse {impulse:.4g} N·s" in c["note"], c["note"]
+    assert next(c for c in out["checks"] if c["id"] == "D_M_capacity")["status"] == "fail"
