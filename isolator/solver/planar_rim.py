@@ -42,7 +42,6 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from isolator.errors import InvalidSystemError, SolverError
 from isolator.solver import planar as _planar
@@ -305,6 +304,8 @@ class _Rim:
     def slide(self, i, frc, tau, theta, w, sign):
         """Slide along the rim in the direction ``sign`` from (θ, w) at local time tau to the interval's end, a
         stop (w = 0) or the lift-off (λ = 0).  Returns (tau, θ, w, 'end' | 'stop' | 'leave')."""
+        from scipy.integrate import solve_ivp  # here: the report and the review load the registry, not scipy's ODEs
+
         h, ax0, ax1, ay0, ay1, n0, n1 = frc
         d, c = self.d, self.c
         kdot = n1 * self.inv_r if self.pendulum else 0.0
