@@ -29,7 +29,7 @@ The slide on the rim is one degree of freedom, integrated by scipy's DOP853 (rto
 error of that integration is measured against an independent reference in
 ``tests/solver/test_planar_rim.py`` (docs/planar.md, "The rim").  The bearing transmits
 M (V' + a_g): its ``peak_transmitted_acceleration_m_s2`` includes the rim's reaction (while held
-on the rim it is |a_g|); inside a slide on the rim it is taken at the solver's steps and events.
+on the rim it is |a_g|); inside a slide on the rim its peaks are events (A·A' = 0).
 
 Not modelled (refused by a :class:`~isolator.errors.SolverError` naming the instant): the rim
 while the bearing carries no load (n ≤ 0 on the rim: uplift).
@@ -301,6 +301,31 @@ class _Rim:
         wdot = ft - self.mu(abs(w)) * nn * math.copysign(1.0, w) - self.c * w
         return a + wdot * np.array([-sn, c]) - (w * w / self.d) * np.array([c, sn])
 
+    def acceleration_rate(self, frc, s, theta, w, sign):
+        """A·A' [m²/s⁵] sliding along the rim at (θ, w) in the direction ``sign``: half the rate of |A|².
+
+        With e_r' = (w/d) e_t, e_t' = −(w/d) e_r: A' = a_g' + (w'' − w³/d²) e_t − (3 w w'/d) e_r, where
+        w'' = F_t' − µ'(|w|) n w' − sgn µ n' − c w' and F_t' = −a_g'·e_t + (w/d) a_g·e_r.
+        """
+        h, ax0, ax1, ay0, ay1, n0, n1 = frc
+        d = self.d
+        c, sn = math.cos(theta), math.sin(theta)
+        axx, ayy, nn = ax0 + ax1 * s, ay0 + ay1 * s, n0 + n1 * s
+        prm = self.run.prm
+        r = abs(w)
+        mu = self.mu(r)
+        slope = (prm[_rk.P_RATE] * (prm[_rk.P_MU_FAST] - prm[_rk.P_MU_SLOW]) * math.exp(-prm[_rk.P_RATE] * r)
+                 if prm[_rk.P_VELDEP] > 0.0 else 0.0)
+        ft = axx * sn - ayy * c
+        wdot = ft - sign * mu * nn - self.c * w
+        ft_dot = ax1 * sn - ay1 * c + (w / d) * (axx * c + ayy * sn)
+        wddot = ft_dot - slope * nn * wdot - sign * mu * n1 - self.c * wdot
+        at = wddot - w ** 3 / (d * d)
+        ar = -3.0 * w * wdot / d
+        a1 = axx + wdot * -sn - (w * w / d) * c
+        a2 = ayy + wdot * c - (w * w / d) * sn
+        return a1 * (ax1 + at * -sn + ar * c) + a2 * (ay1 + at * c + ar * sn)
+
     def slide(self, i, frc, tau, theta, w, sign):
         """Slide along the rim in the direction ``sign`` from (θ, w) at local time tau to the interval's end, a
         stop (w = 0) or the lift-off (λ = 0).  Returns (tau, θ, w, 'end' | 'stop' | 'leave')."""
@@ -332,9 +357,13 @@ class _Rim:
             return rhs(s, y)[1]
         turn.direction = -sign
 
+        def crest(s, y):  # A·A' = 0 falling: |A| peaks (A = a_g + w' e_t − (w²/d) e_r)
+            return self.acceleration_rate(frc, s, y[0], y[1], sign)
+        crest.direction = -1.0
+
         y0 = [theta, w, *self.summary[[_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V]]]
         sol = solve_ivp(rhs, (tau, h), y0, method="DOP853", rtol=RIM_RTOL, atol=RIM_ATOL,
-                        events=(stop, leave, turn))
+                        events=(stop, leave, turn, crest))
         if sol.status < 0:  # pragma: no cover - DOP853 on a smooth 1-DOF system
             raise SolverError(f"the slide on the rim could not be integrated: {sol.message}")
         how = "end"
@@ -344,6 +373,9 @@ class _Rim:
         t_end = float(sol.t[-1])
         for yy in sol.y_events[2]:
             self.summary[_pl.S_PEAK_V] = max(self.summary[_pl.S_PEAK_V], abs(yy[1]))
+        for s, yy in zip(sol.t_events[3], sol.y_events[3], strict=True):
+            acc = self.acceleration(frc, s, (math.cos(yy[0]), math.sin(yy[0])), yy[1])
+            self.peak_a(math.hypot(acc[0], acc[1]))
         for s, yy in zip(sol.t, sol.y.T, strict=True):
             acc = self.acceleration(frc, s, (math.cos(yy[0]), math.sin(yy[0])), yy[1])
             self.peak_a(math.hypot(acc[0], acc[1]))
