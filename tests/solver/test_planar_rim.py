@@ -16,7 +16,7 @@ from collections import Counter
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from isolator.errors import SolverError
 from isolator.solver.planar import simulate_pair
@@ -57,6 +57,7 @@ def rim_reference(t, ax, ay, *, mu_s, mu_k, radius, d, rtol=1e-12, v_eps=1e-11, 
     theta = 0.0
     w = 0.0
     impacts = []
+    peak_a_rim = 0.0  # the largest |A| = |a_g + w' e_t − (w²/d) e_r| while sliding along the rim
     atol = 1e-16
 
     for i in range(t.size - 1):
@@ -148,7 +149,18 @@ def rim_reference(t, ax, ay, *, mu_s, mu_k, radius, d, rtol=1e-12, v_eps=1e-11, 
                     return force(s, d * er) @ er + y[1] ** 2 / d
                 ev_leave.terminal, ev_leave.direction = True, -1.0
                 sol = solve_ivp(rhs_rim, (tt, t1), [theta, w], method="Radau", rtol=rtol, atol=1e-15,
-                                events=(ev_stop, ev_leave))
+                                events=(ev_stop, ev_leave), dense_output=True)
+
+                def minus_a(s, sol=sol, rhs_rim=rhs_rim):
+                    y = sol.sol(s)
+                    er = np.array([math.cos(y[0]), math.sin(y[0])])
+                    return -np.linalg.norm(acc(s) + rhs_rim(s, y)[1] * np.array([-er[1], er[0]]) - y[1] ** 2 / d * er)
+                grid = np.linspace(sol.t[0], sol.t[-1], 201)
+                vals = [minus_a(s) for s in grid]
+                k = int(np.argmin(vals))
+                best = minimize_scalar(minus_a, bounds=(grid[max(k - 1, 0)], grid[min(k + 1, 200)]), method="bounded",
+                                       options={"xatol": 1e-13})
+                peak_a_rim = max(peak_a_rim, -vals[k], -best.fun)
                 theta, w = sol.y[0, -1], sol.y[1, -1]
                 tt = sol.t[-1]
                 er = np.array([math.cos(theta), math.sin(theta)])
@@ -221,7 +233,7 @@ def rim_reference(t, ax, ay, *, mu_s, mu_k, radius, d, rtol=1e-12, v_eps=1e-11, 
         out_x[i + 1] = X
         out_v[i + 1] = V if mode in ("slide", "rim_slide") else 0.0
     return {"displacement_m": out_x, "velocity_m_s": out_v, "impacts": impacts,
-            "energy_impact_J_per_kg": sum(0.5 * v * v for _, v in impacts)}
+            "energy_impact_J_per_kg": sum(0.5 * v * v for _, v in impacts), "peak_a_rim_m_s2": peak_a_rim}
 
 
 # ---- the records -------------------------------------------------------------------------------------------
@@ -345,6 +357,22 @@ def test_uplift_on_the_rim_is_refused_in_one_line():
     az = np.where(t > 2.0, -15.0, 0.0)  # then the bearing lifts off
     with pytest.raises(SolverError, match=r"uplift on the rim is not modelled"):
         simulate_pair_rim(ax, np.zeros_like(ax), dt, az_m_s2=az, displacement_capacity_m=0.1, **PENDULUM)
+
+
+def test_the_transmitted_acceleration_peaks_inside_a_slide_along_the_rim():
+    """A push onto the rim (−4 m/s² along x) and a sideways shake at 0.25 s samples: the slider slides along the
+    rim and back; |A| = |a_g + w' e_t − (w²/d) e_r| peaks between samples, above every |a_g| (5 m/s²).  The
+    reference scans each of its slides on the rim (dense output, then a bounded search): 1.7e-14 apart measured."""
+    dt = 0.25
+    ax = np.array([0.0, -4, -4, -4, -4, -4, -4, 0, 0])
+    ay = np.array([0.0, 0, 0, 3, -3, 3, 0, 0, 0])
+    res = simulate_pair_rim(ax, ay, dt, displacement_capacity_m=0.1, mu_static=0.05, radius_m=2.0)
+    ref = rim_reference(dt * np.arange(ax.size), ax, ay, mu_s=0.05, mu_k=0.05, radius=2.0, d=0.1)
+    assert res.n_rim_contacts == 1 and res.event_names.count("reversal") == 2 and res.rim_time_s > 1.0
+    assert np.max(np.abs(res.displacement_m - ref["displacement_m"])) <= 1e-9 * 0.1
+    assert ref["peak_a_rim_m_s2"] > 1.2 * np.max(np.hypot(ax, ay))  # the rim's reaction: above the ground's
+    assert res.peak_transmitted_acceleration_m_s2 == pytest.approx(ref["peak_a_rim_m_s2"], rel=1e-9)
+    assert np.max(np.hypot(*res.absolute_acceleration_m_s2.T)) < 0.99 * res.peak_transmitted_acceleration_m_s2
 
 
 # ---- the registry ------------------------------------------------------------------------------------------
