@@ -480,3 +480,36 @@ def test_the_isolator_force_never_exceeds_its_physical_bound(design):
     sampled = np.max(np.hypot(*response.isolator_force_N.T)) / (TOTAL_MASS_KG * G)
     assert sampled <= bound  # the samples respect it (0.063 W) ...
     assert response.base_shear_coefficient <= bound * (1 + 1e-9)  # ... the reported exact peak does not (0.343 W)
+
+
+def test_an_analysis_its_solver_flagged_is_said_in_the_notes(design, tmp_path):
+    """A result whose solver_status is not "ok" (chatter guard, unfinished interval) enters the suite values as it is;
+    the review's notes (page 1 of the PDF) say which analysis and what the solver said — it was silent. The
+    analyses come from a recording cache, then are served again with one flagged."""
+    from isolator.review import load_suite, load_target, resolve_example, run_review
+
+    class Recorder:
+        def __init__(self):
+            self.entries = {}
+
+        def get(self, key):
+            return self.entries.get(key)
+
+        def put(self, key, result):
+            self.entries[key] = result
+
+    (tmp_path / "suite.toml").write_text(
+        "[[pair]]\nname = \"PTS\"\ntrim = true\n"
+        f"x = \"{SUITE / 'superstitionhills1987_PTS' / 'RSN723_SUPER.B_B-PTS225.AT2'}\"\n"
+        f"y = \"{SUITE / 'superstitionhills1987_PTS' / 'RSN723_SUPER.B_B-PTS315.AT2'}\"\n")
+    suite = load_suite(tmp_path / "suite.toml")
+    target = load_target(resolve_example("target", "example"))
+    cache = Recorder()
+    clean = run_review(design, target, suite, jobs=1, nominal=False, analysis_cache=cache)
+    assert not any("its solver says" in note for note in clean.notes)
+    key = sorted(cache.entries)[0]
+    cache.entries[key] = {**cache.entries[key],
+                          "solver_status": "chatter guard: more than 1000 events in one sample interval"}
+    flagged = run_review(design, target, suite, jobs=1, nominal=False, analysis_cache=cache)
+    said = [note for note in flagged.notes if "its solver says: chatter guard" in note]
+    assert len(said) == 1 and "'PTS'" in said[0]

@@ -432,7 +432,8 @@ def _pairs(flow: Flow, r: dict) -> None:
             for b in bounds:
                 result = r["bounds"][b]["pairs"].get(name, {})
                 value = result.get(quantity)
-                over = quantity == "peak_displacement_m" and cap and value is not None and value > cap
+                over = quantity == "peak_displacement_m" and cap and value is not None and (
+                    value > cap or bool(result.get("ultimate_displacement_reached")))  # or held there by its rim
                 beyond += bool(over)
                 text = "failed" if "error" in result else fmt(value) + (" *" if over else "")
                 flow.text(x, text, 7.4, color=STATUS_COLOUR["fail"] if over else "black",
@@ -441,10 +442,12 @@ def _pairs(flow: Flow, r: dict) -> None:
         flow.y -= LINE
     flow.y -= 0.3 * LINE
     if cap:
-        flow.paragraph(f"* beyond the displacement capacity {fmt(cap)} m ({beyond} analyses; each is a failing "
-                       "record_capacity row on the checks pages).  No restrainer is modelled: past the capacity the "
-                       "analysis continues as if the bearing surface were unbounded, so those numbers are not "
-                       "physical and the suite mean that uses them is an extrapolation.", color=STATUS_COLOUR["fail"])
+        flow.paragraph(f"* at or beyond the displacement capacity {fmt(cap)} m ({beyond} analyses; each is a failing "
+                       "record_capacity row on the checks pages).  A pendulum that reaches it is held there by its "
+                       "rim (plastic impact, the impulse on the checks pages): its peak is the capacity and "
+                       "understates the demand.  Where no rim is modelled (a flat slider) the analysis continues "
+                       "past it as if the surface were unbounded: those numbers are not physical.",
+                       color=STATUS_COLOUR["fail"])
     flow.heading("Suite values and spread per bound (D and V/W over the analyses that ran)")
     heads = ((0.05, "bound"), (0.14, "µ"), (0.22, "rule"), (0.32, "D suite [m]"), (0.42, "std [m]"), (0.5, "CV"),
              (0.57, "max/mean"), (0.66, "V/W suite"), (0.75, "std"), (0.82, "CV"), (0.88, "max/mean"))

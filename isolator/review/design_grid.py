@@ -27,8 +27,10 @@ VARY_KEYS = ("radius_m", "mu_kinetic", "mu_static", "displacement_capacity_m", "
 #: friction coefficients that follow a varied µk by their ratio to µk in the design file
 FRICTION_FOLLOWERS = ("mu_static", "mu_slow", "mu_fast", "mu_upper", "mu_lower")
 
-#: keys that change no analysis, only the checks (candidates differing only in these share their analyses)
-CHECK_ONLY_KEYS = ("displacement_capacity_m",)
+#: keys that change no analysis, only the checks (candidates differing only in these share their analyses).
+#: Empty: the displacement capacity was one until the rim (a single pendulum whose motion reaches its capacity
+#: is run again with its rim, in 1-D and 2-D: the capacity changes the analysis).
+CHECK_ONLY_KEYS: tuple[str, ...] = ()
 
 #: objective → (column minimised, what it is)
 OBJECTIVES = {

@@ -14,8 +14,8 @@ candidates.  What is shared is only what is equal:
 * the spectra of a record at a period are computed once per worker process (a memo keyed by the
   record's samples and the period; the oscillator at one period does not depend on the others, so a
   value from the memo is bit-identical to a fresh one);
-* the analyses of candidates that differ only in a key no analysis reads (``displacement_capacity_m``)
-  are run once: those candidates form one group on one worker, with one analysis cache in memory
+* the analyses of candidates that differ only in a key no analysis reads (:data:`CHECK_ONLY_KEYS`; none
+  since the rim: the displacement capacity changes the analysis of a pendulum that reaches it) are run once: those candidates form one group on one worker, with one analysis cache in memory
   (keyed by the analysis inputs, :func:`isolator.review.worker.task_key`).
 
 A candidate that cannot be reviewed (an invalid combination, no ELF period range, every analysis

@@ -334,6 +334,9 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     for name in failed:
         notes.append(f"analysis of pair '{name}' failed: "
                      + next(analyses[b][name]["error"] for b in analyses if "error" in analyses[b][name]))
+    for b in analyses:  # a result the solver itself flagged (chatter guard, unfinished interval …) is said, not hidden
+        notes.extend(f"analysis of pair '{name}' ({b} bound) is used, but its solver says: {r['solver_status']}"
+                     for name, r in analyses[b].items() if "error" not in r and r.get("solver_status", "ok") != "ok")
 
     rigid_block = design.superstructure is None and not asce7_22.is_multisurface(design)
     paper_map = (_paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution and rigid_block

@@ -21,9 +21,10 @@ import numpy as np
 #: bump when the numbers an analysis returns change meaning
 CACHE_VERSION = "review-4"
 ORBIT_POINTS = 1500
-#: Design keys that do not change its analyses: its names, the capacity (the demand ratio is the caller's,
-#: :func:`isolator.review.run.run_review`), the property factors (a bound's friction is already applied), the plan.
-_NOT_ANALYSED = ("name", "source", "description", "displacement_capacity_m", "property_factors", "plan")
+#: Design keys that do not change its analyses: its names, the property factors (a bound's friction is already
+#: applied), the plan.  Not the displacement capacity: a single pendulum whose motion reaches it is run again
+#: with its rim (1d-multisurface, 2d+rim; isolator.solver.models), so the capacity changes the analysis.
+_NOT_ANALYSED = ("name", "source", "description", "property_factors", "plan")
 
 
 def design_key(design) -> dict:

@@ -29,7 +29,10 @@ How to add a model
 One choice depends on a result: a single pendulum with a ``displacement_capacity_m`` under one
 component is ``1d-exact`` (its reason says so), and when that run's peak reaches the capacity
 the multi-surface module runs the scene again with the rim; that result has ``rerun`` true and
-keeps its own ``model`` (``1d-multisurface``) and ``model_reason`` (:func:`simulate`).
+keeps its own ``model`` (``1d-multisurface``) and ``model_reason`` (:func:`simulate`).  The same holds in the
+plane: a single pendulum with a capacity that needs the 2-D engine runs ``2d`` (its reason says so), and when
+its peak reaches the capacity :mod:`isolator.solver.planar_rim` runs it again with the rim (``2d+rim``,
+``rerun`` true).
 """
 
 from __future__ import annotations
@@ -37,7 +40,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from isolator.solver import building, multisurface, planar, planar_building, planar_multisurface, record
+from isolator.solver import building, multisurface, planar, planar_building, planar_multisurface, planar_rim, record
 from isolator.solver.base import SUMMARY_KEYS, Scene, SolverResult
 
 
@@ -76,6 +79,9 @@ MODELS: dict[str, Model] = {model.name: model for model in (
           "shear building on the isolation plane under one component: exact linear propagation between events"),
     Model(record.MODEL_NAME, record.scene_needs, record.simulate_scene,
           "rigid block on one surface under one component, constant friction: closed forms between events"),
+    Model(planar_rim.MODEL_NAME, planar_rim.scene_needs, planar_rim.simulate_scene,
+          "single pendulum with a displacement capacity under a pair (or a vertical, µ(v)): the 2-D engine, rerun "
+          "with the rim (plastic impact, sliding along it) when the peak reaches the capacity"),
     Model(planar.MODEL_NAME, planar.scene_needs, planar.simulate_scene,
           "rigid block on one surface in the plane: coupled friction, µ(v), n(t) = g + a_z (DOP853 between events)"),
 )}

@@ -297,6 +297,96 @@ def _warm_up() -> None:
     _READY = True
 
 
+@dataclass(frozen=True)
+class PreparedPair:
+    """A checked record and isolator in the arrays the compiled kernel takes (:func:`prepare_pair`).
+
+    Attributes
+    ----------
+    prm : numpy.ndarray
+        The isolator (:mod:`planar_rk` ``P_*`` layout).
+    gravity_m_s2 : float
+    velocity_dependent : bool
+    ax, ay : numpy.ndarray
+        Horizontal samples [m/s²].
+    az : numpy.ndarray or None
+        Vertical samples [m/s²].
+    times : numpy.ndarray
+        Sample times [s]; ``local_times`` from the first one.
+    nz : numpy.ndarray
+        n = g + a_z at the samples [m/s²].
+    has_y : bool
+        Any a_y ≠ 0.
+    scales : numpy.ndarray
+        Speed and tolerance scales (:mod:`planar_layout` ``SC_*``).
+    refresh : bool
+        Re-evaluate the derivative at each sample (a pendulum under a vertical record).
+    rtol : float
+    """
+
+    prm: np.ndarray
+    gravity_m_s2: float
+    velocity_dependent: bool
+    ax: np.ndarray
+    ay: np.ndarray
+    az: np.ndarray | None
+    times: np.ndarray
+    local_times: np.ndarray
+    nz: np.ndarray
+    has_y: bool
+    scales: np.ndarray
+    refresh: bool
+    rtol: float
+
+
+def prepare_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_static, mu_kinetic=None,
+                 stiffness_per_mass=0.0, radius_m=None, damping_per_mass=0.0, gravity_m_s2=None,
+                 mu_slow=None, mu_fast=None, rate_s_per_m=None, rtol=DEFAULT_RTOL, timed=True) -> PreparedPair:
+    """Check a pair and an isolator (the arguments of :func:`simulate_pair`) and build the kernel's arrays.
+
+    Raises
+    ------
+    InvalidSystemError
+        A bad isolator parameter (named).
+    RecordInputError
+        Bad samples or times.
+    """
+    prm, g, velocity_dependent = _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m,
+                                             damping_per_mass, gravity_m_s2, mu_slow, mu_fast, rate_s_per_m)
+    ax = _samples("ax_m_s2", ax_m_s2)
+    ay = _samples("ay_m_s2", ay_m_s2, ax.size)
+    az = None if az_m_s2 is None else _samples("az_m_s2", az_m_s2, ax.size)
+    times = _times(ax.size, dt_s, time_s)
+    rtol = _tolerance(rtol)
+    if timed:
+        _warm_up()
+    n = ax.size
+    nz = np.full(n, g) if az is None else g + az
+    finite, pga2, n_max, has_y = _pk.scan_record(ax, ay, nz)
+    if not finite:
+        raise _not_finite(ax_m_s2=ax, ay_m_s2=ay, az_m_s2=az)
+    pga = math.sqrt(pga2)
+    # the speed the larger of µs g and the PGA gives in the shortest time scale of the
+    # problem: the sample step, or the system's own 1/ω and 1/c when they are shorter
+    kappa_max = n_max * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
+    t_scale = float(np.median(np.diff(times)) if time_s is not None else times[1] - times[0])
+    if kappa_max > 0.0:
+        t_scale = min(t_scale, 1.0 / math.sqrt(kappa_max))
+    if prm[_rk.P_C] > 0.0:
+        t_scale = min(t_scale, 1.0 / prm[_rk.P_C])
+    vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * t_scale
+    scales = np.empty(_pl.SC_SIZE)
+    scales[_pl.SC_R_MIN] = R_MIN_FACTOR * vref
+    scales[_pl.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
+    scales[_pl.SC_R_SWITCH_LO] = R_SWITCH_LO_FACTOR * vref
+    scales[_pl.SC_X_FLOOR] = 1e-3 * vref * t_scale
+    scales[_pl.SC_V_FLOOR] = 1e-3 * vref
+    refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)
+    return PreparedPair(prm=prm, gravity_m_s2=g, velocity_dependent=velocity_dependent, ax=ax, ay=ay, az=az,
+                        times=times, local_times=times if times[0] == 0.0 else times - times[0], nz=nz, has_y=has_y,
+                        scales=scales, refresh=refresh, rtol=float(rtol))
+
+
 def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_static, mu_kinetic=None,
                   stiffness_per_mass=0.0, radius_m=None, damping_per_mass=0.0, gravity_m_s2=None,
                   mu_slow=None, mu_fast=None, rate_s_per_m=None, rtol=DEFAULT_RTOL,
@@ -337,55 +427,45 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     -------
     PairResponse
     """
-    prm, g, velocity_dependent = _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m,
-                                             damping_per_mass, gravity_m_s2, mu_slow, mu_fast, rate_s_per_m)
-    ax = _samples("ax_m_s2", ax_m_s2)
-    ay = _samples("ay_m_s2", ay_m_s2, ax.size)
-    az = None if az_m_s2 is None else _samples("az_m_s2", az_m_s2, ax.size)
-    times = _times(ax.size, dt_s, time_s)
-    rtol = _tolerance(rtol)
-    if _timed:
-        _warm_up()
-    n = ax.size
-    nz = np.full(n, g) if az is None else g + az
-    finite, pga2, n_max, has_y = _pk.scan_record(ax, ay, nz)
-    if not finite:
-        raise _not_finite(ax_m_s2=ax, ay_m_s2=ay, az_m_s2=az)
-    pga = math.sqrt(pga2)
-    # the speed the larger of µs g and the PGA gives in the shortest time scale of the
-    # problem: the sample step, or the system's own 1/ω and 1/c when they are shorter
-    kappa_max = n_max * prm[_rk.P_INV_R] if prm[_rk.P_PENDULUM] > 0.0 else prm[_rk.P_KAPPA]
-    t_scale = float(np.median(np.diff(times)) if time_s is not None else times[1] - times[0])
-    if kappa_max > 0.0:
-        t_scale = min(t_scale, 1.0 / math.sqrt(kappa_max))
-    if prm[_rk.P_C] > 0.0:
-        t_scale = min(t_scale, 1.0 / prm[_rk.P_C])
-    vref = max(prm[_rk.P_MU_S] * g, pga, 1e-12) * t_scale
-    scales = np.empty(_pl.SC_SIZE)
-    scales[_pl.SC_R_MIN] = R_MIN_FACTOR * vref
-    scales[_pl.SC_R_SWITCH] = R_SWITCH_FACTOR * vref
-    scales[_pl.SC_R_SWITCH_LO] = R_SWITCH_LO_FACTOR * vref
-    scales[_pl.SC_X_FLOOR] = 1e-3 * vref * t_scale
-    scales[_pl.SC_V_FLOOR] = 1e-3 * vref
-    refresh = bool(az is not None and prm[_rk.P_PENDULUM] > 0.0)
+    run = prepare_pair(ax_m_s2, ay_m_s2, dt_s, time_s=time_s, az_m_s2=az_m_s2, mu_static=mu_static,
+                       mu_kinetic=mu_kinetic, stiffness_per_mass=stiffness_per_mass, radius_m=radius_m,
+                       damping_per_mass=damping_per_mass, gravity_m_s2=gravity_m_s2, mu_slow=mu_slow,
+                       mu_fast=mu_fast, rate_s_per_m=rate_s_per_m, rtol=rtol, timed=_timed)
+    n = run.ax.size
     out_x = np.empty((n, 2))
     out_v = np.empty((n, 2))
     out_a = np.empty((n, 2))
     out_en = np.empty((3, n))
     summary = np.zeros(_pl.S_SIZE)
     capacity = 64 + n // 4
-    local_times = times if times[0] == 0.0 else times - times[0]
+    no_rim = np.zeros(_pl.RM_SIZE)
+    no_rim[_pl.RM_RADIUS] = np.inf
     while True:
         ev_t = np.empty(capacity)
         ev_k = np.empty(capacity, dtype=np.int8)
         start = time.perf_counter()
-        _pk.planar_kernel(local_times, ax, ay, nz, prm, scales, float(rtol), refresh, out_x, out_v, out_a,
-                          out_en, ev_t, ev_k, summary)
+        _pk.planar_kernel(run.local_times, run.ax, run.ay, run.nz, run.prm, run.scales, run.rtol, run.refresh,
+                          out_x, out_v, out_a, out_en, ev_t, ev_k, summary, no_rim)
         elapsed = time.perf_counter() - start
         n_events = int(summary[_pl.S_N_EVENTS])
         if n_events <= capacity:
             break
         capacity = n_events + 16
+    return pair_response(run, out_x, out_v, out_a, out_en, ev_t, ev_k, summary, elapsed)
+
+
+def pair_response(run: PreparedPair, out_x, out_v, out_a, out_en, ev_t, ev_k, summary, elapsed,
+                  response_class=None, **extra) -> PairResponse:
+    """The :class:`PairResponse` (or ``response_class`` with ``extra`` fields) of a finished kernel run.
+
+    Raises
+    ------
+    SolverError
+        The step guard tripped (the history after it is NaN: no answer, never a cut-short one).
+    """
+    prm, g, az, times, nz = run.prm, run.gravity_m_s2, run.az, run.times, run.nz
+    ax, ay = run.ax, run.ay
+    n_events = int(summary[_pl.S_N_EVENTS])
     status = int(summary[_pl.S_STATUS])
     messages = [text for bit, text in _STATUS_MESSAGES if status & bit]
     if status & _pl.STATUS_STEP_LIMIT:  # the history after the guard is NaN: no answer, never a cut-short one
@@ -396,8 +476,8 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
     e_in, e_f, e_v = (float(summary[j]) for j in (_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = 0.5 * kappa_end * float(out_x[-1, 0] ** 2 + out_x[-1, 1] ** 2)
-    model, reason = model_label(has_y=has_y, has_z=az is not None, velocity_dependent=velocity_dependent)
-    return PairResponse(
+    model, reason = model_label(has_y=run.has_y, has_z=az is not None, velocity_dependent=run.velocity_dependent)
+    return (response_class or PairResponse)(
         time_s=times,
         ground_acceleration_m_s2=np.column_stack((ax, ay)),
         vertical_acceleration_m_s2=az,
@@ -434,4 +514,5 @@ def simulate_pair(ax_m_s2, ay_m_s2, dt_s=None, *, time_s=None, az_m_s2=None, mu_
             ("rejected", _pl.S_N_REJECTED), ("start", _pl.S_STEPS_START), ("log", _pl.S_STEPS_LOG),
             ("stability_limited", _pl.S_STEPS_LIMITED), ("land_substeps", _pl.S_SUB_LAND),
             ("peak_substeps", _pl.S_SUB_PEAK))},
+        **extra,
     )

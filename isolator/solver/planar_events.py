@@ -557,6 +557,18 @@ def mode_of(phase):
 
 
 @njit(cache=True, _nrt=False)
+def phase_of_mode(mode):
+    """A moving phase whose state is in the integration form ``mode`` (for :func:`velocity`)."""
+    if mode == LOG:
+        return PH_APPROACH
+    if mode == START:
+        return PH_START
+    if mode == POLAR:
+        return PH_POLAR
+    return PH_SLIDE
+
+
+@njit(cache=True, _nrt=False)
 def force_scale(tau, y, r, prm, frc):
     """|F| + µ(r) n [m/s²]: the force scale of the stop and LOG-entry tests."""
     return force_norm(tau, y, prm, frc) + friction_force(tau, r, prm, frc)
@@ -609,3 +621,101 @@ def force_norm(tau, y, prm, frc):
     """|F| = |−κX − a_g| [m/s²]."""
     _, _, _, _, _, fx, fy = forcing(tau, y[0], y[1], prm, frc)
     return norm(fx, fy)
+
+
+@njit(cache=True, _nrt=False)
+def rim_gap(mode, x, y, f, h, theta, d2, prm, frc, yb, fb, atol, rtol, work):
+    """|X|² − d² [m²] at the fraction θ of a step (a DOP853 sub-step from its start; state left in
+    ``yb``/``fb``), +inf where the form is not valid there."""
+    ok, _ = dop853_step(mode, x, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
+    work[0] += 1
+    if not ok:
+        return math.inf
+    return yb[0] * yb[0] + yb[1] * yb[1] - d2
+
+
+@njit(cache=True, _nrt=False)
+def rim_crossing(mode, x, y, f, h, d2, prm, frc, yb, fb, atol, rtol, work):
+    """Fraction θ of a step at which |X| first reaches the rim radius d (d² = ``d2``).
+
+    The step starts at the independent variable ``x`` with state ``y`` and derivative ``f``
+    in ``mode``, of size ``h``.  When its end is beyond the rim, the crossing is bracketed on
+    [0, 1]; when it is not (a graze: |X| rises above d and falls back inside the step), the
+    largest |X| is first located where the rate X·V changes sign (Illinois), and the crossing
+    bracketed before it.  Then Illinois secant on |X(θ)|² − d², with DOP853 sub-steps from the
+    step start, to 1e-15 in θ; the state on the crossed side (|X| ≥ d by rounding) is left in
+    ``yb``/``fb``.  Returns −1 when the step never reaches the rim (every loop bounded).
+    """
+    g0 = y[0] * y[0] + y[1] * y[1] - d2
+    if g0 >= 0.0:
+        for k in range(y.shape[0]):
+            yb[k] = y[k]
+            fb[k] = f[k]
+        return 0.0
+    hi = 1.0
+    fhi = rim_gap(mode, x, y, f, h, 1.0, d2, prm, frc, yb, fb, atol, rtol, work)
+    if not fhi > 0.0:
+        # a graze: the largest |X| where d|X|²/dt goes from + to −
+        lo_p = 0.0
+        hi_p = 1.0
+        r_lo = rate_of_peak(0, mode, y, f)
+        r_hi = rate_of_peak(0, mode, yb, fb)
+        if not r_lo > 0.0 >= r_hi:
+            return -1.0
+        side = 0
+        theta = r_lo / (r_lo - r_hi)
+        best = -math.inf
+        best_theta = -1.0
+        for _ in range(100):
+            if not (lo_p < theta < hi_p):
+                theta = 0.5 * (lo_p + hi_p)
+            gap = rim_gap(mode, x, y, f, h, theta, d2, prm, frc, yb, fb, atol, rtol, work)
+            if gap > best and gap < math.inf:
+                best = gap
+                best_theta = theta
+            if gap > 0.0:
+                break
+            rate = rate_of_peak(0, mode, yb, fb)
+            if rate > 0.0:
+                lo_p = theta
+                r_lo = rate
+                if side == 1:
+                    r_hi *= 0.5
+                side = 1
+            else:
+                hi_p = theta
+                r_hi = rate
+                if side == -1:
+                    r_lo *= 0.5
+                side = -1
+            if hi_p - lo_p < 1e-15:
+                break
+            theta = lo_p + (hi_p - lo_p) * r_lo / (r_lo - r_hi)
+        if not best > 0.0:
+            return -1.0
+        hi = best_theta
+        fhi = best
+    lo = 0.0
+    flo = g0
+    side = 0
+    for _ in range(200):
+        theta = lo + (hi - lo) * (-flo) / (fhi - flo) if fhi < math.inf else 0.5 * (lo + hi)
+        if not (lo < theta < hi):
+            theta = 0.5 * (lo + hi)
+        gap = rim_gap(mode, x, y, f, h, theta, d2, prm, frc, yb, fb, atol, rtol, work)
+        if gap < 0.0:
+            lo = theta
+            flo = gap
+            if side == 1:
+                fhi *= 0.5
+            side = 1
+        else:
+            hi = theta
+            fhi = gap
+            if side == -1:
+                flo *= 0.5
+            side = -1
+        if hi - lo < 1e-15 or gap == 0.0:
+            break
+    rim_gap(mode, x, y, f, h, hi, d2, prm, frc, yb, fb, atol, rtol, work)
+    return hi

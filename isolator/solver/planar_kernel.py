@@ -58,8 +58,10 @@ from isolator.solver.planar_events import (
     locate_peak,
     mode_of,
     peak_value,
+    phase_of_mode,
     rate_of_peak,
     record_event,
+    rim_crossing,
     settled,
     start_lag,
     stuck_until,
@@ -73,6 +75,18 @@ from isolator.solver.planar_layout import (
     EV_UPLIFT,
     MAX_EVENTS_PER_INTERVAL,
     MAX_STEPS_PER_INTERVAL,
+    RIM_SLACK,
+    RM_HIT,
+    RM_I,
+    RM_RADIUS,
+    RM_START,
+    RM_TAU,
+    RM_V1,
+    RM_V2,
+    RM_X1,
+    RM_X2,
+    RS_FRESH,
+    RS_START,
     S_E_F,
     S_E_IN,
     S_E_V,
@@ -143,7 +157,7 @@ def scan_record(ax, ay, nz):
 
 @njit(cache=True)
 def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a, out_en, ev_t, ev_k,
-                  summary):
+                  summary, rim):
     """Response of the planar friction block to a piecewise-linear record.
 
     Parameters
@@ -169,7 +183,14 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     ev_t, ev_k : arrays
         Event times [s] and kinds, while room lasts.
     summary : float64[S_SIZE]
-        Peaks, times, energies, counts and status.
+        Peaks, times, energies, counts and status (read as the starting values on a restart).
+    rim : float64[RM_SIZE]
+        The rim (:mod:`planar_layout`, ``RM_*``): its radius d (inf: none), and a restart — in
+        interval ``RM_I`` at local time ``RM_TAU`` from X and either rest (START form) or a velocity
+        V — after the rim's own phase (:mod:`isolator.solver.planar_rim`).  With a finite d the run
+        stops where |X| first reaches d (located inside the step, :func:`rim_crossing`) and
+        returns that instant, X and V there, with ``RM_HIT`` = 1; the samples after it are not
+        written.
     """
     n = t.shape[0]
     y = np.zeros(NSTATE)
@@ -216,8 +237,52 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     same_state = False  #: the state has not moved since the last transmitted-acceleration check
     polar_ok = True
     failed_at = -1
-    store_sample(0, 0.0, 0.0, ax[0], ay[0], y, out_x, out_v, out_a, out_en)  # at rest, y = 0
-    for i in range(n - 1):
+    d_rim = rim[RM_RADIUS]
+    rim_on = d_rim < np.inf
+    d2 = d_rim * d_rim
+    d_detect = d_rim * (1.0 + RIM_SLACK)
+    restart = int(rim[RM_START])
+    rim[RM_HIT] = 0.0
+    ys = np.zeros(NSTATE)  #: the start of the last step, kept while a rim is on (its crossing is located on it)
+    fs = np.zeros(NSTATE)
+    xs = 0.0
+    ts = 0.0
+    step_h = -1.0
+    step_mode = CARTESIAN
+    pxs = 0.0
+    pvs = 0.0
+    pas = 0.0
+    slips = 0.0
+    upts = 0.0
+    at_rim = False
+    i0 = 0
+    if restart == RS_FRESH:
+        store_sample(0, 0.0, 0.0, ax[0], ay[0], y, out_x, out_v, out_a, out_en)  # at rest, y = 0
+    else:  # go on from the rim's phase: its state, energies, peaks and counts
+        i0 = int(rim[RM_I])
+        y[0] = rim[RM_X1]
+        y[1] = rim[RM_X2]
+        y[4] = summary[S_E_IN]
+        y[5] = summary[S_E_F]
+        y[6] = summary[S_E_V]
+        peak_x = summary[S_PEAK_X]
+        peak_v = summary[S_PEAK_V]
+        peak_a = summary[S_PEAK_A]
+        slip = summary[S_SLIP_TIME]
+        upt = summary[S_UPLIFT_TIME]
+        n_up = int(summary[S_N_UPLIFTS])
+        n_ev = int(summary[S_N_EVENTS])
+        status = int(summary[S_STATUS])
+        n_steps = int(summary[S_N_STEPS])
+        n_rej = int(summary[S_N_REJECTED])
+        n_start = int(summary[S_STEPS_START])
+        n_log = int(summary[S_STEPS_LOG])
+        n_lim = int(summary[S_STEPS_LIMITED])
+        work[0] = summary[S_SUB_LAND]
+        work[1] = summary[S_SUB_PEAK]
+        phase = PH_START if restart == RS_START else PH_SLIDE
+    for i in range(i0, n - 1):
+        restart_here = restart != RS_FRESH and i == i0
         if phase == PH_STUCK and holds_at(y[0], y[1], ax[i], ay[i], nz[i], prm) and holds_at(
                 y[0], y[1], ax[i + 1], ay[i + 1], nz[i + 1], prm):
             # stuck at both ends of the interval, so throughout (holds_at): the sample in closed form
@@ -242,15 +307,30 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             y[7] = 0.0
         elif phase != PH_STUCK:
             x = 0.0
-        if refresh and phase != PH_STUCK:
+        if refresh and phase != PH_STUCK and not restart_here:
             rhs(mode_of(phase), x, y, prm, frc, f)
+        if restart_here:
+            tau = rim[RM_TAU]
+            x = tau
+            y[7] = 0.0
+            if restart == RS_START:  # a break-away from rest on the rim, inward
+                y[2] = 0.0
+                y[3] = 0.0
+                rhs(START, tau, y, prm, frc, f)
+                h_sugg = 0.01 * hi
+            else:  # leaving the rim along its tangent
+                y[2] = rim[RM_V1]
+                y[3] = rim[RM_V2]
+                rhs(CARTESIAN, tau, y, prm, frc, f)
         tz = hi
         if (nz[i] > 0.0 > nz[i + 1]) or (nz[i] < 0.0 < nz[i + 1]):
             tz = nz[i] / (nz[i] - nz[i + 1]) * hi
-        crossed = tz >= hi
+        crossed = tz >= hi or (restart_here and tz <= tau)
         nplus = nz[i] if nz[i] != 0.0 else nz[i + 1]
         # contact state just after the sample
-        if phase == PH_FLIGHT and nplus > 0.0:
+        if restart_here:
+            pass  # the rim's phase ended in contact (n > 0): the phase is set above
+        elif phase == PH_FLIGHT and nplus > 0.0:
             n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_LANDING)
             phase = land(0.0, y, prm, frc, f)
             if phase == PH_START:
@@ -271,7 +351,58 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         if phase == PH_POLAR and h_sugg > 0.0:
             h_sugg *= KINK_STEP
         steps_here = 0
-        while tau < hi:
+        while True:
+            if rim_on and step_h > 0.0:
+                if norm(y[0], y[1]) > d_detect or peak_x > d_detect:
+                    # the last step reached the rim: its instant, state and velocity there
+                    theta = rim_crossing(step_mode, xs, ys, fs, step_h, d2, prm, frc, yb, fb, atol, rtol, work)
+                    if theta < 0.0:
+                        # not inside the step's own motion: the closed-form finish of a stop after it (a
+                        # displacement ~r_min²/|ṙ|, far below the tolerance) ended beyond d
+                        for k in range(NSTATE):
+                            yb[k] = y[k]
+                        tau_hit = tau
+                        v1, v2 = velocity(phase, x, tau, y, prm, frc)
+                        a1, a2 = transmitted(phase, x, tau, y, prm, frc)
+                    else:
+                        sp_ph = phase_of_mode(step_mode)
+                        x_hit = xs + theta * step_h
+                        tau_hit = yb[7] if step_mode == LOG else x_hit
+                        v1, v2 = velocity(sp_ph, x_hit, tau_hit, yb, prm, frc)
+                        a1, a2 = transmitted(sp_ph, x_hit, tau_hit, yb, prm, frc)
+                        if step_mode != START and theta > 0.0:
+                            # |V| and |a| may peak inside the part of the step before the impact
+                            pvs = peak_in_step(pvs, 1, step_mode, xs, ys, fs, theta * step_h,
+                                               peak_value(1, step_mode, ys), rate_of_peak(1, step_mode, ys, fs),
+                                               peak_value(1, step_mode, yb), rate_of_peak(1, step_mode, yb, fb),
+                                               tau_hit - ts, prm, frc, ynew, fnew, atol, rtol, work)
+                            a_lo, g0 = acceleration_peak_rate(step_mode, xs, ys, fs, prm, frc)
+                            a_hi, g1 = acceleration_peak_rate(step_mode, x_hit, yb, fb, prm, frc)
+                            pas = peak_in_step(pas, 2, step_mode, xs, ys, fs, theta * step_h, a_lo, g0, a_hi, g1,
+                                               tau_hit - ts, prm, frc, ynew, fnew, atol, rtol, work)
+                    scale = d_rim / norm(yb[0], yb[1])  # on the circle (the crossing is located to rounding)
+                    rim[RM_X1] = yb[0] * scale
+                    rim[RM_X2] = yb[1] * scale
+                    rim[RM_V1] = v1
+                    rim[RM_V2] = v2
+                    rim[RM_I] = i
+                    rim[RM_TAU] = tau_hit
+                    rim[RM_HIT] = 1.0
+                    y[4] = yb[4]
+                    y[5] = yb[5]
+                    y[6] = yb[6]
+                    peak_x = max(pxs, d_rim)
+                    peak_v = max(pvs, norm(v1, v2))
+                    peak_a = max(pas, norm(a1, a2))
+                    if tau_hit >= ts:
+                        slip = slips + (tau_hit - ts)
+                        if step_mode == CARTESIAN and frc[6] == 0.0:
+                            upt = upts + (tau_hit - ts)
+                    at_rim = True
+                    break
+                step_h = -1.0
+            if not tau < hi:
+                break
             steps_here += 1
             if steps_here > MAX_STEPS_PER_INTERVAL:
                 status |= STATUS_STEP_LIMIT
@@ -350,6 +481,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     # the deceleration: it is no more precise than that speed before it (docs/dev-notes.md)
                     speed_tol = POLAR_VELOCITY_TOL * rtol * max(peak_v, scales[SC_V_FLOOR])
                     atol[7] = max(rtol * hi, speed_tol / max(-rdot, 1e-300))
+                    if rim_on:
+                        ys[:] = y
+                        fs[:] = f
+                        xs = x
+                        ts = y[7]
+                        pxs = peak_x
+                        pvs = peak_v
+                        pas = peak_a
+                        slips = slip
+                        upts = upt
                     ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
                     n_steps += 1
                     n_log += 1
@@ -372,6 +513,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         ds *= theta
                         ynew[7] = target
                         hit = True
+                    if rim_on:
+                        step_mode = LOG
+                        step_h = ds
                     a_lo, g0 = acceleration_peak_rate(LOG, x, y, f, prm, frc)
                     a_hi, g1 = acceleration_peak_rate(LOG, x + ds, ynew, fnew, prm, frc)
                     peak_a = peak_in_step(peak_a, 2, LOG, x, y, f, ds, a_lo, g0, a_hi, g1, ynew[7] - y[7], prm, frc,
@@ -495,6 +639,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     atol[7] = atol[2]
                     atol[2] /= y[7]
                     atol[3] = atol[2]
+                if rim_on:
+                    ys[:] = y
+                    fs[:] = f
+                    xs = tau
+                    ts = tau
+                    pxs = peak_x
+                    pvs = peak_v
+                    pas = peak_a
+                    slips = slip
+                    upts = upt
                 ok, err = dop853_step(mode, tau, y, f, h, prm, frc, ynew, fnew, atol, rtol)
                 n_steps += 1
                 if mode == START:
@@ -509,6 +663,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     # it stops again inside the step
                     theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], fnew[2], prm, frc, yb, fb, atol, rtol,
                                     work)
+                    if rim_on:
+                        step_mode = START
+                        step_h = theta * h
                     y[:] = yb
                     slip += theta * h
                     tau = tau + theta * h if theta < 1.0 else target
@@ -535,6 +692,9 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
+                if rim_on:
+                    step_mode = mode
+                    step_h = h
                 # |X| and |V| may peak inside the step where the rates of their squares go from + to −
                 # the peak brackets of :func:`peak_in_step`, written out here: in the helper's form this hot
                 # path compiled 2-6 % slower (least of 61 calls, interleaved; docs/dev-notes.md)
@@ -604,7 +764,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
                     enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
                     phase = PH_POLAR
-        if failed_at >= 0:
+        if failed_at >= 0 or at_rim:
             break
         v1, v2 = velocity(phase, x, hi, y, prm, frc)
         if phase == PH_STUCK:

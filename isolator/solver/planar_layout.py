@@ -50,3 +50,26 @@ SC_X_FLOOR = 2  #: displacement floor of the absolute tolerance [m]
 SC_V_FLOOR = 3  #: speed floor of the absolute tolerance [m/s]
 SC_R_SWITCH_LO = 4  #: lowest START → Cartesian hand-over speed (where the slaved direction lags much) [m/s]
 SC_SIZE = 5
+
+# the rim of a pendulum with a displacement capacity (isolator.solver.planar_rim): events it adds
+EV_RIM_IMPACT = 5  #: a plastic impact on the rim (|X| = d moving outward)
+EV_RIM_LEAVE = 6  #: the slider leaves the rim (the rim's reaction falls to zero)
+
+#: the ``rim`` vector of the kernel: in, the rim radius (inf: none) and where and how a run restarts;
+#: out, where it stopped at the rim
+RM_RADIUS = 0  #: d [m]; inf for no rim
+RM_START = 1  #: RS_FRESH, RS_START (from rest, the START form) or RS_SLIDE (Cartesian, velocity given)
+RM_I = 2  #: sample interval of the restart (in) or of the rim contact (out)
+RM_TAU = 3  #: local time in that interval [s]
+RM_X1 = 4
+RM_X2 = 5  #: X [m]
+RM_V1 = 6
+RM_V2 = 7  #: V [m/s]
+RM_HIT = 8  #: out: 1 when the run stopped at the rim
+RM_SIZE = 9
+RS_FRESH = 0
+RS_START = 1
+RS_SLIDE = 2
+#: a step is checked for the rim when |X| or the running peak exceeds d (1 + RIM_SLACK): a motion that only
+#: grazes the circle from inside after leaving it (rounding) is not an impact
+RIM_SLACK = 1e-12

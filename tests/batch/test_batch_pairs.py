@@ -153,12 +153,18 @@ def test_batch_analyses_two_files_of_one_station_as_a_pair(records_dir, tmp_path
     result = run_batch([str(y), str(x)], designs, tmp_path / "t2.csv", jobs=1, options=ReadOptions(trim=True))
     assert result.n_failed == 0 and len(result.table) == 2
     row = result.table.set_index("design_name").loc["FP"]
-    assert row["record"] == str(x) and row["component"] == "pair" and row["model"] == "2d"
+    # its 0.15 m capacity is reached: rerun with the rim in the plane (issue 23)
+    assert row["record"] == str(x) and row["component"] == "pair" and row["model"] == "2d+rim"
     assert row["record_files"] == f"{x.name}; {y.name}"
     assert (row["component_x"], row["component_y"]) == ("225", "315") and row["record_npts"] == 2231
     pair = read_ground_motion_pair(x, y, trim=True)
+    from isolator.design import Design
+
+    design = Design.from_mapping({"name": "FP", "mass_kg": 1000.0, "radius_m": 2.0, "mu_static": 0.05,
+                                  "displacement_capacity_m": 0.15}, source="designs.toml")
     direct = simulate_motion(pair.x.acceleration_m_s2, pair.y.acceleration_m_s2, dt_s=pair.dt_s, mu_static=0.05,
-                             radius_m=2.0)
+                             radius_m=2.0, design=design)
+    assert direct.model == "2d+rim" and direct.peak_displacement_m == pytest.approx(0.15, rel=1e-12)
     assert row["peak_displacement_m"] == pytest.approx(direct.peak_displacement_m, rel=1e-12)
     assert row["residual_displacement_x_m"] == pytest.approx(direct.residual_displacement_x_m, rel=1e-12)
     # 'all' needs a vertical: the station has none among the records given
@@ -206,10 +212,11 @@ def test_a_station_set_with_its_vertical_file(records_dir, tmp_path):
     result = run_batch([str(folder)], designs, tmp_path / "t.csv", jobs=1, component="all", options=options)
     assert result.n_failed == 0 and len(result.table) == 2
     row = result.table.set_index("design_name").loc["FP"]
-    assert row["model"] == "2d+vertical" and row["component_z"] == "UP"
+    assert row["model"] == "2d+vertical+rim" and row["component_z"] == "UP"  # past its 0.15 m capacity: the rim
     assert row["record_files"] == f"{x.name}; {y.name}; RSN723_SUPER.B_B-PTSUP.AT2"
     pair = result.table.set_index("design_name")
     plain = run_batch([str(folder)], designs, tmp_path / "t2.csv", jobs=1, options=options)
-    assert set(plain.table["model"]) == {"2d", "2d+mu(v)"}  # the default: the horizontals only
-    assert pair.loc["FP", "peak_displacement_m"] != plain.table.set_index("design_name").loc["FP",
-                                                                                           "peak_displacement_m"]
+    assert set(plain.table["model"]) == {"2d+rim", "2d+mu(v)"}  # the default: the horizontals only
+    # both held at the rim (peak 0.15 m): the vertical shows in the residual
+    assert pair.loc["FP", "residual_displacement_m"] != plain.table.set_index("design_name").loc[
+        "FP", "residual_displacement_m"]
