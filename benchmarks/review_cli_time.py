@@ -2,13 +2,16 @@
 
     .venv/bin/python benchmarks/review_cli_time.py --set horizontal_only=true   # data/example_building.toml
     .venv/bin/python benchmarks/review_cli_time.py --design data/example_review.toml --runs 7
+    .venv/bin/python benchmarks/review_cli_time.py --set horizontal_only=true --stages   # + where the time goes
 
 Runs ``isolator review --design DESIGN --target example --suite example -o TMP/review.pdf --no-cache``
 once untimed (numba's compiled functions and the regime map's disk cache loaded: "warm"), then
 ``--runs`` times; ``--no-cache`` makes every run analyse every pair and bound again (without it a
 rerun is served from the analysis cache in a few tenths of a second).  Prints the median, the
 runs, the load average before and after, and the stages of the last run from the review's JSON
-(``timing``).  Run from the repository root; the worktree's ``isolator`` is the one on PATH of
+(``timing``).  ``--stages`` adds one more run in this interpreter (the CLI called in-process, so
+its steps can be timed: wall and CPU of each, the workers' CPU included where they run).  Run from the
+repository root; the worktree's ``isolator`` is the one on PATH of
 this interpreter's environment.
 """
 
@@ -34,6 +37,17 @@ def _isolator() -> list[str]:
     return [str(script)] if script.is_file() else [sys.executable, "-c", "from isolator.cli import app; app()"]
 
 
+def _arguments(args, out: Path) -> list[str]:
+    """The review command's arguments (after ``isolator``)."""
+    command = ["review", "--design", args.design, "--target", "example", "--suite", "example",
+               "-o", str(out / "review.pdf"), "--no-cache"]
+    if args.jobs is not None:
+        command += ["--jobs", str(args.jobs)]
+    for setting in args.set:
+        command += ["--set", setting]
+    return command
+
+
 def _run(command: list[str]) -> tuple[float, float]:
     """(wall, CPU of the child and its workers: user + system) [s]."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -46,6 +60,71 @@ def _run(command: list[str]) -> tuple[float, float]:
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def _stages(command: list[str], out: Path) -> list[tuple[str, float, float]]:
+    """(stage, wall [s], CPU [s]) of one review run in this process (a fresh interpreter, caches warm).
+
+    The CLI itself runs, with timers around the steps it looks up at call time: the design and target,
+    the suite (reading, checks, motion signatures), the review's ELF values, spectra, analyses (the pool:
+    the workers' CPU is added when they are reaped) and checks, matplotlib's import, the PDF and JSON.
+    What remains is start-up (interpreter excluded: the time before this function) and glue.
+    """
+    import contextlib
+    import importlib
+    import io
+
+    wall0, cpu0 = time.perf_counter(), _cpu()
+    from isolator.cli import app
+    from isolator.report import review_pages
+    from isolator.review import assess, run, suite, worker
+
+    spent: dict[str, list[float]] = {}
+
+    def timed(name, function):
+        def wrapper(*args, **kwargs):
+            wall, cpu = time.perf_counter(), _cpu()
+            try:
+                return function(*args, **kwargs)
+            finally:
+                entry = spent.setdefault(name, [0.0, 0.0])
+                entry[0] += time.perf_counter() - wall
+                entry[1] += _cpu() - cpu
+        return wrapper
+
+    def import_matplotlib():
+        for module in ("matplotlib.figure", "matplotlib.backends.backend_pdf"):
+            importlib.import_module(module)
+
+    original_pdf = review_pages.write_review_pdf
+
+    def write_pdf(*args, **kwargs):
+        timed("import matplotlib", import_matplotlib)()
+        return timed("PDF (7 pages) and JSON", original_pdf)(*args, **kwargs)
+
+    suite.load_suite = timed("read the suite, motion signatures", suite.load_suite)
+    run.elf_values = timed("ELF values of the bounds", run.elf_values)
+    run.pair_spectra = timed("spectra (pairs, RotD100)", run.pair_spectra)
+    run.rotd50 = timed("spectra (RotD50)", run.rotd50)
+    worker.run_tasks = timed("analyses (pool, workers' CPU)", worker.run_tasks)
+    assess.assess = timed("checks (assess)", assess.assess)
+    review_pages.write_review_pdf = write_pdf
+    started = time.perf_counter() - wall0, _cpu() - cpu0
+    with contextlib.redirect_stdout(io.StringIO()):
+        app(command, standalone_mode=False)
+    wall, cpu = time.perf_counter() - wall0, _cpu() - cpu0
+    rows = [("import isolator.cli", *started)]
+    rows += [(name, w, c) for name, (w, c) in spent.items()]
+    rest = wall - sum(r[1] for r in rows), cpu - sum(r[2] for r in rows)
+    return [*rows, ("the rest (start-up of the command, glue)", *rest), ("total (after the interpreter started)",
+                                                                         wall, cpu)]
+
+
+def _cpu() -> float:
+    """CPU time of this process and its reaped children (user + system) [s]."""
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--design", default="data/example_building.toml")
@@ -54,24 +133,33 @@ def main(argv=None) -> int:
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="review parameters, passed on (the building needs horizontal_only=true: the example "
                              "suite's Loma Prieta pair has a vertical)")
+    parser.add_argument("--stages", action="store_true", help="also time the stages of one more run, in-process")
+    parser.add_argument("--in-process", metavar="DIR", help=argparse.SUPPRESS)  # the --stages child
     args = parser.parse_args(argv)
+    if args.in_process:
+        command = _arguments(args, Path(args.in_process))
+        for name, wall, cpu in _stages(command, Path(args.in_process)):
+            print(f"  {name:44s} {wall:7.2f} {cpu:7.2f}")
+        return 0
     if args.runs < 1:
         parser.error("--runs must be ≥ 1")
     out = Path(tempfile.mkdtemp(prefix="isolator-review-time-"))
     try:
-        command = _isolator() + ["review", "--design", args.design, "--target", "example", "--suite", "example",
-                                 "-o", str(out / "review.pdf"), "--no-cache"]
-        if args.jobs is not None:
-            command += ["--jobs", str(args.jobs)]
-        for setting in args.set:
-            command += ["--set", setting]
+        command = _isolator() + _arguments(args, out)
         load_before = os.getloadavg()
         _run(command)  # warm-up
         runs = [_run(command) for _ in range(args.runs)]
         load_after = os.getloadavg()
+        stages = ""
+        if args.stages:  # a fresh interpreter, the caches warm
+            child = [sys.executable, __file__, "--in-process", str(out), "--design", args.design]
+            child += [] if args.jobs is None else ["--jobs", str(args.jobs)]
+            for setting in args.set:
+                child += ["--set", setting]
+            stages = subprocess.run(child, cwd=ROOT, check=True, capture_output=True, text=True).stdout
         timing = {}
         for candidate in out.glob("review*.json"):
-            timing = json.loads(candidate.read_text()).get("timing", {}) or {}
+            timing = json.loads(candidate.read_text()).get("timing_s", {}) or {}
     finally:
         shutil.rmtree(out, ignore_errors=True)
     walls, cpus = [w for w, _ in runs], [c for _, c in runs]
@@ -80,8 +168,11 @@ def main(argv=None) -> int:
     print(f"wall [s]: median {statistics.median(walls):.2f}, runs {' '.join(f'{w:.2f}' for w in walls)}")
     print(f"CPU  [s]: median {statistics.median(cpus):.2f}, runs {' '.join(f'{c:.2f}' for c in cpus)} "
           "(the command and its worker processes)")
+    if stages:
+        print(f"one more run in-process, by stage {'wall [s]':>20s} {'CPU [s]':>7s}")
+        print(stages, end="")
     if timing:
-        print("stages of the last run (the review's JSON, timing):")
+        print("stages of the last run (the review's JSON, timing_s):")
         for key, value in timing.items():
             if isinstance(value, (int, float)):
                 print(f"  {key:40s} {value:.3f}")

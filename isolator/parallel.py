@@ -193,8 +193,7 @@ def iterate(tasks: list, function, *, jobs: int = 1, scheduler: str | None = Non
 
 
 def _iterate_local(tasks: list, jobs: int, function):
-    warm_up()
-    if jobs <= 1:
+    if jobs <= 1:  # in this process: each engine loads on its first use (the pool warms up before it forks)
         for task in tasks:
             yield task, function(task)
         return

@@ -262,20 +262,21 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     base, grid = period_grid(lo, hi, params["grid_points"], (t_upper, t_lower))
     fit_mask = np.isin(grid, base)
 
-    # spectra of every pair on the grid and the plot periods
+    # spectra of every pair on the grid (the scale factors need them before any analysis); those at the plot
+    # periods and RotD50 are for the report: computed while the analyses run (each period is its own oscillator,
+    # so splitting the periods changes no number)
     g = design.gravity_m_s2
     plot = np.unique(np.concatenate([PLOT_PERIODS_S, [lo, hi]]))
-    on_grid, on_plot = [], []
+
+    def spectra_of(pair, periods):
+        return (spectra_source(pair, periods) if spectra_source is not None
+                else pair_spectra(pair.ax_m_s2, pair.ay_m_s2, pair.dt_s, periods))
+
+    on_grid = []
     for pair in suite.pairs:
-        both = np.concatenate([grid, plot])
-        s = (spectra_source(pair, both) if spectra_source is not None
-             else pair_spectra(pair.ax_m_s2, pair.ay_m_s2, pair.dt_s, both))
-        split = grid.size
-        if code == "asce7-22":
-            on_grid.append(s["rotd100_m_s2"][:split] / g)
-        else:
-            on_grid.append(np.vstack([s["psa_x_m_s2"][:split], s["psa_y_m_s2"][:split]]) / g)
-        on_plot.append({k: v[split:] / g for k, v in s.items()})
+        s = spectra_of(pair, grid)
+        on_grid.append(s["rotd100_m_s2"] / g if code == "asce7-22"
+                       else np.vstack([s["psa_x_m_s2"], s["psa_y_m_s2"]]) / g)
     timing["spectra"] = time.perf_counter() - clock
     target_grid = target.sa_g(grid)
     weak = [p.name for p, s in zip(suite.pairs, on_grid, strict=False) if not np.all(np.asarray(s) > 0)]
@@ -285,16 +286,22 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                                                 code, params, notes)
     ratio = suite_mean(np.array(on_grid), factors) / target_grid
     names = suite.names
-    key = "rotd100_m_s2" if code == "asce7-22" else None
-    plot_pairs = {name: (s[key] if key else 0.5 * (s["psa_x_m_s2"] + s["psa_y_m_s2"])) * f
-                  for name, s, f in zip(names, on_plot, factors, strict=False)}
-    spectra = {"periods_s": plot, "target_g": _safe_target(target, plot), "pairs_scaled_g": plot_pairs,
+
+    def report_spectra() -> dict:
+        """The scaled spectra at the plot periods, and RotD50 (informational) [g]."""
+        on_plot = [{k: v / g for k, v in spectra_of(pair, plot).items()} for pair in suite.pairs]
+        key = "rotd100_m_s2" if code == "asce7-22" else None
+        plot_pairs = {name: (s[key] if key else 0.5 * (s["psa_x_m_s2"] + s["psa_y_m_s2"])) * f
+                      for name, s, f in zip(names, on_plot, factors, strict=False)}
+        out = {"periods_s": plot, "target_g": _safe_target(target, plot), "pairs_scaled_g": plot_pairs,
                "suite_mean_scaled_g": np.mean(list(plot_pairs.values()), axis=0),
                "grid_s": grid, "target_grid_g": target_grid}
-    if rotd50_points:
-        t50 = np.geomspace(lo, hi, rotd50_points)
-        spectra["rotd50"] = {"periods_s": t50, "pairs_scaled_g": {
-            p.name: f * rotd50(p.ax_m_s2, p.ay_m_s2, p.dt_s, t50) / g for p, f in zip(suite.pairs, factors, strict=False)}}
+        if rotd50_points:
+            t50 = np.geomspace(lo, hi, rotd50_points)
+            out["rotd50"] = {"periods_s": t50, "pairs_scaled_g": {
+                p.name: f * rotd50(p.ax_m_s2, p.ay_m_s2, p.dt_s, t50) / g
+                for p, f in zip(suite.pairs, factors, strict=False)}}
+        return out
 
     # analyses: every pair × bound (one run per distinct friction)
     tasks, index = {}, {}
@@ -311,10 +318,25 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                                  "factor": float(f), "design": d})
     start = time.perf_counter()
     cache = analysis_cache if analysis_cache is not None else Cache(cache_dir)
-    results, n_cached = run_tasks(tasks, jobs=jobs or default_jobs(), scheduler=scheduler, cache=cache)
+    jobs = jobs or default_jobs()
+    if jobs > 1 or scheduler:  # other processes analyse: this one draws up the report's spectra meanwhile
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(1, thread_name_prefix="isolator-review-analyses") as waiting:
+            analysed = waiting.submit(run_tasks, tasks, jobs=jobs, scheduler=scheduler, cache=cache)
+            spectra_start = time.perf_counter()
+            spectra = report_spectra()
+            timing["spectra"] += time.perf_counter() - spectra_start
+            results, n_cached = analysed.result()
+        timing["analyses"] = time.perf_counter() - start  # wall time until the last analysis came back
+    else:
+        results, n_cached = run_tasks(tasks, jobs=jobs, scheduler=scheduler, cache=cache)
+        timing["analyses"] = time.perf_counter() - start
+        spectra_start = time.perf_counter()
+        spectra = report_spectra()
+        timing["spectra"] += time.perf_counter() - spectra_start
     if isinstance(cache, Cache):  # entries found damaged or edited are said (an in-memory cache has none)
         notes.extend(filter(None, [cache.note()]))
-    timing["analyses"] = time.perf_counter() - start
     timing["analyses_cached"] = n_cached
     timing["analyses_total"] = len(tasks)
     analyses = {b: {name: _for_design(results[index[(b, name)]], designs[b], f)

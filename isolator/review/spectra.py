@@ -230,7 +230,7 @@ def _pair_states(ax, ay, dt, n_sub, kappa, m, h, e0, e1, h1, h2):
     return states
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)  # nogil: the review computes spectra while a thread collects the analyses
 def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
     """Per period: max|u_x|, max|u_y|, max|(u_x, u_y)| over time, between samples included → out[:, 0:3].
 
@@ -327,7 +327,7 @@ def _pair_peaks(ax, ay, dt, omegas, zeta, n_subs, out):
         out[k, 2] = math.sqrt(pv)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _rotd50_peaks(ax, ay, dt, omega, zeta, n_sub, cosines, sines, out):
     """Peak |u_x cos θ + u_y sin θ| over time (between samples included) for each angle θ at one period → out[:].
 

@@ -21,6 +21,8 @@ import numpy as np
 #: bump when the numbers an analysis returns change meaning
 CACHE_VERSION = "review-4"
 ORBIT_POINTS = 1500
+#: Samples of the first task analysed by :func:`warm_up` (enough to reach the engine's compiled kernel).
+WARM_UP_SAMPLES = 200
 #: Design keys that do not change its analyses: its names, the property factors (a bound's friction is already
 #: applied), the plan.  Not the displacement capacity: a single pendulum whose motion reaches it is run again
 #: with its rim (1d-multisurface, 2d+rim; isolator.solver.models), so the capacity changes the analysis.
@@ -113,12 +115,18 @@ def analyse_task(task: dict) -> dict:
             "analysis_seconds": time.perf_counter() - start}
 
 
-def warm_up() -> None:
-    """Load the compiled engines once in the parent before workers fork."""
+def warm_up(task: dict | None = None) -> None:
+    """Load the compiled engines once in the parent before workers fork: with ``task``, the engine its analyses
+    run (its design and components on their first :data:`WARM_UP_SAMPLES` samples), else the rigid block's."""
     from isolator.design import Design
     from isolator.parallel import warm_up as warm_solvers
 
     warm_solvers()
+    if task is not None:
+        head = {key: value[:WARM_UP_SAMPLES] if key in ("ax", "ay", "az") and value is not None else value
+                for key, value in task.items()}
+        analyse_task(head)  # an engine that refuses the scene says so again in the worker, where it counts
+        return
     t = np.linspace(0.0, 2.0, 201)
     design = Design.from_mapping({"name": "warm-up", "mass_kg": 1.0, "radius_m": 2.0, "mu_static": 0.05})
     analyse_task({"ax": np.sin(5 * t), "ay": np.cos(5 * t), "az": None, "dt": 0.01, "factor": 1.0, "design": design})
@@ -226,9 +234,9 @@ def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache
     n_cached = len(results)
     if not todo:
         return results, n_cached
-    if not scheduler:
-        warm_up()
     order = sorted(todo, key=lambda k: -todo[k]["ax"].size)
+    if not scheduler and jobs > 1 and len(todo) > 1:  # forked workers inherit it; one process warms as it goes
+        warm_up(todo[order[0]])
     work = [dict(todo[key], key=key) for key in order]
     try:
         for task, result in iterate(work, analyse_task, jobs=jobs, scheduler=scheduler):

@@ -1,19 +1,8 @@
-"""The solvers: the model registry (:mod:`.models`: select_model, simulate), the exact 1-D kernel, the 2-D engine,
-the harmonic problem."""
+"""The solvers: the model registry (:mod:`.models`: select_model, simulate), the exact 1-D kernel (:mod:`.record`),
+the 2-D engine (:mod:`.planar`), the buildings, the multi-surface bearings, the harmonic problem (:mod:`.harmonic`).
 
-from isolator.errors import InvalidSystemError, RecordInputError
-from isolator.solver.base import SUMMARY_KEYS, Scene, SolverResult
-from isolator.solver.harmonic import HarmonicResponse, alpha_sl_friction_only, harmonic_response
-from isolator.solver.linear import linear_peak_displacement, pseudo_acceleration_spectrum
-from isolator.solver.models import MODELS, select_model, simulate, simulate_motion
-from isolator.solver.record import Response, simulate_record
-from isolator.solver.system import System, classify_configuration
-from isolator.solver.thresholds import RegimeThresholds, harmonic_thresholds
-
-__all__ = [
-    "HarmonicResponse", "RegimeThresholds", "alpha_sl_friction_only", "harmonic_response",
-    "harmonic_thresholds", "linear_peak_displacement", "pseudo_acceleration_spectrum",
-    "RecordInputError", "Response", "simulate_record", "InvalidSystemError", "System",
-    "classify_configuration", "MODELS", "SUMMARY_KEYS", "Scene", "SolverResult", "select_model", "simulate",
-    "simulate_motion",
-]
+Importing any module of this package (``isolator.solver.base`` for the summary keys, ``isolator.solver.notice``
+for the CLI's compile notes) runs this file first, so it imports nothing: each engine, with numba and its
+kernels, loads where a caller imports it.  The public names are :mod:`isolator`'s (``isolator.simulate``,
+``isolator.simulate_record`` …, loaded on first use) or those of the modules here.
+"""
