@@ -3,16 +3,18 @@
     .venv/bin/python benchmarks/review_cli_time.py --set horizontal_only=true   # data/example_building.toml
     .venv/bin/python benchmarks/review_cli_time.py --design data/example_review.toml --runs 7
     .venv/bin/python benchmarks/review_cli_time.py --set horizontal_only=true --stages   # + where the time goes
+    .venv/bin/python benchmarks/review_cli_time.py --set horizontal_only=true --against ../main/.venv/bin/isolator
 
 Runs ``isolator review --design DESIGN --target example --suite example -o TMP/review.pdf --no-cache``
 once untimed (numba's compiled functions and the regime map's disk cache loaded: "warm"), then
 ``--runs`` times; ``--no-cache`` makes every run analyse every pair and bound again (without it a
 rerun is served from the analysis cache in a few tenths of a second).  Prints the median, the
 runs, the load average before and after, and the stages of the last run from the review's JSON
-(``timing``).  ``--stages`` adds one more run in this interpreter (the CLI called in-process, so
-its steps can be timed: wall and CPU of each, the workers' CPU included where they run).  Run from the
-repository root; the worktree's ``isolator`` is the one on PATH of
-this interpreter's environment.
+(``timing_s``).  ``--stages`` adds one more run in a fresh interpreter that calls the CLI in-process,
+so that its steps can be timed (wall and CPU of each; the workers' CPU counts where the pool is
+reaped).  ``--against`` runs another installation's ``isolator`` in alternation with this tree's
+(before/after on a shared machine).  Run from the repository root; this tree's ``isolator`` is the
+console script beside this interpreter.
 """
 
 from __future__ import annotations
@@ -134,6 +136,8 @@ def main(argv=None) -> int:
                         help="review parameters, passed on (the building needs horizontal_only=true: the example "
                              "suite's Loma Prieta pair has a vertical)")
     parser.add_argument("--stages", action="store_true", help="also time the stages of one more run, in-process")
+    parser.add_argument("--against", metavar="ISOLATOR", help="another installation's isolator script (e.g. "
+                        "/work/main/.venv/bin/isolator), run in alternation with this tree's")
     parser.add_argument("--in-process", metavar="DIR", help=argparse.SUPPRESS)  # the --stages child
     args = parser.parse_args(argv)
     if args.in_process:
@@ -143,34 +147,48 @@ def main(argv=None) -> int:
         return 0
     if args.runs < 1:
         parser.error("--runs must be ≥ 1")
+    trees = {"this tree": (_isolator(), sys.executable)}
+    if args.against:  # another installation's console script (e.g. main's), its interpreter beside it
+        other = Path(args.against).resolve()
+        if not other.is_file():
+            parser.error(f"--against {args.against}: no such file")
+        trees[str(other)] = ([str(other)], str(other.with_name("python")))
     out = Path(tempfile.mkdtemp(prefix="isolator-review-time-"))
     try:
-        command = _isolator() + _arguments(args, out)
+        arguments = _arguments(args, out)
         load_before = os.getloadavg()
-        _run(command)  # warm-up
-        runs = [_run(command) for _ in range(args.runs)]
+        for script, _ in trees.values():
+            _run(script + arguments)  # warm-up
+        runs = {name: [] for name in trees}
+        for _ in range(args.runs):  # in alternation, so that the machine's load episodes hit both alike
+            for name, (script, _) in trees.items():
+                runs[name].append(_run(script + arguments))
         load_after = os.getloadavg()
-        stages = ""
+        stages = {}
         if args.stages:  # a fresh interpreter, the caches warm
-            child = [sys.executable, __file__, "--in-process", str(out), "--design", args.design]
-            child += [] if args.jobs is None else ["--jobs", str(args.jobs)]
-            for setting in args.set:
-                child += ["--set", setting]
-            stages = subprocess.run(child, cwd=ROOT, check=True, capture_output=True, text=True).stdout
+            for name, (_, python) in trees.items():
+                child = [python, __file__, "--in-process", str(out), "--design", args.design]
+                child += [] if args.jobs is None else ["--jobs", str(args.jobs)]
+                for setting in args.set:
+                    child += ["--set", setting]
+                stages[name] = subprocess.run(child, cwd=ROOT, check=True, capture_output=True, text=True).stdout
         timing = {}
         for candidate in out.glob("review*.json"):
             timing = json.loads(candidate.read_text()).get("timing_s", {}) or {}
     finally:
         shutil.rmtree(out, ignore_errors=True)
-    walls, cpus = [w for w, _ in runs], [c for _, c in runs]
-    print(f"isolator {' '.join(command[len(_isolator()):]).replace(str(out), 'OUT')}")
-    print(f"{args.runs} warm runs after one untimed run; load average before {load_before}, after {load_after}")
-    print(f"wall [s]: median {statistics.median(walls):.2f}, runs {' '.join(f'{w:.2f}' for w in walls)}")
-    print(f"CPU  [s]: median {statistics.median(cpus):.2f}, runs {' '.join(f'{c:.2f}' for c in cpus)} "
-          "(the command and its worker processes)")
-    if stages:
-        print(f"one more run in-process, by stage {'wall [s]':>20s} {'CPU [s]':>7s}")
-        print(stages, end="")
+    print(f"isolator {' '.join(arguments).replace(str(out), 'OUT')}")
+    print(f"{args.runs} warm runs after one untimed run{' each, in alternation' if len(trees) > 1 else ''}; "
+          f"load average before {load_before}, after {load_after}")
+    for name, timed in runs.items():
+        walls, cpus = [w for w, _ in timed], [c for _, c in timed]
+        print(f"{name}:")
+        print(f"  wall [s]: median {statistics.median(walls):.2f}, runs {' '.join(f'{w:.2f}' for w in walls)}")
+        print(f"  CPU  [s]: median {statistics.median(cpus):.2f}, runs {' '.join(f'{c:.2f}' for c in cpus)} "
+              "(the command and its worker processes)")
+        if name in stages:
+            print(f"  one more run in-process, by stage {'wall [s]':>18s} {'CPU [s]':>7s}")
+            print(stages[name], end="")
     if timing:
         print("stages of the last run (the review's JSON, timing_s):")
         for key, value in timing.items():

@@ -124,7 +124,7 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", re
         notes.append("the ELF demand does not exceed the friction: no sliding (D_M = 0)")
         d_m = 0.0
     else:
-        from scipy.optimize import brentq
+        from isolator.roots import brentq  # SciPy's brentq bit for bit, without importing scipy.optimize
 
         i = int(crossings[-1])
         d_m = float(brentq(lambda d: image(d) - d, grid[i], grid[i + 1], xtol=1e-14, rtol=1e-12))
