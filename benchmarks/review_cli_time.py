@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import resource
 import shutil
@@ -65,10 +66,12 @@ def _run(command: list[str]) -> tuple[float, float]:
 def _stages(command: list[str], out: Path) -> list[tuple[str, float, float]]:
     """(stage, wall [s], CPU [s]) of one review run in this process (a fresh interpreter, caches warm).
 
-    The CLI itself runs, with timers around the steps it looks up at call time: the design and target,
-    the suite (reading, checks, motion signatures), the review's ELF values, spectra, analyses (the pool:
-    the workers' CPU is added when they are reaped) and checks, matplotlib's import, the PDF and JSON.
-    What remains is start-up (interpreter excluded: the time before this function) and glue.
+    The CLI itself runs, with timers around the steps it looks up at call time: the suite (reading,
+    checks, motion signatures), the review's ELF values, spectra, analyses and checks, matplotlib's
+    import, the PDF and JSON.  A stage's CPU is that of the thread it ran in; the analyses' adds the
+    worker processes' (reaped when the pool closes).  With a pool, the report's spectra are computed
+    while the analyses run (isolator.review.run): their wall times overlap, so "the rest" is
+    computed from CPU only.  What remains is start-up (the interpreter excluded) and glue.
     """
     import contextlib
     import importlib
@@ -81,15 +84,15 @@ def _stages(command: list[str], out: Path) -> list[tuple[str, float, float]]:
 
     spent: dict[str, list[float]] = {}
 
-    def timed(name, function):
+    def timed(name, function, children: bool = False):
         def wrapper(*args, **kwargs):
-            wall, cpu = time.perf_counter(), _cpu()
+            wall, cpu = time.perf_counter(), time.thread_time() + (_children() if children else 0.0)
             try:
                 return function(*args, **kwargs)
             finally:
                 entry = spent.setdefault(name, [0.0, 0.0])
                 entry[0] += time.perf_counter() - wall
-                entry[1] += _cpu() - cpu
+                entry[1] += time.thread_time() + (_children() if children else 0.0) - cpu
         return wrapper
 
     def import_matplotlib():
@@ -106,7 +109,7 @@ def _stages(command: list[str], out: Path) -> list[tuple[str, float, float]]:
     run.elf_values = timed("ELF values of the bounds", run.elf_values)
     run.pair_spectra = timed("spectra (pairs, RotD100)", run.pair_spectra)
     run.rotd50 = timed("spectra (RotD50)", run.rotd50)
-    worker.run_tasks = timed("analyses (pool, workers' CPU)", worker.run_tasks)
+    worker.run_tasks = timed("analyses (parent + workers' CPU)", worker.run_tasks, children=True)
     assess.assess = timed("checks (assess)", assess.assess)
     review_pages.write_review_pdf = write_pdf
     started = time.perf_counter() - wall0, _cpu() - cpu0
@@ -115,9 +118,15 @@ def _stages(command: list[str], out: Path) -> list[tuple[str, float, float]]:
     wall, cpu = time.perf_counter() - wall0, _cpu() - cpu0
     rows = [("import isolator.cli", *started)]
     rows += [(name, w, c) for name, (w, c) in spent.items()]
-    rest = wall - sum(r[1] for r in rows), cpu - sum(r[2] for r in rows)
-    return [*rows, ("the rest (start-up of the command, glue)", *rest), ("total (after the interpreter started)",
-                                                                         wall, cpu)]
+    rest = cpu - sum(r[2] for r in rows)
+    return [*rows, ("the rest (start-up of the command, glue)", math.nan, rest),
+            ("total (after the interpreter started)", wall, cpu)]
+
+
+def _children() -> float:
+    """CPU time of this process's reaped children (user + system) [s]."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return children.ru_utime + children.ru_stime
 
 
 def _cpu() -> float:
