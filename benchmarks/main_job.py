@@ -5,6 +5,7 @@ Run from the repository root (``PYTHONPATH`` is passed on, so a worktree's ``iso
     .venv/bin/python benchmarks/main_job.py            # 5 runs each
     .venv/bin/python benchmarks/main_job.py --runs 9
     .venv/bin/python benchmarks/main_job.py --stages   # and the CPU time of each stage of one run
+    .venv/bin/python benchmarks/main_job.py --against ../main/.venv/bin/isolator   # before/after, alternated
 
 Each run is a fresh ``isolator`` process, launch to exit, as a user types it; the wall time
 is what the user waits, the CPU time (user + system of the child) what the process spent,
@@ -111,7 +112,7 @@ def _stages(out: Path) -> list[tuple[str, float]]:
 
 def _row(name: str, values: list[float]) -> str:
     runs = " ".join(f"{v:.2f}" for v in values)
-    return f"{name:40s} {statistics.median(values):7.2f} {min(values):7.2f} {max(values):7.2f}   {runs}"
+    return f"{name:52s} {statistics.median(values):7.2f} {min(values):7.2f} {max(values):7.2f}   {runs}"
 
 
 def main(argv=None) -> int:
@@ -119,6 +120,8 @@ def main(argv=None) -> int:
     parser.add_argument("--runs", type=int, default=5, help="timed runs of each command (default 5)")
     parser.add_argument("--stages", action="store_true", help="also print the CPU time of each stage of one run")
     parser.add_argument("--in-process", metavar="DIR", help=argparse.SUPPRESS)  # the --stages child
+    parser.add_argument("--against", metavar="ISOLATOR", help="another installation's isolator script (e.g. "
+                        "../main/.venv/bin/isolator), run in alternation with this tree's")
     args = parser.parse_args(argv)
     if args.in_process:
         for name, seconds in _stages(Path(args.in_process)):
@@ -127,13 +130,24 @@ def main(argv=None) -> int:
     if args.runs < 1:
         parser.error("--runs must be ≥ 1")
     isolator = _isolator_command()
+    trees = {"": isolator}
+    if args.against:  # another installation (e.g. main's), run in alternation with this tree
+        if not Path(args.against).is_file():
+            parser.error(f"--against {args.against}: no such file")
+        trees[" (--against)"] = [str(Path(args.against).resolve())]
     out = Path(tempfile.mkdtemp(prefix="isolator-main-job-"))
+    timed: dict[str, list] = {}
     try:
-        job = isolator + [part.format(out=out) for part in MAIN_JOB]
         load_before = os.getloadavg()[0]
-        _time(job)  # warm-up: numba cache, map cache
-        report = [_time(job) for _ in range(args.runs)]
-        help_ = [_time(isolator + ["--help"]) for _ in range(args.runs)]
+        for script in trees.values():
+            _time(script + [part.format(out=out) for part in MAIN_JOB])  # warm-up: numba cache, map cache
+        for _ in range(args.runs):  # in alternation: the machine's load episodes hit every tree alike
+            for label, script in trees.items():
+                timed.setdefault(f"isolator report (main job){label}", []).append(
+                    _time(script + [part.format(out=out) for part in MAIN_JOB]))
+        for _ in range(args.runs):
+            for label, script in trees.items():
+                timed.setdefault(f"isolator --help{label}", []).append(_time(script + ["--help"]))
         load_after = os.getloadavg()[0]
         pdf_bytes = (out / "example.pdf").stat().st_size
         stages = ""
@@ -146,8 +160,10 @@ def main(argv=None) -> int:
     print(f"{args.runs} warm runs each after one warm-up; {platform.python_implementation()} "
           f"{platform.python_version()}, {os.cpu_count()} CPUs, load average {load_before:.2f} before, "
           f"{load_after:.2f} after")
-    print(f"{'launch to exit [s]':40s} {'median':>7s} {'min':>7s} {'max':>7s}   runs")
-    for name, runs in (("isolator report (main job)", report), ("isolator --help", help_)):
+    if args.against:
+        print(f"--against: {args.against}")
+    print(f"{'launch to exit [s]':52s} {'median':>7s} {'min':>7s} {'max':>7s}   runs")
+    for name, runs in timed.items():
         print(_row(f"{name}, wall", [wall for wall, _ in runs]))
         print(_row(f"{name}, CPU", [cpu for _, cpu in runs]))
     if stages:

@@ -104,16 +104,18 @@ def _die_with_parent(parent_pid: int) -> None:
 
 
 @contextmanager
-def process_pool(workers: int):
+def process_pool(workers: int, *, warm: bool = True):
     """A :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` forked processes, warmed up.
 
     Forking (where the platform has it) lets workers inherit the compiled solver; on
-    exit the pool is shut down and the futures not started are cancelled.
+    exit the pool is shut down and the futures not started are cancelled.  ``warm=False``: the
+    caller has loaded what its tasks run (the review: its own engine), :func:`warm_up` is skipped.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    warm_up()
+    if warm:
+        warm_up()
     try:
         context = multiprocessing.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform
@@ -163,7 +165,7 @@ def map_interleaved(function, items: list, workers: int, chunks_per_worker: int 
 SCHEDULER_SCHEMES = ("tcp", "tls")
 
 
-def iterate(tasks: list, function, *, jobs: int = 1, scheduler: str | None = None):
+def iterate(tasks: list, function, *, jobs: int = 1, scheduler: str | None = None, warm: bool = True):
     """Yield ``(task, function(task))`` as tasks finish — or ``(task, exception)`` for a lost worker.
 
     One interface for the batch and the review: ``jobs`` local processes (forked after
@@ -180,6 +182,9 @@ def iterate(tasks: list, function, *, jobs: int = 1, scheduler: str | None = Non
         Local processes [-].
     scheduler : str, optional
         ``tcp://HOST:PORT`` or ``tls://HOST:PORT`` of a dask scheduler [-].
+    warm : bool
+        Load the solver functions (:func:`warm_up`) before forking; False when the caller loaded what
+        ``function`` runs.
 
     Raises
     ------
@@ -189,17 +194,17 @@ def iterate(tasks: list, function, *, jobs: int = 1, scheduler: str | None = Non
     if scheduler:
         yield from _iterate_dask(tasks, scheduler, function)
     else:
-        yield from _iterate_local(tasks, max(1, int(jobs)), function)
+        yield from _iterate_local(tasks, max(1, int(jobs)), function, warm)
 
 
-def _iterate_local(tasks: list, jobs: int, function):
+def _iterate_local(tasks: list, jobs: int, function, warm: bool = True):
     if jobs <= 1:  # in this process: each engine loads on its first use (the pool warms up before it forks)
         for task in tasks:
             yield task, function(task)
         return
     from concurrent.futures import as_completed
 
-    with process_pool(min(jobs, max(1, len(tasks)))) as pool:
+    with process_pool(min(jobs, max(1, len(tasks))), warm=warm) as pool:
         futures = {pool.submit(function, task): task for task in tasks}
         for future in as_completed(futures):
             try:

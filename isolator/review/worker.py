@@ -121,12 +121,12 @@ def warm_up(task: dict | None = None) -> None:
     from isolator.design import Design
     from isolator.parallel import warm_up as warm_solvers
 
-    warm_solvers()
     if task is not None:
         head = {key: value[:WARM_UP_SAMPLES] if key in ("ax", "ay", "az") and value is not None else value
                 for key, value in task.items()}
         analyse_task(head)  # an engine that refuses the scene says so again in the worker, where it counts
         return
+    warm_solvers()
     t = np.linspace(0.0, 2.0, 201)
     design = Design.from_mapping({"name": "warm-up", "mass_kg": 1.0, "radius_m": 2.0, "mu_static": 0.05})
     analyse_task({"ax": np.sin(5 * t), "ay": np.cos(5 * t), "az": None, "dt": 0.01, "factor": 1.0, "design": design})
@@ -239,7 +239,7 @@ def run_tasks(tasks: dict, *, jobs: int = 1, scheduler: str | None = None, cache
         warm_up(todo[order[0]])
     work = [dict(todo[key], key=key) for key in order]
     try:
-        for task, result in iterate(work, analyse_task, jobs=jobs, scheduler=scheduler):
+        for task, result in iterate(work, analyse_task, jobs=jobs, scheduler=scheduler, warm=False):
             results[task["key"]] = _result(result)
             cache.put(task["key"], results[task["key"]])
     except BatchError as err:
