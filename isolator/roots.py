@@ -22,10 +22,6 @@ from collections.abc import Callable
 RTOL_MIN = 4.0 * 2.220446049250313e-16
 
 
-class RootError(ValueError):
-    """A bracket without a sign change, a tolerance out of range, or no convergence within the iterations."""
-
-
 def brentq(f: Callable[[float], float], a: float, b: float, *, xtol: float = 2e-12, rtol: float = RTOL_MIN,
            maxiter: int = 100) -> float:
     """A root of ``f`` in ``[a, b]``, where ``f(a)`` and ``f(b)`` have opposite signs.
@@ -49,14 +45,16 @@ def brentq(f: Callable[[float], float], a: float, b: float, *, xtol: float = 2e-
 
     Raises
     ------
-    RootError
-        ``f(a)`` and ``f(b)`` of one sign, a NaN value of ``f``, ``xtol ≤ 0``, ``rtol <`` :data:`RTOL_MIN`, or no
-        convergence within ``maxiter`` (where SciPy raises its RuntimeError).
+    ValueError
+        ``f(a)`` and ``f(b)`` of one sign, a NaN value of ``f``, ``xtol ≤ 0`` or ``rtol <`` :data:`RTOL_MIN`
+        (as SciPy).
+    RuntimeError
+        No convergence within ``maxiter`` iterations (as SciPy).
     """
     if not xtol > 0:
-        raise RootError(f"xtol must be > 0, got {xtol!r}")
+        raise ValueError(f"xtol must be > 0, got {xtol!r}")
     if not rtol >= RTOL_MIN:
-        raise RootError(f"rtol must be ≥ {RTOL_MIN!r}, got {rtol!r}")
+        raise ValueError(f"rtol must be ≥ {RTOL_MIN!r}, got {rtol!r}")
     x_previous, x_current = float(a), float(b)
     x_bracket, f_bracket, step_previous, step_current = 0.0, 0.0, 0.0, 0.0
     f_previous, f_current = _value(f, x_previous), _value(f, x_current)
@@ -65,7 +63,7 @@ def brentq(f: Callable[[float], float], a: float, b: float, *, xtol: float = 2e-
     if f_current == 0:
         return x_current
     if math.copysign(1.0, f_previous) == math.copysign(1.0, f_current):
-        raise RootError(f"f({a!r}) and f({b!r}) must have opposite signs")
+        raise ValueError(f"f({a!r}) and f({b!r}) must have opposite signs")
     for _ in range(int(maxiter)):
         if f_previous != 0 and f_current != 0 and math.copysign(1.0, f_previous) != math.copysign(1.0, f_current):
             x_bracket, f_bracket = x_previous, f_previous
@@ -97,12 +95,12 @@ def brentq(f: Callable[[float], float], a: float, b: float, *, xtol: float = 2e-
         else:
             x_current += delta if bisection > 0 else -delta
         f_current = _value(f, x_current)
-    raise RootError(f"no convergence in {maxiter} iterations (last estimate {x_current!r})")
+    raise RuntimeError(f"no convergence in {maxiter} iterations (last estimate {x_current!r})")
 
 
 def _value(f, x: float) -> float:
     """``f(x)`` as a float; NaN is refused (as SciPy does: a NaN has no sign to bracket with)."""
     value = float(f(x))
     if math.isnan(value):
-        raise RootError(f"the function value at x = {x!r} is NaN")
+        raise ValueError(f"the function value at x = {x!r} is NaN")
     return value

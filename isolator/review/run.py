@@ -318,19 +318,19 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                                  "factor": float(f), "design": d})
     start = time.perf_counter()
     cache = analysis_cache if analysis_cache is not None else Cache(cache_dir)
-    jobs = jobs or default_jobs()
-    if jobs > 1 or scheduler:  # other processes analyse: this one draws up the report's spectra meanwhile
+    workers = jobs or default_jobs()
+    if workers > 1 or scheduler:  # other processes analyse: this one draws up the report's spectra meanwhile
         from concurrent.futures import ThreadPoolExecutor
 
         with ThreadPoolExecutor(1, thread_name_prefix="isolator-review-analyses") as waiting:
-            analysed = waiting.submit(run_tasks, tasks, jobs=jobs, scheduler=scheduler, cache=cache)
+            analysed = waiting.submit(run_tasks, tasks, jobs=workers, scheduler=scheduler, cache=cache)
             spectra_start = time.perf_counter()
             spectra = report_spectra()
             timing["spectra"] += time.perf_counter() - spectra_start
             results, n_cached = analysed.result()
         timing["analyses"] = time.perf_counter() - start  # wall time until the last analysis came back
     else:
-        results, n_cached = run_tasks(tasks, jobs=jobs, scheduler=scheduler, cache=cache)
+        results, n_cached = run_tasks(tasks, jobs=workers, scheduler=scheduler, cache=cache)
         timing["analyses"] = time.perf_counter() - start
         spectra_start = time.perf_counter()
         spectra = report_spectra()
