@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from isolator.cli import app
@@ -37,3 +38,21 @@ def test_review_refuses_a_bad_scheduler_before_reading_the_suite(tmp_path):
                              "--scheduler", "bogus"], "scheduler address 'bogus'", "--scheduler")
     assert "no_such_suite" not in line
     assert not (tmp_path / "r.pdf").exists()
+
+
+@pytest.mark.parametrize(("setting", "needles"), [
+    ("bogus=1", ("--set", "'bogus' is not a parameter of the report")),
+    ("n_pairs_min=3", ("--set", "'n_pairs_min' is not a parameter of the report")),  # a review's, not the report's
+    ("drift_limit_rha=abc", ("--set", "'drift_limit_rha' must be a number")),
+    ("drift_limit_rha=none", ("--set", "'drift_limit_rha' must be a number for the report")),
+    ("drift_limit_rha=0.5", ("--set", "outside (0, 0.1]")),
+    ("drift_limit_rha=-0.01", ("--set", "finite number ≥ 0")),
+    ("drift_limit_rha=nan", ("--set", "finite number ≥ 0")),
+    ("drift_limit_rha", ("--set drift_limit_rha: expected NAME=VALUE",)),
+    ("sf_flag_low=2", ("--set", "outside (0, 1]")),
+])
+def test_report_set_refuses_in_one_line_before_reading(tmp_path, setting, needles):
+    """A bad ``report --set``: one line naming the flag, exit 2, before the (missing) record is read."""
+    line = _one_line_exit_2(["report", str(tmp_path / "missing.AT2"), "-d", str(BUILDING), "-o",
+                             str(tmp_path / "r.pdf"), "--set", setting], *needles)
+    assert "missing.AT2" not in line and not (tmp_path / "r.json").exists()

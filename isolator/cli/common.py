@@ -245,6 +245,17 @@ def user_error(message: str) -> None:
     raise typer.Exit(2)
 
 
+def parse_set(items) -> dict:
+    """``--set NAME=VALUE`` options as {name: value text} (``review``, ``report``); one line and exit 2 otherwise."""
+    out = {}
+    for item in items or ():
+        if "=" not in item:
+            user_error(f"--set {item}: expected NAME=VALUE")
+        name, value = item.split("=", 1)
+        out[name.strip()] = value.strip()
+    return out
+
+
 def check_static_friction(value, flag: str = "--mu-s") -> None:
     """Refuse µs = 0 given on the command line (one line naming ``flag``, exit 2).
 

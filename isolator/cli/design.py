@@ -6,22 +6,19 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app, check_outputs, collector_skips_existing_objects, echo_table, write_error
+from isolator.cli.common import (
+    app,
+    check_outputs,
+    collector_skips_existing_objects,
+    echo_table,
+    parse_set,
+    write_error,
+)
 from isolator.cli.common import user_error as _user_error
 
 #: the flag of each parameter a design-search error may name
 FLAGS = {"vary": "--vary", "objective": "--objective", "code": "--code", "scaling": "--scaling",
          "scheduler": "--scheduler"}
-
-
-def _parse_set(items) -> dict:
-    out = {}
-    for item in items or ():
-        if "=" not in item:
-            _user_error(f"--set {item}: expected NAME=VALUE")
-        name, value = item.split("=", 1)
-        out[name.strip()] = value.strip()
-    return out
 
 
 def _search_error(err) -> None:
@@ -126,7 +123,7 @@ def design(
             check_scheduler(scheduler)
         except BatchError as err:
             _user_error(f"--scheduler {err}")
-    parameters = _parse_set(settings)
+    parameters = parse_set(settings)
     paths = output_paths(output)
     try:
         from isolator.review.parameters import resolve

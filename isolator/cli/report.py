@@ -11,6 +11,7 @@ from isolator.cli.common import (
     collector_skips_existing_objects,
     echo_table,
     load_record_for_cli,
+    parse_set,
     user_error,
     write_error,
 )
@@ -97,6 +98,10 @@ def report(
                                        help="Grid points per axis of the regime map (cached on disk)."),
     no_pdf: bool = typer.Option(False, "--no-pdf", help="Write only the JSON of the numbers (beside where the PDF "
                                 "would go), without rendering the PDF."),
+    settings: list[str] = typer.Option(None, "--set", help="NAME=VALUE: a review parameter the report's pages use "
+                                       "(repeatable): drift_limit_rha (the building page's 17.6.4.4 line), "
+                                       "D_over_R_max, restoring_min, transmitted_over_pga_max, sf_flag_low, "
+                                       "sf_flag_high, range_hi_factor, usable_band_factor; printed in the report."),
 ) -> None:
     """Engineering-review PDF (and JSON) of an isolator design under a ground-motion record.
 
@@ -110,8 +115,15 @@ def report(
     from pathlib import Path
 
     from isolator.design import Design, DesignError
+    from isolator.errors import ReviewError
     from isolator.motion.examples import resolve_record
+    from isolator.report.summary import report_parameters
 
+    overrides = parse_set(settings)
+    try:  # checked before anything is read: one line naming the flag
+        parameters = report_parameters(overrides)
+    except ReviewError as err:
+        user_error(f"--set: {err}")
     try:
         the_design = Design.from_toml(design)
     except DesignError as err:
@@ -153,14 +165,15 @@ def report(
         with output_lock(output):
             try:  # the model is the one the scene needs (the solver registry); the map applies to a 1-D response
                 analysis = with_record_checks(analyse(the_design, motion, record_label=record_label,
-                                                      scaling_note=scaling_note, map_resolution=map_resolution))
+                                                      scaling_note=scaling_note, map_resolution=map_resolution),
+                                              overrides)
             except ValueError as err:  # RecordInputError, InvalidSystemError: the record's or the design's numbers
                 user_error(f"{record_label}: {err}")
             if no_pdf:
-                numbers = write_json(analysis, json_path)
+                numbers = write_json(analysis, json_path, parameters=parameters)
             else:
                 with collector_skips_existing_objects():
-                    numbers = write_analysis_report(analysis, output, command=_command_line())
+                    numbers = write_analysis_report(analysis, output, command=_command_line(), parameters=parameters)
     except OSError as err:  # OutputError (lock held, read-only folder, full disk) names its path
         write_error(err, output)
     paper = analysis.paper_applies

@@ -6,18 +6,8 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app
+from isolator.cli.common import app, parse_set
 from isolator.cli.common import user_error as _user_error
-
-
-def _parse_set(items) -> dict:
-    out = {}
-    for item in items or ():
-        if "=" not in item:
-            _user_error(f"--set {item}: expected NAME=VALUE")
-        name, value = item.split("=", 1)
-        out[name.strip()] = value.strip()
-    return out
 
 
 @app.command("review")
@@ -97,7 +87,7 @@ def review(
         output = str(Path("reports") / f"review_{Path(design).stem}.pdf")
     if Path(output).suffix.lower() != ".pdf":
         _user_error(f"--output must end with .pdf, got {output}")
-    parameters = _parse_set(settings)
+    parameters = parse_set(settings)
     try:
         from isolator.review.parameters import resolve
         from isolator.review.suite import load_suite

@@ -7,7 +7,8 @@ Rendering only: every number comes from the analysis (:meth:`isolator.analysis.A
 ``bearing_axial_load_min_N``, ``n_bearings_uplifted``; the design's floors and bearing layout under
 ``design``), or from the response's own :meth:`~isolator.solver.building.BuildingResponse.bearing_loads`
 (when each uplift starts and how long it lasts).  The story-drift limit is the review parameter
-``drift_limit_rha`` (ASCE 7-22 17.6.4.4, marked [U] in REVIEW_RULES.md: printed with its value).
+``drift_limit_rha`` (ASCE 7-22 17.6.4.4, marked [U] in REVIEW_RULES.md: printed with its value; ``isolator
+report --set drift_limit_rha=…`` changes it, the value then read from the report's ``parameters``).
 """
 
 from __future__ import annotations
@@ -28,19 +29,23 @@ def has_building(numbers: dict) -> bool:
     return isinstance(numbers.get("story_drift_ratio"), list) and bool(numbers["story_drift_ratio"])
 
 
-def drift_limit() -> dict:
-    """The story-drift limit the page draws: the review parameter's default, mark and clause.
+def drift_limit(numbers: dict | None = None) -> dict:
+    """The story-drift limit the page draws: the review parameter's value in the report's ``parameters`` (``report
+    --set drift_limit_rha=…``), else its default; its mark and clause.
 
     Returns
     -------
     dict
-        ``name``, ``ratio`` [-] (limit drift / story height h_sx), ``mark`` (``"U"``), ``rule``.
+        ``name``, ``ratio`` [-] (limit drift / story height h_sx), ``mark`` (``"U"``), ``rule``, ``default`` [-],
+        ``set`` (True when the value was given with ``--set``).
     """
     from isolator.review.parameters import PARAMETERS
 
     parameter = PARAMETERS[DRIFT_LIMIT_PARAMETER]
-    return {"name": parameter.name, "ratio": float(parameter.default), "mark": parameter.mark,
-            "rule": parameter.rule}
+    row = next((r for r in (numbers or {}).get("parameters") or () if r["name"] == DRIFT_LIMIT_PARAMETER), None)
+    value = parameter.default if row is None else row["value"]
+    return {"name": parameter.name, "ratio": float(value), "mark": parameter.mark, "rule": parameter.rule,
+            "default": float(parameter.default), "set": row is not None and row.get("source") == "set"}
 
 
 def profile_heights(story_heights_m) -> tuple[np.ndarray, np.ndarray]:
@@ -169,7 +174,7 @@ def building_page(number: int, label: str, numbers: dict, response=None):
     """
     structure = numbers["design"]["superstructure"]
     heights = [floor["story_height_m"] for floor in structure["floors"]]
-    limit = drift_limit()
+    limit = drift_limit(numbers)
     fig = page(1, label, (f"{number}  The building above the isolators",))
     ax_drift = fig.add_axes((0.1, 0.69, 0.35, 0.24))
     draw_drift_profile(ax_drift, numbers["story_drift_ratio"], heights, limit)
@@ -207,7 +212,9 @@ def building_page(number: int, label: str, numbers: dict, response=None):
               *_period_rows(structure),
               ("modal damping ratio ζ", fmt(structure["damping_ratio"])),
               ("story drift limit (response history)", f"{fmt(limit['ratio'], 3)} h_sx, {limit['rule']}"),
-              ("  its review parameter", f"{limit['name']} [{limit['mark']}], at its default")]
+              ("  its review parameter", f"{limit['name']} [{limit['mark']}], "
+                                          + (f"set to {fmt(limit['ratio'], 3)} (--set; default {fmt(limit['default'], 3)})"
+                                             if limit["set"] else "at its default"))]
     for name, value in shears:
         fig.text(0.06, y, name, fontsize=7.6, va="top")
         fig.text(0.6, y, value, fontsize=7.6, va="top")

@@ -20,6 +20,7 @@ from isolator.report.layout import caption, fmt, table, tail
 from isolator.report.layout import page as layout_page
 from isolator.report.model_pages import model_pages
 from isolator.report.pair_figures import pair_response_page
+from isolator.report.summary import parameters_sentence, summary_dict
 from isolator.serialize import json_safe
 from isolator.units import STANDARD_GRAVITY
 
@@ -97,6 +98,8 @@ def _summary_page(analysis, numbers: dict, label: str, command: str):
     for sentence in numbers["verdicts"]:
         fig.text(0.05, y, textwrap.fill("• " + sentence, 120), fontsize=8, va="top")
         y -= 0.03
+    fig.text(0.05, y, textwrap.fill(parameters_sentence(numbers["parameters"]), 130), fontsize=7, va="top",
+             color="0.3")
     caption(fig, f"isolator: {textwrap.shorten(command, 140)}.  Resultant = Euclidean norm in the horizontal "
                   "plane; X and Y are the first and second horizontal components as read.  Energies per unit mass.")
     return fig
@@ -119,7 +122,7 @@ def _ground_page(analysis, label: str):
     return fig
 
 
-def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
+def write_pair_report(analysis, pdf_path, *, command: str = "", parameters: list[dict] | None = None) -> dict:
     """Write the PDF of an :class:`~isolator.analysis.Analysis` of a planar response and its JSON (``.json``).
 
     The JSON is :meth:`~isolator.analysis.Analysis.to_dict` (the analysis schema)
@@ -133,16 +136,19 @@ def write_pair_report(analysis, pdf_path, *, command: str = "") -> dict:
         Output PDF [-]; the JSON goes beside it.
     command : str
         The command line, printed on page 1.
+    parameters : list of dict, optional
+        The review parameters the pages use (:func:`isolator.report.summary.report_parameters`; default: their
+        defaults), printed on page 1 and in the JSON.
 
     Returns
     -------
     dict
-        The JSON written (``to_dict()`` plus ``pdf``).
+        The JSON written (:func:`isolator.report.summary.summary_dict`: ``to_dict()``, ``parameters``, ``pdf``).
     """
     from matplotlib.backends.backend_pdf import PdfPages
 
     pdf_path = Path(pdf_path)
-    numbers = analysis.to_dict()
+    numbers = summary_dict(analysis, parameters=parameters)
     first = next(iter(analysis.components.values()))
     if pdf_path.suffix.lower() != ".pdf":
         raise ValueError(f"{pdf_path}: a report is a .pdf")

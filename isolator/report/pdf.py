@@ -18,7 +18,7 @@ from isolator.metrics import REGIME_WORDS, slip_intervals
 from isolator.report import figures
 from isolator.report.layout import caption, fmt, page, table, tail
 from isolator.report.model_pages import model_pages
-from isolator.report.summary import Analysis, summary_dict, verdicts
+from isolator.report.summary import Analysis, parameters_sentence, summary_dict, verdicts
 from isolator.units import STANDARD_GRAVITY
 
 PAGE_TITLES = ("1  Summary", "2  Ground motion", "3  Isolator response", "4  Harmonic regime map")
@@ -128,6 +128,7 @@ def _summary_page(a: Analysis, summary: dict, command: str):
     notes = list(verdicts(a))
     if a.scaling_note:
         notes.insert(0, a.scaling_note)
+    notes.append(parameters_sentence(summary["parameters"]))
     if not a.harmonic.steady:
         notes.append(f"Harmonic solver: {a.harmonic.status} (A is the amplitude reached, a lower bound).")
     for note in notes:
@@ -144,7 +145,7 @@ def _summary_page(a: Analysis, summary: dict, command: str):
     return fig
 
 
-def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
+def write_report(analysis: Analysis, pdf_path, *, command: str = "", parameters: list[dict] | None = None) -> dict:
     """Render an analysis as a PDF and write its JSON beside it (same name, ``.json``); returns the JSON dict.
 
     The PDF only draws what the analysis holds: it needs the design on the regime map
@@ -158,6 +159,9 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
         Output PDF [-]; the JSON goes beside it.
     command : str
         The command line, printed in the footer.
+    parameters : list of dict, optional
+        The review parameters of its checks (:func:`isolator.report.summary.report_parameters`; default: their
+        defaults), printed on page 1 and in the JSON.
 
     Raises
     ------
@@ -171,7 +175,7 @@ def write_report(analysis: Analysis, pdf_path, *, command: str = "") -> dict:
         raise ValueError("a report needs the harmonic problem and the regime map: analyse(..., map_resolution=N)")
     pdf_path = Path(pdf_path)
     json_path = pdf_path.with_suffix(".json")
-    summary = summary_dict(a, pdf_path)
+    summary = summary_dict(a, pdf_path, parameters)
     d, p, r = a.design, a.adaptation.point, a.response
     rc, hc = a.record_class, a.harmonic_class
     record_name = Path(a.record_label).name if Path(a.record_label).is_file() else a.record_label

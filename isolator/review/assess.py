@@ -102,6 +102,10 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     v_b, v_bound = _governing(bounded, "base_shear_coefficient")
     residual, _ = _governing(bounded, "residual_displacement_m")
     torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p}, review_inputs(review.design))
+    layout = review.design.bearing_layout
+    if layout is not None and "P_T" in torsion:  # each bearing's own amplification (EN 1998-1 10.3(2) uses it)
+        torsion["bearing_factors"] = asce7_22.bearing_torsion_factors(
+            review.design.plan, {**_asce_defaults(), **p}, layout.x_m, layout.y_m, torsion["P_T"])
     elf = {b: {**review.elf[b], "D_TM_m": review.elf[b]["D_M_m"] * torsion["factor"]} for b in review.elf}
     for b in elf:  # a flexible superstructure: D'_M of Eq. 17.6-1 may replace D_M in the 17.6.4.1 floor
         if "D_M_prime_m" in elf[b]:
@@ -221,6 +225,10 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
     return rows
 
 
+#: The uplift row's clause in an EN review: REVIEW_RULES §2 gives no EN clause, a slider carries no tension.
+EN_UPLIFT_CLAUSE = "no tension in a sliding bearing (practice; no EN clause in the rules)"
+
+
 def _uplift_row(review, values: dict) -> dict:
     """17.2.4.7 from the bearings' axial loads (a building with [[bearing_position]]), else not checked."""
     s = review.design_values.get("structure", {})
@@ -228,8 +236,9 @@ def _uplift_row(review, values: dict) -> dict:
     with_vertical = sum(pair.az_m_s2 is not None for pair in review.suite.pairs)
     dropped = with_vertical if review.parameters.get("horizontal_only") else 0
     n_pairs = with_vertical - dropped
+    clause = EN_UPLIFT_CLAUSE if review.code == "en15129" else "ASCE 7-22 17.2.4.7 [U]"
     if "bearing_axial_load_min_N" not in s:
-        return C.uplift(n_vertical, n_pairs, n_verticals_not_analysed=dropped)
+        return C.uplift(n_vertical, n_pairs, n_verticals_not_analysed=dropped, clause=clause)
     loads = s["bearing_axial_load_min_N"]
     k = int(np.argmin(loads))
     env = review.design_values["envelope"]
@@ -239,7 +248,7 @@ def _uplift_row(review, values: dict) -> dict:
               f"{len(lifted)} analysis(es) lift a bearing"
               + (f" ({', '.join(lifted[:4])}{' …' if len(lifted) > 4 else ''})" if lifted else "")
               + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)")
-    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail, n_verticals_not_analysed=dropped)
+    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail, n_verticals_not_analysed=dropped, clause=clause)
 
 
 def _surface_d_over_r(review, limit: float) -> dict:
@@ -376,14 +385,80 @@ def _en_checks(review, values: dict, designs: dict) -> list:
     rows = _common_front(review, p["n_records_min_en"], "EN 1998-1 3.2.3.1.2", "EN 1998-1 3.2.3.1.2(4)",
                          "component spectra")
     d_tm = env["D_TM"]["rha_m"]
-    rows += C.record_capacity(review.analyses, cap, clause="EN 15129 (capacity, each analysis)")
-    rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_tm, cap,
-                          f"γ_x = {p['gamma_x']:g} × design displacement {d_tm:.4g} m (torsion factor "
-                          f"{review.design_values['torsion']['factor']:.4g}); {env['rule']} of {env['n']} pairs"
-                          + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
+    rows += C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each analysis)")
+    per_bearing = _en_bearing_displacements(review, env["D_M_rha_m"], p["gamma_x"])
+    if per_bearing is None:
+        rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_tm, cap,
+                              f"γ_x = {p['gamma_x']:g} × design displacement {d_tm:.4g} m (torsion factor "
+                              f"{review.design_values['torsion']['factor']:.4g}: "
+                              f"{review.design_values['torsion']['basis']}); {env['rule']} of {env['n']} pairs "
+                              f"(EN 1998-1 4.3.3.4.3(3))"
+                              + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
+    else:
+        rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", per_bearing["largest"], cap,
+                              per_bearing["note"] + f"; {env['rule']} of {env['n']} pairs (EN 1998-1 4.3.3.4.3(3))"
+                              + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
     ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_rha_m"])
               for b in ("lower", "upper")}
     b_min = min(ratios, key=ratios.get)
     rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
                            f"d_Ed / d_r with d_r = µR ({b_min} bound, µ = {designs[b_min].mu_kinetic:.4g})", "-"))
+    rows += _en_building_rows(review)
     return rows + _common_back(review, values, p["gamma_x"] * d_tm)
+
+
+def _en_bearing_displacements(review, d_m: float, gamma_x: float) -> dict | None:
+    """EN 1998-1 10.3(2): γ_x × each bearing's design displacement, torsion included (Eq. 17.5-3 at the bearing's own
+    distance with the layout's P_T: ``torsion["bearing_factors"]``); None without ``[[bearing_position]]`` and
+    ``[plan]`` (the row then uses the design total displacement)."""
+    torsion = review.design_values["torsion"]
+    factors = torsion.get("bearing_factors")
+    if not factors or not math.isfinite(d_m):
+        return None
+    layout = review.design.bearing_layout
+    values = [gamma_x * f * d_m for f in factors]
+    k = int(np.argmax(values))
+    note = (f"γ_x = {gamma_x:g} × each bearing's displacement, torsion included: the suite's centre-of-mass "
+            f"D = {d_m:.4g} m × f_i of Eq. 17.5-3 at the bearing's own distance (P_T = {torsion['P_T']:.4g}; ASCE 7's "
+            f"1.15 floor not applied) [U]; bearing {k + 1} at ({layout.x_m[k]:g}, {layout.y_m[k]:g}) m governs, "
+            f"f = {factors[k]:.4g} (f from {min(factors):.4g} to {max(factors):.4g} over the {len(factors)} bearings)")
+    return {"largest": values[k], "note": note}
+
+
+def _en_building_rows(review) -> list:
+    """A building under EN 15129 / EN 1998-1: what REVIEW_RULES §2 supports, else reported with no limit.
+
+    The suite values are the mean of ≥ ``n_for_mean`` analyses, else the most unfavourable (EN 1998-1
+    4.3.3.4.3(3)), the larger bound.  The rules give no EN limit on story drift, superstructure shear or floor
+    acceleration: those rows are ``not checked`` with their values.  The bearings' axial capacity (given in
+    ``axial_capacity_N``) is checked against the largest load.
+    """
+    s = review.design_values.get("structure", {})
+    if "story_drift_ratio" not in s:
+        return []
+    env = review.design_values["envelope"]
+    rule = f"{env['rule']} of {env['n']} analyses per bound (EN 1998-1 4.3.3.4.3(3)), the larger bound"
+    none = "reported, no EN limit in the rules"
+    drift = s["story_drift_ratio"]
+    story = int(np.argmax(drift))
+    ws = review.structure.get("Ws_over_W", math.nan)
+    rows = [C.check("story_drift", f"EN 1998-1 4.3.3.4.3(3) (suite value); {none}", C.NOT_CHECKED, drift[story],
+                    None, f"{none} (REVIEW_RULES §2 gives no EN drift limit): story {story + 1} of {len(drift)} "
+                          f"(from the bottom), {rule}; every story: " + ", ".join(f"{d:.3g}" for d in drift),
+                    "h_sx"),
+            C.check("superstructure_shear", f"EN 1998-1 4.3.3.4.3(3) (suite value); {none}", C.NOT_CHECKED,
+                    s["superstructure_shear_coefficient"] * ws, None,
+                    f"{none}: first-story shear / W_s {s['superstructure_shear_coefficient']:.4g} × W_s/W {ws:.4g} "
+                    f"(elastic, not reduced), {rule}", "V/W"),
+            C.floor_acceleration(max(s["floor_peak_acceleration_m_s2"]),
+                                 "per floor, bottom to top: " + ", ".join(
+                                     f"{a:.3g}" for a in s["floor_peak_acceleration_m_s2"]) + f" m/s² ({rule})",
+                                 clause=f"EN 1998-1 4.3.3.4.3(3) (suite value); {none}", why=f"{none}: ")]
+    if "bearing_axial_load_max_N" in s:
+        layout = review.design.bearing_layout
+        rows.append(C.vertical_load_stability(
+            s["bearing_axial_load_max_N"], None if layout.axial_capacities_N is None
+            else list(layout.axial_capacities_N), rule, clause="EN 15129 (the bearing's vertical load capacity, "
+                                                               "axial_capacity_N as given) [U]"))
+    return rows
+

@@ -106,7 +106,7 @@ def usable_band(pairs: list, range_hi_s: float, factor: float = 1.25) -> dict:
 
 
 def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_load_N: float | None = None, *,
-           detail: str = "", n_verticals_not_analysed: int = 0) -> dict:
+           detail: str = "", n_verticals_not_analysed: int = 0, clause: str = "ASCE 7-22 17.2.4.7 [U]") -> dict:
     """Bearing uplift (ASCE 7-22 17.2.4.7 [U]): from overturning, so from the bearings' axial loads.
 
     Parameters
@@ -123,8 +123,9 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
         What the value is (suite rule, bearing, bound) and how many analyses lifted a bearing.
     n_verticals_not_analysed : int
         Pairs whose vertical the review left out (parameter ``horizontal_only``) [-].
+    clause : str
+        The clause printed (EN reviews: a sliding bearing carries no tension, no EN clause in the rules).
     """
-    clause = "ASCE 7-22 17.2.4.7 [U]"
     vertical = (f"the rigid block's normal force g + a_z vanished in {n_vertical_exceedances} episode(s) over "
                 f"{n_pairs_with_vertical} pair(s) with a vertical (vertical ground acceleration ≤ −1 g: a ground "
                 "quantity, not bearing uplift)"
@@ -197,14 +198,15 @@ def story_drift(drift_ratio: float | None, limit: float | None, note: str = "",
 
 
 def floor_acceleration(peak_m_s2: float | None, note: str = "",
-                       clause: str = "ASCE 7-22 13.3.1 (nonstructural components; reported) [U]") -> dict:
-    """The suite's largest absolute floor acceleration: reported for the nonstructural components (no Ch. 17 limit),
-    so always ``not checked``, with the value when the building model gave it."""
+                       clause: str = "ASCE 7-22 13.3.1 (nonstructural components; reported) [U]", *,
+                       why: str = "reported, not a Chapter 17 check (the input of Chapter 13's nonstructural "
+                                  "forces): ") -> dict:
+    """The suite's largest absolute floor acceleration: reported for the nonstructural components (no limit in the
+    code's rules: ``why`` says so), so always ``not checked``, with the value when the building model gave it."""
     if peak_m_s2 is None or not math.isfinite(peak_m_s2):
         return check("floor_acceleration", clause, NOT_CHECKED, None, None,
                      "needs the floors' accelerations (a design with a [superstructure])", "m/s²")
-    return check("floor_acceleration", clause, NOT_CHECKED, peak_m_s2, None,
-                 "reported, not a Chapter 17 check (the input of Chapter 13's nonstructural forces): " + note, "m/s²")
+    return check("floor_acceleration", clause, NOT_CHECKED, peak_m_s2, None, why + note, "m/s²")
 
 
 def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, note: str = "",
@@ -226,9 +228,10 @@ def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, 
     k = int(np.argmax(ratios))
     return at_most("vertical_load_stability", clause, ratios[k], 1.0,
                    f"bearing {k + 1}: P_max {max_load_N[k]:.4g} N / capacity {capacities_N[k]:.4g} N (unfactored: the "
-                   "bearing's gravity share of W = g × mass_kg + the overturning of the floors' inertia forces; the "
-                   "factored combination of 2.3.6 that 17.2.4.6 names — dead-load factor, E_v, live load — is not "
-                   "applied [U])" + (f"; {note}" if note else ""), "×capacity")
+                   "bearing's gravity share of W = g × mass_kg + the overturning of the floors' inertia forces; "
+                   + ("the factored combination of 2.3.6 that 17.2.4.6 names — dead-load factor, E_v, live load — is "
+                      "not applied [U])" if clause.startswith("ASCE") else "no load combination applied [U])")
+                   + (f"; {note}" if note else ""), "×capacity")
 
 
 def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASCE 7-22 17.2.4.5 / 17.6.3.4 [U]",

@@ -112,6 +112,31 @@ def test_building_report_has_the_building_page(records_dir, building, tmp_path):
     assert "The building above the isolators" in last and "drift_limit_rha" in last
 
 
+def test_report_set_moves_the_drift_limit_and_prints_it(records_dir, building, tmp_path):
+    """``report --set drift_limit_rha=0.004``: the JSON's ``parameters`` carry it (source "set"), the page draws the
+    limit there, its "/ limit" column divides by it and the page says it was set (default 0.020)."""
+    from isolator.report.summary import report_parameters
+
+    path, analysis, numbers = building
+    out = tmp_path / "building.pdf"
+    result = runner.invoke(app, ["report", str(records_dir / RECORD), "-d", str(path), "--scale-to-pga",
+                                 str(SCALE_G), "-o", str(out), "--map-resolution", "8", "--no-pdf",
+                                 "--set", "drift_limit_rha=0.004"])
+    assert result.exit_code == 0, result.output
+    written = json.loads(out.with_suffix(".json").read_text())
+    row = next(r for r in written["parameters"] if r["name"] == "drift_limit_rha")
+    assert row["value"] == 0.004 and row["default"] == 0.02 and row["source"] == "set" and row["mark"] == "U"
+    assert all("source" not in r for r in written["parameters"] if r["name"] != "drift_limit_rha")
+    fig = building_page(5, "label", {**numbers, "parameters": report_parameters({"drift_limit_rha": "0.004"})},
+                        analysis.response)
+    limit = _line(_axes(fig, "Story drift ratio profile"), "limit")
+    assert list(limit.get_xdata()) == [0.004, 0.004]
+    text = _texts(fig)
+    assert "set to 0.004 (--set; default 0.02)" in text
+    for ratio in numbers["story_drift_ratio"]:
+        assert fmt(ratio / 0.004, 3) in text
+
+
 def test_triple_pendulum_page_draws_the_backbone_and_the_loop(triple):
     _, analysis, numbers = triple
     response, backbone = analysis.response, analysis.design.bearing.backbone()

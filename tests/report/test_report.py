@@ -149,6 +149,28 @@ def test_every_format_analyses_to_json(records_dir, name, options):
         assert summary["peak_displacement_m"] == 0.0
 
 
+def test_report_prints_its_parameters_and_set_changes_a_check(tmp_path, knet_report):
+    """Page 1 and the JSON list the review parameters of the checks at their defaults; ``--set D_over_R_max=0.01``
+    moves the D/R row's limit (the same peak displacement), marks the parameter as set, and the rows agree."""
+    result, with_pdf = knet_report
+    beside = json.loads(with_pdf.with_suffix(".json").read_text())
+    assert [row["name"] for row in beside["parameters"]][-1] == "drift_limit_rha"
+    assert all("source" not in row for row in beside["parameters"])
+    page1 = _text(pypdf.PdfReader(str(with_pdf)).pages[0])
+    assert "Parameters of the checks" in page1 and "D_over_R_max = 0.25 [practice]" in page1
+    out = tmp_path / "knet.pdf"
+    result = runner.invoke(app, ["report", "--design", str(DATA / "example_pendulum.toml"), "example:knet",
+                                 "--scale-to-pga", "0.3", "-o", str(out), "--map-resolution", "10", "--no-pdf",
+                                 "--set", "D_over_R_max=0.01"])
+    assert result.exit_code == 0, result.output
+    alone = json.loads(out.with_suffix(".json").read_text())
+    before = next(row for row in beside["checks"] if row["id"] == "D_over_R")
+    after = next(row for row in alone["checks"] if row["id"] == "D_over_R")
+    assert before["limit"] == 0.25 and after["limit"] == 0.01 and after["value"] == before["value"]
+    assert after["status"] == ("pass" if after["value"] <= 0.01 else "fail")
+    assert next(row for row in alone["parameters"] if row["name"] == "D_over_R_max")["source"] == "set"
+
+
 def test_report_json_without_pdf(tmp_path, knet_report):
     """--no-pdf writes the same numbers as the report's JSON and renders nothing."""
     _, with_pdf = knet_report

@@ -178,6 +178,37 @@ def activation_force_per_weight(design) -> float:
     return float(bb.force_per_weight[int(np.argmax(compliance))])
 
 
+def torsion_amplification(y_m: float, eccentricity_m: float, p_t: float, b_m: float, d_m: float) -> float:
+    """1 + (y / P_T²) · 12 e / (b² + d²), the bracket of Eq. 17.5-3 (ASCE 7-22 17.5.3.3) [-].
+
+    Parameters
+    ----------
+    y_m : float
+        Distance of the element of interest from the centre of rigidity, perpendicular to the loading [m].
+    eccentricity_m : float
+        Actual + accidental eccentricity e [m].
+    p_t : float
+        P_T of Eq. 17.5-4 [-] (> 0).
+    b_m, d_m : float
+        Plan dimensions [m].
+    """
+    return 1.0 + (y_m / p_t ** 2) * 12.0 * eccentricity_m / (b_m * b_m + d_m * d_m)
+
+
+def bearing_torsion_factors(plan: dict, params: dict, x_m, y_m, p_t: float) -> list[float]:
+    """Each bearing's displacement / the centre of mass's, Eq. 17.5-3 at its own distance (no floor) [-].
+
+    For loading along x the distance is |y_i| with e = actual + ``accidental_e`` × d; along y it is |x_i|
+    with e = actual + ``accidental_e`` × b; the larger of the two.  The 1.15 floor of Eq. 17.5-3 is ASCE
+    7's minimum on the total displacement, not a bearing's own amplification, so it is not applied here.
+    """
+    b, d = plan["b_m"], plan["d_m"]
+    e_x = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * d  # loading x: e ⟂ x, along y
+    e_y = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * b
+    return [max(torsion_amplification(abs(y), e_x, p_t, b, d), torsion_amplification(abs(x), e_y, p_t, b, d))
+            for x, y in zip(x_m, y_m, strict=True)]
+
+
 def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) -> dict:
     """D_TM / D_M of Eq. 17.5-3 (the larger of the two loading directions), with its basis.
 
@@ -210,7 +241,7 @@ def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) 
     for perpendicular, layout_y in ((b, layout.get("y_for_loading_y_m")), (d, layout.get("y_for_loading_x_m"))):
         e = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * perpendicular
         y = plan.get("y_m", layout_y if layout_y is not None else 0.5 * perpendicular)
-        factors.append(1.0 + (y / p_t ** 2) * 12.0 * e / (b * b + d * d))
+        factors.append(torsion_amplification(y, e, p_t, b, d))
     raw = max(factors)
     y_source = "given" if "y_m" in plan else ("the bearing layout" if "y_for_loading_x_m" in layout else "assumed")
     return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t,
