@@ -72,6 +72,13 @@ BEARING_KEYS = {
 }
 #: The bearings' gravity loads, when given, must add up to W within this fraction [-].
 GRAVITY_SUM_TOLERANCE = 0.01
+#: A floor's mass [kg]: the design's own mass range (isolator.design.MASS_RANGE_KG); a 1e-300 kg floor made the
+#: modal eigensolver fail with a traceback (issue 22, third round).
+FLOOR_MASS_RANGE_KG = (1e-3, 1e10)
+#: A story's height [m]: a 1e300 m story made the overturning moments infinite and the bearing loads unknown.
+STORY_HEIGHT_RANGE_M = (1e-3, 1e3)
+#: A bearing's distance from the centre of mass along x or y [m] (a plan within 10 km).
+BEARING_POSITION_MAX_M = 1e4
 
 
 @dataclass(frozen=True)
@@ -335,7 +342,8 @@ def tension_time(load_N: np.ndarray, time_s: np.ndarray) -> tuple[float | None, 
 # ---- parsing ----------------------------------------------------------------------------------
 
 
-def _number(table: dict, key: str, where: str, keys: dict, *, positive: bool = True, required: bool = True):
+def _number(table: dict, key: str, where: str, keys: dict, *, positive: bool = True, required: bool = True,
+            within: tuple | None = None, what: str = ""):
     if key not in table:
         if required:
             raise DesignError(f"{where}: missing key '{key}' ({keys[key]})")
@@ -345,6 +353,8 @@ def _number(table: dict, key: str, where: str, keys: dict, *, positive: bool = T
         raise DesignError(f"{where}: key '{key}' must be a finite number, got {value!r}")
     if positive and not value > 0:
         raise DesignError(f"{where}: key '{key}' must be > 0, got {value:g}")
+    if within is not None and not within[0] <= value <= within[1]:
+        raise DesignError(f"{where}: key '{key}' must lie in [{within[0]:g}, {within[1]:g}]{what}, got {value:g}")
     return float(value)
 
 
@@ -400,8 +410,10 @@ def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, sourc
         _unknown(entry, FLOOR_KEYS, here)
         kx = _number(entry, "stiffness_x_N_per_m", here, FLOOR_KEYS)
         ky = _number(entry, "stiffness_y_N_per_m", here, FLOOR_KEYS, required=False)
-        floors.append(Floor(mass_kg=_number(entry, "mass_kg", here, FLOOR_KEYS),
-                            story_height_m=_number(entry, "story_height_m", here, FLOOR_KEYS),
+        floors.append(Floor(mass_kg=_number(entry, "mass_kg", here, FLOOR_KEYS, within=FLOOR_MASS_RANGE_KG,
+                                            what=" kg, the design's mass range"),
+                            story_height_m=_number(entry, "story_height_m", here, FLOOR_KEYS,
+                                                   within=STORY_HEIGHT_RANGE_M, what=" m, a story's height"),
                             stiffness_x_N_per_m=kx, stiffness_y_N_per_m=kx if ky is None else ky))
     floors_mass = sum(f.mass_kg for f in floors)
     if not floors_mass < total_mass_kg:
@@ -441,8 +453,9 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
     for number, entry in enumerate(entries, start=1):
         here = f"{source}: bearing_position {number}"
         _unknown(entry, BEARING_KEYS, here)
-        xs.append(_number(entry, "x_m", here, BEARING_KEYS, positive=False))
-        ys.append(_number(entry, "y_m", here, BEARING_KEYS, positive=False))
+        plan = (-BEARING_POSITION_MAX_M, BEARING_POSITION_MAX_M), " m from the centre of mass"
+        xs.append(_number(entry, "x_m", here, BEARING_KEYS, positive=False, within=plan[0], what=plan[1]))
+        ys.append(_number(entry, "y_m", here, BEARING_KEYS, positive=False, within=plan[0], what=plan[1]))
         loads.append(_number(entry, "gravity_load_N", here, BEARING_KEYS, required=False))
         capacities.append(_number(entry, "axial_capacity_N", here, BEARING_KEYS, required=False))
         for other in range(number - 1):

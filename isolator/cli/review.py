@@ -89,12 +89,13 @@ def review(
         _user_error(f"--output must end with .pdf, got {output}")
     parameters = parse_set(settings)
     try:
-        from isolator.review.parameters import resolve
+        from isolator.review.parameters import from_design, resolve
         from isolator.review.suite import load_suite
         from isolator.review.target import load_target
 
-        resolve(code, parameters)
+        values = resolve(code, parameters)
         the_design = Design.from_toml(design)
+        from_design(code, values, the_design, parameters)  # a --set of a value the design fixes: refused at once
         the_target = load_target(resolve_example("target", target))
         suite_args = [resolve_example("suite", s) for s in suite]
         target_file = resolve_example("target", target)
