@@ -21,10 +21,10 @@ from isolator.superstructure import review_inputs
 BOUNDS = ("lower", "upper")
 
 
-def _per_bound(results: dict, n_for_mean: int) -> dict:
+def _per_bound(results: dict, n_for_mean: int, factoring: dict | None = None) -> dict:
     ok = [r for r in results.values() if "error" not in r]
     d = C.suite_value([r["peak_displacement_m"] for r in ok], n_for_mean)
-    return {**_structure_values(results, n_for_mean), **{
+    return {**_structure_values(results, n_for_mean, factoring), **{
         "D_M_rha_m": d["value"], "rule": d["rule"], "n": d["n"],
         "residual_displacement_m": C.suite_value([abs(r["residual_displacement_m"]) for r in ok
                                                   if r["residual_displacement_m"] is not None], n_for_mean)["value"],
@@ -46,9 +46,10 @@ def _per_item(ok: list, key: str, n_for_mean: int, *, smallest: bool = False) ->
     return [sign * C.suite_value([sign * r[key][i] for r in ok], n_for_mean)["value"] for i in range(size)]
 
 
-def _structure_values(results: dict, n_for_mean: int) -> dict:
+def _structure_values(results: dict, n_for_mean: int, factoring: dict | None = None) -> dict:
     """A building's suite values per bound (story drift ratios, floor accelerations, superstructure shear, bearing
-    loads) from the analyses' rows; empty when the analyses carry none (a rigid block)."""
+    loads) from the analyses' rows; empty when the analyses carry none (a rigid block).  With ``factoring``
+    (:func:`_load_factoring`) also the factored bearing loads of 17.2.4.6 / 17.2.4.7."""
     ok = {name: r for name, r in results.items() if "error" not in r and r.get("story_drift_ratio") is not None}
     if not ok:
         return {}
@@ -64,7 +65,64 @@ def _structure_values(results: dict, n_for_mean: int) -> dict:
         single = min(((min(r["bearing_axial_load_min_N"]), name) for name, r in ok.items()))
         out["uplift_analyses"] = lifted
         out["bearing_axial_load_min_single_N"] = {"value": single[0], "pair": single[1]}
+        if factoring is not None:
+            out["factored_bearing_loads"] = _factored_loads(ok, n_for_mean, factoring)
     return out
+
+
+def _factored_loads(ok: dict, n_for_mean: int, factoring: dict) -> dict:
+    """Each analysis's bearing loads under the 2.3.6 combinations, then their suite values (17.2.4.6 / 17.2.4.7).
+
+    The gravity share g_k is constant in time, so the extremes of f g_k + (overturning + vertical) are those of the
+    history shifted: max_f = P_max + (f_max − 1) g_k and min_f = P_min + (f_min − 1) g_k, with each analysis's
+    factors (E_v only where its vertical was not analysed).
+    """
+    gravity = np.asarray(factoring["gravity_N"])
+    rows, lifted, single = [], [], (math.inf, "")
+    for name, r in ok.items():
+        f_max, f_min = factoring["per_pair"].get(name, factoring["without_vertical"])
+        low = np.asarray(r["bearing_axial_load_min_N"]) + (f_min - 1.0) * gravity
+        high = np.asarray(r["bearing_axial_load_max_N"]) + (f_max - 1.0) * gravity
+        rows.append({"min": low.tolist(), "max": high.tolist()})
+        lifted += [name] if np.any(low < 0.0) else []
+        single = min(single, (float(low.min()), name))
+    return {"max_N": _per_item(rows, "max", n_for_mean), "min_N": _per_item(rows, "min", n_for_mean, smallest=True),
+            "lifted": lifted, "min_single_N": {"value": single[0], "pair": single[1]}}
+
+
+def _load_factoring(review) -> dict | None:
+    """The factors of the 2.3.6 combinations on each bearing's gravity share (ASCE 7-22 17.2.4.6 / 17.2.4.7 [U]).
+
+    f_max = ``dead_load_factor_max`` + c S_MS and f_min = ``dead_load_factor_min`` − c S_MS (E_v = c S_MS D,
+    c = ``vertical_Ev_coefficient``, 12.4.2.2 with S_MS for the MCE_R) for an analysis without its vertical; the
+    dead-load factors alone for one whose vertical component was analysed (its loads carry the vertical already:
+    not counted twice).  ``None`` for a code without them (EN) or a design without a bearing layout.
+    """
+    p, layout = review.parameters, review.design.bearing_layout
+    if "dead_load_factor_max" not in p or layout is None:
+        return None
+    target = review.target
+    if target.kind == "asce7-two-period":
+        s_ms, where = float(target.parameters["S_MS"]), "S_MS of the two-period target"
+    else:  # a tabulated target: its short-period ordinate stands for S_MS [U]
+        s_ms, where = float(target.sa_g(0.2, clip=True)[0]), "the target's S_a(0.2 s) taken as S_MS [U]"
+    e_v = p["vertical_Ev_coefficient"] * s_ms
+    without = (p["dead_load_factor_max"] + e_v, p["dead_load_factor_min"] - e_v)
+    with_vertical = (p["dead_load_factor_max"], p["dead_load_factor_min"])
+    analysed = {pair.name: pair.az_m_s2 is not None and not p.get("horizontal_only") for pair in review.suite.pairs}
+    n_vertical = sum(analysed.values())
+    basis = (f"factored (2.3.6 [U]): max {without[0]:.4g} D + E_h, min {without[1]:.4g} D − E_h on each bearing's "
+             f"gravity share D (dead_load_factor_max {p['dead_load_factor_max']:g} / dead_load_factor_min "
+             f"{p['dead_load_factor_min']:g} ± E_v, E_v = {p['vertical_Ev_coefficient']:g} × S_MS D = "
+             f"{e_v:.4g} D with S_MS = {s_ms:.4g} g, {where}), E_h the overturning of the response history "
+             "(its peak MCE_R response, ρ = 1); "
+             + (f"{n_vertical} pair(s) with their vertical analysed: {with_vertical[0]:g} D / {with_vertical[1]:g} D "
+                "+ the analysed vertical (E_v not added twice)" if n_vertical else
+                "no vertical analysed, so E_v is applied")
+             + "; no separate live load (the design's mass is the seismic weight)")
+    return {"gravity_N": list(layout.gravity_loads_N), "without_vertical": without,
+            "per_pair": {name: with_vertical if v else without for name, v in analysed.items()},
+            "S_MS": s_ms, "factor_max": without[0], "factor_min": without[1], "basis": basis}
 
 
 def _governing(values: dict, key: str) -> tuple[float, str]:
@@ -96,7 +154,8 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     """
     review = SimpleNamespace(**basis, min_ratio_required=min_ratio_required)
     p, code = review.parameters, review.code
-    values = {b: _per_bound(review.analyses[b], p["n_for_mean"]) for b in review.analyses}
+    factoring = _load_factoring(review)
+    values = {b: _per_bound(review.analyses[b], p["n_for_mean"], factoring) for b in review.analyses}
     bounded = {b: values[b] for b in values}
     d_m, d_bound = _governing(bounded, "D_M_rha_m")
     v_b, v_bound = _governing(bounded, "base_shear_coefficient")
@@ -119,7 +178,7 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     rule = values[d_bound]["rule"] if d_bound in values else "none"
     n = values[d_bound]["n"] if d_bound in values else 0
     design_values = {**values, "torsion": torsion, "elf_D_TM_m": elf_d_tm, "elf_floor_basis": {
-        "key": floor_key, "value_m": elf_floor_basis}, "structure": _structure_envelope(values), "envelope": {
+        "key": floor_key, "value_m": elf_floor_basis}, "structure": _structure_envelope(values, factoring), "envelope": {
         "D_M_rha_m": d_m, "D_M_bound": d_bound, "rule": rule, "n": n, "V_b_over_W": v_b, "V_b_bound": v_bound,
         "residual_displacement_m": residual,
         "D_TM": {"value": d_tm_value, "rha_m": rha_d_tm, "elf_floor_m": floor,
@@ -130,7 +189,7 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     return {"design_values": design_values, "elf": elf, "checks": checks}
 
 
-def _structure_envelope(values: dict) -> dict:
+def _structure_envelope(values: dict, factoring: dict | None = None) -> dict:
     """The building's design values over the bounds: the larger (smaller for the bearings' least load) of each
     story, floor and bearing, and the bound that governs the largest."""
     built = {b: v for b, v in values.items() if "story_drift_ratio" in v}
@@ -155,6 +214,16 @@ def _structure_envelope(values: dict) -> dict:
         single = min(((v["bearing_axial_load_min_single_N"]["value"], v["bearing_axial_load_min_single_N"]["pair"], b)
                       for b, v in built.items()))
         out["bearing_axial_load_min_single_N"] = {"value": single[0], "pair": single[1], "bound": single[2]}
+    if factoring is not None and all("factored_bearing_loads" in v for v in built.values()):
+        per = {b: v["factored_bearing_loads"] for b, v in built.items()}
+        single = min((f["min_single_N"]["value"], f["min_single_N"]["pair"], b) for b, f in per.items())
+        out["factored_bearing_loads"] = {
+            "max_N": [max(items) for items in zip(*(f["max_N"] for f in per.values()), strict=True)],
+            "min_N": [min(items) for items in zip(*(f["min_N"] for f in per.values()), strict=True)],
+            "lifted": [f"{name} ({b})" for b, f in per.items() for name in f["lifted"]],
+            "min_single_N": {"value": single[0], "pair": single[1], "bound": single[2]},
+            "factor_max": factoring["factor_max"], "factor_min": factoring["factor_min"],
+            "S_MS": factoring["S_MS"], "basis": factoring["basis"]}
     return out
 
 
@@ -239,16 +308,19 @@ def _uplift_row(review, values: dict) -> dict:
     clause = EN_UPLIFT_CLAUSE if review.code == "en15129" else "ASCE 7-22 17.2.4.7 [U]"
     if "bearing_axial_load_min_N" not in s:
         return C.uplift(n_vertical, n_pairs, n_verticals_not_analysed=dropped, clause=clause)
-    loads = s["bearing_axial_load_min_N"]
+    factored = s.get("factored_bearing_loads")
+    loads = factored["min_N"] if factored else s["bearing_axial_load_min_N"]
     k = int(np.argmin(loads))
     env = review.design_values["envelope"]
-    single = s["bearing_axial_load_min_single_N"]
-    lifted = s["uplift_analyses"]
+    single = factored["min_single_N"] if factored else s["bearing_axial_load_min_single_N"]
+    lifted = factored["lifted"] if factored else s["uplift_analyses"]
     detail = (f"bearing {k + 1}'s least load, {env['rule']} of {env['n']} analyses per bound, the smaller bound; "
               f"{len(lifted)} analysis(es) lift a bearing"
               + (f" ({', '.join(lifted[:4])}{' …' if len(lifted) > 4 else ''})" if lifted else "")
-              + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)")
-    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail, n_verticals_not_analysed=dropped, clause=clause)
+              + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)"
+              + (f"; unfactored least load {min(s['bearing_axial_load_min_N']):.4g} N" if factored else ""))
+    return C.uplift(n_vertical, n_pairs, loads[k], detail=detail, n_verticals_not_analysed=dropped, clause=clause,
+                    basis=factored["basis"] if factored else None)
 
 
 def _surface_d_over_r(review, limit: float) -> dict:
@@ -284,7 +356,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                               "; " + capacity_note if capacity_note else ""), "m"))
     reached = C.ultimate_reached(review.analyses)
     rows[-1] = C.never_pass_at_ultimate(rows[-1], reached)
-    rows += C.record_capacity(review.analyses, cap, mass_kg=design.mass_kg)
+    rows += C.record_capacity(review.analyses, cap, mass_kg=design.mass_kg, torsion_factor=_corner_factor(review))
     d_tm_row = C.never_pass_at_ultimate(
         C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
                   f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
@@ -321,10 +393,13 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     drift = s.get("story_drift_ratio")
     story = int(np.argmax(drift)) if drift else 0
     layout = design.bearing_layout
+    factored = s.get("factored_bearing_loads")
     loads = None if "bearing_axial_load_max_N" not in s else {
-        "max": s["bearing_axial_load_max_N"],
+        "max": factored["max_N"] if factored else s["bearing_axial_load_max_N"],
         "capacity": None if layout is None or layout.axial_capacities_N is None else list(layout.axial_capacities_N),
-        "note": f"{env['rule']} of {env['n']} analyses per bound, the larger bound"}
+        "note": f"{env['rule']} of {env['n']} analyses per bound, the larger bound"
+                + (f"; unfactored {max(s['bearing_axial_load_max_N']):.4g} N" if factored else ""),
+        "basis": factored["basis"] if factored else None}
     rows += asce7_22.requirement_rows(
         elf, p, mu_static_lower=asce7_22.breakaway_force_per_weight(designs["lower"]),
         mu_static_upper=activation["upper"], mu_static_nominal=activation["nominal"],
@@ -345,6 +420,11 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                         f"{review.bounds.lambda_min:.3g} / λ_max {review.bounds.lambda_max:.3g}; reviewer's list",
                         "m"))
     return rows + _common_back(review, values, d_tm["value"])
+
+
+def _corner_factor(review) -> float | None:
+    """The torsion factor D_TM/D_M the capacity rows apply to each analysis (``capacity_at_corner`` [U]), else None."""
+    return review.design_values["torsion"]["factor"] if review.parameters.get("capacity_at_corner") else None
 
 
 def _superstructure_shear_row(review, v_s: float, activation: dict, fixed_base: dict) -> dict:
@@ -385,7 +465,8 @@ def _en_checks(review, values: dict, designs: dict) -> list:
     rows = _common_front(review, p["n_records_min_en"], "EN 1998-1 3.2.3.1.2", "EN 1998-1 3.2.3.1.2(4)",
                          "component spectra")
     d_tm = env["D_TM"]["rha_m"]
-    rows += C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each analysis)")
+    rows += C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each analysis)",
+                              torsion_factor=_corner_factor(review))
     per_bearing = _en_bearing_displacements(review, env["D_M_rha_m"], p["gamma_x"])
     if per_bearing is None:
         rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_tm, cap,

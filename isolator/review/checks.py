@@ -106,7 +106,8 @@ def usable_band(pairs: list, range_hi_s: float, factor: float = 1.25) -> dict:
 
 
 def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_load_N: float | None = None, *,
-           detail: str = "", n_verticals_not_analysed: int = 0, clause: str = "ASCE 7-22 17.2.4.7 [U]") -> dict:
+           detail: str = "", n_verticals_not_analysed: int = 0, clause: str = "ASCE 7-22 17.2.4.7 [U]",
+           basis: str | None = None) -> dict:
     """Bearing uplift (ASCE 7-22 17.2.4.7 [U]): from overturning, so from the bearings' axial loads.
 
     Parameters
@@ -125,6 +126,9 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
         Pairs whose vertical the review left out (parameter ``horizontal_only``) [-].
     clause : str
         The clause printed (EN reviews: a sliding bearing carries no tension, no EN clause in the rules).
+    basis : str, optional
+        How the loads were factored (the 2.3.6 combination, 17.2.4.7); without it the loads are unfactored and the
+        note says so.
     """
     vertical = (f"the rigid block's normal force g + a_z vanished in {n_vertical_exceedances} episode(s) over "
                 f"{n_pairs_with_vertical} pair(s) with a vertical (vertical ground acceleration ≤ −1 g: a ground "
@@ -138,8 +142,9 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
                      "layout); " + vertical, "N")
     return at_least("uplift", clause, float(min_axial_load_N), 0.0,
                     "smallest bearing axial compression (uplift if < 0; 17.2.4.7 permits local uplift only where "
-                    "the resulting deflections cause no overstress or instability; unfactored gravity share, the "
-                    "minimum-load combination of 2.3.6 — 0.9D − E_v — not applied [U])"
+                    "the resulting deflections cause no overstress or instability; "
+                    + (basis or "unfactored gravity share, the minimum-load combination of 2.3.6 — 0.9D − E_v — not "
+                       "applied [U]") + ")"
                     + (f": {detail}" if detail else "") + "; " + vertical, "N")
 
 
@@ -210,11 +215,12 @@ def floor_acceleration(peak_m_s2: float | None, note: str = "",
 
 
 def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, note: str = "",
-                            clause: str = "ASCE 7-22 17.2.4.6") -> dict:
+                            clause: str = "ASCE 7-22 17.2.4.6", basis: str | None = None) -> dict:
     """Each bearing's largest axial compression (suite value) ≤ its vertical load capacity at the total displacement.
 
     The value is the largest demand ratio P_max / capacity over the bearings; ``not checked`` without the loads
-    (a superstructure and ``[[bearing_position]]``) or the capacities (``axial_capacity_N``).
+    (a superstructure and ``[[bearing_position]]``) or the capacities (``axial_capacity_N``).  ``basis`` says how
+    the loads were factored (the 2.3.6 combination); without it they are unfactored and the note says so.
     """
     if max_load_N is None:
         return check("vertical_load_stability", clause, NOT_CHECKED,
@@ -227,15 +233,16 @@ def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, 
     ratios = [p / c for p, c in zip(max_load_N, capacities_N, strict=True)]
     k = int(np.argmax(ratios))
     return at_most("vertical_load_stability", clause, ratios[k], 1.0,
-                   f"bearing {k + 1}: P_max {max_load_N[k]:.4g} N / capacity {capacities_N[k]:.4g} N (unfactored: the "
-                   "bearing's gravity share of W = g × mass_kg + the overturning of the floors' inertia forces; "
-                   + ("the factored combination of 2.3.6 that 17.2.4.6 names — dead-load factor, E_v, live load — is "
-                      "not applied [U])" if clause.startswith("ASCE") else "no load combination applied [U])")
-                   + (f"; {note}" if note else ""), "×capacity")
+                   f"bearing {k + 1}: P_max {max_load_N[k]:.4g} N / capacity {capacities_N[k]:.4g} N ("
+                   + (basis or "unfactored: the bearing's gravity share of W = g × mass_kg + the overturning of the "
+                      "floors' inertia forces; "
+                      + ("the factored combination of 2.3.6 that 17.2.4.6 names — dead-load factor, E_v, live load — "
+                         "is not applied [U]" if clause.startswith("ASCE") else "no load combination applied [U]"))
+                   + ")" + (f"; {note}" if note else ""), "×capacity")
 
 
 def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASCE 7-22 17.2.4.5 / 17.6.3.4 [U]",
-                    *, mass_kg: float | None = None) -> list[dict]:
+                    *, mass_kg: float | None = None, torsion_factor: float | None = None) -> list[dict]:
     """One ``fail`` row per analysis (pair × bound) whose peak displacement exceeds the capacity, or that reached
     the bearing's ultimate displacement (a double or triple pendulum's rims: ``ultimate_displacement_reached``).
 
@@ -253,29 +260,45 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
         Displacement capacity of the bearing [m] (a double or triple pendulum's ultimate Σ d*).
     mass_kg : float, optional
         The isolated mass M [kg], for the impulse M Σ|V| in the note.
+    torsion_factor : float, optional
+        D_TM/D_M of Eq. 17.5-3 (review parameter ``capacity_at_corner`` [U], REVIEW_RULES 1.10): each analysis's
+        centre-of-mass displacement times it is the corner bearing's, the value compared (the row's
+        ``centre_of_mass_m`` keeps the analysis's own).  An analysis held at a single pendulum's rim has its centre
+        of mass at the capacity, so its corner reads factor × capacity > capacity: it fails either way.
     """
     rows = []
     largest, where = -math.inf, ""
+    factor = 1.0 if torsion_factor is None else float(torsion_factor)
+    corner = "" if torsion_factor is None else f"corner bearing {factor:.4g} × "
     for bound, results in analyses.items():
         for name, r in results.items():
-            d = r.get("peak_displacement_m")
-            if "error" in r or d is None or not math.isfinite(d):
+            d_cm = r.get("peak_displacement_m")
+            if "error" in r or d_cm is None or not math.isfinite(d_cm):
                 continue
+            d = factor * d_cm
+            extra = {"pair": name, "bound": bound} | ({} if torsion_factor is None else
+                                                      {"centre_of_mass_m": d_cm, "torsion_factor": factor})
+            said_d = f"D = {corner}{d_cm:.4g} m = {d:.4g} m" if corner else f"D = {d:.4g} m"
             if d > largest:
-                largest, where = d, f"{name}, {bound} bound"
+                largest, where = d, f"{name}, {bound} bound" + (f" ({said_d})" if corner else "")
             if r.get("ultimate_displacement_reached"):
                 impulse = r.get("impact_impulse_m_s")
                 said = "" if impulse is None else (f"; impulse {impulse * mass_kg:.4g} N·s" if mass_kg
                                                    else f"; impulse {impulse:.4g} m/s per unit mass")
+                at_corner = (f"; the centre of mass is held at the rim, so the {corner}{d_cm:.4g} m = {d:.4g} m "
+                             "exceeds the capacity (with torsion the corner bearings reach their rims first)"
+                             if corner and d > d_cm else "")
                 rows.append(check("record_capacity", clause, FAIL, d, capacity_m,
                                   f"{name}, {bound} bound: the bearing REACHED its ultimate displacement (every slider "
-                                  f"on its rim; plastic impact{said}): the demand is at least the capacity",
-                                  "m") | {"pair": name, "bound": bound})
+                                  f"on its rim; plastic impact{said}): the demand is at least the capacity{at_corner}",
+                                  "m") | extra)
             elif capacity_m is not None and d > capacity_m:
                 rows.append(check("record_capacity", clause, FAIL, d, capacity_m,
-                                  f"{name}, {bound} bound: D = {d:.4g} m > capacity {capacity_m:.4g} m; the result "
-                                  "assumes no restrainer (none is modelled) and is not physical beyond the capacity",
-                                  "m") | {"pair": name, "bound": bound})
+                                  f"{name}, {bound} bound: {said_d} > capacity {capacity_m:.4g} m"
+                                  + (" (the centre of mass within it: the corner bearing is not)"
+                                     if d_cm <= capacity_m else "; the result assumes no restrainer (none is "
+                                     "modelled) and is not physical beyond the capacity"),
+                                  "m") | extra)
     if rows:
         return rows
     if not math.isfinite(largest):
@@ -284,7 +307,8 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
         return [check("record_capacity", clause, NOT_CHECKED, largest, None,
                       f"no displacement_capacity_m in the design; largest single analysis {where}", "m")]
     return [check("record_capacity", clause, PASS, largest, capacity_m,
-                  f"every analysis within the capacity; largest {where}", "m")]
+                  f"every analysis within the capacity{' at the corner bearing' if corner else ''}; largest {where}",
+                  "m")]
 
 
 def ultimate_reached(analyses: dict) -> list[str]:

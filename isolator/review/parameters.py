@@ -85,6 +85,18 @@ PARAMETERS = {p.name: p for p in [
               "design (factored) wind base shear / W; none: the wind rows are not checked", ("asce7-22",)),
     Parameter("drift_limit_rha", 0.020, "U", "ASCE 7-22 17.6.4.4", "story drift ratio limit with RHA",
               ("asce7-22",)),
+    Parameter("dead_load_factor_max", 1.2, "U", "ASCE 7-22 17.2.4.6 / 2.3.6 (1.2D + E_v + E_h + L)",
+              "factor on each bearing's gravity share for its maximum vertical load (stability); E_v added unless "
+              "the analysis has its vertical", ("asce7-22",)),
+    Parameter("dead_load_factor_min", 0.9, "U", "ASCE 7-22 17.2.4.6 / 17.2.4.7 / 2.3.6 (0.9D − E_v + E_h)",
+              "factor on each bearing's gravity share for its minimum vertical load (uplift, stability); E_v "
+              "subtracted unless the analysis has its vertical", ("asce7-22",)),
+    Parameter("vertical_Ev_coefficient", 0.2, "U", "ASCE 7-22 12.4.2.2 (E_v = 0.2 S_DS D, S_MS for the MCE_R)",
+              "E_v = coefficient × S_MS × D on the gravity share, for an analysis without its vertical component",
+              ("asce7-22",)),
+    Parameter("capacity_at_corner", True, "U", "REVIEW_RULES 1.10 / ASCE 7-22 17.2.4.6 (capacity at D_TM)",
+              "each analysis's capacity row reads the corner bearing: the centre-of-mass displacement × the "
+              "torsion factor D_TM/D_M (Eq. 17.5-3) of the review; false: the centre of mass"),
     Parameter("horizontal_only", False, "input", "ASCE 7-22 17.3.2 (pairs of horizontal components)",
               "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
               "building); false: a vertical is analysed or the review refuses it"),
@@ -149,6 +161,9 @@ RANGES = {
     "drift_limit_rha": Range(0.0, 0.1, "a story drift ratio (ASCE 7-22 17.6.4.4: 0.020)", lo_open=True),
     "weak_pga_fraction": Range(0.0, 1.0, "a fraction of µ_lower g"),
     "bandwidth_min": Range(0.0, 1.0, "a Vanmarcke bandwidth (between 0 and 1)"),
+    "dead_load_factor_max": Range(1.0, 2.0, "a factor on the dead load (ASCE 7-22 2.3.6: 1.2)"),
+    "dead_load_factor_min": Range(0.0, 1.0, "a factor on the dead load (ASCE 7-22 2.3.6: 0.9)"),
+    "vertical_Ev_coefficient": Range(0.0, 1.0, "a coefficient of S_MS D (ASCE 7-22 12.4.2.2: 0.2)"),
     "gamma_x": Range(1.0, 3.0, "a reliability factor (EN 1998-1 10.3(2): 1.2)"),
     "delta": Range(0.0, 1.0, "a ratio d_Ed/d_r (EN 1998-2 7.7.1: 0.5)", lo_open=True),
 }

@@ -419,7 +419,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                         note="no displacement restraint is an input or modelled: the bearings alone must accommodate "
                              "the total displacement (D_TM_capacity; each analysis in record_capacity)"))
     loads = bearing_axial_loads_N or {}
-    rows.append(C.vertical_load_stability(loads.get("max"), loads.get("capacity"), loads.get("note", "")))
+    rows.append(C.vertical_load_stability(loads.get("max"), loads.get("capacity"), loads.get("note", ""),
+                                          basis=loads.get("basis")))
     rows.append(C.check("inspection_replacement", "ASCE 7-22 17.2.4.8", C.NOT_CHECKED,
                         note="access for inspection and replacement: reviewer's list"))
     t_m = [elf[b].get("T_M_s", math.nan) for b in ("lower", "upper") if b in elf]
