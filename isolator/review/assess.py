@@ -107,8 +107,8 @@ def _load_factoring(review) -> dict | None:
     else:  # a tabulated target: its short-period ordinate stands for S_MS [U]
         s_ms, where = float(target.sa_g(0.2, clip=True)[0]), "the target's S_a(0.2 s) taken as S_MS [U]"
     e_v = p["vertical_Ev_coefficient"] * s_ms
-    without = (p["dead_load_factor_max"] + e_v, p["dead_load_factor_min"] - e_v)
-    with_vertical = (p["dead_load_factor_max"], p["dead_load_factor_min"])
+    without = asce7_22.vertical_load_factors(s_ms, p, vertical_analysed=False)
+    with_vertical = asce7_22.vertical_load_factors(s_ms, p, vertical_analysed=True)
     analysed = {pair.name: pair.az_m_s2 is not None and not p.get("horizontal_only") for pair in review.suite.pairs}
     n_vertical = sum(analysed.values())
     basis = (f"factored (2.3.6 [U]): max {without[0]:.4g} D + E_h, min {without[1]:.4g} D − E_h on each bearing's "

@@ -266,6 +266,18 @@ def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float) ->
     return max(mu_static_upper, 1.5 * mu_static_nominal)
 
 
+def vertical_load_factors(s_ms: float, params: dict, *, vertical_analysed: bool) -> tuple[float, float]:
+    """The factors on a bearing's gravity share D for its maximum and minimum vertical load (17.2.4.6 / 17.2.4.7,
+    the 2.3.6 combinations with E_v = c S_MS D of 12.4.2.2, S_MS for the MCE_R) [-] — all [U].
+
+    ``(dead_load_factor_max + c S_MS, dead_load_factor_min − c S_MS)``, c = ``vertical_Ev_coefficient``; when the
+    analysis had its vertical component the loads already carry it, so E_v is not added again: the dead-load
+    factors alone.
+    """
+    e_v = 0.0 if vertical_analysed else params["vertical_Ev_coefficient"] * s_ms
+    return params["dead_load_factor_max"] + e_v, params["dead_load_factor_min"] - e_v
+
+
 def restoring_force_ratio(design, displacement_m: float) -> float:
     """(F(D) − F(D/2)) / W (17.2.4.4): K D / (2W) of the bilinear model, D/(2R) for a friction pendulum; on a
     double or triple pendulum's backbone (loading from rest), NaN beyond its ultimate displacement."""
