@@ -314,7 +314,9 @@ def test_triple_pendulum_review_reads_the_rims(inputs, monkeypatch):
     assert reached  # the cut capacities are reached by Superstition Hills
     rows = [row for row in r.checks if row["id"] == "record_capacity"]
     assert {(row["bound"], row["pair"]) for row in rows} == set(reached)
-    assert all(row["status"] == "fail" and row["value"] <= 0.5 + 1e-12 for row in rows)  # at, not past, the rim
+    assert all(row["status"] == "fail" and row["centre_of_mass_m"] <= 0.5 + 1e-12 for row in rows)  # at the rim
+    # capacity_at_corner: the value is the corner bearing's, the torsion factor × the held centre of mass
+    assert all(row["value"] == row["torsion_factor"] * row["centre_of_mass_m"] for row in rows)
     by_id = {row["id"]: row for row in r.checks}
     assert by_id["D_M_capacity"]["status"] == by_id["D_TM_capacity"]["status"] == "fail"
     assert by_id["D_M_capacity"]["limit"] == pytest.approx(design.bearing.ultimate_displacement_m)
@@ -409,11 +411,13 @@ def test_triple_pendulum_review_on_real_pairs(inputs, capacities):
     assert {a["model"] for b in r.analyses for a in r.analyses[b].values()} == {"2d-multisurface"}
     rows = {row["id"]: row for row in r.checks}
     peaks = [a["peak_displacement_m"] for b in r.analyses for a in r.analyses[b].values()]
-    reached = [a for b in r.analyses for a in r.analyses[b].values() if a["ultimate_displacement_reached"]]
     capacity_rows = [row for row in r.checks if row["id"] == "record_capacity"]
-    assert len([row for row in capacity_rows if row["status"] == "fail"]) == len(reached)
-    if not reached:
-        assert capacity_rows[0]["value"] == pytest.approx(max(peaks))
+    factor = r.design_values["torsion"]["factor"]  # capacity_at_corner: each analysis's corner bearing
+    past = [a for b in r.analyses for a in r.analyses[b].values()
+            if a["ultimate_displacement_reached"] or factor * a["peak_displacement_m"] > rows["D_M_capacity"]["limit"]]
+    assert len([row for row in capacity_rows if row["status"] == "fail"]) == len(past)
+    if not past:
+        assert capacity_rows[0]["value"] == pytest.approx(factor * max(peaks))
     assert rows["D_M_capacity"]["limit"] == pytest.approx(sum(capacities), rel=1e-12)  # heights 0: d* = d
     assert rows["D_over_R"]["value"] == pytest.approx(max(
         max(d / s["radius_m"] for d, s in zip(a["surface_peak_displacement_m"], surfaces, strict=True))
