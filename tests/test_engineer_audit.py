@@ -359,16 +359,22 @@ def test_review_building_rows_are_their_hand_values(review):
     for r in pairs["upper"]:
         np.testing.assert_allclose(r["story_drift_m"], np.array(r["story_drift_ratio"]) * STORY_HEIGHT_M, rtol=1e-13)
 
-    # 17.2.4.7: the least bearing load (the smallest over the pairs, the smaller bound)
+    # 17.2.4.7: the least bearing load (the smallest over the pairs, the smaller bound) under 2.3.6's minimum
+    # combination (0.9 − 0.2 S_MS) D − E_h = 0.6 D − E_h: the history's minimum W/20 − E_h shifted by −0.4 W/20
+    # (no vertical analysed, so E_v = 0.2 S_MS D applies; every share is W/20)
+    share = TOTAL_MASS_KG * G / 20
     least = min(min(min(r["bearing_axial_load_min_N"]) for r in pairs[b]) for b in bounds)
     row = _row(review, "uplift")
-    assert row["value"] == pytest.approx(least, rel=1e-12) and row["unit"] == "N"
-    assert row["status"] == ("pass" if least >= 0 else "fail")
+    assert row["value"] == pytest.approx(least + (0.9 - 0.2 * S_MS - 1.0) * share, rel=1e-12) and row["unit"] == "N"
+    assert row["status"] == ("pass" if row["value"] >= 0 else "fail")
+    assert f"unfactored least load {least:.4g} N" in row["note"]
 
-    # 17.2.4.6: the largest bearing load (the largest over the pairs, larger bound) over its capacity 12 MN
+    # 17.2.4.6: the largest bearing load (the largest over the pairs, larger bound) under (1.2 + 0.2 S_MS) D + E_h
+    # = 1.5 D + E_h, over its capacity 12 MN
     most = max(max(max(r["bearing_axial_load_max_N"]) for r in pairs[b]) for b in bounds)
     row = _row(review, "vertical_load_stability")
-    assert row["value"] == pytest.approx(most / AXIAL_CAPACITY_N, rel=1e-12) and row["limit"] == 1.0
+    assert row["value"] == pytest.approx((most + (1.2 + 0.2 * S_MS - 1.0) * share) / AXIAL_CAPACITY_N, rel=1e-12)
+    assert row["limit"] == 1.0 and f"unfactored {most:.4g} N" in row["note"]
     # every bearing's gravity share is W/20: the extremes straddle it by the overturning of the same analysis
     for r in pairs["lower"] + pairs["upper"]:
         share = TOTAL_MASS_KG * G / 20
@@ -396,15 +402,16 @@ def test_review_notes_say_what_the_rows_computed(review, design):
     from isolator.errors import DesignError
     from isolator.superstructure import parse_bearing_layout
 
-    stability = _row(review, "vertical_load_stability")
-    assert "unfactored" in stability["note"] and "not applied [U]" in stability["note"]
+    stability = _row(review, "vertical_load_stability")  # factored by 2.3.6 [U], the factors said
+    assert "factored (2.3.6 [U]): max 1.5 D + E_h, min 0.6 D − E_h" in stability["note"]
+    assert "no vertical analysed, so E_v is applied" in stability["note"] and "not applied [U]" not in stability["note"]
     assert "are the engineer's gravity_load_N" not in stability["note"]
     share = TOTAL_MASS_KG * G / 20  # 1.2 × the share on every bearing (a factored dead load) is refused
     with pytest.raises(DesignError, match="add up to"):
         parse_bearing_layout([{"x_m": x, "y_m": y, "gravity_load_N": 1.2 * share}
                               for x, y in zip(BEARING_X_M, BEARING_Y_M, strict=True)], TOTAL_MASS_KG * G)
     uplift = _row(review, "uplift")
-    assert "unfactored" in uplift["note"] and "not applied [U]" in uplift["note"]
+    assert "factored (2.3.6 [U])" in uplift["note"] and "not applied [U]" not in uplift["note"]
     assert "the verticals of 1 pair(s) not analysed (horizontal_only)" in uplift["note"]
     assert "no vertical components" not in uplift["note"]
     assert "between samples included" in review["spectrum_conventions"]
