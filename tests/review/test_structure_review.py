@@ -191,14 +191,22 @@ def _assert_building_rows(r, *, n_stories, n_bearings, ws, r_i, mu_static, capac
     assert row["status"] == ("pass" if shear >= limit else "fail") and "17.6.4.2" in row["clause"]
     assert "17.5.4.3(1) fixed-base" in row["note"] and "17.5.4.3(3) activation" in row["note"]
     assert "17.5.4.3(2) not computed" in row["note"] and "17.5.4.3(1) not computed" not in row["note"]
-    # 17.2.4.7: the least suite value of a bearing's minimum load; 17.2.4.6: the largest P_max / capacity
-    least = min(-_suite_value([-a["bearing_axial_load_min_N"][k] for a in per[b]], n) for b in bounds
-                for k in range(n_bearings))
+    # 17.2.4.7: the least suite value of a bearing's minimum load; 17.2.4.6: the largest P_max / capacity — under
+    # 2.3.6 (no vertical analysed: E_v = 0.2 S_MS D): each analysis's load shifted by (f − 1) × the gravity share,
+    # f_min = 0.9 − 0.2 S_MS, f_max = 1.2 + 0.2 S_MS
+    s_ms = r.target.parameters["S_MS"]
+    share = r.design.bearing_layout.gravity_loads_N
+    f_min, f_max = 0.9 - 0.2 * s_ms, 1.2 + 0.2 * s_ms
+    least = min(-_suite_value([-(a["bearing_axial_load_min_N"][k] + (f_min - 1) * share[k]) for a in per[b]], n)
+                for b in bounds for k in range(n_bearings))
     assert rows["uplift"]["value"] == pytest.approx(least, rel=1e-14)
     assert rows["uplift"]["status"] == ("pass" if least >= 0 else "fail")
-    lifted = sum(1 for b in bounds for a in per[b] if a["n_bearings_uplifted"])
+    assert "no vertical analysed, so E_v is applied" in rows["uplift"]["note"]
+    lifted = sum(1 for b in bounds for a in per[b]
+                 if min(lo + (f_min - 1) * g for lo, g in zip(a["bearing_axial_load_min_N"], share, strict=True)) < 0)
     assert f"{lifted} analysis(es) lift a bearing" in rows["uplift"]["note"]
-    ratio = max(suite(b, "bearing_axial_load_max_N", k) for b in bounds for k in range(n_bearings)) / capacity_N
+    ratio = max(_suite_value([a["bearing_axial_load_max_N"][k] + (f_max - 1) * share[k] for a in per[b]], n)
+                for b in bounds for k in range(n_bearings)) / capacity_N
     assert rows["vertical_load_stability"]["value"] == pytest.approx(ratio, rel=1e-14)
     assert rows["vertical_load_stability"]["status"] == ("pass" if ratio <= 1 else "fail")
     assert "17.2.4.6" in rows["vertical_load_stability"]["clause"]
