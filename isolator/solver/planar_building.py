@@ -41,7 +41,7 @@ import numpy as np
 from isolator.errors import InvalidSystemError, RecordInputError
 from isolator.solver import planar_building_kernel as _pk
 from isolator.solver.base import SolverResult
-from isolator.solver.building import BuildingKeys, BuildingResponse, building_system
+from isolator.solver.building import BuildingKeys, BuildingResponse, building_system, van_loan
 from isolator.solver.record import sample_timing
 from isolator.solver.system import System
 from isolator.units import STANDARD_GRAVITY
@@ -79,6 +79,10 @@ class PlanarBuildingSystem:
     #: the largest |eigenvalue| of the stuck and sliding matrices [1/s]: a piece turns the fastest mode by
     #: at most THETA rad (the series' own truncation rule bounds its length too)
     fastest_rate_per_s: float = 0.0
+    #: the 1-D building's systems along x and y (their augmented matrices and energy forms)
+    directions: tuple = field(default=(), repr=False)
+    #: the fast sub-steps' tables, by (sub-step length, watched rows), reused by later runs
+    cache: dict = field(default_factory=dict, repr=False)
 
     @property
     def weight_N(self) -> float:
@@ -131,7 +135,85 @@ def planar_building_system(superstructure, *, total_mass_kg: float, stiffness_N_
         isolator_damping_Ns_per_m=first.isolator_damping_Ns_per_m, mu_static=first.mu_static,
         mu_kinetic=first.mu_kinetic, gravity_m_s2=first.gravity_m_s2, a_mat=a_mat, g_vec=g_vec, p_vec=p_vec, l_d=l_d,
         fastest_rate_per_s=max(float(np.max(np.abs(np.linalg.eigvals(a_mat[phase, d])))) for phase in range(2)
-                               for d in range(2)))
+                               for d in range(2)), directions=tuple(per_direction))
+
+
+def _augmented(system: PlanarBuildingSystem) -> np.ndarray:
+    """Ã per phase and direction on w̃ = [z, a_g, ȧ_g, c_0 … c_K]: the 1-D building's augmented matrix
+    (whose friction entry f is c_0) with the chain c_j' = (j + 1) c_{j+1} of the friction's polynomial."""
+    m = 2 * system.n_floors + 2
+    size = m + 3 + _pk.FAST_ORDER
+    aug = np.zeros((2, 2, size, size))
+    for d, one in enumerate(system.directions):
+        for phase in range(2):
+            aug[phase, d, :m + 3, :m + 3] = one.a_modes[phase]
+            for j in range(_pk.FAST_ORDER):
+                aug[phase, d, m + 2 + j, m + 3 + j] = j + 1.0
+    return aug
+
+
+def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tuple:
+    """The fast sub-steps' tables for the sub-step length h (see :func:`planar_building_kernel.building2d_kernel`).
+
+    e^{Ãh} and the Van Loan forms depend on (system, h) only and are kept in ``system.cache``; the
+    watched quantities' rows ℓÃ^j/j! also on the watched rows (the bearing layout).
+    """
+    from scipy.linalg import expm
+
+    m = 2 * system.n_floors + 2
+    key = ("propagators", h)
+    if key not in system.cache:
+        aug = _augmented(system)
+        size = aug.shape[-1]
+        prop = np.empty((2, 2, m, size))
+        p_in = np.empty((2, 2, size, size))
+        p_vis = np.empty((2, 2, size, size))
+        for d, one in enumerate(system.directions):
+            q_in = np.zeros((size, size))
+            q_vis = np.zeros((size, size))
+            q_in[:m + 3, :m + 3] = one.q_in
+            q_vis[:m + 3, :m + 3] = one.q_vis
+            for phase in range(2):
+                prop[phase, d] = expm(aug[phase, d] * h)[:m]
+                p_in[phase, d] = van_loan(aug[phase, d], q_in, h)
+                p_vis[phase, d] = van_loan(aug[phase, d], q_vis, h)
+        rate1 = np.ascontiguousarray(aug[:, :, :m, :m + 4])
+        rate2 = np.ascontiguousarray(np.einsum("pdij,pdjk->pdik", aug[:, :, :m, :], aug[:, :, :, :m + 4]))
+        v_rows = np.empty((2, _pk.FAST_ORDER + 1, size))
+        for d in range(2):
+            row = np.zeros(size)
+            row[1] = 1.0
+            for k in range(_pk.FAST_ORDER + 1):
+                v_rows[d, k] = row
+                row = row @ aug[1, d] / (k + 1)
+        system.cache[key] = (aug, prop, p_in, p_vis, v_rows, rate1, rate2)
+    aug, prop, p_in, p_vis, v_rows, rate1, rate2 = system.cache[key]
+    m1, m2, m3, sig1, sig2, sig3 = watched
+    wkey = ("watched", h, *(a.tobytes() for a in watched))
+    if wkey not in system.cache:
+        size = aug.shape[-1]
+        nk, nj = m1.shape[0], sig1.shape[0]
+        mon = np.empty((2, nk, 2, _pk.FAST_POW, size))
+        sig = np.empty((2, nj, 2, _pk.FAST_POW, size))
+        for phase in range(2):
+            for d in range(2):
+                rate = aug[phase, d, :m]
+                rows = np.zeros((nk + nj, size))
+                rows[:nk, :m] = m1[:, d]
+                rows[:nk] += m2[:, d] @ rate
+                rows[:nk, m] += m3[:, d]
+                rows[nk:, :m] = sig1[:, d]
+                rows[nk:] += sig2[:, d] @ rate
+                rows[nk:, m] += sig3[:, d]
+                for j in range(_pk.FAST_POW):
+                    mon[phase, :, d, j] = rows[:nk]
+                    sig[phase, :, d, j] = rows[nk:]
+                    rows = rows @ aug[phase, d] / (j + 1)
+        if len(system.cache) > 16:
+            system.cache.pop(next(k for k in system.cache if k[0] == "watched"))
+        system.cache[wkey] = (mon, sig)
+    mon, sig = system.cache[wkey]
+    return prop, p_in, p_vis, v_rows, rate1, rate2, mon, sig
 
 
 def _watched(system: PlanarBuildingSystem, layout) -> tuple:
@@ -202,7 +284,8 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     signed_max: np.ndarray = field(repr=False)
     signed_min: np.ndarray = field(repr=False)
     energy_strain_final_J_per_kg: float = 0.0
-    n_pieces: int = 0
+    n_pieces: int = 0  #: series pieces
+    n_fast_steps: int = 0  #: sub-steps by the exact propagators
     n_extrema_located: int = 0
     bearing_layout: object = None
     residual_displacement_x_m: float = 0.0
@@ -318,6 +401,10 @@ def simulate_scene(scene) -> PlanarBuildingResponse:
 
 
 _READY = False
+#: Systems built by :func:`simulate_planar_building`, by their parameters, with their propagators (a review
+#: runs one system on many pairs)
+_SYSTEMS: dict = {}
+_SYSTEMS_MAX = 32
 
 
 def _warm_up() -> None:
@@ -370,10 +457,16 @@ def simulate_planar_building(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, tim
     -------
     PlanarBuildingResponse
     """
-    system = planar_building_system(superstructure, total_mass_kg=float(total_mass_kg),
-                                    stiffness_N_per_m=float(stiffness_N_per_m), mu_static=float(mu_static),
-                                    mu_kinetic=None if mu_kinetic is None else float(mu_kinetic),
-                                    damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=float(gravity_m_s2))
+    parameters = dict(total_mass_kg=float(total_mass_kg), stiffness_N_per_m=float(stiffness_N_per_m),
+                      mu_static=float(mu_static), mu_kinetic=None if mu_kinetic is None else float(mu_kinetic),
+                      damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=float(gravity_m_s2))
+    key = (superstructure, *sorted(parameters.items()))
+    system = _SYSTEMS.get(key)
+    if system is None:
+        system = planar_building_system(superstructure, **parameters)
+        if len(_SYSTEMS) >= _SYSTEMS_MAX:
+            _SYSTEMS.pop(next(iter(_SYSTEMS)))
+        _SYSTEMS[key] = system
     ax = _check_component("ax", ax_m_s2)
     ay = _check_component("ay", ay_m_s2)
     if ax.shape != ay.shape:
@@ -419,6 +512,15 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
     summary = np.zeros(_pk.SUMMARY_SIZE)
     c_floor = np.ascontiguousarray(np.stack(system.damping_matrices))
     kernel_times = np.empty(0) if relative is None else np.ascontiguousarray(relative)
+    # fast sub-steps (uniform records): the fastest mode turns by at most THETA_FAST in one
+    n_fast = 0 if relative is not None else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
+    if n_fast > 0:
+        tables = _fast_tables(system, dt / n_fast, (m1, m2, m3, sig1, sig2, sig3))
+    else:
+        size = m + 3 + _pk.FAST_ORDER
+        tables = (np.zeros((2, 2, m, size)), np.zeros((2, 2, size, size)), np.zeros((2, 2, size, size)),
+                  np.zeros((2, _pk.FAST_ORDER + 1, size)), np.zeros((2, 2, m, m + 4)), np.zeros((2, 2, m, m + 4)),
+                  np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size)))
     capacity = 64 + n_samples // 4
     while True:
         ev_time = np.empty(capacity)
@@ -428,7 +530,8 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
         _pk.building2d_kernel(ax, ay, dt, kernel_times, h_max, system.a_mat, system.g_vec, system.p_vec, system.l_d,
                               weights, system.slab_mass_kg, system.total_mass_kg, system.masses_kg,
                               system.isolator_damping_Ns_per_m, c_floor, system.mu_static * weight,
-                              system.mu_kinetic * weight, v_ref, m1, m2, m3, sig1, sig2, sig3, out_state, out_mon,
+                              system.mu_kinetic * weight, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, *tables,
+                              out_state, out_mon,
                               out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x, summary)
         elapsed = time.perf_counter() - start
         n_events = int(summary[_pk.S_N_EVENTS])
@@ -503,6 +606,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
         message=message,
         solver_seconds=elapsed,
         n_pieces=int(summary[_pk.S_N_PIECES]),
+        n_fast_steps=int(summary[_pk.S_N_FAST]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
     )

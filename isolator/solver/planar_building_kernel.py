@@ -72,7 +72,20 @@ S_N_EVENTS = 4
 S_STATUS = 5
 S_N_PIECES = 6
 S_N_LOCATED = 7
-SUMMARY_SIZE = 8
+S_N_FAST = 8
+SUMMARY_SIZE = 9
+
+#: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
+#: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
+THETA_FAST = 1.5
+#: Degree of the friction's polynomial F(τ) = Σ F_k τ^k in a fast sub-step (its chain in the augmented state).
+FAST_ORDER = 24
+#: Terms of the watched quantities' series in a fast sub-step (an interior extreme is a root of it);
+#: with ρ h ≤ THETA_FAST the remainder is below 1.5^31/31! < 1e-28 of the fastest mode's amplitude.
+FAST_POW = 31
+#: The friction at the sub-step's end from its polynomial and from V/|V| of the propagated state agree to
+#: this fraction of µk N, or the sub-step is redone by series pieces (a safety net under the truncation rule).
+FAST_CHECK = 1e-12
 
 
 @njit(cache=True)
@@ -453,9 +466,274 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
 
 
 @njit(cache=True)
+def _poly_value_slope(c, nterm, t):
+    """Σ_{j<nterm} c[j] t^j and its derivative (Horner)."""
+    v = c[nterm - 1]
+    dv = 0.0
+    for j in range(nterm - 2, -1, -1):
+        dv = dv * t + v
+        v = v * t + c[j]
+    return v, dv
+
+
+@njit(cache=True)
+def _poly_max(cp, kind, nterm, h):
+    """Largest value in [0, h] of ½|P|² (kind 0: cp[0], cp[1] the series of P_x, P_y) or of ±P (kind ±1:
+    cp[0]), where its slope falls through zero (Illinois on the slope, as :func:`_locate_max`)."""
+    a = 0.0
+    c = h
+    best = -1e300
+    fa = 0.0
+    fc = 0.0
+    for end in range(2):
+        t = a if end == 0 else c
+        if kind == 0:
+            vx, dx = _poly_value_slope(cp[0], nterm, t)
+            vy, dy = _poly_value_slope(cp[1], nterm, t)
+            f = vx * dx + vy * dy
+        else:
+            v, dv = _poly_value_slope(cp[0], nterm, t)
+            f = kind * dv
+        if end == 0:
+            fa = f
+        else:
+            fc = f
+    side = 0
+    for _ in range(200):
+        if c - a <= 4e-16 * max(c, 1e-300) or fa == fc:
+            break
+        t = (a * fc - c * fa) / (fc - fa)
+        if not (a < t < c):
+            t = 0.5 * (a + c)
+        if kind == 0:
+            vx, dx = _poly_value_slope(cp[0], nterm, t)
+            vy, dy = _poly_value_slope(cp[1], nterm, t)
+            f = vx * dx + vy * dy
+            v = vx * vx + vy * vy
+        else:
+            v, dv = _poly_value_slope(cp[0], nterm, t)
+            f = kind * dv
+            v = kind * v
+        best = max(best, v)
+        if f == 0.0:
+            break
+        if f > 0.0:
+            a = t
+            fa = f
+            if side == 1:
+                fc *= 0.5
+            side = 1
+        else:
+            c = t
+            fc = f
+            if side == -1:
+                fa *= 0.5
+            side = -1
+    return best
+
+
+@njit(cache=True)
+def _rows_series(rows, wa, s_eff, nterm, out, slot):
+    """out[slot, j] += rows[d, j, :s_eff] · wa[d, :s_eff] summed over both directions when rows is
+    (2, nterm, S), the Taylor coefficients of a watched quantity from its precomputed rows ℓÃ^j/j!."""
+    for j in range(nterm):
+        acc = 0.0
+        for c in range(s_eff):
+            acc += rows[j, c] * wa[c]
+        out[slot, j] += acc
+
+
+@njit(cache=True)
+def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis, fvrow,
+               farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
+               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser, sser, rser, eser, zl, zdl, zddl, zh,
+               zdh, zddh, cpoly, energy, counter, out2):
+    """One sub-step of length h, stuck or sliding, by the exact propagators of the linear part.
+
+    The augmented state per direction is w̃ = [z, a_g, ȧ_g, c_0 … c_K] with c_j = F^{(j)}/j! the chain of
+    the friction's polynomial F(τ) = Σ F_k τ^k (F_k from the recurrences of |V| and V/|V|, V's
+    coefficients from the rows e_v Ã^k / k!), so w̃(h) = e^{Ãh} w̃(0) is exact for that polynomial and
+    the energies are the Van Loan quadratic forms w̃ᵀ P w̃.  Returns False, having changed nothing the
+    caller reads, when the friction's series does not reach rounding within h, when an event may lie
+    in the sub-step (break-away; the speed along e0 halving), or when the friction at the end does
+    not match V/|V| (then the caller runs the series pieces).  On True: zh, zdh, zddh hold the end, val1
+    … sslope1 the watched values there, energy[0:3] the energies over the sub-step.
+    """
+    m = w.shape[1]
+    phase = 0 if mode == STUCK else 1
+    nch = fprop.shape[3] - m - 2  # chain entries c_0 .. c_K
+    for d in range(2):
+        for c in range(m):
+            wa[d, c] = w[d, c]
+        wa[d, m] = a0[d]
+        wa[d, m + 1] = b[d]
+        for j in range(nch):
+            wa[d, m + 2 + j] = 0.0
+    k_eff = 1
+    r_int = 0.0
+    if mode == SLIDE:
+        converged = False
+        scale = max(mu_k_n, 1e-300)
+        hk = 1.0
+        for k in range(nch):
+            for d in range(2):
+                acc = 0.0
+                for c in range(m + 2 + k):
+                    acc += fvrow[d, k, c] * wa[d, c]
+                vser[d, k] = acc
+            acc = 0.0
+            for j in range(k + 1):
+                acc += vser[0, j] * vser[0, k - j] + vser[1, j] * vser[1, k - j]
+            sser[k] = acc
+            if k == 0:
+                if not sser[0] > 0.0:
+                    return False
+                rser[0] = math.sqrt(sser[0])
+            else:
+                acc = sser[k]
+                for j in range(1, k):
+                    acc -= rser[j] * rser[k - j]
+                rser[k] = acc / (2.0 * rser[0])
+            for d in range(2):
+                acc = vser[d, k]
+                for j in range(k):
+                    acc -= eser[d, j] * rser[k - j]
+                eser[d, k] = acc / rser[0]
+                wa[d, m + 2 + k] = mu_k_n * eser[d, k]
+            hk1 = hk
+            if k > 0:
+                hk *= h
+            if k >= 3:
+                t_f = max(abs(eser[0, k]), abs(eser[1, k])) * hk * mu_k_n
+                t_f1 = max(abs(eser[0, k - 1]), abs(eser[1, k - 1])) * hk1 * mu_k_n
+                t_r = abs(rser[k]) * hk
+                t_r1 = abs(rser[k - 1]) * hk1
+                if max(t_f, t_f1) <= TRUNC_EPS * scale and (mu_k_n == 0.0 or max(t_r, t_r1) <= TRUNC_EPS * rser[0]):
+                    k_eff = k
+                    converged = True
+                    break
+        if not converged:
+            return False
+        for j in range(k_eff + 1):
+            r_int += rser[j] * h ** (j + 1) / (j + 1)
+    s_eff = m + 3 + k_eff
+    for d in range(2):
+        for c in range(m):
+            acc = 0.0
+            for c2 in range(s_eff):
+                acc += fprop[phase, d, c, c2] * wa[d, c2]
+            zh[d, c] = acc
+    # the start's and the end's rates: ż = Ã w̃, z̈ = Ã² w̃ on [z, a_g, ȧ_g, c_0, c_1]
+    for d in range(2):
+        f_end = 0.0
+        fd_end = 0.0
+        for k in range(k_eff, -1, -1):
+            fd_end = fd_end * h + f_end
+            f_end = f_end * h + wa[d, m + 2 + k]
+        for c in range(m):
+            acc_l = farow1[phase, d, c, m] * a0[d] + farow1[phase, d, c, m + 1] * b[d] + farow1[
+                phase, d, c, m + 2] * wa[d, m + 2] + farow1[phase, d, c, m + 3] * wa[d, m + 3]
+            acd_l = farow2[phase, d, c, m] * a0[d] + farow2[phase, d, c, m + 1] * b[d] + farow2[
+                phase, d, c, m + 2] * wa[d, m + 2] + farow2[phase, d, c, m + 3] * wa[d, m + 3]
+            a_end = a0[d] + b[d] * h
+            acc_h = farow1[phase, d, c, m] * a_end + farow1[phase, d, c, m + 1] * b[d] + farow1[
+                phase, d, c, m + 2] * f_end + farow1[phase, d, c, m + 3] * fd_end
+            acd_h = farow2[phase, d, c, m] * a_end + farow2[phase, d, c, m + 1] * b[d] + farow2[
+                phase, d, c, m + 2] * f_end + farow2[phase, d, c, m + 3] * fd_end
+            for c2 in range(m):
+                acc_l += farow1[phase, d, c, c2] * w[d, c2]
+                acd_l += farow2[phase, d, c, c2] * w[d, c2]
+                acc_h += farow1[phase, d, c, c2] * zh[d, c2]
+                acd_h += farow2[phase, d, c, c2] * zh[d, c2]
+            zl[d, c] = w[d, c]
+            zdl[d, c] = acc_l
+            zddl[d, c] = acd_l
+            zdh[d, c] = acc_h
+            zddh[d, c] = acd_h
+        out2[d] = f_end
+    ax1 = a0[0] + b[0] * h
+    ay1 = a0[1] + b[1] * h
+    if mode == SLIDE:
+        # the friction's polynomial at the end against V/|V| of the propagated state
+        r_end = math.sqrt(zh[0, 1] ** 2 + zh[1, 1] ** 2)
+        if not r_end > 0.0:
+            return False
+        for d in range(2):
+            if abs(out2[d] - mu_k_n * zh[d, 1] / r_end) > FAST_CHECK * mu_k_n:
+                return False
+        kind = PHI_HALF
+        target = half_target
+    else:
+        kind = PHI_BREAK
+        target = mu_s_n
+    # an event in the sub-step (φ rising through zero at an end or at an interior maximum): series pieces
+    _phi(kind, zl, zdl, a0[0], a0[1], b, l_d, slab_mass, target, e0, out2)
+    f0 = out2[0]
+    s0 = out2[1]
+    _phi(kind, zh, zdh, ax1, ay1, b, l_d, slab_mass, target, e0, out2)
+    f1 = out2[0]
+    s1 = out2[1]
+    if f0 > 0.0 or f1 > 0.0:
+        return False
+    if s0 > 0.0 and s1 < 0.0 and max(f0, f1) + 2.0 * h * max(abs(s0), abs(s1)) > 0.0:
+        return False
+    # ---- committed: watched values, peaks, energies ----
+    if not start_valid:
+        _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    _monitors(zh, zdh, zddh, ax1, ay1, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+    nterm = fmon.shape[3]
+    nk = m1.shape[0]
+    for k in range(nk):
+        g0 = val[k, 0] ** 2 + val[k, 1] ** 2
+        g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
+        peak_sq[k] = max(peak_sq[k], g0, g1)
+        q0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
+        q1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
+        reach = 4.0 * h * max(abs(q0), abs(q1))
+        if q0 > 0.0 and q1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
+            counter[0] += 1
+            for d in range(2):
+                for j in range(nterm):
+                    cpoly[d, j] = 0.0
+                _rows_series(fmon[phase, k, d], wa[d], s_eff, nterm, cpoly, d)
+            peak_sq[k] = max(peak_sq[k], _poly_max(cpoly, 0, nterm, h))
+    for j in range(sig1.shape[0]):
+        sig_max[j] = max(sig_max[j], sval[j], sval1[j])
+        sig_min[j] = min(sig_min[j], sval[j], sval1[j])
+        reach = 2.0 * h * max(abs(sslope[j]), abs(sslope1[j]))
+        up = sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > sig_max[j]
+        down = sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < sig_min[j]
+        if up or down:
+            counter[0] += 1
+            for jj in range(nterm):
+                cpoly[0, jj] = 0.0
+            for d in range(2):
+                _rows_series(fsig[phase, j, d], wa[d], s_eff, nterm, cpoly, 0)
+            if up:
+                sig_max[j] = max(sig_max[j], _poly_max(cpoly, 1, nterm, h))
+            else:
+                sig_min[j] = min(sig_min[j], -_poly_max(cpoly, -1, nterm, h))
+    e_in = 0.0
+    e_v = 0.0
+    for d in range(2):
+        for r in range(s_eff):
+            acc_i = 0.0
+            acc_v = 0.0
+            for c in range(s_eff):
+                acc_i += fpin[phase, d, r, c] * wa[d, c]
+                acc_v += fpvis[phase, d, r, c] * wa[d, c]
+            e_in += wa[d, r] * acc_i
+            e_v += wa[d, r] * acc_v
+    energy[0] = e_in
+    energy[1] = mu_k_n * r_int
+    energy[2] = e_v
+    return True
+
+
+@njit(cache=True)
 def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
-                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3,
-                      out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
+                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpin,
+                      fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
     """Response of the slab + shear building on the friction isolation plane to two horizontal components.
 
@@ -505,6 +783,20 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     sig_max, sig_min : float64[J]
     ev_time, ev_kind, ev_x : arrays
         Events: time from the first sample [s], kind, (x, y) of the slab [m].
+    n_fast : int
+        Fast sub-steps per sample interval of a uniform record (0: none; the tables below are for
+        h = dt / n_fast).
+    fprop : float64[2, 2, m, S]
+        The first m rows of e^{Ãh} per phase and direction, Ã the augmented matrix on
+        w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial).
+    fpin, fpvis : float64[2, 2, S, S]
+        ∫₀ʰ e^{Ãᵀτ} Q e^{Ãτ} dτ for the input and viscous powers (Van Loan).
+    fvrow : float64[2, K + 1, S]
+        e_v Ã^k / k! of the sliding phase (the Taylor coefficients of V).
+    farow1, farow2 : float64[2, 2, m, m + 4]
+        The first m rows of Ã and Ã² on [z, a_g, ȧ_g, c_0, c_1] (ż and z̈).
+    fmon, fsig : float64[2, K_w, 2, FAST_POW, S], float64[2, J, 2, FAST_POW, S]
+        ℓ Ã^j / j! of every watched quantity per phase and direction (their Taylor coefficients).
     summary : float64[SUMMARY_SIZE]
     """
     uniform = times.shape[0] == 0
@@ -547,6 +839,14 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
+    n_ch = fprop.shape[3] - m - 2
+    wa = np.zeros((2, fprop.shape[3]))
+    vser = np.zeros((2, n_ch))
+    sser = np.zeros(n_ch)
+    rser = np.zeros(n_ch)
+    eser = np.zeros((2, n_ch))
+    cpoly = np.zeros((2, fmon.shape[3]))
+    n_fast_steps = 0
     e0 = np.zeros(2)
     a0 = np.zeros(2)
     b = np.zeros(2)
@@ -594,191 +894,224 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         tau = 0.0
         events_here = 0
         start_valid = False  # the slopes at a piece's start hold the interval's ȧ_g
-        for _guard in range(MAX_PIECES_PER_INTERVAL):
-            if tau >= dt_i:
-                break
-            a0[0] = ax[i] + b[0] * tau
-            a0[1] = ay[i] + b[1] * tau
-            rem = dt_i - tau
-            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
-            n_pieces += 1
-            length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
-            _eval(zs, 0.0, zl, zdl, zddl)
-            if mode == FINISH:
-                # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
-                rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
-                r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
-                if rdot > 0.0:
-                    length = min(length, 4.0 * r_now / rdot)
-            if length < rem and length < 1e-15 * dt_i:
-                length = min(rem, 1e-15 * dt_i)
-            _eval(zs, length, zh, zdh, zddh)
-            # ---- event in this piece? ----
-            t_event = -1.0
-            kind_phi = -1
-            if events_here > MAX_EVENTS_PER_INTERVAL:
-                pass
-            elif mode == STUCK:
-                t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
-                                          zdd, out2, counter, zl, zdl, zh, zdh)
-                kind_phi = PHI_BREAK
-            elif mode == START:
-                t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
-                                          zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                kind_phi = PHI_STOP_START
-                if t_event >= 0.0:
-                    _eval(zs, t_event, zh, zdh, zddh)
-                t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
-                                       slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                if t_sw > 0.0:
-                    t_event = t_sw
-                    kind_phi = PHI_SWITCH
-            elif mode == SLIDE:
-                t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
-                                          zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                kind_phi = PHI_HALF
-            else:
-                t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
-                                          zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                kind_phi = PHI_STOP_FINISH
-            piece = length if t_event < 0.0 else t_event
-            if t_event >= 0.0:
-                _eval(zs, piece, zh, zdh, zddh)
-            # ---- values at both ends, energies, peaks ----
-            if start_valid:
-                for k in range(nk):
+        n_sub_i = n_fast if (uniform and n_fast > 0) else 1
+        h_fast = dt_i / n_sub_i
+        for j_sub in range(n_sub_i):
+            tau_end = dt_i if j_sub == n_sub_i - 1 else (j_sub + 1) * h_fast
+            if n_fast > 0 and uniform and (mode == STUCK or mode == SLIDE) and events_here <= MAX_EVENTS_PER_INTERVAL:
+                # the whole sub-step by the exact propagators (falls through to series pieces when it cannot)
+                a0[0] = ax[i] + b[0] * tau
+                a0[1] = ay[i] + b[1] * tau
+                if _fast_step(mode, w, a0, b, h_fast, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin,
+                              fpvis, fvrow, farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val,
+                              slope, sval, sslope, val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser,
+                              sser, rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2):
+                    n_fast_steps += 1
+                    e_in += energy[0]
+                    e_f += energy[1]
+                    e_v += energy[2]
                     for d in range(2):
-                        val[k, d] = val1[k, d]
-                        slope[k, d] = slope1[k, d]
-                for j in range(nj):
-                    sval[j] = sval1[j]
-                    sslope[j] = sslope1[j]
-            else:
-                _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-            a1[0] = a0[0] + b[0] * piece
-            a1[1] = a0[1] + b[1] * piece
-            _monitors(zh, zdh, zddh, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
-            if piece > 0.0:
-                _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
-                          pin, pfr, pvis, ysc)
-                e_in += energy[0]
-                e_f += energy[1]
-                e_v += energy[2]
-                if mode != STUCK:
-                    slip_time += piece
-            for k in range(nk):
-                g0 = val[k, 0] ** 2 + val[k, 1] ** 2
-                g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
-                peak_sq[k] = max(peak_sq[k], g0, g1)
-                s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
-                s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
-                reach = 4.0 * piece * max(abs(s0), abs(s1))
-                if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
-                    counter[0] += 1
-                    best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0, z, zd, zdd, val2,
-                                       slope2, sval2, sslope2)
-                    peak_sq[k] = max(peak_sq[k], best)
-            for j in range(nj):
-                sig_max[j] = max(sig_max[j], sval[j], sval1[j])
-                sig_min[j] = min(sig_min[j], sval[j], sval1[j])
-                reach = 2.0 * piece * max(abs(sslope[j]), abs(sslope1[j]))
-                if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
-                        sig_max[j]:
-                    counter[0] += 1
-                    best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1, z, zd, zdd, val2,
-                                       slope2, sval2, sslope2)
-                    sig_max[j] = max(sig_max[j], best)
-                if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
-                        sig_min[j]:
-                    counter[0] += 1
-                    best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1, z, zd, zdd, val2,
-                                       slope2, sval2, sslope2)
-                    sig_min[j] = min(sig_min[j], -best)
-            # the state at the piece's end
-            for d in range(2):
-                for c in range(m):
-                    w[d, c] = zh[d, c]
-            if mode == STUCK:
-                for d in range(2):
-                    w[d, 0] = x_stuck[d]
-                    w[d, 1] = 0.0
-            tau = dt_i if (t_event < 0.0 and length == rem) else tau + piece
-            start_valid = t_event < 0.0
-            if piece > 0.0:
-                from_rest = False
-            a1[0] = ax[i] + b[0] * tau
-            a1[1] = ay[i] + b[1] * tau
-            if t_event < 0.0:
-                # hand-overs that are not events: SLIDE slowing to a stop enters FINISH; FINISH that did not stop
-                if mode == SLIDE:
-                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                    half_target = 0.5 * r
-                    if r > 0.0:
-                        e0[0] = w[0, 1] / r
-                        e0[1] = w[1, 1] / r
-                elif mode == FINISH:
-                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                    start_valid = False
-                    if r > 0.0:
-                        mode = SLIDE
+                        for c in range(m):
+                            w[d, c] = zh[d, c]
+                    if mode == STUCK:
+                        for d in range(2):
+                            w[d, 0] = x_stuck[d]
+                            w[d, 1] = 0.0
+                    else:
+                        slip_time += h_fast
+                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                         e0[0] = w[0, 1] / r
                         e0[1] = w[1, 1] / r
                         half_target = 0.5 * r
-                continue
-            # ---- the event ----
-            if kind_phi == PHI_SWITCH:
-                mode = SLIDE
-                r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                e0[0] = w[0, 1] / r
-                e0[1] = w[1, 1] / r
-                half_target = 0.5 * r
-                continue
-            if kind_phi == PHI_HALF:
-                r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                if r > 0.0:
+                    start_valid = True
+                    from_rest = False
+                    tau = tau_end
+                    continue
+            for _guard in range(MAX_PIECES_PER_INTERVAL):
+                if tau >= tau_end:
+                    break
+                a0[0] = ax[i] + b[0] * tau
+                a0[1] = ay[i] + b[1] * tau
+                rem = tau_end - tau
+                _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+                n_pieces += 1
+                length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
+                _eval(zs, 0.0, zl, zdl, zddl)
+                if mode == FINISH:
+                    # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
+                    rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
+                    r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
+                    if rdot > 0.0:
+                        length = min(length, 4.0 * r_now / rdot)
+                if length < rem and length < 1e-15 * dt_i:
+                    length = min(rem, 1e-15 * dt_i)
+                _eval(zs, length, zh, zdh, zddh)
+                # ---- event in this piece? ----
+                t_event = -1.0
+                kind_phi = -1
+                if events_here > MAX_EVENTS_PER_INTERVAL:
+                    pass
+                elif mode == STUCK:
+                    t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
+                                              zdd, out2, counter, zl, zdl, zh, zdh)
+                    kind_phi = PHI_BREAK
+                elif mode == START:
+                    t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
+                                              zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                    kind_phi = PHI_STOP_START
+                    if t_event >= 0.0:
+                        _eval(zs, t_event, zh, zdh, zddh)
+                    t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                                           slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                    if t_sw > 0.0:
+                        t_event = t_sw
+                        kind_phi = PHI_SWITCH
+                elif mode == SLIDE:
+                    t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
+                                              zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                    kind_phi = PHI_HALF
+                else:
+                    t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
+                                              zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                    kind_phi = PHI_STOP_FINISH
+                piece = length if t_event < 0.0 else t_event
+                if t_event >= 0.0:
+                    _eval(zs, piece, zh, zdh, zddh)
+                # ---- values at both ends, energies, peaks ----
+                if start_valid:
+                    for k in range(nk):
+                        for d in range(2):
+                            val[k, d] = val1[k, d]
+                            slope[k, d] = slope1[k, d]
+                    for j in range(nj):
+                        sval[j] = sval1[j]
+                        sslope[j] = sslope1[j]
+                else:
+                    _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+                a1[0] = a0[0] + b[0] * piece
+                a1[1] = a0[1] + b[1] * piece
+                _monitors(zh, zdh, zddh, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+                if piece > 0.0:
+                    _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
+                              pin, pfr, pvis, ysc)
+                    e_in += energy[0]
+                    e_f += energy[1]
+                    e_v += energy[2]
+                    if mode != STUCK:
+                        slip_time += piece
+                for k in range(nk):
+                    g0 = val[k, 0] ** 2 + val[k, 1] ** 2
+                    g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
+                    peak_sq[k] = max(peak_sq[k], g0, g1)
+                    s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
+                    s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
+                    reach = 4.0 * piece * max(abs(s0), abs(s1))
+                    if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
+                        counter[0] += 1
+                        best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0, z, zd, zdd, val2,
+                                           slope2, sval2, sslope2)
+                        peak_sq[k] = max(peak_sq[k], best)
+                for j in range(nj):
+                    sig_max[j] = max(sig_max[j], sval[j], sval1[j])
+                    sig_min[j] = min(sig_min[j], sval[j], sval1[j])
+                    reach = 2.0 * piece * max(abs(sslope[j]), abs(sslope1[j]))
+                    if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
+                            sig_max[j]:
+                        counter[0] += 1
+                        best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1, z, zd, zdd, val2,
+                                           slope2, sval2, sslope2)
+                        sig_max[j] = max(sig_max[j], best)
+                    if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
+                            sig_min[j]:
+                        counter[0] += 1
+                        best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1, z, zd, zdd, val2,
+                                           slope2, sval2, sslope2)
+                        sig_min[j] = min(sig_min[j], -best)
+                # the state at the piece's end
+                for d in range(2):
+                    for c in range(m):
+                        w[d, c] = zh[d, c]
+                if mode == STUCK:
+                    for d in range(2):
+                        w[d, 0] = x_stuck[d]
+                        w[d, 1] = 0.0
+                tau = tau_end if (t_event < 0.0 and length == rem) else tau + piece
+                start_valid = t_event < 0.0
+                if piece > 0.0:
+                    from_rest = False
+                a1[0] = ax[i] + b[0] * tau
+                a1[1] = ay[i] + b[1] * tau
+                if t_event < 0.0:
+                    # hand-overs that are not events: SLIDE slowing to a stop enters FINISH; FINISH that did not stop
+                    if mode == SLIDE:
+                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                        half_target = 0.5 * r
+                        if r > 0.0:
+                            e0[0] = w[0, 1] / r
+                            e0[1] = w[1, 1] / r
+                    elif mode == FINISH:
+                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                        start_valid = False
+                        if r > 0.0:
+                            mode = SLIDE
+                            e0[0] = w[0, 1] / r
+                            e0[1] = w[1, 1] / r
+                            half_target = 0.5 * r
+                    continue
+                # ---- the event ----
+                if kind_phi == PHI_SWITCH:
+                    mode = SLIDE
+                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                     e0[0] = w[0, 1] / r
                     e0[1] = w[1, 1] / r
-                half_target = 0.5 * r
-                if r < r_finish:
-                    # decelerating below r_finish: finish the stop with the friction's direction frozen
-                    _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
-                    _eval(zs, 0.0, z, zd, zdd)
-                    if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
-                        mode = FINISH
-                continue
-            # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
-            events_here += 1
-            for d in range(2):
-                w[d, 1] = 0.0
-            dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
-            dy = _dot(l_d[1], w[1]) - slab_mass * a1[1]
-            hold = math.sqrt(dx * dx + dy * dy)
-            if mode == STUCK:
-                kind = BREAKAWAY
-                mode = START
-                from_rest = True
-            elif hold <= mu_s_n:
-                kind = STICK
-                mode = STUCK
-                x_stuck[0] = w[0, 0]
-                x_stuck[1] = w[1, 0]
+                    half_target = 0.5 * r
+                    continue
+                if kind_phi == PHI_HALF:
+                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                    if r > 0.0:
+                        e0[0] = w[0, 1] / r
+                        e0[1] = w[1, 1] / r
+                    half_target = 0.5 * r
+                    if r < r_finish:
+                        # decelerating below r_finish: finish the stop with the friction's direction frozen
+                        _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+                        _eval(zs, 0.0, z, zd, zdd)
+                        if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
+                            mode = FINISH
+                    continue
+                # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
+                events_here += 1
+                for d in range(2):
+                    w[d, 1] = 0.0
+                dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
+                dy = _dot(l_d[1], w[1]) - slab_mass * a1[1]
+                hold = math.sqrt(dx * dx + dy * dy)
+                if mode == STUCK:
+                    kind = BREAKAWAY
+                    mode = START
+                    from_rest = True
+                elif hold <= mu_s_n:
+                    kind = STICK
+                    mode = STUCK
+                    x_stuck[0] = w[0, 0]
+                    x_stuck[1] = w[1, 0]
+                else:
+                    kind = REVERSAL
+                    mode = START
+                    from_rest = True
+                if n_ev < ev_time.shape[0]:
+                    ev_time[n_ev] = t_i + tau
+                    ev_kind[n_ev] = kind
+                    ev_x[n_ev, 0] = w[0, 0]
+                    ev_x[n_ev, 1] = w[1, 0]
+                n_ev += 1
+                if events_here > MAX_EVENTS_PER_INTERVAL:
+                    status |= STATUS_CHATTER
+                    mode = STUCK
+                    x_stuck[0] = w[0, 0]
+                    x_stuck[1] = w[1, 0]
             else:
-                kind = REVERSAL
-                mode = START
-                from_rest = True
-            if n_ev < ev_time.shape[0]:
-                ev_time[n_ev] = t_i + tau
-                ev_kind[n_ev] = kind
-                ev_x[n_ev, 0] = w[0, 0]
-                ev_x[n_ev, 1] = w[1, 0]
-            n_ev += 1
-            if events_here > MAX_EVENTS_PER_INTERVAL:
-                status |= STATUS_CHATTER
-                mode = STUCK
-                x_stuck[0] = w[0, 0]
-                x_stuck[1] = w[1, 0]
-        else:
-            status |= STATUS_PIECES
+                status |= STATUS_PIECES
         # ---- sample i + 1 ----
         if not start_valid:
             # the last piece ended in an event: the watched values in the new phase
@@ -811,3 +1144,4 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     summary[S_STATUS] = status
     summary[S_N_PIECES] = n_pieces
     summary[S_N_LOCATED] = counter[0]
+    summary[S_N_FAST] = n_fast_steps
