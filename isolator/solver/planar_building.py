@@ -161,22 +161,38 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
     from scipy.linalg import expm
 
     m = 2 * system.n_floors + 2
-    key = ("propagators", h)
+    # e^{Ãh} and the forms do not depend on the friction (a review's bounds share them): keyed by the matrices
+    key = ("propagators", h, *(a.tobytes() for one in system.directions for a in (one.a_modes, one.q_in,
+                                                                                  one.q_vis)))
+    if key in _PROPAGATORS:
+        system.cache[key] = _PROPAGATORS[key]
     if key not in system.cache:
         aug = _augmented(system)
         size = aug.shape[-1]
-        prop = np.empty((2, 2, m, size))
-        p_in = np.empty((2, 2, size, size))
-        p_vis = np.empty((2, 2, size, size))
+        levels = _pk.FAST_LEVELS
+        prop = np.empty((levels, 2, 2, m, size))
+        p_in = np.empty((levels, 2, 2, size, size))
+        p_vis = np.empty((levels, 2, 2, size, size))
         for d, one in enumerate(system.directions):
             q_in = np.zeros((size, size))
             q_vis = np.zeros((size, size))
             q_in[:m + 3, :m + 3] = one.q_in
             q_vis[:m + 3, :m + 3] = one.q_vis
             for phase in range(2):
-                prop[phase, d] = expm(aug[phase, d] * h)[:m]
-                p_in[phase, d] = van_loan(aug[phase, d], q_in, h)
-                p_vis[phase, d] = van_loan(aug[phase, d], q_vis, h)
+                # the shortest rung by one exponential each, the longer ones by doubling:
+                # e^{2Ãh} = (e^{Ãh})², P(2h) = P(h) + e^{Ãᵀh} P(h) e^{Ãh}
+                h_short = h / 2 ** (levels - 1)
+                step = expm(aug[phase, d] * h_short)
+                form_in = van_loan(aug[phase, d], q_in, h_short)
+                form_vis = van_loan(aug[phase, d], q_vis, h_short)
+                for lev in range(levels - 1, -1, -1):
+                    prop[lev, phase, d] = step[:m]
+                    p_in[lev, phase, d] = form_in
+                    p_vis[lev, phase, d] = form_vis
+                    if lev > 0:
+                        form_in = form_in + step.T @ form_in @ step
+                        form_vis = form_vis + step.T @ form_vis @ step
+                        step = step @ step
         rate1 = np.ascontiguousarray(aug[:, :, :m, :m + 4])
         rate2 = np.ascontiguousarray(np.einsum("pdij,pdjk->pdik", aug[:, :, :m, :], aug[:, :, :, :m + 4]))
         v_rows = np.empty((2, _pk.FAST_ORDER + 1, size))
@@ -187,6 +203,9 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                 v_rows[d, k] = row
                 row = row @ aug[1, d] / (k + 1)
         system.cache[key] = (aug, prop, p_in, p_vis, v_rows, rate1, rate2)
+        if len(_PROPAGATORS) >= _SYSTEMS_MAX:
+            _PROPAGATORS.pop(next(iter(_PROPAGATORS)))
+        _PROPAGATORS[key] = system.cache[key]
     aug, prop, p_in, p_vis, v_rows, rate1, rate2 = system.cache[key]
     m1, m2, m3, sig1, sig2, sig3 = watched
     wkey = ("watched", h, *(a.tobytes() for a in watched))
@@ -210,7 +229,7 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                     sig[phase, :, d, j] = rows[nk:]
                     rows = rows @ aug[phase, d] / (j + 1)
         if len(system.cache) > 16:
-            system.cache.pop(next(k for k in system.cache if k[0] == "watched"))
+            system.cache.pop(next(iter(system.cache)))
         system.cache[wkey] = (mon, sig)
     mon, sig = system.cache[wkey]
     return prop, p_in, p_vis, v_rows, rate1, rate2, mon, sig
@@ -286,6 +305,9 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     energy_strain_final_J_per_kg: float = 0.0
     n_pieces: int = 0  #: series pieces
     n_fast_steps: int = 0  #: sub-steps by the exact propagators
+    #: fast sub-steps refused (run as series pieces): the friction's series not at rounding, its end check, an
+    #: event possible, V = 0
+    n_fast_refused: tuple = ()
     n_extrema_located: int = 0
     bearing_layout: object = None
     residual_displacement_x_m: float = 0.0
@@ -405,6 +427,8 @@ _READY = False
 #: runs one system on many pairs)
 _SYSTEMS: dict = {}
 _SYSTEMS_MAX = 32
+#: the fast sub-steps' propagators by (h, the matrices), shared by systems that differ only in friction
+_PROPAGATORS: dict = {}
 
 
 def _warm_up() -> None:
@@ -518,7 +542,9 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
         tables = _fast_tables(system, dt / n_fast, (m1, m2, m3, sig1, sig2, sig3))
     else:
         size = m + 3 + _pk.FAST_ORDER
-        tables = (np.zeros((2, 2, m, size)), np.zeros((2, 2, size, size)), np.zeros((2, 2, size, size)),
+        levels = _pk.FAST_LEVELS
+        tables = (np.zeros((levels, 2, 2, m, size)), np.zeros((levels, 2, 2, size, size)),
+                  np.zeros((levels, 2, 2, size, size)),
                   np.zeros((2, _pk.FAST_ORDER + 1, size)), np.zeros((2, 2, m, m + 4)), np.zeros((2, 2, m, m + 4)),
                   np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size)))
     capacity = 64 + n_samples // 4
@@ -607,6 +633,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
         solver_seconds=elapsed,
         n_pieces=int(summary[_pk.S_N_PIECES]),
         n_fast_steps=int(summary[_pk.S_N_FAST]),
+        n_fast_refused=tuple(int(v) for v in summary[_pk.S_N_REFUSED:_pk.S_N_REFUSED + 4]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
     )

@@ -73,11 +73,16 @@ S_STATUS = 5
 S_N_PIECES = 6
 S_N_LOCATED = 7
 S_N_FAST = 8
-SUMMARY_SIZE = 9
+#: fast sub-steps refused: the friction's series not at rounding, its end check, an event possible, V = 0
+S_N_REFUSED = 9
+SUMMARY_SIZE = 13
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
 THETA_FAST = 1.5
+#: Rungs of the fast sub-steps' ladder h, h/2 … h/2^(FAST_LEVELS − 1) (near events the longest that the
+#: friction's series allows; series pieces below the shortest).
+FAST_LEVELS = 6
 #: Degree of the friction's polynomial F(τ) = Σ F_k τ^k in a fast sub-step (its chain in the augmented state).
 FAST_ORDER = 24
 #: Terms of the watched quantities' series in a fast sub-step (an interior extreme is a root of it);
@@ -544,24 +549,28 @@ def _rows_series(rows, wa, s_eff, nterm, out, slot):
 
 
 @njit(cache=True)
-def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis, fvrow,
+def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis,
+               fvrow,
                farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser, sser, rser, eser, zl, zdl, zddl, zh,
                zdh, zddh, cpoly, energy, counter, out2):
-    """One sub-step of length h, stuck or sliding, by the exact propagators of the linear part.
+    """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
+    ladder h_top = h_{lev0}, h_top/2 … that the friction's series and the events allow.
 
     The augmented state per direction is w̃ = [z, a_g, ȧ_g, c_0 … c_K] with c_j = F^{(j)}/j! the chain of
     the friction's polynomial F(τ) = Σ F_k τ^k (F_k from the recurrences of |V| and V/|V|, V's
     coefficients from the rows e_v Ã^k / k!), so w̃(h) = e^{Ãh} w̃(0) is exact for that polynomial and
-    the energies are the Van Loan quadratic forms w̃ᵀ P w̃.  Returns False, having changed nothing the
-    caller reads, when the friction's series does not reach rounding within h, when an event may lie
-    in the sub-step (break-away; the speed along e0 halving), or when the friction at the end does
-    not match V/|V| (then the caller runs the series pieces).  On True: zh, zdh, zddh hold the end, val1
-    … sslope1 the watched values there, energy[0:3] the energies over the sub-step.
+    the energies are the Van Loan quadratic forms w̃ᵀ P w̃.  Returns the rung taken (≥ 0): zh, zdh, zddh
+    hold the end, val1 … sslope1 the watched values there, energy[0:3] the energies over the sub-step.
+    Otherwise, having changed nothing the caller reads (the caller then runs series pieces), minus the
+    reason on the shortest rung tried: 1 the friction's series does not reach rounding, 2 the friction
+    at the end does not match V/|V| of the propagated state, 3 an event may lie in the sub-step
+    (break-away; the speed along e0 halving), 4 V = 0.
     """
     m = w.shape[1]
     phase = 0 if mode == STUCK else 1
-    nch = fprop.shape[3] - m - 2  # chain entries c_0 .. c_K
+    nch = fprop.shape[4] - m - 2  # chain entries c_0 .. c_K
+    n_lev = fprop.shape[0]
     for d in range(2):
         for c in range(m):
             wa[d, c] = w[d, c]
@@ -570,7 +579,7 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
         for j in range(nch):
             wa[d, m + 2 + j] = 0.0
     k_eff = 1
-    r_int = 0.0
+    lev_first = lev0
     if mode == SLIDE:
         converged = False
         scale = max(mu_k_n, 1e-300)
@@ -587,7 +596,7 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
             sser[k] = acc
             if k == 0:
                 if not sser[0] > 0.0:
-                    return False
+                    return -4
                 rser[0] = math.sqrt(sser[0])
             else:
                 acc = sser[k]
@@ -602,7 +611,7 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
                 wa[d, m + 2 + k] = mu_k_n * eser[d, k]
             hk1 = hk
             if k > 0:
-                hk *= h
+                hk *= h_top
             if k >= 3:
                 t_f = max(abs(eser[0, k]), abs(eser[1, k])) * hk * mu_k_n
                 t_f1 = max(abs(eser[0, k - 1]), abs(eser[1, k - 1])) * hk1 * mu_k_n
@@ -613,7 +622,54 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
                     converged = True
                     break
         if not converged:
-            return False
+            # the whole series is there: the longest shorter rung at which it reaches rounding
+            for lev in range(lev0 + 1, n_lev):
+                k_eff = _order_at(eser, rser, nch, h_top / (1 << (lev - lev0)), mu_k_n)
+                if k_eff > 0:
+                    lev_first = lev
+                    converged = True
+                    break
+        if not converged:
+            return -1
+    code = 0
+    for lev in range(lev_first, n_lev):
+        code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
+                         slab_mass, e0, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, fmon, fsig,
+                         m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
+                         sslope1, peak_sq, sig_max, sig_min, wa, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+                         counter, out2)
+        if code == 0:
+            return lev
+    return -code
+
+
+@njit(cache=True)
+def _order_at(eser, rser, nch, h, mu_k_n):
+    """The least order k ≥ 3 at which the friction's and |V|'s series reach rounding over h (Jorba–Zou), or −1."""
+    hk = 1.0
+    for k in range(nch):
+        hk1 = hk
+        if k > 0:
+            hk *= h
+        if k >= 3:
+            t_f = max(abs(eser[0, k]), abs(eser[1, k])) * hk
+            t_f1 = max(abs(eser[0, k - 1]), abs(eser[1, k - 1])) * hk1
+            t_r = max(abs(rser[k]) * hk, abs(rser[k - 1]) * hk1)
+            if mu_k_n == 0.0 or (max(t_f, t_f1) <= TRUNC_EPS and t_r <= TRUNC_EPS * rser[0]):
+                return k
+    return -1
+
+
+@njit(cache=True)
+def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis,
+              farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+              counter, out2):
+    """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
+    the reason (2, 3)."""
+    m = w.shape[1]
+    r_int = 0.0
+    if mode == SLIDE:
         for j in range(k_eff + 1):
             r_int += rser[j] * h ** (j + 1) / (j + 1)
     s_eff = m + 3 + k_eff
@@ -657,10 +713,10 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
         # the friction's polynomial at the end against V/|V| of the propagated state
         r_end = math.sqrt(zh[0, 1] ** 2 + zh[1, 1] ** 2)
         if not r_end > 0.0:
-            return False
+            return 2
         for d in range(2):
             if abs(out2[d] - mu_k_n * zh[d, 1] / r_end) > FAST_CHECK * mu_k_n:
-                return False
+                return 2
         kind = PHI_HALF
         target = half_target
     else:
@@ -674,9 +730,9 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
     f1 = out2[0]
     s1 = out2[1]
     if f0 > 0.0 or f1 > 0.0:
-        return False
+        return 3
     if s0 > 0.0 and s1 < 0.0 and max(f0, f1) + 2.0 * h * max(abs(s0), abs(s1)) > 0.0:
-        return False
+        return 3
     # ---- committed: watched values, peaks, energies ----
     if not start_valid:
         _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
@@ -727,7 +783,7 @@ def _fast_step(mode, w, a0, b, h, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_targe
     energy[0] = e_in
     energy[1] = mu_k_n * r_int
     energy[2] = e_v
-    return True
+    return 0
 
 
 @njit(cache=True)
@@ -785,12 +841,12 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         Events: time from the first sample [s], kind, (x, y) of the slab [m].
     n_fast : int
         Fast sub-steps per sample interval of a uniform record (0: none; the tables below are for
-        h = dt / n_fast).
-    fprop : float64[2, 2, m, S]
-        The first m rows of e^{Ãh} per phase and direction, Ã the augmented matrix on
+        the ladder h_l = dt / n_fast / 2^l, l = 0 … L − 1).
+    fprop : float64[L, 2, 2, m, S]
+        The first m rows of e^{Ãh_l} per rung, phase and direction, Ã the augmented matrix on
         w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial).
-    fpin, fpvis : float64[2, 2, S, S]
-        ∫₀ʰ e^{Ãᵀτ} Q e^{Ãτ} dτ for the input and viscous powers (Van Loan).
+    fpin, fpvis : float64[L, 2, 2, S, S]
+        ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the input and viscous powers (Van Loan).
     fvrow : float64[2, K + 1, S]
         e_v Ã^k / k! of the sliding phase (the Taylor coefficients of V).
     farow1, farow2 : float64[2, 2, m, m + 4]
@@ -839,14 +895,16 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
-    n_ch = fprop.shape[3] - m - 2
-    wa = np.zeros((2, fprop.shape[3]))
+    n_levels = fprop.shape[0]
+    n_ch = fprop.shape[4] - m - 2
+    wa = np.zeros((2, fprop.shape[4]))
     vser = np.zeros((2, n_ch))
     sser = np.zeros(n_ch)
     rser = np.zeros(n_ch)
     eser = np.zeros((2, n_ch))
     cpoly = np.zeros((2, fmon.shape[3]))
     n_fast_steps = 0
+    n_refused = np.zeros(6, dtype=np.int64)
     e0 = np.zeros(2)
     a0 = np.zeros(2)
     b = np.zeros(2)
@@ -898,18 +956,159 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         h_fast = dt_i / n_sub_i
         for j_sub in range(n_sub_i):
             tau_end = dt_i if j_sub == n_sub_i - 1 else (j_sub + 1) * h_fast
-            if n_fast > 0 and uniform and (mode == STUCK or mode == SLIDE) and events_here <= MAX_EVENTS_PER_INTERVAL:
-                # the whole sub-step by the exact propagators (falls through to series pieces when it cannot)
-                a0[0] = ax[i] + b[0] * tau
-                a0[1] = ay[i] + b[1] * tau
-                if _fast_step(mode, w, a0, b, h_fast, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin,
-                              fpvis, fvrow, farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val,
-                              slope, sval, sslope, val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser,
-                              sser, rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2):
-                    n_fast_steps += 1
-                    e_in += energy[0]
-                    e_f += energy[1]
-                    e_v += energy[2]
+            for _ladder in range(MAX_PIECES_PER_INTERVAL):
+                if tau >= tau_end:
+                    break
+                slow_end = tau_end
+                if n_fast > 0 and uniform and (mode == STUCK or mode == SLIDE) and \
+                        events_here <= MAX_EVENTS_PER_INTERVAL:
+                    # the longest sub-step of the ladder h, h/2, h/4 … that fits and that the exact propagators
+                    # can take (else series pieces, over at most the shortest rung)
+                    a0[0] = ax[i] + b[0] * tau
+                    a0[1] = ay[i] + b[1] * tau
+                    lev0 = 0
+                    while lev0 < n_levels - 1 and tau + h_fast / (1 << lev0) > tau_end + 1e-12 * h_fast:
+                        lev0 += 1
+                    h_lev = h_fast / (1 << lev0)
+                    refused = 0
+                    if tau + h_lev <= tau_end + 1e-12 * h_fast:
+                        taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0,
+                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, fmon, fsig, m1,
+                                           m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser, sser, rser,
+                                           eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
+                        if taken >= 0:
+                            h_lev = h_fast / (1 << taken)
+                        else:
+                            refused = -taken
+                            n_refused[refused] += 1
+                    else:
+                        refused = 5
+                    if refused == 0:
+                        n_fast_steps += 1
+                        e_in += energy[0]
+                        e_f += energy[1]
+                        e_v += energy[2]
+                        for d in range(2):
+                            for c in range(m):
+                                w[d, c] = zh[d, c]
+                        if mode == STUCK:
+                            for d in range(2):
+                                w[d, 0] = x_stuck[d]
+                                w[d, 1] = 0.0
+                        else:
+                            slip_time += h_lev
+                            r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                            e0[0] = w[0, 1] / r
+                            e0[1] = w[1, 1] / r
+                            half_target = 0.5 * r
+                        start_valid = True
+                        from_rest = False
+                        tau = tau_end if tau_end - (tau + h_lev) <= 1e-12 * h_fast else tau + h_lev
+                        continue
+                if n_fast > 0 and uniform:
+                    slow_end = min(tau_end, tau + h_fast / (1 << (n_levels - 1)))
+                for _guard in range(MAX_PIECES_PER_INTERVAL):
+                    if tau >= slow_end:
+                        break
+                    a0[0] = ax[i] + b[0] * tau
+                    a0[1] = ay[i] + b[1] * tau
+                    rem = slow_end - tau
+                    _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+                    n_pieces += 1
+                    length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
+                    _eval(zs, 0.0, zl, zdl, zddl)
+                    if mode == FINISH:
+                        # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
+                        rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
+                        r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
+                        if rdot > 0.0:
+                            length = min(length, 4.0 * r_now / rdot)
+                    if length < rem and length < 1e-15 * dt_i:
+                        length = min(rem, 1e-15 * dt_i)
+                    _eval(zs, length, zh, zdh, zddh)
+                    # ---- event in this piece? ----
+                    t_event = -1.0
+                    kind_phi = -1
+                    if events_here > MAX_EVENTS_PER_INTERVAL:
+                        pass
+                    elif mode == STUCK:
+                        t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
+                                                  zdd, out2, counter, zl, zdl, zh, zdh)
+                        kind_phi = PHI_BREAK
+                    elif mode == START:
+                        t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
+                                                  zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                        kind_phi = PHI_STOP_START
+                        if t_event >= 0.0:
+                            _eval(zs, t_event, zh, zdh, zddh)
+                        t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                                               slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                        if t_sw > 0.0:
+                            t_event = t_sw
+                            kind_phi = PHI_SWITCH
+                    elif mode == SLIDE:
+                        t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
+                                                  zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                        kind_phi = PHI_HALF
+                    else:
+                        t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
+                                                  zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                        kind_phi = PHI_STOP_FINISH
+                    piece = length if t_event < 0.0 else t_event
+                    if t_event >= 0.0:
+                        _eval(zs, piece, zh, zdh, zddh)
+                    # ---- values at both ends, energies, peaks ----
+                    if start_valid:
+                        for k in range(nk):
+                            for d in range(2):
+                                val[k, d] = val1[k, d]
+                                slope[k, d] = slope1[k, d]
+                        for j in range(nj):
+                            sval[j] = sval1[j]
+                            sslope[j] = sslope1[j]
+                    else:
+                        _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+                    a1[0] = a0[0] + b[0] * piece
+                    a1[1] = a0[1] + b[1] * piece
+                    _monitors(zh, zdh, zddh, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+                    if piece > 0.0:
+                        _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
+                                  pin, pfr, pvis, ysc)
+                        e_in += energy[0]
+                        e_f += energy[1]
+                        e_v += energy[2]
+                        if mode != STUCK:
+                            slip_time += piece
+                    for k in range(nk):
+                        g0 = val[k, 0] ** 2 + val[k, 1] ** 2
+                        g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
+                        peak_sq[k] = max(peak_sq[k], g0, g1)
+                        s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
+                        s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
+                        reach = 4.0 * piece * max(abs(s0), abs(s1))
+                        if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
+                            counter[0] += 1
+                            best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0, z, zd, zdd, val2,
+                                               slope2, sval2, sslope2)
+                            peak_sq[k] = max(peak_sq[k], best)
+                    for j in range(nj):
+                        sig_max[j] = max(sig_max[j], sval[j], sval1[j])
+                        sig_min[j] = min(sig_min[j], sval[j], sval1[j])
+                        reach = 2.0 * piece * max(abs(sslope[j]), abs(sslope1[j]))
+                        if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
+                                sig_max[j]:
+                            counter[0] += 1
+                            best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1, z, zd, zdd, val2,
+                                               slope2, sval2, sslope2)
+                            sig_max[j] = max(sig_max[j], best)
+                        if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
+                                sig_min[j]:
+                            counter[0] += 1
+                            best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1, z, zd, zdd, val2,
+                                               slope2, sval2, sslope2)
+                            sig_min[j] = min(sig_min[j], -best)
+                    # the state at the piece's end
                     for d in range(2):
                         for c in range(m):
                             w[d, c] = zh[d, c]
@@ -917,199 +1116,83 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         for d in range(2):
                             w[d, 0] = x_stuck[d]
                             w[d, 1] = 0.0
-                    else:
-                        slip_time += h_fast
-                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                        e0[0] = w[0, 1] / r
-                        e0[1] = w[1, 1] / r
-                        half_target = 0.5 * r
-                    start_valid = True
-                    from_rest = False
-                    tau = tau_end
-                    continue
-            for _guard in range(MAX_PIECES_PER_INTERVAL):
-                if tau >= tau_end:
-                    break
-                a0[0] = ax[i] + b[0] * tau
-                a0[1] = ay[i] + b[1] * tau
-                rem = tau_end - tau
-                _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
-                n_pieces += 1
-                length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
-                _eval(zs, 0.0, zl, zdl, zddl)
-                if mode == FINISH:
-                    # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
-                    rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
-                    r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
-                    if rdot > 0.0:
-                        length = min(length, 4.0 * r_now / rdot)
-                if length < rem and length < 1e-15 * dt_i:
-                    length = min(rem, 1e-15 * dt_i)
-                _eval(zs, length, zh, zdh, zddh)
-                # ---- event in this piece? ----
-                t_event = -1.0
-                kind_phi = -1
-                if events_here > MAX_EVENTS_PER_INTERVAL:
-                    pass
-                elif mode == STUCK:
-                    t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
-                                              zdd, out2, counter, zl, zdl, zh, zdh)
-                    kind_phi = PHI_BREAK
-                elif mode == START:
-                    t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
-                                              zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                    kind_phi = PHI_STOP_START
-                    if t_event >= 0.0:
-                        _eval(zs, t_event, zh, zdh, zddh)
-                    t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
-                                           slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                    if t_sw > 0.0:
-                        t_event = t_sw
-                        kind_phi = PHI_SWITCH
-                elif mode == SLIDE:
-                    t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
-                                              zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                    kind_phi = PHI_HALF
-                else:
-                    t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
-                                              zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                    kind_phi = PHI_STOP_FINISH
-                piece = length if t_event < 0.0 else t_event
-                if t_event >= 0.0:
-                    _eval(zs, piece, zh, zdh, zddh)
-                # ---- values at both ends, energies, peaks ----
-                if start_valid:
-                    for k in range(nk):
-                        for d in range(2):
-                            val[k, d] = val1[k, d]
-                            slope[k, d] = slope1[k, d]
-                    for j in range(nj):
-                        sval[j] = sval1[j]
-                        sslope[j] = sslope1[j]
-                else:
-                    _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-                a1[0] = a0[0] + b[0] * piece
-                a1[1] = a0[1] + b[1] * piece
-                _monitors(zh, zdh, zddh, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
-                if piece > 0.0:
-                    _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
-                              pin, pfr, pvis, ysc)
-                    e_in += energy[0]
-                    e_f += energy[1]
-                    e_v += energy[2]
-                    if mode != STUCK:
-                        slip_time += piece
-                for k in range(nk):
-                    g0 = val[k, 0] ** 2 + val[k, 1] ** 2
-                    g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
-                    peak_sq[k] = max(peak_sq[k], g0, g1)
-                    s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
-                    s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
-                    reach = 4.0 * piece * max(abs(s0), abs(s1))
-                    if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
-                        counter[0] += 1
-                        best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0, z, zd, zdd, val2,
-                                           slope2, sval2, sslope2)
-                        peak_sq[k] = max(peak_sq[k], best)
-                for j in range(nj):
-                    sig_max[j] = max(sig_max[j], sval[j], sval1[j])
-                    sig_min[j] = min(sig_min[j], sval[j], sval1[j])
-                    reach = 2.0 * piece * max(abs(sslope[j]), abs(sslope1[j]))
-                    if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
-                            sig_max[j]:
-                        counter[0] += 1
-                        best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1, z, zd, zdd, val2,
-                                           slope2, sval2, sslope2)
-                        sig_max[j] = max(sig_max[j], best)
-                    if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
-                            sig_min[j]:
-                        counter[0] += 1
-                        best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1, z, zd, zdd, val2,
-                                           slope2, sval2, sslope2)
-                        sig_min[j] = min(sig_min[j], -best)
-                # the state at the piece's end
-                for d in range(2):
-                    for c in range(m):
-                        w[d, c] = zh[d, c]
-                if mode == STUCK:
-                    for d in range(2):
-                        w[d, 0] = x_stuck[d]
-                        w[d, 1] = 0.0
-                tau = tau_end if (t_event < 0.0 and length == rem) else tau + piece
-                start_valid = t_event < 0.0
-                if piece > 0.0:
-                    from_rest = False
-                a1[0] = ax[i] + b[0] * tau
-                a1[1] = ay[i] + b[1] * tau
-                if t_event < 0.0:
-                    # hand-overs that are not events: SLIDE slowing to a stop enters FINISH; FINISH that did not stop
-                    if mode == SLIDE:
-                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                        half_target = 0.5 * r
-                        if r > 0.0:
-                            e0[0] = w[0, 1] / r
-                            e0[1] = w[1, 1] / r
-                    elif mode == FINISH:
-                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                        start_valid = False
-                        if r > 0.0:
-                            mode = SLIDE
-                            e0[0] = w[0, 1] / r
-                            e0[1] = w[1, 1] / r
+                    tau = slow_end if (t_event < 0.0 and length == rem) else tau + piece
+                    start_valid = t_event < 0.0
+                    if piece > 0.0:
+                        from_rest = False
+                    a1[0] = ax[i] + b[0] * tau
+                    a1[1] = ay[i] + b[1] * tau
+                    if t_event < 0.0:
+                        # hand-overs that are not events: SLIDE slowing to a stop enters FINISH; FINISH that did not stop
+                        if mode == SLIDE:
+                            r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                             half_target = 0.5 * r
-                    continue
-                # ---- the event ----
-                if kind_phi == PHI_SWITCH:
-                    mode = SLIDE
-                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                    e0[0] = w[0, 1] / r
-                    e0[1] = w[1, 1] / r
-                    half_target = 0.5 * r
-                    continue
-                if kind_phi == PHI_HALF:
-                    r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                    if r > 0.0:
+                            if r > 0.0:
+                                e0[0] = w[0, 1] / r
+                                e0[1] = w[1, 1] / r
+                        elif mode == FINISH:
+                            r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                            start_valid = False
+                            if r > 0.0:
+                                mode = SLIDE
+                                e0[0] = w[0, 1] / r
+                                e0[1] = w[1, 1] / r
+                                half_target = 0.5 * r
+                        continue
+                    # ---- the event ----
+                    if kind_phi == PHI_SWITCH:
+                        mode = SLIDE
+                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                         e0[0] = w[0, 1] / r
                         e0[1] = w[1, 1] / r
-                    half_target = 0.5 * r
-                    if r < r_finish:
-                        # decelerating below r_finish: finish the stop with the friction's direction frozen
-                        _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
-                        _eval(zs, 0.0, z, zd, zdd)
-                        if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
-                            mode = FINISH
-                    continue
-                # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
-                events_here += 1
-                for d in range(2):
-                    w[d, 1] = 0.0
-                dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
-                dy = _dot(l_d[1], w[1]) - slab_mass * a1[1]
-                hold = math.sqrt(dx * dx + dy * dy)
-                if mode == STUCK:
-                    kind = BREAKAWAY
-                    mode = START
-                    from_rest = True
-                elif hold <= mu_s_n:
-                    kind = STICK
-                    mode = STUCK
-                    x_stuck[0] = w[0, 0]
-                    x_stuck[1] = w[1, 0]
+                        half_target = 0.5 * r
+                        continue
+                    if kind_phi == PHI_HALF:
+                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                        if r > 0.0:
+                            e0[0] = w[0, 1] / r
+                            e0[1] = w[1, 1] / r
+                        half_target = 0.5 * r
+                        if r < r_finish:
+                            # decelerating below r_finish: finish the stop with the friction's direction frozen
+                            _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+                            _eval(zs, 0.0, z, zd, zdd)
+                            if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
+                                mode = FINISH
+                        continue
+                    # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
+                    events_here += 1
+                    for d in range(2):
+                        w[d, 1] = 0.0
+                    dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
+                    dy = _dot(l_d[1], w[1]) - slab_mass * a1[1]
+                    hold = math.sqrt(dx * dx + dy * dy)
+                    if mode == STUCK:
+                        kind = BREAKAWAY
+                        mode = START
+                        from_rest = True
+                    elif hold <= mu_s_n:
+                        kind = STICK
+                        mode = STUCK
+                        x_stuck[0] = w[0, 0]
+                        x_stuck[1] = w[1, 0]
+                    else:
+                        kind = REVERSAL
+                        mode = START
+                        from_rest = True
+                    if n_ev < ev_time.shape[0]:
+                        ev_time[n_ev] = t_i + tau
+                        ev_kind[n_ev] = kind
+                        ev_x[n_ev, 0] = w[0, 0]
+                        ev_x[n_ev, 1] = w[1, 0]
+                    n_ev += 1
+                    if events_here > MAX_EVENTS_PER_INTERVAL:
+                        status |= STATUS_CHATTER
+                        mode = STUCK
+                        x_stuck[0] = w[0, 0]
+                        x_stuck[1] = w[1, 0]
                 else:
-                    kind = REVERSAL
-                    mode = START
-                    from_rest = True
-                if n_ev < ev_time.shape[0]:
-                    ev_time[n_ev] = t_i + tau
-                    ev_kind[n_ev] = kind
-                    ev_x[n_ev, 0] = w[0, 0]
-                    ev_x[n_ev, 1] = w[1, 0]
-                n_ev += 1
-                if events_here > MAX_EVENTS_PER_INTERVAL:
-                    status |= STATUS_CHATTER
-                    mode = STUCK
-                    x_stuck[0] = w[0, 0]
-                    x_stuck[1] = w[1, 0]
+                    status |= STATUS_PIECES
             else:
                 status |= STATUS_PIECES
         # ---- sample i + 1 ----
@@ -1145,3 +1228,5 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     summary[S_N_PIECES] = n_pieces
     summary[S_N_LOCATED] = counter[0]
     summary[S_N_FAST] = n_fast_steps
+    for k in range(1, 5):
+        summary[S_N_REFUSED + k - 1] = n_refused[k]
