@@ -552,8 +552,8 @@ def _rows_series(rows, wa, s_eff, nterm, out, slot):
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis,
                fvrow,
                farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
-               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser, sser, rser, eser, zl, zdl, zddl, zh,
-               zdh, zddh, cpoly, energy, counter, out2):
+               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
+               zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
     ladder h_top = h_{lev0}, h_top/2 … that the friction's series and the events allow.
 
@@ -636,7 +636,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
                          slab_mass, e0, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, fmon, fsig,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
-                         sslope1, peak_sq, sig_max, sig_min, wa, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+                         sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
         if code == 0:
             return lev
@@ -663,7 +663,7 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 @njit(cache=True)
 def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis,
               farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
     """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
     the reason (2, 3)."""
@@ -673,11 +673,19 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         for j in range(k_eff + 1):
             r_int += rser[j] * h ** (j + 1) / (j + 1)
     s_eff = m + 3 + k_eff
+    # the tables are for the chain scaled to this rung, c_j h^j (entries of one size: rounding stays relative)
+    for d in range(2):
+        for c in range(m + 2):
+            wsc[d, c] = wa[d, c]
+        hk = 1.0
+        for k in range(k_eff + 1):
+            wsc[d, m + 2 + k] = wa[d, m + 2 + k] * hk
+            hk *= h
     for d in range(2):
         for c in range(m):
             acc = 0.0
             for c2 in range(s_eff):
-                acc += fprop[phase, d, c, c2] * wa[d, c2]
+                acc += fprop[phase, d, c, c2] * wsc[d, c2]
             zh[d, c] = acc
     # the start's and the end's rates: ż = Ã w̃, z̈ = Ã² w̃ on [z, a_g, ȧ_g, c_0, c_1]
     for d in range(2):
@@ -776,10 +784,10 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             acc_i = 0.0
             acc_v = 0.0
             for c in range(s_eff):
-                acc_i += fpin[phase, d, r, c] * wa[d, c]
-                acc_v += fpvis[phase, d, r, c] * wa[d, c]
-            e_in += wa[d, r] * acc_i
-            e_v += wa[d, r] * acc_v
+                acc_i += fpin[phase, d, r, c] * wsc[d, c]
+                acc_v += fpvis[phase, d, r, c] * wsc[d, c]
+            e_in += wsc[d, r] * acc_i
+            e_v += wsc[d, r] * acc_v
     energy[0] = e_in
     energy[1] = mu_k_n * r_int
     energy[2] = e_v
@@ -844,7 +852,8 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         the ladder h_l = dt / n_fast / 2^l, l = 0 … L − 1).
     fprop : float64[L, 2, 2, m, S]
         The first m rows of e^{Ãh_l} per rung, phase and direction, Ã the augmented matrix on
-        w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial).
+        w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial),
+        the chain scaled to the rung (c_j h_l^j).
     fpin, fpvis : float64[L, 2, 2, S, S]
         ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the input and viscous powers (Van Loan).
     fvrow : float64[2, K + 1, S]
@@ -898,6 +907,7 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     n_levels = fprop.shape[0]
     n_ch = fprop.shape[4] - m - 2
     wa = np.zeros((2, fprop.shape[4]))
+    wsc = np.zeros((2, fprop.shape[4]))
     vser = np.zeros((2, n_ch))
     sser = np.zeros(n_ch)
     rser = np.zeros(n_ch)
@@ -975,8 +985,8 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0,
                                            half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, fmon, fsig, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, vser, sser, rser,
-                                           eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
+                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
+                                           rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
                         if taken >= 0:
                             h_lev = h_fast / (1 << taken)
                         else:
