@@ -215,6 +215,9 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
             for k in range(_pk.FAST_ORDER + 1):
                 v_rows[d, k] = row
                 row = row @ aug[1, d] / (k + 1)
+        # symmetric to rounding; the kernel reads the upper triangle
+        p_in = 0.5 * (p_in + np.swapaxes(p_in, -1, -2))
+        p_vis = 0.5 * (p_vis + np.swapaxes(p_vis, -1, -2))
         system.cache[key] = (aug, prop, p_in, p_vis, v_rows, rate1, rate2)
         if len(_PROPAGATORS) >= _SYSTEMS_MAX:
             _PROPAGATORS.pop(next(iter(_PROPAGATORS)))

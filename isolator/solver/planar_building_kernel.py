@@ -742,7 +742,16 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
     if s0 > 0.0 and s1 < 0.0 and max(f0, f1) + 2.0 * h * max(abs(s0), abs(s1)) > 0.0:
         return 3
     # ---- committed: watched values, peaks, energies ----
-    if not start_valid:
+    if start_valid:
+        # the watched values at the start are the last piece's (or sub-step's) end values
+        for k in range(m1.shape[0]):
+            for d in range(2):
+                val[k, d] = val1[k, d]
+                slope[k, d] = slope1[k, d]
+        for j in range(sig1.shape[0]):
+            sval[j] = sval1[j]
+            sslope[j] = sslope1[j]
+    else:
         _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     _monitors(zh, zdh, zddh, ax1, ay1, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
     nterm = fmon.shape[3]
@@ -780,14 +789,15 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
     e_in = 0.0
     e_v = 0.0
     for d in range(2):
+        # the forms are symmetric: the diagonal and twice the upper triangle
         for r in range(s_eff):
             acc_i = 0.0
             acc_v = 0.0
-            for c in range(s_eff):
+            for c in range(r + 1, s_eff):
                 acc_i += fpin[phase, d, r, c] * wsc[d, c]
                 acc_v += fpvis[phase, d, r, c] * wsc[d, c]
-            e_in += wsc[d, r] * acc_i
-            e_v += wsc[d, r] * acc_v
+            e_in += wsc[d, r] * (fpin[phase, d, r, r] * wsc[d, r] + 2.0 * acc_i)
+            e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * acc_v)
     energy[0] = e_in
     energy[1] = mu_k_n * r_int
     energy[2] = e_v
@@ -957,11 +967,29 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         else:
             t_i = times[i]
             dt_i = times[i + 1] - t_i
+        b_prev0 = b[0]
+        b_prev1 = b[1]
         b[0] = (ax[i + 1] - ax[i]) / dt_i
         b[1] = (ay[i + 1] - ay[i]) / dt_i
         tau = 0.0
         events_here = 0
-        start_valid = False  # the slopes at a piece's start hold the interval's ȧ_g
+        # the watched values at the sample carry over; their slopes take the new ȧ_g: z̈ holds g ȧ_g, so
+        # slope += (m2·g + m3) Δȧ_g per direction
+        start_valid = i > 0
+        if start_valid:
+            ph = 0 if mode == STUCK else 1
+            for k in range(nk):
+                for d in range(2):
+                    gain = m3[k, d]
+                    for c in range(m):
+                        gain += m2[k, d, c] * g_vec[ph, d, c]
+                    slope1[k, d] += gain * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
+            for j in range(nj):
+                for d in range(2):
+                    gain = sig3[j, d]
+                    for c in range(m):
+                        gain += sig2[j, d, c] * g_vec[ph, d, c]
+                    sslope1[j] += gain * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
         n_sub_i = n_fast if (uniform and n_fast > 0) else 1
         h_fast = dt_i / n_sub_i
         for j_sub in range(n_sub_i):
