@@ -177,22 +177,29 @@ def _warm_up() -> None:
 
 
 def _run(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, capacity):
-    n = t.size
+    def kernel(out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
+        _pm.planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, out_x, out_v,
+                                       out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
+    return _with_event_room(kernel, t.size, rb.size, members.shape[0], tmat.shape[0], capacity)
+
+
+def _with_event_room(kernel, n, n_groups, n_members, n_surfaces, capacity):
+    # the output buffers of either compiled loop (the event kernel, the implicit steps), and one more run with
+    # room for every event when the first overflowed its event list
     out_x = np.empty((n, 2))
     out_v = np.empty((n, 2))
     out_a = np.empty((n, 2))
     out_en = np.empty((3, n))
     summary = np.zeros(_pm.S_SIZE)
-    surf_peak = np.zeros(tmat.shape[0])
-    first = np.empty(1 << members.shape[0])
+    surf_peak = np.zeros(n_surfaces)
+    first = np.empty(1 << n_members)
     while True:
         ev_t = np.empty(capacity)
         ev_k = np.empty(capacity, dtype=np.int8)
-        ub = np.zeros((rb.size, 2))
+        ub = np.zeros((n_groups, 2))
         surf_peak[:] = 0.0
         start = time.perf_counter()
-        _pm.planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, out_x, out_v,
-                                       out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
+        kernel(out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
         elapsed = time.perf_counter() - start
         n_ev = int(summary[_pm.S_N_EVENTS])
         if n_ev <= capacity:
@@ -241,28 +248,12 @@ def _run_steps(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales, capacit
 
 
 def _run_steps_once(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales, capacity):
-    n = t.size
-    out_x = np.empty((n, 2))
-    out_v = np.empty((n, 2))
-    out_a = np.empty((n, 2))
-    out_en = np.empty((3, n))
-    summary = np.zeros(_pm.S_SIZE)
-    surf_peak = np.zeros(tmat.shape[0])
-    first = np.empty(1 << members.shape[0])
     floors = np.array([scales[_pm.SC_X_FLOOR], scales[_pm.SC_V_FLOOR]])
-    while True:
-        ev_t = np.empty(capacity)
-        ev_k = np.empty(capacity, dtype=np.int8)
-        ub = np.zeros((rb.size, 2))
-        surf_peak[:] = 0.0
-        start = time.perf_counter()
+
+    def kernel(out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
         _ps.planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, floors, out_x, out_v,
                                         out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
-        elapsed = time.perf_counter() - start
-        n_ev = int(summary[_pm.S_N_EVENTS])
-        if n_ev <= capacity:
-            return out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t[:n_ev], ev_k[:n_ev], elapsed
-        capacity = n_ev + 16
+    return _with_event_room(kernel, t.size, rb.size, members.shape[0], tmat.shape[0], capacity)
 
 
 def _samples(name, values, size=None):
