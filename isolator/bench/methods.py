@@ -13,11 +13,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
-from numba import njit
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from isolator.bench.base import HARMONIC_PHASE, BenchCase, MethodOutput
+from isolator.solver.jit import njit
 
 #: stick displacement of the Newmark elastic-plastic slider [m for records; A0 for harmonic]
 ELASTIC_PLASTIC_YIELD_DISPLACEMENT = 1e-4

@@ -23,9 +23,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from isolator.solver.events import secant_guess
+from isolator.solver.jit import njit
 from isolator.solver.linear import ramp_step
 from isolator.solver.segments import ramp_basis
 

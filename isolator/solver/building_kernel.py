@@ -35,7 +35,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from isolator.solver.jit import njit
 
 #: Taylor terms of a piece (with ‖Ã_bal‖ h ≤ THETA the remainder is below 1e-20).
 N_TAYLOR = 22

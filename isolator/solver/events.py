@@ -15,8 +15,7 @@ Event kinds are small integers so that the compiled kernel can store them.
 
 from __future__ import annotations
 
-from numba import njit
-
+from isolator.solver.jit import njit
 from isolator.solver.segments import segment_state
 
 BREAKAWAY = 0  #: stuck → sliding

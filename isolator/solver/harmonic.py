@@ -23,11 +23,11 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 
 from isolator.errors import InvalidSystemError
 from isolator.serialize import finite_or_none
 from isolator.solver.events import BREAKAWAY, EVENT_NAMES, REVERSAL, STICK, find_stop, record_event
+from isolator.solver.jit import njit
 from isolator.solver.segments import harmonic_h1, ramp_basis, segment_state, state_from_basis
 from isolator.solver.system import classify_configuration
 

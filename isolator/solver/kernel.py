@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from isolator.solver.events import (
     BREAKAWAY,
@@ -45,6 +44,7 @@ from isolator.solver.events import (
     secant_guess,
     segment_root,
 )
+from isolator.solver.jit import njit
 from isolator.solver.segments import ramp_basis, segment_state
 
 #: Safety net against stick–slip chatter: events allowed in one sample interval.

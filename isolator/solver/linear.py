@@ -13,9 +13,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from isolator.solver.events import secant_guess, segment_root
+from isolator.solver.jit import njit
 from isolator.solver.segments import ramp_basis, segment_state
 
 #: Sub-steps per sample interval allowed in :func:`linear_peak_displacement`.  A peak between

@@ -34,9 +34,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, find_stop, record_event, secant_guess, segment_root
+from isolator.solver.jit import njit
 from isolator.solver.kernel import velocity_peak, viscous_integral
 from isolator.solver.multisurface_series import excursion, settle, stick_window
 from isolator.solver.segments import ramp_basis, segment_state

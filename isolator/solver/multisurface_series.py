@@ -61,7 +61,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from isolator.solver.jit import njit
 
 #: Two friction or rim levels closer than this (in F/W) are one event: the elements start
 #: or stop together (equal inner surfaces), without a spurious regime of rounding length.

@@ -31,7 +31,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from isolator.solver.jit import njit
 
 #: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.
 N_ORDER = 18

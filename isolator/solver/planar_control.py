@@ -20,8 +20,7 @@ docs/dev-notes.md; the accuracy they keep, in docs/planar.md.
 
 from __future__ import annotations
 
-from numba import njit
-
+from isolator.solver.jit import njit
 from isolator.solver.planar_events import PH_STUCK, at_rest, locate_peak, record_event, tangent_bound
 from isolator.solver.planar_layout import EV_REVERSAL, EV_STICK
 from isolator.solver.planar_rk import CARTESIAN, POLAR, rhs

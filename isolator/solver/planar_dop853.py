@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from isolator.solver.jit import njit
 from isolator.solver.planar_rk import (
     CARTESIAN,
     FASTMATH,

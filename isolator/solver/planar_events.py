@@ -18,8 +18,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from isolator.solver.jit import njit
 from isolator.solver.planar_dop853 import dop853_step
 from isolator.solver.planar_rk import (
     CARTESIAN,

@@ -15,8 +15,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from isolator.solver.jit import njit
 from isolator.solver.planar_control import (
     ENTER_LOG,
     KINK_STEP,

@@ -48,9 +48,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from isolator.solver import planar_multisurface_tableau as _dop
+from isolator.solver.jit import njit
 from isolator.solver.planar_control import (
     ENTER_LOG,
     LAG_MAX_RAD,

@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from isolator.solver.jit import njit
 
 #: numba fast-math flags that keep NaN/inf semantics (the step tests for both): FMA contraction,
 #: reassociation, reciprocal division, no signed zeros

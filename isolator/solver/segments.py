@@ -51,7 +51,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from isolator.solver.jit import njit
 
 #: Segments with max(|m|, |d|)·τ below this are evaluated by power series [-].
 TAYLOR_RADIUS = 1.5
