@@ -144,7 +144,9 @@ def test_kernel_sources_hold_the_imported_modules():
 def test_every_kernel_module_decorates_through_jit():
     """A module that took numba's ``njit`` directly would be cached on its own file only (the stale kernel)."""
     direct = []
-    for path in sorted(PACKAGE.rglob("*.py")):
+    sources = sorted(PACKAGE.rglob("*.py")) + sorted((ROOT / "tools").rglob("*.py"))
+    assert any(path.name == "generate_dop853.py" for path in sources)  # tools/ is scanned too
+    for path in sources:
         if path.name == "jit.py" and path.parent.name == "solver":
             continue
         text = path.read_text(encoding="utf-8")
@@ -169,3 +171,18 @@ def test_njit_restores_numba_setting(form):
     assert kernel(1) == 2
     assert config.CACHE_DIR == before
     assert cache_dir(__file__)  # a folder for this file's functions was set while decorating
+
+
+def test_numba_cache_dir_of_the_user_is_honoured(tmp_path, monkeypatch):
+    """``$NUMBA_CACHE_DIR`` (numba's own setting) holds the digest folders when set; else they sit beside the
+    sources."""
+    from isolator.solver.jit import cache_dir
+
+    kernel = str(PACKAGE / "solver" / "kernel.py")
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    beside = cache_dir.__wrapped__(kernel)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    chosen = cache_dir.__wrapped__(kernel)
+    assert Path(beside).parent == PACKAGE / "__pycache__"
+    assert Path(chosen).parent == tmp_path / "numba" and Path(chosen).is_dir()
+    assert Path(chosen).name == Path(beside).name  # the same digest of the same sources

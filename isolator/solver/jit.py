@@ -14,7 +14,8 @@ change in any of those files the module's kernels under a new folder, so they co
 again; a change elsewhere compiles nothing.  The setting is put back after each decoration, so
 other numba code of the same process keeps its own.
 
-The folders are ``isolator/__pycache__/numba-<digest>`` beside the sources (where numba's
+The folders are ``$NUMBA_CACHE_DIR/numba-<digest>`` when that variable is set (numba's own
+setting, honoured), else ``isolator/__pycache__/numba-<digest>`` beside the sources (where numba's
 in-tree cache was: a fresh clone, or CI, compiles once, as before), else, in a read-only install,
 ``$ISOLATOR_CACHE_DIR/numba-<digest>`` or ``~/.cache/isolator/numba-<digest>``.  A folder in use
 has its time stamp renewed by every process that uses it; folders unused for :data:`KEEP_OLD_DAYS`
@@ -95,7 +96,10 @@ def cache_dir(module_file: str) -> str:
         digest.update(label.encode() + b"\0" + path.read_bytes() + b"\0")
     name = f"numba-{digest.hexdigest()[:16]}"
     user = os.environ.get("ISOLATOR_CACHE_DIR")
-    for root in (PACKAGE / "__pycache__", Path(user) if user else Path.home() / ".cache" / "isolator"):
+    roots = [PACKAGE / "__pycache__", Path(user) if user else Path.home() / ".cache" / "isolator"]
+    if os.environ.get("NUMBA_CACHE_DIR"):  # the user's own choice of numba's cache folder comes first
+        roots.insert(0, Path(os.environ["NUMBA_CACHE_DIR"]))
+    for root in roots:
         folder = root / name
         try:
             new = not folder.is_dir()
