@@ -76,7 +76,7 @@ def _summary_page(analysis, numbers: dict, label: str, command: str):
     table(fig, 0.52, 0.875, "Ground motion", record_rows)
     result_rows = [
         ("peak displacement (resultant)", f"{fmt(results['peak_displacement_m'])} m"),
-        ("demand / capacity", fmt(results["displacement_demand_ratio"], 3)),
+        *_capacity_rows(numbers["capacity_reading"]),
         ("residual displacement", f"{fmt(results['residual_displacement_m'])} m (x {fmt(results['residual_displacement_x_m'])}, "
                                   f"y {fmt(results['residual_displacement_y_m'])})"),
         ("peak velocity", f"{fmt(results['peak_velocity_m_s'])} m/s"),
@@ -103,6 +103,29 @@ def _summary_page(analysis, numbers: dict, label: str, command: str):
     caption(fig, f"isolator: {textwrap.shorten(command, 140)}.  Resultant = Euclidean norm in the horizontal "
                   "plane; X and Y are the first and second horizontal components as read.  Energies per unit mass.")
     return fig
+
+
+def capacity_numbers(analysis, parameters: list[dict] | None = None) -> dict:
+    """Where the report reads the displacement it compares with the capacity, as the review does
+    (:func:`isolator.review.record_checks.capacity_reading`): the corner bearing with a [plan], else the centre of
+    mass; with the demand ratio there (None without a capacity).  The JSON's ``capacity_reading``."""
+    from isolator.review.record_checks import capacity_reading
+
+    overrides = {row["name"]: row["value"] for row in parameters or [] if row.get("source") == "set"}
+    reading = capacity_reading(analysis.design, overrides)
+    ratio = analysis.displacement_demand_ratio
+    return {**reading, "displacement_m": reading["factor"] * analysis.response.peak_displacement_m,
+            "demand_ratio": None if ratio is None else reading["factor"] * ratio}
+
+
+def _capacity_rows(reading: dict) -> list[tuple[str, str]]:
+    """The demand / capacity rows of page 1, saying where the displacement is read."""
+    if not reading["at_corner"]:
+        return [("demand / capacity", fmt(reading["demand_ratio"], 3)
+                 + ("" if reading["demand_ratio"] is None else " (centre of mass)"))]
+    return [("demand / capacity (corner)", f"{fmt(reading['demand_ratio'], 3)}: the corner bearing, torsion factor "
+                                           f"{fmt(reading['factor'], 4)} × the centre of mass"),
+            ("torsion factor", textwrap.shorten(reading["basis"], 95, placeholder=" …"))]
 
 
 def _ground_page(analysis, label: str):
@@ -149,6 +172,7 @@ def write_pair_report(analysis, pdf_path, *, command: str = "", parameters: list
 
     pdf_path = Path(pdf_path)
     numbers = summary_dict(analysis, parameters=parameters)
+    numbers["capacity_reading"] = capacity_numbers(analysis, numbers.get("parameters"))
     first = next(iter(analysis.components.values()))
     if pdf_path.suffix.lower() != ".pdf":
         raise ValueError(f"{pdf_path}: a report is a .pdf")

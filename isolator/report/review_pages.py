@@ -423,6 +423,9 @@ def _pairs(flow: Flow, r: dict) -> None:
         flow.text(x, head, 7.2, weight="bold")
     flow.y -= 1.15 * LINE
     beyond = 0
+    failing = {(c.get("pair"), c.get("bound")) for c in r["checks"] if c["id"] == "record_capacity"
+               and c["status"] == "fail"}  # at the corner bearing with capacity_at_corner, as the checks read it
+    corner = next((c.get("torsion_factor") for c in r["checks"] if c.get("torsion_factor")), None)
     for name, factor in r["scale_factors"].items():
         flow.need(LINE)
         flow.text(0.05, f"#{key[name]}", 7.4)
@@ -432,8 +435,7 @@ def _pairs(flow: Flow, r: dict) -> None:
             for b in bounds:
                 result = r["bounds"][b]["pairs"].get(name, {})
                 value = result.get(quantity)
-                over = quantity == "peak_displacement_m" and cap and value is not None and (
-                    value > cap or bool(result.get("ultimate_displacement_reached")))  # or held there by its rim
+                over = quantity == "peak_displacement_m" and (name, b) in failing  # the record_capacity rows
                 beyond += bool(over)
                 text = "failed" if "error" in result else fmt(value) + (" *" if over else "")
                 flow.text(x, text, 7.4, color=STATUS_COLOUR["fail"] if over else "black",
@@ -442,9 +444,11 @@ def _pairs(flow: Flow, r: dict) -> None:
         flow.y -= LINE
     flow.y -= 0.3 * LINE
     if cap:
-        flow.paragraph(f"* at or beyond the displacement capacity {fmt(cap)} m ({beyond} analyses; each is a failing "
-                       "record_capacity row on the checks pages).  A pendulum that reaches it is held there by its "
-                       "rim (plastic impact, the impulse on the checks pages): its peak is the capacity and "
+        flow.paragraph(f"* at or beyond the displacement capacity {fmt(cap)} m "
+                       + (f"at the corner bearing (torsion factor {fmt(corner)} × the centre-of-mass D shown) "
+                          if corner else "")
+                       + f"({beyond} analyses; each is a failing record_capacity row on the checks pages).  A "
+                       "pendulum that reaches it is held there by its rim (plastic impact, the impulse on the checks pages): its peak is the capacity and "
                        "understates the demand.  Where no rim is modelled (a flat slider) the analysis continues "
                        "past it as if the surface were unbounded: those numbers are not physical.",
                        color=STATUS_COLOUR["fail"])

@@ -160,11 +160,7 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     d_m, d_bound = _governing(bounded, "D_M_rha_m")
     v_b, v_bound = _governing(bounded, "base_shear_coefficient")
     residual, _ = _governing(bounded, "residual_displacement_m")
-    torsion = asce7_22.torsion_factor(review.design.plan, {**_asce_defaults(), **p}, review_inputs(review.design))
-    layout = review.design.bearing_layout
-    if layout is not None and "P_T" in torsion:  # each bearing's own amplification (EN 1998-1 10.3(2) uses it)
-        torsion["bearing_factors"] = asce7_22.bearing_torsion_factors(
-            review.design.plan, {**_asce_defaults(), **p}, layout.x_m, layout.y_m, torsion["P_T"])
+    torsion = _torsion(review)
     elf = {b: {**review.elf[b], "D_TM_m": review.elf[b]["D_M_m"] * torsion["factor"]} for b in review.elf}
     for b in elf:  # a flexible superstructure: D'_M of Eq. 17.6-1 may replace D_M in the 17.6.4.1 floor
         if "D_M_prime_m" in elf[b]:
@@ -186,7 +182,48 @@ def assess(basis: dict, designs: dict, *, min_ratio_required: float) -> dict:
     design_values["spread"] = {b: values[b]["spread"] for b in values}
     view = SimpleNamespace(**{**vars(review), "elf": elf, "design_values": design_values})
     checks = (_asce_checks if code == "asce7-22" else _en_checks)(view, values, designs)
-    return {"design_values": design_values, "elf": elf, "checks": checks}
+    return {"design_values": design_values, "elf": elf, "checks": no_pass_on_part(checks, incomplete_analyses(
+        review.analyses))}
+
+
+#: The rows computed from the analyses' results (suite values, each analysis, their envelope); the others come from
+#: the suite's spectra, the ELF or the design alone.
+FROM_ANALYSES = frozenset({
+    "D_M_capacity", "record_capacity", "D_TM_capacity", "D_TM_elf_floor", "restoring_force", "base_shear_elf_floor",
+    "superstructure_shear", "vertical_load_stability", "story_drift", "floor_acceleration", "uplift",
+    "displacement_capacity", "restoring_capability", "D_over_R", "residual_displacement", "transmitted_over_pga"})
+
+
+def incomplete_analyses(analyses: dict) -> list[str]:
+    """"pair (bound): why" of every analysis whose numbers the rows cannot stand on: it failed (``error``), or its
+    solver flagged it (``solver_status`` other than ``ok``: the chatter guard, an unfinished interval …)."""
+    out = []
+    for bound, results in analyses.items():
+        for name, r in results.items():
+            if "error" in r:
+                out.append(f"{name} ({bound}): failed")
+            elif r.get("solver_status", "ok") != "ok":
+                out.append(f"{name} ({bound}): its solver says {r['solver_status']}")
+    return out
+
+
+def no_pass_on_part(rows: list, incomplete: list[str]) -> list:
+    """A row computed from the analyses cannot pass when some analyses failed or were flagged by their solver (its
+    suite value, or 'every analysis within', is then over part of the suite): ``not checked``, naming them.  A
+    failure stands, said the same way."""
+    if not incomplete:
+        return rows
+    said = f"{len(incomplete)} analysis(es) not usable: {'; '.join(incomplete[:3])}{' …' if len(incomplete) > 3 else ''}"
+    out = []
+    for row in rows:
+        if row["id"] not in FROM_ANALYSES or row["status"] == C.NOT_CHECKED:
+            out.append(row)
+        elif row["status"] == C.PASS:
+            out.append({**row, "status": C.NOT_CHECKED,
+                        "note": row["note"] + f"; would pass over the analyses that ran, but {said}"})
+        else:
+            out.append({**row, "note": row["note"] + f"; {said}"})
+    return out
 
 
 def _structure_envelope(values: dict, factoring: dict | None = None) -> dict:
@@ -227,10 +264,19 @@ def _structure_envelope(values: dict, factoring: dict | None = None) -> dict:
     return out
 
 
-def _asce_defaults() -> dict:
-    from isolator.review.parameters import resolve
+def _torsion(review) -> dict:
+    """The code's torsion factor of the review, with its basis.
 
-    return resolve("asce7-22")
+    ASCE 7-22: D_TM/D_M of Eq. 17.5-3 with its 1.15 floor (:func:`asce7_22.torsion_factor`).  EN 15129 /
+    EN 1998-1: each isolator's δ_i = 1 + e_tot y_i / r² of EN 1998-1 10.9.6 [U] with the EN accidental eccentricity
+    (``en_accidental_e``), no floor (:func:`en15129.torsion_factors`) — an EN review applies no ASCE rule here.
+    """
+    design, p = review.design, review.parameters
+    layout = design.bearing_layout
+    if review.code == "en15129":
+        x, y = (None, None) if layout is None else (layout.x_m, layout.y_m)
+        return en15129.torsion_factors(design.plan, p["en_accidental_e"], x, y)
+    return asce7_22.torsion_factor(design.plan, p, review_inputs(design))
 
 
 def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, basis: str) -> list:
@@ -239,8 +285,13 @@ def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, ba
     ratio = float(np.min(review.suite_ratio))
     t_min = float(review.grid_s[int(np.argmin(review.suite_ratio))])
     lo, hi = review.period_range_s
-    rows = [C.at_least("suite_size", clause_size, n, n_min, f"{n} pairs read"
-                       + (f", {len(review.suite.failed)} failed" if review.suite.failed else ""), "pairs"),
+    unusable = {name for results in review.analyses.values() for name, r in results.items()
+                if "error" in r or r.get("solver_status", "ok") != "ok"}
+    rows = [C.at_least("suite_size", clause_size, n - len(unusable), n_min, f"{n} pairs read"
+                       + (f", {len(review.suite.failed)} failed to read" if review.suite.failed else "")
+                       + (f"; {len(unusable)} not analysed at every bound (failed or flagged by the solver): "
+                          f"{', '.join(sorted(unusable))}" if unusable else "; every pair analysed at every bound"),
+                       "pairs"),
             C.at_least("suite_spectrum", clause_spectrum, ratio, review.min_ratio_required,
                        f"min over {review.grid_s.size} log-spaced periods {lo:.3g}–{hi:.3g} s of the average scaled "
                        f"{basis} / target, at T = {t_min:.3g} s; " + _scaling_words(review), "×target")]
@@ -259,7 +310,7 @@ def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, ba
                               p["usable_band_factor"]))
     rows += selection_rows(review.suite.pairs, list(review.factors.values()), mu_lower=review.bounds.mu_lower,
                            gravity_m_s2=review.design.gravity_m_s2, controlling=review.target.controlling, params=p,
-                           closest=review.suite.closest)
+                           closest=review.suite.closest, code=review.code)
     return rows
 
 
@@ -271,7 +322,7 @@ def _scaling_words(review) -> str:
             "matched": "spectrally matched records, not rescaled (16.2.3.3)"}.get(basis, f"scaling '{basis}'")
 
 
-def _common_back(review, values: dict, d_tm_design: float) -> list:
+def _common_back(review, values: dict, d_tm_design: float, what: str = "design total displacement") -> list:
     p, design = review.parameters, review.design
     env = review.design_values["envelope"]
     rows = []
@@ -279,7 +330,7 @@ def _common_back(review, values: dict, d_tm_design: float) -> list:
         rows.append(_surface_d_over_r(review, p["D_over_R_max"]))
     elif design.is_pendulum:
         rows.append(C.at_most("D_over_R", "small-angle pendulum (practice)", d_tm_design / design.radius_m,
-                              p["D_over_R_max"], f"design total displacement / R = {design.radius_m:g} m", "-"))
+                              p["D_over_R_max"], f"{what} / R = {design.radius_m:g} m", "-"))
     else:
         rows.append(C.check("D_over_R", "small-angle pendulum (practice)", C.NOT_CHECKED,
                             note="not a friction pendulum (no radius)"))
@@ -349,18 +400,21 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     cap = design.displacement_capacity_m
     rows = _common_front(review, p["n_pairs_min"], "ASCE 7-22 17.3.2", "ASCE 7-22 17.3.3 / 16.2.3.2", "RotD100")
     capacity_note = "" if cap is not None else "no displacement_capacity_m in the design"
-    largest = max(v["peak_displacement_max_m"] for v in values.values())
-    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_rha_m"], cap,
-                          f"{env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest single "
-                          f"analysis {largest:.3g} m" + (
-                              "; " + capacity_note if capacity_note else ""), "m"))
+    factor = _corner_factor(review)
+    largest = max(v["peak_displacement_max_m"] for v in values.values()) * (factor or 1.0)
+    where = (f"the corner bearing: torsion factor {factor:.4g} ({_torsion_said(review)}; capacity_at_corner [U]) × "
+             f"the centre of mass's D_M {env['D_M_rha_m']:.4g} m" if factor else
+             "the centre of mass (capacity_at_corner false)")
+    rows.append(C.at_most("D_M_capacity", "ASCE 7-22 17.6.3.4, capacity [U]", env["D_M_rha_m"] * (factor or 1.0), cap,
+                          f"{where}; {env['rule']} of {env['n']} pairs, {env['D_M_bound']} bound governs; largest "
+                          f"single analysis {largest:.3g} m" + ("; " + capacity_note if capacity_note else ""), "m"))
     reached = C.ultimate_reached(review.analyses)
     rows[-1] = C.never_pass_at_ultimate(rows[-1], reached)
     rows += C.record_capacity(review.analyses, cap, mass_kg=design.mass_kg, torsion_factor=_corner_factor(review))
     d_tm_row = C.never_pass_at_ultimate(
         C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
-                  f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion), "
-                  f"{p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"), reached)
+                  f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion: "
+                  f"{_torsion_said(review)}), {p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"), reached)
     beyond = [b for b in ("lower", "upper") if elf[b].get("beyond_ultimate")]
     if beyond and d_tm_row["status"] != C.FAIL:
         d_tm_row = {**d_tm_row, "status": C.FAIL, "note": d_tm_row["note"] + f"; the ELF demand of the "
@@ -422,9 +476,19 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     return rows + _common_back(review, values, d_tm["value"])
 
 
+def _torsion_said(review) -> str:
+    """The torsion factor's basis, marked [U] where the design did not give what it needs (y, P_T, or the plan)."""
+    torsion = review.design_values["torsion"]
+    return torsion["basis"] + ("; assumed where not given [U]" if torsion.get("assumed") else "")
+
+
 def _corner_factor(review) -> float | None:
-    """The torsion factor D_TM/D_M the capacity rows apply to each analysis (``capacity_at_corner`` [U]), else None."""
-    return review.design_values["torsion"]["factor"] if review.parameters.get("capacity_at_corner") else None
+    """The torsion factor the capacity rows apply to each analysis (``capacity_at_corner`` [U]), else None: ASCE's
+    D_TM/D_M (Eq. 17.5-3, its floor without a plan), EN's largest δ_i (none without a plan: the centre of mass)."""
+    torsion = review.design_values["torsion"]
+    if not review.parameters.get("capacity_at_corner") or (torsion.get("code") == "en15129" and "e_x_m" not in torsion):
+        return None
+    return torsion["factor"]
 
 
 def _superstructure_shear_row(review, v_s: float, activation: dict, fixed_base: dict) -> dict:
@@ -459,39 +523,53 @@ def _superstructure_shear_row(review, v_s: float, activation: dict, fixed_base: 
 
 
 def _en_checks(review, values: dict, designs: dict) -> list:
+    """The EN 15129 / EN 1998-1 rows (REVIEW_RULES §2): each cites an EN clause and applies only EN's rules."""
     p, design = review.parameters, review.design
     env = review.design_values["envelope"]
+    torsion = review.design_values["torsion"]
     cap = design.displacement_capacity_m
     rows = _common_front(review, p["n_records_min_en"], "EN 1998-1 3.2.3.1.2", "EN 1998-1 3.2.3.1.2(4)",
                          "component spectra")
-    d_tm = env["D_TM"]["rha_m"]
-    rows += C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each analysis)",
-                              torsion_factor=_corner_factor(review))
+    d_bi = env["D_TM"]["rha_m"]  # the suite's centre-of-mass displacement × the largest δ_i (no floor)
+    capacity_rows = C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each "
+                                                                   "analysis)", torsion_factor=_corner_factor(review))
+    rows += [_unless_torsion_known(row, torsion) for row in capacity_rows]
     per_bearing = _en_bearing_displacements(review, env["D_M_rha_m"], p["gamma_x"])
+    tail = f"; {env['rule']} of {env['n']} pairs (EN 1998-1 4.3.3.4.3(3))" + (
+        "" if cap is not None else "; no displacement_capacity_m in the design")
     if per_bearing is None:
-        rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_tm, cap,
-                              f"γ_x = {p['gamma_x']:g} × design displacement {d_tm:.4g} m (torsion factor "
-                              f"{review.design_values['torsion']['factor']:.4g}: "
-                              f"{review.design_values['torsion']['basis']}); {env['rule']} of {env['n']} pairs "
-                              f"(EN 1998-1 4.3.3.4.3(3))"
-                              + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
+        row = C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", p["gamma_x"] * d_bi, cap,
+                        f"γ_x = {p['gamma_x']:g} (EN 1998-1 10.3(2)) × the isolator's design displacement "
+                        f"{d_bi:.4g} m = δ {torsion['factor']:.4g} × the centre of mass's {env['D_M_rha_m']:.4g} m "
+                        f"({torsion['basis']})" + tail, "m")
     else:
-        rows.append(C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", per_bearing["largest"], cap,
-                              per_bearing["note"] + f"; {env['rule']} of {env['n']} pairs (EN 1998-1 4.3.3.4.3(3))"
-                              + ("" if cap is not None else "; no displacement_capacity_m in the design"), "m"))
+        row = C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", per_bearing["largest"], cap,
+                        per_bearing["note"] + tail, "m")
+    rows.append(_unless_torsion_known(row, torsion))
     ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_rha_m"])
               for b in ("lower", "upper")}
     b_min = min(ratios, key=ratios.get)
     rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
                            f"d_Ed / d_r with d_r = µR ({b_min} bound, µ = {designs[b_min].mu_kinetic:.4g})", "-"))
     rows += _en_building_rows(review)
-    return rows + _common_back(review, values, p["gamma_x"] * d_tm)
+    return rows + _common_back(review, values, p["gamma_x"] * d_bi,
+                               f"γ_x {p['gamma_x']:g} × the isolator's design displacement (δ {torsion['factor']:.4g})")
+
+
+def _unless_torsion_known(row: dict, torsion: dict) -> dict:
+    """An EN displacement row that passes without a plan: ``not checked`` (EN 1998-1 10.3(2) asks each isolator's
+    displacement with torsion, which needs the plan); a failure stands (δ ≥ 1 only adds to it)."""
+    if row["status"] != C.PASS or "e_x_m" in torsion:  # e_x_m: the plan was there, δ computed
+        return row
+    return {**row, "status": C.NOT_CHECKED,
+            "note": row["note"] + "; passes without torsion only: EN 1998-1 10.3(2) asks each isolator's displacement "
+                                  "with torsion, which needs the design's [plan]"}
 
 
 def _en_bearing_displacements(review, d_m: float, gamma_x: float) -> dict | None:
-    """EN 1998-1 10.3(2): γ_x × each bearing's design displacement, torsion included (Eq. 17.5-3 at the bearing's own
-    distance with the layout's P_T: ``torsion["bearing_factors"]``); None without ``[[bearing_position]]`` and
-    ``[plan]`` (the row then uses the design total displacement)."""
+    """EN 1998-1 10.3(2): γ_x × each bearing's design displacement, torsion included (δ_i of EN 1998-1 10.9.6 at
+    each bearing of the layout: ``torsion["bearing_factors"]``); None without ``[[bearing_position]]`` and
+    ``[plan]`` (the row then uses the plan's corner isolator)."""
     torsion = review.design_values["torsion"]
     factors = torsion.get("bearing_factors")
     if not factors or not math.isfinite(d_m):
@@ -499,10 +577,10 @@ def _en_bearing_displacements(review, d_m: float, gamma_x: float) -> dict | None
     layout = review.design.bearing_layout
     values = [gamma_x * f * d_m for f in factors]
     k = int(np.argmax(values))
-    note = (f"γ_x = {gamma_x:g} × each bearing's displacement, torsion included: the suite's centre-of-mass "
-            f"D = {d_m:.4g} m × f_i of Eq. 17.5-3 at the bearing's own distance (P_T = {torsion['P_T']:.4g}; ASCE 7's "
-            f"1.15 floor not applied) [U]; bearing {k + 1} at ({layout.x_m[k]:g}, {layout.y_m[k]:g}) m governs, "
-            f"f = {factors[k]:.4g} (f from {min(factors):.4g} to {max(factors):.4g} over the {len(factors)} bearings)")
+    note = (f"γ_x = {gamma_x:g} (EN 1998-1 10.3(2)) × each bearing's displacement, torsion included: the suite's "
+            f"centre-of-mass D = {d_m:.4g} m × δ_i; bearing {k + 1} at ({layout.x_m[k]:g}, {layout.y_m[k]:g}) m "
+            f"governs, δ = {factors[k]:.4g} (δ from {min(factors):.4g} to {max(factors):.4g} over the "
+            f"{len(factors)} bearings); {torsion['basis']}")
     return {"largest": values[k], "note": note}
 
 

@@ -94,9 +94,11 @@ PARAMETERS = {p.name: p for p in [
     Parameter("vertical_Ev_coefficient", 0.2, "U", "ASCE 7-22 12.4.2.2 (E_v = 0.2 S_DS D, S_MS for the MCE_R)",
               "E_v = coefficient × S_MS × D on the gravity share, for an analysis without its vertical component",
               ("asce7-22",)),
-    Parameter("capacity_at_corner", True, "U", "REVIEW_RULES 1.10 / ASCE 7-22 17.2.4.6 (capacity at D_TM)",
+    Parameter("capacity_at_corner", True, "U", "REVIEW_RULES 1.10 / ASCE 7-22 17.2.4.6 (capacity at D_TM); "
+              "EN 1998-1 10.3(2) (each isolator's displacement)",
               "each analysis's capacity row reads the corner bearing: the centre-of-mass displacement × the "
-              "torsion factor D_TM/D_M (Eq. 17.5-3) of the review; false: the centre of mass"),
+              "review's torsion factor (ASCE: D_TM/D_M of Eq. 17.5-3; EN: the largest δ_i of EN 1998-1 10.9.6); "
+              "false: the centre of mass"),
     Parameter("horizontal_only", False, "input", "ASCE 7-22 17.3.2 (pairs of horizontal components)",
               "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
               "building); false: a vertical is analysed or the review refuses it"),
@@ -107,6 +109,9 @@ PARAMETERS = {p.name: p for p in [
     Parameter("gamma_x", 1.2, "U", "EN 1998-1 10.3(2)", "reliability factor on isolator displacements",
               ("en15129",)),
     Parameter("delta", 0.5, "U", "EN 1998-2 7.7.1 / EN 15129", "restoring capability d_Ed/d_r ≥ δ", ("en15129",)),
+    Parameter("en_accidental_e", 0.05, "U", "EN 1998-1 4.3.2(1) / 10.9.6",
+              "accidental eccentricity / the plan dimension ⟂ the loading, in each isolator's torsion amplification "
+              "δ_i = 1 + e_tot y_i / r²", ("en15129",)),
 ]}
 
 
@@ -166,6 +171,7 @@ RANGES = {
     "vertical_Ev_coefficient": Range(0.0, 1.0, "a coefficient of S_MS D (ASCE 7-22 12.4.2.2: 0.2)"),
     "gamma_x": Range(1.0, 3.0, "a reliability factor (EN 1998-1 10.3(2): 1.2)"),
     "delta": Range(0.0, 1.0, "a ratio d_Ed/d_r (EN 1998-2 7.7.1: 0.5)", lo_open=True),
+    "en_accidental_e": Range(0.0, 0.5, "a fraction of the plan dimension (EN 1998-1 4.3.2(1): 0.05)"),
 }
 #: Pairs (low, high) of parameters whose low must stay below their high.
 ORDERED = (("sf_flag_low", "sf_flag_high"), ("range_lo_factor", "range_hi_factor"),

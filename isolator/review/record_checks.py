@@ -14,6 +14,38 @@ from isolator.review.codes import asce7_22
 from isolator.review.parameters import resolve
 
 
+def capacity_reading(design, parameters: dict | None = None) -> dict:
+    """Where the single-record report reads the displacement it compares with the capacity, as the review does.
+
+    With ``capacity_at_corner`` (default [U], REVIEW_RULES 1.10) and a design ``[plan]``: the corner bearing, the
+    centre-of-mass displacement × the torsion factor D_TM/D_M of ASCE 7-22 Eq. 17.5-3 — from the bearing layout
+    (``[[bearing_position]]``: P_T of Eq. 17.5-4 and the farthest bearing) when there is one, else from the plan —
+    the factor the review applies (:func:`isolator.review.codes.asce7_22.torsion_factor`).  Otherwise the centre
+    of mass, and ``where`` says why.
+
+    Returns
+    -------
+    dict
+        ``factor`` [-] (1 at the centre of mass), ``at_corner`` (bool), ``where`` (one phrase for the rows),
+        ``basis`` (the torsion factor's basis, or why the centre of mass).
+    """
+    from isolator.superstructure import review_inputs
+
+    p = resolve("asce7-22", parameters)
+    if not p["capacity_at_corner"]:
+        return {"factor": 1.0, "at_corner": False, "where": "the centre of mass (capacity_at_corner false)",
+                "basis": "capacity_at_corner false"}
+    if design.plan is None:
+        return {"factor": 1.0, "at_corner": False,
+                "where": "the centre of mass: the design has no [plan] (nor [[bearing_position]]), so no corner "
+                         "bearing's displacement (a review would take D_TM = 1.15 D_M, the floor of Eq. 17.5-3)",
+                "basis": "no [plan]"}
+    torsion = asce7_22.torsion_factor(design.plan, p, review_inputs(design))
+    return {"factor": torsion["factor"], "at_corner": True, "basis": torsion["basis"],
+            "where": f"the corner bearing: torsion factor {torsion['factor']:.4g} (D_TM/D_M, {torsion['basis']}; "
+                     "capacity_at_corner [U], as the review) × the centre-of-mass displacement"}
+
+
 def record_checks(design, motion, engineering: dict, parameters: dict | None = None) -> list[dict]:
     """Check rows for a design under one record.
 
@@ -37,13 +69,19 @@ def record_checks(design, motion, engineering: dict, parameters: dict | None = N
 
     p = resolve("asce7-22", parameters)
     d = float(engineering["peak_displacement_m"])
-    rows = [C.at_most("displacement_capacity", "capacity (ASCE 7-22 17.6.3.4, one record)", d,
+    reading = capacity_reading(design, parameters)
+    d_read = reading["factor"] * d
+    said = f"{reading['factor']:.4g} × {d:.4g} m" if reading["at_corner"] else f"{d:.4g} m"
+    rows = [C.at_most("displacement_capacity", "capacity (ASCE 7-22 17.6.3.4, one record)", d_read,
                       design.displacement_capacity_m,
-                      "peak displacement under this record, nominal properties"
+                      f"peak displacement under this record, nominal properties, at {reading['where']}: {said}"
                       + ("" if design.displacement_capacity_m else "; no displacement_capacity_m in the design"), "m")]
+    rows[0].update(centre_of_mass_m=d, torsion_factor=reading["factor"] if reading["at_corner"] else None)
     if design.is_pendulum:
-        rows.append(C.at_most("D_over_R", "small-angle pendulum (practice)", d / design.radius_m, p["D_over_R_max"],
-                              f"R = {design.radius_m:g} m", "-"))
+        rows.append(C.at_most("D_over_R", "small-angle pendulum (practice)", d_read / design.radius_m,
+                              p["D_over_R_max"], f"R = {design.radius_m:g} m; D at "
+                              + ("the corner bearing (× the torsion factor)" if reading["at_corner"]
+                                 else "the centre of mass"), "-"))
         rows.append(C.restoring_force(asce7_22.restoring_force_ratio(design, d), p["restoring_min"],
                                       displacement_m=d, radius_m=design.radius_m))
     pga = motion.pga_m_s2
@@ -85,6 +123,6 @@ def with_record_checks(analysis, parameters: dict | None = None):
     if at_rim:  # its peak is the capacity because the rim stopped it (solver.multisurface): not a demand within it
         rows[0].update(status=C.FAIL, note=f"the bearing REACHED its displacement capacity (rim, plastic impact(s), "
                                              f"impulse {analysis.design.mass_kg * r.impact_impulse_m_s:.4g} N·s); "
-                                             f"{r.model_reason}")
+                                             f"{r.model_reason}; {rows[0]['note']}")
     return analysis.with_checks(rows)
 

@@ -1,6 +1,7 @@
 r"""Record selection: the same motion twice, records that cannot matter, records that are not earthquakes.
 
-Three looks at a suite before (and after) it is scaled (REVIEW_RULES 1.4; ASCE 7-22 17.3.2 [U]):
+Three looks at a suite before (and after) it is scaled (REVIEW_RULES 1.4; ASCE 7-22 17.3.2 [U] in an ASCE review,
+EN 1998-1 3.2.3.1 [U] in an EN review: :data:`CLAUSES`):
 
 * **The same motion twice.** A pair that is a rotation, an amplitude scaling, a time shift or a
   resampling of another is the same ground motion counted twice in the suite mean. Byte-equal
@@ -157,13 +158,25 @@ def closest_motions(pairs) -> dict | None:
     return best
 
 
+#: The clause each code's review cites for the two code rows (``record_selection``, ``distinct_motions``); the
+#: other two are practice in both.  An EN review never cites ASCE 7 as its authority: EN 1998-1 3.2.3.1 asks
+#: recorded motions qualified for the seismogenetic features of the sources and the site's soil (REVIEW_RULES §2
+#: names 3.2.3.1.2 for the records; the wording is [U]), and a suite mean (4.3.3.4.3(3)) counts each motion once.
+CLAUSES = {
+    "asce7-22": {"record_selection": "ASCE 7-22 17.3.2 [U]",
+                 "distinct_motions": "ASCE 7-22 17.3.2 (one motion counted once)"},
+    "en15129": {"record_selection": "EN 1998-1 3.2.3.1 [U] (records qualified for the sources and the site)",
+                "distinct_motions": "EN 1998-1 3.2.3.1.2 / 4.3.3.4.3(3) [U] (one motion counted once in the mean)"},
+}
+
+
 def _in_range(value, bounds) -> bool:
     return bounds[0] <= value <= bounds[1]
 
 
 def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, controlling: dict,
-                   params: dict, closest: dict | None) -> list[dict]:
-    """The record-selection rows of a review (clauses of ASCE 7-22 17.3.2 [U] and practice).
+                   params: dict, closest: dict | None, code: str = "asce7-22") -> list[dict]:
+    """The record-selection rows of a review (the code's clauses, :data:`CLAUSES`, and practice).
 
     Parameters
     ----------
@@ -180,6 +193,8 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
         ``weak_pga_fraction``, ``bandwidth_min``.
     closest : dict or None
         :func:`closest_motions` of the suite.
+    code : {"asce7-22", "en15129"}
+        Whose clauses the two code rows cite.
 
     Returns
     -------
@@ -217,7 +232,7 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
                  if k in shown and (label is None or label not in controlling)]
     tail = (f"; metadata given: {', '.join(shown)}" if shown else "; no pair gives metadata") + (
         f" ({', '.join(unmatched)} shown, not checked: the target states no counterpart)" if unmatched else "")
-    clause = "ASCE 7-22 17.3.2 [U]"
+    clause = CLAUSES[code]["record_selection"]
     if not looked:
         rows.append(C.check("record_selection", clause, C.NOT_CHECKED, None, None,
                             "the target gives no controlling magnitude_range / distance_km_range / vs30_m_s_range / "
@@ -234,10 +249,10 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
         rows.append(C.check("record_selection", clause, C.PASS, 0, 0,
                             f"every pair within the controlling {' and '.join(looked)}" + tail, "pairs"))
     if closest is None:
-        rows.append(C.check("distinct_motions", "ASCE 7-22 17.3.2 (one motion counted once)", C.NOT_CHECKED,
+        rows.append(C.check("distinct_motions", CLAUSES[code]["distinct_motions"], C.NOT_CHECKED,
                             note="one pair: nothing to compare"))
     else:
-        rows.append(C.at_least("distinct_motions", "ASCE 7-22 17.3.2 (one motion counted once)", closest["distance"],
+        rows.append(C.at_least("distinct_motions", CLAUSES[code]["distinct_motions"], closest["distance"],
                                SAME_MOTION_TOLERANCE,
                                f"closest two pairs {closest['pairs'][0]} / {closest['pairs'][1]}: motion signatures "
                                "(RotD100 shape, D5–95, orbit shape; invariant under rotation, scaling, time shift) "

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from isolator.design import Design
-from isolator.review.codes import asce7_22
+from isolator.review.codes import asce7_22, en15129
 from isolator.review.run import run_review
 from isolator.review.suite import load_suite
 from isolator.review.target import Target
@@ -36,27 +36,28 @@ EN_BUILDING = {
 
 
 def test_each_bearing_torsion_factor_by_hand():
-    """Eq. 17.5-3 at each bearing's own distance on the 8 m grid of data/example_building.toml (b = 34, d = 26 m,
-    e = 0.5 m actual + 5 %): loading x uses |y_i| and e_x = 0.5 + 0.05 × 26 = 1.8 m; loading y |x_i| and
-    e_y = 0.5 + 0.05 × 34 = 2.2 m; P_T = √(mean(x² + y²)) / √((b² + d²)/12)."""
+    """EN 1998-1 10.9.6's δ_i = 1 + e_tot y_i / r² at each bearing of the 8 m grid of data/example_building.toml
+    (b = 34, d = 26 m, e = 0.5 m actual + 5 %): loading x uses |y_i| and e_x = 0.5 + 0.05 × 26 = 1.8 m; loading y
+    |x_i| and e_y = 0.5 + 0.05 × 34 = 2.2 m; r² = mean(x² + y²).  No floor (ASCE 7's 1.15 is not an EN rule)."""
     design = Design.from_toml(BUILDING)
     x = np.tile([-16.0, -8.0, 0.0, 8.0, 16.0], 4)
     y = np.repeat([-12.0, -4.0, 4.0, 12.0], 5)
-    s = 34.0 ** 2 + 26.0 ** 2
-    p_t = math.sqrt(np.mean(x * x + y * y)) / math.sqrt(s / 12.0)
+    r2 = float(np.mean(x * x + y * y))
     layout = design.bearing_layout
-    factors = asce7_22.bearing_torsion_factors(design.plan, {"accidental_e": 0.05}, layout.x_m, layout.y_m, p_t)
-    # the centre bearing of the second row, (0, -4): max(1 + 4/P_T² · 12 · 1.8/s, 1 + 0) — loading x governs
+    torsion = en15129.torsion_factors(design.plan, 0.05, layout.x_m, layout.y_m)
+    factors = torsion["bearing_factors"]
+    # the centre bearing of the second row, (0, -4): max(1 + 1.8 × 4 / r², 1 + 0) — loading x governs
     middle = list(zip(layout.x_m, layout.y_m, strict=True)).index((0.0, -4.0))
-    assert factors[middle] == pytest.approx(1 + 4.0 / p_t ** 2 * 12 * 1.8 / s, rel=1e-14)
-    # a corner (16, 12): max(1 + 12/P_T² · 12 · 1.8/s, 1 + 16/P_T² · 12 · 2.2/s) — loading y governs
+    assert factors[middle] == pytest.approx(1 + 1.8 * 4.0 / r2, rel=1e-14)
+    # a corner (16, 12): max(1 + 1.8 × 12 / r², 1 + 2.2 × 16 / r²) — loading y governs
     corner = list(zip(layout.x_m, layout.y_m, strict=True)).index((16.0, 12.0))
-    assert factors[corner] == pytest.approx(1 + 16.0 / p_t ** 2 * 12 * 2.2 / s, rel=1e-14)
-    assert max(factors) == factors[corner] and min(factors) == factors[middle]  # (0, ±4): nearest the centre
-    # the review's corner factor (no floor) is the largest bearing's
-    whole = asce7_22.torsion_factor(design.plan, {"accidental_e": 0.05, "D_TM_floor": 1.0, "P_T_min": 1.0},
-                                    {"P_T": p_t, "y_for_loading_x_m": 12.0, "y_for_loading_y_m": 16.0})
-    assert whole["raw_factor"] == pytest.approx(max(factors), rel=1e-14)
+    assert factors[corner] == pytest.approx(1 + 2.2 * 16.0 / r2, rel=1e-14)
+    assert max(factors) == factors[corner] == torsion["factor"] and min(factors) == factors[middle]
+    assert torsion["r_m"] == pytest.approx(math.sqrt(r2), rel=1e-15) and "10.9.6" in torsion["basis"]
+    # ASCE's Eq. 17.5-3 bracket with the layout's P_T is the same number (1/(P_T² r_I²) = 1/r²), before its floor
+    s = 34.0 ** 2 + 26.0 ** 2
+    p_t = math.sqrt(r2) / math.sqrt(s / 12.0)
+    assert asce7_22.torsion_amplification(16.0, 2.2, p_t, 34.0, 26.0) == pytest.approx(factors[corner], rel=1e-14)
 
 
 def _suite_value(values, n_for_mean):

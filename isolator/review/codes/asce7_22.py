@@ -195,20 +195,6 @@ def torsion_amplification(y_m: float, eccentricity_m: float, p_t: float, b_m: fl
     return 1.0 + (y_m / p_t ** 2) * 12.0 * eccentricity_m / (b_m * b_m + d_m * d_m)
 
 
-def bearing_torsion_factors(plan: dict, params: dict, x_m, y_m, p_t: float) -> list[float]:
-    """Each bearing's displacement / the centre of mass's, Eq. 17.5-3 at its own distance (no floor) [-].
-
-    For loading along x the distance is |y_i| with e = actual + ``accidental_e`` × d; along y it is |x_i|
-    with e = actual + ``accidental_e`` × b; the larger of the two.  The 1.15 floor of Eq. 17.5-3 is ASCE
-    7's minimum on the total displacement, not a bearing's own amplification, so it is not applied here.
-    """
-    b, d = plan["b_m"], plan["d_m"]
-    e_x = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * d  # loading x: e ⟂ x, along y
-    e_y = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * b
-    return [max(torsion_amplification(abs(y), e_x, p_t, b, d), torsion_amplification(abs(x), e_y, p_t, b, d))
-            for x, y in zip(x_m, y_m, strict=True)]
-
-
 def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) -> dict:
     """D_TM / D_M of Eq. 17.5-3 (the larger of the two loading directions), with its basis.
 
