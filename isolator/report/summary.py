@@ -17,8 +17,8 @@ from isolator.motion.examples import EXAMPLE_RECORDS, resolve_record  # noqa: F4
 #: The review parameters (:data:`isolator.review.parameters.PARAMETERS`) that the single-record report's pages
 #: use: its checks (:func:`isolator.review.record_checks.record_checks`) and the building page's drift limit.
 REPORT_PARAMETERS = ("D_over_R_max", "restoring_min", "transmitted_over_pga_max", "sf_flag_low", "sf_flag_high",
-                     "range_hi_factor", "usable_band_factor", "drift_limit_rha", "capacity_at_corner", "accidental_e",
-                     "D_TM_floor", "P_T_min")
+                     "range_hi_factor", "usable_band_factor", "capacity_at_corner", "accidental_e", "D_TM_floor",
+                     "P_T_min", "drift_limit_rha")
 
 
 def report_parameters(overrides: dict | None = None) -> list[dict]:

@@ -42,7 +42,7 @@ ABY: list = []
 
 
 @pytest.mark.parametrize("spoil,said", [
-    (lambda r: {"error": "SolverError: made to fail by the test"}, "hectormine1999_ABY (lower): failed"),
+    (lambda r: {"error": "RuntimeError: made to fail by the test"}, "hectormine1999_ABY (lower): failed"),
     (lambda r: {**r, "solver_status": "chatter guard: made up by the test"},
      "hectormine1999_ABY (lower): its solver says chatter guard"),
 ])
