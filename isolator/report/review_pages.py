@@ -150,6 +150,8 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
                     else "y = half the plan dimension (assumed)")
                  + f", P_T = {fmt(r['torsion'].get('P_T'))}"
                  + f" → D_TM/D_M = {fmt(r['torsion']['factor'])}")
+    if r["torsion"].get("code") == "en15129":  # EN 1998-1 10.9.6's δ_i, not ASCE's D_TM/D_M
+        plan_text = f"largest δ_i = {fmt(r['torsion']['factor'])}: {r['torsion']['basis']}"
     lines = [("Design", f"{d['name']}  (file {d['source']})"),
              ("Weight, isolator", f"W = {fmt(weight / 1e3)} kN (M = {fmt(d['mass_kg'])} kg); {kind}"),
              ("Friction", friction),

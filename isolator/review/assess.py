@@ -530,6 +530,7 @@ def _en_checks(review, values: dict, designs: dict) -> list:
     cap = design.displacement_capacity_m
     rows = _common_front(review, p["n_records_min_en"], "EN 1998-1 3.2.3.1.2", "EN 1998-1 3.2.3.1.2(4)",
                          "component spectra")
+    rows.insert(2, _en_zero_period_row(review))
     d_bi = env["D_TM"]["rha_m"]  # the suite's centre-of-mass displacement × the largest δ_i (no floor)
     capacity_rows = C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each "
                                                                    "analysis)", torsion_factor=_corner_factor(review))
@@ -546,14 +547,37 @@ def _en_checks(review, values: dict, designs: dict) -> list:
         row = C.at_most("displacement_capacity", "EN 1998-1 10.3(2) / EN 15129", per_bearing["largest"], cap,
                         per_bearing["note"] + tail, "m")
     rows.append(_unless_torsion_known(row, torsion))
-    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_rha_m"])
-              for b in ("lower", "upper")}
-    b_min = min(ratios, key=ratios.get)
-    rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
-                           f"d_Ed / d_r with d_r = µR ({b_min} bound, µ = {designs[b_min].mu_kinetic:.4g})", "-"))
+    if asce7_22.is_multisurface(design):  # d_r = F₀/K_r is the bilinear CSS model's; a double/triple has none
+        rows.append(C.check("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", C.NOT_CHECKED, None, p["delta"],
+                            "d_r = F₀/K_r is defined for the bilinear curved-surface slider (EN 15129); the rules give "
+                            "no d_r of a double or triple pendulum's multi-linear loop", "-"))
+    else:
+        ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_rha_m"])
+                  for b in ("lower", "upper")}
+        b_min = min(ratios, key=ratios.get)
+        rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
+                               f"d_Ed / d_r with d_r = µR ({b_min} bound, µ = {designs[b_min].mu_kinetic:.4g})", "-"))
     rows += _en_building_rows(review)
     return rows + _common_back(review, values, p["gamma_x"] * d_bi,
                                f"γ_x {p['gamma_x']:g} × the isolator's design displacement (δ {torsion['factor']:.4g})")
+
+
+def _en_zero_period_row(review) -> dict:
+    """EN 1998-1 3.2.3.1.2(4) [U]: the mean zero-period spectral acceleration of the scaled records — the mean of
+    their components' PGA (the records are linear between samples, so the peak is at a sample) — not below the
+    target's S_a(0) (a_g·S for the EN elastic spectrum)."""
+    clause = "EN 1998-1 3.2.3.1.2(4) [U] (zero-period ordinate)"
+    target = review.target
+    if target.kind == "table" and target.periods_s[0] > 0:
+        return C.check("suite_zero_period", clause, C.NOT_CHECKED, None, None,
+                       f"the tabulated target starts at T = {target.periods_s[0]:g} s: no zero-period ordinate", "g")
+    s0 = float(target.sa_g(0.0)[0])
+    g = review.design.gravity_m_s2
+    pgas = [review.factors[pair.name] * float(np.max(np.abs(a))) / g for pair in review.suite.pairs
+            for a in (pair.ax_m_s2, pair.ay_m_s2)]
+    return C.at_least("suite_zero_period", clause, float(np.mean(pgas)), s0,
+                      f"mean over the {len(pgas)} scaled components of their PGA (S_a at T = 0) ≥ the target's "
+                      f"S_a(0) = {s0:.4g} g" + (" = a_g·S" if target.kind == "en1998-elastic" else ""), "g")
 
 
 def _unless_torsion_known(row: dict, torsion: dict) -> dict:

@@ -64,6 +64,12 @@ def test_en_rows_cite_en_clauses_and_apply_no_asce_floor(en_square):
     assert rows["D_over_R"]["value"] == pytest.approx(1.2 * DELTA * d / 2.5, rel=1e-12)
     for cap_row in (c for c in r.checks if c["id"] == "record_capacity" and "pair" in c):
         assert cap_row["torsion_factor"] == pytest.approx(DELTA, rel=1e-14)
+    # EN 1998-1 3.2.3.1.2(4): the mean zero-period ordinate (components' PGA, scaled) ≥ a_g S = 0.35 × 1.15 g
+    pgas = [r.factors[p.name] * np.max(np.abs(a)) / 9.80665 for p in r.suite.pairs for a in (p.ax_m_s2, p.ay_m_s2)]
+    zero = rows["suite_zero_period"]
+    assert len(pgas) == 6 and zero["value"] == pytest.approx(np.mean(pgas), rel=1e-14)
+    assert zero["limit"] == pytest.approx(0.35 * 1.15, rel=1e-14)
+    assert zero["status"] == ("pass" if np.mean(pgas) >= 0.4025 else "fail")
     # the EN accidental eccentricity is printed as [U], ASCE's torsion parameters are not used at all
     printed = {p["name"]: p for p in r.to_dict()["parameters"]}
     assert printed["en_accidental_e"]["mark"] == "U" and printed["en_accidental_e"]["value"] == 0.05
