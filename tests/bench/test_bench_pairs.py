@@ -18,7 +18,9 @@ import pytest
 from typer.testing import CliRunner
 
 from isolator import bench
+from isolator.bench import building as bench_building
 from isolator.bench import opensees as opensees_module
+from isolator.bench import tfp as bench_tfp
 from isolator.cli import app
 from tests.planar_reference import reference_pair as independent_reference_pair
 
@@ -156,10 +158,15 @@ def test_pair_errors_measure_the_resultant():
 
 
 def test_cli_bench_quick_with_pairs(tmp_path, monkeypatch):
-    """The command runs the quick 2-D case from a records folder and writes its rows and summary."""
+    """The command runs the quick 2-D case from a records folder and writes its rows and summary; the building
+    and triple-pendulum cases read from the same folder run on the first second of their records (their
+    numbers are tested in test_bench_building.py and test_bench_tfp.py; here, that the command carries them)."""
     case = _quick_case()  # its first 3 s, to keep the command's test short
     small = bench.pair_case(case.name, case.ax_m_s2[:301], case.ay_m_s2[:301], case.dt_s)
     monkeypatch.setattr(bench, "bench_cases", lambda quick=False, records_dir=None: [small])
+    for table in (bench_building.BUILDING_SECONDS, bench_building.BUILDING_PAIR_SECONDS, bench_tfp.TFP_SECONDS,
+                  bench_tfp.TFP_PAIR_SECONDS):
+        monkeypatch.setitem(table, "quick", 1.0)
     result = CliRunner().invoke(app, ["bench", "--quick", "--repeats", "1", "--out", str(tmp_path),
                                       "--records", str(RECORDS)])
     assert result.exit_code == 0, result.output
@@ -168,6 +175,10 @@ def test_cli_bench_quick_with_pairs(tmp_path, monkeypatch):
     assert {bench.PAIR_OURS, bench.PAIR_TRUTH, bench.OPENSEES, bench.IVP_REGULARISED} <= methods
     assert document["summary_2d"] and document["summary_2d"][-1] in result.stdout
     assert "load_average_1_5_15" in document["machine"]
+    # the 1-D and 2-D building and the 1-D and 2-D triple pendulum, each exact against its reference
+    assert len(document["building"]) == 2 and len(document["triple_friction_pendulum"]) == 2
+    assert all(result["ours"]["error_max"] < 1e-9 for result in document["building"])
+    assert document["summary_building"] and document["summary_building"][-1] in result.stdout
 
 
 @pytest.mark.skipif(not OPENSEES_OK, reason=f"openseespy does not import here: {OPENSEES_WHY}")
