@@ -45,6 +45,7 @@ _IMPORT = re.compile(r"^(?:from\s+(isolator(?:\.\w+)*)\s+import\s+(?:\(([^)]*)\)
                      r"|import\s+(isolator(?:\.\w+)*))", re.MULTILINE)
 
 
+@functools.cache  # one look-up per module and process: the kernel modules share most of their imports
 def _module_path(name: str) -> Path | None:
     """The source file of the isolator module ``name`` (a package's ``__init__.py``), None if none."""
     base = PACKAGE.parent.joinpath(*name.split("."))
@@ -54,7 +55,8 @@ def _module_path(name: str) -> Path | None:
     return None
 
 
-def _imports(path: Path) -> set[str]:
+@functools.cache
+def _imports(path: Path) -> frozenset[str]:
     """The isolator modules a source imports at module level (``from isolator.a import b`` counts ``a.b`` when it
     is a module, else ``a``)."""
     found = set()
@@ -68,7 +70,7 @@ def _imports(path: Path) -> set[str]:
             words = name.split()
             if words and _module_path(f"{source}.{words[0]}") is not None:
                 found.add(f"{source}.{words[0]}")
-    return found
+    return frozenset(found)
 
 
 @functools.cache
