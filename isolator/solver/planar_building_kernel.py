@@ -1161,14 +1161,27 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         from_rest = False
                     a1[0] = ax[i] + b[0] * tau
                     a1[1] = ay[i] + b[1] * tau
-                    if t_event < 0.0:
-                        # hand-overs that are not events: SLIDE slowing to a stop enters FINISH; FINISH that did not stop
+                    if t_event < 0.0 or kind_phi == PHI_HALF:
+                        # hand-overs that are not stops: a slide's piece end (the speed halved along e0, or not)
+                        # renews the friction's direction; a slide slowing below r_finish enters FINISH; FINISH that
+                        # did not stop slides on.  The FINISH test is made at every piece end of a slide, not only
+                        # when the speed halved within one piece: where |D| is close to µk N the slab decelerates
+                        # slowly, each piece (∝ the time left to the stop) takes less than half of the speed, and a
+                        # slide tested only at halvings went on down to |V| ~ 1e-16 m/s, where V/|V| is rounding
                         if mode == SLIDE:
                             r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                             half_target = 0.5 * r
                             if r > 0.0:
                                 e0[0] = w[0, 1] / r
                                 e0[1] = w[1, 1] / r
+                            if r < r_finish:
+                                # decelerating below r_finish: finish the stop with the friction's direction frozen
+                                _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws,
+                                        ss, rs, es)
+                                _eval(zs, 0.0, z, zd, zdd)
+                                if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
+                                    mode = FINISH
+                                    start_valid = False
                         elif mode == FINISH:
                             r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                             start_valid = False
@@ -1185,19 +1198,6 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         e0[0] = w[0, 1] / r
                         e0[1] = w[1, 1] / r
                         half_target = 0.5 * r
-                        continue
-                    if kind_phi == PHI_HALF:
-                        r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-                        if r > 0.0:
-                            e0[0] = w[0, 1] / r
-                            e0[1] = w[1, 1] / r
-                        half_target = 0.5 * r
-                        if r < r_finish:
-                            # decelerating below r_finish: finish the stop with the friction's direction frozen
-                            _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
-                            _eval(zs, 0.0, z, zd, zdd)
-                            if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
-                                mode = FINISH
                         continue
                     # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
                     events_here += 1
