@@ -43,7 +43,7 @@ from isolator.solver import planar_building_kernel as _pk
 from isolator.solver.base import SolverResult
 from isolator.solver.building import BuildingKeys, BuildingResponse, building_system, van_loan
 from isolator.solver.record import sample_timing
-from isolator.solver.system import System
+from isolator.solver.system import System, check_friction_coefficient, check_friction_rate
 from isolator.units import STANDARD_GRAVITY
 
 #: The solver model's name in the registry.
@@ -268,7 +268,7 @@ def _watched(system: PlanarBuildingSystem, layout) -> tuple:
     nj = 2 + n_bearings
     sig1 = np.zeros((nj, 2, m))
     sig2 = np.zeros((nj, 2, m))
-    sig3 = np.zeros((nj, 2))
+    sig3 = np.zeros((nj, 3))  # on a_x, a_y and the vertical a_z
     coefficients = None if layout is None else np.stack([layout.overturning_coefficients(d) for d in DIRECTIONS])
     for d in range(2):
         k_row = system.stiffness_matrices[d].sum(axis=0)
@@ -292,6 +292,10 @@ def _watched(system: PlanarBuildingSystem, layout) -> tuple:
         for j in range(n_bearings):
             sig2[2 + j, d] = coefficients[d, j] * moment_rows
             sig3[2 + j, d] = -coefficients[d, j] * mh.sum()
+    if n_bearings:
+        # the vertical's share of a bearing's load, P_k,g a_z/g (the floors and the slab move with the ground
+        # vertically): zero without a vertical
+        sig3[2:, 2] = np.asarray(layout.gravity_loads_N) / system.gravity_m_s2
     return m1, m2, m3, sig1, sig2, sig3
 
 
@@ -330,7 +334,9 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     residual_displacement_y_m: float = 0.0
     model: str = MODEL_NAME
     model_reason: str = MODEL_REASON
-    uplift_time_s = 0.0  #: no vertical in this model [s]
+    #: the vertical ground acceleration analysed [m/s²] (None: none)
+    vertical_acceleration_m_s2: np.ndarray | None = None
+    uplift_time_s = 0.0  #: time with g + a_z ≤ 0 [s]: such a vertical is refused, so none
     n_uplifts = 0
 
     @property
@@ -375,16 +381,18 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     def bearing_loads(self) -> dict | None:
         """Axial loads of the bearings (:func:`isolator.superstructure.bearing_axial_loads`), extremes exact.
 
-        The overturning from both directions, P_k = P_k,g + ΔP_k,x M_x + ΔP_k,y M_y; the maximum and
-        minimum of each bearing are located between samples; the uplift start and duration come from
-        the samples (linear between them).
+        The overturning from both directions and the vertical, P_k = P_k,g (1 + a_z/g) + ΔP_k,x M_x + ΔP_k,y M_y;
+        the maximum and minimum of each bearing are located between samples; the uplift start and duration
+        come from the samples (linear between them).
         """
         if self.bearing_layout is None:
             return None
         from isolator.superstructure import bearing_axial_loads
 
+        az = self.vertical_acceleration_m_s2
         out = bearing_axial_loads(self.bearing_layout, self.overturning_moment_Nm[:, 0], self.time_s,
-                                  moment_y_Nm=self.overturning_moment_Nm[:, 1])
+                                  moment_y_Nm=self.overturning_moment_Nm[:, 1],
+                                  vertical_factor=None if az is None else 1.0 + az / self.building.gravity_m_s2)
         gravity = np.asarray(self.bearing_layout.gravity_loads_N)
         high = gravity + self.signed_max[2:]
         low = gravity + self.signed_min[2:]
@@ -396,10 +404,8 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
-    """``(model, reason)`` when the scene's design has a superstructure and the scene more than one component.
-
-    A vertical or µ(v) with a superstructure is refused in :func:`simulate_scene` (never dropped).
-    """
+    """``(model, reason)`` when the scene's design has a superstructure and the scene more than one component,
+    a vertical or µ(v) (the 2-D building carries N(t) and µ(v); the 1-D building does not)."""
     design = scene.design
     if design is None or getattr(design, "superstructure", None) is None:
         return None
@@ -409,19 +415,9 @@ def scene_needs(scene) -> tuple[str, str] | None:
 
 
 def simulate_scene(scene) -> PlanarBuildingResponse:
-    """The 2-D building's response to a scene (:func:`simulate_planar_building`; a missing a_y is zero).
-
-    Raises
-    ------
-    InvalidSystemError
-        A vertical component or µ(v): not in the 2-D building yet (said in one line).
-    """
+    """The 2-D building's response to a scene (:func:`simulate_planar_building`; a missing a_y is zero, a
+    vertical and µ(v) are carried)."""
     design = scene.design
-    if scene.has_z or scene.velocity_dependent:
-        given = "a vertical component" if scene.has_z else "velocity-dependent friction (µ(v))"
-        raise InvalidSystemError(f"{design.source}: a design with a [superstructure] is analysed with constant "
-                                 f"friction and no vertical (the 1-D and 2-D buildings); {given} with a "
-                                 "superstructure is not modelled yet")
     iso = {key: value for key, value in scene.isolator.items() if value is not None}
     g = float(iso.get("gravity_m_s2", design.gravity_m_s2))
     mass = design.mass_kg
@@ -435,7 +431,9 @@ def simulate_scene(scene) -> PlanarBuildingResponse:
                                     total_mass_kg=mass, stiffness_N_per_m=stiffness,
                                     mu_static=float(iso["mu_static"]), mu_kinetic=iso.get("mu_kinetic"),
                                     damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
-                                    bearing_layout=design.bearing_layout)
+                                    bearing_layout=design.bearing_layout, az_m_s2=scene.az_m_s2,
+                                    pendulum=iso.get("radius_m") is not None, mu_slow=iso.get("mu_slow"),
+                                    mu_fast=iso.get("mu_fast"), rate_s_per_m=iso.get("rate_s_per_m"))
 
 
 _READY = False
@@ -476,7 +474,9 @@ def _check_component(name: str, values) -> np.ndarray:
 def simulate_planar_building(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, time_s=None, superstructure,
                              total_mass_kg: float, stiffness_N_per_m: float, mu_static: float,
                              mu_kinetic: float | None = None, damping_Ns_per_m: float = 0.0,
-                             gravity_m_s2: float = STANDARD_GRAVITY, bearing_layout=None) -> PlanarBuildingResponse:
+                             gravity_m_s2: float = STANDARD_GRAVITY, bearing_layout=None, az_m_s2=None,
+                             pendulum: bool = False, mu_slow: float | None = None, mu_fast: float | None = None,
+                             rate_s_per_m: float | None = None) -> PlanarBuildingResponse:
     """Response of a shear building on a friction isolation plane to two horizontal components.
 
     Parameters
@@ -492,6 +492,16 @@ def simulate_planar_building(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, tim
         As for :func:`isolator.solver.building.simulate_building`.
     bearing_layout : isolator.superstructure.BearingLayout, optional
         For the bearings' axial loads.
+    az_m_s2 : array_like, optional
+        Vertical ground acceleration [m/s²], up positive, linear between samples: the normal force is
+        N(t) = W (1 + a_z/g) (the floors move rigidly with the slab vertically); the friction is µ N(t), the
+        static limit µs N(t) and, with ``pendulum``, the restoring force N(t)/R X (its work ½∫(Ṅ/R)|X|² dt
+        is in the input energy, as the 2-D rigid block counts it). g + a_z ≤ 0 (uplift) is refused.
+    pendulum : bool
+        The restoring stiffness is W/R of a friction pendulum (it follows N(t)); else a spring (it does not).
+    mu_slow, mu_fast, rate_s_per_m : float, optional
+        Velocity-dependent friction µ(v) = µ_fast − (µ_fast − µ_slow) e^{−a|V|}, a = rate_s_per_m [s/m]; all
+        three or none, not with ``mu_kinetic``; µ_slow ≤ µ_fast and µ_slow ≤ µs.
 
     Returns
     -------
@@ -513,11 +523,64 @@ def simulate_planar_building(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, tim
         raise RecordInputError(f"the two components differ in length ({ax.size} and {ay.size} samples)")
     if time_s is None and dt_s is None:
         raise TypeError("give dt_s or time_s")
+    normal = _normal_force(ax.size, az_m_s2, pendulum, mu_static, mu_kinetic, mu_slow, mu_fast, rate_s_per_m,
+                           float(gravity_m_s2))
     _warm_up()
-    return _run(system, ax, ay, dt_s, time_s, bearing_layout)
+    return _run(system, ax, ay, dt_s, time_s, bearing_layout, normal)
 
 
-def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> PlanarBuildingResponse:
+@dataclass(frozen=True)
+class _Normal:
+    """The vertical and µ(v) of a run: a_z [m/s²] (or None), whether the stiffness follows N, µ(v)'s law."""
+
+    az: np.ndarray | None
+    pendulum: bool
+    mu_slow: float | None
+    mu_fast: float | None
+    rate_s_per_m: float = 0.0
+
+    @property
+    def varying(self) -> bool:
+        """A vertical that is not zero, or µ(v) (a zero vertical runs today's constant-N code, bit for bit)."""
+        return (self.az is not None and bool(np.any(self.az != 0.0))) or self.mu_fast is not None
+
+
+def _normal_force(n, az_m_s2, pendulum, mu_static, mu_kinetic, mu_slow, mu_fast, rate_s_per_m, g) -> _Normal:
+    """The vertical (checked: finite, the record's length, no uplift) and µ(v)'s law (checked as the 2-D rigid
+    block checks it)."""
+    law = (mu_slow, mu_fast, rate_s_per_m)
+    given = [v is not None for v in law]
+    if any(given) and not all(given):
+        missing = [k for k, v in zip(("mu_slow", "mu_fast", "rate_s_per_m"), law, strict=True) if v is None]
+        raise InvalidSystemError(f"velocity-dependent friction needs mu_slow, mu_fast and rate_s_per_m; "
+                                 f"missing {', '.join(missing)}")
+    slow = fast = None
+    rate = 0.0
+    if all(given):
+        if mu_kinetic is not None:
+            raise InvalidSystemError("give mu_kinetic or (mu_slow, mu_fast, rate_s_per_m), not both")
+        slow = check_friction_coefficient("mu_slow", mu_slow)
+        fast = check_friction_coefficient("mu_fast", mu_fast)
+        rate = check_friction_rate(rate_s_per_m)
+        if slow > fast:
+            raise InvalidSystemError(f"mu_slow ({slow}) must not exceed mu_fast ({fast})")
+        if slow > float(mu_static):
+            raise InvalidSystemError(f"mu_slow ({slow}) must not exceed mu_static ({mu_static})")
+    az = None
+    if az_m_s2 is not None:
+        az = _check_component("az", az_m_s2)
+        if az.size != n:
+            raise RecordInputError(f"the vertical has {az.size} samples, the horizontals {n}")
+        lowest = int(np.argmin(az))
+        if g + az[lowest] <= 0.0:
+            raise InvalidSystemError(f"the vertical lifts the building off its isolators (g + a_z = "
+                                     f"{g + az[lowest]:.4g} m/s² at sample {lowest}): uplift of a building is "
+                                     "not modelled")
+    return _Normal(az, bool(pendulum), slow, fast, rate)
+
+
+def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
+         normal: _Normal | None = None) -> PlanarBuildingResponse:
     if time_s is not None:
         times = np.asarray(time_s, dtype=np.float64)
         if times.shape != ax.shape:
@@ -553,7 +616,22 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
     c_floor = np.ascontiguousarray(np.stack(system.damping_matrices))
     kernel_times = np.empty(0) if relative is None else np.ascontiguousarray(relative)
     # fast sub-steps (uniform records): the fastest mode turns by at most THETA_FAST in one
-    n_fast = 0 if relative is not None else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
+    normal = normal or _Normal(None, False, None, None)
+    # the exact propagators hold a constant A and a constant µ: with a vertical or µ(v) series pieces only
+    n_fast = 0 if (relative is not None or normal.varying) else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
+    g = system.gravity_m_s2
+    k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
+    mu_k_n = system.mu_kinetic * weight
+    law = np.zeros(5)
+    law[1] = g
+    if normal.varying:
+        law[0] = 1.0
+        law[2] = k_vert
+        if normal.mu_fast is not None:
+            mu_k_n = normal.mu_fast * weight
+            law[3] = (normal.mu_fast - normal.mu_slow) * weight
+            law[4] = normal.rate_s_per_m
+    az = np.zeros(ax.size) if normal.az is None else np.ascontiguousarray(normal.az)
     if n_fast > 0:
         tables = _fast_tables(system, dt / n_fast, (m1, m2, m3, sig1, sig2, sig3))
     else:
@@ -569,10 +647,10 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
         ev_kind = np.empty(capacity, dtype=np.int8)
         ev_x = np.empty((capacity, 2))
         start = time.perf_counter()
-        _pk.building2d_kernel(ax, ay, dt, kernel_times, h_max, system.a_mat, system.g_vec, system.p_vec, system.l_d,
+        _pk.building2d_kernel(ax, ay, az, law, dt, kernel_times, h_max, system.a_mat, system.g_vec, system.p_vec, system.l_d,
                               weights, system.slab_mass_kg, system.total_mass_kg, system.masses_kg,
                               system.isolator_damping_Ns_per_m, c_floor, system.mu_static * weight,
-                              system.mu_kinetic * weight, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, *tables,
+                              mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, *tables,
                               out_state, out_mon,
                               out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x, summary)
         elapsed = time.perf_counter() - start
@@ -601,7 +679,9 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
     kinetic = 0.5 * system.slab_mass_kg * float(v_end @ v_end) + 0.5 * float(
         system.masses_kg @ np.sum((v_end[None, :] + ud_end) ** 2, axis=1))
     strain = sum(0.5 * float(u_end[:, d] @ system.stiffness_matrices[d] @ u_end[:, d]) for d in range(2))
-    potential = 0.5 * system.isolator_stiffness_N_per_m * float(x_b[-1] @ x_b[-1])
+    # the restoring stiffness at the end (a pendulum's follows N = W (1 + a_z/g))
+    k_end = system.isolator_stiffness_N_per_m + k_vert * float(az[-1]) / g
+    potential = 0.5 * k_end * float(x_b[-1] @ x_b[-1])
     e_in, e_f, e_v = (float(summary[k]) for k in (_pk.S_E_INPUT, _pk.S_E_FRICTION, _pk.S_E_VISCOUS))
     peaks = np.sqrt(peak_sq)
     force = out_mon[:, 3 + 2 * n, :]
@@ -652,4 +732,5 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout) -> 
         n_fast_refused=tuple(int(v) for v in summary[_pk.S_N_REFUSED:_pk.S_N_REFUSED + 4]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
+        vertical_acceleration_m_s2=normal.az,
     )

@@ -44,6 +44,17 @@ TRUNC_EPS = 1e-16
 MAX_EVENTS_PER_INTERVAL = 1000
 MAX_PIECES_PER_INTERVAL = 200000
 
+#: the piece's vertical and µ(v), ``vz``: 1 when either is present (else the constant-µ, no-vertical code runs,
+#: bit for bit as without them), ν = N/W = 1 + a_z/g at the series' origin and its rate [1/s], the stiffness
+#: that follows the normal force (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m]
+V_VARYING = 0
+V_NU0 = 1
+V_NU1 = 2
+V_K_VERT = 3
+V_DMU_N = 4
+V_RATE = 5
+VZ_SIZE = 6
+
 STUCK = 0
 START = 1
 SLIDE = 2
@@ -95,11 +106,22 @@ FAST_CHECK = 1e-12
 
 
 @njit(cache=True)
-def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs, ws, ss, rs, es):
+def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs, ws, ss, rs, es, vz, mus,
+            exs):
     """Normalised Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force.
 
     ws, ss, rs, es: scratch series of the direction's vector w (V or D), s = w·w, r = sqrt(s), e = w / r.
+    vz: the vertical and µ(v) (``V_*``; mu_k_n is then µ_fast W).  With them the friction is µ(|V|) N(τ) V/|V|,
+    N(τ) = W (ν0 + ν1 τ) and µ(r) = µ_fast − (µ_fast − µ_slow) e^{−a r}: mus[k] is the series of µ N (a product
+    with the exponential's series exs, E' = −a r' E), fs the product of mus and e; a pendulum's restoring
+    force gains −k_v (ν(τ) − 1) X, a product with the linear ν.  Leaving rest (START) and finishing a stop
+    (FINISH) use µ(0) = µ_slow (|V| below 1e-5 v_ref and 1e-10 v_ref there).
     """
+    varying = vz[V_VARYING] != 0.0
+    nu0 = vz[V_NU0]
+    nu1 = vz[V_NU1]
+    k_v = vz[V_K_VERT]
+    mu_0_n = mu_k_n - vz[V_DMU_N]
     m = z.shape[1]
     ns = zs.shape[1]
     mat = 0 if mode == STUCK else 1
@@ -113,7 +135,10 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
             fs[1, k] = 0.0
         elif mode == FINISH:
             for d in range(2):
-                fs[d, k] = mu_k_n * e_frozen[d] if k == 0 else 0.0
+                if varying:
+                    fs[d, k] = mu_0_n * e_frozen[d] * (nu0 if k == 0 else (nu1 if k == 1 else 0.0))
+                else:
+                    fs[d, k] = mu_k_n * e_frozen[d] if k == 0 else 0.0
         else:
             for d in range(2):
                 if mode == SLIDE:
@@ -122,6 +147,8 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                     acc = -slab_mass * (a0[d] if k == 0 else (b[d] if k == 1 else 0.0))
                     for i in range(m):
                         acc += l_d[d, i] * zs[d, k, i]
+                    if varying:
+                        acc -= k_v * ((nu0 - 1.0) * zs[d, k, 0] + (nu1 * zs[d, k - 1, 0] if k > 0 else 0.0))
                     ws[d, k] = acc
             acc = 0.0
             for j in range(k + 1):
@@ -139,7 +166,26 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                 for j in range(k):
                     acc -= es[d, j] * rs[k - j]
                 es[d, k] = acc / rs[0] if rs[0] > 0.0 else 0.0
-                fs[d, k] = mu_k_n * es[d, k]
+                if not varying:
+                    fs[d, k] = mu_k_n * es[d, k]
+            if varying:
+                nu_k = nu0 if k == 0 else (nu1 if k == 1 else 0.0)
+                if mode == SLIDE:
+                    if k == 0:
+                        exs[0] = math.exp(-vz[V_RATE] * rs[0])
+                    else:
+                        acc = 0.0
+                        for j in range(1, k + 1):
+                            acc += j * rs[j] * exs[k - j]
+                        exs[k] = -vz[V_RATE] * acc / k
+                    mus[k] = mu_k_n * nu_k - vz[V_DMU_N] * (exs[k] * nu0 + (exs[k - 1] * nu1 if k > 0 else 0.0))
+                else:
+                    mus[k] = mu_0_n * nu_k
+                for d in range(2):
+                    acc = 0.0
+                    for j in range(k + 1):
+                        acc += mus[j] * es[d, k - j]
+                    fs[d, k] = acc
         nf = (m - 2) // 2
         for d in range(2):
             ak = a0[d] if k == 0 else (b[d] if k == 1 else 0.0)
@@ -151,7 +197,13 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
             for i in range(m):
                 if i == 0 or 2 <= i < 2 + nf:
                     continue
-                acc = g_vec[mat, d, i] * ak + p_vec[d, i] * fs[d, k] if mat == 1 else g_vec[mat, d, i] * ak
+                if mat == 1:
+                    f_slab = fs[d, k]
+                    if varying:
+                        f_slab += k_v * ((nu0 - 1.0) * zs[d, k, 0] + (nu1 * zs[d, k - 1, 0] if k > 0 else 0.0))
+                    acc = g_vec[mat, d, i] * ak + p_vec[d, i] * f_slab
+                else:
+                    acc = g_vec[mat, d, i] * ak
                 for c in range(m):
                     acc += a_mat[mat, d, i, c] * zs[d, k, c]
                 zs[d, k + 1, i] = acc * inv
@@ -213,12 +265,27 @@ def _dot(a, b):
 
 
 @njit(cache=True)
-def _phi(kind, z, zd, ax_now, ay_now, b, l_d, slab_mass, target, e0, out):
-    """Value and slope of the event function ``kind`` at a point (its upward zero crossing is the event)."""
+def _phi(kind, z, zd, ax_now, ay_now, tau_now, b, l_d, slab_mass, target, e0, vz, out):
+    """Value and slope of the event function ``kind`` at a point (its upward zero crossing is the event).
+
+    vz: the vertical and µ(v) of the piece (:func:`_series`); with a vertical the force on the slab other than
+    friction holds the pendulum's extra restoring force −k_v (ν(τ) − 1) X and the static limit is µs N ν(τ).
+    """
     dx = _dot(l_d[0], z[0]) - slab_mass * ax_now
     dy = _dot(l_d[1], z[1]) - slab_mass * ay_now
     ddx = _dot(l_d[0], zd[0]) - slab_mass * b[0]
     ddy = _dot(l_d[1], zd[1]) - slab_mass * b[1]
+    if vz[V_VARYING] != 0.0:
+        nu = vz[V_NU0] + vz[V_NU1] * tau_now
+        k_v = vz[V_K_VERT]
+        dx -= k_v * (nu - 1.0) * z[0, 0]
+        dy -= k_v * (nu - 1.0) * z[1, 0]
+        ddx -= k_v * (vz[V_NU1] * z[0, 0] + (nu - 1.0) * zd[0, 0])
+        ddy -= k_v * (vz[V_NU1] * z[1, 0] + (nu - 1.0) * zd[1, 0])
+        if kind == PHI_BREAK:
+            out[0] = dx * dx + dy * dy - (target * nu) ** 2
+            out[1] = 2.0 * (dx * ddx + dy * ddy) - 2.0 * target * target * nu * vz[V_NU1]
+            return
     vx = z[0, 1]
     vy = z[1, 1]
     avx = zd[0, 1]
@@ -241,19 +308,19 @@ def _phi(kind, z, zd, ax_now, ay_now, b, l_d, slab_mass, target, e0, out):
 
 
 @njit(cache=True)
-def _phi_at(kind, zs, tau, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
+def _phi_at(kind, zs, tau, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out):
     _eval(zs, tau, z, zd, zdd)
-    _phi(kind, z, zd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, b, l_d, slab_mass, target, e0, out)
+    _phi(kind, z, zd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, tau, b, l_d, slab_mass, target, e0, vz, out)
 
 
 @njit(cache=True)
-def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
+def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out):
     """The instant in (lo, hi] where φ rises through zero (φ(lo) ≤ 0 < or = φ(hi)); safeguarded Newton."""
     a = lo
     c = hi
-    _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
     f_lo = out[0]
-    _phi_at(kind, zs, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    _phi_at(kind, zs, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
     f_hi = out[0]
     t = 0.5 * (lo + hi)
     if f_hi != f_lo:
@@ -262,7 +329,7 @@ def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
             t = guess
     resolution = 4e-16 * max(abs(hi), abs(lo), 1e-300)
     for _ in range(200):
-        _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
         f = out[0]
         if f == 0.0:
             return t
@@ -282,7 +349,7 @@ def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out):
 
 
 @njit(cache=True)
-def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, from_rest, z, zd, zdd, out, counter,
+def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, vz, from_rest, z, zd, zdd, out, counter,
                     z_lo, zd_lo, z_hi, zd_hi):
     """First upward zero crossing of φ in [0, length], or −1.
 
@@ -291,12 +358,12 @@ def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, from_re
     is the start, not a crossing (a block leaving rest): a crossing after the first maximum counts.
     z_lo, zd_lo, z_hi, zd_hi: the state and its rate at 0 and at ``length``.
     """
-    _phi(kind, z_lo, zd_lo, a0[0], a0[1], b, l_d, slab_mass, target, e0, out)
+    _phi(kind, z_lo, zd_lo, a0[0], a0[1], 0.0, b, l_d, slab_mass, target, e0, vz, out)
     f0 = out[0]
     s0 = out[1]
     if f0 > 0.0 and not from_rest:
         return 0.0
-    _phi(kind, z_hi, zd_hi, a0[0] + b[0] * length, a0[1] + b[1] * length, b, l_d, slab_mass, target, e0, out)
+    _phi(kind, z_hi, zd_hi, a0[0] + b[0] * length, a0[1] + b[1] * length, length, b, l_d, slab_mass, target, e0, vz, out)
     f1 = out[0]
     s1 = out[1]
     if from_rest:
@@ -304,28 +371,28 @@ def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, from_re
         if f1 <= 0.0:
             return -1.0
         if s0 < 0.0 and s1 > 0.0:
-            lo = _slope_root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out, -1.0)
+            lo = _slope_root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out, -1.0)
             counter[0] += 1
-            return _root(kind, zs, lo, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+            return _root(kind, zs, lo, length, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
         return 0.0  # it cannot leave rest in this direction: at once
     if f1 > 0.0:
-        return _root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        return _root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
     reach = 2.0 * length * max(abs(s0), abs(s1))
     if s0 > 0.0 and s1 < 0.0 and max(f0, f1) + reach > 0.0:
         counter[0] += 1
-        t_m = _slope_root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out, 1.0)
-        _phi_at(kind, zs, t_m, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        t_m = _slope_root(kind, zs, 0.0, length, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out, 1.0)
+        _phi_at(kind, zs, t_m, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
         if out[0] > 0.0:
-            return _root(kind, zs, 0.0, t_m, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+            return _root(kind, zs, 0.0, t_m, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
     return -1.0
 
 
 @njit(cache=True)
-def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out, sign):
+def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out, sign):
     """Where φ' changes sign (sign = +1: from + to −, a maximum), by Illinois on the slope."""
-    _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
     fa = sign * out[1]
-    _phi_at(kind, zs, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+    _phi_at(kind, zs, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
     fc = sign * out[1]
     a = lo
     c = hi
@@ -336,7 +403,7 @@ def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd,
         t = (a * fc - c * fa) / (fc - fa)
         if not (a < t < c):
             t = 0.5 * (a + c)
-        _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, z, zd, zdd, out)
+        _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
         f = sign * out[1]
         if f == 0.0:
             return t
@@ -356,8 +423,11 @@ def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, z, zd, zdd,
 
 
 @njit(cache=True)
-def _monitors(z, zd, zdd, ax_now, ay_now, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope):
-    """Watched quantities at a point: resultant pairs val[k, d] (slope[k, d]) and signed sval[j]."""
+def _monitors(z, zd, zdd, ax_now, ay_now, az_now, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope):
+    """Watched quantities at a point: resultant pairs val[k, d] (slope[k, d]) and signed sval[j].
+
+    The signed ones hold the vertical too: sig3[j, 2] a_z (a bearing's share of the floors' vertical inertia;
+    b[2] = ȧ_z)."""
     nk = m1.shape[0]
     for k in range(nk):
         for d in range(2):
@@ -369,15 +439,15 @@ def _monitors(z, zd, zdd, ax_now, ay_now, b, m1, m2, m3, sig1, sig2, sig3, val, 
         for d in range(2):
             v += _dot(sig1[j, d], z[d]) + _dot(sig2[j, d], zd[d]) + sig3[j, d] * (ax_now if d == 0 else ay_now)
             s += _dot(sig1[j, d], zd[d]) + _dot(sig2[j, d], zdd[d]) + sig3[j, d] * b[d]
-        sval[j] = v
-        sslope[j] = s
+        sval[j] = v + sig3[j, 2] * az_now
+        sslope[j] = s + sig3[j, 2] * b[2]
 
 
 @njit(cache=True)
 def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope):
     """Slope of one watched quantity at τ: kind 0 the resultant's ½|P|², 1 a signed value, −1 its negative."""
     _eval(zs, tau, z, zd, zdd)
-    _monitors(z, zd, zdd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval,
+    _monitors(z, zd, zdd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, a0[2] + b[2] * tau, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval,
               sslope)
     if kind == 0:
         return val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1], val[k, 0] ** 2 + val[k, 1] ** 2
@@ -422,12 +492,24 @@ def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd,
 
 
 @njit(cache=True)
-def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, out, pin, pfr, pvis, y):
-    """Exact integrals over [0, τ] of the input, friction and viscous powers from the series (scratch pin … y)."""
+def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, out, pin, pfr, pvis, y, vz):
+    """Exact integrals over [0, τ] of the input, friction and viscous powers from the series (scratch pin … y).
+
+    With a vertical the input holds the vertical's work ½ k_v ν1 ∫|X|² dτ (d/dt of ½ k_v ν X² less k_v ν X·V,
+    as the 2-D rigid block counts it), so that input = kinetic + ½ k_v ν X² + strain + friction + viscous.
+    """
     nt = N_ORDER + 1
     pin[:] = 0.0
     pfr[:] = 0.0
     pvis[:] = 0.0
+    if vz[V_VARYING] != 0.0 and vz[V_NU1] != 0.0:
+        half_rate = 0.5 * vz[V_K_VERT] * vz[V_NU1]
+        for d in range(2):
+            for ell in range(nt):
+                acc = 0.0
+                for j in range(ell + 1):
+                    acc += zs[d, j, 0] * zs[d, ell - j, 0]
+                pin[ell] += half_rate * acc
     for d in range(2):
         # input: −a_d (M V + Σ m_i u̇_i) = −a_d × (total relative momentum)
         for k in range(nt):
@@ -550,7 +632,7 @@ def _rows_series(rows, wa, s_eff, nterm, out, slot):
 
 
 @njit(cache=True)
-def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis,
+def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
                fvrow,
                farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
@@ -635,7 +717,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     code = 0
     for lev in range(lev_first, n_lev):
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
-                         slab_mass, e0, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, fmon, fsig,
+                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, fmon, fsig,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
                          sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
@@ -662,7 +744,7 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 
 
 @njit(cache=True)
-def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, half_target, fprop, fpin, fpvis,
+def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
               farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
@@ -732,10 +814,10 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         kind = PHI_BREAK
         target = mu_s_n
     # an event in the sub-step (φ rising through zero at an end or at an interior maximum): series pieces
-    _phi(kind, zl, zdl, a0[0], a0[1], b, l_d, slab_mass, target, e0, out2)
+    _phi(kind, zl, zdl, a0[0], a0[1], 0.0, b, l_d, slab_mass, target, e0, vz, out2)
     f0 = out2[0]
     s0 = out2[1]
-    _phi(kind, zh, zdh, ax1, ay1, b, l_d, slab_mass, target, e0, out2)
+    _phi(kind, zh, zdh, ax1, ay1, h, b, l_d, slab_mass, target, e0, vz, out2)
     f1 = out2[0]
     s1 = out2[1]
     if f0 > 0.0 or f1 > 0.0:
@@ -753,8 +835,8 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             sval[j] = sval1[j]
             sslope[j] = sslope1[j]
     else:
-        _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-    _monitors(zh, zdh, zddh, ax1, ay1, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+        _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    _monitors(zh, zdh, zddh, ax1, ay1, a0[2] + b[2] * h, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
     nterm = fmon.shape[3]
     nk = m1.shape[0]
     for k in range(nk):
@@ -806,7 +888,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
 
 
 @njit(cache=True)
-def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
+def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
                       c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpin,
                       fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
@@ -816,6 +898,12 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     ----------
     ax, ay : float64[n]
         Ground acceleration [m/s²], linear between samples.
+    az : float64[n]
+        Vertical ground acceleration [m/s²], up positive, linear between samples (read when law[0] ≠ 0).
+    law : float64[5]
+        [1 with a vertical or µ(v) else 0, g [m/s²], k_v: the stiffness that follows the normal force
+        N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m]];
+        mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are off then (n_fast = 0).
     dt : float
         Sample interval [s] of a uniform record (``times`` empty).
     times : float64[n] or float64[0]
@@ -927,9 +1015,20 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     n_fast_steps = 0
     n_refused = np.zeros(6, dtype=np.int64)
     e0 = np.zeros(2)
-    a0 = np.zeros(2)
-    b = np.zeros(2)
-    a1 = np.zeros(2)
+    varying = law[0] != 0.0
+    gravity = law[1]
+    vz = np.zeros(VZ_SIZE)
+    vz[V_VARYING] = law[0]
+    vz[V_NU0] = 1.0
+    vz[V_K_VERT] = law[2]
+    vz[V_DMU_N] = law[3]
+    vz[V_RATE] = law[4]
+    mus = np.zeros(N_SERIES)
+    exs = np.zeros(N_SERIES)
+    bz = 0.0
+    a0 = np.zeros(3)  # a_g along x, y and the vertical a_z (the watched bearing loads' share)
+    b = np.zeros(3)
+    a1 = np.zeros(3)
     floor_scale = 1e-6 * v_ref
     r_switch = 1e-5 * v_ref
     r_finish = 1e-10 * v_ref
@@ -947,9 +1046,12 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
     # the first sample: at rest, stuck
     a0[0] = ax[0]
     a0[1] = ay[0]
-    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+    a0[2] = az[0]
+    if varying:
+        vz[V_NU0] = 1.0 + az[0] / gravity
+    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
     _eval(zs, 0.0, z, zd, zdd)
-    _monitors(z, zd, zdd, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+    _monitors(z, zd, zdd, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     for k in range(nk):
         peak_sq[k] = val[k, 0] ** 2 + val[k, 1] ** 2
         out_mon[0, k, 0] = val[k, 0]
@@ -972,11 +1074,15 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
         b_prev1 = b[1]
         b[0] = (ax[i + 1] - ax[i]) / dt_i
         b[1] = (ay[i + 1] - ay[i]) / dt_i
+        b[2] = (az[i + 1] - az[i]) / dt_i
+        if varying:
+            bz = b[2]
+            vz[V_NU1] = bz / gravity
         tau = 0.0
         events_here = 0
         # the watched values at the sample carry over; their slopes take the new ȧ_g: z̈ holds g ȧ_g, so
-        # slope += (m2·g + m3) Δȧ_g per direction
-        start_valid = i > 0
+        # slope += (m2·g + m3) Δȧ_g per direction (with a vertical or µ(v) they are recomputed at the sample)
+        start_valid = i > 0 and not varying
         if start_valid:
             ph = 0 if mode == STUCK else 1
             for k in range(nk):
@@ -999,19 +1105,20 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                 if tau >= tau_end:
                     break
                 slow_end = tau_end
-                if n_fast > 0 and uniform and (mode == STUCK or mode == SLIDE) and \
+                if n_fast > 0 and uniform and not varying and (mode == STUCK or mode == SLIDE) and \
                         events_here <= MAX_EVENTS_PER_INTERVAL:
                     # the longest sub-step of the ladder h, h/2, h/4 … that fits and that the exact propagators
                     # can take (else series pieces, over at most the shortest rung)
                     a0[0] = ax[i] + b[0] * tau
                     a0[1] = ay[i] + b[1] * tau
+                    a0[2] = az[i] + b[2] * tau
                     lev0 = 0
                     while lev0 < n_levels - 1 and tau + h_fast / (1 << lev0) > tau_end + 1e-12 * h_fast:
                         lev0 += 1
                     h_lev = h_fast / (1 << lev0)
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
-                        taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0,
+                        taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
                                            half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, fmon, fsig, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
@@ -1052,8 +1159,11 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         break
                     a0[0] = ax[i] + b[0] * tau
                     a0[1] = ay[i] + b[1] * tau
+                    a0[2] = az[i] + b[2] * tau
                     rem = slow_end - tau
-                    _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+                    if varying:
+                        vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
+                    _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
                     n_pieces += 1
                     length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
                     _eval(zs, 0.0, zl, zdl, zddl)
@@ -1072,26 +1182,26 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                     if events_here > MAX_EVENTS_PER_INTERVAL:
                         pass
                     elif mode == STUCK:
-                        t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, False, z, zd,
+                        t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, vz, False, z, zd,
                                                   zdd, out2, counter, zl, zdl, zh, zdh)
                         kind_phi = PHI_BREAK
                     elif mode == START:
-                        t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, from_rest, z,
+                        t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, from_rest, z,
                                                   zd, zdd, out2, counter, zl, zdl, zh, zdh)
                         kind_phi = PHI_STOP_START
                         if t_event >= 0.0:
                             _eval(zs, t_event, zh, zdh, zddh)
                         t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
-                                               slab_mass, r_switch, e0, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                                               slab_mass, r_switch, e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
                         if t_sw > 0.0:
                             t_event = t_sw
                             kind_phi = PHI_SWITCH
                     elif mode == SLIDE:
-                        t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, False, z,
+                        t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
                                                   zd, zdd, out2, counter, zl, zdl, zh, zdh)
                         kind_phi = PHI_HALF
                     else:
-                        t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, False, z,
+                        t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
                                                   zd, zdd, out2, counter, zl, zdl, zh, zdh)
                         kind_phi = PHI_STOP_FINISH
                     piece = length if t_event < 0.0 else t_event
@@ -1107,13 +1217,14 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                             sval[j] = sval1[j]
                             sslope[j] = sslope1[j]
                     else:
-                        _monitors(zl, zdl, zddl, a0[0], a0[1], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+                        _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
                     a1[0] = a0[0] + b[0] * piece
                     a1[1] = a0[1] + b[1] * piece
-                    _monitors(zh, zdh, zddh, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+                    a1[2] = a0[2] + b[2] * piece
+                    _monitors(zh, zdh, zddh, a1[0], a1[1], a1[2], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
                     if piece > 0.0:
                         _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
-                                  pin, pfr, pvis, ysc)
+                                  pin, pfr, pvis, ysc, vz)
                         e_in += energy[0]
                         e_f += energy[1]
                         e_v += energy[2]
@@ -1161,6 +1272,7 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         from_rest = False
                     a1[0] = ax[i] + b[0] * tau
                     a1[1] = ay[i] + b[1] * tau
+                    a1[2] = az[i] + b[2] * tau
                     if t_event < 0.0 or kind_phi == PHI_HALF:
                         # hand-overs that are not stops: a slide's piece end (the speed halved along e0, or not)
                         # renews the friction's direction; a slide slowing below r_finish enters FINISH; FINISH that
@@ -1176,8 +1288,10 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                                 e0[1] = w[1, 1] / r
                             if r < r_finish:
                                 # decelerating below r_finish: finish the stop with the friction's direction frozen
+                                if varying:
+                                    vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
                                 _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws,
-                                        ss, rs, es)
+                                        ss, rs, es, vz, mus, exs)
                                 _eval(zs, 0.0, z, zd, zdd)
                                 if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
                                     mode = FINISH
@@ -1205,12 +1319,18 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
                         w[d, 1] = 0.0
                     dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
                     dy = _dot(l_d[1], w[1]) - slab_mass * a1[1]
+                    limit = mu_s_n
+                    if varying:
+                        nu_now = 1.0 + (az[i] + bz * tau) / gravity
+                        dx -= vz[V_K_VERT] * (nu_now - 1.0) * w[0, 0]
+                        dy -= vz[V_K_VERT] * (nu_now - 1.0) * w[1, 0]
+                        limit = mu_s_n * nu_now
                     hold = math.sqrt(dx * dx + dy * dy)
                     if mode == STUCK:
                         kind = BREAKAWAY
                         mode = START
                         from_rest = True
-                    elif hold <= mu_s_n:
+                    elif hold <= limit:
                         kind = STICK
                         mode = STUCK
                         x_stuck[0] = w[0, 0]
@@ -1239,9 +1359,12 @@ def building2d_kernel(ax, ay, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weight
             # the last piece ended in an event: the watched values in the new phase
             a1[0] = ax[i + 1]
             a1[1] = ay[i + 1]
-            _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es)
+            a1[2] = az[i + 1]
+            if varying:
+                vz[V_NU0] = 1.0 + az[i + 1] / gravity
+            _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
             _eval(zs, 0.0, z, zd, zdd)
-            _monitors(z, zd, zdd, a1[0], a1[1], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+            _monitors(z, zd, zdd, a1[0], a1[1], a1[2], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
         for d in range(2):
             for c in range(m):
                 out_state[i + 1, d, c] = w[d, c]

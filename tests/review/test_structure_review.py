@@ -388,17 +388,18 @@ def test_building_review_on_real_pairs(inputs):
     assert np.asarray(next(iter(r.analyses["lower"].values()))["orbit_m"]).shape[1] == 2  # a planar orbit
 
 
-def test_building_with_a_vertical_is_refused_in_one_line(tmp_path):
-    """Loma Prieta APEEL2 with its vertical: no building model takes a vertical; the review stops naming the pair."""
+def test_building_with_a_vertical_is_analysed_by_the_2d_building(tmp_path):
+    """Loma Prieta APEEL2 with its vertical: the 2-D building carries N(t) = W (1 + a_z/g) (it was refused)."""
     folder = Path(__file__).resolve().parents[2] / "isolator" / "data" / "suites" / "example" / "lomaprieta1989_APEEL2"
     (tmp_path / "suite.toml").write_text(
         f'[[pair]]\nname = "apeel2"\nx = "{folder / "np01002p_4225a_a.smc"}"\ny = "{folder / "np01002p_4225c_a.smc"}"\n'
         f'z = "{folder / "np01002p_4225b_a.smc"}"\ntrim = true\n')
-    with pytest.raises(ReviewError) as err:
-        run_review(Design.from_mapping(SMALL_BUILDING), TARGET, load_suite(tmp_path / "suite.toml"), jobs=1,
-                   nominal=False)
-    text = str(err.value)
-    assert "\n" not in text and "pair 'apeel2'" in text and "horizontal_only = true" in text
+    r = run_review(Design.from_mapping(SMALL_BUILDING), TARGET, load_suite(tmp_path / "suite.toml"), jobs=1,
+                   nominal=False, parameters={"n_for_mean": 1})
+    analyses = [a for b in r.analyses for a in r.analyses[b].values()]
+    assert {a["model"] for a in analyses} == {"2d-building"} and all("error" not in a for a in analyses)
+    uplift = next(row for row in r.checks if row["id"] == "uplift")
+    assert "not analysed (horizontal_only)" not in uplift["note"]
 
 
 @pytest.mark.skipif(not _registry_has("2d-multisurface"), reason="the 2-D multi-surface model is not in the registry")

@@ -10,7 +10,6 @@ from typer.testing import CliRunner
 
 from isolator.cli import app
 from isolator.design import Design
-from isolator.errors import InvalidSystemError
 from isolator.solver.building import simulate_design_building
 from isolator.solver.models import Scene, select_model, simulate
 
@@ -70,14 +69,17 @@ def test_registry_selects_the_building_only_with_floors(records_dir):
     assert result.model == "1d-building"
     assert np.array_equal(result.displacement_m, direct.displacement_m)
     assert BUILDING_KEYS <= result.summary().keys()
-    # a pair is the 2-D building's, a vertical is refused in one line: never run as the rigid block
+    # a pair is the 2-D building's, and so is a record with a vertical: never run as the rigid block; a zero
+    # vertical is bit for bit the pair with a zero second component
     pair = Scene(ax_m_s2=motion.acceleration_m_s2, ay_m_s2=0 * motion.acceleration_m_s2, dt_s=motion.dt_s,
                  isolator=motion_keywords(design), design=design)
     assert select_model(pair)[0] == "2d-building"
     vertical = Scene(ax_m_s2=motion.acceleration_m_s2, az_m_s2=0 * motion.acceleration_m_s2, dt_s=motion.dt_s,
                      isolator=motion_keywords(design), design=design)
-    with pytest.raises(InvalidSystemError, match="vertical component with a superstructure is not modelled"):
-        simulate(vertical)
+    assert select_model(vertical)[0] == "2d-building"
+    with_vertical, on_pair = simulate(vertical), simulate(pair)
+    assert with_vertical.model == "2d-building"
+    assert np.array_equal(with_vertical.displacement_m, on_pair.displacement_m)
 
 
 def test_upper_bound_friction_reaches_the_building(records_dir):

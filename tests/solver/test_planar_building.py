@@ -51,8 +51,21 @@ def _story_matrices(masses, stiffnesses, zeta):
     return k_mat, c_mat
 
 
-def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass, k_iso, c_iso, mu_s, mu_k):
-    """Samples, events, energies and the resultant peaks of X and of every story drift (solve_ivp)."""
+def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass, k_iso, c_iso, mu_s, mu_k, acc_z=None,
+                              pendulum=False, law=None):
+    """Samples, events, energies and the resultant peaks of X and of every story drift (solve_ivp).
+
+    acc_z: a vertical, linear between samples: N(t) = W (1 + a_z/g) in the friction µ N, the static limit µs N and,
+    with ``pendulum``, the restoring stiffness k_iso N/W (its work ½∫k_iso ν̇ |X|² dt counted in the input).
+    law = (µ_slow, µ_fast, a): µ(|V|) = µ_fast − (µ_fast − µ_slow) e^{−a|V|} instead of µ_k (µ_slow leaving rest).
+    """
+    acc_z = np.zeros_like(acc_x) if acc_z is None else acc_z
+
+    def mu_of(r):
+        return mu_k if law is None else law[1] - (law[1] - law[0]) * math.exp(-law[2] * r)
+
+    def nu_of(t, c0, cz):
+        return 1.0 + (c0 + cz * t) / G
     masses = np.asarray(masses, float)
     n = masses.size
     mats = [_story_matrices(masses, kx, zeta), _story_matrices(masses, ky, zeta)]
@@ -71,13 +84,16 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
         vel = [y[nq + d * q:nq + (d + 1) * q] for d in range(2)]
         return pos, vel
 
-    def hold(y, a):
+    def hold(y, a, nu=1.0):
         pos, vel = parts(y)
-        return np.array([-m_b * a[d] - k_iso * pos[d][0] - c_iso * vel[d][0]
+        k_now = k_iso * nu if pendulum else k_iso
+        return np.array([-m_b * a[d] - k_now * pos[d][0] - c_iso * vel[d][0]
                          + np.sum(mats[d][0] @ pos[d][1:] + mats[d][1] @ vel[d][1:]) for d in range(2)])
 
-    def rhs(t, y, a0, b, sliding):
+    def rhs(t, y, a0, b, sliding, c0=0.0, cz=0.0):
         a = a0 + b * t
+        nu = nu_of(t, c0, cz)
+        k_now = k_iso * nu if pendulum else k_iso
         pos, vel = parts(y)
         dy = np.zeros_like(y)
         v_slab = np.array([vel[0][0], vel[1][0]])
@@ -87,14 +103,16 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
             k_mat, c_mat = mats[d]
             dy[d * q:(d + 1) * q] = vel[d]
             if sliding:
-                force = np.concatenate([[-c_iso * vel[d][0] - k_iso * pos[d][0] - mu_k * weight * e[d]],
+                force = np.concatenate([[-c_iso * vel[d][0] - k_now * pos[d][0] - mu_of(r) * weight * nu * e[d]],
                                         -(c_mat @ vel[d][1:] + k_mat @ pos[d][1:])]) - full_mass[:, 0] * a[d]
                 dy[nq + d * q:nq + (d + 1) * q] = inv_mass @ force
             else:
                 dy[nq + d * q + 1:nq + (d + 1) * q] = -(c_mat @ vel[d][1:] + k_mat @ pos[d][1:]) / masses - a[d]
             dy[2 * nq] += -a[d] * (m_b * vel[d][0] + masses @ (vel[d][0] + vel[d][1:]))
             dy[2 * nq + 2] += c_iso * vel[d][0] ** 2 + vel[d][1:] @ c_mat @ vel[d][1:]
-        dy[2 * nq + 1] = mu_k * weight * r if sliding else 0.0
+            if pendulum:
+                dy[2 * nq] += 0.5 * k_iso * cz / G * pos[d][0] ** 2
+        dy[2 * nq + 1] = mu_of(r) * weight * nu * r if sliding else 0.0
         return dy
 
     def drift(y, j):
@@ -112,8 +130,8 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
     peak_x = 0.0
     drift_peak = np.zeros(n)
 
-    def start_from_rest(y, a):
-        d_vec = hold(y, a)
+    def start_from_rest(y, a, nu=1.0):
+        d_vec = hold(y, a, nu)
         y = y.copy()
         y[nq] += V_EPS * d_vec[0] / np.linalg.norm(d_vec)
         y[nq + q] += V_EPS * d_vec[1] / np.linalg.norm(d_vec)
@@ -122,6 +140,7 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
     for i in range(acc_x.size - 1):
         a0 = np.array([acc_x[i], acc_y[i]])
         b = (np.array([acc_x[i + 1], acc_y[i + 1]]) - a0) / dt
+        c0, cz = acc_z[i], (acc_z[i + 1] - acc_z[i]) / dt
         t = 0.0
         for _ in range(2000):
             peak_fns = [lambda t, y, *r: y[0] * y[nq] + y[q] * y[nq + q]]
@@ -129,9 +148,10 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
             for f in peak_fns:
                 f.direction = -1.0
             if stuck:
-                def brk(t, y, *r, a0=a0, b=b):
-                    d_vec = hold(y, a0 + b * t)
-                    return d_vec @ d_vec - (mu_s * weight) ** 2
+                def brk(t, y, *r, a0=a0, b=b, c0=c0, cz=cz):
+                    nu = nu_of(t, c0, cz)
+                    d_vec = hold(y, a0 + b * t, nu)
+                    return d_vec @ d_vec - (mu_s * weight * nu) ** 2
                 brk.terminal, brk.direction = True, 1.0
                 fns = [brk]
                 method = "DOP853"
@@ -147,11 +167,11 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
                     fns.append(fast)
                 method = "Radau" if slow else "DOP853"
             if stuck and t == 0.0 and i == 0:
-                d0 = hold(y, a0)
-                if d0 @ d0 > (mu_s * weight) ** 2:
+                d0 = hold(y, a0, nu_of(0.0, c0, cz))
+                if d0 @ d0 > (mu_s * weight * nu_of(0.0, c0, cz)) ** 2:
                     raise AssertionError("the reference starts at rest below µs W")
             sol = solve_ivp(rhs, (t, dt), y, method=method, rtol=REF_RTOL, atol=1e-15,
-                            args=(a0, b, not stuck), events=fns + peak_fns)
+                            args=(a0, b, not stuck, c0, cz), events=fns + peak_fns)
             if sol.status < 0:
                 raise RuntimeError(sol.message)
             for ye in sol.y_events[len(fns)]:
@@ -169,7 +189,7 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
             t = sol.t[-1]
             a = a0 + b * t
             if stuck:
-                y = start_from_rest(y, a)
+                y = start_from_rest(y, a, nu_of(t, c0, cz))
                 stuck, slow = False, True
                 events.append((i * dt + t, "breakaway"))
                 continue
@@ -177,7 +197,7 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
                 slow = not slow  # crossed V_SWITCH
                 continue
             # the stop: the last V_EPS at constant deceleration
-            dy = rhs(t, y, a0, b, True)
+            dy = rhs(t, y, a0, b, True, c0, cz)
             v_slab = np.array([y[nq], y[nq + q]])
             r = np.linalg.norm(v_slab)
             rdot = v_slab @ np.array([dy[nq], dy[nq + q]]) / r
@@ -187,11 +207,12 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
             y[nq] = y[nq + q] = 0.0
             t += step
             a = a0 + b * t
-            if np.linalg.norm(hold(y, a)) <= mu_s * weight:
+            nu = nu_of(t, c0, cz)
+            if np.linalg.norm(hold(y, a, nu)) <= mu_s * weight * nu:
                 stuck = True
                 events.append((i * dt + t, "stick"))
             else:
-                y = start_from_rest(y, a)
+                y = start_from_rest(y, a, nu)
                 slow = True
                 events.append((i * dt + t, "reversal"))
         samples.append(y.copy())
@@ -467,3 +488,133 @@ def test_no_friction_no_spring_is_a_free_linear_system(records_dir):
         assert _rel(momentum, -total * ground_velocity) <= 1e-10
     assert abs(r.energy_balance_error_J_per_kg) <= 1e-9 * r.energy_input_J_per_kg
     assert r.energy_friction_J_per_kg == 0.0 and r.message == "ok"
+
+
+# ---- a vertical (N(t) = W (1 + a_z/g)) and µ(v) with a superstructure ----
+def triple_segment(records_dir, folder, names, start_s, duration_s, scale=1.0, taper_s=0.2):
+    """x, y, z of a station (scaled alike, tapered from rest) and dt."""
+    from isolator.motion import read_ground_motion
+
+    motions = [read_ground_motion(records_dir / "pairs" / folder / name) for name in names]
+    dt = motions[0].dt_s
+    i0 = int(round(start_s / dt))
+    n = min(int(round(duration_s / dt)) + 1, *(m.npts - i0 for m in motions))
+    ramp = np.minimum(1.0, np.arange(n) * dt / taper_s)
+    return [scale * ramp * m.acceleration_m_s2[i0:i0 + n] for m in motions], dt
+
+
+APEEL2 = ("lomaprieta1989_APEEL2", ["np01002p_4225a_a.smc", "np01002p_4225c_a.smc", "np01002p_4225b_a.smc"])
+VERTICAL_CASES = {
+    # name: start, duration, scale, masses, kx, ky, ζ, total mass, pendulum R or spring K, c_iso, µs, µk or law,
+    # with the vertical
+    "2 stories, pendulum, vertical": (5.0, 2.5, 1.0, [3e5, 2e5], [6e8, 3e8], [4e8, 3.5e8], 0.05, 7e5,
+                                      {"radius_m": 2.0}, 0.0, 0.06, 0.045, True),
+    "1 story, spring + dashpot, vertical, µ(v)": (5.0, 2.5, 1.0, [4e5], [3e8], [2e8], 0.03, 6e5,
+                                                  {"stiffness_N_per_m": 1.5e6}, 1.0e5, 0.07, (0.04, 0.065, 25.0),
+                                                  True),
+    "3 stories, pendulum, µ(v), no vertical": (5.0, 2.5, 1.0, [2e5] * 3, [8e8, 6e8, 4e8], [5e8, 4e8, 3e8], 0.05,
+                                               9e5, {"radius_m": 3.0}, 0.0, 0.06, (0.035, 0.06, 40.0), False),
+}
+
+
+def _run_vertical_case(records_dir, name):
+    start, duration, scale, masses, kx, ky, zeta, total, spring, c_iso, mu_s, mu_k, vertical = VERTICAL_CASES[name]
+    (acc_x, acc_y, acc_z), dt = triple_segment(records_dir, APEEL2[0], APEEL2[1], start, duration, scale)
+    pendulum = "radius_m" in spring
+    k_iso = total * G / spring["radius_m"] if pendulum else spring["stiffness_N_per_m"]
+    law = mu_k if isinstance(mu_k, tuple) else None
+    friction = dict(mu_kinetic=mu_k) if law is None else dict(mu_slow=law[0], mu_fast=law[1], rate_s_per_m=law[2])
+    ours = simulate_planar_building(acc_x, acc_y, dt, superstructure=make_superstructure(masses, kx, ky, zeta),
+                                    total_mass_kg=total, stiffness_N_per_m=k_iso, mu_static=mu_s,
+                                    damping_Ns_per_m=c_iso, az_m_s2=acc_z if vertical else None, pendulum=pendulum,
+                                    **friction)
+    ref = reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total, k_iso, c_iso, mu_s,
+                                    None if law else mu_k, acc_z=acc_z if vertical else None, pendulum=pendulum,
+                                    law=law)
+    return ours, ref, acc_z
+
+
+@pytest.mark.parametrize("name", list(VERTICAL_CASES))
+def test_a_vertical_and_mu_v_against_solve_ivp(records_dir, name):
+    """N(t) and µ(v) enter the series pieces as products (ν linear within a sample; e^{−a|V|} by its own
+    recurrence): exact to the series' truncation; here ≤ 1e-9 of the peaks against the reference."""
+    ours, ref, acc_z = _run_vertical_case(records_dir, name)
+    assert ours.message == "ok"
+    assert ours.n_events >= 1 and ours.slip_time_s > 0.2, "the case must slide"
+    assert np.max(np.abs(acc_z)) > 0.5, "the vertical must matter (ν = 1 ± 0.085)"
+    assert ours.event_names == [kind for _, kind in ref["events"]]
+    assert np.max(np.abs(ours.event_time_s - [t for t, _ in ref["events"]])) <= 1e-8
+    assert _rel(ours.displacement_m, ref["X"]) <= 1e-9
+    assert _rel(ours.velocity_m_s, ref["V"]) <= 1e-9
+    assert _rel(ours.floor_displacement_m, ref["u"]) <= 1e-9
+    assert ours.peak_displacement_m == pytest.approx(ref["peak_x"], rel=1e-9)
+    assert ours.story_drift_m == pytest.approx(ref["drift_peak"], rel=1e-9)
+    e_in, e_f, e_v = ref["energy"] / ours.building.total_mass_kg
+    assert ours.energy_input_J_per_kg == pytest.approx(e_in, rel=1e-9)
+    assert ours.energy_friction_J_per_kg == pytest.approx(e_f, rel=1e-9)
+    assert ours.energy_viscous_J_per_kg == pytest.approx(e_v, rel=1e-9, abs=1e-12 * e_in)
+    assert abs(ours.energy_balance_error_J_per_kg) <= 1e-9 * ours.energy_input_J_per_kg
+
+
+def test_a_zero_vertical_and_equal_mu_v_give_the_constant_answer(records_dir):
+    """A zero vertical: bit for bit the run without one; µ_slow = µ_fast: the constant-µ run (another path:
+    series pieces only against the fast sub-steps) to ≤ 1e-11."""
+    (acc_x, acc_y, _), dt = triple_segment(records_dir, APEEL2[0], APEEL2[1], 3.0, 3.0, 2.0)
+    common = dict(superstructure=make_superstructure([3e5, 2e5], [6e8, 3e8], [4e8, 3.5e8]), total_mass_kg=7e5,
+                  stiffness_N_per_m=7e5 * G / 2.0, mu_static=0.06, pendulum=True)
+    plain = simulate_planar_building(acc_x, acc_y, dt, mu_kinetic=0.045, **common)
+    zero = simulate_planar_building(acc_x, acc_y, dt, mu_kinetic=0.045, az_m_s2=np.zeros_like(acc_x), **common)
+    assert plain.n_events >= 2
+    for key in ("displacement_m", "velocity_m_s", "floor_displacement_m", "isolator_force_N", "event_time_s"):
+        assert np.array_equal(getattr(plain, key), getattr(zero, key))
+    assert plain.energy_input_J_per_kg == zero.energy_input_J_per_kg
+    same = simulate_planar_building(acc_x, acc_y, dt, mu_slow=0.045, mu_fast=0.045, rate_s_per_m=30.0, **common)
+    assert same.n_fast_steps == 0 and plain.n_fast_steps > 0
+    assert same.event_names == plain.event_names
+    assert np.max(np.abs(same.event_time_s - plain.event_time_s)) <= 1e-11
+    for key in ("displacement_m", "velocity_m_s", "floor_displacement_m"):
+        assert _rel(getattr(same, key), getattr(plain, key)) <= 1e-11
+    assert same.energy_input_J_per_kg == pytest.approx(plain.energy_input_J_per_kg, rel=1e-11)
+
+
+def test_the_vertical_is_checked():
+    """Uplift (g + a_z ≤ 0) and a half-given µ(v) are refused in one line."""
+    from isolator.errors import InvalidSystemError
+
+    acc = np.array([0.0, 1.0, -1.0, 0.0])
+    common = dict(superstructure=make_superstructure([3e5], [6e8]), total_mass_kg=7e5, stiffness_N_per_m=1e6,
+                  mu_static=0.06)
+    with pytest.raises(InvalidSystemError, match="lifts the building"):
+        simulate_planar_building(acc, acc, 0.01, az_m_s2=np.array([0.0, -10.0, 0.0, 0.0]), **common)
+    with pytest.raises(InvalidSystemError, match="missing rate_s_per_m"):
+        simulate_planar_building(acc, acc, 0.01, mu_slow=0.03, mu_fast=0.05, **common)
+    with pytest.raises(InvalidSystemError, match="must not exceed mu_static"):
+        simulate_planar_building(acc, acc, 0.01, mu_slow=0.07, mu_fast=0.08, rate_s_per_m=10.0, **common)
+
+
+def test_the_bearing_loads_carry_the_vertical(records_dir):
+    """P_k = P_k,g (1 + a_z/g) + ΔP_k,x M_x + ΔP_k,y M_y: the histories by hand from the response's moments and the
+    vertical, and the exact extremes (located between samples, the vertical's share included) bound them within 2 %."""
+    from pathlib import Path
+
+    from isolator.design import Design
+
+    design = Design.from_toml(Path(__file__).resolve().parents[2] / "data" / "example_building.toml")
+    (acc_x, acc_y, acc_z), dt = triple_segment(records_dir, APEEL2[0], APEEL2[1], 5.5, 1.5, 2.5)
+    g = design.gravity_m_s2
+    r = simulate_planar_building(acc_x, acc_y, dt, superstructure=design.superstructure,
+                                 total_mass_kg=design.mass_kg, stiffness_N_per_m=design.mass_kg * g / design.radius_m,
+                                 mu_static=design.mu_static, mu_kinetic=design.mu_kinetic, az_m_s2=acc_z,
+                                 pendulum=True, bearing_layout=design.bearing_layout)
+    layout = design.bearing_layout
+    loads = r.bearing_loads()
+    by_hand = (np.asarray(layout.gravity_loads_N)[:, None] * (1.0 + acc_z / g)[None, :]
+               + layout.overturning_coefficients("x")[:, None] * r.overturning_moment_Nm[:, 0][None, :]
+               + layout.overturning_coefficients("y")[:, None] * r.overturning_moment_Nm[:, 1][None, :])
+    share = np.asarray(layout.gravity_loads_N)[:, None] * (acc_z / g)[None, :]
+    assert np.max(np.abs(share)) > 0.05 * np.max(np.abs(by_hand - np.asarray(layout.gravity_loads_N)[:, None]))
+    assert np.max(np.abs(loads["axial_load_N"] - by_hand)) <= 1e-9 * np.max(layout.gravity_loads_N)
+    high = np.asarray(loads["bearing_axial_load_max_N"])
+    low = np.asarray(loads["bearing_axial_load_min_N"])
+    assert np.all(high >= by_hand.max(axis=1) - 1e-9 * high) and np.all(high <= 1.02 * by_hand.max(axis=1))
+    assert np.all(low <= by_hand.min(axis=1) + 1e-9 * high) and np.all(low >= by_hand.min(axis=1) - 0.02 * high)
