@@ -126,6 +126,8 @@ def rim_return(rx, ry, u1, u2, rb, mu, rim):
         w1, w2 = _rim_point(rx, ry, u1, u2, hi, mu)
         if w1 * w1 + w2 * w2 <= rim * rim:
             break
+        if hi > 1e290:
+            break  # |w| → 0 as κ → ∞: not reached for a finite r; a guard against overflow
         lo = hi
         hi *= 2.0
     for _ in range(200):
@@ -151,15 +153,15 @@ def rim_return(rx, ry, u1, u2, rb, mu, rim):
 def element_return(rx, ry, u1, u2, rb, mu, rim):
     """The slip of one element under the force r [W] and its share of Ψ and of Ψ's Hessian.
 
-    Returns (δ1, δ2, T, J11, J12, J22, state): the slip δ [m], T(r) = sup_w [r·(w − ū) − (|w|² −
-    |ū|²)/(2R̄) − µ|w − ū|] over |w| ≤ c̄ (its gradient is δ, its Hessian J = ∂δ/∂r [m]), and the state:
-    0 stuck, 1 sliding, 2 sliding on the rim, 3 held by the rim."""
+    Returns (δ1, δ2, T, a, c, m1, m2, state): the slip δ [m], T(r) = sup_w [r·(w − ū) − (|w|² −
+    |ū|²)/(2R̄) − µ|w − ū|] over |w| ≤ c̄ (its gradient is δ, its Hessian J = ∂δ/∂r = a I + c m mᵀ [m],
+    a, c ≥ 0, m a unit vector), and the state: 0 stuck, 1 sliding, 2 sliding on the rim, 3 held by the rim."""
     d1 = rx - u1 / rb
     d2 = ry - u2 / rb
     dn = math.sqrt(d1 * d1 + d2 * d2)
     ex = dn - mu
     if not ex > 0.0:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0
     lam = rb * ex
     v1 = lam * d1 / dn
     v2 = lam * d2 / dn
@@ -167,11 +169,10 @@ def element_return(rx, ry, u1, u2, rb, mu, rim):
         q = mu / dn
         e1 = d1 / dn
         e2 = d2 / dn
-        return (v1, v2, 0.5 * rb * ex * ex, rb * ((1.0 - q) + q * e1 * e1), rb * q * e1 * e2,
-                rb * ((1.0 - q) + q * e2 * e2), 1)
+        return v1, v2, 0.5 * rb * ex * ex, rb * (1.0 - q), rb * q, e1, e2, 1
     w1, w2, kappa, held = rim_return(rx, ry, u1, u2, rb, mu, rim)
     if held:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3
     s1 = w1 - u1
     s2 = w2 - u2
     sn = math.sqrt(s1 * s1 + s2 * s2)
@@ -182,7 +183,7 @@ def element_return(rx, ry, u1, u2, rb, mu, rim):
     t2 = w1 / rim
     qt = (s1 * t1 + s2 * t2) / sn if sn > 0.0 else 0.0
     den = kappa + (mu * (1.0 - qt * qt) / sn if sn > 0.0 else 0.0)
-    return s1, s2, max(tval, 0.0), t1 * t1 / den, t1 * t2 / den, t2 * t2 / den, 2
+    return s1, s2, max(tval, 0.0), 0.0, 1.0 / den, t1, t2, 2
 
 
 @njit(cache=True)
@@ -202,7 +203,7 @@ def _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g):
     fx = g * rx - px
     fy = g * ry - py
     for k in range(rb.shape[0]):
-        s1, s2, tk, _, _, _, state = element_return(rx, ry, y[Y_U + 2 * k], y[Y_U + 2 * k + 1], rb[k], mu[k], rim[k])
+        s1, s2, tk, _, _, _, _, state = element_return(rx, ry, y[Y_U + 2 * k], y[Y_U + 2 * k + 1], rb[k], mu[k], rim[k])
         if state:
             acc += alpha * tk
             fx += alpha * s1
@@ -266,23 +267,44 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
     for k in range(ng):
         r_scale = max(r_scale, mu[k])
     _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g)
+    cm = np.zeros(ng)
+    cv = np.zeros((ng, 2))
     it = 0
     while it < MAX_NEWTON:
         it += 1
         f0 = math.sqrt(fx * fx + fy * fy)
         if f0 <= f_floor:
             break
-        h11 = g
+        # H = (g + a) I + Σ c_k m_k m_kᵀ; its determinant from the parts, each ≥ 0: (g + a)² + (g + a) Σ c_k +
+        # Σ_{j<k} c_j c_k (m_j × m_k)² (h11 h22 − h12² cancels to nothing when a rank-one term of a rim is huge)
+        iso = g
         h12 = 0.0
-        h22 = g
+        h11 = 0.0
+        h22 = 0.0
+        csum = 0.0
+        cross = 0.0
         for k in range(ng):
-            _, _, _, j11, j12, j22, state = element_return(rx, ry, y[Y_U + 2 * k], y[Y_U + 2 * k + 1], rb[k],
-                                                           mu[k], rim[k])
+            _, _, _, ak, ck, m1, m2, state = element_return(rx, ry, y[Y_U + 2 * k], y[Y_U + 2 * k + 1], rb[k],
+                                                            mu[k], rim[k])
             if state:
-                h11 += alpha * j11
-                h12 += alpha * j12
-                h22 += alpha * j22
-        det = h11 * h22 - h12 * h12  # ≥ g² > 0: Ψ is g-strongly convex
+                iso += alpha * ak
+                ck *= alpha
+                for j in range(k):
+                    if cm[j] > 0.0:
+                        w = cv[j, 0] * m2 - cv[j, 1] * m1
+                        cross += cm[j] * ck * w * w
+                cm[k] = ck
+                cv[k, 0] = m1
+                cv[k, 1] = m2
+                h11 += ck * m1 * m1
+                h12 += ck * m1 * m2
+                h22 += ck * m2 * m2
+                csum += ck
+            else:
+                cm[k] = 0.0
+        h11 += iso
+        h22 += iso
+        det = iso * iso + iso * csum + cross  # ≥ g² > 0: Ψ is g-strongly convex
         s1 = -(h22 * fx - h12 * fy) / det
         s2 = -(-h12 * fx + h11 * fy) / det
         if abs(s1) + abs(s2) <= 4e-16 * (abs(rx) + abs(ry) + r_scale):
@@ -306,7 +328,8 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
             side = 0
             found = False
             for _ in range(200):
-                t = (ta * db - tb * da) / (db - da)
+                span = db - da
+                t = (ta * db - tb * da) / span if span > 0.0 else 0.5 * (ta + tb)
                 if not (ta < t < tb):
                     t = 0.5 * (ta + tb)
                     if not (ta < t < tb):
@@ -360,15 +383,16 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     for k in range(ng):
         u1 = y[Y_U + 2 * k]
         u2 = y[Y_U + 2 * k + 1]
-        v1, v2, _, _, _, _, state = element_return(rx, ry, u1, u2, rb[k], mu[k], rim[k])
+        v1, v2, _, _, _, _, _, state = element_return(rx, ry, u1, u2, rb[k], mu[k], rim[k])
         if state == 1 or state == 2:
             if state == 2:
                 # on the circle exactly (the return's w, not ū + δ rounded)
                 w1 = u1 + v1
                 w2 = u2 + v2
                 wn = math.sqrt(w1 * w1 + w2 * w2)
-                out[Y_U + 2 * k] = w1 * rim[k] / wn
-                out[Y_U + 2 * k + 1] = w2 * rim[k] / wn
+                scale = rim[k] / wn if wn > 0.0 else 1.0
+                out[Y_U + 2 * k] = w1 * scale
+                out[Y_U + 2 * k + 1] = w2 * scale
             else:
                 out[Y_U + 2 * k] = u1 + v1
                 out[Y_U + 2 * k + 1] = u2 + v2
@@ -543,6 +567,11 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                             y[Y_U + 2 * k + 1] = u2 * rim[k] / un
                             y[Y_X] += y[Y_U + 2 * k] - u1
                             y[Y_X + 1] += y[Y_U + 2 * k + 1] - u2
+                    elif y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 > rim[k] * rim[k]:
+                        # the extrapolation of a group arriving at its rim crossed it: the half steps are kept
+                        for j in range(ny):
+                            y[j] = y2[j]
+                        break
             else:
                 for j in range(ny):
                     y[j] = y2[j]

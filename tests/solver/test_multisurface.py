@@ -358,14 +358,14 @@ def test_registry_runs_the_multisurface_model_for_a_triple_and_says_why():
     assert res.model == "1d-multisurface"
     summary = res.summary()
     assert summary["ultimate_displacement_reached"] is True and summary["regimes"]["V"] > 0
-    # a pair runs on the 2-D multi-surface model (never the single-surface 2-D engine); this one reaches a
-    # rim, which 2d-multisurface refuses with the time rather than run past it
-    from isolator.errors import SolverError
-
+    # a pair runs on the 2-D multi-surface model (never the single-surface 2-D engine), rims included: (a, a) is
+    # the 1-D record √2 a along the diagonal (its ultimate reached too)
     pair = Scene(ax_m_s2=acc, ay_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design)
     assert select_model(pair)[0] == "2d-multisurface"
-    with pytest.raises(SolverError, match="reaches a rim at t = "):
-        simulate(pair)
+    both = simulate(pair)
+    diagonal = simulate_bearing(np.sqrt(2.0) * acc, dt, bearing=design.bearing)
+    assert both.ultimate_displacement_reached and both.n_rim_contacts == diagonal.n_rim_contacts
+    assert both.peak_displacement_m == pytest.approx(diagonal.peak_displacement_m, rel=1e-6)
     # a design without [bearing] keeps today's model
     plain = Scene(ax_m_s2=acc, dt_s=dt, isolator={"mu_static": 0.05, "radius_m": 2.0})
     assert select_model(plain)[0] == "1d-exact"
