@@ -46,6 +46,9 @@ DEFAULT_STEP_TOL = 1e-7
 #: history 36 % off the converged steps from 15 s on).  So does any such reduction on a record that is not
 #: collinear, balance closed or not (Loma Prieta APEEL2: 7e-10, and 29 % off from 4.5 s on)
 EVENTS_BALANCE_TOL = 1e-8
+#: with a rim contact, the implicit steps' energy balance (impacts counted) closes to ~1e-7 of the input where they
+#: resolve the impacts (docs/multisurface.md); more open than this, an impact was not resolved and the run is refused
+RIM_BALANCE_TOL = 1e-5
 #: the methods of ``simulate_bearing_pair``: events (exact between events), steps (implicit steps, every
 #: record), auto (events, and the implicit steps when the event-driven kernel cannot finish)
 METHODS = ("auto", "events", "steps")
@@ -406,6 +409,9 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
         if status & _pm.STATUS_RIM:
             raise SolverError(f"the 2-D multi-surface implicit steps left a rim at t = {fail_t:.6g} s (a guard)")
+        if status & _ps.STATUS_UNSOLVED:
+            raise SolverError(f"the 2-D multi-surface implicit steps found no force at t = {fail_t:.6g} s (sliders on "
+                              "their rims pointing different ways: not resolved; the run stops there)")
         if status & _STOPPED:
             raise SolverError(f"the 2-D multi-surface implicit steps could not finish at t = {fail_t:.6g} s "
                               f"(status {status}: more than {_ps.MAX_STEPS_PER_INTERVAL} steps in one sample interval)")
@@ -424,6 +430,11 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rb)))
     peak_a = float(summary[_pm.S_PEAK_A])
+    balance = e_in - (e_kin + e_pot + e_f + e_v + float(summary[_ps.S_E_IMP]))
+    if summary[_ps.S_N_RIM_CONTACTS] > 0 and abs(balance) > RIM_BALANCE_TOL * e_in:
+        raise SolverError(f"the 2-D multi-surface implicit steps reached the rims with the energy balance open by "
+                          f"{abs(balance) / e_in:.1e} of the input (an impact at the ultimate they did not resolve: "
+                          "sliders on their rims pointing different ways); not answered")
     # the rims (the steps' slots; the event-driven kernel finishes only without a rim contact: zeros there)
     e_imp = float(summary[_ps.S_E_IMP])
     if summary[_ps.S_PEAK_R] > 0.0:

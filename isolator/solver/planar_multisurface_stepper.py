@@ -70,6 +70,10 @@ MAX_STEPS_PER_INTERVAL = 3_000_000
 #: estimate (progress is guaranteed; counted in the summary's S_STEPS_MULTI slot)
 H_MIN_FRACTION = 1e-6
 
+#: be_step's flag: the step's force was not found (Newton did not converge in MAX_NEWTON iterations)
+UNSOLVED = 1 << 40
+#: the run's status bit for it (past the event kernel's STATUS_* bits)
+STATUS_UNSOLVED = 64
 #: a group is on its rim when |ū| ≥ c̄ (1 − RIM_ON) (the rim's return puts it on the circle to the last bits)
 RIM_ON = 1e-12
 
@@ -327,7 +331,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
             db = d1
             side = 0
             found = False
-            for _ in range(200):
+            for _ in range(100):
                 span = db - da
                 t = (ta * db - tb * da) / span if span > 0.0 else 0.5 * (ta + tb)
                 if not (ta < t < tb):
@@ -360,6 +364,8 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
         ry += t * s2
         fx = gx
         fy = gy
+    if it >= MAX_NEWTON and math.sqrt(fx * fx + fy * fy) > 1e-6 * (abs(px) + abs(py) + g * (abs(rx) + abs(ry))):
+        return rx, ry, -1  # not converged: the gradient is not rounding
     return rx, ry, it
 
 
@@ -373,7 +379,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     alpha = (1.0 + c * h) / (h * h)
     px = y[Y_V] / h - abar_x
     py = y[Y_V + 1] / h - abar_y
-    rx, ry, _ = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1])
+    rx, ry, iterations = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1])
     rout[0] = rx
     rout[1] = ry
     dx1 = 0.0
@@ -419,6 +425,8 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     out[Y_EF] = y[Y_EF] + fric
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
     out[Y_EIMP] = y[Y_EIMP]
+    if iterations < 0:
+        mask |= UNSOLVED
     return mask
 
 
@@ -532,6 +540,12 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                          rb, mu, rim, r1, yh, rh)
             m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
                          c, rb, mu, rim, rh, y2, r2)
+            if (m1 | mh | m2) & UNSOLVED:
+                # Newton did not converge (seen with sliders on their rims pointing different ways at the
+                # ultimate): stop with the time rather than go on from a wrong force
+                status |= STATUS_UNSOLVED
+                fail_t = t[i] + tau
+                break
             xs = tol * max(peak_x, x_floor)
             vs = tol * max(peak_v, v_floor)
             err = 0.0

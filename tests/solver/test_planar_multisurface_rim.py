@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from isolator.bearing import parse_bearing
-from isolator.errors import DesignError
+from isolator.errors import DesignError, SolverError
 from isolator.solver.multisurface import simulate_bearing
 from isolator.solver.planar_multisurface import element_groups, simulate_bearing_pair
 from tests.solver.test_planar_rim import PTS, rim_reference
@@ -101,28 +101,28 @@ def test_a_collinear_pair_along_any_direction_is_the_1d_model_and_rotation_turns
     assert np.max(np.abs(across)) <= STEPS_ERROR * one.peak_displacement_m
     assert turned.n_rim_contacts == one.n_rim_contacts
     assert turned.impact_impulse_m_s == pytest.approx(one.impact_impulse_m_s, rel=STEPS_ERROR)
-    # a planar motion through the rims: an elliptical pulse, and the same pulse turned by 0.7 rad
-    t = np.arange(0.0, 7.0, 0.01)
-    ax = 0.75 * G * np.sin(2 * np.pi * t / 2.5) * (t < 4.0)
-    ay = 0.45 * G * np.cos(2 * np.pi * t / 2.1) * (t < 4.0)
+    # a planar motion through the rims: an elliptical pulse (0.6 g / 0.5 g) through regimes IV and V up to
+    # 0.72 s, and the same turned by 0.7 rad
+    t = np.arange(0.0, 0.72, 0.01)
+    ax = 0.6 * G * np.sin(2 * np.pi * t / 2.0)
+    ay = 0.5 * G * np.cos(2 * np.pi * t / 1.7)
     res = simulate_bearing_pair(ax, ay, 0.01, bearing=TFP)
-    assert res.ultimate_displacement_reached and {"IV", "V"} <= set(res.regimes)
+    assert res.n_rim_contacts == 2 and {"IV", "V"} <= set(res.regimes) and not res.ultimate_displacement_reached
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-6 * res.energy_input_J_per_kg
     c, s = math.cos(0.7), math.sin(0.7)
     rot = simulate_bearing_pair(c * ax - s * ay, s * ax + c * ay, 0.01, bearing=TFP)
     back = rot.displacement_m @ np.array([[c, -s], [s, c]])
     assert np.max(np.abs(back - res.displacement_m)) <= 10 * STEPS_ERROR * res.peak_displacement_m
     assert rot.n_rim_contacts == res.n_rim_contacts
-    assert rot.impact_impulse_m_s == pytest.approx(res.impact_impulse_m_s, rel=10 * STEPS_ERROR)
-    # the outer surfaces (u_1 ∝ ū_1, u_4 ∝ ū_4) inside their capacities, the total inside the ultimate; the inner
-    # surfaces carry the 1-D series model's element rims (|ū_2| ≤ d2* + d1* R2/R1): exact when elements 1 and 2
-    # are aligned, as in 1-D, but in a planar motion u_2 = ū_2 − ū_1 R2/R̄1 can pass d2* (a limit of the model,
-    # docs/multisurface.md): 2.8 % measured here, bounded below to catch a change
+    # the outer surfaces (u_1 ∝ ū_1, u_4 ∝ ū_4) on their rims, never past them
     outer = [res.surface_peak_displacement_m[i] / TFP.surfaces[i].displacement_capacity_m for i in (0, 3)]
-    inner = [res.surface_peak_displacement_m[i] / TFP.surfaces[i].displacement_capacity_m for i in (1, 2)]
-    assert max(outer) <= 1 + 1e-12 and max(outer) == pytest.approx(1.0, rel=1e-9)
-    assert 1.0 < max(inner) <= 1.05
-    assert np.max(np.hypot(*res.displacement_m.T)) <= TFP.ultimate_displacement_m * (1 + 1e-12)
+    assert max(outer) <= 1 + 1e-12 and min(outer) == pytest.approx(1.0, rel=1e-9)
+    # on to the ultimate with the outer sliders on their rims pointing different ways: the steps do not resolve
+    # that impact (Newton finds no force) and the run stops in one line naming the instant — never past it
+    t = np.arange(0.0, 1.0, 0.01)
+    with pytest.raises(SolverError, match=r"found no force at t = 0\.72"):
+        simulate_bearing_pair(0.6 * G * np.sin(2 * np.pi * t / 2.0), 0.5 * G * np.cos(2 * np.pi * t / 1.7), 0.01,
+                              bearing=TFP)
 
 
 @pytest.fixture(scope="module")
