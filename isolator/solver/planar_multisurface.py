@@ -6,9 +6,12 @@ Model ``2d-multisurface``: the series model of Fenz & Constantinou (the elements
 horizontal plane, coupled through the one force vector the massless sliders carry; the
 method is in :mod:`isolator.solver.planar_multisurface_kernel` and docs/multisurface.md.
 
-Not modelled here, each refused in one line: a rim contact in the plane (the run stops with
-a :class:`~isolator.errors.SolverError` naming the time: never past a rim silently), a
-vertical component, a superstructure.
+The rims: a slider reaching its rim stays on the circle |ū_i| = c̄_i (it slides along it or
+leaves it inward; the force transfers to the other surfaces), and with every slider on its rim
+the bearing is at its ultimate displacement (plastic impact).  The event-driven kernel has no
+rim: where it reaches one, ``auto`` hands the record to the implicit steps, which have the rims
+(:mod:`isolator.solver.planar_multisurface_stepper`).  Not modelled here, each refused in one
+line: a vertical component, a superstructure.
 """
 
 from __future__ import annotations
@@ -43,6 +46,9 @@ DEFAULT_STEP_TOL = 1e-7
 #: history 36 % off the converged steps from 15 s on).  So does any such reduction on a record that is not
 #: collinear, balance closed or not (Loma Prieta APEEL2: 7e-10, and 29 % off from 4.5 s on)
 EVENTS_BALANCE_TOL = 1e-8
+#: with a rim contact, the implicit steps' energy balance (impacts counted) closes to ~1e-7 of the input where they
+#: resolve the impacts (docs/multisurface.md); more open than this, an impact was not resolved and the run is refused
+RIM_BALANCE_TOL = 1e-5
 #: the methods of ``simulate_bearing_pair``: events (exact between events), steps (implicit steps, every
 #: record), auto (events, and the implicit steps when the event-driven kernel cannot finish)
 METHODS = ("auto", "events", "steps")
@@ -56,8 +62,12 @@ class PlanarMultisurfaceResponse(SolverResult):
     bearing's keys of the 1-D model (:class:`isolator.solver.multisurface.MultisurfaceResponse`):
     ``surface_peak_displacement_m`` (peak |u_i| on each real surface, on the surface, taken at
     the integration steps' ends and the events), ``regimes`` (first time each set of sliding
-    surfaces was entered, named as in 1-D), ``n_rim_contacts`` (0: a rim contact stops the run),
-    ``ultimate_displacement_reached`` (False, for the same reason).
+    surfaces was entered, named as in 1-D: regimes IV and V with their elements on the rims),
+    ``n_rim_contacts`` (elements reaching their rims), ``ultimate_displacement_reached`` (every
+    element on its rim at some instant), the plastic impacts there (``impact_impulse_m_s`` Σ velocity
+    lost, ``max_impact_velocity_m_s``, ``energy_impact_J_per_kg`` the kinetic energy they took,
+    counted in the energy balance), ``peak_force_per_weight`` (the surfaces' force: at the
+    ultimate the rims' reaction is left out, as in 1-D).
     """
 
     EXTRA_SUMMARY_KEYS = ("bearing_type", "surface_peak_displacement_m", "regimes", "n_rim_contacts",
@@ -76,6 +86,7 @@ class PlanarMultisurfaceResponse(SolverResult):
     n_steps: int = 0
     n_rim_contacts: int = 0
     ultimate_displacement_reached: bool = False
+    n_impacts: int = 0  #: plastic impacts at the ultimate displacement
     energy_impact_J_per_kg: float = 0.0
     impact_impulse_m_s: float = 0.0
     max_impact_velocity_m_s: float = 0.0
@@ -131,8 +142,11 @@ def simulate_scene(scene) -> PlanarMultisurfaceResponse:
                                  gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
 
 
-def element_groups(bearing):
+def element_groups(bearing, split_rims: bool = False):
     """The series elements gathered into groups of equal friction (equal circles: they slide together).
+
+    With ``split_rims`` (the implicit steps, which take the rims) elements of equal friction stay apart
+    when their rims are not at the same fraction of R̄ (one would reach its rim while the other slides on).
 
     Returns
     -------
@@ -145,7 +159,8 @@ def element_groups(bearing):
     groups: list[list[int]] = []
     for i, m in enumerate(mu):
         for g in groups:
-            if abs(mu[g[0]] - m) <= MU_TIE * max(m, mu[g[0]]):
+            same_rim = abs(rim[i] / rbar[i] - rim[g[0]] / rbar[g[0]]) <= MU_TIE * rim[i] / rbar[i]
+            if abs(mu[g[0]] - m) <= MU_TIE * max(m, mu[g[0]]) and (same_rim or not split_rims):
                 g.append(i)
                 break
         else:
@@ -190,9 +205,10 @@ def _with_event_room(kernel, n, n_groups, n_members, n_surfaces, capacity):
     out_v = np.empty((n, 2))
     out_a = np.empty((n, 2))
     out_en = np.empty((3, n))
-    summary = np.zeros(_pm.S_SIZE)
+    summary = np.zeros(max(_pm.S_SIZE, _ps.S_SIZE_STEPS))
     surf_peak = np.zeros(n_surfaces)
-    first = np.empty(1 << n_members)
+    # first time of each state: sliding elements, and (the steps) the elements on their rims above them
+    first = np.empty(1 << (2 * n_members))
     while True:
         ev_t = np.empty(capacity)
         ev_k = np.empty(capacity, dtype=np.int8)
@@ -212,9 +228,10 @@ _STEPS_READY = False
 
 
 def _refuse_rim(status, fail_t, bearing):
+    # the event-driven kernel stops where a slider reaches its rim (it has no rim): asked for alone, it refuses
     if status & _pm.STATUS_RIM:
-        raise SolverError(f"the {bearing.kind} bearing reaches a rim at t = {fail_t:.6g} s: the rim in the plane is "
-                          "not modelled by 2d-multisurface (the run stops there rather than run past it)")
+        raise SolverError(f"the {bearing.kind} bearing reaches a rim at t = {fail_t:.6g} s: the event-driven kernel "
+                          "of 2d-multisurface has no rim (method 'steps' or 'auto' takes the rims)")
 
 
 def _collinear(ax, ay):
@@ -307,8 +324,8 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     Raises
     ------
     SolverError
-        A slider reached its rim (the rim in the plane is not modelled), or a step guard tripped
-        (``method="events"``: the event-driven kernel could not finish).
+        ``method="events"`` and a slider reached its rim (the event-driven kernel has none), or a
+        step guard tripped (``method="events"``: the event-driven kernel could not finish).
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
@@ -354,10 +371,17 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
             local, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, float(rtol), 64 + ax.size // 4)
         status = int(summary[_pm.S_STATUS])
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
-        _refuse_rim(status, fail_t, bearing)
-        imbalance = 0.0 if status & _STOPPED else _imbalance(summary, out_v, ub, rb, g)
-        merged = 0 if status & _STOPPED or _collinear(ax, ay) else int(summary[_pm.S_N_MERGED])
-        if method == "auto" and (imbalance > EVENTS_BALANCE_TOL or merged):
+        if method == "events":
+            _refuse_rim(status, fail_t, bearing)
+        imbalance = 0.0 if status & (_STOPPED | _pm.STATUS_RIM) else _imbalance(summary, out_v, ub, rb, g)
+        merged = 0 if status & (_STOPPED | _pm.STATUS_RIM) or _collinear(ax, ay) else int(summary[_pm.S_N_MERGED])
+        if status & _pm.STATUS_RIM:
+            # the kernel has no rim: the steps take the record from the start, rims included
+            status |= _pm.STATUS_SINGULAR
+            how = (f"implicit steps, local error tolerance {step_tol:g} (the event-driven kernel reached a rim at "
+                   f"t = {fail_t:.6g} s; the steps take the rims: a slider on its rim slides along it or leaves it "
+                   "inward, plastic impact at the ultimate displacement)")
+        elif method == "auto" and (imbalance > EVENTS_BALANCE_TOL or merged):
             status |= _pm.STATUS_SINGULAR
             how = (f"implicit steps, local error tolerance {step_tol:g} (the event-driven kernel finished, but "
                    + (f"with an energy imbalance of {imbalance:.1e} of the input" if imbalance > EVENTS_BALANCE_TOL
@@ -376,20 +400,27 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
             how = f"implicit steps, local error tolerance {step_tol:g} (asked for)"
         else:
             events_seconds = elapsed
+        # groups of equal friction whose rims differ part where the first reaches its rim
+        rb, mu, rim, members = element_groups(bearing, split_rims=True)
         out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t, ev_k, elapsed = _run_steps(
             local, ax, ay, g, rb, mu, rim, members, tmat, c, step_tol, scales, 64 + ax.size // 4)
         elapsed += events_seconds
         status = int(summary[_pm.S_STATUS])
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
-        _refuse_rim(status, fail_t, bearing)
+        if status & _pm.STATUS_RIM:
+            raise SolverError(f"the 2-D multi-surface implicit steps left a rim at t = {fail_t:.6g} s (a guard)")
+        if status & _ps.STATUS_UNSOLVED:
+            raise SolverError(f"the 2-D multi-surface implicit steps found no force at t = {fail_t:.6g} s (sliders on "
+                              "their rims pointing different ways: not resolved; the run stops there)")
         if status & _STOPPED:
             raise SolverError(f"the 2-D multi-surface implicit steps could not finish at t = {fail_t:.6g} s "
                               f"(status {status}: more than {_ps.MAX_STEPS_PER_INTERVAL} steps in one sample interval)")
     elements = np.array([members[i, 1] / rb[int(members[i, 0])] * ub[int(members[i, 0])]
                          for i in range(members.shape[0])])
     regimes: dict = {}
+    n_masks = 1 << members.shape[0]
     for code in np.flatnonzero(first >= 0.0):
-        name = bearing.regime_name(int(code), 0)
+        name = bearing.regime_name(int(code) % n_masks, int(code) // n_masks)
         if name and (name not in regimes or first[code] + t0 < regimes[name]):
             regimes[name] = float(first[code] + t0)
     regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
@@ -399,6 +430,17 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rb)))
     peak_a = float(summary[_pm.S_PEAK_A])
+    balance = e_in - (e_kin + e_pot + e_f + e_v + float(summary[_ps.S_E_IMP]))
+    if summary[_ps.S_N_RIM_CONTACTS] > 0 and abs(balance) > RIM_BALANCE_TOL * e_in:
+        raise SolverError(f"the 2-D multi-surface implicit steps reached the rims with the energy balance open by "
+                          f"{abs(balance) / e_in:.1e} of the input (an impact at the ultimate they did not resolve: "
+                          "sliders on their rims pointing different ways); not answered")
+    # the rims (the steps' slots; the event-driven kernel finishes only without a rim contact: zeros there)
+    e_imp = float(summary[_ps.S_E_IMP])
+    if summary[_ps.S_PEAK_R] > 0.0:
+        peak_r = float(summary[_ps.S_PEAK_R])
+    else:
+        peak_r = peak_a / g if c == 0.0 else float(np.max(np.hypot(*(out_a.T + c * out_v.T)))) / g
     return PlanarMultisurfaceResponse(
         bearing=bearing,
         time_s=t0 + local,
@@ -415,13 +457,19 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         n_events=int(summary[_pm.S_N_EVENTS]),
         energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
         energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
-        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v),
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v + e_imp),
+        energy_impact_J_per_kg=e_imp,
+        n_rim_contacts=int(summary[_ps.S_N_RIM_CONTACTS]),
+        ultimate_displacement_reached=bool(summary[_ps.S_FIRST_ULT] >= 0.0),
+        impact_impulse_m_s=float(summary[_ps.S_IMPULSE]),
+        max_impact_velocity_m_s=float(summary[_ps.S_MAX_IMPACT_V]),
+        n_impacts=int(summary[_ps.S_N_ULTIMATE]),
         energy_history_J_per_kg=out_en,
         surface_peak_displacement_m=on_surface,
         regimes=regimes,
         element_displacement_m=elements,
         ultimate_displacement_m=bearing.ultimate_displacement_m,
-        peak_force_per_weight=peak_a / g if c == 0.0 else float(np.max(np.hypot(*(out_a.T + c * out_v.T)))) / g,
+        peak_force_per_weight=peak_r,
         n_steps=int(summary[_pm.S_N_STEPS]),
         status=status, message="ok", solver_seconds=elapsed,
         damping_per_mass=c, gravity_m_s2=g,

@@ -49,6 +49,7 @@ from isolator.solver.planar_multisurface_kernel import (
     S_PEAK_A,
     S_PEAK_V,
     S_PEAK_X,
+    S_SIZE,
     S_SLIP_TIME,
     S_STATUS,
     S_STEPS_MULTI,
@@ -69,30 +70,148 @@ MAX_STEPS_PER_INTERVAL = 3_000_000
 #: estimate (progress is guaranteed; counted in the summary's S_STEPS_MULTI slot)
 H_MIN_FRACTION = 1e-6
 
-# the state vector: X, V, energies (input, friction, viscous), then ū of each group
+#: be_step's flag: the step's force was not found (Newton did not converge in MAX_NEWTON iterations)
+UNSOLVED = 1 << 40
+#: the run's status bit for it (past the event kernel's STATUS_* bits)
+STATUS_UNSOLVED = 64
+#: a group is on its rim when |ū| ≥ c̄ (1 − RIM_ON) (the rim's return puts it on the circle to the last bits)
+RIM_ON = 1e-12
+
+# the state vector: X, V, energies (input, friction, viscous, impacts), then ū of each group
 Y_X = 0
 Y_V = 2
 Y_EIN = 4
 Y_EF = 5
 Y_EV = 6
-Y_U = 7
+Y_EIMP = 7
+Y_U = 8
+
+# the summary's slots past the event kernel's (planar_multisurface_kernel.S_SIZE)
+S_N_RIM_CONTACTS = S_SIZE  #: elements reaching their rims
+S_N_ULTIMATE = S_SIZE + 1  #: impacts at the ultimate displacement (every element on its rim)
+S_IMPULSE = S_SIZE + 2  #: Σ velocity lost in those impacts [m/s] (impulse per unit mass)
+S_MAX_IMPACT_V = S_SIZE + 3  #: largest velocity lost in one impact [m/s]
+S_E_IMP = S_SIZE + 4  #: kinetic energy lost in the impacts [J/kg]
+S_PEAK_R = S_SIZE + 5  #: largest |F/W| of the surfaces (the rims' reaction left out)
+S_FIRST_ULT = S_SIZE + 6  #: time the ultimate displacement was first reached [s] (-1: never)
+S_SIZE_STEPS = S_SIZE + 7
 
 
 @njit(cache=True)
-def _psi_grad(rx, ry, y, rb, mu, alpha, px, py, g):
+def _rim_point(rx, ry, u1, u2, kappa, mu):
+    # the return of an element of stiffness κ [1/m] (1/R̄ plus the rim's multiplier): ū + (|r − κū| − µ)₊ e/κ
+    d1 = rx - kappa * u1
+    d2 = ry - kappa * u2
+    dn = math.sqrt(d1 * d1 + d2 * d2)
+    if not dn > mu:
+        return u1, u2
+    s = (dn - mu) / (kappa * dn)
+    return u1 + s * d1, u2 + s * d2
+
+
+@njit(cache=True)
+def rim_return(rx, ry, u1, u2, rb, mu, rim):
+    """The return of one element whose free return would cross its rim |ū| = c̄ [m].
+
+    With the rim, the element's new position w minimises |w − R̄ r|²/(2R̄) + µ|w − ū| on the disc
+    |w| ≤ c̄ (ū inside it): its minimiser lies on the circle, where the rim's multiplier ν ≥ 0 adds
+    to the stiffness, κ = 1/R̄ + ν, and w(κ) is the free return of stiffness κ.  |w(κ)| falls
+    monotonically with κ (a regularisation path), so the one root |w(κ)| = c̄ is bracketed and
+    found by bisection to the last bit of κ.  ``held`` when w = ū (the rim holds the element: r − b
+    lies in the friction circle plus the rim's normal cone).
+
+    Returns
+    -------
+    (w1, w2, kappa, held) : the new position [m] (|w| = c̄), κ [1/m], and whether the element stays.
+    """
+    lo = 1.0 / rb
+    hi = 2.0 * lo
+    for _ in range(2100):
+        w1, w2 = _rim_point(rx, ry, u1, u2, hi, mu)
+        if w1 * w1 + w2 * w2 <= rim * rim:
+            break
+        if hi > 1e290:
+            break  # |w| → 0 as κ → ∞: not reached for a finite r; a guard against overflow
+        lo = hi
+        hi *= 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if not (lo < mid < hi):
+            break
+        w1, w2 = _rim_point(rx, ry, u1, u2, mid, mu)
+        if w1 * w1 + w2 * w2 > rim * rim:
+            lo = mid
+        else:
+            hi = mid
+    w1, w2 = _rim_point(rx, ry, u1, u2, hi, mu)
+    held = w1 == u1 and w2 == u2
+    wn = math.sqrt(w1 * w1 + w2 * w2)
+    if wn > 0.0:
+        # on the circle to the last bit (the bisection's end is inside it by ~1e-16 of c̄)
+        w1 *= rim / wn
+        w2 *= rim / wn
+    return w1, w2, hi, held
+
+
+@njit(cache=True)
+def element_return(rx, ry, u1, u2, rb, mu, rim):
+    """The slip of one element under the force r [W] and its share of Ψ and of Ψ's Hessian.
+
+    Returns (δ1, δ2, T, a, c, m1, m2, state): the slip δ [m], T(r) = sup_w [r·(w − ū) − (|w|² −
+    |ū|²)/(2R̄) − µ|w − ū|] over |w| ≤ c̄ (its gradient is δ, its Hessian J = ∂δ/∂r = a I + c m mᵀ [m],
+    a, c ≥ 0, m a unit vector), and the state: 0 stuck, 1 sliding, 2 sliding on the rim, 3 held by the rim."""
+    d1 = rx - u1 / rb
+    d2 = ry - u2 / rb
+    dn = math.sqrt(d1 * d1 + d2 * d2)
+    ex = dn - mu
+    if not ex > 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0
+    lam = rb * ex
+    v1 = lam * d1 / dn
+    v2 = lam * d2 / dn
+    if (u1 + v1) ** 2 + (u2 + v2) ** 2 <= rim * rim:
+        q = mu / dn
+        e1 = d1 / dn
+        e2 = d2 / dn
+        return v1, v2, 0.5 * rb * ex * ex, rb * (1.0 - q), rb * q, e1, e2, 1
+    w1, w2, kappa, held = rim_return(rx, ry, u1, u2, rb, mu, rim)
+    if held:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3
+    s1 = w1 - u1
+    s2 = w2 - u2
+    sn = math.sqrt(s1 * s1 + s2 * s2)
+    tval = rx * s1 + ry * s2 - (rim * rim - u1 * u1 - u2 * u2) / (2.0 * rb) - mu * sn
+    # J = t tᵀ / (κ + µ (1 − (q·t)²)/|δ|): θ of w = c̄ (cos θ, sin θ) moves with the tangential force (the
+    # stationarity of the one-variable problem on the circle, differentiated)
+    t1 = -w2 / rim
+    t2 = w1 / rim
+    qt = (s1 * t1 + s2 * t2) / sn if sn > 0.0 else 0.0
+    den = kappa + (mu * (1.0 - qt * qt) / sn if sn > 0.0 else 0.0)
+    return s1, s2, max(tval, 0.0), 0.0, 1.0 / den, t1, t2, 2
+
+
+@njit(cache=True)
+def popcount(bits):
+    """The number of set bits of a non-negative integer."""
+    n = 0
+    while bits:
+        n += bits & 1
+        bits >>= 1
+    return n
+
+
+@njit(cache=True)
+def _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g):
     # Ψ(r) of the module docstring and its gradient F = g r + α ΔX(r) − p
     acc = 0.5 * g * (rx * rx + ry * ry) - px * rx - py * ry
     fx = g * rx - px
     fy = g * ry - py
     for k in range(rb.shape[0]):
-        d1 = rx - y[Y_U + 2 * k] / rb[k]
-        d2 = ry - y[Y_U + 2 * k + 1] / rb[k]
-        dn = math.sqrt(d1 * d1 + d2 * d2)
-        ex = dn - mu[k]
-        if ex > 0.0:
-            acc += 0.5 * alpha * rb[k] * ex * ex
-            fx += alpha * rb[k] * ex * d1 / dn
-            fy += alpha * rb[k] * ex * d2 / dn
+        s1, s2, tk, _, _, _, _, state = element_return(rx, ry, y[Y_U + 2 * k], y[Y_U + 2 * k + 1], rb[k], mu[k], rim[k])
+        if state:
+            acc += alpha * tk
+            fx += alpha * s1
+            fy += alpha * s2
     return acc, fx, fy
 
 
@@ -108,7 +227,7 @@ def _held(y, rb, mu, r1, r2):
 
 
 @njit(cache=True)
-def step_force(y, rb, mu, alpha, px, py, g, rx, ry):
+def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
     """The force r/W of one backward-Euler step: the minimiser of Ψ (module docstring), by Newton's method
     from the guess (rx, ry), the step cut back until Ψ or |∇Ψ| decreases.  Returns (rx, ry, iterations)."""
     ng = rb.shape[0]
@@ -131,7 +250,10 @@ def step_force(y, rb, mu, alpha, px, py, g, rx, ry):
         rho = (qn + w * mu[k]) / (g + w)
         cx = b1 + rho * q1 / qn
         cy = b2 + rho * q2 / qn
-        worst = 0.0
+        # past its rim the closed form does not hold (it still starts Newton)
+        lam = rb[k] * (rho - mu[k])
+        past = (y[Y_U + 2 * k] + lam * q1 / qn) ** 2 + (y[Y_U + 2 * k + 1] + lam * q2 / qn) ** 2 > rim[k] * rim[k]
+        worst = 1e-300 if past else 0.0
         for j in range(ng):
             if j != k:
                 d1 = cx - y[Y_U + 2 * j] / rb[j]
@@ -148,93 +270,152 @@ def step_force(y, rb, mu, alpha, px, py, g, rx, ry):
     r_scale = 0.0
     for k in range(ng):
         r_scale = max(r_scale, mu[k])
-    psi0, fx, fy = _psi_grad(rx, ry, y, rb, mu, alpha, px, py, g)
+    _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g)
+    cm = np.zeros(ng)
+    cv = np.zeros((ng, 2))
     it = 0
     while it < MAX_NEWTON:
         it += 1
         f0 = math.sqrt(fx * fx + fy * fy)
         if f0 <= f_floor:
             break
-        h11 = g
+        # H = (g + a) I + Σ c_k m_k m_kᵀ; its determinant from the parts, each ≥ 0: (g + a)² + (g + a) Σ c_k +
+        # Σ_{j<k} c_j c_k (m_j × m_k)² (h11 h22 − h12² cancels to nothing when a rank-one term of a rim is huge)
+        iso = g
         h12 = 0.0
-        h22 = g
+        h11 = 0.0
+        h22 = 0.0
+        csum = 0.0
+        cross = 0.0
         for k in range(ng):
-            d1 = rx - y[Y_U + 2 * k] / rb[k]
-            d2 = ry - y[Y_U + 2 * k + 1] / rb[k]
-            dn = math.sqrt(d1 * d1 + d2 * d2)
-            if dn > mu[k]:
-                w = alpha * rb[k]
-                q = mu[k] / dn
-                e1 = d1 / dn
-                e2 = d2 / dn
-                h11 += w * ((1.0 - q) + q * e1 * e1)
-                h12 += w * q * e1 * e2
-                h22 += w * ((1.0 - q) + q * e2 * e2)
-        det = h11 * h22 - h12 * h12  # ≥ g² > 0: Ψ is g-strongly convex
+            _, _, _, ak, ck, m1, m2, state = element_return(rx, ry, y[Y_U + 2 * k], y[Y_U + 2 * k + 1], rb[k],
+                                                            mu[k], rim[k])
+            if state:
+                iso += alpha * ak
+                ck *= alpha
+                for j in range(k):
+                    if cm[j] > 0.0:
+                        w = cv[j, 0] * m2 - cv[j, 1] * m1
+                        cross += cm[j] * ck * w * w
+                cm[k] = ck
+                cv[k, 0] = m1
+                cv[k, 1] = m2
+                h11 += ck * m1 * m1
+                h12 += ck * m1 * m2
+                h22 += ck * m2 * m2
+                csum += ck
+            else:
+                cm[k] = 0.0
+        h11 += iso
+        h22 += iso
+        det = iso * iso + iso * csum + cross  # ≥ g² > 0: Ψ is g-strongly convex
         s1 = -(h22 * fx - h12 * fy) / det
         s2 = -(-h12 * fx + h11 * fy) / det
         if abs(s1) + abs(s2) <= 4e-16 * (abs(rx) + abs(ry) + r_scale):
             # the correction is below the rounding of r
             break
-        slope = fx * s1 + fy * s2
+        # the step along s: Ψ is convex and C¹, so φ'(t) = ∇Ψ(r + t s)·s grows with t; the full step is taken when
+        # φ'(1) ≤ |φ'(0)|/2 (past a kink the Hessian of the start does not see, e.g. a group that starts sliding or
+        # leaves its rim inside the step, it is not), else a t in (0, 1) with |φ'(t)| ≤ |φ'(0)|/2 by regula falsi
+        # (Illinois) on φ' — signs of the gradient, not differences of Ψ, which rounding swamps when r is large
+        d0 = fx * s1 + fy * s2
+        if not d0 < 0.0:
+            break  # no descent left above rounding
+        _, gx, gy = _psi_grad(rx + s1, ry + s2, y, rb, mu, rim, alpha, px, py, g)
+        d1 = gx * s1 + gy * s2
         t = 1.0
-        moved = False
-        for _ in range(60):
-            psi1, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, alpha, px, py, g)
-            if psi1 <= psi0 + 1e-4 * t * slope or math.sqrt(gx * gx + gy * gy) <= (1.0 - 1e-4 * t) * f0:
-                moved = True
-                break
-            t *= 0.5
-        if not moved:
-            # neither decreases above rounding: r is the minimiser to the precision of Ψ
-            break
+        if d1 > -0.5 * d0:
+            ta = 0.0
+            da = d0
+            tb = 1.0
+            db = d1
+            side = 0
+            found = False
+            for _ in range(100):
+                span = db - da
+                t = (ta * db - tb * da) / span if span > 0.0 else 0.5 * (ta + tb)
+                if not (ta < t < tb):
+                    t = 0.5 * (ta + tb)
+                    if not (ta < t < tb):
+                        break
+                _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g)
+                dt = gx * s1 + gy * s2
+                if abs(dt) <= -0.5 * d0:
+                    found = True
+                    break
+                if dt < 0.0:
+                    ta = t
+                    da = dt
+                    if side == -1:
+                        db *= 0.5
+                    side = -1
+                else:
+                    tb = t
+                    db = dt
+                    if side == 1:
+                        da *= 0.5
+                    side = 1
+            if not found:
+                if ta == 0.0:
+                    break  # the bracket closed at the start: r is the minimiser to rounding
+                t = ta
+                _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g)
         rx += t * s1
         ry += t * s2
-        psi0 = psi1
         fx = gx
         fy = gy
+    if it >= MAX_NEWTON and math.sqrt(fx * fx + fy * fy) > 1e-6 * (abs(px) + abs(py) + g * (abs(rx) + abs(ry))):
+        return rx, ry, -1  # not converged: the gradient is not rounding
     return rx, ry, it
 
 
 @njit(cache=True)
-def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rguess, out, rout):
+def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout.
 
-    Returns the bit set of the groups that slid."""
+    Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
+    set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
+    ng = rb.shape[0]
     alpha = (1.0 + c * h) / (h * h)
     px = y[Y_V] / h - abar_x
     py = y[Y_V + 1] / h - abar_y
-    rx, ry, _ = step_force(y, rb, mu, alpha, px, py, g, rguess[0], rguess[1])
+    rx, ry, iterations = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1])
     rout[0] = rx
     rout[1] = ry
     dx1 = 0.0
     dx2 = 0.0
     fric = 0.0
     mask = 0
-    for k in range(rb.shape[0]):
+    for k in range(ng):
         u1 = y[Y_U + 2 * k]
         u2 = y[Y_U + 2 * k + 1]
-        d1 = rx - u1 / rb[k]
-        d2 = ry - u2 / rb[k]
-        dn = math.sqrt(d1 * d1 + d2 * d2)
-        if dn > mu[k]:
-            lam = rb[k] * (dn - mu[k])
-            v1 = lam * d1 / dn
-            v2 = lam * d2 / dn
-            out[Y_U + 2 * k] = u1 + v1
-            out[Y_U + 2 * k + 1] = u2 + v2
+        v1, v2, _, _, _, _, _, state = element_return(rx, ry, u1, u2, rb[k], mu[k], rim[k])
+        if state == 1 or state == 2:
+            if state == 2:
+                # on the circle exactly (the return's w, not ū + δ rounded)
+                w1 = u1 + v1
+                w2 = u2 + v2
+                wn = math.sqrt(w1 * w1 + w2 * w2)
+                scale = rim[k] / wn if wn > 0.0 else 1.0
+                out[Y_U + 2 * k] = w1 * scale
+                out[Y_U + 2 * k + 1] = w2 * scale
+            else:
+                out[Y_U + 2 * k] = u1 + v1
+                out[Y_U + 2 * k + 1] = u2 + v2
             dx1 += v1
             dx2 += v2
-            fric += g * mu[k] * lam
+            fric += g * mu[k] * math.sqrt(v1 * v1 + v2 * v2)
             mask |= 1 << k
         else:
             out[Y_U + 2 * k] = u1
             out[Y_U + 2 * k + 1] = u2
+        if out[Y_U + 2 * k] ** 2 + out[Y_U + 2 * k + 1] ** 2 >= (rim[k] * (1.0 - RIM_ON)) ** 2:
+            mask |= 1 << (ng + k)
     out[Y_X] = y[Y_X] + dx1
     out[Y_X + 1] = y[Y_X + 1] + dx2
     # V from the momentum balance rather than ΣΔ/h (equal in exact arithmetic): the slips' rounding divided
     # by a small step would swamp the error estimate
-    if mask:
+    if mask & ((1 << ng) - 1):
         out[Y_V] = (y[Y_V] - h * (g * rx + abar_x)) / (1.0 + c * h)
         out[Y_V + 1] = (y[Y_V + 1] - h * (g * ry + abar_y)) / (1.0 + c * h)
     else:
@@ -243,6 +424,9 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rguess, out, rout):
     out[Y_EIN] = y[Y_EIN] - (abar_x * dx1 + abar_y * dx2)
     out[Y_EF] = y[Y_EF] + fric
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
+    out[Y_EIMP] = y[Y_EIMP]
+    if iterations < 0:
+        mask |= UNSOLVED
     return mask
 
 
@@ -263,6 +447,18 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
     y1 = np.zeros(ny)
     yh = np.zeros(ny)
     y2 = np.zeros(ny)
+    y0 = np.zeros(ny)
+    ne = members.shape[0]
+    low = (1 << ng) - 1
+    rim_before = 0
+    n_rim = 0
+    n_ult = 0
+    impulse = 0.0
+    impact_v = 0.0
+    max_imp_v = 0.0
+    peak_r = 0.0
+    first_ult = -1.0
+    f_max = 0.0
     r1 = np.zeros(2)
     rh = np.zeros(2)
     r2 = np.zeros(2)
@@ -339,11 +535,17 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             # mean ground acceleration over [τ, τ+h], its halves (linear inside the sample interval)
             am_x = ax[i] + slope_x * (tau + 0.5 * h)
             am_y = ay[i] + slope_y * (tau + 0.5 * h)
-            m1 = be_step(y, h, am_x, am_y, g, c, rb, mu, r, y1, r1)
+            m1 = be_step(y, h, am_x, am_y, g, c, rb, mu, rim, r, y1, r1)
             mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h), g, c,
-                         rb, mu, r1, yh, rh)
+                         rb, mu, rim, r1, yh, rh)
             m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
-                         c, rb, mu, rh, y2, r2)
+                         c, rb, mu, rim, rh, y2, r2)
+            if (m1 | mh | m2) & UNSOLVED:
+                # Newton did not converge (seen with sliders on their rims pointing different ways at the
+                # ultimate): stop with the time rather than go on from a wrong force
+                status |= STATUS_UNSOLVED
+                fail_t = t[i] + tau
+                break
             xs = tol * max(peak_x, x_floor)
             vs = tol * max(peak_v, v_floor)
             err = 0.0
@@ -361,23 +563,88 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             # accepted: the Richardson combination of the two answers (second order) where the same groups slid
             # in the three solves and the velocity kept its sense; across a change of the sliding set (a stop, a
             # start, a join) or a reversal (the friction turns over) the error expansion does not hold and the
-            # two half steps are kept
-            if m1 == mh and mh == m2 and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 == 0):
+            # two half steps are kept.  A group on its rim in all three solves is put back on its circle after the
+            # combination (the chord of two points on it lies inside by O(h²)), X moved with it
+            for j in range(ny):
+                y0[j] = y[j]
+            if (m1 == mh and mh == m2
+                    and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
                 for j in range(ny):
                     y[j] = 2.0 * y2[j] - y1[j]
+                for k in range(ng):
+                    if m2 >> (ng + k) & 1:
+                        u1 = y[Y_U + 2 * k]
+                        u2 = y[Y_U + 2 * k + 1]
+                        un = math.sqrt(u1 * u1 + u2 * u2)
+                        if un > 0.0:
+                            y[Y_U + 2 * k] = u1 * rim[k] / un
+                            y[Y_U + 2 * k + 1] = u2 * rim[k] / un
+                            y[Y_X] += y[Y_U + 2 * k] - u1
+                            y[Y_X + 1] += y[Y_U + 2 * k + 1] - u2
+                    elif y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 > rim[k] * rim[k]:
+                        # the extrapolation of a group arriving at its rim crossed it: the half steps are kept
+                        for j in range(ny):
+                            y[j] = y2[j]
+                        break
             else:
                 for j in range(ny):
                     y[j] = y2[j]
             r[0] = r2[0]
             r[1] = r2[1]
             tau = hi if last_step else tau + h
+            on_rim = m2 >> ng
+            if on_rim & ~rim_before:
+                n_rim += popcount(element_mask(on_rim & ~rim_before, members))
+            rim_before = on_rim
+            rigid = on_rim == low
+            if rigid:
+                # every element on its rim: the bearing is at its ultimate displacement; a step whose velocity
+                # changes by more than the largest finite force allows is (part of) a plastic impact: its energy
+                # defect (the step's input less the changes of kinetic, stored, friction and viscous energy: the
+                # kinetic energy the rigid stop took) and its velocity change are the impact's
+                if first_ult < 0.0:
+                    first_ult = t[i] + tau
+                f_max = 0.0
+                for k in range(ng):
+                    f_max = max(f_max, math.sqrt(y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2) / rb[k] + mu[k])
+                ag_max = max(math.sqrt(am_x * am_x + am_y * am_y), math.sqrt(raw[0] ** 2 + raw[2] ** 2),
+                             math.sqrt(ax[i + 1] ** 2 + ay[i + 1] ** 2))
+                dv = math.sqrt((y[Y_V] - y0[Y_V]) ** 2 + (y[Y_V + 1] - y0[Y_V + 1]) ** 2)
+                v0 = math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2)
+                if dv > 2.0 * h * (g * f_max + ag_max + c * v0):
+                    defect = ((y[Y_EIN] - y0[Y_EIN]) - 0.5 * (y[Y_V] ** 2 + y[Y_V + 1] ** 2 - v0 * v0)
+                              - (y[Y_EF] - y0[Y_EF]) - (y[Y_EV] - y0[Y_EV]))
+                    for k in range(ng):
+                        defect -= g * ((y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2)
+                                       - (y0[Y_U + 2 * k] ** 2 + y0[Y_U + 2 * k + 1] ** 2)) / (2.0 * rb[k])
+                    y[Y_EIMP] += defect
+                    impact_v += dv
+                    # the impulse is not a force of the surfaces: the transmitted acceleration is the ground's
+                    r[0] = -(ax[i] + slope_x * tau) / g
+                    r[1] = -(ay[i] + slope_y * tau) / g
+                    impulsive = True
+                else:
+                    impulsive = False
+            else:
+                impulsive = False
+            if impact_v > 0.0 and not impulsive:
+                n_ult += 1
+                impulse += impact_v
+                max_imp_v = max(max_imp_v, impact_v)
+                impact_v = 0.0
             vn = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
-            if m1 | m2:
+            if (m1 | m2) & low:
                 slip += h
-                em = element_mask(m2 if m2 else m1, members)
+                sl = (m2 if m2 & low else m1) & low
+                em = element_mask(sl & ~on_rim, members) | (element_mask(on_rim, members) << ne)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
-            if vn == 0.0 and _held(y, rb, mu, -(ax[i] + slope_x * tau) / g, -(ay[i] + slope_y * tau) / g):
+            fr = math.sqrt(r[0] * r[0] + r[1] * r[1])
+            if rigid:
+                fr = min(fr, f_max)
+            peak_r = max(peak_r, fr)
+            if (vn == 0.0 and on_rim == 0
+                    and _held(y, rb, mu, -(ax[i] + slope_x * tau) / g, -(ay[i] + slope_y * tau) / g)):
                 # at rest with −a_g/g inside every circle: stuck (the quadratic then finds the break-away); a
                 # rest of the steps with −a_g/g outside a circle is left to the next step
                 n_ev += 1
@@ -393,7 +660,8 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             for k in range(ng):
                 ub[k, 0] = y[Y_U + 2 * k]
                 ub[k, 1] = y[Y_U + 2 * k + 1]
-                if ub[k, 0] ** 2 + ub[k, 1] ** 2 > rim[k] * rim[k]:
+                if ub[k, 0] ** 2 + ub[k, 1] ** 2 > (rim[k] * (1.0 + 1e-9)) ** 2:
+                    # a guard: the rim's return keeps every group on or inside its circle
                     status |= STATUS_RIM
                     fail_t = t[i] + tau
             if status:
@@ -431,3 +699,14 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
     summary[S_N_REJECTED] = n_rej
     summary[S_FAIL_T] = fail_t
     summary[S_STEPS_MULTI] = n_floor
+    if impact_v > 0.0:
+        n_ult += 1
+        impulse += impact_v
+        max_imp_v = max(max_imp_v, impact_v)
+    summary[S_N_RIM_CONTACTS] = n_rim
+    summary[S_N_ULTIMATE] = n_ult
+    summary[S_IMPULSE] = impulse
+    summary[S_MAX_IMPACT_V] = max_imp_v
+    summary[S_E_IMP] = y[Y_EIMP]
+    summary[S_PEAK_R] = peak_r
+    summary[S_FIRST_ULT] = first_ult

@@ -1,0 +1,188 @@
+"""The rims of double and triple friction pendulums in the plane (model ``2d-multisurface``, implicit steps).
+
+A slider reaching its rim stays on the circle |ū_i| = c̄_i (it slides along it or leaves it inward; the force
+transfers to the other surfaces: regimes IV and V of the TFP), and with every slider on its rim the bearing is at
+its ultimate displacement: a plastic impact, its impulse and energy reported.  The implicit steps are not exact:
+their error is stated and measured here against truths that share no code with them:
+
+* the exact 1-D model with rims (``1d-multisurface``, closed forms between located events) for a pair whose
+  second component is zero, through regimes IV and V, the ultimate with its impacts, and back;
+* the independent solve_ivp reference of a single pendulum with a rim written in the tests
+  (:func:`tests.solver.test_planar_rim.rim_reference`) for a double with equal friction and rims at equal
+  fractions of R̄ — exactly that pendulum — on a real pair: a strict xfail, the steps stop at its first impact
+  (the ultimate in the plane is not resolved: the run stops in one line naming the instant);
+* rotation invariance, and the energy balance input = kinetic + stored + friction + viscous + impact.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from isolator.bearing import parse_bearing
+from isolator.errors import DesignError, SolverError
+from isolator.solver.multisurface import simulate_bearing
+from isolator.solver.planar_multisurface import element_groups, simulate_bearing_pair
+from tests.solver.test_planar_rim import PTS, rim_reference
+
+G = 9.80665
+#: the implicit steps' error against the truths below, as a fraction of the peak (docs/multisurface.md): measured
+#: 1.3e-7 (1-D), 2e-7 (the reference); asserted with a margin of ~5
+STEPS_ERROR = 1e-6
+#: a zero second component against the exact 1-D model over a whole record: the steps' known collinear-reversal
+#: discrepancy (tests/solver/test_planar_multisurface.py asserts ≤ 1e-4 of the peak, 3.2e-5 measured there, not
+#: understood) dominates; 7.1e-6 measured here
+COLLINEAR_ERROR = 1e-4
+
+
+def bearing(kind, surfaces):
+    return parse_bearing({"type": kind, "surface": [
+        {"radius_m": r, "mu": m, "displacement_capacity_m": d} for r, m, d in surfaces]}, DesignError)
+
+
+#: Fenz & Constantinou's TFP: regime IV at 0.752 m, V at 0.848 m, the ultimate 0.9 m
+TFP = bearing("triple", [(2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4)])
+
+
+def sine_pulse(amplitude_g=0.8, period_s=2.5, until_s=5.0, duration_s=9.0, dt=0.01):
+    t = np.arange(0.0, duration_s, dt)
+    return amplitude_g * G * np.sin(2.0 * np.pi * t / period_s) * (t < until_s), dt
+
+
+@pytest.fixture(scope="module")
+def through_the_rims():
+    """The TFP under a 0.8 g sine pulse along x: regimes I–V, the ultimate (impacts), back through them, at rest."""
+    acc, dt = sine_pulse()
+    return acc, dt, simulate_bearing(acc, dt, bearing=TFP), simulate_bearing_pair(acc, np.zeros_like(acc), dt,
+                                                                                  bearing=TFP)
+
+
+def test_zero_second_component_through_regimes_iv_v_and_the_ultimate_is_the_1d_model(through_the_rims):
+    acc, dt, one, two = through_the_rims
+    # the hard case: I–V, the ultimate several times, and back through the regimes after the pulse
+    assert list(one.regimes) == ["I", "II", "III", "IV", "V"] and one.ultimate_displacement_reached
+    assert one.impact_impulse_m_s > 10.0
+    assert "reached a rim" in two.model_reason and "implicit steps" in two.model_reason
+    assert two.ultimate_displacement_reached and two.n_rim_contacts == one.n_rim_contacts
+    assert np.all(two.displacement_m[:, 1] == 0.0)
+    peak = one.peak_displacement_m  # 0.9 m: the ultimate
+    err = np.max(np.abs(two.displacement_m[:, 0] - one.displacement_m)) / peak
+    assert err <= COLLINEAR_ERROR  # 7.1e-6 measured
+    assert np.max(np.abs(two.velocity_m_s[:, 0] - one.velocity_m_s)) <= 10 * COLLINEAR_ERROR * one.peak_velocity_m_s
+    assert two.peak_displacement_m == pytest.approx(peak, rel=1e-12)  # held at the ultimate, never past it
+    assert two.n_impacts == sum(1 for k in one.event_names if k == "ultimate" or k == "rim impact")
+    for key in ("impact_impulse_m_s", "max_impact_velocity_m_s", "energy_impact_J_per_kg", "energy_input_J_per_kg",
+                "peak_force_per_weight"):
+        assert getattr(two, key) == pytest.approx(getattr(one, key), rel=COLLINEAR_ERROR), key
+    # regimes entered, each at a step's end (not located): within a sample interval of the exact instants
+    assert list(two.regimes) == list(one.regimes)
+    for name, t1 in one.regimes.items():
+        assert abs(two.regimes[name] - t1) <= dt, name
+    # the surfaces at their capacities, never past them
+    for got, want, s in zip(two.surface_peak_displacement_m, one.surface_peak_displacement_m, TFP.surfaces,
+                            strict=True):
+        assert got == pytest.approx(want, rel=COLLINEAR_ERROR) and got <= s.displacement_capacity_m * (1 + 1e-12)
+
+
+def test_energy_balance_counts_the_impacts(through_the_rims):
+    acc, dt, one, two = through_the_rims
+    assert two.energy_impact_J_per_kg > 0.3 * two.energy_input_J_per_kg  # the impacts matter
+    # the steps' numerical dissipation (first order where the sliding set changes) is what is left
+    assert abs(two.energy_balance_error_J_per_kg) <= 1e-6 * two.energy_input_J_per_kg
+    assert abs(one.energy_balance_error_J_per_kg) <= 1e-12 * one.energy_input_J_per_kg
+
+
+def test_a_collinear_pair_along_35_degrees_through_iv_and_v_is_the_1d_model_and_rotation_turns_a_planar_answer(
+        through_the_rims):
+    acc, dt, one, two = through_the_rims
+    theta = math.radians(35.0)
+    n = 73  # to 0.72 s: regimes IV and V, before the ultimate (0.7318 s)
+    turned = simulate_bearing_pair(math.cos(theta) * acc[:n], math.sin(theta) * acc[:n], dt, bearing=TFP)
+    along = turned.displacement_m @ np.array([math.cos(theta), math.sin(theta)])
+    across = turned.displacement_m @ np.array([-math.sin(theta), math.cos(theta)])
+    assert {"IV", "V"} <= set(turned.regimes) and turned.n_rim_contacts == 2
+    assert np.max(np.abs(along - one.displacement_m[:n])) <= STEPS_ERROR * one.peak_displacement_m
+    assert np.max(np.abs(across)) <= STEPS_ERROR * one.peak_displacement_m
+    # a planar motion through the rims: an elliptical pulse (0.6 g / 0.5 g) through regimes IV and V up to
+    # 0.72 s, and the same turned by 0.7 rad
+    t = np.arange(0.0, 0.72, 0.01)
+    ax = 0.6 * G * np.sin(2 * np.pi * t / 2.0)
+    ay = 0.5 * G * np.cos(2 * np.pi * t / 1.7)
+    res = simulate_bearing_pair(ax, ay, 0.01, bearing=TFP)
+    assert res.n_rim_contacts == 2 and {"IV", "V"} <= set(res.regimes) and not res.ultimate_displacement_reached
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-5 * res.energy_input_J_per_kg  # 3.4e-6 measured
+    c, s = math.cos(0.7), math.sin(0.7)
+    rot = simulate_bearing_pair(c * ax - s * ay, s * ax + c * ay, 0.01, bearing=TFP)
+    back = rot.displacement_m @ np.array([[c, -s], [s, c]])
+    assert np.max(np.abs(back - res.displacement_m)) <= 10 * STEPS_ERROR * res.peak_displacement_m
+    assert rot.n_rim_contacts == res.n_rim_contacts
+    # the outer surfaces (u_1 ∝ ū_1, u_4 ∝ ū_4) on their rims, never past them
+    outer = [res.surface_peak_displacement_m[i] / TFP.surfaces[i].displacement_capacity_m for i in (0, 3)]
+    assert max(outer) <= 1 + 1e-12 and min(outer) == pytest.approx(1.0, rel=1e-9)
+    # on to the ultimate with the outer sliders on their rims pointing different ways: the steps do not resolve
+    # that impact (Newton finds no force) and the run stops in one line naming the instant — never past it
+    t = np.arange(0.0, 1.0, 0.01)
+    with pytest.raises(SolverError, match=r"found no force at t = 0\.72"):
+        simulate_bearing_pair(0.6 * G * np.sin(2 * np.pi * t / 2.0), 0.5 * G * np.cos(2 * np.pi * t / 1.7), 0.01,
+                              bearing=TFP)
+
+
+@pytest.fixture(scope="module")
+def pts_reference(records_dir):
+    """PTS 7–14 s × 2 (Superstition Hills, both components) on R = 2 m, µ = 0.06, rim 0.4 m: the tests' own
+    solve_ivp reference of a single pendulum with a rim: four impacts, three slides along the rim and off it."""
+    from isolator.motion import read_ground_motion
+
+    x = read_ground_motion(records_dir / "pairs" / PTS / "RSN723_SUPER.B_B-PTS225.AT2")
+    y = read_ground_motion(records_dir / "pairs" / PTS / "RSN723_SUPER.B_B-PTS315.AT2")
+    dt = x.dt_s
+    a, b = round(7.0 / dt), round(14.0 / dt)
+    ax, ay = 2.0 * x.acceleration_m_s2[a:b], 2.0 * y.acceleration_m_s2[a:b]
+    ref = rim_reference(dt * np.arange(ax.size), ax, ay, mu_s=0.06, mu_k=0.06, radius=2.0, d=0.4)
+    return ax, ay, dt, ref
+
+
+@pytest.mark.xfail(strict=True, raises=SolverError,
+                   reason="the ultimate impact in the plane: Newton finds no force at the first impact (4.91 s); "
+                          "the run stops in one line naming the instant (docs/multisurface.md: not resolved)")
+def test_a_double_with_equal_friction_against_the_independent_reference_on_a_real_pair(pts_reference):
+    """A double (R 1.2 + 0.8 m, µ 0.06, capacities 0.24 and 0.16 m) is the single pendulum R = 2 m with its rim at
+    0.4 m: the tests' own solve_ivp reference of that pendulum (4 impacts, slides along the rim)."""
+    ax, ay, dt, ref = pts_reference
+    dbl = bearing("double", [(1.2, 0.06, 0.24), (0.8, 0.06, 0.16)])
+    assert len(element_groups(dbl, split_rims=True)[0]) == 1
+    res = simulate_bearing_pair(ax, ay, dt, bearing=dbl)
+    impacts = ref["impacts"]
+    assert len(impacts) == 4 and res.n_impacts == 4 and res.ultimate_displacement_reached
+    assert np.max(np.abs(res.displacement_m - ref["displacement_m"])) / 0.4 <= STEPS_ERROR
+    assert res.impact_impulse_m_s == pytest.approx(sum(v for _, v in impacts), rel=10 * STEPS_ERROR)
+    assert res.energy_impact_J_per_kg == pytest.approx(ref["energy_impact_J_per_kg"], rel=10 * STEPS_ERROR)
+
+
+def test_groups_of_equal_friction_part_where_their_rims_differ():
+    # the steps split equal circles whose rims lie at different fractions of R̄ (one reaches its rim first)
+    assert len(element_groups(bearing("double", [(1.2, 0.06, 0.24), (0.8, 0.06, 0.16)]), split_rims=True)[0]) == 1
+    apart = bearing("double", [(1.2, 0.06, 0.24), (0.8, 0.06, 0.16 * (1 + 1e-9))])
+    assert len(element_groups(apart, split_rims=True)[0]) == 2 and len(element_groups(apart)[0]) == 1
+    rb, mu, rim, members = element_groups(TFP, split_rims=True)  # the inner surfaces keep one group: equal fractions
+    np.testing.assert_allclose(rb, [1.8, 0.6, 1.8], rtol=1e-14)
+    np.testing.assert_allclose(rim / rb, [0.4 / 2.1, 0.5 / 1.4, 0.4 / 2.1], rtol=1e-14)
+
+
+@pytest.mark.xfail(strict=True, reason="the ultimate impact off the axes: Newton finds no force at the impact step "
+                                       "(found here, not resolved); the run stops in one line at 0.7318 s")
+def test_the_ultimate_along_35_degrees_is_the_1d_model(through_the_rims):
+    acc, dt, one, two = through_the_rims
+    theta = math.radians(35.0)
+    turned = simulate_bearing_pair(math.cos(theta) * acc, math.sin(theta) * acc, dt, bearing=TFP)
+    along = turned.displacement_m @ np.array([math.cos(theta), math.sin(theta)])
+    assert np.max(np.abs(along - one.displacement_m)) <= COLLINEAR_ERROR * one.peak_displacement_m
+
+
+def test_the_ultimate_off_the_axes_stops_in_one_line_naming_the_instant(through_the_rims):
+    acc, dt, one, two = through_the_rims
+    theta = math.radians(35.0)
+    with pytest.raises(SolverError, match=r"found no force at t = 0\.73"):
+        simulate_bearing_pair(math.cos(theta) * acc, math.sin(theta) * acc, dt, bearing=TFP)
