@@ -121,15 +121,19 @@ def solve_force(vel, b, mode, mu_s, mu_f, a):
     share = vel / k
     lo = math.inf
     hi = -math.inf
+    signs = 0
     for i in range(b.shape[0]):
         if mode[i] == 1 or mode[i] == -1:
             s = float(mode[i])
             ri = b[i] + s * (mu_s[i] - (mu_f[i] - mu_s[i]) * math.expm1(-a[i] * s * share))
             lo = min(lo, ri)
             hi = max(hi, ri)
+            signs += mode[i]
     if k == 1 or hi == lo:
         return lo
-    r = 0.5 * (lo + hi)
+    # every surface sliding + : the sum is convex in r, so Newton from the upper end never overshoots
+    # (and from the lower end when all slide −, where it is concave); mixed: from the middle, safeguarded
+    r = hi if signs == k else (lo if signs == -k else 0.5 * (lo + hi))
     for _ in range(200):
         total = -vel
         slope = 0.0
@@ -147,11 +151,11 @@ def solve_force(vel, b, mode, mu_s, mu_f, a):
         if hi - lo <= 2e-16 * max(abs(lo), abs(hi)) or hi - lo < 1e-300:
             return 0.5 * (lo + hi)
         step = total / slope if math.isfinite(total) and math.isfinite(slope) else math.nan
+        if abs(step) <= 4e-16 * abs(r) + 1e-300:
+            return r - step  # Newton's step at rounding: converged (quadratically) to the last bits
         r_new = r - step
         if not (lo < r_new < hi):
             r_new = 0.5 * (lo + hi)
-        elif abs(r_new - r) <= 1e-16 * abs(r):
-            return r_new
         r = r_new
     return r
 
@@ -258,6 +262,10 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
                 for k in range(3):
                     for q in range(m):
                         big[j * m + p, k * m + q] = (1.0 if (j == k and p == q) else 0.0) - h * RADAU_A[j, k] * jac[k, p, q]
+        for p in range(3 * m):
+            for q in range(3 * m):
+                if not math.isfinite(big[p, q]):
+                    return False  # a stage left the slide law's domain: the caller shortens the step
         delta = np.linalg.solve(big, res)
         size = 0.0
         for j in range(3):
@@ -465,7 +473,6 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     y = np.zeros(m)
     y_try = np.empty(m)
     y_ev = np.empty(m)
-    y_lo = np.empty(m)
     dy = np.empty(m)
     jac = np.empty((m, m))
     quad = np.empty(3)
@@ -571,8 +578,9 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             first_slot = -1
             first_t = math.inf
             for slot in range(2 * ns + 1):
-                if e1[slot] < 0.0 and e0[slot] >= 0.0:
-                    if e0[slot] == 0.0:
+                rim_slot = slot < 2 * ns and slot % 2 == 1
+                if e1[slot] < 0.0 and (e0[slot] >= 0.0 or rim_slot):
+                    if e0[slot] <= 0.0:  # at the event already (a rim reached together with another)
                         t_root = 0.0
                     else:
                         # Illinois secant on the re-stepped collocation
@@ -604,7 +612,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                                 if side == 1:
                                     fb *= 0.5
                                 side = 1
-                            if tb_ - ta <= 4e-16 * (tau + tb_) + 1e-300 or fm == 0.0:
+                            if tb_ - ta <= 1e-13 * dt_i or fm == 0.0:  # ≤ 1e-13 of the interval
                                 break
                         t_root = tb_
                         # restore the end values for the other slots
