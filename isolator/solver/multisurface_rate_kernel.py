@@ -665,6 +665,11 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                 stuck = True
                 break
             ag_now = a0 + slope * tau
+            if first_slot < 2 * ns and first_slot % 2 == 0 and e0[2 * ns] < math.inf and (
+                    mode[first_slot // 2] == 1 or mode[first_slot // 2] == -1) and abs(y[0]) <= 1e-9 * scale[0]:
+                # a surface stops with the mass (every slider moving one way, X' at rounding): the mass stop,
+                # located a hair later; taken here, or the others would run on through X' = 0
+                first_slot = 2 * ns
             if first_slot == 2 * ns:
                 # the mass stops
                 y[0] = 0.0
