@@ -40,6 +40,7 @@ import numpy as np
 
 from isolator.errors import DesignError
 from isolator.solver.multisurface_series import (
+    DECREASING_RATE_REASON,
     STATIC_FRICTION_REASON,
     excursion,
     max_regimes,
@@ -59,9 +60,9 @@ SURFACE_KEYS = {
     "mu": "friction coefficient µ_i [-] (kinetic = static)",
     "mu_kinetic": "kinetic friction coefficient µ_i [-]",
     "mu_static": "static friction coefficient [-] >= mu_kinetic (single surface only)",
-    "mu_slow": "velocity-dependent friction µ at rest [-] (single surface only)",
-    "mu_fast": "velocity-dependent friction µ at high speed [-] (single surface only)",
-    "rate_s_per_m": "velocity-dependent friction rate [s/m] (single surface only)",
+    "mu_slow": "velocity-dependent friction µ at rest [-] (<= mu_fast; on every surface or none)",
+    "mu_fast": "velocity-dependent friction µ at high speed [-]",
+    "rate_s_per_m": "velocity-dependent friction rate [s/m]",
     "displacement_capacity_m": "displacement capacity d_i on the surface [m], > 0 (required for double/triple)",
 }
 
@@ -89,7 +90,8 @@ class Surface:
     displacement_capacity_m : float or None
         Capacity d on the surface [m] (None: no rim).
     mu_slow, mu_fast, rate_s_per_m : float or None
-        Velocity-dependent friction (single surface only).
+        Velocity-dependent friction µ(v) = µ_fast − (µ_fast − µ_slow) e^{−a v} (a double or triple:
+        on every surface or none; model ``1d-multisurface+mu(v)``).
     """
 
     radius_m: float
@@ -513,6 +515,12 @@ def parse_bearing(table, fail) -> Bearing:
     if len(entries) != n:
         raise fail(f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}, got {len(entries)}")
     surfaces = tuple(_surface(entry, i + 1, kind, fail) for i, entry in enumerate(entries))
+    rate_law = [s.rate_s_per_m is not None and s.mu_slow < s.mu_fast for s in surfaces]
+    if kind != "single" and any(rate_law) and not all(rate_law):
+        i = rate_law.index(False) + 1
+        raise fail(f"bearing surface {i}: give µ(v) with mu_slow < mu_fast on every surface of a {kind} bearing "
+                   "with µ(v), or a constant mu on every surface (a surface of constant friction in series with "
+                   "µ(v) ones is not modelled)")
     bearing = Bearing(kind=kind, surfaces=surfaces)
     _check_geometry(bearing, fail)
     return bearing
@@ -562,17 +570,13 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
         mu_fast = number("mu_fast", required=True, positive=True)
         rate = number("rate_s_per_m", required=True, positive=True)
         if mu_slow > mu_fast:
-            raise fail(f"{where}: mu_slow ({mu_slow:g}) must not exceed mu_fast ({mu_fast:g})")
+            why = "" if kind == "single" else f" on a {kind} bearing: {DECREASING_RATE_REASON}"
+            raise fail(f"{where}: mu_slow ({mu_slow:g}) must not exceed mu_fast ({mu_fast:g}){why}")
         mu_k = mu_fast
         mu_s = mu_slow
     if max(mu_k, mu_s) >= 1.0:
         raise fail(f"{where}: friction must be < 1 for a sliding surface, got {max(mu_k, mu_s):g}")
-    if kind != "single" and rate is not None:
-        raise fail(f"{where}: velocity-dependent friction (mu_slow, mu_fast, rate_s_per_m) is not modelled on a "
-                   f"{kind} bearing: each surface's friction would follow its own slider's velocity, so the force "
-                   "is no longer piecewise linear in the displacement and the exact 1-D solution does not apply; "
-                   "give 'mu'")
-    if kind != "single" and mu_s != mu_k:
+    if kind != "single" and mu_s != mu_k and rate is None:
         raise fail(f"{where}: mu_static ({mu_s:g}) > mu_kinetic ({mu_k:g}) is not modelled on a {kind} bearing: "
                    f"{STATIC_FRICTION_REASON}; give 'mu' (or mu_static = mu_kinetic)")
     capacity = number("displacement_capacity_m", required=kind != "single", positive=True)

@@ -144,7 +144,7 @@ def test_invalid_triple_geometry_is_one_line_naming_the_surface(surfaces, match)
     ({"type": "double", "surface": [{"radius_m": 2.1, "mu": 0.06, "displacement_capacity_m": 0.4},
                                     {"radius_m": 0.3, "mu_slow": 0.01, "mu_fast": 0.02, "rate_s_per_m": 30,
                                      "displacement_capacity_m": 0.05}]},
-     "surface 2: velocity-dependent friction .* not modelled on a double bearing: each surface's friction"),
+     r"surface 1: give µ\(v\) with mu_slow < mu_fast on every surface of a double bearing with µ\(v\)"),
     ({"type": "single", "surface": [{"radius_m": 1, "mu": 1.2}]}, "< 1"),
     ({"type": "single", "surface": [{"radius_m": -1, "mu": 0.1}]}, "radius_m"),
     ({"type": "single", "kind": 2, "surface": [{"radius_m": 1, "mu": 0.1}]}, "unknown key 'bearing.kind'"),

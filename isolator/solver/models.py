@@ -40,7 +40,16 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from isolator.solver import building, multisurface, planar, planar_building, planar_multisurface, planar_rim, record
+from isolator.solver import (
+    building,
+    multisurface,
+    multisurface_rate,
+    planar,
+    planar_building,
+    planar_multisurface,
+    planar_rim,
+    record,
+)
 from isolator.solver.base import SUMMARY_KEYS, Scene, SolverResult
 
 
@@ -69,6 +78,8 @@ class Model:
 
 #: The models, most specific first: :func:`select_model` takes the first whose ``needs`` answers.
 MODELS: dict[str, Model] = {model.name: model for model in (
+    Model(multisurface_rate.MODEL_NAME, multisurface_rate.scene_needs, multisurface_rate.simulate_scene,
+          "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
           "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
     Model(multisurface.MODEL_NAME, multisurface.scene_needs, multisurface.simulate_scene,

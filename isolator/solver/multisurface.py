@@ -264,7 +264,8 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
         Sample interval [s] (or give ``time_s``).
     bearing : isolator.bearing.Bearing
         The bearing (kinetic friction per surface; static friction above kinetic on a
-        single surface only; µ(v) is not part of this model).
+        single surface only; µ(v) is :mod:`isolator.solver.multisurface_rate`'s, except µ_slow =
+        µ_fast, a constant law run here).
     time_s : array_like, optional
         Sample times [s], strictly increasing.
     damping_per_mass : float
@@ -283,9 +284,11 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
     if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
         raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
     rbar, mu, rim = bearing.elements()
-    if any(surface.rate_s_per_m is not None for surface in bearing.surfaces):
-        raise ValueError("velocity-dependent friction is not part of the 1-D multi-surface model (closed forms "
-                         "need constant friction per surface)")
+    if any(surface.rate_s_per_m is not None and surface.mu_slow < surface.mu_fast for surface in bearing.surfaces):
+        # µ_slow = µ_fast is a constant law (µ = µ_fast), which the closed forms take
+        raise ValueError("velocity-dependent friction is not part of the exact 1-D multi-surface model (closed forms "
+                         "need constant friction per surface): it is 1d-multisurface+mu(v) "
+                         "(isolator.solver.multisurface_rate)")
     if rbar.size > 1 and np.any(bearing.mu_static != mu):
         raise ValueError(f"static friction above kinetic on a {bearing.kind} bearing is not modelled: "
                          f"{STATIC_FRICTION_REASON}")

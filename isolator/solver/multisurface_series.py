@@ -77,6 +77,13 @@ STATIC_FRICTION_REASON = (
     "the displacement along an excursion, which the exact series solution needs (the answer would depend on "
     "the slider masses the model leaves out)")
 
+#: Why µ falling with speed (mu_slow > mu_fast) is refused on a double or triple (one clause).
+DECREASING_RATE_REASON = (
+    "with µ falling with speed the slide rate of a surface is not a function of the force through it (at one "
+    "force it may slide fast or stay stuck), so the split of the bearing's velocity between surfaces in series "
+    "is not unique (two equal surfaces can share it or one can take it all) and would depend on the slider "
+    "masses the model leaves out")
+
 #: Largest number of regimes in one excursion: each element starts once and stops once.
 def max_regimes(n_elements: int) -> int:
     """Room for the regimes of one excursion of ``n_elements`` elements (2n + 1)."""

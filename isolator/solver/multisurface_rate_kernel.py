@@ -1,0 +1,808 @@
+r"""The compiled record loop of a double or triple friction pendulum with µ(v) on its surfaces (1-D).
+
+Per surface i (physical displacement u_i on the surface, effective geometry; x = Σ u_i),
+in units of the weight, the one force r = F/W through the massless sliders obeys
+
+.. math::
+
+    r = b_i(u) + \mu_i(|\dot u_i|)\,\mathrm{sign}(\dot u_i) \quad (\text{sliding}),\qquad
+    |r - b_i(u)| \le \mu_{slow,i} \quad (\text{stuck}),\qquad
+    \mu_i(v) = \mu_{fast,i} - (\mu_{fast,i} - \mu_{slow,i})\,e^{-a_i v},
+
+with the back-force b = B u of the series model (B = diag(1/R̄) T⁻¹: b_i = u_i/R_eff,i for a single
+or double; for a triple b_2 = u_1/R_eff,1 + u_2/R_eff,2 and b_3 = u_3/R_eff,3 + u_4/R_eff,4, the
+rotated slide plates of Fenz & Constantinou), and the mass X'' = −g r − c X' − a_g(t).
+
+With µ_i increasing in |v| each sliding surface's slide rate is a monotone function of its
+friction excess, v_i = φ_i(r − b_i) = ± ln((µ_fast − µ_slow)/(µ_fast − |r − b_i|))/a_i, so
+Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The split of
+the velocity between sliding surfaces relaxes at the rate φ'_i/R_eff,i = e^{a v}/(a (µ_fast −
+µ_slow) R_eff), 10⁵–10⁹ s⁻¹ at real slide speeds: the system is stiff, so it is integrated with the
+L-stable 3-stage Radau IIA collocation (order 5), Newton's method on the stage equations with the
+analytic Jacobian, every step taken twice (h, then two halves) and the difference held below the
+tolerance; the halves are kept.  Inside a *mode* (each surface sliding +, sliding −, stuck, or held on
+a rim) the right-hand side is analytic (the sliding branches are continued through the onset), and
+the mode changes are events located on re-stepped collocation steps (Illinois secant):
+
+* a sliding surface stops (v_i = 0), a stuck one starts (|r − b_i| = µ_slow,i);
+* a surface reaches its rim |u_i| = d_i* (the force then jumps so the others take its velocity;
+  the slide rates are continuous in r, so the mass does not stop), or leaves it (r − b_i past the
+  opposite static level);
+* the mass stops (X' = 0 with every sliding surface moving the same way): then it sticks while
+  −a_g/g lies in the window [max(b_i − µ_slow,i), min(b_i + µ_slow,i)] (rims make a side infinite),
+  which with a piecewise-linear record is linear in time, so the break-away is exact;
+* every surface on its rim the way the mass moves: the ultimate displacement, a plastic impact
+  (X' → 0; impulse |X'| and energy ½X'² reported), as in :mod:`isolator.solver.multisurface_kernel`.
+
+Energies per unit mass: input −∫a_g X' dt, viscous c∫X'², and the bearing's friction g Σ∫(r − b_i)
+dū_i on the series elements ū = T⁻¹u (the accounting of :mod:`isolator.solver.multisurface_kernel`,
+whose stored energy is g Σ ū_i²/(2R̄_i)), all by the collocation's own quadrature (order 5).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, record_event
+
+REGIME = 3  #: the sliding set changed (a surface started, stopped, reached or left its rim)
+RIM_REACHED = 4  #: a surface reached its rim; the others took its velocity (no impact)
+ULTIMATE = 5  #: plastic impact at the ultimate displacement (every slider on its rim)
+EVENT_NAMES = ("breakaway", "stick", "reversal", "regime", "rim reached", "ultimate")
+
+MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
+MAX_STEPS_PER_INTERVAL = 200000  #: bound on the steps of one sample interval
+LEVEL_TIE = 1e-13  #: friction levels closer than this in F/W start together
+
+STATUS_OK = 0
+STATUS_CHATTER = 1
+STATUS_EVENTS_TRUNCATED = 2
+STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the run stops there)
+
+# layout of the summary vector
+S_PEAK_X = 0
+S_PEAK_V = 1
+S_PEAK_A = 2
+S_SLIP_TIME = 3
+S_E_INPUT = 4
+S_E_FRICTION = 5
+S_E_VISCOUS = 6
+S_E_IMPACT = 7
+S_N_EVENTS = 8
+S_STATUS = 9
+S_N_RIM_CONTACTS = 10
+S_N_ULTIMATE = 11
+S_IMPULSE = 12
+S_MAX_IMPACT_V = 13
+S_FIRST_ULTIMATE_T = 14
+S_PEAK_R = 15
+S_N_STEPS = 16  #: accepted collocation steps (each one step of h and two of h/2)
+S_FAIL_T = 17  #: time [s] where a step failed (-1: none)
+SUMMARY_SIZE = 18
+
+# Radau IIA, 3 stages (Hairer & Wanner, Solving ODEs II, Table IV.5.6)
+_SQ6 = math.sqrt(6.0)
+RADAU_C = np.array([(4.0 - _SQ6) / 10.0, (4.0 + _SQ6) / 10.0, 1.0])
+RADAU_A = np.array([[(88.0 - 7.0 * _SQ6) / 360.0, (296.0 - 169.0 * _SQ6) / 1800.0, (-2.0 + 3.0 * _SQ6) / 225.0],
+                    [(296.0 + 169.0 * _SQ6) / 1800.0, (88.0 + 7.0 * _SQ6) / 360.0, (-2.0 - 3.0 * _SQ6) / 225.0],
+                    [(16.0 - _SQ6) / 36.0, (16.0 + _SQ6) / 36.0, 1.0 / 9.0]])
+
+
+@njit(cache=True)
+def slide_rate(f, s, mu_s, mu_f, a):
+    """Slide velocity v [m/s] and dv/df of a surface sliding in direction s at friction excess f = r − b.
+
+    The inverse of µ(v) continued through the onset (v changes sign at s f = µ_slow);
+    ±inf where s f ≥ µ_fast (no finite speed gives that friction).
+    """
+    gap = mu_f - s * f
+    if not gap > 0.0:
+        return s * math.inf, math.inf
+    return s * math.log((mu_f - mu_s) / gap) / a, 1.0 / (a * gap)
+
+
+@njit(cache=True)
+def solve_force(vel, b, mode, mu_s, mu_f, a):
+    """F/W [-] at which the sliding surfaces' rates (mode ±1) sum to the bearing's velocity ``vel`` [m/s].
+
+    Σ φ_i(r − b_i) is increasing in r; the bracket is where each surface alone would carry
+    vel/k (every rate ≤ or ≥ vel/k there), then safeguarded Newton to rounding.  NaN when no
+    surface slides.
+    """
+    k = 0
+    for i in range(b.shape[0]):
+        if mode[i] == 1 or mode[i] == -1:
+            k += 1
+    if k == 0:
+        return math.nan
+    share = vel / k
+    lo = math.inf
+    hi = -math.inf
+    signs = 0
+    for i in range(b.shape[0]):
+        if mode[i] == 1 or mode[i] == -1:
+            s = float(mode[i])
+            ri = b[i] + s * (mu_s[i] - (mu_f[i] - mu_s[i]) * math.expm1(-a[i] * s * share))
+            lo = min(lo, ri)
+            hi = max(hi, ri)
+            signs += mode[i]
+    if k == 1 or hi == lo:
+        return lo
+    # every surface sliding + : the sum is convex in r, so Newton from the upper end never overshoots
+    # (and from the lower end when all slide −, where it is concave); mixed: from the middle, safeguarded
+    r = hi if signs == k else (lo if signs == -k else 0.5 * (lo + hi))
+    for _ in range(200):
+        total = -vel
+        slope = 0.0
+        for i in range(b.shape[0]):
+            if mode[i] == 1 or mode[i] == -1:
+                v, dv = slide_rate(r - b[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
+                total += v
+                slope += dv
+        if total == 0.0:
+            return r
+        if total > 0.0:
+            hi = r
+        else:
+            lo = r
+        if hi - lo <= 2e-16 * max(abs(lo), abs(hi)) or hi - lo < 1e-300:
+            return 0.5 * (lo + hi)
+        step = total / slope if math.isfinite(total) and math.isfinite(slope) else math.nan
+        if abs(step) <= 4e-16 * abs(r) + 1e-300:
+            return r - step  # Newton's step at rounding: converged (quadratically) to the last bits
+        r_new = r - step
+        if not (lo < r_new < hi):
+            r_new = 0.5 * (lo + hi)
+        r = r_new
+    return r
+
+
+@njit(cache=True)
+def back_force(u, bmat, out_b):
+    for i in range(u.shape[0]):
+        total = 0.0
+        for k in range(u.shape[0]):
+            total += bmat[i, k] * u[k]
+        out_b[i] = total
+
+
+@njit(cache=True)
+def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_jac):
+    """dy/dt of y = (X', u_1..u_n) in a fixed mode; returns (r, friction power per unit mass).
+
+    ``out_jac`` [m+1 × m+1] is filled with ∂(dy/dt)/∂y when ``want_jac``.  The friction power
+    is g Σ (r − b_i) dū_i/dt on the series elements ū = smat u.
+    """
+    n = bmat.shape[0]
+    vel = y[0]
+    u = y[1:]
+    back_force(u, bmat, wb)
+    r = solve_force(vel, wb, mode, mu_s, mu_f, a)
+    out_dy[0] = -g * r - c * vel - ag
+    dsum = 0.0
+    for i in range(n):
+        if mode[i] == 1 or mode[i] == -1:
+            v, dv = slide_rate(r - wb[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
+            out_dy[1 + i] = v
+            dsum += dv
+        else:
+            out_dy[1 + i] = 0.0
+    power = 0.0
+    for i in range(n):
+        ubar_dot = 0.0
+        for k in range(n):
+            ubar_dot += smat[i, k] * out_dy[1 + k]
+        power += (r - wb[i]) * ubar_dot
+    if want_jac:
+        for p in range(n + 1):
+            for q in range(n + 1):
+                out_jac[p, q] = 0.0
+        dr_dv = 1.0 / dsum
+        # ∂r/∂u_k = Σ_i φ'_i B_ik / Σ φ'
+        for k in range(n):
+            total = 0.0
+            for i in range(n):
+                if mode[i] == 1 or mode[i] == -1:
+                    _, dv = slide_rate(r - wb[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
+                    total += dv * bmat[i, k]
+            out_jac[0, 1 + k] = -g * total * dr_dv
+        out_jac[0, 0] = -g * dr_dv - c
+        for i in range(n):
+            if mode[i] == 1 or mode[i] == -1:
+                _, dv = slide_rate(r - wb[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
+                out_jac[1 + i, 0] = dv * dr_dv
+                for k in range(n):
+                    out_jac[1 + i, 1 + k] = dv * (-out_jac[0, 1 + k] / g - bmat[i, k])
+    return r, g * power
+
+
+@njit(cache=True)
+def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad):
+    """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ); False if Newton fails.
+
+    ``y1`` is filled with the end state; ``quad`` with the step's (−∫a_g X', c∫X'², friction work) [J/kg].
+    """
+    m = y0.shape[0]
+    n = m - 1
+    z = np.zeros((3, m))
+    fz = np.empty((3, m))
+    jac = np.empty((3, m, m))
+    big = np.empty((3 * m, 3 * m))
+    res = np.empty(3 * m)
+    ys = np.empty(m)
+    dy = np.empty(m)
+    wb = np.empty(n)
+    rs = np.empty(3)
+    power = np.empty(3)
+    prev = math.inf
+    converged = False
+    for it in range(20):
+        for j in range(3):
+            for p in range(m):
+                ys[p] = y0[p] + z[j, p]
+            ag = a_start + slope * RADAU_C[j] * h
+            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], True)
+            for p in range(m):
+                fz[j, p] = dy[p]
+        ok = True
+        for j in range(3):
+            if not math.isfinite(rs[j]):
+                ok = False
+        if not ok:
+            return False
+        for j in range(3):
+            for p in range(m):
+                total = z[j, p]
+                for k in range(3):
+                    total -= h * RADAU_A[j, k] * fz[k, p]
+                res[j * m + p] = -total
+                for k in range(3):
+                    for q in range(m):
+                        big[j * m + p, k * m + q] = (1.0 if (j == k and p == q) else 0.0) - h * RADAU_A[j, k] * jac[k, p, q]
+        for p in range(3 * m):
+            for q in range(3 * m):
+                if not math.isfinite(big[p, q]):
+                    return False  # a stage left the slide law's domain: the caller shortens the step
+        delta = np.linalg.solve(big, res)
+        size = 0.0
+        for j in range(3):
+            for p in range(m):
+                z[j, p] += delta[j * m + p]
+                size = max(size, abs(delta[j * m + p]) / scale[p])
+        if not math.isfinite(size):
+            return False
+        if size <= 1e-15 or (it >= 2 and size >= 0.5 * prev and size <= 1e-11):
+            converged = True
+            break
+        prev = size
+    if not converged:
+        return False
+    # the stage derivatives at the converged stages (for the quadratures)
+    q_in = 0.0
+    q_visc = 0.0
+    q_fric = 0.0
+    for j in range(3):
+        for p in range(m):
+            ys[p] = y0[p] + z[j, p]
+        ag = a_start + slope * RADAU_C[j] * h
+        rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], False)
+        w = h * RADAU_A[2, j]
+        q_in -= w * ag * ys[0]
+        q_visc += w * c * ys[0] * ys[0]
+        q_fric += w * power[j]
+    for p in range(m):
+        y1[p] = y0[p] + z[2, p]
+    quad[0] = q_in
+    quad[1] = q_visc
+    quad[2] = q_fric
+    return True
+
+
+@njit(cache=True)
+def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad):
+    """Two Radau steps of h/2 (kept) and one of h (the estimate); returns the scaled difference (inf: failed)."""
+    m = y0.shape[0]
+    y_full = np.empty(m)
+    y_mid = np.empty(m)
+    q_full = np.empty(3)
+    q1 = np.empty(3)
+    q2 = np.empty(3)
+    if not radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full):
+        return math.inf
+    half = 0.5 * h
+    if not radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1):
+        return math.inf
+    if not radau_step(y_mid, half, a_start + slope * half, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
+                      y1, q2):
+        return math.inf
+    err = 0.0
+    for p in range(m):
+        err = max(err, abs(y1[p] - y_full[p]) / scale[p])
+    for k in range(3):
+        quad[k] = q1[k] + q2[k]
+    return err
+
+
+@njit(cache=True)
+def event_values(y, r, dy, mode, mu_s, cap, bmat, wb, out_e):
+    """The event functions at a state (≥ 0: no event); slots 2i (stop/start/leave), 2i+1 (rim), 2n (mass stop)."""
+    n = mode.shape[0]
+    back_force(y[1:], bmat, wb)
+    same = 0
+    mixed = False
+    for i in range(n):
+        md = mode[i]
+        f = r - wb[i]
+        out_e[2 * i + 1] = math.inf
+        if md == 1 or md == -1:
+            s = float(md)
+            out_e[2 * i] = s * dy[1 + i]
+            if math.isfinite(cap[i]):
+                out_e[2 * i + 1] = cap[i] - s * y[1 + i]
+            if same == 0:
+                same = md
+            elif same != md:
+                mixed = True
+        elif md == 0:
+            out_e[2 * i] = mu_s[i] - abs(f)
+        else:
+            s = 1.0 if md > 0 else -1.0
+            out_e[2 * i] = s * f + mu_s[i]
+    out_e[2 * n] = math.inf
+    if same != 0 and not mixed:
+        out_e[2 * n] = float(same) * y[0]
+
+
+@njit(cache=True)
+def window(u, bmat, mode, mu_s, wb):
+    """(lo, hi) of F/W the stuck bearing holds; a surface held on its rim removes that side's limit."""
+    back_force(u, bmat, wb)
+    lo = -math.inf
+    hi = math.inf
+    for i in range(u.shape[0]):
+        if mode[i] != 2:
+            hi = min(hi, wb[i] + mu_s[i])
+        if mode[i] != -2:
+            lo = max(lo, wb[i] - mu_s[i])
+    return lo, hi
+
+
+@njit(cache=True)
+def start_from_rest(s, u, bmat, mode, mu_s, wb):
+    """The surfaces at the window's edge in direction s begin to slide (mode s); the others stay."""
+    lo, hi = window(u, bmat, mode, mu_s, wb)
+    for i in range(u.shape[0]):
+        if s > 0.0 and mode[i] != 2 and wb[i] + mu_s[i] <= hi + LEVEL_TIE:
+            mode[i] = 1
+        elif s < 0.0 and mode[i] != -2 and wb[i] - mu_s[i] >= lo - LEVEL_TIE:
+            mode[i] = -1
+
+
+@njit(cache=True)
+def consistent_mode(vel, u, bmat, mode, mu_s, mu_f, a, wb):
+    """Set the sliding surfaces for a moving bearing (vel ≠ 0) from the true slide law (bisection on r).
+
+    Each surface not held on a rim that way slides when |r − b_i| > µ_slow,i; r solves
+    Σ v_i(r) = vel with v_i = 0 inside the static band.
+    """
+    n = u.shape[0]
+    back_force(u, bmat, wb)
+    lo = -math.inf
+    hi = math.inf
+    for i in range(n):
+        if mode[i] != 2:
+            hi = min(hi, wb[i] + mu_f[i])
+        if mode[i] != -2:
+            lo = max(lo, wb[i] - mu_f[i])
+    if not lo < hi:
+        return
+    for _ in range(400):
+        r = 0.5 * (lo + hi)
+        if r <= lo or r >= hi:
+            break
+        total = -vel
+        for i in range(n):
+            f = r - wb[i]
+            if f > mu_s[i] and mode[i] != 2:
+                total += slide_rate(f, 1.0, mu_s[i], mu_f[i], a[i])[0]
+            elif f < -mu_s[i] and mode[i] != -2:
+                total += slide_rate(f, -1.0, mu_s[i], mu_f[i], a[i])[0]
+        if total > 0.0:
+            hi = r
+        else:
+            lo = r
+    r = 0.5 * (lo + hi)
+    for i in range(n):
+        f = r - wb[i]
+        if f > mu_s[i] + LEVEL_TIE and mode[i] != 2:
+            mode[i] = 1
+        elif f < -mu_s[i] - LEVEL_TIE and mode[i] != -2:
+            mode[i] = -1
+        elif mode[i] == 1 or mode[i] == -1:
+            mode[i] = 0
+
+
+@njit(cache=True)
+def _masks(mode):
+    sliding = 0
+    rimmed = 0
+    for i in range(mode.shape[0]):
+        if mode[i] == 1 or mode[i] == -1:
+            sliding |= 1 << i
+        elif mode[i] == 2 or mode[i] == -2:
+            rimmed |= 1 << i
+    return sliding, rimmed
+
+
+@njit(cache=True)
+def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
+                out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x,
+                summary, surf_peak, state_first_time, u):
+    """Response of a mass on a multi-surface bearing with µ(v) surfaces to a sampled record.
+
+    Parameters
+    ----------
+    acc : float64[n]
+        Ground acceleration [m/s²], linear between samples.
+    times : float64[n]
+        Sample times from the first [s].
+    g, c : float
+        Gravity [m/s²] and damping per unit mass [1/s].
+    bmat, smat : float64[ns, ns]
+        Back-force matrix B (b = B u) [1/m] and the element map ū = S u [-].
+    mu_s, mu_f, a : float64[ns]
+        µ_slow, µ_fast [-] and the rate [s/m] of each surface (µ_slow < µ_fast).
+    cap : float64[ns]
+        d_i* [m] (inf: no rim).
+    tol : float
+        Largest scaled difference of a step from its two halves (scales: the running peaks).
+    h_first : float
+        First trial step [s].
+    out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x, summary, surf_peak, state_first_time
+        Filled as in :func:`isolator.solver.multisurface_kernel.multisurface_kernel`.
+    u : float64[ns]
+        In: initial surface displacements (zeros); out: the final ones [m].
+    """
+    n_samples = acc.shape[0]
+    ns = u.shape[0]
+    m = ns + 1
+    mode = np.zeros(ns, dtype=np.int64)
+    y = np.zeros(m)
+    y_try = np.empty(m)
+    y_ev = np.empty(m)
+    dy = np.empty(m)
+    jac = np.empty((m, m))
+    quad = np.empty(3)
+    quad_ev = np.empty(3)
+    wb = np.empty(ns)
+    e0 = np.empty(2 * ns + 1)
+    e1 = np.empty(2 * ns + 1)
+    scale = np.empty(m)
+    for i in range(ns):
+        y[1 + i] = u[i]
+    n_masks = 1 << ns
+    for j in range(state_first_time.shape[0]):
+        state_first_time[j] = -1.0
+    stuck = True
+    n_ev = 0
+    status = 0
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_a = abs(acc[0])
+    peak_r = 0.0
+    slip_time = 0.0
+    e_in = 0.0
+    e_f = 0.0
+    e_v = 0.0
+    e_imp = 0.0
+    n_rim = 0
+    n_ult = 0
+    impulse = 0.0
+    max_imp_v = 0.0
+    first_ult = -1.0
+    n_steps = 0
+    fail_t = -1.0
+    h = h_first
+    r_now = -acc[0] / g
+    x_floor = 1e-4
+    v_floor = 1e-3
+    out_x[0] = 0.0
+    out_v[0] = 0.0
+    out_a[0] = acc[0]
+    out_r[0] = r_now
+    for row in range(4):
+        out_energy[row, 0] = 0.0
+    for idx in range(n_samples - 1):
+        t_i = times[idx]
+        dt_i = times[idx + 1] - t_i
+        a0 = acc[idx]
+        slope = (acc[idx + 1] - a0) / dt_i
+        tau = 0.0
+        events_here = 0
+        steps_here = 0
+        while tau < dt_i and status & STATUS_STEP_FAILED == 0:
+            if stuck:
+                lo, hi = window(y[1:], bmat, mode, mu_s, wb)
+                need_now = -(a0 + slope * tau) / g
+                need_end = -(a0 + slope * dt_i) / g
+                if lo <= need_now <= hi:
+                    if lo <= need_end <= hi:
+                        break  # stuck to the end of the interval (need is linear in between)
+                    s = 1.0 if need_end > hi else -1.0
+                    level = hi if s > 0.0 else lo
+                    tb = (-g * level - a0) / slope if slope != 0.0 else tau
+                    tb = min(max(tb, tau), dt_i)
+                else:
+                    s = 1.0 if need_now > hi else -1.0
+                    tb = tau
+                if tb >= dt_i:
+                    break
+                tau = tb
+                stuck = False
+                start_from_rest(s, y[1:], bmat, mode, mu_s, wb)
+                n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_i + tau, BREAKAWAY, y[1:].sum())
+                sliding, rimmed = _masks(mode)
+                code = sliding + n_masks * rimmed
+                if state_first_time[code] < 0.0:
+                    state_first_time[code] = t_i + tau
+            # ---- one step (or the part up to an event) ----
+            steps_here += 1
+            if steps_here > MAX_STEPS_PER_INTERVAL:
+                status |= STATUS_STEP_FAILED
+                fail_t = t_i + tau
+                break
+            h = min(h, dt_i - tau)
+            scale[0] = max(peak_v, v_floor)
+            for p in range(1, m):
+                scale[p] = max(peak_x, x_floor)
+            err = double_step(y, h, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
+                              y_try, quad)
+            if not err <= tol:
+                if h <= 1e-13 * dt_i:
+                    status |= STATUS_STEP_FAILED
+                    fail_t = t_i + tau
+                    break
+                if math.isfinite(err):
+                    h = h * max(0.1, 0.9 * (tol / err) ** (1.0 / 6.0))
+                else:
+                    h = 0.25 * h
+                continue
+            # events between y and y_try
+            r0, _ = rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+            event_values(y, r0, dy, mode, mu_s, cap, bmat, wb, e0)
+            r1, _ = rhs(y_try, a0 + slope * (tau + h), g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+            event_values(y_try, r1, dy, mode, mu_s, cap, bmat, wb, e1)
+            first_slot = -1
+            first_t = math.inf
+            for slot in range(2 * ns + 1):
+                rim_slot = slot < 2 * ns and slot % 2 == 1
+                if e1[slot] < 0.0 and (e0[slot] >= 0.0 or rim_slot):
+                    if e0[slot] <= 0.0:  # at the event already (a rim reached together with another)
+                        t_root = 0.0
+                    else:
+                        # Illinois secant on the re-stepped collocation
+                        ta = 0.0
+                        fa = e0[slot]
+                        tb_ = h
+                        fb = e1[slot]
+                        side = 0
+                        t_root = h
+                        for _ in range(100):
+                            tm = (ta * fb - tb_ * fa) / (fb - fa)
+                            if not (ta < tm < tb_):
+                                tm = 0.5 * (ta + tb_)
+                            double_step(y, tm, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat,
+                                        scale, y_ev, quad_ev)
+                            rm, _ = rhs(y_ev, a0 + slope * (tau + tm), g, c, bmat, mode, mu_s, mu_f, a, smat, wb,
+                                        dy, jac, False)
+                            event_values(y_ev, rm, dy, mode, mu_s, cap, bmat, wb, e1)
+                            fm = e1[slot]
+                            if fm < 0.0:
+                                tb_ = tm
+                                fb = fm
+                                if side == -1:
+                                    fa *= 0.5
+                                side = -1
+                            else:
+                                ta = tm
+                                fa = fm
+                                if side == 1:
+                                    fb *= 0.5
+                                side = 1
+                            if tb_ - ta <= 1e-13 * dt_i or fm == 0.0:  # ≤ 1e-13 of the interval
+                                break
+                        t_root = tb_
+                        # restore the end values for the other slots
+                        event_values(y_try, r1, dy, mode, mu_s, cap, bmat, wb, e1)
+                    if t_root < first_t or (t_root == first_t and slot == 2 * ns):
+                        first_t = t_root
+                        first_slot = slot
+            if first_slot < 0:
+                # no event: accept the step
+                for p in range(m):
+                    y[p] = y_try[p]
+                e_in += quad[0]
+                e_v += quad[1]
+                e_f += quad[2]
+                tau += h
+                slip_time += h
+                n_steps += 1
+                r_now = r1
+                peak_x = max(peak_x, abs(y[1:].sum()))
+                peak_v = max(peak_v, abs(y[0]))
+                peak_r = max(peak_r, abs(r_now))
+                peak_a = max(peak_a, abs(g * r_now + c * y[0]))
+                for i in range(ns):
+                    surf_peak[i] = max(surf_peak[i], abs(y[1 + i]))
+                err_next = max(err, 1e-3 * tol)
+                h = h * min(4.0, 0.9 * (tol / err_next) ** (1.0 / 6.0))
+                continue
+            # ---- the event: advance to it ----
+            if first_t > 0.0:
+                double_step(y, first_t, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
+                            y_ev, quad_ev)
+                for p in range(m):
+                    y[p] = y_ev[p]
+                e_in += quad_ev[0]
+                e_v += quad_ev[1]
+                e_f += quad_ev[2]
+                tau += first_t
+                slip_time += first_t
+                n_steps += 1
+            t_now = t_i + tau
+            for i in range(ns):
+                surf_peak[i] = max(surf_peak[i], abs(y[1 + i]))
+            events_here += 1
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                status |= STATUS_CHATTER
+                y[0] = 0.0
+                for i in range(ns):
+                    if mode[i] == 1 or mode[i] == -1:
+                        mode[i] = 0
+                stuck = True
+                break
+            ag_now = a0 + slope * tau
+            if first_slot < 2 * ns and first_slot % 2 == 0 and e0[2 * ns] < math.inf and (
+                    mode[first_slot // 2] == 1 or mode[first_slot // 2] == -1) and abs(y[0]) <= 1e-9 * scale[0]:
+                # a surface stops with the mass (every slider moving one way, X' at rounding): the mass stop,
+                # located a hair later; taken here, or the others would run on through X' = 0
+                first_slot = 2 * ns
+            if first_slot == 2 * ns:
+                # the mass stops
+                y[0] = 0.0
+                for i in range(ns):
+                    if mode[i] == 1 or mode[i] == -1:
+                        mode[i] = 0
+                lo, hi = window(y[1:], bmat, mode, mu_s, wb)
+                need = -ag_now / g
+                if lo <= need <= hi:
+                    stuck = True
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, STICK, y[1:].sum())
+                    r_now = need
+                else:
+                    s = 1.0 if need > hi else -1.0
+                    start_from_rest(s, y[1:], bmat, mode, mu_s, wb)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REVERSAL, y[1:].sum())
+            else:
+                i = first_slot // 2
+                if first_slot % 2 == 1:
+                    # a rim: hold the surface there
+                    s = 1.0 if mode[i] > 0 else -1.0
+                    y[1 + i] = s * cap[i]
+                    mode[i] = 2 if s > 0.0 else -2
+                    n_rim += 1
+                    movable = False
+                    sv = 1.0 if y[0] > 0.0 else -1.0
+                    for k in range(ns):
+                        if not (mode[k] == 2 and sv > 0.0) and not (mode[k] == -2 and sv < 0.0):
+                            movable = True
+                    if not movable:
+                        # the ultimate displacement: plastic impact
+                        vimp = abs(y[0])
+                        impulse += vimp
+                        max_imp_v = max(max_imp_v, vimp)
+                        e_imp += 0.5 * vimp * vimp
+                        y[0] = 0.0
+                        n_ult += 1
+                        if first_ult < 0.0:
+                            first_ult = t_now
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, ULTIMATE, y[1:].sum())
+                        lo, hi = window(y[1:], bmat, mode, mu_s, wb)
+                        need = -ag_now / g
+                        if lo <= need <= hi:
+                            stuck = True
+                            r_now = need
+                        else:
+                            s2 = 1.0 if need > hi else -1.0
+                            start_from_rest(s2, y[1:], bmat, mode, mu_s, wb)
+                    else:
+                        consistent_mode(y[0], y[1:], bmat, mode, mu_s, mu_f, a, wb)
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, RIM_REACHED, y[1:].sum())
+                else:
+                    md = mode[i]
+                    back_force(y[1:], bmat, wb)
+                    if md == 1 or md == -1:
+                        mode[i] = 0  # a surface stops while the mass moves on
+                    elif md == 0:
+                        mode[i] = 1 if r1_sign(y, ag_now, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac,
+                                                i) > 0.0 else -1
+                    else:
+                        mode[i] = -1 if md > 0 else 1  # leaves its rim inward
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REGIME, y[1:].sum())
+            if not stuck:
+                sliding, rimmed = _masks(mode)
+                code = sliding + n_masks * rimmed
+                if state_first_time[code] < 0.0:
+                    state_first_time[code] = t_now
+                if sliding == 0:
+                    # nothing slides but the mass moves: only after rounding at a stop; stop it
+                    y[0] = 0.0
+                    stuck = True
+            peak_x = max(peak_x, abs(y[1:].sum()))
+        if status & STATUS_STEP_FAILED:
+            # leave the remaining samples at the last state
+            for j in range(idx + 1, n_samples):
+                out_x[j] = y[1:].sum()
+                out_v[j] = y[0]
+                out_a[j] = acc[j]
+                out_r[j] = r_now
+                out_energy[0, j] = e_in
+                out_energy[1, j] = e_f
+                out_energy[2, j] = e_v
+                out_energy[3, j] = e_imp
+            break
+        j = idx + 1
+        out_x[j] = y[1:].sum()
+        out_v[j] = y[0]
+        if stuck:
+            out_a[j] = acc[j]
+            out_r[j] = -acc[j] / g
+        else:
+            r_now, _ = rhs(y, acc[j], g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+            out_r[j] = r_now
+            out_a[j] = -(g * r_now + c * y[0])
+            peak_r = max(peak_r, abs(r_now))
+        peak_a = max(peak_a, abs(out_a[j]))
+        peak_x = max(peak_x, abs(out_x[j]))
+        peak_v = max(peak_v, abs(y[0]))
+        out_energy[0, j] = e_in
+        out_energy[1, j] = e_f
+        out_energy[2, j] = e_v
+        out_energy[3, j] = e_imp
+    for i in range(ns):
+        u[i] = y[1 + i]
+        surf_peak[i] = max(surf_peak[i], abs(y[1 + i]))
+    if n_ev > ev_time.shape[0]:
+        status |= STATUS_EVENTS_TRUNCATED
+    summary[S_PEAK_X] = peak_x
+    summary[S_PEAK_V] = peak_v
+    summary[S_PEAK_A] = peak_a
+    summary[S_SLIP_TIME] = slip_time
+    summary[S_E_INPUT] = e_in
+    summary[S_E_FRICTION] = e_f
+    summary[S_E_VISCOUS] = e_v
+    summary[S_E_IMPACT] = e_imp
+    summary[S_N_EVENTS] = n_ev
+    summary[S_STATUS] = status
+    summary[S_N_RIM_CONTACTS] = n_rim
+    summary[S_N_ULTIMATE] = n_ult
+    summary[S_IMPULSE] = impulse
+    summary[S_MAX_IMPACT_V] = max_imp_v
+    summary[S_FIRST_ULTIMATE_T] = first_ult
+    summary[S_PEAK_R] = peak_r
+    summary[S_N_STEPS] = n_steps
+    summary[S_FAIL_T] = fail_t
+
+
+@njit(cache=True)
+def r1_sign(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, i):
+    """The sign of the friction excess r − b_i of surface i at the state (which way it starts)."""
+    r, _ = rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+    back_force(y[1:], bmat, wb)
+    return r - wb[i]
+
+
+__all__ = ["rate_kernel", "solve_force", "slide_rate", "EVENT_NAMES", "SUMMARY_SIZE"]

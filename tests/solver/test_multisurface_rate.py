@@ -1,0 +1,397 @@
+"""Double and triple pendulums with µ(v) per surface (1d-multisurface+mu(v)) against independent truths.
+
+The reference below is written from the equations alone: scipy's ``solve_ivp`` (Radau, rtol 1e-12)
+on the surfaces' physical displacements, the force through the sliders found by ``brentq``, and the
+mode changes (a surface starting, stopping, reaching or leaving its rim, the mass stopping) as
+solve_ivp's own terminal events, interval by interval of the piecewise-linear record.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from isolator.bearing import parse_bearing
+from isolator.errors import DesignError, SolverError
+from isolator.solver.multisurface import simulate_bearing
+from isolator.solver.multisurface_rate import simulate_bearing_rate
+
+G = 9.80665
+GEOMETRY = [(2.1, 0.4), (0.3, 0.05), (0.3, 0.05), (2.1, 0.4)]  # Fenz & Constantinou's TFP (R [m], d [m])
+MU_SLOW = [0.03, 0.01, 0.01, 0.05]
+MU_FAST = [0.06, 0.02, 0.02, 0.10]
+
+
+def _fail(message):
+    return DesignError(message)
+
+
+def rate_bearing(kind, geometry, mu_slow, mu_fast, rate):
+    rates = rate if isinstance(rate, list) else [rate] * len(geometry)
+    return parse_bearing({"type": kind, "surface": [
+        {"radius_m": r, "mu_slow": s, "mu_fast": f, "rate_s_per_m": a, "displacement_capacity_m": d}
+        for (r, d), s, f, a in zip(geometry, mu_slow, mu_fast, rates, strict=True)]}, _fail)
+
+
+def pulse(amplitude_g, period_s=2.0, duration_s=6.0, dt=0.01, cycles=1.5):
+    t = np.arange(0.0, duration_s, dt)
+    return amplitude_g * G * np.sin(2 * np.pi * t / period_s) * (t < cycles * period_s), dt
+
+
+class RateReference:
+    """The µ(v) series model integrated by scipy: Radau at rtol 1e-12, events by solve_ivp.
+
+    Per surface i: u_i (on the surface, effective geometry), back-force b = diag(1/R̄) T⁻¹ u,
+    sliding: r = b_i + µ_i(|u̇_i|) sign(u̇_i); stuck: |r − b_i| ≤ µ_slow,i; held on a rim while
+    it pushes outward.  Mode per surface: +1/−1 sliding, 0 stuck, ±2 on the ± rim.
+    """
+
+    def __init__(self, b, c=0.0, g=G):
+        rbar, _, _ = b.elements()
+        self.smat = np.linalg.inv(b.surface_matrix())
+        self.bmat = self.smat / rbar[:, None]
+        self.rbar = rbar
+        self.ms = [s.mu_slow for s in b.surfaces]  # Python floats: the reference runs in Python
+        self.mf = [s.mu_fast for s in b.surfaces]
+        self.a = [s.rate_s_per_m for s in b.surfaces]
+        self.cap = [float(d) for d in b.effective_capacities_m]
+        self.blist = self.bmat.tolist()
+        self.memo = (None, None)
+        self.c, self.g = c, g
+        self.n = len(b.surfaces)
+        self.h = 1e-4  # solve_ivp's first step in the next interval [s]
+
+    def speed(self, i, f, s):
+        """Slide rate of surface i sliding in direction s at excess f (the branch continued through 0)."""
+        w = s * f
+        return s * -math.log1p(-(w - self.ms[i]) / (self.mf[i] - self.ms[i])) / self.a[i]
+
+    def back(self, u):
+        return [sum(row[k] * u[k] for k in range(self.n)) for row in self.blist]
+
+    def force(self, vel, u, mode):
+        key = (float(vel), tuple(float(x) for x in u), tuple(mode))
+        if self.memo[0] == key:
+            return self.memo[1]
+        r = self._force(key[0], key[1], mode)
+        self.memo = (key, r)
+        return r
+
+    def _force(self, vel, u, mode):
+        b = self.back(u)
+        sliding = [i for i in range(self.n) if mode[i] in (1, -1)]
+        if len(sliding) == 1:  # µ(v) of the one sliding surface at the bearing's velocity
+            i = sliding[0]
+            s = mode[i]
+            return b[i] + s * (self.mf[i] - (self.mf[i] - self.ms[i]) * math.exp(-self.a[i] * s * vel))
+
+        def total(r):
+            out = -vel
+            for i in sliding:
+                s = mode[i]
+                if s * (r - b[i]) >= self.mf[i]:
+                    return s * math.inf
+                out += self.speed(i, r - b[i], s)
+            return out
+
+        top = min([b[i] + self.mf[i] for i in sliding if mode[i] == 1], default=None)
+        bottom = max([b[i] - self.mf[i] for i in sliding if mode[i] == -1], default=None)
+        lo = bottom if bottom is not None else min(b[i] - 1.0 for i in sliding)
+        hi = top if top is not None else max(b[i] + 1.0 for i in sliding)
+        while bottom is None and total(lo) > 0.0:
+            lo -= 1.0
+        while top is None and total(hi) < 0.0:
+            hi += 1.0
+        return brentq(total, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
+
+    def window(self, u, mode):
+        b = self.bmat @ u
+        hi = min([b[i] + self.ms[i] for i in range(self.n) if mode[i] != 2], default=math.inf)
+        lo = max([b[i] - self.ms[i] for i in range(self.n) if mode[i] != -2], default=-math.inf)
+        return lo, hi, b
+
+    def start(self, s, u, mode):
+        lo, hi, b = self.window(u, mode)
+        for i in range(self.n):
+            if s > 0 and mode[i] != 2 and b[i] + self.ms[i] <= hi + 1e-13:
+                mode[i] = 1
+            elif s < 0 and mode[i] != -2 and b[i] - self.ms[i] >= lo - 1e-13:
+                mode[i] = -1
+
+    def run(self, acc, dt):
+        """Displacement at the samples [m], and the number of impacts at the ultimate."""
+        n = self.n
+        y = np.zeros(n + 1)
+        mode = [0] * n
+        stuck = True
+        xs = [0.0]
+        impacts = 0
+        for k in range(acc.size - 1):
+            a0, slope = acc[k], (acc[k + 1] - acc[k]) / dt
+            t = 0.0
+            for _ in range(1000):
+                if t >= dt:
+                    break
+                if stuck:
+                    lo, hi, _ = self.window(y[1:], mode)
+                    need0, need1 = -(a0 + slope * t) / self.g, -(a0 + slope * dt) / self.g
+                    if lo <= need0 <= hi:
+                        if lo <= need1 <= hi:
+                            break
+                        s = 1 if need1 > hi else -1
+                        t = min(max((-self.g * (hi if s > 0 else lo) - a0) / slope, t), dt)
+                        if t >= dt:
+                            break
+                    else:
+                        s = 1 if need0 > hi else -1
+                    self.start(s, y[1:], mode)
+                    stuck = False
+                events = self.events(mode)
+                sol = solve_ivp(self.rhs, (t, dt), y, method="Radau", rtol=1e-12, atol=1e-15,
+                                args=(mode, a0, slope), events=events, first_step=min(self.h, dt - t))
+                self.h = max(float(np.min(np.diff(sol.t))) if sol.t.size > 1 else self.h, 1e-9)
+                y = sol.y[:, -1].copy()
+                if sol.status != 1:
+                    t = dt
+                    break
+                fired = [j for j, te in enumerate(sol.t_events) if te.size]
+                t = float(sol.t[-1])
+                which = events[fired[-1]].which
+                kind, i = which
+                if kind == "stop":
+                    y[0] = 0.0
+                    mode = [0 if m in (1, -1) else m for m in mode]
+                    lo, hi, _ = self.window(y[1:], mode)
+                    need = -(a0 + slope * t) / self.g
+                    if lo <= need <= hi:
+                        stuck = True
+                    else:
+                        self.start(1 if need > hi else -1, y[1:], mode)
+                elif kind == "rim":
+                    s = 1 if mode[i] > 0 else -1
+                    y[1 + i] = s * self.cap[i]
+                    mode[i] = 2 * s
+                    sv = 1 if y[0] > 0 else -1
+                    if all(m == 2 * sv for m in mode):
+                        impacts += 1
+                        y[0] = 0.0
+                        lo, hi, _ = self.window(y[1:], mode)
+                        need = -(a0 + slope * t) / self.g
+                        if lo <= need <= hi:
+                            stuck = True
+                        else:
+                            self.start(1 if need > hi else -1, y[1:], mode)
+                    else:
+                        self.reset_mode(y, mode)
+                elif kind == "surface":
+                    if mode[i] in (1, -1):
+                        mode[i] = 0
+                    elif mode[i] == 0:
+                        r = self.force(y[0], y[1:], mode)
+                        mode[i] = 1 if r - self.back(y[1:])[i] > 0 else -1
+                    else:
+                        mode[i] = -1 if mode[i] > 0 else 1
+            xs.append(float(np.sum(y[1:])))
+        return np.array(xs), impacts
+
+    def reset_mode(self, y, mode):
+        """After a rim: which surfaces slide at the new force (the true law, bisection)."""
+        b = self.bmat @ y[1:]
+
+        def total(r):
+            out = -y[0]
+            for i in range(self.n):
+                f = r - b[i]
+                if f > self.ms[i] and mode[i] != 2:
+                    out += self.speed(i, f, 1) if f < self.mf[i] else math.inf
+                elif f < -self.ms[i] and mode[i] != -2:
+                    out += self.speed(i, f, -1) if -f < self.mf[i] else -math.inf
+            return out
+
+        hi = min(b[i] + self.mf[i] for i in range(self.n) if mode[i] != 2)
+        lo = max(b[i] - self.mf[i] for i in range(self.n) if mode[i] != -2)
+        r = brentq(lambda q: total(q) if lo < q < hi else (math.inf if q >= hi else -math.inf),
+                   lo + 1e-15, hi - 1e-15, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        for i in range(self.n):
+            f = r - b[i]
+            if f > self.ms[i] + 1e-13 and mode[i] != 2:
+                mode[i] = 1
+            elif f < -self.ms[i] - 1e-13 and mode[i] != -2:
+                mode[i] = -1
+            elif mode[i] in (1, -1):
+                mode[i] = 0
+
+    def rhs(self, t, y, mode, a0, slope):
+        r = self.force(y[0], y[1:], mode)
+        b = self.bmat @ y[1:]
+        du = [self.speed(i, r - b[i], mode[i]) if mode[i] in (1, -1) else 0.0 for i in range(self.n)]
+        return np.concatenate(([-self.g * r - self.c * y[0] - (a0 + slope * t)], du))
+
+    def events(self, mode):
+        out = []
+
+        def make(kind, i, fn):
+            def event(t, y, mode_, a0, slope):
+                return fn(t, y)
+            event.terminal = True
+            event.direction = -1
+            event.which = (kind, i)
+            return event
+
+        signs = {m for m in mode if m in (1, -1)}
+        for i in range(self.n):
+            if mode[i] in (1, -1):
+                s = mode[i]
+                out.append(make("surface", i, lambda t, y, i=i, s=s: s * self.speed(
+                    i, self.force(y[0], y[1:], mode) - self.back(y[1:])[i], s)))
+                if math.isfinite(self.cap[i]):
+                    out.append(make("rim", i, lambda t, y, i=i, s=s: self.cap[i] - s * y[1 + i]))
+            elif mode[i] == 0:
+                out.append(make("surface", i, lambda t, y, i=i: self.ms[i] - abs(
+                    self.force(y[0], y[1:], mode) - self.back(y[1:])[i])))
+            else:
+                s = 1 if mode[i] > 0 else -1
+                out.append(make("surface", i, lambda t, y, i=i, s=s: s * (
+                    self.force(y[0], y[1:], mode) - self.back(y[1:])[i]) + self.ms[i]))
+        if len(signs) == 1:
+            s = signs.pop()
+            out.append(make("stop", -1, lambda t, y, s=s: s * y[0]))
+        return out
+
+
+def test_triple_pulse_against_the_reference():
+    """TFP with µ(v) on all four surfaces, a pulse through regimes I–III: ≤ 1e-9 of the peak."""
+    acc, dt = pulse(0.25, period_s=2.0, duration_s=1.0, dt=0.02)
+    b = rate_bearing("triple", GEOMETRY, MU_SLOW, MU_FAST, 20.0)
+    res = simulate_bearing_rate(acc, dt, bearing=b)
+    ref_x, _ = RateReference(b).run(acc, dt)
+    err = np.max(np.abs(res.displacement_m - ref_x))
+    print("triple pulse: peak", res.peak_displacement_m, "max |x - ref|", err, "regimes", res.regimes,
+          "balance", res.energy_balance_error_J_per_kg, "of", res.energy_input_J_per_kg)
+    assert list(res.regimes) == ["I", "II", "III"]
+    assert err <= 1e-9 * res.peak_displacement_m
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+@pytest.mark.xfail(strict=True, raises=SolverError, reason="known defect: at the first rim of a µ(v) triple the "
+                   "collocation steps shrink to nothing (the run stops with a SolverError naming the time, never a "
+                   "wrong answer); docs/multisurface.md")
+def test_triple_reaching_a_rim():
+    """A pulse that drives the µ(v) TFP to the rim of surface 1 (0.68 s): the rim is not handled yet."""
+    acc, dt = pulse(0.7, period_s=2.0, duration_s=0.8, dt=0.02, cycles=1.0)
+    b = rate_bearing("triple", GEOMETRY, MU_SLOW, MU_FAST, 20.0)
+    simulate_bearing_rate(acc, dt, bearing=b)
+
+
+def _double_and_single(acc, damping):
+    from isolator.solver.models import simulate_motion
+
+    b = rate_bearing("double", [(1.2, 2.0), (1.2, 2.0)], [0.03, 0.03], [0.07, 0.07], 30.0)  # rims out of reach
+    res = simulate_bearing_rate(acc, 0.01, bearing=b, damping_per_mass=damping)
+    single = simulate_motion(acc, dt_s=0.01, mu_static=0.03, mu_slow=0.03, mu_fast=0.07, rate_s_per_m=15.0,
+                             radius_m=2.4, damping_per_mass=damping)
+    assert single.model == "2d+mu(v)"
+    err = np.max(np.abs(res.displacement_m - single.displacement_m[:, 0]))
+    print("double = single: peak", res.peak_displacement_m, "max |x - x_single|", err)
+    assert res.peak_displacement_m > 0.05
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+    return err / res.peak_displacement_m
+
+
+def test_double_with_equal_surfaces_is_the_single_pendulum():
+    """Equal surfaces R, equal µ(v) at rate a: each slides at V/2, so the single pendulum 2R with rate a/2 (2-D engine)."""
+    t = np.arange(0.0, 4.0, 0.01)
+    assert _double_and_single(0.25 * G * np.sin(2 * np.pi * t / 1.7) * (t < 3.4), 0.0) <= 1e-9
+
+
+@pytest.mark.xfail(strict=True, reason="open: with a damper and a 0.31 s tone on top the two equal surfaces end "
+                   "unequal (0.0132 / 0.0140 m) and the double differs from the single pendulum by 3.6e-3 m of 0.62 m")
+def test_double_with_equal_surfaces_under_a_two_tone_record():
+    t = np.arange(0.0, 8.0, 0.01)
+    acc = 0.35 * G * np.sin(2 * np.pi * t / 1.7) * (t < 3.4) + 0.05 * G * np.sin(2 * np.pi * t / 0.31)
+    assert _double_and_single(acc, 0.2) <= 1e-9
+
+
+def test_a_constant_law_is_the_closed_form():
+    """µ_slow = µ_fast is a constant law: the registry runs the exact 1d-multisurface on it, bit for bit."""
+    from isolator.solver.base import Scene
+    from isolator.solver.models import simulate
+
+    class Design:
+        source = "tfp.toml"
+        superstructure = None
+
+    acc, dt = pulse(0.3, duration_s=4.0, dt=0.01)
+    const = parse_bearing({"type": "triple", "surface": [
+        {"radius_m": r, "mu": f, "displacement_capacity_m": d} for (r, d), f in zip(GEOMETRY, MU_FAST, strict=True)]},
+        _fail)
+    exact = simulate_bearing(acc, dt, bearing=const)
+    design = Design()
+    design.bearing = rate_bearing("triple", GEOMETRY, MU_FAST, MU_FAST, 20.0)
+    res = simulate(Scene(ax_m_s2=acc, dt_s=dt, isolator={"mu_static": 0.06}, design=design))
+    assert res.model == "1d-multisurface"
+    assert np.array_equal(res.displacement_m, exact.displacement_m)
+
+
+def test_mirror_and_energy_with_a_damper():
+    acc, dt = pulse(0.35, duration_s=4.0, dt=0.01)
+    b = rate_bearing("triple", GEOMETRY, MU_SLOW, MU_FAST, [15.0, 40.0, 25.0, 10.0])
+    up = simulate_bearing_rate(acc, dt, bearing=b, damping_per_mass=0.3)
+    down = simulate_bearing_rate(-acc, dt, bearing=b, damping_per_mass=0.3)
+    assert np.max(np.abs(up.displacement_m + down.displacement_m)) <= 1e-9 * up.peak_displacement_m
+    assert up.energy_viscous_J_per_kg > 0.0
+    assert abs(up.energy_balance_error_J_per_kg) <= 1e-9 * up.energy_input_J_per_kg
+
+
+def test_refusals_name_the_surface_and_the_reason():
+    with pytest.raises(DesignError, match="bearing surface 2: mu_slow .* must not exceed mu_fast .* on a double "
+                                          "bearing: with µ falling with speed .* not unique"):
+        rate_bearing("double", [(1.2, 0.3), (1.2, 0.3)], [0.03, 0.08], [0.07, 0.07], 30.0)
+    with pytest.raises(DesignError, match=r"bearing surface 2: give µ\(v\) with mu_slow < mu_fast on every surface"):
+        parse_bearing({"type": "double", "surface": [
+            {"radius_m": 1.2, "mu_slow": 0.03, "mu_fast": 0.07, "rate_s_per_m": 30, "displacement_capacity_m": 0.3},
+            {"radius_m": 1.2, "mu": 0.05, "displacement_capacity_m": 0.3}]}, _fail)
+    # one surface may still be decreasing on a single pendulum's parser path: unchanged message
+    with pytest.raises(DesignError, match=r"mu_slow \(0.08\) must not exceed mu_fast \(0.07\)$"):
+        parse_bearing({"type": "single", "surface": [
+            {"radius_m": 1.2, "mu_slow": 0.08, "mu_fast": 0.07, "rate_s_per_m": 30}]}, _fail)
+
+
+DESIGN = """name = "TFP with mu(v)"
+mass_kg = 1.0e5
+[bearing]
+type = "triple"
+"""
+
+
+def test_cli_simulate_json_on_a_rate_triple(tmp_path, records_dir):
+    """``isolator simulate --design tfp.toml RECORD --json`` on a µ(v) triple: the model, its reason, the keys."""
+    import json
+    import subprocess
+    import sys
+
+    text = DESIGN + "".join(
+        f"[[bearing.surface]]\nradius_m = {r}\nmu_slow = {s}\nmu_fast = {f}\nrate_s_per_m = 20.0\n"
+        f"displacement_capacity_m = {d}\n" for (r, d), s, f in zip(GEOMETRY, MU_SLOW, MU_FAST, strict=True))
+    design = tmp_path / "tfp.toml"
+    design.write_text(text)
+    record = records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2"
+    exe = str(Path(sys.executable).with_name("isolator"))
+    run = subprocess.run([exe, "simulate", "--design", str(design), str(record), "--json"],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout)
+    text_out = json.dumps(out)
+    assert "1d-multisurface+mu(v)" in text_out and "Radau IIA" in text_out
+    assert "surface_peak_displacement_m" in text_out and "regimes" in text_out
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("mu_slow = 0.01", "mu_slow = 0.03", 1))
+    run = subprocess.run([exe, "simulate", "--design", str(bad), str(record), "--json"],
+                         capture_output=True, text=True, timeout=600)
+    assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1
+    assert "bad.toml" in run.stderr and "not unique" in run.stderr
