@@ -44,9 +44,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, record_event
+from isolator.solver.jit import njit
 
 REGIME = 3  #: the sliding set changed (a surface started, stopped, reached or left its rim)
 RIM_REACHED = 4  #: a surface reached its rim; the others took its velocity (no impact)
