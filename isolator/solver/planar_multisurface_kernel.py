@@ -116,9 +116,15 @@ STATUS_EVENTS_TRUNCATED = 2
 STATUS_STEP_LIMIT = 4
 STATUS_RIM = 8  #: a slider reached its rim: not modelled in 2-D, the run stops there
 STATUS_SINGULAR = 16  #: the compliance of the sliding groups became singular (no answer after it)
+STATUS_STIFF = 64  #: (SC_EXACT_ONLY set) more than MAX_STIFF_STEPS_PER_INTERVAL corner steps in one sample interval
+STATUS_REDUCED = 32  #: stopped at the first reduction (SC_EXACT_ONLY set): its answer is exact for a collinear record only
 
 MAX_EVENTS_PER_INTERVAL = 1000
 MAX_STEPS_PER_INTERVAL = 200000
+#: with SC_EXACT_ONLY set, the corner steps allowed in one sample interval: a corner of two circles closing towards
+#: tangency is stiff (PTS at 5.6 s: DOP853's step fell to 4e-9 s) and ends in a reduction that the caller discards, so
+#: the run stops there rather than spend most of its time on it (a corner away from tangency takes a few per interval)
+MAX_STIFF_STEPS_PER_INTERVAL = 1000
 
 #: sliding groups whose normals all lie within this angle [rad] of each other slide on as one: a corner
 #: closing towards tangency (a straightening motion) is stiff (the split of the velocity relaxes at a
@@ -149,6 +155,10 @@ SC_R_SWITCH = 1
 SC_X_FLOOR = 2
 SC_V_FLOOR = 3
 SC_R_SWITCH_LO = 4
+#: optional: > 0 stops the run (STATUS_REDUCED) where it would go on through a reduction (groups sliding as one along
+#: a fixed direction, a slow corner left to one group), exact for a collinear record only: a caller that answers a
+#: record that is not collinear with another method then stops at once instead of finishing a run it discards
+SC_EXACT_ONLY = 5
 
 # the Cartesian multi-group state: X, V, r, energies, then ū of each group
 M_X = 0
@@ -732,8 +742,9 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
         Real surfaces from the elements (u = T ū).
     c : float
         Damping per unit mass [1/s].
-    scales : float64[5]
-        Speed and tolerance scales (SC_*).
+    scales : float64[5] or float64[6]
+        Speed and tolerance scales (SC_*); an optional sixth, SC_EXACT_ONLY > 0, stops the run at the first
+        reduction exact only for a collinear record (STATUS_REDUCED).
     rtol : float
         Relative tolerance of the DOP853 steps.
     out_x, out_v, out_a : float64[n, 2]
@@ -802,6 +813,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     n_rej = 0
     n_multi = 0
     n_merged = 0
+    exact_only = scales.shape[0] > SC_EXACT_ONLY and scales[SC_EXACT_ONLY] > 0.0
     just_rejected = False
     e_in = 0.0  #: energies of the phases already closed [J/kg]
     e_f = 0.0
@@ -868,6 +880,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 fail_t = t[i] + tau
                 failed = True
                 break
+            if exact_only and phase == PH_MULTI and steps_here > MAX_STIFF_STEPS_PER_INTERVAL:
+                status |= STATUS_STIFF
+                fail_t = t[i] + tau
+                failed = True
+                break
             target = hi
             # ------------------------------------------------------------------ stuck
             if phase == PH_STUCK:
@@ -915,6 +932,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     # group with the largest share goes on alone (the one-group forms locate the stop); an
                     # approximation, counted with the merges
                     n_merged += 1
+                    if exact_only:
+                        status |= STATUS_REDUCED
+                        fail_t = t[i] + tau
+                        failed = True
+                        break
                     best = -1.0
                     kb = -1
                     for k in range(ng):
@@ -1079,6 +1101,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         enter_polar(tau, y, my[M_V], my[M_V + 1], norm(my[M_V], my[M_V + 1]), prm, frc, f)
                         phase = PH_POLAR
                         n_merged += 1
+                        if exact_only:
+                            status |= STATUS_REDUCED
+                            fail_t = t[i] + tau
+                            failed = True
+                            break
                     continue
                 events_here += 1
                 h_sugg = -1.0
@@ -1199,6 +1226,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                                      rb, mu, my, mf, c)
                         if phase != PH_MULTI:
                             n_merged += 1
+                            if exact_only:
+                                status |= STATUS_REDUCED
+                                fail_t = t[i] + tau
+                                failed = True
+                                break
                         if phase == PH_MULTI:
                             e_in += y[4] + ein_corr
                             e_f += y[5]
@@ -1413,6 +1445,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                              my, mf, c)
                 if phase != PH_MULTI:
                     n_merged += 1
+                    if exact_only:
+                        status |= STATUS_REDUCED
+                        fail_t = t[i] + tau
+                        failed = True
+                        break
                 if phase == PH_MULTI:
                     e_in += y[4] + ein_corr
                     e_f += y[5]
