@@ -5,8 +5,9 @@ string twice with matplotlib 3.11 (FreeType and libraqm): once to measure its bo
 write it.  On the review's text pages (~24 000 glyphs, shaping 30-70 µs per glyph and pass on the shared
 machine) the measuring pass is a third of the PDF's time.  A line aligned left at its top, bottom or baseline
 needs no box: matplotlib places a single line's baseline at the font's ascent below its top (its descent
-above its bottom) unless the line's own glyphs reach higher (lower), which the review's Latin and Greek text
-at these sizes does not (accented capitals would, by < 0.2 pt).  So :class:`TextLines` asks the renderer for
+above its bottom) unless the line's own glyphs reach higher (lower): '|' or '√' in DejaVu Sans do, and Text
+then sets that line a few hundredths of a point lower (tests/report/test_text_lines.py); here every line of
+a font and size shares one baseline.  So :class:`TextLines` asks the renderer for
 those two numbers once per font and size, and calls ``renderer.draw_text`` per line: the PDF gets the same
 text objects (font, size, glyphs, kerning; selectable and extractable) as through ``fig.text``.  Only
 right-aligned strings are measured (their width).
@@ -57,8 +58,9 @@ class TextLines(Artist):
 
     def _ascent_descent(self, renderer, prop) -> tuple[float, float]:
         """(ascent, descent) [display units] matplotlib gives a one-line ``Text`` of ``prop`` whose glyphs
-        stay within the font's ascent and descent: the box of "lp" set on its baseline at 0."""
-        box = Text(0.0, 0.0, "lp", fontproperties=prop, va="baseline", figure=self.figure).get_window_extent(
+        stay within the font's ascent and descent (its OS/2 or hhea metrics, scaled): the box of a space, which
+        has no ink, set on its baseline at 0."""
+        box = Text(0.0, 0.0, " ", fontproperties=prop, va="baseline", figure=self.figure).get_window_extent(
             renderer)
         return box.y1, -box.y0
 
