@@ -381,11 +381,32 @@ def record_page(fig, motion, window_s, periods_s, psa_m_s2, isolated_period_s, e
         ax.axvline(effective_period_s, color="tab:green", ls=":", lw=1.3,
                    label=f"effective period T_eff = {effective_period_s:.3g} s")
     ax.set_xscale("log")
+    plain_log_labels(ax)
     ax.set_xlabel("oscillator period  [s]")
     ax.set_ylabel("pseudo-spectral acceleration  [g]")
     ax.set_xlim(periods_s[0], periods_s[-1])
     ax.legend(loc="upper right", frameon=True)
     return axes
+
+
+def plain_log_labels(*axes) -> None:
+    """Tick labels of the log axes of ``axes`` as plain numbers (0.1, 1, 3, 10), not 10⁻¹ or 3×10⁰.
+
+    The same ticks as matplotlib's default (its ``LogFormatter`` decides which minor ticks carry a label);
+    only the text changes: an engineer reads periods in seconds, and the labels need no mathtext, whose
+    parser matplotlib builds on the first use in a process (~0.3 s of a report).
+    """
+    from matplotlib.ticker import LogFormatter
+
+    class PlainLogFormatter(LogFormatter):
+        def __call__(self, x, pos=None):
+            return format(x, "g") if super().__call__(x, pos) else ""
+
+    for ax in axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if axis.get_scale() == "log":
+                axis.set_major_formatter(PlainLogFormatter())
+                axis.set_minor_formatter(PlainLogFormatter(labelOnlyBase=False))
 
 
 def energy_histories(response, mass_kg: float) -> dict:

@@ -82,7 +82,9 @@ class Flow:
             self.page(self.title + (" (continued)" if not self.title.endswith("(continued)") else ""))
 
     def text(self, x: float, text: str, size: float = NOTE_PT, **kwargs) -> None:
-        self.fig.text(x, self.y, text, fontsize=size, va="top", **kwargs)
+        """One line at ``x`` [figure fraction] with its top at the flow's height (``weight``, ``color``,
+        ``family`` as ``fig.text``)."""
+        line(self.fig, x, self.y, text, size, **kwargs)
 
     def heading(self, text: str) -> None:
         self.need(4 * LINE)
@@ -104,26 +106,33 @@ class Flow:
             self.fig = None
 
 
+def line(fig, x: float, y: float, text: str, size: float, **style) -> None:
+    """One line of text on ``fig`` at (x, y) [figure fraction], ``size`` [pt], its top at y unless ``va`` says
+    otherwise; ``style``: ``weight``, ``color``, ``family``, ``ha``, ``va`` as ``fig.text`` takes them.  Drawn
+    by the page's :class:`isolator.report.text_lines.TextLines` (the same PDF text, half the shaping)."""
+    from isolator.report.text_lines import text_lines
+
+    text_lines(fig).add(x, y, str(text), size=size, **style)
+
+
 def new_page(title: str, subtitle: str = ""):
     fig = figures.new_figure(figsize=A4_IN)
-    fig.text(0.05, 0.975, title, fontsize=13, weight="bold", va="top")
+    line(fig, 0.05, 0.975, title, 13, weight="bold")
     if subtitle:
-        lines = wrap(subtitle, 120)
-        for k, line in enumerate(lines[:2]):
-            fig.text(0.95, 0.952 - k * 0.011, line, fontsize=7.5, va="top", ha="right", color="0.35")
+        for k, text in enumerate(wrap(subtitle, 120)[:2]):
+            line(fig, 0.95, 0.952 - k * 0.011, text, 7.5, ha="right", color="0.35")
     return fig
 
 
 def add_footer(fig, r: dict, page: int) -> None:
-    for k, line in enumerate(reversed(wrap(footer_text(r, page), 150))):
-        fig.text(0.05, 0.012 + k * 0.011, line, fontsize=NOTE_PT, va="bottom", ha="left", color="0.35")
+    for k, text in enumerate(reversed(wrap(footer_text(r, page), 150))):
+        line(fig, 0.05, 0.012 + k * 0.011, text, NOTE_PT, va="bottom", color="0.35")
 
 
 def _caption(fig, text: str, y: float = 0.04) -> None:
     """A figure page's caption, wrapped, above the footer."""
-    lines = wrap(text, CHARS_FULL)
-    for k, line in enumerate(reversed(lines)):
-        fig.text(0.05, y + k * LINE, line, fontsize=NOTE_PT, va="bottom", ha="left", color="0.15")
+    for k, text_line in enumerate(reversed(wrap(text, CHARS_FULL))):
+        line(fig, 0.05, y + k * LINE, text_line, NOTE_PT, va="bottom", color="0.15")
 
 
 # ---- the summary, the checks, the parameters, the notes, the traceability -------------------------------
@@ -246,14 +255,10 @@ def _summary(flow: Flow, r: dict) -> None:
     counts = r["check_counts"]
     flow.y -= 0.5 * LINE
     flow.need(2 * LINE)
-    flow.fig.text(0.05, flow.y, f"{counts['pass']} pass", fontsize=10, weight="bold", va="top",
-                  color=STATUS_COLOUR["pass"])
-    flow.fig.text(0.16, flow.y, f"{counts['fail']} fail", fontsize=10, weight="bold", va="top",
-                  color=STATUS_COLOUR["fail"])
-    flow.fig.text(0.26, flow.y, f"{counts['not checked']} not checked", fontsize=10, weight="bold", va="top",
-                  color=STATUS_COLOUR["not checked"])
-    flow.fig.text(0.46, flow.y, "every row below is counted; 'not checked' names what the review lacks",
-                  fontsize=NOTE_PT, va="top", color="0.3")
+    flow.text(0.05, f"{counts['pass']} pass", 10, weight="bold", color=STATUS_COLOUR["pass"])
+    flow.text(0.16, f"{counts['fail']} fail", 10, weight="bold", color=STATUS_COLOUR["fail"])
+    flow.text(0.26, f"{counts['not checked']} not checked", 10, weight="bold", color=STATUS_COLOUR["not checked"])
+    flow.text(0.46, "every row below is counted; 'not checked' names what the review lacks", NOTE_PT, color="0.3")
     flow.y -= 1.8 * LINE
 
 
@@ -367,6 +372,7 @@ def _spectra_page(review, r: dict):
         t_m = r["elf"].get(b, {}).get("T_M_s")
         if t_m is not None and np.isfinite(t_m):
             ax2.axvline(t_m, color=BOUND_COLOUR[b], lw=1.0, ls=":", label=f"T_M({b})")
+    figures.plain_log_labels(ax, ax2)
     ax2.set_xlabel("period T [s] (the grid of the check)")
     ax2.set_ylabel("ratio [-]")
     ax2.legend(loc="best")
@@ -551,13 +557,13 @@ def _orbits_page(review, r: dict):
 
 def _paper_page(review, r: dict):
     fig = new_page("Appendix A  The paper's measures (context, not a verdict)", r["design"]["name"])
-    fig.text(0.05, 0.93, textwrap.fill(
+    for k, text in enumerate(textwrap.wrap(
         "These are the measures of the paper behind isolator (Nicolas 2017), shown for context.  They are NOT "
         "design checks.  A = peak relative displacement / A0 with A0 = PGV²/PGA of the (resultant, scaled) ground "
         "motion: A compares the isolator's displacement with the amplitude of the harmonic motion of equal PGA and "
         "PGV, not with the ground's displacement, so A > 1 does not mean that the isolator amplifies the ground "
-        "motion.  α = PGA/(µs g) (sliding needs α > 1); slip = share of the D5-95 window spent sliding (the paper's ζ, at the samples).", 135),
-        fontsize=7.6, va="top")
+        "motion.  α = PGA/(µs g) (sliding needs α > 1); slip = share of the D5-95 window spent sliding (the paper's ζ, at the samples).", 135)):
+        line(fig, 0.05, 0.93 - k * 1.2 * 7.6 / (72 * A4_IN[1]), text, 7.6)  # lines 1.2 x 7.6 pt apart
     ax = fig.add_axes([0.08, 0.47, 0.4, 0.34])
     y = 0.37
     for b in ("lower", "upper"):
@@ -579,17 +585,17 @@ def _paper_page(review, r: dict):
         axm.scatter([p[0] for p in pm["points"].values()], [p[1] for p in pm["points"].values()], marker="*",
                     s=40, color="k", zorder=5, label="pairs (equivalent points)")
         axm.legend(loc="upper right", fontsize=7)
-    fig.text(0.05, y, "pair", fontsize=7.4, weight="bold", va="top")
+    line(fig, 0.05, y, "pair", 7.4, weight="bold")
     for x, head in ((0.4, "α lo"), (0.48, "A lo"), (0.56, "slip lo"), (0.66, "α up"), (0.74, "A up"),
                     (0.82, "slip up")):
-        fig.text(x, y, head, fontsize=7.4, weight="bold", va="top")
+        line(fig, x, y, head, 7.4, weight="bold")
     y -= 0.015
     for name in r["scale_factors"]:
-        fig.text(0.05, y, f"#{pair_key(r)[name]}", fontsize=7.0, va="top")
+        line(fig, 0.05, y, f"#{pair_key(r)[name]}", 7.0)
         for x0, b in ((0.4, "lower"), (0.66, "upper")):
             v = r["bounds"].get(b, {}).get("pairs", {}).get(name, {})
             for dx, key in ((0.0, "alpha"), (0.08, "peak_displacement_over_a0"), (0.16, "zeta_record")):
-                fig.text(x0 + dx, y, fmt(v.get(key), 3), fontsize=7.0, va="top")
+                line(fig, x0 + dx, y, fmt(v.get(key), 3), 7.0)
         y -= 0.013
     _caption(fig, "Right: the paper's (k, α) regime map of the steady harmonic response (one component) at the "
                   "design's friction, with each scaled pair placed at its equivalent harmonic point (k = K A0/(M g), "
