@@ -252,8 +252,11 @@ def test_a_pair_the_engine_refuses_stops_the_review_in_one_line(inputs, monkeypa
     assert "[superstructure]" in text
 
 
-def test_cli_review_of_a_building_the_engine_refuses_is_one_line_exit_2(inputs, tmp_path):
-    """A building with µ(v): no building model takes velocity-dependent friction; never reviewed as a rigid block."""
+def test_cli_review_of_a_building_with_mu_v_runs_on_the_2d_building(inputs, tmp_path):
+    """A building with µ(v): the 2-D building carries velocity-dependent friction (c679ac0); every analysis ran on
+    it, never on the rigid block's µ(v) engine, and the review's JSON says so."""
+    import json
+
     from typer.testing import CliRunner
 
     from isolator.cli import app
@@ -265,10 +268,10 @@ def test_cli_review_of_a_building_the_engine_refuses_is_one_line_exit_2(inputs, 
     result = CliRunner().invoke(app, ["review", "--design", str(tmp_path / "b.toml"), "--target",
                                       str(inputs / "target.toml"), "--suite", str(inputs / "suite.toml"), "-o",
                                       str(tmp_path / "r.pdf"), "--jobs", "1", "--no-cache"])
-    assert result.exit_code == 2, result.output
-    lines = [line for line in result.output.splitlines() if line.strip()]
-    assert len(lines) == 1 and "Traceback" not in result.output and "engine refuses" in lines[0], result.output
-    assert not (tmp_path / "r.pdf").exists()
+    assert result.exit_code == 0, result.output
+    saved = json.loads((tmp_path / "r.json").read_text())
+    models = {a["model"] for bound in saved["bounds"].values() for a in bound["pairs"].values()}
+    assert models == {"2d-building"} and all(bound["models"] == ["2d-building"] for bound in saved["bounds"].values())
 
 
 # ---- double and triple friction pendulums ------------------------------------------------------------------------
