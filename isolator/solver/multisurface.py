@@ -212,6 +212,55 @@ def simulate_scene(scene) -> SolverResult:
                             damping_per_mass=damping, gravity_m_s2=gravity)
 
 
+def response_fields(bearing, summary, out, energy, surf_peak, first, elements, rbar, g, t0, ev_t, ev_k, ev_x) -> dict:
+    """The fields of a :class:`MultisurfaceResponse` read from a 1-D multi-surface kernel's outputs.
+
+    The kernels of ``1d-multisurface`` and ``1d-multisurface+mu(v)`` share the summary layout of
+    :mod:`isolator.solver.multisurface_kernel` (``S_PEAK_X`` … ``S_PEAK_R``), the output arrays ``out`` (x, v, a, r),
+    the per-surface peaks, the first time of each sliding set (``first``) and the elements' final displacements
+    ``elements`` [m] (series elements, radii ``rbar`` [m]); ``t0`` [s] is the record's start.
+    """
+    e_kin = 0.5 * float(out["v"][-1]) ** 2
+    e_pot = float(g * np.sum(elements * elements / (2.0 * rbar)))
+    e_in, e_f, e_v, e_imp = (float(summary[k]) for k in (_ms.S_E_INPUT, _ms.S_E_FRICTION, _ms.S_E_VISCOUS,
+                                                         _ms.S_E_IMPACT))
+    ne = rbar.size
+    regimes: dict = {}
+    for code in np.flatnonzero(first >= 0.0):
+        name = bearing.regime_name(int(code) % (1 << ne), int(code) // (1 << ne))
+        if name and (name not in regimes or first[code] + t0 < regimes[name]):
+            regimes[name] = float(first[code] + t0)
+    regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
+    on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
+                                                                                 strict=True)]
+    first_ult = float(summary[_ms.S_FIRST_ULTIMATE_T])
+    return dict(
+        bearing=bearing, peak_force_per_weight=float(summary[_ms.S_PEAK_R]),
+        displacement_m=out["x"], velocity_m_s=out["v"], absolute_acceleration_m_s2=out["a"],
+        force_per_weight=out["r"],
+        event_time_s=t0 + ev_t, event_kind=ev_k, event_displacement_m=ev_x,
+        peak_displacement_m=float(summary[_ms.S_PEAK_X]),
+        residual_displacement_m=float(out["x"][-1]),
+        peak_velocity_m_s=float(summary[_ms.S_PEAK_V]),
+        peak_transmitted_acceleration_m_s2=float(summary[_ms.S_PEAK_A]),
+        slip_time_s=float(summary[_ms.S_SLIP_TIME]),
+        n_events=int(summary[_ms.S_N_EVENTS]),
+        energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
+        energy_impact_J_per_kg=e_imp, energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v + e_imp),
+        energy_history_J_per_kg=energy,
+        surface_peak_displacement_m=on_surface,
+        regimes=regimes,
+        n_rim_contacts=int(summary[_ms.S_N_RIM_CONTACTS]),
+        ultimate_displacement_reached=bool(summary[_ms.S_N_ULTIMATE] > 0),
+        ultimate_displacement_m=bearing.ultimate_displacement_m,
+        ultimate_first_time_s=None if first_ult < 0.0 else t0 + first_ult,
+        impact_impulse_m_s=float(summary[_ms.S_IMPULSE]),
+        max_impact_velocity_m_s=float(summary[_ms.S_MAX_IMPACT_V]),
+        element_displacement_m=elements,
+    )
+
+
 _READY = False
 
 
@@ -309,46 +358,10 @@ def simulate_bearing(acceleration_m_s2, dt_s: float | None = None, *, bearing, t
     if status & _ms.STATUS_CHATTER:
         message = (f"chatter guard: more than {_ms.MAX_EVENTS_PER_INTERVAL} events in one sample interval; the "
                    "bearing was held to the end of that interval")
-    e_kin = 0.5 * float(out["v"][-1]) ** 2
-    e_pot = float(g * np.sum(u * u / (2.0 * rbar)))
-    e_in, e_f, e_v, e_imp = (float(summary[k]) for k in (_ms.S_E_INPUT, _ms.S_E_FRICTION, _ms.S_E_VISCOUS,
-                                                         _ms.S_E_IMPACT))
-    ne = rbar.size
-    regimes: dict = {}
-    for code in np.flatnonzero(first >= 0.0):
-        name = bearing.regime_name(int(code) % (1 << ne), int(code) // (1 << ne))
-        if name and (name not in regimes or first[code] + t0 < regimes[name]):
-            regimes[name] = float(first[code] + t0)
-    regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
-    on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
-                                                                                 strict=True)]
-    first_ult = float(summary[_ms.S_FIRST_ULTIMATE_T])
     return MultisurfaceResponse(
-        bearing=bearing, peak_force_per_weight=float(summary[_ms.S_PEAK_R]),
         time_s=t0 + (dt * np.arange(acc.size) if relative is None else relative),
         ground_acceleration_m_s2=acc,
-        displacement_m=out["x"], velocity_m_s=out["v"], absolute_acceleration_m_s2=out["a"],
-        force_per_weight=out["r"],
-        event_time_s=t0 + ev_t, event_kind=ev_k, event_displacement_m=ev_x,
-        peak_displacement_m=float(summary[_ms.S_PEAK_X]),
-        residual_displacement_m=float(out["x"][-1]),
-        peak_velocity_m_s=float(summary[_ms.S_PEAK_V]),
-        peak_transmitted_acceleration_m_s2=float(summary[_ms.S_PEAK_A]),
-        slip_time_s=float(summary[_ms.S_SLIP_TIME]),
-        n_events=int(summary[_ms.S_N_EVENTS]),
-        energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
-        energy_impact_J_per_kg=e_imp, energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
-        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v + e_imp),
-        energy_history_J_per_kg=energy,
-        surface_peak_displacement_m=on_surface,
-        regimes=regimes,
-        n_rim_contacts=int(summary[_ms.S_N_RIM_CONTACTS]),
-        ultimate_displacement_reached=bool(summary[_ms.S_N_ULTIMATE] > 0),
-        ultimate_displacement_m=bearing.ultimate_displacement_m,
-        ultimate_first_time_s=None if first_ult < 0.0 else t0 + first_ult,
-        impact_impulse_m_s=float(summary[_ms.S_IMPULSE]),
-        max_impact_velocity_m_s=float(summary[_ms.S_MAX_IMPACT_V]),
-        element_displacement_m=u,
+        **response_fields(bearing, summary, out, energy, surf_peak, first, u, rbar, g, t0, ev_t, ev_k, ev_x),
         status=status, message=message, solver_seconds=elapsed, substeps_per_interval=n_sub,
         damping_per_mass=c, gravity_m_s2=g, model=MODEL_NAME,
         model_reason=f"a {bearing.kind} bearing: the exact 1-D series model with rims",

@@ -18,7 +18,7 @@ import numpy as np
 from isolator.errors import DesignError, RecordInputError, SolverError
 from isolator.solver import multisurface_rate_kernel as _mr
 from isolator.solver.base import SolverResult
-from isolator.solver.multisurface import MultisurfaceResponse
+from isolator.solver.multisurface import MultisurfaceResponse, response_fields
 from isolator.solver.notice import note_if_slow
 from isolator.solver.record import record_timing
 from isolator.units import STANDARD_GRAVITY
@@ -200,46 +200,10 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
         message = (f"chatter guard: more than {_mr.MAX_EVENTS_PER_INTERVAL} events in one sample interval; the "
                    "bearing was held to the end of that interval")
     ubar = smat @ u
-    e_kin = 0.5 * float(out["v"][-1]) ** 2
-    e_pot = float(g * np.sum(ubar * ubar / (2.0 * rbar)))
-    e_in, e_f, e_v, e_imp = (float(summary[k]) for k in (_mr.S_E_INPUT, _mr.S_E_FRICTION, _mr.S_E_VISCOUS,
-                                                         _mr.S_E_IMPACT))
-    ns = rbar.size
-    regimes: dict = {}
-    for code in np.flatnonzero(first >= 0.0):
-        name = bearing.regime_name(int(code) % (1 << ns), int(code) // (1 << ns))
-        if name and (name not in regimes or first[code] + t0 < regimes[name]):
-            regimes[name] = float(first[code] + t0)
-    regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
-    on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
-                                                                                 strict=True)]
-    first_ult = float(summary[_mr.S_FIRST_ULTIMATE_T])
     n_steps = int(summary[_mr.S_N_STEPS])
     return RateMultisurfaceResponse(
-        bearing=bearing, peak_force_per_weight=float(summary[_mr.S_PEAK_R]),
         time_s=t0 + times, ground_acceleration_m_s2=acc,
-        displacement_m=out["x"], velocity_m_s=out["v"], absolute_acceleration_m_s2=out["a"],
-        force_per_weight=out["r"],
-        event_time_s=t0 + ev_t, event_kind=ev_k, event_displacement_m=ev_x,
-        peak_displacement_m=float(summary[_mr.S_PEAK_X]),
-        residual_displacement_m=float(out["x"][-1]),
-        peak_velocity_m_s=float(summary[_mr.S_PEAK_V]),
-        peak_transmitted_acceleration_m_s2=float(summary[_mr.S_PEAK_A]),
-        slip_time_s=float(summary[_mr.S_SLIP_TIME]),
-        n_events=int(summary[_mr.S_N_EVENTS]),
-        energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
-        energy_impact_J_per_kg=e_imp, energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
-        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v + e_imp),
-        energy_history_J_per_kg=energy,
-        surface_peak_displacement_m=on_surface,
-        regimes=regimes,
-        n_rim_contacts=int(summary[_mr.S_N_RIM_CONTACTS]),
-        ultimate_displacement_reached=bool(summary[_mr.S_N_ULTIMATE] > 0),
-        ultimate_displacement_m=bearing.ultimate_displacement_m,
-        ultimate_first_time_s=None if first_ult < 0.0 else t0 + first_ult,
-        impact_impulse_m_s=float(summary[_mr.S_IMPULSE]),
-        max_impact_velocity_m_s=float(summary[_mr.S_MAX_IMPACT_V]),
-        element_displacement_m=ubar,
+        **response_fields(bearing, summary, out, energy, surf_peak, first, ubar, rbar, g, t0, ev_t, ev_k, ev_x),
         status=status, message=message, solver_seconds=elapsed, substeps_per_interval=max(1, n_steps // max(1, acc.size - 1)),
         damping_per_mass=c, gravity_m_s2=g, model=MODEL_NAME,
         model_reason=(f"a {bearing.kind} bearing with µ(v) on its surfaces: Radau IIA collocation with events, "

@@ -47,6 +47,24 @@ import numpy as np
 
 from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, record_event
 from isolator.solver.jit import njit
+from isolator.solver.multisurface_kernel import (  # noqa: F401 (the summary layout, re-exported)
+    S_E_FRICTION,
+    S_E_IMPACT,
+    S_E_INPUT,
+    S_E_VISCOUS,
+    S_FIRST_ULTIMATE_T,
+    S_IMPULSE,
+    S_MAX_IMPACT_V,
+    S_N_EVENTS,
+    S_N_RIM_CONTACTS,
+    S_N_ULTIMATE,
+    S_PEAK_A,
+    S_PEAK_R,
+    S_PEAK_V,
+    S_PEAK_X,
+    S_SLIP_TIME,
+    S_STATUS,
+)
 
 REGIME = 3  #: the sliding set changed (a surface started, stopped, reached or left its rim)
 RIM_REACHED = 4  #: a surface reached its rim; the others took its velocity (no impact)
@@ -62,23 +80,8 @@ STATUS_CHATTER = 1
 STATUS_EVENTS_TRUNCATED = 2
 STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the run stops there)
 
-# layout of the summary vector
-S_PEAK_X = 0
-S_PEAK_V = 1
-S_PEAK_A = 2
-S_SLIP_TIME = 3
-S_E_INPUT = 4
-S_E_FRICTION = 5
-S_E_VISCOUS = 6
-S_E_IMPACT = 7
-S_N_EVENTS = 8
-S_STATUS = 9
-S_N_RIM_CONTACTS = 10
-S_N_ULTIMATE = 11
-S_IMPULSE = 12
-S_MAX_IMPACT_V = 13
-S_FIRST_ULTIMATE_T = 14
-S_PEAK_R = 15
+# layout of the summary vector: slots 0-15 are the constant-µ kernel's (one layout: the drivers read both through
+# isolator.solver.multisurface.response_fields), then this kernel's own
 S_N_STEPS = 16  #: accepted collocation steps (each one step of h and two of h/2)
 S_FAIL_T = 17  #: time [s] where a step failed (-1: none)
 SUMMARY_SIZE = 18
