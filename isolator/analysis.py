@@ -482,6 +482,15 @@ def paper_applies(response) -> bool:
     return not response.is_planar and getattr(response, "system", None) is not None
 
 
+def _capacity_sentence(analysis: Analysis, ratio: float) -> str:
+    """The capacity sentence of a planar response: its demand is the centre of mass's peak, and it says so — the
+    bearings' own demand (torsion; EN 1998-1 10.3(2)'s γ_x) is the review's ``record_capacity`` row, not this."""
+    word = "within" if ratio <= 1.0 else "EXCEEDS"
+    return (f"Peak resultant displacement of the centre of mass {analysis.response.peak_displacement_m:.4g} m {word} "
+            f"the displacement capacity {analysis.design.displacement_capacity_m:.4g} m (ratio {ratio:.3g}; no "
+            "torsion or reliability factor: the bearings' demand is the review's record_capacity row).")
+
+
 def verdicts(analysis: Analysis) -> list[str]:
     """Plain sentences on the analysis: regime, the paper's A, dominant force, demand, uplift, residual.
 
@@ -499,9 +508,7 @@ def verdicts(analysis: Analysis) -> list[str]:
         ratio = analysis.displacement_demand_ratio
         reached = getattr(r, "ultimate_displacement_reached", False)  # a bearing with rims (solver.multisurface)
         if ratio is not None and not reached:  # at the rim the ratio is 1 by construction: the sentence below
-            word = "within" if ratio <= 1.0 else "EXCEEDS"
-            out.append(f"Peak resultant displacement {r.peak_displacement_m:.4g} m {word} the displacement "
-                       f"capacity {analysis.design.displacement_capacity_m:.4g} m (ratio {ratio:.3g}).")
+            out.append(_capacity_sentence(analysis, ratio))
         if reached:
             out.append(f"The bearing REACHED its ultimate displacement {r.ultimate_displacement_m:.4g} m (its "
                        "displacement capacity: every slider on its rim): plastic impact(s), impulse "

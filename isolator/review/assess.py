@@ -533,7 +533,8 @@ def _en_checks(review, values: dict, designs: dict) -> list:
     rows.insert(2, _en_zero_period_row(review))
     d_bi = env["D_TM"]["rha_m"]  # the suite's centre-of-mass displacement × the largest δ_i (no floor)
     capacity_rows = C.record_capacity(review.analyses, cap, clause="EN 1998-1 10.3(2) / EN 15129 (capacity, each "
-                                                                   "analysis)", torsion_factor=_corner_factor(review))
+                                                                   "analysis)", torsion_factor=_corner_factor(review),
+                                    reliability_factor=p["gamma_x"])
     rows += [_unless_torsion_known(row, torsion) for row in capacity_rows]
     per_bearing = _en_bearing_displacements(review, env["D_M_rha_m"], p["gamma_x"])
     tail = f"; {env['rule']} of {env['n']} pairs (EN 1998-1 4.3.3.4.3(3))" + (
@@ -552,14 +553,29 @@ def _en_checks(review, values: dict, designs: dict) -> list:
                             "d_r = F₀/K_r is defined for the bilinear curved-surface slider (EN 15129); the rules give "
                             "no d_r of a double or triple pendulum's multi-linear loop", "-"))
     else:
-        ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, values[b]["D_M_rha_m"])
-                  for b in ("lower", "upper")}
-        b_min = min(ratios, key=ratios.get)
-        rows.append(C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
-                               f"d_Ed / d_r with d_r = µR ({b_min} bound, µ = {designs[b_min].mu_kinetic:.4g})", "-"))
+        rows.append(_en_restoring_row(review, values, designs))
     rows += _en_building_rows(review)
     return rows + _common_back(review, values, p["gamma_x"] * d_bi,
                                f"γ_x {p['gamma_x']:g} × the isolator's design displacement (δ {torsion['factor']:.4g})")
+
+
+def _en_restoring_row(review, values: dict, designs: dict) -> dict:
+    """EN 1998-2 7.7.1 / EN 15129 [U]: d_Ed / d_r ≥ δ at each bound, d_r = µR, with d_Ed the isolator's design
+    displacement of EN 1998-1 10.3(2): γ_x × its displacement with torsion, δ_i × the bound's centre-of-mass suite
+    value.  The least δ_i governs (δ_i ≥ 1: the isolator nearest the centre of stiffness); without a bearing layout
+    δ = 1, the centre of mass — the least any isolator can move under EN 1998-1 10.9.6's δ_i ≥ 1."""
+    p = review.parameters
+    factors = review.design_values["torsion"].get("bearing_factors")
+    least = min(factors) if factors else 1.0
+    d_ed = {b: p["gamma_x"] * least * values[b]["D_M_rha_m"] for b in ("lower", "upper")}
+    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, d_ed[b]) for b in d_ed}
+    b_min = min(ratios, key=ratios.get)
+    where = (f"the least δ_i = {least:.4g} of the {len(factors)} bearings (EN 1998-1 10.9.6)" if factors else
+             "δ = 1: the centre of mass (no bearing layout)")
+    return C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
+                      f"d_Ed / d_r, d_Ed = γ_x {p['gamma_x']:g} (EN 1998-1 10.3(2)) × {where} × the {b_min} bound's "
+                      f"{values[b_min]['D_M_rha_m']:.4g} m = {d_ed[b_min]:.4g} m; d_r = µR "
+                      f"(µ = {designs[b_min].mu_kinetic:.4g})", "-")
 
 
 def _en_zero_period_row(review) -> dict:

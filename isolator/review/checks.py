@@ -242,7 +242,8 @@ def vertical_load_stability(max_load_N: list | None, capacities_N: list | None, 
 
 
 def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASCE 7-22 17.2.4.5 / 17.6.3.4 [U]",
-                    *, mass_kg: float | None = None, torsion_factor: float | None = None) -> list[dict]:
+                    *, mass_kg: float | None = None, torsion_factor: float | None = None,
+                    reliability_factor: float | None = None) -> list[dict]:
     """One ``fail`` row per analysis (pair × bound) whose peak displacement exceeds the capacity, or that reached
     the bearing's ultimate displacement (a double or triple pendulum's rims: ``ultimate_displacement_reached``).
 
@@ -265,19 +266,26 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
         centre-of-mass displacement times it is the corner bearing's, the value compared (the row's
         ``centre_of_mass_m`` keeps the analysis's own).  An analysis held at a single pendulum's rim has its centre
         of mass at the capacity, so its corner reads factor × capacity > capacity: it fails either way.
+    reliability_factor : float, optional
+        γ_x of EN 1998-1 10.3(2) [U] (review parameter ``gamma_x``): each isolator is designed for γ_x times its
+        displacement, so each analysis's (corner) displacement times it is the value compared, as the suite's
+        ``displacement_capacity`` row does.  None (ASCE 7): no reliability factor.
     """
     rows = []
     largest, where = -math.inf, ""
-    factor = 1.0 if torsion_factor is None else float(torsion_factor)
-    corner = "" if torsion_factor is None else f"corner bearing {factor:.4g} × "
+    gamma = 1.0 if reliability_factor is None else float(reliability_factor)
+    factor = (1.0 if torsion_factor is None else float(torsion_factor)) * gamma
+    corner = ("" if reliability_factor is None else f"γ_x {gamma:g} (EN 1998-1 10.3(2)) × ") + (
+        "" if torsion_factor is None else f"corner bearing {float(torsion_factor):.4g} × ")
     for bound, results in analyses.items():
         for name, r in results.items():
             d_cm = r.get("peak_displacement_m")
             if "error" in r or d_cm is None or not math.isfinite(d_cm):
                 continue
             d = factor * d_cm
-            extra = {"pair": name, "bound": bound} | ({} if torsion_factor is None else
-                                                      {"centre_of_mass_m": d_cm, "torsion_factor": factor})
+            extra = {"pair": name, "bound": bound} | (
+                {} if torsion_factor is None else {"centre_of_mass_m": d_cm, "torsion_factor": float(torsion_factor)}
+            ) | ({} if reliability_factor is None else {"centre_of_mass_m": d_cm, "reliability_factor": gamma})
             said_d = f"D = {corner}{d_cm:.4g} m = {d:.4g} m" if corner else f"D = {d:.4g} m"
             if d > largest:
                 largest, where = d, f"{name}, {bound} bound" + (f" ({said_d})" if corner else "")
@@ -286,7 +294,8 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
                 said = "" if impulse is None else (f"; impulse {impulse * mass_kg:.4g} N·s" if mass_kg
                                                    else f"; impulse {impulse:.4g} m/s per unit mass")
                 at_corner = (f"; the centre of mass is held at the rim, so the {corner}{d_cm:.4g} m = {d:.4g} m "
-                             "exceeds the capacity (with torsion the corner bearings reach their rims first)"
+                             "exceeds the capacity" + (" (with torsion the corner bearings reach their rims first)"
+                                                       if torsion_factor is not None else "")
                              if corner and d > d_cm else "")
                 rows.append(check("record_capacity", clause, FAIL, d, capacity_m,
                                   f"{name}, {bound} bound: the bearing REACHED its ultimate displacement (every slider "
@@ -295,7 +304,9 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
             elif capacity_m is not None and d > capacity_m:
                 rows.append(check("record_capacity", clause, FAIL, d, capacity_m,
                                   f"{name}, {bound} bound: {said_d} > capacity {capacity_m:.4g} m"
-                                  + (" (the centre of mass within it: the corner bearing is not)"
+                                  + ((" (the centre of mass within it: the corner bearing is not)" if torsion_factor
+                                      is not None and reliability_factor is None else
+                                      " (the centre of mass within it: the factored demand is not)")
                                      if d_cm <= capacity_m else "; the result assumes no restrainer (none is "
                                      "modelled) and is not physical beyond the capacity"),
                                   "m") | extra)
@@ -307,7 +318,8 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
         return [check("record_capacity", clause, NOT_CHECKED, largest, None,
                       f"no displacement_capacity_m in the design; largest single analysis {where}", "m")]
     return [check("record_capacity", clause, PASS, largest, capacity_m,
-                  f"every analysis within the capacity{' at the corner bearing' if corner else ''}; largest {where}",
+                  f"every analysis within the capacity{' at the corner bearing' if torsion_factor is not None else ''}"
+                  f"{' with γ_x' if reliability_factor is not None else ''}; largest {where}",
                   "m")]
 
 

@@ -126,13 +126,16 @@ def test_asce_D_M_capacity_reads_the_corner_bearing(review, inputs):
     assert row["value"] == pytest.approx(d, rel=1e-12) and "centre of mass" in row["note"]
 
 
-def _one_record(design):
+def _one_record(design, *, pair=False):
     from isolator.analysis import analyse
     from isolator.motion import GroundMotion
+    from isolator.motion.pair import MotionPair
     from isolator.review.record_checks import with_record_checks
 
     t = np.arange(0, 20, 0.01)
     motion = GroundMotion.from_array(3.0 * np.sin(2 * np.pi * 0.5 * t) * np.exp(-0.1 * t), 0.01)
+    if pair:  # a planar analysis: its verdicts carry the capacity sentence
+        motion = MotionPair(motion, GroundMotion.from_array(0.5 * motion.acceleration_m_s2, 0.01))
     return with_record_checks(analyse(design, motion))
 
 
@@ -154,3 +157,16 @@ def test_single_record_capacity_reads_the_corner_bearing_as_the_review():
     row = next(c for c in bare.to_dict()["checks"] if c["id"] == "displacement_capacity")
     assert row["value"] == bare.engineering["peak_displacement_m"] and "centre of mass" in row["note"]
     assert row["torsion_factor"] is None
+
+
+def test_planar_verdict_names_the_centre_of_mass():
+    """A pair (the planar model, no one-record rows): the capacity sentence says its demand is the centre of mass's
+    peak, with the plan or without, and where the bearings' demand is."""
+    for design in (Design.from_mapping(SQUARE | {"displacement_capacity_m": 3.0}),
+                   Design.from_mapping({k: v for k, v in SQUARE.items() if k not in ("plan", "bearing_position")}
+                                       | {"displacement_capacity_m": 3.0})):
+        a = _one_record(design, pair=True)
+        d = a.response.peak_displacement_m
+        (said,) = [v for v in a.to_dict()["verdicts"] if "the displacement capacity" in v]
+        assert said.startswith(f"Peak resultant displacement of the centre of mass {d:.4g} m within the "
+                               f"displacement capacity 3 m (ratio {d / 3.0:.3g}") and "record_capacity row" in said

@@ -118,3 +118,21 @@ def test_en_building_rows_on_real_pairs(en_building_reviews, n_for_mean):
                 "vertical_load_stability", "uplift")
     assert not any("ASCE" in rows[id_]["clause"] for id_ in building)  # the EN building rows cite no ASCE clause
     assert r.to_dict()["torsion"]["bearing_factors"] == pytest.approx([f] * 4, rel=1e-14)
+    # EN 1998-1 10.3(2) on each analysis as on the suite value: γ_x 1.2 × δ f × the analysis's own peak ≤ 1.0 m
+    each = {(b, name): 1.2 * f * a["peak_displacement_m"] for b in r.analyses for name, a in r.analyses[b].items()
+            if "error" not in a}
+    capacity = [c for c in checks if c["id"] == "record_capacity"]
+    beyond = {k for k, v in each.items() if v > 1.0}
+    if beyond:
+        assert {(c["bound"], c["pair"]) for c in capacity} == beyond
+        assert all(c["value"] == pytest.approx(each[c["bound"], c["pair"]], rel=1e-14) for c in capacity)
+    else:
+        assert len(capacity) == 1 and capacity[0]["value"] == pytest.approx(max(each.values()), rel=1e-14)
+        assert capacity[0]["status"] in ("pass", "not checked") and "γ_x" in capacity[0]["note"]
+    # EN 1998-2 7.7.1 / EN 15129: d_Ed = γ_x × δ_i (the least: all four equal f) × the bound's suite value,
+    # d_r = µ_b R with µ_b = λ_b × 0.05; the smaller ratio of the two bounds against δ = 0.5
+    mu = {"lower": 0.85 * 0.05, "upper": 1.2 * 0.05}
+    ratio = min(1.2 * f * suite(b, "peak_displacement_m") / (mu[b] * 2.5) for b in per)
+    restoring = rows["restoring_capability"]
+    assert restoring["value"] == pytest.approx(ratio, rel=1e-13) and restoring["limit"] == 0.5
+    assert restoring["status"] == ("pass" if ratio >= 0.5 else "fail") and "10.3(2)" in restoring["note"]
