@@ -23,9 +23,10 @@ F = −κ(t) X − a_g(t) the non-dissipative force and n = g + a_z:
   along F (the 2-D engine's START form).  With a piecewise-linear record F·e_r, F·e_t and µs n
   are linear in time and |F|² − (µs n)² quadratic: the instant the hold ends is a root, exact.
 
-The slide on the rim is one degree of freedom, integrated by scipy's DOP853 (rtol 1e-12, atol
-1e-15 m, 1e-15 m/s) sample interval by sample interval, with the stop (w = 0) and the lift-off
-(λ = 0) as terminal events located on its dense output; its |V| peaks are events too (w' = 0).  The
+The slide on the rim is one degree of freedom, integrated sample interval by sample interval by a
+compiled DOP853 (:mod:`isolator.solver.planar_rim_kernel`; rtol 1e-12, atol 1e-15 m, 1e-15 m/s), with
+the stop (w = 0) and the lift-off (λ = 0) as terminal events located to the last bits of the time on
+the integrator's own step; its |V| peaks are events too (w' = 0).  The
 error of that integration is measured against an independent reference in
 ``tests/solver/test_planar_rim.py`` (docs/planar.md, "The rim").  The bearing transmits
 M (V' + a_g): its ``peak_transmitted_acceleration_m_s2`` includes the rim's reaction (while held
@@ -47,6 +48,7 @@ from isolator.errors import InvalidSystemError, SolverError
 from isolator.solver import planar as _planar
 from isolator.solver import planar_kernel as _pk
 from isolator.solver import planar_layout as _pl
+from isolator.solver import planar_rim_kernel as _rk_rim
 from isolator.solver import planar_rk as _rk
 
 #: Event words of the 2-D engine with a rim.
@@ -54,9 +56,9 @@ RIM_EVENT_NAMES = _planar.PLANAR_EVENT_NAMES + ("rim impact", "rim leave")
 assert RIM_EVENT_NAMES.index("rim impact") == _pl.EV_RIM_IMPACT
 assert RIM_EVENT_NAMES.index("rim leave") == _pl.EV_RIM_LEAVE
 
-#: Tolerances of the slide on the rim (scipy DOP853): relative, and absolute on θ [rad], w [m/s], energies [J/kg]
-RIM_RTOL = 1e-12
-RIM_ATOL = 1e-15
+#: Tolerances of the slide on the rim (DOP853): relative, and absolute on θ [rad], w [m/s], energies [J/kg]
+RIM_RTOL = _rk_rim.RTOL
+RIM_ATOL = _rk_rim.ATOL
 #: Bound on the phases of one run (free → rim → free …): every rim contact is at least one event
 MAX_RIM_CONTACTS_PER_SAMPLE = 50
 
@@ -111,6 +113,7 @@ class _Rim:
         self.e_impact = 0.0  #: Σ ½ v_r² [J/kg]
         self.n_contacts = 0
         self.first_time = None
+        self.params = np.zeros(_rk_rim.P_SIZE)  #: the compiled slide's parameters, one interval's forcing
 
     # -- the record inside interval i: a_g, n linear in local time ----------------------------------------------
     def forcing(self, i):
@@ -301,85 +304,28 @@ class _Rim:
         wdot = ft - self.mu(abs(w)) * nn * math.copysign(1.0, w) - self.c * w
         return a + wdot * np.array([-sn, c]) - (w * w / self.d) * np.array([c, sn])
 
-    def acceleration_rate(self, frc, s, theta, w, sign):
-        """A·A' [m²/s⁵] sliding along the rim at (θ, w) in the direction ``sign``: half the rate of |A|².
-
-        With e_r' = (w/d) e_t, e_t' = −(w/d) e_r: A' = a_g' + (w'' − w³/d²) e_t − (3 w w'/d) e_r, where
-        w'' = F_t' − µ'(|w|) n w' − sgn µ n' − c w' and F_t' = −a_g'·e_t + (w/d) a_g·e_r.
-        """
-        h, ax0, ax1, ay0, ay1, n0, n1 = frc
-        d = self.d
-        c, sn = math.cos(theta), math.sin(theta)
-        axx, ayy, nn = ax0 + ax1 * s, ay0 + ay1 * s, n0 + n1 * s
-        prm = self.run.prm
-        r = abs(w)
-        mu = self.mu(r)
-        slope = (prm[_rk.P_RATE] * (prm[_rk.P_MU_FAST] - prm[_rk.P_MU_SLOW]) * math.exp(-prm[_rk.P_RATE] * r)
-                 if prm[_rk.P_VELDEP] > 0.0 else 0.0)
-        ft = axx * sn - ayy * c
-        wdot = ft - sign * mu * nn - self.c * w
-        ft_dot = ax1 * sn - ay1 * c + (w / d) * (axx * c + ayy * sn)
-        wddot = ft_dot - slope * nn * wdot - sign * mu * n1 - self.c * wdot
-        at = wddot - w ** 3 / (d * d)
-        ar = -3.0 * w * wdot / d
-        a1 = axx + wdot * -sn - (w * w / d) * c
-        a2 = ayy + wdot * c - (w * w / d) * sn
-        return a1 * (ax1 + at * -sn + ar * c) + a2 * (ay1 + at * c + ar * sn)
-
     def slide(self, i, frc, tau, theta, w, sign):
         """Slide along the rim in the direction ``sign`` from (θ, w) at local time tau to the interval's end, a
-        stop (w = 0) or the lift-off (λ = 0).  Returns (tau, θ, w, 'end' | 'stop' | 'leave')."""
-        from scipy.integrate import solve_ivp  # here: the report and the review load the registry, not scipy's ODEs
-
+        stop (w = 0) or the lift-off (λ = 0), compiled (:func:`isolator.solver.planar_rim_kernel.rim_slide`).
+        Returns (tau, θ, w, 'end' | 'stop' | 'leave')."""
         h, ax0, ax1, ay0, ay1, n0, n1 = frc
-        d, c = self.d, self.c
-        kdot = n1 * self.inv_r if self.pendulum else 0.0
-
-        def rhs(s, y):
-            th, ww = y[0], y[1]
-            cs, sn = math.cos(th), math.sin(th)
-            axx, ayy, nn = ax0 + ax1 * s, ay0 + ay1 * s, n0 + n1 * s
-            ft = axx * sn - ayy * cs  # F·e_t = −a_g·e_t (κX is radial)
-            fr = self.mu(abs(ww)) * nn
-            return [ww / d, ft - sign * fr - c * ww, ww * ft + 0.5 * kdot * d * d, fr * abs(ww), c * ww * ww]
-
-        def stop(s, y):
-            return sign * y[1]
-        stop.terminal = True
-        stop.direction = -1.0
-
-        def leave(s, y):
-            return self.reaction(frc, s, (math.cos(y[0]), math.sin(y[0])), y[1])
-        leave.terminal = True
-        leave.direction = -1.0
-
-        def turn(s, y):  # w' = 0: |w| peaks
-            return rhs(s, y)[1]
-        turn.direction = -sign
-
-        def crest(s, y):  # A·A' = 0 falling: |A| peaks (A = a_g + w' e_t − (w²/d) e_r)
-            return self.acceleration_rate(frc, s, y[0], y[1], sign)
-        crest.direction = -1.0
-
-        y0 = [theta, w, *self.summary[[_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V]]]
-        sol = solve_ivp(rhs, (tau, h), y0, method="DOP853", rtol=RIM_RTOL, atol=RIM_ATOL,
-                        events=(stop, leave, turn, crest))
-        if sol.status < 0:  # pragma: no cover - DOP853 on a smooth 1-DOF system
-            raise SolverError(f"the slide on the rim could not be integrated: {sol.message}")
-        how = "end"
-        if sol.status == 1:
-            how = "stop" if sol.t_events[0].size else "leave"
-        y = sol.y[:, -1]
-        t_end = float(sol.t[-1])
-        for yy in sol.y_events[2]:
-            self.summary[_pl.S_PEAK_V] = max(self.summary[_pl.S_PEAK_V], abs(yy[1]))
-        for s, yy in zip(sol.t_events[3], sol.y_events[3], strict=True):
-            acc = self.acceleration(frc, s, (math.cos(yy[0]), math.sin(yy[0])), yy[1])
-            self.peak_a(math.hypot(acc[0], acc[1]))
-        for s, yy in zip(sol.t, sol.y.T, strict=True):
-            acc = self.acceleration(frc, s, (math.cos(yy[0]), math.sin(yy[0])), yy[1])
-            self.peak_a(math.hypot(acc[0], acc[1]))
-            self.summary[_pl.S_PEAK_V] = max(self.summary[_pl.S_PEAK_V], abs(yy[1]))
+        prm = self.run.prm
+        p = self.params
+        p[_rk_rim.P_AX0], p[_rk_rim.P_AX1], p[_rk_rim.P_AY0], p[_rk_rim.P_AY1] = ax0, ax1, ay0, ay1
+        p[_rk_rim.P_N0], p[_rk_rim.P_N1], p[_rk_rim.P_SIGN] = n0, n1, sign
+        p[_rk_rim.P_D], p[_rk_rim.P_C], p[_rk_rim.P_INV_R], p[_rk_rim.P_KAPPA] = self.d, self.c, self.inv_r, self.kappa
+        p[_rk_rim.P_PENDULUM] = 1.0 if self.pendulum else 0.0
+        p[_rk_rim.P_VELDEP], p[_rk_rim.P_MU_K] = prm[_rk.P_VELDEP], prm[_rk.P_MU_K]
+        p[_rk_rim.P_MU_FAST], p[_rk_rim.P_MU_SLOW], p[_rk_rim.P_RATE] = (prm[_rk.P_MU_FAST], prm[_rk.P_MU_SLOW],
+                                                                          prm[_rk.P_RATE])
+        y = np.array([theta, w, *self.summary[[_pl.S_E_IN, _pl.S_E_F, _pl.S_E_V]]])
+        peaks = self.summary[[_pl.S_PEAK_V, _pl.S_PEAK_A]]
+        t_end, code = _rk_rim.rim_slide(p, float(tau), float(h), y, peaks)
+        if code == _rk_rim.HOW_GUARD:
+            raise SolverError(f"rim guard: more than {_rk_rim.MAX_STEPS} steps of the slide along the rim in one "
+                              f"sample interval (near t = {self.run.times[i] + tau:.6g} s)")
+        how = {_rk_rim.HOW_END: "end", _rk_rim.HOW_STOP: "stop", _rk_rim.HOW_LEAVE: "leave"}[code]
+        self.summary[_pl.S_PEAK_V], self.summary[_pl.S_PEAK_A] = peaks
         self.summary[_pl.S_E_IN], self.summary[_pl.S_E_F], self.summary[_pl.S_E_V] = y[2], y[3], y[4]
         self.summary[_pl.S_SLIP_TIME] += t_end - tau
         self.rim_time += t_end - tau

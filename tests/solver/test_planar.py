@@ -196,10 +196,11 @@ def _pair_from(records_dir, folder, names, n_max=None):
 @pytest.mark.slow
 def test_real_pair_against_the_reference(records_dir):
     dt, (ax, ay) = _pair_from(records_dir, "superstitionhills1987_PTS",
-                              ["RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2"], n_max=1600)
+                              ["RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2"], n_max=1000)
     t = dt * np.arange(ax.size)
     r = simulate_pair(ax, ay, dt, mu_static=0.06, radius_m=2.0)
     ref = reference_pair(t, ax, ay, mu_s=0.06, radius=2.0)
+    # 10 s: the strong part, 13 stick-slip events (3.1–9.3 s); the 6 s after it is one long slide
     assert r.status == 0 and ref.n_stops > 5
     _compare(ref, r, 1e-9)
 
@@ -236,7 +237,7 @@ def _hard_case(name):
         system = dict(mu_static=pga / G * (1 - 1e-3), mu_kinetic=pga / G * 0.9, radius_m=2.0)
     elif name == "chatter":
         # a stick–slip cycle in every period of a 25 Hz forcing that only just beats µs
-        t = t[:100]  # 1 s, 25 cycles: the reference needs ~0.2 s per stop
+        t = t[:40]  # 0.4 s, 10 cycles (the reference needs ~0.2 s per stop at rest, more at load): each one alike
         ax = 0.045 * G + 0.03 * G * np.sin(2 * np.pi * 25 * t)
         ay = 0.01 * G * np.cos(2 * np.pi * 25 * t)
         system = dict(mu_static=0.07, mu_kinetic=0.05, stiffness_per_mass=1.0)
@@ -276,7 +277,7 @@ def test_hard_cases_against_the_reference(name):
     if name == "uplift":
         assert r.n_uplifts > 0 and r.model == "2d+vertical"
     if name == "chatter":
-        assert r.n_events > 40
+        assert r.n_events >= 20  # a break-away and a stop in each of the 10 periods
     if name == "starts above mu_s n":
         assert r.event_time_s[0] == 0.0 and r.event_names[0] == "breakaway"
 
