@@ -411,7 +411,36 @@ def scene_needs(scene) -> tuple[str, str] | None:
         return None
     if not (scene.has_y or scene.has_z or scene.velocity_dependent):
         return None
-    return MODEL_NAME, MODEL_REASON
+    return MODEL_NAME, scene_reason(has_y=scene.has_y, has_z=scene.has_z,
+                                    velocity_dependent=scene.velocity_dependent)
+
+
+def scene_reason(*, has_y: bool, has_z: bool, velocity_dependent: bool) -> str:
+    """The reason the registry prints for this model: the scene features that chose it.
+
+    Parameters
+    ----------
+    has_y, has_z : bool
+        The scene has a second horizontal component, a vertical one.
+    velocity_dependent : bool
+        The friction depends on the sliding speed (µ(v)).
+
+    Returns
+    -------
+    str
+        E.g. "a superstructure above the isolation plane under two horizontal components and a vertical
+        (N = W (1 + a_z/g)): the 2-D building (friction coupled in the plane)".
+    """
+    features = ["two horizontal components" if has_y else "one horizontal component"]
+    if has_z:
+        features.append("a vertical (N = W (1 + a_z/g))")
+    if velocity_dependent:
+        features.append("velocity-dependent friction µ(v)")
+    text = features[0] if len(features) == 1 else ", ".join(features[:-1]) + " and " + features[-1]
+    # without a pair the 1-D building would have run had it carried the vertical / µ(v): say so
+    why = "" if has_y else f" (the 1-D building does not carry {'them' if has_z and velocity_dependent else 'it'})"
+    return (f"a superstructure above the isolation plane under {text}: the 2-D building "
+            f"(friction coupled in the plane){why}")
 
 
 def simulate_scene(scene) -> PlanarBuildingResponse:

@@ -618,3 +618,36 @@ def test_the_bearing_loads_carry_the_vertical(records_dir):
     low = np.asarray(loads["bearing_axial_load_min_N"])
     assert np.all(high >= by_hand.max(axis=1) - 1e-9 * high) and np.all(high <= 1.02 * by_hand.max(axis=1))
     assert np.all(low <= by_hand.min(axis=1) + 1e-9 * high) and np.all(low >= by_hand.min(axis=1) - 0.02 * high)
+
+
+def test_the_reason_names_the_scene_features_that_chose_the_2d_building(records_dir):
+    """The registry's reason for the 2-D building says which of the pair, the vertical and µ(v) chose it (a pair with a
+    vertical used to print "two horizontal components" only); the run through the registry reports the same reason."""
+    from pathlib import Path
+
+    from isolator.design import Design
+    from isolator.solver.base import Scene
+    from isolator.solver.models import select_model, simulate
+
+    design = Design.from_toml(Path(__file__).resolve().parents[2] / "data" / "example_building.toml")
+    acc = np.array([0.0, 0.3, -0.2, 0.1])
+    constant = {"mu_static": 0.06, "mu_kinetic": 0.05, "radius_m": 2.5}
+    rate = {"mu_static": 0.06, "mu_kinetic": 0.05, "mu_slow": 0.04, "mu_fast": 0.06, "rate_s_per_m": 20.0,
+            "radius_m": 2.5}
+    cases = {  # (ay, az, isolator) → the features the reason must name, and those it must not
+        "pair": ((acc, None, constant), ["two horizontal"], ["vertical", "µ(v)"]),
+        "pair+vertical": ((acc, acc, constant), ["two horizontal", "vertical"], ["µ(v)"]),
+        "one+vertical": ((None, acc, constant), ["one horizontal", "vertical"], ["two horizontal", "µ(v)"]),
+        "one+mu(v)": ((None, None, rate), ["one horizontal", "µ(v)"], ["two horizontal", "vertical"]),
+        "pair+vertical+mu(v)": ((acc, acc, rate), ["two horizontal", "vertical", "µ(v)"], []),
+    }
+    for label, ((ay, az, iso), said, unsaid) in cases.items():
+        name, reason = select_model(Scene(ax_m_s2=acc, ay_m_s2=ay, az_m_s2=az, dt_s=0.01, isolator=iso,
+                                          design=design))
+        assert name == "2d-building", label
+        assert all(word in reason for word in said) and not any(word in reason for word in unsaid), (label, reason)
+    (acc_x, acc_y, acc_z), dt = triple_segment(records_dir, APEEL2[0], APEEL2[1], 5.5, 0.5, 1.0)
+    scene = Scene(ax_m_s2=acc_x, ay_m_s2=acc_y, az_m_s2=acc_z, dt_s=dt, isolator=constant, design=design)
+    run = simulate(scene)
+    assert run.model == "2d-building" and run.model_reason == select_model(scene)[1]
+    assert "vertical" in run.model_reason
