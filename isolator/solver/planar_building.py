@@ -328,6 +328,8 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     #: fast sub-steps refused (run as series pieces): the friction's series not at rounding, its end check, an
     #: event possible, V = 0
     n_fast_refused: tuple = ()
+    #: series pieces by phase: stuck, start (leaving rest), slide, finish (the last of a stop)
+    n_pieces_by_phase: tuple = ()
     n_extrema_located: int = 0
     bearing_layout: object = None
     residual_displacement_x_m: float = 0.0
@@ -646,8 +648,9 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     kernel_times = np.empty(0) if relative is None else np.ascontiguousarray(relative)
     # fast sub-steps (uniform records): the fastest mode turns by at most THETA_FAST in one
     normal = normal or _Normal(None, False, None, None)
-    # the exact propagators hold a constant A and a constant µ: with a vertical or µ(v) series pieces only
-    n_fast = 0 if (relative is not None or normal.varying) else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
+    # the exact propagators hold a constant A and a constant µ: with a vertical or µ(v) the kernel takes them
+    # while stuck only (the floors' fixed-base system), sliding by series pieces
+    n_fast = 0 if relative is not None else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
@@ -759,6 +762,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         n_pieces=int(summary[_pk.S_N_PIECES]),
         n_fast_steps=int(summary[_pk.S_N_FAST]),
         n_fast_refused=tuple(int(v) for v in summary[_pk.S_N_REFUSED:_pk.S_N_REFUSED + 4]),
+        n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + 4]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
         vertical_acceleration_m_s2=normal.az,

@@ -87,7 +87,9 @@ S_N_LOCATED = 7
 S_N_FAST = 8
 #: fast sub-steps refused: the friction's series not at rounding, its end check, an event possible, V = 0
 S_N_REFUSED = 9
-SUMMARY_SIZE = 13
+#: series pieces by phase: stuck, start, slide, finish (where the time goes: docs/building.md, Speed)
+S_N_PIECES_BY_MODE = 13
+SUMMARY_SIZE = 17
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
@@ -388,6 +390,35 @@ def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, vz, fro
 
 
 @njit(cache=True)
+def _illinois_done(a, c, fa, fc):
+    """The bracket [a, c] of a sign change of f (f(a) > 0 > f(c)) is at rounding, or cannot be refined."""
+    return c - a <= 4e-16 * max(abs(c), 1e-300) or fa == fc
+
+
+@njit(cache=True)
+def _illinois_point(a, c, fa, fc):
+    """The next trial point in (a, c): the secant's, or the midpoint when that falls outside."""
+    t = (a * fc - c * fa) / (fc - fa)
+    return t if a < t < c else 0.5 * (a + c)
+
+
+@njit(cache=True)
+def _illinois_bracket(t, f, a, c, fa, fc, side):
+    """The bracket after f(t) = f ≠ 0 (Illinois: the end kept twice in a row has its value halved, so that the
+    secant does not stall on one side).  Returns (a, c, fa, fc, side); side +1 when t replaced a, −1 c.
+
+    One rule for the three sign-change searches of this kernel (:func:`_slope_root`, :func:`_locate_max`,
+    :func:`_poly_max`), which differ only in the function they evaluate."""
+    if f > 0.0:
+        if side == 1:
+            fc *= 0.5
+        return t, c, f, fc, 1
+    if side == -1:
+        fa *= 0.5
+    return a, t, fa, f, -1
+
+
+@njit(cache=True)
 def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out, sign):
     """Where φ' changes sign (sign = +1: from + to −, a maximum), by Illinois on the slope."""
     _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
@@ -398,27 +429,14 @@ def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, 
     c = hi
     side = 0
     for _ in range(200):
-        if c - a <= 4e-16 * max(abs(c), 1e-300) or fa == fc:
+        if _illinois_done(a, c, fa, fc):
             break
-        t = (a * fc - c * fa) / (fc - fa)
-        if not (a < t < c):
-            t = 0.5 * (a + c)
+        t = _illinois_point(a, c, fa, fc)
         _phi_at(kind, zs, t, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
         f = sign * out[1]
         if f == 0.0:
             return t
-        if f > 0.0:
-            a = t
-            fa = f
-            if side == 1:
-                fc *= 0.5
-            side = 1
-        else:
-            c = t
-            fc = f
-            if side == -1:
-                fa *= 0.5
-            side = -1
+        a, c, fa, fc, side = _illinois_bracket(t, f, a, c, fa, fc, side)
     return 0.5 * (a + c)
 
 
@@ -466,28 +484,15 @@ def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd,
     best = -1e300
     side = 0
     for _ in range(200):
-        if c - a <= 4e-16 * max(c, 1e-300) or fa == fc:
+        if _illinois_done(a, c, fa, fc):
             break
-        t = (a * fc - c * fa) / (fc - fa)
-        if not (a < t < c):
-            t = 0.5 * (a + c)
+        t = _illinois_point(a, c, fa, fc)
         f, v = _monitor_slope_at(zs, t, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope,
                                  sval, sslope)
         best = max(best, v)
         if f == 0.0:
             break
-        if f > 0.0:
-            a = t
-            fa = f
-            if side == 1:
-                fc *= 0.5
-            side = 1
-        else:
-            c = t
-            fc = f
-            if side == -1:
-                fa *= 0.5
-            side = -1
+        a, c, fa, fc, side = _illinois_bracket(t, f, a, c, fa, fc, side)
     return best
 
 
@@ -565,58 +570,35 @@ def _poly_value_slope(c, nterm, t):
 
 
 @njit(cache=True)
+def _poly_slope_at(cp, kind, nterm, t):
+    """(slope, value) at t of ½|P|² (kind 0; the value returned is |P|²) or of ±P (kind ±1), from the series cp."""
+    if kind == 0:
+        vx, dx = _poly_value_slope(cp[0], nterm, t)
+        vy, dy = _poly_value_slope(cp[1], nterm, t)
+        return vx * dx + vy * dy, vx * vx + vy * vy
+    v, dv = _poly_value_slope(cp[0], nterm, t)
+    return kind * dv, kind * v
+
+
+@njit(cache=True)
 def _poly_max(cp, kind, nterm, h):
     """Largest value in [0, h] of ½|P|² (kind 0: cp[0], cp[1] the series of P_x, P_y) or of ±P (kind ±1:
     cp[0]), where its slope falls through zero (Illinois on the slope, as :func:`_locate_max`)."""
     a = 0.0
     c = h
     best = -1e300
-    fa = 0.0
-    fc = 0.0
-    for end in range(2):
-        t = a if end == 0 else c
-        if kind == 0:
-            vx, dx = _poly_value_slope(cp[0], nterm, t)
-            vy, dy = _poly_value_slope(cp[1], nterm, t)
-            f = vx * dx + vy * dy
-        else:
-            v, dv = _poly_value_slope(cp[0], nterm, t)
-            f = kind * dv
-        if end == 0:
-            fa = f
-        else:
-            fc = f
+    fa, _ = _poly_slope_at(cp, kind, nterm, a)
+    fc, _ = _poly_slope_at(cp, kind, nterm, c)
     side = 0
     for _ in range(200):
-        if c - a <= 4e-16 * max(c, 1e-300) or fa == fc:
+        if _illinois_done(a, c, fa, fc):
             break
-        t = (a * fc - c * fa) / (fc - fa)
-        if not (a < t < c):
-            t = 0.5 * (a + c)
-        if kind == 0:
-            vx, dx = _poly_value_slope(cp[0], nterm, t)
-            vy, dy = _poly_value_slope(cp[1], nterm, t)
-            f = vx * dx + vy * dy
-            v = vx * vx + vy * vy
-        else:
-            v, dv = _poly_value_slope(cp[0], nterm, t)
-            f = kind * dv
-            v = kind * v
+        t = _illinois_point(a, c, fa, fc)
+        f, v = _poly_slope_at(cp, kind, nterm, t)
         best = max(best, v)
         if f == 0.0:
             break
-        if f > 0.0:
-            a = t
-            fa = f
-            if side == 1:
-                fc *= 0.5
-            side = 1
-        else:
-            c = t
-            fc = f
-            if side == -1:
-                fa *= 0.5
-            side = -1
+        a, c, fa, fc, side = _illinois_bracket(t, f, a, c, fa, fc, side)
     return best
 
 
@@ -865,6 +847,9 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
                 cpoly[0, jj] = 0.0
             for d in range(2):
                 _rows_series(fsig[phase, j, d], wa[d], s_eff, nterm, cpoly, 0)
+            # the vertical's share (a bearing's P_g a_z/g), linear in τ: not in the tables' augmented state
+            cpoly[0, 0] += sig3[j, 2] * a0[2]
+            cpoly[0, 1] += sig3[j, 2] * b[2]
             if up:
                 sig_max[j] = max(sig_max[j], _poly_max(cpoly, 1, nterm, h))
             else:
@@ -881,6 +866,9 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
                 acc_v += fpvis[phase, d, r, c] * wsc[d, c]
             e_in += wsc[d, r] * (fpin[phase, d, r, r] * wsc[d, r] + 2.0 * acc_i)
             e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * acc_v)
+    if vz[V_VARYING] != 0.0 and mode == STUCK:
+        # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
+        e_in += 0.5 * vz[V_K_VERT] * vz[V_NU1] * (w[0, 0] ** 2 + w[1, 0] ** 2) * h
     energy[0] = e_in
     energy[1] = mu_k_n * r_int
     energy[2] = e_v
@@ -903,7 +891,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     law : float64[5]
         [1 with a vertical or µ(v) else 0, g [m/s²], k_v: the stiffness that follows the normal force
         N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m]];
-        mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are off then (n_fast = 0).
+        mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are then taken stuck only (sliding: series pieces).
     dt : float
         Sample interval [s] of a uniform record (``times`` empty).
     times : float64[n] or float64[0]
@@ -1039,6 +1027,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     n_ev = 0
     status = 0
     n_pieces = 0
+    pieces_by_mode = np.zeros(4, dtype=np.int64)
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
@@ -1105,13 +1094,18 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                 if tau >= tau_end:
                     break
                 slow_end = tau_end
-                if n_fast > 0 and uniform and not varying and (mode == STUCK or mode == SLIDE) and \
+                # stuck, the floors are a fixed-base linear system whatever N(t) and µ(v) (they only move the
+                # break-away limit µs N(τ), which the event test reads from vz): exact propagators; sliding,
+                # only with a constant N and µ (the propagators hold a constant A and a polynomial friction)
+                if n_fast > 0 and uniform and (mode == STUCK or (mode == SLIDE and not varying)) and \
                         events_here <= MAX_EVENTS_PER_INTERVAL:
                     # the longest sub-step of the ladder h, h/2, h/4 … that fits and that the exact propagators
                     # can take (else series pieces, over at most the shortest rung)
                     a0[0] = ax[i] + b[0] * tau
                     a0[1] = ay[i] + b[1] * tau
                     a0[2] = az[i] + b[2] * tau
+                    if varying:
+                        vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
                     lev0 = 0
                     while lev0 < n_levels - 1 and tau + h_fast / (1 << lev0) > tau_end + 1e-12 * h_fast:
                         lev0 += 1
@@ -1165,6 +1159,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
                     _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
                     n_pieces += 1
+                    pieces_by_mode[mode] += 1
                     length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
                     _eval(zs, 0.0, zl, zdl, zddl)
                     if mode == FINISH:
@@ -1392,3 +1387,5 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     summary[S_N_FAST] = n_fast_steps
     for k in range(1, 5):
         summary[S_N_REFUSED + k - 1] = n_refused[k]
+    for k in range(4):
+        summary[S_N_PIECES_BY_MODE + k] = pieces_by_mode[k]

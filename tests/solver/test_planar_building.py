@@ -540,6 +540,7 @@ def test_a_vertical_and_mu_v_against_solve_ivp(records_dir, name):
     recurrence): exact to the series' truncation; here ≤ 1e-9 of the peaks against the reference."""
     ours, ref, acc_z = _run_vertical_case(records_dir, name)
     assert ours.message == "ok"
+    assert ours.n_fast_steps > 0, "stuck, the exact propagators run with a vertical or µ(v) too"
     assert ours.n_events >= 1 and ours.slip_time_s > 0.2, "the case must slide"
     assert np.max(np.abs(acc_z)) > 0.5, "the vertical must matter (ν = 1 ± 0.085)"
     assert ours.event_names == [kind for _, kind in ref["events"]]
@@ -558,7 +559,7 @@ def test_a_vertical_and_mu_v_against_solve_ivp(records_dir, name):
 
 def test_a_zero_vertical_and_equal_mu_v_give_the_constant_answer(records_dir):
     """A zero vertical: bit for bit the run without one; µ_slow = µ_fast: the constant-µ run (another path:
-    series pieces only against the fast sub-steps) to ≤ 1e-11."""
+    series pieces while sliding against the fast sub-steps) to ≤ 1e-11."""
     (acc_x, acc_y, _), dt = triple_segment(records_dir, APEEL2[0], APEEL2[1], 3.0, 3.0, 2.0)
     common = dict(superstructure=make_superstructure([3e5, 2e5], [6e8, 3e8], [4e8, 3.5e8]), total_mass_kg=7e5,
                   stiffness_N_per_m=7e5 * G / 2.0, mu_static=0.06, pendulum=True)
@@ -569,7 +570,8 @@ def test_a_zero_vertical_and_equal_mu_v_give_the_constant_answer(records_dir):
         assert np.array_equal(getattr(plain, key), getattr(zero, key))
     assert plain.energy_input_J_per_kg == zero.energy_input_J_per_kg
     same = simulate_planar_building(acc_x, acc_y, dt, mu_slow=0.045, mu_fast=0.045, rate_s_per_m=30.0, **common)
-    assert same.n_fast_steps == 0 and plain.n_fast_steps > 0
+    # µ(v) slides by series pieces only (stuck it takes the propagators): another path while sliding
+    assert 0 < same.n_fast_steps < plain.n_fast_steps and same.n_pieces_by_phase[2] > plain.n_pieces_by_phase[2]
     assert same.event_names == plain.event_names
     assert np.max(np.abs(same.event_time_s - plain.event_time_s)) <= 1e-11
     for key in ("displacement_m", "velocity_m_s", "floor_displacement_m"):
@@ -651,3 +653,39 @@ def test_the_reason_names_the_scene_features_that_chose_the_2d_building(records_
     run = simulate(scene)
     assert run.model == "2d-building" and run.model_reason == select_model(scene)[1]
     assert "vertical" in run.model_reason
+
+
+def test_a_vertical_stuck_by_the_propagators_equals_the_series_pieces(records_dir):
+    """With a vertical the stuck intervals go by the exact propagators (the floors' fixed-base system; the
+    break-away limit µs N(τ) in the event test, the vertical's work and a bearing's P_g a_z/g added): the same
+    record with samples inserted on its straight lines runs series pieces only (the non-uniform path) and must
+    agree to 1e-9 in the histories, events, energies and the bearing loads' exact extremes."""
+    from pathlib import Path
+
+    from isolator.design import Design
+
+    design = Design.from_toml(Path(__file__).resolve().parents[2] / "data" / "example_building.toml")
+    (acc_x, acc_y, acc_z), dt = triple_segment(records_dir, APEEL2[0], APEEL2[1], 8.0, 3.0, 1.0)
+    g = design.gravity_m_s2
+    common = dict(superstructure=design.superstructure, total_mass_kg=design.mass_kg,
+                  stiffness_N_per_m=design.mass_kg * g / design.radius_m, mu_static=design.mu_static,
+                  mu_kinetic=design.mu_kinetic, pendulum=True, bearing_layout=design.bearing_layout)
+    uniform = simulate_planar_building(acc_x, acc_y, dt, az_m_s2=acc_z, **common)
+    t = dt * np.arange(acc_x.size)
+    t_all = np.union1d(t, np.sort(np.random.default_rng(3).uniform(t[0], t[-1], 40)))
+    dense = simulate_planar_building(*(np.interp(t_all, t, a) for a in (acc_x, acc_y)), time_s=t_all,
+                                     az_m_s2=np.interp(t_all, t, acc_z), **common)
+    keep = np.searchsorted(t_all, t)
+    assert uniform.n_fast_steps > 100 and uniform.n_pieces_by_phase[0] < uniform.n_fast_steps
+    assert dense.n_fast_steps == 0 and uniform.n_events >= 6 and uniform.slip_time_s > 0.2
+    assert dense.event_names == uniform.event_names
+    assert np.max(np.abs(dense.event_time_s - uniform.event_time_s)) <= 1e-9
+    assert _rel(dense.displacement_m[keep], uniform.displacement_m) <= 1e-9
+    assert _rel(dense.floor_displacement_m[keep], uniform.floor_displacement_m) <= 1e-9
+    assert dense.story_drift_m == pytest.approx(uniform.story_drift_m, rel=1e-9)
+    assert dense.energy_input_J_per_kg == pytest.approx(uniform.energy_input_J_per_kg, rel=1e-9)
+    assert abs(uniform.energy_balance_error_J_per_kg) <= 1e-9 * uniform.energy_input_J_per_kg
+    fine, coarse = dense.bearing_loads(), uniform.bearing_loads()
+    scale = max(design.bearing_layout.gravity_loads_N)
+    for key in ("bearing_axial_load_max_N", "bearing_axial_load_min_N"):
+        assert np.max(np.abs(np.subtract(fine[key], coarse[key]))) <= 1e-9 * scale, key
