@@ -1097,8 +1097,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                 # stuck, the floors are a fixed-base linear system whatever N(t) and µ(v) (they only move the
                 # break-away limit µs N(τ), which the event test reads from vz): exact propagators; sliding,
                 # only with a constant N and µ (the propagators hold a constant A and a polynomial friction)
-                if n_fast > 0 and uniform and (mode == STUCK or (mode == SLIDE and not varying)) and \
-                        events_here <= MAX_EVENTS_PER_INTERVAL:
+                fast_mode = n_fast > 0 and uniform and (mode == STUCK or (mode == SLIDE and not varying))
+                if fast_mode and events_here <= MAX_EVENTS_PER_INTERVAL:
                     # the longest sub-step of the ladder h, h/2, h/4 … that fits and that the exact propagators
                     # can take (else series pieces, over at most the shortest rung)
                     a0[0] = ax[i] + b[0] * tau
@@ -1146,7 +1146,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         from_rest = False
                         tau = tau_end if tau_end - (tau + h_lev) <= 1e-12 * h_fast else tau + h_lev
                         continue
-                if n_fast > 0 and uniform:
+                if fast_mode:
+                    # back to the ladder after the shortest rung (a phase without the propagators runs on)
                     slow_end = min(tau_end, tau + h_fast / (1 << (n_levels - 1)))
                 for _guard in range(MAX_PIECES_PER_INTERVAL):
                     if tau >= slow_end:
