@@ -1146,8 +1146,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         from_rest = False
                         tau = tau_end if tau_end - (tau + h_lev) <= 1e-12 * h_fast else tau + h_lev
                         continue
-                if fast_mode:
-                    # back to the ladder after the shortest rung (a phase without the propagators runs on)
+                if n_fast > 0 and uniform and not (varying and mode == SLIDE):
+                    # back to the ladder after the shortest rung (sliding with N(t) or µ(v), which the
+                    # propagators do not take, runs on to the sub-step's end)
                     slow_end = min(tau_end, tau + h_fast / (1 << (n_levels - 1)))
                 for _guard in range(MAX_PIECES_PER_INTERVAL):
                     if tau >= slow_end:
