@@ -560,22 +560,20 @@ def _en_checks(review, values: dict, designs: dict) -> list:
 
 
 def _en_restoring_row(review, values: dict, designs: dict) -> dict:
-    """EN 1998-2 7.7.1 / EN 15129 [U]: d_Ed / d_r ≥ δ at each bound, d_r = µR, with d_Ed the isolator's design
-    displacement of EN 1998-1 10.3(2): γ_x × its displacement with torsion, δ_i × the bound's centre-of-mass suite
-    value.  The least δ_i governs (δ_i ≥ 1: the isolator nearest the centre of stiffness); without a bearing layout
-    δ = 1, the centre of mass — the least any isolator can move under EN 1998-1 10.9.6's δ_i ≥ 1."""
+    """EN 1998-2 7.7.1(2) / EN 15129 [U]: d_cd / d_r ≥ δ at each bound, d_r = F₀/K_r = µR (REVIEW_RULES §2), with
+    d_cd the design displacement of the stiffness centre: the bound's centre-of-mass suite value (friction
+    pendulums: the stiffness centre is the centre of mass).  The isolators' reliability factor γ_x and the torsion
+    factors δ_i of EN 1998-1 10.3(2) / 10.9.6 enlarge each isolator's displacement *capacity* requirement, not the
+    restoring check's d_cd; applying them here would make the check easier to pass, so they are not applied (the
+    note says so)."""
     p = review.parameters
-    factors = review.design_values["torsion"].get("bearing_factors")
-    least = min(factors) if factors else 1.0
-    d_ed = {b: p["gamma_x"] * least * values[b]["D_M_rha_m"] for b in ("lower", "upper")}
-    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, d_ed[b]) for b in d_ed}
+    d_cd = {b: values[b]["D_M_rha_m"] for b in ("lower", "upper")}
+    ratios = {b: en15129.restoring_capability_ratio(designs[b], designs[b].mu_kinetic, d_cd[b]) for b in d_cd}
     b_min = min(ratios, key=ratios.get)
-    where = (f"the least δ_i = {least:.4g} of the {len(factors)} bearings (EN 1998-1 10.9.6)" if factors else
-             "δ = 1: the centre of mass (no bearing layout)")
-    return C.at_least("restoring_capability", "EN 1998-2 7.7.1 / EN 15129", ratios[b_min], p["delta"],
-                      f"d_Ed / d_r, d_Ed = γ_x {p['gamma_x']:g} (EN 1998-1 10.3(2)) × {where} × the {b_min} bound's "
-                      f"{values[b_min]['D_M_rha_m']:.4g} m = {d_ed[b_min]:.4g} m; d_r = µR "
-                      f"(µ = {designs[b_min].mu_kinetic:.4g})", "-")
+    return C.at_least("restoring_capability", "EN 1998-2 7.7.1(2) / EN 15129", ratios[b_min], p["delta"],
+                      f"d_cd / d_r, d_cd = the {b_min} bound's centre-of-mass (stiffness-centre) design displacement "
+                      f"{d_cd[b_min]:.4g} m, without γ_x or δ_i (they apply to the isolators' capacity, EN 1998-1 "
+                      f"10.3(2)); d_r = µR (µ = {designs[b_min].mu_kinetic:.4g})", "-")
 
 
 def _en_zero_period_row(review) -> dict:
