@@ -15,9 +15,17 @@ form of :mod:`isolator.solver.segments` (the single pendulum's), and the events 
 * **regime change** — X reaches the next breakpoint of the excursion.  X is monotone
   between stops, so the crossing is the single root of X(τ) − x_k on a bracket,
   found by a safeguarded Newton iteration (:func:`displacement_root`);
-* **rim impact** — the next regime is rigid (every element that could move is on its
-  rim): a plastic impact, V → 0, the impulse per unit mass |V| and the energy ½V²
-  reported; at the ultimate displacement the bearing then holds any outward force;
+* **rim reached** — the next regime is rigid but not the last (an *intermediate* rim: the
+  elements that slid are on their rims before the force reaches the next element's
+  friction level, e.g. a double with µ2 > µ1 + d1*/R̄1).  The sliders are massless, so
+  the element on its rim cannot move outward while the next one is rigid–plastic: it
+  takes any slide rate at its friction level.  The force through the bearing therefore
+  jumps to the next regime's level (a finite force, so no impulse) and the mass goes on
+  with its velocity continuous; only the friction work changes rate.  The rigid regime
+  is passed at once (both regimes start at the same x);
+* **ultimate** — the last regime is rigid (every element on its rim): a plastic impact,
+  V → 0, the impulse per unit mass |V| and the energy ½V² reported; the bearing then
+  holds any outward force;
 * **stick / break-away** — the stuck bearing holds F/W in the window of
   :func:`isolator.solver.multisurface_series.stick_window` (static friction); with a
   piecewise-linear record the break-away is linear in time, hence exact.  A single
@@ -42,9 +50,9 @@ from isolator.solver.multisurface_series import excursion, settle, stick_window
 from isolator.solver.segments import ramp_basis, segment_state
 
 REGIME = 3  #: the sliding set changed (an element started or reached its rim)
-RIM_IMPACT = 4  #: plastic impact on an intermediate rim (the bearing is rigid until the force grows)
+RIM_REACHED = 4  #: an intermediate rigid regime passed: the force jumps to the next element's level, V continuous
 ULTIMATE = 5  #: plastic impact at the ultimate displacement (every slider on its rim)
-EVENT_NAMES = ("breakaway", "stick", "reversal", "regime", "rim impact", "ultimate")
+EVENT_NAMES = ("breakaway", "stick", "reversal", "regime", "rim reached", "ultimate")
 
 MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard, as for the single pendulum
 
@@ -252,7 +260,9 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
         if stuck:
             f_lo = g * r_lo
             f_hi = g * r_hi
-            while i < n - 1 and f_lo <= -acc[i + 1] <= f_hi:
+            # both ends inside the window (the start too: a record whose first sample is beyond it
+            # slides from t = 0, it must not be skipped)
+            while i < n - 1 and f_lo <= -acc[i] <= f_hi and f_lo <= -acc[i + 1] <= f_hi:
                 i += 1
                 out_x[i] = x
                 out_v[i] = 0.0
@@ -317,8 +327,21 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
                     peak_a = max(peak_a, abs(a_sub + b * tb))
                     if tau >= h:
                         break
+                if reg_rsum[k] == 0.0 and k < n_reg - 1 and v != 0.0:
+                    # an intermediate rim while moving: the next element takes the motion at its friction
+                    # level, a finite force, so V is continuous (no impulse); the force jumps there
+                    k += 1
+                    kappa, bk, fric = _regime_setup(k, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, g)
+                    code = reg_mask[k] + n_masks * rim_before
+                    if state_first_time[code] < 0.0:
+                        state_first_time[code] = t_sub + tau
+                    peak_r = max(peak_r, abs(reg_r[k]))
+                    peak_a = max(peak_a, abs(g * reg_r[k] + c * v))
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, RIM_REACHED, x)
+                    continue
                 if reg_rsum[k] == 0.0:
-                    # entering a rigid regime (a rim): plastic impact
+                    # entering a rigid regime at rest (it holds the force: stuck), or the ultimate
+                    # displacement while moving: plastic impact
                     if v != 0.0:
                         impulse += abs(v)
                         if abs(v) > max_imp_v:
@@ -330,7 +353,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
                     if abs(r_end) > peak_r:
                         peak_r = abs(r_end)
                     ultimate = k == n_reg - 1
-                    kind = ULTIMATE if ultimate else RIM_IMPACT
+                    kind = ULTIMATE if ultimate else STICK
                     if ultimate:
                         n_ult += 1
                         if first_ult < 0.0:

@@ -581,8 +581,11 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             first_slot = -1
             first_t = math.inf
             for slot in range(2 * ns + 1):
-                rim_slot = slot < 2 * ns and slot % 2 == 1
-                if e1[slot] < 0.0 and (e0[slot] >= 0.0 or rim_slot):
+                # an armed event already past at the step's start is taken at once: the mode is no longer
+                # consistent (an event located a hair past another one, e.g. the second of two equal
+                # surfaces stopping with the mass, or the mass stopping a hair after its last surface);
+                # left alone the sliding branch would run on through its onset, against the slide law
+                if e0[slot] < 0.0 or (e1[slot] < 0.0 and e0[slot] >= 0.0):
                     if e0[slot] <= 0.0:  # at the event already (a rim reached together with another)
                         t_root = 0.0
                     else:

@@ -22,10 +22,13 @@ sliding set when r reaches its friction level :math:`y_i = \bar u_i/\bar R_i + s
 and leaves it when it reaches its rim, at :math:`z_i = \bar c_i/\bar R_i + s\mu_i`.
 So along the excursion r(x) is a known piecewise-linear function: a list of regimes,
 each with its start (x_k, r_k) and its compliance :math:`\sum_{\text{sliding}} \bar R_i`
-(:func:`excursion`).  A regime with zero compliance is rigid: every element that could
-move is at its rim — a *plastic impact* when the mass reaches it moving; the last one
-of an excursion, when every element is at its rim, is the bearing's ultimate
-displacement.  Between breakpoints the mass obeys a linear equation, so the solver
+(:func:`excursion`).  A regime with zero compliance is rigid: every element that has
+slid is at its rim.  Before the last regime (an *intermediate* rim: the next element's
+friction level lies above the rim level, e.g. a double with µ2 > µ1 + d1*/R̄1) it has
+zero length in x: the next element is rigid–plastic, so a mass arriving moving goes on
+with the force jumped to that level and its velocity continuous (no impulse; massless
+sliders).  The last one of an excursion, when every element is at its rim, is the
+bearing's ultimate displacement: a *plastic impact* when the mass reaches it moving.  Between breakpoints the mass obeys a linear equation, so the solver
 uses the same closed forms as the single pendulum (:mod:`isolator.solver.segments`).
 
 The elements of each bearing type (:func:`series_elements`):

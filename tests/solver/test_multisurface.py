@@ -209,7 +209,14 @@ class SeriesReference:
                         if s * u[i] >= self.rim[i] - 1e-12:
                             u[i] = s * self.rim[i]
                             active.remove(i)
-                    if not active:
+                    free = [j for j in range(u.size) if s * u[j] < self.rim[j]]
+                    if not active and free and v != 0.0:
+                        # an intermediate rim: the next free element takes the motion at its friction level
+                        # (massless sliders: a finite force, no impulse); the force jumps there, v goes on
+                        levels = [u[j] / self.rbar[j] + s * self.mu[j] for j in free]
+                        r_reg = s * min(s * y for y in levels)
+                        active = [j for j, y in zip(free, levels, strict=True) if abs(y - r_reg) <= 1e-12]
+                    elif not active:
                         impacts.append((k * dt + tau, abs(v)))
                         v = 0.0
                         stuck = True
@@ -613,3 +620,75 @@ def test_the_one_record_checks_of_a_single_pendulum_at_its_rim_fail_the_capacity
     assert rows["D_over_R"]["value"] == pytest.approx(0.3)
     roomy = with_record_checks(analyse(_fps_design(1.5), GroundMotion.from_array(acc, dt))).to_dict()["checks"]
     assert {row["id"]: row["status"] for row in roomy}["displacement_capacity"] == "pass"
+
+
+# ---- the intermediate rim: a double with µ2 > µ1 + d1*/R1 ----------------------------------------------------
+# surface 1 (R 2 m, µ 0.03) reaches its rim d1* = 0.05 m at F/W = 0.055, below µ2 = 0.08: the bearing is rigid
+# between those forces, so a mass arriving there moving passes at once to sliding on surface 2 (massless sliders:
+# surface 2 takes the velocity at its friction level, a finite force, no impulse)
+INTERMEDIATE = [(2.0, 0.03, 0.05), (3.0, 0.08, 0.3)]
+
+
+def test_intermediate_rim_under_a_constant_push_is_the_hand_closed_form():
+    """From rest under a constant ground acceleration −A: two half-pendulum arcs joined at X = d1, V continuous.
+
+    Regime 1: X = R1 (A/g − µ1)(1 − cos ω1 t) reaches d1 at t1 with V1; regime 2 (about the centre
+    d1 + R2 (A/g − µ2)) starts there with the same V1, so the peak is the centre plus
+    √((R2 (A/g − µ2))² + (V1/ω2)²).  A plastic impact at d1 would instead give d1 + 2 R2 (A/g − µ2).
+    """
+    (r1, mu1, d1), (r2, mu2, _) = INTERMEDIATE
+    a_over_g = 0.1
+    dt = 0.01
+    acc = np.full(400, -a_over_g * G)
+    res = simulate_bearing(acc, dt, bearing=bearing("double", INTERMEDIATE))
+    w1, w2 = np.sqrt(G / r1), np.sqrt(G / r2)
+    amp1 = r1 * (a_over_g - mu1)
+    t1 = np.arccos(1.0 - d1 / amp1) / w1
+    v1 = amp1 * w1 * np.sin(w1 * t1)
+    off2 = r2 * (a_over_g - mu2)
+    amp2 = np.hypot(off2, v1 / w2)
+    peak = d1 + off2 + amp2
+    t_peak = t1 + np.arctan2(v1 / w2, -off2) / w2  # X − centre = amp2 cos(w2 (t − t1) + φ), peak at phase 0
+    assert peak - (d1 + 2 * off2) > 0.01  # what a plastic impact would give is far off
+    names = res.event_names
+    assert "rim reached" in names and "ultimate" not in names
+    t_rim = res.event_time_s[names.index("rim reached")]
+    assert t_rim == pytest.approx(t1, abs=1e-12)
+    assert res.peak_displacement_m == pytest.approx(peak, abs=1e-12)
+    stop = res.event_time_s[[k in ("stick", "reversal") for k in names]][0]
+    assert stop == pytest.approx(t_peak, abs=1e-11)
+    assert res.impact_impulse_m_s == 0.0 and res.energy_impact_J_per_kg == 0.0
+    assert res.peak_transmitted_acceleration_m_s2 >= G * (mu2 + (peak - d1) / r2) * (1 - 1e-12)
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-12 * res.energy_input_J_per_kg
+
+
+def test_intermediate_rim_reached_and_left_on_a_record_against_the_reference():
+    """Back and forth through the intermediate rim (reached, unloaded, left), with the reference's own rule."""
+    acc, dt = pulse(0.08, period_s=2.0, duration_s=12.0, seed=7)
+    b = bearing("double", INTERMEDIATE)
+    res = simulate_bearing(acc, dt, bearing=b)
+    names = res.event_names
+    assert names.count("rim reached") >= 3 and not res.ultimate_displacement_reached
+    assert res.impact_impulse_m_s == 0.0
+    ref_x, impacts = SeriesReference(b).run(acc, dt)
+    assert not impacts
+    peak = np.max(np.abs(ref_x))
+    err = np.max(np.abs(res.displacement_m - ref_x)) / peak
+    assert err <= 1e-9, err
+    # surface 1 reached its capacity both ways and left it; surface 2 slid beyond what µ2 alone allows
+    assert res.surface_peak_displacement_m[0] == pytest.approx(0.05, abs=1e-15)
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+def test_intermediate_rim_then_the_ultimate_against_the_reference():
+    acc, dt = pulse(0.5, period_s=2.5, duration_s=9.0, dt=0.02, seed=8)
+    b = bearing("double", INTERMEDIATE)
+    res = simulate_bearing(acc, dt, bearing=b, damping_per_mass=0.2)
+    assert "rim reached" in res.event_names and res.ultimate_displacement_reached
+    ref_x, impacts = SeriesReference(b, c=0.2).run(acc, dt)
+    ours = res.event_time_s[np.array(res.event_names) == "ultimate"]
+    assert len(ours) == len(impacts) >= 1
+    np.testing.assert_allclose(ours, [t for t, _ in impacts], rtol=0, atol=1e-9)
+    assert res.impact_impulse_m_s == pytest.approx(sum(vi for _, vi in impacts), rel=1e-9)
+    assert np.max(np.abs(res.displacement_m - ref_x)) <= 1e-9 * 0.35
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
