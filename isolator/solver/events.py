@@ -118,12 +118,13 @@ def breakaway_time(x_stuck, a_start, slope, tau_lo, tau_hi, kappa, mu_s_g):
         (then the net force there is exactly s(µs − µk)g) and false when it already
         exceeds it at ``tau_lo`` (a record that starts beyond the threshold).
     """
+    f_lo = kappa * x_stuck + a_start + slope * tau_lo
+    if abs(f_lo) > mu_s_g:  # already beyond at τ_lo (a record that starts there): a jump, not a crossing
+        return tau_lo, (-1 if f_lo > 0.0 else 1), False
     f_end = kappa * x_stuck + a_start + slope * tau_hi
-    if abs(f_end) <= mu_s_g:
+    if abs(f_end) <= mu_s_g:  # both ends inside and the force linear in τ: stuck throughout
         return -1.0, 0, False
     direction = -1 if f_end > 0.0 else 1
-    if abs(kappa * x_stuck + a_start + slope * tau_lo) > mu_s_g:
-        return tau_lo, direction, False  # already beyond: a jump, not a crossing
     level = mu_s_g if f_end > 0.0 else -mu_s_g
     if slope != 0.0:
         tau_b = (level - kappa * x_stuck - a_start) / slope

@@ -251,7 +251,8 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
             # fast-forward through whole sample intervals that stay stuck
             lo = -mu_s_g - kappa * x
             hi = mu_s_g - kappa * x
-            while i < n - 1 and lo <= acc[i + 1] <= hi:
+            # (both ends of the interval inside the window: a record may start beyond it)
+            while i < n - 1 and lo <= acc[i] <= hi and lo <= acc[i + 1] <= hi:
                 i += 1
                 out_x[i] = x
                 out_v[i] = 0.0

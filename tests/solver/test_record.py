@@ -216,3 +216,22 @@ def test_energy_history_balances_at_every_sample():
     assert np.max(np.abs(e_in - e_f - e_v - stored)) <= 1e-12 * r.energy_input_J_per_kg
     assert np.all(np.diff(e_f) >= 0.0) and np.all(np.diff(e_v) >= -1e-18)
     assert e_in[-1] == r.energy_input_J_per_kg and e_f[-1] == r.energy_friction_J_per_kg
+
+
+def test_a_record_that_starts_beyond_the_static_window_slides_from_t_0():
+    """A record whose first sample already exceeds µs g, and whose second is back inside the window, slides from
+    t = 0 (before, the first interval was taken as stuck because only its end was tested).  Closed form, no spring:
+    a_g = 3 − 25 t on [0, 0.1] s, then 0.5 m/s² (< µ g); sliding backwards, x'' = −a_g + µ g."""
+    mu, dt = 0.1, 0.1
+    r = simulate_record(np.array([3.0, 0.5, 0.5, 0.5]), dt_s=dt, mu_static=mu, mu_kinetic=mu)
+    mg = mu * G
+    v1 = -(3.0 * dt - 12.5 * dt**2) + mg * dt  # at the end of the first interval
+    x1 = -(1.5 * dt**2 - 12.5 / 3.0 * dt**3) + 0.5 * mg * dt**2
+    decel = -0.5 + mg  # x'' in the second interval (V < 0, so friction pushes +)
+    t_stop = dt - v1 / decel
+    x_end = x1 - v1**2 / (2.0 * decel)
+    assert r.displacement_m[1] == pytest.approx(x1, rel=1e-12)
+    assert r.velocity_m_s[1] == pytest.approx(v1, rel=1e-12)
+    assert r.displacement_m[3] == pytest.approx(x_end, rel=1e-12) and r.velocity_m_s[3] == 0.0
+    assert r.event_names[:2] == ["breakaway", "stick"]
+    assert r.event_time_s[0] == 0.0 and r.event_time_s[1] == pytest.approx(t_stop, abs=1e-15)
