@@ -1,8 +1,8 @@
 """Wall and CPU time of `isolator design` on the bundled example, as a user runs it: a fresh process, launch to exit.
 
-    .venv/bin/python benchmarks/design_cli_time.py                      # docs/design_search.md's command
-    .venv/bin/python benchmarks/design_cli_time.py --vary radius_m=4.0,4.5 --vary mu_kinetic=0.03,0.06 --runs 3
-    .venv/bin/python benchmarks/design_cli_time.py --runs 3 --against /work/main/.venv/bin/isolator
+    .venv/bin/python -m benchmarks.design_cli_time                      # docs/design_search.md's command
+    .venv/bin/python -m benchmarks.design_cli_time --vary radius_m=4.0,4.5 --vary mu_kinetic=0.03,0.06 --runs 3
+    .venv/bin/python -m benchmarks.design_cli_time --runs 3 --against /work/main/.venv/bin/isolator
 
 Runs ``isolator design --target example --suite example --isolator data/example_design.toml --vary … -o
 TMP/design.pdf --jobs J`` once untimed (numba's compiled functions and the regime map's disk cache loaded),
@@ -10,42 +10,23 @@ then ``--runs`` times, in alternation with ``--against`` (another installation's
 on a shared machine).  Each run writes to a new folder, so that no design store or analysis cache serves it.
 Prints the medians of the wall and CPU times, the runs, the load average, and the per-candidate worker
 seconds of the last run's table (``review_seconds``, ``analyses_seconds``: median and largest over the
-candidates).  Run from the repository root.
+candidates).  Run from the repository root, as a module (it shares its timing with benchmarks/review_cli_time.py).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
-import resource
 import shutil
 import statistics
-import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from benchmarks.review_cli_time import isolator_command, run_child
+
 #: docs/design_search.md's example space: 7 radii × 4 µk = 28 candidates
 EXAMPLE_VARY = ["radius_m=2.0:5.0:7", "mu_kinetic=0.03:0.12:4"]
-
-
-def _isolator() -> list[str]:
-    script = Path(sys.executable).with_name("isolator")
-    return [str(script)] if script.is_file() else [sys.executable, "-c", "from isolator.cli import app; app()"]
-
-
-def _run(command: list[str]) -> tuple[float, float]:
-    """(wall, CPU of the child and its workers: user + system) [s]."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    done = subprocess.run(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if done.returncode != 0:
-        raise SystemExit(f"{' '.join(command)} failed (exit {done.returncode}): {done.stderr.strip()[-800:]}")
-    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main(argv=None) -> int:
@@ -60,7 +41,7 @@ def main(argv=None) -> int:
     if args.runs < 1:
         parser.error("--runs must be ≥ 1")
     vary = args.vary or EXAMPLE_VARY
-    trees = {"this tree": _isolator()}
+    trees = {"this tree": isolator_command()}
     if args.against:
         other = Path(args.against).resolve()
         if not other.is_file():
@@ -80,13 +61,13 @@ def main(argv=None) -> int:
     try:
         load_before = os.getloadavg()
         for script in trees.values():
-            _run(command(script)[0])  # warm-up
+            run_child(command(script)[0])  # warm-up
         runs = {name: [] for name in trees}
         tables = {}
         for _ in range(args.runs):  # in alternation, so that the machine's load episodes hit both alike
             for name, script in trees.items():
                 cmd, out = command(script)
-                runs[name].append(_run(cmd))
+                runs[name].append(run_child(cmd))
                 tables[name] = out / "design.csv"
         load_after = os.getloadavg()
         import pandas as pd

@@ -35,7 +35,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _isolator() -> list[str]:
+def isolator_command() -> list[str]:
+    """The ``isolator`` script beside this interpreter (or the CLI through ``-c``)."""
     script = Path(sys.executable).with_name("isolator")
     return [str(script)] if script.is_file() else [sys.executable, "-c", "from isolator.cli import app; app()"]
 
@@ -51,7 +52,7 @@ def _arguments(args, out: Path) -> list[str]:
     return command
 
 
-def _run(command: list[str]) -> tuple[float, float]:
+def run_child(command: list[str]) -> tuple[float, float]:
     """(wall, CPU of the child and its workers: user + system) [s]."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
@@ -156,7 +157,7 @@ def main(argv=None) -> int:
         return 0
     if args.runs < 1:
         parser.error("--runs must be ≥ 1")
-    trees = {"this tree": (_isolator(), sys.executable)}
+    trees = {"this tree": (isolator_command(), sys.executable)}
     if args.against:  # another installation's console script (e.g. main's), its interpreter beside it
         other = Path(args.against).resolve()
         if not other.is_file():
@@ -167,11 +168,11 @@ def main(argv=None) -> int:
         arguments = _arguments(args, out)
         load_before = os.getloadavg()
         for script, _ in trees.values():
-            _run(script + arguments)  # warm-up
+            run_child(script + arguments)  # warm-up
         runs = {name: [] for name in trees}
         for _ in range(args.runs):  # in alternation, so that the machine's load episodes hit both alike
             for name, (script, _) in trees.items():
-                runs[name].append(_run(script + arguments))
+                runs[name].append(run_child(script + arguments))
         load_after = os.getloadavg()
         stages = {}
         if args.stages:  # a fresh interpreter, the caches warm
