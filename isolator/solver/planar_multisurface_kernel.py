@@ -130,6 +130,10 @@ MAX_STIFF_STEPS_PER_INTERVAL = 1000
 #: closing towards tangency (a straightening motion) is stiff (the split of the velocity relaxes at a
 #: rate ∝ 1/angle); the state then errs by about R̄ µ × this angle [m] (docs/multisurface.md)
 MERGE_ANGLE = 1e-4
+#: a corner whose sliding normals close to within this angle [rad] slides on as one (the implicit steps carry it
+#: down to here; C⁻¹ is then ~ 1/angle² and the groups' split is the collinear one to within the angle)
+CLOSE_ANGLE = 0.0
+DEBUG = False
 
 # summary layout
 S_PEAK_X = 0
@@ -276,6 +280,256 @@ def multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, 
     if not err < np.inf:
         return False, np.inf
     return True, err
+
+
+# Radau IIA, three stages (order 5, stiffly accurate, L-stable; Hairer & Wanner, *Solving ODEs II*, §IV.5):
+# the step of a corner whose normals are close to parallel, where the split of V between the groups relaxes at a
+# rate ∝ 1/angle² (docs/multisurface.md) and the explicit DOP853 steps would fall to the relaxation time
+_SQ6 = math.sqrt(6.0)
+_RC = np.array([(4.0 - _SQ6) / 10.0, (4.0 + _SQ6) / 10.0, 1.0])
+_RA = np.array([[(88.0 - 7.0 * _SQ6) / 360.0, (296.0 - 169.0 * _SQ6) / 1800.0, (-2.0 + 3.0 * _SQ6) / 225.0],
+                [(296.0 + 169.0 * _SQ6) / 1800.0, (88.0 + 7.0 * _SQ6) / 360.0, (-2.0 - 3.0 * _SQ6) / 225.0],
+                [(16.0 - _SQ6) / 36.0, (16.0 + _SQ6) / 36.0, 1.0 / 9.0]])
+#: corners whose sliding normals make an angle below this [rad] take the implicit steps
+IMPLICIT_ANGLE = 0.05
+#: simplified-Newton iterations of one implicit step before it is refused (the step is then shortened)
+NEWTON_MAX = 12
+
+
+@njit(cache=True)
+def corner_angle(y, rb, mask):
+    """Smallest |sin| of the angle between two sliding normals of the multi-group state (1 if none close)."""
+    best = 1.0
+    for k in range(rb.shape[0]):
+        if not mask >> k & 1:
+            continue
+        a1 = y[M_R] - y[M_U + 2 * k] / rb[k]
+        a2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
+        an = math.sqrt(a1 * a1 + a2 * a2)
+        for q in range(k + 1, rb.shape[0]):
+            if not mask >> q & 1:
+                continue
+            b1 = y[M_R] - y[M_U + 2 * q] / rb[q]
+            b2 = y[M_R + 1] - y[M_U + 2 * q + 1] / rb[q]
+            bn = math.sqrt(b1 * b1 + b2 * b2)
+            if a1 * b1 + a2 * b2 > 0.0:
+                best = min(best, abs(a1 * b2 - a2 * b1) / (an * bn))
+    return best
+
+
+@njit(cache=True)
+def _lu(a, piv):
+    # LU with partial pivoting in place (a small dense system: 3 × the state); False if singular
+    n = a.shape[0]
+    for k in range(n):
+        p = k
+        big = abs(a[k, k])
+        for i in range(k + 1, n):
+            if abs(a[i, k]) > big:
+                big = abs(a[i, k])
+                p = i
+        if not big > 0.0:
+            return False
+        piv[k] = p
+        if p != k:
+            for j in range(n):
+                tmp = a[k, j]
+                a[k, j] = a[p, j]
+                a[p, j] = tmp
+        inv = 1.0 / a[k, k]
+        for i in range(k + 1, n):
+            a[i, k] *= inv
+            lik = a[i, k]
+            if lik != 0.0:
+                for j in range(k + 1, n):
+                    a[i, j] -= lik * a[k, j]
+    return True
+
+
+@njit(cache=True)
+def _lu_solve(a, piv, b):
+    n = a.shape[0]
+    for k in range(n):
+        p = piv[k]
+        if p != k:
+            tmp = b[k]
+            b[k] = b[p]
+            b[p] = tmp
+    for i in range(n):
+        acc = b[i]
+        for j in range(i):
+            acc -= a[i, j] * b[j]
+        b[i] = acc
+    for i in range(n - 1, -1, -1):
+        acc = b[i]
+        for j in range(i + 1, n):
+            acc -= a[i, j] * b[j]
+        b[i] = acc / a[i, i]
+
+
+@njit(cache=True)
+def _radau_solve(tau, y, h, raw, rb, mu, mask, c, jac, sc, ynew):
+    """One Radau IIA step of length h from (τ, y) by simplified Newton (Jacobian jac at y): False if it fails."""
+    m = y.shape[0]
+    n3 = 3 * m
+    mat = np.zeros((n3, n3))
+    for i in range(3):
+        for j in range(3):
+            ha = h * _RA[i, j]
+            for p in range(m):
+                for q in range(m):
+                    mat[i * m + p, j * m + q] = -ha * jac[p, q]
+        for p in range(m):
+            mat[i * m + p, i * m + p] += 1.0
+    piv = np.zeros(n3, dtype=np.int64)
+    if not _lu(mat, piv):
+        return False
+    z = np.zeros(n3)
+    fz = np.zeros((3, m))
+    res = np.zeros(n3)
+    yt = np.zeros(m)
+    last = np.inf
+    for it in range(NEWTON_MAX):
+        for i in range(3):
+            for p in range(m):
+                yt[p] = y[p] + z[i * m + p]
+            if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
+                return False
+        for i in range(3):
+            for p in range(m):
+                acc = 0.0
+                for j in range(3):
+                    acc += _RA[i, j] * fz[j, p]
+                res[i * m + p] = h * acc - z[i * m + p]
+        _lu_solve(mat, piv, res)
+        dn = 0.0
+        for i in range(3):
+            for p in range(m):
+                z[i * m + p] += res[i * m + p]
+                dn += (res[i * m + p] / sc[p]) ** 2
+        dn = math.sqrt(dn / n3)
+        if not dn < np.inf or (it >= 2 and dn > last):
+            return False
+        last = dn
+        # Newton's remaining error well below the local error allowed (1 in these units)
+        if dn <= 1e-4:
+            for p in range(m):
+                ynew[p] = y[p] + z[2 * m + p]
+            return True
+    return False
+
+
+@njit(cache=True)
+def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
+    """One implicit step of the multi-group state: Radau IIA over h and over two h/2, the error of the two halves
+    from their difference (order 5: difference / 31); (ok, err) with err raised to the power 8/6 so that the
+    order-8 step factor of the explicit steps (err^(−1/8)) gives the order-5 one (err^(−1/6))."""
+    m = y.shape[0]
+    sc = np.empty(m)
+    for p in range(m):
+        sc[p] = atol[p] + rtol * abs(y[p])
+    jac = np.empty((m, m))
+    yp = y.copy()
+    fp = np.empty(m)
+    for q in range(m):
+        # a difference step of √ε times the component's own scale (atol/rtol + |y|)
+        dq = 1.5e-8 * max(sc[q] / rtol, 1e-12)
+        yp[q] = y[q] + dq
+        if not multi_rhs(tau, yp, raw, rb, mu, mask, c, fp):
+            dq = -dq
+            yp[q] = y[q] + dq
+            if not multi_rhs(tau, yp, raw, rb, mu, mask, c, fp):
+                return False, np.inf
+        for p in range(m):
+            jac[p, q] = (fp[p] - f0[p]) / dq
+        yp[q] = y[q]
+    yfull = np.empty(m)
+    if not _radau_solve(tau, y, h, raw, rb, mu, mask, c, jac, sc, yfull):
+        return False, np.inf
+    ymid = np.empty(m)
+    if not _radau_solve(tau, y, 0.5 * h, raw, rb, mu, mask, c, jac, sc, ymid):
+        return False, np.inf
+    fmid = np.empty(m)
+    if not multi_rhs(tau + 0.5 * h, ymid, raw, rb, mu, mask, c, fmid):
+        return False, np.inf
+    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, jac, sc, ynew):
+        return False, np.inf
+    if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
+        return False, np.inf
+    err = 0.0
+    for p in range(m):
+        s = atol[p] + rtol * max(abs(y[p]), abs(ynew[p]))
+        err += ((ynew[p] - yfull[p]) / 31.0 / s) ** 2
+    err = math.sqrt(err / m)
+    if not err < np.inf:
+        return False, np.inf
+    return True, err ** (8.0 / 6.0)
+
+
+@njit(cache=True)
+def corner_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt):
+    """One step of the multi-group state: DOP853, or Radau IIA where the corner is close to closing."""
+    if corner_angle(y, rb, mask) < IMPLICIT_ANGLE:
+        return radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol)
+    return multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt)
+
+
+@njit(cache=True)
+def sliding_set(y, rb, cand, must):
+    """The sliding groups among the bit set ``cand`` (groups whose circles all pass through r) for the velocity V.
+
+    The rate problem's optimality conditions: with the set S sliding, ṙ = C_S⁻¹ V must give λ_k = R̄_k e_k·ṙ ≥ 0
+    for k in S, and must not carry r out of the circle of any j in cand \ S (e_j·ṙ ≤ 0).  They are those of
+    the strictly convex min_ṙ ½ Σ_k R̄_k max(e_k·ṙ, 0)² − V·ṙ, so at most one S of two or more groups
+    (spanning normals) meets them; every subset holding the group just reached (bit set ``must``: r crossed its
+    circle, so it slides) is tried (≤ 4 groups: ≤ 7 sets).  Returns S, or 0 if none."""
+    ng = rb.shape[0]
+    v1 = y[M_V]
+    v2 = y[M_V + 1]
+    best = 0
+    for sub in range(1, 1 << ng):
+        if sub & ~cand or not sub & must:
+            continue
+        c11 = 0.0
+        c12 = 0.0
+        c22 = 0.0
+        nb = 0
+        for k in range(ng):
+            if sub >> k & 1:
+                e1, e2 = _normal(y, rb, k)
+                c11 += rb[k] * e1 * e1
+                c12 += rb[k] * e1 * e2
+                c22 += rb[k] * e2 * e2
+                nb += 1
+        det = c11 * c22 - c12 * c12
+        trace = c11 + c22
+        if nb < 2 or not det > 1e-24 * trace * trace:
+            continue
+        rd1 = (c22 * v1 - c12 * v2) / det
+        rd2 = (-c12 * v1 + c11 * v2) / det
+        scale = math.sqrt(rd1 * rd1 + rd2 * rd2) * 1e-12
+        ok = True
+        for k in range(ng):
+            if cand >> k & 1:
+                e1, e2 = _normal(y, rb, k)
+                rate = e1 * rd1 + e2 * rd2
+                if sub >> k & 1:
+                    ok = ok and rate >= -scale
+                else:
+                    ok = ok and rate <= scale
+        if ok:
+            best = sub
+            break
+    return best
+
+
+@njit(cache=True)
+def _normal(y, rb, k):
+    # the unit normal e_k = (r − b_k)/|r − b_k| of group k in the multi-group state
+    e1 = y[M_R] - y[M_U + 2 * k] / rb[k]
+    e2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
+    en = math.sqrt(e1 * e1 + e2 * e2)
+    return e1 / en, e2 / en
 
 
 @njit(cache=True)
@@ -542,14 +796,14 @@ def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol
     lo = 0.0
     hi = 1.0
     glo = g0
-    multi_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+    corner_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
     ghi = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
     side = 0
     for _ in range(80):
         th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        multi_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
         gv = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
         if gv > 0.0:
             hi = th
@@ -582,7 +836,7 @@ def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol
         th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        multi_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
         best = max(best, norm(myb[o], myb[o + 1]))
         gv = myb[o] * mfb[o] + myb[o + 1] * mfb[o + 1]
         if gv > 0.0:
@@ -604,7 +858,7 @@ def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol
 
 @njit(cache=True)
 def _closing_corner(my, rb, comp):
-    """The common normal of the sliding groups when all their normals lie within MERGE_ANGLE, else (0, 0)."""
+    """The common normal of the sliding groups when all their normals lie within CLOSE_ANGLE, else (0, 0)."""
     f1 = 0.0
     f2 = 0.0
     first_k = True
@@ -619,7 +873,7 @@ def _closing_corner(my, rb, comp):
                 f1 = e1
                 f2 = e2
                 first_k = False
-            elif abs(f1 * e2 - f2 * e1) > MERGE_ANGLE or f1 * e1 + f2 * e2 < 0.0:
+            elif abs(f1 * e2 - f2 * e1) > CLOSE_ANGLE or f1 * e1 + f2 * e2 < 0.0:
                 return 0.0, 0.0
     return f1, f2
 
@@ -682,6 +936,12 @@ def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, 
     for k in range(rb.shape[0]):
         my[M_U + 2 * k] = ub[k, 0]
         my[M_U + 2 * k + 1] = ub[k, 1]
+    # the rate problem's set among the sliding groups and the one reached
+    chosen = sliding_set(my, rb, comp, 1 << kj)
+    if DEBUG:
+        print("join1", tau, kj, comp, chosen, cross, corner_angle(my, rb, comp))
+    if chosen != 0:
+        comp = chosen
     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
     return PH_MULTI, comp, rc, mue
 
@@ -990,7 +1250,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 matol[M_EIN] = etol
                 matol[M_EF] = etol
                 matol[M_EV] = etol
-                ok, err = multi_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt)
+                ok, err = corner_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt)
                 n_steps += 1
                 n_multi += 1
                 if not ok or err > 1.0:
@@ -1027,7 +1287,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                 kind = EV_JOIN
                                 which = k
                 if kind >= 0:
-                    ok2, _ = multi_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                    ok2, _ = corner_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
                                         kk, yt)
                     mynew[:] = myb
                     mfnew[:] = mfb
@@ -1068,6 +1328,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         fac = min(1.0, fac)
                     h_sugg = h * fac
                     just_rejected = False
+                    if DEBUG and n_multi % 500 == 0:
+                        print("multi", t[i] + tau, h, corner_angle(my, rb, comp), comp, n_rej)
                     e01, e02 = _closing_corner(my, rb, comp)
                     if e01 != 0.0 or e02 != 0.0:
                         # the corner closes (a motion that straightens: the circles approach tangency, where the
@@ -1109,8 +1371,13 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     continue
                 events_here += 1
                 h_sugg = -1.0
+                if DEBUG:
+                    print("event", t[i] + tau, kind, which, comp, corner_angle(my, rb, comp))
                 if kind == EV_JOIN:
-                    comp |= 1 << which
+                    # the set that slides on: the rate problem's among the sliding groups and the one reached (a
+                    # group whose λ would be negative at once leaves here, not one step later)
+                    chosen = sliding_set(my, rb, comp | 1 << which, 1 << which)
+                    comp = chosen if chosen != 0 else comp | 1 << which
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
                     n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
                     em = element_mask(comp, members)

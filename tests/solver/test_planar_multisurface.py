@@ -213,6 +213,24 @@ class PlanarSeriesReference:
         p1, p2 = mid + h * perp, mid - h * perp
         return p1 if np.linalg.norm(p1 - near) <= np.linalg.norm(p2 - near) else p2
 
+    def choose(self, u, r, V, cand):
+        """The groups that slide on after a join: minimise ½ Σ R̄_k max(e_k·w, 0)² − V·w over w = ṙ (BFGS, a
+        convex C¹ function); the sliding groups are those with e_k·w > 0.  (The rate problem's optimality
+        conditions, solved here numerically: the kernel enumerates the sets.)"""
+        from scipy.optimize import minimize
+
+        es = np.array([(r - self.centre(u, k)) / np.linalg.norm(r - self.centre(u, k)) for k in cand])
+        rb = self.rb[cand]
+
+        def fun(w):
+            s = np.maximum(es @ w, 0.0)
+            return 0.5 * np.sum(rb * s * s) - V @ w, es.T @ (rb * s) - V
+        w0 = np.linalg.lstsq(es.T * rb, V, rcond=None)[0] if len(cand) >= 2 else V / rb[0]
+        w = minimize(fun, w0, jac=True, method="BFGS", options={"gtol": 1e-14 * np.linalg.norm(V), "maxiter": 500}).x
+        proj = es @ w
+        chosen = [k for k, p in zip(cand, proj, strict=True) if p > 1e-9 * np.linalg.norm(w)]
+        return chosen if len(chosen) >= 2 else cand
+
     def run(self, t, ax, ay):
         from scipy.integrate import solve_ivp
         from scipy.optimize import brentq
@@ -407,7 +425,7 @@ class PlanarSeriesReference:
                 if abs(e_a[0] * d[1] - e_a[1] * d[0]) / np.linalg.norm(d) < 1e-6:
                     raise RuntimeError("reference: collinear join (tangent circles) is outside its formulation")
             events.append((tt, "join"))
-            return tt, X, V, u, r, active + [k], slow, peak_x
+            return tt, X, V, u, r, self.choose(u, r, V, active + [k]), slow, peak_x
         j -= len(stuck)
         if na >= 2 and j < na:
             events.append((tt, "leave"))
