@@ -134,6 +134,8 @@ MERGE_ANGLE = 1e-4
 #: down to here; C⁻¹ is then ~ 1/angle² and the groups' split is the collinear one to within the angle)
 CLOSE_ANGLE = 0.0
 DEBUG = False
+#: a corner of two groups whose signed sine closes below this passes through tangency in one Taylor step
+CROSS_ANGLE = 1e-6
 
 # summary layout
 S_PEAK_X = 0
@@ -530,6 +532,82 @@ def _normal(y, rb, k):
     e2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
     en = math.sqrt(e1 * e1 + e2 * e2)
     return e1 / en, e2 / en
+
+
+@njit(cache=True)
+def corner_sine(y, d, rb, mu, ka, kb):
+    """Signed sine s = e_a × e_b of a corner of two groups and its rate ṡ (ė_k = (ṙ − ḃ_k)⊥ / µ_k)."""
+    a1, a2 = _normal(y, rb, ka)
+    b1, b2 = _normal(y, rb, kb)
+    da1 = (d[M_R] - d[M_U + 2 * ka] / rb[ka]) / mu[ka]
+    da2 = (d[M_R + 1] - d[M_U + 2 * ka + 1] / rb[ka]) / mu[ka]
+    db1 = (d[M_R] - d[M_U + 2 * kb] / rb[kb]) / mu[kb]
+    db2 = (d[M_R + 1] - d[M_U + 2 * kb + 1] / rb[kb]) / mu[kb]
+    # the tangential parts (the radial parts of ė vanish: |e| = 1)
+    pa = da1 * a1 + da2 * a2
+    pb = db1 * b1 + db2 * b2
+    da1 -= pa * a1
+    da2 -= pa * a2
+    db1 -= pb * b1
+    db2 -= pb * b2
+    return a1 * b2 - a2 * b1, da1 * b2 - da2 * b1 + a1 * db2 - a2 * db1
+
+
+@njit(cache=True)
+def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
+    """Carry a corner of two groups through tangency: its signed sine s passes through 0 at the rate ṡ (finite:
+    the corner closes as the path turns, docs/multisurface.md), while its stiffness grows as 1/s².  Over the
+    short dt = −2 s/ṡ, X, V advance by their Taylor expansion to second order, ū_a + ū_b and the energies to
+    first; the pair's relative geometry is the one before, mirrored about the line of centres (the distance of
+    the centres is even in time about the tangency, and r goes to the other intersection of the two circles,
+    where the sine is −s), then turned rigidly so that V ∥ R̄_a e_a + R̄_b e_b: the rest state of the corner's
+    fast mode (the split of V between the groups, λ_a/R̄_a = λ_b/R̄_b), which relaxes at a rate ∝ 1/s²."""
+    axx, ayy, nn = _forcing(tau, raw)
+    ca1 = y[M_U + 2 * ka] / rb[ka]
+    ca2 = y[M_U + 2 * ka + 1] / rb[ka]
+    d1 = y[M_U + 2 * kb] / rb[kb] - ca1
+    d2 = y[M_U + 2 * kb + 1] / rb[kb] - ca2
+    dist = math.sqrt(d1 * d1 + d2 * d2)
+    if not dist > 0.0:
+        return False
+    q1 = y[M_R] - ca1
+    q2 = y[M_R + 1] - ca2
+    # r − c_a mirrored about the line of centres: |r − c_a| and |r − c_b| unchanged
+    along = (q1 * d1 + q2 * d2) / (dist * dist)
+    q1 = 2.0 * along * d1 - q1
+    q2 = 2.0 * along * d2 - q2
+    jerk1 = -nn * d[M_R] - c * d[M_V] - raw[1]
+    jerk2 = -nn * d[M_R + 1] - c * d[M_V + 1] - raw[3]
+    y[M_X] += dt * (d[M_X] + 0.5 * dt * d[M_V])
+    y[M_X + 1] += dt * (d[M_X + 1] + 0.5 * dt * d[M_V + 1])
+    y[M_V] += dt * (d[M_V] + 0.5 * dt * jerk1)
+    y[M_V + 1] += dt * (d[M_V + 1] + 0.5 * dt * jerk2)
+    y[M_EIN] += dt * d[M_EIN]
+    y[M_EF] += dt * d[M_EF]
+    y[M_EV] += dt * d[M_EV]
+    s1 = y[M_U + 2 * ka] + y[M_U + 2 * kb] + dt * (d[M_U + 2 * ka] + d[M_U + 2 * kb])
+    s2 = y[M_U + 2 * ka + 1] + y[M_U + 2 * kb + 1] + dt * (d[M_U + 2 * ka + 1] + d[M_U + 2 * kb + 1])
+    w1 = rb[ka] * q1 / mu[ka] + rb[kb] * (q1 - d1) / mu[kb]
+    w2 = rb[ka] * q2 / mu[ka] + rb[kb] * (q2 - d2) / mu[kb]
+    beta = math.atan2(w1 * y[M_V + 1] - w2 * y[M_V], w1 * y[M_V] + w2 * y[M_V + 1])
+    cs = math.cos(beta)
+    sn = math.sin(beta)
+    n1 = cs * d1 - sn * d2
+    n2 = sn * d1 + cs * d2
+    p1 = cs * q1 - sn * q2
+    p2 = sn * q1 + cs * q2
+    rsum = rb[ka] + rb[kb]
+    ca1 = (s1 - rb[kb] * n1) / rsum
+    ca2 = (s2 - rb[kb] * n2) / rsum
+    y[M_U + 2 * ka] = rb[ka] * ca1
+    y[M_U + 2 * ka + 1] = rb[ka] * ca2
+    y[M_U + 2 * kb] = s1 - y[M_U + 2 * ka]
+    y[M_U + 2 * kb + 1] = s2 - y[M_U + 2 * ka + 1]
+    y[M_R] = ca1 + p1
+    y[M_R + 1] = ca2 + p2
+    if DEBUG:
+        print("  cross beta", beta, dist)
+    return abs(beta) < 0.1
 
 
 @njit(cache=True)
@@ -1328,6 +1406,37 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         fac = min(1.0, fac)
                     h_sugg = h * fac
                     just_rejected = False
+                    ka = -1
+                    kb = -1
+                    nact = 0
+                    for k in range(ng):
+                        if comp >> k & 1:
+                            nact += 1
+                            if ka < 0:
+                                ka = k
+                            else:
+                                kb = k
+                    if nact == 2:
+                        sn, snd = corner_sine(my, mf, rb, mu, ka, kb)
+                        if abs(sn) < CROSS_ANGLE and sn * snd < 0.0 and tau - 2.0 * sn / snd < hi:
+                            dcr = -2.0 * sn / snd
+                            if DEBUG:
+                                print("cross", t[i] + tau, sn, snd, dcr)
+                            if not cross_tangency(tau, dcr, my, mf, raw, rb, mu, c, ka, kb):
+                                # the fast mode far from its rest state (V nowhere near the mirrored cone)
+                                status |= STATUS_SINGULAR
+                                fail_t = t[i] + tau
+                                failed = True
+                                break
+                            if True:
+                                tau += dcr
+                                slip += dcr
+                                multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
+                                peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
+                                peak_v = max(peak_v, norm(my[M_V], my[M_V + 1]))
+                                if DEBUG:
+                                    print("crossed", t[i] + tau, corner_sine(my, mf, rb, mu, ka, kb))
+                                continue
                     if DEBUG and n_multi % 500 == 0:
                         print("multi", t[i] + tau, h, corner_angle(my, rb, comp), comp, n_rej)
                     e01, e02 = _closing_corner(my, rb, comp)
