@@ -135,7 +135,7 @@ MERGE_ANGLE = 1e-4
 CLOSE_ANGLE = 0.0
 DEBUG = False
 #: a corner of two groups whose signed sine closes below this passes through tangency in one Taylor step
-CROSS_ANGLE = 1e-6
+CROSS_ANGLE = 1e-5
 
 # summary layout
 S_PEAK_X = 0
@@ -557,8 +557,8 @@ def corner_sine(y, d, rb, mu, ka, kb):
 def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
     """Carry a corner of two groups through tangency: its signed sine s passes through 0 at the rate ṡ (finite:
     the corner closes as the path turns, docs/multisurface.md), while its stiffness grows as 1/s².  Over the
-    short dt = −2 s/ṡ, X, V advance by their Taylor expansion to second order, ū_a + ū_b and the energies to
-    first; the pair's relative geometry is the one before, mirrored about the line of centres (the distance of
+    short dt = −2 s/ṡ, X, V and ū_a + ū_b (= X − the stuck ū) advance by their Taylor expansion to second
+    order, the energies to first; the pair's relative geometry is the one before, mirrored about the line of centres (the distance of
     the centres is even in time about the tangency, and r goes to the other intersection of the two circles,
     where the sine is −s), then turned rigidly so that V ∥ R̄_a e_a + R̄_b e_b: the rest state of the corner's
     fast mode (the split of V between the groups, λ_a/R̄_a = λ_b/R̄_b), which relaxes at a rate ∝ 1/s²."""
@@ -578,24 +578,82 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
     q2 = 2.0 * along * d2 - q2
     jerk1 = -nn * d[M_R] - c * d[M_V] - raw[1]
     jerk2 = -nn * d[M_R + 1] - c * d[M_V + 1] - raw[3]
-    y[M_X] += dt * (d[M_X] + 0.5 * dt * d[M_V])
-    y[M_X + 1] += dt * (d[M_X + 1] + 0.5 * dt * d[M_V + 1])
+    dx1 = dt * (d[M_X] + 0.5 * dt * d[M_V])
+    dx2 = dt * (d[M_X + 1] + 0.5 * dt * d[M_V + 1])
+    y[M_X] += dx1
+    y[M_X + 1] += dx2
     y[M_V] += dt * (d[M_V] + 0.5 * dt * jerk1)
     y[M_V + 1] += dt * (d[M_V + 1] + 0.5 * dt * jerk2)
     y[M_EIN] += dt * d[M_EIN]
     y[M_EF] += dt * d[M_EF]
     y[M_EV] += dt * d[M_EV]
-    s1 = y[M_U + 2 * ka] + y[M_U + 2 * kb] + dt * (d[M_U + 2 * ka] + d[M_U + 2 * kb])
-    s2 = y[M_U + 2 * ka + 1] + y[M_U + 2 * kb + 1] + dt * (d[M_U + 2 * ka + 1] + d[M_U + 2 * kb + 1])
+    # the stuck groups stay: ū_a + ū_b moves with X (second order)
+    s1 = y[M_U + 2 * ka] + y[M_U + 2 * kb] + dx1
+    s2 = y[M_U + 2 * ka + 1] + y[M_U + 2 * kb + 1] + dx2
     w1 = rb[ka] * q1 / mu[ka] + rb[kb] * (q1 - d1) / mu[kb]
     w2 = rb[ka] * q2 / mu[ka] + rb[kb] * (q2 - d2) / mu[kb]
-    beta = math.atan2(w1 * y[M_V + 1] - w2 * y[M_V], w1 * y[M_V] + w2 * y[M_V + 1])
+    beta0 = math.atan2(w1 * y[M_V + 1] - w2 * y[M_V], w1 * y[M_V] + w2 * y[M_V + 1])
+    # the rest state of the fast mode to first order in s: the turn β at which the sine goes on at the rate it
+    # had (s is linear in time through the tangency; β0, the rest state to zeroth order, leaves ṡ ≈ 0 and the
+    # fast mode to relax at ~1/s² from there): an Illinois secant on β in a bracket grown from β0
+    _, rate = corner_sine(y, d, rb, mu, ka, kb)
+    fd = np.empty(y.shape[0])
+    width = 4.0 * abs(s_of(y, rb, ka, kb)) + 1e-12
+    lo = beta0 - width
+    hi = beta0 + width
+    glo = _turned(lo, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb) - rate
+    ghi = _turned(hi, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb) - rate
+    for _ in range(8):
+        if glo * ghi < 0.0:
+            break
+        lo = beta0 - 2.0 * (beta0 - lo)
+        hi = beta0 + 2.0 * (hi - beta0)
+        glo = _turned(lo, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb) - rate
+        ghi = _turned(hi, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb) - rate
+    beta = beta0
+    if glo * ghi < 0.0:
+        side = 0
+        for _ in range(100):
+            beta = (lo * ghi - hi * glo) / (ghi - glo)
+            if not (lo < beta < hi):
+                beta = 0.5 * (lo + hi)
+            gv = _turned(beta, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb) - rate
+            if (gv > 0.0) == (ghi > 0.0):
+                hi = beta
+                ghi = gv
+                if side == 1:
+                    glo *= 0.5
+                side = 1
+            else:
+                lo = beta
+                glo = gv
+                if side == -1:
+                    ghi *= 0.5
+                side = -1
+            if hi - lo <= 1e-15 * (abs(beta) + 1e-12) or gv == 0.0:
+                break
+    _turned(beta, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb)
+    if DEBUG:
+        print("  cross beta", beta0, beta, width, rate, glo, ghi)
+    return abs(beta) < 0.1
+
+
+@njit(cache=True)
+def s_of(y, rb, ka, kb):
+    """The signed sine e_a × e_b of a corner of two groups."""
+    a1, a2 = _normal(y, rb, ka)
+    b1, b2 = _normal(y, rb, kb)
+    return a1 * b2 - a2 * b1
+
+
+@njit(cache=True)
+def _turned(beta, y, fd, q1, q2, d1, d2, s1, s2, tau, raw, rb, mu, c, ka, kb):
+    # the pair's relative geometry (q = r − c_a, d = c_b − c_a) turned by β and placed with ū_a + ū_b = s; the rate
+    # of the corner's sine there
     cs = math.cos(beta)
     sn = math.sin(beta)
     n1 = cs * d1 - sn * d2
     n2 = sn * d1 + cs * d2
-    p1 = cs * q1 - sn * q2
-    p2 = sn * q1 + cs * q2
     rsum = rb[ka] + rb[kb]
     ca1 = (s1 - rb[kb] * n1) / rsum
     ca2 = (s2 - rb[kb] * n2) / rsum
@@ -603,11 +661,11 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
     y[M_U + 2 * ka + 1] = rb[ka] * ca2
     y[M_U + 2 * kb] = s1 - y[M_U + 2 * ka]
     y[M_U + 2 * kb + 1] = s2 - y[M_U + 2 * ka + 1]
-    y[M_R] = ca1 + p1
-    y[M_R + 1] = ca2 + p2
-    if DEBUG:
-        print("  cross beta", beta, dist)
-    return abs(beta) < 0.1
+    y[M_R] = ca1 + cs * q1 - sn * q2
+    y[M_R + 1] = ca2 + sn * q1 + cs * q2
+    if not multi_rhs(tau, y, raw, rb, mu, (1 << ka) | (1 << kb), c, fd):
+        return np.nan
+    return corner_sine(y, fd, rb, mu, ka, kb)[1]
 
 
 @njit(cache=True)
