@@ -403,7 +403,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
                        "where it would go on only through a reduction exact only for a collinear record: groups of "
                        "nearly tangent circles sliding as one along a fixed direction, or a slow corner left to one "
                        "group)" if status & _pm.STATUS_REDUCED else
-                       "where a corner of two circles closing towards tangency made its explicit steps stiff: more "
+                       "where a corner of two circles closing towards tangency made its steps stiff: more "
                        f"than {_pm.MAX_STIFF_STEPS_PER_INTERVAL} in one sample interval)" if status & _pm.STATUS_STIFF else
                        f"status {status}: the sliding set changes faster than its events resolve)"))
     if method == "steps" or status & _STOPPED:

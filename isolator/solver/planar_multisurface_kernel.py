@@ -25,10 +25,14 @@ support point, in the direction V, of the intersection D of the friction discs. 
   (X, V, r, ū_k, energies) is integrated with a DOP853 step written here (scipy's tableau, written out in planar_multisurface_tableau);
 * a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
+* where two sliding normals are within IMPLICIT_ANGLE of each other the split of V between the groups
+  relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``);
+* a corner of two groups closing to tangency (s falling at a finite rate: tangency in finite time, where C
+  is singular) is stepped over at |s| < CROSS_ANGLE (``cross_tangency``: docs/multisurface.md);
+* at a join the sliding set is the rate problem's (``sliding_set``);
 * when a group joins along the direction of the sliding ones (|e_a × e_j| < MERGE_ANGLE: a
   collinear motion, e.g. a pair whose second component is zero) the circles are tangent and
-  C is singular, and when the normals of the sliding groups close to within MERGE_ANGLE (a
-  corner closing towards tangency, whose dynamics is stiff): the groups then slide as one pendulum of radius Σ R̄ and friction
+  C is singular: the groups then slide as one pendulum of radius Σ R̄ and friction
   Σ R̄_k µ_k / Σ R̄ along that direction, which is the 1-D series model exactly;
 * **stuck**: holds while −a_g/n ∈ D; the break-away is the first root of a quadratic in local
   time per group (a_g linear); after a stop the stick test is the same, otherwise the group
@@ -126,14 +130,12 @@ MAX_STEPS_PER_INTERVAL = 200000
 #: the run stops there rather than spend most of its time on it (a corner away from tangency takes a few per interval)
 MAX_STIFF_STEPS_PER_INTERVAL = 1000
 
-#: sliding groups whose normals all lie within this angle [rad] of each other slide on as one: a corner
-#: closing towards tangency (a straightening motion) is stiff (the split of the velocity relaxes at a
-#: rate ∝ 1/angle); the state then errs by about R̄ µ × this angle [m] (docs/multisurface.md)
+#: a group joining along the direction of the sliding ones within this angle [rad] (tangent circles: a collinear
+#: motion) slides on with them as one pendulum, the 1-D series model
 MERGE_ANGLE = 1e-4
-#: a corner whose sliding normals close to within this angle [rad] slides on as one (the implicit steps carry it
-#: down to here; C⁻¹ is then ~ 1/angle² and the groups' split is the collinear one to within the angle)
+#: sliding normals exactly parallel (a corner closed to rounding without a crossing) slide on as one (a reduction,
+#: counted in S_N_MERGED): a closing corner is otherwise crossed (CROSS_ANGLE)
 CLOSE_ANGLE = 0.0
-DEBUG = False
 #: a corner of two groups whose signed sine closes below this passes through tangency in one Taylor step
 CROSS_ANGLE = 1e-5
 
@@ -481,7 +483,7 @@ def sliding_set(y, rb, cand, must):
     """The sliding groups among the bit set ``cand`` (groups whose circles all pass through r) for the velocity V.
 
     The rate problem's optimality conditions: with the set S sliding, ṙ = C_S⁻¹ V must give λ_k = R̄_k e_k·ṙ ≥ 0
-    for k in S, and must not carry r out of the circle of any j in cand \ S (e_j·ṙ ≤ 0).  They are those of
+    for k in S, and must not carry r out of the circle of any other j in cand (e_j·ṙ ≤ 0).  They are those of
     the strictly convex min_ṙ ½ Σ_k R̄_k max(e_k·ṙ, 0)² − V·ṙ, so at most one S of two or more groups
     (spanning normals) meets them; every subset holding the group just reached (bit set ``must``: r crossed its
     circle, so it slides) is tried (≤ 4 groups: ≤ 7 sets).  Returns S, or 0 if none."""
@@ -558,7 +560,7 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
     """Carry a corner of two groups through tangency: its signed sine s passes through 0 at the rate ṡ (finite:
     the corner closes as the path turns, docs/multisurface.md), while its stiffness grows as 1/s².  Over the
     short dt = −2 s/ṡ, X, V and ū_a + ū_b (= X − the stuck ū) advance by their Taylor expansion to second
-    order, the energies to first; the pair's relative geometry is the one before, mirrored about the line of centres (the distance of
+    order, the energies by the trapezoid rule; the pair's relative geometry is the one before, mirrored about the line of centres (the distance of
     the centres is even in time about the tangency, and r goes to the other intersection of the two circles,
     where the sine is −s), then turned rigidly so that V ∥ R̄_a e_a + R̄_b e_b: the rest state of the corner's
     fast mode (the split of V between the groups, λ_a/R̄_a = λ_b/R̄_b), which relaxes at a rate ∝ 1/s²."""
@@ -584,9 +586,6 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
     y[M_X + 1] += dx2
     y[M_V] += dt * (d[M_V] + 0.5 * dt * jerk1)
     y[M_V + 1] += dt * (d[M_V + 1] + 0.5 * dt * jerk2)
-    y[M_EIN] += dt * d[M_EIN]
-    y[M_EF] += dt * d[M_EF]
-    y[M_EV] += dt * d[M_EV]
     # the stuck groups stay: ū_a + ū_b moves with X (second order)
     s1 = y[M_U + 2 * ka] + y[M_U + 2 * kb] + dx1
     s2 = y[M_U + 2 * ka + 1] + y[M_U + 2 * kb + 1] + dx2
@@ -633,8 +632,9 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
             if hi - lo <= 1e-15 * (abs(beta) + 1e-12) or gv == 0.0:
                 break
     _turned(beta, y, fd, q1, q2, d1, d2, s1, s2, tau + dt, raw, rb, mu, c, ka, kb)
-    if DEBUG:
-        print("  cross beta", beta0, beta, width, rate, glo, ghi)
+    # the energies by the trapezoid rule on their rates before and after (second order)
+    for o in (M_EIN, M_EF, M_EV):
+        y[o] += 0.5 * dt * (d[o] + fd[o])
     return abs(beta) < 0.1
 
 
@@ -1074,8 +1074,6 @@ def _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, 
         my[M_U + 2 * k + 1] = ub[k, 1]
     # the rate problem's set among the sliding groups and the one reached
     chosen = sliding_set(my, rb, comp, 1 << kj)
-    if DEBUG:
-        print("join1", tau, kj, comp, chosen, cross, corner_angle(my, rb, comp))
     if chosen != 0:
         comp = chosen
     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
@@ -1475,28 +1473,32 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             else:
                                 kb = k
                     if nact == 2:
+                        # a corner of two groups closing to tangency (its sine s falling at a finite rate) is
+                        # stepped over: the circles become tangent in finite time, where C is singular
                         sn, snd = corner_sine(my, mf, rb, mu, ka, kb)
                         if abs(sn) < CROSS_ANGLE and sn * snd < 0.0 and tau - 2.0 * sn / snd < hi:
                             dcr = -2.0 * sn / snd
-                            if DEBUG:
-                                print("cross", t[i] + tau, sn, snd, dcr)
                             if not cross_tangency(tau, dcr, my, mf, raw, rb, mu, c, ka, kb):
-                                # the fast mode far from its rest state (V nowhere near the mirrored cone)
+                                # the landing turn found no rest state of the fast mode near V
                                 status |= STATUS_SINGULAR
                                 fail_t = t[i] + tau
                                 failed = True
                                 break
-                            if True:
-                                tau += dcr
-                                slip += dcr
-                                multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
-                                peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
-                                peak_v = max(peak_v, norm(my[M_V], my[M_V + 1]))
-                                if DEBUG:
-                                    print("crossed", t[i] + tau, corner_sine(my, mf, rb, mu, ka, kb))
-                                continue
-                    if DEBUG and n_multi % 500 == 0:
-                        print("multi", t[i] + tau, h, corner_angle(my, rb, comp), comp, n_rej)
+                            tau += dcr
+                            slip += dcr
+                            multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
+                            peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
+                            peak_v = max(peak_v, norm(my[M_V], my[M_V + 1]))
+                            for k in range(ng):
+                                ub[k, 0] = my[M_U + 2 * k]
+                                ub[k, 1] = my[M_U + 2 * k + 1]
+                            surface_peaks(ub, rb, members, tmat, surf_peak)
+                            if _over_rim(ub, rb, rim, comp):
+                                status |= STATUS_RIM
+                                fail_t = t[i] + tau
+                                failed = True
+                                break
+                            continue
                     e01, e02 = _closing_corner(my, rb, comp)
                     if e01 != 0.0 or e02 != 0.0:
                         # the corner closes (a motion that straightens: the circles approach tangency, where the
@@ -1538,8 +1540,6 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     continue
                 events_here += 1
                 h_sugg = -1.0
-                if DEBUG:
-                    print("event", t[i] + tau, kind, which, comp, corner_angle(my, rb, comp))
                 if kind == EV_JOIN:
                     # the set that slides on: the rate problem's among the sliding groups and the one reached (a
                     # group whose λ would be negative at once leaves here, not one step later)
