@@ -214,6 +214,8 @@ def _with_event_room(kernel, n, n_groups, n_members, n_surfaces, capacity):
         ev_k = np.empty(capacity, dtype=np.int8)
         ub = np.zeros((n_groups, 2))
         surf_peak[:] = 0.0
+        # the event kernel writes no rim slots: never reached unless the steps say when (zero would read as t = 0 s)
+        summary[_ps.S_FIRST_ULT] = -1.0
         start = time.perf_counter()
         kernel(out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
         elapsed = time.perf_counter() - start

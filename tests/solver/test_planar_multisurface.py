@@ -96,6 +96,10 @@ def test_rotation_invariance_and_energy_balance_in_the_plane(b):
     res = simulate_bearing_pair(ax, ay, dt, bearing=b, method="events")
     assert set(res.regimes) >= {"I", "II", "III"}  # the corners of two and three circles are reached
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+    # the event kernel finishes only without a rim contact: its answer must not say the ultimate was reached (it did,
+    # with the steps' rim slots left at zero, read as "first reached at t = 0 s")
+    assert res.peak_displacement_m < res.ultimate_displacement_m
+    assert not res.ultimate_displacement_reached and res.n_rim_contacts == 0 and res.n_impacts == 0
     theta = 0.7
     rx, ry = rotate(ax, ay, theta)
     rot = simulate_bearing_pair(rx, ry, dt, bearing=b, method="events")
