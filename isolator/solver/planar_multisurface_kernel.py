@@ -372,22 +372,42 @@ def _lu_solve(a, piv, b):
 
 
 @njit(cache=True)
-def _radau_solve(tau, y, h, raw, rb, mu, mask, c, jac, sc, ynew):
-    """One Radau IIA step of length h from (τ, y) by simplified Newton (Jacobian jac at y): False if it fails."""
-    m = y.shape[0]
-    n3 = 3 * m
-    mat = np.zeros((n3, n3))
+def _active(mask, m, act):
+    """The components of the multi-group state that the implicit step solves for: X, V, r and the sliding groups'
+    ū (the energies are quadratures and the stuck groups' ū stay: nothing depends on them).  Returns their count."""
+    na = 0
+    for p in range(M_EIN):
+        act[na] = p
+        na += 1
+    for k in range((m - M_U) // 2):
+        if mask >> k & 1:
+            act[na] = M_U + 2 * k
+            act[na + 1] = M_U + 2 * k + 1
+            na += 2
+    return na
+
+
+@njit(cache=True)
+def _radau_matrix(h, jac, na, mat, piv):
+    """I − h A ⊗ J of the three stages over the active components, LU-factored in place: False if singular."""
     for i in range(3):
         for j in range(3):
             ha = h * _RA[i, j]
-            for p in range(m):
-                for q in range(m):
-                    mat[i * m + p, j * m + q] = -ha * jac[p, q]
-        for p in range(m):
-            mat[i * m + p, i * m + p] += 1.0
-    piv = np.zeros(n3, dtype=np.int64)
-    if not _lu(mat, piv):
-        return False
+            for p in range(na):
+                for q in range(na):
+                    mat[i * na + p, j * na + q] = -ha * jac[p, q]
+        for p in range(na):
+            mat[i * na + p, i * na + p] += 1.0
+    return _lu(mat, piv)
+
+
+@njit(cache=True)
+def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
+    """One Radau IIA step of length h from (τ, y) by simplified Newton on the active components (``mat``: the
+    factored iteration matrix of :func:`_radau_matrix`), the others by the collocation's quadrature of their rates at
+    the converged stages: False if it fails."""
+    m = y.shape[0]
+    n3 = 3 * na
     z = np.zeros(n3)
     fz = np.zeros((3, m))
     res = np.zeros(n3)
@@ -396,29 +416,43 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, jac, sc, ynew):
     for it in range(NEWTON_MAX):
         for i in range(3):
             for p in range(m):
-                yt[p] = y[p] + z[i * m + p]
+                yt[p] = y[p]
+            for q in range(na):
+                yt[act[q]] += z[i * na + q]
             if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
                 return False
         for i in range(3):
-            for p in range(m):
+            for q in range(na):
+                p = act[q]
                 acc = 0.0
                 for j in range(3):
                     acc += _RA[i, j] * fz[j, p]
-                res[i * m + p] = h * acc - z[i * m + p]
+                res[i * na + q] = h * acc - z[i * na + q]
         _lu_solve(mat, piv, res)
         dn = 0.0
         for i in range(3):
-            for p in range(m):
-                z[i * m + p] += res[i * m + p]
-                dn += (res[i * m + p] / sc[p]) ** 2
+            for q in range(na):
+                z[i * na + q] += res[i * na + q]
+                dn += (res[i * na + q] / sc[act[q]]) ** 2
         dn = math.sqrt(dn / n3)
         if not dn < np.inf or (it >= 2 and dn > last):
             return False
         last = dn
         # Newton's remaining error well below the local error allowed (1 in these units)
         if dn <= 1e-4:
+            # the rates at the converged stages: the quadrature of the other components (stiffly accurate: the
+            # last stage's row of A is the weights)
+            for i in range(3):
+                for p in range(m):
+                    yt[p] = y[p]
+                for q in range(na):
+                    yt[act[q]] += z[i * na + q]
+                if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
+                    return False
             for p in range(m):
-                ynew[p] = y[p] + z[2 * m + p]
+                ynew[p] = y[p] + h * (_RA[2, 0] * fz[0, p] + _RA[2, 1] * fz[1, p] + _RA[2, 2] * fz[2, p])
+            for q in range(na):
+                ynew[act[q]] = y[act[q]] + z[2 * na + q]
             return True
     return False
 
@@ -427,15 +461,20 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, jac, sc, ynew):
 def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
     """One implicit step of the multi-group state: Radau IIA over h and over two h/2, the error of the two halves
     from their difference (order 5: difference / 31); (ok, err) with err raised to the power 8/6 so that the
-    order-8 step factor of the explicit steps (err^(−1/8)) gives the order-5 one (err^(−1/6))."""
+    order-8 step factor of the explicit steps (err^(−1/8)) gives the order-5 one (err^(−1/6)).  Newton solves for
+    the active components only (:func:`_active`), and the two halves share one factored matrix (same h/2, same
+    Jacobian)."""
     m = y.shape[0]
     sc = np.empty(m)
     for p in range(m):
         sc[p] = atol[p] + rtol * abs(y[p])
-    jac = np.empty((m, m))
+    act = np.empty(m, dtype=np.int64)
+    na = _active(mask, m, act)
+    jac = np.empty((na, na))
     yp = y.copy()
     fp = np.empty(m)
-    for q in range(m):
+    for qa in range(na):
+        q = act[qa]
         # a difference step of √ε times the component's own scale (atol/rtol + |y|)
         dq = 1.5e-8 * max(sc[q] / rtol, 1e-12)
         yp[q] = y[q] + dq
@@ -444,19 +483,20 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
             yp[q] = y[q] + dq
             if not multi_rhs(tau, yp, raw, rb, mu, mask, c, fp):
                 return False, np.inf
-        for p in range(m):
-            jac[p, q] = (fp[p] - f0[p]) / dq
+        for pa in range(na):
+            jac[pa, qa] = (fp[act[pa]] - f0[act[pa]]) / dq
         yp[q] = y[q]
+    mat = np.empty((3 * na, 3 * na))
+    piv = np.zeros(3 * na, dtype=np.int64)
     yfull = np.empty(m)
-    if not _radau_solve(tau, y, h, raw, rb, mu, mask, c, jac, sc, yfull):
+    if not (_radau_matrix(h, jac, na, mat, piv)
+            and _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, yfull)):
         return False, np.inf
     ymid = np.empty(m)
-    if not _radau_solve(tau, y, 0.5 * h, raw, rb, mu, mask, c, jac, sc, ymid):
+    if not (_radau_matrix(0.5 * h, jac, na, mat, piv)
+            and _radau_solve(tau, y, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ymid)):
         return False, np.inf
-    fmid = np.empty(m)
-    if not multi_rhs(tau + 0.5 * h, ymid, raw, rb, mu, mask, c, fmid):
-        return False, np.inf
-    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, jac, sc, ynew):
+    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
         return False, np.inf
     if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
         return False, np.inf
