@@ -402,6 +402,19 @@ def _radau_matrix(h, jac, na, mat, piv):
 
 
 @njit(cache=True)
+def _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt):
+    # the rates fz[i] at the three stages y + z_i (z over the active components): False where C is singular
+    for i in range(3):
+        for p in range(y.shape[0]):
+            yt[p] = y[p]
+        for q in range(na):
+            yt[act[q]] += z[i * na + q]
+        if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
+            return False
+    return True
+
+
+@njit(cache=True)
 def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
     """One Radau IIA step of length h from (τ, y) by simplified Newton on the active components (``mat``: the
     factored iteration matrix of :func:`_radau_matrix`), the others by the collocation's quadrature of their rates at
@@ -414,13 +427,8 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
     yt = np.zeros(m)
     last = np.inf
     for it in range(NEWTON_MAX):
-        for i in range(3):
-            for p in range(m):
-                yt[p] = y[p]
-            for q in range(na):
-                yt[act[q]] += z[i * na + q]
-            if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
-                return False
+        if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt):
+            return False
         for i in range(3):
             for q in range(na):
                 p = act[q]
@@ -442,13 +450,8 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
         if dn <= 1e-4:
             # the rates at the converged stages: the quadrature of the other components (stiffly accurate: the
             # last stage's row of A is the weights)
-            for i in range(3):
-                for p in range(m):
-                    yt[p] = y[p]
-                for q in range(na):
-                    yt[act[q]] += z[i * na + q]
-                if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
-                    return False
+            if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt):
+                return False
             for p in range(m):
                 ynew[p] = y[p] + h * (_RA[2, 0] * fz[0, p] + _RA[2, 1] * fz[1, p] + _RA[2, 2] * fz[2, p])
             for q in range(na):
