@@ -8,12 +8,23 @@ wall time grows with the load. Rerun:
 
     .venv/bin/python benchmarks/planar_building_throughput.py [PAIR_FOLDER]
 
+``--profile`` instead splits the kernel time of the bench's 2-D building (``isolator bench``, the OpenSees
+comparison: 5 floors, PTS 0-20 s) into fast sub-steps and series pieces by phase (medians of ``--runs``)::
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python -m benchmarks.planar_building_throughput --profile [--runs 7]
+
+The split is a linear model, not an instrumented count: the same building with µ = 0.95 never slides and runs
+fast sub-steps only (stuck), which gives a stuck sub-step's cost; the rest of the bench case's kernel time is
+charged to its series pieces and sliding sub-steps (a sliding sub-step costs about twice a stuck one,
+docs/building.md), so the per-piece figure printed is a range.
+
 Timings depend on the machine and its load (the kernel runs on one core).
 """
 
 from __future__ import annotations
 
-import sys
+import argparse
+import os
 import time
 from pathlib import Path
 
@@ -53,5 +64,60 @@ def main(folder: Path = DEFAULT_PAIR) -> None:
               f"{r.n_extrema_located:>7} {1e3 * wall:>9.1f} {1e3 * cpu:>8.1f}")
 
 
+def _bench_case(records: Path):
+    """The bench's 2-D building case (:mod:`isolator.bench.building`): PTS 0-20 s, 5 floors."""
+    from isolator.bench.building import BUILDING_PAIR, FIXED_BASE_PERIOD_Y_S, building_case
+
+    _, folder, fx, fy = BUILDING_PAIR
+    mx, my = (read_ground_motion(records / folder / f) for f in (fx, fy))
+    keep = round(20.0 / mx.dt_s) + 1
+    return building_case("2-D building PTS 0-20 s", mx.acceleration_m_s2[:keep], mx.dt_s,
+                         acceleration_y_m_s2=my.acceleration_m_s2[:keep], period_y_s=FIXED_BASE_PERIOD_Y_S)
+
+
+def _kernel_runs(case, mu: float, runs: int):
+    """Median kernel wall time [s] and the last response of ``runs`` calls (the first call builds the tables)."""
+    kernel = []
+    for _ in range(runs + 1):
+        r = simulate_planar_building(case.acceleration_m_s2, case.acceleration_y_m_s2, case.dt_s,
+                                     superstructure=case.superstructure, total_mass_kg=case.total_mass_kg,
+                                     stiffness_N_per_m=case.isolator_stiffness_N_per_m, mu_static=mu, mu_kinetic=mu,
+                                     gravity_m_s2=case.gravity_m_s2)
+        kernel.append(r.solver_seconds)
+    return float(np.median(kernel[1:])), r
+
+
+def profile(records: Path, runs: int) -> None:
+    """Where the bench case's kernel time goes (module docstring)."""
+    case = _bench_case(records)
+    t_case, r = _kernel_runs(case, case.mu, runs)
+    t_stuck, r_stuck = _kernel_runs(case, 0.95, runs)
+    per_stuck = t_stuck / max(r_stuck.n_fast_steps, 1)
+    stuck, start, slide, finish = r.n_pieces_by_phase
+    print(f"{case.name}: {case.acceleration_m_s2.size} samples, µ = {case.mu}, {r.n_events} events, "
+          f"peak {r.peak_displacement_m:.6f} m")
+    print(f"kernel {1e3 * t_case:.1f} ms (median of {runs}); {r.n_fast_steps} fast sub-steps, {r.n_pieces} series "
+          f"pieces (stuck {stuck}, leaving rest {start}, sliding {slide}, finishing a stop {finish}); fast "
+          f"sub-steps refused {r.n_fast_refused} (series not at rounding, end check, event, V = 0); extrema "
+          f"located {r.n_extrema_located}")
+    print(f"never sliding (µ = 0.95): kernel {1e3 * t_stuck:.1f} ms for {r_stuck.n_fast_steps} stuck sub-steps = "
+          f"{1e6 * per_stuck:.1f} µs each")
+    for factor, label in ((1.0, "stuck"), (2.0, "sliding")):
+        fast = factor * per_stuck * r.n_fast_steps
+        piece = (t_case - fast) / max(r.n_pieces, 1)
+        print(f"  sub-steps at the {label} cost: {1e3 * fast:.1f} ms; series pieces {1e3 * (t_case - fast):.1f} ms "
+              f"({100 * (t_case - fast) / t_case:.0f} %), {1e6 * piece:.1f} µs per piece")
+    print(f"load average (1, 5, 15 min): {os.getloadavg()}")
+
+
 if __name__ == "__main__":
-    main(Path(sys.argv[1]) if len(sys.argv) > 1 else DEFAULT_PAIR)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("pair", nargs="?", type=Path, default=DEFAULT_PAIR)
+    parser.add_argument("--profile", action="store_true", help="split the bench case's kernel time")
+    parser.add_argument("--records", type=Path, default=DEFAULT_PAIR.parents[1])
+    parser.add_argument("--runs", type=int, default=7)
+    args = parser.parse_args()
+    if args.profile:
+        profile(args.records, args.runs)
+    else:
+        main(args.pair)
