@@ -76,6 +76,10 @@ UNSOLVED = 1 << 40
 STATUS_UNSOLVED = 64
 #: a group is on its rim when |ū| ≥ c̄ (1 − RIM_ON) (the rim's return puts it on the circle to the last bits)
 RIM_ON = 1e-12
+#: every group on its rim is the ultimate displacement (a rigid stop) when each ū_k/c̄_k lies within this angle
+#: [rad] of their sum's direction: the rims then admit no outward velocity with a finite force.  Groups further
+#: apart turn on their rims under finite (large) forces, which the steps resolve
+ALIGNED = 1e-7
 
 # the state vector: X, V, energies (input, friction, viscous, impacts), then ū of each group
 Y_X = 0
@@ -425,9 +429,59 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     out[Y_EF] = y[Y_EF] + fric
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
     out[Y_EIMP] = y[Y_EIMP]
+    if mask >> ng == (1 << ng) - 1 and ultimate_impact(y, out, g, rb) > 0.0 and iterations < 0:
+        # an impact in a short step: the normal part of Newton's residual is the impulse's rounding (α ~ 1/h² times
+        # the last bit of a position on the rim), gone with the outward velocity; its tangential part moves V by
+        # h times it at most, which must be rounding too, else the force is not found
+        _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g)
+        xn = math.sqrt(out[Y_X] ** 2 + out[Y_X + 1] ** 2)
+        ft = abs(fx * out[Y_X + 1] - fy * out[Y_X]) / xn if xn > 0.0 else math.sqrt(fx * fx + fy * fy)
+        if h * ft <= 1e-9 * (math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2) + h * g):
+            iterations = 0
     if iterations < 0:
         mask |= UNSOLVED
     return mask
+
+
+@njit(cache=True)
+def ultimate_impact(y, out, g, rb):
+    """The plastic impact at the ultimate displacement, at the end of a step from y that put every group on its rim.
+
+    With the groups on their rims along one direction ē (within :data:`ALIGNED`), the rims admit no outward
+    velocity with a finite force: the velocity's outward part V·ē > 0 is removed (a rigid stop, coefficient of
+    restitution 0; Fenz & Constantinou's ultimate).  The backward-Euler step that arrived there already bore the
+    rim's reaction (its position is on the rims to the last bit, as every rim is put: :func:`rim_return`); the
+    kinetic energy its reaction and the removal took — the step's whole energy defect, input less the changes
+    of kinetic and stored energy, friction and viscous work — goes to the impact energy, so the balance closes.
+    Returns the velocity removed [m/s] (0 when none)."""
+    ng = rb.shape[0]
+    s1 = 0.0
+    s2 = 0.0
+    for k in range(ng):
+        s1 += out[Y_U + 2 * k]
+        s2 += out[Y_U + 2 * k + 1]
+    sn = math.sqrt(s1 * s1 + s2 * s2)
+    if not sn > 0.0:
+        return 0.0
+    e1 = s1 / sn
+    e2 = s2 / sn
+    for k in range(ng):
+        u1 = out[Y_U + 2 * k]
+        u2 = out[Y_U + 2 * k + 1]
+        if abs(u1 * e2 - u2 * e1) > ALIGNED * math.sqrt(u1 * u1 + u2 * u2) or u1 * e1 + u2 * e2 <= 0.0:
+            return 0.0
+    vn = out[Y_V] * e1 + out[Y_V + 1] * e2
+    if not vn > 0.0:
+        return 0.0
+    out[Y_V] -= vn * e1
+    out[Y_V + 1] -= vn * e2
+    defect = ((out[Y_EIN] - y[Y_EIN]) - 0.5 * (out[Y_V] ** 2 + out[Y_V + 1] ** 2 - y[Y_V] ** 2 - y[Y_V + 1] ** 2)
+              - (out[Y_EF] - y[Y_EF]) - (out[Y_EV] - y[Y_EV]))
+    for k in range(ng):
+        defect -= g * ((out[Y_U + 2 * k] ** 2 + out[Y_U + 2 * k + 1] ** 2)
+                       - (y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2)) / (2.0 * rb[k])
+    out[Y_EIMP] += defect
+    return vn
 
 
 @njit(cache=True)
@@ -611,13 +665,8 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                              math.sqrt(ax[i + 1] ** 2 + ay[i + 1] ** 2))
                 dv = math.sqrt((y[Y_V] - y0[Y_V]) ** 2 + (y[Y_V + 1] - y0[Y_V + 1]) ** 2)
                 v0 = math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2)
-                if dv > 2.0 * h * (g * f_max + ag_max + c * v0):
-                    defect = ((y[Y_EIN] - y0[Y_EIN]) - 0.5 * (y[Y_V] ** 2 + y[Y_V + 1] ** 2 - v0 * v0)
-                              - (y[Y_EF] - y0[Y_EF]) - (y[Y_EV] - y0[Y_EV]))
-                    for k in range(ng):
-                        defect -= g * ((y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2)
-                                       - (y0[Y_U + 2 * k] ** 2 + y0[Y_U + 2 * k + 1] ** 2)) / (2.0 * rb[k])
-                    y[Y_EIMP] += defect
+                if dv > 2.0 * h * (g * f_max + ag_max + c * v0) and y[Y_EIMP] != y0[Y_EIMP]:
+                    # the impact's energy is in the step (ultimate_impact); its velocity change is counted here
                     impact_v += dv
                     # the impulse is not a force of the surfaces: the transmitted acceleration is the ground's
                     r[0] = -(ax[i] + slope_x * tau) / g
