@@ -366,8 +366,8 @@ def test_registry_runs_the_multisurface_model_for_a_triple_and_says_why():
     summary = res.summary()
     assert summary["ultimate_displacement_reached"] is True and summary["regimes"]["V"] > 0
     # a pair runs on the 2-D multi-surface model (never the single-surface 2-D engine), rims included; (a, a) is
-    # the 1-D record √2 a along the diagonal, whose ultimate impact off the axes the steps do not resolve: the run
-    # stops in one line at that impact (docs/multisurface.md), never past it
+    # the 1-D record √2 a along the diagonal through the ultimate: not answered yet (docs/multisurface.md), the run
+    # stops in one line (Newton at an impact, or the answer's energy-balance guard), never past the rims
     from isolator.errors import SolverError
 
     pair = Scene(ax_m_s2=acc, ay_m_s2=acc, dt_s=dt, isolator=motion_keywords(design), design=design)
