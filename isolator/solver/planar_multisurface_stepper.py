@@ -74,6 +74,16 @@ H_MIN_FRACTION = 1e-6
 UNSOLVED = 1 << 40
 #: the run's status bit for it (past the event kernel's STATUS_* bits)
 STATUS_UNSOLVED = 64
+#: the run's status bit: one sample interval needed more than MAX_FORCE_EVALS_PER_INTERVAL evaluations of Ψ's gradient
+STATUS_WORK = 1 << 12
+#: the work allowed in one sample interval, in evaluations of Ψ's gradient (each a return of every group) by the
+#: three backward-Euler solves of every step, Newton's iterations and their line searches: a bound on the time one
+#: interval can take (~10 s at the bound).  Measured: the answered runs of tests/solver/test_planar_multisurface*.py
+#: and of the TFP review test need at most 377,005 in an interval (Landers YER ×MCE_R, cut TFP, upper bound); the
+#: ultimate with sliders on their rims pointing different ways (Superstition Hills PTS in that test, 12.05 s) needs
+#: tens of millions (one such interval ran 200 s before this bound).  Past it the run stops with the instant (never
+#: a silent truncation)
+MAX_FORCE_EVALS_PER_INTERVAL = 1_000_000
 #: a group is on its rim when |ū| ≥ c̄ (1 − RIM_ON) (the rim's return puts it on the circle to the last bits)
 RIM_ON = 1e-12
 #: every group on its rim is the ultimate displacement (a rigid stop) when each ū_k/c̄_k lies within this angle
@@ -98,7 +108,9 @@ S_MAX_IMPACT_V = S_SIZE + 3  #: largest velocity lost in one impact [m/s]
 S_E_IMP = S_SIZE + 4  #: kinetic energy lost in the impacts [J/kg]
 S_PEAK_R = S_SIZE + 5  #: largest |F/W| of the surfaces (the rims' reaction left out)
 S_FIRST_ULT = S_SIZE + 6  #: time the ultimate displacement was first reached [s] (-1: never)
-S_SIZE_STEPS = S_SIZE + 7
+S_MAX_WORK = S_SIZE + 7  #: the most evaluations of Ψ's gradient one sample interval needed
+S_FAIL_RIMS = S_SIZE + 8  #: the groups on their rims where the run stopped
+S_SIZE_STEPS = S_SIZE + 9
 
 
 @njit(cache=True)
@@ -233,11 +245,12 @@ def _held(y, rb, mu, r1, r2):
 @njit(cache=True)
 def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
     """The force r/W of one backward-Euler step: the minimiser of Ψ (module docstring), by Newton's method
-    from the guess (rx, ry), the step cut back until Ψ or |∇Ψ| decreases.  Returns (rx, ry, iterations)."""
+    from the guess (rx, ry), the step cut back until Ψ or |∇Ψ| decreases.  Returns (rx, ry, iterations, evaluations
+    of ∇Ψ)."""
     ng = rb.shape[0]
     # stuck: p/g inside every circle is the answer (Ψ's gradient g r − p vanishes there)
     if _held(y, rb, mu, px / g, py / g):
-        return px / g, py / g, 0
+        return px / g, py / g, 0, 0
     # one group sliding has a closed form: r − b_k ∥ p − g b_k, |r − b_k| = (|p − g b_k| + αR̄µ)/(g + αR̄); it is
     # the answer when that r lies inside every other circle, else the nearest such point starts Newton (the
     # valley of Ψ is curved along a circle: from far away the Cartesian steps crawl)
@@ -264,7 +277,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                 d2 = cy - y[Y_U + 2 * j + 1] / rb[j]
                 worst = max(worst, math.sqrt(d1 * d1 + d2 * d2) - mu[j])
         if worst == 0.0:
-            return cx, cy, 0
+            return cx, cy, 0, 0
         if worst < best:
             best = worst
             rx = cx
@@ -275,6 +288,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
     for k in range(ng):
         r_scale = max(r_scale, mu[k])
     _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g)
+    evals = 1
     cm = np.zeros(ng)
     cv = np.zeros((ng, 2))
     it = 0
@@ -326,6 +340,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
         if not d0 < 0.0:
             break  # no descent left above rounding
         _, gx, gy = _psi_grad(rx + s1, ry + s2, y, rb, mu, rim, alpha, px, py, g)
+        evals += 1
         d1 = gx * s1 + gy * s2
         t = 1.0
         if d1 > -0.5 * d0:
@@ -343,6 +358,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                     if not (ta < t < tb):
                         break
                 _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g)
+                evals += 1
                 dt = gx * s1 + gy * s2
                 if abs(dt) <= -0.5 * d0:
                     found = True
@@ -364,18 +380,20 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                     break  # the bracket closed at the start: r is the minimiser to rounding
                 t = ta
                 _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g)
+                evals += 1
         rx += t * s1
         ry += t * s2
         fx = gx
         fy = gy
     if it >= MAX_NEWTON and math.sqrt(fx * fx + fy * fy) > 1e-6 * (abs(px) + abs(py) + g * (abs(rx) + abs(ry))):
-        return rx, ry, -1  # not converged: the gradient is not rounding
-    return rx, ry, it
+        return rx, ry, -1, evals  # not converged: the gradient is not rounding
+    return rx, ry, it, evals
 
 
 @njit(cache=True)
 def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
-    """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout.
+    """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout[:2], the evaluations
+    of Ψ's gradient it took into rout[2].
 
     Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
     set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
@@ -383,9 +401,10 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     alpha = (1.0 + c * h) / (h * h)
     px = y[Y_V] / h - abar_x
     py = y[Y_V + 1] / h - abar_y
-    rx, ry, iterations = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1])
+    rx, ry, iterations, evals = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1])
     rout[0] = rx
     rout[1] = ry
+    rout[2] = evals
     dx1 = 0.0
     dx2 = 0.0
     fric = 0.0
@@ -513,9 +532,11 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
     peak_r = 0.0
     first_ult = -1.0
     f_max = 0.0
-    r1 = np.zeros(2)
-    rh = np.zeros(2)
-    r2 = np.zeros(2)
+    r1 = np.zeros(3)
+    rh = np.zeros(3)
+    r2 = np.zeros(3)
+    max_work = 0.0
+
     r = np.zeros(2)
     raw = np.zeros(6)
     raw[4] = g
@@ -556,6 +577,7 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
         tau = 0.0
         h = hi if (h_sugg <= 0.0 or h_sugg > hi) else h_sugg
         steps_here = 0
+        work = 0.0
         while tau < hi:
             steps_here += 1
             if steps_here > MAX_STEPS_PER_INTERVAL:
@@ -594,6 +616,12 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                          rb, mu, rim, r1, yh, rh)
             m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
                          c, rb, mu, rim, rh, y2, r2)
+            work += r1[2] + rh[2] + r2[2]
+            if work > MAX_FORCE_EVALS_PER_INTERVAL:
+                status |= STATUS_WORK
+                fail_t = t[i] + tau
+                summary[S_FAIL_RIMS] = popcount(rim_before)
+                break
             if (m1 | mh | m2) & UNSOLVED:
                 # Newton did not converge (seen with sliders on their rims pointing different ways at the
                 # ultimate): stop with the time rather than go on from a wrong force
@@ -717,6 +745,7 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                 break
             surface_peaks(ub, rb, members, tmat, surf_peak)
             h = h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
+        max_work = max(max_work, work)
         if status:
             break
         h_sugg = h
@@ -759,3 +788,5 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
     summary[S_E_IMP] = y[Y_EIMP]
     summary[S_PEAK_R] = peak_r
     summary[S_FIRST_ULT] = first_ult
+    summary[S_MAX_WORK] = max_work
+
