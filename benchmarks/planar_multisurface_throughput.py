@@ -7,7 +7,8 @@ each pair at its own amplitude times ``--scale``, and prints per pair the method
 ("events": the event-driven kernel, exact between events; "steps": the implicit steps, which
 ``method="auto"`` runs where the events cannot be resolved), the samples per second of the
 compiled code (solver time only, median of --repeat runs; for "steps" it includes the event-driven
-attempt), the steps, the peak and the regimes; a pair that drives a slider to its rim is reported
+attempt), the steps, the peak, the energy balance (|input − kinetic − stored − friction − viscous − impact| / input) and
+the regimes; a pair that drives a slider to its rim is reported
 as such (the rim in the plane is not modelled: the run stops there).
 
 With ``--accuracy`` it also prints each answer's largest distance from two references, as a
@@ -84,6 +85,7 @@ def main(argv=None) -> int:
             except SolverError:
                 extra += f"{'(stops)':>10s} "
         print(f"{folder:26s} {ax.size:8d} {how:>6s} {rate:12.3f} {res.n_steps:7d} {res.peak_displacement_m:10.4f} "
+              f"{abs(res.energy_balance_error_J_per_kg) / res.energy_input_J_per_kg:8.1e} "
               f"{extra} {' '.join(res.regimes)}")
     if rates:
         print(f"median {statistics.median(rates):.3f} M samples/s, slowest {min(rates):.3f}, "
