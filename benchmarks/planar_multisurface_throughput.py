@@ -49,7 +49,7 @@ def main(argv=None) -> int:
         {"radius_m": r, "mu": m, "displacement_capacity_m": d}
         for r, m, d in ((2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4))]}, DesignError)
     print(f"scale {args.scale:g}, method {args.method}, step tolerance {DEFAULT_STEP_TOL:g}")
-    print(f"{'pair':26s} {'samples':>8s} {'method':>6s} {'M samples/s':>12s} {'steps':>7s} {'peak x [m]':>10s} "
+    print(f"{'pair':26s} {'samples':>8s} {'method':>6s} {'M samples/s':>12s} {'steps':>7s} {'peak x [m]':>10s} {'balance':>8s} "
           + (f"{'vs tol/10':>10s} {'vs events':>10s} " if args.accuracy else "") + " regimes")
     rates = []
     total_n = 0
