@@ -7,7 +7,8 @@ each pair at its own amplitude times ``--scale``, and prints per pair the method
 ("events": the event-driven kernel, exact between events; "steps": the implicit steps, which
 ``method="auto"`` runs where the events cannot be resolved), the samples per second of the
 compiled code (solver time only, median of --repeat runs; for "steps" it includes the event-driven
-attempt), the steps, the peak and the regimes; a pair that drives a slider to its rim is reported
+attempt), the steps, the peak, the energy balance (|input − kinetic − stored − friction − viscous − impact| / input) and
+the regimes; a pair that drives a slider to its rim is reported
 as such (the rim in the plane is not modelled: the run stops there).
 
 With ``--accuracy`` it also prints each answer's largest distance from two references, as a
@@ -48,7 +49,7 @@ def main(argv=None) -> int:
         {"radius_m": r, "mu": m, "displacement_capacity_m": d}
         for r, m, d in ((2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4))]}, DesignError)
     print(f"scale {args.scale:g}, method {args.method}, step tolerance {DEFAULT_STEP_TOL:g}")
-    print(f"{'pair':26s} {'samples':>8s} {'method':>6s} {'M samples/s':>12s} {'steps':>7s} {'peak x [m]':>10s} "
+    print(f"{'pair':26s} {'samples':>8s} {'method':>6s} {'M samples/s':>12s} {'steps':>7s} {'peak x [m]':>10s} {'balance':>8s} "
           + (f"{'vs tol/10':>10s} {'vs events':>10s} " if args.accuracy else "") + " regimes")
     rates = []
     total_n = 0
@@ -84,6 +85,7 @@ def main(argv=None) -> int:
             except SolverError:
                 extra += f"{'(stops)':>10s} "
         print(f"{folder:26s} {ax.size:8d} {how:>6s} {rate:12.3f} {res.n_steps:7d} {res.peak_displacement_m:10.4f} "
+              f"{abs(res.energy_balance_error_J_per_kg) / res.energy_input_J_per_kg:8.1e} "
               f"{extra} {' '.join(res.regimes)}")
     if rates:
         print(f"median {statistics.median(rates):.3f} M samples/s, slowest {min(rates):.3f}, "
