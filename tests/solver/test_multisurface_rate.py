@@ -82,13 +82,53 @@ class RateReference:
         self.memo = (key, r)
         return r
 
+    def friction(self, i, v, s):
+        """The forward law: friction excess of surface i sliding in direction s at slide velocity v."""
+        return s * (self.mf[i] - (self.mf[i] - self.ms[i]) * math.exp(-self.a[i] * s * v))
+
     def _force(self, vel, u, mode):
+        """(r, the pivot): the force, and the surface whose rate is the rest of the velocity (or None).
+
+        First r from Σ φ_i(r − b_i) = vel (brentq).  Where a surface slides so fast that µ_fast − µ(v) is
+        below the rounding of r (after a rim, one surface carrying the mass at 2.6 m/s: a v ≈ 52) its φ is not
+        resolvable; the surface with the least gap µ_fast − s (r − b_i) is then taken by the forward law and
+        r solved again (brentq) from r = b_k + s µ_k(vel − Σ_{j≠k} φ_j(r − b_j)).
+        """
         b = self.back(u)
         sliding = [i for i in range(self.n) if mode[i] in (1, -1)]
         if len(sliding) == 1:  # µ(v) of the one sliding surface at the bearing's velocity
             i = sliding[0]
-            s = mode[i]
-            return b[i] + s * (self.mf[i] - (self.mf[i] - self.ms[i]) * math.exp(-self.a[i] * s * vel))
+            return b[i] + self.friction(i, vel, mode[i]), i
+        r = self._sum_root(vel, b, mode, sliding)
+        k = min(sliding, key=lambda i: self.mf[i] - mode[i] * (r - b[i]))
+        if (self.mf[k] - mode[k] * (r - b[k])) / (self.mf[k] - self.ms[k]) > 1e-9:
+            return r, None  # every φ resolvable (gap ≥ 1e-9 of µ_fast − µ_slow: a v ≤ 21)
+        others = [j for j in sliding if j != k]
+        top = min([b[j] + self.mf[j] for j in others if mode[j] == 1], default=math.inf)
+        bottom = max([b[j] - self.mf[j] for j in others if mode[j] == -1], default=-math.inf)
+
+        def excess(q):
+            if not bottom < q < top:
+                return math.inf if q >= top else -math.inf
+            return q - b[k] - self.friction(k, vel - sum(self.speed(j, q - b[j], mode[j]) for j in others), mode[k])
+
+        lo, hi = max(bottom, r - 0.1), min(top, r + 0.1)
+        while not math.isfinite(excess(lo)):
+            lo = 0.5 * (lo + r)
+        while not math.isfinite(excess(hi)):
+            hi = 0.5 * (hi + r)
+        return brentq(excess, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500), k
+
+    def rates(self, vel, u, mode):
+        """The slide rates of the surfaces [m/s] (the pivot's from the series constraint)."""
+        r, k = self.force(vel, u, mode)
+        b = self.back(u)
+        du = [self.speed(i, r - b[i], mode[i]) if mode[i] in (1, -1) and i != k else 0.0 for i in range(self.n)]
+        if k is not None:
+            du[k] = vel - sum(du)
+        return r, du
+
+    def _sum_root(self, vel, b, mode, sliding):
 
         def total(r):
             out = -vel
@@ -192,7 +232,7 @@ class RateReference:
                     if mode[i] in (1, -1):
                         mode[i] = 0
                     elif mode[i] == 0:
-                        r = self.force(y[0], y[1:], mode)
+                        r, _ = self.force(y[0], y[1:], mode)
                         mode[i] = 1 if r - self.back(y[1:])[i] > 0 else -1
                     else:
                         mode[i] = -1 if mode[i] > 0 else 1
@@ -227,9 +267,7 @@ class RateReference:
                 mode[i] = 0
 
     def rhs(self, t, y, mode, a0, slope):
-        r = self.force(y[0], y[1:], mode)
-        b = self.bmat @ y[1:]
-        du = [self.speed(i, r - b[i], mode[i]) if mode[i] in (1, -1) else 0.0 for i in range(self.n)]
+        r, du = self.rates(y[0], y[1:], mode)
         return np.concatenate(([-self.g * r - self.c * y[0] - (a0 + slope * t)], du))
 
     def events(self, mode):
@@ -247,17 +285,16 @@ class RateReference:
         for i in range(self.n):
             if mode[i] in (1, -1):
                 s = mode[i]
-                out.append(make("surface", i, lambda t, y, i=i, s=s: s * self.speed(
-                    i, self.force(y[0], y[1:], mode) - self.back(y[1:])[i], s)))
+                out.append(make("surface", i, lambda t, y, i=i, s=s: s * self.rates(y[0], y[1:], mode)[1][i]))
                 if math.isfinite(self.cap[i]):
                     out.append(make("rim", i, lambda t, y, i=i, s=s: self.cap[i] - s * y[1 + i]))
             elif mode[i] == 0:
                 out.append(make("surface", i, lambda t, y, i=i: self.ms[i] - abs(
-                    self.force(y[0], y[1:], mode) - self.back(y[1:])[i])))
+                    self.force(y[0], y[1:], mode)[0] - self.back(y[1:])[i])))
             else:
                 s = 1 if mode[i] > 0 else -1
                 out.append(make("surface", i, lambda t, y, i=i, s=s: s * (
-                    self.force(y[0], y[1:], mode) - self.back(y[1:])[i]) + self.ms[i]))
+                    self.force(y[0], y[1:], mode)[0] - self.back(y[1:])[i]) + self.ms[i]))
         if len(signs) == 1:
             s = signs.pop()
             out.append(make("stop", -1, lambda t, y, s=s: s * y[0]))
