@@ -225,6 +225,12 @@ def surface_rates(vel, r, b, mode, mu_s, mu_f, a, pivot, out_v, out_dv):
             rest -= v
     if kp >= 0:
         out_v[kp] = rest
+    if vel == 0.0:
+        # at rest (a start from rest: every sliding surface at its onset, r = b_i ± µ_slow,i) the rates are 0;
+        # φ_j((b_k + µ_slow) − b_j) alone would leave a rounding residue of either sign (−1e-17 m/s), which
+        # the stop events would take for a surface already past its stop
+        for i in range(n):
+            out_v[i] = 0.0
     return kp
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
+from scipy.optimize import bisect, brentq
 
 from isolator.bearing import parse_bearing
 from isolator.errors import DesignError, SolverError
@@ -255,8 +255,10 @@ class RateReference:
 
         hi = min(b[i] + self.mf[i] for i in range(self.n) if mode[i] != 2)
         lo = max(b[i] - self.mf[i] for i in range(self.n) if mode[i] != -2)
-        r = brentq(lambda q: total(q) if lo < q < hi else (math.inf if q >= hi else -math.inf),
-                   lo + 1e-15, hi - 1e-15, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        # bisection on signs only: a surface carrying the mass at a v ≳ 36 has its root within rounding of
+        # b_i + µ_fast, where the sum is ±inf
+        r = bisect(lambda q: total(q) if lo < q < hi else (math.inf if q >= hi else -math.inf),
+                   lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=2000)
         for i in range(self.n):
             f = r - b[i]
             if f > self.ms[i] + 1e-13 and mode[i] != 2:
