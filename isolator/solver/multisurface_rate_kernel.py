@@ -566,6 +566,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     ns = u.shape[0]
     m = ns + 1
     mode = np.zeros(ns, dtype=np.int64)
+    before = np.zeros(ns, dtype=np.int64)
+    fresh = np.zeros(ns, dtype=np.int64)
     y = np.zeros(m)
     y_try = np.empty(m)
     y_ev = np.empty(m)
@@ -683,6 +685,10 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                 # consistent (an event located a hair past another one, e.g. the second of two equal
                 # surfaces stopping with the mass, or the mass stopping a hair after its last surface);
                 # left alone the sliding branch would run on through its onset, against the slide law
+                if slot < 2 * ns and slot % 2 == 0 and fresh[slot // 2] == 1 and e0[slot] < 0.0:
+                    # a surface that has just started is at its onset, rate 0: a residue of rounding
+                    # (−1e-17 m/s) is not a stop already past; only its rate at the step's end tells
+                    e0[slot] = 0.0
                 if e0[slot] < 0.0 or (e1[slot] < 0.0 and e0[slot] >= 0.0):
                     if e0[slot] <= 0.0:  # at the event already (a rim reached together with another)
                         t_root = 0.0
@@ -729,6 +735,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                         first_slot = slot
             if first_slot < 0:
                 # no event: accept the step
+                for i in range(ns):
+                    fresh[i] = 0
                 for p in range(m):
                     y[p] = y_try[p]
                 e_in += quad[0]
@@ -772,6 +780,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                 stuck = True
                 break
             ag_now = a0 + slope * tau
+            for i in range(ns):
+                before[i] = mode[i]
             if first_slot < 2 * ns and first_slot % 2 == 0 and e0[2 * ns] < math.inf and (
                     mode[first_slot // 2] == 1 or mode[first_slot // 2] == -1) and abs(y[0]) <= 1e-9 * scale[0]:
                 # a surface stops with the mass (every slider moving one way, X' at rounding): the mass stop,
@@ -839,6 +849,9 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                     else:
                         mode[i] = -1 if md > 0 else 1  # leaves its rim inward
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REGIME, y[1:].sum())
+            for i in range(ns):
+                if (mode[i] == 1 or mode[i] == -1) and mode[i] != before[i]:
+                    fresh[i] = 1
             if not stuck:
                 sliding, rimmed = _masks(mode)
                 code = sliding + n_masks * rimmed
