@@ -689,8 +689,13 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                     # a surface that has just started is at its onset, rate 0: a residue of rounding
                     # (−1e-17 m/s) is not a stop already past; only its rate at the step's end tells
                     e0[slot] = 0.0
+                # a stop slot at 0 where the motion starts (the mass from rest, a surface just started) is the
+                # start, not a stop: its event, if any, lies inside the step (the velocity turns back in it)
+                starting = e0[slot] == 0.0 and (
+                    (slot == 2 * ns and y[0] == 0.0) or (slot < 2 * ns and slot % 2 == 0 and (
+                        y[0] == 0.0 or fresh[slot // 2] == 1) and (mode[slot // 2] == 1 or mode[slot // 2] == -1)))
                 if e0[slot] < 0.0 or (e1[slot] < 0.0 and e0[slot] >= 0.0):
-                    if e0[slot] <= 0.0:  # at the event already (a rim reached together with another)
+                    if e0[slot] <= 0.0 and not starting:  # at the event already (a rim reached with another)
                         t_root = 0.0
                     else:
                         # Illinois secant on the re-stepped collocation
