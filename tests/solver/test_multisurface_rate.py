@@ -340,6 +340,35 @@ def test_triple_reaching_its_rims_to_the_ultimate():
     assert abs(res.energy_balance_error_J_per_kg) <= 5e-9 * res.energy_input_J_per_kg
 
 
+def _nwh360_run(records_dir, scale):
+    from isolator.motion import read_ground_motion
+
+    motion = read_ground_motion(records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2")
+    b = rate_bearing("triple", GEOMETRY, MU_SLOW, MU_FAST, 20.0)
+    return simulate_bearing_rate(motion.acceleration_m_s2 * scale, motion.dt_s, bearing=b)
+
+
+def test_real_record_without_chatter(records_dir):
+    """NWH360 at its own amplitude (regimes I–III, 279 events): main's kernel chattered here (903 020 events, the
+    bearing held by the chatter guard, 2.6e-2 m off): a rounding residue (−1e-17 m/s) of a surface just started, or
+    a stop slot at 0 at a start from rest, was taken for a stop already past.  Balance measured 1.6e-11."""
+    res = _nwh360_run(records_dir, 1.0)
+    print("NWH360 x1:", res.model_reason, "events", res.n_events, "balance", res.energy_balance_error_J_per_kg,
+          "of", res.energy_input_J_per_kg)
+    assert res.status == 0 and res.n_events < 1000
+    assert list(res.regimes) == ["I", "II", "III"]
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+@pytest.mark.xfail(strict=True, reason="known defect: two surfaces saturated together (1 and 4 at a v ≈ 30 each in "
+                   "regime III at 3 m/s): the non-pivot surface's φ is barely resolvable; NWH360 x2.5 passes its rims "
+                   "(8 rim contacts, impact energy 3.03 J/kg) with balance 2.3e-5 of the input; docs/multisurface.md")
+def test_real_record_through_its_rims_energy(records_dir):
+    res = _nwh360_run(records_dir, 2.5)
+    assert res.ultimate_displacement_reached
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
 def _double_and_single(acc, damping, balance=1e-9):
     from isolator.solver.models import simulate_motion
 
