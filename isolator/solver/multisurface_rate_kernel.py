@@ -15,7 +15,11 @@ rotated slide plates of Fenz & Constantinou), and the mass X'' = −g r − c X'
 
 With µ_i increasing in |v| each sliding surface's slide rate is a monotone function of its
 friction excess, v_i = φ_i(r − b_i) = ± ln((µ_fast − µ_slow)/(µ_fast − |r − b_i|))/a_i, so
-Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The split of
+Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The force is computed from a *pivot*
+surface k (the one farthest into saturation), whose rate is the rest of the velocity and whose friction comes
+from the forward law µ_k(v_k): at a·v ≳ 36 µ_fast − µ(v) is below the rounding of r and φ is not resolvable
+(the first rim of a µ(v) TFP: one surface left to carry 2.6 m/s, a·v = 53).  Two surfaces saturated together
+are not handled (the non-pivot φ is then barely resolvable; docs/multisurface.md).  The split of
 the velocity between sliding surfaces relaxes at the rate φ'_i/R_eff,i = e^{a v}/(a (µ_fast −
 µ_slow) R_eff), 10⁵–10⁹ s⁻¹ at real slide speeds: the system is stiff, so it is integrated with the
 L-stable 3-stage Radau IIA collocation (order 5), Newton's method on the stage equations with the
