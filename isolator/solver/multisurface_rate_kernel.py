@@ -15,7 +15,11 @@ rotated slide plates of Fenz & Constantinou), and the mass X'' = −g r − c X'
 
 With µ_i increasing in |v| each sliding surface's slide rate is a monotone function of its
 friction excess, v_i = φ_i(r − b_i) = ± ln((µ_fast − µ_slow)/(µ_fast − |r − b_i|))/a_i, so
-Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The split of
+Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The force is computed from a *pivot*
+surface k (the one farthest into saturation), whose rate is the rest of the velocity and whose friction comes
+from the forward law µ_k(v_k): at a·v ≳ 36 µ_fast − µ(v) is below the rounding of r and φ is not resolvable
+(the first rim of a µ(v) TFP: one surface left to carry 2.6 m/s, a·v = 53).  Two surfaces saturated together
+are not handled (the non-pivot φ is then barely resolvable; docs/multisurface.md).  The split of
 the velocity between sliding surfaces relaxes at the rate φ'_i/R_eff,i = e^{a v}/(a (µ_fast −
 µ_slow) R_eff), 10⁵–10⁹ s⁻¹ at real slide speeds: the system is stiff, so it is integrated with the
 L-stable 3-stage Radau IIA collocation (order 5), Newton's method on the stage equations with the
@@ -108,59 +112,144 @@ def slide_rate(f, s, mu_s, mu_f, a):
 
 
 @njit(cache=True)
-def solve_force(vel, b, mode, mu_s, mu_f, a):
+def friction_at_rate(v, s, mu_s, mu_f, a):
+    """Friction excess f = r − b [-] and df/dv of a surface sliding in direction s at slide velocity v [m/s].
+
+    The forward law s µ(s v), continued through the onset like :func:`slide_rate`; well conditioned at
+    every speed (at a·|v| ≳ 36 it is µ_fast to rounding, where :func:`slide_rate` is not resolvable).
+    """
+    decay = math.exp(-a * s * v)
+    return s * (mu_s - (mu_f - mu_s) * math.expm1(-a * s * v)), a * (mu_f - mu_s) * decay
+
+
+@njit(cache=True)
+def solve_force(vel, b, mode, mu_s, mu_f, a, pivot):
     """F/W [-] at which the sliding surfaces' rates (mode ±1) sum to the bearing's velocity ``vel`` [m/s].
 
-    Σ φ_i(r − b_i) is increasing in r; the bracket is where each surface alone would carry
-    vel/k (every rate ≤ or ≥ vel/k there), then safeguarded Newton to rounding.  NaN when no
-    surface slides.
+    The *pivot* surface k takes the rest of the velocity, v_k = vel − Σ_{j≠k} φ_j(r − b_j), and its
+    friction from it by the forward law; r is the root of g(r) = r − b_k − s_k µ_k(|v_k|), with
+    g' = 1 + µ_k'(v_k) Σ_{j≠k} φ'_j ≥ 1 (increasing, well conditioned).  This is the same root as
+    Σ_i φ_i(r − b_i) = vel, but it never inverts the pivot's law: a surface sliding so fast that
+    µ_fast − µ(v) is below the rounding of r (a·v ≳ 36, e.g. one surface carrying the mass at 2.6 m/s
+    after another reached its rim) has no resolvable φ, and must be the pivot (:func:`pick_pivot`).
+    Safeguarded Newton to rounding; NaN when no surface slides.
     """
-    k = 0
-    for i in range(b.shape[0]):
-        if mode[i] == 1 or mode[i] == -1:
-            k += 1
-    if k == 0:
-        return math.nan
-    share = vel / k
-    lo = math.inf
-    hi = -math.inf
-    signs = 0
-    for i in range(b.shape[0]):
-        if mode[i] == 1 or mode[i] == -1:
-            s = float(mode[i])
-            ri = b[i] + s * (mu_s[i] - (mu_f[i] - mu_s[i]) * math.expm1(-a[i] * s * share))
-            lo = min(lo, ri)
-            hi = max(hi, ri)
-            signs += mode[i]
-    if k == 1 or hi == lo:
-        return lo
-    # every surface sliding + : the sum is convex in r, so Newton from the upper end never overshoots
-    # (and from the lower end when all slide −, where it is concave); mixed: from the middle, safeguarded
-    r = hi if signs == k else (lo if signs == -k else 0.5 * (lo + hi))
-    for _ in range(200):
-        total = -vel
-        slope = 0.0
-        for i in range(b.shape[0]):
+    n = b.shape[0]
+    k = pivot
+    if not (0 <= k < n) or not (mode[k] == 1 or mode[k] == -1):
+        k = -1
+        for i in range(n):
             if mode[i] == 1 or mode[i] == -1:
-                v, dv = slide_rate(r - b[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
-                total += v
-                slope += dv
-        if total == 0.0:
+                k = i
+                break
+        if k < 0:
+            return math.nan
+    sk = float(mode[k])
+    # the bracket: where a non-pivot surface's rate becomes infinite (r past b_j ± µ_fast,j)
+    lo = -math.inf
+    hi = math.inf
+    others = 0
+    for j in range(n):
+        if j != k and (mode[j] == 1 or mode[j] == -1):
+            others += 1
+            if mode[j] == 1:
+                hi = min(hi, b[j] + mu_f[j])
+            else:
+                lo = max(lo, b[j] - mu_f[j])
+    f0, _ = friction_at_rate(vel / (others + 1), sk, mu_s[k], mu_f[k], a[k])
+    r = b[k] + f0
+    if others == 0:
+        f0, _ = friction_at_rate(vel, sk, mu_s[k], mu_f[k], a[k])
+        return b[k] + f0
+    if not (lo < r < hi):
+        r = 0.5 * (lo + hi) if math.isfinite(lo) and math.isfinite(hi) else (
+            hi - 1e-3 if math.isfinite(hi) else lo + 1e-3)
+    for _ in range(200):
+        rest = vel
+        dsum = 0.0
+        finite = True
+        for j in range(n):
+            if j != k and (mode[j] == 1 or mode[j] == -1):
+                v, dv = slide_rate(r - b[j], float(mode[j]), mu_s[j], mu_f[j], a[j])
+                if not math.isfinite(v):
+                    finite = False
+                    break
+                rest -= v
+                dsum += dv
+        if not finite:  # past a non-pivot surface's infinite rate: inside the bracket again
+            if mode[j] == 1:
+                hi = min(hi, r)
+            else:
+                lo = max(lo, r)
+            r = 0.5 * (lo + hi) if math.isfinite(lo) and math.isfinite(hi) else (
+                hi - 1e-3 if math.isfinite(hi) else lo + 1e-3)
+            continue
+        fk, dfk = friction_at_rate(rest, sk, mu_s[k], mu_f[k], a[k])
+        gval = r - b[k] - fk
+        if gval == 0.0:
             return r
-        if total > 0.0:
+        if gval > 0.0:
             hi = r
         else:
             lo = r
-        if hi - lo <= 2e-16 * max(abs(lo), abs(hi)) or hi - lo < 1e-300:
-            return 0.5 * (lo + hi)
-        step = total / slope if math.isfinite(total) and math.isfinite(slope) else math.nan
+        step = gval / (1.0 + dfk * dsum)
         if abs(step) <= 4e-16 * abs(r) + 1e-300:
             return r - step  # Newton's step at rounding: converged (quadratically) to the last bits
         r_new = r - step
         if not (lo < r_new < hi):
-            r_new = 0.5 * (lo + hi)
+            if math.isfinite(lo) and math.isfinite(hi):
+                r_new = 0.5 * (lo + hi)
+            elif math.isfinite(hi):
+                r_new = hi - 2.0 * abs(hi - r) - 1e-12
+            else:
+                r_new = lo + 2.0 * abs(r - lo) + 1e-12
+        if math.isfinite(lo) and math.isfinite(hi) and hi - lo <= 2e-16 * max(abs(lo), abs(hi)):
+            return 0.5 * (lo + hi)
         r = r_new
     return r
+
+
+@njit(cache=True)
+def surface_rates(vel, r, b, mode, mu_s, mu_f, a, pivot, out_v, out_dv):
+    """Slide rates [m/s] at the force r (the pivot's from the series constraint) and φ'_j (0 for the pivot)."""
+    n = b.shape[0]
+    rest = vel
+    kp = -1
+    for i in range(n):
+        out_v[i] = 0.0
+        out_dv[i] = 0.0
+    for i in range(n):
+        if mode[i] == 1 or mode[i] == -1:
+            if kp < 0 and (i == pivot or not (0 <= pivot < n) or not (mode[pivot] == 1 or mode[pivot] == -1)):
+                kp = i
+                continue
+            v, dv = slide_rate(r - b[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
+            out_v[i] = v
+            out_dv[i] = dv
+            rest -= v
+    if kp >= 0:
+        out_v[kp] = rest
+    if vel == 0.0:
+        # at rest (a start from rest: every sliding surface at its onset, r = b_i ± µ_slow,i) the rates are 0;
+        # φ_j((b_k + µ_slow) − b_j) alone would leave a rounding residue of either sign (−1e-17 m/s), which
+        # the stop events would take for a surface already past its stop
+        for i in range(n):
+            out_v[i] = 0.0
+    return kp
+
+
+@njit(cache=True)
+def pick_pivot(dy, mode, a):
+    """The sliding surface farthest into saturation (largest a_i s_i v_i): the pivot of :func:`solve_force`."""
+    best = -1
+    worst = -math.inf
+    for i in range(mode.shape[0]):
+        if mode[i] == 1 or mode[i] == -1:
+            w = a[i] * float(mode[i]) * dy[1 + i]
+            if w > worst or best < 0:
+                worst = w
+                best = i
+    return best
 
 
 @njit(cache=True)
@@ -173,57 +262,65 @@ def back_force(u, bmat, out_b):
 
 
 @njit(cache=True)
-def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_jac):
+def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_jac, pivot):
     """dy/dt of y = (X', u_1..u_n) in a fixed mode; returns (r, friction power per unit mass).
 
     ``out_jac`` [m+1 × m+1] is filled with ∂(dy/dt)/∂y when ``want_jac``.  The friction power
-    is g Σ (r − b_i) dū_i/dt on the series elements ū = smat u.
+    is g Σ (r − b_i) dū_i/dt on the series elements ū = smat u.  ``pivot``: the surface whose rate
+    comes from the series constraint (:func:`solve_force`).
     """
     n = bmat.shape[0]
     vel = y[0]
     u = y[1:]
     back_force(u, bmat, wb)
-    r = solve_force(vel, wb, mode, mu_s, mu_f, a)
+    r = solve_force(vel, wb, mode, mu_s, mu_f, a, pivot)
     out_dy[0] = -g * r - c * vel - ag
-    dsum = 0.0
+    rates = np.empty(n)
+    dphi = np.empty(n)
+    k = surface_rates(vel, r, wb, mode, mu_s, mu_f, a, pivot, rates, dphi)
     for i in range(n):
-        if mode[i] == 1 or mode[i] == -1:
-            v, dv = slide_rate(r - wb[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
-            out_dy[1 + i] = v
-            dsum += dv
-        else:
-            out_dy[1 + i] = 0.0
+        out_dy[1 + i] = rates[i]
     power = 0.0
     for i in range(n):
         ubar_dot = 0.0
-        for k in range(n):
-            ubar_dot += smat[i, k] * out_dy[1 + k]
+        for q in range(n):
+            ubar_dot += smat[i, q] * out_dy[1 + q]
         power += (r - wb[i]) * ubar_dot
     if want_jac:
         for p in range(n + 1):
             for q in range(n + 1):
                 out_jac[p, q] = 0.0
-        dr_dv = 1.0 / dsum
-        # ∂r/∂u_k = Σ_i φ'_i B_ik / Σ φ'
-        for k in range(n):
-            total = 0.0
-            for i in range(n):
-                if mode[i] == 1 or mode[i] == -1:
-                    _, dv = slide_rate(r - wb[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
-                    total += dv * bmat[i, k]
-            out_jac[0, 1 + k] = -g * total * dr_dv
-        out_jac[0, 0] = -g * dr_dv - c
-        for i in range(n):
-            if mode[i] == 1 or mode[i] == -1:
-                _, dv = slide_rate(r - wb[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
-                out_jac[1 + i, 0] = dv * dr_dv
-                for k in range(n):
-                    out_jac[1 + i, 1 + k] = dv * (-out_jac[0, 1 + k] / g - bmat[i, k])
+        if k >= 0:
+            # r from g(r) = r − b_k − s µ_k(v_k), v_k = X' − Σ_{j≠k} φ_j(r − b_j):
+            # dr = (µ'_k dX' + (B_k + µ'_k Σ_j φ'_j B_j) du) / (1 + µ'_k Σ_j φ'_j)
+            _, dmu = friction_at_rate(rates[k], float(mode[k]), mu_s[k], mu_f[k], a[k])
+            dsum = 0.0
+            for j in range(n):
+                dsum += dphi[j]
+            den = 1.0 + dmu * dsum
+            dr_dv = dmu / den
+            out_jac[0, 0] = -g * dr_dv - c
+            for q in range(n):
+                total = bmat[k, q]
+                for j in range(n):
+                    total += dmu * dphi[j] * bmat[j, q]
+                out_jac[0, 1 + q] = -g * total / den
+            # the non-pivot rates v_j = φ_j(r − b_j); the pivot's v_k = X' − Σ v_j
+            out_jac[1 + k, 0] = 1.0
+            for j in range(n):
+                if dphi[j] != 0.0:
+                    out_jac[1 + j, 0] = dphi[j] * dr_dv
+                    out_jac[1 + k, 0] -= out_jac[1 + j, 0]
+                    for q in range(n):
+                        out_jac[1 + j, 1 + q] = dphi[j] * (-out_jac[0, 1 + q] / g - bmat[j, q])
+                        out_jac[1 + k, 1 + q] -= out_jac[1 + j, 1 + q]
+        else:
+            out_jac[0, 0] = -c
     return r, g * power
 
 
 @njit(cache=True)
-def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad):
+def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot):
     """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ); False if Newton fails.
 
     ``y1`` is filled with the end state; ``quad`` with the step's (−∫a_g X', c∫X'², friction work) [J/kg].
@@ -247,7 +344,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
             for p in range(m):
                 ys[p] = y0[p] + z[j, p]
             ag = a_start + slope * RADAU_C[j] * h
-            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], True)
+            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], True, pivot)
             for p in range(m):
                 fz[j, p] = dy[p]
         ok = True
@@ -291,7 +388,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
         for p in range(m):
             ys[p] = y0[p] + z[j, p]
         ag = a_start + slope * RADAU_C[j] * h
-        rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], False)
+        rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], False, pivot)
         w = h * RADAU_A[2, j]
         q_in -= w * ag * ys[0]
         q_visc += w * c * ys[0] * ys[0]
@@ -305,7 +402,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
 
 
 @njit(cache=True)
-def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad):
+def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot):
     """Two Radau steps of h/2 (kept) and one of h (the estimate); returns the scaled difference (inf: failed)."""
     m = y0.shape[0]
     y_full = np.empty(m)
@@ -313,13 +410,13 @@ def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sc
     q_full = np.empty(3)
     q1 = np.empty(3)
     q2 = np.empty(3)
-    if not radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full):
+    if not radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full, pivot):
         return math.inf
     half = 0.5 * h
-    if not radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1):
+    if not radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1, pivot):
         return math.inf
     if not radau_step(y_mid, half, a_start + slope * half, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                      y1, q2):
+                      y1, q2, pivot):
         return math.inf
     err = 0.0
     for p in range(m):
@@ -473,6 +570,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     ns = u.shape[0]
     m = ns + 1
     mode = np.zeros(ns, dtype=np.int64)
+    before = np.zeros(ns, dtype=np.int64)
+    fresh = np.zeros(ns, dtype=np.int64)
     y = np.zeros(m)
     y_try = np.empty(m)
     y_ev = np.empty(m)
@@ -509,6 +608,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     n_steps = 0
     fail_t = -1.0
     h = h_first
+    pivot = -1
     r_now = -acc[0] / g
     x_floor = 1e-4
     v_floor = 1e-3
@@ -561,8 +661,12 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             scale[0] = max(peak_v, v_floor)
             for p in range(1, m):
                 scale[p] = max(peak_x, x_floor)
+            # the pivot (the surface whose rate comes from the series constraint) is the one farthest into
+            # saturation at the step's start; held for the step and its event search (the same equations)
+            rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
+            pivot = pick_pivot(dy, mode, a)
             err = double_step(y, h, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                              y_try, quad)
+                              y_try, quad, pivot)
             if not err <= tol:
                 if h <= 1e-13 * dt_i:
                     status |= STATUS_STEP_FAILED
@@ -574,9 +678,9 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                     h = 0.25 * h
                 continue
             # events between y and y_try
-            r0, _ = rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+            r0, _ = rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
             event_values(y, r0, dy, mode, mu_s, cap, bmat, wb, e0)
-            r1, _ = rhs(y_try, a0 + slope * (tau + h), g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+            r1, _ = rhs(y_try, a0 + slope * (tau + h), g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
             event_values(y_try, r1, dy, mode, mu_s, cap, bmat, wb, e1)
             first_slot = -1
             first_t = math.inf
@@ -585,8 +689,17 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                 # consistent (an event located a hair past another one, e.g. the second of two equal
                 # surfaces stopping with the mass, or the mass stopping a hair after its last surface);
                 # left alone the sliding branch would run on through its onset, against the slide law
+                if slot < 2 * ns and slot % 2 == 0 and fresh[slot // 2] == 1 and e0[slot] < 0.0:
+                    # a surface that has just started is at its onset, rate 0: a residue of rounding
+                    # (−1e-17 m/s) is not a stop already past; only its rate at the step's end tells
+                    e0[slot] = 0.0
+                # a stop slot at 0 where the motion starts (the mass from rest, a surface just started) is the
+                # start, not a stop: its event, if any, lies inside the step (the velocity turns back in it)
+                starting = e0[slot] == 0.0 and (
+                    (slot == 2 * ns and y[0] == 0.0) or (slot < 2 * ns and slot % 2 == 0 and (
+                        y[0] == 0.0 or fresh[slot // 2] == 1) and (mode[slot // 2] == 1 or mode[slot // 2] == -1)))
                 if e0[slot] < 0.0 or (e1[slot] < 0.0 and e0[slot] >= 0.0):
-                    if e0[slot] <= 0.0:  # at the event already (a rim reached together with another)
+                    if e0[slot] <= 0.0 and not starting:  # at the event already (a rim reached with another)
                         t_root = 0.0
                     else:
                         # Illinois secant on the re-stepped collocation
@@ -601,11 +714,14 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                             if not (ta < tm < tb_):
                                 tm = 0.5 * (ta + tb_)
                             double_step(y, tm, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat,
-                                        scale, y_ev, quad_ev)
+                                        scale, y_ev, quad_ev, pivot)
                             rm, _ = rhs(y_ev, a0 + slope * (tau + tm), g, c, bmat, mode, mu_s, mu_f, a, smat, wb,
-                                        dy, jac, False)
+                                        dy, jac, False, pivot)
                             event_values(y_ev, rm, dy, mode, mu_s, cap, bmat, wb, e1)
                             fm = e1[slot]
+                            if fm == 0.0:  # on the event: the root is tm (not the bracket's far end)
+                                tb_ = tm
+                                break
                             if fm < 0.0:
                                 tb_ = tm
                                 fb = fm
@@ -618,7 +734,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                                 if side == 1:
                                     fb *= 0.5
                                 side = 1
-                            if tb_ - ta <= 1e-13 * dt_i or fm == 0.0:  # ≤ 1e-13 of the interval
+                            if tb_ - ta <= 1e-13 * dt_i:  # ≤ 1e-13 of the interval
                                 break
                         t_root = tb_
                         # restore the end values for the other slots
@@ -628,6 +744,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                         first_slot = slot
             if first_slot < 0:
                 # no event: accept the step
+                for i in range(ns):
+                    fresh[i] = 0
                 for p in range(m):
                     y[p] = y_try[p]
                 e_in += quad[0]
@@ -649,7 +767,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             # ---- the event: advance to it ----
             if first_t > 0.0:
                 double_step(y, first_t, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                            y_ev, quad_ev)
+                            y_ev, quad_ev, pivot)
                 for p in range(m):
                     y[p] = y_ev[p]
                 e_in += quad_ev[0]
@@ -671,6 +789,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                 stuck = True
                 break
             ag_now = a0 + slope * tau
+            for i in range(ns):
+                before[i] = mode[i]
             if first_slot < 2 * ns and first_slot % 2 == 0 and e0[2 * ns] < math.inf and (
                     mode[first_slot // 2] == 1 or mode[first_slot // 2] == -1) and abs(y[0]) <= 1e-9 * scale[0]:
                 # a surface stops with the mass (every slider moving one way, X' at rounding): the mass stop,
@@ -734,10 +854,13 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                         mode[i] = 0  # a surface stops while the mass moves on
                     elif md == 0:
                         mode[i] = 1 if r1_sign(y, ag_now, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac,
-                                                i) > 0.0 else -1
+                                                i, pivot) > 0.0 else -1
                     else:
                         mode[i] = -1 if md > 0 else 1  # leaves its rim inward
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REGIME, y[1:].sum())
+            for i in range(ns):
+                if (mode[i] == 1 or mode[i] == -1) and mode[i] != before[i]:
+                    fresh[i] = 1
             if not stuck:
                 sliding, rimmed = _masks(mode)
                 code = sliding + n_masks * rimmed
@@ -767,7 +890,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             out_a[j] = acc[j]
             out_r[j] = -acc[j] / g
         else:
-            r_now, _ = rhs(y, acc[j], g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+            r_now, _ = rhs(y, acc[j], g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
             out_r[j] = r_now
             out_a[j] = -(g * r_now + c * y[0])
             peak_r = max(peak_r, abs(r_now))
@@ -804,9 +927,9 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
 
 
 @njit(cache=True)
-def r1_sign(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, i):
+def r1_sign(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, i, pivot):
     """The sign of the friction excess r − b_i of surface i at the state (which way it starts)."""
-    r, _ = rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False)
+    r, _ = rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
     back_force(y[1:], bmat, wb)
     return r - wb[i]
 

@@ -14,10 +14,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
+from scipy.optimize import bisect, brentq
 
 from isolator.bearing import parse_bearing
-from isolator.errors import DesignError, SolverError
+from isolator.errors import DesignError
 from isolator.solver.multisurface import simulate_bearing
 from isolator.solver.multisurface_rate import simulate_bearing_rate
 
@@ -82,13 +82,53 @@ class RateReference:
         self.memo = (key, r)
         return r
 
+    def friction(self, i, v, s):
+        """The forward law: friction excess of surface i sliding in direction s at slide velocity v."""
+        return s * (self.mf[i] - (self.mf[i] - self.ms[i]) * math.exp(-self.a[i] * s * v))
+
     def _force(self, vel, u, mode):
+        """(r, the pivot): the force, and the surface whose rate is the rest of the velocity (or None).
+
+        First r from Σ φ_i(r − b_i) = vel (brentq).  Where a surface slides so fast that µ_fast − µ(v) is
+        below the rounding of r (after a rim, one surface carrying the mass at 2.6 m/s: a v ≈ 52) its φ is not
+        resolvable; the surface with the least gap µ_fast − s (r − b_i) is then taken by the forward law and
+        r solved again (brentq) from r = b_k + s µ_k(vel − Σ_{j≠k} φ_j(r − b_j)).
+        """
         b = self.back(u)
         sliding = [i for i in range(self.n) if mode[i] in (1, -1)]
         if len(sliding) == 1:  # µ(v) of the one sliding surface at the bearing's velocity
             i = sliding[0]
-            s = mode[i]
-            return b[i] + s * (self.mf[i] - (self.mf[i] - self.ms[i]) * math.exp(-self.a[i] * s * vel))
+            return b[i] + self.friction(i, vel, mode[i]), i
+        r = self._sum_root(vel, b, mode, sliding)
+        k = min(sliding, key=lambda i: self.mf[i] - mode[i] * (r - b[i]))
+        if (self.mf[k] - mode[k] * (r - b[k])) / (self.mf[k] - self.ms[k]) > 1e-9:
+            return r, None  # every φ resolvable (gap ≥ 1e-9 of µ_fast − µ_slow: a v ≤ 21)
+        others = [j for j in sliding if j != k]
+        top = min([b[j] + self.mf[j] for j in others if mode[j] == 1], default=math.inf)
+        bottom = max([b[j] - self.mf[j] for j in others if mode[j] == -1], default=-math.inf)
+
+        def excess(q):
+            if not bottom < q < top:
+                return math.inf if q >= top else -math.inf
+            return q - b[k] - self.friction(k, vel - sum(self.speed(j, q - b[j], mode[j]) for j in others), mode[k])
+
+        lo, hi = max(bottom, r - 0.1), min(top, r + 0.1)
+        while not math.isfinite(excess(lo)):
+            lo = 0.5 * (lo + r)
+        while not math.isfinite(excess(hi)):
+            hi = 0.5 * (hi + r)
+        return brentq(excess, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500), k
+
+    def rates(self, vel, u, mode):
+        """The slide rates of the surfaces [m/s] (the pivot's from the series constraint)."""
+        r, k = self.force(vel, u, mode)
+        b = self.back(u)
+        du = [self.speed(i, r - b[i], mode[i]) if mode[i] in (1, -1) and i != k else 0.0 for i in range(self.n)]
+        if k is not None:
+            du[k] = vel - sum(du)
+        return r, du
+
+    def _sum_root(self, vel, b, mode, sliding):
 
         def total(r):
             out = -vel
@@ -107,7 +147,12 @@ class RateReference:
             lo -= 1.0
         while top is None and total(hi) < 0.0:
             hi += 1.0
-        return brentq(total, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
+        if total(lo) < 0.0 < total(hi):
+            return brentq(total, lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
+        # a saturated surface: its root is within rounding of the bracket's end, where the sum computes finite
+        # with the wrong sign; bisection on the limits' signs (±inf at and beyond the ends)
+        return bisect(lambda q: total(q) if lo < q < hi else (math.inf if q >= hi else -math.inf), lo, hi,
+                      xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=2000)
 
     def window(self, u, mode):
         b = self.bmat @ u
@@ -192,7 +237,7 @@ class RateReference:
                     if mode[i] in (1, -1):
                         mode[i] = 0
                     elif mode[i] == 0:
-                        r = self.force(y[0], y[1:], mode)
+                        r, _ = self.force(y[0], y[1:], mode)
                         mode[i] = 1 if r - self.back(y[1:])[i] > 0 else -1
                     else:
                         mode[i] = -1 if mode[i] > 0 else 1
@@ -215,8 +260,10 @@ class RateReference:
 
         hi = min(b[i] + self.mf[i] for i in range(self.n) if mode[i] != 2)
         lo = max(b[i] - self.mf[i] for i in range(self.n) if mode[i] != -2)
-        r = brentq(lambda q: total(q) if lo < q < hi else (math.inf if q >= hi else -math.inf),
-                   lo + 1e-15, hi - 1e-15, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+        # bisection on signs only: a surface carrying the mass at a v ≳ 36 has its root within rounding of
+        # b_i + µ_fast, where the sum is ±inf
+        r = bisect(lambda q: total(q) if lo < q < hi else (math.inf if q >= hi else -math.inf),
+                   lo, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=2000)
         for i in range(self.n):
             f = r - b[i]
             if f > self.ms[i] + 1e-13 and mode[i] != 2:
@@ -227,9 +274,7 @@ class RateReference:
                 mode[i] = 0
 
     def rhs(self, t, y, mode, a0, slope):
-        r = self.force(y[0], y[1:], mode)
-        b = self.bmat @ y[1:]
-        du = [self.speed(i, r - b[i], mode[i]) if mode[i] in (1, -1) else 0.0 for i in range(self.n)]
+        r, du = self.rates(y[0], y[1:], mode)
         return np.concatenate(([-self.g * r - self.c * y[0] - (a0 + slope * t)], du))
 
     def events(self, mode):
@@ -247,17 +292,16 @@ class RateReference:
         for i in range(self.n):
             if mode[i] in (1, -1):
                 s = mode[i]
-                out.append(make("surface", i, lambda t, y, i=i, s=s: s * self.speed(
-                    i, self.force(y[0], y[1:], mode) - self.back(y[1:])[i], s)))
+                out.append(make("surface", i, lambda t, y, i=i, s=s: s * self.rates(y[0], y[1:], mode)[1][i]))
                 if math.isfinite(self.cap[i]):
                     out.append(make("rim", i, lambda t, y, i=i, s=s: self.cap[i] - s * y[1 + i]))
             elif mode[i] == 0:
                 out.append(make("surface", i, lambda t, y, i=i: self.ms[i] - abs(
-                    self.force(y[0], y[1:], mode) - self.back(y[1:])[i])))
+                    self.force(y[0], y[1:], mode)[0] - self.back(y[1:])[i])))
             else:
                 s = 1 if mode[i] > 0 else -1
                 out.append(make("surface", i, lambda t, y, i=i, s=s: s * (
-                    self.force(y[0], y[1:], mode) - self.back(y[1:])[i]) + self.ms[i]))
+                    self.force(y[0], y[1:], mode)[0] - self.back(y[1:])[i]) + self.ms[i]))
         if len(signs) == 1:
             s = signs.pop()
             out.append(make("stop", -1, lambda t, y, s=s: s * y[0]))
@@ -278,14 +322,56 @@ def test_triple_pulse_against_the_reference():
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
 
-@pytest.mark.xfail(strict=True, raises=SolverError, reason="known defect: at the first rim of a µ(v) triple the "
-                   "collocation steps shrink to nothing (the run stops with a SolverError naming the time, never a "
-                   "wrong answer); docs/multisurface.md")
-def test_triple_reaching_a_rim():
-    """A pulse that drives the µ(v) TFP to the rim of surface 1 (0.68 s): the rim is not handled yet."""
+def test_triple_reaching_its_rims_to_the_ultimate():
+    """A 0.7 g pulse drives the µ(v) TFP through regimes I–V to its ultimate displacement (3 rims, 1 impact).
+
+    Before the fix the run stopped at the first rim (0.682 s, SolverError): surface 4 left alone to carry the mass at
+    2.67 m/s has a v = 53, µ_fast − µ(v) = 3e-25 below the rounding of r (5.6e-17), so r − b_4 = −µ_fast exactly and
+    its slide rate φ(r − b_4) was infinite.  The force now comes from a pivot surface's forward law (its rate from
+    the series constraint).  Independent truths: the ultimate is Σ d_i* = 0.9 m exactly, no surface past its rim,
+    the impact's energy ½V² in the balance (measured 1.7e-9 of the input: 9.5e-9 J/kg of 5.51, asserted ≤ 5e-9;
+    the collocation's quadrature through three force jumps).
+    """
     acc, dt = pulse(0.7, period_s=2.0, duration_s=0.8, dt=0.02, cycles=1.0)
     b = rate_bearing("triple", GEOMETRY, MU_SLOW, MU_FAST, 20.0)
-    simulate_bearing_rate(acc, dt, bearing=b)
+    res = simulate_bearing_rate(acc, dt, bearing=b)
+    print("rims: regimes", res.regimes, "peak", res.peak_displacement_m, "balance", res.energy_balance_error_J_per_kg,
+          "of", res.energy_input_J_per_kg, "rim contacts", res.n_rim_contacts)
+    assert list(res.regimes) == ["I", "II", "III", "IV", "V"]
+    assert 0.68 < res.regimes["IV"] < 0.685
+    assert res.ultimate_displacement_reached
+    assert res.peak_displacement_m == pytest.approx(0.9, rel=1e-12)
+    assert np.all(np.asarray(res.surface_peak_displacement_m) <= np.array([0.4, 0.05, 0.05, 0.4]) * (1 + 1e-12))
+    assert abs(res.energy_balance_error_J_per_kg) <= 5e-9 * res.energy_input_J_per_kg
+
+
+def _nwh360_run(records_dir, scale):
+    from isolator.motion import read_ground_motion
+
+    motion = read_ground_motion(records_dir / "at2" / "RSN1044_NORTHR_NWH360.AT2")
+    b = rate_bearing("triple", GEOMETRY, MU_SLOW, MU_FAST, 20.0)
+    return simulate_bearing_rate(motion.acceleration_m_s2 * scale, motion.dt_s, bearing=b)
+
+
+def test_real_record_without_chatter(records_dir):
+    """NWH360 at its own amplitude (regimes I–III, 279 events): main's kernel chattered here (903 020 events, the
+    bearing held by the chatter guard, 2.6e-2 m off): a rounding residue (−1e-17 m/s) of a surface just started, or
+    a stop slot at 0 at a start from rest, was taken for a stop already past.  Balance measured 1.6e-11."""
+    res = _nwh360_run(records_dir, 1.0)
+    print("NWH360 x1:", res.model_reason, "events", res.n_events, "balance", res.energy_balance_error_J_per_kg,
+          "of", res.energy_input_J_per_kg)
+    assert res.status == 0 and res.n_events < 1000
+    assert list(res.regimes) == ["I", "II", "III"]
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
+
+
+@pytest.mark.xfail(strict=True, reason="known defect: two surfaces saturated together (1 and 4 at a v ≈ 30 each in "
+                   "regime III at 3 m/s): the non-pivot surface's φ is barely resolvable; NWH360 x2.5 passes its rims "
+                   "(8 rim contacts, impact energy 3.03 J/kg) with balance 2.3e-5 of the input; docs/multisurface.md")
+def test_real_record_through_its_rims_energy(records_dir):
+    res = _nwh360_run(records_dir, 2.5)
+    assert res.ultimate_displacement_reached
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
 
 def _double_and_single(acc, damping, balance=1e-9):
@@ -297,7 +383,8 @@ def _double_and_single(acc, damping, balance=1e-9):
                              radius_m=2.4, damping_per_mass=damping)
     assert single.model == "2d+mu(v)"
     err = np.max(np.abs(res.displacement_m - single.displacement_m[:, 0]))
-    print("double = single: peak", res.peak_displacement_m, "max |x - x_single|", err)
+    print("double = single: peak", res.peak_displacement_m, "max |x - x_single|", err, "balance",
+          res.energy_balance_error_J_per_kg, "of", res.energy_input_J_per_kg)
     assert res.peak_displacement_m > 0.05
     assert abs(res.energy_balance_error_J_per_kg) <= balance * res.energy_input_J_per_kg
     return err / res.peak_displacement_m
@@ -315,13 +402,13 @@ def test_double_with_equal_surfaces_under_a_two_tone_record():
     Before the fix the double differed from the single pendulum by 3.6e-3 m of 0.62 m: at a stop located a hair
     past the equal second surface's (or the mass's) own stop, that event function was already negative at the
     next step's start, so it was never taken and the sliding branch ran on through its onset against the slide
-    law; the two equal surfaces ended unequal (0.0132 / 0.0140 m).  Measured now: 6.4e-9 m of 0.616 m (1.0e-8 of
-    the peak; tolerance 1e-12 gives 5.9e-9 m, so part of it is the collocation's accumulated step error over 94 000
-    steps and which side the rest is on was not settled); energy balance 7.9e-9 J/kg of 3.14 (2.5e-9 of the input).
+    law; the two equal surfaces ended unequal (0.0132 / 0.0140 m).  After that fix: 6.4e-9 m of 0.616 m, which was
+    the noise of inverting µ(v) (v = φ(r − b)) near saturation, not step error: with the force from a pivot surface's
+    forward law (h54) 6.7e-12 m of 0.616 m (1.1e-11 of the peak, asserted ≤ 1e-10).
     """
     t = np.arange(0.0, 8.0, 0.01)
     acc = 0.35 * G * np.sin(2 * np.pi * t / 1.7) * (t < 3.4) + 0.05 * G * np.sin(2 * np.pi * t / 0.31)
-    assert _double_and_single(acc, 0.2, balance=5e-9) <= 2e-8
+    assert _double_and_single(acc, 0.2) <= 1e-10
 
 
 def test_a_constant_law_is_the_closed_form():
