@@ -431,8 +431,10 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
                 "their rims" + (": the bearing at its ultimate displacement, not resolved there" if on_rims == rb.size
                                 else "") + "); the run stops there")
         if status & _ps.STATUS_UNSOLVED:
-            raise SolverError(f"the 2-D multi-surface implicit steps found no force at t = {fail_t:.6g} s (sliders on "
-                              "their rims pointing different ways: not resolved; the run stops there)")
+            on_rims = int(summary[_ps.S_FAIL_RIMS])
+            raise SolverError(f"the 2-D multi-surface implicit steps found no force at t = {fail_t:.6g} s (Newton did "
+                              f"not converge; {on_rims} of {rb.size} slider groups on their rims: not resolved; the "
+                              "run stops there)")
         if status & _STOPPED:
             raise SolverError(f"the 2-D multi-surface implicit steps could not finish at t = {fail_t:.6g} s "
                               f"(status {status}: more than {_ps.MAX_STEPS_PER_INTERVAL} steps in one sample interval)")

@@ -627,6 +627,7 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                 # ultimate): stop with the time rather than go on from a wrong force
                 status |= STATUS_UNSOLVED
                 fail_t = t[i] + tau
+                summary[S_FAIL_RIMS] = popcount(rim_before)
                 break
             xs = tol * max(peak_x, x_floor)
             vs = tol * max(peak_v, v_floor)
