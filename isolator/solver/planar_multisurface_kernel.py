@@ -869,6 +869,17 @@ def surface_peaks(ub, rb, members, tmat, surf_peak):
 
 
 @njit(cache=True)
+def _groups_moved(my, ub, rb, rim, comp, members, tmat, surf_peak):
+    """Copy the groups' displacements ū from the corner state my into ub and raise the surface peaks [m];
+    True where a group is past its rim."""
+    for k in range(ub.shape[0]):
+        ub[k, 0] = my[M_U + 2 * k]
+        ub[k, 1] = my[M_U + 2 * k + 1]
+    surface_peaks(ub, rb, members, tmat, surf_peak)
+    return _over_rim(ub, rb, rim, comp)
+
+
+@njit(cache=True)
 def element_mask(mask, members):
     """The bit set of series elements of a bit set of groups."""
     out = 0
@@ -1490,11 +1501,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
                 peak_v = max(peak_v, norm(my[M_V], my[M_V + 1]))
                 peak_a = max(peak_a, norm(mf[M_V] + ax[i] + raw[1] * tau, mf[M_V + 1] + ay[i] + raw[3] * tau))
-                for k in range(ng):
-                    ub[k, 0] = my[M_U + 2 * k]
-                    ub[k, 1] = my[M_U + 2 * k + 1]
-                surface_peaks(ub, rb, members, tmat, surf_peak)
-                if _over_rim(ub, rb, rim, comp):
+                if _groups_moved(my, ub, rb, rim, comp, members, tmat, surf_peak):
                     status |= STATUS_RIM
                     fail_t = t[i] + tau
                     failed = True
@@ -1542,11 +1549,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                 multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
                                 peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
                                 peak_v = max(peak_v, norm(my[M_V], my[M_V + 1]))
-                                for k in range(ng):
-                                    ub[k, 0] = my[M_U + 2 * k]
-                                    ub[k, 1] = my[M_U + 2 * k + 1]
-                                surface_peaks(ub, rb, members, tmat, surf_peak)
-                                if _over_rim(ub, rb, rim, comp):
+                                if _groups_moved(my, ub, rb, rim, comp, members, tmat, surf_peak):
                                     status |= STATUS_RIM
                                     fail_t = t[i] + tau
                                     failed = True
