@@ -96,6 +96,8 @@ RADAU_C = np.array([(4.0 - _SQ6) / 10.0, (4.0 + _SQ6) / 10.0, 1.0])
 RADAU_A = np.array([[(88.0 - 7.0 * _SQ6) / 360.0, (296.0 - 169.0 * _SQ6) / 1800.0, (-2.0 + 3.0 * _SQ6) / 225.0],
                     [(296.0 + 169.0 * _SQ6) / 1800.0, (88.0 + 7.0 * _SQ6) / 360.0, (-2.0 - 3.0 * _SQ6) / 225.0],
                     [(16.0 - _SQ6) / 36.0, (16.0 + _SQ6) / 36.0, 1.0 / 9.0]])
+#: A⁻¹: the stage derivatives implied by the stage increments, F_j = Σ_k (A⁻¹)_jk Z_k / h
+RADAU_A_INV = np.linalg.inv(RADAU_A)
 
 
 @njit(cache=True)
@@ -380,19 +382,37 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
         prev = size
     if not converged:
         return False
-    # the stage derivatives at the converged stages (for the quadratures)
+    # the quadratures of the step's energies.  The slide rates in the friction power are the stage derivatives
+    # the collocation itself took, F_j = Σ_k (A⁻¹)_jk Z_k / h (so that Σ_j b_j F_j = Z_3 / h, the step's own
+    # displacement of every surface), not the right-hand side re-evaluated at the stages: with two surfaces
+    # saturated (a·v ≳ 30 on both, regime III of a µ(v) TFP at 3 m/s) the split of the velocity between them is
+    # φ(r − b) at µ_fast − µ(v) ~ 1e-15, so f(Y_j) carries the rounding of r amplified 1e13 times: positions
+    # right to 1e-13, re-evaluated rates off by 1e-3 m/s, and the friction work of one step off by 1.6e-4 J/kg
+    # (NWH360 x2.5 at 4.99 s; measured per step, docs/multisurface.md)
     q_in = 0.0
     q_visc = 0.0
     q_fric = 0.0
+    inv_h = 1.0 / h
     for j in range(3):
         for p in range(m):
             ys[p] = y0[p] + z[j, p]
         ag = a_start + slope * RADAU_C[j] * h
         rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], False, pivot)
+        for p in range(1, m):
+            total = 0.0
+            for k in range(3):
+                total += RADAU_A_INV[j, k] * z[k, p]
+            dy[p] = total * inv_h
+        stage_power = 0.0
+        for i in range(n):
+            ubar_dot = 0.0
+            for q in range(n):
+                ubar_dot += smat[i, q] * dy[1 + q]
+            stage_power += (rs[j] - wb[i]) * ubar_dot
         w = h * RADAU_A[2, j]
         q_in -= w * ag * ys[0]
         q_visc += w * c * ys[0] * ys[0]
-        q_fric += w * power[j]
+        q_fric += w * g * stage_power
     for p in range(m):
         y1[p] = y0[p] + z[2, p]
     quad[0] = q_in
