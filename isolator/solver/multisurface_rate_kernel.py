@@ -18,8 +18,9 @@ friction excess, v_i = φ_i(r − b_i) = ± ln((µ_fast − µ_slow)/(µ_fast �
 Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The force is computed from a *pivot*
 surface k (the one farthest into saturation), whose rate is the rest of the velocity and whose friction comes
 from the forward law µ_k(v_k): at a·v ≳ 36 µ_fast − µ(v) is below the rounding of r and φ is not resolvable
-(the first rim of a µ(v) TFP: one surface left to carry 2.6 m/s, a·v = 53).  Two surfaces saturated together
-are not handled (the non-pivot φ is then barely resolvable; docs/multisurface.md).  The split of
+(the first rim of a µ(v) TFP: one surface left to carry 2.6 m/s, a·v = 53).  With two surfaces saturated together
+the non-pivot φ is barely resolvable: the friction work is then taken from the stage derivatives the collocation
+took (:func:`radau_step`), and NWH360 ×3 still stops at 4.922 s (docs/multisurface.md).  The split of
 the velocity between sliding surfaces relaxes at the rate φ'_i/R_eff,i = e^{a v}/(a (µ_fast −
 µ_slow) R_eff), 10⁵–10⁹ s⁻¹ at real slide speeds: the system is stiff, so it is integrated with the
 L-stable 3-stage Radau IIA collocation (order 5), Newton's method on the stage equations with the
@@ -40,7 +41,8 @@ the mode changes are events located on re-stepped collocation steps (Illinois se
 
 Energies per unit mass: input −∫a_g X' dt, viscous c∫X'², and the bearing's friction g Σ∫(r − b_i)
 dū_i on the series elements ū = T⁻¹u (the accounting of :mod:`isolator.solver.multisurface_kernel`,
-whose stored energy is g Σ ū_i²/(2R̄_i)), all by the collocation's own quadrature (order 5).
+whose stored energy is g Σ ū_i²/(2R̄_i)), all by the collocation's own quadrature (order 5), the slide rates
+in the friction power being the collocation's stage derivatives A⁻¹Z/h.
 """
 
 from __future__ import annotations
