@@ -207,7 +207,8 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
         status=status, message=message, solver_seconds=elapsed, substeps_per_interval=max(1, n_steps // max(1, acc.size - 1)),
         damping_per_mass=c, gravity_m_s2=g, model=MODEL_NAME,
         model_reason=(f"a {bearing.kind} bearing with µ(v) on its surfaces: Radau IIA collocation with events, "
-                      f"step tolerance {tolerance:g} of the peaks ({n_steps} steps)"),
+                      f"step tolerance {tolerance:g} of the peaks ({n_steps} steps, "
+                      f"{int(summary[_mr.S_N_NEWTON])} Newton iterations)"),
     )
 
 

@@ -90,7 +90,8 @@ STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the r
 # isolator.solver.multisurface.response_fields), then this kernel's own
 S_N_STEPS = 16  #: accepted collocation steps (each one step of h and two of h/2)
 S_FAIL_T = 17  #: time [s] where a step failed (-1: none)
-SUMMARY_SIZE = 18
+S_N_NEWTON = 18  #: Newton iterations of every collocation step tried (the work, independent of the machine's load)
+SUMMARY_SIZE = 19
 
 # Radau IIA, 3 stages (Hairer & Wanner, Solving ODEs II, Table IV.5.6)
 _SQ6 = math.sqrt(6.0)
@@ -100,6 +101,20 @@ RADAU_A = np.array([[(88.0 - 7.0 * _SQ6) / 360.0, (296.0 - 169.0 * _SQ6) / 1800.
                     [(16.0 - _SQ6) / 36.0, (16.0 + _SQ6) / 36.0, 1.0 / 9.0]])
 #: A⁻¹: the stage derivatives implied by the stage increments, F_j = Σ_k (A⁻¹)_jk Z_k / h
 RADAU_A_INV = np.linalg.inv(RADAU_A)
+
+
+def _lagrange(tau):
+    """ℓ_k(τ), k = 1..3, of the collocation polynomial on the nodes (0, c_1, c_2, c_3 = 1) [-]."""
+    nodes = np.concatenate(([0.0], RADAU_C))
+    return np.array([np.prod([(tau - nodes[i]) / (nodes[k] - nodes[i]) for i in range(4) if i != k])
+                     for k in range(1, 4)])
+
+
+#: Newton's first guess for the two half steps of :func:`double_step`: the stage increments of the full step's
+#: collocation polynomial at the half steps' stages (Z_half,j = Σ_k GUESS[j, k] Z_full,k; the second half
+#: relative to the polynomial at h/2).  A better start, the same converged stages.
+GUESS_FIRST_HALF = np.array([_lagrange(0.5 * cj) for cj in RADAU_C])
+GUESS_SECOND_HALF = np.array([_lagrange(0.5 + 0.5 * cj) - _lagrange(0.5) for cj in RADAU_C])
 
 
 @njit(cache=True)
@@ -324,14 +339,25 @@ def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_
 
 
 @njit(cache=True)
-def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot):
-    """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ); False if Newton fails.
+def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, z_full,
+               guess):
+    """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ); Newton's iterations, or −1
+    if Newton fails.
 
     ``y1`` is filled with the end state; ``quad`` with the step's (−∫a_g X', c∫X'², friction work) [J/kg].
+    ``guess`` [3 × 3]: Newton starts from the stage increments Σ_k guess[j, k] z_full[k] (a half step of
+    :func:`double_step`), or, when ``guess`` is empty, from 0 and then ``z_full`` receives this step's increments.
     """
     m = y0.shape[0]
     n = m - 1
     z = np.zeros((3, m))
+    if guess.shape[0] == 3:
+        for j in range(3):
+            for p in range(m):
+                total = 0.0
+                for k in range(3):
+                    total += guess[j, k] * z_full[k, p]
+                z[j, p] = total
     fz = np.empty((3, m))
     jac = np.empty((3, m, m))
     big = np.empty((3 * m, 3 * m))
@@ -356,7 +382,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
             if not math.isfinite(rs[j]):
                 ok = False
         if not ok:
-            return False
+            return -1
         for j in range(3):
             for p in range(m):
                 total = z[j, p]
@@ -369,7 +395,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
         for p in range(3 * m):
             for q in range(3 * m):
                 if not math.isfinite(big[p, q]):
-                    return False  # a stage left the slide law's domain: the caller shortens the step
+                    return -1  # a stage left the slide law's domain: the caller shortens the step
         delta = np.linalg.solve(big, res)
         size = 0.0
         for j in range(3):
@@ -377,13 +403,17 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
                 z[j, p] += delta[j * m + p]
                 size = max(size, abs(delta[j * m + p]) / scale[p])
         if not math.isfinite(size):
-            return False
+            return -1
         if size <= 1e-15 or (it >= 2 and size >= 0.5 * prev and size <= 1e-11):
             converged = True
             break
         prev = size
     if not converged:
-        return False
+        return -1
+    if guess.shape[0] != 3:
+        for j in range(3):
+            for p in range(m):
+                z_full[j, p] = z[j, p]
     # the quadratures of the step's energies.  The slide rates in the friction power are the stage derivatives
     # the collocation itself took, F_j = Σ_k (A⁻¹)_jk Z_k / h (so that Σ_j b_j F_j = Z_3 / h, the step's own
     # displacement of every surface), not the right-hand side re-evaluated at the stages: with two surfaces
@@ -420,31 +450,46 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
     quad[0] = q_in
     quad[1] = q_visc
     quad[2] = q_fric
-    return True
+    return it + 1
 
 
 @njit(cache=True)
 def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot):
-    """Two Radau steps of h/2 (kept) and one of h (the estimate); returns the scaled difference (inf: failed)."""
+    """Two Radau steps of h/2 (kept) and one of h (the estimate); returns the scaled difference (inf: failed).
+
+    ``quad`` [4]: the halves' (−∫a_g X', c∫X'², friction work) [J/kg] and the Newton iterations of the three steps.
+    The halves' Newton starts from the full step's collocation polynomial (:data:`GUESS_FIRST_HALF`).
+    """
     m = y0.shape[0]
     y_full = np.empty(m)
     y_mid = np.empty(m)
     q_full = np.empty(3)
     q1 = np.empty(3)
     q2 = np.empty(3)
-    if not radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full, pivot):
+    z_full = np.empty((3, m))
+    no_guess = np.empty((0, 3))
+    quad[3] = 0.0
+    it0 = radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full, pivot,
+                     z_full, no_guess)
+    if it0 < 0:
         return math.inf
+    quad[3] = it0
     half = 0.5 * h
-    if not radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1, pivot):
+    it1 = radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1, pivot,
+                     z_full, GUESS_FIRST_HALF)
+    if it1 < 0:
         return math.inf
-    if not radau_step(y_mid, half, a_start + slope * half, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                      y1, q2, pivot):
+    quad[3] += it1
+    it2 = radau_step(y_mid, half, a_start + slope * half, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
+                     y1, q2, pivot, z_full, GUESS_SECOND_HALF)
+    if it2 < 0:
         return math.inf
     err = 0.0
     for p in range(m):
         err = max(err, abs(y1[p] - y_full[p]) / scale[p])
     for k in range(3):
         quad[k] = q1[k] + q2[k]
+    quad[3] += it2
     return err
 
 
@@ -599,8 +644,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     y_ev = np.empty(m)
     dy = np.empty(m)
     jac = np.empty((m, m))
-    quad = np.empty(3)
-    quad_ev = np.empty(3)
+    quad = np.empty(4)
+    quad_ev = np.empty(4)
     wb = np.empty(ns)
     e0 = np.empty(2 * ns + 1)
     e1 = np.empty(2 * ns + 1)
@@ -628,6 +673,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     max_imp_v = 0.0
     first_ult = -1.0
     n_steps = 0
+    n_newton = 0.0
     fail_t = -1.0
     h = h_first
     pivot = -1
@@ -689,6 +735,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             pivot = pick_pivot(dy, mode, a)
             err = double_step(y, h, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
                               y_try, quad, pivot)
+            n_newton += quad[3]
             if not err <= tol:
                 if h <= 1e-13 * dt_i:
                     status |= STATUS_STEP_FAILED
@@ -737,6 +784,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                                 tm = 0.5 * (ta + tb_)
                             double_step(y, tm, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat,
                                         scale, y_ev, quad_ev, pivot)
+                            n_newton += quad_ev[3]
                             rm, _ = rhs(y_ev, a0 + slope * (tau + tm), g, c, bmat, mode, mu_s, mu_f, a, smat, wb,
                                         dy, jac, False, pivot)
                             event_values(y_ev, rm, dy, mode, mu_s, cap, bmat, wb, e1)
@@ -790,6 +838,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             if first_t > 0.0:
                 double_step(y, first_t, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
                             y_ev, quad_ev, pivot)
+                n_newton += quad_ev[3]
                 for p in range(m):
                     y[p] = y_ev[p]
                 e_in += quad_ev[0]
@@ -946,6 +995,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     summary[S_PEAK_R] = peak_r
     summary[S_N_STEPS] = n_steps
     summary[S_FAIL_T] = fail_t
+    summary[S_N_NEWTON] = n_newton
 
 
 @njit(cache=True)
