@@ -241,6 +241,16 @@ class RateReference:
                         mode[i] = 1 if r - self.back(y[1:])[i] > 0 else -1
                     else:
                         mode[i] = -1 if mode[i] > 0 else 1
+                if not stuck and not any(m in (1, -1) for m in mode):
+                    # the last sliding surface stopped: the mass moves with it (X' = its rate), so the mass stops;
+                    # then it sticks or starts back as at any stop
+                    y[0] = 0.0
+                    lo, hi, _ = self.window(y[1:], mode)
+                    need = -(a0 + slope * t) / self.g
+                    if lo <= need <= hi:
+                        stuck = True
+                    else:
+                        self.start(1 if need > hi else -1, y[1:], mode)
             xs.append(float(np.sum(y[1:])))
         return np.array(xs), impacts
 
