@@ -196,7 +196,7 @@ class RateReference:
                         s = 1 if need0 > hi else -1
                     self.start(s, y[1:], mode)
                     stuck = False
-                events = self.events(mode)
+                events = self.events(mode, t)
                 sol = solve_ivp(self.rhs, (t, dt), y, method="Radau", rtol=1e-12, atol=1e-15,
                                 args=(mode, a0, slope), events=events, first_step=min(self.h, dt - t))
                 self.h = max(float(np.min(np.diff(sol.t))) if sol.t.size > 1 else self.h, 1e-9)
@@ -287,7 +287,13 @@ class RateReference:
         r, du = self.rates(y[0], y[1:], mode)
         return np.concatenate(([-self.g * r - self.c * y[0] - (a0 + slope * t)], du))
 
-    def events(self, mode):
+    def events(self, mode, t_start=None):
+        """solve_ivp's terminal events in ``mode`` for a phase starting at ``t_start``.
+
+        A sliding surface whose rate is 0 to rounding at the phase's start (it has just started: from rest, or two
+        equal surfaces starting together) has its stop event armed positive there, so that only a rate that turns
+        negative inside the phase stops it (a residue of −1e-17 m/s at the start is no stop).
+        """
         out = []
 
         def make(kind, i, fn):
@@ -302,7 +308,10 @@ class RateReference:
         for i in range(self.n):
             if mode[i] in (1, -1):
                 s = mode[i]
-                out.append(make("surface", i, lambda t, y, i=i, s=s: s * self.rates(y[0], y[1:], mode)[1][i]))
+                def stop(t, y, i=i, s=s):
+                    value = s * self.rates(y[0], y[1:], mode)[1][i]
+                    return abs(value) + 1e-300 if t == t_start and abs(value) <= 1e-12 else value
+                out.append(make("surface", i, stop))
                 if math.isfinite(self.cap[i]):
                     out.append(make("rim", i, lambda t, y, i=i, s=s: self.cap[i] - s * y[1 + i]))
             elif mode[i] == 0:
