@@ -26,7 +26,8 @@ support point, in the direction V, of the intersection D of the friction discs. 
 * a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
 * where two sliding normals are within IMPLICIT_ANGLE of each other the split of V between the groups
-  relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``);
+  relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``), a corner of
+  two groups in its reduced state (X, V, the normal's direction θ_a, the opening φ: ``reduce_corner``);
 * a corner of two groups closing to tangency (s falling at a finite rate: tangency in finite time, where C
   is singular) is stepped over at |s| < CROSS_ANGLE (``cross_tangency``: docs/multisurface.md);
 * at a join the sliding set is the rate problem's (``sliding_set``);
@@ -435,6 +436,20 @@ def reduce_corner(y, rb, ka, kb, v):
 
 
 @njit(cache=True)
+def _place_pair(y, rb, ka, kb, s1, s2, n1, n2):
+    """Place the displacements of two groups with ū_a + ū_b = s and centres b_b − b_a = n: b_a = (s − R̄_b n)/(R̄_a
+    + R̄_b), ū_a = R̄_a b_a, ū_b = s − ū_a (the sum exact).  Returns b_a."""
+    rs = rb[ka] + rb[kb]
+    ca1 = (s1 - rb[kb] * n1) / rs
+    ca2 = (s2 - rb[kb] * n2) / rs
+    y[M_U + 2 * ka] = rb[ka] * ca1
+    y[M_U + 2 * ka + 1] = rb[ka] * ca2
+    y[M_U + 2 * kb] = s1 - y[M_U + 2 * ka]
+    y[M_U + 2 * kb + 1] = s2 - y[M_U + 2 * ka + 1]
+    return ca1, ca2
+
+
+@njit(cache=True)
 def expand_corner(v, rb, mu, ka, kb, y):
     """The multi-group state of a reduced corner state (:func:`reduce_corner`).  With e_a, e_b the normals at θ_a
     and θ_a + φ the centres differ by b_b − b_a = µ_a e_a − µ_b e_b (r on both circles), and ū_a + ū_b = X − Σ the
@@ -455,13 +470,7 @@ def expand_corner(v, rb, mu, ka, kb, y):
         if k != ka and k != kb:
             w1 -= v[M_U + 2 * k]
             w2 -= v[M_U + 2 * k + 1]
-    rs = rb[ka] + rb[kb]
-    ba1 = (w1 - rb[kb] * d1) / rs
-    ba2 = (w2 - rb[kb] * d2) / rs
-    y[M_U + 2 * ka] = rb[ka] * ba1
-    y[M_U + 2 * ka + 1] = rb[ka] * ba2
-    y[M_U + 2 * kb] = w1 - y[M_U + 2 * ka]
-    y[M_U + 2 * kb + 1] = w2 - y[M_U + 2 * ka + 1]
+    ba1, ba2 = _place_pair(y, rb, ka, kb, w1, w2, d1, d2)
     y[M_R] = ba1 + mu[ka] * a1
     y[M_R + 1] = ba2 + mu[ka] * a2
 
@@ -827,13 +836,7 @@ def _turned(beta, y, fd, q1, q2, d1, d2, s1, s2, tau, raw, rb, mu, c, ka, kb):
     sn = math.sin(beta)
     n1 = cs * d1 - sn * d2
     n2 = sn * d1 + cs * d2
-    rsum = rb[ka] + rb[kb]
-    ca1 = (s1 - rb[kb] * n1) / rsum
-    ca2 = (s2 - rb[kb] * n2) / rsum
-    y[M_U + 2 * ka] = rb[ka] * ca1
-    y[M_U + 2 * ka + 1] = rb[ka] * ca2
-    y[M_U + 2 * kb] = s1 - y[M_U + 2 * ka]
-    y[M_U + 2 * kb + 1] = s2 - y[M_U + 2 * ka + 1]
+    ca1, ca2 = _place_pair(y, rb, ka, kb, s1, s2, n1, n2)
     y[M_R] = ca1 + cs * q1 - sn * q2
     y[M_R + 1] = ca2 + sn * q1 + cs * q2
     if not multi_rhs(tau, y, raw, rb, mu, (1 << ka) | (1 << kb), c, fd):
