@@ -26,7 +26,8 @@ support point, in the direction V, of the intersection D of the friction discs. 
 * a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
 * where two sliding normals are within IMPLICIT_ANGLE of each other the split of V between the groups
-  relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``);
+  relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``), a corner of
+  two groups in its reduced state (X, V, the normal's direction θ_a, the opening φ: ``reduce_corner``);
 * a corner of two groups closing to tangency (s falling at a finite rate: tangency in finite time, where C
   is singular) is stepped over at |s| < CROSS_ANGLE (``cross_tangency``: docs/multisurface.md);
 * at a join the sliding set is the rate problem's (``sliding_set``);
@@ -298,6 +299,8 @@ _RA = np.array([[(88.0 - 7.0 * _SQ6) / 360.0, (296.0 - 169.0 * _SQ6) / 1800.0, (
 IMPLICIT_ANGLE = 0.05
 #: simplified-Newton iterations of one implicit step before it is refused (the step is then shortened)
 NEWTON_MAX = 12
+#: a simplified-Newton increment this small (in units of the step's local error tolerance) ends the iteration
+NEWTON_FLOOR = 1e-2
 
 
 @njit(cache=True)
@@ -402,20 +405,120 @@ def _radau_matrix(h, jac, na, mat, piv):
 
 
 @njit(cache=True)
-def _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt):
+def _corner_pair(mask, ng):
+    """The two sliding groups (ka, kb) of a corner of exactly two groups; (-1, -1) otherwise."""
+    ka = -1
+    kb = -1
+    for k in range(ng):
+        if mask >> k & 1:
+            if ka < 0:
+                ka = k
+            elif kb < 0:
+                kb = k
+            else:
+                return -1, -1
+    if kb < 0:
+        return -1, -1
+    return ka, kb
+
+
+@njit(cache=True)
+def reduce_corner(y, rb, ka, kb, v):
+    """The reduced state of a corner of two groups: ``y`` with the slots of r holding the direction θ_a of the
+    normal e_a and the signed angle φ from e_a to e_b [rad] (the other slots as in y; the two groups' ū are
+    functions of X, θ_a and φ, :func:`expand_corner`)."""
+    for p in range(y.shape[0]):
+        v[p] = y[p]
+    a1, a2 = _normal(y, rb, ka)
+    b1, b2 = _normal(y, rb, kb)
+    v[M_R] = math.atan2(a2, a1)
+    v[M_R + 1] = math.atan2(a1 * b2 - a2 * b1, a1 * b1 + a2 * b2)
+
+
+@njit(cache=True)
+def _place_pair(y, rb, ka, kb, s1, s2, n1, n2):
+    """Place the displacements of two groups with ū_a + ū_b = s and centres b_b − b_a = n: b_a = (s − R̄_b n)/(R̄_a
+    + R̄_b), ū_a = R̄_a b_a, ū_b = s − ū_a (the sum exact).  Returns b_a."""
+    rs = rb[ka] + rb[kb]
+    ca1 = (s1 - rb[kb] * n1) / rs
+    ca2 = (s2 - rb[kb] * n2) / rs
+    y[M_U + 2 * ka] = rb[ka] * ca1
+    y[M_U + 2 * ka + 1] = rb[ka] * ca2
+    y[M_U + 2 * kb] = s1 - y[M_U + 2 * ka]
+    y[M_U + 2 * kb + 1] = s2 - y[M_U + 2 * ka + 1]
+    return ca1, ca2
+
+
+@njit(cache=True)
+def expand_corner(v, rb, mu, ka, kb, y):
+    """The multi-group state of a reduced corner state (:func:`reduce_corner`).  With e_a, e_b the normals at θ_a
+    and θ_a + φ the centres differ by b_b − b_a = µ_a e_a − µ_b e_b (r on both circles), and ū_a + ū_b = X − Σ the
+    stuck ū, so b_a = (X − Σ stuck ū − R̄_b (µ_a e_a − µ_b e_b))/(R̄_a + R̄_b), r = b_a + µ_a e_a: r is on both
+    circles exactly, and the corner's opening is φ itself (in r and ū it is a difference of nearly equal lengths,
+    |b_a − b_b| − (µ_a − µ_b) ∝ φ², which loses its digits as the corner closes)."""
+    for p in range(v.shape[0]):
+        y[p] = v[p]
+    a1 = math.cos(v[M_R])
+    a2 = math.sin(v[M_R])
+    b1 = math.cos(v[M_R] + v[M_R + 1])
+    b2 = math.sin(v[M_R] + v[M_R + 1])
+    d1 = mu[ka] * a1 - mu[kb] * b1
+    d2 = mu[ka] * a2 - mu[kb] * b2
+    w1 = v[M_X]
+    w2 = v[M_X + 1]
+    for k in range(rb.shape[0]):
+        if k != ka and k != kb:
+            w1 -= v[M_U + 2 * k]
+            w2 -= v[M_U + 2 * k + 1]
+    ba1, ba2 = _place_pair(y, rb, ka, kb, w1, w2, d1, d2)
+    y[M_R] = ba1 + mu[ka] * a1
+    y[M_R + 1] = ba2 + mu[ka] * a2
+
+
+@njit(cache=True)
+def reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d):
+    """Derivative of the reduced corner state: X, V and the energies as in :func:`multi_rhs`, θ̇_k = e_k⊥·ṙ/µ_k
+    (ṙ − ḃ_k ⊥ e_k, ḃ_k = λ_k e_k/R̄_k ∥ e_k), φ̇ = θ̇_b − θ̇_a; the two groups' ū slots are not integrated (0)."""
+    expand_corner(v, rb, mu, ka, kb, yw)
+    if not multi_rhs(tau, yw, raw, rb, mu, mask, c, d):
+        return False
+    a1 = math.cos(v[M_R])
+    a2 = math.sin(v[M_R])
+    b1 = math.cos(v[M_R] + v[M_R + 1])
+    b2 = math.sin(v[M_R] + v[M_R + 1])
+    ta = (a1 * d[M_R + 1] - a2 * d[M_R]) / mu[ka]
+    tb = (b1 * d[M_R + 1] - b2 * d[M_R]) / mu[kb]
+    d[M_R] = ta
+    d[M_R + 1] = tb - ta
+    for k in (ka, kb):
+        d[M_U + 2 * k] = 0.0
+        d[M_U + 2 * k + 1] = 0.0
+    return True
+
+
+@njit(cache=True)
+def _rates(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d):
+    # the rates of the multi-group state (ka < 0) or of the reduced corner state
+    if ka < 0:
+        return multi_rhs(tau, v, raw, rb, mu, mask, c, d)
+    return reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d)
+
+
+@njit(cache=True)
+def _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw):
     # the rates fz[i] at the three stages y + z_i (z over the active components): False where C is singular
     for i in range(3):
         for p in range(y.shape[0]):
             yt[p] = y[p]
         for q in range(na):
             yt[act[q]] += z[i * na + q]
-        if not multi_rhs(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, fz[i]):
+        if not _rates(tau + _RC[i] * h, yt, raw, rb, mu, mask, c, ka, kb, yw, fz[i]):
             return False
     return True
 
 
 @njit(cache=True)
-def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
+def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew, ka, kb, yw):
     """One Radau IIA step of length h from (τ, y) by simplified Newton on the active components (``mat``: the
     factored iteration matrix of :func:`_radau_matrix`), the others by the collocation's quadrature of their rates at
     the converged stages: False if it fails."""
@@ -427,7 +530,7 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
     yt = np.zeros(m)
     last = np.inf
     for it in range(NEWTON_MAX):
-        if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt):
+        if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw):
             return False
         for i in range(3):
             for q in range(na):
@@ -443,14 +546,20 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
                 z[i * na + q] += res[i * na + q]
                 dn += (res[i * na + q] / sc[act[q]]) ** 2
         dn = math.sqrt(dn / n3)
-        if not dn < np.inf or (it >= 2 and dn > last):
+        # the contraction rate of the iteration: its remaining error is ≈ dn θ/(1 − θ) (Hairer & Wanner, §IV.8).
+        # Near a closing corner the rates carry the state's rounding times ∝ 1/s², which puts a floor under dn
+        # (PTS at s = 7e-4: 1.5e-4 with the step's tolerance 1 in these units): an increment at that floor, far below
+        # the tolerance, ends the iteration instead of failing it
+        theta = dn / last if it >= 1 else 1.0
+        floor = it >= 2 and dn <= NEWTON_FLOOR
+        if not dn < np.inf or (it >= 2 and dn > last and not floor):
             return False
         last = dn
         # Newton's remaining error well below the local error allowed (1 in these units)
-        if dn <= 1e-4:
+        if dn <= 1e-4 or floor or (theta < 1.0 and dn * theta / (1.0 - theta) <= NEWTON_FLOOR):
             # the rates at the converged stages: the quadrature of the other components (stiffly accurate: the
             # last stage's row of A is the weights)
-            if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt):
+            if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw):
                 return False
             for p in range(m):
                 ynew[p] = y[p] + h * (_RA[2, 0] * fz[0, p] + _RA[2, 1] * fz[1, p] + _RA[2, 2] * fz[2, p])
@@ -466,47 +575,76 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
     from their difference (order 5: difference / 31); (ok, err) with err raised to the power 8/6 so that the
     order-8 step factor of the explicit steps (err^(−1/8)) gives the order-5 one (err^(−1/6)).  Newton solves for
     the active components only (:func:`_active`), and the two halves share one factored matrix (same h/2, same
-    Jacobian)."""
+    Jacobian).
+
+    A corner of exactly two groups is stepped in its reduced state (:func:`reduce_corner`: X, V, θ_a, φ; r and
+    the two ū are functions of them, on both circles exactly): its opening φ is a state of its own instead of a
+    difference of nearly equal lengths of r and ū, so the steps are set by the motion, not by the rounding of the
+    opening (PTS: 28 705 implicit steps in r and ū, docs/multisurface.md).  The step's error is measured on the
+    reduced state (the angles' tolerance: r's over the larger µ)."""
     m = y.shape[0]
+    ka, kb = _corner_pair(mask, rb.shape[0])
+    yw = np.empty(m)
+    act = np.empty(m, dtype=np.int64)
+    tol = atol.copy()
+    if ka >= 0:
+        v = np.empty(m)
+        reduce_corner(y, rb, ka, kb, v)
+        fv = np.empty(m)
+        if not reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, fv):
+            return False, np.inf
+        tol[M_R] = atol[M_R] / max(mu[ka], mu[kb])
+        tol[M_R + 1] = tol[M_R]
+        for p in range(M_EIN):
+            act[p] = p
+        na = M_EIN
+    else:
+        v = y
+        fv = f0
+        na = _active(mask, m, act)
     sc = np.empty(m)
     for p in range(m):
-        sc[p] = atol[p] + rtol * abs(y[p])
-    act = np.empty(m, dtype=np.int64)
-    na = _active(mask, m, act)
+        sc[p] = tol[p] + rtol * abs(v[p])
     jac = np.empty((na, na))
-    yp = y.copy()
+    yp = v.copy()
     fp = np.empty(m)
     for qa in range(na):
         q = act[qa]
         # a difference step of √ε times the component's own scale (atol/rtol + |y|)
         dq = 1.5e-8 * max(sc[q] / rtol, 1e-12)
-        yp[q] = y[q] + dq
-        if not multi_rhs(tau, yp, raw, rb, mu, mask, c, fp):
+        yp[q] = v[q] + dq
+        if not _rates(tau, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
             dq = -dq
-            yp[q] = y[q] + dq
-            if not multi_rhs(tau, yp, raw, rb, mu, mask, c, fp):
+            yp[q] = v[q] + dq
+            if not _rates(tau, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
                 return False, np.inf
         for pa in range(na):
-            jac[pa, qa] = (fp[act[pa]] - f0[act[pa]]) / dq
-        yp[q] = y[q]
+            jac[pa, qa] = (fp[act[pa]] - fv[act[pa]]) / dq
+        yp[q] = v[q]
     mat = np.empty((3 * na, 3 * na))
     piv = np.zeros(3 * na, dtype=np.int64)
     yfull = np.empty(m)
     if not (_radau_matrix(h, jac, na, mat, piv)
-            and _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, yfull)):
+            and _radau_solve(tau, v, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, yfull, ka, kb, yw)):
         return False, np.inf
     ymid = np.empty(m)
+    vnew = np.empty(m)
     if not (_radau_matrix(0.5 * h, jac, na, mat, piv)
-            and _radau_solve(tau, y, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ymid)):
+            and _radau_solve(tau, v, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ymid, ka, kb, yw)):
         return False, np.inf
-    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew):
+    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, vnew, ka, kb,
+                        yw):
         return False, np.inf
+    if ka >= 0:
+        expand_corner(vnew, rb, mu, ka, kb, ynew)
+    else:
+        ynew[:] = vnew
     if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
         return False, np.inf
     err = 0.0
     for p in range(m):
-        s = atol[p] + rtol * max(abs(y[p]), abs(ynew[p]))
-        err += ((ynew[p] - yfull[p]) / 31.0 / s) ** 2
+        s = tol[p] + rtol * max(abs(v[p]), abs(vnew[p]))
+        err += ((vnew[p] - yfull[p]) / 31.0 / s) ** 2
     err = math.sqrt(err / m)
     if not err < np.inf:
         return False, np.inf
@@ -599,14 +737,16 @@ def corner_sine(y, d, rb, mu, ka, kb):
 
 
 @njit(cache=True)
-def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
+def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb, rate):
     """Carry a corner of two groups through tangency: its signed sine s passes through 0 at the rate ṡ (finite:
     the corner closes as the path turns, docs/multisurface.md), while its stiffness grows as 1/s².  Over the
     short dt = −2 s/ṡ, X, V and ū_a + ū_b (= X − the stuck ū) advance by their Taylor expansion to second
     order, the energies by the trapezoid rule; the pair's relative geometry is the one before, mirrored about the line of centres (the distance of
     the centres is even in time about the tangency, and r goes to the other intersection of the two circles,
     where the sine is −s), then turned rigidly so that V ∥ R̄_a e_a + R̄_b e_b: the rest state of the corner's
-    fast mode (the split of V between the groups, λ_a/R̄_a = λ_b/R̄_b), which relaxes at a rate ∝ 1/s²."""
+    fast mode (the split of V between the groups, λ_a/R̄_a = λ_b/R̄_b), which relaxes at a rate ∝ 1/s².  ``rate``
+    is ṡ before the crossing (the caller's secant over its last step: s is linear in time there, while the
+    instantaneous ṡ carries the fast mode's residue ∝ 1/s² of the last step's error)."""
     axx, ayy, nn = _forcing(tau, raw)
     ca1 = y[M_U + 2 * ka] / rb[ka]
     ca2 = y[M_U + 2 * ka + 1] / rb[ka]
@@ -638,7 +778,6 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb):
     # the rest state of the fast mode to first order in s: the turn β at which the sine goes on at the rate it
     # had (s is linear in time through the tangency; β0, the rest state to zeroth order, leaves ṡ ≈ 0 and the
     # fast mode to relax at ~1/s² from there): an Illinois secant on β in a bracket grown from β0
-    _, rate = corner_sine(y, d, rb, mu, ka, kb)
     fd = np.empty(y.shape[0])
     width = 4.0 * abs(s_of(y, rb, ka, kb)) + 1e-12
     lo = beta0 - width
@@ -697,13 +836,7 @@ def _turned(beta, y, fd, q1, q2, d1, d2, s1, s2, tau, raw, rb, mu, c, ka, kb):
     sn = math.sin(beta)
     n1 = cs * d1 - sn * d2
     n2 = sn * d1 + cs * d2
-    rsum = rb[ka] + rb[kb]
-    ca1 = (s1 - rb[kb] * n1) / rsum
-    ca2 = (s2 - rb[kb] * n2) / rsum
-    y[M_U + 2 * ka] = rb[ka] * ca1
-    y[M_U + 2 * ka + 1] = rb[ka] * ca2
-    y[M_U + 2 * kb] = s1 - y[M_U + 2 * ka]
-    y[M_U + 2 * kb + 1] = s2 - y[M_U + 2 * ka + 1]
+    ca1, ca2 = _place_pair(y, rb, ka, kb, s1, s2, n1, n2)
     y[M_R] = ca1 + cs * q1 - sn * q2
     y[M_R + 1] = ca2 + sn * q1 + cs * q2
     if not multi_rhs(tau, y, raw, rb, mu, (1 << ka) | (1 << kb), c, fd):
@@ -1496,6 +1629,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             peak_v = max(peak_v, best)
                 tau = target if (kind < 0 and h == hmax) else tau + h
                 slip += h
+                pa, pb = _corner_pair(comp, ng)
+                s_prev = s_of(my, rb, pa, pb) if pa >= 0 else 0.0
                 my[:] = mynew
                 mf[:] = mfnew
                 peak_x = max(peak_x, norm(my[M_X], my[M_X + 1]))
@@ -1526,10 +1661,15 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         # a corner of two groups closing to tangency (its sine s falling at a finite rate) is
                         # stepped over: the circles become tangent in finite time, where C is singular
                         sn, snd = corner_sine(my, mf, rb, mu, ka, kb)
+                        if h > 0.0 and 0.0 < abs(s_prev) < IMPLICIT_ANGLE:
+                            # the secant over the step (the implicit steps' end state carries the fast mode's
+                            # residue, which ṡ sees ∝ 1/s²: PTS at 5.6594 s, ṡ −3.26 along the approach, −2.9 to
+                            # +6.6 at its last steps' ends): s is linear in time here
+                            snd = (sn - s_prev) / h
                         if abs(sn) < CROSS_ANGLE and sn * snd < 0.0 and tau - 2.0 * sn / snd < hi:
                             dcr = -2.0 * sn / snd
                             myb[:] = my
-                            if not cross_tangency(tau, dcr, myb, mf, raw, rb, mu, c, ka, kb):
+                            if not cross_tangency(tau, dcr, myb, mf, raw, rb, mu, c, ka, kb, snd):
                                 # the landing turn found no rest state of the fast mode near V
                                 status |= STATUS_SINGULAR
                                 fail_t = t[i] + tau

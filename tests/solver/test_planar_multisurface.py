@@ -535,27 +535,33 @@ def test_events_and_steps_agree_where_the_events_are_exact(b):
 EXAMPLE = Path(__file__).resolve().parents[2] / "isolator" / "data" / "suites" / "example"
 
 
-@pytest.mark.parametrize("folder, x, y, why", [
-    ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2", "stopped at"),
-    ("lomaprieta1989_APEEL2", "np01002p_4225a_a.smc", "np01002p_4225c_a.smc", "stopped at"),
+@pytest.mark.parametrize("folder, x, y, agree_until_s", [
+    ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2", None),
+    ("lomaprieta1989_APEEL2", "np01002p_4225a_a.smc", "np01002p_4225c_a.smc", 26.0),
 ])
-def test_auto_answers_real_pairs_with_the_steps_where_the_events_fail(folder, x, y, why):
-    # Superstition Hills PTS and Loma Prieta APEEL2: under "auto" the event kernel stops after 1000 corner steps in one
-    # sample interval (its Radau steps near a tangency crossing: method="events" finishes both, slowly,
-    # docs/multisurface.md; before, PTS stopped where three circles met at small angles and APEEL2 finished through
-    # reductions exact only for a collinear record, 29 % off the converged steps from 4.5 s on).  "auto" answers with the steps, converged: 1e-7 vs 1e-8 measured 2.2e-7 (PTS)
-    # and 2.3e-7 (APEEL2) of the peak
+def test_auto_answers_real_pairs_with_corners_with_the_event_kernel(folder, x, y, agree_until_s):
+    # Superstition Hills PTS and Loma Prieta APEEL2: corners of two circles closing to tangency.  The event kernel
+    # steps them in the reduced corner state (docs/multisurface.md) and no longer trips "auto"'s stiffness guard
+    # (1000 corner steps in one sample interval, which handed both pairs to the implicit steps before), so "auto"
+    # answers with it.  Truths: its energy balance (measured 5.3e-11 and 9.1e-10 of the input), and the implicit
+    # steps (another method) at step_tol 1e-8 (measured 3.6e-8 of the peak from it on PTS; on APEEL2 2.9e-8 to 26.0 s,
+    # then 1.8e-6 from 26.05 s on: there the two methods part, as on Hector Mine ABY at 33.009 s, the old corner steps
+    # giving the same answer as the reduced ones to 6.1e-11; which is right is not settled, docs/multisurface.md)
     from isolator.motion import read_ground_motion
 
     mx, my = (read_ground_motion(EXAMPLE / folder / name) for name in (x, y))
     n = min(mx.npts, my.npts)
     ax, ay, dt = mx.acceleration_m_s2[:n], my.acceleration_m_s2[:n], mx.dt_s
     auto = simulate_bearing_pair(ax, ay, dt, bearing=TFP)
-    assert "implicit steps" in auto.model_reason and why in auto.model_reason, auto.model_reason
-    assert {"I", "II", "III"} <= set(auto.regimes) or folder.startswith("loma")
+    assert "exact between events" in auto.model_reason, auto.model_reason
+    assert {"I", "II", "III"} <= set(auto.regimes)
+    assert abs(auto.energy_balance_error_J_per_kg) <= 1e-9 * auto.energy_input_J_per_kg
     fine = simulate_bearing_pair(ax, ay, dt, bearing=TFP, method="steps", step_tol=1e-8)
-    assert np.max(np.hypot(*(auto.displacement_m - fine.displacement_m).T)) <= 1e-6 * fine.peak_displacement_m
-    assert abs(auto.energy_balance_error_J_per_kg) <= 1e-5 * auto.energy_input_J_per_kg
+    apart = np.hypot(*(auto.displacement_m - fine.displacement_m).T) / fine.peak_displacement_m
+    n_agree = apart.size if agree_until_s is None else int(round(agree_until_s / dt))
+    print(folder, "auto (events) vs the steps at 1e-8:", apart[:n_agree].max(), "whole record", apart.max())
+    assert apart[:n_agree].max() <= 1e-7
+    assert apart.max() <= 5e-6
 
 
 @pytest.mark.parametrize("folder, name, theta", [
@@ -615,3 +621,45 @@ def test_the_event_kernel_crosses_a_corner_closing_to_tangency_on_a_real_pair():
     print("PTS 0-7 s: steps at 1e-8 and 1e-9 from the events", dist, "balance",
           ev.energy_balance_error_J_per_kg / ev.energy_input_J_per_kg)
     assert dist[1] <= dist[0] / 5 and dist[1] <= 1e-8
+
+
+@pytest.mark.parametrize("phi", [0.3, -2e-3, 1e-5])
+def test_the_reduced_corner_state_is_on_both_circles_and_moves_as_the_full_state(phi):
+    # a corner of two groups stepped in its reduced state (X, V, the direction θ_a of e_a, the opening φ from e_a to
+    # e_b): r and the two ū rebuilt from it lie on both circles to rounding at any opening, their sum is X less the
+    # stuck groups, reducing again gives back θ_a and φ, and the reduced rates are the full model's: θ̇_k = e_k × ė_k
+    # with ė_k = (ṙ − ū̇_k/R̄_k)/µ_k from multi_rhs (the reduced form drops ū̇_k, parallel to e_k)
+    from isolator.solver import planar_multisurface_kernel as pk
+
+    rb, mu = np.array([1.8, 0.6, 1.8]), np.array([0.06, 0.02, 0.10])
+    m = pk.M_U + 2 * rb.size
+    v = np.zeros(m)
+    v[pk.M_X:pk.M_X + 2] = (0.07, -0.03)
+    v[pk.M_V:pk.M_V + 2] = (-0.3, 0.12)
+    v[pk.M_U + 4:pk.M_U + 6] = (0.01, -0.02)  # the stuck group
+    v[pk.M_R:pk.M_R + 2] = (2.7, phi)
+    y = np.zeros(m)
+    pk.expand_corner(v, rb, mu, 0, 1, y)
+    r = y[pk.M_R:pk.M_R + 2]
+    u = y[pk.M_U:].reshape(-1, 2)
+    for k in (0, 1):
+        assert abs(np.hypot(*(r - u[k] / rb[k])) - mu[k]) <= 1e-16
+    np.testing.assert_allclose(u.sum(axis=0), v[pk.M_X:pk.M_X + 2], rtol=0, atol=1e-17)
+    back = np.zeros(m)
+    pk.reduce_corner(y, rb, 0, 1, back)
+    assert abs(back[pk.M_R] - 2.7) <= 1e-15 and abs(back[pk.M_R + 1] - phi) <= 1e-14
+    raw = np.array([0.8, -2.0, -1.1, 3.0, G, 0.0])
+    d = np.zeros(m)
+    assert pk.multi_rhs(0.0, y, raw, rb, mu, 3, 0.2, d)
+    dv = np.zeros(m)
+    assert pk.reduced_rhs(0.0, v, raw, rb, mu, 3, 0.2, 0, 1, np.zeros(m), dv)
+    rates = []
+    for k in (0, 1):
+        e = (r - u[k] / rb[k]) / mu[k]
+        de = (d[pk.M_R:pk.M_R + 2] - d[pk.M_U + 2 * k:pk.M_U + 2 * k + 2] / rb[k]) / mu[k]
+        rates.append(e[0] * de[1] - e[1] * de[0])
+    scale = max(abs(rates[0]), abs(rates[1]))
+    assert abs(dv[pk.M_R] - rates[0]) <= 1e-12 * scale
+    assert abs(dv[pk.M_R + 1] - (rates[1] - rates[0])) <= 1e-12 * scale
+    np.testing.assert_array_equal(dv[pk.M_X:pk.M_R], d[pk.M_X:pk.M_R])
+    np.testing.assert_array_equal(dv[pk.M_EIN:pk.M_U], d[pk.M_EIN:pk.M_U])
