@@ -211,7 +211,7 @@ def test_a_short_slip_along_the_rim_is_the_root_of_its_tangential_balance():
     t_u = np.array([-e_u[1], e_u[0]])
     for excess, push in ((1e-6, 0.5), (1e-3, 0.05), (0.2, 3.0)):
         r = u / rb + (mu + excess) * t_u + push * e_u
-        phi = brentq(lambda p: r @ np.array([-math.sin(th_u + p), math.cos(th_u + p)]) - mu * math.cos(0.5 * p),
+        phi = brentq(lambda p, r=r: r @ np.array([-math.sin(th_u + p), math.cos(th_u + p)]) - mu * math.cos(0.5 * p),
                      0.0, 1.5, xtol=1e-300, rtol=8.9e-16, maxiter=500)
         slip_ref = 2.0 * rim * math.sin(0.5 * phi) * np.array([-math.sin(th_u + 0.5 * phi), math.cos(th_u + 0.5 * phi)])
         w1, w2, kappa, held = rim_return(r[0], r[1], u[0], u[1], rb, mu, rim)
