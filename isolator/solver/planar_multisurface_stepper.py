@@ -92,6 +92,10 @@ MAX_FORCE_EVALS_PER_INTERVAL = 1_000_000
 #: the relative rounding of a position returned onto a rim (a few units in the last place of c̄): α times it is the
 #: floor of Ψ's gradient where groups are at their rims (step_force)
 RIM_ROUNDING = 8e-16
+#: the relative rounding of a sliding group's slip (a few units in the last place of |r − b|): α R̄ (|b| + µ) times it
+#: is the floor of Ψ's gradient from the sliding groups near their circles (step_force; a term in |r| made the floor
+#: ~1e2 at an impact, r ~ 1e5 W, and Newton stopped on a wrong force: balances open by 5.8e-2 and 4.5)
+SLIP_ROUNDING = 4e-16
 #: a group is on its rim when |ū| ≥ c̄ (1 − RIM_ON) (the rim's return puts it on the circle to the last bits)
 RIM_ON = 1e-12
 #: every group on its rim is the ultimate displacement (a rigid stop) when each ū_k/c̄_k lies within this angle
@@ -401,7 +405,15 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
     for k in range(ng):
         if math.isfinite(rim[k]) and y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 >= 0.25 * rim[k] * rim[k]:
             on_rims += rim[k]
-    f_floor = 1e-15 * (abs(px) + abs(py) + g) + RIM_ROUNDING * alpha * on_rims
+    f_floor0 = 1e-15 * (abs(px) + abs(py) + g) + RIM_ROUNDING * alpha * on_rims
+    # and of α Σ δ_k off the rims: a sliding group's slip R̄ (|r − b| − µ) near its circle rounds to ~R̄ ε (|b| + µ)
+    # (the difference |r − b| − µ), times α (Superstition Hills PTS ×2.5 on the TFP, 2.9 s: two groups sliding at a closing corner, ∇Ψ's
+    # rounding 1e-9 against the old floor 2e-12 and only g along the corner's soft direction, so Newton ran its 60
+    # iterations on rounding in ordinary steps, ~3400 gradients per solve: the run hit the work bound at 12.76 s)
+    slip_round = 0.0
+    for k in range(ng):
+        slip_round += rb[k] * (math.sqrt(y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2) / rb[k] + mu[k])
+    f_floor = f_floor0 + SLIP_ROUNDING * alpha * slip_round
     r_scale = 0.0
     for k in range(ng):
         r_scale = max(r_scale, mu[k])
