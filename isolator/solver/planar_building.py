@@ -53,6 +53,9 @@ MODEL_REASON = ("a superstructure above the isolation plane under two horizontal
 DIRECTIONS = ("x", "y")
 #: status bit: the state became non-finite (never seen; guarded so that it can never read as "ok")
 STATUS_NON_FINITE = 8
+#: Taylor orders of the series pieces the tests cover (12, 18, 30 give one answer to 1e-10;
+#: tests/solver/test_planar_building_stops.py): the kernel's N_ORDER must lie here.
+ORDER_RANGE = (8, 40)
 
 
 @dataclass
@@ -623,6 +626,8 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         if not (math.isfinite(dt) and dt > 0.0):
             raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
         relative, t0 = None, 0.0
+    if not ORDER_RANGE[0] <= _pk.N_ORDER <= ORDER_RANGE[1]:
+        raise ValueError(f"planar_building_kernel.N_ORDER = {_pk.N_ORDER} is outside {ORDER_RANGE} (tested range)")
     rate = system.fastest_rate_per_s
     h_max = _pk.THETA / rate if rate > 0 else math.inf
     n = system.n_floors
@@ -679,7 +684,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         ev_kind = np.empty(capacity, dtype=np.int8)
         ev_x = np.empty((capacity, 2))
         start = time.perf_counter()
-        _pk.building2d_kernel(ax, ay, az, law, dt, kernel_times, h_max, system.a_mat, system.g_vec, system.p_vec, system.l_d,
+        _pk.building2d_kernel(ax, ay, az, law, dt, kernel_times, h_max, _pk.N_ORDER, system.a_mat, system.g_vec, system.p_vec, system.l_d,
                               weights, system.slab_mass_kg, system.total_mass_kg, system.masses_kg,
                               system.isolator_damping_Ns_per_m, c_floor, system.mu_static * weight,
                               mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, *tables,

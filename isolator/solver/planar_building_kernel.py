@@ -34,9 +34,9 @@ import numpy as np
 
 from isolator.solver.jit import njit
 
-#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.
+#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.  The kernel takes
+#: it as an argument (``n_order``; its series arrays hold N + 3 coefficients), the driver passes this value.
 N_ORDER = 18
-N_SERIES = N_ORDER + 3
 #: Longest piece, as ρ(A) h [-] (the angle the fastest mode turns).
 THETA = 0.75
 #: truncation tolerance of a piece, relative to the state's size
@@ -109,8 +109,13 @@ FAST_CHECK = 1e-12
 
 @njit(cache=True)
 def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs, ws, ss, rs, es, vz, mus,
-            exs):
-    """Normalised Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force.
+            exs, h_scale):
+    """Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force in the scaled time x = τ/H.
+
+    H = ``h_scale`` [s] (stored in zs[0, −1, 0], read by :func:`_eval`, :func:`_piece_limit`, :func:`_energies`):
+    the coefficients are Z_k H^k.  Near a stop V/|V| has its radius of convergence at the stop, u ahead, and its
+    coefficients in τ grow as u^{−k}: at |V| ~ 1e-11 m/s (u ~ 1e-10 s) order 30 overflowed (1e308) and the state
+    became NaN; with H of the order of the piece they stay of the state's size, whatever the order.
 
     ws, ss, rs, es: scratch series of the direction's vector w (V or D), s = w·w, r = sqrt(s), e = w / r.
     vz: the vertical and µ(v) (``V_*``; mu_k_n is then µ_fast W).  With them the friction is µ(|V|) N(τ) V/|V|,
@@ -121,11 +126,14 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
     """
     varying = vz[V_VARYING] != 0.0
     nu0 = vz[V_NU0]
-    nu1 = vz[V_NU1]
+    nu1 = vz[V_NU1] * h_scale  # d/dx = H d/dτ
     k_v = vz[V_K_VERT]
     mu_0_n = mu_k_n - vz[V_DMU_N]
     m = z.shape[1]
-    ns = zs.shape[1]
+    ns = zs.shape[1] - 1
+    zs[0, ns, 0] = h_scale
+    b_x = h_scale * b[0]
+    b_y = h_scale * b[1]
     mat = 0 if mode == STUCK else 1
     for d in range(2):
         for i in range(m):
@@ -146,7 +154,7 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                 if mode == SLIDE:
                     ws[d, k] = zs[d, k, 1]
                 else:
-                    acc = -slab_mass * (a0[d] if k == 0 else (b[d] if k == 1 else 0.0))
+                    acc = -slab_mass * (a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0))
                     for i in range(m):
                         acc += l_d[d, i] * zs[d, k, i]
                     if varying:
@@ -190,8 +198,8 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                     fs[d, k] = acc
         nf = (m - 2) // 2
         for d in range(2):
-            ak = a0[d] if k == 0 else (b[d] if k == 1 else 0.0)
-            inv = 1.0 / (k + 1)
+            ak = a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0)
+            inv = h_scale / (k + 1)
             # displacement rows: x_b' = v_b (sliding; 0 stuck), u' = u̇ (the matrices' structure, checked in Python)
             zs[d, k + 1, 0] = zs[d, k, 1] * inv if mat == 1 else 0.0
             for i in range(2, 2 + nf):
@@ -215,8 +223,9 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
 
 @njit(cache=True)
 def _piece_limit(zs, weights, floor_scale):
-    """Longest τ for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
-    n_last = N_ORDER
+    """Longest τ [s] for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
+    n_last = zs.shape[1] - 4
+    h_scale = zs[0, n_last + 3, 0]
     size = floor_scale
     top1 = 0.0
     top2 = 0.0
@@ -230,32 +239,39 @@ def _piece_limit(zs, weights, floor_scale):
         limit = min(limit, (TRUNC_EPS * size / top1) ** (1.0 / n_last))
     if top2 > 0.0:
         limit = min(limit, (TRUNC_EPS * size / top2) ** (1.0 / (n_last - 1)))
-    return limit
+    if not limit >= 0.0:
+        return 0.0  # coefficients not finite (H far beyond the radius): the caller rescales
+    return limit * h_scale if limit < 1e300 else 1e300
 
 
 @njit(cache=True)
 def _eval(zs, tau, z, zd, zdd):
-    """z(τ), ż(τ), z̈(τ) of both directions from the series (Horner)."""
+    """z(τ), ż(τ), z̈(τ) of both directions from the series in x = τ/H (Horner; :func:`_series`)."""
     m = zs.shape[2]
+    n_ord = zs.shape[1] - 4
+    h_scale = zs[0, n_ord + 3, 0]
+    inv_h = 1.0 / h_scale
+    inv_h2 = inv_h * inv_h
     if tau == 0.0:
         for d in range(2):
             for i in range(m):
                 z[d, i] = zs[d, 0, i]
-                zd[d, i] = zs[d, 1, i]
-                zdd[d, i] = 2.0 * zs[d, 2, i]
+                zd[d, i] = zs[d, 1, i] * inv_h
+                zdd[d, i] = 2.0 * zs[d, 2, i] * inv_h2
         return
+    tau = tau * inv_h
     for d in range(2):
         for i in range(m):
-            acc = zs[d, N_ORDER, i]
-            accd = (N_ORDER + 1) * zs[d, N_ORDER + 1, i]
-            accdd = (N_ORDER + 1) * (N_ORDER + 2) * zs[d, N_ORDER + 2, i]
-            for k in range(N_ORDER - 1, -1, -1):
+            acc = zs[d, n_ord, i]
+            accd = (n_ord + 1) * zs[d, n_ord + 1, i]
+            accdd = (n_ord + 1) * (n_ord + 2) * zs[d, n_ord + 2, i]
+            for k in range(n_ord - 1, -1, -1):
                 acc = zs[d, k, i] + acc * tau
                 accd = (k + 1) * zs[d, k + 1, i] + accd * tau
                 accdd = (k + 1) * (k + 2) * zs[d, k + 2, i] + accdd * tau
             z[d, i] = acc
-            zd[d, i] = accd
-            zdd[d, i] = accdd
+            zd[d, i] = accd * inv_h
+            zdd[d, i] = accdd * inv_h2
 
 
 @njit(cache=True)
@@ -503,7 +519,11 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
     With a vertical the input holds the vertical's work ½ k_v ν1 ∫|X|² dτ (d/dt of ½ k_v ν X² less k_v ν X·V,
     as the 2-D rigid block counts it), so that input = kinetic + ½ k_v ν X² + strain + friction + viscous.
     """
-    nt = N_ORDER + 1
+    nt = zs.shape[1] - 3
+    h_scale = zs[0, nt + 2, 0]
+    # in x = τ/H: the ground's slope is b H, and ∫₀^τ dτ = H ∫₀^{τ/H} dx
+    b_x = b[0] * h_scale
+    b_y = b[1] * h_scale
     pin[:] = 0.0
     pfr[:] = 0.0
     pvis[:] = 0.0
@@ -522,7 +542,7 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
             for i in range(nf):
                 mom += masses[i] * zs[d, k, 2 + nf + i]
             pin[k] -= a0[d] * mom
-            pin[k + 1] -= b[d] * mom
+            pin[k + 1] -= (b_x if d == 0 else b_y) * mom
         # viscous: c V² + u̇ᵀ C u̇
         for k in range(nt):
             for i in range(nf):
@@ -543,7 +563,8 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
                 for j in range(ell + 1):
                     acc += fs[d, j] * zs[d, ell - j, 1]
                 pfr[ell] += acc
-    # Horner on Σ c_k τ^{k+1}/(k+1)
+    # Horner on Σ c_k x^{k+1}/(k+1), x = τ/H, times H
+    tau = tau / h_scale
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
@@ -553,9 +574,9 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
     for k in range(nt - 1, -1, -1):
         e_f = e_f * tau + pfr[k] / (k + 1)
         e_v = e_v * tau + pvis[k] / (k + 1)
-    out[0] = e_in
-    out[1] = e_f * tau
-    out[2] = e_v * tau
+    out[0] = e_in * h_scale
+    out[1] = e_f * tau * h_scale
+    out[2] = e_v * tau * h_scale
 
 
 @njit(cache=True)
@@ -876,7 +897,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
 
 
 @njit(cache=True)
-def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
+def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
                       c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpin,
                       fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
@@ -898,6 +919,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
         Sample times from the first [s] for a non-uniform record.
     h_max : float
         Longest piece [s].
+    n_order : int
+        Taylor order N of a series piece (:data:`N_ORDER`).
     a_mat : float64[2, 2, m, m]
         A of the stuck (0) and sliding (1) phases, per direction.
     g_vec : float64[2, 2, m]
@@ -956,8 +979,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     m = a_mat.shape[2]
     nk = m1.shape[0]
     nj = sig1.shape[0]
-    zs = np.zeros((2, N_SERIES, m))
-    fs = np.zeros((2, N_SERIES))
+    n_series = n_order + 3
+    zs = np.zeros((2, n_series + 1, m))  # the last row holds the time scale H of the coefficients (_series)
+    fs = np.zeros((2, n_series))
     w = np.zeros((2, m))
     z = np.zeros((2, m))
     zd = np.zeros((2, m))
@@ -980,14 +1004,14 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     zh = np.zeros((2, m))
     zdh = np.zeros((2, m))
     zddh = np.zeros((2, m))
-    ws = np.zeros((2, N_SERIES))
-    ss = np.zeros(N_SERIES)
-    rs = np.zeros(N_SERIES)
-    es = np.zeros((2, N_SERIES))
-    pin = np.zeros(N_ORDER + 2)
-    pfr = np.zeros(N_ORDER + 1)
-    pvis = np.zeros(N_ORDER + 1)
-    ysc = np.zeros((N_ORDER + 1, masses.shape[0]))
+    ws = np.zeros((2, n_series))
+    ss = np.zeros(n_series)
+    rs = np.zeros(n_series)
+    es = np.zeros((2, n_series))
+    pin = np.zeros(n_order + 2)
+    pfr = np.zeros(n_order + 1)
+    pvis = np.zeros(n_order + 1)
+    ysc = np.zeros((n_order + 1, masses.shape[0]))
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
@@ -1011,8 +1035,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     vz[V_K_VERT] = law[2]
     vz[V_DMU_N] = law[3]
     vz[V_RATE] = law[4]
-    mus = np.zeros(N_SERIES)
-    exs = np.zeros(N_SERIES)
+    mus = np.zeros(n_series)
+    exs = np.zeros(n_series)
     bz = 0.0
     a0 = np.zeros(3)  # a_g along x, y and the vertical a_z (the watched bearing loads' share)
     b = np.zeros(3)
@@ -1038,7 +1062,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     a0[2] = az[0]
     if varying:
         vz[V_NU0] = 1.0 + az[0] / gravity
-    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
+    # the series' time scale H: about the last piece's length (the next one's radius is near), at most h_max
+    h_last = min(h_max, dt if uniform else times[1] - times[0]) if n > 1 else 1.0
+    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs,
+            h_last)
     _eval(zs, 0.0, z, zd, zdd)
     _monitors(z, zd, zdd, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     for k in range(nk):
@@ -1159,10 +1186,24 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                     rem = slow_end - tau
                     if varying:
                         vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
-                    _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
+                    h_scale = min(h_max, 2.0 * h_last)
+                    limit = 0.0
+                    for _rescale in range(8):
+                        _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es,
+                                vz, mus, exs, h_scale)
+                        limit = _piece_limit(zs, weights, floor_scale)
+                        if limit < 1e-3 * h_scale:
+                            # H far beyond the radius (coefficients growing as (H/radius)^k, or overflowing)
+                            h_scale = max(limit, 1e-6 * h_scale)
+                        elif limit > 1e6 * h_scale and h_scale < min(rem, h_max):
+                            # H far below it (the last coefficients could underflow): the piece's own length
+                            h_scale = min(rem, h_max, limit)
+                        else:
+                            break
+                    h_last = min(limit, h_max, dt_i)
                     n_pieces += 1
                     pieces_by_mode[mode] += 1
-                    length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
+                    length = min(rem, h_max, limit)
                     _eval(zs, 0.0, zl, zdl, zddl)
                     if mode == FINISH:
                         # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
@@ -1288,7 +1329,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                                 if varying:
                                     vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
                                 _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws,
-                                        ss, rs, es, vz, mus, exs)
+                                        ss, rs, es, vz, mus, exs, h_last)
                                 _eval(zs, 0.0, z, zd, zdd)
                                 if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
                                     mode = FINISH
@@ -1359,7 +1400,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
             a1[2] = az[i + 1]
             if varying:
                 vz[V_NU0] = 1.0 + az[i + 1] / gravity
-            _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
+            _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs,
+                    h_last)
             _eval(zs, 0.0, z, zd, zdd)
             _monitors(z, zd, zdd, a1[0], a1[1], a1[2], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
         for d in range(2):
