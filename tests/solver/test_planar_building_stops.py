@@ -112,3 +112,21 @@ def test_an_order_outside_the_tested_range_is_refused(bench_pair, monkeypatch):
     monkeypatch.setattr(planar_building_kernel, "N_ORDER", 2)
     with pytest.raises(ValueError, match="N_ORDER"):
         _run_bench_pair(bench_pair)
+
+
+def test_the_approach_in_ln_s_gives_the_time_series_answer(bench_pair, monkeypatch):
+    """The APPROACH phase (series in ln s, off by default: not faster yet) against the series in time."""
+    from isolator.solver import planar_building
+
+    base = _run_bench_pair(bench_pair)
+    monkeypatch.setattr(planar_building, "STOP_APPROACH", True)
+    other = _run_bench_pair(bench_pair)
+    assert other.message == "ok" and other.n_pieces_by_phase[4] > 0 and base.n_pieces_by_phase[4] == 0
+    assert other.event_names == base.event_names
+    assert np.max(np.abs(other.event_time_s - base.event_time_s)) <= 1e-10
+    for a, b in ((other.displacement_m, base.displacement_m), (other.velocity_m_s, base.velocity_m_s),
+                 (other.floor_displacement_m, base.floor_displacement_m)):
+        assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(b))
+    assert other.story_drift_m == pytest.approx(base.story_drift_m, rel=1e-10)
+    assert other.energy_friction_J_per_kg == pytest.approx(base.energy_friction_J_per_kg, rel=1e-10)
+    assert abs(other.energy_balance_error_J_per_kg) <= 1e-10 * other.energy_input_J_per_kg
