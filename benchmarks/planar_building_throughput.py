@@ -93,11 +93,14 @@ def profile(records: Path, runs: int) -> None:
     t_case, r = _kernel_runs(case, case.mu, runs)
     t_stuck, r_stuck = _kernel_runs(case, 0.95, runs)
     per_stuck = t_stuck / max(r_stuck.n_fast_steps, 1)
-    stuck, start, slide, finish = r.n_pieces_by_phase
+    stuck, start, slide, finish, approach = r.n_pieces_by_phase
+    stops = int(np.count_nonzero(r.event_kind == 1)) + int(np.count_nonzero(r.event_kind == 2))
     print(f"{case.name}: {case.acceleration_m_s2.size} samples, µ = {case.mu}, {r.n_events} events, "
           f"peak {r.peak_displacement_m:.6f} m")
     print(f"kernel {1e3 * t_case:.1f} ms (median of {runs}); {r.n_fast_steps} fast sub-steps, {r.n_pieces} series "
-          f"pieces (stuck {stuck}, leaving rest {start}, sliding {slide}, finishing a stop {finish}); fast "
+          f"pieces (stuck {stuck}, leaving rest {start}, sliding {slide}, finishing a stop {finish}, "
+          f"in ln s {approach}; "
+          f"{(slide + finish + approach) / max(stops, 1):.1f} sliding pieces per stop over {stops} stops); fast "
           f"sub-steps refused {r.n_fast_refused} (series not at rounding, end check, event, V = 0); extrema "
           f"located {r.n_extrema_located}")
     print(f"never sliding (µ = 0.95): kernel {1e3 * t_stuck:.1f} ms for {r_stuck.n_fast_steps} stuck sub-steps = "

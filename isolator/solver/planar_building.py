@@ -53,6 +53,13 @@ MODEL_REASON = ("a superstructure above the isolation plane under two horizontal
 DIRECTIONS = ("x", "y")
 #: status bit: the state became non-finite (never seen; guarded so that it can never read as "ok")
 STATUS_NON_FINITE = 8
+#: Taylor orders of the series pieces the tests cover (12, 18, 30 give one answer to 1e-10;
+#: tests/solver/test_planar_building_stops.py): the kernel's N_ORDER must lie here.
+ORDER_RANGE = (8, 40)
+#: The approach to a stop (and the departure from rest) by series in ln s (s the slab's speed; the kernel's APPROACH
+#: phase, docs/building.md). Exact (the bench case agrees with the series in time to 3e-15) but not faster yet
+#: (85.0 against 86.5 ms, 1 540 approach + 3 518 slide pieces against 4 962), so off by default.
+STOP_APPROACH = False
 
 
 @dataclass
@@ -328,7 +335,7 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     #: fast sub-steps refused (run as series pieces): the friction's series not at rounding, its end check, an
     #: event possible, V = 0
     n_fast_refused: tuple = ()
-    #: series pieces by phase: stuck, start (leaving rest), slide, finish (the last of a stop)
+    #: series pieces by phase: stuck, start (leaving rest), slide, finish (the last of a stop), approach (in ln s)
     n_pieces_by_phase: tuple = ()
     n_extrema_located: int = 0
     bearing_layout: object = None
@@ -623,6 +630,8 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         if not (math.isfinite(dt) and dt > 0.0):
             raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
         relative, t0 = None, 0.0
+    if not ORDER_RANGE[0] <= _pk.N_ORDER <= ORDER_RANGE[1]:
+        raise ValueError(f"planar_building_kernel.N_ORDER = {_pk.N_ORDER} is outside {ORDER_RANGE} (tested range)")
     rate = system.fastest_rate_per_s
     h_max = _pk.THETA / rate if rate > 0 else math.inf
     n = system.n_floors
@@ -654,8 +663,9 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(5)
+    law = np.zeros(6)
     law[1] = g
+    law[5] = 1.0 if STOP_APPROACH else 0.0
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert
@@ -679,7 +689,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         ev_kind = np.empty(capacity, dtype=np.int8)
         ev_x = np.empty((capacity, 2))
         start = time.perf_counter()
-        _pk.building2d_kernel(ax, ay, az, law, dt, kernel_times, h_max, system.a_mat, system.g_vec, system.p_vec, system.l_d,
+        _pk.building2d_kernel(ax, ay, az, law, dt, kernel_times, h_max, _pk.N_ORDER, system.a_mat, system.g_vec, system.p_vec, system.l_d,
                               weights, system.slab_mass_kg, system.total_mass_kg, system.masses_kg,
                               system.isolator_damping_Ns_per_m, c_floor, system.mu_static * weight,
                               mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, *tables,
@@ -762,7 +772,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         n_pieces=int(summary[_pk.S_N_PIECES]),
         n_fast_steps=int(summary[_pk.S_N_FAST]),
         n_fast_refused=tuple(int(v) for v in summary[_pk.S_N_REFUSED:_pk.S_N_REFUSED + 4]),
-        n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + 4]),
+        n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + 5]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
         vertical_acceleration_m_s2=normal.az,

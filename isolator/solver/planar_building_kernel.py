@@ -34,9 +34,9 @@ import numpy as np
 
 from isolator.solver.jit import njit
 
-#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.
+#: Taylor order of a piece (z uses Z_0..Z_N; ż and z̈ use Z up to N + 2); THETA^N / N! = 3e-19.  The kernel takes
+#: it as an argument (``n_order``; its series arrays hold N + 3 coefficients), the driver passes this value.
 N_ORDER = 18
-N_SERIES = N_ORDER + 3
 #: Longest piece, as ρ(A) h [-] (the angle the fastest mode turns).
 THETA = 0.75
 #: truncation tolerance of a piece, relative to the state's size
@@ -59,6 +59,15 @@ STUCK = 0
 START = 1
 SLIDE = 2
 FINISH = 3
+#: a slide slowing to a stop, by series in λ = ln(s0/s) (:func:`_series_log`), down to the finish's speed
+APPROACH = 4
+#: the approach is entered in SLIDE below this speed, as a fraction of v_ref, when slowing and when a piece in time
+#: is shorter than APPROACH_ENTRY × the time to the stop s/|ṡ| (the stop's singularity limits it); after an
+#: approach that found the slab not stopping, only below half the speed it left at
+APPROACH_SPEED = 1e-2
+APPROACH_ENTRY = 1.0
+#: an approach piece shorter than this in λ: ṡ is near zero, the slab is not stopping: back to SLIDE
+APPROACH_MIN = 0.02
 
 BREAKAWAY = 0
 STICK = 1
@@ -89,7 +98,7 @@ S_N_FAST = 8
 S_N_REFUSED = 9
 #: series pieces by phase: stuck, start, slide, finish (where the time goes: docs/building.md, Speed)
 S_N_PIECES_BY_MODE = 13
-SUMMARY_SIZE = 17
+SUMMARY_SIZE = 18
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
@@ -109,8 +118,13 @@ FAST_CHECK = 1e-12
 
 @njit(cache=True)
 def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs, ws, ss, rs, es, vz, mus,
-            exs):
-    """Normalised Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force.
+            exs, h_scale):
+    """Taylor coefficients zs[d, k, :] of the state and fs[d, k] of the friction force in the scaled time x = τ/H.
+
+    H = ``h_scale`` [s] (stored in zs[0, −1, 0], read by :func:`_eval`, :func:`_piece_limit`, :func:`_energies`):
+    the coefficients are Z_k H^k.  Near a stop V/|V| has its radius of convergence at the stop, u ahead, and its
+    coefficients in τ grow as u^{−k}: at |V| ~ 1e-11 m/s (u ~ 1e-10 s) order 30 overflowed (1e308) and the state
+    became NaN; with H of the order of the piece they stay of the state's size, whatever the order.
 
     ws, ss, rs, es: scratch series of the direction's vector w (V or D), s = w·w, r = sqrt(s), e = w / r.
     vz: the vertical and µ(v) (``V_*``; mu_k_n is then µ_fast W).  With them the friction is µ(|V|) N(τ) V/|V|,
@@ -121,11 +135,14 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
     """
     varying = vz[V_VARYING] != 0.0
     nu0 = vz[V_NU0]
-    nu1 = vz[V_NU1]
+    nu1 = vz[V_NU1] * h_scale  # d/dx = H d/dτ
     k_v = vz[V_K_VERT]
     mu_0_n = mu_k_n - vz[V_DMU_N]
     m = z.shape[1]
-    ns = zs.shape[1]
+    ns = zs.shape[1] - 1
+    zs[0, ns, 0] = h_scale
+    b_x = h_scale * b[0]
+    b_y = h_scale * b[1]
     mat = 0 if mode == STUCK else 1
     for d in range(2):
         for i in range(m):
@@ -146,7 +163,7 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                 if mode == SLIDE:
                     ws[d, k] = zs[d, k, 1]
                 else:
-                    acc = -slab_mass * (a0[d] if k == 0 else (b[d] if k == 1 else 0.0))
+                    acc = -slab_mass * (a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0))
                     for i in range(m):
                         acc += l_d[d, i] * zs[d, k, i]
                     if varying:
@@ -190,8 +207,8 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                     fs[d, k] = acc
         nf = (m - 2) // 2
         for d in range(2):
-            ak = a0[d] if k == 0 else (b[d] if k == 1 else 0.0)
-            inv = 1.0 / (k + 1)
+            ak = a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0)
+            inv = h_scale / (k + 1)
             # displacement rows: x_b' = v_b (sliding; 0 stuck), u' = u̇ (the matrices' structure, checked in Python)
             zs[d, k + 1, 0] = zs[d, k, 1] * inv if mat == 1 else 0.0
             for i in range(2, 2 + nf):
@@ -215,8 +232,9 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
 
 @njit(cache=True)
 def _piece_limit(zs, weights, floor_scale):
-    """Longest τ for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
-    n_last = N_ORDER
+    """Longest τ [s] for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
+    n_last = zs.shape[1] - 4
+    h_scale = zs[0, n_last + 3, 0]
     size = floor_scale
     top1 = 0.0
     top2 = 0.0
@@ -230,32 +248,39 @@ def _piece_limit(zs, weights, floor_scale):
         limit = min(limit, (TRUNC_EPS * size / top1) ** (1.0 / n_last))
     if top2 > 0.0:
         limit = min(limit, (TRUNC_EPS * size / top2) ** (1.0 / (n_last - 1)))
-    return limit
+    if not limit >= 0.0:
+        return 0.0  # coefficients not finite (H far beyond the radius): the caller rescales
+    return limit * h_scale if limit < 1e300 else 1e300
 
 
 @njit(cache=True)
 def _eval(zs, tau, z, zd, zdd):
-    """z(τ), ż(τ), z̈(τ) of both directions from the series (Horner)."""
+    """z(τ), ż(τ), z̈(τ) of both directions from the series in x = τ/H (Horner; :func:`_series`)."""
     m = zs.shape[2]
+    n_ord = zs.shape[1] - 4
+    h_scale = zs[0, n_ord + 3, 0]
+    inv_h = 1.0 / h_scale
+    inv_h2 = inv_h * inv_h
     if tau == 0.0:
         for d in range(2):
             for i in range(m):
                 z[d, i] = zs[d, 0, i]
-                zd[d, i] = zs[d, 1, i]
-                zdd[d, i] = 2.0 * zs[d, 2, i]
+                zd[d, i] = zs[d, 1, i] * inv_h
+                zdd[d, i] = 2.0 * zs[d, 2, i] * inv_h2
         return
+    tau = tau * inv_h
     for d in range(2):
         for i in range(m):
-            acc = zs[d, N_ORDER, i]
-            accd = (N_ORDER + 1) * zs[d, N_ORDER + 1, i]
-            accdd = (N_ORDER + 1) * (N_ORDER + 2) * zs[d, N_ORDER + 2, i]
-            for k in range(N_ORDER - 1, -1, -1):
+            acc = zs[d, n_ord, i]
+            accd = (n_ord + 1) * zs[d, n_ord + 1, i]
+            accdd = (n_ord + 1) * (n_ord + 2) * zs[d, n_ord + 2, i]
+            for k in range(n_ord - 1, -1, -1):
                 acc = zs[d, k, i] + acc * tau
                 accd = (k + 1) * zs[d, k + 1, i] + accd * tau
                 accdd = (k + 1) * (k + 2) * zs[d, k + 2, i] + accdd * tau
             z[d, i] = acc
-            zd[d, i] = accd
-            zdd[d, i] = accdd
+            zd[d, i] = accd * inv_h
+            zdd[d, i] = accdd * inv_h2
 
 
 @njit(cache=True)
@@ -462,9 +487,16 @@ def _monitors(z, zd, zdd, ax_now, ay_now, az_now, b, m1, m2, m3, sig1, sig2, sig
 
 
 @njit(cache=True)
-def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope):
-    """Slope of one watched quantity at τ: kind 0 the resultant's ½|P|², 1 a signed value, −1 its negative."""
-    _eval(zs, tau, z, zd, zdd)
+def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope,
+                      lz, lzd, lt, on_log):
+    """Slope of one watched quantity at τ: kind 0 the resultant's ½|P|², 1 a signed value, −1 its negative.
+
+    ``on_log``: τ is λ of an approach piece (lz, lzd, lt; :func:`_series_log`), whose time t(λ) increases: the time
+    slope returned has the sign of the slope in λ."""
+    if on_log:
+        tau = _eval_log(lz, lzd, lt, tau, z, zd, zdd)
+    else:
+        _eval(zs, tau, z, zd, zdd)
     _monitors(z, zd, zdd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, a0[2] + b[2] * tau, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval,
               sslope)
     if kind == 0:
@@ -473,14 +505,16 @@ def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, 
 
 
 @njit(cache=True)
-def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope):
-    """The interior maximum of a watched quantity in [0, length] (its slope from + to −), by Illinois."""
+def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope, lz, lzd,
+                lt, on_log):
+    """The interior maximum of a watched quantity in [0, length] (its slope from + to −), by Illinois (``on_log``:
+    length is in λ of an approach piece)."""
     a = 0.0
     c = length
     fa, _ = _monitor_slope_at(zs, a, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval,
-                              sslope)
+                              sslope, lz, lzd, lt, on_log)
     fc, _ = _monitor_slope_at(zs, c, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval,
-                              sslope)
+                              sslope, lz, lzd, lt, on_log)
     best = -1e300
     side = 0
     for _ in range(200):
@@ -488,7 +522,7 @@ def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd,
             break
         t = _illinois_point(a, c, fa, fc)
         f, v = _monitor_slope_at(zs, t, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope,
-                                 sval, sslope)
+                                 sval, sslope, lz, lzd, lt, on_log)
         best = max(best, v)
         if f == 0.0:
             break
@@ -503,7 +537,11 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
     With a vertical the input holds the vertical's work ½ k_v ν1 ∫|X|² dτ (d/dt of ½ k_v ν X² less k_v ν X·V,
     as the 2-D rigid block counts it), so that input = kinetic + ½ k_v ν X² + strain + friction + viscous.
     """
-    nt = N_ORDER + 1
+    nt = zs.shape[1] - 3
+    h_scale = zs[0, nt + 2, 0]
+    # in x = τ/H: the ground's slope is b H, and ∫₀^τ dτ = H ∫₀^{τ/H} dx
+    b_x = b[0] * h_scale
+    b_y = b[1] * h_scale
     pin[:] = 0.0
     pfr[:] = 0.0
     pvis[:] = 0.0
@@ -522,7 +560,7 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
             for i in range(nf):
                 mom += masses[i] * zs[d, k, 2 + nf + i]
             pin[k] -= a0[d] * mom
-            pin[k + 1] -= b[d] * mom
+            pin[k + 1] -= (b_x if d == 0 else b_y) * mom
         # viscous: c V² + u̇ᵀ C u̇
         for k in range(nt):
             for i in range(nf):
@@ -543,7 +581,8 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
                 for j in range(ell + 1):
                     acc += fs[d, j] * zs[d, ell - j, 1]
                 pfr[ell] += acc
-    # Horner on Σ c_k τ^{k+1}/(k+1)
+    # Horner on Σ c_k x^{k+1}/(k+1), x = τ/H, times H
+    tau = tau / h_scale
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
@@ -553,9 +592,210 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
     for k in range(nt - 1, -1, -1):
         e_f = e_f * tau + pfr[k] / (k + 1)
         e_v = e_v * tau + pvis[k] / (k + 1)
-    out[0] = e_in
-    out[1] = e_f * tau
-    out[2] = e_v * tau
+    out[0] = e_in * h_scale
+    out[1] = e_f * tau * h_scale
+    out[2] = e_v * tau * h_scale
+
+
+@njit(cache=True)
+def _series_log(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, grow, lz, lzd, lt, le, lq, lrate, ltp, lex, la):
+    """Taylor coefficients in λ = g ln(s/s0) of a slide slowing to a stop (g = ``grow`` = −1) or speeding up after
+    a start from rest (g = +1) (``APPROACH``; s = |V| the slab's speed).
+
+    Near a stop (and just after a start) V/|V| turns as a power of s and the series in time has its radius at the
+    stop (docs/building.md, Speed); with the speed's logarithm as the independent variable the equations are
+    regular: with V = s e, ṡ = e·V̇ and σ = ln s, de/dσ = V̇/ṡ − e, dt/dσ = s/ṡ, dz/dσ = ż dt/dσ, s = s0 e^{gλ}.
+    lz[d, k, :] the state (V_k = (s e)_k), lzd[d, k, :] its time rates ż (the sliding rows: the same equations as
+    :func:`_series`), lt the time from the piece's start [s], le the direction e, lex s, la the ground's a_d(t(λ)),
+    lrate ṡ, ltp dt/dλ, lq V̇/ṡ.  Returns ṡ at the start [m/s²]; the series is only valid when g ṡ > 0.
+    """
+    m = w.shape[1]
+    nf = (m - 2) // 2
+    nl = lt.shape[0] - 1
+    s0 = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+    coef = s0
+    for k in range(nl + 1):
+        lex[k] = coef  # s0 g^k / k!
+        coef = grow * coef / (k + 1)
+    for d in range(2):
+        for i in range(m):
+            lz[d, 0, i] = w[d, i]
+        le[d, 0] = w[d, 1] / s0
+    lt[0] = 0.0
+    for k in range(nl + 1):
+        for d in range(2):
+            acc = 0.0
+            for j in range(k + 1):
+                acc += lex[j] * le[d, k - j]
+            lz[d, k, 1] = acc
+            la[d, k] = a0[d] if k == 0 else b[d] * lt[k]
+        for d in range(2):
+            lzd[d, k, 0] = lz[d, k, 1]
+            for i in range(2, 2 + nf):
+                lzd[d, k, i] = lz[d, k, i + nf]
+            for i in range(m):
+                if i == 0 or 2 <= i < 2 + nf:
+                    continue
+                acc = g_vec[1, d, i] * la[d, k] + p_vec[d, i] * mu_k_n * le[d, k]
+                for c in range(m):
+                    acc += a_mat[1, d, i, c] * lz[d, k, c]
+                lzd[d, k, i] = acc
+        if k == nl:
+            break
+        acc = 0.0
+        for j in range(k + 1):
+            acc += le[0, j] * lzd[0, k - j, 1] + le[1, j] * lzd[1, k - j, 1]
+        lrate[k] = acc
+        if not grow * lrate[0] > 0.0:
+            return lrate[0]
+        acc = grow * lex[k]
+        for j in range(k):
+            acc -= ltp[j] * lrate[k - j]
+        ltp[k] = acc / lrate[0]
+        lt[k + 1] = ltp[k] / (k + 1)
+        for d in range(2):
+            acc = lzd[d, k, 1]
+            for j in range(k):
+                acc -= lq[d, j] * lrate[k - j]
+            lq[d, k] = acc / lrate[0]
+            le[d, k + 1] = grow * (lq[d, k] - le[d, k]) / (k + 1)
+            for i in range(m):
+                if i == 1:
+                    continue
+                acc = 0.0
+                for j in range(k + 1):
+                    acc += lzd[d, j, i] * ltp[k - j]
+                lz[d, k + 1, i] = acc / (k + 1)
+    return lrate[0]
+
+
+@njit(cache=True)
+def _jz(size, top, order):
+    """The Jorba–Zou length at which a term top·h^order is TRUNC_EPS of size (1e300 when top is 0)."""
+    if top > 0.0:
+        return (TRUNC_EPS * size / top) ** (1.0 / order)
+    return 1e300
+
+
+@njit(cache=True)
+def _log_limit(lz, lt, le, weights, floor_scale):
+    """Longest λ for which the approach's series (state, direction, time) have their last two terms at rounding."""
+    nl = lt.shape[0] - 1
+    size = floor_scale
+    top1 = 0.0
+    top2 = 0.0
+    for d in range(2):
+        for i in range(lz.shape[2]):
+            size = max(size, abs(lz[d, 0, i]) * weights[i])
+            top1 = max(top1, abs(lz[d, nl, i]) * weights[i])
+            top2 = max(top2, abs(lz[d, nl - 1, i]) * weights[i])
+    limit = min(_jz(size, top1, nl), _jz(size, top2, nl - 1))
+    limit = min(limit, _jz(1.0, max(abs(le[0, nl]), abs(le[1, nl])), nl),
+                _jz(1.0, max(abs(le[0, nl - 1]), abs(le[1, nl - 1])), nl - 1))
+    # the time relative to what one unit of λ takes
+    return min(limit, _jz(abs(lt[1]), abs(lt[nl]), nl), _jz(abs(lt[1]), abs(lt[nl - 1]), nl - 1))
+
+
+@njit(cache=True)
+def _eval_log(lz, lzd, lt, lam, z, zd, zdd):
+    """z, ż and z̈ at λ of an approach piece (:func:`_series_log`; z̈ = (dż/dλ)/(dt/dλ)); returns t(λ) [s]."""
+    nl = lt.shape[0] - 1
+    t = 0.0
+    tp = 0.0
+    for k in range(nl, -1, -1):
+        tp = tp * lam + t
+        t = t * lam + lt[k]
+    for d in range(2):
+        for i in range(lz.shape[2]):
+            v = 0.0
+            r = 0.0
+            dr = 0.0
+            for k in range(nl, -1, -1):
+                v = v * lam + lz[d, k, i]
+                dr = dr * lam + r
+                r = r * lam + lzd[d, k, i]
+            z[d, i] = v
+            zd[d, i] = r
+            zdd[d, i] = dr / tp
+    return t
+
+
+@njit(cache=True)
+def _log_time_root(lt, target, hi):
+    """λ in [0, hi] where the approach's time t(λ) (increasing) reaches ``target`` [s]: safeguarded Newton."""
+    nl = lt.shape[0] - 1
+    a = 0.0
+    c = hi
+    x = hi * 0.5
+    for _ in range(200):
+        t = 0.0
+        tp = 0.0
+        for k in range(nl, -1, -1):
+            tp = tp * x + t
+            t = t * x + lt[k]
+        f = t - target
+        if f == 0.0:
+            return x
+        if f < 0.0:
+            a = x
+        else:
+            c = x
+        if c - a <= 4e-16 * c:
+            return a
+        x_new = x - f / tp if tp > 0.0 else 0.5 * (a + c)
+        if not (a < x_new < c):
+            x_new = 0.5 * (a + c)
+        x = x_new
+    return a
+
+
+@njit(cache=True)
+def _energies_log(lz, la, ltp, lex, lam, total_mass, masses, c_iso, c_floor, mu_k_n, out, pin, pvis, lmom, y):
+    """Exact integrals over [0, λ] of an approach piece of the input, friction and viscous powers (the powers'
+    series in λ times dt/dλ, as :func:`_energies` does in time); the friction's power is µk N s."""
+    nl = ltp.shape[0] - 1  # ltp holds orders 0 … nl − 1
+    nf = masses.shape[0]
+    for ell in range(nl):
+        pin[ell] = 0.0
+        pvis[ell] = 0.0
+    for d in range(2):
+        for k in range(nl):
+            acc = total_mass * lz[d, k, 1]
+            for i in range(nf):
+                acc += masses[i] * lz[d, k, 2 + nf + i]
+            lmom[k] = acc
+            for i in range(nf):
+                acc = 0.0
+                for j in range(nf):
+                    acc += c_floor[d, i, j] * lz[d, k, 2 + nf + j]
+                y[k, i] = acc
+        for ell in range(nl):
+            acc_i = 0.0
+            acc_v = 0.0
+            for j in range(ell + 1):
+                acc_i -= la[d, j] * lmom[ell - j]
+                acc_v += c_iso * lz[d, j, 1] * lz[d, ell - j, 1]
+                for i in range(nf):
+                    acc_v += lz[d, j, 2 + nf + i] * y[ell - j, i]
+            pin[ell] += acc_i
+            pvis[ell] += acc_v
+    e_in = 0.0
+    e_f = 0.0
+    e_v = 0.0
+    for ell in range(nl - 1, -1, -1):
+        c_i = 0.0
+        c_f = 0.0
+        c_v = 0.0
+        for j in range(ell + 1):
+            c_i += pin[j] * ltp[ell - j]
+            c_f += lex[j] * ltp[ell - j]
+            c_v += pvis[j] * ltp[ell - j]
+        e_in = e_in * lam + c_i / (ell + 1)
+        e_f = e_f * lam + c_f / (ell + 1)
+        e_v = e_v * lam + c_v / (ell + 1)
+    out[0] = e_in * lam
+    out[1] = mu_k_n * e_f * lam
+    out[2] = e_v * lam
 
 
 @njit(cache=True)
@@ -876,7 +1116,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
 
 
 @njit(cache=True)
-def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
+def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
                       c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpin,
                       fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
@@ -888,9 +1128,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
         Ground acceleration [m/s²], linear between samples.
     az : float64[n]
         Vertical ground acceleration [m/s²], up positive, linear between samples (read when law[0] ≠ 0).
-    law : float64[5]
+    law : float64[6]
         [1 with a vertical or µ(v) else 0, g [m/s²], k_v: the stiffness that follows the normal force
-        N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m]];
+        N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m],
+        1 to take the approach to a stop in ln s (``APPROACH``; constant µ and N only) else 0];
         mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are then taken stuck only (sliding: series pieces).
     dt : float
         Sample interval [s] of a uniform record (``times`` empty).
@@ -898,6 +1139,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
         Sample times from the first [s] for a non-uniform record.
     h_max : float
         Longest piece [s].
+    n_order : int
+        Taylor order N of a series piece (:data:`N_ORDER`).
     a_mat : float64[2, 2, m, m]
         A of the stuck (0) and sliding (1) phases, per direction.
     g_vec : float64[2, 2, m]
@@ -956,8 +1199,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     m = a_mat.shape[2]
     nk = m1.shape[0]
     nj = sig1.shape[0]
-    zs = np.zeros((2, N_SERIES, m))
-    fs = np.zeros((2, N_SERIES))
+    n_series = n_order + 3
+    zs = np.zeros((2, n_series + 1, m))  # the last row holds the time scale H of the coefficients (_series)
+    fs = np.zeros((2, n_series))
     w = np.zeros((2, m))
     z = np.zeros((2, m))
     zd = np.zeros((2, m))
@@ -980,14 +1224,14 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     zh = np.zeros((2, m))
     zdh = np.zeros((2, m))
     zddh = np.zeros((2, m))
-    ws = np.zeros((2, N_SERIES))
-    ss = np.zeros(N_SERIES)
-    rs = np.zeros(N_SERIES)
-    es = np.zeros((2, N_SERIES))
-    pin = np.zeros(N_ORDER + 2)
-    pfr = np.zeros(N_ORDER + 1)
-    pvis = np.zeros(N_ORDER + 1)
-    ysc = np.zeros((N_ORDER + 1, masses.shape[0]))
+    ws = np.zeros((2, n_series))
+    ss = np.zeros(n_series)
+    rs = np.zeros(n_series)
+    es = np.zeros((2, n_series))
+    pin = np.zeros(n_order + 2)
+    pfr = np.zeros(n_order + 1)
+    pvis = np.zeros(n_order + 1)
+    ysc = np.zeros((n_order + 1, masses.shape[0]))
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
@@ -1011,8 +1255,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     vz[V_K_VERT] = law[2]
     vz[V_DMU_N] = law[3]
     vz[V_RATE] = law[4]
-    mus = np.zeros(N_SERIES)
-    exs = np.zeros(N_SERIES)
+    mus = np.zeros(n_series)
+    exs = np.zeros(n_series)
     bz = 0.0
     a0 = np.zeros(3)  # a_g along x, y and the vertical a_z (the watched bearing loads' share)
     b = np.zeros(3)
@@ -1020,6 +1264,25 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     floor_scale = 1e-6 * v_ref
     r_switch = 1e-5 * v_ref
     r_finish = 1e-10 * v_ref
+    use_approach = law[5] != 0.0 and not varying
+    r_approach = APPROACH_SPEED * v_ref
+    nl1 = n_order + 1
+    lz = np.zeros((2, nl1, m))
+    lzd = np.zeros((2, nl1, m))
+    lt = np.zeros(nl1)
+    le = np.zeros((2, nl1))
+    lq = np.zeros((2, nl1))
+    lrate = np.zeros(nl1)
+    ltp = np.zeros(nl1)
+    lex = np.zeros(nl1)
+    la = np.zeros((2, nl1))
+    lmom = np.zeros(nl1)
+    lam_piece = 0.0
+    approach_done = False
+    approach_below = r_approach
+    approach_above = 0.0
+    grow = -1.0
+    limit = 0.0
     mode = STUCK
     x_stuck = np.zeros(2)
     from_rest = False
@@ -1027,7 +1290,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     n_ev = 0
     status = 0
     n_pieces = 0
-    pieces_by_mode = np.zeros(4, dtype=np.int64)
+    pieces_by_mode = np.zeros(5, dtype=np.int64)
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
@@ -1038,7 +1301,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     a0[2] = az[0]
     if varying:
         vz[V_NU0] = 1.0 + az[0] / gravity
-    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
+    # the series' time scale H: about the last piece's length (the next one's radius is near), at most h_max
+    h_last = min(h_max, dt if uniform else times[1] - times[0]) if n > 1 else 1.0
+    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs,
+            h_last)
     _eval(zs, 0.0, z, zd, zdd)
     _monitors(z, zd, zdd, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     for k in range(nk):
@@ -1146,7 +1412,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         from_rest = False
                         tau = tau_end if tau_end - (tau + h_lev) <= 1e-12 * h_fast else tau + h_lev
                         continue
-                if n_fast > 0 and uniform and not (varying and mode == SLIDE):
+                if n_fast > 0 and uniform and not (varying and mode == SLIDE) and mode != APPROACH:
                     # back to the ladder after the shortest rung (sliding with N(t) or µ(v), which the
                     # propagators do not take, runs on to the sub-step's end)
                     slow_end = min(tau_end, tau + h_fast / (1 << (n_levels - 1)))
@@ -1159,51 +1425,106 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                     rem = slow_end - tau
                     if varying:
                         vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
-                    _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
-                    n_pieces += 1
-                    pieces_by_mode[mode] += 1
-                    length = min(rem, h_max, _piece_limit(zs, weights, floor_scale))
-                    _eval(zs, 0.0, zl, zdl, zddl)
-                    if mode == FINISH:
-                        # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
-                        rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
-                        r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
-                        if rdot > 0.0:
-                            length = min(length, 4.0 * r_now / rdot)
-                    if length < rem and length < 1e-15 * dt_i:
-                        length = min(rem, 1e-15 * dt_i)
-                    _eval(zs, length, zh, zdh, zddh)
-                    # ---- event in this piece? ----
-                    t_event = -1.0
-                    kind_phi = -1
-                    if events_here > MAX_EVENTS_PER_INTERVAL:
-                        pass
-                    elif mode == STUCK:
-                        t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, vz, False, z, zd,
-                                                  zdd, out2, counter, zl, zdl, zh, zdh)
-                        kind_phi = PHI_BREAK
-                    elif mode == START:
-                        t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, from_rest, z,
-                                                  zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                        kind_phi = PHI_STOP_START
-                        if t_event >= 0.0:
-                            _eval(zs, t_event, zh, zdh, zddh)
-                        t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
-                                               slab_mass, r_switch, e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                        if t_sw > 0.0:
-                            t_event = t_sw
-                            kind_phi = PHI_SWITCH
-                    elif mode == SLIDE:
-                        t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
-                                                  zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                        kind_phi = PHI_HALF
+                    on_log = mode == APPROACH
+                    if on_log:
+                        rate0 = _series_log(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, grow, lz, lzd, lt, le, lq, lrate,
+                                            ltp, lex, la)
+                        lam_limit = _log_limit(lz, lt, le, weights, floor_scale) if grow * rate0 > 0.0 else 0.0
+                        if grow < 0.0:
+                            lam_end = math.log(lex[0] / r_finish) if lex[0] > r_finish else 0.0
+                        else:
+                            lam_end = math.log(r_approach / lex[0]) if lex[0] < r_approach else 0.0
+                        if not lam_limit >= APPROACH_MIN or lam_end <= 0.0:
+                            # ṡ near zero (the slab neither stopping nor speeding away) or the approach's end
+                            # reached: slide on in time, or finish the stop
+                            r = lex[0]
+                            mode = FINISH if (lam_end <= 0.0 and grow < 0.0) else SLIDE
+                            if not lam_limit >= APPROACH_MIN:
+                                # not again before the speed has halved (slowing) or doubled (speeding up)
+                                if grow < 0.0:
+                                    approach_below = 0.5 * r
+                                else:
+                                    approach_above = 2.0 * r
+                            e0[0] = w[0, 1] / r
+                            e0[1] = w[1, 1] / r
+                            half_target = 0.5 * r
+                            start_valid = False
+                            continue
+                        lam_piece = min(lam_limit, lam_end)
+                        approach_done = lam_piece == lam_end
+                        piece = _eval_log(lz, lzd, lt, lam_piece, zh, zdh, zddh)
+                        length = piece
+                        if piece >= rem:
+                            lam_piece = _log_time_root(lt, rem, lam_piece)
+                            approach_done = False
+                            _eval_log(lz, lzd, lt, lam_piece, zh, zdh, zddh)
+                            piece = rem
+                            length = rem
+                        _eval_log(lz, lzd, lt, 0.0, zl, zdl, zddl)
+                        n_pieces += 1
+                        pieces_by_mode[APPROACH] += 1
+                        t_event = -1.0
+                        kind_phi = -1
                     else:
-                        t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
-                                                  zd, zdd, out2, counter, zl, zdl, zh, zdh)
-                        kind_phi = PHI_STOP_FINISH
-                    piece = length if t_event < 0.0 else t_event
-                    if t_event >= 0.0:
-                        _eval(zs, piece, zh, zdh, zddh)
+                        h_scale = min(h_max, 2.0 * h_last)
+                        limit = 0.0
+                        for _rescale in range(8):
+                            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es,
+                                    vz, mus, exs, h_scale)
+                            limit = _piece_limit(zs, weights, floor_scale)
+                            if limit < 1e-3 * h_scale:
+                                # H far beyond the radius (coefficients growing as (H/radius)^k, or overflowing)
+                                h_scale = max(limit, 1e-6 * h_scale)
+                            elif limit > 1e6 * h_scale and h_scale < min(rem, h_max):
+                                # H far below it (the last coefficients could underflow): the piece's own length
+                                h_scale = min(rem, h_max, limit)
+                            else:
+                                break
+                        h_last = min(limit, h_max, dt_i)
+                        n_pieces += 1
+                        pieces_by_mode[mode] += 1
+                        length = min(rem, h_max, limit)
+                        _eval(zs, 0.0, zl, zdl, zddl)
+                        if mode == FINISH:
+                            # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
+                            rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
+                            r_now = e0[0] * zl[0, 1] + e0[1] * zl[1, 1]
+                            if rdot > 0.0:
+                                length = min(length, 4.0 * r_now / rdot)
+                        if length < rem and length < 1e-15 * dt_i:
+                            length = min(rem, 1e-15 * dt_i)
+                        _eval(zs, length, zh, zdh, zddh)
+                        # ---- event in this piece? ----
+                        t_event = -1.0
+                        kind_phi = -1
+                        if events_here > MAX_EVENTS_PER_INTERVAL:
+                            pass
+                        elif mode == STUCK:
+                            t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, vz, False, z, zd,
+                                                      zdd, out2, counter, zl, zdl, zh, zdh)
+                            kind_phi = PHI_BREAK
+                        elif mode == START:
+                            t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, from_rest, z,
+                                                      zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                            kind_phi = PHI_STOP_START
+                            if t_event >= 0.0:
+                                _eval(zs, t_event, zh, zdh, zddh)
+                            t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                                                   slab_mass, r_switch, e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                            if t_sw > 0.0:
+                                t_event = t_sw
+                                kind_phi = PHI_SWITCH
+                        elif mode == SLIDE:
+                            t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
+                                                      zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                            kind_phi = PHI_HALF
+                        else:
+                            t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
+                                                      zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                            kind_phi = PHI_STOP_FINISH
+                        piece = length if t_event < 0.0 else t_event
+                        if t_event >= 0.0:
+                            _eval(zs, piece, zh, zdh, zddh)
                     # ---- values at both ends, energies, peaks ----
                     if start_valid:
                         for k in range(nk):
@@ -1220,8 +1541,12 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                     a1[2] = a0[2] + b[2] * piece
                     _monitors(zh, zdh, zddh, a1[0], a1[1], a1[2], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
                     if piece > 0.0:
-                        _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0], energy,
-                                  pin, pfr, pvis, ysc, vz)
+                        if on_log:
+                            _energies_log(lz, la, ltp, lex, lam_piece, total_mass, masses, c_iso, c_floor, mu_k_n,
+                                          energy, pin, pvis, lmom, ysc)
+                        else:
+                            _energies(mode, zs, fs, piece, a0, b, total_mass, masses, c_iso, c_floor, masses.shape[0],
+                                      energy, pin, pfr, pvis, ysc, vz)
                         e_in += energy[0]
                         e_f += energy[1]
                         e_v += energy[2]
@@ -1236,8 +1561,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         reach = 4.0 * piece * max(abs(s0), abs(s1))
                         if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
                             counter[0] += 1
-                            best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0, z, zd, zdd, val2,
-                                               slope2, sval2, sslope2)
+                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0,
+                                               z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
                             peak_sq[k] = max(peak_sq[k], best)
                     for j in range(nj):
                         sig_max[j] = max(sig_max[j], sval[j], sval1[j])
@@ -1246,14 +1571,14 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
                                 sig_max[j]:
                             counter[0] += 1
-                            best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1, z, zd, zdd, val2,
-                                               slope2, sval2, sslope2)
+                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1,
+                                               z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
                             sig_max[j] = max(sig_max[j], best)
                         if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
                                 sig_min[j]:
                             counter[0] += 1
-                            best = _locate_max(zs, piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1, z, zd, zdd, val2,
-                                               slope2, sval2, sslope2)
+                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1,
+                                               z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
                             sig_min[j] = min(sig_min[j], -best)
                     # the state at the piece's end
                     for d in range(2):
@@ -1288,11 +1613,32 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                                 if varying:
                                     vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
                                 _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws,
-                                        ss, rs, es, vz, mus, exs)
+                                        ss, rs, es, vz, mus, exs, h_last)
                                 _eval(zs, 0.0, z, zd, zdd)
                                 if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:
                                     mode = FINISH
                                     start_valid = False
+                            elif use_approach and r < r_approach:
+                                # slowing, with pieces cut short by the stop's singularity ~ s/|ṡ| ahead: the rest
+                                # of the approach in ln s (the watched values at this end stand: the same equations)
+                                s_rate = (w[0, 1] * zdh[0, 1] + w[1, 1] * zdh[1, 1]) / r
+                                if (r < approach_below if s_rate < 0.0 else r > approach_above) and s_rate != 0.0 and \
+                                        limit < APPROACH_ENTRY * r / abs(s_rate):
+                                    mode = APPROACH
+                                    grow = 1.0 if s_rate > 0.0 else -1.0
+                        elif mode == APPROACH:
+                            if approach_done:
+                                # slowing, at the finish's speed: the last of the stop with the direction frozen,
+                                # as in SLIDE; speeding up, at r_approach: slide on in time (the same equations)
+                                r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                                e0[0] = w[0, 1] / r
+                                e0[1] = w[1, 1] / r
+                                half_target = 0.5 * r
+                                if grow < 0.0:
+                                    mode = FINISH
+                                    start_valid = False
+                                else:
+                                    mode = SLIDE
                         elif mode == FINISH:
                             r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                             start_valid = False
@@ -1304,7 +1650,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         continue
                     # ---- the event ----
                     if kind_phi == PHI_SWITCH:
-                        mode = SLIDE
+                        # leaving rest, at 1e-5 v_ref: speeding up in ln s (with the approach), else in time
+                        mode = APPROACH if use_approach else SLIDE
+                        grow = 1.0
                         r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
                         e0[0] = w[0, 1] / r
                         e0[1] = w[1, 1] / r
@@ -1312,6 +1660,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
                         continue
                     # a stop (START or FINISH) or a break-away (STUCK): V = 0 exactly
                     events_here += 1
+                    approach_below = r_approach
+                    approach_above = 0.0
                     for d in range(2):
                         w[d, 1] = 0.0
                     dx = _dot(l_d[0], w[0]) - slab_mass * a1[0]
@@ -1359,7 +1709,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
             a1[2] = az[i + 1]
             if varying:
                 vz[V_NU0] = 1.0 + az[i + 1] / gravity
-            _series(mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs)
+            _series(SLIDE if mode == APPROACH else mode, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs,
+                    fs, ws, ss, rs, es, vz, mus, exs, h_last)
             _eval(zs, 0.0, z, zd, zdd)
             _monitors(z, zd, zdd, a1[0], a1[1], a1[2], b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
         for d in range(2):
@@ -1389,5 +1740,5 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, a_mat, g_vec, p_vec, l_
     summary[S_N_FAST] = n_fast_steps
     for k in range(1, 5):
         summary[S_N_REFUSED + k - 1] = n_refused[k]
-    for k in range(4):
+    for k in range(5):
         summary[S_N_PIECES_BY_MODE + k] = pieces_by_mode[k]
