@@ -456,8 +456,9 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     balance = e_in - (e_kin + e_pot + e_f + e_v + float(summary[_ps.S_E_IMP]))
     if summary[_ps.S_N_RIM_CONTACTS] > 0 and abs(balance) > RIM_BALANCE_TOL * e_in:
         raise SolverError(f"the 2-D multi-surface implicit steps reached the rims with the energy balance open by "
-                          f"{abs(balance) / e_in:.1e} of the input (an impact at the ultimate they did not resolve: "
-                          "sliders on their rims pointing different ways); not answered")
+                          f"{abs(balance) / e_in:.1e} of the input (limit {RIM_BALANCE_TOL:g}; "
+                          f"{int(summary[_ps.S_N_RIM_CONTACTS])} rim contacts: the steps did not resolve the motion on "
+                          "the rims); not answered")
     # the rims (the steps' slots; the event-driven kernel finishes only without a rim contact: zeros there)
     e_imp = float(summary[_ps.S_E_IMP])
     if summary[_ps.S_PEAK_R] > 0.0:
