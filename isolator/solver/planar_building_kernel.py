@@ -231,18 +231,25 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
 
 
 @njit(cache=True)
-def _piece_limit(zs, weights, floor_scale):
-    """Longest τ [s] for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
-    n_last = zs.shape[1] - 4
-    h_scale = zs[0, n_last + 3, 0]
+def _last_terms(zs, n, weights, floor_scale):
+    """The weighted size of the state (at least floor_scale) and of the series' terms n and n − 1, over both directions."""
     size = floor_scale
     top1 = 0.0
     top2 = 0.0
     for d in range(2):
         for i in range(zs.shape[2]):
             size = max(size, abs(zs[d, 0, i]) * weights[i])
-            top1 = max(top1, abs(zs[d, n_last, i]) * weights[i])
-            top2 = max(top2, abs(zs[d, n_last - 1, i]) * weights[i])
+            top1 = max(top1, abs(zs[d, n, i]) * weights[i])
+            top2 = max(top2, abs(zs[d, n - 1, i]) * weights[i])
+    return size, top1, top2
+
+
+@njit(cache=True)
+def _piece_limit(zs, weights, floor_scale):
+    """Longest τ [s] for which the series' last two terms stay below TRUNC_EPS of the state (Jorba–Zou)."""
+    n_last = zs.shape[1] - 4
+    h_scale = zs[0, n_last + 3, 0]
+    size, top1, top2 = _last_terms(zs, n_last, weights, floor_scale)
     limit = 1e300
     if top1 > 0.0:
         limit = min(limit, (TRUNC_EPS * size / top1) ** (1.0 / n_last))
@@ -681,14 +688,7 @@ def _jz(size, top, order):
 def _log_limit(lz, lt, le, weights, floor_scale):
     """Longest λ for which the approach's series (state, direction, time) have their last two terms at rounding."""
     nl = lt.shape[0] - 1
-    size = floor_scale
-    top1 = 0.0
-    top2 = 0.0
-    for d in range(2):
-        for i in range(lz.shape[2]):
-            size = max(size, abs(lz[d, 0, i]) * weights[i])
-            top1 = max(top1, abs(lz[d, nl, i]) * weights[i])
-            top2 = max(top2, abs(lz[d, nl - 1, i]) * weights[i])
+    size, top1, top2 = _last_terms(lz, nl, weights, floor_scale)
     limit = min(_jz(size, top1, nl), _jz(size, top2, nl - 1))
     limit = min(limit, _jz(1.0, max(abs(le[0, nl]), abs(le[1, nl])), nl),
                 _jz(1.0, max(abs(le[0, nl - 1]), abs(le[1, nl - 1])), nl - 1))

@@ -263,6 +263,17 @@ def element_return(rx, ry, u1, u2, rb, mu, rim):
 
 
 @njit(cache=True)
+def _groups_sum(y, ng):
+    """The sum of the ng groups' displacements in the state y [m]: its two components and its length."""
+    s1 = 0.0
+    s2 = 0.0
+    for k in range(ng):
+        s1 += y[Y_U + 2 * k]
+        s2 += y[Y_U + 2 * k + 1]
+    return s1, s2, math.sqrt(s1 * s1 + s2 * s2)
+
+
+@njit(cache=True)
 def at_ultimate(y, rim):
     """Every group on its rim, all along one direction (within ALIGNED): the mass is held on the ultimate circle."""
     ng = rim.shape[0]
@@ -661,12 +672,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     out[Y_EIMP] = y[Y_EIMP]
     if ult and mask >> ng == (1 << ng) - 1 and at_ultimate(out, rim):
         # held on the ultimate circle from start to end: the velocity along the end's tangent, its magnitude kept
-        s1 = 0.0
-        s2 = 0.0
-        for k in range(ng):
-            s1 += out[Y_U + 2 * k]
-            s2 += out[Y_U + 2 * k + 1]
-        sn = math.sqrt(s1 * s1 + s2 * s2)
+        s1, s2, sn = _groups_sum(out, ng)
         t1 = -s2 / sn
         t2 = s1 / sn
         vn = math.sqrt(out[Y_V] ** 2 + out[Y_V + 1] ** 2)
@@ -703,12 +709,7 @@ def ultimate_impact(y, out, g, rb):
     counted).
     Returns the velocity removed [m/s] (0 when none)."""
     ng = rb.shape[0]
-    s1 = 0.0
-    s2 = 0.0
-    for k in range(ng):
-        s1 += out[Y_U + 2 * k]
-        s2 += out[Y_U + 2 * k + 1]
-    sn = math.sqrt(s1 * s1 + s2 * s2)
+    s1, s2, sn = _groups_sum(out, ng)
     if not sn > 0.0:
         return 0.0
     e1 = s1 / sn

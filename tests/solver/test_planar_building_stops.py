@@ -81,6 +81,18 @@ def _run_bench_pair(case):
                                     mu_kinetic=case.mu, gravity_m_s2=case.gravity_m_s2)
 
 
+def _assert_same_answer(other, base):
+    """Two runs of one building on one pair agree to 1e-10: event times, histories, peaks, drift, energies."""
+    assert np.max(np.abs(other.event_time_s - base.event_time_s)) <= 1e-10
+    for a, b in ((other.displacement_m, base.displacement_m), (other.velocity_m_s, base.velocity_m_s),
+                 (other.floor_displacement_m, base.floor_displacement_m)):
+        assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(b))
+    assert other.peak_displacement_m == pytest.approx(base.peak_displacement_m, rel=1e-10)
+    assert other.story_drift_m == pytest.approx(base.story_drift_m, rel=1e-10)
+    assert other.energy_friction_J_per_kg == pytest.approx(base.energy_friction_J_per_kg, rel=1e-10)
+    assert abs(other.energy_balance_error_J_per_kg) <= 1e-10 * other.energy_input_J_per_kg
+
+
 @pytest.mark.parametrize("order", (12, 30))
 def test_the_series_order_changes_nothing_but_the_pieces(bench_pair, monkeypatch, order):
     """Every series piece is exact to rounding whatever its Taylor order, so two orders give one answer.
@@ -96,14 +108,7 @@ def test_the_series_order_changes_nothing_but_the_pieces(bench_pair, monkeypatch
     assert base.message == other.message == "ok"
     assert np.count_nonzero(base.event_kind == 1) >= 2 and other.event_names == base.event_names
     assert other.n_pieces != base.n_pieces  # the order was taken
-    assert np.max(np.abs(other.event_time_s - base.event_time_s)) <= 1e-10
-    for a, b in ((other.displacement_m, base.displacement_m), (other.velocity_m_s, base.velocity_m_s),
-                 (other.floor_displacement_m, base.floor_displacement_m)):
-        assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(b))
-    assert other.peak_displacement_m == pytest.approx(base.peak_displacement_m, rel=1e-10)
-    assert other.story_drift_m == pytest.approx(base.story_drift_m, rel=1e-10)
-    assert other.energy_friction_J_per_kg == pytest.approx(base.energy_friction_J_per_kg, rel=1e-10)
-    assert abs(other.energy_balance_error_J_per_kg) <= 1e-10 * other.energy_input_J_per_kg
+    _assert_same_answer(other, base)
 
 
 def test_an_order_outside_the_tested_range_is_refused(bench_pair, monkeypatch):
@@ -123,10 +128,4 @@ def test_the_approach_in_ln_s_gives_the_time_series_answer(bench_pair, monkeypat
     other = _run_bench_pair(bench_pair)
     assert other.message == "ok" and other.n_pieces_by_phase[4] > 0 and base.n_pieces_by_phase[4] == 0
     assert other.event_names == base.event_names
-    assert np.max(np.abs(other.event_time_s - base.event_time_s)) <= 1e-10
-    for a, b in ((other.displacement_m, base.displacement_m), (other.velocity_m_s, base.velocity_m_s),
-                 (other.floor_displacement_m, base.floor_displacement_m)):
-        assert np.max(np.abs(a - b)) <= 1e-10 * np.max(np.abs(b))
-    assert other.story_drift_m == pytest.approx(base.story_drift_m, rel=1e-10)
-    assert other.energy_friction_J_per_kg == pytest.approx(base.energy_friction_J_per_kg, rel=1e-10)
-    assert abs(other.energy_balance_error_J_per_kg) <= 1e-10 * other.energy_input_J_per_kg
+    _assert_same_answer(other, base)
