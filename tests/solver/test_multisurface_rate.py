@@ -209,14 +209,8 @@ class RateReference:
                 which = events[fired[-1]].which
                 kind, i = which
                 if kind == "stop":
-                    y[0] = 0.0
                     mode = [0 if m in (1, -1) else m for m in mode]
-                    lo, hi, _ = self.window(y[1:], mode)
-                    need = -(a0 + slope * t) / self.g
-                    if lo <= need <= hi:
-                        stuck = True
-                    else:
-                        self.start(1 if need > hi else -1, y[1:], mode)
+                    stuck = self.stop_mass(y, mode, -(a0 + slope * t) / self.g)
                 elif kind == "rim":
                     s = 1 if mode[i] > 0 else -1
                     y[1 + i] = s * self.cap[i]
@@ -224,13 +218,7 @@ class RateReference:
                     sv = 1 if y[0] > 0 else -1
                     if all(m == 2 * sv for m in mode):
                         impacts += 1
-                        y[0] = 0.0
-                        lo, hi, _ = self.window(y[1:], mode)
-                        need = -(a0 + slope * t) / self.g
-                        if lo <= need <= hi:
-                            stuck = True
-                        else:
-                            self.start(1 if need > hi else -1, y[1:], mode)
+                        stuck = self.stop_mass(y, mode, -(a0 + slope * t) / self.g)
                     else:
                         self.reset_mode(y, mode)
                 elif kind == "surface":
@@ -244,15 +232,19 @@ class RateReference:
                 if not stuck and not any(m in (1, -1) for m in mode):
                     # the last sliding surface stopped: the mass moves with it (X' = its rate), so the mass stops;
                     # then it sticks or starts back as at any stop
-                    y[0] = 0.0
-                    lo, hi, _ = self.window(y[1:], mode)
-                    need = -(a0 + slope * t) / self.g
-                    if lo <= need <= hi:
-                        stuck = True
-                    else:
-                        self.start(1 if need > hi else -1, y[1:], mode)
+                    stuck = self.stop_mass(y, mode, -(a0 + slope * t) / self.g)
             xs.append(float(np.sum(y[1:])))
         return np.array(xs), impacts
+
+    def stop_mass(self, y, mode, need):
+        """The mass at rest (y[0] = 0): stuck (True) when the force the ground needs (a fraction of the weight)
+        is inside the window of the sliders' friction, else it starts that way (mode set by :meth:`start`; False)."""
+        y[0] = 0.0
+        lo, hi, _ = self.window(y[1:], mode)
+        if lo <= need <= hi:
+            return True
+        self.start(1 if need > hi else -1, y[1:], mode)
+        return False
 
     def reset_mode(self, y, mode):
         """After a rim: which surfaces slide at the new force (the true law, bisection)."""
