@@ -108,11 +108,11 @@ def _warm_up() -> None:
         eye = np.eye(2)
         _run(np.array([0.0, 1.0, -1.0]), np.array([0.0, 0.01, 0.02]), STANDARD_GRAVITY, 0.0, eye, eye,
              np.array([0.03, 0.03]), np.array([0.06, 0.06]), np.array([20.0, 20.0]), np.array([0.1, 0.1]),
-             1e-10, 8)
+             1e-10, _mr.LOCK_LEVELS, 8)
     _READY = True
 
 
-def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
+def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, lock_levels, capacity):
     n = acc.size
     ns = bmat.shape[0]
     out = {name: np.empty(n) for name in ("x", "v", "a", "r")}
@@ -128,7 +128,7 @@ def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
         u = np.zeros(ns)
         surf_peak[:] = 0.0
         start = time.perf_counter()
-        _mr.rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, h_first,
+        _mr.rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, h_first, lock_levels,
                         out["x"], out["v"], out["a"], out["r"], out_energy, ev_time, ev_kind, ev_x,
                         summary, surf_peak, first, u)
         elapsed = time.perf_counter() - start
@@ -140,7 +140,8 @@ def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
 
 def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
                           damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
-                          tolerance: float = DEFAULT_TOLERANCE) -> RateMultisurfaceResponse:
+                          tolerance: float = DEFAULT_TOLERANCE,
+                          saturation_levels: tuple[float, float] | None = None) -> RateMultisurfaceResponse:
     """1-D response of a mass on a double or triple friction pendulum with µ(v) on every surface.
 
     Parameters
@@ -160,6 +161,13 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
     tolerance : float
         Step tolerance: largest difference of a collocation step from its two halves, as a
         fraction of the running peak displacement (≥ 1e-4 m) and velocity (≥ 1e-3 m/s) [-].
+    saturation_levels : (float, float), optional
+        Levels of a_i |v_i| at which a sliding surface joins and leaves the set of surfaces saturated together,
+        whose velocity is shared so that their back-forces move together (the slow manifold; friction within
+        (µ_fast − µ_slow) e^(−leave) of µ_fast, docs/multisurface.md) [-].  Default
+        :data:`isolator.solver.multisurface_rate_kernel.LOCK_LEVELS` (28, 26); ``(inf, inf)``: only where a
+        surface's slide law cannot be inverted at all (the kernel before the set; it stops where two surfaces
+        saturate beyond a·v ≈ 30, NWH360 ×3 at 4.92 s).
 
     Returns
     -------
@@ -174,6 +182,9 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
         raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
     if not (0.0 < tolerance < 1e-3):
         raise ValueError(f"tolerance must be in (0, 1e-3), got {tolerance!r}")
+    levels = np.array(_mr.LOCK_LEVELS if saturation_levels is None else saturation_levels, dtype=np.float64)
+    if not (levels.shape == (2,) and levels[0] >= levels[1] > 0.0):
+        raise ValueError(f"saturation_levels must be (join, leave) with join >= leave > 0, got {saturation_levels!r}")
     if bearing.is_simple:
         raise ValueError("a single surface with µ(v) runs on the 2-D engine (2d+mu(v)), not here")
     mu_s, mu_f, rate = _laws(bearing)
@@ -185,7 +196,7 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
     times = dt * np.arange(acc.size) if relative is None else np.ascontiguousarray(relative, dtype=np.float64)
     _warm_up()
     out, energy, summary, surf_peak, first, u, ev_t, ev_k, ev_x, elapsed = _run(
-        acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, float(tolerance), 64 + acc.size // 4)
+        acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, float(tolerance), levels, 64 + acc.size // 4)
     status = int(summary[_mr.S_STATUS])
     message = "ok"
     if status & _mr.STATUS_STEP_FAILED:

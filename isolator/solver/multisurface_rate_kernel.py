@@ -18,9 +18,11 @@ friction excess, v_i = φ_i(r − b_i) = ± ln((µ_fast − µ_slow)/(µ_fast �
 Σ φ_i(r − b_i) = X' fixes r from the state (an index-1 DAE; :func:`solve_force`).  The force is computed from a *pivot*
 surface k (the one farthest into saturation), whose rate is the rest of the velocity and whose friction comes
 from the forward law µ_k(v_k): at a·v ≳ 36 µ_fast − µ(v) is below the rounding of r and φ is not resolvable
-(the first rim of a µ(v) TFP: one surface left to carry 2.6 m/s, a·v = 53).  With two surfaces saturated together
-the non-pivot φ is barely resolvable: the friction work is then taken from the stage derivatives the collocation
-took (:func:`radau_step`), and NWH360 ×3 still stops at 4.922 s (docs/multisurface.md).  The split of
+(the first rim of a µ(v) TFP: one surface left to carry 2.6 m/s, a·v = 53).  With two or more surfaces saturated together
+(a·v ≳ 30 on each: NWH360 ×3 at 4.92 s, surfaces 1 and 4 at X' = −3.4 m/s) no φ but one is resolvable: the
+velocity is then shared on the set's slow manifold, its back-forces moving together ((B u̇)_ℓ = (B u̇)_k, the
+friction of each within (µ_fast − µ_slow) e^(−26) ≈ 5e-12 (µ_fast − µ_slow) of µ_fast; :func:`set_split`, :func:`update_lock`), and
+the friction work is taken from the stage derivatives the collocation took (:func:`radau_step`).  The split of
 the velocity between sliding surfaces relaxes at the rate φ'_i/R_eff,i = e^{a v}/(a (µ_fast −
 µ_slow) R_eff), 10⁵–10⁹ s⁻¹ at real slide speeds: the system is stiff, so it is integrated with the
 L-stable 3-stage Radau IIA collocation (order 5), Newton's method on the stage equations with the
@@ -80,6 +82,10 @@ EVENT_NAMES = ("breakaway", "stick", "reversal", "regime", "rim reached", "ultim
 MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
 MAX_STEPS_PER_INTERVAL = 200000  #: bound on the steps of one sample interval
 LEVEL_TIE = 1e-13  #: friction levels closer than this in F/W start together
+#: the default (join, leave) levels of :func:`update_lock`: a sliding surface at a_i s_i v_i ≥ 28 joins the saturated
+#: set of :func:`set_split` (its friction µ_fast − δ, δ = (µ_fast − µ_slow) e^-28 ≈ 7e-13 (µ_fast − µ_slow), ~1e3 ulp
+#: of r: its φ still resolved to ~1e-3, its rate to ~5e-5 m/s), and leaves it at 26
+LOCK_LEVELS = np.array([28.0, 26.0])
 
 STATUS_OK = 0
 STATUS_CHATTER = 1
@@ -142,59 +148,148 @@ def friction_at_rate(v, s, mu_s, mu_f, a):
 
 
 @njit(cache=True)
-def solve_force(vel, b, mode, mu_s, mu_f, a, pivot):
+def _sliding(md):
+    return md == 1 or md == -1
+
+
+@njit(cache=True)
+def set_split(mode, pivot, lock, bmat, gmap):
+    """The split of the velocity for a step: the pivot surface (returned) and the map ``gmap`` [n × n+1].
+
+    Row ℓ of ``gmap`` gives the rate of the pivot and of every *locked* surface ℓ (``lock[ℓ] = 1``) as
+    v_ℓ = gmap[ℓ, 0] X' + Σ_{i∈U} gmap[ℓ, 1+i] v_i, U the other sliding surfaces (v_i = φ_i(r − b_i)).
+    Without locked surfaces that is the series constraint v_k = X' − Σ_U v_i.  The locked set L (two or more
+    sliding surfaces saturated together, :func:`update_lock`, pivot included) shares its velocity so that the
+    back-forces of L move together, (B v)_ℓ = (B v)_k for ℓ ∈ L: the slow manifold of
+    r = b_ℓ + s_ℓ (µ_fast,ℓ − δ_ℓ) = b_k + s_k (µ_fast,k − δ_k), δ_i = (µ_fast,i − µ_slow,i) e^{−a_i v_i},
+    with d(δ_ℓ − δ_k)/dt neglected (docs/multisurface.md: the error is ≤ R̄ max δ on the positions and ≤ max δ
+    on the force; δ ≤ (µ_fast − µ_slow) e^{−lock_out}).  An invalid pivot becomes the first sliding surface;
+    a locked set that does not contain the pivot, has fewer than two members or a singular system is cleared.
+    """
+    n = mode.shape[0]
+    k = pivot
+    if not (0 <= k < n) or not _sliding(mode[k]):
+        k = -1
+        for i in range(n):
+            if _sliding(mode[i]):
+                k = i
+                break
+    members = 0
+    for i in range(n):
+        if not _sliding(mode[i]):
+            lock[i] = 0
+        members += lock[i]
+        for q in range(n + 1):
+            gmap[i, q] = 0.0
+    if k < 0:
+        for i in range(n):
+            lock[i] = 0
+        return k
+    if lock[k] == 0 or members < 2:
+        for i in range(n):
+            lock[i] = 0
+        members = 0
+    if members >= 2:
+        # rows: (B_ℓ − B_k)·v = 0 for ℓ ∈ L∖{k}, Σ_L v = X' − Σ_U v_i; unknowns v_L in index order
+        idx = np.empty(members, dtype=np.int64)
+        m = 0
+        for i in range(n):
+            if lock[i] == 1:
+                idx[m] = i
+                m += 1
+        mat = np.zeros((members, members))
+        right = np.zeros((members, n + 1))
+        row = 0
+        for ell in idx:
+            if ell == k:
+                continue
+            for col in range(members):
+                mat[row, col] = bmat[ell, idx[col]] - bmat[k, idx[col]]
+            for i in range(n):
+                if _sliding(mode[i]) and lock[i] == 0:
+                    right[row, 1 + i] = -(bmat[ell, i] - bmat[k, i])
+            row += 1
+        for col in range(members):
+            mat[members - 1, col] = 1.0
+        right[members - 1, 0] = 1.0
+        for i in range(n):
+            if _sliding(mode[i]) and lock[i] == 0:
+                right[members - 1, 1 + i] = -1.0
+        scale = 0.0
+        for p in range(members):
+            for q in range(members):
+                scale = max(scale, abs(mat[p, q]))
+        if abs(np.linalg.det(mat)) > 1e-12 * scale ** members:
+            sol = np.linalg.solve(mat, right)
+            ok = True
+            for p in range(members):
+                for q in range(n + 1):
+                    if not math.isfinite(sol[p, q]):
+                        ok = False
+            if ok:
+                for p in range(members):
+                    for q in range(n + 1):
+                        gmap[idx[p], q] = sol[p, q]
+                return k
+        for i in range(n):
+            lock[i] = 0
+    gmap[k, 0] = 1.0
+    for i in range(n):
+        if i != k and _sliding(mode[i]):
+            gmap[k, 1 + i] = -1.0
+    return k
+
+
+@njit(cache=True)
+def solve_force(vel, b, mode, mu_s, mu_f, a, pivot, gmap, lock):
     """F/W [-] at which the sliding surfaces' rates (mode ±1) sum to the bearing's velocity ``vel`` [m/s].
 
-    The *pivot* surface k takes the rest of the velocity, v_k = vel − Σ_{j≠k} φ_j(r − b_j), and its
-    friction from it by the forward law; r is the root of g(r) = r − b_k − s_k µ_k(|v_k|), with
-    g' = 1 + µ_k'(v_k) Σ_{j≠k} φ'_j ≥ 1 (increasing, well conditioned).  This is the same root as
-    Σ_i φ_i(r − b_i) = vel, but it never inverts the pivot's law: a surface sliding so fast that
+    The *pivot* surface k takes the rest of the velocity, v_k = vel − Σ_{j≠k} φ_j(r − b_j) (in general
+    v_k = gmap[k, 0] vel + Σ_U gmap[k, 1+j] φ_j(r − b_j), with the locked surfaces of :func:`set_split`
+    sharing it), and its friction from it by the forward law; r is the root of g(r) = r − b_k − s_k µ_k(|v_k|),
+    with g' = 1 − µ_k'(v_k) Σ_U gmap[k, 1+j] φ'_j ≥ 1 (gmap[k, 1+j] ≤ 0: increasing, well conditioned).  This is
+    the same root as Σ_i φ_i(r − b_i) = vel, but it never inverts the pivot's law: a surface sliding so fast that
     µ_fast − µ(v) is below the rounding of r (a·v ≳ 36, e.g. one surface carrying the mass at 2.6 m/s
     after another reached its rim) has no resolvable φ, and must be the pivot (:func:`pick_pivot`).
-    Safeguarded Newton to rounding; NaN when no surface slides.
+    Safeguarded Newton to rounding; NaN when no surface slides (or the pivot does not).
     """
     n = b.shape[0]
     k = pivot
-    if not (0 <= k < n) or not (mode[k] == 1 or mode[k] == -1):
-        k = -1
-        for i in range(n):
-            if mode[i] == 1 or mode[i] == -1:
-                k = i
-                break
-        if k < 0:
-            return math.nan
+    if not (0 <= k < n) or not _sliding(mode[k]):
+        return math.nan
     sk = float(mode[k])
-    # the bracket: where a non-pivot surface's rate becomes infinite (r past b_j ± µ_fast,j)
+    c0 = gmap[k, 0]
+    # the bracket: where an unlocked non-pivot surface's rate becomes infinite (r past b_j ± µ_fast,j)
     lo = -math.inf
     hi = math.inf
     others = 0
     for j in range(n):
-        if j != k and (mode[j] == 1 or mode[j] == -1):
+        if j != k and _sliding(mode[j]) and lock[j] == 0:
             others += 1
             if mode[j] == 1:
                 hi = min(hi, b[j] + mu_f[j])
             else:
                 lo = max(lo, b[j] - mu_f[j])
-    f0, _ = friction_at_rate(vel / (others + 1), sk, mu_s[k], mu_f[k], a[k])
-    r = b[k] + f0
     if others == 0:
-        f0, _ = friction_at_rate(vel, sk, mu_s[k], mu_f[k], a[k])
+        f0, _ = friction_at_rate(c0 * vel, sk, mu_s[k], mu_f[k], a[k])
         return b[k] + f0
+    f0, _ = friction_at_rate(c0 * vel / (others + 1), sk, mu_s[k], mu_f[k], a[k])
+    r = b[k] + f0
     if not (lo < r < hi):
         r = 0.5 * (lo + hi) if math.isfinite(lo) and math.isfinite(hi) else (
             hi - 1e-3 if math.isfinite(hi) else lo + 1e-3)
     for _ in range(200):
-        rest = vel
+        rest = c0 * vel
         dsum = 0.0
         finite = True
         for j in range(n):
-            if j != k and (mode[j] == 1 or mode[j] == -1):
+            if j != k and _sliding(mode[j]) and lock[j] == 0:
                 v, dv = slide_rate(r - b[j], float(mode[j]), mu_s[j], mu_f[j], a[j])
                 if not math.isfinite(v):
                     finite = False
                     break
-                rest -= v
-                dsum += dv
+                rest += gmap[k, 1 + j] * v
+                dsum -= gmap[k, 1 + j] * dv
         if not finite:  # past a non-pivot surface's infinite rate: inside the bracket again
             if mode[j] == 1:
                 hi = min(hi, r)
@@ -229,32 +324,33 @@ def solve_force(vel, b, mode, mu_s, mu_f, a, pivot):
 
 
 @njit(cache=True)
-def surface_rates(vel, r, b, mode, mu_s, mu_f, a, pivot, out_v, out_dv):
-    """Slide rates [m/s] at the force r (the pivot's from the series constraint) and φ'_j (0 for the pivot)."""
+def surface_rates(vel, r, b, mode, mu_s, mu_f, a, pivot, gmap, lock, out_v, out_dv):
+    """Slide rates [m/s] at the force r (the pivot's and the locked surfaces' from ``gmap``) and φ'_j (0 for those)."""
     n = b.shape[0]
-    rest = vel
-    kp = -1
     for i in range(n):
         out_v[i] = 0.0
         out_dv[i] = 0.0
+    if not (0 <= pivot < n) or not _sliding(mode[pivot]):
+        return -1
     for i in range(n):
-        if mode[i] == 1 or mode[i] == -1:
-            if kp < 0 and (i == pivot or not (0 <= pivot < n) or not (mode[pivot] == 1 or mode[pivot] == -1)):
-                kp = i
-                continue
+        if i != pivot and _sliding(mode[i]) and lock[i] == 0:
             v, dv = slide_rate(r - b[i], float(mode[i]), mu_s[i], mu_f[i], a[i])
             out_v[i] = v
             out_dv[i] = dv
-            rest -= v
-    if kp >= 0:
-        out_v[kp] = rest
+    for ell in range(n):
+        if ell == pivot or lock[ell] == 1:
+            total = gmap[ell, 0] * vel
+            for i in range(n):
+                if out_dv[i] != 0.0:
+                    total += gmap[ell, 1 + i] * out_v[i]
+            out_v[ell] = total
     if vel == 0.0:
         # at rest (a start from rest: every sliding surface at its onset, r = b_i ± µ_slow,i) the rates are 0;
         # φ_j((b_k + µ_slow) − b_j) alone would leave a rounding residue of either sign (−1e-17 m/s), which
         # the stop events would take for a surface already past its stop
         for i in range(n):
             out_v[i] = 0.0
-    return kp
+    return pivot
 
 
 @njit(cache=True)
@@ -263,12 +359,39 @@ def pick_pivot(dy, mode, a):
     best = -1
     worst = -math.inf
     for i in range(mode.shape[0]):
-        if mode[i] == 1 or mode[i] == -1:
+        if _sliding(mode[i]):
             w = a[i] * float(mode[i]) * dy[1 + i]
             if w > worst or best < 0:
                 worst = w
                 best = i
     return best
+
+
+@njit(cache=True)
+def update_lock(dy, mode, a, lock, lock_in, lock_out):
+    """The saturated set for the next step, from the rates at its start (hysteresis LOCK_IN / LOCK_OUT).
+
+    A sliding surface joins when a_i s_i v_i ≥ ``lock_in`` (+inf: φ unresolvable), a member leaves when it
+    falls to ``lock_out`` (:data:`LOCK_LEVELS`).  A rate of −inf is no saturation: a pivot left to absorb an unresolvable one (the
+    pivot of the step before, after an event).  Returns the pivot (:func:`pick_pivot`), made a member when
+    the set is not empty; :func:`set_split` clears a set of fewer than two.
+    """
+    n = mode.shape[0]
+    any_member = False
+    for i in range(n):
+        if _sliding(mode[i]):
+            w = a[i] * float(mode[i]) * dy[1 + i]
+            if w >= lock_in or (lock[i] == 1 and w > lock_out):
+                lock[i] = 1
+                any_member = True
+            else:
+                lock[i] = 0
+        else:
+            lock[i] = 0
+    k = pick_pivot(dy, mode, a)
+    if any_member and k >= 0:
+        lock[k] = 1
+    return k
 
 
 @njit(cache=True)
@@ -281,22 +404,22 @@ def back_force(u, bmat, out_b):
 
 
 @njit(cache=True)
-def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_jac, pivot):
+def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_jac, pivot, gmap, lock):
     """dy/dt of y = (X', u_1..u_n) in a fixed mode; returns (r, friction power per unit mass).
 
     ``out_jac`` [m+1 × m+1] is filled with ∂(dy/dt)/∂y when ``want_jac``.  The friction power
-    is g Σ (r − b_i) dū_i/dt on the series elements ū = smat u.  ``pivot``: the surface whose rate
-    comes from the series constraint (:func:`solve_force`).
+    is g Σ (r − b_i) dū_i/dt on the series elements ū = smat u.  ``pivot``, ``gmap``, ``lock``: the surface whose
+    rate comes from the series constraint (:func:`solve_force`) and the locked set (:func:`set_split`).
     """
     n = bmat.shape[0]
     vel = y[0]
     u = y[1:]
     back_force(u, bmat, wb)
-    r = solve_force(vel, wb, mode, mu_s, mu_f, a, pivot)
+    r = solve_force(vel, wb, mode, mu_s, mu_f, a, pivot, gmap, lock)
     out_dy[0] = -g * r - c * vel - ag
     rates = np.empty(n)
     dphi = np.empty(n)
-    k = surface_rates(vel, r, wb, mode, mu_s, mu_f, a, pivot, rates, dphi)
+    k = surface_rates(vel, r, wb, mode, mu_s, mu_f, a, pivot, gmap, lock, rates, dphi)
     for i in range(n):
         out_dy[1 + i] = rates[i]
     power = 0.0
@@ -310,37 +433,42 @@ def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_
             for q in range(n + 1):
                 out_jac[p, q] = 0.0
         if k >= 0:
-            # r from g(r) = r − b_k − s µ_k(v_k), v_k = X' − Σ_{j≠k} φ_j(r − b_j):
-            # dr = (µ'_k dX' + (B_k + µ'_k Σ_j φ'_j B_j) du) / (1 + µ'_k Σ_j φ'_j)
+            # r from g(r) = r − b_k − s µ_k(v_k), v_k = G_k0 X' + Σ_U G_kj φ_j(r − b_j):
+            # dr = (µ'_k G_k0 dX' + (B_k − µ'_k Σ_U G_kj φ'_j B_j) du) / (1 − µ'_k Σ_U G_kj φ'_j)
             _, dmu = friction_at_rate(rates[k], float(mode[k]), mu_s[k], mu_f[k], a[k])
             dsum = 0.0
             for j in range(n):
-                dsum += dphi[j]
+                dsum -= gmap[k, 1 + j] * dphi[j]
             den = 1.0 + dmu * dsum
-            dr_dv = dmu / den
+            dr_dv = dmu * gmap[k, 0] / den
             out_jac[0, 0] = -g * dr_dv - c
             for q in range(n):
                 total = bmat[k, q]
                 for j in range(n):
-                    total += dmu * dphi[j] * bmat[j, q]
+                    total -= dmu * gmap[k, 1 + j] * dphi[j] * bmat[j, q]
                 out_jac[0, 1 + q] = -g * total / den
-            # the non-pivot rates v_j = φ_j(r − b_j); the pivot's v_k = X' − Σ v_j
-            out_jac[1 + k, 0] = 1.0
+            # the unlocked non-pivot rates v_j = φ_j(r − b_j); the pivot's and the locked ones by gmap
             for j in range(n):
                 if dphi[j] != 0.0:
                     out_jac[1 + j, 0] = dphi[j] * dr_dv
-                    out_jac[1 + k, 0] -= out_jac[1 + j, 0]
                     for q in range(n):
                         out_jac[1 + j, 1 + q] = dphi[j] * (-out_jac[0, 1 + q] / g - bmat[j, q])
-                        out_jac[1 + k, 1 + q] -= out_jac[1 + j, 1 + q]
+            for ell in range(n):
+                if ell == k or lock[ell] == 1:
+                    out_jac[1 + ell, 0] = gmap[ell, 0]
+                    for j in range(n):
+                        if dphi[j] != 0.0:
+                            out_jac[1 + ell, 0] += gmap[ell, 1 + j] * out_jac[1 + j, 0]
+                            for q in range(n):
+                                out_jac[1 + ell, 1 + q] += gmap[ell, 1 + j] * out_jac[1 + j, 1 + q]
         else:
             out_jac[0, 0] = -c
     return r, g * power
 
 
 @njit(cache=True)
-def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, z_full,
-               guess):
+def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, gmap, lock,
+               z_full, guess):
     """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ); Newton's iterations, or −1
     if Newton fails.
 
@@ -374,7 +502,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
             for p in range(m):
                 ys[p] = y0[p] + z[j, p]
             ag = a_start + slope * RADAU_C[j] * h
-            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], True, pivot)
+            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], True, pivot, gmap, lock)
             for p in range(m):
                 fz[j, p] = dy[p]
         ok = True
@@ -429,7 +557,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
         for p in range(m):
             ys[p] = y0[p] + z[j, p]
         ag = a_start + slope * RADAU_C[j] * h
-        rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], False, pivot)
+        rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], False, pivot, gmap, lock)
         for p in range(1, m):
             total = 0.0
             for k in range(3):
@@ -454,7 +582,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
 
 
 @njit(cache=True)
-def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot):
+def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, gmap, lock):
     """Two Radau steps of h/2 (kept) and one of h (the estimate); returns the scaled difference (inf: failed).
 
     ``quad`` [4]: the halves' (−∫a_g X', c∫X'², friction work) [J/kg] and the Newton iterations of the three steps.
@@ -469,19 +597,19 @@ def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sc
     z_full = np.empty((3, m))
     no_guess = np.empty((0, 3))
     quad[3] = 0.0
-    it0 = radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full, pivot,
+    it0 = radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full, pivot, gmap, lock,
                      z_full, no_guess)
     if it0 < 0:
         return math.inf
     quad[3] = it0
     half = 0.5 * h
-    it1 = radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1, pivot,
+    it1 = radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1, pivot, gmap, lock,
                      z_full, GUESS_FIRST_HALF)
     if it1 < 0:
         return math.inf
     quad[3] += it1
     it2 = radau_step(y_mid, half, a_start + slope * half, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                     y1, q2, pivot, z_full, GUESS_SECOND_HALF)
+                     y1, q2, pivot, gmap, lock, z_full, GUESS_SECOND_HALF)
     if it2 < 0:
         return math.inf
     err = 0.0
@@ -605,7 +733,7 @@ def _masks(mode):
 
 
 @njit(cache=True)
-def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
+def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, lock_levels,
                 out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x,
                 summary, surf_peak, state_first_time, u):
     """Response of a mass on a multi-surface bearing with µ(v) surfaces to a sampled record.
@@ -628,6 +756,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
         Largest scaled difference of a step from its two halves (scales: the running peaks).
     h_first : float
         First trial step [s].
+    lock_levels : float64[2]
+        (join, leave) levels of a_i s_i v_i of the saturated set (:func:`update_lock`, :data:`LOCK_LEVELS`) [-].
     out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x, summary, surf_peak, state_first_time
         Filled as in :func:`isolator.solver.multisurface_kernel.multisurface_kernel`.
     u : float64[ns]
@@ -677,6 +807,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
     fail_t = -1.0
     h = h_first
     pivot = -1
+    lock = np.zeros(ns, dtype=np.int64)
+    gmap = np.zeros((ns, ns + 1))
     r_now = -acc[0] / g
     x_floor = 1e-4
     v_floor = 1e-3
@@ -731,10 +863,13 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                 scale[p] = max(peak_x, x_floor)
             # the pivot (the surface whose rate comes from the series constraint) is the one farthest into
             # saturation at the step's start; held for the step and its event search (the same equations)
-            rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
-            pivot = pick_pivot(dy, mode, a)
+            # the saturated set (:func:`set_split`) likewise, from the rates at the step's start
+            pivot = set_split(mode, pivot, lock, bmat, gmap)
+            rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap, lock)
+            pivot = update_lock(dy, mode, a, lock, lock_levels[0], lock_levels[1])
+            pivot = set_split(mode, pivot, lock, bmat, gmap)
             err = double_step(y, h, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                              y_try, quad, pivot)
+                              y_try, quad, pivot, gmap, lock)
             n_newton += quad[3]
             if not err <= tol:
                 if h <= 1e-13 * dt_i:
@@ -747,9 +882,10 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                     h = 0.25 * h
                 continue
             # events between y and y_try
-            r0, _ = rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
+            r0, _ = rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap, lock)
             event_values(y, r0, dy, mode, mu_s, cap, bmat, wb, e0)
-            r1, _ = rhs(y_try, a0 + slope * (tau + h), g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
+            r1, _ = rhs(y_try, a0 + slope * (tau + h), g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap,
+                         lock)
             event_values(y_try, r1, dy, mode, mu_s, cap, bmat, wb, e1)
             first_slot = -1
             first_t = math.inf
@@ -783,10 +919,10 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                             if not (ta < tm < tb_):
                                 tm = 0.5 * (ta + tb_)
                             double_step(y, tm, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat,
-                                        scale, y_ev, quad_ev, pivot)
+                                        scale, y_ev, quad_ev, pivot, gmap, lock)
                             n_newton += quad_ev[3]
                             rm, _ = rhs(y_ev, a0 + slope * (tau + tm), g, c, bmat, mode, mu_s, mu_f, a, smat, wb,
-                                        dy, jac, False, pivot)
+                                        dy, jac, False, pivot, gmap, lock)
                             event_values(y_ev, rm, dy, mode, mu_s, cap, bmat, wb, e1)
                             fm = e1[slot]
                             if fm == 0.0:  # on the event: the root is tm (not the bracket's far end)
@@ -837,7 +973,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             # ---- the event: advance to it ----
             if first_t > 0.0:
                 double_step(y, first_t, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                            y_ev, quad_ev, pivot)
+                            y_ev, quad_ev, pivot, gmap, lock)
                 n_newton += quad_ev[3]
                 for p in range(m):
                     y[p] = y_ev[p]
@@ -925,13 +1061,15 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
                         mode[i] = 0  # a surface stops while the mass moves on
                     elif md == 0:
                         mode[i] = 1 if r1_sign(y, ag_now, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac,
-                                                i, pivot) > 0.0 else -1
+                                                i, pivot, gmap, lock) > 0.0 else -1
                     else:
                         mode[i] = -1 if md > 0 else 1  # leaves its rim inward
                     n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REGIME, y[1:].sum())
             for i in range(ns):
                 if (mode[i] == 1 or mode[i] == -1) and mode[i] != before[i]:
                     fresh[i] = 1
+                # the saturated set is the old mode's: chosen again from the rates at the next step's start
+                lock[i] = 0
             if not stuck:
                 sliding, rimmed = _masks(mode)
                 code = sliding + n_masks * rimmed
@@ -961,7 +1099,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
             out_a[j] = acc[j]
             out_r[j] = -acc[j] / g
         else:
-            r_now, _ = rhs(y, acc[j], g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
+            pivot = set_split(mode, pivot, lock, bmat, gmap)
+            r_now, _ = rhs(y, acc[j], g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap, lock)
             out_r[j] = r_now
             out_a[j] = -(g * r_now + c * y[0])
             peak_r = max(peak_r, abs(r_now))
@@ -999,9 +1138,9 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
 
 
 @njit(cache=True)
-def r1_sign(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, i, pivot):
+def r1_sign(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, i, pivot, gmap, lock):
     """The sign of the friction excess r − b_i of surface i at the state (which way it starts)."""
-    r, _ = rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot)
+    r, _ = rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap, lock)
     back_force(y[1:], bmat, wb)
     return r - wb[i]
 
