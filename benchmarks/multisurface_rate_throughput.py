@@ -10,6 +10,11 @@ events, the peak, the regimes reached and the energy balance.  The constant-µ k
 
     python benchmarks/multisurface_rate_throughput.py --repeat 3
     python benchmarks/multisurface_rate_throughput.py --quick --repeat 5   # two records
+    python benchmarks/multisurface_rate_throughput.py --quick --repeat 3 --compare-newton
+
+``--compare-newton`` times the collocation's full Newton iteration (a Jacobian per stage and iteration, the
+kernel before h74) beside the default simplified one (one Jacobian per step), alternating in one process at the
+same load, and prints the largest difference of the two displacement histories (a fraction of the peak).
 """
 
 from __future__ import annotations
@@ -31,6 +36,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="two records only")
     parser.add_argument("--repeat", type=int, default=3, help="runs per record (median)")
+    parser.add_argument("--compare-newton", action="store_true",
+                        help="time full Newton beside the simplified one (same runs, alternating)")
     args = parser.parse_args(argv)
     if not RECORDS.is_dir():
         print(f"no records at {RECORDS}", file=sys.stderr)
@@ -57,15 +64,23 @@ def main(argv=None) -> int:
         motion = read_ground_motion(RECORDS / name)
         for scale in (1.0, 3.0):
             acc = np.ascontiguousarray(motion.acceleration_m_s2 * scale)
-            times, const_times = [], []
+            times, const_times, full_times = [], [], []
             try:
                 for _ in range(args.repeat):
                     res = simulate_bearing_rate(acc, motion.dt_s, bearing=rate_tfp)
                     times.append(res.solver_seconds)
                     const_times.append(simulate_bearing(acc, motion.dt_s, bearing=const_tfp).solver_seconds)
-            except SolverError as error:  # the known defect at a rim (docs/multisurface.md)
+                    if args.compare_newton:
+                        full = simulate_bearing_rate(acc, motion.dt_s, bearing=rate_tfp, simplified_newton=False)
+                        full_times.append(full.solver_seconds)
+            except SolverError as error:
                 print(f"{name[:30]:30s} {scale:5.1f} {acc.size:7d} stopped: {error}")
                 continue
+            if args.compare_newton:
+                diff = float(np.max(np.abs(full.displacement_m - res.displacement_m))) / res.peak_displacement_m
+                print(f"{'  full Newton':30s} {scale:5.1f} {acc.size:7d} {acc.size / statistics.median(full_times) / 1e3:11.1f} "
+                      f"{full.model_reason.split('(')[-1].split()[0]:>7s} {full.n_events:6d}  max |x_full - x| / peak "
+                      f"{diff:.1e}")
             rate = acc.size / statistics.median(times)
             rates.append(rate)
             steps = res.model_reason.split("(")[-1].split()[0]

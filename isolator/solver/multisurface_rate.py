@@ -108,11 +108,11 @@ def _warm_up() -> None:
         eye = np.eye(2)
         _run(np.array([0.0, 1.0, -1.0]), np.array([0.0, 0.01, 0.02]), STANDARD_GRAVITY, 0.0, eye, eye,
              np.array([0.03, 0.03]), np.array([0.06, 0.06]), np.array([20.0, 20.0]), np.array([0.1, 0.1]),
-             1e-10, _mr.LOCK_LEVELS, 8)
+             1e-10, _mr.LOCK_LEVELS, True, 8)
     _READY = True
 
 
-def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, lock_levels, capacity):
+def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, lock_levels, simplified, capacity):
     n = acc.size
     ns = bmat.shape[0]
     out = {name: np.empty(n) for name in ("x", "v", "a", "r")}
@@ -128,7 +128,7 @@ def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, lock_levels, 
         u = np.zeros(ns)
         surf_peak[:] = 0.0
         start = time.perf_counter()
-        _mr.rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, h_first, lock_levels,
+        _mr.rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, h_first, lock_levels, simplified,
                         out["x"], out["v"], out["a"], out["r"], out_energy, ev_time, ev_kind, ev_x,
                         summary, surf_peak, first, u)
         elapsed = time.perf_counter() - start
@@ -141,7 +141,8 @@ def _run(acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, lock_levels, 
 def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
                           damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
                           tolerance: float = DEFAULT_TOLERANCE,
-                          saturation_levels: tuple[float, float] | None = None) -> RateMultisurfaceResponse:
+                          saturation_levels: tuple[float, float] | None = None,
+                          simplified_newton: bool = True) -> RateMultisurfaceResponse:
     """1-D response of a mass on a double or triple friction pendulum with µ(v) on every surface.
 
     Parameters
@@ -168,6 +169,10 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
         :data:`isolator.solver.multisurface_rate_kernel.LOCK_LEVELS` (28, 26); ``(inf, inf)``: only where a
         surface's slide law cannot be inverted at all (the kernel before the set; it stops where two surfaces
         saturate beyond a·v ≈ 30, NWH360 ×3 at 4.92 s).
+    simplified_newton : bool
+        The collocation's Newton iteration with one Jacobian per step, factored once for h and once for h/2
+        (full Newton, a Jacobian per stage and iteration, where it does not contract); False: full Newton
+        throughout (the kernel before; both end at their rounding floor, docs/multisurface.md).
 
     Returns
     -------
@@ -196,7 +201,8 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
     times = dt * np.arange(acc.size) if relative is None else np.ascontiguousarray(relative, dtype=np.float64)
     _warm_up()
     out, energy, summary, surf_peak, first, u, ev_t, ev_k, ev_x, elapsed = _run(
-        acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, float(tolerance), levels, 64 + acc.size // 4)
+        acc, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, float(tolerance), levels,
+        bool(simplified_newton), 64 + acc.size // 4)
     status = int(summary[_mr.S_STATUS])
     message = "ok"
     if status & _mr.STATUS_STEP_FAILED:

@@ -26,7 +26,8 @@ the friction work is taken from the stage derivatives the collocation took (:fun
 the velocity between sliding surfaces relaxes at the rate φ'_i/R_eff,i = e^{a v}/(a (µ_fast −
 µ_slow) R_eff), 10⁵–10⁹ s⁻¹ at real slide speeds: the system is stiff, so it is integrated with the
 L-stable 3-stage Radau IIA collocation (order 5), Newton's method on the stage equations with the
-analytic Jacobian, every step taken twice (h, then two halves) and the difference held below the
+analytic Jacobian (simplified: one Jacobian per step, factored once for h and once for h/2; full Newton where that
+does not contract, :func:`radau_step`), every step taken twice (h, then two halves) and the difference held below the
 tolerance; the halves are kept.  Inside a *mode* (each surface sliding +, sliding −, stuck, or held on
 a rim) the right-hand side is analytic (the sliding branches are continued through the onset), and
 the mode changes are events located on re-stepped collocation steps (Illinois secant):
@@ -467,14 +468,79 @@ def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_
 
 
 @njit(cache=True)
+def lu_factor(mat, piv):
+    """LU factorisation with partial pivoting of ``mat`` in place (row swaps in ``piv``); False if singular."""
+    size = mat.shape[0]
+    for col in range(size):
+        best = col
+        top = abs(mat[col, col])
+        for i in range(col + 1, size):
+            if abs(mat[i, col]) > top:
+                top = abs(mat[i, col])
+                best = i
+        if not (top > 0.0 and math.isfinite(top)):
+            return False
+        piv[col] = best
+        if best != col:
+            for q in range(size):
+                tmp = mat[col, q]
+                mat[col, q] = mat[best, q]
+                mat[best, q] = tmp
+        inv = 1.0 / mat[col, col]
+        for i in range(col + 1, size):
+            f = mat[i, col] * inv
+            mat[i, col] = f
+            if f != 0.0:
+                for q in range(col + 1, size):
+                    mat[i, q] -= f * mat[col, q]
+    return True
+
+
+@njit(cache=True)
+def lu_solve(lu, piv, rhs_vec):
+    """Solve with the factors of :func:`lu_factor`, in place on ``rhs_vec``."""
+    size = lu.shape[0]
+    for i in range(size):
+        k = piv[i]
+        if k != i:
+            tmp = rhs_vec[i]
+            rhs_vec[i] = rhs_vec[k]
+            rhs_vec[k] = tmp
+    for i in range(size):
+        total = rhs_vec[i]
+        for q in range(i):
+            total -= lu[i, q] * rhs_vec[q]
+        rhs_vec[i] = total
+    for i in range(size - 1, -1, -1):
+        total = rhs_vec[i]
+        for q in range(i + 1, size):
+            total -= lu[i, q] * rhs_vec[q]
+        rhs_vec[i] = total / lu[i, i]
+
+
+@njit(cache=True)
+def stage_matrix(h, jac0, out):
+    """I − h (A ⊗ J) [3m × 3m], the Newton matrix of the collocation with one Jacobian J for the three stages."""
+    m = jac0.shape[0]
+    for j in range(3):
+        for p in range(m):
+            for k in range(3):
+                for q in range(m):
+                    out[j * m + p, k * m + q] = (1.0 if (j == k and p == q) else 0.0) - h * RADAU_A[j, k] * jac0[p, q]
+
+
+@njit(cache=True)
 def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, gmap, lock,
-               z_full, guess):
+               z_full, guess, lu, piv, use_lu):
     """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ); Newton's iterations, or −1
     if Newton fails.
 
     ``y1`` is filled with the end state; ``quad`` with the step's (−∫a_g X', c∫X'², friction work) [J/kg].
     ``guess`` [3 × 3]: Newton starts from the stage increments Σ_k guess[j, k] z_full[k] (a half step of
     :func:`double_step`), or, when ``guess`` is empty, from 0 and then ``z_full`` receives this step's increments.
+    ``use_lu``: *simplified* Newton first, its matrix I − h A⊗J(y0) factored once by the caller (``lu``, ``piv``);
+    when it does not contract (θ ≥ 1, or 10 iterations) full Newton (a Jacobian per stage and iteration) takes over
+    from the same start.  Both end at their rounding floor.
     """
     m = y0.shape[0]
     n = m - 1
@@ -490,52 +556,92 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
     jac = np.empty((3, m, m))
     big = np.empty((3 * m, 3 * m))
     res = np.empty(3 * m)
+    delta = np.empty(3 * m)
     ys = np.empty(m)
     dy = np.empty(m)
     wb = np.empty(n)
     rs = np.empty(3)
     power = np.empty(3)
+    z_start = z.copy()
+    simplified = use_lu
     prev = math.inf
     converged = False
-    for it in range(20):
+    it = 0
+    n_it = 0
+    while n_it < 40:
+        n_it += 1
+        fall_back = False
         for j in range(3):
             for p in range(m):
                 ys[p] = y0[p] + z[j, p]
             ag = a_start + slope * RADAU_C[j] * h
-            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], True, pivot, gmap, lock)
+            rs[j], power[j] = rhs(ys, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac[j], not simplified,
+                                  pivot, gmap, lock)
             for p in range(m):
                 fz[j, p] = dy[p]
         ok = True
         for j in range(3):
             if not math.isfinite(rs[j]):
                 ok = False
-        if not ok:
-            return -1
         for j in range(3):
             for p in range(m):
                 total = z[j, p]
                 for k in range(3):
                     total -= h * RADAU_A[j, k] * fz[k, p]
                 res[j * m + p] = -total
-                for k in range(3):
-                    for q in range(m):
-                        big[j * m + p, k * m + q] = (1.0 if (j == k and p == q) else 0.0) - h * RADAU_A[j, k] * jac[k, p, q]
-        for p in range(3 * m):
-            for q in range(3 * m):
-                if not math.isfinite(big[p, q]):
-                    return -1  # a stage left the slide law's domain: the caller shortens the step
-        delta = np.linalg.solve(big, res)
-        size = 0.0
-        for j in range(3):
-            for p in range(m):
-                z[j, p] += delta[j * m + p]
-                size = max(size, abs(delta[j * m + p]) / scale[p])
-        if not math.isfinite(size):
-            return -1
-        if size <= 1e-15 or (it >= 2 and size >= 0.5 * prev and size <= 1e-11):
-            converged = True
-            break
+                if not math.isfinite(res[j * m + p]):
+                    ok = False
+        if not ok:
+            if not simplified:
+                return -1
+            fall_back = True
+        elif simplified:
+            for p in range(3 * m):
+                delta[p] = res[p]
+            lu_solve(lu, piv, delta)
+        else:
+            for j in range(3):
+                for p in range(m):
+                    for k in range(3):
+                        for q in range(m):
+                            big[j * m + p, k * m + q] = (1.0 if (j == k and p == q) else 0.0) - h * RADAU_A[j, k] * jac[k, p, q]
+            for p in range(3 * m):
+                for q in range(3 * m):
+                    if not math.isfinite(big[p, q]):
+                        return -1  # a stage left the slide law's domain: the caller shortens the step
+            delta[:] = np.linalg.solve(big, res)
+        if not fall_back:
+            size = 0.0
+            for j in range(3):
+                for p in range(m):
+                    z[j, p] += delta[j * m + p]
+                    size = max(size, abs(delta[j * m + p]) / scale[p])
+            if not math.isfinite(size):
+                if not simplified:
+                    return -1
+                fall_back = True
+            elif not simplified:
+                if size <= 1e-15 or (it >= 2 and size >= 0.5 * prev and size <= 1e-11):
+                    converged = True
+                    break
+            else:
+                # linear contraction θ: the error left after this iteration is ≤ θ/(1 − θ) of its size
+                theta = size / prev if it >= 1 else 0.0
+                if size <= 1e-15 or (it >= 1 and theta < 0.9 and theta * size <= 1e-16 * (1.0 - theta)):
+                    converged = True
+                    break
+                if (it >= 1 and theta >= 1.0) or it >= 10:
+                    fall_back = True
+        if fall_back:
+            simplified = False
+            for j in range(3):
+                for p in range(m):
+                    z[j, p] = z_start[j, p]
+            prev = math.inf
+            it = 0
+            continue
         prev = size
+        it += 1
     if not converged:
         return -1
     if guess.shape[0] != 3:
@@ -578,17 +684,36 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
     quad[0] = q_in
     quad[1] = q_visc
     quad[2] = q_fric
-    return it + 1
+    return n_it
 
 
 @njit(cache=True)
-def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, gmap, lock):
+def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y1, quad, pivot, gmap, lock,
+                simplified):
     """Two Radau steps of h/2 (kept) and one of h (the estimate); returns the scaled difference (inf: failed).
 
     ``quad`` [4]: the halves' (−∫a_g X', c∫X'², friction work) [J/kg] and the Newton iterations of the three steps.
     The halves' Newton starts from the full step's collocation polynomial (:data:`GUESS_FIRST_HALF`).
+    ``simplified``: the three steps' Newton uses one Jacobian, at y0, in two factored matrices (h and h/2;
+    :func:`radau_step`), instead of a Jacobian per stage and iteration and a 3m × 3m solve each time.
     """
     m = y0.shape[0]
+    jac0 = np.empty((m, m))
+    lu_full = np.empty((3 * m, 3 * m))
+    lu_half = np.empty((3 * m, 3 * m))
+    piv_full = np.zeros(3 * m, dtype=np.int64)
+    piv_half = np.zeros(3 * m, dtype=np.int64)
+    use_full = False
+    use_half = False
+    if simplified:
+        dy0 = np.empty(m)
+        wb0 = np.empty(m - 1)
+        r0, _ = rhs(y0, a_start, g, c, bmat, mode, mu_s, mu_f, a, smat, wb0, dy0, jac0, True, pivot, gmap, lock)
+        if math.isfinite(r0):
+            stage_matrix(h, jac0, lu_full)
+            use_full = lu_factor(lu_full, piv_full)
+            stage_matrix(0.5 * h, jac0, lu_half)
+            use_half = lu_factor(lu_half, piv_half)
     y_full = np.empty(m)
     y_mid = np.empty(m)
     q_full = np.empty(3)
@@ -598,18 +723,19 @@ def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sc
     no_guess = np.empty((0, 3))
     quad[3] = 0.0
     it0 = radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_full, q_full, pivot, gmap, lock,
-                     z_full, no_guess)
+                     z_full, no_guess, lu_full, piv_full, use_full)
     if it0 < 0:
         return math.inf
     quad[3] = it0
     half = 0.5 * h
     it1 = radau_step(y0, half, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale, y_mid, q1, pivot, gmap, lock,
-                     z_full, GUESS_FIRST_HALF)
+                     z_full, GUESS_FIRST_HALF, lu_half, piv_half, use_half)
     if it1 < 0:
         return math.inf
     quad[3] += it1
     it2 = radau_step(y_mid, half, a_start + slope * half, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                     y1, q2, pivot, gmap, lock, z_full, GUESS_SECOND_HALF)
+                     y1, q2, pivot, gmap, lock, z_full, GUESS_SECOND_HALF, lu_half, piv_half,
+                     use_half)
     if it2 < 0:
         return math.inf
     err = 0.0
@@ -733,7 +859,7 @@ def _masks(mode):
 
 
 @njit(cache=True)
-def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, lock_levels,
+def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, lock_levels, simplified_newton,
                 out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x,
                 summary, surf_peak, state_first_time, u):
     """Response of a mass on a multi-surface bearing with µ(v) surfaces to a sampled record.
@@ -758,6 +884,8 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
         First trial step [s].
     lock_levels : float64[2]
         (join, leave) levels of a_i s_i v_i of the saturated set (:func:`update_lock`, :data:`LOCK_LEVELS`) [-].
+    simplified_newton : bool
+        The collocation's Newton with one Jacobian per step (:func:`double_step`); False: full Newton.
     out_x, out_v, out_a, out_r, out_energy, ev_time, ev_kind, ev_x, summary, surf_peak, state_first_time
         Filled as in :func:`isolator.solver.multisurface_kernel.multisurface_kernel`.
     u : float64[ns]
@@ -869,7 +997,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
             pivot = update_lock(dy, mode, a, lock, lock_levels[0], lock_levels[1])
             pivot = set_split(mode, pivot, lock, bmat, gmap)
             err = double_step(y, h, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                              y_try, quad, pivot, gmap, lock)
+                              y_try, quad, pivot, gmap, lock, simplified_newton)
             n_newton += quad[3]
             if not err <= tol:
                 if h <= 1e-13 * dt_i:
@@ -919,7 +1047,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                             if not (ta < tm < tb_):
                                 tm = 0.5 * (ta + tb_)
                             double_step(y, tm, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat,
-                                        scale, y_ev, quad_ev, pivot, gmap, lock)
+                                        scale, y_ev, quad_ev, pivot, gmap, lock, simplified_newton)
                             n_newton += quad_ev[3]
                             rm, _ = rhs(y_ev, a0 + slope * (tau + tm), g, c, bmat, mode, mu_s, mu_f, a, smat, wb,
                                         dy, jac, False, pivot, gmap, lock)
@@ -973,7 +1101,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
             # ---- the event: advance to it ----
             if first_t > 0.0:
                 double_step(y, first_t, a0 + slope * tau, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, scale,
-                            y_ev, quad_ev, pivot, gmap, lock)
+                            y_ev, quad_ev, pivot, gmap, lock, simplified_newton)
                 n_newton += quad_ev[3]
                 for p in range(m):
                     y[p] = y_ev[p]
