@@ -226,6 +226,28 @@ def rim_return(rx, ry, u1, u2, rb, mu, rim):
 
 
 @njit(cache=True)
+def rim_holds(d1, d2, u1, u2, mu, rim):
+    """Whether an element on its rim (|ū| ≥ c̄ (1 − RIM_ON)) stays where it is under r, d = r − b = r − ū/R̄ [W].
+
+    The exact condition of the step's problem at w = ū (its optimality, 0 ∈ b − r + µ B + N(ū), B the unit disc
+    and N(ū) = {ν e, ν ≥ 0} the rim's normal cone at ū, e = ū/|ū|): d lies in the friction disc plus the rim's
+    outward normals, |d·t| ≤ µ and d·e ≥ 0 (the case |d| ≤ µ is the ordinary stick, taken before).  Decided here on
+    d itself, not on the rim's return: the bisection and polish of :func:`rim_return` end on ū only to rounding, so
+    an element held by its rim came out "sliding along it" by ~1e-16 rad in some of the step's three solves and not
+    in the others, and the step's Richardson combination was refused (its sliding set differed) for as long as the
+    rim held it — first-order steps, each losing its O(h²) numerical dissipation (Chuetsu-oki 65025 with Fenz &
+    Constantinou's TFP, 28.30 s, surface 1 held on its rim with the mass free: 144 such steps lost 9.1e-5 J/kg, the
+    balance open by 1.8e-5 of the input; at step_tol 1e-8 the refusal by the balance guard, 2.8e-5)."""
+    un2 = u1 * u1 + u2 * u2
+    if un2 < (rim * (1.0 - RIM_ON)) ** 2:
+        return False
+    un = math.sqrt(un2)
+    dn = (d1 * u1 + d2 * u2) / un
+    dt = (-d1 * u2 + d2 * u1) / un
+    return dn >= 0.0 and abs(dt) <= mu
+
+
+@njit(cache=True)
 def element_return(rx, ry, u1, u2, rb, mu, rim):
     """The slip of one element under the force r [W] and its share of Ψ and of Ψ's Hessian.
 
@@ -246,6 +268,8 @@ def element_return(rx, ry, u1, u2, rb, mu, rim):
         e1 = d1 / dn
         e2 = d2 / dn
         return v1, v2, 0.5 * rb * ex * ex, rb * (1.0 - q), rb * q, e1, e2, 1
+    if rim_holds(d1, d2, u1, u2, mu, rim):
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3
     w1, w2, kappa, held = rim_return(rx, ry, u1, u2, rb, mu, rim)
     if held:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3

@@ -122,10 +122,11 @@ def test_a_collinear_pair_along_35_degrees_through_iv_and_v_is_the_1d_model_and_
     outer = [res.surface_peak_displacement_m[i] / TFP.surfaces[i].displacement_capacity_m for i in (0, 3)]
     assert max(outer) <= 1 + 1e-12 and min(outer) == pytest.approx(1.0, rel=1e-9)
     # on to the ultimate with the outer sliders on their rims pointing different ways: the steps do not resolve
-    # that impact (Newton's solves stall; the interval's work bound stops them, ~10 s) and the run stops in one line
-    # naming the instant — never past it
+    # that impact (Newton's solves stall: "found no force at t = 0.727859 s"; before the exact hold on a rim,
+    # rim_holds, the interval's work bound stopped them, ~10 s) and the run stops in one line naming the instant —
+    # never past it
     t = np.arange(0.0, 1.0, 0.01)
-    with pytest.raises(SolverError, match=r"at t = 0\.72\d* s \(3 of 3 slider groups on their rims: the bearing at its ultimate"):
+    with pytest.raises(SolverError, match=r"at t = 0\.72\d* s \(.*3 of 3 slider groups on their rims"):
         simulate_bearing_pair(0.6 * G * np.sin(2 * np.pi * t / 2.0), 0.5 * G * np.cos(2 * np.pi * t / 1.7), 0.01,
                               bearing=TFP)
 
