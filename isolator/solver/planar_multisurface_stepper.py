@@ -322,6 +322,21 @@ def at_ultimate(y, rim):
 
 
 @njit(cache=True)
+def carried_group(y, mask, rim):
+    """The group that carries the mass on its rim circle in a step from y with be_step's mask: the only group that
+    slid, on its rim at the step's start and end (the others held or stuck); -1 when there is none."""
+    ng = rim.shape[0]
+    slid = mask & ((1 << ng) - 1)
+    if popcount(slid) != 1:
+        return -1
+    for k in range(ng):
+        if slid >> k & 1:
+            on_start = y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 >= (rim[k] * (1.0 - RIM_ON)) ** 2
+            return k if (on_start and mask >> (ng + k) & 1) else -1
+    return -1
+
+
+@njit(cache=True)
 def group_return(rx, ry, y, k, rb, mu, rim, ult):
     """:func:`element_return` of group k in the state y; held on the ultimate circle (``ult``, :func:`at_ultimate`)
     the group's set for the step is the disc of radius c̄/2 tangent inside its rim at ū, not the rim's disc.
@@ -703,6 +718,20 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
         sg = 1.0 if out[Y_V] * t1 + out[Y_V + 1] * t2 >= 0.0 else -1.0
         out[Y_V] = sg * vn * t1
         out[Y_V + 1] = sg * vn * t2
+    elif carried_group(y, mask, rim) >= 0 and not ult:
+        # one group sliding, along its rim, the others not sliding: the mass is carried on that group's rim circle
+        # (centred at the other groups' sum), so its velocity is along that circle's tangent at the end, its
+        # magnitude kept — the backward-Euler velocity is the chord's, outward at the end by w²h/(2c̄), and the next
+        # step's force then depended on the previous step's length (the full and half steps disagreed by ~0.2 W on
+        # the rim's reaction, and the steps shrank to tol |V| / 2 m/s² ~ 1e-7 s: the misaligned ultimate)
+        for k in range(ng):
+            if k == carried_group(y, mask, rim):
+                e1 = out[Y_U + 2 * k] / rim[k]
+                e2 = out[Y_U + 2 * k + 1] / rim[k]
+                vn = math.sqrt(out[Y_V] ** 2 + out[Y_V + 1] ** 2)
+                sg = 1.0 if -out[Y_V] * e2 + out[Y_V + 1] * e1 >= 0.0 else -1.0
+                out[Y_V] = -sg * vn * e2
+                out[Y_V + 1] = sg * vn * e1
     elif (mask >> ng == (1 << ng) - 1 and ultimate_impact(y, out, g, rb) > 0.0
             and iterations < 0):
         # an impact in a short step: the normal part of Newton's residual is the impulse's rounding (α ~ 1/h² times
