@@ -226,6 +226,28 @@ def rim_return(rx, ry, u1, u2, rb, mu, rim):
 
 
 @njit(cache=True)
+def rim_holds(d1, d2, u1, u2, mu, rim):
+    """Whether an element on its rim (|ū| ≥ c̄ (1 − RIM_ON)) stays where it is under r, d = r − b = r − ū/R̄ [W].
+
+    The exact condition of the step's problem at w = ū (its optimality, 0 ∈ b − r + µ B + N(ū), B the unit disc
+    and N(ū) = {ν e, ν ≥ 0} the rim's normal cone at ū, e = ū/|ū|): d lies in the friction disc plus the rim's
+    outward normals, |d·t| ≤ µ and d·e ≥ 0 (the case |d| ≤ µ is the ordinary stick, taken before).  Decided here on
+    d itself, not on the rim's return: the bisection and polish of :func:`rim_return` end on ū only to rounding, so
+    an element held by its rim came out "sliding along it" by ~1e-16 rad in some of the step's three solves and not
+    in the others, and the step's Richardson combination was refused (its sliding set differed) for as long as the
+    rim held it — first-order steps, each losing its O(h²) numerical dissipation (Chuetsu-oki 65025 with Fenz &
+    Constantinou's TFP, 28.30 s, surface 1 held on its rim with the mass free: 144 such steps lost 9.1e-5 J/kg, the
+    balance open by 1.8e-5 of the input; at step_tol 1e-8 the refusal by the balance guard, 2.8e-5)."""
+    un2 = u1 * u1 + u2 * u2
+    if un2 < (rim * (1.0 - RIM_ON)) ** 2:
+        return False
+    un = math.sqrt(un2)
+    dn = (d1 * u1 + d2 * u2) / un
+    dt = (-d1 * u2 + d2 * u1) / un
+    return dn >= 0.0 and abs(dt) <= mu
+
+
+@njit(cache=True)
 def element_return(rx, ry, u1, u2, rb, mu, rim):
     """The slip of one element under the force r [W] and its share of Ψ and of Ψ's Hessian.
 
@@ -246,6 +268,8 @@ def element_return(rx, ry, u1, u2, rb, mu, rim):
         e1 = d1 / dn
         e2 = d2 / dn
         return v1, v2, 0.5 * rb * ex * ex, rb * (1.0 - q), rb * q, e1, e2, 1
+    if rim_holds(d1, d2, u1, u2, mu, rim):
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3
     w1, w2, kappa, held = rim_return(rx, ry, u1, u2, rb, mu, rim)
     if held:
         return 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 3
@@ -295,6 +319,21 @@ def at_ultimate(y, rim):
         if abs(u1 * s2 - u2 * s1) > ALIGNED * sn * math.sqrt(u1 * u1 + u2 * u2) or u1 * s1 + u2 * s2 <= 0.0:
             return False
     return True
+
+
+@njit(cache=True)
+def carried_group(y, mask, rim):
+    """The group that carries the mass on its rim circle in a step from y with be_step's mask: the only group that
+    slid, on its rim at the step's start and end (the others held or stuck); -1 when there is none."""
+    ng = rim.shape[0]
+    slid = mask & ((1 << ng) - 1)
+    if popcount(slid) != 1:
+        return -1
+    for k in range(ng):
+        if slid >> k & 1:
+            on_start = y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 >= (rim[k] * (1.0 - RIM_ON)) ** 2
+            return k if (on_start and mask >> (ng + k) & 1) else -1
+    return -1
 
 
 @njit(cache=True)
@@ -679,6 +718,20 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
         sg = 1.0 if out[Y_V] * t1 + out[Y_V + 1] * t2 >= 0.0 else -1.0
         out[Y_V] = sg * vn * t1
         out[Y_V + 1] = sg * vn * t2
+    elif carried_group(y, mask, rim) >= 0 and not ult:
+        # one group sliding, along its rim, the others not sliding: the mass is carried on that group's rim circle
+        # (centred at the other groups' sum), so its velocity is along that circle's tangent at the end, its
+        # magnitude kept — the backward-Euler velocity is the chord's, outward at the end by w²h/(2c̄), and the next
+        # step's force then depended on the previous step's length (the full and half steps disagreed by ~0.2 W on
+        # the rim's reaction, and the steps shrank to tol |V| / 2 m/s² ~ 1e-7 s: the misaligned ultimate)
+        for k in range(ng):
+            if k == carried_group(y, mask, rim):
+                e1 = out[Y_U + 2 * k] / rim[k]
+                e2 = out[Y_U + 2 * k + 1] / rim[k]
+                vn = math.sqrt(out[Y_V] ** 2 + out[Y_V + 1] ** 2)
+                sg = 1.0 if -out[Y_V] * e2 + out[Y_V + 1] * e1 >= 0.0 else -1.0
+                out[Y_V] = -sg * vn * e2
+                out[Y_V + 1] = sg * vn * e1
     elif (mask >> ng == (1 << ng) - 1 and ultimate_impact(y, out, g, rb) > 0.0
             and iterations < 0):
         # an impact in a short step: the normal part of Newton's residual is the impulse's rounding (α ~ 1/h² times

@@ -410,7 +410,9 @@ def test_building_with_a_vertical_is_analysed_by_the_2d_building(tmp_path):
 def test_triple_pendulum_review_on_real_pairs(inputs, capacities):
     """Fenz & Constantinou's bearing through the 2-D multi-surface model on three real pairs: either every analysis
     ran on it and the rows read its keys, or the model could not finish one (a rim in the plane, a guard) and the
-    review stops in one line naming the pair — never a pair left out of the suite values, never a traceback."""
+    review stops in one line naming the pair — never a pair left out of the suite values, never a traceback.
+    With the uncut capacities every analysis is answered (Superstition Hills PTS reaches the ultimate at both
+    bounds, since the exact hold on a rim); the cut bearing stops on PTS at its misaligned ultimate (12.72 s)."""
     surfaces = [{**s, "displacement_capacity_m": c} for s, c in zip(FC_SURFACES, capacities, strict=True)]
     design = _triple(surfaces, lambda_max=1.2, lambda_min=0.85)
     try:
@@ -419,7 +421,10 @@ def test_triple_pendulum_review_on_real_pairs(inputs, capacities):
     except ReviewError as err:
         text = str(err)
         assert "\n" not in text and "engine refuses the design under pair '" in text, text
+        assert capacities != (0.4, 0.05, 0.05, 0.4), text  # the uncut bearing is answered
         return
+    if capacities == (0.4, 0.05, 0.05, 0.4):  # PTS through regimes IV–V to the ultimate, at both bounds
+        assert all(r.analyses[b]["superstitionhills1987_PTS"]["ultimate_displacement_reached"] for b in r.analyses)
     assert {a["model"] for b in r.analyses for a in r.analyses[b].values()} == {"2d-multisurface"}
     rows = {row["id"]: row for row in r.checks}
     peaks = [a["peak_displacement_m"] for b in r.analyses for a in r.analyses[b].values()]
