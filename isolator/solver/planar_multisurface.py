@@ -192,10 +192,14 @@ def _warm_up() -> None:
 
 
 def _run(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, capacity):
+    # the event kernel's outputs, and its work counters (planar_multisurface_kernel.ST_*) last
+    stats = np.zeros(_pm.ST_SIZE, dtype=np.int64)
+
     def kernel(out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
+        stats[:] = 0
         _pm.planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol, out_x, out_v,
-                                       out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
-    return _with_event_room(kernel, t.size, rb.size, members.shape[0], tmat.shape[0], capacity)
+                                       out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub, stats)
+    return (*_with_event_room(kernel, t.size, rb.size, members.shape[0], tmat.shape[0], capacity), stats)
 
 
 def _with_event_room(kernel, n, n_groups, n_members, n_surfaces, capacity):
@@ -375,8 +379,13 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
             # at the first one, or where a closing corner makes its steps stiff (which ends in one; CBGS: 2.6 s of a
             # 3.9 s answer at load 9 were such a run)
             scales = np.append(scales, 1.0)
-        out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t, ev_k, elapsed = _run(
+        out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t, ev_k, elapsed, stats = _run(
             local, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, float(rtol), 64 + ax.size // 4)
+        if stats[_pm.ST_RADAU_MAIN] + stats[_pm.ST_DOP_MAIN]:
+            refused = int(stats[_pm.ST_REF_NEWTON] + stats[_pm.ST_REF_ERROR])
+            how += (f"; corner steps: {int(stats[_pm.ST_RADAU_MAIN])} implicit (Radau IIA; {refused} refused, "
+                    f"{int(stats[_pm.ST_REF_NEWTON])} of them by Newton; {int(stats[_pm.ST_NEWTON])} Newton "
+                    f"iterations), {int(stats[_pm.ST_DOP_MAIN])} explicit (DOP853)")
         status = int(summary[_pm.S_STATUS])
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
         if method == "events":

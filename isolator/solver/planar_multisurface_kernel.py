@@ -169,6 +169,23 @@ SC_R_SWITCH_LO = 4
 #: record that is not collinear with another method then stops at once instead of finishing a run it discards
 SC_EXACT_ONLY = 5
 
+# work counters of the multi-group steps (the kernel's ``stats`` argument, int64[ST_SIZE]; docs/multisurface.md)
+ST_RADAU = 0  #: implicit (Radau IIA) steps taken, event location and peaks included
+ST_RADAU_MAIN = 1  #: implicit steps of the main loop (not re-steps for an event or a peak)
+ST_DOP_MAIN = 2  #: explicit (DOP853) multi-group steps of the main loop
+ST_REF_NEWTON = 3  #: implicit steps of the main loop refused because Newton did not converge
+ST_REF_ERROR = 4  #: implicit steps of the main loop refused by the error test
+ST_NEWTON = 5  #: simplified-Newton iterations
+ST_JAC = 6  #: Jacobian evaluations
+ST_LU = 7  #: LU factorisations of the iteration matrix
+ST_RATES = 8  #: evaluations of the multi-group rates inside the implicit steps
+ST_RESTEP = 9  #: multi-group steps re-taken to locate an event or a peak
+ST_REF_DOP = 10  #: explicit multi-group steps refused
+ST_NEWTON_DIVERGED = 11  #: Newton solves ended because the increment grew
+ST_NEWTON_MAXIT = 12  #: Newton solves ended after NEWTON_MAX iterations
+ST_NEWTON_SINGULAR = 13  #: Newton solves ended because a stage's compliance was singular or its rates not finite
+ST_SIZE = 14
+
 # the Cartesian multi-group state: X, V, r, energies, then ū of each group
 M_X = 0
 M_V = 2
@@ -295,10 +312,43 @@ _RC = np.array([(4.0 - _SQ6) / 10.0, (4.0 + _SQ6) / 10.0, 1.0])
 _RA = np.array([[(88.0 - 7.0 * _SQ6) / 360.0, (296.0 - 169.0 * _SQ6) / 1800.0, (-2.0 + 3.0 * _SQ6) / 225.0],
                 [(296.0 + 169.0 * _SQ6) / 1800.0, (88.0 + 7.0 * _SQ6) / 360.0, (-2.0 - 3.0 * _SQ6) / 225.0],
                 [(16.0 - _SQ6) / 36.0, (16.0 + _SQ6) / 36.0, 1.0 / 9.0]])
-#: corners whose sliding normals make an angle below this [rad] take the implicit steps
-IMPLICIT_ANGLE = 0.05
+
+
+def _radau_eigenbasis():
+    # A⁻¹ = T Λ T⁻¹ with Λ = [[γ, 0, 0], [0, α, β], [0, −β, α]] (its real eigenvalue γ and the pair α ± iβ), T real:
+    # the 3n × 3n Newton system splits into one real and one complex n × n system (Hairer & Wanner, §IV.8; RADAU5)
+    w, vec = np.linalg.eig(np.linalg.inv(_RA))
+    kr = int(np.argmin(np.abs(w.imag)))
+    kc = int(np.argmax(w.imag))
+    t = np.empty((3, 3))
+    t[:, 0] = vec[:, kr].real / np.abs(vec[:, kr].real).max()
+    t[:, 1] = vec[:, kc].real
+    t[:, 2] = vec[:, kc].imag
+    ti = np.linalg.inv(t)
+    lam = ti @ np.linalg.inv(_RA) @ t
+    return t, ti, float(lam[0, 0]), float(lam[1, 1]), float(lam[1, 2])
+
+
+_RT, _RTI, _RGAMMA, _RALPHA, _RBETA = _radau_eigenbasis()
+#: corners whose sliding normals make an angle below this [rad] take the implicit steps.  The fast mode's rate is
+#: ≈ 40/s² 1/s (F&C's corner), so DOP853's stability bound ≈ 6 s²/40 s: at s = 0.02 … 0.05 it takes ~3× the steps
+#: of Radau IIA at a tenth of their cost (PTS at 0.02 instead of 0.05: 1 178 instead of 1 933 implicit steps,
+#: 6 569 instead of 4 003 explicit ones, the same answer to 5e-11 of the peak)
+IMPLICIT_ANGLE = 0.02
+#: a corner of two groups closing towards tangency steps at most this fraction of its time to tangency s/|ṡ| (the
+#: simplified Newton's Jacobian, ∝ 1/s², then changes by at most (1 − CLOSING_STEP)^−2 over the step, about half of
+#: that from the step's middle, where it is taken).  PTS: 0.15 / 0.25 / 0.35 gave 1 121 / 951 / 1 027 implicit steps,
+#: 19 / 23 / 76 of them refused by Newton
+CLOSING_STEP = 0.25
+#: the same for a corner opening after a tangency (the Jacobian then falls by at most (1 + OPENING_STEP)^−2)
+OPENING_STEP = 0.3
+#: γ of the error estimate's filter (I − γ h J)⁻¹ of the implicit steps: RADAU5's, 1/3.6378 (the real eigenvalue of
+#: the Radau IIA matrix's inverse)
+ERR_FILTER = 0.2749
+#: an implicit step refused twice in a row is retried at most this fraction of the refused one
+REFUSED_AGAIN = 0.25
 #: simplified-Newton iterations of one implicit step before it is refused (the step is then shortened)
-NEWTON_MAX = 12
+NEWTON_MAX = 20
 #: a simplified-Newton increment this small (in units of the step's local error tolerance) ends the iteration
 NEWTON_FLOOR = 1e-2
 
@@ -391,17 +441,50 @@ def _active(mask, m, act):
 
 
 @njit(cache=True)
-def _radau_matrix(h, jac, na, mat, piv):
-    """I − h A ⊗ J of the three stages over the active components, LU-factored in place: False if singular."""
-    for i in range(3):
+def _radau_matrix(h, jac, na, e1, p1, e2, p2):
+    """The simplified-Newton matrix of the three stages over the active components, h⁻¹ A⁻¹ ⊗ I − I ⊗ J, in A's
+    eigenbasis (:func:`_radau_eigenbasis`): γ/h − J (real, ``e1``) and (α − iβ)/h − J (complex, ``e2``), LU-factored
+    in place: False if singular."""
+    for p in range(na):
+        for q in range(na):
+            e1[p, q] = -jac[p, q]
+            e2[p, q] = -jac[p, q]
+        e1[p, p] += _RGAMMA / h
+        e2[p, p] += complex(_RALPHA / h, -_RBETA / h)
+    return _lu(e1, p1) and _lu(e2, p2)
+
+
+@njit(cache=True)
+def _radau_newton(h, z, fz, act, na, e1, p1, e2, p2, dz, w1, w2):
+    """One simplified-Newton increment ``dz`` of the stage increments z (rates ``fz`` at the stages): with W = T⁻¹Z,
+    (h⁻¹Λ − J) ΔW = T⁻¹F − h⁻¹ΛW, solved as one real and one complex system, and ΔZ = T ΔW."""
+    for q in range(na):
+        p = act[q]
+        zt0 = 0.0
+        zt1 = 0.0
+        zt2 = 0.0
+        f0 = 0.0
+        f1 = 0.0
+        f2 = 0.0
         for j in range(3):
-            ha = h * _RA[i, j]
-            for p in range(na):
-                for q in range(na):
-                    mat[i * na + p, j * na + q] = -ha * jac[p, q]
-        for p in range(na):
-            mat[i * na + p, i * na + p] += 1.0
-    return _lu(mat, piv)
+            zj = z[j * na + q]
+            fj = fz[j, p]
+            zt0 += _RTI[0, j] * zj
+            zt1 += _RTI[1, j] * zj
+            zt2 += _RTI[2, j] * zj
+            f0 += _RTI[0, j] * fj
+            f1 += _RTI[1, j] * fj
+            f2 += _RTI[2, j] * fj
+        w1[q] = f0 - _RGAMMA / h * zt0
+        w2[q] = complex(f1 - (_RALPHA * zt1 + _RBETA * zt2) / h, f2 - (-_RBETA * zt1 + _RALPHA * zt2) / h)
+    _lu_solve(e1, p1, w1)
+    _lu_solve(e2, p2, w2)
+    for q in range(na):
+        a = w1[q]
+        b = w2[q].real
+        c = w2[q].imag
+        for i in range(3):
+            dz[i * na + q] = _RT[i, 0] * a + _RT[i, 1] * b + _RT[i, 2] * c
 
 
 @njit(cache=True)
@@ -456,12 +539,15 @@ def expand_corner(v, rb, mu, ka, kb, y):
     stuck ū, so b_a = (X − Σ stuck ū − R̄_b (µ_a e_a − µ_b e_b))/(R̄_a + R̄_b), r = b_a + µ_a e_a: r is on both
     circles exactly, and the corner's opening is φ itself (in r and ū it is a difference of nearly equal lengths,
     |b_a − b_b| − (µ_a − µ_b) ∝ φ², which loses its digits as the corner closes)."""
+    _expand_normals(v, rb, mu, ka, kb, y, math.cos(v[M_R]), math.sin(v[M_R]), math.cos(v[M_R] + v[M_R + 1]),
+                    math.sin(v[M_R] + v[M_R + 1]))
+
+
+@njit(cache=True)
+def _expand_normals(v, rb, mu, ka, kb, y, a1, a2, b1, b2):
+    # expand_corner with the normals e_a = (a1, a2), e_b = (b1, b2) of the reduced state v given
     for p in range(v.shape[0]):
         y[p] = v[p]
-    a1 = math.cos(v[M_R])
-    a2 = math.sin(v[M_R])
-    b1 = math.cos(v[M_R] + v[M_R + 1])
-    b2 = math.sin(v[M_R] + v[M_R + 1])
     d1 = mu[ka] * a1 - mu[kb] * b1
     d2 = mu[ka] * a2 - mu[kb] * b2
     w1 = v[M_X]
@@ -479,13 +565,13 @@ def expand_corner(v, rb, mu, ka, kb, y):
 def reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d):
     """Derivative of the reduced corner state: X, V and the energies as in :func:`multi_rhs`, θ̇_k = e_k⊥·ṙ/µ_k
     (ṙ − ḃ_k ⊥ e_k, ḃ_k = λ_k e_k/R̄_k ∥ e_k), φ̇ = θ̇_b − θ̇_a; the two groups' ū slots are not integrated (0)."""
-    expand_corner(v, rb, mu, ka, kb, yw)
-    if not multi_rhs(tau, yw, raw, rb, mu, mask, c, d):
-        return False
     a1 = math.cos(v[M_R])
     a2 = math.sin(v[M_R])
     b1 = math.cos(v[M_R] + v[M_R + 1])
     b2 = math.sin(v[M_R] + v[M_R + 1])
+    _expand_normals(v, rb, mu, ka, kb, yw, a1, a2, b1, b2)
+    if not multi_rhs(tau, yw, raw, rb, mu, mask, c, d):
+        return False
     ta = (a1 * d[M_R + 1] - a2 * d[M_R]) / mu[ka]
     tb = (b1 * d[M_R + 1] - b2 * d[M_R]) / mu[kb]
     d[M_R] = ta
@@ -505,8 +591,9 @@ def _rates(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d):
 
 
 @njit(cache=True)
-def _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw):
+def _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw, st):
     # the rates fz[i] at the three stages y + z_i (z over the active components): False where C is singular
+    st[ST_RATES] += 3
     for i in range(3):
         for p in range(y.shape[0]):
             yt[p] = y[p]
@@ -518,28 +605,52 @@ def _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw
 
 
 @njit(cache=True)
-def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew, ka, kb, yw):
-    """One Radau IIA step of length h from (τ, y) by simplified Newton on the active components (``mat``: the
-    factored iteration matrix of :func:`_radau_matrix`), the others by the collocation's quadrature of their rates at
-    the converged stages: False if it fails."""
+def _node_basis(x, i):
+    """The Lagrange polynomial of the collocation node c_i over the nodes (0, c_1, c_2, c_3) at x (in units of the
+    step): the collocation polynomial of a step from y is y + Σ_i z_i L_i(τ/h)."""
+    acc = 1.0
+    for k in range(-1, 3):
+        if k != i:
+            ck = 0.0 if k < 0 else _RC[k]
+            acc *= (x - ck) / (_RC[i] - ck)
+    return acc
+
+
+@njit(cache=True)
+def _predict(zsrc, na, x0, ratio, zdst):
+    """Newton's start for a step of ``ratio`` × the source step's length beginning at x0 (in units of the source
+    step) on the source step's collocation polynomial (stage increments ``zsrc``): the new stage increments read
+    off that polynomial (Hairer & Wanner, *Solving ODEs II*, §IV.8: the previous step's polynomial extrapolated)."""
+    for j in range(3):
+        x = x0 + _RC[j] * ratio
+        for q in range(na):
+            zdst[j * na + q] = 0.0
+        for i in range(3):
+            w = _node_basis(x, i) - _node_basis(x0, i)
+            for q in range(na):
+                zdst[j * na + q] += w * zsrc[i * na + q]
+
+
+@njit(cache=True)
+def _radau_solve(tau, y, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, ynew, ka, kb, yw, st, z):
+    """One Radau IIA step of length h from (τ, y) by simplified Newton on the active components (``e1``, ``e2``:
+    the factored iteration matrices of :func:`_radau_matrix`; ``z``: in, Newton's start for the stage increments; out,
+    the converged ones), the others by the collocation's quadrature of their rates at the converged stages: False
+    if it fails."""
     m = y.shape[0]
     n3 = 3 * na
-    z = np.zeros(n3)
     fz = np.zeros((3, m))
     res = np.zeros(n3)
     yt = np.zeros(m)
+    w1 = np.empty(na)
+    w2 = np.empty(na, dtype=np.complex128)
     last = np.inf
     for it in range(NEWTON_MAX):
-        if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw):
+        st[ST_NEWTON] += 1
+        if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw, st):
+            st[ST_NEWTON_SINGULAR] += 1
             return False
-        for i in range(3):
-            for q in range(na):
-                p = act[q]
-                acc = 0.0
-                for j in range(3):
-                    acc += _RA[i, j] * fz[j, p]
-                res[i * na + q] = h * acc - z[i * na + q]
-        _lu_solve(mat, piv, res)
+        _radau_newton(h, z, fz, act, na, e1, p1, e2, p2, res, w1, w2)
         dn = 0.0
         for i in range(3):
             for q in range(na):
@@ -553,29 +664,71 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ynew, k
         theta = dn / last if it >= 1 else 1.0
         floor = it >= 2 and dn <= NEWTON_FLOOR
         if not dn < np.inf or (it >= 2 and dn > last and not floor):
+            st[ST_NEWTON_DIVERGED if dn < np.inf else ST_NEWTON_SINGULAR] += 1
             return False
         last = dn
         # Newton's remaining error well below the local error allowed (1 in these units)
-        if dn <= 1e-4 or floor or (theta < 1.0 and dn * theta / (1.0 - theta) <= NEWTON_FLOOR):
+        done = dn <= 1e-4 or floor or (theta < 1.0 and dn * theta / (1.0 - theta) <= NEWTON_FLOOR)
+        if not done and it >= 1 and dn > NEWTON_FLOOR and (theta >= 0.99 or dn * theta ** (NEWTON_MAX - 1 - it) / (1.0 - theta)
+                                     > NEWTON_FLOOR):
+            # at this contraction the iterations left cannot reach the floor: refused now, not after them (RADAU5)
+            st[ST_NEWTON_MAXIT] += 1
+            return False
+        if done:
             # the rates at the converged stages: the quadrature of the other components (stiffly accurate: the
             # last stage's row of A is the weights)
-            if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw):
+            if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw, st):
                 return False
             for p in range(m):
                 ynew[p] = y[p] + h * (_RA[2, 0] * fz[0, p] + _RA[2, 1] * fz[1, p] + _RA[2, 2] * fz[2, p])
             for q in range(na):
                 ynew[act[q]] = y[act[q]] + z[2 * na + q]
             return True
+    st[ST_NEWTON_MAXIT] += 1
     return False
 
 
+#: the implicit steps' memory (``radau_step``'s ``rm``, float64[2, RM_Z + 3 m]): row RM_PENDING holds the last
+#: step solved, row RM_PREV the one that ended where the current step starts; per row its flag, the sliding
+#: groups, the length of its last half step, the state it ended at (as the next step reads it) and that half
+#: step's stage increments
+RM_PENDING = 0
+RM_PREV = 1
+RM_FLAG = 0
+RM_MASK = 1
+RM_H = 2
+RM_KEY = 3
+
+
 @njit(cache=True)
-def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
+def _recall(rm, mask, v, m):
+    """True when the memory holds the step that ended at v with these sliding groups (the pending one is promoted:
+    a step starting where it ended was accepted)."""
+    if rm[RM_PENDING, RM_FLAG] == 1.0 and rm[RM_PENDING, RM_MASK] == mask:
+        same = True
+        for p in range(m):
+            if rm[RM_PENDING, RM_KEY + p] != v[p]:
+                same = False
+                break
+        if same:
+            rm[RM_PREV, :] = rm[RM_PENDING, :]
+            rm[RM_PENDING, RM_FLAG] = 0.0
+    if rm[RM_PREV, RM_FLAG] != 1.0 or rm[RM_PREV, RM_MASK] != mask:
+        return False
+    for p in range(m):
+        if rm[RM_PREV, RM_KEY + p] != v[p]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, rm):
     """One implicit step of the multi-group state: Radau IIA over h and over two h/2, the error of the two halves
     from their difference (order 5: difference / 31); (ok, err) with err raised to the power 8/6 so that the
     order-8 step factor of the explicit steps (err^(−1/8)) gives the order-5 one (err^(−1/6)).  Newton solves for
     the active components only (:func:`_active`), and the two halves share one factored matrix (same h/2, same
-    Jacobian).
+    Jacobian).  Newton starts from a collocation polynomial (:func:`_predict`): the step of h from the previous
+    step's (``rm``, when the state is where that step ended), the halves from the step of h's.
 
     A corner of exactly two groups is stepped in its reduced state (:func:`reduce_corner`: X, V, θ_a, φ; r and
     the two ū are functions of them, on both circles exactly): its opening φ is a state of its own instead of a
@@ -583,6 +736,9 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
     opening (PTS: 28 705 implicit steps in r and ū, docs/multisurface.md).  The step's error is measured on the
     reduced state (the angles' tolerance: r's over the larger µ)."""
     m = y.shape[0]
+    st[ST_RADAU] += 1
+    st[ST_JAC] += 1
+    st[ST_LU] += 2
     ka, kb = _corner_pair(mask, rb.shape[0])
     yw = np.empty(m)
     act = np.empty(m, dtype=np.int64)
@@ -602,38 +758,67 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
         v = y
         fv = f0
         na = _active(mask, m, act)
+    n3 = 3 * na
+    zf = np.zeros(n3)
     sc = np.empty(m)
     for p in range(m):
         sc[p] = tol[p] + rtol * abs(v[p])
+    # the Jacobian's point: the step's middle on the previous step's polynomial where there is one (the corner's
+    # fast mode goes as 1/s², so across a closing step the start's Jacobian is off by (1 − CLOSING_STEP)^−2, the
+    # middle's by about half that), else the start
+    vj = v.copy()
+    tj = tau
+    fj = fv
+    if _recall(rm, mask, v, m):
+        zsrc = rm[RM_PREV, RM_KEY + m:RM_KEY + m + n3]
+        ratio = h / rm[RM_PREV, RM_H]
+        _predict(zsrc, na, 1.0, ratio, zf)
+        for i in range(3):
+            w = _node_basis(1.0 + 0.5 * ratio, i) - _node_basis(1.0, i)
+            for q in range(na):
+                vj[act[q]] += w * zsrc[i * na + q]
+        fj = np.empty(m)
+        tj = tau + 0.5 * h
+        if not _rates(tj, vj, raw, rb, mu, mask, c, ka, kb, yw, fj):
+            vj[:] = v
+            tj = tau
+            fj = fv
     jac = np.empty((na, na))
-    yp = v.copy()
+    yp = vj.copy()
     fp = np.empty(m)
     for qa in range(na):
         q = act[qa]
         # a difference step of √ε times the component's own scale (atol/rtol + |y|)
         dq = 1.5e-8 * max(sc[q] / rtol, 1e-12)
-        yp[q] = v[q] + dq
-        if not _rates(tau, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
+        yp[q] = vj[q] + dq
+        if not _rates(tj, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
             dq = -dq
-            yp[q] = v[q] + dq
-            if not _rates(tau, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
+            yp[q] = vj[q] + dq
+            if not _rates(tj, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
                 return False, np.inf
         for pa in range(na):
-            jac[pa, qa] = (fp[act[pa]] - fv[act[pa]]) / dq
-        yp[q] = v[q]
-    mat = np.empty((3 * na, 3 * na))
-    piv = np.zeros(3 * na, dtype=np.int64)
+            jac[pa, qa] = (fp[act[pa]] - fj[act[pa]]) / dq
+        yp[q] = vj[q]
+    e1 = np.empty((na, na))
+    p1 = np.zeros(na, dtype=np.int64)
+    e2 = np.empty((na, na), dtype=np.complex128)
+    p2 = np.zeros(na, dtype=np.int64)
     yfull = np.empty(m)
-    if not (_radau_matrix(h, jac, na, mat, piv)
-            and _radau_solve(tau, v, h, raw, rb, mu, mask, c, mat, piv, act, na, sc, yfull, ka, kb, yw)):
+    if not (_radau_matrix(h, jac, na, e1, p1, e2, p2)
+            and _radau_solve(tau, v, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, yfull, ka, kb, yw, st,
+                             zf)):
         return False, np.inf
     ymid = np.empty(m)
     vnew = np.empty(m)
-    if not (_radau_matrix(0.5 * h, jac, na, mat, piv)
-            and _radau_solve(tau, v, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, ymid, ka, kb, yw)):
+    zh = np.empty(n3)
+    _predict(zf, na, 0.0, 0.5, zh)
+    if not (_radau_matrix(0.5 * h, jac, na, e1, p1, e2, p2)
+            and _radau_solve(tau, v, 0.5 * h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, ymid, ka, kb, yw,
+                             st, zh)):
         return False, np.inf
-    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, mat, piv, act, na, sc, vnew, ka, kb,
-                        yw):
+    _predict(zf, na, 0.5, 0.5, zh)
+    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, vnew, ka,
+                        kb, yw, st, zh):
         return False, np.inf
     if ka >= 0:
         expand_corner(vnew, rb, mu, ka, kb, ynew)
@@ -641,21 +826,55 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol):
         ynew[:] = vnew
     if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
         return False, np.inf
+    # the difference of the halves and the whole, its stiff part filtered by (I − γ h J)⁻¹ (Shampine's filter, as
+    # in RADAU5's estimate: Hairer & Wanner, *Solving ODEs II*, §IV.8).  At each sample the forcing's slope jumps,
+    # and so does the fast mode's quasi-steady value: the state starts a boundary layer of length ~1/|λ| (s²/40 s),
+    # which the L-stable steps damp whatever h, but which the plain difference counts as error at every h with
+    # h|λ| ~ 1–100 (PTS, three groups: 355 of 1 094 steps refused so, the estimate growing as h fell)
+    diff = np.empty(m)
+    for p in range(m):
+        diff[p] = vnew[p] - yfull[p]
+    filt = np.empty((na, na))
+    for pa in range(na):
+        for qa in range(na):
+            filt[pa, qa] = -ERR_FILTER * h * jac[pa, qa]
+        filt[pa, pa] += 1.0
+    fpiv = np.zeros(na, dtype=np.int64)
+    st[ST_LU] += 1
+    if _lu(filt, fpiv):
+        dact = np.empty(na)
+        for qa in range(na):
+            dact[qa] = diff[act[qa]]
+        _lu_solve(filt, fpiv, dact)
+        for qa in range(na):
+            diff[act[qa]] = dact[qa]
     err = 0.0
     for p in range(m):
         s = tol[p] + rtol * max(abs(v[p]), abs(vnew[p]))
-        err += ((vnew[p] - yfull[p]) / 31.0 / s) ** 2
+        err += (diff[p] / 31.0 / s) ** 2
     err = math.sqrt(err / m)
     if not err < np.inf:
         return False, np.inf
+    # the memory: the second half step, keyed on the state the next step will read (the reduced state of ynew)
+    rm[RM_PENDING, RM_FLAG] = 1.0
+    rm[RM_PENDING, RM_MASK] = mask
+    rm[RM_PENDING, RM_H] = 0.5 * h
+    if ka >= 0:
+        reduce_corner(ynew, rb, ka, kb, yp)
+    else:
+        yp[:] = vnew
+    for p in range(m):
+        rm[RM_PENDING, RM_KEY + p] = yp[p]
+    for q in range(n3):
+        rm[RM_PENDING, RM_KEY + m + q] = zh[q]
     return True, err ** (8.0 / 6.0)
 
 
 @njit(cache=True)
-def corner_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt):
+def corner_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt, st, rm):
     """One step of the multi-group state: DOP853, or Radau IIA where the corner is close to closing."""
     if corner_angle(y, rb, mask) < IMPLICIT_ANGLE:
-        return radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol)
+        return radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, rm)
     return multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt)
 
 
@@ -1103,7 +1322,7 @@ def _joins_in_step(mode, x, y, f, h, theta_max, prm, frc, yb, fb, atol, rtol, s,
 
 
 @njit(cache=True)
-def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt):
+def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm):
     """Fraction θ of a multi-group step where group k leaves (kind 0: λ_k = 0) or joins (kind 1)."""
     ng = rb.shape[0]
     ub = np.empty((ng, 2))
@@ -1119,14 +1338,16 @@ def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol
     lo = 0.0
     hi = 1.0
     glo = g0
-    corner_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+    st[ST_RESTEP] += 1
+    corner_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
     ghi = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
     side = 0
     for _ in range(80):
         th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+        st[ST_RESTEP] += 1
+        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
         gv = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
         if gv > 0.0:
             hi = th
@@ -1146,7 +1367,7 @@ def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol
 
 
 @njit(cache=True)
-def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt):
+def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm):
     """Largest |y[o:o+2]| inside a multi-group step where its rate goes from + to −: Illinois secant on
     the rate of its square over DOP853 sub-steps."""
     lo = 0.0
@@ -1159,7 +1380,8 @@ def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol
         th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
-        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt)
+        st[ST_RESTEP] += 1
+        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
         best = max(best, norm(myb[o], myb[o + 1]))
         gv = myb[o] * mfb[o] + myb[o + 1] * mfb[o + 1]
         if gv > 0.0:
@@ -1304,7 +1526,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
 
 @njit(cache=True)
 def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, scales, rtol,
-                               out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
+                               out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub, stats):
     """Response of a mass on a multi-surface bearing to a piecewise-linear pair of components.
 
     Parameters
@@ -1341,6 +1563,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
         First time each set of sliding elements was entered [s] (-1: never).
     ub : float64[ng, 2]
         Group displacements (in: zero; out: the final state) [m].
+    stats : int64[ST_SIZE]
+        Work counters of the multi-group steps (ST_*), added to.
     """
     n = t.shape[0]
     ng = rb.shape[0]
@@ -1360,6 +1584,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     mfb = np.zeros(nm)
     matol = np.full(nm, np.inf)
     kk = np.zeros((_NS + 1, nm))
+    rm = np.zeros((2, RM_KEY + 4 * nm))  #: the implicit steps' memory (radau_step)
     yt = np.zeros(nm)
     frc = np.zeros(7)
     work = np.zeros(2)
@@ -1571,12 +1796,20 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 matol[M_EIN] = etol
                 matol[M_EF] = etol
                 matol[M_EV] = etol
-                ok, err = corner_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt)
+                implicit = corner_angle(my, rb, comp) < IMPLICIT_ANGLE
+                stats[ST_RADAU_MAIN if implicit else ST_DOP_MAIN] += 1
+                ok, err = corner_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt, stats, rm)
                 n_steps += 1
                 n_multi += 1
                 if not ok or err > 1.0:
                     n_rej += 1
+                    stats[(ST_REF_NEWTON if not ok else ST_REF_ERROR) if implicit else ST_REF_DOP] += 1
                     h_sugg = h * (0.25 if not ok else step_factor(err))
+                    if implicit and just_rejected:
+                        # refused again: at a sample the forcing's slope jumps and the corner's fast mode starts a
+                        # boundary layer, in which the implicit steps' estimate does not fall as h⁶ (it rose from
+                        # 1.8 to 4.4 while h fell from 5.4e-3 to 1.7e-3 s: PTS, ten refusals at one sample)
+                        h_sugg = min(h_sugg, REFUSED_AGAIN * h)
                     just_rejected = True
                     if h_sugg < 1e-14 * hi:
                         status |= STATUS_SINGULAR
@@ -1592,7 +1825,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     if comp >> k & 1:
                         if _lambda(mynew, mfnew, rb, k) < 0.0:
                             th = _locate_multi(0, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
-                                               kk, yt)
+                                               kk, yt, stats, rm)
                             if th < theta:
                                 theta = th
                                 kind = EV_LEAVE
@@ -1602,14 +1835,15 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             ub[k, q] = my[M_U + 2 * k + q]
                         if _outside(mynew[M_R], mynew[M_R + 1], ub, rb, mu, k) > 0.0:
                             th = _locate_multi(1, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
-                                               kk, yt)
+                                               kk, yt, stats, rm)
                             if th < theta:
                                 theta = th
                                 kind = EV_JOIN
                                 which = k
                 if kind >= 0:
+                    stats[ST_RESTEP] += 1
                     ok2, _ = corner_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
-                                        kk, yt)
+                                        kk, yt, stats, rm)
                     mynew[:] = myb
                     mfnew[:] = mfb
                     h = theta * h
@@ -1622,7 +1856,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     if g0 > 0.0 >= g1 and tangent_bound(v0, g0 / max(v0, 1e-300), v1, g1 / max(v1, 1e-300), h) > (
                             peak_x if wp == 0 else peak_v):
                         best = _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
-                                           kk, yt)
+                                           kk, yt, stats, rm)
                         if wp == 0:
                             peak_x = max(peak_x, best)
                         else:
@@ -1666,6 +1900,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             # residue, which ṡ sees ∝ 1/s²: PTS at 5.6594 s, ṡ −3.26 along the approach, −2.9 to
                             # +6.6 at its last steps' ends): s is linear in time here
                             snd = (sn - s_prev) / h
+                            # the Jacobian of the corner's fast mode goes as 1/s²: a step that changes s by more than
+                            # CLOSING_STEP (OPENING_STEP) of itself leaves it too far from the step's start for the
+                            # simplified Newton, which then fails (PTS: 470 of 2 931 implicit steps refused so)
+                            if snd != 0.0:
+                                h_sugg = min(h_sugg, (CLOSING_STEP if sn * snd < 0.0 else OPENING_STEP) * abs(sn / snd))
                         if abs(sn) < CROSS_ANGLE and sn * snd < 0.0 and tau - 2.0 * sn / snd < hi:
                             dcr = -2.0 * sn / snd
                             myb[:] = my

@@ -663,3 +663,51 @@ def test_the_reduced_corner_state_is_on_both_circles_and_moves_as_the_full_state
     assert abs(dv[pk.M_R + 1] - (rates[1] - rates[0])) <= 1e-12 * scale
     np.testing.assert_array_equal(dv[pk.M_X:pk.M_R], d[pk.M_X:pk.M_R])
     np.testing.assert_array_equal(dv[pk.M_EIN:pk.M_U], d[pk.M_EIN:pk.M_U])
+
+
+def test_the_implicit_steps_newton_increment_in_the_eigenbasis_is_the_direct_solve():
+    # the corner's Radau IIA steps solve the simplified-Newton system in A's eigenbasis (one real and one complex
+    # n × n system instead of the 3n × 3n one, as RADAU5 does): the increment must be that of the 3n × 3n system
+    # (I − h A ⊗ J) ΔZ = h (A ⊗ I) F − Z, solved here directly by numpy from the Radau IIA coefficients written out
+    from isolator.solver import planar_multisurface_kernel as pk
+
+    s6 = np.sqrt(6.0)
+    a = np.array([[(88 - 7 * s6) / 360, (296 - 169 * s6) / 1800, (-2 + 3 * s6) / 225],
+                  [(296 + 169 * s6) / 1800, (88 + 7 * s6) / 360, (-2 - 3 * s6) / 225],
+                  [(16 - s6) / 36, (16 + s6) / 36, 1 / 9]])
+    rng = np.random.default_rng(7)
+    na, m, h = 6, 9, 3e-4
+    jac = rng.normal(size=(na, na)) * 50.0
+    jac[5, 5] = -4e7  # the corner's fast mode (≈ −40/s² at s = 1e-3)
+    act = np.array([0, 1, 2, 3, 4, 5, 6, 7, 8])
+    z = rng.normal(size=3 * na) * 1e-6
+    fz = rng.normal(size=(3, m))
+    e1, p1 = np.empty((na, na)), np.zeros(na, dtype=np.int64)
+    e2, p2 = np.empty((na, na), dtype=np.complex128), np.zeros(na, dtype=np.int64)
+    assert pk._radau_matrix(h, jac, na, e1, p1, e2, p2)
+    dz = np.empty(3 * na)
+    pk._radau_newton(h, z, fz, act, na, e1, p1, e2, p2, dz, np.empty(na), np.empty(na, dtype=np.complex128))
+    f = fz[:, :na].reshape(-1)
+    want = np.linalg.solve(np.eye(3 * na) - h * np.kron(a, jac), h * np.kron(a, np.eye(na)) @ f - z)
+    np.testing.assert_allclose(dz, want, rtol=0, atol=1e-12 * np.max(np.abs(want)))
+
+
+@pytest.mark.parametrize("x0, ratio", [(1.0, 1.0), (1.0, 2.5), (0.0, 0.5), (0.5, 0.5)])
+def test_newtons_start_reads_the_collocation_polynomial(x0, ratio):
+    # Newton's start of an implicit step is read off a collocation polynomial: the previous step's extrapolated
+    # (x0 = 1), or the whole step's for its two halves (x0 = 0 and 0.5, ratio 0.5).  Through the nodes 0, c1, c2, c3
+    # that polynomial is any cubic exactly: the start must be the cubic's own increments
+    from isolator.solver import planar_multisurface_kernel as pk
+
+    c = np.array([(4 - np.sqrt(6)) / 10, (4 + np.sqrt(6)) / 10, 1.0])
+    coef = np.array([[0.3, -1.2, 2.0, 0.7], [1.1, 0.4, -0.9, 3.0]])  # two components, cubic in x
+
+    def u(x):
+        return coef @ np.array([1.0, x, x * x, x ** 3])
+
+    na = 2
+    z = np.concatenate([u(ci) - u(0.0) for ci in c])
+    out = np.empty(3 * na)
+    pk._predict(z, na, x0, ratio, out)
+    want = np.concatenate([u(x0 + ci * ratio) - u(x0) for ci in c])
+    np.testing.assert_allclose(out, want, rtol=0, atol=1e-13 * np.max(np.abs(want)))
