@@ -54,6 +54,7 @@ import math
 
 import numpy as np
 
+from isolator.solver.dense import lu_factor, lu_solve
 from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, record_event
 from isolator.solver.jit import njit
 from isolator.solver.multisurface_kernel import (  # noqa: F401 (the summary layout, re-exported)
@@ -465,57 +466,6 @@ def rhs(y, ag, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, out_dy, out_jac, want_
         else:
             out_jac[0, 0] = -c
     return r, g * power
-
-
-@njit(cache=True)
-def lu_factor(mat, piv):
-    """LU factorisation with partial pivoting of ``mat`` in place (row swaps in ``piv``); False if singular."""
-    size = mat.shape[0]
-    for col in range(size):
-        best = col
-        top = abs(mat[col, col])
-        for i in range(col + 1, size):
-            if abs(mat[i, col]) > top:
-                top = abs(mat[i, col])
-                best = i
-        if not (top > 0.0 and math.isfinite(top)):
-            return False
-        piv[col] = best
-        if best != col:
-            for q in range(size):
-                tmp = mat[col, q]
-                mat[col, q] = mat[best, q]
-                mat[best, q] = tmp
-        inv = 1.0 / mat[col, col]
-        for i in range(col + 1, size):
-            f = mat[i, col] * inv
-            mat[i, col] = f
-            if f != 0.0:
-                for q in range(col + 1, size):
-                    mat[i, q] -= f * mat[col, q]
-    return True
-
-
-@njit(cache=True)
-def lu_solve(lu, piv, rhs_vec):
-    """Solve with the factors of :func:`lu_factor`, in place on ``rhs_vec``."""
-    size = lu.shape[0]
-    for i in range(size):
-        k = piv[i]
-        if k != i:
-            tmp = rhs_vec[i]
-            rhs_vec[i] = rhs_vec[k]
-            rhs_vec[k] = tmp
-    for i in range(size):
-        total = rhs_vec[i]
-        for q in range(i):
-            total -= lu[i, q] * rhs_vec[q]
-        rhs_vec[i] = total
-    for i in range(size - 1, -1, -1):
-        total = rhs_vec[i]
-        for q in range(i + 1, size):
-            total -= lu[i, q] * rhs_vec[q]
-        rhs_vec[i] = total / lu[i, i]
 
 
 @njit(cache=True)

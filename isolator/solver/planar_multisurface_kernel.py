@@ -55,6 +55,7 @@ import math
 import numpy as np
 
 from isolator.solver import planar_multisurface_tableau as _dop
+from isolator.solver.dense import lu_factor, lu_solve
 from isolator.solver.jit import njit
 from isolator.solver.planar_control import (
     ENTER_LOG,
@@ -375,56 +376,6 @@ def corner_angle(y, rb, mask):
 
 
 @njit(cache=True)
-def _lu(a, piv):
-    # LU with partial pivoting in place (a small dense system: 3 × the state); False if singular
-    n = a.shape[0]
-    for k in range(n):
-        p = k
-        big = abs(a[k, k])
-        for i in range(k + 1, n):
-            if abs(a[i, k]) > big:
-                big = abs(a[i, k])
-                p = i
-        if not big > 0.0:
-            return False
-        piv[k] = p
-        if p != k:
-            for j in range(n):
-                tmp = a[k, j]
-                a[k, j] = a[p, j]
-                a[p, j] = tmp
-        inv = 1.0 / a[k, k]
-        for i in range(k + 1, n):
-            a[i, k] *= inv
-            lik = a[i, k]
-            if lik != 0.0:
-                for j in range(k + 1, n):
-                    a[i, j] -= lik * a[k, j]
-    return True
-
-
-@njit(cache=True)
-def _lu_solve(a, piv, b):
-    n = a.shape[0]
-    for k in range(n):
-        p = piv[k]
-        if p != k:
-            tmp = b[k]
-            b[k] = b[p]
-            b[p] = tmp
-    for i in range(n):
-        acc = b[i]
-        for j in range(i):
-            acc -= a[i, j] * b[j]
-        b[i] = acc
-    for i in range(n - 1, -1, -1):
-        acc = b[i]
-        for j in range(i + 1, n):
-            acc -= a[i, j] * b[j]
-        b[i] = acc / a[i, i]
-
-
-@njit(cache=True)
 def _active(mask, m, act):
     """The components of the multi-group state that the implicit step solves for: X, V, r and the sliding groups'
     ū (the energies are quadratures and the stuck groups' ū stay: nothing depends on them).  Returns their count."""
@@ -451,7 +402,7 @@ def _radau_matrix(h, jac, na, e1, p1, e2, p2):
             e2[p, q] = -jac[p, q]
         e1[p, p] += _RGAMMA / h
         e2[p, p] += complex(_RALPHA / h, -_RBETA / h)
-    return _lu(e1, p1) and _lu(e2, p2)
+    return lu_factor(e1, p1) and lu_factor(e2, p2)
 
 
 @njit(cache=True)
@@ -477,8 +428,8 @@ def _radau_newton(h, z, fz, act, na, e1, p1, e2, p2, dz, w1, w2):
             f2 += _RTI[2, j] * fj
         w1[q] = f0 - _RGAMMA / h * zt0
         w2[q] = complex(f1 - (_RALPHA * zt1 + _RBETA * zt2) / h, f2 - (-_RBETA * zt1 + _RALPHA * zt2) / h)
-    _lu_solve(e1, p1, w1)
-    _lu_solve(e2, p2, w2)
+    lu_solve(e1, p1, w1)
+    lu_solve(e2, p2, w2)
     for q in range(na):
         a = w1[q]
         b = w2[q].real
@@ -841,11 +792,11 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
         filt[pa, pa] += 1.0
     fpiv = np.zeros(na, dtype=np.int64)
     st[ST_LU] += 1
-    if _lu(filt, fpiv):
+    if lu_factor(filt, fpiv):
         dact = np.empty(na)
         for qa in range(na):
             dact[qa] = diff[act[qa]]
-        _lu_solve(filt, fpiv, dact)
+        lu_solve(filt, fpiv, dact)
         for qa in range(na):
             diff[act[qa]] = dact[qa]
     err = 0.0
