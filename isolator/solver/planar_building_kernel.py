@@ -69,6 +69,12 @@ APPROACH_ENTRY = 1.0
 #: an approach piece shorter than this in λ: ṡ is near zero, the slab is not stopping: back to SLIDE
 APPROACH_MIN = 0.02
 
+#: a departure from rest at a break-away with µs N = µk N (``DEPART``: the slow manifold's series from the break-away,
+#: :func:`_series_depart`) is taken when |D| at the break-away is within this fraction of µk N (else: ``START``)
+DEPART_EXCESS = 1e-12
+#: the index of departure pieces in the pieces-by-phase counters (a START piece by :func:`_series_depart`)
+DEPART = 5
+
 BREAKAWAY = 0
 STICK = 1
 REVERSAL = 2
@@ -98,7 +104,9 @@ S_N_FAST = 8
 S_N_REFUSED = 9
 #: series pieces by phase: stuck, start, slide, finish (where the time goes: docs/building.md, Speed)
 S_N_PIECES_BY_MODE = 13
-SUMMARY_SIZE = 18
+#: stuck, start, slide, finish, approach and departure (``DEPART``) pieces
+N_PIECE_KINDS = 6
+SUMMARY_SIZE = 19
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
@@ -675,6 +683,132 @@ def _series_log(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, grow, lz, lzd, lt, le, lq
                 lz[d, k + 1, i] = acc / (k + 1)
     return lrate[0]
 
+@njit(cache=True)
+def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_scale):
+    """Taylor coefficients (in x = τ/H, as :func:`_series`) of a departure from rest at a break-away where
+    |D| = µs N = µk N: the slow manifold, written V = τ² W(τ).  Returns False when that form does not hold.
+
+    With µs = µk the slab leaves rest with V̇ = 0 (|D| = µk N at the break-away) and V/|V| is singular at the
+    start: a series in time from any later instant τ0 has its radius at the break-away, and the direction's
+    relaxation towards D, at the rate µk N/(m_b |V|), makes the series in time stiff (pieces of ≈ 8 m_b |V|/(µk N):
+    ~600 pieces per departure on the bench case, docs/building.md).  With V = τ² W the direction e = W/|W| is
+    regular at τ = 0 and the equation of the slab's velocity at order k, (k + 1) V_{k+1} = H (q_k + p_1 µk N e_k)
+    with V_{k+1} = W_{k−1}, gives e0 = D/|D| at order 0 and then, at each order k ≥ 1, the two unknowns
+    e0·W_{k−1} (along) and n0·e_k (across; n0 ⊥ e0): e0·e_k is fixed by |e| = 1 and n0·W_{k−1} by
+    W = |W| e.  No division by |V| (the stiff mode is never excited): the coefficients grow as k!/κ^k,
+    κ = 2 µk N/|Ḋ| — a series with the same terms as the exact slow solution, taken only as far as its last two
+    terms are at rounding (Jorba–Zou, :func:`_piece_limit`), like every other piece.
+    ee[d, k]: the direction's coefficients, rho[k]: those of |W|.  fs = µk N e (the friction's coefficients).
+    """
+    m = w.shape[1]
+    nf = (m - 2) // 2
+    ns = zs.shape[1] - 1
+    zs[0, ns, 0] = h_scale
+    b_x = h_scale * b[0]
+    b_y = h_scale * b[1]
+    for d in range(2):
+        for i in range(m):
+            zs[d, 0, i] = w[d, i]
+        zs[d, 0, 1] = 0.0
+    e0x = 0.0
+    e0y = 0.0
+    w_perp = 0.0  # n0 · W_{k−1}, known before order k
+    for k in range(ns - 1):
+        q0 = 0.0
+        q1 = 0.0
+        for d in range(2):
+            ak = a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0)
+            acc = g_vec[1, d, 1] * ak
+            for c in range(m):
+                acc += a_mat[1, d, 1, c] * zs[d, k, c]
+            if d == 0:
+                q0 = acc
+            else:
+                q1 = acc
+        p0 = p_vec[0, 1] * mu_k_n
+        p1 = p_vec[1, 1] * mu_k_n
+        if k == 0:
+            # order 0: V_1 = 0, so µk N e0 = −q_0/p_1 = D/m_b × m_b
+            ex = -q0 / p0
+            ey = -q1 / p1
+            norm = math.sqrt(ex * ex + ey * ey)
+            if not abs(norm - 1.0) <= DEPART_EXCESS:
+                return False
+            e0x = ex / norm
+            e0y = ey / norm
+            ee[0, 0] = e0x
+            ee[1, 0] = e0y
+            w_x = 0.0
+            w_y = 0.0
+        else:
+            n0x = -e0y
+            n0y = e0x
+            c_par = 0.0
+            for j in range(1, k):
+                c_par -= 0.5 * (ee[0, j] * ee[0, k - j] + ee[1, j] * ee[1, k - j])
+            f = (k + 1) / h_scale
+            # u (k+1)/H e0 − c⊥ p µk N n0 = q − (k+1)/H W⊥ n0 + p µk N c∥ e0, per direction
+            m00 = f * e0x
+            m01 = -p0 * n0x
+            m10 = f * e0y
+            m11 = -p1 * n0y
+            r0 = q0 - f * w_perp * n0x + p0 * c_par * e0x
+            r1 = q1 - f * w_perp * n0y + p1 * c_par * e0y
+            det = m00 * m11 - m01 * m10
+            if not abs(det) > 0.0:
+                return False
+            u = (r0 * m11 - m01 * r1) / det
+            c_perp = (m00 * r1 - m10 * r0) / det
+            ee[0, k] = c_par * e0x + c_perp * n0x
+            ee[1, k] = c_par * e0y + c_perp * n0y
+            w_x = u * e0x + w_perp * n0x
+            w_y = u * e0y + w_perp * n0y
+            # |W|'s coefficient k − 1 from e0·W_{k−1} = Σ_j (e0·e_j) |W|_{k−1−j}
+            acc = u
+            for j in range(1, k):
+                acc -= (e0x * ee[0, j] + e0y * ee[1, j]) * rho[k - 1 - j]
+            rho[k - 1] = acc
+            if k == 1 and not acc > 0.0:
+                return False  # |D| not growing at the break-away: no departure of this form
+            # n0 · W_k = Σ_{j ≥ 1} (n0·e_j) |W|_{k−j}
+            acc = 0.0
+            for j in range(1, k + 1):
+                acc += (n0x * ee[0, j] + n0y * ee[1, j]) * rho[k - j]
+            w_perp = acc
+        for d in range(2):
+            fs[d, k] = mu_k_n * ee[d, k]
+        for d in range(2):
+            ak = a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0)
+            inv = h_scale / (k + 1)
+            zs[d, k + 1, 0] = zs[d, k, 1] * inv
+            for i in range(2, 2 + nf):
+                zs[d, k + 1, i] = zs[d, k, i + nf] * inv
+            for i in range(m):
+                if i == 0 or 2 <= i < 2 + nf:
+                    continue
+                acc = g_vec[1, d, i] * ak + p_vec[d, i] * fs[d, k]
+                for c in range(m):
+                    acc += a_mat[1, d, i, c] * zs[d, k, c]
+                zs[d, k + 1, i] = acc * inv
+            # the slab's velocity: V_{k+1} = W_{k−1} (the recurrence's value to rounding, exact by construction)
+            zs[d, k + 1, 1] = (w_x if d == 0 else w_y) if k >= 1 else 0.0
+    for d in range(2):
+        fs[d, ns - 1] = 0.0
+    return True
+
+
+@njit(cache=True)
+def _next_scale(limit, h_scale, rem, h_max):
+    """The series' time scale H [s] to redo a piece's series with, or 0.0 when H = ``h_scale`` suits the piece's
+    limit [s] (within 1e-3 H … 1e6 H)."""
+    if limit < 1e-3 * h_scale:
+        # H far beyond the radius (coefficients growing as (H/radius)^k, or overflowing)
+        return max(limit, 1e-6 * h_scale)
+    if limit > 1e6 * h_scale and h_scale < min(rem, h_max):
+        # H far below it (the last coefficients could underflow): the piece's own length
+        return min(rem, h_max, limit)
+    return 0.0
+
 
 @njit(cache=True)
 def _jz(size, top, order):
@@ -1232,6 +1366,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     pfr = np.zeros(n_order + 1)
     pvis = np.zeros(n_order + 1)
     ysc = np.zeros((n_order + 1, masses.shape[0]))
+    ee = np.zeros((2, n_series))
+    rho = np.zeros(n_series)
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
@@ -1265,6 +1401,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     r_switch = 1e-5 * v_ref
     r_finish = 1e-10 * v_ref
     use_approach = law[5] != 0.0 and not varying
+    # departures from rest at a break-away with µs = µk by the slow manifold's series (constant µ and N only)
+    use_depart = law[6] != 0.0 and not varying
+    depart_pending = False
+    departing = False
     r_approach = APPROACH_SPEED * v_ref
     nl1 = n_order + 1
     lz = np.zeros((2, nl1, m))
@@ -1290,7 +1430,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     n_ev = 0
     status = 0
     n_pieces = 0
-    pieces_by_mode = np.zeros(5, dtype=np.int64)
+    pieces_by_mode = np.zeros(N_PIECE_KINDS, dtype=np.int64)
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
@@ -1412,7 +1552,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         from_rest = False
                         tau = tau_end if tau_end - (tau + h_lev) <= 1e-12 * h_fast else tau + h_lev
                         continue
-                if n_fast > 0 and uniform and not (varying and mode == SLIDE) and mode != APPROACH:
+                if n_fast > 0 and uniform and not (varying and mode == SLIDE) and mode != APPROACH and not \
+                        (mode == START and depart_pending):
                     # back to the ladder after the shortest rung (sliding with N(t) or µ(v), which the
                     # propagators do not take, runs on to the sub-step's end)
                     slow_end = min(tau_end, tau + h_fast / (1 << (n_levels - 1)))
@@ -1466,23 +1607,41 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         t_event = -1.0
                         kind_phi = -1
                     else:
-                        h_scale = min(h_max, 2.0 * h_last)
-                        limit = 0.0
-                        for _rescale in range(8):
-                            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es,
-                                    vz, mus, exs, h_scale)
-                            limit = _piece_limit(zs, weights, floor_scale)
-                            if limit < 1e-3 * h_scale:
-                                # H far beyond the radius (coefficients growing as (H/radius)^k, or overflowing)
-                                h_scale = max(limit, 1e-6 * h_scale)
-                            elif limit > 1e6 * h_scale and h_scale < min(rem, h_max):
-                                # H far below it (the last coefficients could underflow): the piece's own length
-                                h_scale = min(rem, h_max, limit)
-                            else:
-                                break
+                        departing = False
+                        if mode == START and depart_pending:
+                            # leaving rest with µs = µk: the slow manifold's series from the break-away, as far as
+                            # it reaches rounding and the slab keeps moving away (D·V > 0 at the end), else START
+                            depart_pending = False
+                            h_scale = min(h_max, rem)
+                            limit = 0.0
+                            for _rescale in range(8):
+                                departing = _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho,
+                                                           h_scale)
+                                if not departing:
+                                    break
+                                limit = _piece_limit(zs, weights, floor_scale)
+                                h_scale = _next_scale(limit, h_scale, rem, h_max)
+                                if h_scale == 0.0:
+                                    break
+                            if departing:
+                                length = min(rem, h_max, limit)
+                                _eval(zs, length, zh, zdh, zddh)
+                                push = (_dot(l_d[0], zh[0]) - slab_mass * (a0[0] + b[0] * length)) * zh[0, 1] + (
+                                    _dot(l_d[1], zh[1]) - slab_mass * (a0[1] + b[1] * length)) * zh[1, 1]
+                                departing = push > 0.0 and length > 0.0
+                        if not departing:
+                            h_scale = min(h_max, 2.0 * h_last)
+                            limit = 0.0
+                            for _rescale in range(8):
+                                _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss,
+                                        rs, es, vz, mus, exs, h_scale)
+                                limit = _piece_limit(zs, weights, floor_scale)
+                                h_scale = _next_scale(limit, h_scale, rem, h_max)
+                                if h_scale == 0.0:
+                                    break
                         h_last = min(limit, h_max, dt_i)
                         n_pieces += 1
-                        pieces_by_mode[mode] += 1
+                        pieces_by_mode[DEPART if departing else mode] += 1
                         length = min(rem, h_max, limit)
                         _eval(zs, 0.0, zl, zdl, zddl)
                         if mode == FINISH:
@@ -1509,7 +1668,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                             kind_phi = PHI_STOP_START
                             if t_event >= 0.0:
                                 _eval(zs, t_event, zh, zdh, zddh)
-                            t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                            # a departure's piece hands over to SLIDE at its end, not at r_switch
+                            t_sw = -1.0 if departing else _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
                                                    slab_mass, r_switch, e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             if t_sw > 0.0:
                                 t_event = t_sw
@@ -1596,6 +1756,16 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     a1[1] = ay[i] + b[1] * tau
                     a1[2] = az[i] + b[2] * tau
                     if t_event < 0.0 or kind_phi == PHI_HALF:
+                        if departing and mode == START:
+                            # the end of a departure's piece: slide on in time at a speed START would have switched
+                            # at; below it (the piece cut by the sample's end) START goes on
+                            r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                            if r >= r_switch:
+                                mode = SLIDE
+                                e0[0] = w[0, 1] / r
+                                e0[1] = w[1, 1] / r
+                                half_target = 0.5 * r
+                                start_valid = False
                         # hand-overs that are not stops: a slide's piece end (the speed halved along e0, or not)
                         # renews the friction's direction; a slide slowing below r_finish enters FINISH; FINISH that
                         # did not stop slides on.  The FINISH test is made at every piece end of a slide, not only
@@ -1677,6 +1847,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         kind = BREAKAWAY
                         mode = START
                         from_rest = True
+                        depart_pending = use_depart and hold <= mu_k_n * (1.0 + DEPART_EXCESS)
+                        if depart_pending:
+                            # the departure's series runs to the sub-step's end (not to the ladder's shortest rung)
+                            slow_end = tau_end
                     elif hold <= limit:
                         kind = STICK
                         mode = STUCK
@@ -1740,5 +1914,5 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     summary[S_N_FAST] = n_fast_steps
     for k in range(1, 5):
         summary[S_N_REFUSED + k - 1] = n_refused[k]
-    for k in range(5):
+    for k in range(N_PIECE_KINDS):
         summary[S_N_PIECES_BY_MODE + k] = pieces_by_mode[k]
