@@ -313,25 +313,26 @@ def _phi(kind, z, zd, ax_now, ay_now, tau_now, b, l_d, slab_mass, target, e0, vz
     vz: the vertical and µ(v) of the piece (:func:`_series`); with a vertical the force on the slab other than
     friction holds the pendulum's extra restoring force −k_v (ν(τ) − 1) X and the static limit is µs N ν(τ).
     """
-    dx = _dot(l_d[0], z[0]) - slab_mass * ax_now
-    dy = _dot(l_d[1], z[1]) - slab_mass * ay_now
-    ddx = _dot(l_d[0], zd[0]) - slab_mass * b[0]
-    ddy = _dot(l_d[1], zd[1]) - slab_mass * b[1]
+    _phi_core(kind, _dot(l_d[0], z[0]) - slab_mass * ax_now, _dot(l_d[1], z[1]) - slab_mass * ay_now,
+              _dot(l_d[0], zd[0]) - slab_mass * b[0], _dot(l_d[1], zd[1]) - slab_mass * b[1], z[0, 0], z[1, 0],
+              zd[0, 0], zd[1, 0], z[0, 1], z[1, 1], zd[0, 1], zd[1, 1], tau_now, target, e0, vz, out)
+
+
+@njit(cache=True)
+def _phi_core(kind, dx, dy, ddx, ddy, x, y, xd, yd, vx, vy, avx, avy, tau_now, target, e0, vz, out):
+    """:func:`_phi` from the force on the slab D (dx, dy; ḊD: ddx, ddy), the slab's position (x, y; ẋ: xd, yd) and
+    speed (vx, vy; v̇: avx, avy)."""
     if vz[V_VARYING] != 0.0:
         nu = vz[V_NU0] + vz[V_NU1] * tau_now
         k_v = vz[V_K_VERT]
-        dx -= k_v * (nu - 1.0) * z[0, 0]
-        dy -= k_v * (nu - 1.0) * z[1, 0]
-        ddx -= k_v * (vz[V_NU1] * z[0, 0] + (nu - 1.0) * zd[0, 0])
-        ddy -= k_v * (vz[V_NU1] * z[1, 0] + (nu - 1.0) * zd[1, 0])
+        dx -= k_v * (nu - 1.0) * x
+        dy -= k_v * (nu - 1.0) * y
+        ddx -= k_v * (vz[V_NU1] * x + (nu - 1.0) * xd)
+        ddy -= k_v * (vz[V_NU1] * y + (nu - 1.0) * yd)
         if kind == PHI_BREAK:
             out[0] = dx * dx + dy * dy - (target * nu) ** 2
             out[1] = 2.0 * (dx * ddx + dy * ddy) - 2.0 * target * target * nu * vz[V_NU1]
             return
-    vx = z[0, 1]
-    vy = z[1, 1]
-    avx = zd[0, 1]
-    avy = zd[1, 1]
     if kind == PHI_BREAK:
         out[0] = dx * dx + dy * dy - target * target
         out[1] = 2.0 * (dx * ddx + dy * ddy)
@@ -988,9 +989,47 @@ def _rows_series(rows, wa, s_eff, nterm, out, slot):
 
 
 @njit(cache=True)
+def _chain_end(wa_d, m, k_eff, h):
+    """F(h) and F'(h) of the friction's polynomial Σ_{k ≤ k_eff} c_k τ^k held in wa_d[m + 2 + k] (Horner)."""
+    f_end = 0.0
+    fd_end = 0.0
+    for k in range(k_eff, -1, -1):
+        fd_end = fd_end * h + f_end
+        f_end = f_end * h + wa_d[m + 2 + k]
+    return f_end, fd_end
+
+
+@njit(cache=True)
+def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
+    """A watched quantity's value r0·w̃ and slope r1·w̃ on one direction's end state w̃ = [z, a_g, ȧ_g, F, F']."""
+    m = z_d.shape[0]
+    v = r0[m] * a_end + r0[m + 1] * b_d + r0[m + 2] * f_end + r0[m + 3] * fd_end
+    s = r1[m] * a_end + r1[m + 1] * b_d + r1[m + 2] * f_end + r1[m + 3] * fd_end
+    for c in range(m):
+        v += r0[c] * z_d[c]
+        s += r1[c] * z_d[c]
+    return v, s
+
+
+@njit(cache=True)
+def _watched_end(fmon, fsig, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1, sval1,
+                 sslope1):
+    """Watched values and slopes at a sub-step's end (as :func:`_monitors`) from the rows ℓ (fmon[…, 0]) and ℓÃ
+    (fmon[…, 1]) on the augmented end state [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]."""
+    for k in range(fmon.shape[1]):
+        val1[k, 0], slope1[k, 0] = _row_end(fmon[phase, k, 0, 0], fmon[phase, k, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
+        val1[k, 1], slope1[k, 1] = _row_end(fmon[phase, k, 1, 0], fmon[phase, k, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
+    for j in range(fsig.shape[1]):
+        vx, sx = _row_end(fsig[phase, j, 0, 0], fsig[phase, j, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
+        vy, sy = _row_end(fsig[phase, j, 1, 0], fsig[phase, j, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
+        sval1[j] = sig3[j, 2] * az1 + vx + vy
+        sslope1[j] = sig3[j, 2] * b[2] + sx + sy
+
+
+@njit(cache=True)
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
                fvrow,
-               farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
+               farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
@@ -1073,7 +1112,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     code = 0
     for lev in range(lev_first, n_lev):
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
-                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, fmon, fsig,
+                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
                          sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
@@ -1101,17 +1140,21 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 
 @njit(cache=True)
 def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
-              farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+              farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
     """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
     the reason (2, 3)."""
     m = w.shape[1]
+    # ż's entries that φ reads, at the start and the end (work rows of the end's rates, not read by the caller)
+    rate_l = zdh
+    rate_h = zddh
     r_int = 0.0
     if mode == SLIDE:
         for j in range(k_eff + 1):
             r_int += rser[j] * h ** (j + 1) / (j + 1)
-    s_eff = m + 3 + k_eff
+    # stuck, the chain is zero (the friction is not an input of the held slab's floors): [z, a_g, ȧ_g] only
+    s_eff = m + 3 + k_eff if mode == SLIDE else m + 2
     # the tables are for the chain scaled to this rung, c_j h^j (entries of one size: rounding stays relative)
     for d in range(2):
         for c in range(m + 2):
@@ -1126,34 +1169,39 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             for c2 in range(s_eff):
                 acc += fprop[phase, d, c, c2] * wsc[d, c2]
             zh[d, c] = acc
-    # the start's and the end's rates: ż = Ã w̃, z̈ = Ã² w̃ on [z, a_g, ȧ_g, c_0, c_1]
+    # φ at the ends reads only ℓ_D·z, ℓ_D·ż and z[0], z[1], ż[0], ż[1]: ż's entries from the rows ℓ_D Ã (flrow[…, 2])
+    # and Ã's rows 0, 1 on [z, a_g, ȧ_g, c_0, c_1]; the whole ż, z̈ at the start only when the watched values there
+    # are recomputed (the end's come from the watched rows below)
+    fe_x, fde_x = _chain_end(wa[0], m, k_eff, h)
+    fe_y, fde_y = _chain_end(wa[1], m, k_eff, h)
     for d in range(2):
-        f_end = 0.0
-        fd_end = 0.0
-        for k in range(k_eff, -1, -1):
-            fd_end = fd_end * h + f_end
-            f_end = f_end * h + wa[d, m + 2 + k]
-        for c in range(m):
-            acc_l = farow1[phase, d, c, m] * a0[d] + farow1[phase, d, c, m + 1] * b[d] + farow1[
-                phase, d, c, m + 2] * wa[d, m + 2] + farow1[phase, d, c, m + 3] * wa[d, m + 3]
-            acd_l = farow2[phase, d, c, m] * a0[d] + farow2[phase, d, c, m + 1] * b[d] + farow2[
-                phase, d, c, m + 2] * wa[d, m + 2] + farow2[phase, d, c, m + 3] * wa[d, m + 3]
-            a_end = a0[d] + b[d] * h
-            acc_h = farow1[phase, d, c, m] * a_end + farow1[phase, d, c, m + 1] * b[d] + farow1[
-                phase, d, c, m + 2] * f_end + farow1[phase, d, c, m + 3] * fd_end
-            acd_h = farow2[phase, d, c, m] * a_end + farow2[phase, d, c, m + 1] * b[d] + farow2[
-                phase, d, c, m + 2] * f_end + farow2[phase, d, c, m + 3] * fd_end
+        f_end = fe_x if d == 0 else fe_y
+        fd_end = fde_x if d == 0 else fde_y
+        a_end = a0[d] + b[d] * h
+        for q in range(3):
+            acc_l = flrow[phase, d, q, m] * a0[d] + flrow[phase, d, q, m + 1] * b[d] + flrow[
+                phase, d, q, m + 2] * wa[d, m + 2] + flrow[phase, d, q, m + 3] * wa[d, m + 3]
+            acc_h = flrow[phase, d, q, m] * a_end + flrow[phase, d, q, m + 1] * b[d] + flrow[
+                phase, d, q, m + 2] * f_end + flrow[phase, d, q, m + 3] * fd_end
             for c2 in range(m):
-                acc_l += farow1[phase, d, c, c2] * w[d, c2]
-                acd_l += farow2[phase, d, c, c2] * w[d, c2]
-                acc_h += farow1[phase, d, c, c2] * zh[d, c2]
-                acd_h += farow2[phase, d, c, c2] * zh[d, c2]
-            zl[d, c] = w[d, c]
-            zdl[d, c] = acc_l
-            zddl[d, c] = acd_l
-            zdh[d, c] = acc_h
-            zddh[d, c] = acd_h
-        out2[d] = f_end
+                acc_l += flrow[phase, d, q, c2] * w[d, c2]
+                acc_h += flrow[phase, d, q, c2] * zh[d, c2]
+            rate_l[d, q] = acc_l
+            rate_h[d, q] = acc_h
+        if not start_valid:
+            for c in range(m):
+                acc_l = farow1[phase, d, c, m] * a0[d] + farow1[phase, d, c, m + 1] * b[d] + farow1[
+                    phase, d, c, m + 2] * wa[d, m + 2] + farow1[phase, d, c, m + 3] * wa[d, m + 3]
+                acd_l = farow2[phase, d, c, m] * a0[d] + farow2[phase, d, c, m + 1] * b[d] + farow2[
+                    phase, d, c, m + 2] * wa[d, m + 2] + farow2[phase, d, c, m + 3] * wa[d, m + 3]
+                for c2 in range(m):
+                    acc_l += farow1[phase, d, c, c2] * w[d, c2]
+                    acd_l += farow2[phase, d, c, c2] * w[d, c2]
+                zl[d, c] = w[d, c]
+                zdl[d, c] = acc_l
+                zddl[d, c] = acd_l
+    out2[0] = fe_x
+    out2[1] = fe_y
     ax1 = a0[0] + b[0] * h
     ay1 = a0[1] + b[1] * h
     if mode == SLIDE:
@@ -1170,10 +1218,14 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         kind = PHI_BREAK
         target = mu_s_n
     # an event in the sub-step (φ rising through zero at an end or at an interior maximum): series pieces
-    _phi(kind, zl, zdl, a0[0], a0[1], 0.0, b, l_d, slab_mass, target, e0, vz, out2)
+    _phi_core(kind, _dot(l_d[0], w[0]) - slab_mass * a0[0], _dot(l_d[1], w[1]) - slab_mass * a0[1],
+              rate_l[0, 2] - slab_mass * b[0], rate_l[1, 2] - slab_mass * b[1], w[0, 0], w[1, 0], rate_l[0, 0],
+              rate_l[1, 0], w[0, 1], w[1, 1], rate_l[0, 1], rate_l[1, 1], 0.0, target, e0, vz, out2)
     f0 = out2[0]
     s0 = out2[1]
-    _phi(kind, zh, zdh, ax1, ay1, h, b, l_d, slab_mass, target, e0, vz, out2)
+    _phi_core(kind, _dot(l_d[0], zh[0]) - slab_mass * ax1, _dot(l_d[1], zh[1]) - slab_mass * ay1,
+              rate_h[0, 2] - slab_mass * b[0], rate_h[1, 2] - slab_mass * b[1], zh[0, 0], zh[1, 0], rate_h[0, 0],
+              rate_h[1, 0], zh[0, 1], zh[1, 1], rate_h[0, 1], rate_h[1, 1], h, target, e0, vz, out2)
     f1 = out2[0]
     s1 = out2[1]
     if f0 > 0.0 or f1 > 0.0:
@@ -1192,7 +1244,10 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             sslope[j] = sslope1[j]
     else:
         _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-    _monitors(zh, zdh, zddh, ax1, ay1, a0[2] + b[2] * h, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+    # the end's watched values and slopes from their rows ℓ, ℓÃ on w̃(h) = [z(h), a_g(h), ȧ_g, F(h), F'(h)] (the
+    # rows vanish beyond c_0, c_1): one product each instead of ż, z̈ and the monitors' three rows
+    _watched_end(fmon, fsig, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1,
+                 sval1, sslope1)
     nterm = fmon.shape[3]
     nk = m1.shape[0]
     for k in range(nk):
@@ -1353,6 +1408,32 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     sval2 = np.zeros(max(nj, 1))
     sslope2 = np.zeros(max(nj, 1))
     zl = np.zeros((2, m))
+    # the watched slopes' gains on ȧ_g per phase (m2·g + m3; a sample's new ȧ_g shifts them, see below)
+    gain_mon = np.zeros((2, max(nk, 1), 2))
+    gain_sig = np.zeros((2, max(nj, 1), 2))
+    for ph in range(2):
+        for d in range(2):
+            for k in range(nk):
+                gain = m3[k, d]
+                for c in range(m):
+                    gain += m2[k, d, c] * g_vec[ph, d, c]
+                gain_mon[ph, k, d] = gain
+            for j in range(nj):
+                gain = sig3[j, d]
+                for c in range(m):
+                    gain += sig2[j, d, c] * g_vec[ph, d, c]
+                gain_sig[ph, j, d] = gain
+    # the rows of ż that φ reads at a fast sub-step's ends: Ã's rows 0 (x_b) and 1 (v_b), and ℓ_D Ã (Ḋ)
+    flrow = np.zeros((2, 2, 3, farow1.shape[3]))
+    for ph in range(2):
+        for d in range(2):
+            for c in range(farow1.shape[3]):
+                flrow[ph, d, 0, c] = farow1[ph, d, 0, c]
+                flrow[ph, d, 1, c] = farow1[ph, d, 1, c]
+                acc = 0.0
+                for r in range(m):
+                    acc += l_d[d, r] * farow1[ph, d, r, c]
+                flrow[ph, d, 2, c] = acc
     zdl = np.zeros((2, m))
     zddl = np.zeros((2, m))
     zh = np.zeros((2, m))
@@ -1482,16 +1563,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
             ph = 0 if mode == STUCK else 1
             for k in range(nk):
                 for d in range(2):
-                    gain = m3[k, d]
-                    for c in range(m):
-                        gain += m2[k, d, c] * g_vec[ph, d, c]
-                    slope1[k, d] += gain * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
+                    slope1[k, d] += gain_mon[ph, k, d] * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
             for j in range(nj):
                 for d in range(2):
-                    gain = sig3[j, d]
-                    for c in range(m):
-                        gain += sig2[j, d, c] * g_vec[ph, d, c]
-                    sslope1[j] += gain * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
+                    sslope1[j] += gain_sig[ph, j, d] * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
         n_sub_i = n_fast if (uniform and n_fast > 0) else 1
         h_fast = dt_i / n_sub_i
         for j_sub in range(n_sub_i):
@@ -1519,7 +1594,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, fmon, fsig, m1,
+                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
