@@ -12,6 +12,10 @@ wall time grows with the load. Rerun:
 comparison: 5 floors, PTS 0-20 s) into fast sub-steps and series pieces by phase (medians of ``--runs``)::
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python -m benchmarks.planar_building_throughput --profile [--runs 7]
+        [--no-departure-series]
+
+(``--no-departure-series``: the departures from rest by START and series in time, as before the departure
+series; the same answer to 1e-10, docs/building.md.)
 
 The split is a linear model, not an instrumented count: the same building with µ = 0.95 never slides and runs
 fast sub-steps only (stuck), which gives a stuck sub-step's cost; the rest of the bench case's kernel time is
@@ -93,14 +97,15 @@ def profile(records: Path, runs: int) -> None:
     t_case, r = _kernel_runs(case, case.mu, runs)
     t_stuck, r_stuck = _kernel_runs(case, 0.95, runs)
     per_stuck = t_stuck / max(r_stuck.n_fast_steps, 1)
-    stuck, start, slide, finish, approach = r.n_pieces_by_phase
+    stuck, start, slide, finish, approach, depart = r.n_pieces_by_phase
     stops = int(np.count_nonzero(r.event_kind == 1)) + int(np.count_nonzero(r.event_kind == 2))
     print(f"{case.name}: {case.acceleration_m_s2.size} samples, µ = {case.mu}, {r.n_events} events, "
           f"peak {r.peak_displacement_m:.6f} m")
     print(f"kernel {1e3 * t_case:.1f} ms (median of {runs}); {r.n_fast_steps} fast sub-steps, {r.n_pieces} series "
-          f"pieces (stuck {stuck}, leaving rest {start}, sliding {slide}, finishing a stop {finish}, "
-          f"in ln s {approach}; "
-          f"{(slide + finish + approach) / max(stops, 1):.1f} sliding pieces per stop over {stops} stops); fast "
+          f"pieces (stuck {stuck}, leaving rest by the departure series {depart}, by START {start}, sliding "
+          f"{slide}, finishing a stop {finish}, in ln s {approach}; "
+          f"{(depart + start + slide + finish + approach) / max(stops, 1):.1f} pieces per slide, departure to stop, "
+          f"over {stops} stops); fast "
           f"sub-steps refused {r.n_fast_refused} (series not at rounding, end check, event, V = 0); extrema "
           f"located {r.n_extrema_located}")
     print(f"never sliding (µ = 0.95): kernel {1e3 * t_stuck:.1f} ms for {r_stuck.n_fast_steps} stuck sub-steps = "
@@ -119,7 +124,13 @@ if __name__ == "__main__":
     parser.add_argument("--profile", action="store_true", help="split the bench case's kernel time")
     parser.add_argument("--records", type=Path, default=DEFAULT_PAIR.parents[1])
     parser.add_argument("--runs", type=int, default=7)
+    parser.add_argument("--no-departure-series", action="store_true",
+                        help="leave rest by START and series in time (planar_building.DEPARTURE_SERIES = False)")
     args = parser.parse_args()
+    if args.no_departure_series:
+        import isolator.solver.planar_building as planar_building
+
+        planar_building.DEPARTURE_SERIES = False
     if args.profile:
         profile(args.records, args.runs)
     else:

@@ -60,6 +60,10 @@ ORDER_RANGE = (8, 40)
 #: phase, docs/building.md). Exact (the bench case agrees with the series in time to 3e-15) but not faster yet
 #: (85.0 against 86.5 ms, 1 540 approach + 3 518 slide pieces against 4 962), so off by default.
 STOP_APPROACH = False
+#: Departures from rest at a break-away with µs = µk by the slow manifold's series from the break-away (the kernel's
+#: ``_series_depart``, V = τ² W(τ)) instead of START's friction along D up to 1e-5 v_ref and stiff SLIDE pieces
+#: (docs/building.md, Speed).
+DEPARTURE_SERIES = True
 
 
 @dataclass
@@ -663,9 +667,10 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(6)
+    law = np.zeros(7)
     law[1] = g
     law[5] = 1.0 if STOP_APPROACH else 0.0
+    law[6] = 1.0 if DEPARTURE_SERIES else 0.0
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert
@@ -772,7 +777,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         n_pieces=int(summary[_pk.S_N_PIECES]),
         n_fast_steps=int(summary[_pk.S_N_FAST]),
         n_fast_refused=tuple(int(v) for v in summary[_pk.S_N_REFUSED:_pk.S_N_REFUSED + 4]),
-        n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + 5]),
+        n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + _pk.N_PIECE_KINDS]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         bearing_layout=bearing_layout,
         vertical_acceleration_m_s2=normal.az,

@@ -69,6 +69,12 @@ APPROACH_ENTRY = 1.0
 #: an approach piece shorter than this in λ: ṡ is near zero, the slab is not stopping: back to SLIDE
 APPROACH_MIN = 0.02
 
+#: a departure from rest at a break-away with µs N = µk N (``DEPART``: the slow manifold's series from the break-away,
+#: :func:`_series_depart`) is taken when |D| at the break-away is within this fraction of µk N (else: ``START``)
+DEPART_EXCESS = 1e-12
+#: the index of departure pieces in the pieces-by-phase counters (a START piece by :func:`_series_depart`)
+DEPART = 5
+
 BREAKAWAY = 0
 STICK = 1
 REVERSAL = 2
@@ -98,7 +104,9 @@ S_N_FAST = 8
 S_N_REFUSED = 9
 #: series pieces by phase: stuck, start, slide, finish (where the time goes: docs/building.md, Speed)
 S_N_PIECES_BY_MODE = 13
-SUMMARY_SIZE = 18
+#: stuck, start, slide, finish, approach and departure (``DEPART``) pieces
+N_PIECE_KINDS = 6
+SUMMARY_SIZE = 19
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
@@ -305,25 +313,26 @@ def _phi(kind, z, zd, ax_now, ay_now, tau_now, b, l_d, slab_mass, target, e0, vz
     vz: the vertical and µ(v) of the piece (:func:`_series`); with a vertical the force on the slab other than
     friction holds the pendulum's extra restoring force −k_v (ν(τ) − 1) X and the static limit is µs N ν(τ).
     """
-    dx = _dot(l_d[0], z[0]) - slab_mass * ax_now
-    dy = _dot(l_d[1], z[1]) - slab_mass * ay_now
-    ddx = _dot(l_d[0], zd[0]) - slab_mass * b[0]
-    ddy = _dot(l_d[1], zd[1]) - slab_mass * b[1]
+    _phi_core(kind, _dot(l_d[0], z[0]) - slab_mass * ax_now, _dot(l_d[1], z[1]) - slab_mass * ay_now,
+              _dot(l_d[0], zd[0]) - slab_mass * b[0], _dot(l_d[1], zd[1]) - slab_mass * b[1], z[0, 0], z[1, 0],
+              zd[0, 0], zd[1, 0], z[0, 1], z[1, 1], zd[0, 1], zd[1, 1], tau_now, target, e0, vz, out)
+
+
+@njit(cache=True)
+def _phi_core(kind, dx, dy, ddx, ddy, x, y, xd, yd, vx, vy, avx, avy, tau_now, target, e0, vz, out):
+    """:func:`_phi` from the force on the slab D (dx, dy; ḊD: ddx, ddy), the slab's position (x, y; ẋ: xd, yd) and
+    speed (vx, vy; v̇: avx, avy)."""
     if vz[V_VARYING] != 0.0:
         nu = vz[V_NU0] + vz[V_NU1] * tau_now
         k_v = vz[V_K_VERT]
-        dx -= k_v * (nu - 1.0) * z[0, 0]
-        dy -= k_v * (nu - 1.0) * z[1, 0]
-        ddx -= k_v * (vz[V_NU1] * z[0, 0] + (nu - 1.0) * zd[0, 0])
-        ddy -= k_v * (vz[V_NU1] * z[1, 0] + (nu - 1.0) * zd[1, 0])
+        dx -= k_v * (nu - 1.0) * x
+        dy -= k_v * (nu - 1.0) * y
+        ddx -= k_v * (vz[V_NU1] * x + (nu - 1.0) * xd)
+        ddy -= k_v * (vz[V_NU1] * y + (nu - 1.0) * yd)
         if kind == PHI_BREAK:
             out[0] = dx * dx + dy * dy - (target * nu) ** 2
             out[1] = 2.0 * (dx * ddx + dy * ddy) - 2.0 * target * target * nu * vz[V_NU1]
             return
-    vx = z[0, 1]
-    vy = z[1, 1]
-    avx = zd[0, 1]
-    avy = zd[1, 1]
     if kind == PHI_BREAK:
         out[0] = dx * dx + dy * dy - target * target
         out[1] = 2.0 * (dx * ddx + dy * ddy)
@@ -675,6 +684,132 @@ def _series_log(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, grow, lz, lzd, lt, le, lq
                 lz[d, k + 1, i] = acc / (k + 1)
     return lrate[0]
 
+@njit(cache=True)
+def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_scale):
+    """Taylor coefficients (in x = τ/H, as :func:`_series`) of a departure from rest at a break-away where
+    |D| = µs N = µk N: the slow manifold, written V = τ² W(τ).  Returns False when that form does not hold.
+
+    With µs = µk the slab leaves rest with V̇ = 0 (|D| = µk N at the break-away) and V/|V| is singular at the
+    start: a series in time from any later instant τ0 has its radius at the break-away, and the direction's
+    relaxation towards D, at the rate µk N/(m_b |V|), makes the series in time stiff (pieces of ≈ 8 m_b |V|/(µk N):
+    ~600 pieces per departure on the bench case, docs/building.md).  With V = τ² W the direction e = W/|W| is
+    regular at τ = 0 and the equation of the slab's velocity at order k, (k + 1) V_{k+1} = H (q_k + p_1 µk N e_k)
+    with V_{k+1} = W_{k−1}, gives e0 = D/|D| at order 0 and then, at each order k ≥ 1, the two unknowns
+    e0·W_{k−1} (along) and n0·e_k (across; n0 ⊥ e0): e0·e_k is fixed by |e| = 1 and n0·W_{k−1} by
+    W = |W| e.  No division by |V| (the stiff mode is never excited): the coefficients grow as k!/κ^k,
+    κ = 2 µk N/|Ḋ| — a series with the same terms as the exact slow solution, taken only as far as its last two
+    terms are at rounding (Jorba–Zou, :func:`_piece_limit`), like every other piece.
+    ee[d, k]: the direction's coefficients, rho[k]: those of |W|.  fs = µk N e (the friction's coefficients).
+    """
+    m = w.shape[1]
+    nf = (m - 2) // 2
+    ns = zs.shape[1] - 1
+    zs[0, ns, 0] = h_scale
+    b_x = h_scale * b[0]
+    b_y = h_scale * b[1]
+    for d in range(2):
+        for i in range(m):
+            zs[d, 0, i] = w[d, i]
+        zs[d, 0, 1] = 0.0
+    e0x = 0.0
+    e0y = 0.0
+    w_perp = 0.0  # n0 · W_{k−1}, known before order k
+    for k in range(ns - 1):
+        q0 = 0.0
+        q1 = 0.0
+        for d in range(2):
+            ak = a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0)
+            acc = g_vec[1, d, 1] * ak
+            for c in range(m):
+                acc += a_mat[1, d, 1, c] * zs[d, k, c]
+            if d == 0:
+                q0 = acc
+            else:
+                q1 = acc
+        p0 = p_vec[0, 1] * mu_k_n
+        p1 = p_vec[1, 1] * mu_k_n
+        if k == 0:
+            # order 0: V_1 = 0, so µk N e0 = −q_0/p_1 = D/m_b × m_b
+            ex = -q0 / p0
+            ey = -q1 / p1
+            norm = math.sqrt(ex * ex + ey * ey)
+            if not abs(norm - 1.0) <= DEPART_EXCESS:
+                return False
+            e0x = ex / norm
+            e0y = ey / norm
+            ee[0, 0] = e0x
+            ee[1, 0] = e0y
+            w_x = 0.0
+            w_y = 0.0
+        else:
+            n0x = -e0y
+            n0y = e0x
+            c_par = 0.0
+            for j in range(1, k):
+                c_par -= 0.5 * (ee[0, j] * ee[0, k - j] + ee[1, j] * ee[1, k - j])
+            f = (k + 1) / h_scale
+            # u (k+1)/H e0 − c⊥ p µk N n0 = q − (k+1)/H W⊥ n0 + p µk N c∥ e0, per direction
+            m00 = f * e0x
+            m01 = -p0 * n0x
+            m10 = f * e0y
+            m11 = -p1 * n0y
+            r0 = q0 - f * w_perp * n0x + p0 * c_par * e0x
+            r1 = q1 - f * w_perp * n0y + p1 * c_par * e0y
+            det = m00 * m11 - m01 * m10
+            if not abs(det) > 0.0:
+                return False
+            u = (r0 * m11 - m01 * r1) / det
+            c_perp = (m00 * r1 - m10 * r0) / det
+            ee[0, k] = c_par * e0x + c_perp * n0x
+            ee[1, k] = c_par * e0y + c_perp * n0y
+            w_x = u * e0x + w_perp * n0x
+            w_y = u * e0y + w_perp * n0y
+            # |W|'s coefficient k − 1 from e0·W_{k−1} = Σ_j (e0·e_j) |W|_{k−1−j}
+            acc = u
+            for j in range(1, k):
+                acc -= (e0x * ee[0, j] + e0y * ee[1, j]) * rho[k - 1 - j]
+            rho[k - 1] = acc
+            if k == 1 and not acc > 0.0:
+                return False  # |D| not growing at the break-away: no departure of this form
+            # n0 · W_k = Σ_{j ≥ 1} (n0·e_j) |W|_{k−j}
+            acc = 0.0
+            for j in range(1, k + 1):
+                acc += (n0x * ee[0, j] + n0y * ee[1, j]) * rho[k - j]
+            w_perp = acc
+        for d in range(2):
+            fs[d, k] = mu_k_n * ee[d, k]
+        for d in range(2):
+            ak = a0[d] if k == 0 else ((b_x if d == 0 else b_y) if k == 1 else 0.0)
+            inv = h_scale / (k + 1)
+            zs[d, k + 1, 0] = zs[d, k, 1] * inv
+            for i in range(2, 2 + nf):
+                zs[d, k + 1, i] = zs[d, k, i + nf] * inv
+            for i in range(m):
+                if i == 0 or 2 <= i < 2 + nf:
+                    continue
+                acc = g_vec[1, d, i] * ak + p_vec[d, i] * fs[d, k]
+                for c in range(m):
+                    acc += a_mat[1, d, i, c] * zs[d, k, c]
+                zs[d, k + 1, i] = acc * inv
+            # the slab's velocity: V_{k+1} = W_{k−1} (the recurrence's value to rounding, exact by construction)
+            zs[d, k + 1, 1] = (w_x if d == 0 else w_y) if k >= 1 else 0.0
+    for d in range(2):
+        fs[d, ns - 1] = 0.0
+    return True
+
+
+@njit(cache=True)
+def _next_scale(limit, h_scale, rem, h_max):
+    """The series' time scale H [s] to redo a piece's series with, or 0.0 when H = ``h_scale`` suits the piece's
+    limit [s] (within 1e-3 H … 1e6 H)."""
+    if limit < 1e-3 * h_scale:
+        # H far beyond the radius (coefficients growing as (H/radius)^k, or overflowing)
+        return max(limit, 1e-6 * h_scale)
+    if limit > 1e6 * h_scale and h_scale < min(rem, h_max):
+        # H far below it (the last coefficients could underflow): the piece's own length
+        return min(rem, h_max, limit)
+    return 0.0
+
 
 @njit(cache=True)
 def _jz(size, top, order):
@@ -854,9 +989,47 @@ def _rows_series(rows, wa, s_eff, nterm, out, slot):
 
 
 @njit(cache=True)
+def _chain_end(wa_d, m, k_eff, h):
+    """F(h) and F'(h) of the friction's polynomial Σ_{k ≤ k_eff} c_k τ^k held in wa_d[m + 2 + k] (Horner)."""
+    f_end = 0.0
+    fd_end = 0.0
+    for k in range(k_eff, -1, -1):
+        fd_end = fd_end * h + f_end
+        f_end = f_end * h + wa_d[m + 2 + k]
+    return f_end, fd_end
+
+
+@njit(cache=True)
+def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
+    """A watched quantity's value r0·w̃ and slope r1·w̃ on one direction's end state w̃ = [z, a_g, ȧ_g, F, F']."""
+    m = z_d.shape[0]
+    v = r0[m] * a_end + r0[m + 1] * b_d + r0[m + 2] * f_end + r0[m + 3] * fd_end
+    s = r1[m] * a_end + r1[m + 1] * b_d + r1[m + 2] * f_end + r1[m + 3] * fd_end
+    for c in range(m):
+        v += r0[c] * z_d[c]
+        s += r1[c] * z_d[c]
+    return v, s
+
+
+@njit(cache=True)
+def _watched_end(fmon, fsig, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1, sval1,
+                 sslope1):
+    """Watched values and slopes at a sub-step's end (as :func:`_monitors`) from the rows ℓ (fmon[…, 0]) and ℓÃ
+    (fmon[…, 1]) on the augmented end state [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]."""
+    for k in range(fmon.shape[1]):
+        val1[k, 0], slope1[k, 0] = _row_end(fmon[phase, k, 0, 0], fmon[phase, k, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
+        val1[k, 1], slope1[k, 1] = _row_end(fmon[phase, k, 1, 0], fmon[phase, k, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
+    for j in range(fsig.shape[1]):
+        vx, sx = _row_end(fsig[phase, j, 0, 0], fsig[phase, j, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
+        vy, sy = _row_end(fsig[phase, j, 1, 0], fsig[phase, j, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
+        sval1[j] = sig3[j, 2] * az1 + vx + vy
+        sslope1[j] = sig3[j, 2] * b[2] + sx + sy
+
+
+@njit(cache=True)
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
                fvrow,
-               farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
+               farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
@@ -939,7 +1112,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     code = 0
     for lev in range(lev_first, n_lev):
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
-                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, fmon, fsig,
+                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
                          sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
@@ -967,17 +1140,21 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 
 @njit(cache=True)
 def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
-              farow1, farow2, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+              farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
     """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
     the reason (2, 3)."""
     m = w.shape[1]
+    # ż's entries that φ reads, at the start and the end (work rows of the end's rates, not read by the caller)
+    rate_l = zdh
+    rate_h = zddh
     r_int = 0.0
     if mode == SLIDE:
         for j in range(k_eff + 1):
             r_int += rser[j] * h ** (j + 1) / (j + 1)
-    s_eff = m + 3 + k_eff
+    # stuck, the chain is zero (the friction is not an input of the held slab's floors): [z, a_g, ȧ_g] only
+    s_eff = m + 3 + k_eff if mode == SLIDE else m + 2
     # the tables are for the chain scaled to this rung, c_j h^j (entries of one size: rounding stays relative)
     for d in range(2):
         for c in range(m + 2):
@@ -992,34 +1169,39 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             for c2 in range(s_eff):
                 acc += fprop[phase, d, c, c2] * wsc[d, c2]
             zh[d, c] = acc
-    # the start's and the end's rates: ż = Ã w̃, z̈ = Ã² w̃ on [z, a_g, ȧ_g, c_0, c_1]
+    # φ at the ends reads only ℓ_D·z, ℓ_D·ż and z[0], z[1], ż[0], ż[1]: ż's entries from the rows ℓ_D Ã (flrow[…, 2])
+    # and Ã's rows 0, 1 on [z, a_g, ȧ_g, c_0, c_1]; the whole ż, z̈ at the start only when the watched values there
+    # are recomputed (the end's come from the watched rows below)
+    fe_x, fde_x = _chain_end(wa[0], m, k_eff, h)
+    fe_y, fde_y = _chain_end(wa[1], m, k_eff, h)
     for d in range(2):
-        f_end = 0.0
-        fd_end = 0.0
-        for k in range(k_eff, -1, -1):
-            fd_end = fd_end * h + f_end
-            f_end = f_end * h + wa[d, m + 2 + k]
-        for c in range(m):
-            acc_l = farow1[phase, d, c, m] * a0[d] + farow1[phase, d, c, m + 1] * b[d] + farow1[
-                phase, d, c, m + 2] * wa[d, m + 2] + farow1[phase, d, c, m + 3] * wa[d, m + 3]
-            acd_l = farow2[phase, d, c, m] * a0[d] + farow2[phase, d, c, m + 1] * b[d] + farow2[
-                phase, d, c, m + 2] * wa[d, m + 2] + farow2[phase, d, c, m + 3] * wa[d, m + 3]
-            a_end = a0[d] + b[d] * h
-            acc_h = farow1[phase, d, c, m] * a_end + farow1[phase, d, c, m + 1] * b[d] + farow1[
-                phase, d, c, m + 2] * f_end + farow1[phase, d, c, m + 3] * fd_end
-            acd_h = farow2[phase, d, c, m] * a_end + farow2[phase, d, c, m + 1] * b[d] + farow2[
-                phase, d, c, m + 2] * f_end + farow2[phase, d, c, m + 3] * fd_end
+        f_end = fe_x if d == 0 else fe_y
+        fd_end = fde_x if d == 0 else fde_y
+        a_end = a0[d] + b[d] * h
+        for q in range(3):
+            acc_l = flrow[phase, d, q, m] * a0[d] + flrow[phase, d, q, m + 1] * b[d] + flrow[
+                phase, d, q, m + 2] * wa[d, m + 2] + flrow[phase, d, q, m + 3] * wa[d, m + 3]
+            acc_h = flrow[phase, d, q, m] * a_end + flrow[phase, d, q, m + 1] * b[d] + flrow[
+                phase, d, q, m + 2] * f_end + flrow[phase, d, q, m + 3] * fd_end
             for c2 in range(m):
-                acc_l += farow1[phase, d, c, c2] * w[d, c2]
-                acd_l += farow2[phase, d, c, c2] * w[d, c2]
-                acc_h += farow1[phase, d, c, c2] * zh[d, c2]
-                acd_h += farow2[phase, d, c, c2] * zh[d, c2]
-            zl[d, c] = w[d, c]
-            zdl[d, c] = acc_l
-            zddl[d, c] = acd_l
-            zdh[d, c] = acc_h
-            zddh[d, c] = acd_h
-        out2[d] = f_end
+                acc_l += flrow[phase, d, q, c2] * w[d, c2]
+                acc_h += flrow[phase, d, q, c2] * zh[d, c2]
+            rate_l[d, q] = acc_l
+            rate_h[d, q] = acc_h
+        if not start_valid:
+            for c in range(m):
+                acc_l = farow1[phase, d, c, m] * a0[d] + farow1[phase, d, c, m + 1] * b[d] + farow1[
+                    phase, d, c, m + 2] * wa[d, m + 2] + farow1[phase, d, c, m + 3] * wa[d, m + 3]
+                acd_l = farow2[phase, d, c, m] * a0[d] + farow2[phase, d, c, m + 1] * b[d] + farow2[
+                    phase, d, c, m + 2] * wa[d, m + 2] + farow2[phase, d, c, m + 3] * wa[d, m + 3]
+                for c2 in range(m):
+                    acc_l += farow1[phase, d, c, c2] * w[d, c2]
+                    acd_l += farow2[phase, d, c, c2] * w[d, c2]
+                zl[d, c] = w[d, c]
+                zdl[d, c] = acc_l
+                zddl[d, c] = acd_l
+    out2[0] = fe_x
+    out2[1] = fe_y
     ax1 = a0[0] + b[0] * h
     ay1 = a0[1] + b[1] * h
     if mode == SLIDE:
@@ -1036,10 +1218,14 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         kind = PHI_BREAK
         target = mu_s_n
     # an event in the sub-step (φ rising through zero at an end or at an interior maximum): series pieces
-    _phi(kind, zl, zdl, a0[0], a0[1], 0.0, b, l_d, slab_mass, target, e0, vz, out2)
+    _phi_core(kind, _dot(l_d[0], w[0]) - slab_mass * a0[0], _dot(l_d[1], w[1]) - slab_mass * a0[1],
+              rate_l[0, 2] - slab_mass * b[0], rate_l[1, 2] - slab_mass * b[1], w[0, 0], w[1, 0], rate_l[0, 0],
+              rate_l[1, 0], w[0, 1], w[1, 1], rate_l[0, 1], rate_l[1, 1], 0.0, target, e0, vz, out2)
     f0 = out2[0]
     s0 = out2[1]
-    _phi(kind, zh, zdh, ax1, ay1, h, b, l_d, slab_mass, target, e0, vz, out2)
+    _phi_core(kind, _dot(l_d[0], zh[0]) - slab_mass * ax1, _dot(l_d[1], zh[1]) - slab_mass * ay1,
+              rate_h[0, 2] - slab_mass * b[0], rate_h[1, 2] - slab_mass * b[1], zh[0, 0], zh[1, 0], rate_h[0, 0],
+              rate_h[1, 0], zh[0, 1], zh[1, 1], rate_h[0, 1], rate_h[1, 1], h, target, e0, vz, out2)
     f1 = out2[0]
     s1 = out2[1]
     if f0 > 0.0 or f1 > 0.0:
@@ -1058,7 +1244,10 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             sslope[j] = sslope1[j]
     else:
         _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-    _monitors(zh, zdh, zddh, ax1, ay1, a0[2] + b[2] * h, b, m1, m2, m3, sig1, sig2, sig3, val1, slope1, sval1, sslope1)
+    # the end's watched values and slopes from their rows ℓ, ℓÃ on w̃(h) = [z(h), a_g(h), ȧ_g, F(h), F'(h)] (the
+    # rows vanish beyond c_0, c_1): one product each instead of ż, z̈ and the monitors' three rows
+    _watched_end(fmon, fsig, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1,
+                 sval1, sslope1)
     nterm = fmon.shape[3]
     nk = m1.shape[0]
     for k in range(nk):
@@ -1219,6 +1408,32 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     sval2 = np.zeros(max(nj, 1))
     sslope2 = np.zeros(max(nj, 1))
     zl = np.zeros((2, m))
+    # the watched slopes' gains on ȧ_g per phase (m2·g + m3; a sample's new ȧ_g shifts them, see below)
+    gain_mon = np.zeros((2, max(nk, 1), 2))
+    gain_sig = np.zeros((2, max(nj, 1), 2))
+    for ph in range(2):
+        for d in range(2):
+            for k in range(nk):
+                gain = m3[k, d]
+                for c in range(m):
+                    gain += m2[k, d, c] * g_vec[ph, d, c]
+                gain_mon[ph, k, d] = gain
+            for j in range(nj):
+                gain = sig3[j, d]
+                for c in range(m):
+                    gain += sig2[j, d, c] * g_vec[ph, d, c]
+                gain_sig[ph, j, d] = gain
+    # the rows of ż that φ reads at a fast sub-step's ends: Ã's rows 0 (x_b) and 1 (v_b), and ℓ_D Ã (Ḋ)
+    flrow = np.zeros((2, 2, 3, farow1.shape[3]))
+    for ph in range(2):
+        for d in range(2):
+            for c in range(farow1.shape[3]):
+                flrow[ph, d, 0, c] = farow1[ph, d, 0, c]
+                flrow[ph, d, 1, c] = farow1[ph, d, 1, c]
+                acc = 0.0
+                for r in range(m):
+                    acc += l_d[d, r] * farow1[ph, d, r, c]
+                flrow[ph, d, 2, c] = acc
     zdl = np.zeros((2, m))
     zddl = np.zeros((2, m))
     zh = np.zeros((2, m))
@@ -1232,6 +1447,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     pfr = np.zeros(n_order + 1)
     pvis = np.zeros(n_order + 1)
     ysc = np.zeros((n_order + 1, masses.shape[0]))
+    ee = np.zeros((2, n_series))
+    rho = np.zeros(n_series)
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
@@ -1265,6 +1482,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     r_switch = 1e-5 * v_ref
     r_finish = 1e-10 * v_ref
     use_approach = law[5] != 0.0 and not varying
+    # departures from rest at a break-away with µs = µk by the slow manifold's series (constant µ and N only)
+    use_depart = law[6] != 0.0 and not varying
+    depart_pending = False
+    departing = False
     r_approach = APPROACH_SPEED * v_ref
     nl1 = n_order + 1
     lz = np.zeros((2, nl1, m))
@@ -1290,7 +1511,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     n_ev = 0
     status = 0
     n_pieces = 0
-    pieces_by_mode = np.zeros(5, dtype=np.int64)
+    pieces_by_mode = np.zeros(N_PIECE_KINDS, dtype=np.int64)
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
@@ -1342,16 +1563,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
             ph = 0 if mode == STUCK else 1
             for k in range(nk):
                 for d in range(2):
-                    gain = m3[k, d]
-                    for c in range(m):
-                        gain += m2[k, d, c] * g_vec[ph, d, c]
-                    slope1[k, d] += gain * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
+                    slope1[k, d] += gain_mon[ph, k, d] * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
             for j in range(nj):
                 for d in range(2):
-                    gain = sig3[j, d]
-                    for c in range(m):
-                        gain += sig2[j, d, c] * g_vec[ph, d, c]
-                    sslope1[j] += gain * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
+                    sslope1[j] += gain_sig[ph, j, d] * ((b[0] - b_prev0) if d == 0 else (b[1] - b_prev1))
         n_sub_i = n_fast if (uniform and n_fast > 0) else 1
         h_fast = dt_i / n_sub_i
         for j_sub in range(n_sub_i):
@@ -1379,7 +1594,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, fmon, fsig, m1,
+                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
@@ -1412,7 +1627,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         from_rest = False
                         tau = tau_end if tau_end - (tau + h_lev) <= 1e-12 * h_fast else tau + h_lev
                         continue
-                if n_fast > 0 and uniform and not (varying and mode == SLIDE) and mode != APPROACH:
+                if n_fast > 0 and uniform and not (varying and mode == SLIDE) and mode != APPROACH and not \
+                        (mode == START and depart_pending):
                     # back to the ladder after the shortest rung (sliding with N(t) or µ(v), which the
                     # propagators do not take, runs on to the sub-step's end)
                     slow_end = min(tau_end, tau + h_fast / (1 << (n_levels - 1)))
@@ -1466,23 +1682,41 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         t_event = -1.0
                         kind_phi = -1
                     else:
-                        h_scale = min(h_max, 2.0 * h_last)
-                        limit = 0.0
-                        for _rescale in range(8):
-                            _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es,
-                                    vz, mus, exs, h_scale)
-                            limit = _piece_limit(zs, weights, floor_scale)
-                            if limit < 1e-3 * h_scale:
-                                # H far beyond the radius (coefficients growing as (H/radius)^k, or overflowing)
-                                h_scale = max(limit, 1e-6 * h_scale)
-                            elif limit > 1e6 * h_scale and h_scale < min(rem, h_max):
-                                # H far below it (the last coefficients could underflow): the piece's own length
-                                h_scale = min(rem, h_max, limit)
-                            else:
-                                break
+                        departing = False
+                        if mode == START and depart_pending:
+                            # leaving rest with µs = µk: the slow manifold's series from the break-away, as far as
+                            # it reaches rounding and the slab keeps moving away (D·V > 0 at the end), else START
+                            depart_pending = False
+                            h_scale = min(h_max, rem)
+                            limit = 0.0
+                            for _rescale in range(8):
+                                departing = _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho,
+                                                           h_scale)
+                                if not departing:
+                                    break
+                                limit = _piece_limit(zs, weights, floor_scale)
+                                h_scale = _next_scale(limit, h_scale, rem, h_max)
+                                if h_scale == 0.0:
+                                    break
+                            if departing:
+                                length = min(rem, h_max, limit)
+                                _eval(zs, length, zh, zdh, zddh)
+                                push = (_dot(l_d[0], zh[0]) - slab_mass * (a0[0] + b[0] * length)) * zh[0, 1] + (
+                                    _dot(l_d[1], zh[1]) - slab_mass * (a0[1] + b[1] * length)) * zh[1, 1]
+                                departing = push > 0.0 and length > 0.0
+                        if not departing:
+                            h_scale = min(h_max, 2.0 * h_last)
+                            limit = 0.0
+                            for _rescale in range(8):
+                                _series(mode, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss,
+                                        rs, es, vz, mus, exs, h_scale)
+                                limit = _piece_limit(zs, weights, floor_scale)
+                                h_scale = _next_scale(limit, h_scale, rem, h_max)
+                                if h_scale == 0.0:
+                                    break
                         h_last = min(limit, h_max, dt_i)
                         n_pieces += 1
-                        pieces_by_mode[mode] += 1
+                        pieces_by_mode[DEPART if departing else mode] += 1
                         length = min(rem, h_max, limit)
                         _eval(zs, 0.0, zl, zdl, zddl)
                         if mode == FINISH:
@@ -1509,7 +1743,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                             kind_phi = PHI_STOP_START
                             if t_event >= 0.0:
                                 _eval(zs, t_event, zh, zdh, zddh)
-                            t_sw = _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                            # a departure's piece hands over to SLIDE at its end, not at r_switch
+                            t_sw = -1.0 if departing else _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
                                                    slab_mass, r_switch, e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             if t_sw > 0.0:
                                 t_event = t_sw
@@ -1596,6 +1831,16 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     a1[1] = ay[i] + b[1] * tau
                     a1[2] = az[i] + b[2] * tau
                     if t_event < 0.0 or kind_phi == PHI_HALF:
+                        if departing and mode == START:
+                            # the end of a departure's piece: slide on in time at a speed START would have switched
+                            # at; below it (the piece cut by the sample's end) START goes on
+                            r = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
+                            if r >= r_switch:
+                                mode = SLIDE
+                                e0[0] = w[0, 1] / r
+                                e0[1] = w[1, 1] / r
+                                half_target = 0.5 * r
+                                start_valid = False
                         # hand-overs that are not stops: a slide's piece end (the speed halved along e0, or not)
                         # renews the friction's direction; a slide slowing below r_finish enters FINISH; FINISH that
                         # did not stop slides on.  The FINISH test is made at every piece end of a slide, not only
@@ -1677,6 +1922,10 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         kind = BREAKAWAY
                         mode = START
                         from_rest = True
+                        depart_pending = use_depart and hold <= mu_k_n * (1.0 + DEPART_EXCESS)
+                        if depart_pending:
+                            # the departure's series runs to the sub-step's end (not to the ladder's shortest rung)
+                            slow_end = tau_end
                     elif hold <= limit:
                         kind = STICK
                         mode = STUCK
@@ -1740,5 +1989,5 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     summary[S_N_FAST] = n_fast_steps
     for k in range(1, 5):
         summary[S_N_REFUSED + k - 1] = n_refused[k]
-    for k in range(5):
+    for k in range(N_PIECE_KINDS):
         summary[S_N_PIECES_BY_MODE + k] = pieces_by_mode[k]

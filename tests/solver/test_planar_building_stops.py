@@ -129,3 +129,68 @@ def test_the_approach_in_ln_s_gives_the_time_series_answer(bench_pair, monkeypat
     assert other.message == "ok" and other.n_pieces_by_phase[4] > 0 and base.n_pieces_by_phase[4] == 0
     assert other.event_names == base.event_names
     _assert_same_answer(other, base)
+
+
+def test_the_departure_series_gives_the_start_answer_in_a_quarter_of_the_pieces(bench_pair, monkeypatch):
+    """Departures from rest with µs = µk by the slow manifold's series (DEPARTURE_SERIES, on by default) against
+    START (friction along D up to 1e-5 v_ref, its lag ∝ |V| neglected) and stiff series pieces in time.
+
+    The old route's own error is its lag (~1e-11 of the histories), so the two agree to 1e-10, not to rounding."""
+    from isolator.solver import planar_building
+
+    new = _run_bench_pair(bench_pair)
+    monkeypatch.setattr(planar_building, "DEPARTURE_SERIES", False)
+    old = _run_bench_pair(bench_pair)
+    assert new.message == old.message == "ok" and new.event_names == old.event_names
+    breakaways = int(np.count_nonzero(new.event_kind == 0))
+    assert breakaways >= 3 and new.n_pieces_by_phase[5] == breakaways and old.n_pieces_by_phase[5] == 0
+    assert new.n_pieces < 0.4 * old.n_pieces  # the route's purpose (PTS 0-4 s: 200 against 1 396 pieces)
+    _assert_same_answer(new, old)
+
+
+def test_the_departure_series_solves_the_slabs_equation_with_the_exact_direction():
+    """The departure's series (V = τ² W, never dividing by |V|) satisfies ż = A z + g a_g + p µk N V/|V| with V/|V|
+    taken from the series' own V, at 1e-3 … 1 of its piece, to rounding — an independent check of the recurrence
+    for the direction (e0 = D/|D| at the break-away, then along and across e0 order by order)."""
+    from isolator.solver import planar_building_kernel as kernel
+    from isolator.solver.planar_building import planar_building_system
+    from isolator.superstructure import Floor, Superstructure
+
+    structure = Superstructure(floors=tuple(Floor(2e5, 3.2, k, 0.7 * k) for k in (6e8, 4e8, 2e8)), damping_ratio=0.05,
+                               gravity_m_s2=9.81)
+    system = planar_building_system(structure, total_mass_kg=9e5, stiffness_N_per_m=9e5 * 9.81 / 2.0, mu_static=0.05,
+                                    damping_Ns_per_m=3e4)
+    m = 2 * system.n_floors + 2
+    rng = np.random.default_rng(7)
+    w = np.zeros((2, m))
+    w[:, 0] = (0.03, -0.02)
+    w[:, 2:] = rng.normal(scale=1e-3, size=(2, m - 2))
+    mu_k_n = system.mu_kinetic * system.weight_N
+    m_b = system.slab_mass_kg
+    e = np.array([np.cos(0.6), np.sin(0.6)])
+    a0 = np.array([(system.l_d[d] @ w[d] - mu_k_n * e[d]) / m_b for d in range(2)] + [0.0])  # |D| = µk N
+    b = np.append(-25.0 * e + 8.0 * np.array([-e[1], e[0]]), 0.0)  # |D| growing, D turning [m/s³]
+    ns = kernel.N_ORDER + 3
+    zs, fs = np.zeros((2, ns + 1, m)), np.zeros((2, ns))
+    assert kernel._series_depart(w, a0, b, system.a_mat, system.g_vec, system.p_vec, mu_k_n, zs, fs,
+                                 np.zeros((2, ns)), np.zeros(ns), 2e-3)
+    weights = np.ones(m)
+    weights[0] = weights[2:2 + system.n_floors] = system.fastest_rate_per_s
+    length = kernel._piece_limit(zs, weights, 1e-12)
+    assert 1e-4 < length < 1e-1
+    z, zd, zdd = np.zeros((2, m)), np.zeros((2, m)), np.zeros((2, m))
+    for fraction in (1e-3, 0.1, 0.5, 1.0):
+        tau = fraction * length
+        kernel._eval(zs, tau, z, zd, zdd)
+        speed = np.hypot(z[0, 1], z[1, 1])
+        assert speed > 0.0 and (system.l_d[0] @ z[0] - m_b * (a0[0] + b[0] * tau)) * z[0, 1] > 0.0
+        for d in range(2):
+            rate = system.a_mat[1, d] @ z[d] + system.g_vec[1, d] * (a0[d] + b[d] * tau) + \
+                system.p_vec[d] * mu_k_n * z[d, 1] / speed
+            scale = np.abs(system.a_mat[1, d]) @ np.abs(z[d]) + np.abs(system.p_vec[d]) * mu_k_n
+            assert np.all(np.abs(zd[d] - rate) <= 1e-11 * scale[1]), (fraction, d, zd[d] - rate)
+    # the form holds only at a break-away with |D| = µk N: 1e-9 above it is refused (START leaves rest there)
+    a_off = a0.copy()
+    a_off[:2] -= 1e-9 * mu_k_n * e / m_b
+    assert not kernel._series_depart(w, a_off, b, system.a_mat, system.g_vec, system.p_vec, mu_k_n, zs, fs,
+                                     np.zeros((2, ns)), np.zeros(ns), 2e-3)
