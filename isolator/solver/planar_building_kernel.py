@@ -547,6 +547,25 @@ def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd,
 
 
 @njit(cache=True)
+def _add_viscous_power(zd, c_iso, c_floor_d, nf, n, y, pvis):
+    """Add to ``pvis[0:n]`` the series of one direction's viscous power c V² + u̇ᵀ C u̇ from its state's series
+    ``zd[k, :]`` (V in column 1, the floors' u̇ in columns 2 + nf …; ``y`` scratch for C u̇)."""
+    for k in range(n):
+        for i in range(nf):
+            acc = 0.0
+            for j in range(nf):
+                acc += c_floor_d[i, j] * zd[k, 2 + nf + j]
+            y[k, i] = acc
+    for ell in range(n):
+        acc = 0.0
+        for j in range(ell + 1):
+            acc += c_iso * zd[j, 1] * zd[ell - j, 1]
+            for i in range(nf):
+                acc += zd[j, 2 + nf + i] * y[ell - j, i]
+        pvis[ell] += acc
+
+
+@njit(cache=True)
 def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, out, pin, pfr, pvis, y, vz):
     """Exact integrals over [0, τ] of the input, friction and viscous powers from the series (scratch pin … y).
 
@@ -578,19 +597,7 @@ def _energies(mode, zs, fs, tau, a0, b, total_mass, masses, c_iso, c_floor, nf, 
             pin[k] -= a0[d] * mom
             pin[k + 1] -= (b_x if d == 0 else b_y) * mom
         # viscous: c V² + u̇ᵀ C u̇
-        for k in range(nt):
-            for i in range(nf):
-                acc = 0.0
-                for j in range(nf):
-                    acc += c_floor[d, i, j] * zs[d, k, 2 + nf + j]
-                y[k, i] = acc
-        for ell in range(nt):
-            acc = 0.0
-            for j in range(ell + 1):
-                acc += c_iso * zs[d, j, 1] * zs[d, ell - j, 1]
-                for i in range(nf):
-                    acc += zs[d, j, 2 + nf + i] * y[ell - j, i]
-            pvis[ell] += acc
+        _add_viscous_power(zs[d], c_iso, c_floor[d], nf, nt, y, pvis)
         if mode != STUCK:
             for ell in range(nt):
                 acc = 0.0
@@ -899,21 +906,12 @@ def _energies_log(lz, la, ltp, lex, lam, total_mass, masses, c_iso, c_floor, mu_
             for i in range(nf):
                 acc += masses[i] * lz[d, k, 2 + nf + i]
             lmom[k] = acc
-            for i in range(nf):
-                acc = 0.0
-                for j in range(nf):
-                    acc += c_floor[d, i, j] * lz[d, k, 2 + nf + j]
-                y[k, i] = acc
         for ell in range(nl):
             acc_i = 0.0
-            acc_v = 0.0
             for j in range(ell + 1):
                 acc_i -= la[d, j] * lmom[ell - j]
-                acc_v += c_iso * lz[d, j, 1] * lz[d, ell - j, 1]
-                for i in range(nf):
-                    acc_v += lz[d, j, 2 + nf + i] * y[ell - j, i]
             pin[ell] += acc_i
-            pvis[ell] += acc_v
+        _add_viscous_power(lz[d], c_iso, c_floor[d], nf, nl, y, pvis)
     e_in = 0.0
     e_f = 0.0
     e_v = 0.0
