@@ -322,6 +322,16 @@ def at_ultimate(y, rim):
 
 
 @njit(cache=True)
+def _velocity_along(out, t1, t2):
+    """Turn the step's end velocity onto the unit tangent (t1, t2) of the circle the mass moves on, its magnitude and
+    its sense along the tangent kept."""
+    vn = math.sqrt(out[Y_V] ** 2 + out[Y_V + 1] ** 2)
+    sg = 1.0 if out[Y_V] * t1 + out[Y_V + 1] * t2 >= 0.0 else -1.0
+    out[Y_V] = sg * vn * t1
+    out[Y_V + 1] = sg * vn * t2
+
+
+@njit(cache=True)
 def carried_group(y, mask, rim):
     """The group that carries the mass on its rim circle in a step from y with be_step's mask: the only group that
     slid, on its rim at the step's start and end (the others held or stuck); -1 when there is none."""
@@ -709,29 +719,18 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     out[Y_EF] = y[Y_EF] + fric
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
     out[Y_EIMP] = y[Y_EIMP]
+    carried = -1 if ult else carried_group(y, mask, rim)
     if ult and mask >> ng == (1 << ng) - 1 and at_ultimate(out, rim):
         # held on the ultimate circle from start to end: the velocity along the end's tangent, its magnitude kept
         s1, s2, sn = _groups_sum(out, ng)
-        t1 = -s2 / sn
-        t2 = s1 / sn
-        vn = math.sqrt(out[Y_V] ** 2 + out[Y_V + 1] ** 2)
-        sg = 1.0 if out[Y_V] * t1 + out[Y_V + 1] * t2 >= 0.0 else -1.0
-        out[Y_V] = sg * vn * t1
-        out[Y_V + 1] = sg * vn * t2
-    elif carried_group(y, mask, rim) >= 0 and not ult:
+        _velocity_along(out, -s2 / sn, s1 / sn)
+    elif carried >= 0:
         # one group sliding, along its rim, the others not sliding: the mass is carried on that group's rim circle
         # (centred at the other groups' sum), so its velocity is along that circle's tangent at the end, its
         # magnitude kept — the backward-Euler velocity is the chord's, outward at the end by w²h/(2c̄), and the next
         # step's force then depended on the previous step's length (the full and half steps disagreed by ~0.2 W on
         # the rim's reaction, and the steps shrank to tol |V| / 2 m/s² ~ 1e-7 s: the misaligned ultimate)
-        for k in range(ng):
-            if k == carried_group(y, mask, rim):
-                e1 = out[Y_U + 2 * k] / rim[k]
-                e2 = out[Y_U + 2 * k + 1] / rim[k]
-                vn = math.sqrt(out[Y_V] ** 2 + out[Y_V + 1] ** 2)
-                sg = 1.0 if -out[Y_V] * e2 + out[Y_V + 1] * e1 >= 0.0 else -1.0
-                out[Y_V] = -sg * vn * e2
-                out[Y_V + 1] = sg * vn * e1
+        _velocity_along(out, -out[Y_U + 2 * carried + 1] / rim[carried], out[Y_U + 2 * carried] / rim[carried])
     elif (mask >> ng == (1 << ng) - 1 and ultimate_impact(y, out, g, rb) > 0.0
             and iterations < 0):
         # an impact in a short step: the normal part of Newton's residual is the impulse's rounding (α ~ 1/h² times
