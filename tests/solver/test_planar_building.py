@@ -52,7 +52,7 @@ def _story_matrices(masses, stiffnesses, zeta):
 
 
 def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass, k_iso, c_iso, mu_s, mu_k, acc_z=None,
-                              pendulum=False, law=None):
+                              pendulum=False, law=None, rtol=REF_RTOL):
     """Samples, events, energies and the resultant peaks of X and of every story drift (solve_ivp).
 
     acc_z: a vertical, linear between samples: N(t) = W (1 + a_z/g) in the friction µ N, the static limit µs N and,
@@ -170,7 +170,7 @@ def reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total_mass
                 d0 = hold(y, a0, nu_of(0.0, c0, cz))
                 if d0 @ d0 > (mu_s * weight * nu_of(0.0, c0, cz)) ** 2:
                     raise AssertionError("the reference starts at rest below µs W")
-            sol = solve_ivp(rhs, (t, dt), y, method=method, rtol=REF_RTOL, atol=1e-15,
+            sol = solve_ivp(rhs, (t, dt), y, method=method, rtol=rtol, atol=1e-15,
                             args=(a0, b, not stuck, c0, cz), events=fns + peak_fns)
             if sol.status < 0:
                 raise RuntimeError(sol.message)
@@ -528,9 +528,11 @@ def _run_vertical_case(records_dir, name):
                                     total_mass_kg=total, stiffness_N_per_m=k_iso, mu_static=mu_s,
                                     damping_Ns_per_m=c_iso, az_m_s2=acc_z if vertical else None, pendulum=pendulum,
                                     **friction)
+    # rtol 1e-13: at 1e-12 the reference's own error on the µ(v) case reached 8.1e-9 of the peak with scipy 1.17
+    # (its Radau steps near the stops); at 1e-13 ours and the reference agree to 5e-14 there
     ref = reference_planar_building(acc_x, acc_y, dt, masses, kx, ky, zeta, total, k_iso, c_iso, mu_s,
                                     None if law else mu_k, acc_z=acc_z if vertical else None, pendulum=pendulum,
-                                    law=law)
+                                    law=law, rtol=1e-13)
     return ours, ref, acc_z
 
 
