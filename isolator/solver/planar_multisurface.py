@@ -435,7 +435,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         if status & _ps.STATUS_WORK:
             on_rims = int(summary[_ps.S_FAIL_RIMS])
             raise SolverError(
-                f"the 2-D multi-surface implicit steps needed more than {_ps.MAX_FORCE_EVALS_PER_INTERVAL} force "
+                f"the 2-D multi-surface implicit steps needed more than {_ps.work_bound(step_tol):.0f} force "
                 f"evaluations in one sample interval at t = {fail_t:.6g} s ({on_rims} of {rb.size} slider groups on "
                 "their rims" + (": the bearing at its ultimate displacement, not resolved there" if on_rims == rb.size
                                 else "") + "); the run stops there")

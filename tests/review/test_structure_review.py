@@ -408,23 +408,16 @@ def test_building_with_a_vertical_is_analysed_by_the_2d_building(tmp_path):
 @pytest.mark.skipif(not _registry_has("2d-multisurface"), reason="the 2-D multi-surface model is not in the registry")
 @pytest.mark.parametrize("capacities", [(0.4, 0.05, 0.05, 0.4), (0.2, 0.05, 0.05, 0.2)], ids=["uncut", "cut"])
 def test_triple_pendulum_review_on_real_pairs(inputs, capacities):
-    """Fenz & Constantinou's bearing through the 2-D multi-surface model on three real pairs: either every analysis
-    ran on it and the rows read its keys, or the model could not finish one (a rim in the plane, a guard) and the
-    review stops in one line naming the pair — never a pair left out of the suite values, never a traceback.
-    With the uncut capacities every analysis is answered (Superstition Hills PTS reaches the ultimate at both
-    bounds, since the exact hold on a rim); the cut bearing stops on PTS at its misaligned ultimate (12.72 s)."""
+    """Fenz & Constantinou's bearing through the 2-D multi-surface model on three real pairs: every analysis runs on it
+    and the rows read its keys.  Superstition Hills PTS reaches the ultimate at both bounds with either capacities.
+    The cut bearing (0.2/0.05/0.05/0.2 m) stopped on PTS at its misaligned ultimate (12.72 s, the work bound) until
+    the mass carried on one group's rim took that group on its half disc (planar_multisurface_stepper.half_discs):
+    it is answered now (PTS: 12 / 9 rim contacts, impulse 5.10 / 4.80 m/s at the lower / upper bound)."""
     surfaces = [{**s, "displacement_capacity_m": c} for s, c in zip(FC_SURFACES, capacities, strict=True)]
     design = _triple(surfaces, lambda_max=1.2, lambda_min=0.85)
-    try:
-        r = run_review(design, TARGET, load_suite(inputs / "suite.toml"), jobs=1, nominal=False,
-                       parameters={"n_for_mean": 3})
-    except ReviewError as err:
-        text = str(err)
-        assert "\n" not in text and "engine refuses the design under pair '" in text, text
-        assert capacities != (0.4, 0.05, 0.05, 0.4), text  # the uncut bearing is answered
-        return
-    if capacities == (0.4, 0.05, 0.05, 0.4):  # PTS through regimes IV–V to the ultimate, at both bounds
-        assert all(r.analyses[b]["superstitionhills1987_PTS"]["ultimate_displacement_reached"] for b in r.analyses)
+    r = run_review(design, TARGET, load_suite(inputs / "suite.toml"), jobs=1, nominal=False,
+                   parameters={"n_for_mean": 3})
+    assert all(r.analyses[b]["superstitionhills1987_PTS"]["ultimate_displacement_reached"] for b in r.analyses)
     assert {a["model"] for b in r.analyses for a in r.analyses[b].values()} == {"2d-multisurface"}
     rows = {row["id"]: row for row in r.checks}
     peaks = [a["peak_displacement_m"] for b in r.analyses for a in r.analyses[b].values()]

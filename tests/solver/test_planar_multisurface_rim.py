@@ -289,7 +289,8 @@ def test_the_force_where_newton_zigzags_between_rims_held_nearly_parallel():
     from isolator.solver import planar_multisurface_stepper as ps
     y = np.array([-0.5824051136742537, 0.6795152645012331, -0.004686144762025722, 0.001343510038006232,
                   4.300985577663684, 3.300617390558375, 0.0, 0.0, -0.21606531037716564, 0.26620819307410953,
-                  -0.1468864480911814, 0.14988489070381608, -0.21945335520591527, 0.2634221807233204])
+                  -0.1468864480911814, 0.14988489070381608, -0.21945335520591527, 0.2634221807233204,
+                  0.0])  # the carried group's slot (planar_multisurface_stepper.carry_slot): none
     h, abar = 8.031887512809155e-05, (-4.2345497622566315, 2.4424332353655864)
     rb, mu, rim = element_groups(TFP, split_rims=True)[:3]
     alpha = 1.0 / (h * h)
