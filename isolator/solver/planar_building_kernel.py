@@ -1756,14 +1756,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         pieces_by_mode[DEPART if departing else mode] += 1
                         length = min(rem, h_max, limit)
                         _eval(zs, 0.0, zl, zdl, zddl)
-                        slide_target = half_target
-                        if mode == SLIDE and use_reach and e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1] < 0.0:
-                            # slowing along e0: towards a stop, whose singularity (V/|V|'s branch point) is ahead at
-                            # ~ the time to the stop.  The piece may go on to e0·V = STOP_REACH r0, within (1 −
-                            # STOP_REACH) of that time; its reach is cut by REACH_SHRINK so that the series' tail,
-                            # summed up to there, stays within the bound it has when cut at a half
-                            slide_target = 2.0 * STOP_REACH * half_target
-                            length = min(rem, h_max, reach_shrink * limit)
+                        # slowing along e0: towards a stop, whose singularity (V/|V|'s branch point) is ahead at ~ the
+                        # time to the stop (see the event test below)
+                        slowing = mode == SLIDE and use_reach and e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1] < 0.0
                         if mode == FINISH:
                             # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
                             rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
@@ -1795,9 +1790,19 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                 t_event = t_sw
                                 kind_phi = PHI_SWITCH
                         elif mode == SLIDE:
-                            t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, slide_target, e0, vz, False, z,
+                            t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             kind_phi = PHI_HALF
+                            far = min(rem, h_max, reach_shrink * limit)
+                            if slowing and t_event >= 0.0 and far > t_event:
+                                # the speed halves within the series' reach: go on towards the stop, to e0·V =
+                                # STOP_REACH r0 (within 1 − STOP_REACH of the time to it) and at most REACH_SHRINK of
+                                # the reach, so that the tail summed up to there keeps the halving's bound
+                                length = far
+                                _eval(zs, length, zh, zdh, zddh)
+                                t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass,
+                                                          2.0 * STOP_REACH * half_target, e0, vz, False, z, zd, zdd, out2,
+                                                          counter, zl, zdl, zh, zdh)
                         else:
                             t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
