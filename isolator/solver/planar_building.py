@@ -64,6 +64,13 @@ STOP_APPROACH = False
 #: ``_series_depart``, V = τ² W(τ)) instead of START's friction along D up to 1e-5 v_ref and stiff SLIDE pieces
 #: (docs/building.md, Speed).
 DEPARTURE_SERIES = True
+#: Departures from rest with a finite acceleration, |D| > µk N at V = 0 (a break-away with µs > µk, a reversal at a
+#: stop), by the same series written V = τ W(τ) (``_series_depart`` with lag 1) instead of START (with
+#: DEPARTURE_SERIES only; docs/building.md, "Fewer pieces per slide").
+LEAVE_SERIES = True
+#: A slide's series piece slowing along its direction runs to e0·V = STOP_REACH r0 (the kernel's ``STOP_REACH``)
+#: instead of to half its speed, its length held so that the series' tail keeps the halving's bound.
+STOP_REACH_SERIES = True
 
 
 @dataclass
@@ -667,10 +674,12 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(7)
+    law = np.zeros(9)
     law[1] = g
     law[5] = 1.0 if STOP_APPROACH else 0.0
     law[6] = 1.0 if DEPARTURE_SERIES else 0.0
+    law[7] = 1.0 if LEAVE_SERIES else 0.0
+    law[8] = 1.0 if STOP_REACH_SERIES else 0.0
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert

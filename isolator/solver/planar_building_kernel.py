@@ -74,6 +74,9 @@ APPROACH_MIN = 0.02
 DEPART_EXCESS = 1e-12
 #: the index of departure pieces in the pieces-by-phase counters (a START piece by :func:`_series_depart`)
 DEPART = 5
+#: a slide's series piece slowing along its starting direction e0 ends where e0·V has fallen to this fraction of its
+#: start (else at a half), its length held to (2 STOP_REACH)^(1/N) of the series' reach (docs/building.md)
+STOP_REACH = 1.0 / 64.0
 
 BREAKAWAY = 0
 STICK = 1
@@ -692,25 +695,31 @@ def _series_log(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, grow, lz, lzd, lt, le, lq
     return lrate[0]
 
 @njit(cache=True)
-def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_scale):
-    """Taylor coefficients (in x = τ/H, as :func:`_series`) of a departure from rest at a break-away where
-    |D| = µs N = µk N: the slow manifold, written V = τ² W(τ).  Returns False when that form does not hold.
+def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_scale, lag):
+    """Taylor coefficients (in x = τ/H, as :func:`_series`) of a departure from rest at V = 0: the slow manifold,
+    written V = τ^lag W(τ).  Returns False when that form does not hold.
 
-    With µs = µk the slab leaves rest with V̇ = 0 (|D| = µk N at the break-away) and V/|V| is singular at the
-    start: a series in time from any later instant τ0 has its radius at the break-away, and the direction's
+    ``lag`` = 2: a break-away where |D| = µs N = µk N.  The slab leaves rest with V̇ = 0 and V/|V| is singular at
+    the start: a series in time from any later instant τ0 has its radius at the break-away, and the direction's
     relaxation towards D, at the rate µk N/(m_b |V|), makes the series in time stiff (pieces of ≈ 8 m_b |V|/(µk N):
-    ~600 pieces per departure on the bench case, docs/building.md).  With V = τ² W the direction e = W/|W| is
-    regular at τ = 0 and the equation of the slab's velocity at order k, (k + 1) V_{k+1} = H (q_k + p_1 µk N e_k)
-    with V_{k+1} = W_{k−1}, gives e0 = D/|D| at order 0 and then, at each order k ≥ 1, the two unknowns
-    e0·W_{k−1} (along) and n0·e_k (across; n0 ⊥ e0): e0·e_k is fixed by |e| = 1 and n0·W_{k−1} by
-    W = |W| e.  No division by |V| (the stiff mode is never excited): the coefficients grow as k!/κ^k,
-    κ = 2 µk N/|Ḋ| — a series with the same terms as the exact slow solution, taken only as far as its last two
-    terms are at rounding (Jorba–Zou, :func:`_piece_limit`), like every other piece.
-    ee[d, k]: the direction's coefficients, rho[k]: those of |W|.  fs = µk N e (the friction's coefficients).
+    ~600 pieces per departure on the bench case, docs/building.md).
+    ``lag`` = 1: |D| > µk N at V = 0 (a break-away with µs > µk, or a reversal at a stop): the slab leaves with the
+    finite acceleration (|D| − µk N)/m_b along D, |V| ∝ τ, and the same relaxation (its rate ∝ 1/τ) made START's
+    friction along D (a lag ∝ |V| neglected) and short series pieces in time.
+
+    With V = τ^lag W the direction e = W/|W| is regular at τ = 0, and the equation of the slab's velocity at order k,
+    (k + 1) V_{k+1} = H (q_k + p_1 µk N e_k) with V_{k+1} = W_{k+1−lag}, gives e0 = D/|D| at order 0 and then, at
+    each order k ≥ 1, a 2×2 linear system for the two unknowns e0·W_{k+1−lag} (along) and n0·e_k (across; n0 ⊥ e0):
+    e0·e_k is fixed by |e| = 1 and n0·W by W = |W| e (with lag = 1 it holds n0·e_k |W|_0, a term of the system).
+    No division by |V| (the stiff mode is never excited).  With lag = 2 the coefficients grow as k!/κ^k,
+    κ = 2 µk N/|Ḋ|; the series is taken, like every other piece, only as far as its last two terms are at rounding
+    (Jorba–Zou, :func:`_piece_limit`).  ee[d, k]: the direction's coefficients, rho[k]: those of |W|.
+    fs = µk N e (the friction's coefficients).
     """
     m = w.shape[1]
     nf = (m - 2) // 2
     ns = zs.shape[1] - 1
+    shift = lag - 1  # V_{k+1} = W_{k − shift}
     zs[0, ns, 0] = h_scale
     b_x = h_scale * b[0]
     b_y = h_scale * b[1]
@@ -720,7 +729,11 @@ def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_sca
         zs[d, 0, 1] = 0.0
     e0x = 0.0
     e0y = 0.0
-    w_perp = 0.0  # n0 · W_{k−1}, known before order k
+    w_perp = 0.0  # n0 · W_{k−shift} from the direction's coefficients known before order k
+    w_x = 0.0
+    w_y = 0.0
+    p0 = p_vec[0, 1] * mu_k_n
+    p1 = p_vec[1, 1] * mu_k_n
     for k in range(ns - 1):
         q0 = 0.0
         q1 = 0.0
@@ -733,21 +746,32 @@ def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_sca
                 q0 = acc
             else:
                 q1 = acc
-        p0 = p_vec[0, 1] * mu_k_n
-        p1 = p_vec[1, 1] * mu_k_n
         if k == 0:
-            # order 0: V_1 = 0, so µk N e0 = −q_0/p_1 = D/m_b × m_b
-            ex = -q0 / p0
-            ey = -q1 / p1
-            norm = math.sqrt(ex * ex + ey * ey)
-            if not abs(norm - 1.0) <= DEPART_EXCESS:
-                return False
+            if shift == 1:
+                # order 0: V_1 = 0, so µk N e0 = −q_0/p_1 = D/m_b × m_b
+                ex = -q0 / p0
+                ey = -q1 / p1
+                norm = math.sqrt(ex * ex + ey * ey)
+                if not abs(norm - 1.0) <= DEPART_EXCESS:
+                    return False
+            else:
+                # order 0: W_0/H = q_0 + p µk N e0 with W_0 = |W|_0 e0: e0 along q_0 (D/m_b), |W|_0 > 0 when |D| > µk N
+                norm = math.sqrt(q0 * q0 + q1 * q1)
+                if not norm > 0.0:
+                    return False
+                ex = q0
+                ey = q1
             e0x = ex / norm
             e0y = ey / norm
             ee[0, 0] = e0x
             ee[1, 0] = e0y
-            w_x = 0.0
-            w_y = 0.0
+            if shift == 0:
+                # along e0, per direction: |W|_0/H = q_d/e0_d + p_d (one value when p_0 = p_1: the slab's mass)
+                rho[0] = h_scale * (norm + (p0 * e0x * e0x + p1 * e0y * e0y))
+                if not rho[0] > 0.0:
+                    return False  # |D| ≤ µk N: the slab does not leave with a finite acceleration
+                w_x = rho[0] * e0x
+                w_y = rho[0] * e0y
         else:
             n0x = -e0y
             n0y = e0x
@@ -755,11 +779,13 @@ def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_sca
             for j in range(1, k):
                 c_par -= 0.5 * (ee[0, j] * ee[0, k - j] + ee[1, j] * ee[1, k - j])
             f = (k + 1) / h_scale
-            # u (k+1)/H e0 − c⊥ p µk N n0 = q − (k+1)/H W⊥ n0 + p µk N c∥ e0, per direction
+            # u f e0 + c⊥ (f |W|_0 [lag 1] − p µk N) n0 = q − f W⊥ n0 + p µk N c∥ e0, per direction
+            # (W⊥ = n0·W_{k−shift} without the term of e_k)
+            tie = f * rho[0] if shift == 0 else 0.0
             m00 = f * e0x
-            m01 = -p0 * n0x
+            m01 = (tie - p0) * n0x
             m10 = f * e0y
-            m11 = -p1 * n0y
+            m11 = (tie - p1) * n0y
             r0 = q0 - f * w_perp * n0x + p0 * c_par * e0x
             r1 = q1 - f * w_perp * n0y + p1 * c_par * e0y
             det = m00 * m11 - m01 * m10
@@ -769,20 +795,23 @@ def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_sca
             c_perp = (m00 * r1 - m10 * r0) / det
             ee[0, k] = c_par * e0x + c_perp * n0x
             ee[1, k] = c_par * e0y + c_perp * n0y
-            w_x = u * e0x + w_perp * n0x
-            w_y = u * e0y + w_perp * n0y
-            # |W|'s coefficient k − 1 from e0·W_{k−1} = Σ_j (e0·e_j) |W|_{k−1−j}
+            w_full = w_perp + (c_perp * rho[0] if shift == 0 else 0.0)
+            w_x = u * e0x + w_full * n0x
+            w_y = u * e0y + w_full * n0y
+            # |W|'s coefficient k − shift from e0·W_{k−shift} = Σ_j (e0·e_j) |W|_{k−shift−j}
+            kw = k - shift
             acc = u
-            for j in range(1, k):
-                acc -= (e0x * ee[0, j] + e0y * ee[1, j]) * rho[k - 1 - j]
-            rho[k - 1] = acc
-            if k == 1 and not acc > 0.0:
+            for j in range(1, kw + 1):
+                acc -= (e0x * ee[0, j] + e0y * ee[1, j]) * rho[kw - j]
+            rho[kw] = acc
+            if kw == 0 and not acc > 0.0:
                 return False  # |D| not growing at the break-away: no departure of this form
-            # n0 · W_k = Σ_{j ≥ 1} (n0·e_j) |W|_{k−j}
-            acc = 0.0
-            for j in range(1, k + 1):
-                acc += (n0x * ee[0, j] + n0y * ee[1, j]) * rho[k - j]
-            w_perp = acc
+        # n0 · W_{k+1−shift} from e_1 … e_k (the term of e_{k+1}, with lag 1, is a term of the next system)
+        kn = k + 1 - shift
+        acc = 0.0
+        for j in range(1, min(kn, k) + 1):
+            acc += ((-e0y) * ee[0, j] + e0x * ee[1, j]) * rho[kn - j]
+        w_perp = acc
         for d in range(2):
             fs[d, k] = mu_k_n * ee[d, k]
         for d in range(2):
@@ -798,8 +827,8 @@ def _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho, h_sca
                 for c in range(m):
                     acc += a_mat[1, d, i, c] * zs[d, k, c]
                 zs[d, k + 1, i] = acc * inv
-            # the slab's velocity: V_{k+1} = W_{k−1} (the recurrence's value to rounding, exact by construction)
-            zs[d, k + 1, 1] = (w_x if d == 0 else w_y) if k >= 1 else 0.0
+            # the slab's velocity: V_{k+1} = W_{k−shift} (the recurrence's value to rounding, exact by construction)
+            zs[d, k + 1, 1] = (w_x if d == 0 else w_y) if k >= shift else 0.0
     for d in range(2):
         fs[d, ns - 1] = 0.0
     return True
@@ -1315,10 +1344,13 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         Ground acceleration [m/s²], linear between samples.
     az : float64[n]
         Vertical ground acceleration [m/s²], up positive, linear between samples (read when law[0] ≠ 0).
-    law : float64[6]
+    law : float64[9]
         [1 with a vertical or µ(v) else 0, g [m/s²], k_v: the stiffness that follows the normal force
         N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m],
-        1 to take the approach to a stop in ln s (``APPROACH``; constant µ and N only) else 0];
+        1 to take the approach to a stop in ln s (``APPROACH``; constant µ and N only) else 0, 1 to leave rest at a
+        break-away with µs = µk by the departure series (V = τ² W), 1 to leave rest with |D| > µk N (µs > µk, a
+        reversal) by the departure series V = τ W, 1 to let a slide's piece slowing along e0 run to e0·V =
+        STOP_REACH r0 instead of r0/2];
         mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are then taken stuck only (sliding: series pieces).
     dt : float
         Sample interval [s] of a uniform record (``times`` empty).
@@ -1482,8 +1514,15 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     use_approach = law[5] != 0.0 and not varying
     # departures from rest at a break-away with µs = µk by the slow manifold's series (constant µ and N only)
     use_depart = law[6] != 0.0 and not varying
+    # ... and leaving rest with a finite acceleration, |D| > µk N (µs > µk, reversals): V = τ W (law[7])
+    use_leave = use_depart and law[7] != 0.0
     depart_pending = False
     departing = False
+    depart_lag = 2
+    # a slide slowing along e0 ends its series piece where e0·V falls to STOP_REACH of its start instead of a half
+    # (law[8]); its piece is then held to REACH_SHRINK of the series' reach (the tail's bound stays the halving's)
+    use_reach = law[8] != 0.0
+    reach_shrink = (2.0 * STOP_REACH) ** (1.0 / n_order)
     r_approach = APPROACH_SPEED * v_ref
     nl1 = n_order + 1
     lz = np.zeros((2, nl1, m))
@@ -1689,7 +1728,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                             limit = 0.0
                             for _rescale in range(8):
                                 departing = _series_depart(w, a0, b, a_mat, g_vec, p_vec, mu_k_n, zs, fs, ee, rho,
-                                                           h_scale)
+                                                           h_scale, depart_lag)
                                 if not departing:
                                     break
                                 limit = _piece_limit(zs, weights, floor_scale)
@@ -1717,6 +1756,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         pieces_by_mode[DEPART if departing else mode] += 1
                         length = min(rem, h_max, limit)
                         _eval(zs, 0.0, zl, zdl, zddl)
+                        # slowing along e0: towards a stop, whose singularity (V/|V|'s branch point) is ahead at ~ the
+                        # time to the stop (see the event test below)
+                        slowing = mode == SLIDE and use_reach and e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1] < 0.0
                         if mode == FINISH:
                             # the stop is due within ~ r/|ṙ|: do not run the frozen direction much beyond it
                             rdot = abs(e0[0] * zdl[0, 1] + e0[1] * zdl[1, 1])
@@ -1751,6 +1793,16 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                             t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             kind_phi = PHI_HALF
+                            far = min(rem, h_max, reach_shrink * limit)
+                            if slowing and t_event >= 0.0 and far > t_event:
+                                # the speed halves within the series' reach: go on towards the stop, to e0·V =
+                                # STOP_REACH r0 (within 1 − STOP_REACH of the time to it) and at most REACH_SHRINK of
+                                # the reach, so that the tail summed up to there keeps the halving's bound
+                                length = far
+                                _eval(zs, length, zh, zdh, zddh)
+                                t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass,
+                                                          2.0 * STOP_REACH * half_target, e0, vz, False, z, zd, zdd, out2,
+                                                          counter, zl, zdl, zh, zdh)
                         else:
                             t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
@@ -1920,7 +1972,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         kind = BREAKAWAY
                         mode = START
                         from_rest = True
-                        depart_pending = use_depart and hold <= mu_k_n * (1.0 + DEPART_EXCESS)
+                        depart_lag = 2 if hold <= mu_k_n * (1.0 + DEPART_EXCESS) else 1
+                        depart_pending = use_depart and (depart_lag == 2 or use_leave)
                         if depart_pending:
                             # the departure's series runs to the sub-step's end (not to the ladder's shortest rung)
                             slow_end = tau_end
@@ -1933,6 +1986,11 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         kind = REVERSAL
                         mode = START
                         from_rest = True
+                        # leaving the stop with |D| > µs N ≥ µk N: a finite acceleration, V = τ W
+                        depart_lag = 1
+                        depart_pending = use_leave
+                        if depart_pending:
+                            slow_end = tau_end
                     if n_ev < ev_time.shape[0]:
                         ev_time[n_ev] = t_i + tau
                         ev_kind[n_ev] = kind

@@ -173,7 +173,7 @@ def test_the_departure_series_solves_the_slabs_equation_with_the_exact_direction
     ns = kernel.N_ORDER + 3
     zs, fs = np.zeros((2, ns + 1, m)), np.zeros((2, ns))
     assert kernel._series_depart(w, a0, b, system.a_mat, system.g_vec, system.p_vec, mu_k_n, zs, fs,
-                                 np.zeros((2, ns)), np.zeros(ns), 2e-3)
+                                 np.zeros((2, ns)), np.zeros(ns), 2e-3, 2)
     weights = np.ones(m)
     weights[0] = weights[2:2 + system.n_floors] = system.fastest_rate_per_s
     length = kernel._piece_limit(zs, weights, 1e-12)
@@ -193,4 +193,4 @@ def test_the_departure_series_solves_the_slabs_equation_with_the_exact_direction
     a_off = a0.copy()
     a_off[:2] -= 1e-9 * mu_k_n * e / m_b
     assert not kernel._series_depart(w, a_off, b, system.a_mat, system.g_vec, system.p_vec, mu_k_n, zs, fs,
-                                     np.zeros((2, ns)), np.zeros(ns), 2e-3)
+                                     np.zeros((2, ns)), np.zeros(ns), 2e-3, 2)
