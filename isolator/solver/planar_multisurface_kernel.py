@@ -225,9 +225,15 @@ def multi_rhs(tau, y, raw, rb, mu, mask, c, d):
             en = math.sqrt(e1 * e1 + e2 * e2)
             e1 /= en
             e2 /= en
+            # the normal, kept in the group's rate slots until λ is known
+            d[M_U + 2 * k] = e1
+            d[M_U + 2 * k + 1] = e2
             c11 += rb[k] * e1 * e1
             c12 += rb[k] * e1 * e2
             c22 += rb[k] * e2 * e2
+        else:
+            d[M_U + 2 * k] = 0.0
+            d[M_U + 2 * k + 1] = 0.0
     det = c11 * c22 - c12 * c12
     trace = c11 + c22
     if not det > 1e-24 * trace * trace:
@@ -239,18 +245,12 @@ def multi_rhs(tau, y, raw, rb, mu, mask, c, d):
     fric = 0.0
     for k in range(ng):
         if mask >> k & 1:
-            e1 = y[M_R] - y[M_U + 2 * k] / rb[k]
-            e2 = y[M_R + 1] - y[M_U + 2 * k + 1] / rb[k]
-            en = math.sqrt(e1 * e1 + e2 * e2)
-            e1 /= en
-            e2 /= en
+            e1 = d[M_U + 2 * k]
+            e2 = d[M_U + 2 * k + 1]
             lam = rb[k] * (e1 * rd1 + e2 * rd2)
             d[M_U + 2 * k] = lam * e1
             d[M_U + 2 * k + 1] = lam * e2
             fric += mu[k] * lam
-        else:
-            d[M_U + 2 * k] = 0.0
-            d[M_U + 2 * k + 1] = 0.0
     d[M_X] = v1
     d[M_X + 1] = v2
     d[M_V] = -nn * y[M_R] - c * v1 - axx
@@ -270,11 +270,20 @@ def multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, 
     for j in range(m):
         kk[0, j] = f0[j]
     for s in range(1, _NS):
-        for j in range(m):
+        # the stage state where the rates read it (V, r, the sliding groups' ū): X, the energies and the stuck
+        # groups' ū do not enter them (left as they are in yt)
+        for j in range(M_V, M_EIN):
             acc = 0.0
             for q in range(s):
                 acc += _A[s, q] * kk[q, j]
             yt[j] = y[j] + h * acc
+        for k in range((m - M_U) // 2):
+            if mask >> k & 1:
+                for j in range(M_U + 2 * k, M_U + 2 * k + 2):
+                    acc = 0.0
+                    for q in range(s):
+                        acc += _A[s, q] * kk[q, j]
+                    yt[j] = y[j] + h * acc
         if not multi_rhs(tau + _C[s] * h, yt, raw, rb, mu, mask, c, kk[s]):
             return False, np.inf
     for j in range(m):
@@ -343,9 +352,13 @@ IMPLICIT_ANGLE = 0.02
 CLOSING_STEP = 0.25
 #: the same for a corner opening after a tangency (the Jacobian then falls by at most (1 + OPENING_STEP)^−2)
 OPENING_STEP = 0.3
-#: γ of the error estimate's filter (I − γ h J)⁻¹ of the implicit steps: RADAU5's, 1/3.6378 (the real eigenvalue of
-#: the Radau IIA matrix's inverse)
-ERR_FILTER = 0.2749
+#: the implicit steps' embedded estimate (RADAU5's, the error of an order-3 companion of the order-5 step: it
+#: overstates the step's own error) over this is what a reduced corner's step is held to.  Chosen by measurement
+#: (docs/multisurface.md, "The corner's implicit steps checked by their embedded estimate"): with the second estimate
+#: at only the refused steps, PTS took 2 815 / ~2 450 / ~2 300 / 1 298 implicit steps at 1 / 10 / 30 / 100 (965 with
+#: the step doubling before); Christchurch CBGS 0–12 s at rtol 1e-11 is 4.9e-10 of the peak from the kernel at 1e-12
+#: (old kernel: 5.0e-10)
+EST_SCALE = 100.0
 #: an implicit step refused twice in a row is retried at most this fraction of the refused one
 REFUSED_AGAIN = 0.25
 #: simplified-Newton iterations of one implicit step before it is refused (the step is then shortened)
@@ -674,12 +687,12 @@ def _recall(rm, mask, v, m):
 
 @njit(cache=True)
 def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, rm):
-    """One implicit step of the multi-group state: Radau IIA over h and over two h/2, the error of the two halves
-    from their difference (order 5: difference / 31); (ok, err) with err raised to the power 8/6 so that the
-    order-8 step factor of the explicit steps (err^(−1/8)) gives the order-5 one (err^(−1/6)).  Newton solves for
-    the active components only (:func:`_active`), and the two halves share one factored matrix (same h/2, same
-    Jacobian).  Newton starts from a collocation polynomial (:func:`_predict`): the step of h from the previous
-    step's (``rm``, when the state is where that step ended), the halves from the step of h's.
+    """One implicit step of the multi-group state: Radau IIA over h, its error by RADAU5's embedded estimate
+    (:func:`_radau_estimate`, the step's own factored matrix: no second solve; before, the step was taken once more
+    as two halves and checked by their difference, three Newton solves per step); (ok, err) with err squared so that
+    the order-8 step factor of the explicit steps (err^(−1/8)) gives the estimate's own (err^(−1/4)).  Newton solves
+    for the active components only (:func:`_active`).  Newton starts from the previous step's collocation polynomial
+    (:func:`_predict`, ``rm``, when the state is where that step ended).
 
     A corner of exactly two groups is stepped in its reduced state (:func:`reduce_corner`: X, V, θ_a, φ; r and
     the two ū are functions of them, on both circles exactly): its opening φ is a state of its own instead of a
@@ -720,7 +733,8 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     vj = v.copy()
     tj = tau
     fj = fv
-    if _recall(rm, mask, v, m):
+    recalled = _recall(rm, mask, v, m)
+    if recalled:
         zsrc = rm[RM_PREV, RM_KEY + m:RM_KEY + m + n3]
         ratio = h / rm[RM_PREV, RM_H]
         _predict(zsrc, na, 1.0, ratio, zf)
@@ -754,22 +768,10 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     p1 = np.zeros(na, dtype=np.int64)
     e2 = np.empty((na, na), dtype=np.complex128)
     p2 = np.zeros(na, dtype=np.int64)
-    yfull = np.empty(m)
-    if not (_radau_matrix(h, jac, na, e1, p1, e2, p2)
-            and _radau_solve(tau, v, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, yfull, ka, kb, yw, st,
-                             zf)):
-        return False, np.inf
-    ymid = np.empty(m)
     vnew = np.empty(m)
-    zh = np.empty(n3)
-    _predict(zf, na, 0.0, 0.5, zh)
-    if not (_radau_matrix(0.5 * h, jac, na, e1, p1, e2, p2)
-            and _radau_solve(tau, v, 0.5 * h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, ymid, ka, kb, yw,
-                             st, zh)):
-        return False, np.inf
-    _predict(zf, na, 0.5, 0.5, zh)
-    if not _radau_solve(tau + 0.5 * h, ymid, 0.5 * h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, vnew, ka,
-                        kb, yw, st, zh):
+    if not (_radau_matrix(h, jac, na, e1, p1, e2, p2)
+            and _radau_solve(tau, v, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, vnew, ka, kb, yw, st,
+                             zf)):
         return False, np.inf
     if ka >= 0:
         expand_corner(vnew, rb, mu, ka, kb, ynew)
@@ -777,39 +779,26 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
         ynew[:] = vnew
     if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
         return False, np.inf
-    # the difference of the halves and the whole, its stiff part filtered by (I − γ h J)⁻¹ (Shampine's filter, as
-    # in RADAU5's estimate: Hairer & Wanner, *Solving ODEs II*, §IV.8).  At each sample the forcing's slope jumps,
-    # and so does the fast mode's quasi-steady value: the state starts a boundary layer of length ~1/|λ| (s²/40 s),
-    # which the L-stable steps damp whatever h, but which the plain difference counts as error at every h with
-    # h|λ| ~ 1–100 (PTS, three groups: 355 of 1 094 steps refused so, the estimate growing as h fell)
-    diff = np.empty(m)
-    for p in range(m):
-        diff[p] = vnew[p] - yfull[p]
-    filt = np.empty((na, na))
-    for pa in range(na):
-        for qa in range(na):
-            filt[pa, qa] = -ERR_FILTER * h * jac[pa, qa]
-        filt[pa, pa] += 1.0
-    fpiv = np.zeros(na, dtype=np.int64)
-    st[ST_LU] += 1
-    if lu_factor(filt, fpiv):
-        dact = np.empty(na)
-        for qa in range(na):
-            dact[qa] = diff[act[qa]]
-        lu_solve(filt, fpiv, dact)
-        for qa in range(na):
-            diff[act[qa]] = dact[qa]
-    err = 0.0
-    for p in range(m):
-        s = tol[p] + rtol * max(abs(v[p]), abs(vnew[p]))
-        err += (diff[p] / 31.0 / s) ** 2
-    err = math.sqrt(err / m)
+    # the embedded estimate (RADAU5's: Hairer & Wanner, *Solving ODEs II*, §IV.8), (γ/h − J)⁻¹ (f(y0) + Σ e_i z_i / h)
+    # with the factored real system of the step itself: one solve instead of the two half steps the step was checked
+    # with before (three Newton solves per step; PTS 8 775 Newton iterations for 965 steps).  Its (γ/h − J)⁻¹ is
+    # Shampine's filter: at each sample the forcing's slope jumps and the state starts a boundary layer of length
+    # ~1/|λ| (s²/40 s) that the L-stable step damps whatever h, and that the unfiltered estimate counts as error
+    err = _radau_estimate(tau, v, fv, h, zf, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb, yw,
+                          False, st)
+    if err >= 1.0 or tau == 0.0 or not recalled:
+        # refused as it stands, or the first step of a sample interval or of a corner: the estimate once more from f
+        # at y0 + the estimate (RADAU5's second filtering, which takes out the stiff components the first one leaves
+        # in a boundary layer).  Without it at the samples' starts, Christchurch CBGS 0–12 s was 1.1e-9 of the peak
+        # from the kernel at rtol 1e-12 instead of 4.9e-10
+        err = _radau_estimate(tau, v, fv, h, zf, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb,
+                              yw, True, st)
     if not err < np.inf:
         return False, np.inf
-    # the memory: the second half step, keyed on the state the next step will read (the reduced state of ynew)
+    # the memory: this step, keyed on the state the next step will read (the reduced state of ynew)
     rm[RM_PENDING, RM_FLAG] = 1.0
     rm[RM_PENDING, RM_MASK] = mask
-    rm[RM_PENDING, RM_H] = 0.5 * h
+    rm[RM_PENDING, RM_H] = h
     if ka >= 0:
         reduce_corner(ynew, rb, ka, kb, yp)
     else:
@@ -817,8 +806,54 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     for p in range(m):
         rm[RM_PENDING, RM_KEY + p] = yp[p]
     for q in range(n3):
-        rm[RM_PENDING, RM_KEY + m + q] = zh[q]
-    return True, err ** (8.0 / 6.0)
+        rm[RM_PENDING, RM_KEY + m + q] = zf[q]
+    # err ~ h⁴: raised to the power 8/4 so that the order-8 step factor of the explicit steps (err^(−1/8)) is the
+    # estimate's own (err^(−1/4))
+    return True, err * err
+
+
+#: RADAU5's weights of the embedded estimate, e_i/h on the stage increments z_i (Hairer & Wanner, §IV.8)
+_RE = np.array([-(13.0 + 7.0 * _SQ6) / 3.0, (-13.0 + 7.0 * _SQ6) / 3.0, -1.0 / 3.0])
+
+
+@njit(cache=True)
+def _radau_estimate(tau, v, fv, h, z, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb, yw, again,
+                    st):
+    """The scaled error of a Radau IIA step by RADAU5's embedded estimate (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the
+    active components (``e1``: the step's factored real system; the energies, quadratures, are not checked), over
+    EST_SCALE on a reduced corner of two groups; with ``again``, f0 taken at v + the first estimate."""
+    est = np.empty(m)
+    f0 = fv
+    if again:
+        first = np.empty(m)
+        _radau_raw(v, fv, h, z, act, na, m, e1, p1, first)
+        yt = np.empty(m)
+        for p in range(m):
+            yt[p] = v[p]
+        for q in range(na):
+            yt[act[q]] += first[act[q]]
+        f0 = np.empty(m)
+        st[ST_RATES] += 1
+        if not _rates(tau, yt, raw, rb, mu, mask, c, ka, kb, yw, f0):
+            return np.inf
+    _radau_raw(v, f0, h, z, act, na, m, e1, p1, est)
+    err = 0.0
+    for q in range(na):
+        p = act[q]
+        s = tol[p] + rtol * max(abs(v[p]), abs(vnew[p]))
+        err += (est[p] / s) ** 2
+    return math.sqrt(err / na) / (EST_SCALE if ka >= 0 else 1.0)
+
+
+@njit(cache=True)
+def _radau_raw(v, f0, h, z, act, na, m, e1, p1, est):
+    # (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the active components of est
+    w = np.empty(na)
+    for q in range(na):
+        w[q] = f0[act[q]] + (_RE[0] * z[q] + _RE[1] * z[na + q] + _RE[2] * z[2 * na + q]) / h
+    lu_solve(e1, p1, w)
+    for q in range(na):
+        est[act[q]] = w[q]
 
 
 @njit(cache=True)
