@@ -356,8 +356,8 @@ OPENING_STEP = 0.3
 #: overstates the step's own error) over this is what a reduced corner's step is held to.  Chosen by measurement
 #: (docs/multisurface.md, "The corner's implicit steps checked by their embedded estimate"): with the second estimate
 #: at only the refused steps, PTS took 2 815 / ~2 450 / ~2 300 / 1 298 implicit steps at 1 / 10 / 30 / 100 (965 with
-#: the step doubling before); Christchurch CBGS 0–12 s at rtol 1e-11 is 4.9e-10 of the peak from the kernel at 1e-12
-#: (old kernel: 5.0e-10)
+#: the step doubling before); now Christchurch CBGS 0–12 s at rtol 1e-11 is 4.9e-10 of the peak from the old kernel at
+#: 1e-12 (the old kernel at 1e-11: 5.0e-10)
 EST_SCALE = 100.0
 #: an implicit step refused twice in a row is retried at most this fraction of the refused one
 REFUSED_AGAIN = 0.25
