@@ -365,6 +365,10 @@ REFUSED_AGAIN = 0.25
 NEWTON_MAX = 20
 #: a simplified-Newton increment this small (in units of the step's local error tolerance) ends the iteration
 NEWTON_FLOOR = 1e-2
+#: an implicit step reuses the Jacobian of the step before it when that step was accepted (the state is where it
+#: ended, same sliding groups) and its Newton iteration contracted at least this fast (RADAU5's THET, Hairer & Wanner
+#: §IV.8); a refused step or a slower contraction takes a new one
+JAC_THETA = 1e-3
 
 
 @njit(cache=True)
@@ -596,18 +600,18 @@ def _predict(zsrc, na, x0, ratio, zdst):
 
 
 @njit(cache=True)
-def _radau_solve(tau, y, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, ynew, ka, kb, yw, st, z):
+def _radau_solve(tau, y, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, ynew, ka, kb, yw, st, z, fz, res,
+                 yt, w1, w2, jr):
     """One Radau IIA step of length h from (τ, y) by simplified Newton on the active components (``e1``, ``e2``:
     the factored iteration matrices of :func:`_radau_matrix`; ``z``: in, Newton's start for the stage increments; out,
     the converged ones), the others by the collocation's quadrature of their rates at the converged stages: False
-    if it fails."""
+    if it fails.  ``fz`` (3 × m), ``res`` (≥ 3 na), ``yt`` (m), ``w1``, ``w2`` (≥ na, complex): work arrays;
+    ``jr[2]``: out, the iteration's last contraction rate (0 when the first increment was already converged)."""
     m = y.shape[0]
     n3 = 3 * na
-    fz = np.zeros((3, m))
-    res = np.zeros(n3)
-    yt = np.zeros(m)
-    w1 = np.empty(na)
-    w2 = np.empty(na, dtype=np.complex128)
+    fz[:, :] = 0.0
+    res[:] = 0.0
+    yt[:] = 0.0
     last = np.inf
     for it in range(NEWTON_MAX):
         st[ST_NEWTON] += 1
@@ -639,6 +643,7 @@ def _radau_solve(tau, y, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, y
             st[ST_NEWTON_MAXIT] += 1
             return False
         if done:
+            jr[2] = theta if it >= 1 else 0.0
             # the rates at the converged stages: the quadrature of the other components (stiffly accurate: the
             # last stage's row of A is the weights)
             if not _stage_rates(tau, y, h, z, act, na, raw, rb, mu, mask, c, fz, yt, ka, kb, yw, st):
@@ -662,6 +667,40 @@ RM_FLAG = 0
 RM_MASK = 1
 RM_H = 2
 RM_KEY = 3
+
+
+#: the rows of the implicit steps' float work array (:func:`radau_memory`, ``rm[1]``, float64[W_ROWS, m])
+W_YW = 0
+W_TOL = 1
+W_V = 2
+W_FV = 3
+W_SC = 4
+W_VJ = 5
+W_FJ = 6
+W_YP = 7
+W_FP = 8
+W_VNEW = 9
+W_YT = 10
+W_EST = 11
+W_FIRST = 12
+W_YT2 = 13
+W_F0 = 14
+W_W1 = 15
+W_W = 16
+W_ROWS = 17
+
+
+@njit(cache=True)
+def radau_memory(m):
+    """The implicit steps' memory and work arrays for a multi-group state of m components (``radau_step``'s
+    ``rm``), allocated once per run instead of once per step: (memory float64[2, RM_KEY + 4 m] (below), float
+    vectors float64[W_ROWS, m], the stage rates float64[3, m], the stage increments and Newton's increment
+    float64[2, 3 m], the active components and the two pivot vectors int64[3, m], the Jacobian and the real
+    matrix float64[2, m²], the complex matrix complex128[m²] and vector complex128[m], and the Jacobian's record
+    float64[3]: valid flag, its sliding groups, the contraction rate of the last Newton solve with it)."""
+    return (np.zeros((2, RM_KEY + 4 * m)), np.zeros((W_ROWS, m)), np.zeros((3, m)), np.zeros((2, 3 * m)),
+            np.zeros((3, m), dtype=np.int64), np.zeros((2, m * m)), np.zeros(m * m, dtype=np.complex128),
+            np.zeros(m, dtype=np.complex128), np.zeros(3))
 
 
 @njit(cache=True)
@@ -698,19 +737,21 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     the two ū are functions of them, on both circles exactly): its opening φ is a state of its own instead of a
     difference of nearly equal lengths of r and ū, so the steps are set by the motion, not by the rounding of the
     opening (PTS: 28 705 implicit steps in r and ū, docs/multisurface.md).  The step's error is measured on the
-    reduced state (the angles' tolerance: r's over the larger µ)."""
+    reduced state (the angles' tolerance: r's over the larger µ).  ``rm``: :func:`radau_memory` (no array is
+    allocated per step)."""
     m = y.shape[0]
     st[ST_RADAU] += 1
-    st[ST_JAC] += 1
     st[ST_LU] += 2
     ka, kb = _corner_pair(mask, rb.shape[0])
-    yw = np.empty(m)
-    act = np.empty(m, dtype=np.int64)
-    tol = atol.copy()
+    mem, fw, fz, z3, iw, mats, cmat, cvec, jr = rm
+    yw = fw[W_YW]
+    act = iw[0]
+    tol = fw[W_TOL]
+    tol[:] = atol
     if ka >= 0:
-        v = np.empty(m)
+        v = fw[W_V]
         reduce_corner(y, rb, ka, kb, v)
-        fv = np.empty(m)
+        fv = fw[W_FV]
         if not reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, fv):
             return False, np.inf
         tol[M_R] = atol[M_R] / max(mu[ka], mu[kb])
@@ -723,55 +764,73 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
         fv = f0
         na = _active(mask, m, act)
     n3 = 3 * na
-    zf = np.zeros(n3)
-    sc = np.empty(m)
+    zf = z3[0]
+    zf[:] = 0.0
+    sc = fw[W_SC]
     for p in range(m):
         sc[p] = tol[p] + rtol * abs(v[p])
-    # the Jacobian's point: the step's middle on the previous step's polynomial where there is one (the corner's
-    # fast mode goes as 1/s², so across a closing step the start's Jacobian is off by (1 − CLOSING_STEP)^−2, the
-    # middle's by about half that), else the start
-    vj = v.copy()
-    tj = tau
-    fj = fv
-    recalled = _recall(rm, mask, v, m)
+    recalled = _recall(mem, mask, v, m)
+    zsrc = mem[RM_PREV, RM_KEY + m:RM_KEY + m + n3]
+    ratio = 1.0
     if recalled:
-        zsrc = rm[RM_PREV, RM_KEY + m:RM_KEY + m + n3]
-        ratio = h / rm[RM_PREV, RM_H]
+        ratio = h / mem[RM_PREV, RM_H]
         _predict(zsrc, na, 1.0, ratio, zf)
-        for i in range(3):
-            w = _node_basis(1.0 + 0.5 * ratio, i) - _node_basis(1.0, i)
-            for q in range(na):
-                vj[act[q]] += w * zsrc[i * na + q]
-        fj = np.empty(m)
-        tj = tau + 0.5 * h
-        if not _rates(tj, vj, raw, rb, mu, mask, c, ka, kb, yw, fj):
-            vj[:] = v
-            tj = tau
-            fj = fv
-    jac = np.empty((na, na))
-    yp = vj.copy()
-    fp = np.empty(m)
-    for qa in range(na):
-        q = act[qa]
-        # a difference step of √ε times the component's own scale (atol/rtol + |y|)
-        dq = 1.5e-8 * max(sc[q] / rtol, 1e-12)
-        yp[q] = vj[q] + dq
-        if not _rates(tj, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
-            dq = -dq
+    # the Jacobian of the step before, where that step was accepted (the state is where it ended) with the same
+    # sliding groups and its Newton iteration contracted fast (JAC_THETA, RADAU5's rule); else a new one
+    jac = mats[0, :na * na].reshape((na, na))
+    yp = fw[W_YP]
+    if not (recalled and jr[0] == 1.0 and jr[1] == mask and jr[2] <= JAC_THETA):
+        st[ST_JAC] += 1
+        jr[0] = 0.0
+        # the Jacobian's point: the step's middle on the previous step's polynomial where there is one (the corner's
+        # fast mode goes as 1/s², so across a closing step the start's Jacobian is off by (1 − CLOSING_STEP)^−2, the
+        # middle's by about half that), else the start
+        vj = fw[W_VJ]
+        vj[:] = v
+        tj = tau
+        fj = fv
+        if recalled:
+            for i in range(3):
+                w = _node_basis(1.0 + 0.5 * ratio, i) - _node_basis(1.0, i)
+                for q in range(na):
+                    vj[act[q]] += w * zsrc[i * na + q]
+            fj = fw[W_FJ]
+            tj = tau + 0.5 * h
+            if not _rates(tj, vj, raw, rb, mu, mask, c, ka, kb, yw, fj):
+                vj[:] = v
+                tj = tau
+                fj = fv
+        yp[:] = vj
+        fp = fw[W_FP]
+        for qa in range(na):
+            q = act[qa]
+            # a difference step of √ε times the component's own scale (atol/rtol + |y|)
+            dq = 1.5e-8 * max(sc[q] / rtol, 1e-12)
             yp[q] = vj[q] + dq
             if not _rates(tj, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
-                return False, np.inf
-        for pa in range(na):
-            jac[pa, qa] = (fp[act[pa]] - fj[act[pa]]) / dq
-        yp[q] = vj[q]
-    e1 = np.empty((na, na))
-    p1 = np.zeros(na, dtype=np.int64)
-    e2 = np.empty((na, na), dtype=np.complex128)
-    p2 = np.zeros(na, dtype=np.int64)
-    vnew = np.empty(m)
+                dq = -dq
+                yp[q] = vj[q] + dq
+                if not _rates(tj, yp, raw, rb, mu, mask, c, ka, kb, yw, fp):
+                    return False, np.inf
+            for pa in range(na):
+                jac[pa, qa] = (fp[act[pa]] - fj[act[pa]]) / dq
+            yp[q] = vj[q]
+        jr[0] = 1.0
+        jr[1] = mask
+    # the Jacobian is kept for the next step only if this one is accepted with a fast contraction (jr[2], set by
+    # _radau_solve): a refusal takes it out
+    valid = jr[0]
+    jr[0] = 0.0
+    e1 = mats[1, :na * na].reshape((na, na))
+    p1 = iw[1]
+    p1[:] = 0
+    e2 = cmat[:na * na].reshape((na, na))
+    p2 = iw[2]
+    p2[:] = 0
+    vnew = fw[W_VNEW]
     if not (_radau_matrix(h, jac, na, e1, p1, e2, p2)
             and _radau_solve(tau, v, h, raw, rb, mu, mask, c, e1, p1, e2, p2, act, na, sc, vnew, ka, kb, yw, st,
-                             zf)):
+                             zf, fz, z3[1], fw[W_YT], fw[W_W1], cvec, jr)):
         return False, np.inf
     if ka >= 0:
         expand_corner(vnew, rb, mu, ka, kb, ynew)
@@ -785,28 +844,30 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     # Shampine's filter: at each sample the forcing's slope jumps and the state starts a boundary layer of length
     # ~1/|λ| (s²/40 s) that the L-stable step damps whatever h, and that the unfiltered estimate counts as error
     err = _radau_estimate(tau, v, fv, h, zf, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb, yw,
-                          False, st)
+                          False, st, fw)
     if err >= 1.0 or tau == 0.0 or not recalled:
         # refused as it stands, or the first step of a sample interval or of a corner: the estimate once more from f
         # at y0 + the estimate (RADAU5's second filtering, which takes out the stiff components the first one leaves
         # in a boundary layer).  Without it at the samples' starts, Christchurch CBGS 0–12 s was 1.1e-9 of the peak
         # from the kernel at rtol 1e-12 instead of 4.9e-10
         err = _radau_estimate(tau, v, fv, h, zf, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb,
-                              yw, True, st)
+                              yw, True, st, fw)
     if not err < np.inf:
         return False, np.inf
+    if err < 1.0:
+        jr[0] = valid
     # the memory: this step, keyed on the state the next step will read (the reduced state of ynew)
-    rm[RM_PENDING, RM_FLAG] = 1.0
-    rm[RM_PENDING, RM_MASK] = mask
-    rm[RM_PENDING, RM_H] = h
+    mem[RM_PENDING, RM_FLAG] = 1.0
+    mem[RM_PENDING, RM_MASK] = mask
+    mem[RM_PENDING, RM_H] = h
     if ka >= 0:
         reduce_corner(ynew, rb, ka, kb, yp)
     else:
         yp[:] = vnew
     for p in range(m):
-        rm[RM_PENDING, RM_KEY + p] = yp[p]
+        mem[RM_PENDING, RM_KEY + p] = yp[p]
     for q in range(n3):
-        rm[RM_PENDING, RM_KEY + m + q] = zf[q]
+        mem[RM_PENDING, RM_KEY + m + q] = zf[q]
     # err ~ h⁴: raised to the power 8/4 so that the order-8 step factor of the explicit steps (err^(−1/8)) is the
     # estimate's own (err^(−1/4))
     return True, err * err
@@ -818,25 +879,27 @@ _RE = np.array([-(13.0 + 7.0 * _SQ6) / 3.0, (-13.0 + 7.0 * _SQ6) / 3.0, -1.0 / 3
 
 @njit(cache=True)
 def _radau_estimate(tau, v, fv, h, z, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb, yw, again,
-                    st):
+                    st, fw):
     """The scaled error of a Radau IIA step by RADAU5's embedded estimate (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the
     active components (``e1``: the step's factored real system; the energies, quadratures, are not checked), over
-    EST_SCALE on a reduced corner of two groups; with ``again``, f0 taken at v + the first estimate."""
-    est = np.empty(m)
+    EST_SCALE on a reduced corner of two groups; with ``again``, f0 taken at v + the first estimate (``fw``: the
+    work rows of :func:`radau_memory`)."""
+    est = fw[W_EST]
+    w = fw[W_W]
     f0 = fv
     if again:
-        first = np.empty(m)
-        _radau_raw(v, fv, h, z, act, na, m, e1, p1, first)
-        yt = np.empty(m)
+        first = fw[W_FIRST]
+        _radau_raw(v, fv, h, z, act, na, m, e1, p1, first, w)
+        yt = fw[W_YT2]
         for p in range(m):
             yt[p] = v[p]
         for q in range(na):
             yt[act[q]] += first[act[q]]
-        f0 = np.empty(m)
+        f0 = fw[W_F0]
         st[ST_RATES] += 1
         if not _rates(tau, yt, raw, rb, mu, mask, c, ka, kb, yw, f0):
             return np.inf
-    _radau_raw(v, f0, h, z, act, na, m, e1, p1, est)
+    _radau_raw(v, f0, h, z, act, na, m, e1, p1, est, w)
     err = 0.0
     for q in range(na):
         p = act[q]
@@ -846,9 +909,8 @@ def _radau_estimate(tau, v, fv, h, z, act, na, m, e1, p1, tol, rtol, vnew, raw, 
 
 
 @njit(cache=True)
-def _radau_raw(v, f0, h, z, act, na, m, e1, p1, est):
-    # (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the active components of est
-    w = np.empty(na)
+def _radau_raw(v, f0, h, z, act, na, m, e1, p1, est, w):
+    # (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the active components of est (w: a work vector of ≥ na)
     for q in range(na):
         w[q] = f0[act[q]] + (_RE[0] * z[q] + _RE[1] * z[na + q] + _RE[2] * z[2 * na + q]) / h
     lu_solve(e1, p1, w)
@@ -1570,7 +1632,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     mfb = np.zeros(nm)
     matol = np.full(nm, np.inf)
     kk = np.zeros((_NS + 1, nm))
-    rm = np.zeros((2, RM_KEY + 4 * nm))  #: the implicit steps' memory (radau_step)
+    rm = radau_memory(nm)  #: the implicit steps' memory and work arrays (radau_step)
     yt = np.zeros(nm)
     frc = np.zeros(7)
     work = np.zeros(2)
