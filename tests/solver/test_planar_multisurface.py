@@ -737,3 +737,34 @@ def test_the_corner_steps_converge_with_the_kernels_tolerance_on_real_pairs(fold
     apart = np.max(np.hypot(*(ev.displacement_m - tight.displacement_m).T)) / tight.peak_displacement_m
     print(folder, "rtol 1e-11 vs 1e-12:", apart, "implicit corner steps", implicit)
     assert apart <= 1e-9
+
+
+def test_the_implicit_steps_reuse_their_jacobian_while_newton_contracts(monkeypatch):
+    # an implicit corner step takes the Jacobian of the step before it when that step was accepted with the same
+    # sliding groups and its Newton iteration contracted at θ ≤ JAC_THETA (RADAU5's rule), else a new one
+    # (docs/multisurface.md: PTS 1 317 Jacobians for 2 224 implicit steps).  The answer's accuracy with the reuse is
+    # test_the_corner_steps_converge_with_the_kernels_tolerance_on_real_pairs; here: the reuse happens, not on every
+    # step, and the run's energy balance stays closed
+    from isolator.motion import read_ground_motion
+    from isolator.solver import planar_multisurface as pm
+    from isolator.solver import planar_multisurface_kernel as pk
+
+    folder = EXAMPLE / "superstitionhills1987_PTS"
+    mx, my = (read_ground_motion(folder / name) for name in ("RSN723_SUPER.B_B-PTS225.AT2",
+                                                              "RSN723_SUPER.B_B-PTS315.AT2"))
+    n = min(mx.npts, my.npts)
+    seen = []
+    run = pm._run
+
+    def counted(*args):
+        out = run(*args)
+        seen.append(out[-1].copy())
+        return out
+
+    monkeypatch.setattr(pm, "_run", counted)
+    ev = simulate_bearing_pair(mx.acceleration_m_s2[:n], my.acceleration_m_s2[:n], mx.dt_s, bearing=TFP,
+                               method="events")
+    st = seen[-1]
+    assert st[pk.ST_RADAU] >= 500, st
+    assert 0.2 * st[pk.ST_RADAU] <= st[pk.ST_JAC] <= 0.8 * st[pk.ST_RADAU], (st[pk.ST_JAC], st[pk.ST_RADAU])
+    assert abs(ev.energy_balance_error_J_per_kg) <= 1e-9 * ev.energy_input_J_per_kg
