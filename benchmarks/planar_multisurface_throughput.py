@@ -16,18 +16,37 @@ With ``--accuracy`` it also prints each answer's largest distance from two refer
 fraction of the peak: the implicit steps at a 10× tighter tolerance (their convergence), and the
 event-driven kernel where it finishes with its energy balance closed (an independent method).
 
+With ``--before FILE`` (a copy of an earlier event kernel, e.g. ``git show
+<rev>:isolator/solver/planar_multisurface_kernel.py > /tmp/old/pmk_old.py``) each pair is also run
+on that kernel, the two alternately in the same process (old, new, old, new, ...), and the line
+gives both rates (median of --repeat each) and the largest distance between the two histories
+as a fraction of the peak.
+
     python -m benchmarks.planar_multisurface_throughput [--repeat 5] [--scale 2] [--accuracy]
+                                                       [--records ../shared/records] [--before FILE]
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import statistics
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
+import benchmarks.planar_throughput as _records
 from benchmarks.planar_throughput import SOURCES, load
+
+
+def _kernel_copy(path):
+    # an earlier event kernel's module, imported by name from its folder (numba caches its compiled code by module)
+    folder, name = str(Path(path).resolve().parent), Path(path).stem
+    if folder not in sys.path:
+        sys.path.insert(0, folder)
+    return importlib.import_module(name).planar_multisurface_kernel
 
 
 def _distance(a, b, peak):
@@ -41,11 +60,21 @@ def main(argv=None) -> int:
     parser.add_argument("--scale", type=float, default=1.0, help="factor on both components")
     parser.add_argument("--method", default="auto", choices=("auto", "events", "steps"))
     parser.add_argument("--accuracy", action="store_true", help="distances from the two references")
+    parser.add_argument("--records", help="the records folder (holding pairs/); default: ../shared/records of the "
+                        "repository's parent")
+    parser.add_argument("--before", help="a copy of an earlier event kernel's module, run alternately with this one")
     args = parser.parse_args(argv)
+    if args.records:
+        _records.PAIRS = Path(args.records) / "pairs"
 
     from isolator.bearing import parse_bearing
     from isolator.errors import DesignError, SolverError
+    from isolator.solver import planar_multisurface_kernel as _pm
     from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, EVENTS_BALANCE_TOL, simulate_bearing_pair
+
+    kernels = [("new", _pm.planar_multisurface_kernel)]
+    if args.before:
+        kernels.insert(0, ("before", _kernel_copy(args.before)))
 
     tfp = parse_bearing({"type": "triple", "surface": [
         {"radius_m": r, "mu": m, "displacement_capacity_m": d}
@@ -55,6 +84,8 @@ def main(argv=None) -> int:
           + (f"{'vs tol/10':>10s} {'vs events':>10s} " if args.accuracy else "") + " regimes")
     rates = []
     cpu_rates = []
+    before_rates = []
+    before_cpu = []
     total_n = 0
     total_t = 0.0
     for folder in SOURCES:
@@ -62,16 +93,31 @@ def main(argv=None) -> int:
         ax = args.scale * ax
         ay = args.scale * ay
         try:
-            times = []
-            cpu = []
+            times = {name: [] for name, _ in kernels}
+            cpus = {name: [] for name, _ in kernels}
+            answers = {}
             for _ in range(args.repeat):
-                start = time.thread_time()
-                res = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method)
-                cpu.append(time.thread_time() - start)
-                times.append(res.solver_seconds)
+                for name, kernel in kernels:
+                    _pm.planar_multisurface_kernel = kernel
+                    start = time.thread_time()
+                    answers[name] = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method)
+                    cpus[name].append(time.thread_time() - start)
+                    times[name].append(answers[name].solver_seconds)
         except SolverError as exc:
             print(f"{folder:26s} {ax.size:8d}   {str(exc)[:90]}")
             continue
+        finally:
+            _pm.planar_multisurface_kernel = kernels[-1][1]
+        res = answers["new"]
+        cpu = cpus["new"]
+        if args.before:
+            old = answers["before"]
+            before_rates.append(ax.size / statistics.median(times["before"]) / 1e6)
+            before_cpu.append(ax.size / statistics.median(cpus["before"]) / 1e6)
+            apart = _distance(old.displacement_m, res.displacement_m, res.peak_displacement_m)
+            print(f"{'  before':26s} {ax.size:8d} {'':>6s} {before_rates[-1]:12.3f} {before_cpu[-1]:8.3f} "
+                  f"{old.n_steps:7d} {old.peak_displacement_m:10.4f}  (history {apart:.1e} of the peak apart)")
+        times = times["new"]
         t = statistics.median(times)
         rate = ax.size / t / 1e6
         rates.append(rate)
@@ -98,6 +144,9 @@ def main(argv=None) -> int:
         print(f"median {statistics.median(rates):.3f} M samples/s, slowest {min(rates):.3f}, "
               f"all samples / all time {total_n / total_t / 1e6:.3f} M samples/s; CPU: median "
               f"{statistics.median(cpu_rates):.3f} M samples/s")
+    if before_rates:
+        print(f"before: median {statistics.median(before_rates):.3f} M samples/s; CPU: median "
+              f"{statistics.median(before_cpu):.3f} M samples/s")
     return 0
 
 
