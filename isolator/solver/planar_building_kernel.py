@@ -1010,24 +1010,54 @@ def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
 
 
 @njit(cache=True)
-def _watched_end(fmon, fsig, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1, sval1,
-                 sslope1):
-    """Watched values and slopes at a sub-step's end (as :func:`_monitors`) from the rows ℓ (fmon[…, 0]) and ℓÃ
-    (fmon[…, 1]) on the augmented end state [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]."""
-    for k in range(fmon.shape[1]):
-        val1[k, 0], slope1[k, 0] = _row_end(fmon[phase, k, 0, 0], fmon[phase, k, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
-        val1[k, 1], slope1[k, 1] = _row_end(fmon[phase, k, 1, 0], fmon[phase, k, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
-    for j in range(fsig.shape[1]):
-        vx, sx = _row_end(fsig[phase, j, 0, 0], fsig[phase, j, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
-        vy, sy = _row_end(fsig[phase, j, 1, 0], fsig[phase, j, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
-        sval1[j] = sig3[j, 2] * az1 + vx + vy
-        sslope1[j] = sig3[j, 2] * b[2] + sx + sy
+def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1, sval1, sslope1):
+    """Watched values and slopes at a sub-step's end (as :func:`_monitors`): per direction one product of the table
+    fend[phase, d] (rows ℓ and ℓÃ of every watched quantity, value and slope interleaved: the resultants' then the
+    signed ones', :func:`_end_rows`) with the augmented end state [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]."""
+    m = zh.shape[1]
+    nr = fend.shape[2]
+    for d in range(2):
+        a_end = ax1 if d == 0 else ay1
+        f_end = fe_x if d == 0 else fe_y
+        fd_end = fde_x if d == 0 else fde_y
+        for r in range(nr):
+            acc = fend[phase, d, r, m] * a_end + fend[phase, d, r, m + 1] * b[d] + fend[phase, d, r, m + 2] * f_end \
+                + fend[phase, d, r, m + 3] * fd_end
+            for c in range(m):
+                acc += fend[phase, d, r, c] * zh[d, c]
+            wend[d, r] = acc
+    nk = val1.shape[0]
+    for k in range(nk):
+        for d in range(2):
+            val1[k, d] = wend[d, 2 * k]
+            slope1[k, d] = wend[d, 2 * k + 1]
+    for j in range(sig3.shape[0]):
+        r = 2 * nk + 2 * j
+        sval1[j] = sig3[j, 2] * az1 + wend[0, r] + wend[1, r]
+        sslope1[j] = sig3[j, 2] * b[2] + wend[0, r + 1] + wend[1, r + 1]
 
 
 @njit(cache=True)
-def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
+def _end_rows(fmon, fsig, m):
+    """The table of :func:`_watched_end` from the watched rows' first two powers (ℓ, ℓÃ; they vanish beyond c_1):
+    fend[phase, d, 2q] = ℓ_q, fend[phase, d, 2q + 1] = ℓ_q Ã on [z, a_g, ȧ_g, c_0, c_1], q over the resultants then
+    the signed quantities (contiguous: one product per direction)."""
+    nk = fmon.shape[1]
+    nj = fsig.shape[1]
+    fend = np.zeros((2, 2, 2 * (nk + nj), m + 4))
+    for ph in range(2):
+        for d in range(2):
+            for q in range(nk + nj):
+                for p in range(2):
+                    for c in range(m + 4):
+                        fend[ph, d, 2 * q + p, c] = fmon[ph, q, d, p, c] if q < nk else fsig[ph, q - nk, d, p, c]
+    return fend
+
+
+@njit(cache=True)
+def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpinrow, fpvis,
                fvrow,
-               farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
+               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
@@ -1110,7 +1140,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     code = 0
     for lev in range(lev_first, n_lev):
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
-                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig,
+                         slab_mass, e0, vz, half_target, fprop[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
                          sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
@@ -1137,8 +1167,8 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 
 
 @njit(cache=True)
-def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
-              farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpinrow, fpvis,
+              farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
     """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
@@ -1244,7 +1274,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     # the end's watched values and slopes from their rows ℓ, ℓÃ on w̃(h) = [z(h), a_g(h), ȧ_g, F(h), F'(h)] (the
     # rows vanish beyond c_0, c_1): one product each instead of ż, z̈ and the monitors' three rows
-    _watched_end(fmon, fsig, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1,
+    _watched_end(fend, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1,
                  sval1, sslope1)
     nterm = fmon.shape[3]
     nk = m1.shape[0]
@@ -1281,17 +1311,22 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
                 sig_max[j] = max(sig_max[j], _poly_max(cpoly, 1, nterm, h))
             else:
                 sig_min[j] = min(sig_min[j], -_poly_max(cpoly, -1, nterm, h))
+    # the input power a_g (ℓ_p·w̃) with a_g = a0 + ȧ_g τ: its integral a0 (R1·w̃) + ȧ_g (R2·w̃), R1 = ℓ_p ∫e^{Ãτ}dτ and
+    # R2 = ℓ_p ∫τ e^{Ãτ}dτ (fpinrow: the Van Loan form of a rank-2 power, as two rows); the viscous power's form is
+    # symmetric: the diagonal and twice the upper triangle
     e_in = 0.0
     e_v = 0.0
     for d in range(2):
-        # the forms are symmetric: the diagonal and twice the upper triangle
+        r1 = 0.0
+        r2 = 0.0
+        for c in range(s_eff):
+            r1 += fpinrow[phase, d, 0, c] * wsc[d, c]
+            r2 += fpinrow[phase, d, 1, c] * wsc[d, c]
+        e_in += wsc[d, m] * r1 + wsc[d, m + 1] * r2
         for r in range(s_eff):
-            acc_i = 0.0
             acc_v = 0.0
             for c in range(r + 1, s_eff):
-                acc_i += fpin[phase, d, r, c] * wsc[d, c]
                 acc_v += fpvis[phase, d, r, c] * wsc[d, c]
-            e_in += wsc[d, r] * (fpin[phase, d, r, r] * wsc[d, r] + 2.0 * acc_i)
             e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * acc_v)
     if vz[V_VARYING] != 0.0 and mode == STUCK:
         # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
@@ -1304,7 +1339,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
 
 @njit(cache=True)
 def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
-                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpin,
+                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpinrow,
                       fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
     """Response of the slab + shear building on the friction isolation plane to two horizontal components.
@@ -1371,8 +1406,11 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         The first m rows of e^{Ãh_l} per rung, phase and direction, Ã the augmented matrix on
         w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial),
         the chain scaled to the rung (c_j h_l^j).
-    fpin, fpvis : float64[L, 2, 2, S, S]
-        ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the input and viscous powers (Van Loan).
+    fpinrow : float64[L, 2, 2, 2, S]
+        The input power a_g (ℓ_p·w̃) integrated over a rung, as two rows: R1 = ℓ_p ∫₀^{h_l} e^{Ãτ} dτ and
+        R2 = ℓ_p ∫₀^{h_l} τ e^{Ãτ} dτ (the input energy is a_g R1·w̃ + ȧ_g R2·w̃; the Van Loan form of a rank-2 Q).
+    fpvis : float64[L, 2, 2, S, S]
+        ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the viscous power (Van Loan).
     fvrow : float64[2, K + 1, S]
         e_v Ã^k / k! of the sliding phase (the Taylor coefficients of V).
     farow1, farow2 : float64[2, 2, m, m + 4]
@@ -1459,6 +1497,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     rser = np.zeros(n_ch)
     eser = np.zeros((2, n_ch))
     cpoly = np.zeros((2, fmon.shape[3]))
+    fend = _end_rows(fmon, fsig, m)
+    wend = np.zeros((2, fend.shape[2]))
     n_fast_steps = 0
     n_refused = np.zeros(6, dtype=np.int64)
     e0 = np.zeros(2)
@@ -1592,7 +1632,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, m1,
+                                           half_target, fprop, fpinrow, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
