@@ -1058,7 +1058,7 @@ def _end_rows(fmon, fsig, m):
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpinrow, fpvis,
                fvrow,
                farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
-               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
+               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
     ladder h_top = h_{lev0}, h_top/2 … that the friction's series and the events allow.
@@ -1142,7 +1142,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
                          slab_mass, e0, vz, half_target, fprop[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
-                         sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+                         sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
         if code == 0:
             return lev
@@ -1169,7 +1169,7 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 @njit(cache=True)
 def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpinrow, fpvis,
               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
     """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
     the reason (2, 3)."""
@@ -1313,7 +1313,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
                 sig_min[j] = min(sig_min[j], -_poly_max(cpoly, -1, nterm, h))
     # the input power a_g (ℓ_p·w̃) with a_g = a0 + ȧ_g τ: its integral a0 (R1·w̃) + ȧ_g (R2·w̃), R1 = ℓ_p ∫e^{Ãτ}dτ and
     # R2 = ℓ_p ∫τ e^{Ãτ}dτ (fpinrow: the Van Loan form of a rank-2 power, as two rows); the viscous power's form is
-    # symmetric: the diagonal and twice the upper triangle
+    # symmetric (below)
     e_in = 0.0
     e_v = 0.0
     for d in range(2):
@@ -1323,11 +1323,17 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             r1 += fpinrow[phase, d, 0, c] * wsc[d, c]
             r2 += fpinrow[phase, d, 1, c] * wsc[d, c]
         e_in += wsc[d, m] * r1 + wsc[d, m + 1] * r2
+        # the strict triangle's product p = U w̃ column by column (U[r, c] = P[c, r], r < c: row c of the
+        # symmetric form, contiguous), so that the entries of p accumulate independently (no chain of dependent
+        # sums); then w̃ᵀ P w̃ = Σ_r w̃_r (P_rr w̃_r + 2 p_r)
         for r in range(s_eff):
-            acc_v = 0.0
-            for c in range(r + 1, s_eff):
-                acc_v += fpvis[phase, d, r, c] * wsc[d, c]
-            e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * acc_v)
+            pw[r] = 0.0
+        for c in range(1, s_eff):
+            wc = wsc[d, c]
+            for r in range(c):
+                pw[r] += fpvis[phase, d, c, r] * wc
+        for r in range(s_eff):
+            e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * pw[r])
     if vz[V_VARYING] != 0.0 and mode == STUCK:
         # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
         e_in += 0.5 * vz[V_K_VERT] * vz[V_NU1] * (w[0, 0] ** 2 + w[1, 0] ** 2) * h
@@ -1492,6 +1498,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     n_ch = fprop.shape[4] - m - 2
     wa = np.zeros((2, fprop.shape[4]))
     wsc = np.zeros((2, fprop.shape[4]))
+    pw = np.zeros(fprop.shape[4])
     vser = np.zeros((2, n_ch))
     sser = np.zeros(n_ch)
     rser = np.zeros(n_ch)
@@ -1634,7 +1641,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
                                            half_target, fprop, fpinrow, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
+                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
                         if taken >= 0:
                             h_lev = h_fast / (1 << taken)
