@@ -1013,19 +1013,22 @@ def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
 def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1, sval1, sslope1):
     """Watched values and slopes at a sub-step's end (as :func:`_monitors`): per direction one product of the table
     fend[phase, d] (rows ℓ and ℓÃ of every watched quantity, value and slope interleaved: the resultants' then the
-    signed ones', :func:`_end_rows`) with the augmented end state [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]."""
+    signed ones', :func:`_end_rows`; stored by columns, fend[phase, d, c, r]) with the augmented end state
+    [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]: column by column, each row's sum in the order of a row-by-row product
+    (the inputs' four columns, then z's), so that the rows accumulate independently."""
     m = zh.shape[1]
-    nr = fend.shape[2]
+    nr = fend.shape[3]
     for d in range(2):
         a_end = ax1 if d == 0 else ay1
         f_end = fe_x if d == 0 else fe_y
         fd_end = fde_x if d == 0 else fde_y
         for r in range(nr):
-            acc = fend[phase, d, r, m] * a_end + fend[phase, d, r, m + 1] * b[d] + fend[phase, d, r, m + 2] * f_end \
-                + fend[phase, d, r, m + 3] * fd_end
-            for c in range(m):
-                acc += fend[phase, d, r, c] * zh[d, c]
-            wend[d, r] = acc
+            wend[d, r] = fend[phase, d, m, r] * a_end + fend[phase, d, m + 1, r] * b[d] + fend[phase, d, m + 2, r] \
+                * f_end + fend[phase, d, m + 3, r] * fd_end
+        for c in range(m):
+            zc = zh[d, c]
+            for r in range(nr):
+                wend[d, r] += fend[phase, d, c, r] * zc
     nk = val1.shape[0]
     for k in range(nk):
         for d in range(2):
@@ -1040,23 +1043,62 @@ def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, si
 @njit(cache=True)
 def _end_rows(fmon, fsig, m):
     """The table of :func:`_watched_end` from the watched rows' first two powers (ℓ, ℓÃ; they vanish beyond c_1):
-    fend[phase, d, 2q] = ℓ_q, fend[phase, d, 2q + 1] = ℓ_q Ã on [z, a_g, ȧ_g, c_0, c_1], q over the resultants then
-    the signed quantities (contiguous: one product per direction)."""
+    fend[phase, d, :, 2q] = ℓ_q, fend[phase, d, :, 2q + 1] = ℓ_q Ã on [z, a_g, ȧ_g, c_0, c_1], q over the resultants
+    then the signed quantities (by columns, contiguous: one product per direction)."""
     nk = fmon.shape[1]
     nj = fsig.shape[1]
-    fend = np.zeros((2, 2, 2 * (nk + nj), m + 4))
+    fend = np.zeros((2, 2, m + 4, 2 * (nk + nj)))
     for ph in range(2):
         for d in range(2):
             for q in range(nk + nj):
                 for p in range(2):
                     for c in range(m + 4):
-                        fend[ph, d, 2 * q + p, c] = fmon[ph, q, d, p, c] if q < nk else fsig[ph, q - nk, d, p, c]
+                        fend[ph, d, c, 2 * q + p] = fmon[ph, q, d, p, c] if q < nk else fsig[ph, q - nk, d, p, c]
     return fend
 
 
 @njit(cache=True)
-def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpinrow, fpvis,
-               fvrow,
+def _form_add(acc, p, w, s_eff, pw):
+    """acc + w[:s_eff]ᵀ P w[:s_eff] for a symmetric P: Σ_r w_r (P_rr w_r + 2 Σ_{c>r} P_rc w_c) added term by term
+    to acc (r ascending; acc carries the sum over the directions), the inner sums taken
+    column by column into pw (pw[r] += P[c, r] w_c for r < c: row c of P, contiguous) so that they accumulate
+    independently instead of one dependent sum after another; each inner sum in the same order as row by row
+    (c ascending), so the value is the row-by-row sum's to the last bit."""
+    for r in range(s_eff):
+        pw[r] = 0.0
+    for c in range(1, s_eff):
+        wc = w[c]
+        for r in range(c):
+            pw[r] += p[c, r] * wc
+    for r in range(s_eff):
+        acc += w[r] * (p[r, r] * w[r] + 2.0 * pw[r])
+    return acc
+
+
+@njit(cache=True)
+def _by_columns(fprop, fvrow):
+    """The propagators' rows and V's rows stored by columns (fpropt[l, p, d, c2, c] = fprop[l, p, d, c, c2],
+    fvt[d, c, k] = fvrow[d, k, c]): the fast sub-step's products then run column by column."""
+    n_lev, _, _, m, size = fprop.shape
+    fpropt = np.zeros((n_lev, 2, 2, size, m))
+    for lev in range(n_lev):
+        for ph in range(2):
+            for d in range(2):
+                for c in range(m):
+                    for c2 in range(size):
+                        fpropt[lev, ph, d, c2, c] = fprop[lev, ph, d, c, c2]
+    nk = fvrow.shape[1]
+    fvt = np.zeros((2, size, nk))
+    for d in range(2):
+        for k in range(nk):
+            for c in range(size):
+                fvt[d, c, k] = fvrow[d, k, c]
+    return fpropt, fvt
+
+
+@njit(cache=True)
+def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
+               fvt,
                farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
@@ -1075,8 +1117,8 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     """
     m = w.shape[1]
     phase = 0 if mode == STUCK else 1
-    nch = fprop.shape[4] - m - 2  # chain entries c_0 .. c_K
-    n_lev = fprop.shape[0]
+    nch = fpropt.shape[3] - m - 2  # chain entries c_0 .. c_K
+    n_lev = fpropt.shape[0]
     for d in range(2):
         for c in range(m):
             wa[d, c] = w[d, c]
@@ -1090,11 +1132,21 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
         converged = False
         scale = max(mu_k_n, 1e-300)
         hk = 1.0
+        # V's coefficients e_v Ã^k/k! w̃ (fvt[d, c, k]: the rows by columns): the share of [z, a_g, ȧ_g] for every
+        # order at once, column by column (the orders accumulate independently), then per order the chain's
+        # c_0 … c_{k-1} (known only once the orders below are): each sum in the order of a row-by-row product
+        for d in range(2):
+            for k in range(nch):
+                vser[d, k] = 0.0
+            for c in range(m + 2):
+                wc = wa[d, c]
+                for k in range(nch):
+                    vser[d, k] += fvt[d, c, k] * wc
         for k in range(nch):
             for d in range(2):
-                acc = 0.0
-                for c in range(m + 2 + k):
-                    acc += fvrow[d, k, c] * wa[d, c]
+                acc = vser[d, k]
+                for c in range(m + 2, m + 2 + k):
+                    acc += fvt[d, c, k] * wa[d, c]
                 vser[d, k] = acc
             acc = 0.0
             for j in range(k + 1):
@@ -1140,7 +1192,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     code = 0
     for lev in range(lev_first, n_lev):
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
-                         slab_mass, e0, vz, half_target, fprop[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
+                         slab_mass, e0, vz, half_target, fpropt[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
                          sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
@@ -1167,7 +1219,7 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 
 
 @njit(cache=True)
-def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpinrow, fpvis,
+def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
@@ -1191,12 +1243,15 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         for k in range(k_eff + 1):
             wsc[d, m + 2 + k] = wa[d, m + 2 + k] * hk
             hk *= h
+    # z(h) = E w̃ column by column (fpropt[phase, d, c2, c] = E[c, c2]; each entry summed in the order of a
+    # row-by-row product, the entries independently)
     for d in range(2):
         for c in range(m):
-            acc = 0.0
-            for c2 in range(s_eff):
-                acc += fprop[phase, d, c, c2] * wsc[d, c2]
-            zh[d, c] = acc
+            zh[d, c] = 0.0
+        for c2 in range(s_eff):
+            wc = wsc[d, c2]
+            for c in range(m):
+                zh[d, c] += fpropt[phase, d, c2, c] * wc
     # φ at the ends reads only ℓ_D·z, ℓ_D·ż and z[0], z[1], ż[0], ż[1]: ż's entries from the rows ℓ_D Ã (flrow[…, 2])
     # and Ã's rows 0, 1 on [z, a_g, ȧ_g, c_0, c_1]; the whole ż, z̈ at the start only when the watched values there
     # are recomputed (the end's come from the watched rows below)
@@ -1323,17 +1378,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
             r1 += fpinrow[phase, d, 0, c] * wsc[d, c]
             r2 += fpinrow[phase, d, 1, c] * wsc[d, c]
         e_in += wsc[d, m] * r1 + wsc[d, m + 1] * r2
-        # the strict triangle's product p = U w̃ column by column (U[r, c] = P[c, r], r < c: row c of the
-        # symmetric form, contiguous), so that the entries of p accumulate independently (no chain of dependent
-        # sums); then w̃ᵀ P w̃ = Σ_r w̃_r (P_rr w̃_r + 2 p_r)
-        for r in range(s_eff):
-            pw[r] = 0.0
-        for c in range(1, s_eff):
-            wc = wsc[d, c]
-            for r in range(c):
-                pw[r] += fpvis[phase, d, c, r] * wc
-        for r in range(s_eff):
-            e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * pw[r])
+        e_v = _form_add(e_v, fpvis[phase, d], wsc[d], s_eff, pw)
     if vz[V_VARYING] != 0.0 and mode == STUCK:
         # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
         e_in += 0.5 * vz[V_K_VERT] * vz[V_NU1] * (w[0, 0] ** 2 + w[1, 0] ** 2) * h
@@ -1505,7 +1550,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     eser = np.zeros((2, n_ch))
     cpoly = np.zeros((2, fmon.shape[3]))
     fend = _end_rows(fmon, fsig, m)
-    wend = np.zeros((2, fend.shape[2]))
+    fpropt, fvt = _by_columns(fprop, fvrow)
+    wend = np.zeros((2, fend.shape[3]))
     n_fast_steps = 0
     n_refused = np.zeros(6, dtype=np.int64)
     e0 = np.zeros(2)
@@ -1639,7 +1685,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fprop, fpinrow, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
+                                           half_target, fpropt, fpinrow, fpvis, fvt, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)

@@ -212,3 +212,53 @@ def test_a_break_away_inside_a_sample_near_the_static_limit(records_dir):
     r_above = simulate_planar_building(ax, ay, dt, superstructure=s, total_mass_kg=total, stiffness_N_per_m=k_iso,
                                        mu_static=peak * (1.0 + 1e-7) / (total * G))
     assert r_above.n_events == 0 or r_above.event_time_s[0] > (best_i + 1) * dt
+
+
+def _form_by_rows(p, w, s_eff):
+    """The viscous form as the kernel summed it before (one dependent sum per row, c ascending)."""
+    total = 0.0
+    for r in range(s_eff):
+        acc = 0.0
+        for c in range(r + 1, s_eff):
+            acc += p[r, c] * w[c]
+        total += w[r] * (p[r, r] * w[r] + 2.0 * acc)
+    return total
+
+
+def test_the_viscous_form_by_columns_is_the_row_sum_and_the_power_integral():
+    # the fast sub-step's viscous energy w̃ᵀ P w̃ is now summed column by column (pk._form_add); it must be the
+    # row-by-row sum to the last bit (same terms, same order) and the integral of the viscous power
+    # w̃(τ)ᵀ Q_vis w̃(τ) over the rung, w̃(τ) = e^{Ãτ} w̃ by scipy's expm, on the chain scaled to the rung
+    s = _building(4)
+    total = 1.4 * s.mass_kg
+    system = planar_building_system(s, total_mass_kg=total, stiffness_N_per_m=total * G / 2.5, mu_static=0.06,
+                                    mu_kinetic=0.05, damping_Ns_per_m=3e4)
+    h = 0.01
+    p_vis = _fast_tables(system, h, _watched(system, None))[2]
+    aug = _augmented(system)
+    m = 2 * s.n_floors + 2
+    size = aug.shape[-1]
+    pw = np.zeros(size)
+    rng = np.random.default_rng(11)
+    checked = 0
+    for lev, phase, k_eff in ((0, 1, 12), (pk.FAST_LEVELS - 1, 1, pk.FAST_ORDER), (2, 0, -1)):
+        h_lev = h / 2 ** lev
+        s_eff = m + 3 + k_eff
+        scale = np.ones(size)
+        scale[m + 2:] = h_lev ** np.arange(pk.FAST_ORDER + 1)
+        for d, one in enumerate(system.directions):
+            w = np.zeros(size)
+            w[:s_eff] = rng.normal(size=s_eff) * np.r_[np.full(m, 0.1), 3.0, 50.0,
+                                                        3e4 * 0.5 ** np.arange(size - m - 2)][:s_eff]
+            ours = pk._form_add(0.0, p_vis[lev, phase, d], w, s_eff, pw)
+            assert ours == _form_by_rows(p_vis[lev, phase, d], w, s_eff)
+            assert pk._form_add(ours, p_vis[lev, phase, d], w, s_eff, pw) == pytest.approx(2.0 * ours, rel=1e-15)
+            q_vis = np.zeros((size, size))
+            q_vis[:m + 3, :m + 3] = one.q_vis
+            scaled = aug[phase, d] * scale[:, None] / scale[None, :]
+            power = quad_vec(lambda t, a=scaled, x=w, q=q_vis: (expm(a * t) @ x) @ q @ (expm(a * t) @ x), 0.0,
+                             h_lev, epsrel=1e-13)[0]
+            assert power > 0.0
+            assert ours == pytest.approx(power, rel=1e-10)
+            checked += 1
+    assert checked == 6
