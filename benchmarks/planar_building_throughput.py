@@ -22,6 +22,18 @@ fast sub-steps only (stuck), which gives a stuck sub-step's cost; the rest of th
 charged to its series pieces and sliding sub-steps (a sliding sub-step costs about twice a stuck one,
 docs/building.md), so the per-piece figure printed is a range.
 
+``--substeps`` times the fast sub-steps themselves, stuck and sliding, part by part, with a clock read inside an
+instrumented copy of the kernel (written to a temporary folder and compiled there; the installed kernel is not
+touched)::
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python -m benchmarks.planar_building_throughput --substeps [--runs 7]
+
+It prints the kernel time split into stuck sub-steps, sliding sub-steps and the rest (series pieces, the sample loop),
+µs per sub-step, the sliding sub-steps' rungs (h, h/2 … h/32) and, per sub-step, the friction's series, the
+propagation with the event test, the watched values at the end, the peaks, the energy forms and the two calls. The
+clock (``clock_gettime``, ~25 ns a read, 9 reads a sub-step) is included in the figures. The copy is made by
+inserting lines at marker lines of the kernel's source; a marker not found stops the script with its text.
+
 Timings depend on the machine and its load (the kernel runs on one core).
 """
 
@@ -118,11 +130,153 @@ def profile(records: Path, runs: int) -> None:
     print(f"load average (1, 5, 15 min): {os.getloadavg()}")
 
 
+#: the instrumented copy's clock (CLOCK_MONOTONIC through ctypes, callable from numba) and its njit without a cache
+_CLOCK = '''from numba import njit as _numba_njit
+import ctypes as _ctypes
+_clock_gettime = _ctypes.CDLL(None).clock_gettime
+_clock_gettime.argtypes = [_ctypes.c_int, _ctypes.c_void_p]
+_clock_gettime.restype = _ctypes.c_int
+
+
+def njit(*args, **kwargs):
+    kwargs.pop("cache", None)
+    return _numba_njit(args[0]) if args and callable(args[0]) else _numba_njit(*args, **kwargs)
+
+
+@_numba_njit
+def _now(buf):
+    _clock_gettime(1, buf.ctypes.data)
+    return buf[0] * 1e9 + buf[1]
+'''
+#: (marker line of the kernel, lines to insert, before or after it, in which function): the clock reads. Slots of the
+#: enlarged summary: 20 + (stuck 0 / sliding 2) + (taken 0 / refused 1) the sub-steps' time, 10 more their count,
+#: 24 + rung the sliding rungs taken, 40 + 5 phase + part the parts, 51 and 53 the calls, 59 the kernel's whole time
+_PROBES = (
+    ("from isolator.solver.jit import njit", [_CLOCK], "replace", None),
+    ("SUMMARY_SIZE = 19", ["SUMMARY_SIZE = 60"], "replace", None),
+    ("    counter = np.zeros(1, dtype=np.int64)", ["    counter = np.zeros(16, dtype=np.int64)"], "replace", None),
+    ("    n = ax.shape[0]", ["    tbuf = np.zeros(2, dtype=np.int64)", "    t_start = _now(tbuf)"], "after",
+     "building2d_kernel"),
+    ("                        taken = _fast_step(", ["                        mode_was = mode",
+                                                    "                        t_a = _now(tbuf)",
+                                                    "                        counter[12] = int(_now(counter[14:]))"],
+     "before", "building2d_kernel"),
+    ("                        if taken >= 0:", [
+        "                        slot = 20 + (0 if mode_was == STUCK else 2) + (0 if taken >= 0 else 1)",
+        "                        summary[slot] += _now(tbuf) - t_a",
+        "                        summary[slot + 10] += 1",
+        "                        if taken >= 0 and mode_was != STUCK:",
+        "                            summary[24 + taken] += 1"], "before", "building2d_kernel"),
+    ("    summary[S_N_LOCATED] = counter[0]", [
+        "    summary[59] = _now(tbuf) - t_start", "    summary[51] = counter[11]", "    summary[53] = counter[13]",
+        "    for _q in range(1, 11):", "        summary[39 + _q] = counter[_q]"], "after", "building2d_kernel"),
+    ("    m = w.shape[1]", ["    _t0 = _now(counter[14:])", "    _pb = 1 if mode != STUCK else 0",
+                          "    counter[11] += int(_t0) - counter[12]"], "after", "_fast_step"),
+    ("    code = 0", ["    counter[1 + 5 * _pb] += _now(counter[14:]) - _t0"], "before", "_fast_step"),
+    ("        code = _fast_try(", ["        counter[12] = int(_now(counter[14:]))"], "before", "_fast_step"),
+    ("    m = w.shape[1]", ["    _t0 = _now(counter[14:])", "    _pb = phase", "    counter[13] += int(_t0) - counter[12]"],
+     "after", "_fast_try"),
+    ("    # ---- committed: watched values, peaks, energies ----",
+     ["    _t1 = _now(counter[14:])", "    counter[2 + 5 * _pb] += _t1 - _t0"], "before", "_fast_try"),
+    ("    nterm = fmon.shape[3]", ["    _t2 = _now(counter[14:])", "    counter[3 + 5 * _pb] += _t2 - _t1"], "before",
+     "_fast_try"),
+    ("    e_in = 0.0", ["    _t3 = _now(counter[14:])", "    counter[4 + 5 * _pb] += _t3 - _t2"], "before", "_fast_try"),
+    ("    energy[2] = e_v", ["    counter[5 + 5 * _pb] += _now(counter[14:]) - _t3"], "after", "_fast_try"),
+)
+
+
+def _instrumented(folder: Path):
+    """The kernel's module with the clock reads of :data:`_PROBES`, imported from ``folder``."""
+    import importlib.util
+
+    import isolator.solver.planar_building_kernel as kernel
+
+    lines = Path(kernel.__file__).read_text().split("\n")
+    for marker, insert, where, function in _PROBES:
+        current = None
+        hits = []
+        for i, line in enumerate(lines):
+            if line.startswith("def "):
+                current = line[4:line.index("(")]
+            same = line == marker or (marker.endswith("(") and line.startswith(marker))
+            if same and (function is None or current == function):
+                hits.append(i)
+        if len(hits) != 1:
+            raise SystemExit(f"--substeps: the kernel's line {marker!r} (in {function}) was found {len(hits)} times")
+        i = hits[0]
+        if where == "replace":
+            lines[i:i + 1] = insert
+        elif where == "before":
+            lines[i:i] = insert
+        else:
+            lines[i + 1:i + 1] = insert
+    path = folder / "planar_building_kernel_timed.py"
+    path.write_text("\n".join(lines))
+    spec = importlib.util.spec_from_file_location("planar_building_kernel_timed", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def substeps(records: Path, runs: int) -> None:
+    """The fast sub-steps' time on the bench case and never sliding (module docstring, ``--substeps``)."""
+    import tempfile
+    import types
+
+    import isolator.solver.planar_building as planar_building
+
+    case = _bench_case(records)
+    with tempfile.TemporaryDirectory() as folder:
+        timed = _instrumented(Path(folder))
+        captured = {}
+
+        def kernel(*args):
+            timed.building2d_kernel(*args)
+            captured["summary"] = args[-1].copy()
+
+        proxy = types.SimpleNamespace(**{k: v for k, v in vars(timed).items() if not k.startswith("__")})
+        proxy.building2d_kernel = kernel
+        installed = planar_building._pk
+        planar_building._pk = proxy
+        try:
+            for mu in (case.mu, 0.95):
+                rows = []
+                for _ in range(runs + 1):  # the first call compiles the copy
+                    simulate_planar_building(case.acceleration_m_s2, case.acceleration_y_m_s2, case.dt_s,
+                                             superstructure=case.superstructure, total_mass_kg=case.total_mass_kg,
+                                             stiffness_N_per_m=case.isolator_stiffness_N_per_m, mu_static=mu,
+                                             mu_kinetic=mu, gravity_m_s2=case.gravity_m_s2)
+                    rows.append(captured["summary"][20:60].copy())
+                s = np.median(np.array(rows[1:]), axis=0)
+                total = s[39]
+                print(f"µ = {mu}: kernel {total / 1e6:.2f} ms (median of {runs}, instrumented)")
+                for label, k in (("stuck sub-steps taken", 0), ("stuck refused", 1), ("sliding sub-steps taken", 2),
+                                 ("sliding refused", 3)):
+                    print(f"  {label}: {s[k + 10]:.0f}, {s[k] / 1e6:.2f} ms ({100 * s[k] / total:.0f} %), "
+                          f"{s[k] / max(s[k + 10], 1) / 1e3:.2f} µs each")
+                print(f"  sliding rungs taken (h, h/2 … h/32): {s[4:10].astype(int).tolist()}")
+                for phase, label in ((0, "stuck"), (1, "sliding")):
+                    count = max(s[10 + 2 * phase] + s[11 + 2 * phase], 1)
+                    parts = (s[20 + 5 * phase:25 + 5 * phase] / count / 1e3).tolist()
+                    print(f"  per {label} sub-step [µs]: friction's series {parts[0]:.2f}, propagation and event test "
+                          f"{parts[1]:.2f}, watched values at the end {parts[2]:.2f}, peaks {parts[3]:.2f}, energy "
+                          f"forms {parts[4]:.2f}")
+                count = max(s[10:14].sum(), 1)
+                print(f"  per sub-step, the calls [µs]: into _fast_step {s[31] / count / 1e3:.2f}, into _fast_try "
+                      f"{s[33] / count / 1e3:.2f}")
+                rest = total - s[0:4].sum()
+                print(f"  the rest (series pieces, the sample loop): {rest / 1e6:.2f} ms ({100 * rest / total:.0f} %)")
+        finally:
+            planar_building._pk = installed
+    print(f"load average (1, 5, 15 min): {os.getloadavg()}")
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("pair", nargs="?", type=Path, default=DEFAULT_PAIR)
     parser.add_argument("--profile", action="store_true", help="split the bench case's kernel time")
     parser.add_argument("--records", type=Path, default=DEFAULT_PAIR.parents[1])
+    parser.add_argument("--substeps", action="store_true", help="time the fast sub-steps part by part")
     parser.add_argument("--runs", type=int, default=7)
     parser.add_argument("--no-departure-series", action="store_true",
                         help="leave rest by START and series in time (planar_building.DEPARTURE_SERIES = False)")
@@ -131,7 +285,9 @@ if __name__ == "__main__":
         import isolator.solver.planar_building as planar_building
 
         planar_building.DEPARTURE_SERIES = False
-    if args.profile:
+    if args.substeps:
+        substeps(args.records, args.runs)
+    elif args.profile:
         profile(args.records, args.runs)
     else:
         main(args.pair)

@@ -189,13 +189,14 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
         size = aug.shape[-1]
         levels = _pk.FAST_LEVELS
         prop = np.empty((levels, 2, 2, m, size))
-        p_in = np.empty((levels, 2, 2, size, size))
+        p_in_rows = np.empty((levels, 2, 2, 2, size))
         p_vis = np.empty((levels, 2, 2, size, size))
         for d, one in enumerate(system.directions):
             q_in = np.zeros((size, size))
             q_vis = np.zeros((size, size))
             q_in[:m + 3, :m + 3] = one.q_in
             q_vis[:m + 3, :m + 3] = one.q_vis
+            ell = _input_row(q_in, m)
             for phase in range(2):
                 # on the chain scaled to each rung, ĉ_j = c_j h_l^j (the kernel's entries are then of one
                 # size): the shortest rung by one exponential each, the longer ones by doubling,
@@ -205,23 +206,25 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                 scale[m + 2:] = h_short ** np.arange(_pk.FAST_ORDER + 1)
                 scaled = aug[phase, d] * scale[:, None] / scale[None, :]
                 step = expm(scaled * h_short)
-                form_in = van_loan(scaled, q_in, h_short)
+                rows_in = _power_rows(scaled, ell, h_short)
                 form_vis = van_loan(scaled, q_vis, h_short)
                 double = np.ones(size)
                 double[m + 2:] = 2.0 ** np.arange(_pk.FAST_ORDER + 1)
                 linear = aug[phase, d, :m + 2, :m + 2]
                 for lev in range(levels - 1, -1, -1):
                     prop[lev, phase, d] = step[:m]
-                    p_in[lev, phase, d] = form_in
+                    p_in_rows[lev, phase, d] = rows_in
                     p_vis[lev, phase, d] = form_vis
                     # the linear block [z, a_g, ȧ_g] on its own (its exponential is not widened by the chain's
                     # norm): the energy balance closes to ~1e-14 with it, ~1e-12 from the whole matrix
                     h_lev = h / 2 ** lev
                     prop[lev, phase, d, :, :m + 2] = expm(linear * h_lev)[:m]
-                    p_in[lev, phase, d, :m + 2, :m + 2] = van_loan(linear, q_in[:m + 2, :m + 2], h_lev)
+                    p_in_rows[lev, phase, d, :, :m + 2] = _power_rows(linear, ell[:m + 2], h_lev)
                     p_vis[lev, phase, d, :m + 2, :m + 2] = van_loan(linear, q_vis[:m + 2, :m + 2], h_lev)
                     if lev > 0:
-                        form_in = (form_in + step.T @ form_in @ step) / double[:, None] / double[None, :]
+                        # ∫₀^{2h} = ∫₀^h + (∫₀^h, shifted by h) e^{Ãh}: R1 += R1 E, R2 += (R2 + h R1) E
+                        rows_in = np.stack([rows_in[0] + rows_in[0] @ step,
+                                            rows_in[1] + (rows_in[1] + h_lev * rows_in[0]) @ step]) / double[None, :]
                         form_vis = (form_vis + step.T @ form_vis @ step) / double[:, None] / double[None, :]
                         step = (step @ step) * double[:, None] / double[None, :]
         rate1 = np.ascontiguousarray(aug[:, :, :m, :m + 4])
@@ -234,13 +237,12 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                 v_rows[d, k] = row
                 row = row @ aug[1, d] / (k + 1)
         # symmetric to rounding; the kernel reads the upper triangle
-        p_in = 0.5 * (p_in + np.swapaxes(p_in, -1, -2))
         p_vis = 0.5 * (p_vis + np.swapaxes(p_vis, -1, -2))
-        system.cache[key] = (aug, prop, p_in, p_vis, v_rows, rate1, rate2)
+        system.cache[key] = (aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2)
         if len(_PROPAGATORS) >= _SYSTEMS_MAX:
             _PROPAGATORS.pop(next(iter(_PROPAGATORS)))
         _PROPAGATORS[key] = system.cache[key]
-    aug, prop, p_in, p_vis, v_rows, rate1, rate2 = system.cache[key]
+    aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2 = system.cache[key]
     m1, m2, m3, sig1, sig2, sig3 = watched
     wkey = ("watched", h, *(a.tobytes() for a in watched))
     if wkey not in system.cache:
@@ -266,7 +268,34 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
             system.cache.pop(next(iter(system.cache)))
         system.cache[wkey] = (mon, sig)
     mon, sig = system.cache[wkey]
-    return prop, p_in, p_vis, v_rows, rate1, rate2, mon, sig
+    return prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig
+
+
+def _input_row(q_in: np.ndarray, m: int) -> np.ndarray:
+    """ℓ_p with w̃ᵀ Q_in w̃ = a_g (ℓ_p·w̃): the input power's form couples only a_g (entry m) with the state."""
+    ell = 2.0 * q_in[m]
+    rest = q_in.copy()
+    rest[m] = 0.0
+    rest[:, m] = 0.0
+    if ell[m] != 0.0 or np.any(rest != 0.0) or not np.array_equal(q_in[:, m], q_in[m]):
+        raise ValueError("the input power's form is not a_g times a row of the state")
+    return ell
+
+
+def _power_rows(a_mat: np.ndarray, ell: np.ndarray, h: float) -> np.ndarray:
+    """[ℓ ∫₀^h e^{Aτ} dτ, ℓ ∫₀^h τ e^{Aτ} dτ] from one exponential of [[A, I, 0], [0, 0, I], [0, 0, 0]] h, whose
+    blocks (1, 2) and (1, 3) are ∫₀^h e^{Aτ} dτ and ∫₀^h (h − τ) e^{Aτ} dτ (the input energy over a sub-step is
+    a_g R1·w̃ + ȧ_g R2·w̃ with a_g, ȧ_g at its start)."""
+    from scipy.linalg import expm
+
+    s = a_mat.shape[0]
+    block = np.zeros((3 * s, 3 * s))
+    block[:s, :s] = a_mat
+    block[:s, s:2 * s] = np.eye(s)
+    block[s:2 * s, 2 * s:] = np.eye(s)
+    e = expm(block * h)
+    first = e[:s, s:2 * s]
+    return np.stack([ell @ first, ell @ (h * first - e[:s, 2 * s:])])
 
 
 def _watched(system: PlanarBuildingSystem, layout) -> tuple:
@@ -693,7 +722,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     else:
         size = m + 3 + _pk.FAST_ORDER
         levels = _pk.FAST_LEVELS
-        tables = (np.zeros((levels, 2, 2, m, size)), np.zeros((levels, 2, 2, size, size)),
+        tables = (np.zeros((levels, 2, 2, m, size)), np.zeros((levels, 2, 2, 2, size)),
                   np.zeros((levels, 2, 2, size, size)),
                   np.zeros((2, _pk.FAST_ORDER + 1, size)), np.zeros((2, 2, m, m + 4)), np.zeros((2, 2, m, m + 4)),
                   np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size)))

@@ -1039,25 +1039,97 @@ def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
 
 
 @njit(cache=True)
-def _watched_end(fmon, fsig, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1, sval1,
-                 sslope1):
-    """Watched values and slopes at a sub-step's end (as :func:`_monitors`) from the rows ℓ (fmon[…, 0]) and ℓÃ
-    (fmon[…, 1]) on the augmented end state [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]."""
-    for k in range(fmon.shape[1]):
-        val1[k, 0], slope1[k, 0] = _row_end(fmon[phase, k, 0, 0], fmon[phase, k, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
-        val1[k, 1], slope1[k, 1] = _row_end(fmon[phase, k, 1, 0], fmon[phase, k, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
-    for j in range(fsig.shape[1]):
-        vx, sx = _row_end(fsig[phase, j, 0, 0], fsig[phase, j, 0, 1], zh[0], ax1, b[0], fe_x, fde_x)
-        vy, sy = _row_end(fsig[phase, j, 1, 0], fsig[phase, j, 1, 1], zh[1], ay1, b[1], fe_y, fde_y)
-        sval1[j] = sig3[j, 2] * az1 + vx + vy
-        sslope1[j] = sig3[j, 2] * b[2] + sx + sy
+def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1, sval1, sslope1):
+    """Watched values and slopes at a sub-step's end (as :func:`_monitors`): per direction one product of the table
+    fend[phase, d] (rows ℓ and ℓÃ of every watched quantity, value and slope interleaved: the resultants' then the
+    signed ones', :func:`_end_rows`; stored by columns, fend[phase, d, c, r]) with the augmented end state
+    [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]: column by column, each row's sum in the order of a row-by-row product
+    (the inputs' four columns, then z's), so that the rows accumulate independently."""
+    m = zh.shape[1]
+    nr = fend.shape[3]
+    for d in range(2):
+        a_end = ax1 if d == 0 else ay1
+        f_end = fe_x if d == 0 else fe_y
+        fd_end = fde_x if d == 0 else fde_y
+        for r in range(nr):
+            wend[d, r] = fend[phase, d, m, r] * a_end + fend[phase, d, m + 1, r] * b[d] + fend[phase, d, m + 2, r] \
+                * f_end + fend[phase, d, m + 3, r] * fd_end
+        for c in range(m):
+            zc = zh[d, c]
+            for r in range(nr):
+                wend[d, r] += fend[phase, d, c, r] * zc
+    nk = val1.shape[0]
+    for k in range(nk):
+        for d in range(2):
+            val1[k, d] = wend[d, 2 * k]
+            slope1[k, d] = wend[d, 2 * k + 1]
+    for j in range(sig3.shape[0]):
+        r = 2 * nk + 2 * j
+        sval1[j] = sig3[j, 2] * az1 + wend[0, r] + wend[1, r]
+        sslope1[j] = sig3[j, 2] * b[2] + wend[0, r + 1] + wend[1, r + 1]
 
 
 @njit(cache=True)
-def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
-               fvrow,
-               farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
-               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser, rser, eser, zl, zdl, zddl,
+def _end_rows(fmon, fsig, m):
+    """The table of :func:`_watched_end` from the watched rows' first two powers (ℓ, ℓÃ; they vanish beyond c_1):
+    fend[phase, d, :, 2q] = ℓ_q, fend[phase, d, :, 2q + 1] = ℓ_q Ã on [z, a_g, ȧ_g, c_0, c_1], q over the resultants
+    then the signed quantities (by columns, contiguous: one product per direction)."""
+    nk = fmon.shape[1]
+    nj = fsig.shape[1]
+    fend = np.zeros((2, 2, m + 4, 2 * (nk + nj)))
+    for ph in range(2):
+        for d in range(2):
+            for q in range(nk + nj):
+                for p in range(2):
+                    for c in range(m + 4):
+                        fend[ph, d, c, 2 * q + p] = fmon[ph, q, d, p, c] if q < nk else fsig[ph, q - nk, d, p, c]
+    return fend
+
+
+@njit(cache=True)
+def _form_add(acc, p, w, s_eff, pw):
+    """acc + w[:s_eff]ᵀ P w[:s_eff] for a symmetric P: Σ_r w_r (P_rr w_r + 2 Σ_{c>r} P_rc w_c) added term by term
+    to acc (r ascending; acc carries the sum over the directions), the inner sums taken
+    column by column into pw (pw[r] += P[c, r] w_c for r < c: row c of P, contiguous) so that they accumulate
+    independently instead of one dependent sum after another; each inner sum in the same order as row by row
+    (c ascending), so the value is the row-by-row sum's to the last bit."""
+    for r in range(s_eff):
+        pw[r] = 0.0
+    for c in range(1, s_eff):
+        wc = w[c]
+        for r in range(c):
+            pw[r] += p[c, r] * wc
+    for r in range(s_eff):
+        acc += w[r] * (p[r, r] * w[r] + 2.0 * pw[r])
+    return acc
+
+
+@njit(cache=True)
+def _by_columns(fprop, fvrow):
+    """The propagators' rows and V's rows stored by columns (fpropt[l, p, d, c2, c] = fprop[l, p, d, c, c2],
+    fvt[d, c, k] = fvrow[d, k, c]): the fast sub-step's products then run column by column."""
+    n_lev, _, _, m, size = fprop.shape
+    fpropt = np.zeros((n_lev, 2, 2, size, m))
+    for lev in range(n_lev):
+        for ph in range(2):
+            for d in range(2):
+                for c in range(m):
+                    for c2 in range(size):
+                        fpropt[lev, ph, d, c2, c] = fprop[lev, ph, d, c, c2]
+    nk = fvrow.shape[1]
+    fvt = np.zeros((2, size, nk))
+    for d in range(2):
+        for k in range(nk):
+            for c in range(size):
+                fvt[d, c, k] = fvrow[d, k, c]
+    return fpropt, fvt
+
+
+@njit(cache=True)
+def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
+               fvt,
+               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
+               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
     ladder h_top = h_{lev0}, h_top/2 … that the friction's series and the events allow.
@@ -1074,8 +1146,8 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     """
     m = w.shape[1]
     phase = 0 if mode == STUCK else 1
-    nch = fprop.shape[4] - m - 2  # chain entries c_0 .. c_K
-    n_lev = fprop.shape[0]
+    nch = fpropt.shape[3] - m - 2  # chain entries c_0 .. c_K
+    n_lev = fpropt.shape[0]
     for d in range(2):
         for c in range(m):
             wa[d, c] = w[d, c]
@@ -1089,11 +1161,21 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
         converged = False
         scale = max(mu_k_n, 1e-300)
         hk = 1.0
+        # V's coefficients e_v Ã^k/k! w̃ (fvt[d, c, k]: the rows by columns): the share of [z, a_g, ȧ_g] for every
+        # order at once, column by column (the orders accumulate independently), then per order the chain's
+        # c_0 … c_{k-1} (known only once the orders below are): each sum in the order of a row-by-row product
+        for d in range(2):
+            for k in range(nch):
+                vser[d, k] = 0.0
+            for c in range(m + 2):
+                wc = wa[d, c]
+                for k in range(nch):
+                    vser[d, k] += fvt[d, c, k] * wc
         for k in range(nch):
             for d in range(2):
-                acc = 0.0
-                for c in range(m + 2 + k):
-                    acc += fvrow[d, k, c] * wa[d, c]
+                acc = vser[d, k]
+                for c in range(m + 2, m + 2 + k):
+                    acc += fvt[d, c, k] * wa[d, c]
                 vser[d, k] = acc
             acc = 0.0
             for j in range(k + 1):
@@ -1139,9 +1221,9 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     code = 0
     for lev in range(lev_first, n_lev):
         code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
-                         slab_mass, e0, vz, half_target, fprop[lev], fpin[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig,
+                         slab_mass, e0, vz, half_target, fpropt[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
-                         sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+                         sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
                          counter, out2)
         if code == 0:
             return lev
@@ -1166,9 +1248,9 @@ def _order_at(eser, rser, nch, h, mu_k_n):
 
 
 @njit(cache=True)
-def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fprop, fpin, fpvis,
-              farow1, farow2, flrow, fmon, fsig, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
+def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
+              farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
     """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
     the reason (2, 3)."""
@@ -1190,12 +1272,15 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         for k in range(k_eff + 1):
             wsc[d, m + 2 + k] = wa[d, m + 2 + k] * hk
             hk *= h
+    # z(h) = E w̃ column by column (fpropt[phase, d, c2, c] = E[c, c2]; each entry summed in the order of a
+    # row-by-row product, the entries independently)
     for d in range(2):
         for c in range(m):
-            acc = 0.0
-            for c2 in range(s_eff):
-                acc += fprop[phase, d, c, c2] * wsc[d, c2]
-            zh[d, c] = acc
+            zh[d, c] = 0.0
+        for c2 in range(s_eff):
+            wc = wsc[d, c2]
+            for c in range(m):
+                zh[d, c] += fpropt[phase, d, c2, c] * wc
     # φ at the ends reads only ℓ_D·z, ℓ_D·ż and z[0], z[1], ż[0], ż[1]: ż's entries from the rows ℓ_D Ã (flrow[…, 2])
     # and Ã's rows 0, 1 on [z, a_g, ȧ_g, c_0, c_1]; the whole ż, z̈ at the start only when the watched values there
     # are recomputed (the end's come from the watched rows below)
@@ -1273,7 +1358,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
     # the end's watched values and slopes from their rows ℓ, ℓÃ on w̃(h) = [z(h), a_g(h), ȧ_g, F(h), F'(h)] (the
     # rows vanish beyond c_0, c_1): one product each instead of ż, z̈ and the monitors' three rows
-    _watched_end(fmon, fsig, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, val1, slope1,
+    _watched_end(fend, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1,
                  sval1, sslope1)
     nterm = fmon.shape[3]
     nk = m1.shape[0]
@@ -1310,18 +1395,19 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
                 sig_max[j] = max(sig_max[j], _poly_max(cpoly, 1, nterm, h))
             else:
                 sig_min[j] = min(sig_min[j], -_poly_max(cpoly, -1, nterm, h))
+    # the input power a_g (ℓ_p·w̃) with a_g = a0 + ȧ_g τ: its integral a0 (R1·w̃) + ȧ_g (R2·w̃), R1 = ℓ_p ∫e^{Ãτ}dτ and
+    # R2 = ℓ_p ∫τ e^{Ãτ}dτ (fpinrow: the Van Loan form of a rank-2 power, as two rows); the viscous power's form is
+    # symmetric (below)
     e_in = 0.0
     e_v = 0.0
     for d in range(2):
-        # the forms are symmetric: the diagonal and twice the upper triangle
-        for r in range(s_eff):
-            acc_i = 0.0
-            acc_v = 0.0
-            for c in range(r + 1, s_eff):
-                acc_i += fpin[phase, d, r, c] * wsc[d, c]
-                acc_v += fpvis[phase, d, r, c] * wsc[d, c]
-            e_in += wsc[d, r] * (fpin[phase, d, r, r] * wsc[d, r] + 2.0 * acc_i)
-            e_v += wsc[d, r] * (fpvis[phase, d, r, r] * wsc[d, r] + 2.0 * acc_v)
+        r1 = 0.0
+        r2 = 0.0
+        for c in range(s_eff):
+            r1 += fpinrow[phase, d, 0, c] * wsc[d, c]
+            r2 += fpinrow[phase, d, 1, c] * wsc[d, c]
+        e_in += wsc[d, m] * r1 + wsc[d, m + 1] * r2
+        e_v = _form_add(e_v, fpvis[phase, d], wsc[d], s_eff, pw)
     if vz[V_VARYING] != 0.0 and mode == STUCK:
         # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
         e_in += 0.5 * vz[V_K_VERT] * vz[V_NU1] * (w[0, 0] ** 2 + w[1, 0] ** 2) * h
@@ -1333,7 +1419,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
 
 @njit(cache=True)
 def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
-                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpin,
+                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpinrow,
                       fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
     """Response of the slab + shear building on the friction isolation plane to two horizontal components.
@@ -1403,8 +1489,11 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         The first m rows of e^{Ãh_l} per rung, phase and direction, Ã the augmented matrix on
         w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial),
         the chain scaled to the rung (c_j h_l^j).
-    fpin, fpvis : float64[L, 2, 2, S, S]
-        ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the input and viscous powers (Van Loan).
+    fpinrow : float64[L, 2, 2, 2, S]
+        The input power a_g (ℓ_p·w̃) integrated over a rung, as two rows: R1 = ℓ_p ∫₀^{h_l} e^{Ãτ} dτ and
+        R2 = ℓ_p ∫₀^{h_l} τ e^{Ãτ} dτ (the input energy is a_g R1·w̃ + ȧ_g R2·w̃; the Van Loan form of a rank-2 Q).
+    fpvis : float64[L, 2, 2, S, S]
+        ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the viscous power (Van Loan).
     fvrow : float64[2, K + 1, S]
         e_v Ã^k / k! of the sliding phase (the Taylor coefficients of V).
     farow1, farow2 : float64[2, 2, m, m + 4]
@@ -1486,11 +1575,15 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     n_ch = fprop.shape[4] - m - 2
     wa = np.zeros((2, fprop.shape[4]))
     wsc = np.zeros((2, fprop.shape[4]))
+    pw = np.zeros(fprop.shape[4])
     vser = np.zeros((2, n_ch))
     sser = np.zeros(n_ch)
     rser = np.zeros(n_ch)
     eser = np.zeros((2, n_ch))
     cpoly = np.zeros((2, fmon.shape[3]))
+    fend = _end_rows(fmon, fsig, m)
+    fpropt, fvt = _by_columns(fprop, fvrow)
+    wend = np.zeros((2, fend.shape[3]))
     n_fast_steps = 0
     n_refused = np.zeros(6, dtype=np.int64)
     e0 = np.zeros(2)
@@ -1631,9 +1724,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fprop, fpin, fpvis, fvrow, farow1, farow2, flrow, fmon, fsig, m1,
+                                           half_target, fpropt, fpinrow, fpvis, fvt, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, vser, sser,
+                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
                         if taken >= 0:
                             h_lev = h_fast / (1 << taken)
