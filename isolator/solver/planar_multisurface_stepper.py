@@ -1105,7 +1105,23 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             peak_v = max(peak_v, vn)
             a1 = -g * r[0] - c * y[Y_V]
             a2 = -g * r[1] - c * y[Y_V + 1]
-            peak_a = max(peak_a, math.sqrt(a1 * a1 + a2 * a2))
+            a_mag = math.sqrt(a1 * a1 + a2 * a2)
+            if rigid:
+                # every group on its rim: the force is the rims' reaction.  Where the groups close into alignment
+                # it grows as 1/sin of the angle between two rims' normals (a toggle: two groups sliding along
+                # their rims fix F by F·t_k = µ_k) and does not converge with step_tol (F&C TFP, PTS ×2.5:
+                # 1.6e4 → 2.0e5 m/s² at 1e-7 → 1e-8); the closing ends in the plastic impact, whose impulse is
+                # reported.  The transmitted acceleration takes the reaction up to what the mass on the rims can
+                # need without an impact: the largest surface force, or the ground's acceleration (held), plus
+                # the dashpot and the centripetal |V|²/|X| of a slide along the ultimate circle
+                ag_x = ax[i] + slope_x * tau
+                ag_y = ay[i] + slope_y * tau
+                x_abs = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
+                a_cap = max(g * f_max, math.sqrt(ag_x * ag_x + ag_y * ag_y)) + c * vn
+                if x_abs > 0.0:
+                    a_cap += vn * vn / x_abs
+                a_mag = min(a_mag, a_cap)
+            peak_a = max(peak_a, a_mag)
             for k in range(ng):
                 ub[k, 0] = y[Y_U + 2 * k]
                 ub[k, 1] = y[Y_U + 2 * k + 1]
