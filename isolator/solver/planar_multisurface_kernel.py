@@ -682,12 +682,11 @@ W_FP = 8
 W_VNEW = 9
 W_YT = 10
 W_EST = 11
-W_FIRST = 12
-W_YT2 = 13
-W_F0 = 14
-W_W1 = 15
-W_W = 16
-W_ROWS = 17
+W_YT2 = 12
+W_F0 = 13
+W_W1 = 14
+W_W = 15
+W_ROWS = 16
 
 
 @njit(cache=True)
@@ -882,19 +881,17 @@ def _radau_estimate(tau, v, fv, h, z, act, na, m, e1, p1, tol, rtol, vnew, raw, 
                     st, fw):
     """The scaled error of a Radau IIA step by RADAU5's embedded estimate (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the
     active components (``e1``: the step's factored real system; the energies, quadratures, are not checked), over
-    EST_SCALE on a reduced corner of two groups; with ``again``, f0 taken at v + the first estimate (``fw``: the
-    work rows of :func:`radau_memory`)."""
+    EST_SCALE on a reduced corner of two groups; with ``again``, f0 taken at v + the first estimate, which the
+    call without ``again`` for this step left in ``fw[W_EST]`` (``fw``: the work rows of :func:`radau_memory`)."""
     est = fw[W_EST]
     w = fw[W_W]
     f0 = fv
     if again:
-        first = fw[W_FIRST]
-        _radau_raw(v, fv, h, z, act, na, m, e1, p1, first, w)
         yt = fw[W_YT2]
         for p in range(m):
             yt[p] = v[p]
         for q in range(na):
-            yt[act[q]] += first[act[q]]
+            yt[act[q]] += est[act[q]]
         f0 = fw[W_F0]
         st[ST_RATES] += 1
         if not _rates(tau, yt, raw, rb, mu, mask, c, ka, kb, yw, f0):
