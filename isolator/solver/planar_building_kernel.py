@@ -1108,20 +1108,8 @@ def _form_add(acc, p, w, s_eff, pw):
 def _by_columns(fprop, fvrow):
     """The propagators' rows and V's rows stored by columns (fpropt[l, p, d, c2, c] = fprop[l, p, d, c, c2],
     fvt[d, c, k] = fvrow[d, k, c]): the fast sub-step's products then run column by column."""
-    n_lev, _, _, m, size = fprop.shape
-    fpropt = np.zeros((n_lev, 2, 2, size, m))
-    for lev in range(n_lev):
-        for ph in range(2):
-            for d in range(2):
-                for c in range(m):
-                    for c2 in range(size):
-                        fpropt[lev, ph, d, c2, c] = fprop[lev, ph, d, c, c2]
-    nk = fvrow.shape[1]
-    fvt = np.zeros((2, size, nk))
-    for d in range(2):
-        for k in range(nk):
-            for c in range(size):
-                fvt[d, c, k] = fvrow[d, k, c]
+    fpropt = np.ascontiguousarray(np.transpose(fprop, (0, 1, 2, 4, 3)))
+    fvt = np.ascontiguousarray(np.transpose(fvrow, (0, 2, 1)))
     return fpropt, fvt
 
 
