@@ -99,7 +99,8 @@ class PlanarBuildingSystem:
     fastest_rate_per_s: float = 0.0
     #: the 1-D building's systems along x and y (their augmented matrices and energy forms)
     directions: tuple = field(default=(), repr=False)
-    #: the fast sub-steps' tables, by (sub-step length, watched rows), reused by later runs
+    #: the fast sub-steps' tables, by (sub-step length, watched rows), and the kernel's tables and watched rows by
+    #: (sub-step length, bearing layout) (:func:`_run_tables`), reused by later runs of this system
     cache: dict = field(default_factory=dict, repr=False)
 
     @property
