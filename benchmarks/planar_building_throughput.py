@@ -34,6 +34,14 @@ propagation with the event test, the watched values at the end, the peaks, the e
 clock (``clock_gettime``, ~25 ns a read, 9 reads a sub-step) is included in the figures. The copy is made by
 inserting lines at marker lines of the kernel's source; a marker not found stops the script with its text.
 
+``--split`` times the whole call a user makes on the bench's 2-D building (the registry's ``2d-building`` model from a
+Scene, as ``isolator bench`` and ``benchmarks.building_opensees --pair`` time "ours") and splits it into the Python
+before ``_run``, ``_run`` before the kernel (tables from the per-system cache, work arrays), the kernel, ``_run`` after
+it (result assembly) and the rest (the registry, the bench's drift histories); medians of ``--runs`` calls, wall
+time (``perf_counter``)::
+
+    OPENBLAS_NUM_THREADS=1 .venv/bin/python -m benchmarks.planar_building_throughput --split [--runs 21]
+
 Timings depend on the machine and its load (the kernel runs on one core).
 """
 
@@ -218,6 +226,51 @@ def _instrumented(folder: Path):
     return module
 
 
+def split(records: Path, runs: int) -> None:
+    """Where the bench's whole 2-D building call goes (module docstring, ``--split``)."""
+    import types
+
+    import isolator.solver.planar_building as planar_building
+    from isolator.bench.building import _ours_planar_building
+
+    case = _bench_case(records)
+    _ours_planar_building(case)  # compiles or loads the kernel, fills the per-system cache
+    clock = time.perf_counter
+    marks = {}
+    installed = planar_building._pk
+    run = planar_building._run
+
+    def kernel(*args):
+        marks["k0"] = clock()
+        installed.building2d_kernel(*args)
+        marks["k1"] = clock()
+
+    def timed_run(*args, **kwargs):
+        marks["r0"] = clock()
+        out = run(*args, **kwargs)
+        marks["r1"] = clock()
+        return out
+
+    proxy = types.SimpleNamespace(**{k: v for k, v in vars(installed).items() if not k.startswith("__")})
+    proxy.building2d_kernel = kernel
+    planar_building._pk, planar_building._run = proxy, timed_run
+    rows = []
+    try:
+        for _ in range(runs):
+            t0 = clock()
+            _ours_planar_building(case)
+            t1 = clock()
+            rows.append([marks["r0"] - t0, marks["k0"] - marks["r0"], marks["k1"] - marks["k0"],
+                         marks["r1"] - marks["k1"], t1 - marks["r1"], t1 - t0])
+    finally:
+        planar_building._pk, planar_building._run = installed, run
+    med = 1e3 * np.median(np.array(rows), axis=0)
+    print(f"{case.name}: the whole call {med[5]:.2f} ms (median of {runs}); before _run {med[0]:.3f}, _run before the "
+          f"kernel {med[1]:.3f}, kernel {med[2]:.2f}, _run after the kernel {med[3]:.3f}, after _run {med[4]:.3f} ms; "
+          f"outside the kernel {med[5] - med[2]:.2f} ms ({100 * (med[5] - med[2]) / med[5]:.0f} %)")
+    print(f"load average (1, 5, 15 min): {os.getloadavg()}")
+
+
 def substeps(records: Path, runs: int) -> None:
     """The fast sub-steps' time on the bench case and never sliding (module docstring, ``--substeps``)."""
     import tempfile
@@ -277,6 +330,7 @@ if __name__ == "__main__":
     parser.add_argument("--profile", action="store_true", help="split the bench case's kernel time")
     parser.add_argument("--records", type=Path, default=DEFAULT_PAIR.parents[1])
     parser.add_argument("--substeps", action="store_true", help="time the fast sub-steps part by part")
+    parser.add_argument("--split", action="store_true", help="split the whole call: Python around the kernel, kernel")
     parser.add_argument("--runs", type=int, default=7)
     parser.add_argument("--no-departure-series", action="store_true",
                         help="leave rest by START and series in time (planar_building.DEPARTURE_SERIES = False)")
@@ -285,7 +339,9 @@ if __name__ == "__main__":
         import isolator.solver.planar_building as planar_building
 
         planar_building.DEPARTURE_SERIES = False
-    if args.substeps:
+    if args.split:
+        split(args.records, args.runs)
+    elif args.substeps:
         substeps(args.records, args.runs)
     elif args.profile:
         profile(args.records, args.runs)

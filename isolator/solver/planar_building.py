@@ -99,7 +99,8 @@ class PlanarBuildingSystem:
     fastest_rate_per_s: float = 0.0
     #: the 1-D building's systems along x and y (their augmented matrices and energy forms)
     directions: tuple = field(default=(), repr=False)
-    #: the fast sub-steps' tables, by (sub-step length, watched rows), reused by later runs
+    #: the fast sub-steps' tables, by (sub-step length, watched rows), and the kernel's tables and watched rows by
+    #: (sub-step length, bearing layout) (:func:`_run_tables`), reused by later runs of this system
     cache: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -171,7 +172,9 @@ def _augmented(system: PlanarBuildingSystem) -> np.ndarray:
 
 
 def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tuple:
-    """The fast sub-steps' tables for the sub-step length h (see :func:`planar_building_kernel.building2d_kernel`).
+    """The fast sub-steps' tables for the sub-step length h (see :func:`planar_building_kernel.building2d_kernel`):
+    e^{Ãh}'s rows, the input rows, the viscous form, V's rows, Ã's and Ã²'s rows, the watched rows' powers, then the
+    kernel's column-ordered copies of the first, of V's rows and of the watched rows' first two powers.
 
     e^{Ãh} and the Van Loan forms depend on (system, h) only and are kept in ``system.cache``; the
     watched quantities' rows ℓÃ^j/j! also on the watched rows (the bearing layout).
@@ -238,11 +241,11 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                 row = row @ aug[1, d] / (k + 1)
         # symmetric to rounding; the kernel reads the upper triangle
         p_vis = 0.5 * (p_vis + np.swapaxes(p_vis, -1, -2))
-        system.cache[key] = (aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2)
+        system.cache[key] = (aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2, *_pk._by_columns(prop, v_rows))
         if len(_PROPAGATORS) >= _SYSTEMS_MAX:
             _PROPAGATORS.pop(next(iter(_PROPAGATORS)))
         _PROPAGATORS[key] = system.cache[key]
-    aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2 = system.cache[key]
+    aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2, prop_t, v_t = system.cache[key]
     m1, m2, m3, sig1, sig2, sig3 = watched
     wkey = ("watched", h, *(a.tobytes() for a in watched))
     if wkey not in system.cache:
@@ -266,9 +269,43 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                     rows = rows @ aug[phase, d] / (j + 1)
         if len(system.cache) > 16:
             system.cache.pop(next(iter(system.cache)))
-        system.cache[wkey] = (mon, sig)
-    mon, sig = system.cache[wkey]
-    return prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig
+        system.cache[wkey] = (mon, sig, _pk._end_rows(mon, sig, m))
+    mon, sig, end = system.cache[wkey]
+    return prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig, prop_t, v_t, end
+
+
+def _layout_key(layout) -> tuple | None:
+    """What the watched rows read of a bearing layout (positions and gravity loads), as a cache key (None: none)."""
+    if layout is None:
+        return None
+    return tuple(np.asarray(v, dtype=np.float64).tobytes() for v in (layout.x_m, layout.y_m, layout.gravity_loads_N))
+
+
+def _run_tables(system: PlanarBuildingSystem, layout, h: float | None) -> tuple:
+    """(the watched rows of :func:`_watched`, the kernel's fast sub-step tables in its argument order) for the
+    bearing layout and the sub-step length h (None: no fast sub-steps, tables of zeros), kept in ``system.cache``:
+    they depend only on the system (the design), the layout and h, so a review's runs of one design build them once.
+    """
+    key = ("run", h, _layout_key(layout))
+    if key not in system.cache:
+        watched = _watched(system, layout)
+        if h is not None:
+            (prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig, prop_t, v_t,
+             end) = _fast_tables(system, h, watched)
+        else:
+            m = 2 * system.n_floors + 2
+            size = m + 3 + _pk.FAST_ORDER
+            levels = _pk.FAST_LEVELS
+            nk, nj = watched[0].shape[0], watched[3].shape[0]
+            p_in_rows, p_vis = np.zeros((levels, 2, 2, 2, size)), np.zeros((levels, 2, 2, size, size))
+            rate1 = rate2 = np.zeros((2, 2, m, m + 4))
+            mon, sig = np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size))
+            prop_t, v_t = np.zeros((levels, 2, 2, size, m)), np.zeros((2, size, _pk.FAST_ORDER + 1))
+            end = _pk._end_rows(mon, sig, m)
+        if len(system.cache) > 16:
+            system.cache.pop(next(iter(system.cache)))
+        system.cache[key] = (watched, (prop_t, p_in_rows, p_vis, v_t, rate1, rate2, mon, sig, end))
+    return system.cache[key]
 
 
 def _input_row(q_in: np.ndarray, m: int) -> np.ndarray:
@@ -682,7 +719,12 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     shortest = dt if relative is None else float(np.min(np.diff(relative)))
     v_ref = max(system.mu_static * system.gravity_m_s2, float(np.max(np.abs(ax))), float(np.max(np.abs(ay))),
                 1e-12) * shortest
-    m1, m2, m3, sig1, sig2, sig3 = _watched(system, bearing_layout)
+    # fast sub-steps (uniform records): the fastest mode turns by at most THETA_FAST in one
+    # the exact propagators hold a constant A and a constant µ: with a vertical or µ(v) the kernel takes them
+    # while stuck only (the floors' fixed-base system), sliding by series pieces
+    n_fast = 0 if relative is not None else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
+    watched, tables = _run_tables(system, bearing_layout, dt / n_fast if n_fast > 0 else None)
+    m1, m2, m3, sig1, sig2, sig3 = watched
     n_samples = ax.size
     nk, nj = m1.shape[0], sig1.shape[0]
     out_state = np.empty((n_samples, 2, m))
@@ -695,11 +737,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     summary = np.zeros(_pk.SUMMARY_SIZE)
     c_floor = np.ascontiguousarray(np.stack(system.damping_matrices))
     kernel_times = np.empty(0) if relative is None else np.ascontiguousarray(relative)
-    # fast sub-steps (uniform records): the fastest mode turns by at most THETA_FAST in one
     normal = normal or _Normal(None, False, None, None)
-    # the exact propagators hold a constant A and a constant µ: with a vertical or µ(v) the kernel takes them
-    # while stuck only (the floors' fixed-base system), sliding by series pieces
-    n_fast = 0 if relative is not None else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
@@ -717,15 +755,6 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
             law[3] = (normal.mu_fast - normal.mu_slow) * weight
             law[4] = normal.rate_s_per_m
     az = np.zeros(ax.size) if normal.az is None else np.ascontiguousarray(normal.az)
-    if n_fast > 0:
-        tables = _fast_tables(system, dt / n_fast, (m1, m2, m3, sig1, sig2, sig3))
-    else:
-        size = m + 3 + _pk.FAST_ORDER
-        levels = _pk.FAST_LEVELS
-        tables = (np.zeros((levels, 2, 2, m, size)), np.zeros((levels, 2, 2, 2, size)),
-                  np.zeros((levels, 2, 2, size, size)),
-                  np.zeros((2, _pk.FAST_ORDER + 1, size)), np.zeros((2, 2, m, m + 4)), np.zeros((2, 2, m, m + 4)),
-                  np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size)))
     capacity = 64 + n_samples // 4
     while True:
         ev_time = np.empty(capacity)

@@ -271,7 +271,7 @@ def _piece_limit(zs, weights, floor_scale):
     return limit * h_scale if limit < 1e300 else 1e300
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _eval(zs, tau, z, zd, zdd):
     """z(τ), ż(τ), z̈(τ) of both directions from the series in x = τ/H (Horner; :func:`_series`)."""
     m = zs.shape[2]
@@ -301,7 +301,7 @@ def _eval(zs, tau, z, zd, zdd):
             zdd[d, i] = accdd * inv_h2
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _dot(a, b):
     acc = 0.0
     for i in range(a.shape[0]):
@@ -309,7 +309,7 @@ def _dot(a, b):
     return acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _phi(kind, z, zd, ax_now, ay_now, tau_now, b, l_d, slab_mass, target, e0, vz, out):
     """Value and slope of the event function ``kind`` at a point (its upward zero crossing is the event).
 
@@ -321,7 +321,7 @@ def _phi(kind, z, zd, ax_now, ay_now, tau_now, b, l_d, slab_mass, target, e0, vz
               zd[0, 0], zd[1, 0], z[0, 1], z[1, 1], zd[0, 1], zd[1, 1], tau_now, target, e0, vz, out)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _phi_core(kind, dx, dy, ddx, ddy, x, y, xd, yd, vx, vy, avx, avy, tau_now, target, e0, vz, out):
     """:func:`_phi` from the force on the slab D (dx, dy; ḊD: ddx, ddy), the slab's position (x, y; ẋ: xd, yd) and
     speed (vx, vy; v̇: avx, avy)."""
@@ -353,13 +353,13 @@ def _phi_core(kind, dx, dy, ddx, ddy, x, y, xd, yd, vx, vy, avx, avy, tau_now, t
         out[1] = -(e0[0] * avx + e0[1] * avy)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _phi_at(kind, zs, tau, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out):
     _eval(zs, tau, z, zd, zdd)
     _phi(kind, z, zd, a0[0] + b[0] * tau, a0[1] + b[1] * tau, tau, b, l_d, slab_mass, target, e0, vz, out)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out):
     """The instant in (lo, hi] where φ rises through zero (φ(lo) ≤ 0 < or = φ(hi)); safeguarded Newton."""
     a = lo
@@ -394,7 +394,7 @@ def _root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, o
     return c
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, vz, from_rest, z, zd, zdd, out, counter,
                     z_lo, zd_lo, z_hi, zd_hi):
     """First upward zero crossing of φ in [0, length], or −1.
@@ -433,20 +433,20 @@ def _first_crossing(kind, zs, length, a0, b, l_d, slab_mass, target, e0, vz, fro
     return -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _illinois_done(a, c, fa, fc):
     """The bracket [a, c] of a sign change of f (f(a) > 0 > f(c)) is at rounding, or cannot be refined."""
     return c - a <= 4e-16 * max(abs(c), 1e-300) or fa == fc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _illinois_point(a, c, fa, fc):
     """The next trial point in (a, c): the secant's, or the midpoint when that falls outside."""
     t = (a * fc - c * fa) / (fc - fa)
     return t if a < t < c else 0.5 * (a + c)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _illinois_bracket(t, f, a, c, fa, fc, side):
     """The bracket after f(t) = f ≠ 0 (Illinois: the end kept twice in a row has its value halved, so that the
     secant does not stall on one side).  Returns (a, c, fa, fc, side); side +1 when t replaced a, −1 c.
@@ -462,7 +462,7 @@ def _illinois_bracket(t, f, a, c, fa, fc, side):
     return a, t, fa, f, -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out, sign):
     """Where φ' changes sign (sign = +1: from + to −, a maximum), by Illinois on the slope."""
     _phi_at(kind, zs, lo, a0, b, l_d, slab_mass, target, e0, vz, z, zd, zdd, out)
@@ -484,7 +484,7 @@ def _slope_root(kind, zs, lo, hi, a0, b, l_d, slab_mass, target, e0, vz, z, zd, 
     return 0.5 * (a + c)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _monitors(z, zd, zdd, ax_now, ay_now, az_now, b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope):
     """Watched quantities at a point: resultant pairs val[k, d] (slope[k, d]) and signed sval[j].
 
@@ -505,7 +505,7 @@ def _monitors(z, zd, zdd, ax_now, ay_now, az_now, b, m1, m2, m3, sig1, sig2, sig
         sslope[j] = s + sig3[j, 2] * b[2]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope,
                       lz, lzd, lt, on_log):
     """Slope of one watched quantity at τ: kind 0 the resultant's ½|P|², 1 a signed value, −1 its negative.
@@ -523,7 +523,7 @@ def _monitor_slope_at(zs, tau, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, 
     return kind * sslope[k], kind * sval[k]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd, zdd, val, slope, sval, sslope, lz, lzd,
                 lt, on_log):
     """The interior maximum of a watched quantity in [0, length] (its slope from + to −), by Illinois (``on_log``:
@@ -549,7 +549,7 @@ def _locate_max(zs, length, a0, b, m1, m2, m3, sig1, sig2, sig3, k, kind, z, zd,
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _add_viscous_power(zd, c_iso, c_floor_d, nf, n, y, pvis):
     """Add to ``pvis[0:n]`` the series of one direction's viscous power c V² + u̇ᵀ C u̇ from its state's series
     ``zd[k, :]`` (V in column 1, the floors' u̇ in columns 2 + nf …; ``y`` scratch for C u̇)."""
@@ -847,7 +847,7 @@ def _next_scale(limit, h_scale, rem, h_max):
     return 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _jz(size, top, order):
     """The Jorba–Zou length at which a term top·h^order is TRUNC_EPS of size (1e300 when top is 0)."""
     if top > 0.0:
@@ -867,7 +867,7 @@ def _log_limit(lz, lt, le, weights, floor_scale):
     return min(limit, _jz(abs(lt[1]), abs(lt[nl]), nl), _jz(abs(lt[1]), abs(lt[nl - 1]), nl - 1))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _eval_log(lz, lzd, lt, lam, z, zd, zdd):
     """z, ż and z̈ at λ of an approach piece (:func:`_series_log`; z̈ = (dż/dλ)/(dt/dλ)); returns t(λ) [s]."""
     nl = lt.shape[0] - 1
@@ -960,7 +960,7 @@ def _energies_log(lz, la, ltp, lex, lam, total_mass, masses, c_iso, c_floor, mu_
     out[2] = e_v * lam
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _poly_value_slope(c, nterm, t):
     """Σ_{j<nterm} c[j] t^j and its derivative (Horner)."""
     v = c[nterm - 1]
@@ -971,7 +971,7 @@ def _poly_value_slope(c, nterm, t):
     return v, dv
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _poly_slope_at(cp, kind, nterm, t):
     """(slope, value) at t of ½|P|² (kind 0; the value returned is |P|²) or of ±P (kind ±1), from the series cp."""
     if kind == 0:
@@ -982,7 +982,7 @@ def _poly_slope_at(cp, kind, nterm, t):
     return kind * dv, kind * v
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _poly_max(cp, kind, nterm, h):
     """Largest value in [0, h] of ½|P|² (kind 0: cp[0], cp[1] the series of P_x, P_y) or of ±P (kind ±1:
     cp[0]), where its slope falls through zero (Illinois on the slope, as :func:`_locate_max`)."""
@@ -1004,7 +1004,7 @@ def _poly_max(cp, kind, nterm, h):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _rows_series(rows, wa, s_eff, nterm, out, slot):
     """out[slot, j] += rows[d, j, :s_eff] · wa[d, :s_eff] summed over both directions when rows is
     (2, nterm, S), the Taylor coefficients of a watched quantity from its precomputed rows ℓÃ^j/j!."""
@@ -1015,7 +1015,7 @@ def _rows_series(rows, wa, s_eff, nterm, out, slot):
         out[slot, j] += acc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _chain_end(wa_d, m, k_eff, h):
     """F(h) and F'(h) of the friction's polynomial Σ_{k ≤ k_eff} c_k τ^k held in wa_d[m + 2 + k] (Horner)."""
     f_end = 0.0
@@ -1026,7 +1026,7 @@ def _chain_end(wa_d, m, k_eff, h):
     return f_end, fd_end
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
     """A watched quantity's value r0·w̃ and slope r1·w̃ on one direction's end state w̃ = [z, a_g, ȧ_g, F, F']."""
     m = z_d.shape[0]
@@ -1038,7 +1038,7 @@ def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
     return v, s
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1, sval1, sslope1):
     """Watched values and slopes at a sub-step's end (as :func:`_monitors`): per direction one product of the table
     fend[phase, d] (rows ℓ and ℓÃ of every watched quantity, value and slope interleaved: the resultants' then the
@@ -1069,24 +1069,17 @@ def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, si
         sslope1[j] = sig3[j, 2] * b[2] + wend[0, r + 1] + wend[1, r + 1]
 
 
-@njit(cache=True)
 def _end_rows(fmon, fsig, m):
     """The table of :func:`_watched_end` from the watched rows' first two powers (ℓ, ℓÃ; they vanish beyond c_1):
     fend[phase, d, :, 2q] = ℓ_q, fend[phase, d, :, 2q + 1] = ℓ_q Ã on [z, a_g, ȧ_g, c_0, c_1], q over the resultants
-    then the signed quantities (by columns, contiguous: one product per direction)."""
-    nk = fmon.shape[1]
-    nj = fsig.shape[1]
-    fend = np.zeros((2, 2, m + 4, 2 * (nk + nj)))
-    for ph in range(2):
-        for d in range(2):
-            for q in range(nk + nj):
-                for p in range(2):
-                    for c in range(m + 4):
-                        fend[ph, d, c, 2 * q + p] = fmon[ph, q, d, p, c] if q < nk else fsig[ph, q - nk, d, p, c]
-    return fend
+    then the signed quantities (by columns, contiguous: one product per direction).  Built once per system and
+    bearing layout (``planar_building``'s per-system cache), not per run."""
+    rows = np.concatenate([fmon[:, :, :, :2, :m + 4], fsig[:, :, :, :2, :m + 4]], axis=1)  # [ph, q, d, p, c]
+    ph, nq, nd = rows.shape[:3]
+    return np.ascontiguousarray(np.transpose(rows, (0, 2, 4, 1, 3))).reshape(ph, nd, m + 4, 2 * nq)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _form_add(acc, p, w, s_eff, pw):
     """acc + w[:s_eff]ᵀ P w[:s_eff] for a symmetric P: Σ_r w_r (P_rr w_r + 2 Σ_{c>r} P_rc w_c) added term by term
     to acc (r ascending; acc carries the sum over the directions), the inner sums taken
@@ -1104,16 +1097,16 @@ def _form_add(acc, p, w, s_eff, pw):
     return acc
 
 
-@njit(cache=True)
 def _by_columns(fprop, fvrow):
     """The propagators' rows and V's rows stored by columns (fpropt[l, p, d, c2, c] = fprop[l, p, d, c, c2],
-    fvt[d, c, k] = fvrow[d, k, c]): the fast sub-step's products then run column by column."""
+    fvt[d, c, k] = fvrow[d, k, c]): the fast sub-step's products then run column by column.  Built once per system
+    (``planar_building``'s per-system cache), not per run."""
     fpropt = np.ascontiguousarray(np.transpose(fprop, (0, 1, 2, 4, 3)))
     fvt = np.ascontiguousarray(np.transpose(fvrow, (0, 2, 1)))
     return fpropt, fvt
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
                fvt,
                farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
@@ -1218,7 +1211,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     return -code
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _order_at(eser, rser, nch, h, mu_k_n):
     """The least order k ≥ 3 at which the friction's and |V|'s series reach rounding over h (Jorba–Zou), or −1."""
     hk = 1.0
@@ -1235,7 +1228,7 @@ def _order_at(eser, rser, nch, h, mu_k_n):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
@@ -1407,8 +1400,8 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
 
 @njit(cache=True)
 def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
-                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fprop, fpinrow,
-                      fpvis, fvrow, farow1, farow2, fmon, fsig, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
+                      c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fpropt, fpinrow,
+                      fpvis, fvt, farow1, farow2, fmon, fsig, fend, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
     """Response of the slab + shear building on the friction isolation plane to two horizontal components.
 
@@ -1473,21 +1466,23 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     n_fast : int
         Fast sub-steps per sample interval of a uniform record (0: none; the tables below are for
         the ladder h_l = dt / n_fast / 2^l, l = 0 … L − 1).
-    fprop : float64[L, 2, 2, m, S]
-        The first m rows of e^{Ãh_l} per rung, phase and direction, Ã the augmented matrix on
-        w̃ = [z, a_g, ȧ_g, c_0 … c_K] (S = m + 3 + K; c_j the chain of the friction's polynomial),
-        the chain scaled to the rung (c_j h_l^j).
+    fpropt : float64[L, 2, 2, S, m]
+        The first m rows of e^{Ãh_l} per rung, phase and direction, stored by columns (fpropt[l, p, d, c2, c] =
+        e^{Ãh_l}[c, c2], :func:`_by_columns`), Ã the augmented matrix on w̃ = [z, a_g, ȧ_g, c_0 … c_K]
+        (S = m + 3 + K; c_j the chain of the friction's polynomial), the chain scaled to the rung (c_j h_l^j).
     fpinrow : float64[L, 2, 2, 2, S]
         The input power a_g (ℓ_p·w̃) integrated over a rung, as two rows: R1 = ℓ_p ∫₀^{h_l} e^{Ãτ} dτ and
         R2 = ℓ_p ∫₀^{h_l} τ e^{Ãτ} dτ (the input energy is a_g R1·w̃ + ȧ_g R2·w̃; the Van Loan form of a rank-2 Q).
     fpvis : float64[L, 2, 2, S, S]
         ∫₀^{h_l} e^{Ãᵀτ} Q e^{Ãτ} dτ for the viscous power (Van Loan).
-    fvrow : float64[2, K + 1, S]
-        e_v Ã^k / k! of the sliding phase (the Taylor coefficients of V).
+    fvt : float64[2, S, K + 1]
+        e_v Ã^k / k! of the sliding phase (the Taylor coefficients of V), by columns (fvt[d, c, k]).
     farow1, farow2 : float64[2, 2, m, m + 4]
         The first m rows of Ã and Ã² on [z, a_g, ȧ_g, c_0, c_1] (ż and z̈).
     fmon, fsig : float64[2, K_w, 2, FAST_POW, S], float64[2, J, 2, FAST_POW, S]
         ℓ Ã^j / j! of every watched quantity per phase and direction (their Taylor coefficients).
+    fend : float64[2, 2, m + 4, 2 (K_w + J)]
+        Their first two powers by columns, the table of :func:`_watched_end` (:func:`_end_rows`).
     summary : float64[SUMMARY_SIZE]
     """
     uniform = times.shape[0] == 0
@@ -1559,18 +1554,16 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     out2 = np.zeros(2)
     energy = np.zeros(3)
     counter = np.zeros(1, dtype=np.int64)
-    n_levels = fprop.shape[0]
-    n_ch = fprop.shape[4] - m - 2
-    wa = np.zeros((2, fprop.shape[4]))
-    wsc = np.zeros((2, fprop.shape[4]))
-    pw = np.zeros(fprop.shape[4])
+    n_levels = fpropt.shape[0]
+    n_ch = fpropt.shape[3] - m - 2
+    wa = np.zeros((2, fpropt.shape[3]))
+    wsc = np.zeros((2, fpropt.shape[3]))
+    pw = np.zeros(fpropt.shape[3])
     vser = np.zeros((2, n_ch))
     sser = np.zeros(n_ch)
     rser = np.zeros(n_ch)
     eser = np.zeros((2, n_ch))
     cpoly = np.zeros((2, fmon.shape[3]))
-    fend = _end_rows(fmon, fsig, m)
-    fpropt, fvt = _by_columns(fprop, fvrow)
     wend = np.zeros((2, fend.shape[3]))
     n_fast_steps = 0
     n_refused = np.zeros(6, dtype=np.int64)
