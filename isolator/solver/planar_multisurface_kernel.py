@@ -169,6 +169,12 @@ SC_R_SWITCH_LO = 4
 #: a fixed direction, a slow corner left to one group), exact for a collinear record only: a caller that answers a
 #: record that is not collinear with another method then stops at once instead of finishing a run it discards
 SC_EXACT_ONLY = 5
+#: optional (after SC_EXACT_ONLY): the scale [W] of the force point r in the multi-group steps' error norm, whose
+#: absolute tolerance on r is rtol × this.  Default (absent or ≤ 0): the largest friction coefficient µ_max, the
+#: radius of the largest friction circle — r's own scale, as the peaks are X's and V's.  Before, rtol × 1e-3 W held
+#: every corner step: r (the component that carries the corner's fast mode) set the error of 2 470 of 2 470 explicit
+#: corner steps at s = 0.02–0.05 on PTS, X and V of none (docs/multisurface.md, "What sets the corner steps")
+SC_R_TOL = 6
 
 # work counters of the multi-group steps (the kernel's ``stats`` argument, int64[ST_SIZE]; docs/multisurface.md)
 ST_RADAU = 0  #: implicit (Radau IIA) steps taken, event location and peaks included
@@ -1592,7 +1598,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
         Damping per unit mass [1/s].
     scales : float64[5] or float64[6]
         Speed and tolerance scales (SC_*); an optional sixth, SC_EXACT_ONLY > 0, stops the run at the first
-        reduction exact only for a collinear record (STATUS_REDUCED).
+        reduction exact only for a collinear record (STATUS_REDUCED); an optional seventh, SC_R_TOL, the force
+        point's scale in the corner steps' error norm (default µ_max).
     rtol : float
         Relative tolerance of the DOP853 steps.
     out_x, out_v, out_a : float64[n, 2]
@@ -1665,6 +1672,14 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     n_multi = 0
     n_merged = 0
     exact_only = scales.shape[0] > SC_EXACT_ONLY and scales[SC_EXACT_ONLY] > 0.0
+    r_scale = 0.0  #: the force point's scale in the corner steps' error norm (SC_R_TOL) [W]
+    if scales.shape[0] > SC_R_TOL and scales[SC_R_TOL] > 0.0:
+        r_scale = scales[SC_R_TOL]
+    else:
+        for k in range(ng):
+            r_scale = max(r_scale, mu[k])
+    if not r_scale > 0.0:
+        r_scale = 1e-3
     just_rejected = False
     e_in = 0.0  #: energies of the phases already closed [J/kg]
     e_f = 0.0
@@ -1833,7 +1848,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 for j in range(2):
                     matol[M_X + j] = rtol * max(peak_x, scales[SC_X_FLOOR])
                     matol[M_V + j] = rtol * max(peak_v, scales[SC_V_FLOOR])
-                    matol[M_R + j] = rtol * 1e-3
+                    matol[M_R + j] = rtol * r_scale
                 for k in range(ng):
                     matol[M_U + 2 * k] = matol[M_X]
                     matol[M_U + 2 * k + 1] = matol[M_X]
