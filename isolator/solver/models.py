@@ -42,6 +42,7 @@ from dataclasses import dataclass
 
 from isolator.solver import (
     building,
+    building_multisurface,
     multisurface,
     multisurface_rate,
     planar,
@@ -82,6 +83,8 @@ MODELS: dict[str, Model] = {model.name: model for model in (
           "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
           "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
+    Model(building_multisurface.MODEL_NAME, building_multisurface.scene_needs, building_multisurface.simulate_scene,
+          "shear building on a double or triple friction pendulum, one component: exact between events, rims"),
     Model(multisurface.MODEL_NAME, multisurface.scene_needs, multisurface.simulate_scene,
           "mass on a double or triple friction pendulum (series model, rims), one component: closed forms"),
     Model(planar_building.MODEL_NAME, planar_building.scene_needs, planar_building.simulate_scene,
