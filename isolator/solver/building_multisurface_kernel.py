@@ -52,6 +52,7 @@ from isolator.solver.building_kernel import (
     quadratic_integral,
     state_at,
 )
+from isolator.solver.events import record_event
 from isolator.solver.jit import njit
 from isolator.solver.multisurface_series import excursion, settle, stick_window
 
@@ -134,7 +135,15 @@ def _coef(row, kry, out):
 
 
 @njit(cache=True)
-def _extremes(mon, kry, length, y0, y1, d0, d1, peak_max, peak_min, coef):
+def _series(am, w, kry, have):
+    # the Krylov vectors of the piece from w, once (a full sub-step needs them only to locate something)
+    if not have[0]:
+        krylov(am, w, kry)
+        have[0] = True
+
+
+@njit(cache=True)
+def _extremes(mon, am, w, kry, have, length, y0, y1, d0, d1, peak_max, peak_min, coef):
     # the signed extremes of the watched functionals over a piece, interior extrema located
     for k in range(y0.shape[0]):
         hi_v = max(y0[k], y1[k])
@@ -144,6 +153,7 @@ def _extremes(mon, kry, length, y0, y1, d0, d1, peak_max, peak_min, coef):
         reach = 2.0 * length * max(abs(d0[k]), abs(d1[k]))
         if ((d0[k] > 0.0 > d1[k] and hi_v + reach > peak_max[k])
                 or (d0[k] < 0.0 < d1[k] and lo_v - reach < peak_min[k])):
+            _series(am, w, kry, have)
             _coef(mon[k], kry, coef)
             t_e = poly_root(coef, 1, 0.0, 1.0 if d0[k] > 0.0 else -1.0, 0.0, length)
             v_e = poly(coef, 0, t_e)
@@ -161,26 +171,32 @@ def _surface_peaks(u, tmat, surf_peak):
 
 
 @njit(cache=True)
-def _hold_exit(kry, ell_hold, ell_hold_d, w1, rem, lo, hi, coef):
-    """The first instant in [0, rem] where the hold force D leaves [lo, hi] and the side (+1 hi, −1 lo), or (-1, 0)."""
-    h0 = dot(ell_hold, kry[0])
+def _exit(kry, row, row_d, w1, length, lo, hi, coef):
+    """The first instant in [0, length] where y = row·w leaves [lo, hi], and the side (+1 hi, −1 lo); (-1, 0): none.
+
+    ``row_d`` = row·Ã (the slope), ``w1`` the state at ``length``.  On a piece the slope of y changes sign
+    at most once (pieces are short against every time scale), so y leaves through its end or through
+    its one interior extremum, located as a root of the slope's series when it could reach a bound; the
+    crossing is then a root of y's series on the bracket that holds it.  A start on a bound is inside.
+    """
+    h0 = dot(row, kry[0])
     if h0 > hi:
         return 0.0, 1.0
     if h0 < lo:
         return 0.0, -1.0
-    h1 = dot(ell_hold, w1)
-    hd0 = dot(ell_hold, kry[1])
-    hd1 = dot(ell_hold_d, w1)
+    h1 = dot(row, w1)
+    hd0 = dot(row, kry[1])
+    hd1 = dot(row_d, w1)
     t_ext = -1.0
     h_ext = 0.0
-    reach = 2.0 * rem * max(abs(hd0), abs(hd1))
+    reach = 2.0 * length * max(abs(hd0), abs(hd1))
     if hd0 * hd1 < 0.0 and (max(h0, h1) + reach > hi or min(h0, h1) - reach < lo):
-        _coef(ell_hold, kry, coef)
-        t_ext = poly_root(coef, 1, 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, rem)
+        _coef(row, kry, coef)
+        t_ext = poly_root(coef, 1, 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, length)
         h_ext = poly(coef, 0, t_ext)
     side = 0.0
     seg_lo = 0.0
-    seg_hi = rem
+    seg_hi = length
     if t_ext >= 0.0 and (h_ext > hi or h_ext < lo):
         side = 1.0 if h_ext > hi else -1.0
         seg_hi = t_ext
@@ -190,7 +206,7 @@ def _hold_exit(kry, ell_hold, ell_hold_d, w1, rem, lo, hi, coef):
             seg_lo = t_ext
     if side == 0.0:
         return -1.0, 0.0
-    _coef(ell_hold, kry, coef)
+    _coef(row, kry, coef)
     level = hi if side > 0.0 else lo
     return poly_root(coef, 0, level, -side, seg_lo, seg_hi), side
 
@@ -229,16 +245,25 @@ def _stop_time(kry, am, w, w1, rem, s, idx_vb, coef):
 
 
 @njit(cache=True)
-def _record(ev_time, ev_kind, ev_x, n_ev, t, kind, x):
-    if n_ev < ev_time.shape[0]:
-        ev_time[n_ev] = t
-        ev_kind[n_ev] = kind
-        ev_x[n_ev] = x
-    return n_ev + 1
+def _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, weight, a0, da, mon0, dmon, am, mon, mon_d,
+           state_first_time, t):
+    """A new excursion in direction s from x: its regimes, the elements already on their rim that way, regime
+    0's matrices; returns (n_reg, rim_before, f_0, friction per |Δx_b|) and marks the state's first time."""
+    n_reg = excursion(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask)
+    rim_before = 0
+    for e in range(u.shape[0]):
+        if s * u[e] >= rim[e]:
+            rim_before |= 1 << e
+    f_k, fric = _setup(0, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, weight, a0, da, mon0, dmon, am, mon, mon_d)
+    code = reg_mask[0] + (1 << u.shape[0]) * rim_before
+    if state_first_time[code] < 0.0:
+        state_first_time[code] = t
+    return n_reg, rim_before, f_k, fric
 
 
 @njit(cache=True)
-def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mon0, dmon, q_in, q_vis, ell_hold,
+def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes, pin_modes, pvis_modes, mon_st, mon0,
+                                 dmon, q_in, q_vis, ell_hold,
                                  weight, slab_mass, n_floors, rbar, mu, rim, tmat, idx_ag, idx_bg, idx_f,
                                  out_state, out_mon, out_r, out_energy, peak_max, peak_min, ev_time, ev_kind, ev_x,
                                  summary, surf_peak, state_first_time, u):
@@ -258,6 +283,9 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
         Ã of the stuck bearing.
     a0, da : float64[N, N]
         Ã of the sliding bearing with no spring, and its derivative in the spring K [1/(N/m)].
+    phi_modes, pin_modes, pvis_modes : float64[1 + 2**ne, N, N]
+        For a uniform record, per mode (0 stuck, 1 + the sliding set's mask): e^{Ãh} of a full sub-step
+        h = dt / ceil(dt / h_max), and ∫₀ʰ e^{Ãᵀτ} Q e^{Ãτ} dτ for Q = q_in and q_vis.
     mon_st, mon0, dmon : float64[K, N]
         The watched functionals (:func:`isolator.solver.building.building_system`'s) stuck, sliding
         with K = 0, and their derivative in K.
@@ -301,10 +329,16 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
     w1 = np.zeros(nw)
     we = np.zeros(nw)
     kry = np.zeros((N_TAYLOR + 2, nw))
+    have = np.zeros(1, dtype=np.bool_)
+    mode = 0  # 0 stuck, else 1 + the sliding set's mask (the index of the full sub-step's propagators)
     coef = np.zeros(N_TAYLOR + 2)
     am = np.zeros((nw, nw))
     mon = np.zeros((nk, nw))
     mon_d = np.zeros((nk, nw))
+    wt = np.zeros(nw)
+    wq = np.zeros(nw)
+    vrow = np.zeros(nw)
+    vrow_d = np.zeros(nw)
     y0 = np.zeros(nk)
     d0 = np.zeros(nk)
     y1 = np.zeros(nk)
@@ -375,9 +409,14 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                 if tau >= h:
                     break
                 rem = h - tau
-                krylov(am, w, kry)
-                n_pieces += 1
-                state_at(kry, rem, w1)
+                full = uniform and tau == 0.0
+                have[0] = False
+                if full:
+                    matvec(phi_modes[mode], w, w1)  # a full sub-step: the precomputed e^{Ãh}
+                else:
+                    _series(am, w, kry, have)
+                    n_pieces += 1
+                    state_at(kry, rem, w1)
                 if stuck:
                     w1[idx_xb] = x_stuck
                     w1[idx_vb] = 0.0
@@ -387,25 +426,57 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                 if events_here > MAX_EVENTS_PER_INTERVAL:
                     pass  # chatter guard: no more events in this interval
                 elif stuck:
-                    t_event, side = _hold_exit(kry, ell_hold, hold_d, w1, rem, weight * r_lo, weight * r_hi, coef)
+                    # D leaves the window through an end or its one interior extremum, if at all
+                    lo_f = weight * r_lo
+                    hi_f = weight * r_hi
+                    h0 = dot(ell_hold, w)
+                    h1 = dot(ell_hold, w1)
+                    hd0 = dot(hold_d, w)
+                    hd1 = dot(hold_d, w1)
+                    reach = 2.0 * rem * max(abs(hd0), abs(hd1))
+                    if (not lo_f <= h0 <= hi_f or not lo_f <= h1 <= hi_f
+                            or (hd0 * hd1 < 0.0 and (max(h0, h1) + reach > hi_f or min(h0, h1) - reach < lo_f))):
+                        _series(am, w, kry, have)
+                        t_event, side = _exit(kry, ell_hold, hold_d, w1, rem, lo_f, hi_f, coef)
                 else:
-                    t_stop = _stop_time(kry, am, w, w1, rem, s, idx_vb, coef)
+                    v0 = s * w[idx_vb]
+                    v1 = s * w1[idx_vb]
+                    av0 = s * dot(am[idx_vb], w)
+                    av1 = s * dot(am[idx_vb], w1)
+                    t_stop = -1.0
+                    if v1 <= 0.0 or (v0 > 0.0 and av0 < 0.0 < av1
+                                     and min(v0, v1) - 2.0 * rem * max(abs(av0), abs(av1)) <= 0.0):
+                        _series(am, w, kry, have)
+                        t_stop = _stop_time(kry, am, w, w1, rem, s, idx_vb, coef)
                     t_event = t_stop
                     if k + 1 < n_reg:
-                        target = reg_x[k + 1]
-                        t_h = rem if t_stop < 0.0 else t_stop
-                        if s * (w[idx_xb] - target) >= 0.0:
+                        # the next breakpoint: s·x_b leaves (−∞, s x_{k+1}) before the stop (x_b is monotone)
+                        target = s * reg_x[k + 1]
+                        if s * w[idx_xb] >= target:
                             t_event = 0.0
                             crossing = True
-                        else:
-                            for j in range(kry.shape[0]):
-                                coef[j] = kry[j, idx_xb]
-                            x_h = poly(coef, 0, t_h)
-                            if s * (x_h - target) >= 0.0:
-                                t_event = poly_root(coef, 0, target, -s, 0.0, t_h)
+                        elif t_stop >= 0.0 or s * w1[idx_xb] >= target:
+                            _series(am, w, kry, have)
+                            t_h = rem
+                            if t_stop >= 0.0:
+                                t_h = t_stop
+                                state_at(kry, t_stop, wt)
+                            else:
+                                for j in range(nw):
+                                    wt[j] = w1[j]
+                            for j in range(nw):
+                                vrow[j] = 0.0
+                                vrow_d[j] = s * am[idx_xb, j]
+                            vrow[idx_xb] = s
+                            if s * wt[idx_xb] >= target:
+                                t_cross, _ = _exit(kry, vrow, vrow_d, wt, t_h, -math.inf, target, coef)
+                                if t_cross < 0.0:
+                                    t_cross = t_h  # reached exactly at the end of the bracket
+                                t_event = t_cross
                                 crossing = True
                 piece = rem if t_event < 0.0 else t_event
                 if t_event >= 0.0:
+                    _series(am, w, kry, have)
                     state_at(kry, piece, we)
                     if stuck:
                         we[idx_xb] = x_stuck
@@ -418,8 +489,16 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                     for j in range(nw):
                         we[j] = w1[j]
                 if piece > 0.0:
-                    e_in += quadratic_integral(kry, q_in, piece)
-                    e_v += quadratic_integral(kry, q_vis, piece)
+                    if full and t_event < 0.0:
+                        # the energies of a full sub-step: quadratic forms with the Van Loan matrices
+                        matvec(pin_modes[mode], w, wq)
+                        e_in += dot(w, wq)
+                        matvec(pvis_modes[mode], w, wq)
+                        e_v += dot(w, wq)
+                    else:
+                        _series(am, w, kry, have)
+                        e_in += quadratic_integral(kry, q_in, piece)
+                        e_v += quadratic_integral(kry, q_vis, piece)
                     if not stuck:
                         e_f += fric * abs(we[idx_xb] - w[idx_xb])
                         slip_time += piece
@@ -427,7 +506,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                     matvec(mon_d, w, d0)
                     matvec(mon, we, y1)
                     matvec(mon_d, we, d1)
-                    _extremes(mon, kry, piece, y0, y1, d0, d1, peak_max, peak_min, coef)
+                    _extremes(mon, am, w, kry, have, piece, y0, y1, d0, d1, peak_max, peak_min, coef)
                 for j in range(nw):
                     w[j] = we[j]
                 tau += piece
@@ -439,24 +518,18 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                 x = w[idx_xb]
                 if stuck:
                     s = side
-                    n_reg = excursion(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask)
-                    rim_before = 0
-                    for e in range(ne):
-                        if s * u[e] >= rim[e]:
-                            rim_before |= 1 << e
+                    n_reg, rim_before, f_k, fric = _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask,
+                                                          weight, a0, da, mon0, dmon, am, mon, mon_d,
+                                                          state_first_time, t_abs)
+                    mode = 1 + reg_mask[0]
                     k = 0
                     stuck = False
-                    f_k, fric = _setup(0, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, weight, a0, da, mon0,
-                                           dmon, am, mon, mon_d)
                     # the friction absorbs the rounding of the instant: the net force on the slab starts at 0
                     excess = dot(ell_hold, w) - weight * reg_r[0]
                     if abs(excess) <= 1e-9 * weight * abs(reg_r[0]):
                         f_k += excess
                     w[idx_f] = f_k
-                    code = reg_mask[0] + n_masks * rim_before
-                    if state_first_time[code] < 0.0:
-                        state_first_time[code] = t_abs
-                    n_ev = _record(ev_time, ev_kind, ev_x, n_ev, t_abs, BREAKAWAY, x)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, BREAKAWAY, x)
                 elif crossing:
                     left = reg_mask[k] & ~reg_mask[k + 1]
                     rim_before |= left
@@ -473,11 +546,12 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                     if reg_rsum[k] > 0.0:
                         f_k, fric = _setup(k, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, weight, a0, da,
                                                mon0, dmon, am, mon, mon_d)
+                        mode = 1 + reg_mask[k]
                         w[idx_f] = f_k
                         code = reg_mask[k] + n_masks * rim_before
                         if state_first_time[code] < 0.0:
                             state_first_time[code] = t_abs
-                        n_ev = _record(ev_time, ev_kind, ev_x, n_ev, t_abs, kind, x)
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, kind, x)
                     else:
                         # rigid: the ultimate displacement (or a rigid regime reached at rest): plastic impact
                         v = w[idx_vb]
@@ -496,11 +570,12 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                         x_stuck = x
                         w[idx_f] = 0.0
                         _stuck_rows(a_st, mon_st, am, mon, mon_d)
+                        mode = 0
                         if ultimate:
                             n_ult += 1
                             if first_ult < 0.0:
                                 first_ult = t_abs
-                        n_ev = _record(ev_time, ev_kind, ev_x, n_ev, t_abs, ULTIMATE if ultimate else STICK, x)
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, ULTIMATE if ultimate else STICK, x)
                     peak_r = max(peak_r, abs(reg_r[k]))
                 else:
                     # the slab stops: settle the elements, then stick or reverse
@@ -515,23 +590,18 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                         x_stuck = x
                         w[idx_f] = 0.0
                         _stuck_rows(a_st, mon_st, am, mon, mon_d)
-                        n_ev = _record(ev_time, ev_kind, ev_x, n_ev, t_abs, STICK, x)
+                        mode = 0
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, STICK, x)
                     else:
                         s = 1.0 if need > weight * r_hi else -1.0
-                        n_reg = excursion(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask)
-                        rim_before = 0
-                        for e in range(ne):
-                            if s * u[e] >= rim[e]:
-                                rim_before |= 1 << e
+                        n_reg, rim_before, f_k, fric = _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum,
+                                                              reg_mask, weight, a0, da, mon0, dmon, am, mon, mon_d,
+                                                              state_first_time, t_abs)
+                        mode = 1 + reg_mask[0]
                         k = 0
-                        f_k, fric = _setup(0, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, weight, a0, da,
-                                               mon0, dmon, am, mon, mon_d)
                         w[idx_f] = f_k
-                        code = reg_mask[0] + n_masks * rim_before
-                        if state_first_time[code] < 0.0:
-                            state_first_time[code] = t_abs
                         peak_r = max(peak_r, abs(reg_r[0]))
-                        n_ev = _record(ev_time, ev_kind, ev_x, n_ev, t_abs, REVERSAL, x)
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, REVERSAL, x)
                 # the functionals jump with the mode or the regime: count the new side
                 matvec(mon, w, y1)
                 for j in range(nk):
@@ -546,6 +616,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, mon_st, mo
                     w[idx_vb] = 0.0
                     w[idx_f] = 0.0
                     _stuck_rows(a_st, mon_st, am, mon, mon_d)
+                    mode = 0
                     r_lo = -math.inf
                     r_hi = math.inf
         if status & STATUS_CHATTER and stuck and r_lo == -math.inf:
