@@ -519,3 +519,32 @@ def test_full_sub_steps_equal_the_series_path_and_the_mirror(records_dir):
     assert full.energy_input_J_per_kg == pytest.approx(series.energy_input_J_per_kg, rel=1e-10)
     assert full.story_drift_m == pytest.approx(mirror.story_drift_m, rel=1e-10)
     assert full.surface_peak_displacement_m == pytest.approx(mirror.surface_peak_displacement_m, rel=1e-10)
+
+
+def test_bearing_loads_follow_the_overturning_moment_on_a_triple():
+    # a harmonic ground motion drives the building on a TFP through its regimes; four bearings on a square:
+    # the loads are W/4 ± M/(4a), M = Σ F_i H_i from the floors' absolute accelerations (the 1-D building's statics)
+    from isolator.superstructure import BearingLayout
+
+    dt = 0.005
+    t = np.arange(0.0, 6.0 + dt / 2, dt)
+    acc = 4.0 * np.sin(2 * np.pi * 0.7 * t)
+    s = make_superstructure([4e5, 4e5], [4e8, 3e8], 0.05, heights=[5.0, 5.0])
+    layout = BearingLayout(x_m=(-1.0, 1.0, 1.0, -1.0), y_m=(-1.0, -1.0, 1.0, 1.0),
+                           gravity_loads_N=(2.5 * G * 1e5,) * 4)
+    r = simulate_building_bearing(acc, dt, superstructure=s, bearing=bearing("triple", TFP), total_mass_kg=1e6,
+                                  bearing_layout=layout)
+    assert {"I", "II", "III"} <= set(r.regimes)
+    moment = -(r.floor_absolute_acceleration_m_s2 * [4e5, 4e5]) @ np.array([5.0, 10.0])
+    assert r.overturning_moment_Nm == pytest.approx(moment, rel=1e-12, abs=1e-9 * np.max(np.abs(moment)))
+    loads = r.bearing_loads()
+    w4 = G * 1e6 / 4
+    m_max, m_min = r.overturning_moment_extremes_Nm
+    assert m_max >= moment.max() and m_min <= moment.min()
+    assert loads["bearing_axial_load_max_N"][1] == pytest.approx(w4 + m_max / 4.0, rel=1e-12)
+    assert loads["bearing_axial_load_min_N"][0] == pytest.approx(w4 - m_max / 4.0, rel=1e-12)
+    summary = r.summary()
+    assert loads["bearing_axial_load_min_N"][1] == pytest.approx(w4 + m_min / 4.0, rel=1e-12)
+    # the −x bearings lift off when M > W a, the +x ones when M < −W a (a = 1 m)
+    assert len(summary["bearing_axial_load_max_N"]) == 4
+    assert summary["n_bearings_uplifted"] == 2 * int(m_max > 4 * w4) + 2 * int(-m_min > 4 * w4)
