@@ -31,8 +31,10 @@ TIE = 1e-12
 
 
 def bearing(kind, surfaces, fail=DesignError):
-    return parse_bearing({"type": kind, "surface": [dict(radius_m=r, mu=m, displacement_capacity_m=d)
-                                                    for r, m, d in surfaces]}, fail)
+    """(R, µ, d) or (R, µ, d, h) per surface."""
+    return parse_bearing({"type": kind, "surface": [dict(radius_m=r, mu=m, displacement_capacity_m=d, height_m=h)
+                                                    for r, m, d, h in (tuple(x) + (0.0,) * (4 - len(x))
+                                                                       for x in surfaces)]}, fail)
 
 
 #: Fenz & Constantinou's TFP with smaller outer plates (ultimate 0.4 m): real records reach regimes IV and V
@@ -262,8 +264,11 @@ CASES = {
     "double with an intermediate rim, 2 stories": ("RSN1044_NORTHR_NWH360.AT2", 2.0, 4.0, 1.0,
                                                    ("double", [(2.0, 0.03, 0.03), (2.0, 0.07, 0.3)]),
                                                    [3e5, 2e5], [4e8, 3e8], 0.05, 7e5, 0.0),
-    "TFP, 2 stories": ("RSN1044_NORTHR_NWH360.AT2", 2.0, 4.0, 1.0, ("triple", TFP), [4e5, 3e5], [5e8, 3e8], 0.04,
-                       9e5, 0.0),
+    # F&C's TFP with slider heights (R_eff = R − h; the surfaces' peaks are reported on the surfaces, × R/R_eff)
+    "TFP with heights, 2 stories": ("RSN1044_NORTHR_NWH360.AT2", 2.0, 4.0, 1.0,
+                                    ("triple", [(2.235, 0.06, 0.42, 0.135), (0.335, 0.02, 0.057, 0.035),
+                                                (0.335, 0.02, 0.057, 0.035), (2.235, 0.10, 0.42, 0.135)]),
+                                    [4e5, 3e5], [5e8, 3e8], 0.04, 9e5, 0.0),
 }
 
 
