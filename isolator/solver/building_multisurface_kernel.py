@@ -212,39 +212,6 @@ def _exit(kry, row, row_d, w1, length, lo, hi, coef):
 
 
 @njit(cache=True)
-def _stop_time(kry, am, w, w1, rem, s, idx_vb, coef):
-    """The stop (s·v_b reaching 0) in [0, rem], or -1."""
-    v0 = s * w[idx_vb]
-    v1 = s * w1[idx_vb]
-    av0 = s * dot(am[idx_vb], w)
-    av1 = s * dot(am[idx_vb], w1)
-    lo_seg = 0.0
-    seg_hi = -1.0
-    if v1 <= 0.0:
-        seg_hi = rem
-        if v0 <= 0.0:
-            # from rest: the velocity first grows and the stop lies after its maximum; a start that
-            # cannot move in direction s is a stop at once
-            if av0 > 0.0 > av1:
-                for j in range(kry.shape[0]):
-                    coef[j] = kry[j, idx_vb]
-                lo_seg = poly_root(coef, 1, 0.0, s, 0.0, rem)
-            else:
-                return 0.0
-    elif v0 > 0.0 and av0 < 0.0 < av1 and min(v0, v1) - 2.0 * rem * max(abs(av0), abs(av1)) <= 0.0:
-        for j in range(kry.shape[0]):
-            coef[j] = kry[j, idx_vb]
-        t_min = poly_root(coef, 1, 0.0, -s, 0.0, rem)
-        if s * poly(coef, 0, t_min) <= 0.0:
-            seg_hi = t_min
-    if seg_hi < 0.0:
-        return -1.0
-    for j in range(kry.shape[0]):
-        coef[j] = kry[j, idx_vb]
-    return poly_root(coef, 0, 0.0, s, lo_seg, seg_hi)
-
-
-@njit(cache=True)
 def _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, weight, a0, da, mon0, dmon, am, mon, mon_d,
            state_first_time, t):
     """A new excursion in direction s from x: its regimes, the elements already on their rim that way, regime
@@ -444,10 +411,20 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                     av0 = s * dot(am[idx_vb], w)
                     av1 = s * dot(am[idx_vb], w1)
                     t_stop = -1.0
-                    if v1 <= 0.0 or (v0 > 0.0 and av0 < 0.0 < av1
-                                     and min(v0, v1) - 2.0 * rem * max(abs(av0), abs(av1)) <= 0.0):
+                    if v0 <= 0.0 and av0 <= 0.0:
+                        # from rest and not pushed towards s (at a break-away the net force starts at zero, its
+                        # sign is rounding): a stop at once unless the velocity grew by the piece's end
+                        if v1 <= 0.0:
+                            t_stop = 0.0
+                    elif v1 <= 0.0 or (v0 > 0.0 and av0 < 0.0 < av1
+                                       and min(v0, v1) - 2.0 * rem * max(abs(av0), abs(av1)) <= 0.0):
+                        # the stop: s·v_b leaves [0, ∞) (from rest, after its maximum)
                         _series(am, w, kry, have)
-                        t_stop = _stop_time(kry, am, w, w1, rem, s, idx_vb, coef)
+                        for j in range(nw):
+                            vrow[j] = 0.0
+                            vrow_d[j] = s * am[idx_vb, j]
+                        vrow[idx_vb] = s
+                        t_stop, _ = _exit(kry, vrow, vrow_d, w1, rem, 0.0, math.inf, coef)
                     t_event = t_stop
                     if k + 1 < n_reg:
                         # the next breakpoint: s·x_b leaves (−∞, s x_{k+1}) before the stop (x_b is monotone)
