@@ -362,6 +362,10 @@ def test_a_double_with_equal_surfaces_is_the_building_on_the_single_pendulum_of_
         assert getattr(ours, key) == pytest.approx(getattr(single, key), rel=1e-10), key
     # each surface takes half of the bearing's displacement
     assert ours.surface_peak_displacement_m == pytest.approx([ours.peak_displacement_m / 2] * 2, rel=1e-12)
+    # and the same bearing as one surface of R 3.0 m (a single pendulum on this model, never reaching its 2 m rim)
+    one = simulate_building_bearing(acc, dt, superstructure=s, bearing=bearing("single", [(3.0, 0.05, 2.0)]),
+                                    total_mass_kg=total, damping_Ns_per_m=c_iso)
+    assert one.event_names == single.event_names and _rel(one.displacement_m, single.displacement_m) <= 1e-10
 
 
 def test_a_building_whose_bearing_never_slides_is_the_fixed_base_building(records_dir):
