@@ -27,6 +27,7 @@ contacts, the ultimate displacement and the impact impulse).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -34,11 +35,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from isolator.errors import InvalidSystemError
+from isolator.solver import building as _building
 from isolator.solver import building_multisurface_kernel as _bmk
 from isolator.solver import multisurface_kernel as _ms
 from isolator.solver.building import MAX_SUBSTEPS_PER_INTERVAL, BuildingResponse, building_system, van_loan
 from isolator.solver.building_kernel import THETA
-from isolator.solver.multisurface import response_fields
+from isolator.solver.multisurface import response_fields, rim_of_single
 from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.record import record_timing
 from isolator.solver.system import classify_configuration
@@ -84,6 +86,10 @@ class BuildingMultisurfaceResponse(BuildingResponse):
     damping_per_mass: float = 0.0  #: the isolator's dashpot over the total mass [1/s]
     model: str = MODEL_NAME
     model_reason: str = ""
+    #: True when the registry's first run (``1d-building``, an unbounded plate) reached the single pendulum's
+    #: capacity and the scene was run again here with its rim; :func:`isolator.solver.models.simulate` keeps
+    #: this result's model and reason
+    rerun: bool = False
 
     @property
     def bearing_type(self) -> str:
@@ -109,14 +115,46 @@ def _refusal(scene) -> str | None:
     return None
 
 
+#: The model a building on a single pendulum with a capacity runs first (the exact 1-D building).
+RIM_FIRST_MODEL = _building.MODEL_NAME
+
+
+def single_with_rim(scene):
+    """The single pendulum with its rim under a building that a one-component scene describes, or None.
+
+    A design with a ``[superstructure]``, a ``displacement_capacity_m`` and one surface, a restoring
+    stiffness, one horizontal component with constant friction (what ``1d-building`` runs): the
+    surface of :func:`isolator.solver.multisurface.rim_of_single` (its radius and friction from the
+    isolator keywords, or the ``[bearing]`` single; the rim at d* = d R_eff/R).
+
+    Returns
+    -------
+    isolator.bearing.Bearing or None
+    """
+    design = scene.design
+    if getattr(design, "superstructure", None) is None:
+        return None
+    return rim_of_single(dataclasses.replace(scene, design=dataclasses.replace(design, superstructure=None)))
+
+
 def scene_needs(scene) -> tuple[str, str] | None:
     """``(model, reason)`` for a design with a ``[superstructure]`` on a double or triple bearing under one
     component with constant friction; else None (a pair, a vertical, µ(v): the models above and below refuse
-    them in one line)."""
+    them in one line).
+
+    A building on a single pendulum with a capacity under one component (:func:`single_with_rim`):
+    ``1d-building`` first, **and the choice depends on its result** — when its peak reaches the
+    capacity the scene is run again here with the rim (:func:`simulate_scene`).
+    """
     design = scene.design
     bearing = getattr(design, "bearing", None)
-    if getattr(design, "superstructure", None) is None or bearing is None or bearing.is_simple:
+    if getattr(design, "superstructure", None) is None:
         return None
+    if bearing is None or bearing.is_simple:  # a single pendulum: with a capacity, its rim when the peak reaches it
+        single = single_with_rim(scene)
+        return None if single is None else (RIM_FIRST_MODEL, _building.MODEL_REASON + (
+            f"; a displacement capacity of {single.ultimate_displacement_m:.4g} m: if the peak reaches it, the run "
+            f"is redone with the rim ({MODEL_NAME}), a choice made on the result"))
     if _refusal(scene) is not None:
         return None
     floors = len(design.superstructure.floors)
@@ -125,8 +163,14 @@ def scene_needs(scene) -> tuple[str, str] | None:
                         "Fenz & Constantinou's series model with rims (linear between events)")
 
 
-def simulate_scene(scene) -> BuildingMultisurfaceResponse:
+def simulate_scene(scene) -> BuildingResponse:
     """The exact 1-D response of the scene's building on its multi-surface bearing.
+
+    A building on a single pendulum with a capacity (:func:`single_with_rim`) runs on the 1-D
+    building (:func:`isolator.solver.building.simulate_scene`); if its peak reaches the capacity,
+    the plate it ran on does not exist there, and the scene is run again here with the single
+    surface and its rim (plastic impact at the capacity, the impulse reported): that result has
+    ``rerun`` true and its own ``model``/``model_reason``, which the registry keeps.
 
     Raises
     ------
@@ -134,14 +178,32 @@ def simulate_scene(scene) -> BuildingMultisurfaceResponse:
         Two horizontal components, a vertical or µ(v) (not modelled under a superstructure).
     """
     design = scene.design
+    single = single_with_rim(scene) if design.bearing is None or design.bearing.is_simple else None
+    if single is not None:
+        free = _building.simulate_scene(scene)
+        capacity = single.ultimate_displacement_m
+        if free.peak_displacement_m < capacity:
+            return free
+        rimmed = _simulate_on(scene, single)
+        rimmed.rerun = True
+        rimmed.model_reason = (f"a building on a single pendulum that reached its displacement capacity "
+                               f"{capacity:.4g} m: on {RIM_FIRST_MODEL} (an unbounded plate) its peak was "
+                               f"{free.peak_displacement_m:.4g} m, so the run was redone with the rim (the exact 1-D "
+                               "building on the series model, plastic impact at the capacity); chosen on that result")
+        return rimmed
     why = _refusal(scene)
     if why is not None:
         raise InvalidSystemError(f"{design.source}: {why}")
+    return _simulate_on(scene, design.bearing)
+
+
+def _simulate_on(scene, bearing) -> BuildingMultisurfaceResponse:
+    design = scene.design
     iso = {key: value for key, value in scene.isolator.items() if value is not None}
     g = float(iso.get("gravity_m_s2", design.gravity_m_s2))
     mass = design.mass_kg
     return simulate_building_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s,
-                                     superstructure=design.superstructure, bearing=design.bearing,
+                                     superstructure=design.superstructure, bearing=bearing,
                                      total_mass_kg=mass, damping_Ns_per_m=mass * float(iso.get("damping_per_mass",
                                                                                                 0.0)),
                                      gravity_m_s2=g, bearing_layout=design.bearing_layout)
@@ -251,7 +313,7 @@ def simulate_building_bearing(acceleration_m_s2, dt_s: float | None = None, *, t
     if any(s.rate_s_per_m is not None and s.mu_slow < s.mu_fast for s in bearing.surfaces):
         raise ValueError("velocity-dependent friction is not part of the exact 1-D building on a multi-surface "
                          "bearing (constant friction per surface)")
-    if np.any(bearing.mu_static != mu):
+    if rbar.size > 1 and np.any(bearing.mu_static != mu):
         raise ValueError(f"static friction above kinetic on the bearing is not modelled: {STATIC_FRICTION_REASON}")
     key = (superstructure, bearing, float(total_mass_kg), float(damping_Ns_per_m), float(gravity_m_s2))
     mats = _MATRICES.get(key)
@@ -275,6 +337,8 @@ def _run(mats: _Matrices, bearing, timing, bearing_layout=None) -> BuildingMulti
                                  f"{longest:g} s (at most {MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light "
                                  "for the first story's stiffness, or a story too stiff for its mass")
     rbar, mu, rim = bearing.elements()
+    # static friction above kinetic on a single surface only (simulate_building_bearing refuses it on more)
+    mu_static = np.ascontiguousarray(bearing.mu_static, dtype=np.float64) if rbar.size == 1 else mu
     tmat = bearing.surface_matrix()
     n, size, nf = acc.size, system.size, system.n_floors
     mon0 = np.ascontiguousarray(system.mon_modes[1])
@@ -302,7 +366,7 @@ def _run(mats: _Matrices, bearing, timing, bearing_layout=None) -> BuildingMulti
             np.ascontiguousarray(system.a_modes[1]), mats.da, phi, p_in, p_vis, np.ascontiguousarray(system.mon_modes[0]),
             mon0,
             mats.dmon, system.q_in, system.q_vis, system.ell_hold, system.weight_N, system.slab_mass_kg, nf, rbar,
-            mu, rim, tmat, system.AG, system.BG, system.F, out_state, out_mon, out_r, out_energy, peak_max,
+            mu, mu_static, rim, tmat, system.AG, system.BG, system.F, out_state, out_mon, out_r, out_energy, peak_max,
             peak_min, ev_time, ev_kind, ev_x, summary, surf_peak, first, u)
         elapsed = time.perf_counter() - start
         n_events = int(summary[_bmk.S_N_EVENTS])
@@ -371,5 +435,52 @@ def _run(mats: _Matrices, bearing, timing, bearing_layout=None) -> BuildingMulti
     )
 
 
-__all__ = ["MODEL_NAME", "BuildingMultisurfaceResponse", "scene_needs", "simulate_building_bearing",
-           "simulate_scene"]
+#: the keys a building run without a rim adds when its design gives a capacity (:func:`say_if_capacity_passed`)
+UNBOUNDED_KEYS = ("ultimate_displacement_reached", "ultimate_displacement_m", "ultimate_first_time_s", "rim_modelled")
+
+
+def say_if_capacity_passed(scene, result) -> None:
+    """Say it when a building's bearing, run without a rim, reached its displacement capacity (in place).
+
+    The 2-D building (``2d-building``) has no rim: past the capacity it runs on as if the concave plate
+    were unbounded.  For a design with a ``[superstructure]`` and a ``displacement_capacity_m`` whose
+    result carries no rim of its own (no ``ultimate_displacement_reached`` field), the result gains
+    :data:`UNBOUNDED_KEYS` in its summary — ``ultimate_displacement_reached`` (peak ≥ the capacity d* =
+    d R_eff/R), the capacity, ``ultimate_first_time_s``, the first sample with |X| ≥ d* (the crossing
+    lies in the sample interval before it; the sample after the largest when no sample passes d*), and
+    ``rim_modelled`` false (the capacity rows then read the peak beyond d*, not a slab held at a rim) —
+    and, when reached, a notice in ``solver_status`` (as the chatter guard says itself): the response
+    after that time is that of an unbounded plate, not modelled.  ``simulate``, ``report``, ``batch``
+    and ``review`` show ``solver_status``; the review's capacity rows fail on the peak and name the notice.
+    """
+    design = scene.design
+    capacity = getattr(design, "displacement_capacity_m", None)
+    if (capacity is None or getattr(design, "superstructure", None) is None
+            or hasattr(result, "ultimate_displacement_reached")):
+        return
+    bearing = getattr(design, "bearing", None)
+    d = float(capacity) if bearing is None else float(bearing.ultimate_displacement_m)
+    if not math.isfinite(d):
+        return
+    x = np.asarray(result.displacement_m, dtype=np.float64)
+    size = np.hypot(x[:, 0], x[:, 1]) if x.ndim == 2 else np.abs(x)
+    reached = bool(result.peak_displacement_m >= d)
+    first = None
+    if reached:
+        past = np.flatnonzero(size >= d)
+        k = int(past[0]) if past.size else min(int(np.argmax(size)) + 1, size.size - 1)
+        first = float(result.time_s[k])
+    result.ultimate_displacement_reached = reached
+    result.ultimate_displacement_m = d
+    result.ultimate_first_time_s = first
+    result.rim_modelled = False  # the review's capacity rows read a peak past d*, not a slab held at a rim
+    result.EXTRA_SUMMARY_KEYS = tuple(result.EXTRA_SUMMARY_KEYS) + UNBOUNDED_KEYS
+    if reached:
+        notice = (f"the bearing reached its displacement capacity {d:.4g} m by t = {first:.4g} s (peak "
+                  f"{result.peak_displacement_m:.4g} m): {result.model or 'this model'} has no rim, so the response "
+                  "after that time is that of an unbounded plate, not modelled")
+        result.message = notice if result.message == "ok" else f"{result.message}; {notice}"
+
+
+__all__ = ["MODEL_NAME", "UNBOUNDED_KEYS", "BuildingMultisurfaceResponse", "say_if_capacity_passed", "scene_needs",
+           "simulate_building_bearing", "simulate_scene", "single_with_rim"]

@@ -231,8 +231,8 @@ def _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, weight, a0,
 @njit(cache=True)
 def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes, pin_modes, pvis_modes, mon_st, mon0,
                                  dmon, q_in, q_vis, ell_hold,
-                                 weight, slab_mass, n_floors, rbar, mu, rim, tmat, idx_ag, idx_bg, idx_f,
-                                 out_state, out_mon, out_r, out_energy, peak_max, peak_min, ev_time, ev_kind, ev_x,
+                                 weight, slab_mass, n_floors, rbar, mu, mu_static, rim, tmat, idx_ag, idx_bg,
+                                 idx_f, out_state, out_mon, out_r, out_energy, peak_max, peak_min, ev_time, ev_kind, ev_x,
                                  summary, surf_peak, state_first_time, u):
     """Exact response of the slab + shear building on a multi-surface bearing.
 
@@ -265,6 +265,9 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
     n_floors : int
     rbar, mu, rim : float64[ne]
         The series elements (radius [m], kinetic friction [-], rim [m]).
+    mu_static : float64[ne]
+        Static friction [-] of the stuck bearing's window (above ``mu`` on a single surface only: at the
+        break-away the force drops from µs W to µk W and the slab starts with the net force (µs − µk) W).
     tmat : float64[ns, ne]
         Displacement on each real surface from the elements' [-].
     idx_ag, idx_bg, idx_f : int
@@ -342,7 +345,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
             hold_d[j] += ell_hold[m] * a_st[m, j]
     for j in range(state_first_time.shape[0]):
         state_first_time[j] = -1.0
-    r_lo, r_hi = stick_window(u, rbar, mu, rim)
+    r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
     _stuck_rows(a_st, mon_st, am, mon, mon_d)
     w[idx_ag] = acc[0]
     matvec(mon, w, y0)
@@ -542,7 +545,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                         w[idx_vb] = 0.0
                         settle(s, u, rbar, mu, rim, reg_r[k])
                         _surface_peaks(u, tmat, surf_peak)
-                        r_lo, r_hi = stick_window(u, rbar, mu, rim)
+                        r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
                         stuck = True
                         x_stuck = x
                         w[idx_f] = 0.0
@@ -560,7 +563,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                     peak_r = max(peak_r, abs(r_end))
                     settle(s, u, rbar, mu, rim, r_end)
                     _surface_peaks(u, tmat, surf_peak)
-                    r_lo, r_hi = stick_window(u, rbar, mu, rim)
+                    r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
                     need = dot(ell_hold, w)
                     if weight * r_lo <= need <= weight * r_hi:
                         stuck = True
@@ -597,7 +600,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                     r_lo = -math.inf
                     r_hi = math.inf
         if status & STATUS_CHATTER and stuck and r_lo == -math.inf:
-            r_lo, r_hi = stick_window(u, rbar, mu, rim)
+            r_lo, r_hi = stick_window(u, rbar, mu_static, rim)
         # ---- sample i + 1 ----
         w[idx_ag] = acc[i + 1]
         for j in range(nw):

@@ -79,16 +79,21 @@ class BuildingOnSeries:
         self.nq = n + 1
         self.c_iso = c_iso
         self.rbar, self.mu, self.rim = b.elements()
+        # the stuck bearing's window: static friction (above kinetic on a single surface only)
+        self.mu_s = np.asarray(b.mu_static, float) if self.rbar.size == 1 else self.mu
         self.tmat = b.surface_matrix()
 
     # ---- the bearing on its elements --------------------------------------------------------
-    def window(self, u):
+    def window(self, u, mu=None):
+        """The F/W range the stuck bearing holds at friction ``mu`` (static: ``self.mu_s``); at the kinetic
+        friction (the default), the levels at which the elements slide."""
+        mu = self.mu if mu is None else mu
         lo, hi = -np.inf, np.inf
         for i in range(u.size):
             if u[i] < self.rim[i]:
-                hi = min(hi, u[i] / self.rbar[i] + self.mu[i])
+                hi = min(hi, u[i] / self.rbar[i] + mu[i])
             if u[i] > -self.rim[i]:
-                lo = max(lo, u[i] / self.rbar[i] - self.mu[i])
+                lo = max(lo, u[i] / self.rbar[i] - mu[i])
         return lo, hi
 
     def starting(self, u, s, level):
@@ -123,7 +128,7 @@ class BuildingOnSeries:
         nq = self.nq
         fns = []
         if st["stuck"]:
-            lo, hi = self.window(st["u"])
+            lo, hi = self.window(st["u"], self.mu_s)
             if math.isfinite(hi):
                 fns.append(("hi", lambda t, y, *a: self.hold(y, a0 + b * t) - self.weight * hi, 1.0))
             if math.isfinite(lo):
@@ -205,12 +210,13 @@ class BuildingOnSeries:
                 settle(y[0])
                 if which == "stop":
                     y[nq] = 0.0
+                    lo_s, hi_s = self.window(st["u"], self.mu_s)
                     lo, hi = self.window(st["u"])
-                    if lo * self.weight <= d <= hi * self.weight:
+                    if lo_s * self.weight <= d <= hi_s * self.weight:
                         st["stuck"] = True
                         events.append((time_now, "stick"))
                     else:
-                        s = 1.0 if d > hi * self.weight else -1.0
+                        s = 1.0 if d > hi_s * self.weight else -1.0
                         leave(s, hi if s > 0 else lo, y[0])
                         events.append((time_now, "reversal"))
                     continue
@@ -247,9 +253,10 @@ class BuildingOnSeries:
                     # friction level (it was decelerating hard): a start beyond the window, which solve_ivp's
                     # events (sign changes after the start) would not see
                     d = self.hold(y, a0 + b * t)
+                    lo_s, hi_s = self.window(st["u"], self.mu_s)
                     lo, hi = self.window(st["u"])
-                    if not lo * self.weight <= d <= hi * self.weight:
-                        s = 1.0 if d > hi * self.weight else -1.0
+                    if not lo_s * self.weight <= d <= hi_s * self.weight:
+                        s = 1.0 if d > hi_s * self.weight else -1.0
                         leave(s, hi if s > 0 else lo, y[0])
                         events.append((time_now, "breakaway"))
             samples.append(y.copy())
