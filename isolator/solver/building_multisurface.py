@@ -178,8 +178,10 @@ def simulate_scene(scene) -> BuildingResponse:
         Two horizontal components, a vertical or µ(v) (not modelled under a superstructure).
     """
     design = scene.design
-    single = single_with_rim(scene) if design.bearing is None or design.bearing.is_simple else None
-    if single is not None:
+    if design.bearing is None or design.bearing.is_simple:
+        single = single_with_rim(scene)
+        if single is None:
+            raise LookupError("this model takes a building on a single pendulum only with a capacity (scene_needs)")
         free = _building.simulate_scene(scene)
         capacity = single.ultimate_displacement_m
         if free.peak_displacement_m < capacity:
