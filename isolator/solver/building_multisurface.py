@@ -132,9 +132,21 @@ def single_with_rim(scene):
     isolator.bearing.Bearing or None
     """
     design = scene.design
-    if getattr(design, "superstructure", None) is None:
+    if getattr(design, "superstructure", None) is None or getattr(design, "displacement_capacity_m", None) is None:
         return None
-    return rim_of_single(dataclasses.replace(scene, design=dataclasses.replace(design, superstructure=None)))
+    return rim_of_single(dataclasses.replace(scene, design=_WithoutFloors(design)))
+
+
+class _WithoutFloors:
+    """A design seen without its superstructure (what :func:`isolator.solver.multisurface.rim_of_single` reads)."""
+
+    superstructure = None
+
+    def __init__(self, design):
+        self._design = design
+
+    def __getattr__(self, name):
+        return getattr(self._design, name)
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
