@@ -506,7 +506,8 @@ def verdicts(analysis: Analysis) -> list[str]:
     out = []
     if not analysis.paper_applies:
         ratio = analysis.displacement_demand_ratio
-        reached = getattr(r, "ultimate_displacement_reached", False)  # a bearing with rims (solver.multisurface)
+        # a bearing held at its rims (solver.multisurface); a building without a rim past its capacity says so itself
+        reached = getattr(r, "ultimate_displacement_reached", False) and getattr(r, "rim_modelled", True)
         if ratio is not None and not reached:  # at the rim the ratio is 1 by construction: the sentence below
             out.append(_capacity_sentence(analysis, ratio))
         if reached:

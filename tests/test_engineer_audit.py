@@ -10,6 +10,7 @@ plan 34 m × 26 m, actual eccentricity 0.5 m, R = 8 (R_I = 3R/8 = 3 → 2).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -291,7 +292,11 @@ def review(design, tmp_path_factory):
         f"x = \"{SUITE / 'lomaprieta1989_APEEL2' / 'np01002p_4225a_a.smc'}\"\n"
         f"y = \"{SUITE / 'lomaprieta1989_APEEL2' / 'np01002p_4225c_a.smc'}\"\n"
         f"z = \"{SUITE / 'lomaprieta1989_APEEL2' / 'np01002p_4225b_a.smc'}\"\n")
-    result = run_review(design, load_target(resolve_example("target", "example")), load_suite(folder / "suite.toml"),
+    # the example's 1.4 m capacity is passed on PTS (1.574 / 1.477 m at the lower / upper bound): the 2-D building has
+    # no rim, so those analyses say so and the rows over them are not checked; the hand values here are the rows'
+    # over usable analyses, so the capacity is set beyond every peak (it enters no row checked below)
+    result = run_review(dataclasses.replace(design, displacement_capacity_m=2.0),
+                        load_target(resolve_example("target", "example")), load_suite(folder / "suite.toml"),
                         jobs=1, nominal=False, parameters={"horizontal_only": True})
     return result.to_dict()
 

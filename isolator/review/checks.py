@@ -289,7 +289,7 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
             said_d = f"D = {corner}{d_cm:.4g} m = {d:.4g} m" if corner else f"D = {d:.4g} m"
             if d > largest:
                 largest, where = d, f"{name}, {bound} bound" + (f" ({said_d})" if corner else "")
-            if r.get("ultimate_displacement_reached"):
+            if r.get("ultimate_displacement_reached") and r.get("rim_modelled", True):  # held at a modelled rim
                 impulse = r.get("impact_impulse_m_s")
                 said = "" if impulse is None else (f"; impulse {impulse * mass_kg:.4g} N·s" if mass_kg
                                                    else f"; impulse {impulse:.4g} m/s per unit mass")
@@ -326,7 +326,7 @@ def record_capacity(analyses: dict, capacity_m: float | None, clause: str = "ASC
 def ultimate_reached(analyses: dict) -> list[str]:
     """"pair (bound)" of every analysis that reached the bearing's ultimate displacement."""
     return [f"{name} ({bound})" for bound, results in analyses.items() for name, r in results.items()
-            if "error" not in r and r.get("ultimate_displacement_reached")]
+            if "error" not in r and r.get("ultimate_displacement_reached") and r.get("rim_modelled", True)]
 
 
 def never_pass_at_ultimate(row: dict, reached: list[str]) -> dict:

@@ -535,3 +535,14 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
     summary[S_STATUS] = status
     summary[S_N_SERIES] = n_series
     summary[S_N_LOCATED] = n_located
+
+
+#: The piece helpers under public names, for the building on a multi-surface bearing
+#: (:mod:`isolator.solver.building_multisurface_kernel`), which propagates the same augmented system.
+krylov = _krylov
+state_at = _state_at
+poly = _poly
+poly_root = _poly_root
+quadratic_integral = _quadratic_integral
+dot = _dot
+matvec = _matvec

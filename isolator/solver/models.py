@@ -32,7 +32,10 @@ the multi-surface module runs the scene again with the rim; that result has ``re
 keeps its own ``model`` (``1d-multisurface``) and ``model_reason`` (:func:`simulate`).  The same holds in the
 plane: a single pendulum with a capacity that needs the 2-D engine runs ``2d`` (its reason says so), and when
 its peak reaches the capacity :mod:`isolator.solver.planar_rim` runs it again with the rim (``2d+rim``,
-``rerun`` true).
+``rerun`` true).  A building on a single pendulum with a capacity under one component runs ``1d-building``,
+and past the capacity :mod:`isolator.solver.building_multisurface` runs it again with the rim
+(``1d-building-multisurface``, ``rerun`` true).  The 2-D building has no rim: past the capacity its result says
+so (:func:`isolator.solver.building_multisurface.say_if_capacity_passed`, a notice in ``solver_status``).
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ from dataclasses import dataclass
 
 from isolator.solver import (
     building,
+    building_multisurface,
     multisurface,
     multisurface_rate,
     planar,
@@ -82,6 +86,8 @@ MODELS: dict[str, Model] = {model.name: model for model in (
           "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
           "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
+    Model(building_multisurface.MODEL_NAME, building_multisurface.scene_needs, building_multisurface.simulate_scene,
+          "shear building on a double or triple friction pendulum, one component: exact between events, rims"),
     Model(multisurface.MODEL_NAME, multisurface.scene_needs, multisurface.simulate_scene,
           "mass on a double or triple friction pendulum (series model, rims), one component: closed forms"),
     Model(planar_building.MODEL_NAME, planar_building.scene_needs, planar_building.simulate_scene,
@@ -146,6 +152,7 @@ def simulate(scene: Scene) -> SolverResult:
     result = model.run(scene)
     if not getattr(result, "rerun", False):  # a model that ran the scene again on another names that one itself
         result.model, result.model_reason = name, reason
+    building_multisurface.say_if_capacity_passed(scene, result)  # a building run past its capacity without a rim
     return result
 
 

@@ -204,7 +204,7 @@ def simulate_scene(scene) -> SolverResult:
         return rimmed
     if getattr(scene.design, "superstructure", None) is not None:
         raise DesignError(f"{scene.design.source}: a {scene.design.bearing.kind} bearing under a [superstructure] is "
-                          "not modelled (1d-multisurface carries a rigid mass)")
+                          "not modelled (1d-multisurface carries a rigid mass; the registry runs it on 1d-building-multisurface)")
     if scene.has_y or scene.has_z:
         raise RecordInputError(f"a {scene.design.bearing.kind} bearing is modelled for one horizontal component "
                                "only (1d-multisurface); the 2-D model is 2d-multisurface")

@@ -373,7 +373,7 @@ def _registry_has(model: str) -> bool:
 
 SMALL_BUILDING = {
     "name": "2-story building, 4 bearings", "mass_kg": 3.0e6, "radius_m": 2.5, "mu_static": 0.06, "mu_kinetic": 0.05,
-    "displacement_capacity_m": 1.0, "lambda_max": 1.2, "lambda_min": 0.85, "plan": {"b_m": 10.0, "d_m": 10.0},
+    "displacement_capacity_m": 2.0, "lambda_max": 1.2, "lambda_min": 0.85, "plan": {"b_m": 10.0, "d_m": 10.0},
     "superstructure": {"damping_ratio": 0.05, "response_modification_R": 4.0, "floor": [
         {"mass_kg": 1.2e6, "story_height_m": 6.0, "stiffness_x_N_per_m": 1.0e9, "stiffness_y_N_per_m": 8.0e8},
         {"mass_kg": 1.0e6, "story_height_m": 6.0, "stiffness_x_N_per_m": 6.0e8}]},
