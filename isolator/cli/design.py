@@ -8,6 +8,7 @@ import typer
 
 from isolator.cli.common import (
     app,
+    check_given_scale_factors,
     check_outputs,
     collector_skips_existing_objects,
     echo_table,
@@ -137,6 +138,7 @@ def design(
         check_outputs([str(p) for k, p in paths.items() if k != "store"], [p for p in inputs if Path(p).is_file()])
         the_target = load_target(target_path)
         the_suite = load_suite(suite_args, units=units, trim=trim)
+        check_given_scale_factors(the_suite)
     except (DesignError, ReviewError, RecordError, UnitsError) as err:
         _user_error(str(err))
 
