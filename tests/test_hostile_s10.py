@@ -117,3 +117,27 @@ def test_an_engineer_scale_factor_past_the_pga_range_is_refused_before_any_analy
     assert f"{suite}: pair 'a': scale_factor = {float(factor):g} takes its PGA of {pga:.4g} g to" in lines[0], lines[0]
     assert "outside [1e-06, 50] g" in lines[0]
     assert not (tmp_path / "out.pdf").exists()
+
+
+def test_bench_over_the_root_folder_checks_its_outputs_without_walking_the_tree(tmp_path):
+    """``bench --records /``: main walked the whole tree to list the inputs and died on /proc's unreadable links
+    (PermissionError traceback).  Now the five outputs are checked alone: here bench.csv is a folder, refused in one
+    line before any work."""
+    (tmp_path / "out" / "bench.csv").mkdir(parents=True)
+    result = RUNNER.invoke(app, ["bench", "--records", "/", "--out", str(tmp_path / "out"), "--quick"])
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert result.exit_code == 2, result.output
+    assert len(lines) == 1 and str(tmp_path / "out" / "bench.csv") in lines[0], result.output
+
+
+def test_bench_output_linked_into_the_records_is_an_input(tmp_path):
+    """An output that resolves into the records' tree (a link to a record) is still refused as an input."""
+    (tmp_path / "records").mkdir()
+    (tmp_path / "records" / "r.AT2").write_text("a record\n")
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / "bench.md").symlink_to(tmp_path / "records" / "r.AT2")
+    result = RUNNER.invoke(app, ["bench", "--records", str(tmp_path / "records"), "--out", str(tmp_path / "out")])
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert result.exit_code == 2, result.output
+    assert len(lines) == 1 and "is an input" in lines[0], result.output
+    assert (tmp_path / "records" / "r.AT2").read_text() == "a record\n"
