@@ -141,3 +141,18 @@ def test_bench_output_linked_into_the_records_is_an_input(tmp_path):
     assert result.exit_code == 2, result.output
     assert len(lines) == 1 and "is an input" in lines[0], result.output
     assert (tmp_path / "records" / "r.AT2").read_text() == "a record\n"
+
+
+@pytest.mark.parametrize("key", ["mu_static", "radius_m", "displacement_capacity_m"])
+def test_design_varying_a_key_the_bearing_surfaces_replace_is_one_line(tmp_path, key):
+    """``design --vary mu_static=…`` of a triple pendulum: main analysed every candidate to the same error ('key
+    'mu_static' with a [bearing] table') and wrote a chart of none, exit 0."""
+    suite, _ = _suite(tmp_path, "1.0")
+    design = tmp_path / "tfp.toml"
+    design.write_text(TRIPLE)
+    result = RUNNER.invoke(app, ["design", "-d", str(design), "-t", "example", "-s", str(suite), "--vary",
+                                 f"{key}=0.05:0.1:2", "-o", str(tmp_path / "c.pdf"), "-j", "1"])
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert result.exit_code == 2, result.output
+    assert len(lines) == 1 and f"--vary {key}: {design} gives its bearing surface by surface" in lines[0], lines
+    assert not (tmp_path / "c.pdf").exists()
