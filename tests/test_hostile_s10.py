@@ -156,3 +156,15 @@ def test_design_varying_a_key_the_bearing_surfaces_replace_is_one_line(tmp_path,
     assert result.exit_code == 2, result.output
     assert len(lines) == 1 and f"--vary {key}: {design} gives its bearing surface by surface" in lines[0], lines
     assert not (tmp_path / "c.pdf").exists()
+
+
+def test_a_building_of_thousands_of_floors_is_refused_at_once(tmp_path):
+    """2000 floors of 1 kg: main read them and ran past 120 s (the solve grows with the cube of the floors)."""
+    floor = "[[superstructure.floor]]\nmass_kg = 1.0\nstory_height_m = 3.0\nstiffness_x_N_per_m = 6.0e8\n"
+    head, rest = BUILDING.split("[[superstructure.floor]]", 1)
+    layout = "[[bearing_position]]" + rest.split("[[bearing_position]]", 1)[1]
+    _refused(tmp_path, head + floor * 2000 + layout, "[superstructure]: 2000 [[superstructure.floor]] entries, "
+             "more than 200")
+    from isolator.superstructure import MAX_FLOORS
+
+    assert MAX_FLOORS >= 163  # the tallest building built (Burj Khalifa, 163 floors) still reads
