@@ -49,6 +49,8 @@ from isolator.solver.multisurface_series import (
     stick_window,
     surface_matrix,
 )
+from isolator.solver.system import MAX_STIFFNESS_PER_MASS
+from isolator.units import STANDARD_GRAVITY
 
 #: The number of surfaces of each bearing type.
 SURFACES_PER_TYPE = {"single": 1, "double": 2, "triple": 4}
@@ -481,7 +483,7 @@ class Bearing:
                                                     mu_fast=scaled(s.mu_fast)) for s in self.surfaces))
 
 
-def parse_bearing(table, fail) -> Bearing:
+def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearing:
     """Validate a ``[bearing]`` table.
 
     Parameters
@@ -490,6 +492,8 @@ def parse_bearing(table, fail) -> Bearing:
         The table as read from TOML.
     fail : callable
         ``fail(message) -> DesignError`` (prefixes the file name).
+    gravity_m_s2 : float
+        g [m/s²]: a surface's stiffness per mass g/R_eff is held to the rigid block's limit.
 
     Returns
     -------
@@ -515,6 +519,12 @@ def parse_bearing(table, fail) -> Bearing:
     if len(entries) != n:
         raise fail(f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}, got {len(entries)}")
     surfaces = tuple(_surface(entry, i + 1, kind, fail) for i, entry in enumerate(entries))
+    for i, surface in enumerate(surfaces, start=1):
+        # as a design's radius_m: g/R_eff = 1e301 1/s² (R = 1e-300 m) overflowed the solver's sub-step count
+        kappa = gravity_m_s2 / surface.effective_radius_m
+        if not kappa <= MAX_STIFFNESS_PER_MASS:
+            raise fail(f"bearing surface {i}: R_eff = {surface.effective_radius_m:g} m gives g/R_eff = {kappa:.3g} "
+                       f"1/s², above {MAX_STIFFNESS_PER_MASS:g} 1/s²: no isolator is that stiff")
     rate_law = [s.rate_s_per_m is not None and s.mu_slow < s.mu_fast for s in surfaces]
     if kind != "single" and any(rate_law) and not all(rate_law):
         i = rate_law.index(False) + 1

@@ -273,7 +273,7 @@ class Design:
         if "bearing" in mapping:  # surface by surface; the top-level keys become its equivalent single pendulum
             from isolator.bearing import equivalent_design_keys, parse_bearing
 
-            bearing = parse_bearing(mapping["bearing"], fail)
+            bearing = parse_bearing(mapping["bearing"], fail, float(gravity_m_s2))
             mapping = equivalent_design_keys(bearing, mapping, fail)
 
         def number(key: str, *, minimum: float = 0.0, strict: bool = False, required: bool = False):

@@ -48,9 +48,13 @@ def bench(
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         user_error(f"{out}: cannot create the output folder ({err.strerror or err})")
-    # --out may be the records folder itself: none of the five files may replace a record
-    check_outputs([out_dir / name for name in BENCH_FILES],
-                  [path for path in records_dir.rglob("*") if path.is_file()])
+    # --out may be the records folder itself: none of the five files may replace a record.  An output is a record
+    # when it resolves into the records' tree (walking that tree was unbounded, and --records / met /proc's
+    # unreadable links with a traceback)
+    root = os.path.realpath(records_dir)
+    outputs = [out_dir / name for name in BENCH_FILES]
+    check_outputs(outputs, [path for path in outputs if os.path.isfile(path) and os.path.commonpath(
+        [root, os.path.realpath(path)]) == root])
     started = time.perf_counter()
     progress = None if as_json else (lambda line: typer.echo(line, err=True))
     cases = bench_module.bench_cases(quick, records_dir)

@@ -269,6 +269,23 @@ def check_static_friction(value, flag: str = "--mu-s") -> None:
                    "mu_static (sliding isolators have 0.02-0.15)")
 
 
+def check_given_scale_factors(suite) -> None:
+    """Refuse a SUITE.toml ``scale_factor`` that takes its pair's PGA outside [1e-6, 50] g (``--scale-to-pga``'s
+    range): a factor of 1e300 was analysed and its spectrum "passed" 1.5e299 × the target (session 10 sweep)."""
+    from isolator.errors import ReviewError
+    from isolator.motion import MAX_ABS_ACCELERATION_G
+    from isolator.motion.ground_motion import MIN_TARGET_PGA_G
+    from isolator.units import STANDARD_GRAVITY
+
+    for pair in suite.pairs:
+        if pair.scale_factor is not None:
+            pga_g = pair.pga_m_s2 / STANDARD_GRAVITY
+            if not MIN_TARGET_PGA_G <= pair.scale_factor * pga_g <= MAX_ABS_ACCELERATION_G:
+                raise ReviewError(f"{suite.source}: pair '{pair.name}': scale_factor = {pair.scale_factor:g} takes "
+                                  f"its PGA of {pga_g:.4g} g to {pair.scale_factor * pga_g:.4g} g, outside "
+                                  f"[{MIN_TARGET_PGA_G:g}, {MAX_ABS_ACCELERATION_G:g}] g")
+
+
 def check_outputs(outputs, inputs, *, streams=()) -> None:
     """Before any work: refuse outputs that resolve to an input or are not regular files.
 

@@ -8,6 +8,7 @@ import typer
 
 from isolator.cli.common import (
     app,
+    check_given_scale_factors,
     check_outputs,
     collector_skips_existing_objects,
     echo_table,
@@ -135,8 +136,10 @@ def design(
         suite_args = [resolve_example("suite", s) for s in suite]
         inputs = [isolator_file, target_path, *suite_args]
         check_outputs([str(p) for k, p in paths.items() if k != "store"], [p for p in inputs if Path(p).is_file()])
+        _refuse_varying_replaced_keys(isolator_file, ranges)
         the_target = load_target(target_path)
         the_suite = load_suite(suite_args, units=units, trim=trim)
+        check_given_scale_factors(the_suite)
     except (DesignError, ReviewError, RecordError, UnitsError) as err:
         _user_error(str(err))
 
@@ -195,3 +198,18 @@ def design(
         typer.echo(f"lost: {result.n_lost} candidates (a worker died); run the same command again to retry them",
                    err=True)
         raise typer.Exit(1)
+
+
+def _refuse_varying_replaced_keys(isolator_file: str, ranges) -> None:
+    """A design given surface by surface ([bearing]) has no top-level radius, friction or capacity: varying one
+    made every candidate fail alike ("could not be analysed"), exit 0, instead of one line (session 10 sweep)."""
+    from isolator.bearing import REPLACED_DESIGN_KEYS
+    from isolator.design import load_toml
+    from isolator.errors import DesignError
+
+    mapping = load_toml(isolator_file, "design file", DesignError)
+    replaced = [key for key, _ in ranges if key in REPLACED_DESIGN_KEYS]
+    if isinstance(mapping, dict) and "bearing" in mapping and replaced:
+        raise DesignError(f"--vary {replaced[0]}: {isolator_file} gives its bearing surface by surface ([bearing]); "
+                          f"its [[bearing.surface]] entries replace '{replaced[0]}': vary a key the design keeps "
+                          "(mass_kg, damping_ratio, the property factors)")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app, parse_set
+from isolator.cli.common import app, check_given_scale_factors, parse_set
 from isolator.cli.common import user_error as _user_error
 
 
@@ -101,6 +101,7 @@ def review(
         target_file = resolve_example("target", target)
         refuse_review_over_inputs(output, no_cache, [design, target_file, *suite_args])
         the_suite = load_suite(suite_args, units=units, trim=trim)
+        check_given_scale_factors(the_suite)
         if scaling is None:
             try:
                 scaling = default_scaling(the_suite.names, the_suite.given_factors)
