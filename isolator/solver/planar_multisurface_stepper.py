@@ -75,6 +75,17 @@ MAX_STEPS_PER_INTERVAL = 3_000_000
 #: estimate (progress is guaranteed; counted in the summary's S_STEPS_MULTI slot).  Not a hard floor: a step taken at
 #: it with an error estimate above 1 shrinks the next below it (docs/multisurface.md, "Steps below the floor")
 H_MIN_FRACTION = 1e-6
+#: the arrival at the ultimate displacement is an event of the steps (arrival_time, arrive): the last ARRIVAL_FRACTION
+#: of the sample interval before it is taken in one move onto the ultimate circle, the impact after it.  Every group
+#: on its rim closing into alignment with the mass moving outward, the rims' reaction grows as 1/sin of the rims'
+#: angles, the step the error test allows is a fixed fraction of the time left (a Zeno sequence: Chuetsu-oki 65025
+#: ×1.556 with Fenz & Constantinou's TFP at µ × 0.765, step_tol 1e-9, 24.4088 s: 0.04–0.07 of it a step, ~3,600 steps
+#: from 2.6e-3 s before the arrival to a step of 1.6e-15 s, where Newton's α = 1/h² lost the force: "found no force";
+#: docs/multisurface.md, "The arrival at the ultimate as an event of the steps").  The floor's size, so that no step
+#: below it is needed.  The reaction's impulse over the move (∝ 1/√(time left): 2 h g r·ē) is taken off the outward
+#: velocity before the impact, so the impulse reported is the arrival's whatever the move's length (measured: the
+#: move started 1e-8 … 1e-11 s before the arrival, the same to 2e-9 m/s)
+ARRIVAL_FRACTION = H_MIN_FRACTION
 
 #: be_step's flag: the step's force was not found (Newton did not converge in MAX_NEWTON iterations)
 UNSOLVED = 1 << 40
@@ -851,6 +862,65 @@ def ultimate_impact(y, out, g, rb):
 
 
 @njit(cache=True)
+def arrival_time(y, rim):
+    """The time [s] the mass in the state y takes to the ultimate circle |X| = Σ c̄ at its outward speed, every group
+    on its rim (not yet along one direction: :func:`at_ultimate`) and the mass moving outward; -1 otherwise.
+
+    The gap to the circle, Σ c̄ − |Σ ū|, falls as the groups close into alignment (∝ the square of their angles);
+    measured on Chuetsu-oki 65025 (the lower bound, 24.4088 s) this first-order estimate matched the steps' own
+    arrival to 1e-4 of it from 4e-7 s down to 1e-11 s before it (the outward speed 0.8925 → 0.8922 m/s)."""
+    ng = rim.shape[0]
+    if at_ultimate(y, rim):
+        return -1.0
+    total = 0.0
+    for k in range(ng):
+        if y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 < (rim[k] * (1.0 - RIM_ON)) ** 2:
+            return -1.0
+        total += rim[k]
+    s1, s2, sn = _groups_sum(y, ng)
+    if not sn > 0.0:
+        return -1.0
+    vn = (y[Y_V] * s1 + y[Y_V + 1] * s2) / sn
+    if not vn > 0.0:
+        return -1.0
+    return max(total - sn, 0.0) / vn
+
+
+@njit(cache=True)
+def arrive(y, dt, abar_x, abar_y, g, c, mu, rim, out):
+    """The move of the last ``dt`` [s] before the ultimate into out: X moved at the velocity of y, every group put on
+    its rim along X's direction, the work of that move booked (input −ā·ΔX, friction Σ g µ_k |Δū_k|, viscous
+    c|ΔX|²/dt); the velocity is left for :func:`ultimate_impact` (its outward part removed, the energy defect booked
+    as the impact's), the carried slot cleared.  The rims' reaction over dt (∝ 1/√ of the time left) is not in it:
+    the caller takes its impulse, 2 dt g r·ē, off the outward velocity before the impact."""
+    ng = rim.shape[0]
+    for j in range(out.shape[0]):
+        out[j] = y[j]
+    x1 = y[Y_X] + dt * y[Y_V]
+    x2 = y[Y_X + 1] + dt * y[Y_V + 1]
+    xn = math.sqrt(x1 * x1 + x2 * x2)
+    e1 = x1 / xn
+    e2 = x2 / xn
+    dx1 = 0.0
+    dx2 = 0.0
+    fric = 0.0
+    for k in range(ng):
+        d1 = rim[k] * e1 - y[Y_U + 2 * k]
+        d2 = rim[k] * e2 - y[Y_U + 2 * k + 1]
+        out[Y_U + 2 * k] = rim[k] * e1
+        out[Y_U + 2 * k + 1] = rim[k] * e2
+        dx1 += d1
+        dx2 += d2
+        fric += g * mu[k] * math.sqrt(d1 * d1 + d2 * d2)
+    out[Y_X] = y[Y_X] + dx1
+    out[Y_X + 1] = y[Y_X + 1] + dx2
+    out[Y_EIN] = y[Y_EIN] - (abar_x * dx1 + abar_y * dx2)
+    out[Y_EF] = y[Y_EF] + fric
+    out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / dt
+    out[carry_slot(ng)] = 0.0
+
+
+@njit(cache=True)
 def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales,
                                 out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
     """Response of a mass on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
@@ -957,52 +1027,89 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                     ev_t[n_ev - 1] = t[i] + tau
                     ev_k[n_ev - 1] = EV_BREAKAWAY
             h = min(h, hi - tau)
+            # the arrival at the ultimate (every group on its rim closing into alignment, the mass moving outward): the
+            # steps end ARRIVAL_FRACTION × hi before it and the last of it is one move (arrive), the impact after it
+            jump = False
+            h_keep = h
+            t_arr = arrival_time(y, rim)
+            if t_arr > 0.0:
+                t_jump = ARRIVAL_FRACTION * hi
+                if 1.01 * t_jump < t_arr < t_jump + h and t_arr - t_jump < hi - tau:
+                    h = t_arr - t_jump
+                elif (t_arr <= 1.01 * t_jump and t_arr < hi - tau
+                      and 2.0 * t_arr * g * math.sqrt(r[0] * r[0] + r[1] * r[1])
+                      < (y[Y_V] * y[Y_X] + y[Y_V + 1] * y[Y_X + 1]) / math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)):
+                    # (and the force of the last step could not stop the outward speed in that time)
+                    jump = True
+                    h = t_arr
             last_step = h >= hi - tau
             # at or below the floor a step is taken whatever its error estimate (progress; counted in S_STEPS_MULTI)
             at_floor = not h > h_floor
-            # mean ground acceleration over [τ, τ+h], its halves (linear inside the sample interval)
-            am_x = ax[i] + slope_x * (tau + 0.5 * h)
-            am_y = ay[i] + slope_y * (tau + 0.5 * h)
-            m1 = be_step(y, h, am_x, am_y, g, c, rb, mu, rim, r, y1, r1)
-            mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h), g, c,
-                         rb, mu, rim, r1, yh, rh)
-            m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
-                         c, rb, mu, rim, rh, y2, r2)
-            work += r1[2] + rh[2] + r2[2]
-            if work > max_evals:
-                status |= STATUS_WORK
-                fail_t = t[i] + tau
-                summary[S_FAIL_RIMS] = popcount(rim_before)
-                break
-            if (m1 | mh | m2) & UNSOLVED:
-                # Newton did not converge (seen with sliders on their rims pointing different ways at the
-                # ultimate): the step is refused and retried at a quarter (as an implicit integrator refuses a step
-                # whose Newton iteration fails); at the floor the run stops with the time rather than go on from a
-                # wrong force.  (Chuetsu-oki 65025 ×1.556, the review's nominal bound at step_tol 1e-8: one solve at
-                # 30.6036 s stopped the run, every group on its rim; the same code compiled apart went past it)
-                if not at_floor:
-                    n_rej += 1
-                    h = max(0.25 * h, h_floor)
-                    continue
-                status |= STATUS_UNSOLVED
-                fail_t = t[i] + tau
-                summary[S_FAIL_RIMS] = popcount(rim_before)
-                break
-            xs = tol * max(peak_x, x_floor)
-            vs = tol * max(peak_v, v_floor)
-            err = 0.0
-            for j in range(2):
-                err = max(err, abs(y2[Y_X + j] - y1[Y_X + j]) / xs, abs(y2[Y_V + j] - y1[Y_V + j]) / vs)
-            if not (m1 == mh and mh == m2 and m2 == (low << ng | low)):
-                # the groups' split of X, except where every group slides along its rim in the three solves: there
-                # the force sits on all their friction edges at once (over-determined: each pair of them fixes r),
-                # the split between them is slaved to the motion and relaxes as fast as the steps' α, and the
-                # full and half steps differ only in it (Chuetsu-oki 65025 ×1.556, nominal friction, 26.2573 s:
-                # the split 0.81 of the tolerance, X 4.6e-6, V 1.7e-4 of theirs; the steps fell to 6.5e-7 s with
-                # ~7,000 gradients each until the work bound).  On the rims |ū_k| = c̄_k: the stored energy does
-                # not depend on the split, and the friction work it does is in the balance
-                for k in range(2 * ng):
-                    err = max(err, abs(y2[Y_U + k] - y1[Y_U + k]) / xs)
+            dv_jump = 0.0
+            if jump:
+                arrive(y, h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), g, c, mu, rim, y2)
+                # the rims' reaction over the move, taken off the outward velocity before the impact: it grows as
+                # 1/√(time left) (the gap closes ∝ the rims' angles², the reaction ∝ 1/angle), so its impulse over
+                # h is 2 h g r·ē with r the last step's force.  Measured (65025, lower bound, 24.4088 s, the steps'
+                # loop in Python at step_tol 1e-9, the move started 1e-8 / 1e-9 / 1e-10 / 1e-11 s before the
+                # arrival): the outward speed there 0.8922624 / 0.8922288 / 0.8922182 / 0.8922149 m/s, less this
+                # impulse 0.89221332 m/s to 2e-9 at all four
+                xn = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
+                rn = (r[0] * y[Y_X] + r[1] * y[Y_X + 1]) / xn
+                if rn > 0.0:
+                    y2[Y_V] -= 2.0 * h * g * rn * y[Y_X] / xn
+                    y2[Y_V + 1] -= 2.0 * h * g * rn * y[Y_X + 1] / xn
+                dv_jump = ultimate_impact(y, y2, g, rb)
+                m1 = low << ng | low
+                mh = m1
+                m2 = m1
+                r2[0] = -(ax[i] + slope_x * (tau + h)) / g
+                r2[1] = -(ay[i] + slope_y * (tau + h)) / g
+                err = 0.0
+            else:
+                # mean ground acceleration over [τ, τ+h], its halves (linear inside the sample interval)
+                am_x = ax[i] + slope_x * (tau + 0.5 * h)
+                am_y = ay[i] + slope_y * (tau + 0.5 * h)
+                m1 = be_step(y, h, am_x, am_y, g, c, rb, mu, rim, r, y1, r1)
+                mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h), g, c,
+                             rb, mu, rim, r1, yh, rh)
+                m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
+                             c, rb, mu, rim, rh, y2, r2)
+                work += r1[2] + rh[2] + r2[2]
+                if work > max_evals:
+                    status |= STATUS_WORK
+                    fail_t = t[i] + tau
+                    summary[S_FAIL_RIMS] = popcount(rim_before)
+                    break
+                if (m1 | mh | m2) & UNSOLVED:
+                    # Newton did not converge (seen with sliders on their rims pointing different ways at the
+                    # ultimate): the step is refused and retried at a quarter (as an implicit integrator refuses a step
+                    # whose Newton iteration fails); at the floor the run stops with the time rather than go on from a
+                    # wrong force.  (Chuetsu-oki 65025 ×1.556, the review's nominal bound at step_tol 1e-8: one solve at
+                    # 30.6036 s stopped the run, every group on its rim; the same code compiled apart went past it)
+                    if not at_floor:
+                        n_rej += 1
+                        h = max(0.25 * h, h_floor)
+                        continue
+                    status |= STATUS_UNSOLVED
+                    fail_t = t[i] + tau
+                    summary[S_FAIL_RIMS] = popcount(rim_before)
+                    break
+                xs = tol * max(peak_x, x_floor)
+                vs = tol * max(peak_v, v_floor)
+                err = 0.0
+                for j in range(2):
+                    err = max(err, abs(y2[Y_X + j] - y1[Y_X + j]) / xs, abs(y2[Y_V + j] - y1[Y_V + j]) / vs)
+                if not (m1 == mh and mh == m2 and m2 == (low << ng | low)):
+                    # the groups' split of X, except where every group slides along its rim in the three solves: there
+                    # the force sits on all their friction edges at once (over-determined: each pair of them fixes r),
+                    # the split between them is slaved to the motion and relaxes as fast as the steps' α, and the
+                    # full and half steps differ only in it (Chuetsu-oki 65025 ×1.556, nominal friction, 26.2573 s:
+                    # the split 0.81 of the tolerance, X 4.6e-6, V 1.7e-4 of theirs; the steps fell to 6.5e-7 s with
+                    # ~7,000 gradients each until the work bound).  On the rims |ū_k| = c̄_k: the stored energy does
+                    # not depend on the split, and the friction work it does is in the balance
+                    for k in range(2 * ng):
+                        err = max(err, abs(y2[Y_U + k] - y1[Y_U + k]) / xs)
             n_steps += 1
             if err > 1.0:
                 if not at_floor:
@@ -1017,7 +1124,7 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             # combination (the chord of two points on it lies inside by O(h²)), X moved with it
             for j in range(ny):
                 y0[j] = y[j]
-            if (m1 == mh and mh == m2
+            if (not jump and m1 == mh and mh == m2
                     and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
                 for j in range(ny):
                     y[j] = 2.0 * y2[j] - y1[j]
@@ -1062,6 +1169,8 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                 for k in range(ng):
                     f_max = max(f_max, math.sqrt(y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2) / rb[k] + mu[k])
                 dv = math.sqrt((y[Y_V] - y0[Y_V]) ** 2 + (y[Y_V + 1] - y0[Y_V + 1]) ** 2)
+                if jump:
+                    dv = dv_jump  # the impact's alone (the rims' reaction before it is not an impulse)
                 if y[Y_EIMP] != y0[Y_EIMP]:
                     # an arrival's impact (ultimate_impact books its energy in the step, and only an arrival's: a
                     # slide along the ultimate circle keeps the mass on it without one); its velocity change is
@@ -1134,7 +1243,7 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             surface_peaks(ub, rb, members, tmat, surf_peak)
             # (a step accepted at the floor with err > 1 makes the next shorter than the floor, and the run of steps
             # after it is taken whatever their error, each shorter: docs/multisurface.md, "Steps below the floor")
-            h = h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
+            h = h_keep if jump else h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
         max_work = max(max_work, work)
         if status:
             break
