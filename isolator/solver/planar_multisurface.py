@@ -27,12 +27,20 @@ from isolator.solver import planar_multisurface_kernel as _pm
 from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.base import SolverResult
 from isolator.solver.notice import note_if_slow
-from isolator.solver.planar import R_MIN_FACTOR, R_SWITCH_FACTOR, R_SWITCH_LO_FACTOR
+from isolator.solver.planar import R_MIN_FACTOR, R_SWITCH_LO_FACTOR
 from isolator.solver.record import sample_timing
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
 MODEL_NAME = "2d-multisurface"
+#: START → Cartesian hand-over speed of the event kernel, as a fraction of the speed scale (the planar engine's
+#: R_SWITCH_LO_FACTOR, a tenth of its R_SWITCH_FACTOR): with the planar engine's 1e-3 the hand-over after a
+#: break-away erred by up to 1.6e-6 of the peak (Loma Prieta APEEL2 from 26.05 s, balance open by 9.1e-10; YER, ABY,
+#: WLT, 89146 2.7e-9 to 4.4e-8) against the same kernel with the hand-over at 1e-6 and against the implicit steps
+#: (another method) at step_tol 1e-8; at 1e-4 every finishing pair is within 4.7e-10 of the former (ABY 1.2e-9) and
+#: APEEL2 within 2.9e-8 of the latter (their own error) with its balance at 9.4e-13, at the same cost
+#: (docs/multisurface.md, "The START form's hand-over")
+R_SWITCH_MULTI_FACTOR = R_SWITCH_LO_FACTOR
 #: relative tolerance of the DOP853 steps (the planar engine's default)
 DEFAULT_RTOL = 1e-11
 #: two friction coefficients closer than this (relative) make one group: equal circles slide together
@@ -366,7 +374,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     if c > 0.0:
         t_scale = min(t_scale, 1.0 / c)
     vref = max(float(np.max(mu)) * g, pga, 1e-12) * t_scale
-    scales = np.array([R_MIN_FACTOR * vref, R_SWITCH_FACTOR * vref, 1e-3 * vref * t_scale, 1e-3 * vref,
+    scales = np.array([R_MIN_FACTOR * vref, R_SWITCH_MULTI_FACTOR * vref, 1e-3 * vref * t_scale, 1e-3 * vref,
                        R_SWITCH_LO_FACTOR * vref])
     reason = f"a {bearing.kind} bearing: the series model in the plane, "
     how = "exact between events (event-driven kernel)"

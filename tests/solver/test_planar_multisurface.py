@@ -535,18 +535,18 @@ def test_events_and_steps_agree_where_the_events_are_exact(b):
 EXAMPLE = Path(__file__).resolve().parents[2] / "isolator" / "data" / "suites" / "example"
 
 
-@pytest.mark.parametrize("folder, x, y, agree_until_s", [
-    ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2", None),
-    ("lomaprieta1989_APEEL2", "np01002p_4225a_a.smc", "np01002p_4225c_a.smc", 26.0),
+@pytest.mark.parametrize("folder, x, y", [
+    ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2"),
+    ("lomaprieta1989_APEEL2", "np01002p_4225a_a.smc", "np01002p_4225c_a.smc"),
 ])
-def test_auto_answers_real_pairs_with_corners_with_the_event_kernel(folder, x, y, agree_until_s):
+def test_auto_answers_real_pairs_with_corners_with_the_event_kernel(folder, x, y):
     # Superstition Hills PTS and Loma Prieta APEEL2: corners of two circles closing to tangency.  The event kernel
     # steps them in the reduced corner state (docs/multisurface.md) and no longer trips "auto"'s stiffness guard
     # (1000 corner steps in one sample interval, which handed both pairs to the implicit steps before), so "auto"
-    # answers with it.  Truths: its energy balance (measured 5.3e-11 and 9.1e-10 of the input), and the implicit
-    # steps (another method) at step_tol 1e-8 (measured 3.6e-8 of the peak from it on PTS; on APEEL2 2.9e-8 to 26.0 s,
-    # then 1.8e-6 from 26.05 s on: there the two methods part, as on Hector Mine ABY at 33.009 s, the old corner steps
-    # giving the same answer as the reduced ones to 6.1e-11; which is right is not settled, docs/multisurface.md)
+    # answers with it.  Truths: its energy balance (measured 2.2e-12 and 9.4e-13 of the input) and the implicit steps
+    # (another method) at step_tol 1e-8 over the whole record (measured 3.6e-8 and 2.9e-8 of the peak: their own
+    # error).  With the START → Cartesian hand-over at 1e-3 of the speed scale (the planar engine's, used before;
+    # now R_SWITCH_MULTI_FACTOR = 1e-4) APEEL2 parted from the steps by 1.8e-6 from 26.05 s on, its balance 9.1e-10
     from isolator.motion import read_ground_motion
 
     mx, my = (read_ground_motion(EXAMPLE / folder / name) for name in (x, y))
@@ -555,13 +555,11 @@ def test_auto_answers_real_pairs_with_corners_with_the_event_kernel(folder, x, y
     auto = simulate_bearing_pair(ax, ay, dt, bearing=TFP)
     assert "exact between events" in auto.model_reason, auto.model_reason
     assert {"I", "II", "III"} <= set(auto.regimes)
-    assert abs(auto.energy_balance_error_J_per_kg) <= 1e-9 * auto.energy_input_J_per_kg
+    assert abs(auto.energy_balance_error_J_per_kg) <= 1e-11 * auto.energy_input_J_per_kg
     fine = simulate_bearing_pair(ax, ay, dt, bearing=TFP, method="steps", step_tol=1e-8)
     apart = np.hypot(*(auto.displacement_m - fine.displacement_m).T) / fine.peak_displacement_m
-    n_agree = apart.size if agree_until_s is None else int(round(agree_until_s / dt))
-    print(folder, "auto (events) vs the steps at 1e-8:", apart[:n_agree].max(), "whole record", apart.max())
-    assert apart[:n_agree].max() <= 1e-7
-    assert apart.max() <= 5e-6
+    print(folder, "auto (events) vs the steps at 1e-8:", apart.max())
+    assert apart.max() <= 1e-7
 
 
 @pytest.mark.parametrize("folder, name, theta", [
