@@ -241,7 +241,7 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                 row = row @ aug[1, d] / (k + 1)
         # symmetric to rounding; the kernel reads the upper triangle
         p_vis = 0.5 * (p_vis + np.swapaxes(p_vis, -1, -2))
-        system.cache[key] = (aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2, *_pk._by_columns(prop, v_rows))
+        system.cache[key] = (aug, prop, p_in_rows, p_vis, v_rows, rate1, rate2, *_pk.by_columns(prop, v_rows))
         if len(_PROPAGATORS) >= _SYSTEMS_MAX:
             _PROPAGATORS.pop(next(iter(_PROPAGATORS)))
         _PROPAGATORS[key] = system.cache[key]
@@ -269,7 +269,7 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
                     rows = rows @ aug[phase, d] / (j + 1)
         if len(system.cache) > 16:
             system.cache.pop(next(iter(system.cache)))
-        system.cache[wkey] = (mon, sig, _pk._end_rows(mon, sig, m))
+        system.cache[wkey] = (mon, sig, _pk.end_rows(mon, sig, m))
     mon, sig, end = system.cache[wkey]
     return prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig, prop_t, v_t, end
 
@@ -301,7 +301,7 @@ def _run_tables(system: PlanarBuildingSystem, layout, h: float | None) -> tuple:
             rate1 = rate2 = np.zeros((2, 2, m, m + 4))
             mon, sig = np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size))
             prop_t, v_t = np.zeros((levels, 2, 2, size, m)), np.zeros((2, size, _pk.FAST_ORDER + 1))
-            end = _pk._end_rows(mon, sig, m)
+            end = _pk.end_rows(mon, sig, m)
         if len(system.cache) > 16:
             system.cache.pop(next(iter(system.cache)))
         system.cache[key] = (watched, (prop_t, p_in_rows, p_vis, v_t, rate1, rate2, mon, sig, end))

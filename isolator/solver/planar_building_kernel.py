@@ -1042,7 +1042,7 @@ def _row_end(r0, r1, z_d, a_end, b_d, f_end, fd_end):
 def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1, sval1, sslope1):
     """Watched values and slopes at a sub-step's end (as :func:`_monitors`): per direction one product of the table
     fend[phase, d] (rows ℓ and ℓÃ of every watched quantity, value and slope interleaved: the resultants' then the
-    signed ones', :func:`_end_rows`; stored by columns, fend[phase, d, c, r]) with the augmented end state
+    signed ones', :func:`end_rows`; stored by columns, fend[phase, d, c, r]) with the augmented end state
     [z, a_g, ȧ_g, c_0 = F(h), c_1 = F'(h)]: column by column, each row's sum in the order of a row-by-row product
     (the inputs' four columns, then z's), so that the rows accumulate independently."""
     m = zh.shape[1]
@@ -1069,7 +1069,7 @@ def _watched_end(fend, phase, zh, ax1, ay1, az1, b, fe_x, fde_x, fe_y, fde_y, si
         sslope1[j] = sig3[j, 2] * b[2] + wend[0, r + 1] + wend[1, r + 1]
 
 
-def _end_rows(fmon, fsig, m):
+def end_rows(fmon, fsig, m):
     """The table of :func:`_watched_end` from the watched rows' first two powers (ℓ, ℓÃ; they vanish beyond c_1):
     fend[phase, d, :, 2q] = ℓ_q, fend[phase, d, :, 2q + 1] = ℓ_q Ã on [z, a_g, ȧ_g, c_0, c_1], q over the resultants
     then the signed quantities (by columns, contiguous: one product per direction).  Built once per system and
@@ -1097,7 +1097,7 @@ def _form_add(acc, p, w, s_eff, pw):
     return acc
 
 
-def _by_columns(fprop, fvrow):
+def by_columns(fprop, fvrow):
     """The propagators' rows and V's rows stored by columns (fpropt[l, p, d, c2, c] = fprop[l, p, d, c, c2],
     fvt[d, c, k] = fvrow[d, k, c]): the fast sub-step's products then run column by column.  Built once per system
     (``planar_building``'s per-system cache), not per run."""
@@ -1468,7 +1468,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         the ladder h_l = dt / n_fast / 2^l, l = 0 … L − 1).
     fpropt : float64[L, 2, 2, S, m]
         The first m rows of e^{Ãh_l} per rung, phase and direction, stored by columns (fpropt[l, p, d, c2, c] =
-        e^{Ãh_l}[c, c2], :func:`_by_columns`), Ã the augmented matrix on w̃ = [z, a_g, ȧ_g, c_0 … c_K]
+        e^{Ãh_l}[c, c2], :func:`by_columns`), Ã the augmented matrix on w̃ = [z, a_g, ȧ_g, c_0 … c_K]
         (S = m + 3 + K; c_j the chain of the friction's polynomial), the chain scaled to the rung (c_j h_l^j).
     fpinrow : float64[L, 2, 2, 2, S]
         The input power a_g (ℓ_p·w̃) integrated over a rung, as two rows: R1 = ℓ_p ∫₀^{h_l} e^{Ãτ} dτ and
@@ -1482,7 +1482,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     fmon, fsig : float64[2, K_w, 2, FAST_POW, S], float64[2, J, 2, FAST_POW, S]
         ℓ Ã^j / j! of every watched quantity per phase and direction (their Taylor coefficients).
     fend : float64[2, 2, m + 4, 2 (K_w + J)]
-        Their first two powers by columns, the table of :func:`_watched_end` (:func:`_end_rows`).
+        Their first two powers by columns, the table of :func:`_watched_end` (:func:`end_rows`).
     summary : float64[SUMMARY_SIZE]
     """
     uniform = times.shape[0] == 0
