@@ -168,3 +168,26 @@ def test_a_building_of_thousands_of_floors_is_refused_at_once(tmp_path):
     from isolator.superstructure import MAX_FLOORS
 
     assert MAX_FLOORS >= 163  # the tallest building built (Burj Khalifa, 163 floors) still reads
+
+
+@pytest.mark.parametrize("pair", [False, True], ids=["1-D building", "2-D building"])
+def test_a_slab_too_light_for_its_first_story_is_refused_naming_the_design(tmp_path, pair):
+    """A base slab of 1e-4 kg under floors of 1.1e6 kg (a mass_kg typed as the floors' sum): the first story's rate
+    ~2.4e6 1/s asks ~16,000 sub-steps per 0.01 s sample.  The 1-D building refused it without naming the design
+    file; the 2-D building ran on for minutes (a slab of 1e-5 of the floors on a real pair: > 300 s) — both now one
+    line naming the design, exit 2 (coordinator, session 10)."""
+    text = _replace(BUILDING, "mass_kg = 1.6e6", "mass_kg = 1100000.0001")
+    design = tmp_path / "d.toml"
+    design.write_text(text)
+    wave = [0.1 * (-1) ** i for i in range(200)]
+    (tmp_path / "r.AT2").write_text(at2_text(wave))
+    (tmp_path / "r2.AT2").write_text(at2_text([0.5 * v for v in wave]))
+    args = ["simulate", str(tmp_path / "r.AT2"), "--design", str(design)]
+    if pair:
+        args += ["--pair", str(tmp_path / "r2.AT2")]
+    result = RUNNER.invoke(app, args)
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert result.exit_code == 2, result.output
+    assert len(lines) == 1 and "Traceback" not in result.output, result.output
+    assert f"{design}: the building's fastest rate" in lines[0], lines[0]
+    assert "sub-steps per sample interval of 0.01 s (at most 5000)" in lines[0], lines[0]

@@ -415,11 +415,15 @@ def simulate_scene(scene) -> BuildingResponse:
         stiffness = mass * g / float(iso["radius_m"])
     else:
         stiffness = mass * float(iso.get("stiffness_per_mass", 0.0))
-    return simulate_building(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure,
-                             total_mass_kg=mass, stiffness_N_per_m=stiffness, mu_static=float(iso["mu_static"]),
-                             mu_kinetic=iso.get("mu_kinetic"), damping_Ns_per_m=mass * float(
-                                 iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
-                             bearing_layout=design.bearing_layout)
+    try:
+        return simulate_building(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s,
+                                 superstructure=design.superstructure, total_mass_kg=mass,
+                                 stiffness_N_per_m=stiffness, mu_static=float(iso["mu_static"]),
+                                 mu_kinetic=iso.get("mu_kinetic"),
+                                 damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
+                                 bearing_layout=design.bearing_layout)
+    except InvalidSystemError as err:  # the design's numbers (e.g. a slab too light for its first story): name it
+        raise InvalidSystemError(f"{design.source}: {err}") from None
 
 
 _READY = False

@@ -41,7 +41,13 @@ import numpy as np
 from isolator.errors import InvalidSystemError, RecordInputError
 from isolator.solver import planar_building_kernel as _pk
 from isolator.solver.base import SolverResult
-from isolator.solver.building import BuildingKeys, BuildingResponse, building_system, van_loan
+from isolator.solver.building import (
+    MAX_SUBSTEPS_PER_INTERVAL,
+    BuildingKeys,
+    BuildingResponse,
+    building_system,
+    van_loan,
+)
 from isolator.solver.record import sample_timing
 from isolator.solver.system import System, check_friction_coefficient, check_friction_rate
 from isolator.units import STANDARD_GRAVITY
@@ -542,13 +548,15 @@ def simulate_scene(scene) -> PlanarBuildingResponse:
         stiffness = mass * float(iso.get("stiffness_per_mass", 0.0))
     ax = np.asarray(scene.ax_m_s2, dtype=np.float64)
     ay = np.zeros_like(ax) if scene.ay_m_s2 is None else scene.ay_m_s2
-    return simulate_planar_building(ax, ay, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure,
-                                    total_mass_kg=mass, stiffness_N_per_m=stiffness,
-                                    mu_static=float(iso["mu_static"]), mu_kinetic=iso.get("mu_kinetic"),
-                                    damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
-                                    bearing_layout=design.bearing_layout, az_m_s2=scene.az_m_s2,
-                                    pendulum=iso.get("radius_m") is not None, mu_slow=iso.get("mu_slow"),
-                                    mu_fast=iso.get("mu_fast"), rate_s_per_m=iso.get("rate_s_per_m"))
+    try:
+        return simulate_planar_building(
+            ax, ay, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure, total_mass_kg=mass,
+            stiffness_N_per_m=stiffness, mu_static=float(iso["mu_static"]), mu_kinetic=iso.get("mu_kinetic"),
+            damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
+            bearing_layout=design.bearing_layout, az_m_s2=scene.az_m_s2, pendulum=iso.get("radius_m") is not None,
+            mu_slow=iso.get("mu_slow"), mu_fast=iso.get("mu_fast"), rate_s_per_m=iso.get("rate_s_per_m"))
+    except InvalidSystemError as err:  # the design's numbers (e.g. a slab too light for its first story): name it
+        raise InvalidSystemError(f"{design.source}: {err}") from None
 
 
 _READY = False
@@ -710,6 +718,13 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     if not ORDER_RANGE[0] <= _pk.N_ORDER <= ORDER_RANGE[1]:
         raise ValueError(f"planar_building_kernel.N_ORDER = {_pk.N_ORDER} is outside {ORDER_RANGE} (tested range)")
     rate = system.fastest_rate_per_s
+    longest = dt if relative is None else float(np.max(np.diff(relative)))
+    n_needed = max(1, math.ceil(rate * longest / _pk.THETA_FAST))
+    if n_needed > MAX_SUBSTEPS_PER_INTERVAL:  # as the 1-D building: a slab of 1e-5 of the floors ran for minutes
+        raise InvalidSystemError(
+            f"the building's fastest rate {rate:.3g} 1/s needs {n_needed} sub-steps per sample interval of "
+            f"{longest:g} s (at most {MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light for the first story's "
+            "stiffness, or a story too stiff for its mass")
     h_max = _pk.THETA / rate if rate > 0 else math.inf
     n = system.n_floors
     m = 2 * n + 2
