@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -415,14 +416,23 @@ def simulate_scene(scene) -> BuildingResponse:
         stiffness = mass * g / float(iso["radius_m"])
     else:
         stiffness = mass * float(iso.get("stiffness_per_mass", 0.0))
-    try:
+    with naming_design(design):
         return simulate_building(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s,
                                  superstructure=design.superstructure, total_mass_kg=mass,
                                  stiffness_N_per_m=stiffness, mu_static=float(iso["mu_static"]),
                                  mu_kinetic=iso.get("mu_kinetic"),
                                  damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
                                  bearing_layout=design.bearing_layout)
-    except InvalidSystemError as err:  # the design's numbers (e.g. a slab too light for its first story): name it
+
+
+@contextmanager
+def naming_design(design):
+    """An :class:`InvalidSystemError` of the building solvers run inside, prefixed with the design file: the
+    solvers see numbers, not files, and a refusal of the design's numbers (a base slab too light for its first
+    story, a friction law) must name the design (the building models' ``simulate_scene``)."""
+    try:
+        yield
+    except InvalidSystemError as err:
         raise InvalidSystemError(f"{design.source}: {err}") from None
 
 

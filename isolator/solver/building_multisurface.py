@@ -216,13 +216,11 @@ def _simulate_on(scene, bearing) -> BuildingMultisurfaceResponse:
     iso = {key: value for key, value in scene.isolator.items() if value is not None}
     g = float(iso.get("gravity_m_s2", design.gravity_m_s2))
     mass = design.mass_kg
-    try:
+    with _building.naming_design(design):
         return simulate_building_bearing(scene.ax_m_s2, scene.dt_s, time_s=scene.time_s,
                                          superstructure=design.superstructure, bearing=bearing, total_mass_kg=mass,
                                          damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)),
                                          gravity_m_s2=g, bearing_layout=design.bearing_layout)
-    except InvalidSystemError as err:  # the design's numbers (e.g. a slab too light for its first story): name it
-        raise InvalidSystemError(f"{design.source}: {err}") from None
 
 
 @dataclass

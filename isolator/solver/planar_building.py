@@ -46,6 +46,7 @@ from isolator.solver.building import (
     BuildingKeys,
     BuildingResponse,
     building_system,
+    naming_design,
     van_loan,
 )
 from isolator.solver.record import sample_timing
@@ -548,15 +549,13 @@ def simulate_scene(scene) -> PlanarBuildingResponse:
         stiffness = mass * float(iso.get("stiffness_per_mass", 0.0))
     ax = np.asarray(scene.ax_m_s2, dtype=np.float64)
     ay = np.zeros_like(ax) if scene.ay_m_s2 is None else scene.ay_m_s2
-    try:
+    with naming_design(design):
         return simulate_planar_building(
             ax, ay, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure, total_mass_kg=mass,
             stiffness_N_per_m=stiffness, mu_static=float(iso["mu_static"]), mu_kinetic=iso.get("mu_kinetic"),
             damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
             bearing_layout=design.bearing_layout, az_m_s2=scene.az_m_s2, pendulum=iso.get("radius_m") is not None,
             mu_slow=iso.get("mu_slow"), mu_fast=iso.get("mu_fast"), rate_s_per_m=iso.get("rate_s_per_m"))
-    except InvalidSystemError as err:  # the design's numbers (e.g. a slab too light for its first story): name it
-        raise InvalidSystemError(f"{design.source}: {err}") from None
 
 
 _READY = False
