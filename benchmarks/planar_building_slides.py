@@ -10,8 +10,8 @@ not touched; a marker line not found stops the script with its text)::
 
 A slide runs from a break-away or a reversal to the next stop (stick or reversal); each step is charged to the slide's
 departure (nearer its start) or to its approach (nearer its stop).  Printed per half: the departure series' pieces
-(``DEPART``), ``START``, ``SLIDE`` pieces by why they ended (the speed's halving or the stop's reach, the series'
-reach, the end of a sub-step or sample), ``FINISH``, the fast sub-steps over a whole sample's sub-step (h) and on the
+(``DEPART``), ``START``, ``SLIDE`` pieces by why they ended (the speed's halving or the stop's reach, the stop itself
+(``STOP_PIECE``), the series' reach, the end of a sub-step or sample), ``FINISH``, the fast sub-steps over a whole sample's sub-step (h) and on the
 ladder's shorter rungs (h/2 … h/32), and the sub-steps refused (1: the friction's series not at rounding on any rung;
 3: an event possible).  ``--per-slide`` prints every slide's line, with |D|/(µk N) at its start and at its stop.
 Counts only: the time of each kind is what ``benchmarks.planar_building_throughput --substeps`` measures.
@@ -75,7 +75,7 @@ def _piece_kind(item) -> str:
     if mode != 2:
         return name
     if t_event >= 0.0:
-        return "SLIDE halving/reach"
+        return "SLIDE to the stop" if kind_phi == 4 else "SLIDE halving/reach"
     return "SLIDE sub-step end" if length >= rem else "SLIDE series reach"
 
 

@@ -78,6 +78,10 @@ LEAVE_SERIES = True
 #: A slide's series piece slowing along its direction runs to e0·V = STOP_REACH r0 (the kernel's ``STOP_REACH``)
 #: instead of to half its speed, its length held so that the series' tail keeps the halving's bound.
 STOP_REACH_SERIES = True
+#: ... and such a piece ends at the stop itself when the stop lies within it (e0·V = 0 located on the series, the
+#: speed left there below FINISH's entry speed 1e-10 v_ref) instead of at STOP_REACH r0 and a FINISH piece
+#: (with STOP_REACH_SERIES only; docs/building.md, "The stop in one piece").
+STOP_PIECE = True
 
 
 @dataclass
@@ -421,6 +425,8 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     n_fast_refused: tuple = ()
     #: series pieces by phase: stuck, start (leaving rest), slide, finish (the last of a stop), approach (in ln s)
     n_pieces_by_phase: tuple = ()
+    #: slides whose slowing series piece ran to the stop itself (``STOP_PIECE``)
+    n_stop_pieces: int = 0
     n_extrema_located: int = 0
     bearing_layout: object = None
     residual_displacement_x_m: float = 0.0
@@ -755,12 +761,13 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(9)
+    law = np.zeros(10)
     law[1] = g
     law[5] = 1.0 if STOP_APPROACH else 0.0
     law[6] = 1.0 if DEPARTURE_SERIES else 0.0
     law[7] = 1.0 if LEAVE_SERIES else 0.0
     law[8] = 1.0 if STOP_REACH_SERIES else 0.0
+    law[9] = 1.0 if STOP_PIECE else 0.0
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert
@@ -860,6 +867,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         n_fast_refused=tuple(int(v) for v in summary[_pk.S_N_REFUSED:_pk.S_N_REFUSED + 4]),
         n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + _pk.N_PIECE_KINDS]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
+        n_stop_pieces=int(summary[_pk.S_N_STOP_PIECES]),
         bearing_layout=bearing_layout,
         vertical_acceleration_m_s2=normal.az,
     )

@@ -109,7 +109,9 @@ S_N_REFUSED = 9
 S_N_PIECES_BY_MODE = 13
 #: stuck, start, slide, finish, approach and departure (``DEPART``) pieces
 N_PIECE_KINDS = 6
-SUMMARY_SIZE = 19
+#: slides whose slowing piece ran to the stop itself (law[9])
+S_N_STOP_PIECES = 19
+SUMMARY_SIZE = 20
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
@@ -1411,13 +1413,14 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         Ground acceleration [m/s²], linear between samples.
     az : float64[n]
         Vertical ground acceleration [m/s²], up positive, linear between samples (read when law[0] ≠ 0).
-    law : float64[9]
+    law : float64[10]
         [1 with a vertical or µ(v) else 0, g [m/s²], k_v: the stiffness that follows the normal force
         N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m],
         1 to take the approach to a stop in ln s (``APPROACH``; constant µ and N only) else 0, 1 to leave rest at a
         break-away with µs = µk by the departure series (V = τ² W), 1 to leave rest with |D| > µk N (µs > µk, a
         reversal) by the departure series V = τ W, 1 to let a slide's piece slowing along e0 run to e0·V =
-        STOP_REACH r0 instead of r0/2];
+        STOP_REACH r0 instead of r0/2, 1 to end such a piece at the stop itself (e0·V = 0 on its series, the speed
+        left there ≤ 1e-10 v_ref) when the stop lies within its reach, instead of a FINISH piece];
         mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are then taken stuck only (sliding: series pieces).
     dt : float
         Sample interval [s] of a uniform record (``times`` empty).
@@ -1597,6 +1600,9 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     # (law[8]); its piece is then held to REACH_SHRINK of the series' reach (the tail's bound stays the halving's)
     use_reach = law[8] != 0.0
     reach_shrink = (2.0 * STOP_REACH) ** (1.0 / n_order)
+    # ... and such a piece ends at the stop itself when the stop lies within it (law[9])
+    use_stop_piece = use_reach and law.shape[0] > 9 and law[9] != 0.0
+    n_stop_pieces = 0
     r_approach = APPROACH_SPEED * v_ref
     nl1 = n_order + 1
     lz = np.zeros((2, nl1, m))
@@ -1874,9 +1880,23 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                 # the reach, so that the tail summed up to there keeps the halving's bound
                                 length = far
                                 _eval(zs, length, zh, zdh, zddh)
-                                t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass,
-                                                          2.0 * STOP_REACH * half_target, e0, vz, False, z, zd, zdd, out2,
-                                                          counter, zl, zdl, zh, zdh)
+                                t_event = -1.0
+                                if use_stop_piece:
+                                    # the stop itself within that reach: e0·V = 0 located on this series (the
+                                    # friction V/|V| of the series' own V up to there, not frozen as in FINISH) and
+                                    # taken as the stop when the speed left there is below FINISH's entry speed
+                                    t_stop = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0,
+                                                             e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
+                                    if t_stop > 0.0:
+                                        _eval(zs, t_stop, z, zd, zdd)
+                                        if math.sqrt(z[0, 1] ** 2 + z[1, 1] ** 2) <= r_finish:
+                                            t_event = t_stop
+                                            kind_phi = PHI_STOP_FINISH
+                                            n_stop_pieces += 1
+                                if t_event < 0.0:
+                                    t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass,
+                                                              2.0 * STOP_REACH * half_target, e0, vz, False, z, zd, zdd,
+                                                              out2, counter, zl, zdl, zh, zdh)
                         else:
                             t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
@@ -2121,3 +2141,4 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         summary[S_N_REFUSED + k - 1] = n_refused[k]
     for k in range(N_PIECE_KINDS):
         summary[S_N_PIECES_BY_MODE + k] = pieces_by_mode[k]
+    summary[S_N_STOP_PIECES] = n_stop_pieces

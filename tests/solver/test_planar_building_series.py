@@ -163,26 +163,26 @@ def test_the_finite_acceleration_departure_solves_the_slabs_equation_and_fails_b
                                      np.zeros((2, ns)), np.zeros(ns), 1e-2, 1)
 
 
-def test_a_slide_piece_towards_a_stop_is_exact_up_to_its_reach_and_wrong_through_the_stop():
-    """A slide slowing to a stop (|V| = 1e-6 m/s, |D| = 0.8 µk N, V 1e-9 rad off D): its series in time, cut where
-    e0·V = STOP_REACH r0 and held to REACH_SHRINK of its reach, satisfies the slab's equation to rounding; run through
-    the stop, V/|V| reverses while the series' analytic continuation does not (the residual is then ~2 µk N/m_b):
-    why a slide's piece must end before its stop."""
+def slowing_series(speed, off_angle, d_ratio=0.8, h=None):
+    """A slide slowing to a stop on the three-story system: |V| = speed, V off_angle [rad] off D, |D| = d_ratio µk N;
+    its series in time as the kernel builds it (rescaled to its reach, from H = h or the time to the stop) and that
+    reach: (system, zs, a0, b, µk N, e0, reach)."""
     system, w, weights = _three_story_system()
     mu_k_n = system.mu_kinetic * system.weight_N
     m_b = system.slab_mass_kg
     m = w.shape[1]
     e = np.array([np.cos(0.6), np.sin(0.6)])
-    off = np.array([np.cos(0.6 + 1e-9), np.sin(0.6 + 1e-9)])
-    w[:, 1] = 1e-6 * off
-    a0 = np.array([(system.l_d[d] @ w[d] - 0.8 * mu_k_n * e[d]) / m_b for d in range(2)] + [0.0])
+    off = np.array([np.cos(0.6 + off_angle), np.sin(0.6 + off_angle)])
+    w[:, 1] = speed * off
+    a0 = np.array([(system.l_d[d] @ w[d] - d_ratio * mu_k_n * e[d]) / m_b for d in range(2)] + [0.0])
     b = np.zeros(3)
     ns = kernel.N_ORDER + 3
     zs, fs = np.zeros((2, ns + 1, m)), np.zeros((2, ns))
     scratch = [np.zeros((2, ns)), np.zeros(ns), np.zeros(ns), np.zeros((2, ns))]
     vz = np.zeros(kernel.VZ_SIZE)
     vz[kernel.V_NU0] = 1.0
-    h = 1e-5
+    h = speed * m_b / ((1.0 - d_ratio) * mu_k_n) if h is None else h
+    limit = 0.0
     for _ in range(8):
         kernel._series(kernel.SLIDE, w, a0, b, system.a_mat, system.g_vec, system.p_vec, system.l_d, m_b, mu_k_n,
                        off, zs, fs, *scratch, vz, np.zeros(ns), np.zeros(ns), h)
@@ -191,6 +191,16 @@ def test_a_slide_piece_towards_a_stop_is_exact_up_to_its_reach_and_wrong_through
         if h_next == 0.0:
             break
         h = h_next
+    return system, zs, a0, b, mu_k_n, off, limit
+
+
+def test_a_slide_piece_towards_a_stop_is_exact_up_to_its_reach_and_wrong_through_the_stop():
+    """A slide slowing to a stop (|V| = 1e-6 m/s, |D| = 0.8 µk N, V 1e-9 rad off D): its series in time, cut where
+    e0·V = STOP_REACH r0 and held to REACH_SHRINK of its reach, satisfies the slab's equation to rounding; run through
+    the stop, V/|V| reverses while the series' analytic continuation does not (the residual is then ~2 µk N/m_b):
+    why a slide's piece must end before its stop."""
+    system, zs, a0, b, mu_k_n, off, limit = slowing_series(1e-6, 1e-9, h=1e-5)
+    m = zs.shape[2]
     reach = (2.0 * kernel.STOP_REACH) ** (1.0 / kernel.N_ORDER) * limit
     # the time to the stop (e0·V = 0) and to the reach's end (e0·V = STOP_REACH r0), from the series
     taus = np.linspace(0.0, 4.0 * reach, 4001)
