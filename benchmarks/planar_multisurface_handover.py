@@ -4,8 +4,8 @@ After a break-away the kernel follows the departure in its START form and hands 
 the speed reaches ``R_SWITCH_MULTI_FACTOR`` × the speed scale (:mod:`isolator.solver.planar_multisurface`).  For
 each pair of ``../shared/records/pairs`` under Fenz & Constantinou's triple pendulum, this runs the event kernel with
 the hand-over at each ``--factors`` value and prints its largest history distance, as a fraction of the peak, from
-the same kernel with the hand-over at ``--reference`` and rtol 1e-13, and its CPU median (docs/multisurface.md,
-"The START form's hand-over")::
+the same kernel with the hand-over and its lowest speed (``R_SWITCH_MULTI_LO_FACTOR``) both at ``--reference`` and rtol
+1e-13, and its CPU median (docs/multisurface.md, "The START form's hand-over")::
 
     OPENBLAS_NUM_THREADS=1 .venv/bin/python -m benchmarks.planar_multisurface_handover \\
         [--records ../shared/records] [--factors 1e-3 1e-4 1e-5] [--reference 1e-6] [--repeat 3] [PAIR ...]
@@ -45,7 +45,9 @@ def main(argv=None) -> int:
         {"radius_m": r, "mu": m, "displacement_capacity_m": d}
         for r, m, d in ((2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4))]}, DesignError)
     default = pm.R_SWITCH_MULTI_FACTOR
-    print(f"hand-over factor now {default:g}; reference: {args.reference:g} at rtol 1e-13; "
+    default_lo = pm.R_SWITCH_MULTI_LO_FACTOR
+    print(f"hand-over factor now {default:g} (lowest speed {default_lo:g}); reference: both at "
+          f"{min(default_lo, args.reference):g}/{args.reference:g}, rtol 1e-13; "
           "per factor: distance / peak, CPU median [ms]")
     try:
         for folder in SOURCES:
@@ -53,14 +55,15 @@ def main(argv=None) -> int:
                 continue
             dt, ax, ay, _ = load(folder)
 
-            def run(factor, rtol=pm.DEFAULT_RTOL, ax=ax, ay=ay, dt=dt):
+            def run(factor, rtol=pm.DEFAULT_RTOL, lo=default_lo, ax=ax, ay=ay, dt=dt):
                 pm.R_SWITCH_MULTI_FACTOR = factor
+                pm.R_SWITCH_MULTI_LO_FACTOR = lo
                 started = time.process_time()
                 result = pm.simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="events", rtol=rtol)
                 return result, time.process_time() - started
 
             try:
-                reference, _ = run(args.reference, 1e-13)
+                reference, _ = run(args.reference, 1e-13, min(default_lo, args.reference))
             except SolverError as err:
                 print(f"{folder:28s} {err}")
                 continue
@@ -76,6 +79,7 @@ def main(argv=None) -> int:
             print(f"{folder:28s} " + " | ".join(cells), flush=True)
     finally:
         pm.R_SWITCH_MULTI_FACTOR = default
+        pm.R_SWITCH_MULTI_LO_FACTOR = default_lo
     return 0
 
 

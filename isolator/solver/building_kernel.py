@@ -102,8 +102,11 @@ def _coefficients(rows, w0, out):
 
 @njit(cache=True)
 def _poly(c, shift, tau):
-    # Σ_{j=0}^{N_TAYLOR} c[j + shift] τ^j / j!   (shift = 1: the derivative)
-    jmax = c.shape[0] - 2
+    # Σ_j c[j + shift] τ^j / j!, j = 0 .. N_TAYLOR (shift = 1: the derivative).  Shift 2 (Newton's slope of a
+    # derivative's root in _poly_root) stops one term short, at c's last entry: reading past c read whatever word
+    # followed it in memory, and a word near −1e74 there moved a located peak drift by 3.6e-6 (tests/solver/
+    # test_building_state.py); the term dropped is below 1e-20 of the slope (‖Ã‖h ≤ THETA)
+    jmax = min(c.shape[0] - 2, c.shape[0] - 1 - shift)
     acc = c[jmax + shift]
     for j in range(jmax - 1, -1, -1):
         acc = c[j + shift] + acc * tau / (j + 1)

@@ -27,20 +27,26 @@ from isolator.solver import planar_multisurface_kernel as _pm
 from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.base import SolverResult
 from isolator.solver.notice import note_if_slow
-from isolator.solver.planar import R_MIN_FACTOR, R_SWITCH_LO_FACTOR
+from isolator.solver.planar import R_MIN_FACTOR
 from isolator.solver.record import sample_timing
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
 MODEL_NAME = "2d-multisurface"
-#: START → Cartesian hand-over speed of the event kernel, as a fraction of the speed scale (the planar engine's
-#: R_SWITCH_LO_FACTOR, a tenth of its R_SWITCH_FACTOR): with the planar engine's 1e-3 the hand-over after a
-#: break-away erred by up to 1.6e-6 of the peak (Loma Prieta APEEL2 from 26.05 s, balance open by 9.1e-10; YER, ABY,
-#: WLT, 89146 2.7e-9 to 4.4e-8) against the same kernel with the hand-over at 1e-6 and against the implicit steps
-#: (another method) at step_tol 1e-8; at 1e-4 every finishing pair is within 4.7e-10 of the former (ABY 1.2e-9) and
-#: APEEL2 within 2.9e-8 of the latter (their own error) with its balance at 9.4e-13, at the same cost
-#: (docs/multisurface.md, "The START form's hand-over")
-R_SWITCH_MULTI_FACTOR = R_SWITCH_LO_FACTOR
+#: START → Cartesian hand-over speed of the event kernel, as a fraction of the speed scale: with the planar engine's
+#: 1e-3 the hand-over after a break-away erred by up to 1.6e-6 of the peak (Loma Prieta APEEL2 from 26.05 s, balance
+#: open by 9.1e-10; YER, ABY, WLT, 89146 2.7e-9 to 4.4e-8); at 1e-4 APEEL2 is within 2.9e-8 of the implicit steps
+#: (their own error), balance 9.4e-13; at 1e-5 Hector Mine ABY's 1.1e-9 and Iwate AOM017's 1.5e-10 from the converged
+#: kernel (both speeds at 1e-7, rtol 1e-13) fall to 1.1e-10 and 7.5e-13, the other pairs' unchanged
+#: (docs/multisurface.md, "The START form's hand-over" and "ABY's 33.0089 s: the START form re-entered")
+R_SWITCH_MULTI_FACTOR = 1e-5
+#: the event kernel's lowest speed of a form, as a fraction of the speed scale (its ``SC_R_SWITCH_LO``): below half
+#: of it a one-group slide that is not decelerating goes on in the START form (its direction slaved to F, not the
+#: velocity's own: an approximation), and a corner hands over to one group (another).  At the
+#: planar engine's R_SWITCH_LO_FACTOR (1e-4) Hector Mine ABY re-entered the START form at 6e-8 m/s just after the
+#: leave at 33.0089 s and went on 4.5e-8 of the peak from solve_ivp on that one-group pendulum; at 1e-6 to 1e-10
+#: the 10 finishing pairs give the same answers at the same cost, ABY within 1.1e-12 of solve_ivp there
+R_SWITCH_MULTI_LO_FACTOR = 1e-6
 #: relative tolerance of the DOP853 steps (the planar engine's default)
 DEFAULT_RTOL = 1e-11
 #: two friction coefficients closer than this (relative) make one group: equal circles slide together
@@ -375,7 +381,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         t_scale = min(t_scale, 1.0 / c)
     vref = max(float(np.max(mu)) * g, pga, 1e-12) * t_scale
     scales = np.array([R_MIN_FACTOR * vref, R_SWITCH_MULTI_FACTOR * vref, 1e-3 * vref * t_scale, 1e-3 * vref,
-                       R_SWITCH_LO_FACTOR * vref])
+                       R_SWITCH_MULTI_LO_FACTOR * vref])
     reason = f"a {bearing.kind} bearing: the series model in the plane, "
     how = "exact between events (event-driven kernel)"
     if method != "steps":

@@ -546,7 +546,7 @@ def test_auto_answers_real_pairs_with_corners_with_the_event_kernel(folder, x, y
     # answers with it.  Truths: its energy balance (measured 2.2e-12 and 9.4e-13 of the input) and the implicit steps
     # (another method) at step_tol 1e-8 over the whole record (measured 3.6e-8 and 2.9e-8 of the peak: their own
     # error).  With the START → Cartesian hand-over at 1e-3 of the speed scale (the planar engine's, used before;
-    # now R_SWITCH_MULTI_FACTOR = 1e-4) APEEL2 parted from the steps by 1.8e-6 from 26.05 s on, its balance 9.1e-10
+    # now R_SWITCH_MULTI_FACTOR = 1e-5) APEEL2 parted from the steps by 1.8e-6 from 26.05 s on, its balance 9.1e-10
     from isolator.motion import read_ground_motion
 
     mx, my = (read_ground_motion(EXAMPLE / folder / name) for name in (x, y))
