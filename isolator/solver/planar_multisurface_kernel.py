@@ -27,7 +27,8 @@ support point, in the direction V, of the intersection D of the friction discs. 
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
 * where two sliding normals are within IMPLICIT_ANGLE of each other the split of V between the groups
   relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``), a corner of
-  two groups in its reduced state (X, V, the normal's direction θ_a, the opening φ: ``reduce_corner``);
+  two groups in its reduced state (X, V, the normal's direction θ_a, the opening φ: ``reduce_corner``), a corner
+  of three groups likewise with the third normal's angle from e_a (``reduce_state``);
 * a corner of two groups closing to tangency (s falling at a finite rate: tangency in finite time, where C
   is singular) is stepped over at |s| < CROSS_ANGLE (``cross_tangency``: docs/multisurface.md);
 * at a join the sliding set is the rate problem's (``sliding_set``);
@@ -191,7 +192,8 @@ ST_REF_DOP = 10  #: explicit multi-group steps refused
 ST_NEWTON_DIVERGED = 11  #: Newton solves ended because the increment grew
 ST_NEWTON_MAXIT = 12  #: Newton solves ended after NEWTON_MAX iterations
 ST_NEWTON_SINGULAR = 13  #: Newton solves ended because a stage's compliance was singular or its rates not finite
-ST_SIZE = 14
+ST_RADAU_THREE = 14  #: implicit steps on a corner of three groups, in the reduced state (``reduce_state``)
+ST_SIZE = 15
 
 # the Cartesian multi-group state: X, V, r, energies, then ū of each group
 M_X = 0
@@ -536,6 +538,98 @@ def _expand_normals(v, rb, mu, ka, kb, y, a1, a2, b1, b2):
 
 
 @njit(cache=True)
+def third_group(mask, ng, ka, kb):
+    """The sliding group other than ka and kb on a corner of exactly three groups; -1 otherwise."""
+    kc = -1
+    for k in range(ng):
+        if mask >> k & 1 and k != ka and k != kb:
+            if kc >= 0:
+                return -1
+            kc = k
+    return kc
+
+
+@njit(cache=True)
+def reduced_pair(y, rb, mask):
+    """The groups (ka, kb) whose angles the reduced state carries: the two of a corner of two groups, or the two of
+    a corner of three whose normals are closest to parallel (the third's angle is then carried too:
+    :func:`reduce_state`); (-1, -1) for more groups."""
+    ng = rb.shape[0]
+    ka, kb = _corner_pair(mask, ng)
+    if ka >= 0:
+        return ka, kb
+    best = 2.0
+    n = 0
+    for k in range(ng):
+        if not mask >> k & 1:
+            continue
+        n += 1
+        a1, a2 = _normal(y, rb, k)
+        for q in range(k + 1, ng):
+            if not mask >> q & 1:
+                continue
+            b1, b2 = _normal(y, rb, q)
+            sn = abs(a1 * b2 - a2 * b1)
+            if a1 * b1 + a2 * b2 > 0.0 and sn < best:
+                best = sn
+                ka = k
+                kb = q
+    if n != 3:
+        return -1, -1
+    return ka, kb
+
+
+@njit(cache=True)
+def reduce_state(y, rb, mask, ka, kb, v):
+    """:func:`reduce_corner`, and on a corner of three groups the third's normal as its angle from e_a [rad] in the
+    first of its ū slots (the second 0): r and the three ū are functions of X and the three angles."""
+    reduce_corner(y, rb, ka, kb, v)
+    kc = third_group(mask, rb.shape[0], ka, kb)
+    if kc >= 0:
+        a1, a2 = _normal(y, rb, ka)
+        c1, c2 = _normal(y, rb, kc)
+        v[M_U + 2 * kc] = math.atan2(a1 * c2 - a2 * c1, a1 * c1 + a2 * c2)
+        v[M_U + 2 * kc + 1] = 0.0
+
+
+@njit(cache=True)
+def _expand_three(v, rb, mu, ka, kb, kc, y, a1, a2, b1, b2, c1, c2):
+    # three circles through r with the normals e_a, e_b, e_c: ū_k = R̄_k (r − µ_k e_k) and Σ ū_k = X − Σ stuck ū give
+    # r = (X − Σ stuck ū + Σ R̄_k µ_k e_k)/Σ R̄_k; ū_b is the rest (the sum exact)
+    for p in range(v.shape[0]):
+        y[p] = v[p]
+    w1 = v[M_X]
+    w2 = v[M_X + 1]
+    for k in range(rb.shape[0]):
+        if k != ka and k != kb and k != kc:
+            w1 -= v[M_U + 2 * k]
+            w2 -= v[M_U + 2 * k + 1]
+    rs = rb[ka] + rb[kb] + rb[kc]
+    r1 = (w1 + rb[ka] * mu[ka] * a1 + rb[kb] * mu[kb] * b1 + rb[kc] * mu[kc] * c1) / rs
+    r2 = (w2 + rb[ka] * mu[ka] * a2 + rb[kb] * mu[kb] * b2 + rb[kc] * mu[kc] * c2) / rs
+    y[M_R] = r1
+    y[M_R + 1] = r2
+    y[M_U + 2 * ka] = rb[ka] * (r1 - mu[ka] * a1)
+    y[M_U + 2 * ka + 1] = rb[ka] * (r2 - mu[ka] * a2)
+    y[M_U + 2 * kc] = rb[kc] * (r1 - mu[kc] * c1)
+    y[M_U + 2 * kc + 1] = rb[kc] * (r2 - mu[kc] * c2)
+    y[M_U + 2 * kb] = w1 - y[M_U + 2 * ka] - y[M_U + 2 * kc]
+    y[M_U + 2 * kb + 1] = w2 - y[M_U + 2 * ka + 1] - y[M_U + 2 * kc + 1]
+
+
+@njit(cache=True)
+def expand_state(v, rb, mu, mask, ka, kb, y):
+    """The multi-group state of a reduced state (:func:`reduce_state`): :func:`expand_corner`, or three circles."""
+    kc = third_group(mask, rb.shape[0], ka, kb)
+    if kc < 0:
+        expand_corner(v, rb, mu, ka, kb, y)
+        return
+    ta = v[M_R]
+    _expand_three(v, rb, mu, ka, kb, kc, y, math.cos(ta), math.sin(ta), math.cos(ta + v[M_R + 1]),
+                  math.sin(ta + v[M_R + 1]), math.cos(ta + v[M_U + 2 * kc]), math.sin(ta + v[M_U + 2 * kc]))
+
+
+@njit(cache=True)
 def reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d):
     """Derivative of the reduced corner state: X, V and the energies as in :func:`multi_rhs`, θ̇_k = e_k⊥·ṙ/µ_k
     (ṙ − ḃ_k ⊥ e_k, ḃ_k = λ_k e_k/R̄_k ∥ e_k), φ̇ = θ̇_b − θ̇_a; the two groups' ū slots are not integrated (0)."""
@@ -543,16 +637,31 @@ def reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, d):
     a2 = math.sin(v[M_R])
     b1 = math.cos(v[M_R] + v[M_R + 1])
     b2 = math.sin(v[M_R] + v[M_R + 1])
-    _expand_normals(v, rb, mu, ka, kb, yw, a1, a2, b1, b2)
+    kc = third_group(mask, rb.shape[0], ka, kb)
+    c1 = 0.0
+    c2 = 0.0
+    if kc < 0:
+        _expand_normals(v, rb, mu, ka, kb, yw, a1, a2, b1, b2)
+    else:
+        c1 = math.cos(v[M_R] + v[M_U + 2 * kc])
+        c2 = math.sin(v[M_R] + v[M_U + 2 * kc])
+        _expand_three(v, rb, mu, ka, kb, kc, yw, a1, a2, b1, b2, c1, c2)
     if not multi_rhs(tau, yw, raw, rb, mu, mask, c, d):
         return False
     ta = (a1 * d[M_R + 1] - a2 * d[M_R]) / mu[ka]
     tb = (b1 * d[M_R + 1] - b2 * d[M_R]) / mu[kb]
+    tc = 0.0
+    if kc >= 0:
+        tc = (c1 * d[M_R + 1] - c2 * d[M_R]) / mu[kc]
     d[M_R] = ta
     d[M_R + 1] = tb - ta
     for k in (ka, kb):
         d[M_U + 2 * k] = 0.0
         d[M_U + 2 * k + 1] = 0.0
+    if kc >= 0:
+        # the third normal's angle from e_a, in its first ū slot (reduce_state)
+        d[M_U + 2 * kc] = tc - ta
+        d[M_U + 2 * kc + 1] = 0.0
     return True
 
 
@@ -741,13 +850,17 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     A corner of exactly two groups is stepped in its reduced state (:func:`reduce_corner`: X, V, θ_a, φ; r and
     the two ū are functions of them, on both circles exactly): its opening φ is a state of its own instead of a
     difference of nearly equal lengths of r and ū, so the steps are set by the motion, not by the rounding of the
-    opening (PTS: 28 705 implicit steps in r and ū, docs/multisurface.md).  The step's error is measured on the
-    reduced state (the angles' tolerance: r's over the larger µ).  ``rm``: :func:`radau_memory` (no array is
-    allocated per step)."""
+    opening (PTS: 28 705 implicit steps in r and ū, docs/multisurface.md).  A corner of exactly three groups is
+    stepped in the same state with the third normal's angle from e_a besides (:func:`reduce_state`: r and the three
+    ū on the three circles exactly; 7 unknowns instead of the Cartesian state's 12, so its Newton systems are 7 × 7:
+    PTS 1 712 → 1 245 implicit steps, docs/multisurface.md, "A reduced state for three groups").  The step's error
+    is measured on the reduced state (the angles' tolerance: r's over the largest µ).  ``rm``:
+    :func:`radau_memory` (no array is allocated per step)."""
     m = y.shape[0]
     st[ST_RADAU] += 1
     st[ST_LU] += 2
-    ka, kb = _corner_pair(mask, rb.shape[0])
+    ka, kb = reduced_pair(y, rb, mask)
+    kc = third_group(mask, rb.shape[0], ka, kb) if ka >= 0 else -1
     mem, fw, fz, z3, iw, mats, cmat, cvec, jr = rm
     yw = fw[W_YW]
     act = iw[0]
@@ -755,7 +868,7 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     tol[:] = atol
     if ka >= 0:
         v = fw[W_V]
-        reduce_corner(y, rb, ka, kb, v)
+        reduce_state(y, rb, mask, ka, kb, v)
         fv = fw[W_FV]
         if not reduced_rhs(tau, v, raw, rb, mu, mask, c, ka, kb, yw, fv):
             return False, np.inf
@@ -764,6 +877,13 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
         for p in range(M_EIN):
             act[p] = p
         na = M_EIN
+        if kc >= 0:
+            st[ST_RADAU_THREE] += 1
+            tol[M_R] = atol[M_R] / max(mu[ka], mu[kb], mu[kc])
+            tol[M_R + 1] = tol[M_R]
+            tol[M_U + 2 * kc] = tol[M_R]
+            act[na] = M_U + 2 * kc
+            na += 1
     else:
         v = y
         fv = f0
@@ -838,7 +958,7 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
                              zf, fz, z3[1], fw[W_YT], fw[W_W1], cvec, jr)):
         return False, np.inf
     if ka >= 0:
-        expand_corner(vnew, rb, mu, ka, kb, ynew)
+        expand_state(vnew, rb, mu, mask, ka, kb, ynew)
     else:
         ynew[:] = vnew
     if not multi_rhs(tau + h, ynew, raw, rb, mu, mask, c, fnew):
@@ -866,7 +986,7 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     mem[RM_PENDING, RM_MASK] = mask
     mem[RM_PENDING, RM_H] = h
     if ka >= 0:
-        reduce_corner(ynew, rb, ka, kb, yp)
+        reduce_state(ynew, rb, mask, ka, kb, yp)
     else:
         yp[:] = vnew
     for p in range(m):
@@ -887,7 +1007,7 @@ def _radau_estimate(tau, v, fv, h, z, act, na, m, e1, p1, tol, rtol, vnew, raw, 
                     st, fw):
     """The scaled error of a Radau IIA step by RADAU5's embedded estimate (γ/h − J)⁻¹ (f0 + Σ e_i z_i/h) on the
     active components (``e1``: the step's factored real system; the energies, quadratures, are not checked), over
-    EST_SCALE on a reduced corner of two groups; with ``again``, f0 taken at v + the first estimate, which the
+    EST_SCALE on a reduced corner (of two or three groups); with ``again``, f0 taken at v + the first estimate, which the
     call without ``again`` for this step left in ``fw[W_EST]`` (``fw``: the work rows of :func:`radau_memory`)."""
     est = fw[W_EST]
     w = fw[W_W]
