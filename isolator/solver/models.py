@@ -50,6 +50,7 @@ from isolator.solver import (
     multisurface_rate,
     planar,
     planar_building,
+    planar_building_multisurface,
     planar_multisurface,
     planar_rim,
     record,
@@ -84,6 +85,9 @@ class Model:
 MODELS: dict[str, Model] = {model.name: model for model in (
     Model(multisurface_rate.MODEL_NAME, multisurface_rate.scene_needs, multisurface_rate.simulate_scene,
           "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
+    Model(planar_building_multisurface.MODEL_NAME, planar_building_multisurface.scene_needs,
+          planar_building_multisurface.simulate_scene, "shear building on a double or triple friction pendulum under a "
+          "pair: implicit steps with rims, the floors exact within each step"),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
           "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
     Model(building_multisurface.MODEL_NAME, building_multisurface.scene_needs, building_multisurface.simulate_scene,
