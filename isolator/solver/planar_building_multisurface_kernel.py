@@ -66,6 +66,7 @@ from isolator.solver.planar_multisurface_kernel import (
     surface_peaks,
 )
 from isolator.solver.planar_multisurface_stepper import (
+    ARRIVAL_FRACTION,
     H_MIN_FRACTION,
     MAX_STEPS_PER_INTERVAL,
     RIM_AWAY,
@@ -89,9 +90,12 @@ from isolator.solver.planar_multisurface_stepper import (
     Y_U,
     Y_V,
     Y_X,
+    arrival_time,
+    arrive,
     be_step,
     carry_slot,
     popcount,
+    ultimate_impact,
     work_bound,
 )
 
@@ -241,6 +245,53 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
                         - (out[Y_EF] - y[Y_EF]) - (out[Y_EV] - y[Y_EV]))
         rout[R_IMPULSE] = max(math.sqrt((out[Y_V] - y[Y_V]) ** 2 + (out[Y_V + 1] - y[Y_V + 1]) ** 2), 1e-300)
     return mask
+
+
+@njit(cache=True)
+def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rout):
+    """The last ``dt`` before the ultimate as one move and the impact (the rigid block's ``arrive`` and
+    ``ultimate_impact``), the floors carried over dt with ẍ_b = 0 and then keeping their absolute velocities through
+    the velocity the slab loses (the rims' reaction over the move, 2 dt g r·ē, and the impact).  Returns the mask of
+    every group on its rim, sliding; rout as building_step's."""
+    ng = rb.shape[0]
+    nm = om.shape[0]
+    f0 = carry_slot(ng) + 1
+    a0 = (a0x, a0y)
+    sl = (sx, sy)
+    arrive(y, dt, a0x + 0.5 * dt * sx, a0y + 0.5 * dt * sy, g, c, mu, rim, out)
+    e_in = 0.0
+    e_vf = 0.0
+    for d in range(2):
+        for i in range(nm):
+            j = f0 + 2 * nm * d + i
+            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d], sl[d], dt, om[i], zeta, gam[i])
+            e_in -= gam[i] * ((a0[d] + sl[d] * dt) * q1 - a0[d] * y[j] - sl[d] * big_q)
+            e_vf += 2.0 * zeta * om[i] * sq
+            out[j] = q1
+            out[j + nm] = v1
+    out[Y_EIN] += e_in
+    out[Y_EV] += e_vf
+    xn = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
+    rn = (r[0] * y[Y_X] + r[1] * y[Y_X + 1]) / xn
+    if rn > 0.0:
+        out[Y_V] -= 2.0 * dt * g * rn * y[Y_X] / xn
+        out[Y_V + 1] -= 2.0 * dt * g * rn * y[Y_X + 1] / xn
+    ultimate_impact(y, out, g, rb)
+    dv1 = out[Y_V] - y[Y_V]
+    dv2 = out[Y_V + 1] - y[Y_V + 1]
+    for d in range(2):
+        dv = dv1 if d == 0 else dv2
+        for i in range(nm):
+            out[f0 + 2 * nm * d + nm + i] -= gam[i] * dv
+    out[Y_EIMP] = y[Y_EIMP] + ((out[Y_EIN] - y[Y_EIN])
+                               - (total_energy(out, g, rb, om, gam) - total_energy(y, g, rb, om, gam))
+                               - (out[Y_EF] - y[Y_EF]) - (out[Y_EV] - y[Y_EV]))
+    rout[0] = -(a0x + dt * sx) / g
+    rout[1] = -(a0y + dt * sy) / g
+    rout[2] = 0.0
+    rout[R_IMPULSE] = max(math.sqrt(dv1 * dv1 + dv2 * dv2), 1e-300)
+    low = (1 << ng) - 1
+    return low << ng | low
 
 
 @njit(cache=True)
@@ -454,14 +505,43 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                 fail_t = t[i] + tau
                 break
             h = min(h, hi - tau)
+            # the arrival at the ultimate with every group on its rim closing into alignment (the rigid block's event,
+            # planar_multisurface_stepper.arrival_time): the steps end ARRIVAL_FRACTION × hi before it, the last of it
+            # is one move (arrive, the floors carried with the slab's velocity kept), the impact after it
+            jump = False
+            h_keep = h
+            t_arr = arrival_time(y, rim)
+            if t_arr > 0.0:
+                t_jump = ARRIVAL_FRACTION * hi
+                if 1.01 * t_jump < t_arr < t_jump + h and t_arr - t_jump < hi - tau:
+                    h = t_arr - t_jump
+                elif (t_arr <= 1.01 * t_jump and t_arr < hi - tau
+                      and 2.0 * t_arr * g * math.sqrt(r[0] * r[0] + r[1] * r[1])
+                      < (y[Y_V] * y[Y_X] + y[Y_V + 1] * y[Y_X + 1]) / math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)):
+                    jump = True
+                    h = t_arr
             last_step = h >= hi - tau
             at_floor = not h > h_floor
             a0x = ax[i] + slope_x * tau
             a0y = ay[i] + slope_y * tau
-            m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y1, r1)
-            mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r1, yh, rh)
-            m2 = building_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h),
-                               slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, rh, y2, r2)
+            if jump:
+                m1 = _jump(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y2, r2)
+                mh = m1
+                work += 0.0
+            else:
+                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y1, r1)
+                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r1, yh,
+                                   rh)
+            m2 = mh if jump else building_step(
+                yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), slope_x, slope_y,
+                g, c, rb, mu, rim, om, zeta, gam, rh, y2, r2)
+            if jump:
+                for j in range(ny):
+                    y1[j] = y2[j]
+                r1[R_IMPULSE] = 0.0
+                rh[R_IMPULSE] = 0.0
+                r1[2] = 0.0
+                rh[2] = 0.0
             work += r1[2] + rh[2] + r2[2]
             if work > max_evals:
                 status |= STATUS_WORK
@@ -597,7 +677,25 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                 peak_r = max(peak_r, min(fr, f_max) if rigid else fr)
                 f1 = g * r[0] + c * y[Y_V]
                 f2 = g * r[1] + c * y[Y_V + 1]
-                peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
+                f_abs = math.sqrt(f1 * f1 + f2 * f2)
+                if rigid:
+                    # every group on its rim: where the rims close into alignment their reaction grows as 1/sin of
+                    # their angle and does not converge with step_tol (the rigid block's steps cap it the same way);
+                    # the force is taken up to what the slab held at the ultimate needs against the ground and the
+                    # floors, |a_g + Σ Γ̃ q̃''| (or the largest surface force), plus the dashpot and the centripetal
+                    # |V|²/|X| of a slide along the ultimate circle (PTS ×2 with the small TFP: the base shear
+                    # differed by 61 % between the pair and the pair turned by 0.7 rad without the cap)
+                    ag_x = ax[i] + slope_x * tau
+                    ag_y = ay[i] + slope_y * tau
+                    h1 = _held_force(y, f0, nm, ag_x, om, zeta, gam, 0)
+                    h2 = _held_force(y, f0, nm, ag_y, om, zeta, gam, 1)
+                    vn = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
+                    xn = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
+                    a_cap = max(g * f_max, math.sqrt(h1 * h1 + h2 * h2)) + c * vn
+                    if xn > 0.0:
+                        a_cap += vn * vn / xn
+                    f_abs = min(f_abs, a_cap)
+                peaks[nk + 2] = max(peaks[nk + 2], f_abs)
             peak_x = max(peak_x, math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2))
             peak_v = max(peak_v, math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2))
             for j in range(2):
@@ -642,7 +740,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
             if status:
                 break
             surface_peaks(ub, rb, members, tmat, surf_peak)
-            h = h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
+            h = h_keep if jump else h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
             if started:
                 h = min(h, 1e-3 * hi)
                 started = False
