@@ -34,8 +34,10 @@ plane: a single pendulum with a capacity that needs the 2-D engine runs ``2d`` (
 its peak reaches the capacity :mod:`isolator.solver.planar_rim` runs it again with the rim (``2d+rim``,
 ``rerun`` true).  A building on a single pendulum with a capacity under one component runs ``1d-building``,
 and past the capacity :mod:`isolator.solver.building_multisurface` runs it again with the rim
-(``1d-building-multisurface``, ``rerun`` true).  The 2-D building has no rim: past the capacity its result says
-so (:func:`isolator.solver.building_multisurface.say_if_capacity_passed`, a notice in ``solver_status``).
+(``1d-building-multisurface``, ``rerun`` true); under a pair it runs ``2d-building``, and past the capacity
+:mod:`isolator.solver.planar_building_multisurface` runs it again with the rim (``2d-building-multisurface``,
+``rerun`` true).  With a vertical or µ(v) the 2-D building has no rim: past the capacity its result says so
+(:func:`isolator.solver.building_multisurface.say_if_capacity_passed`, a notice in ``solver_status``).
 """
 
 from __future__ import annotations

@@ -20,19 +20,21 @@ contacts, the ultimate and its impulse).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import InvalidSystemError, RecordInputError, SolverError
+from isolator.errors import DesignError, InvalidSystemError, RecordInputError, SolverError
 from isolator.solver import multisurface_kernel as _ms
+from isolator.solver import planar_building
 from isolator.solver import planar_building_multisurface_kernel as _bk
 from isolator.solver import planar_multisurface_kernel as _pm
 from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.building import naming_design
-from isolator.solver.building_multisurface import BEARING_KEYS
+from isolator.solver.building_multisurface import BEARING_KEYS, rerun_past_capacity, single_with_rim
 from isolator.solver.multisurface import response_fields
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_building import PlanarBuildingResponse, planar_building_system
@@ -42,6 +44,8 @@ from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
 MODEL_NAME = "2d-building-multisurface"
+#: The model a building on a single pendulum with a capacity runs first under a pair (the 2-D building).
+RIM_FIRST_MODEL = planar_building.MODEL_NAME
 #: the floors' error norm's floors, as multiples of the slab's
 FLOOR_SCALE = 1.0
 
@@ -93,12 +97,40 @@ class PlanarBuildingMultisurfaceResponse(PlanarBuildingResponse):
         return classify_configuration(self.damping_per_mass, self.building.gravity_m_s2 / float(np.min(rbar)))
 
 
+def single_with_rim_in_plane(scene):
+    """The single pendulum with its rim under a building that a pair describes, or None.
+
+    A design with a ``[superstructure]``, a ``displacement_capacity_m`` and one surface, a restoring stiffness, two
+    horizontal components, constant friction and no vertical (what ``2d-building`` runs and this model can run
+    again with the rim): :func:`isolator.solver.building_multisurface.single_with_rim` of the scene seen along one
+    component (the surface does not depend on the record)."""
+    if not scene.has_y or scene.has_z or scene.velocity_dependent:
+        return None
+    return single_with_rim(dataclasses.replace(scene, ay_m_s2=None))
+
+
+def isotropic(superstructure) -> bool:
+    """The floors' stiffness (and so their damping) is the same along x and y (what this model takes)."""
+    return bool(np.array_equal(superstructure.stiffness_matrix("x"), superstructure.stiffness_matrix("y")))
+
+
 def scene_needs(scene) -> tuple[str, str] | None:
-    """``(model, reason)`` for a design with a ``[superstructure]`` on a double or triple bearing under a pair."""
+    """``(model, reason)`` for a design with a ``[superstructure]`` on a double or triple bearing under a pair.
+
+    A building on a single pendulum with a capacity under a pair (:func:`single_with_rim_in_plane`):
+    ``2d-building`` first, **and the choice depends on its result** — when its peak reaches the capacity the scene
+    is run again here with the rim (:func:`simulate_scene`)."""
     design = scene.design
     bearing = getattr(design, "bearing", None)
-    if getattr(design, "superstructure", None) is None or bearing is None or bearing.is_simple or not scene.has_y:
+    if getattr(design, "superstructure", None) is None or not scene.has_y:
         return None
+    if bearing is None or bearing.is_simple:
+        single = single_with_rim_in_plane(scene)
+        if single is None or not isotropic(design.superstructure):
+            return None
+        return RIM_FIRST_MODEL, planar_building.scene_reason(has_y=True, has_z=False, velocity_dependent=False) + (
+            f"; a displacement capacity of {single.ultimate_displacement_m:.4g} m: if the peak reaches it, the run is "
+            f"redone with the rim ({MODEL_NAME}), a choice made on the result")
     floors = len(design.superstructure.floors)
     return MODEL_NAME, (f"a {floors}-story superstructure on a {bearing.kind} friction pendulum "
                         f"({len(bearing.surfaces)} surfaces) under two horizontal components: the 2-D series model "
@@ -123,13 +155,24 @@ def simulate_scene(scene) -> PlanarBuildingMultisurfaceResponse:
 
     Raises
     ------
+    DesignError
+        A vertical component or µ(v) (not modelled).
     InvalidSystemError
-        A vertical component or µ(v), floors differing along x and y (not modelled).
+        Floors differing along x and y (not modelled).
     """
     design = scene.design
+    if design.bearing is None or design.bearing.is_simple:
+        single = single_with_rim_in_plane(scene)
+        if single is None:
+            raise LookupError("this model takes a building on a single pendulum only with a capacity (scene_needs)")
+        if not isotropic(design.superstructure):  # not modelled here: the registry flags a capacity passed
+            return planar_building.simulate_scene(scene)
+        return rerun_past_capacity(scene, single, planar_building.simulate_scene, simulate_on, RIM_FIRST_MODEL,
+                                   f"{MODEL_NAME} under the pair: implicit steps, plastic impact at the capacity, "
+                                   "sliding along the rim; constant kinetic friction")
     why = _refusal(scene)
     if why is not None:
-        raise InvalidSystemError(f"{design.source}: {why}")
+        raise DesignError(f"{design.source}: {why}")
     return simulate_on(scene, design.bearing)
 
 
@@ -401,4 +444,4 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
 
 
 __all__ = ["MODEL_NAME", "PlanarBuildingMultisurfaceResponse", "modal_rows", "scene_needs",
-           "simulate_building_bearing_pair", "simulate_on", "simulate_scene"]
+           "simulate_building_bearing_pair", "simulate_on", "simulate_scene", "isotropic", "single_with_rim_in_plane"]

@@ -65,12 +65,10 @@ def _pair_segment(records_dir, start_s=7.0, duration_s=5.0):
 BOUNDS = {1e-8: dict(history=1e-4, peaks=5e-4, balance=1e-6), 1e-7: dict(history=5e-4, peaks=1e-3, balance=5e-6)}
 
 
-@pytest.mark.parametrize("name", list(CASES))
-@pytest.mark.parametrize("degrees, step_tol", [(0.0, 1e-8), (35.0, 1e-8), (35.0, 1e-7)])
+@pytest.mark.parametrize("name, degrees, step_tol", [(name, degrees, 1e-8) for name in CASES for degrees in (0.0, 35.0)]
+                         + [(next(iter(CASES)), 35.0, 1e-7)])
 def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, degrees, step_tol):
     acc, dt, s, b, total, ref = _case(records_dir, name)
-    if step_tol == 1e-7 and not name.startswith("TFP"):
-        pytest.skip("the looser tolerance on one case only (runtime)")
     c, sn = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
     ours = simulate_building_bearing_pair(c * acc, sn * acc, dt, superstructure=s, bearing=b, total_mass_kg=total,
                                           step_tol=step_tol)
@@ -155,25 +153,26 @@ def test_an_equal_friction_double_is_the_2d_building_on_one_pendulum_of_the_summ
     ax, ay, dt = _pair_segment(records_dir)
     s = make_superstructure([3e5, 2.5e5, 2e5], [6e8, 4.5e8, 3e8], 0.05)
     b = bearing("double", [(1.5, 0.05, 2.0), (1.0, 0.05, 2.0)])
-    ours = simulate_building_bearing_pair(ax, ay, dt, superstructure=s, bearing=b, total_mass_kg=1e6, step_tol=1e-8)
+    ours = simulate_building_bearing_pair(ax, ay, dt, superstructure=s, bearing=b, total_mass_kg=1e6, step_tol=1e-7)
     ref = simulate_planar_building(ax, ay, dt, superstructure=s, total_mass_kg=1e6, stiffness_N_per_m=1e6 * G / 2.5,
                                    mu_static=0.05, mu_kinetic=0.05, pendulum=True)
-    # measured at step_tol 1e-8: history 6.5e-9 of the peak, drifts 1.6e-8, floor accelerations 1.5e-8, balance 5.6e-9
-    assert _rel(ours.displacement_m, ref.displacement_m) <= 1e-7
-    assert _rel(ours.floor_displacement_m, ref.floor_displacement_m) <= 1e-6
-    assert ours.peak_displacement_m == pytest.approx(ref.peak_displacement_m, rel=1e-7)
-    assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=1e-7)
-    assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=1e-7)
-    assert ours.base_shear_coefficient == pytest.approx(ref.base_shear_coefficient, rel=1e-7)
-    assert ours.superstructure_shear_coefficient == pytest.approx(ref.superstructure_shear_coefficient, rel=1e-7)
-    assert ours.energy_input_J_per_kg == pytest.approx(ref.energy_input_J_per_kg, rel=1e-7)
-    assert abs(ours.energy_balance_error_J_per_kg) <= 1e-7 * ours.energy_input_J_per_kg
+    # measured at step_tol 1e-7 / 1e-8 / 1e-9: history 1.0e-7 / 6.5e-9 / 3.3e-9 of the peak, drifts 9.6e-8 / 1.6e-8 /
+    # 1.5e-9, floor accelerations 8.2e-7 / 1.5e-8 / 2.4e-8, balance 5.7e-8 / 5.6e-9 / 5.7e-10 of the input
+    assert _rel(ours.displacement_m, ref.displacement_m) <= 1e-6
+    assert _rel(ours.floor_displacement_m, ref.floor_displacement_m) <= 1e-5
+    assert ours.peak_displacement_m == pytest.approx(ref.peak_displacement_m, rel=1e-6)
+    assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=1e-6)
+    assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=5e-6)
+    assert ours.base_shear_coefficient == pytest.approx(ref.base_shear_coefficient, rel=1e-6)
+    assert ours.superstructure_shear_coefficient == pytest.approx(ref.superstructure_shear_coefficient, rel=1e-6)
+    assert ours.energy_input_J_per_kg == pytest.approx(ref.energy_input_J_per_kg, rel=1e-6)
+    assert abs(ours.energy_balance_error_J_per_kg) <= 1e-6 * ours.energy_input_J_per_kg
     loads = ours.bearing_loads()
     assert loads is None  # no layout given
 
 
 def test_stiff_floors_converge_to_the_rigid_block_on_the_bearing(records_dir):
-    ax, ay, dt = _pair_segment(records_dir)
+    ax, ay, dt = _pair_segment(records_dir, 7.0, 3.0)
     b = bearing("triple", TFP_SMALL)
     rigid = simulate_bearing_pair(ax, ay, dt, bearing=b, method="steps", step_tol=1e-8)
     distances = []
@@ -182,7 +181,7 @@ def test_stiff_floors_converge_to_the_rigid_block_on_the_bearing(records_dir):
         out = simulate_building_bearing_pair(ax, ay, dt, superstructure=s, bearing=b, total_mass_kg=1e6,
                                              step_tol=1e-8)
         distances.append(_rel(out.displacement_m, rigid.displacement_m))
-    # measured at step_tol 1e-9: 1.3e-2, 3.0e-4, 9.9e-6 (the floors' share of the mass moves with the slab)
+    # measured on 7-12 s at step_tol 1e-9: 1.3e-2, 3.0e-4, 9.9e-6 (the floors' share of the mass moves with the slab)
     assert distances[0] > 1e-3
     assert distances[1] < distances[0] / 10.0 and distances[2] < distances[1] / 10.0
     assert distances[2] <= 1e-4
@@ -262,6 +261,64 @@ def test_cli_simulate_a_pair_with_a_building_on_a_tfp(records_dir, tmp_path):
     out = json.loads(result.output)
     assert out["model"] == "2d-building-multisurface" and "triple" in out["model_reason"]
     assert len(out["story_drift_m"]) == 2 and out["base_shear_coefficient"] > 0.06
-    assert out["n_bearings_uplifted"] == 0 and len(out["bearing_axial_load_max_N"]) == 4
+    # the whole record drives the small TFP to its ultimate (impacts of ~4 m/s): the overturning lifts bearings
+    high, low = out["bearing_axial_load_max_N"], out["bearing_axial_load_min_N"]
+    share = 1.0e6 * G / 4.0
+    assert len(high) == 4 and all(lo < share < hi for lo, hi in zip(low, high, strict=True))
+    assert out["n_bearings_uplifted"] == sum(v < 0.0 for v in low)
     assert set(out["regimes"]) >= {"I", "II"} and out["n_rim_contacts"] >= 0
     assert abs(out["energy_balance_error_J_per_kg"]) <= 1e-5 * out["energy_input_J_per_kg"]
+
+
+SINGLE = """name = "3 stories on a single pendulum with a small capacity"
+mass_kg = 1.6e6
+radius_m = 2.5
+mu_static = 0.05
+mu_kinetic = 0.05
+displacement_capacity_m = 0.12
+[superstructure]
+damping_ratio = 0.05
+[[superstructure.floor]]
+mass_kg = 4.5e5
+story_height_m = 4.2
+stiffness_x_N_per_m = 6.5e8
+[[superstructure.floor]]
+mass_kg = 3.5e5
+story_height_m = 3.8
+stiffness_x_N_per_m = 4.5e8
+"""
+
+
+def test_a_building_on_a_single_pendulum_past_its_capacity_under_a_pair_is_run_again_with_the_rim(records_dir,
+                                                                                                    tmp_path):
+    from isolator.adapter import motion_keywords
+    from isolator.design import Design
+    from isolator.solver.models import Scene, select_model, simulate
+
+    path = tmp_path / "single.toml"
+    path.write_text(SINGLE)
+    design = Design.from_toml(path)
+    ax, ay, dt = _pair_segment(records_dir)
+
+    def scene(scale):
+        return Scene(ax_m_s2=scale * ax, ay_m_s2=scale * ay, dt_s=dt, isolator=motion_keywords(design), design=design)
+
+    name, reason = select_model(scene(1.0))
+    assert name == "2d-building" and "capacity of 0.12 m" in reason and "2d-building-multisurface" in reason
+    free = simulate_planar_building(ax, ay, dt, superstructure=design.superstructure, total_mass_kg=1.6e6,
+                                    stiffness_N_per_m=1.6e6 * G / 2.5, mu_static=0.05, mu_kinetic=0.05, pendulum=True)
+    assert free.peak_displacement_m > 0.12  # the unbounded plate runs past the capacity
+    out = simulate(scene(1.0))
+    assert out.rerun and out.model == "2d-building-multisurface" and "reached its displacement capacity" in (
+        out.model_reason)
+    assert out.ultimate_displacement_reached and out.ultimate_displacement_m == pytest.approx(0.12)
+    assert out.peak_displacement_m <= 0.12 * (1.0 + 1e-12) and out.impact_impulse_m_s > 0.0
+    assert abs(out.energy_balance_error_J_per_kg) <= 1e-6 * out.energy_input_J_per_kg
+    assert out.summary()["ultimate_displacement_reached"] is True
+    # before the slab first reaches the rim the plate and the rim are the same: the two models agree there
+    before = out.time_s < out.ultimate_first_time_s - 0.05
+    assert np.count_nonzero(before) > 50
+    assert _rel(out.displacement_m[before], free.displacement_m[before]) <= 1e-4
+    # below the capacity the 2-D building's answer stands, flagged as not reaching it
+    small = simulate(scene(0.2))
+    assert small.model == "2d-building" and not small.ultimate_displacement_reached
