@@ -154,15 +154,54 @@ def floor_mode(q0, v0, phi0, psi, h, w, z, gm, integrals=True):
     return q1, v1, big_q, max(sq, 0.0)
 
 
+#: the columns of a step length's table per mode (mode_table): e^{−ζωh}, cos ω_d h, sin ω_d h and the integrals
+#: ∫e^{−ζωτ}cos ω_dτ, ∫e^{−ζωτ}sin ω_dτ, ∫e^{−2ζωτ}, ∫e^{−2ζωτ}cos 2ω_dτ, ∫e^{−2ζωτ}sin 2ω_dτ over [0, h]
+TABLE_SIZE = 8
+
+
 @njit(cache=True)
-def effective_mass(h, om, zeta, gam):
-    """µ_h: the slab's effective mass over a step of length h, per unit total mass (module docstring)."""
-    out = 1.0
+def rout_tab(rout, nm):
+    """The table's scratch inside rout, past its R_SIZE slots (a view: no allocation per step)."""
+    return rout[R_SIZE:R_SIZE + nm * TABLE_SIZE].reshape((nm, TABLE_SIZE))
+
+
+@njit(cache=True)
+def mode_table(h, om, zeta, tab):
+    """The step length's exponentials and integrals per mode into tab (TABLE_SIZE columns): they depend on h and the
+    mode only, so one step's solves share them (both directions, the free and the final propagation)."""
     for i in range(om.shape[0]):
-        wd = om[i] * math.sqrt(1.0 - zeta * zeta)
-        x = wd * h
-        out -= gam[i] * gam[i] * math.exp(-zeta * om[i] * h) * (math.sin(x) / x if x > 0.0 else 1.0)
-    return out
+        w = om[i]
+        sig = zeta * w
+        wd = w * math.sqrt(1.0 - zeta * zeta)
+        tab[i, 0] = math.exp(-sig * h)
+        tab[i, 1] = math.cos(wd * h)
+        tab[i, 2] = math.sin(wd * h)
+        tab[i, 3], tab[i, 4] = _ecs(sig, wd, h)
+        tab[i, 5] = h * _phi1(complex(-2.0 * sig * h, 0.0)).real
+        tab[i, 6], tab[i, 7] = _ecs(2.0 * sig, 2.0 * wd, h)
+
+
+@njit(cache=True)
+def floor_mode_tab(q0, v0, phi0, psi, h, w, z, gm, row):
+    """:func:`floor_mode` with the step's table row of the mode (:func:`mode_table`); the same formulas."""
+    sig = z * w
+    wd = w * math.sqrt(1.0 - z * z)
+    a1 = -gm * psi / (w * w)
+    a0 = (-gm * phi0 - 2.0 * z * w * a1) / (w * w)
+    a = q0 - a0
+    b = v0 - a1
+    e = row[0]
+    cs = row[1]
+    sn = row[2]
+    c2 = -(w * w * a + sig * b) / wd
+    q1 = a0 + a1 * h + e * (a * cs + (b + sig * a) / wd * sn)
+    v1 = a1 + e * (b * cs + c2 * sn)
+    ic = row[3]
+    is_ = row[4]
+    big_q = a0 * h + 0.5 * a1 * h * h + a * ic + (b + sig * a) / wd * is_
+    sq = (a1 * a1 * h + 2.0 * a1 * (b * ic + c2 * is_) + 0.5 * (b * b + c2 * c2) * row[5]
+          + 0.5 * (b * b - c2 * c2) * row[6] + b * c2 * row[7])
+    return q1, v1, big_q, max(sq, 0.0)
 
 
 @njit(cache=True)
@@ -190,11 +229,17 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
 
     ``a0x, a0y`` the ground's acceleration at the step's start, ``sx, sy`` its slope [m/s³]; the state y (the
     stepper's slots, then per direction the floors' q̃ and q̃') into out.  Returns be_step's mask; rout[:3] as
-    be_step's, rout[R_IMPULSE] the velocity an impact removed from the slab (0 without one)."""
+    be_step's, rout[R_IMPULSE] the velocity an impact removed from the slab (0 without one), rout[R_SIZE:] the
+    scratch of the step length's table (R_SIZE + TABLE_SIZE × modes long)."""
     ng = rb.shape[0]
     nm = om.shape[0]
     f0 = carry_slot(ng) + 1
-    mu_h = effective_mass(h, om, zeta, gam)
+    tab = rout_tab(rout, nm)
+    mode_table(h, om, zeta, tab)
+    mu_h = 1.0
+    for i in range(nm):
+        x = om[i] * math.sqrt(1.0 - zeta * zeta) * h
+        mu_h -= gam[i] * gam[i] * tab[i, 0] * (tab[i, 2] / x if x > 0.0 else 1.0)
     a0 = (a0x, a0y)
     sl = (sx, sy)
     abar = (a0x + 0.5 * h * sx, a0y + 0.5 * h * sy)
@@ -204,7 +249,7 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         dfree = 0.0
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            _, v1, _, _ = floor_mode(y[j], y[j + nm], a0[d], sl[d], h, om[i], zeta, gam[i], False)
+            _, v1, _, _ = floor_mode_tab(y[j], y[j + nm], a0[d], sl[d], h, om[i], zeta, gam[i], tab[i])
             dfree += gam[i] * (v1 - y[j + nm])
         if d == 0:
             ap_x = (abar[d] + dfree / h) / mu_h
@@ -224,7 +269,7 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         dv = out[Y_V + d] - vpre
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d] + xb, sl[d], h, om[i], zeta, gam[i])
+            q1, v1, big_q, sq = floor_mode_tab(y[j], y[j + nm], a0[d] + xb, sl[d], h, om[i], zeta, gam[i], tab[i])
             # the ground's work on the floors, −Γ̃ ∫ a_g q̃' dτ (by parts), and their dampers' 2ζω ∫ q̃'² dτ
             e_in -= gam[i] * ((a0[d] + sl[d] * h) * q1 - a0[d] * y[j] - sl[d] * big_q)
             e_vf += 2.0 * zeta * om[i] * sq
@@ -439,10 +484,10 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
     y2 = np.zeros(ny)
     y0 = np.zeros(ny)
     r = np.zeros(2)
-    r1 = np.zeros(R_SIZE)
-    rh = np.zeros(R_SIZE)
-    r2 = np.zeros(R_SIZE)
-    ra = np.zeros(R_SIZE)
+    r1 = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    rh = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    r2 = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    ra = np.zeros(R_SIZE + nm * TABLE_SIZE)
     yw = np.zeros(ny)
     rowx = np.zeros(nk)
     rowy = np.zeros(nk)
