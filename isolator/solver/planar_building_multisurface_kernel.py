@@ -133,22 +133,32 @@ def floor_mode(q0, v0, phi0, psi, h, w, z, gm, integrals=True):
     Returns (q̃(h), q̃'(h), ∫q̃ dτ, ∫q̃'² dτ) (the integrals 0 without ``integrals``)."""
     sig = z * w
     wd = w * math.sqrt(1.0 - z * z)
+    e = math.exp(-sig * h)
+    cs = math.cos(wd * h)
+    sn = math.sin(wd * h)
+    if not integrals:
+        return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, 0.0, 0.0, 0.0, 0.0, 0.0, False)
+    ic, is_ = _ecs(sig, wd, h)
+    e0 = h * _phi1(complex(-2.0 * sig * h, 0.0)).real
+    ic2, is2 = _ecs(2.0 * sig, 2.0 * wd, h)
+    return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2, True)
+
+
+@njit(cache=True)
+def _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2, integrals):
+    # floor_mode with the step length's exponentials and integrals given (mode_table's columns)
+    sig = z * w
+    wd = w * math.sqrt(1.0 - z * z)
     a1 = -gm * psi / (w * w)
     a0 = (-gm * phi0 - 2.0 * z * w * a1) / (w * w)
     a = q0 - a0
     b = v0 - a1
-    e = math.exp(-sig * h)
-    cs = math.cos(wd * h)
-    sn = math.sin(wd * h)
     c2 = -(w * w * a + sig * b) / wd
     q1 = a0 + a1 * h + e * (a * cs + (b + sig * a) / wd * sn)
     v1 = a1 + e * (b * cs + c2 * sn)
     if not integrals:
         return q1, v1, 0.0, 0.0
-    ic, is_ = _ecs(sig, wd, h)
     big_q = a0 * h + 0.5 * a1 * h * h + a * ic + (b + sig * a) / wd * is_
-    e0 = h * _phi1(complex(-2.0 * sig * h, 0.0)).real
-    ic2, is2 = _ecs(2.0 * sig, 2.0 * wd, h)
     sq = (a1 * a1 * h + 2.0 * a1 * (b * ic + c2 * is_) + 0.5 * (b * b + c2 * c2) * e0
           + 0.5 * (b * b - c2 * c2) * ic2 + b * c2 * is2)
     return q1, v1, big_q, max(sq, 0.0)
@@ -184,24 +194,8 @@ def mode_table(h, om, zeta, tab):
 @njit(cache=True)
 def floor_mode_tab(q0, v0, phi0, psi, h, w, z, gm, row):
     """:func:`floor_mode` with the step's table row of the mode (:func:`mode_table`); the same formulas."""
-    sig = z * w
-    wd = w * math.sqrt(1.0 - z * z)
-    a1 = -gm * psi / (w * w)
-    a0 = (-gm * phi0 - 2.0 * z * w * a1) / (w * w)
-    a = q0 - a0
-    b = v0 - a1
-    e = row[0]
-    cs = row[1]
-    sn = row[2]
-    c2 = -(w * w * a + sig * b) / wd
-    q1 = a0 + a1 * h + e * (a * cs + (b + sig * a) / wd * sn)
-    v1 = a1 + e * (b * cs + c2 * sn)
-    ic = row[3]
-    is_ = row[4]
-    big_q = a0 * h + 0.5 * a1 * h * h + a * ic + (b + sig * a) / wd * is_
-    sq = (a1 * a1 * h + 2.0 * a1 * (b * ic + c2 * is_) + 0.5 * (b * b + c2 * c2) * row[5]
-          + 0.5 * (b * b - c2 * c2) * row[6] + b * c2 * row[7])
-    return q1, v1, big_q, max(sq, 0.0)
+    return _mode_core(q0, v0, phi0, psi, h, w, z, gm, row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7],
+                      True)
 
 
 @njit(cache=True)
