@@ -537,6 +537,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
         work = 0.0
         started = False
         arrival = False
+        arrival_steps = 0
         while tau < hi:
             steps_here += 1
             if steps_here > MAX_STEPS_PER_INTERVAL:
@@ -620,6 +621,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     else:
                         lo = mid
                 arrival = True
+                arrival_steps = 0
                 h = lo if lo > h_floor else up
                 continue
             if (m1 | mh | m2) & UNSOLVED:
@@ -786,7 +788,11 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                 h = min(h, 1e-3 * hi)
                 started = False
             if arrival:
-                if impulsive or (m2 >> ng) & ~rims0:
+                # the step cut before the arrival, then the arrival's short step; at most two steps after the cut
+                # (the motion may turn away from the rim in between: the flag would otherwise hold every later step
+                # at two floors)
+                arrival_steps += 1
+                if impulsive or (m2 >> ng) & ~rims0 or arrival_steps > 2:
                     arrival = False
                 else:
                     h = min(h, 2.0 * h_floor)
