@@ -131,8 +131,10 @@ def scene_needs(scene) -> tuple[str, str] | None:
         return RIM_FIRST_MODEL, planar_building.scene_reason(has_y=True, has_z=False, velocity_dependent=False) + (
             f"; a displacement capacity of {single.ultimate_displacement_m:.4g} m: if the peak reaches it, the run is "
             f"redone with the rim ({MODEL_NAME}), a choice made on the result")
-    floors = len(design.superstructure.floors)
-    return MODEL_NAME, (f"a {floors}-story superstructure on a {bearing.kind} friction pendulum "
+    floors = getattr(design.superstructure, "floors", None)
+    if floors is None:
+        return None  # not a superstructure this model reads (2d-multisurface refuses it in one line)
+    return MODEL_NAME, (f"a {len(floors)}-story superstructure on a {bearing.kind} friction pendulum "
                         f"({len(bearing.surfaces)} surfaces) under two horizontal components: the 2-D series model "
                         "with rims by implicit steps, the floors propagated exactly within each step (a vertical "
                         "and µ(v) are refused)")
