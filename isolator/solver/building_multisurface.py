@@ -149,6 +149,23 @@ class _WithoutFloors:
         return getattr(self._design, name)
 
 
+def rerun_past_capacity(scene, single, free_run, rim_run, first_model: str, how: str):
+    """A building on a single pendulum run on its unbounded plate (``free_run(scene)``) and, when its peak reaches
+    the capacity, again with the rim (``rim_run(scene, single)``; ``rerun`` true, ``model_reason`` naming
+    ``first_model``'s peak and ``how`` the rim model runs)."""
+    free = free_run(scene)
+    capacity = single.ultimate_displacement_m
+    if free.peak_displacement_m < capacity:
+        return free
+    rimmed = rim_run(scene, single)
+    rimmed.rerun = True
+    rimmed.model_reason = (f"a building on a single pendulum that reached its displacement capacity "
+                           f"{capacity:.4g} m: on {first_model} (an unbounded plate) its peak was "
+                           f"{free.peak_displacement_m:.4g} m, so the run was redone with the rim ({how}); chosen on "
+                           "that result")
+    return rimmed
+
+
 def scene_needs(scene) -> tuple[str, str] | None:
     """``(model, reason)`` for a design with a ``[superstructure]`` on a double or triple bearing under one
     component with constant friction; else None (a pair, a vertical, µ(v): the models above and below refuse
@@ -194,17 +211,8 @@ def simulate_scene(scene) -> BuildingResponse:
         single = single_with_rim(scene)
         if single is None:
             raise LookupError("this model takes a building on a single pendulum only with a capacity (scene_needs)")
-        free = _building.simulate_scene(scene)
-        capacity = single.ultimate_displacement_m
-        if free.peak_displacement_m < capacity:
-            return free
-        rimmed = _simulate_on(scene, single)
-        rimmed.rerun = True
-        rimmed.model_reason = (f"a building on a single pendulum that reached its displacement capacity "
-                               f"{capacity:.4g} m: on {RIM_FIRST_MODEL} (an unbounded plate) its peak was "
-                               f"{free.peak_displacement_m:.4g} m, so the run was redone with the rim (the exact 1-D "
-                               "building on the series model, plastic impact at the capacity); chosen on that result")
-        return rimmed
+        return rerun_past_capacity(scene, single, _building.simulate_scene, _simulate_on, RIM_FIRST_MODEL,
+                                   "the exact 1-D building on the series model, plastic impact at the capacity")
     why = _refusal(scene)
     if why is not None:
         raise InvalidSystemError(f"{design.source}: {why}")
@@ -457,7 +465,8 @@ def say_if_capacity_passed(scene, result) -> None:
     """Say it when a building's bearing, run without a rim, reached its displacement capacity (in place).
 
     The 2-D building (``2d-building``) has no rim: past the capacity it runs on as if the concave plate
-    were unbounded.  For a design with a ``[superstructure]`` and a ``displacement_capacity_m`` whose
+    were unbounded (under a pair alone the registry runs it again with the rim,
+    :mod:`isolator.solver.planar_building_multisurface`; with a vertical or µ(v) this notice stays).  For a design with a ``[superstructure]`` and a ``displacement_capacity_m`` whose
     result carries no rim of its own (no ``ultimate_displacement_reached`` field), the result gains
     :data:`UNBOUNDED_KEYS` in its summary — ``ultimate_displacement_reached`` (peak ≥ the capacity d* =
     d R_eff/R), the capacity, ``ultimate_first_time_s``, the first sample with |X| ≥ d* (the crossing
@@ -496,5 +505,5 @@ def say_if_capacity_passed(scene, result) -> None:
         result.message = notice if result.message == "ok" else f"{result.message}; {notice}"
 
 
-__all__ = ["MODEL_NAME", "UNBOUNDED_KEYS", "BuildingMultisurfaceResponse", "say_if_capacity_passed", "scene_needs",
-           "simulate_building_bearing", "simulate_scene", "single_with_rim"]
+__all__ = ["MODEL_NAME", "UNBOUNDED_KEYS", "BuildingMultisurfaceResponse", "rerun_past_capacity", "say_if_capacity_passed",
+           "scene_needs", "simulate_building_bearing", "simulate_scene", "single_with_rim"]

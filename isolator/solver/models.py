@@ -34,8 +34,10 @@ plane: a single pendulum with a capacity that needs the 2-D engine runs ``2d`` (
 its peak reaches the capacity :mod:`isolator.solver.planar_rim` runs it again with the rim (``2d+rim``,
 ``rerun`` true).  A building on a single pendulum with a capacity under one component runs ``1d-building``,
 and past the capacity :mod:`isolator.solver.building_multisurface` runs it again with the rim
-(``1d-building-multisurface``, ``rerun`` true).  The 2-D building has no rim: past the capacity its result says
-so (:func:`isolator.solver.building_multisurface.say_if_capacity_passed`, a notice in ``solver_status``).
+(``1d-building-multisurface``, ``rerun`` true); under a pair it runs ``2d-building``, and past the capacity
+:mod:`isolator.solver.planar_building_multisurface` runs it again with the rim (``2d-building-multisurface``,
+``rerun`` true).  With a vertical or µ(v) the 2-D building has no rim: past the capacity its result says so
+(:func:`isolator.solver.building_multisurface.say_if_capacity_passed`, a notice in ``solver_status``).
 """
 
 from __future__ import annotations
@@ -50,6 +52,7 @@ from isolator.solver import (
     multisurface_rate,
     planar,
     planar_building,
+    planar_building_multisurface,
     planar_multisurface,
     planar_rim,
     record,
@@ -84,6 +87,9 @@ class Model:
 MODELS: dict[str, Model] = {model.name: model for model in (
     Model(multisurface_rate.MODEL_NAME, multisurface_rate.scene_needs, multisurface_rate.simulate_scene,
           "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
+    Model(planar_building_multisurface.MODEL_NAME, planar_building_multisurface.scene_needs,
+          planar_building_multisurface.simulate_scene, "shear building on a double or triple friction pendulum under a "
+          "pair: implicit steps with rims, the floors exact within each step"),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
           "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
     Model(building_multisurface.MODEL_NAME, building_multisurface.scene_needs, building_multisurface.simulate_scene,

@@ -1,0 +1,836 @@
+r"""The compiled loop of a shear building on a double or triple friction pendulum under a pair: implicit steps.
+
+The bearing is the 2-D series model of the rigid block's implicit steps
+(:mod:`isolator.solver.planar_multisurface_stepper`: one backward-Euler step is a 2-D strongly convex minimisation
+in the force r, every geometry of the friction circles, the rims and the ultimate); the floors ride on the slab.
+
+**The floors inside one step, exactly.**  Over a backward-Euler step of length h the slab's acceleration relative to
+the ground is constant, ẍ_b = (V' − V)/h, and the ground's is linear, a_g(τ) = a_0 + s τ.  The floors, relative to
+the slab, are the fixed-base shear building with classical modal damping (the same matrices as the 2-D building,
+:mod:`isolator.superstructure`), per direction in its mass-normalised modes q̃_i (scaled by 1/√M, M the total mass):
+
+    q̃_i'' + 2ζω_i q̃_i' + ω_i² q̃_i = −Γ̃_i (a_g(τ) + ẍ_b),   Γ̃_i = φ_iᵀ M_s 1 / √M,
+
+whose solution over the step is a closed form (a particular part linear in τ and the damped oscillation), so the
+floors' end state is exact and affine in V'.  The first story's force on the slab over the step is the floors'
+momentum balance, ∫S dτ = −M [Σ Γ̃_i Δq̃_i' + (1 − m_b/M) ∫(a_g + ẍ_b) dτ], and the slab's backward-Euler balance per
+unit total mass becomes
+
+    µ_h (V' − V)/h + c V' = −g r − ā − Σ Γ̃_i (q̃'_i,free − q̃'_i(0))/h,   µ_h = 1 − Σ Γ̃_i² e^{−ζω_i h} sin(ω_d,i h)/(ω_d,i h)
+
+(q̃'_free the floors' end velocities with ẍ_b = 0): an effective slab mass µ_h in (m_b/M, ~1] (the slab alone for a
+step short against the floors' periods, the whole mass for stiff floors) and a modified mean acceleration.  With
+the floors the same along x and y (µ_h isotropic) that is the rigid block's step with g/µ_h, c/µ_h and the mean
+acceleration ā' = (ā + Σ Γ̃ Δq̃'_free/h)/µ_h: Ψ is divided by µ_h, its minimiser is the same, so
+:func:`~isolator.solver.planar_multisurface_stepper.be_step` takes the step unchanged (its rims, its ultimate, its
+carried groups), and the floors are then propagated with the ẍ_b that step gives.  Stiff floors cost nothing:
+their modes are exact for any ω h.  (Floors that differ along x and y make µ_h differ by direction, Ψ's metric
+diagonal-anisotropic; not built: the driver refuses them in one line.)
+
+A velocity change the step makes that is not its momentum balance (the plastic impact at the ultimate, the
+velocity turned onto a rim circle) is an impulse on the slab alone: the floors keep their absolute velocities
+(q̃'_i −= Γ̃_i ΔV).  The energies (per unit total mass) are booked exactly for the floors — the ground's input
+−Σ Γ̃_i ∫ a_g q̃'_i dτ and their viscous work Σ 2ζω_i ∫ q̃'_i² dτ as closed-form integrals — and as the rigid block's
+steps book them for the slab; a step with an impact books its whole energy defect as the impact's.
+
+The steps are taken as the rigid block's are (h, then two halves; Richardson where the same groups slid and the
+velocity kept its sense; the local error on the slab's X, V and on the floors' modal displacements and velocities,
+each on its own scale).  Not taken over from the rigid block's loop: the exact hold at rest and its break-away
+(the floors keep moving while the slab is stuck; a stuck step costs one force test and its error is nil, so the
+steps grow to the sample interval), and the arrival at the ultimate as an event (``arrive``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from isolator.solver.jit import njit
+from isolator.solver.planar_multisurface_kernel import (
+    S_E_F,
+    S_E_IN,
+    S_E_V,
+    S_FAIL_T,
+    S_N_REJECTED,
+    S_N_STEPS,
+    S_PEAK_A,
+    S_PEAK_V,
+    S_PEAK_X,
+    S_SLIP_TIME,
+    S_STATUS,
+    S_STEPS_MULTI,
+    STATUS_RIM,
+    STATUS_STEP_LIMIT,
+    element_mask,
+    surface_peaks,
+)
+from isolator.solver.planar_multisurface_stepper import (
+    ARRIVAL_FRACTION,
+    H_MIN_FRACTION,
+    MAX_STEPS_PER_INTERVAL,
+    RIM_AWAY,
+    RIM_ON,
+    S_E_IMP,
+    S_FAIL_RIMS,
+    S_FIRST_ULT,
+    S_IMPULSE,
+    S_MAX_IMPACT_V,
+    S_MAX_WORK,
+    S_N_RIM_CONTACTS,
+    S_N_ULTIMATE,
+    S_PEAK_R,
+    STATUS_UNSOLVED,
+    STATUS_WORK,
+    UNSOLVED,
+    Y_EF,
+    Y_EIMP,
+    Y_EIN,
+    Y_EV,
+    Y_U,
+    Y_V,
+    Y_X,
+    arrival_time,
+    arrive,
+    be_step,
+    carry_slot,
+    popcount,
+    ultimate_impact,
+    work_bound,
+)
+
+#: rout's slots past be_step's three (r_x, r_y, gradients): the velocity an impulse removed from the slab [m/s]
+R_IMPULSE = 3
+R_SIZE = 4
+
+
+@njit(cache=True)
+def _phi1(z):
+    # (e^z − 1)/z for a complex z, without the cancellation near 0
+    if abs(z) < 0.5:
+        term = 1.0 + 0.0j
+        total = 1.0 + 0.0j
+        for k in range(2, 30):
+            term = term * z / k
+            total += term
+            if abs(term) < 1e-17 * abs(total):
+                break
+        return total
+    return (np.exp(z) - 1.0) / z
+
+
+@njit(cache=True)
+def _ecs(s, w, h):
+    # (∫_0^h e^{−sτ} cos wτ dτ, ∫_0^h e^{−sτ} sin wτ dτ)
+    v = h * _phi1(complex(-s * h, w * h))
+    return v.real, v.imag
+
+
+@njit(cache=True)
+def floor_mode(q0, v0, phi0, psi, h, w, z, gm, integrals=True):
+    """One mode of the floors over a step of length h [s]: q̃'' + 2ζω q̃' + ω² q̃ = −Γ̃ (φ0 + ψ τ), exact (ζ < 1).
+
+    Returns (q̃(h), q̃'(h), ∫q̃ dτ, ∫q̃'² dτ) (the integrals 0 without ``integrals``)."""
+    sig = z * w
+    wd = w * math.sqrt(1.0 - z * z)
+    e = math.exp(-sig * h)
+    cs = math.cos(wd * h)
+    sn = math.sin(wd * h)
+    if not integrals:
+        return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, 0.0, 0.0, 0.0, 0.0, 0.0, False)
+    ic, is_ = _ecs(sig, wd, h)
+    e0 = h * _phi1(complex(-2.0 * sig * h, 0.0)).real
+    ic2, is2 = _ecs(2.0 * sig, 2.0 * wd, h)
+    return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2, True)
+
+
+@njit(cache=True)
+def _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2, integrals):
+    # floor_mode with the step length's exponentials and integrals given (mode_table's columns)
+    sig = z * w
+    wd = w * math.sqrt(1.0 - z * z)
+    a1 = -gm * psi / (w * w)
+    a0 = (-gm * phi0 - 2.0 * z * w * a1) / (w * w)
+    a = q0 - a0
+    b = v0 - a1
+    c2 = -(w * w * a + sig * b) / wd
+    q1 = a0 + a1 * h + e * (a * cs + (b + sig * a) / wd * sn)
+    v1 = a1 + e * (b * cs + c2 * sn)
+    if not integrals:
+        return q1, v1, 0.0, 0.0
+    big_q = a0 * h + 0.5 * a1 * h * h + a * ic + (b + sig * a) / wd * is_
+    sq = (a1 * a1 * h + 2.0 * a1 * (b * ic + c2 * is_) + 0.5 * (b * b + c2 * c2) * e0
+          + 0.5 * (b * b - c2 * c2) * ic2 + b * c2 * is2)
+    return q1, v1, big_q, max(sq, 0.0)
+
+
+#: the columns of a step length's table per mode (mode_table): e^{−ζωh}, cos ω_d h, sin ω_d h and the integrals
+#: ∫e^{−ζωτ}cos ω_dτ, ∫e^{−ζωτ}sin ω_dτ, ∫e^{−2ζωτ}, ∫e^{−2ζωτ}cos 2ω_dτ, ∫e^{−2ζωτ}sin 2ω_dτ over [0, h]
+TABLE_SIZE = 8
+
+
+@njit(cache=True)
+def rout_tab(rout, nm):
+    """The table's scratch inside rout, past its R_SIZE slots (a view: no allocation per step)."""
+    return rout[R_SIZE:R_SIZE + nm * TABLE_SIZE].reshape((nm, TABLE_SIZE))
+
+
+@njit(cache=True)
+def mode_table(h, om, zeta, tab):
+    """The step length's exponentials and integrals per mode into tab (TABLE_SIZE columns): they depend on h and the
+    mode only, so one step's solves share them (both directions, the free and the final propagation)."""
+    for i in range(om.shape[0]):
+        w = om[i]
+        sig = zeta * w
+        wd = w * math.sqrt(1.0 - zeta * zeta)
+        tab[i, 0] = math.exp(-sig * h)
+        tab[i, 1] = math.cos(wd * h)
+        tab[i, 2] = math.sin(wd * h)
+        tab[i, 3], tab[i, 4] = _ecs(sig, wd, h)
+        tab[i, 5] = h * _phi1(complex(-2.0 * sig * h, 0.0)).real
+        tab[i, 6], tab[i, 7] = _ecs(2.0 * sig, 2.0 * wd, h)
+
+
+@njit(cache=True)
+def floor_mode_tab(q0, v0, phi0, psi, h, w, z, gm, row):
+    """:func:`floor_mode` with the step's table row of the mode (:func:`mode_table`); the same formulas."""
+    return _mode_core(q0, v0, phi0, psi, h, w, z, gm, row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7],
+                      True)
+
+
+@njit(cache=True)
+def total_energy(y, g, rb, om, gam):
+    """Kinetic (relative to the ground) + strain + the bearing's stored energy of the state y, per unit total mass."""
+    ng = rb.shape[0]
+    nm = om.shape[0]
+    f0 = carry_slot(ng) + 1
+    out = 0.0
+    for d in range(2):
+        v = y[Y_V + d]
+        out += 0.5 * v * v
+        for i in range(nm):
+            q = y[f0 + 2 * nm * d + i]
+            qd = y[f0 + 2 * nm * d + nm + i]
+            out += v * gam[i] * qd + 0.5 * qd * qd + 0.5 * om[i] * om[i] * q * q
+    for k in range(ng):
+        out += g * (y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2) / (2.0 * rb[k])
+    return out
+
+
+@njit(cache=True)
+def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rguess, out, rout):
+    """One backward-Euler step of the slab on the bearing with the floors propagated exactly (module docstring).
+
+    ``a0x, a0y`` the ground's acceleration at the step's start, ``sx, sy`` its slope [m/s³]; the state y (the
+    stepper's slots, then per direction the floors' q̃ and q̃') into out.  Returns be_step's mask; rout[:3] as
+    be_step's, rout[R_IMPULSE] the velocity an impact removed from the slab (0 without one), rout[R_SIZE:] the
+    scratch of the step length's table (R_SIZE + TABLE_SIZE × modes long)."""
+    ng = rb.shape[0]
+    nm = om.shape[0]
+    f0 = carry_slot(ng) + 1
+    tab = rout_tab(rout, nm)
+    mode_table(h, om, zeta, tab)
+    mu_h = 1.0
+    for i in range(nm):
+        x = om[i] * math.sqrt(1.0 - zeta * zeta) * h
+        mu_h -= gam[i] * gam[i] * tab[i, 0] * (tab[i, 2] / x if x > 0.0 else 1.0)
+    a0 = (a0x, a0y)
+    sl = (sx, sy)
+    abar = (a0x + 0.5 * h * sx, a0y + 0.5 * h * sy)
+    ap_x = 0.0
+    ap_y = 0.0
+    for d in range(2):
+        dfree = 0.0
+        for i in range(nm):
+            j = f0 + 2 * nm * d + i
+            _, v1, _, _ = floor_mode_tab(y[j], y[j + nm], a0[d], sl[d], h, om[i], zeta, gam[i], tab[i])
+            dfree += gam[i] * (v1 - y[j + nm])
+        if d == 0:
+            ap_x = (abar[d] + dfree / h) / mu_h
+        else:
+            ap_y = (abar[d] + dfree / h) / mu_h
+    ap = (ap_x, ap_y)
+    gp = g / mu_h
+    cp = c / mu_h
+    mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout)
+    impact = out[Y_EIMP] != y[Y_EIMP]
+    slid = mask & ((1 << ng) - 1)
+    e_in = 0.0
+    e_vf = 0.0
+    for d in range(2):
+        vpre = (y[Y_V + d] - h * (gp * rout[d] + ap[d])) / (1.0 + cp * h) if slid else 0.0
+        xb = (vpre - y[Y_V + d]) / h
+        dv = out[Y_V + d] - vpre
+        for i in range(nm):
+            j = f0 + 2 * nm * d + i
+            q1, v1, big_q, sq = floor_mode_tab(y[j], y[j + nm], a0[d] + xb, sl[d], h, om[i], zeta, gam[i], tab[i])
+            # the ground's work on the floors, −Γ̃ ∫ a_g q̃' dτ (by parts), and their dampers' 2ζω ∫ q̃'² dτ
+            e_in -= gam[i] * ((a0[d] + sl[d] * h) * q1 - a0[d] * y[j] - sl[d] * big_q)
+            e_vf += 2.0 * zeta * om[i] * sq
+            out[j] = q1
+            out[j + nm] = v1 - gam[i] * dv  # an impulse on the slab alone: the floors keep their absolute velocity
+    dx1 = out[Y_X] - y[Y_X]
+    dx2 = out[Y_X + 1] - y[Y_X + 1]
+    out[Y_EIN] = y[Y_EIN] - (abar[0] * dx1 + abar[1] * dx2) + e_in
+    out[Y_EF] = y[Y_EF] + mu_h * (out[Y_EF] - y[Y_EF])
+    out[Y_EV] = y[Y_EV] + mu_h * (out[Y_EV] - y[Y_EV]) + e_vf
+    out[Y_EIMP] = y[Y_EIMP]
+    rout[R_IMPULSE] = 0.0
+    if impact:
+        # the plastic impact at the ultimate: the step's whole energy defect is the kinetic energy the stop took, and
+        # its velocity change the impact's (the rims' reaction inside the step is part of it: the arrival's step is
+        # made short, planar_building_multisurface_kernel's loop)
+        out[Y_EIMP] += ((out[Y_EIN] - y[Y_EIN]) - (total_energy(out, g, rb, om, gam) - total_energy(y, g, rb, om, gam))
+                        - (out[Y_EF] - y[Y_EF]) - (out[Y_EV] - y[Y_EV]))
+        rout[R_IMPULSE] = max(math.sqrt((out[Y_V] - y[Y_V]) ** 2 + (out[Y_V + 1] - y[Y_V + 1]) ** 2), 1e-300)
+    return mask
+
+
+@njit(cache=True)
+def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rout):
+    """The last ``dt`` before the ultimate as one move and the impact (the rigid block's ``arrive`` and
+    ``ultimate_impact``), the floors carried over dt with ẍ_b = 0 and then keeping their absolute velocities through
+    the velocity the slab loses (the rims' reaction over the move, 2 dt g r·ē, and the impact).  Returns the mask of
+    every group on its rim, sliding; rout as building_step's."""
+    ng = rb.shape[0]
+    nm = om.shape[0]
+    f0 = carry_slot(ng) + 1
+    a0 = (a0x, a0y)
+    sl = (sx, sy)
+    arrive(y, dt, a0x + 0.5 * dt * sx, a0y + 0.5 * dt * sy, g, c, mu, rim, out)
+    e_in = 0.0
+    e_vf = 0.0
+    for d in range(2):
+        for i in range(nm):
+            j = f0 + 2 * nm * d + i
+            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d], sl[d], dt, om[i], zeta, gam[i])
+            e_in -= gam[i] * ((a0[d] + sl[d] * dt) * q1 - a0[d] * y[j] - sl[d] * big_q)
+            e_vf += 2.0 * zeta * om[i] * sq
+            out[j] = q1
+            out[j + nm] = v1
+    out[Y_EIN] += e_in
+    out[Y_EV] += e_vf
+    xn = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
+    rn = (r[0] * y[Y_X] + r[1] * y[Y_X + 1]) / xn
+    if rn > 0.0:
+        out[Y_V] -= 2.0 * dt * g * rn * y[Y_X] / xn
+        out[Y_V + 1] -= 2.0 * dt * g * rn * y[Y_X + 1] / xn
+    ultimate_impact(y, out, g, rb)
+    dv1 = out[Y_V] - y[Y_V]
+    dv2 = out[Y_V + 1] - y[Y_V + 1]
+    for d in range(2):
+        dv = dv1 if d == 0 else dv2
+        for i in range(nm):
+            out[f0 + 2 * nm * d + nm + i] -= gam[i] * dv
+    out[Y_EIMP] = y[Y_EIMP] + ((out[Y_EIN] - y[Y_EIN])
+                               - (total_energy(out, g, rb, om, gam) - total_energy(y, g, rb, om, gam))
+                               - (out[Y_EF] - y[Y_EF]) - (out[Y_EV] - y[Y_EV]))
+    rout[0] = -(a0x + dt * sx) / g
+    rout[1] = -(a0y + dt * sy) / g
+    rout[2] = 0.0
+    rout[R_IMPULSE] = max(math.sqrt(dv1 * dv1 + dv2 * dv2), 1e-300)
+    low = (1 << ng) - 1
+    return low << ng | low
+
+
+@njit(cache=True)
+def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+    """Whether the force the stuck slab needs at τ into a step from y (V = 0: the floors propagated with ẍ_b = 0)
+    lies outside a friction circle: r = −(a_g + Σ Γ̃_i q̃_i'')/g, q̃'' from the modes' equations."""
+    ng = rb.shape[0]
+    nm = om.shape[0]
+    f0 = carry_slot(ng) + 1
+    r_x = 0.0
+    r_y = 0.0
+    for d in range(2):
+        a0 = a0x if d == 0 else a0y
+        s = sx if d == 0 else sy
+        ag = a0 + s * tau
+        acc = ag
+        for i in range(nm):
+            j = f0 + 2 * nm * d + i
+            q1, v1, _, _ = floor_mode(y[j], y[j + nm], a0, s, tau, om[i], zeta, gam[i], False)
+            acc += gam[i] * (-2.0 * zeta * om[i] * v1 - om[i] * om[i] * q1 - gam[i] * ag)
+        if d == 0:
+            r_x = -acc / g
+        else:
+            r_y = -acc / g
+    for k in range(ng):
+        d1 = r_x - y[Y_U + 2 * k] / rb[k]
+        d2 = r_y - y[Y_U + 2 * k + 1] / rb[k]
+        if d1 * d1 + d2 * d2 > mu[k] * mu[k]:
+            return True
+    return False
+
+
+#: a stuck step (V = 0 at its start, every solve stuck: the backward-Euler test is on the step's mean force) is
+#: checked at this many points for the force the slab needs leaving a friction circle (the break-away)
+STUCK_CHECKS = 8
+
+
+@njit(cache=True)
+def breakaway_in(y, h, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+    """The break-away inside a stuck step of length h from y: the first of STUCK_CHECKS points where the force the
+    slab needs leaves a circle, then bisection to rounding between it and the point before; -1 when none."""
+    prev = 0.0
+    for j in range(1, STUCK_CHECKS + 1):
+        tau = h * j / STUCK_CHECKS
+        if _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+            lo = prev
+            hi = tau
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                if not (lo < mid < hi):
+                    break
+                if _outside(y, mid, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        prev = tau
+    return -1.0
+
+
+@njit(cache=True)
+def _rim_bits(y, rim):
+    # the bit set of the groups on their rims in the state y (as be_step's mask reads them)
+    bits = 0
+    for k in range(rim.shape[0]):
+        if y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 >= (rim[k] * (1.0 - RIM_ON)) ** 2:
+            bits |= 1 << k
+    return bits
+
+
+@njit(cache=True)
+def _on_rims(y, rim):
+    # the groups on their rims in the state y
+    count = 0
+    for k in range(rim.shape[0]):
+        if y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 >= (rim[k] * (1.0 - RIM_AWAY)) ** 2:
+            count += 1
+    return count
+
+
+#: the floors' watched rows are taken inside each step at points at most this angle [rad] of the fastest mode apart (a
+#: peak between two points is missed by at most 1 − cos(WATCH_TURN/2) ≈ 1.2e-3 of it)
+WATCH_TURN = 0.1
+#: at most this many interior points in one step
+MAX_WATCH_POINTS = 200
+
+
+@njit(cache=True)
+def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min):
+    # the peaks of the watched rows' resultants (peaks[2:]) and the signed rows' extremes at the state y
+    _floor_rows(y, f0, nm, 0, lin, rowx)
+    _floor_rows(y, f0, nm, 1, lin, rowy)
+    for k in range(lin.shape[0]):
+        peaks[2 + k] = max(peaks[2 + k], math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]))
+    for k in range(sig.shape[0]):
+        acc = 0.0
+        for d in range(2):
+            for j in range(2 * nm):
+                acc += sig[k, d, j] * y[f0 + 2 * nm * d + j]
+        sig_max[k] = max(sig_max[k], acc)
+        sig_min[k] = min(sig_min[k], acc)
+
+
+@njit(cache=True)
+def _held_force(y, f0, nm, ag, om, zeta, gam, d):
+    # the force on the held slab along direction d per unit total mass, −(a_g + Σ Γ̃ q̃''), its sign as g r's
+    acc = ag
+    for i in range(nm):
+        j = f0 + 2 * nm * d + i
+        acc += gam[i] * (-2.0 * zeta * om[i] * y[j + nm] - om[i] * om[i] * y[j] - gam[i] * ag)
+    return -acc
+
+
+@njit(cache=True)
+def _floor_rows(y, f0, nm, d, lin, row):
+    # the watched rows (drifts, floors' absolute accelerations, first-story shear) of direction d at the state y
+    for k in range(lin.shape[0]):
+        acc = 0.0
+        for i in range(2 * nm):
+            acc += lin[k, i] * y[f0 + 2 * nm * d + i]
+        row[k] = acc
+
+
+@njit(cache=True)
+def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig, tol,
+                                        scales, out_y, out_r, peaks, sig_max, sig_min, summary, surf_peak, first, ub):
+    """Response of a shear building on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
+
+    ``g`` [m/s²], ``c`` the isolator's dashpot per unit total mass [1/s]; ``rb, mu, rim, members, tmat`` the
+    stepper's groups; ``om, zeta, gam`` the floors' fixed-base modes (ω_i [rad/s], ζ, Γ̃_i = φ_iᵀ M_s 1/√M);
+    ``lin`` (rows, 2 n_modes) the watched rows per direction on (q̃, q̃'), ``sig`` (rows, 2, 2 n_modes) the signed
+    rows on both directions; ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
+    Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants,
+    |g r + c V|) at the steps' ends; the signed rows' extremes; the stepper's summary slots."""
+    n = t.shape[0]
+    ng = rb.shape[0]
+    nm = om.shape[0]
+    f0 = carry_slot(ng) + 1
+    ny = f0 + 4 * nm
+    nk = lin.shape[0]
+    nj = sig.shape[0]
+    y = np.zeros(ny)
+    y1 = np.zeros(ny)
+    yh = np.zeros(ny)
+    y2 = np.zeros(ny)
+    y0 = np.zeros(ny)
+    r = np.zeros(2)
+    r1 = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    rh = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    r2 = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    ra = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    yw = np.zeros(ny)
+    rowx = np.zeros(nk)
+    rowy = np.zeros(nk)
+    low = (1 << ng) - 1
+    ne = members.shape[0]
+    for j in range(first.shape[0]):
+        first[j] = -1.0
+    for k in range(peaks.shape[0]):
+        peaks[k] = 0.0
+    for k in range(nj):
+        sig_max[k] = 0.0
+        sig_min[k] = 0.0
+    x_floor = scales[0]
+    v_floor = scales[1]
+    q_floor = scales[2]
+    qd_floor = scales[3]
+    floor_rel = scales[4]
+    max_evals = work_bound(tol)
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_q = 0.0
+    peak_qd = 0.0
+    peak_r = 0.0
+    slip = 0.0
+    n_steps = 0
+    n_rej = 0
+    n_floor = 0
+    status = 0
+    fail_t = -1.0
+    n_rim = 0
+    away = low
+    n_ult = 0
+    impulse = 0.0
+    impact_v = 0.0
+    max_imp_v = 0.0
+    first_ult = -1.0
+    max_work = 0.0
+    h_sugg = -1.0
+    for j in range(ny):
+        out_y[0, j] = 0.0
+    out_r[0, 0] = -ax[0] / g
+    out_r[0, 1] = -ay[0] / g
+    peaks[nk + 2] = math.sqrt(ax[0] * ax[0] + ay[0] * ay[0])
+    last = 0
+    for i in range(n - 1):
+        hi = t[i + 1] - t[i]
+        slope_x = (ax[i + 1] - ax[i]) / hi
+        slope_y = (ay[i + 1] - ay[i]) / hi
+        tau = 0.0
+        h_floor = H_MIN_FRACTION * hi
+        h = hi if (h_sugg <= 0.0 or h_sugg > hi) else h_sugg
+        steps_here = 0
+        work = 0.0
+        started = False
+        arrival = False
+        arrival_steps = 0
+        while tau < hi:
+            steps_here += 1
+            if steps_here > MAX_STEPS_PER_INTERVAL:
+                status |= STATUS_STEP_LIMIT
+                fail_t = t[i] + tau
+                break
+            h = min(h, hi - tau)
+            # the arrival at the ultimate with every group on its rim closing into alignment (the rigid block's event,
+            # planar_multisurface_stepper.arrival_time): the steps end ARRIVAL_FRACTION × hi before it, the last of it
+            # is one move (arrive, the floors carried with the slab's velocity kept), the impact after it
+            jump = False
+            h_keep = h
+            t_arr = arrival_time(y, rim)
+            if t_arr > 0.0:
+                t_jump = ARRIVAL_FRACTION * hi
+                if 1.01 * t_jump < t_arr < t_jump + h and t_arr - t_jump < hi - tau:
+                    h = t_arr - t_jump
+                elif (t_arr <= 1.01 * t_jump and t_arr < hi - tau
+                      and 2.0 * t_arr * g * math.sqrt(r[0] * r[0] + r[1] * r[1])
+                      < (y[Y_V] * y[Y_X] + y[Y_V + 1] * y[Y_X + 1]) / math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)):
+                    jump = True
+                    h = t_arr
+            last_step = h >= hi - tau
+            at_floor = not h > h_floor
+            a0x = ax[i] + slope_x * tau
+            a0y = ay[i] + slope_y * tau
+            if jump:
+                m1 = _jump(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y2, r2)
+                mh = m1
+                work += 0.0
+            else:
+                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y1, r1)
+                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r1, yh,
+                                   rh)
+            m2 = mh if jump else building_step(
+                yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), slope_x, slope_y,
+                g, c, rb, mu, rim, om, zeta, gam, rh, y2, r2)
+            if jump:
+                for j in range(ny):
+                    y1[j] = y2[j]
+                r1[R_IMPULSE] = 0.0
+                rh[R_IMPULSE] = 0.0
+                r1[2] = 0.0
+                rh[2] = 0.0
+            work += r1[2] + rh[2] + r2[2]
+            if work > max_evals:
+                status |= STATUS_WORK
+                fail_t = t[i] + tau
+                summary[S_FAIL_RIMS] = _on_rims(y, rim)
+                break
+            if (not (m1 | mh | m2) & low and y[Y_V] == 0.0 and y[Y_V + 1] == 0.0 and not started
+                    and h > 2.0 * h_floor):
+                # stuck in all three solves: the break-away inside the step, if any, ends it (the steps restart from
+                # it with a short one, as the rigid block's from its exact break-away)
+                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, g, rb, mu, om, zeta, gam)
+                if t_b > h_floor:
+                    h = t_b
+                    started = True
+                    continue
+            rims0 = _rim_bits(y, rim)
+            if ((r1[R_IMPULSE] > 0.0 or (m1 >> ng) & ~rims0 & away) and not arrival and h > 4.0 * h_floor
+                    and not (m1 | mh | m2) & UNSOLVED):
+                # the step brings a group onto its rim (or the bearing to its ultimate): the rim's reaction acts over
+                # the whole step — at the ultimate the floors would see the impact as a pulse of that length, and at
+                # any rim the reaction's work ν·δ over the step's slip (g ν δ, ν the force's jump to the next surface)
+                # is lost from the balance (NWH360 with a double of an intermediate rim: 2.8e-5 of the input in one
+                # step of 5e-5 s).  The step is cut to end just before the arrival (bisection on its length to the
+                # floor), and the arrival is a step of at most 2 floors.  Only an arrival from away (off the rim by
+                # more than RIM_AWAY, as a rim contact is counted): a group turning on its rim touches it in
+                # nearly every step (Chuetsu-oki 65025 with F&C's TFP: the work bound at 26.46 s otherwise)
+                lo = 0.0
+                up = h
+                for _ in range(80):
+                    if up - lo <= h_floor:
+                        break
+                    mid = 0.5 * (lo + up)
+                    ma = building_step(y, mid, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y0, ra)
+                    work += ra[2]
+                    if ra[R_IMPULSE] > 0.0 or (ma >> ng) & ~rims0 & away:
+                        up = mid
+                    else:
+                        lo = mid
+                arrival = True
+                arrival_steps = 0
+                h = lo if lo > h_floor else up
+                continue
+            if (m1 | mh | m2) & UNSOLVED:
+                if not at_floor:
+                    n_rej += 1
+                    h = max(0.25 * h, h_floor)
+                    continue
+                status |= STATUS_UNSOLVED
+                fail_t = t[i] + tau
+                summary[S_FAIL_RIMS] = _on_rims(y, rim)
+                break
+            xs = tol * max(peak_x, x_floor)
+            vs = tol * max(peak_v, v_floor)
+            qs = tol * max(peak_q, floor_rel * peak_x, q_floor)
+            qds = tol * max(peak_qd, floor_rel * peak_v, qd_floor)
+            err = 0.0
+            for j in range(2):
+                err = max(err, abs(y2[Y_X + j] - y1[Y_X + j]) / xs, abs(y2[Y_V + j] - y1[Y_V + j]) / vs)
+            for j in range(2):
+                for k in range(nm):
+                    jj = f0 + 2 * nm * j + k
+                    err = max(err, abs(y2[jj] - y1[jj]) / qs, abs(y2[jj + nm] - y1[jj + nm]) / qds)
+            if not (m1 == mh and mh == m2 and m2 == (low << ng | low)):
+                for k in range(2 * ng):
+                    err = max(err, abs(y2[Y_U + k] - y1[Y_U + k]) / xs)
+            n_steps += 1
+            if err > 1.0:
+                if not at_floor:
+                    n_rej += 1
+                    h = max(h * max(0.1, 0.9 / math.sqrt(err)), h_floor)
+                    continue
+                n_floor += 1
+            for j in range(ny):
+                y0[j] = y[j]
+            impacted = r1[R_IMPULSE] + rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0
+            if (not impacted and m1 == mh and mh == m2
+                    and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
+                for j in range(ny):
+                    y[j] = 2.0 * y2[j] - y1[j]
+                y[f0 - 1] = y2[f0 - 1]
+                for k in range(ng):
+                    if m2 >> (ng + k) & 1:
+                        u1 = y[Y_U + 2 * k]
+                        u2 = y[Y_U + 2 * k + 1]
+                        un = math.sqrt(u1 * u1 + u2 * u2)
+                        if un > 0.0:
+                            y[Y_U + 2 * k] = u1 * rim[k] / un
+                            y[Y_U + 2 * k + 1] = u2 * rim[k] / un
+                            y[Y_X] += y[Y_U + 2 * k] - u1
+                            y[Y_X + 1] += y[Y_U + 2 * k + 1] - u2
+                    elif y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 > rim[k] * rim[k]:
+                        for j in range(ny):
+                            y[j] = y2[j]
+                        break
+            else:
+                for j in range(ny):
+                    y[j] = y2[j]
+            r[0] = r2[0]
+            r[1] = r2[1]
+            tau = hi if last_step else tau + h
+            on_rim = m2 >> ng
+            if on_rim & away:
+                n_rim += popcount(element_mask(on_rim & away, members))
+                away &= ~on_rim
+            for k in range(ng):
+                if y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 < (rim[k] * (1.0 - RIM_AWAY)) ** 2:
+                    away |= 1 << k
+            rigid = on_rim == low
+            f_max = 0.0
+            if rigid:
+                if first_ult < 0.0:
+                    first_ult = t[i] + tau
+                for k in range(ng):
+                    f_max = max(f_max, math.sqrt(y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2) / rb[k] + mu[k])
+            impulsive = rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0
+            if impulsive:
+                # the velocity the impact removed from the slab (consecutive impact steps are one impact)
+                impact_v += rh[R_IMPULSE] + r2[R_IMPULSE]
+                r[0] = -(ax[i] + slope_x * tau) / g
+                r[1] = -(ay[i] + slope_y * tau) / g
+            elif impact_v > 0.0:
+                n_ult += 1
+                impulse += impact_v
+                max_imp_v = max(max_imp_v, impact_v)
+                impact_v = 0.0
+            if (m1 | m2) & low:
+                slip += h
+                sl = (m2 if m2 & low else m1) & low
+                em = element_mask(sl & ~on_rim, members) | (element_mask(on_rim, members) << ne)
+                if first[em] < 0.0:
+                    first[em] = t[i] + tau
+            fr = math.sqrt(r[0] * r[0] + r[1] * r[1])
+            if not impulsive:
+                # the surfaces' force (at the ultimate the rims' reaction left out, as the rigid block's); the isolator
+                # force on the slab with it: held at the ultimate the bearing holds the slab against the floors
+                peak_r = max(peak_r, min(fr, f_max) if rigid else fr)
+                f1 = g * r[0] + c * y[Y_V]
+                f2 = g * r[1] + c * y[Y_V + 1]
+                f_abs = math.sqrt(f1 * f1 + f2 * f2)
+                if rigid:
+                    # every group on its rim: where the rims close into alignment their reaction grows as 1/sin of
+                    # their angle and does not converge with step_tol (the rigid block's steps cap it the same way);
+                    # the force is taken up to what the slab held at the ultimate needs against the ground and the
+                    # floors, |a_g + Σ Γ̃ q̃''| (or the largest surface force), plus the dashpot and the centripetal
+                    # |V|²/|X| of a slide along the ultimate circle (PTS ×2 with the small TFP: the base shear
+                    # differed by 61 % between the pair and the pair turned by 0.7 rad without the cap)
+                    ag_x = ax[i] + slope_x * tau
+                    ag_y = ay[i] + slope_y * tau
+                    h1 = _held_force(y, f0, nm, ag_x, om, zeta, gam, 0)
+                    h2 = _held_force(y, f0, nm, ag_y, om, zeta, gam, 1)
+                    vn = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
+                    xn = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
+                    a_cap = max(g * f_max, math.sqrt(h1 * h1 + h2 * h2)) + c * vn
+                    if xn > 0.0:
+                        a_cap += vn * vn / xn
+                    f_abs = min(f_abs, a_cap)
+                peaks[nk + 2] = max(peaks[nk + 2], f_abs)
+            peak_x = max(peak_x, math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2))
+            peak_v = max(peak_v, math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2))
+            for j in range(2):
+                for k in range(nm):
+                    jj = f0 + 2 * nm * j + k
+                    peak_q = max(peak_q, abs(y[jj]))
+                    peak_qd = max(peak_qd, abs(y[jj + nm]))
+            # the floors' watched rows inside the step (its constant ẍ_b, from its start), points at most WATCH_TURN
+            # of the fastest mode apart, and at its end
+            n_in = min(int(h * om[nm - 1] / WATCH_TURN), MAX_WATCH_POINTS)
+            held_step = (y0[Y_V] == 0.0 and y0[Y_V + 1] == 0.0 and y[Y_V] == 0.0 and y[Y_V + 1] == 0.0
+                         and c == 0.0)
+            if n_in > 0:
+                xbx = (y[Y_V] - y0[Y_V]) / h
+                xby = (y[Y_V + 1] - y0[Y_V + 1]) / h
+                for p in range(1, n_in + 1):
+                    tp = h * p / (n_in + 1)
+                    for d in range(2):
+                        a0 = (ax[i] + slope_x * (tau - h)) if d == 0 else (ay[i] + slope_y * (tau - h))
+                        s_d = slope_x if d == 0 else slope_y
+                        xb = xbx if d == 0 else xby
+                        for k in range(nm):
+                            jj = f0 + 2 * nm * d + k
+                            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], a0 + xb, s_d, tp, om[k], zeta, gam[k],
+                                                      False)
+                            yw[jj] = q1
+                            yw[jj + nm] = v1
+                    _watch(yw, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min)
+                    if held_step:
+                        # the slab held (stuck, or at the ultimate) through the step: the bearing's force is what the
+                        # slab needs, −(a_g + Σ Γ̃ q̃''), per unit total mass
+                        f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, 0)
+                        f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
+                        peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
+            _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min)
+            for k in range(ng):
+                ub[k, 0] = y[Y_U + 2 * k]
+                ub[k, 1] = y[Y_U + 2 * k + 1]
+                if ub[k, 0] ** 2 + ub[k, 1] ** 2 > (rim[k] * (1.0 + 1e-9)) ** 2:
+                    status |= STATUS_RIM
+                    fail_t = t[i] + tau
+            if status:
+                break
+            surface_peaks(ub, rb, members, tmat, surf_peak)
+            h = h_keep if jump else h * min(5.0, 0.9 / math.sqrt(max(err, 1e-12)))
+            if started:
+                h = min(h, 1e-3 * hi)
+                started = False
+            if arrival:
+                # the step cut before the arrival, then the arrival's short step; at most two steps after the cut
+                # (the motion may turn away from the rim in between: the flag would otherwise hold every later step
+                # at two floors)
+                arrival_steps += 1
+                if impulsive or (m2 >> ng) & ~rims0 or arrival_steps > 2:
+                    arrival = False
+                else:
+                    h = min(h, 2.0 * h_floor)
+        max_work = max(max_work, work)
+        if status:
+            break
+        h_sugg = h
+        for j in range(ny):
+            out_y[i + 1, j] = y[j]
+        out_r[i + 1, 0] = r[0]
+        out_r[i + 1, 1] = r[1]
+        last = i + 1
+    for j in range(last + 1, n):
+        for k in range(ny):
+            out_y[j, k] = np.nan
+    if impact_v > 0.0:
+        n_ult += 1
+        impulse += impact_v
+        max_imp_v = max(max_imp_v, impact_v)
+    peaks[0] = peak_x
+    peaks[1] = peak_v
+    summary[S_PEAK_X] = peak_x
+    summary[S_PEAK_V] = peak_v
+    summary[S_PEAK_A] = peaks[nk + 2]
+    summary[S_SLIP_TIME] = slip
+    summary[S_E_IN] = y[Y_EIN]
+    summary[S_E_F] = y[Y_EF]
+    summary[S_E_V] = y[Y_EV]
+    summary[S_E_IMP] = y[Y_EIMP]
+    summary[S_STATUS] = status
+    summary[S_N_STEPS] = n_steps
+    summary[S_N_REJECTED] = n_rej
+    summary[S_FAIL_T] = fail_t
+    summary[S_STEPS_MULTI] = n_floor
+    summary[S_N_RIM_CONTACTS] = n_rim
+    summary[S_N_ULTIMATE] = n_ult
+    summary[S_IMPULSE] = impulse
+    summary[S_MAX_IMPACT_V] = max_imp_v
+    summary[S_PEAK_R] = peak_r
+    summary[S_FIRST_ULT] = first_ult
+    summary[S_MAX_WORK] = max_work
