@@ -10,7 +10,8 @@ closed form, and their reaction enters the step as an effective slab mass and a 
 floors (relative tolerance ``step_tol``); the error is measured in docs/building.md.
 
 Not modelled, each refused in one line: a vertical component, µ(v), floors whose stiffness differs along x and y
-(the step's dual problem would need an anisotropic metric), a damping ratio ≥ 1.
+(the step's dual problem would need an anisotropic metric), a damping ratio ≥ 1, static friction above kinetic on
+a double or triple (a single surface's µs is modelled: held at rest inside µs, sliding at µk).
 
 Outputs: the 2-D building's keys (:class:`~isolator.solver.planar_building.PlanarBuildingResponse`: resultant story
 drifts, floor accelerations, shears, bearing loads — here taken at the steps' ends) and the bearing's
@@ -36,6 +37,7 @@ from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.building import naming_design
 from isolator.solver.building_multisurface import BEARING_KEYS, rerun_past_capacity, single_with_rim
 from isolator.solver.multisurface import response_fields
+from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_building import PlanarBuildingResponse, planar_building_system
 from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, RIM_BALANCE_TOL, element_groups
@@ -171,7 +173,7 @@ def simulate_scene(scene) -> PlanarBuildingMultisurfaceResponse:
             return planar_building.simulate_scene(scene)
         return rerun_past_capacity(scene, single, planar_building.simulate_scene, simulate_on, RIM_FIRST_MODEL,
                                    f"{MODEL_NAME} under the pair: implicit steps, plastic impact at the capacity, "
-                                   "sliding along the rim; constant kinetic friction")
+                                   "sliding along the rim; static friction at rest, kinetic sliding")
     why = _refusal(scene)
     if why is not None:
         raise DesignError(f"{design.source}: {why}")
@@ -191,6 +193,22 @@ def simulate_on(scene, bearing, step_tol: float = DEFAULT_STEP_TOL) -> PlanarBui
             ax, ay, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure, bearing=bearing,
             total_mass_kg=mass, damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
             bearing_layout=design.bearing_layout, step_tol=step_tol)
+
+
+def static_friction(bearing, mu):
+    """The groups' static friction: a single surface's ``mu_static`` (at least its kinetic), else ``mu`` itself.
+
+    Raises
+    ------
+    ValueError
+        Static friction above kinetic on a double or triple (not modelled, as in ``1d-building-multisurface``).
+    """
+    mu_static = np.asarray(bearing.mu_static, dtype=np.float64)
+    if len(bearing.surfaces) > 1:
+        if np.any(mu_static != np.asarray(bearing.mu_kinetic, dtype=np.float64)):
+            raise ValueError(f"static friction above kinetic on the bearing is not modelled: {STATIC_FRICTION_REASON}")
+        return mu.copy()
+    return np.maximum(np.full(mu.size, float(mu_static[0])), mu)
 
 
 def modal_rows(building, bearing_layout):
@@ -284,7 +302,8 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         Sample interval [s] (or ``time_s``).
     superstructure : isolator.superstructure.Superstructure
     bearing : isolator.bearing.Bearing
-        A double or triple (or a single with its rim) bearing; its surfaces' kinetic friction.
+        A double or triple (or a single with its rim) bearing; its surfaces' kinetic friction, and on a single
+        surface its static friction (held at rest while the force the slab needs is inside µs, sliding at µk).
     total_mass_kg, damping_Ns_per_m, gravity_m_s2
         As for :func:`isolator.solver.planar_building.simulate_planar_building`.
     bearing_layout : isolator.superstructure.BearingLayout, optional
@@ -334,6 +353,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     om, zeta, gam, lin, sig = modal_rows(building, bearing_layout)
     c = float(damping_Ns_per_m) / mass
     rb, mu, rim, members = element_groups(bearing, split_rims=True)
+    mu_s = static_friction(bearing, mu)
     tmat = bearing.surface_matrix()
     # the error norm's floors as the rigid block's steps build them (planar_multisurface), for the stiffest group
     pga = float(np.max(np.hypot(ax, ay)))
@@ -356,7 +376,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     start = time.perf_counter()
     _bk.planar_building_multisurface_kernel(local, ax, ay, g, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig,
                                             float(step_tol), scales, out_y, out_r, peaks, sig_max, sig_min, summary,
-                                            surf_peak, first, ub)
+                                            surf_peak, first, ub, mu_s)
     elapsed = time.perf_counter() - start
     status = int(summary[_pm.S_STATUS])
     fail_t = t0 + float(summary[_pm.S_FAIL_T])

@@ -38,6 +38,15 @@ velocity kept its sense; the local error on the slab's X, V and on the floors' m
 each on its own scale).  Not taken over from the rigid block's loop: the exact hold at rest and its break-away
 (the floors keep moving while the slab is stuck; a stuck step costs one force test and its error is nil, so the
 steps grow to the sample interval), and the arrival at the ultimate as an event (``arrive``).
+
+**Static friction** (a single surface's µs above µk: the rerun of a single pendulum at its capacity).  The slab at
+rest (it starts so, and is so after every stop) is held while the force it needs stays inside the µs circle — the
+steps solve with µs, and a solve that slides means a break-away inside the step (located to rounding by
+:func:`breakaway_in`: the step ends there, held) or at its start; it then slides at µk.  A stop is where the sliding
+velocity passes through zero: a step whose velocity turns back is cut, by bisection on its length to rounding, where
+the velocity vanishes (a stop only when what is left is below the steps' velocity tolerance; that remainder is taken
+from the slab as an impulse, its energy booked as friction), and the slab is at rest under µs again.  µs = µk: none
+of this runs.
 """
 
 from __future__ import annotations
@@ -334,9 +343,13 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
 
 
 @njit(cache=True)
-def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
     """Whether the force the stuck slab needs at τ into a step from y (V = 0: the floors propagated with ẍ_b = 0)
-    lies outside a friction circle: r = −(a_g + Σ Γ̃_i q̃_i'')/g, q̃'' from the modes' equations."""
+    lies outside a friction circle: r = −(a_g + Σ Γ̃_i q̃_i'')/g, q̃'' from the modes' equations.  A single group on
+    its rim also holds any outward push (its rim's reaction): it lets go only of a force whose part along the rim,
+    or (pulling inward) whose whole, leaves its circle (a single pendulum held at its capacity: without it every
+    held step there broke away at once, 7.7e-4 of the peak off the 1-D building; with more groups on their rims
+    the groups' circles are kept as they are — the TFP held at its ultimate ran into the work bound with them)."""
     ng = rb.shape[0]
     nm = om.shape[0]
     f0 = carry_slot(ng) + 1
@@ -356,8 +369,16 @@ def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
         else:
             r_y = -acc / g
     for k in range(ng):
-        d1 = r_x - y[Y_U + 2 * k] / rb[k]
-        d2 = r_y - y[Y_U + 2 * k + 1] / rb[k]
+        u1 = y[Y_U + 2 * k]
+        u2 = y[Y_U + 2 * k + 1]
+        d1 = r_x - u1 / rb[k]
+        d2 = r_y - u2 / rb[k]
+        un = math.sqrt(u1 * u1 + u2 * u2)
+        if ng == 1 and un >= rim[k] * (1.0 - RIM_ON) and un > 0.0:
+            dn = (d1 * u1 + d2 * u2) / un  # the push outward, held by the rim
+            if dn > 0.0:
+                d1 -= dn * u1 / un
+                d2 -= dn * u2 / un
         if d1 * d1 + d2 * d2 > mu[k] * mu[k]:
             return True
     return False
@@ -369,20 +390,20 @@ STUCK_CHECKS = 8
 
 
 @njit(cache=True)
-def breakaway_in(y, h, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+def breakaway_in(y, h, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
     """The break-away inside a stuck step of length h from y: the first of STUCK_CHECKS points where the force the
     slab needs leaves a circle, then bisection to rounding between it and the point before; -1 when none."""
     prev = 0.0
     for j in range(1, STUCK_CHECKS + 1):
         tau = h * j / STUCK_CHECKS
-        if _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+        if _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
             lo = prev
             hi = tau
             for _ in range(200):
                 mid = 0.5 * (lo + hi)
                 if not (lo < mid < hi):
                     break
-                if _outside(y, mid, a0x, a0y, sx, sy, g, rb, mu, om, zeta, gam):
+                if _outside(y, mid, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
                     hi = mid
                 else:
                     lo = mid
@@ -456,7 +477,8 @@ def _floor_rows(y, f0, nm, d, lin, row):
 
 @njit(cache=True)
 def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig, tol,
-                                        scales, out_y, out_r, peaks, sig_max, sig_min, summary, surf_peak, first, ub):
+                                        scales, out_y, out_r, peaks, sig_max, sig_min, summary, surf_peak, first, ub,
+                                        mu_s):
     """Response of a shear building on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
 
     ``g`` [m/s²], ``c`` the isolator's dashpot per unit total mass [1/s]; ``rb, mu, rim, members, tmat`` the
@@ -464,7 +486,11 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
     ``lin`` (rows, 2 n_modes) the watched rows per direction on (q̃, q̃'), ``sig`` (rows, 2, 2 n_modes) the signed
     rows on both directions; ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
     Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants,
-    |g r + c V|) at the steps' ends; the signed rows' extremes; the stepper's summary slots."""
+    |g r + c V|) at the steps' ends; the signed rows' extremes; the stepper's summary slots.
+
+    ``mu_s`` the groups' static friction (≥ ``mu``; equal: kinetic friction throughout, the steps unchanged).  Above
+    ``mu`` (module docstring, Static friction): the slab at rest is held while the force it needs stays inside the
+    µs circles, slides at µk after the break-away, and is at rest again (µs) after a stop."""
     n = t.shape[0]
     ng = rb.shape[0]
     nm = om.shape[0]
@@ -520,6 +546,13 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
     first_ult = -1.0
     max_work = 0.0
     h_sugg = -1.0
+    static = False
+    for k in range(ng):
+        if mu_s[k] > mu[k]:
+            static = True
+    # at rest under static friction (the slab starts at rest); stop_h: the length of a step cut at a stop (or -1)
+    held_s = static
+    stop_h = -1.0
     for j in range(ny):
         out_y[0, j] = 0.0
     out_r[0, 0] = -ax[0] / g
@@ -564,17 +597,19 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
             at_floor = not h > h_floor
             a0x = ax[i] + slope_x * tau
             a0y = ay[i] + slope_y * tau
+            mu_now = mu_s if held_s else mu
             if jump:
                 m1 = _jump(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y2, r2)
                 mh = m1
                 work += 0.0
             else:
-                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y1, r1)
-                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r1, yh,
-                                   rh)
+                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu_now, rim, om, zeta, gam, r, y1,
+                                   r1)
+                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, g, c, rb, mu_now, rim, om, zeta, gam, r1,
+                                   yh, rh)
             m2 = mh if jump else building_step(
                 yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), slope_x, slope_y,
-                g, c, rb, mu, rim, om, zeta, gam, rh, y2, r2)
+                g, c, rb, mu_now, rim, om, zeta, gam, rh, y2, r2)
             if jump:
                 for j in range(ny):
                     y1[j] = y2[j]
@@ -592,10 +627,22 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     and h > 2.0 * h_floor):
                 # stuck in all three solves: the break-away inside the step, if any, ends it (the steps restart from
                 # it with a short one, as the rigid block's from its exact break-away)
-                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, g, rb, mu, om, zeta, gam)
+                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, g, rb, mu_now, rim, om, zeta, gam)
                 if t_b > h_floor:
                     h = t_b
                     started = True
+                    continue
+            if held_s and (m1 | mh | m2) & low and not jump and not started:
+                # at rest under µs and a solve slid: the break-away is inside the step (the force the slab needs
+                # leaves a µs circle: the step ends there, held) or at its start (the slab leaves at µk); none found
+                # (every group held, those on their rims by them): the µs solves stand
+                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, g, rb, mu_s, rim, om, zeta, gam)
+                if h_floor < t_b < h and h > 2.0 * h_floor:
+                    h = t_b
+                    started = True
+                    continue
+                if 0.0 <= t_b < h:
+                    held_s = False
                     continue
             rims0 = _rim_bits(y, rim)
             if ((r1[R_IMPULSE] > 0.0 or (m1 >> ng) & ~rims0 & away) and not arrival and h > 4.0 * h_floor
@@ -654,9 +701,33 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     h = max(h * max(0.1, 0.9 / math.sqrt(err)), h_floor)
                     continue
                 n_floor += 1
+            impacted = r1[R_IMPULSE] + rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0
+            if (static and not held_s and stop_h != h and not jump and not impacted and m2 & low
+                    and y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] < 0.0):
+                # sliding under static friction, the velocity turned back within the step: it passed through zero,
+                # a stop (then at rest under µs, held or leaving at µk as the force the slab needs says).  The stop
+                # is located by bisection on the step's length (to rounding) between the length whose velocity
+                # still points forward and the one whose velocity has turned or vanished; a stop only when the
+                # velocity there is below the steps' velocity tolerance (a fast turn in the plane is no stop)
+                lo = 0.0
+                up = h
+                for _ in range(200):
+                    mid = 0.5 * (lo + up)
+                    if not (lo < mid < up):
+                        break
+                    building_step(y, mid, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y0, ra)
+                    work += ra[2]
+                    if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
+                        lo = mid
+                    else:
+                        up = mid
+                building_step(y, up, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y0, ra)
+                if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= vs and up < h:
+                    h = up
+                    stop_h = up
+                    continue
             for j in range(ny):
                 y0[j] = y[j]
-            impacted = r1[R_IMPULSE] + rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0
             if (not impacted and m1 == mh and mh == m2
                     and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
                 for j in range(ny):
@@ -681,6 +752,21 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     y[j] = y2[j]
             r[0] = r2[0]
             r[1] = r2[1]
+            if stop_h == h:
+                # the step cut at the stop: the slab's velocity left (below the velocity tolerance) is taken away as
+                # an impulse on the slab alone (the floors keep their absolute velocity), its energy booked as friction
+                e_before = total_energy(y, g, rb, om, gam)
+                for d in range(2):
+                    for k in range(nm):
+                        y[f0 + 2 * nm * d + nm + k] += gam[k] * y[Y_V + d]
+                    y[Y_V + d] = 0.0
+                y[Y_EF] += e_before - total_energy(y, g, rb, om, gam)
+            stop_h = -1.0
+            if static:
+                if y[Y_V] == 0.0 and y[Y_V + 1] == 0.0:
+                    held_s = True
+                if started:
+                    held_s = False
             tau = hi if last_step else tau + h
             on_rim = m2 >> ng
             if on_rim & away:
