@@ -24,8 +24,10 @@ the floors the same along x and y (µ_h isotropic) that is the rigid block's ste
 acceleration ā' = (ā + Σ Γ̃ Δq̃'_free/h)/µ_h: Ψ is divided by µ_h, its minimiser is the same, so
 :func:`~isolator.solver.planar_multisurface_stepper.be_step` takes the step unchanged (its rims, its ultimate, its
 carried groups), and the floors are then propagated with the ẍ_b that step gives.  Stiff floors cost nothing:
-their modes are exact for any ω h.  (Floors that differ along x and y make µ_h differ by direction, Ψ's metric
-diagonal-anisotropic; not built: the driver refuses them in one line.)
+their modes are exact for any ω h.  Floors that differ along x and y make µ_h differ by direction (µ_x, µ_y):
+the step is then be_step's with the slab's mass per direction, m_d (V'_d − V_d)/h + c V'_d = −g r_d − ā'_d, whose
+dual Ψ has the diagonal metric M_d = (1 + ch)/(µ_d + ch) (Newton on Ψ; the one-group closed form only starts it),
+the modes and their tables per direction.
 
 A velocity change the step makes that is not its momentum balance (the plastic impact at the ultimate, the
 velocity turned onto a rim circle) is an impulse on the slab alone: the floors keep their absolute velocities
@@ -180,8 +182,8 @@ TABLE_SIZE = 8
 
 @njit(cache=True)
 def rout_tab(rout, nm):
-    """The table's scratch inside rout, past its R_SIZE slots (a view: no allocation per step)."""
-    return rout[R_SIZE:R_SIZE + nm * TABLE_SIZE].reshape((nm, TABLE_SIZE))
+    """The tables' scratch inside rout, past its R_SIZE slots, one per direction (a view: no allocation per step)."""
+    return rout[R_SIZE:R_SIZE + 2 * nm * TABLE_SIZE].reshape((2, nm, TABLE_SIZE))
 
 
 @njit(cache=True)
@@ -211,7 +213,7 @@ def floor_mode_tab(q0, v0, phi0, psi, h, w, z, gm, row):
 def total_energy(y, g, rb, om, gam):
     """Kinetic (relative to the ground) + strain + the bearing's stored energy of the state y, per unit total mass."""
     ng = rb.shape[0]
-    nm = om.shape[0]
+    nm = om.shape[1]
     f0 = carry_slot(ng) + 1
     out = 0.0
     for d in range(2):
@@ -220,7 +222,7 @@ def total_energy(y, g, rb, om, gam):
         for i in range(nm):
             q = y[f0 + 2 * nm * d + i]
             qd = y[f0 + 2 * nm * d + nm + i]
-            out += v * gam[i] * qd + 0.5 * qd * qd + 0.5 * om[i] * om[i] * q * q
+            out += v * gam[d, i] * qd + 0.5 * qd * qd + 0.5 * om[d, i] * om[d, i] * q * q
     for k in range(ng):
         out += g * (y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2) / (2.0 * rb[k])
     return out
@@ -233,16 +235,29 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
     ``a0x, a0y`` the ground's acceleration at the step's start, ``sx, sy`` its slope [m/s³]; the state y (the
     stepper's slots, then per direction the floors' q̃ and q̃') into out.  Returns be_step's mask; rout[:3] as
     be_step's, rout[R_IMPULSE] the velocity an impact removed from the slab (0 without one), rout[R_SIZE:] the
-    scratch of the step length's table (R_SIZE + TABLE_SIZE × modes long)."""
+    scratch of the step length's tables (R_SIZE + 2 × TABLE_SIZE × modes long).  ``om, gam`` (2, modes): the
+    floors' modes per direction; the same along x and y, the rigid block's step with g/µ_h (module docstring), else
+    be_step with the slab's effective mass per direction (Ψ's diagonal metric)."""
     ng = rb.shape[0]
-    nm = om.shape[0]
+    nm = om.shape[1]
     f0 = carry_slot(ng) + 1
     tab = rout_tab(rout, nm)
-    mode_table(h, om, zeta, tab)
-    mu_h = 1.0
+    same = True
     for i in range(nm):
-        x = om[i] * math.sqrt(1.0 - zeta * zeta) * h
-        mu_h -= gam[i] * gam[i] * tab[i, 0] * (tab[i, 2] / x if x > 0.0 else 1.0)
+        if om[0, i] != om[1, i] or gam[0, i] != gam[1, i]:
+            same = False
+    mode_table(h, om[0], zeta, tab[0])
+    if same:
+        tab[1, :, :] = tab[0]
+    else:
+        mode_table(h, om[1], zeta, tab[1])
+    mu_d = np.ones(2)
+    for d in range(2):
+        for i in range(nm):
+            x = om[d, i] * math.sqrt(1.0 - zeta * zeta) * h
+            mu_d[d] -= gam[d, i] * gam[d, i] * tab[d, i, 0] * (tab[d, i, 2] / x if x > 0.0 else 1.0)
+    mu_h = mu_d[0]
+    iso = mu_d[0] == mu_d[1]
     a0 = (a0x, a0y)
     sl = (sx, sy)
     abar = (a0x + 0.5 * h * sx, a0y + 0.5 * h * sy)
@@ -252,32 +267,43 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         dfree = 0.0
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            _, v1, _, _ = floor_mode_tab(y[j], y[j + nm], a0[d], sl[d], h, om[i], zeta, gam[i], tab[i])
-            dfree += gam[i] * (v1 - y[j + nm])
+            _, v1, _, _ = floor_mode_tab(y[j], y[j + nm], a0[d], sl[d], h, om[d, i], zeta, gam[d, i], tab[d, i])
+            dfree += gam[d, i] * (v1 - y[j + nm])
         if d == 0:
-            ap_x = (abar[d] + dfree / h) / mu_h
+            ap_x = (abar[d] + dfree / h) / mu_h if iso else abar[d] + dfree / h
         else:
-            ap_y = (abar[d] + dfree / h) / mu_h
+            ap_y = (abar[d] + dfree / h) / mu_h if iso else abar[d] + dfree / h
     ap = (ap_x, ap_y)
-    gp = g / mu_h
-    cp = c / mu_h
-    mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout)
+    if iso:
+        gp = g / mu_h
+        cp = c / mu_h
+        mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout)
+    else:
+        # the floors differ along x and y: the slab's effective mass µ_d per direction, Ψ's metric diagonal
+        gp = g
+        cp = c
+        mask = be_step(y, h, ap_x, ap_y, g, c, rb, mu, rim, rguess, out, rout, mu_d[0], mu_d[1])
+        mu_h = 1.0  # be_step books the friction and the dashpot with g and c themselves
     impact = out[Y_EIMP] != y[Y_EIMP]
     slid = mask & ((1 << ng) - 1)
     e_in = 0.0
     e_vf = 0.0
     for d in range(2):
-        vpre = (y[Y_V + d] - h * (gp * rout[d] + ap[d])) / (1.0 + cp * h) if slid else 0.0
+        if iso:
+            vpre = (y[Y_V + d] - h * (gp * rout[d] + ap[d])) / (1.0 + cp * h) if slid else 0.0
+        else:
+            vpre = (mu_d[d] * y[Y_V + d] - h * (g * rout[d] + ap[d])) / (mu_d[d] + c * h) if slid else 0.0
         xb = (vpre - y[Y_V + d]) / h
         dv = out[Y_V + d] - vpre
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            q1, v1, big_q, sq = floor_mode_tab(y[j], y[j + nm], a0[d] + xb, sl[d], h, om[i], zeta, gam[i], tab[i])
+            q1, v1, big_q, sq = floor_mode_tab(y[j], y[j + nm], a0[d] + xb, sl[d], h, om[d, i], zeta, gam[d, i],
+                                               tab[d, i])
             # the ground's work on the floors, −Γ̃ ∫ a_g q̃' dτ (by parts), and their dampers' 2ζω ∫ q̃'² dτ
-            e_in -= gam[i] * ((a0[d] + sl[d] * h) * q1 - a0[d] * y[j] - sl[d] * big_q)
-            e_vf += 2.0 * zeta * om[i] * sq
+            e_in -= gam[d, i] * ((a0[d] + sl[d] * h) * q1 - a0[d] * y[j] - sl[d] * big_q)
+            e_vf += 2.0 * zeta * om[d, i] * sq
             out[j] = q1
-            out[j + nm] = v1 - gam[i] * dv  # an impulse on the slab alone: the floors keep their absolute velocity
+            out[j + nm] = v1 - gam[d, i] * dv  # an impulse on the slab alone: the floors keep their absolute velocity
     dx1 = out[Y_X] - y[Y_X]
     dx2 = out[Y_X + 1] - y[Y_X + 1]
     out[Y_EIN] = y[Y_EIN] - (abar[0] * dx1 + abar[1] * dx2) + e_in
@@ -302,7 +328,7 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
     the velocity the slab loses (the rims' reaction over the move, 2 dt g r·ē, and the impact).  Returns the mask of
     every group on its rim, sliding; rout as building_step's."""
     ng = rb.shape[0]
-    nm = om.shape[0]
+    nm = om.shape[1]
     f0 = carry_slot(ng) + 1
     a0 = (a0x, a0y)
     sl = (sx, sy)
@@ -312,9 +338,9 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
     for d in range(2):
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d], sl[d], dt, om[i], zeta, gam[i])
-            e_in -= gam[i] * ((a0[d] + sl[d] * dt) * q1 - a0[d] * y[j] - sl[d] * big_q)
-            e_vf += 2.0 * zeta * om[i] * sq
+            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d], sl[d], dt, om[d, i], zeta, gam[d, i])
+            e_in -= gam[d, i] * ((a0[d] + sl[d] * dt) * q1 - a0[d] * y[j] - sl[d] * big_q)
+            e_vf += 2.0 * zeta * om[d, i] * sq
             out[j] = q1
             out[j + nm] = v1
     out[Y_EIN] += e_in
@@ -330,7 +356,7 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
     for d in range(2):
         dv = dv1 if d == 0 else dv2
         for i in range(nm):
-            out[f0 + 2 * nm * d + nm + i] -= gam[i] * dv
+            out[f0 + 2 * nm * d + nm + i] -= gam[d, i] * dv
     out[Y_EIMP] = y[Y_EIMP] + ((out[Y_EIN] - y[Y_EIN])
                                - (total_energy(out, g, rb, om, gam) - total_energy(y, g, rb, om, gam))
                                - (out[Y_EF] - y[Y_EF]) - (out[Y_EV] - y[Y_EV]))
@@ -351,7 +377,7 @@ def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
     held step there broke away at once, 7.7e-4 of the peak off the 1-D building; with more groups on their rims
     the groups' circles are kept as they are — the TFP held at its ultimate ran into the work bound with them)."""
     ng = rb.shape[0]
-    nm = om.shape[0]
+    nm = om.shape[1]
     f0 = carry_slot(ng) + 1
     r_x = 0.0
     r_y = 0.0
@@ -362,8 +388,8 @@ def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
         acc = ag
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            q1, v1, _, _ = floor_mode(y[j], y[j + nm], a0, s, tau, om[i], zeta, gam[i], False)
-            acc += gam[i] * (-2.0 * zeta * om[i] * v1 - om[i] * om[i] * q1 - gam[i] * ag)
+            q1, v1, _, _ = floor_mode(y[j], y[j + nm], a0, s, tau, om[d, i], zeta, gam[d, i], False)
+            acc += gam[d, i] * (-2.0 * zeta * om[d, i] * v1 - om[d, i] * om[d, i] * q1 - gam[d, i] * ag)
         if d == 0:
             r_x = -acc / g
         else:
@@ -444,7 +470,7 @@ def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min):
     # the peaks of the watched rows' resultants (peaks[2:]) and the signed rows' extremes at the state y
     _floor_rows(y, f0, nm, 0, lin, rowx)
     _floor_rows(y, f0, nm, 1, lin, rowy)
-    for k in range(lin.shape[0]):
+    for k in range(lin.shape[1]):
         peaks[2 + k] = max(peaks[2 + k], math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]))
     for k in range(sig.shape[0]):
         acc = 0.0
@@ -461,17 +487,17 @@ def _held_force(y, f0, nm, ag, om, zeta, gam, d):
     acc = ag
     for i in range(nm):
         j = f0 + 2 * nm * d + i
-        acc += gam[i] * (-2.0 * zeta * om[i] * y[j + nm] - om[i] * om[i] * y[j] - gam[i] * ag)
+        acc += gam[d, i] * (-2.0 * zeta * om[d, i] * y[j + nm] - om[d, i] * om[d, i] * y[j] - gam[d, i] * ag)
     return -acc
 
 
 @njit(cache=True)
 def _floor_rows(y, f0, nm, d, lin, row):
     # the watched rows (drifts, floors' absolute accelerations, first-story shear) of direction d at the state y
-    for k in range(lin.shape[0]):
+    for k in range(lin.shape[1]):
         acc = 0.0
         for i in range(2 * nm):
-            acc += lin[k, i] * y[f0 + 2 * nm * d + i]
+            acc += lin[d, k, i] * y[f0 + 2 * nm * d + i]
         row[k] = acc
 
 
@@ -493,10 +519,10 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
     µs circles, slides at µk after the break-away, and is at rest again (µs) after a stop."""
     n = t.shape[0]
     ng = rb.shape[0]
-    nm = om.shape[0]
+    nm = om.shape[1]
     f0 = carry_slot(ng) + 1
     ny = f0 + 4 * nm
-    nk = lin.shape[0]
+    nk = lin.shape[1]
     nj = sig.shape[0]
     y = np.zeros(ny)
     y1 = np.zeros(ny)
@@ -504,10 +530,10 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
     y2 = np.zeros(ny)
     y0 = np.zeros(ny)
     r = np.zeros(2)
-    r1 = np.zeros(R_SIZE + nm * TABLE_SIZE)
-    rh = np.zeros(R_SIZE + nm * TABLE_SIZE)
-    r2 = np.zeros(R_SIZE + nm * TABLE_SIZE)
-    ra = np.zeros(R_SIZE + nm * TABLE_SIZE)
+    r1 = np.zeros(R_SIZE + 2 * nm * TABLE_SIZE)
+    rh = np.zeros(R_SIZE + 2 * nm * TABLE_SIZE)
+    r2 = np.zeros(R_SIZE + 2 * nm * TABLE_SIZE)
+    ra = np.zeros(R_SIZE + 2 * nm * TABLE_SIZE)
     yw = np.zeros(ny)
     rowx = np.zeros(nk)
     rowy = np.zeros(nk)
@@ -758,7 +784,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                 e_before = total_energy(y, g, rb, om, gam)
                 for d in range(2):
                     for k in range(nm):
-                        y[f0 + 2 * nm * d + nm + k] += gam[k] * y[Y_V + d]
+                        y[f0 + 2 * nm * d + nm + k] += gam[d, k] * y[Y_V + d]
                     y[Y_V + d] = 0.0
                 y[Y_EF] += e_before - total_energy(y, g, rb, om, gam)
             stop_h = -1.0
@@ -834,7 +860,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     peak_qd = max(peak_qd, abs(y[jj + nm]))
             # the floors' watched rows inside the step (its constant ẍ_b, from its start), points at most WATCH_TURN
             # of the fastest mode apart, and at its end
-            n_in = min(int(h * om[nm - 1] / WATCH_TURN), MAX_WATCH_POINTS)
+            n_in = min(int(h * max(om[0, nm - 1], om[1, nm - 1]) / WATCH_TURN), MAX_WATCH_POINTS)
             held_step = (y0[Y_V] == 0.0 and y0[Y_V + 1] == 0.0 and y[Y_V] == 0.0 and y[Y_V + 1] == 0.0
                          and c == 0.0)
             if n_in > 0:
@@ -848,7 +874,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                         xb = xbx if d == 0 else xby
                         for k in range(nm):
                             jj = f0 + 2 * nm * d + k
-                            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], a0 + xb, s_d, tp, om[k], zeta, gam[k],
+                            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], a0 + xb, s_d, tp, om[d, k], zeta, gam[d, k],
                                                       False)
                             yw[jj] = q1
                             yw[jj + nm] = v1
