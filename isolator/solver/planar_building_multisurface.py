@@ -9,8 +9,8 @@ closed form, and their reaction enters the step as an effective slab mass and a 
 (:mod:`isolator.solver.planar_building_multisurface_kernel`).  The local error is controlled on the slab and on the
 floors (relative tolerance ``step_tol``); the error is measured in docs/building.md.
 
-Not modelled, each refused in one line: a vertical component, µ(v), floors whose stiffness differs along x and y
-(the step's dual problem would need an anisotropic metric), a damping ratio ≥ 1.
+Not modelled, each refused in one line: a vertical component, µ(v), a damping ratio ≥ 1 (or differing between
+modes), static friction above kinetic on a double or triple (a single surface's µs is modelled: held at rest inside µs, sliding at µk).
 
 Outputs: the 2-D building's keys (:class:`~isolator.solver.planar_building.PlanarBuildingResponse`: resultant story
 drifts, floor accelerations, shears, bearing loads — here taken at the steps' ends) and the bearing's
@@ -36,6 +36,7 @@ from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.building import naming_design
 from isolator.solver.building_multisurface import BEARING_KEYS, rerun_past_capacity, single_with_rim
 from isolator.solver.multisurface import response_fields
+from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_building import PlanarBuildingResponse, planar_building_system
 from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, RIM_BALANCE_TOL, element_groups
@@ -110,7 +111,8 @@ def single_with_rim_in_plane(scene):
 
 
 def isotropic(superstructure) -> bool:
-    """The floors' stiffness (and so their damping) is the same along x and y (what this model takes)."""
+    """The floors' stiffness (and so their damping) is the same along x and y (the steps' closed isotropic form;
+    else Ψ's diagonal metric)."""
     return bool(np.array_equal(superstructure.stiffness_matrix("x"), superstructure.stiffness_matrix("y")))
 
 
@@ -126,7 +128,7 @@ def scene_needs(scene) -> tuple[str, str] | None:
         return None
     if bearing is None or bearing.is_simple:
         single = single_with_rim_in_plane(scene)
-        if single is None or not isotropic(design.superstructure):
+        if single is None:
             return None
         return RIM_FIRST_MODEL, planar_building.scene_reason(has_y=True, has_z=False, velocity_dependent=False) + (
             f"; a displacement capacity of {single.ultimate_displacement_m:.4g} m: if the peak reaches it, the run is "
@@ -160,18 +162,16 @@ def simulate_scene(scene) -> PlanarBuildingMultisurfaceResponse:
     DesignError
         A vertical component or µ(v) (not modelled).
     InvalidSystemError
-        Floors differing along x and y (not modelled).
+        Floors whose damping ratio differs between modes or is ≥ 1.
     """
     design = scene.design
     if design.bearing is None or design.bearing.is_simple:
         single = single_with_rim_in_plane(scene)
         if single is None:
             raise LookupError("this model takes a building on a single pendulum only with a capacity (scene_needs)")
-        if not isotropic(design.superstructure):  # not modelled here: the registry flags a capacity passed
-            return planar_building.simulate_scene(scene)
         return rerun_past_capacity(scene, single, planar_building.simulate_scene, simulate_on, RIM_FIRST_MODEL,
                                    f"{MODEL_NAME} under the pair: implicit steps, plastic impact at the capacity, "
-                                   "sliding along the rim; constant kinetic friction")
+                                   "sliding along the rim; static friction at rest, kinetic sliding")
     why = _refusal(scene)
     if why is not None:
         raise DesignError(f"{design.source}: {why}")
@@ -193,55 +193,72 @@ def simulate_on(scene, bearing, step_tol: float = DEFAULT_STEP_TOL) -> PlanarBui
             bearing_layout=design.bearing_layout, step_tol=step_tol)
 
 
+def static_friction(bearing, mu):
+    """The groups' static friction: a single surface's ``mu_static`` (at least its kinetic), else ``mu`` itself.
+
+    Raises
+    ------
+    ValueError
+        Static friction above kinetic on a double or triple (not modelled, as in ``1d-building-multisurface``).
+    """
+    mu_static = np.asarray(bearing.mu_static, dtype=np.float64)
+    if len(bearing.surfaces) > 1:
+        if np.any(mu_static != np.asarray(bearing.mu_kinetic, dtype=np.float64)):
+            raise ValueError(f"static friction above kinetic on the bearing is not modelled: {STATIC_FRICTION_REASON}")
+        return mu.copy()
+    return np.maximum(np.full(mu.size, float(mu_static[0])), mu)
+
+
 def modal_rows(building, bearing_layout):
-    """The floors' modes and watched rows of a 2-D building system (:func:`planar_building_system`).
+    """The floors' modes and watched rows of a 2-D building system (:func:`planar_building_system`), per direction.
 
     Returns
     -------
     tuple
-        ``(ω [rad/s], Γ̃ = φᵀ M_s 1/√M, lin, sig)``: ``lin`` (2n + 1, 2n) maps the modal state (q̃, q̃') of one
-        direction to the drifts, the floors' absolute accelerations and the first story's shear [N];
+        ``(ω [rad/s] (2, n), ζ, Γ̃ = φᵀ M_s 1/√M (2, n), lin, sig)``: ``lin[d]`` (2n + 1, 2n) maps direction d's
+        modal state (q̃, q̃') to its drifts, floors' absolute accelerations and first story's shear [N];
         ``sig`` (2 + bearings, 2, 2n) maps both directions' states to the overturning moments about the two
         axes [N·m] and the bearings' axial load changes [N] (as the 2-D building's signed rows).
 
     Raises
     ------
     InvalidSystemError
-        Floors differing along x and y, or a damping ratio ≥ 1.
+        A damping ratio that differs between modes or is ≥ 1.
     """
     from scipy.linalg import eigh
 
-    k_x, k_y = building.stiffness_matrices
-    c_x, c_y = building.damping_matrices
-    if not (np.array_equal(k_x, k_y) and np.array_equal(c_x, c_y)):
-        raise InvalidSystemError(f"floors whose stiffness differs along x and y are not modelled on a multi-surface "
-                                 f"bearing under a pair ({MODEL_NAME}: the slab's effective mass would differ by "
-                                 "direction)")
     masses = building.masses_kg
     n = masses.size
-    eigenvalues, phi = eigh(k_x, np.diag(masses))
-    om = np.sqrt(np.maximum(eigenvalues, 0.0))
-    # ζ of the classical damping: C = M Φ diag(2ζω) Φᵀ M
-    zetas = np.diag(phi.T @ c_x @ phi) / (2.0 * om)
-    zeta = float(zetas[0])
-    if not (np.allclose(zetas, zeta, rtol=1e-9, atol=0.0) and 0.0 <= zeta < 1.0 and np.all(om > 0.0)):
-        raise InvalidSystemError(f"{MODEL_NAME} takes floors with one damping ratio below 1 in every mode")
     root = math.sqrt(building.total_mass_kg)
-    gam = phi.T @ masses / root
-    shape = phi * root  # u = shape q̃
-    lin = np.zeros((2 * n + 1, 2 * n))
-    for i in range(n):
-        lin[i, :n] = shape[i] - (shape[i - 1] if i > 0 else 0.0)
-    accel = -np.diag(1.0 / masses)
-    lin[n:2 * n, :n] = accel @ k_x @ shape
-    lin[n:2 * n, n:] = accel @ c_x @ shape
-    lin[2 * n, :n] = k_x.sum(axis=0) @ shape
-    lin[2 * n, n:] = c_x.sum(axis=0) @ shape
-    # Σ H_i (K u + C u̇)_i = −Σ m_i H_i (floor i's absolute acceleration): the overturning moment of one direction
-    moment = np.concatenate([building.floor_heights_m @ k_x @ shape, building.floor_heights_m @ c_x @ shape])
     n_bearings = 0 if bearing_layout is None else bearing_layout.n_bearings
+    om = np.zeros((2, n))
+    gam = np.zeros((2, n))
+    lin = np.zeros((2, 2 * n + 1, 2 * n))
     sig = np.zeros((2 + n_bearings, 2, 2 * n))
+    zeta = 0.0
+    accel = -np.diag(1.0 / masses)
     for d, direction in enumerate(("x", "y")):
+        k_d = building.stiffness_matrices[d]
+        c_d = building.damping_matrices[d]
+        eigenvalues, phi = eigh(k_d, np.diag(masses))
+        om[d] = np.sqrt(np.maximum(eigenvalues, 0.0))
+        # ζ of the classical damping: C = M Φ diag(2ζω) Φᵀ M
+        zetas = np.diag(phi.T @ c_d @ phi) / (2.0 * om[d])
+        if d == 0:
+            zeta = float(zetas[0])
+        if not (np.allclose(zetas, zeta, rtol=1e-9, atol=0.0) and 0.0 <= zeta < 1.0 and np.all(om[d] > 0.0)):
+            raise InvalidSystemError(f"{MODEL_NAME} takes floors with one damping ratio below 1 in every mode (both "
+                                     "directions)")
+        gam[d] = phi.T @ masses / root
+        shape = phi * root  # u = shape q̃
+        for i in range(n):
+            lin[d, i, :n] = shape[i] - (shape[i - 1] if i > 0 else 0.0)
+        lin[d, n:2 * n, :n] = accel @ k_d @ shape
+        lin[d, n:2 * n, n:] = accel @ c_d @ shape
+        lin[d, 2 * n, :n] = k_d.sum(axis=0) @ shape
+        lin[d, 2 * n, n:] = c_d.sum(axis=0) @ shape
+        # Σ H_i (K u + C u̇)_i = −Σ m_i H_i (floor i's absolute acceleration): the overturning moment of one direction
+        moment = np.concatenate([building.floor_heights_m @ k_d @ shape, building.floor_heights_m @ c_d @ shape])
         sig[d, d] = moment
         if n_bearings:
             coefficients = bearing_layout.overturning_coefficients(direction)
@@ -284,7 +301,8 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         Sample interval [s] (or ``time_s``).
     superstructure : isolator.superstructure.Superstructure
     bearing : isolator.bearing.Bearing
-        A double or triple (or a single with its rim) bearing; its surfaces' kinetic friction.
+        A double or triple (or a single with its rim) bearing; its surfaces' kinetic friction, and on a single
+        surface its static friction (held at rest while the force the slab needs is inside µs, sliding at µk).
     total_mass_kg, damping_Ns_per_m, gravity_m_s2
         As for :func:`isolator.solver.planar_building.simulate_planar_building`.
     bearing_layout : isolator.superstructure.BearingLayout, optional
@@ -334,6 +352,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     om, zeta, gam, lin, sig = modal_rows(building, bearing_layout)
     c = float(damping_Ns_per_m) / mass
     rb, mu, rim, members = element_groups(bearing, split_rims=True)
+    mu_s = static_friction(bearing, mu)
     tmat = bearing.surface_matrix()
     # the error norm's floors as the rigid block's steps build them (planar_multisurface), for the stiffest group
     pga = float(np.max(np.hypot(ax, ay)))
@@ -343,10 +362,10 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     vref = max(float(np.max(mu)) * g, pga, 1e-12) * t_scale
     scales = np.array([1e-3 * vref * t_scale, 1e-3 * vref, 1e-3 * vref * t_scale, 1e-3 * vref, FLOOR_SCALE])
     n = ax.size
-    ny = _ps.carry_slot(rb.size) + 1 + 4 * om.size
+    ny = _ps.carry_slot(rb.size) + 1 + 4 * om.shape[1]
     out_y = np.empty((n, ny))
     out_r = np.empty((n, 2))
-    peaks = np.zeros(lin.shape[0] + 3)
+    peaks = np.zeros(lin.shape[1] + 3)
     sig_max = np.zeros(sig.shape[0])
     sig_min = np.zeros(sig.shape[0])
     summary = np.zeros(_ps.S_SIZE_STEPS)
@@ -356,7 +375,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     start = time.perf_counter()
     _bk.planar_building_multisurface_kernel(local, ax, ay, g, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig,
                                             float(step_tol), scales, out_y, out_r, peaks, sig_max, sig_min, summary,
-                                            surf_peak, first, ub)
+                                            surf_peak, first, ub, mu_s)
     elapsed = time.perf_counter() - start
     status = int(summary[_pm.S_STATUS])
     fail_t = t0 + float(summary[_pm.S_FAIL_T])
@@ -371,17 +390,15 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     if status:
         raise SolverError(f"the implicit steps of {MODEL_NAME} could not finish at t = {fail_t:.6g} s (status "
                           f"{status}: a rim guard or more than {_ps.MAX_STEPS_PER_INTERVAL} steps in one interval)")
-    nm = om.size
+    nm = om.shape[1]
     f0 = _ps.carry_slot(rb.size) + 1
     x_b = out_y[:, _ps.Y_X:_ps.Y_X + 2].copy()
     v_b = out_y[:, _ps.Y_V:_ps.Y_V + 2].copy()
     modal = [out_y[:, f0 + 2 * nm * d:f0 + 2 * nm * (d + 1)] for d in range(2)]  # (q̃, q̃') per direction
-    shape = lin[:nm, :nm].copy()
-    for i in range(1, nm):
-        shape[i] += shape[i - 1]  # the drifts' rows summed: u = shape q̃
-    u = np.stack([m[:, :nm] @ shape.T for m in modal], axis=2)
-    ud = np.stack([m[:, nm:] @ shape.T for m in modal], axis=2)
-    rows = np.stack([m @ lin.T for m in modal], axis=2)  # (N, 2n + 1, 2)
+    shapes = [np.cumsum(lin[d, :nm, :nm], axis=0) for d in range(2)]  # the drifts' rows summed: u = shape q̃
+    u = np.stack([modal[d][:, :nm] @ shapes[d].T for d in range(2)], axis=2)
+    ud = np.stack([modal[d][:, nm:] @ shapes[d].T for d in range(2)], axis=2)
+    rows = np.stack([modal[d] @ lin[d].T for d in range(2)], axis=2)  # (N, 2n + 1, 2)
     moments = np.stack([modal[d] @ sig[d, d] for d in range(2)], axis=1)
     final = out_y[-1]
     e_total = float(_bk.total_energy(final, g, rb, om, gam))
@@ -390,7 +407,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     rbar = np.array([members[i, 1] for i in range(members.shape[0])])
     stored = float(g * np.sum(np.sum(elements * elements, axis=1) / (2.0 * rbar)))
     kinetic = 0.5 * float(v_b[-1] @ v_b[-1]) + sum(
-        float(v_b[-1, d] * (gam @ modal[d][-1, nm:]) + 0.5 * modal[d][-1, nm:] @ modal[d][-1, nm:]) for d in range(2))
+        float(v_b[-1, d] * (gam[d] @ modal[d][-1, nm:]) + 0.5 * modal[d][-1, nm:] @ modal[d][-1, nm:]) for d in range(2))
     strain = e_total - stored - kinetic
     e_in, e_f, e_v, e_imp = (float(summary[k]) for k in (_pm.S_E_IN, _pm.S_E_F, _pm.S_E_V, _ps.S_E_IMP))
     balance = e_in - (e_total + e_f + e_v + e_imp)

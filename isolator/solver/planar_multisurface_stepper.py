@@ -448,11 +448,11 @@ def popcount(bits):
 
 
 @njit(cache=True)
-def _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half=0):
-    # Ψ(r) of the module docstring and its gradient F = g r + α ΔX(r) − p
-    acc = 0.5 * g * (rx * rx + ry * ry) - px * rx - py * ry
-    fx = g * rx - px
-    fy = g * ry - py
+def _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half=0, mx=1.0, my=1.0):
+    # Ψ(r) of the module docstring and its gradient F = g M r + α ΔX(r) − p (M = diag(mx, my): be_step's metric)
+    acc = 0.5 * g * (mx * rx * rx + my * ry * ry) - px * rx - py * ry
+    fx = g * mx * rx - px
+    fy = g * my * ry - py
     for k in range(rb.shape[0]):
         s1, s2, tk, _, _, _, _, state = group_return(rx, ry, y, k, rb, mu, rim, half)
         if state:
@@ -474,15 +474,16 @@ def _held(y, rb, mu, r1, r2):
 
 
 @njit(cache=True)
-def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
+def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0):
     """The force r/W of one backward-Euler step: the minimiser of Ψ (module docstring), by Newton's method
     from the guess (rx, ry), the step cut back until Ψ or |∇Ψ| decreases.  Returns (rx, ry, iterations, evaluations
-    of ∇Ψ)."""
+    of ∇Ψ).  ``mx, my``: Ψ's metric g r·M r/2 (be_step's per-direction masses; 1 for the rigid block)."""
     ng = rb.shape[0]
     half = half_discs(y, rim)
-    # stuck: p/g inside every circle is the answer (Ψ's gradient g r − p vanishes there)
-    if _held(y, rb, mu, px / g, py / g):
-        return px / g, py / g, 0, 0
+    iso_m = mx == my
+    # stuck: p/(g M) inside every circle is the answer (Ψ's gradient g M r − p vanishes there)
+    if _held(y, rb, mu, px / (g * mx), py / (g * my)):
+        return px / (g * mx), py / (g * my), 0, 0
     # one group sliding has a closed form: r − b_k ∥ p − g b_k, |r − b_k| = (|p − g b_k| + αR̄µ)/(g + αR̄); it is
     # the answer when that r lies inside every other circle, else the nearest such point starts Newton (the
     # valley of Ψ is curved along a circle: from far away the Cartesian steps crawl)
@@ -515,7 +516,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                 d1 = cx - y[Y_U + 2 * j] / rb[j]
                 d2 = cy - y[Y_U + 2 * j + 1] / rb[j]
                 worst = max(worst, math.sqrt(d1 * d1 + d2 * d2) - mu[j])
-        if worst == 0.0:
+        if worst == 0.0 and iso_m:
             return cx, cy, 0, 0
         if worst < best:
             best = worst
@@ -542,7 +543,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
     r_scale = 0.0
     for k in range(ng):
         r_scale = max(r_scale, mu[k])
-    _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half)
+    _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
     evals = 1
     cm = np.zeros(ng)
     cv = np.zeros((ng, 2))
@@ -554,7 +555,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
             break
         # H = (g + a) I + Σ c_k m_k m_kᵀ; its determinant from the parts, each ≥ 0: (g + a)² + (g + a) Σ c_k +
         # Σ_{j<k} c_j c_k (m_j × m_k)² (h11 h22 − h12² cancels to nothing when a rank-one term of a rim is huge)
-        iso = g
+        iso = g * mx
         h12 = 0.0
         h11 = 0.0
         h22 = 0.0
@@ -578,9 +579,15 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                 csum += ck
             else:
                 cm[k] = 0.0
+        s11 = h11
+        s22 = h22
         h11 += iso
-        h22 += iso
+        h22 += iso + g * (my - mx)
         det = iso * iso + iso * csum + cross  # ≥ g² > 0: Ψ is g-strongly convex
+        if not iso_m:
+            # diag(p, q) + Σ c_k m_k m_kᵀ: pq + p Σ c_k m_k2² + q Σ c_k m_k1² + the same cross terms, each ≥ 0
+            q_m = iso + g * (my - mx)
+            det = iso * q_m + iso * s22 + q_m * s11 + cross
         # Newton's step in H's eigenbasis, a component of ∇Ψ at or below its rounding floor left out: on a rim H is
         # ~α/D along the tangent and only g along the normal (PTS ×2 double, 5.83 s: 7.6e10 and 9.8), so the floor's
         # rounding of the normal part (~1e-7 there) made a normal step of 1e-8 that swamped the tangential 5e-14 the
@@ -627,7 +634,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
         d0 = fx * s1 + fy * s2
         if not d0 < 0.0:
             break  # no descent left above rounding
-        _, gx, gy = _psi_grad(rx + s1, ry + s2, y, rb, mu, rim, alpha, px, py, g, half)
+        _, gx, gy = _psi_grad(rx + s1, ry + s2, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
         evals += 1
         d1 = gx * s1 + gy * s2
         t = 1.0
@@ -645,7 +652,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                     t = 0.5 * (ta + tb)
                     if not (ta < t < tb):
                         break
-                _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g, half)
+                _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
                 evals += 1
                 dt = gx * s1 + gy * s2
                 if abs(dt) <= -0.5 * d0:
@@ -667,7 +674,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
                 if ta == 0.0:
                     break  # the bracket closed at the start: r is the minimiser to rounding
                 t = ta
-                _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g, half)
+                _, gx, gy = _psi_grad(rx + t * s1, ry + t * s2, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
                 evals += 1
         rx += t * s1
         ry += t * s2
@@ -681,7 +688,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
         # minimiser lies within |∇Ψ(r)|/g of r (Ψ is g-strongly convex), and each cut keeps the half-ellipse
         # {∇Ψ(c)·(r − c) ≤ 0} that holds it, the area falling by 0.77 per gradient; it stops when ∇Ψ is rounding or
         # the ellipse is below the rounding of r
-        rad = math.sqrt(fx * fx + fy * fy) / g
+        rad = math.sqrt(fx * fx + fy * fy) / (g * min(mx, my))
         f0x = fx
         f0y = fy
         p11 = rad * rad
@@ -705,7 +712,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
             p11 = 4.0 / 3.0 * (p11 - 2.0 / 3.0 * q1 * q1)
             p12 = 4.0 / 3.0 * (p12 - 2.0 / 3.0 * q1 * q2)
             p22 = 4.0 / 3.0 * (p22 - 2.0 / 3.0 * q2 * q2)
-            _, fx, fy = _psi_grad(cx, cy, y, rb, mu, rim, alpha, px, py, g, half)
+            _, fx, fy = _psi_grad(cx, cy, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
             evals += 1
             if math.sqrt(max(p11 + p22, 0.0)) <= 4e-16 * (abs(cx) + abs(cy) + r_scale):
                 solved = True
@@ -722,17 +729,30 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry):
 
 
 @njit(cache=True)
-def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
+def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0):
     """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout[:2], the evaluations
     of Ψ's gradient it took into rout[2].
+
+    ``m_x, m_y``: the slab's mass per direction (per unit of the mass g r acts on; 1 for the rigid block), the
+    balance m_d (V'_d − V_d)/h + c V'_d = −g r_d − ā_d: Ψ gets the metric M_d = (1 + ch)/(m_d + ch) and the
+    momentum p_d = M_d (m_d V_d/h − ā_d) (a building's floors that differ along x and y).
 
     Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
     set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
     ng = rb.shape[0]
     alpha = (1.0 + c * h) / (h * h)
-    px = y[Y_V] / h - abar_x
-    py = y[Y_V + 1] / h - abar_y
-    rx, ry, iterations, evals = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1])
+    unit = m_x == 1.0 and m_y == 1.0
+    met_x = 1.0
+    met_y = 1.0
+    if unit:
+        px = y[Y_V] / h - abar_x
+        py = y[Y_V + 1] / h - abar_y
+    else:
+        met_x = (1.0 + c * h) / (m_x + c * h)
+        met_y = (1.0 + c * h) / (m_y + c * h)
+        px = met_x * (m_x * y[Y_V] / h - abar_x)
+        py = met_y * (m_y * y[Y_V + 1] / h - abar_y)
+    rx, ry, iterations, evals = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1], met_x, met_y)
     ult = at_ultimate(y, rim)
     half = half_discs(y, rim)
     rout[0] = rx
@@ -775,7 +795,10 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
     out[Y_X + 1] = y[Y_X + 1] + dx2
     # V from the momentum balance rather than ΣΔ/h (equal in exact arithmetic): the slips' rounding divided
     # by a small step would swamp the error estimate
-    if mask & ((1 << ng) - 1):
+    if mask & ((1 << ng) - 1) and not unit:
+        out[Y_V] = (m_x * y[Y_V] - h * (g * rx + abar_x)) / (m_x + c * h)
+        out[Y_V + 1] = (m_y * y[Y_V + 1] - h * (g * ry + abar_y)) / (m_y + c * h)
+    elif mask & ((1 << ng) - 1):
         out[Y_V] = (y[Y_V] - h * (g * rx + abar_x)) / (1.0 + c * h)
         out[Y_V + 1] = (y[Y_V + 1] - h * (g * ry + abar_y)) / (1.0 + c * h)
     else:
@@ -812,7 +835,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout):
         # an impact in a short step: the normal part of Newton's residual is the impulse's rounding (α ~ 1/h² times
         # the last bit of a position on the rim), gone with the outward velocity; its tangential part moves V by
         # h times it at most, which must be rounding too, else the force is not found
-        _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half)
+        _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half, met_x, met_y)
         xn = math.sqrt(out[Y_X] ** 2 + out[Y_X + 1] ** 2)
         ft = abs(fx * out[Y_X + 1] - fy * out[Y_X]) / xn if xn > 0.0 else math.sqrt(fx * fx + fy * fy)
         if h * ft <= 1e-9 * (math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2) + h * g):

@@ -15,7 +15,6 @@ import math
 import numpy as np
 import pytest
 
-from isolator.errors import InvalidSystemError
 from isolator.solver.building_multisurface import simulate_building_bearing
 from isolator.solver.planar_building import simulate_planar_building
 from isolator.solver.planar_building_multisurface import simulate_building_bearing_pair
@@ -197,9 +196,11 @@ def test_refusals_in_one_line(records_dir):
     b = parse_bearing({"type": "double", "surface": [dict(radius_m=2.0, mu=0.05, displacement_capacity_m=0.3)] * 2},
                       DesignError)
     s = make_superstructure([3e5], [6e8], 0.05)
-    skew = replace(s, floors=(replace(s.floors[0], stiffness_y_N_per_m=3e8),))
-    with pytest.raises(InvalidSystemError, match="differs along x and y"):
-        simulate_building_bearing_pair(ax, ay, dt, superstructure=skew, bearing=b, total_mass_kg=5e5)
+    # (floors that differ along x and y are modelled: test_planar_building_multisurface_aniso.py)
+    # static friction above kinetic on a double: refused (the 1-D building refuses it too)
+    static = replace(b, surfaces=tuple(replace(f, mu_static=1.2 * f.mu_kinetic) for f in b.surfaces))
+    with pytest.raises(ValueError, match="static friction above kinetic"):
+        simulate_building_bearing_pair(ax, ay, dt, superstructure=s, bearing=static, total_mass_kg=5e5)
 
 
 DESIGN = """name = "3 stories on the small TFP"
