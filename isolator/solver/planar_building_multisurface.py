@@ -40,7 +40,7 @@ from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_building import PlanarBuildingResponse, planar_building_system
 from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, RIM_BALANCE_TOL, element_groups
-from isolator.solver.record import sample_timing
+from isolator.solver.record import sample_clock
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
@@ -330,21 +330,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         raise RecordInputError("a pair needs two components of the same length (at least two samples)")
     if not (np.all(np.isfinite(ax)) and np.all(np.isfinite(ay))):
         raise RecordInputError("acceleration holds NaN or infinite values")
-    if time_s is not None:
-        times = np.asarray(time_s, dtype=np.float64)
-        if times.shape != ax.shape:
-            raise RecordInputError(f"time ({times.shape}) and acceleration ({ax.shape}) differ in length")
-        sample_timing(times)
-        t0 = float(times[0])
-        local = times - t0
-    elif dt_s is not None:
-        dt = float(dt_s)
-        if not math.isfinite(dt) or dt <= 0.0:
-            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
-        t0 = 0.0
-        local = dt * np.arange(ax.size)
-    else:
-        raise TypeError("give dt_s or time_s")
+    t0, local = sample_clock(ax.size, dt_s, time_s)
     mass = float(total_mass_kg)
     g = float(gravity_m_s2)
     building = planar_building_system(superstructure, total_mass_kg=mass, stiffness_N_per_m=0.0, mu_static=0.0,

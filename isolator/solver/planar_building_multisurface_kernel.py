@@ -77,7 +77,6 @@ from isolator.solver.planar_multisurface_kernel import (
     surface_peaks,
 )
 from isolator.solver.planar_multisurface_stepper import (
-    ARRIVAL_FRACTION,
     H_MIN_FRACTION,
     MAX_STEPS_PER_INTERVAL,
     RIM_AWAY,
@@ -101,7 +100,8 @@ from isolator.solver.planar_multisurface_stepper import (
     Y_U,
     Y_V,
     Y_X,
-    arrival_time,
+    accept_step,
+    arrival_step,
     arrive,
     be_step,
     carry_slot,
@@ -607,18 +607,8 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
             # the arrival at the ultimate with every group on its rim closing into alignment (the rigid block's event,
             # planar_multisurface_stepper.arrival_time): the steps end ARRIVAL_FRACTION × hi before it, the last of it
             # is one move (arrive, the floors carried with the slab's velocity kept), the impact after it
-            jump = False
             h_keep = h
-            t_arr = arrival_time(y, rim)
-            if t_arr > 0.0:
-                t_jump = ARRIVAL_FRACTION * hi
-                if 1.01 * t_jump < t_arr < t_jump + h and t_arr - t_jump < hi - tau:
-                    h = t_arr - t_jump
-                elif (t_arr <= 1.01 * t_jump and t_arr < hi - tau
-                      and 2.0 * t_arr * g * math.sqrt(r[0] * r[0] + r[1] * r[1])
-                      < (y[Y_V] * y[Y_X] + y[Y_V + 1] * y[Y_X + 1]) / math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)):
-                    jump = True
-                    h = t_arr
+            h, jump = arrival_step(y, rim, r, g, h, hi, tau)
             last_step = h >= hi - tau
             at_floor = not h > h_floor
             a0x = ax[i] + slope_x * tau
@@ -767,28 +757,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     continue
             for j in range(ny):
                 y0[j] = y[j]
-            if (not impacted and m1 == mh and mh == m2
-                    and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
-                for j in range(ny):
-                    y[j] = 2.0 * y2[j] - y1[j]
-                y[f0 - 1] = y2[f0 - 1]
-                for k in range(ng):
-                    if m2 >> (ng + k) & 1:
-                        u1 = y[Y_U + 2 * k]
-                        u2 = y[Y_U + 2 * k + 1]
-                        un = math.sqrt(u1 * u1 + u2 * u2)
-                        if un > 0.0:
-                            y[Y_U + 2 * k] = u1 * rim[k] / un
-                            y[Y_U + 2 * k + 1] = u2 * rim[k] / un
-                            y[Y_X] += y[Y_U + 2 * k] - u1
-                            y[Y_X + 1] += y[Y_U + 2 * k + 1] - u2
-                    elif y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 > rim[k] * rim[k]:
-                        for j in range(ny):
-                            y[j] = y2[j]
-                        break
-            else:
-                for j in range(ny):
-                    y[j] = y2[j]
+            accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted)
             r[0] = r2[0]
             r[1] = r2[1]
             if stop_h == h:

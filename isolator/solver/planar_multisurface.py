@@ -28,7 +28,7 @@ from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.base import SolverResult
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar import R_MIN_FACTOR
-from isolator.solver.record import sample_timing
+from isolator.solver.record import sample_clock
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
@@ -353,21 +353,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         raise ValueError(f"step_tol must be in [1e-12, 1e-2], got {step_tol!r}")
     ax = _samples("ax_m_s2", ax_m_s2)
     ay = _samples("ay_m_s2", ay_m_s2, ax.size)
-    if time_s is not None:
-        times = np.asarray(time_s, dtype=np.float64)
-        if times.shape != ax.shape:
-            raise RecordInputError(f"time ({times.shape}) and acceleration ({ax.shape}) differ in length")
-        sample_timing(times)
-        t0 = float(times[0])
-        local = times - t0
-    elif dt_s is not None:
-        dt = float(dt_s)
-        if not math.isfinite(dt) or dt <= 0.0:
-            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
-        t0 = 0.0
-        local = dt * np.arange(ax.size)
-    else:
-        raise TypeError("give dt_s or time_s")
+    t0, local = sample_clock(ax.size, dt_s, time_s)
     c = float(damping_per_mass)
     g = float(gravity_m_s2)
     if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):

@@ -944,6 +944,68 @@ def arrive(y, dt, abar_x, abar_y, g, c, mu, rim, out):
 
 
 @njit(cache=True)
+def arrival_step(y, rim, r, g, h, hi, tau):
+    """The next step's length and whether it is the move onto the ultimate (``arrive``), before a step of ``h`` at
+    ``tau`` in a sample interval of ``hi``: with every group on its rim closing into alignment and the mass moving
+    outward (:func:`arrival_time`), the steps end ``ARRIVAL_FRACTION`` × hi before the arrival, and the last of it
+    is one move when the force of the last step (``r``, in units of ``g``) could not stop the outward speed in that
+    time.
+
+    Returns
+    -------
+    tuple
+        ``(h, jump)``.
+    """
+    t_arr = arrival_time(y, rim)
+    if t_arr > 0.0:
+        t_jump = ARRIVAL_FRACTION * hi
+        if 1.01 * t_jump < t_arr < t_jump + h and t_arr - t_jump < hi - tau:
+            return t_arr - t_jump, False
+        if (t_arr <= 1.01 * t_jump and t_arr < hi - tau
+                and 2.0 * t_arr * g * math.sqrt(r[0] * r[0] + r[1] * r[1])
+                < (y[Y_V] * y[Y_X] + y[Y_V + 1] * y[Y_X + 1]) / math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)):
+            return t_arr, True
+    return h, False
+
+
+@njit(cache=True)
+def accept_step(y, y1, y2, ny, keep, ng, rim, m1, mh, m2, jump):
+    """The accepted step's end state, written over ``y`` (which holds the step's start).
+
+    The Richardson combination 2 y2 − y1 of the whole step ``y1`` and the two halves ``y2`` (second order) where the
+    same groups slid in the three solves (masks ``m1``, ``mh``, ``m2``), nothing jumped (``jump``: an impact) and the
+    velocity kept its sense; across a change of the sliding set (a stop, a start, a join) or a reversal (the friction
+    turns over) the error expansion does not hold and the two halves are kept.  ``y[keep]`` is the halves' (an energy
+    the combination does not take).  A group on its rim in all three solves is put back on its circle after the
+    combination (the chord of two points on it lies inside by O(h²)), X moved with it; when the extrapolation of a
+    group arriving at its rim crossed it, the halves are kept.
+    """
+    low = (1 << ng) - 1
+    if (not jump and m1 == mh and mh == m2
+            and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
+        for j in range(ny):
+            y[j] = 2.0 * y2[j] - y1[j]
+        y[keep] = y2[keep]
+        for k in range(ng):
+            if m2 >> (ng + k) & 1:
+                u1 = y[Y_U + 2 * k]
+                u2 = y[Y_U + 2 * k + 1]
+                un = math.sqrt(u1 * u1 + u2 * u2)
+                if un > 0.0:
+                    y[Y_U + 2 * k] = u1 * rim[k] / un
+                    y[Y_U + 2 * k + 1] = u2 * rim[k] / un
+                    y[Y_X] += y[Y_U + 2 * k] - u1
+                    y[Y_X + 1] += y[Y_U + 2 * k + 1] - u2
+            elif y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 > rim[k] * rim[k]:
+                for j in range(ny):
+                    y[j] = y2[j]
+                return
+    else:
+        for j in range(ny):
+            y[j] = y2[j]
+
+
+@njit(cache=True)
 def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales,
                                 out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
     """Response of a mass on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
@@ -1052,19 +1114,8 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             h = min(h, hi - tau)
             # the arrival at the ultimate (every group on its rim closing into alignment, the mass moving outward): the
             # steps end ARRIVAL_FRACTION × hi before it and the last of it is one move (arrive), the impact after it
-            jump = False
             h_keep = h
-            t_arr = arrival_time(y, rim)
-            if t_arr > 0.0:
-                t_jump = ARRIVAL_FRACTION * hi
-                if 1.01 * t_jump < t_arr < t_jump + h and t_arr - t_jump < hi - tau:
-                    h = t_arr - t_jump
-                elif (t_arr <= 1.01 * t_jump and t_arr < hi - tau
-                      and 2.0 * t_arr * g * math.sqrt(r[0] * r[0] + r[1] * r[1])
-                      < (y[Y_V] * y[Y_X] + y[Y_V + 1] * y[Y_X + 1]) / math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)):
-                    # (and the force of the last step could not stop the outward speed in that time)
-                    jump = True
-                    h = t_arr
+            h, jump = arrival_step(y, rim, r, g, h, hi, tau)
             last_step = h >= hi - tau
             # at or below the floor a step is taken whatever its error estimate (progress; counted in S_STEPS_MULTI)
             at_floor = not h > h_floor
@@ -1140,36 +1191,10 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                     h = max(h * max(0.1, 0.9 / math.sqrt(err)), h_floor)
                     continue
                 n_floor += 1
-            # accepted: the Richardson combination of the two answers (second order) where the same groups slid
-            # in the three solves and the velocity kept its sense; across a change of the sliding set (a stop, a
-            # start, a join) or a reversal (the friction turns over) the error expansion does not hold and the
-            # two half steps are kept.  A group on its rim in all three solves is put back on its circle after the
-            # combination (the chord of two points on it lies inside by O(h²)), X moved with it
+            # accepted: the Richardson combination where it holds, else the two half steps (accept_step)
             for j in range(ny):
                 y0[j] = y[j]
-            if (not jump and m1 == mh and mh == m2
-                    and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
-                for j in range(ny):
-                    y[j] = 2.0 * y2[j] - y1[j]
-                y[ny - 1] = y2[ny - 1]
-                for k in range(ng):
-                    if m2 >> (ng + k) & 1:
-                        u1 = y[Y_U + 2 * k]
-                        u2 = y[Y_U + 2 * k + 1]
-                        un = math.sqrt(u1 * u1 + u2 * u2)
-                        if un > 0.0:
-                            y[Y_U + 2 * k] = u1 * rim[k] / un
-                            y[Y_U + 2 * k + 1] = u2 * rim[k] / un
-                            y[Y_X] += y[Y_U + 2 * k] - u1
-                            y[Y_X + 1] += y[Y_U + 2 * k + 1] - u2
-                    elif y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 > rim[k] * rim[k]:
-                        # the extrapolation of a group arriving at its rim crossed it: the half steps are kept
-                        for j in range(ny):
-                            y[j] = y2[j]
-                        break
-            else:
-                for j in range(ny):
-                    y[j] = y2[j]
+            accept_step(y, y1, y2, ny, ny - 1, ng, rim, m1, mh, m2, jump)
             r[0] = r2[0]
             r[1] = r2[1]
             tau = hi if last_step else tau + h

@@ -71,6 +71,45 @@ class Response(SolverResult):
 UNIFORM_STEP_REL_TOLERANCE = 1e-9
 
 
+def sample_clock(n: int, dt_s=None, time_s=None) -> tuple[float, np.ndarray]:
+    """The first sample's time and the ``n`` sample times from it, from ``dt_s`` or ``time_s``.
+
+    Parameters
+    ----------
+    n : int
+        Number of samples.
+    dt_s : float, optional
+        Sample interval [s], finite and > 0 (times ``0, dt, 2 dt …``).
+    time_s : array_like, optional
+        Sample times [s] (``n`` of them, checked by :func:`sample_timing`); taken before ``dt_s``.
+
+    Returns
+    -------
+    tuple
+        ``(t0, times − t0)``.
+
+    Raises
+    ------
+    RecordInputError
+        Times of another length, not increasing, or a bad ``dt_s``.
+    TypeError
+        Neither given.
+    """
+    if time_s is not None:
+        times = np.asarray(time_s, dtype=np.float64)
+        if times.shape != (n,):
+            raise RecordInputError(f"time ({times.shape}) and acceleration ({(n,)}) differ in length")
+        sample_timing(times)
+        t0 = float(times[0])
+        return t0, times - t0
+    if dt_s is not None:
+        dt = float(dt_s)
+        if not math.isfinite(dt) or dt <= 0.0:
+            raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
+        return 0.0, dt * np.arange(n)
+    raise TypeError("give dt_s or time_s")
+
+
 def sample_timing(time_s) -> tuple[float, np.ndarray | None]:
     """Mean step and, for unequal steps, the sample times from the first one.
 
