@@ -55,7 +55,40 @@ BEARING_KEYS = ("bearing_type", "surface_peak_displacement_m", "regimes", "n_rim
 
 
 @dataclass(kw_only=True)
-class BuildingMultisurfaceResponse(BuildingResponse):
+class BearingFields:
+    """The bearing's fields of a building on a double or triple friction pendulum (one component or a pair:
+    :class:`BuildingMultisurfaceResponse`, ``planar_building_multisurface.PlanarBuildingMultisurfaceResponse``),
+    and the properties read from them."""
+
+    bearing: object
+    force_per_weight: np.ndarray  #: the bearing's F/W at the samples (no dashpot; (N, 2) under a pair) [-]
+    energy_impact_J_per_kg: float
+    surface_peak_displacement_m: list
+    regimes: dict
+    n_rim_contacts: int
+    ultimate_displacement_reached: bool
+    ultimate_displacement_m: float
+    ultimate_first_time_s: float | None
+    impact_impulse_m_s: float  #: Σ |ΔV| of the slab at impacts (the speed lost) [m/s]
+    impact_impulse_N_s: float  #: Σ m_b |ΔV| [N·s]
+    max_impact_velocity_m_s: float
+    peak_force_per_weight: float
+    element_displacement_m: np.ndarray
+    damping_per_mass: float = 0.0  #: the isolator's dashpot over the total mass [1/s]
+
+    @property
+    def bearing_type(self) -> str:
+        return self.bearing.kind
+
+    @property
+    def configuration(self) -> str:
+        """The paper's configuration at the stiffest regime (as for the rigid block on the same bearing)."""
+        rbar = self.bearing.elements()[0]
+        return classify_configuration(self.damping_per_mass, self.building.gravity_m_s2 / float(np.min(rbar)))
+
+
+@dataclass(kw_only=True)
+class BuildingMultisurfaceResponse(BearingFields, BuildingResponse):
     """Exact response of a shear building on a double or triple friction pendulum (``1d-building-multisurface``).
 
     The fields of :class:`~isolator.solver.building.BuildingResponse` and the bearing's own (as in
@@ -69,37 +102,12 @@ class BuildingMultisurfaceResponse(BuildingResponse):
     EXTRA_SUMMARY_KEYS = BuildingResponse.EXTRA_SUMMARY_KEYS + BEARING_KEYS
     EVENT_NAMES = _bmk.EVENT_NAMES
 
-    bearing: object
-    force_per_weight: np.ndarray  #: the bearing's F/W at the samples (no dashpot) [-]
-    energy_impact_J_per_kg: float
-    surface_peak_displacement_m: list
-    regimes: dict
-    n_rim_contacts: int
-    ultimate_displacement_reached: bool
-    ultimate_displacement_m: float
-    ultimate_first_time_s: float | None
-    impact_impulse_m_s: float  #: Σ |v_b| lost at impacts [m/s]
-    impact_impulse_N_s: float  #: Σ m_b |v_b| [N·s]
-    max_impact_velocity_m_s: float
-    peak_force_per_weight: float
-    element_displacement_m: np.ndarray
-    damping_per_mass: float = 0.0  #: the isolator's dashpot over the total mass [1/s]
     model: str = MODEL_NAME
     model_reason: str = ""
     #: True when the registry's first run (``1d-building``, an unbounded plate) reached the single pendulum's
     #: capacity and the scene was run again here with its rim; :func:`isolator.solver.models.simulate` keeps
     #: this result's model and reason
     rerun: bool = False
-
-    @property
-    def bearing_type(self) -> str:
-        return self.bearing.kind
-
-    @property
-    def configuration(self) -> str:
-        """The paper's configuration at the stiffest regime (as for the rigid block on the same bearing)."""
-        rbar = self.bearing.elements()[0]
-        return classify_configuration(self.damping_per_mass, self.building.gravity_m_s2 / float(np.min(rbar)))
 
 
 def _refusal(scene) -> str | None:

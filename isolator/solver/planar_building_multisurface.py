@@ -34,14 +34,13 @@ from isolator.solver import planar_building_multisurface_kernel as _bk
 from isolator.solver import planar_multisurface_kernel as _pm
 from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.building import naming_design
-from isolator.solver.building_multisurface import BEARING_KEYS, rerun_past_capacity, single_with_rim
+from isolator.solver.building_multisurface import BEARING_KEYS, BearingFields, rerun_past_capacity, single_with_rim
 from isolator.solver.multisurface import response_fields
 from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_building import PlanarBuildingResponse, planar_building_system
 from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, RIM_BALANCE_TOL, element_groups
 from isolator.solver.record import sample_clock
-from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
 MODEL_NAME = "2d-building-multisurface"
@@ -52,7 +51,7 @@ FLOOR_SCALE = 1.0
 
 
 @dataclass(kw_only=True)
-class PlanarBuildingMultisurfaceResponse(PlanarBuildingResponse):
+class PlanarBuildingMultisurfaceResponse(BearingFields, PlanarBuildingResponse):
     """Response of a shear building on a double or triple friction pendulum to a pair (``2d-building-multisurface``).
 
     The fields of :class:`~isolator.solver.planar_building.PlanarBuildingResponse` (the peaks taken at the implicit
@@ -64,21 +63,6 @@ class PlanarBuildingMultisurfaceResponse(PlanarBuildingResponse):
 
     EXTRA_SUMMARY_KEYS = PlanarBuildingResponse.EXTRA_SUMMARY_KEYS + BEARING_KEYS
 
-    bearing: object
-    force_per_weight: np.ndarray  #: (N, 2) the bearing's F/W at the samples (no dashpot) [-]
-    energy_impact_J_per_kg: float
-    surface_peak_displacement_m: list
-    regimes: dict
-    n_rim_contacts: int
-    ultimate_displacement_reached: bool
-    ultimate_displacement_m: float
-    ultimate_first_time_s: float | None
-    impact_impulse_m_s: float  #: Σ |ΔV| of the slab at impacts [m/s]
-    impact_impulse_N_s: float  #: Σ m_b |ΔV| [N·s]
-    max_impact_velocity_m_s: float
-    peak_force_per_weight: float
-    element_displacement_m: np.ndarray
-    damping_per_mass: float = 0.0
     n_steps: int = 0
     step_tol: float = DEFAULT_STEP_TOL
     model: str = MODEL_NAME
@@ -86,16 +70,6 @@ class PlanarBuildingMultisurfaceResponse(PlanarBuildingResponse):
     #: True when the registry's first run (``2d-building``, an unbounded plate) reached the single pendulum's
     #: capacity and the scene was run again here with its rim
     rerun: bool = False
-
-    @property
-    def bearing_type(self) -> str:
-        return self.bearing.kind
-
-    @property
-    def configuration(self) -> str:
-        """The paper's configuration at the stiffest regime (as for the rigid block on the same bearing)."""
-        rbar = self.bearing.elements()[0]
-        return classify_configuration(self.damping_per_mass, self.building.gravity_m_s2 / float(np.min(rbar)))
 
 
 def single_with_rim_in_plane(scene):
