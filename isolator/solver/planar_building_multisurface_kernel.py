@@ -105,6 +105,7 @@ from isolator.solver.planar_multisurface_stepper import (
     arrive,
     be_step,
     carry_slot,
+    groups_within_rims,
     popcount,
     ultimate_impact,
     work_bound,
@@ -868,12 +869,9 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                         f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
                         peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
             _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min)
-            for k in range(ng):
-                ub[k, 0] = y[Y_U + 2 * k]
-                ub[k, 1] = y[Y_U + 2 * k + 1]
-                if ub[k, 0] ** 2 + ub[k, 1] ** 2 > (rim[k] * (1.0 + 1e-9)) ** 2:
-                    status |= STATUS_RIM
-                    fail_t = t[i] + tau
+            if not groups_within_rims(y, ub, rim):
+                status |= STATUS_RIM
+                fail_t = t[i] + tau
             if status:
                 break
             surface_peaks(ub, rb, members, tmat, surf_peak)

@@ -944,6 +944,19 @@ def arrive(y, dt, abar_x, abar_y, g, c, mu, rim, out):
 
 
 @njit(cache=True)
+def groups_within_rims(y, ub, rim):
+    """The groups' displacements ū of the state ``y`` into ``ub`` (a row per group of ``rim``); False when one lies
+    outside its rim (a guard: the rim's return keeps every group on or inside its circle)."""
+    inside = True
+    for k in range(rim.shape[0]):
+        ub[k, 0] = y[Y_U + 2 * k]
+        ub[k, 1] = y[Y_U + 2 * k + 1]
+        if ub[k, 0] ** 2 + ub[k, 1] ** 2 > (rim[k] * (1.0 + 1e-9)) ** 2:
+            inside = False
+    return inside
+
+
+@njit(cache=True)
 def arrival_step(y, rim, r, g, h, hi, tau):
     """The next step's length and whether it is the move onto the ultimate (``arrive``), before a step of ``h`` at
     ``tau`` in a sample interval of ``hi``: with every group on its rim closing into alignment and the mass moving
@@ -1279,13 +1292,9 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                     a_cap += vn * vn / x_abs
                 a_mag = min(a_mag, a_cap)
             peak_a = max(peak_a, a_mag)
-            for k in range(ng):
-                ub[k, 0] = y[Y_U + 2 * k]
-                ub[k, 1] = y[Y_U + 2 * k + 1]
-                if ub[k, 0] ** 2 + ub[k, 1] ** 2 > (rim[k] * (1.0 + 1e-9)) ** 2:
-                    # a guard: the rim's return keeps every group on or inside its circle
-                    status |= STATUS_RIM
-                    fail_t = t[i] + tau
+            if not groups_within_rims(y, ub, rim):
+                status |= STATUS_RIM
+                fail_t = t[i] + tau
             if status:
                 break
             surface_peaks(ub, rb, members, tmat, surf_peak)
