@@ -51,6 +51,22 @@ def _scaled(motion, scale_to_pga: float | None, record_label: str):
     return scaled, scaled.scaling_note
 
 
+def ultimate_rows(numbers: dict) -> list:
+    """A bearing with rims: whether the run reached the ultimate displacement (every slider on its rim, a plastic
+    impact) and the impulse the stop took, or that it stayed inside (issue 23: "say so")."""
+    if "ultimate_displacement_reached" not in numbers:
+        return []
+    if numbers.get("rim_modelled") is False:  # a building run without a rim (a vertical or µ(v)): its solver_status
+        return [("ultimate displacement", "PASSED, no rim modelled" if numbers["ultimate_displacement_reached"]
+                 else "not reached (no rim modelled)", "")]
+    if not numbers["ultimate_displacement_reached"]:
+        return [("ultimate displacement", "not reached", f"({numbers.get('n_rim_contacts', 0)} rim contact(s))")]
+    impulse = numbers.get("impact_impulse_m_s", float("nan")) * numbers["design"]["mass_kg"]
+    return [("ultimate displacement", "REACHED", f"(every slider on its rim, held there: plastic impact(s), impulse "
+                                                 f"{impulse:.4g} N·s; {numbers.get('n_rim_contacts', 0)} rim "
+                                                 "contact(s))")]
+
+
 def _result_rows(numbers: dict, paper: bool, pages: int | None, output: str, json_path: str, map_notes: list) -> list:
     """The lines printed after a report: the paper's point and classification where they apply, else the demand."""
     rows = ([] if pages is None else [("report", output, f"({pages} pages)")]) + [("numbers", json_path, "")]
@@ -60,6 +76,7 @@ def _result_rows(numbers: dict, paper: bool, pages: int | None, output: str, jso
             ("peak displacement", f"{numbers['peak_displacement_m']:.4g}", "m (resultant)"),
             ("demand / capacity", "n/a" if numbers["displacement_demand_ratio"] is None
              else f"{numbers['displacement_demand_ratio']:.3g}", ""),
+            *ultimate_rows(numbers),
             ("residual displacement", f"{numbers['residual_displacement_m']:.4g}", "m"),
             ("peak transmitted acc.", f"{numbers['peak_transmitted_acceleration_m_s2']:.4g}", "m/s²"),
         ]

@@ -113,7 +113,7 @@ def review(
     except (DesignError, ReviewError, RecordError, UnitsError, OSError) as err:
         _user_error(str(err))
     from isolator.atomic import output_lock
-    from isolator.report.review_pages import write_review_pdf
+    from isolator.report.review_pages import failed_analyses, write_review_pdf
     from isolator.review.run import run_review
 
     cache_dir = None if no_cache else review_cache_dir(output)
@@ -134,11 +134,16 @@ def review(
         return
     counts = out["check_counts"]
     typer.echo(f"review   {output} ({out['pdf_pages']} pages), numbers in {Path(output).with_suffix('.json')}")
-    typer.echo(f"pairs    {len(out['suite']['pairs'])} read, {len(out['suite']['failed'])} failed; scale factors "
-               f"{min(out['scale_factors'].values()):.4g}–{max(out['scale_factors'].values()):.4g} ({scaling}), "
+    typer.echo(f"pairs    {len(out['suite']['pairs'])} read, {len(out['suite']['failed'])} failed to read; scale "
+               f"factors {min(out['scale_factors'].values()):.4g}–{max(out['scale_factors'].values()):.4g} ({scaling}), "
                f"range {out['period_range_s'][0]:.4g}–{out['period_range_s'][1]:.4g} s")
     for failure in out["suite"]["failed"]:
         typer.echo(f"failed   {failure['name']}: {failure['error']}")
+    n_run, broken = failed_analyses(out)
+    typer.echo(f"analyses {n_run} run, {len(broken)} failed" + (" (the rows needing them say not checked)" if broken
+                                                                else ""))
+    for name, bound, error in broken:
+        typer.echo(f"failed   {name} ({bound}): {error}")
     width = max(len(c["id"]) for c in out["checks"])
     for c in out["checks"]:
         value = "n/a" if c["value"] is None else f"{c['value']:.4g}"

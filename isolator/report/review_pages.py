@@ -226,6 +226,19 @@ def _target_text(t: dict) -> str:
     return f"{t['name']}: {text}  (file {t['source']})"
 
 
+def failed_analyses(r: dict) -> tuple[int, list]:
+    """From a review's JSON: how many analyses ran, and ``(pair, bound, error)`` of each that failed."""
+    done = [(name, bound, a.get("error")) for bound, b in r["bounds"].items() for name, a in b["pairs"].items()]
+    return len(done), [entry for entry in done if entry[2]]
+
+
+def _analyses_text(r: dict) -> str:
+    n_run, broken = failed_analyses(r)
+    return f"{n_run} run, {len(broken)} failed" + (
+        f" (the rows needing them say not checked): {'; '.join(f'{n} ({b}): {e}' for n, b, e in broken)}"
+        if broken else "")
+
+
 def _summary(flow: Flow, r: dict) -> None:
     flow.page("Design review: summary and checks", f"{r['design']['name']} | {r['target']['name']}")
     suite = r["suite"]
@@ -236,7 +249,8 @@ def _summary(flow: Flow, r: dict) -> None:
     d, dt = r["design_displacement_m"], r["design_total_displacement_m"]
     lines = _design_lines(r) + [
         ("Target", _target_text(r["target"])),
-        ("Suite", f"{len(suite['pairs'])} pairs read, {len(suite['failed'])} failed  ({suite['source']})"),
+        ("Suite", f"{len(suite['pairs'])} pairs read, {len(suite['failed'])} failed to read  ({suite['source']})"),
+        ("Analyses", _analyses_text(r)),
         ("Code, scaling", f"{r['code']}; {basis}: {words}; spectra {r['spectrum_basis']}"),
         ("Period range", f"{fmt(r['period_range_s'][0])} – {fmt(r['period_range_s'][1])} s ({r['period_grid']['n']} "
                          f"periods); suite min ratio {fmt(r['suite_min_ratio'])} (required "

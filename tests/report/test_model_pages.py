@@ -178,6 +178,14 @@ def test_double_pendulum_page_names_the_sliding_surfaces(motion):
     np.testing.assert_array_equal(_line(ax, POINTS_LABEL).get_xdata(), backbone.displacement_m)
     assert [t.get_text() for t in ax.texts][: len(backbone.regimes)] == [f"{n} slide" for n in backbone.regimes]
     assert "Sliding surfaces (first time)" in _texts(fig)
+    # the console's line: inside the rims at 0.4 g
+    from isolator.cli.report import ultimate_rows
+
+    assert not numbers["ultimate_displacement_reached"]
+    assert ultimate_rows(numbers) == [("ultimate displacement", "not reached",
+                                       f"({numbers['n_rim_contacts']} rim contact(s))")]
+    assert ultimate_rows({**numbers, "rim_modelled": False}) == [("ultimate displacement",
+                                                                  "not reached (no rim modelled)", "")]
 
 
 def test_triple_report_scaled_to_a_pga_on_one_component(records_dir, triple, tmp_path):
@@ -191,6 +199,10 @@ def test_triple_report_scaled_to_a_pga_on_one_component(records_dir, triple, tmp
     assert result.exit_code == 0, result.output
     assert "(4 pages)" in result.stdout
     written = json.loads(out.with_suffix(".json").read_text())
+    ultimate = next(line for line in result.stdout.splitlines() if line.startswith("ultimate displacement"))
+    impulse = analysis.design.mass_kg * written["impact_impulse_m_s"]
+    assert written["ultimate_displacement_reached"] and ultimate.split()[2] == "REACHED", ultimate
+    assert f"impulse {impulse:.4g} N·s; {written['n_rim_contacts']} rim contact(s)" in ultimate, ultimate
     motion = read_ground_motion(records_dir / RECORD).scaled_to_pga(SCALE_G * STANDARD_GRAVITY)
     direct = simulate_bearing(motion.acceleration_m_s2, motion.dt_s, bearing=analysis.design.bearing)
     assert written["peak_displacement_m"] == pytest.approx(direct.peak_displacement_m, rel=1e-12)

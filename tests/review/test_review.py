@@ -235,3 +235,31 @@ def test_per_pair_results_are_the_rows_of_the_one_analysis(review):
     assert got["pga_m_s2"] == pytest.approx(pga, rel=1e-12)
     assert got["alpha"] == pytest.approx(pga / (design.mu_static * design.gravity_m_s2), rel=1e-12)
     assert got["transmitted_over_pga"] == pytest.approx(got["peak_transmitted_acceleration_m_s2"] / pga, rel=1e-12)
+
+
+def test_cli_review_says_which_analyses_failed(inputs, tmp_path, monkeypatch):
+    """An analysis that fails is named on the console (pair, bound, error) and counted apart from the records read:
+    "8 read, 0 failed" alone hid three failed analyses of a TFP review (APEEL2's vertical)."""
+    from isolator.review import worker
+
+    original, calls = worker.analyse_task, []
+
+    def first_fails(task):  # tasks run largest first, in this process with --jobs 1: the first one fails
+        calls.append(task["key"])
+        return {"error": "RecordInputError: injected"} if len(calls) == 1 else original(task)
+
+    monkeypatch.setattr(worker, "analyse_task", first_fails)
+    result = _cli("--design", inputs / "design.toml", "--target", inputs / "target.toml", "--suite",
+                  inputs / "suite.toml", "-o", tmp_path / "r.pdf", "--jobs", "1", "--no-cache")
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    out = json.loads((tmp_path / "r.json").read_text())
+    n_run = sum(len(b["pairs"]) for b in out["bounds"].values())
+    assert n_run == len(calls) >= 3
+    assert lines[1].startswith("pairs    3 read, 0 failed to read;"), lines[1]
+    assert lines[2] == f"analyses {n_run} run, 1 failed (the rows needing them say not checked)", lines[2]
+    failed = [line for line in lines if line.startswith("failed   ")]
+    assert len(failed) == 1 and failed[0].endswith("): RecordInputError: injected"), failed
+    name, bound = failed[0][len("failed   "):].split(" (")[0], failed[0].split(" (")[1].split(")")[0]
+    assert out["bounds"][bound]["pairs"][name] == {"error": "RecordInputError: injected",
+                                                   "scale_factor": out["scale_factors"][name]}
