@@ -16,6 +16,10 @@ With ``--accuracy`` it also prints each answer's largest distance from two refer
 fraction of the peak: the implicit steps at a 10× tighter tolerance (their convergence), and the
 event-driven kernel where it finishes with its energy balance closed (an independent method).
 
+With ``--vertical`` only the pairs with a vertical component run, with it (model
+``2d-multisurface+vertical``: n = g + a_z on every surface), its amplitude times ``--scale`` too; with
+``--vertical both`` each such pair runs without and with its vertical, alternately (the vertical's cost).
+
 With ``--before FILE`` (a copy of an earlier event kernel, e.g. ``git show
 <rev>:isolator/solver/planar_multisurface_kernel.py > /tmp/old/pmk_old.py``) each pair is also run
 on that kernel, the two alternately in the same process (old, new, old, new, ...), and the line
@@ -24,6 +28,7 @@ as a fraction of the peak.
 
     python -m benchmarks.planar_multisurface_throughput [--repeat 5] [--scale 2] [--accuracy]
                                                        [--records ../shared/records] [--before FILE]
+                                                       [--vertical [with|both]]
 """
 
 from __future__ import annotations
@@ -63,6 +68,8 @@ def main(argv=None) -> int:
     parser.add_argument("--records", help="the records folder (holding pairs/); default: ../shared/records of the "
                         "repository's parent")
     parser.add_argument("--before", help="a copy of an earlier event kernel's module, run alternately with this one")
+    parser.add_argument("--vertical", nargs="?", const="with", choices=("with", "both"),
+                        help="only the pairs with a vertical, with it ('both': without and with, alternately)")
     args = parser.parse_args(argv)
     if args.records:
         _records.PAIRS = Path(args.records) / "pairs"
@@ -89,18 +96,25 @@ def main(argv=None) -> int:
     total_n = 0
     total_t = 0.0
     for folder in SOURCES:
-        dt, ax, ay, _ = load(folder)
+        dt, ax, ay, az = load(folder)
+        if args.vertical and az is None:
+            continue
         ax = args.scale * ax
         ay = args.scale * ay
+        az = None if az is None or not args.vertical else args.scale * az
+        # (name, event kernel, vertical): "before" runs the earlier kernel, "flat" this one without the vertical
+        runs = [(name, kernel, az) for name, kernel in kernels]
+        if args.vertical == "both":
+            runs.insert(0, ("flat", kernels[-1][1], None))
         try:
-            times = {name: [] for name, _ in kernels}
-            cpus = {name: [] for name, _ in kernels}
+            times = {name: [] for name, _, _ in runs}
+            cpus = {name: [] for name, _, _ in runs}
             answers = {}
             for _ in range(args.repeat):
-                for name, kernel in kernels:
+                for name, kernel, vert in runs:
                     _pm.planar_multisurface_kernel = kernel
                     start = time.thread_time()
-                    answers[name] = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method)
+                    answers[name] = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method, az_m_s2=vert)
                     cpus[name].append(time.thread_time() - start)
                     times[name].append(answers[name].solver_seconds)
         except SolverError as exc:
@@ -110,6 +124,12 @@ def main(argv=None) -> int:
             _pm.planar_multisurface_kernel = kernels[-1][1]
         res = answers["new"]
         cpu = cpus["new"]
+        if args.vertical == "both":
+            flat = answers["flat"]
+            print(f"{'  without the vertical':26s} {ax.size:8d} {'':>6s} "
+                  f"{ax.size / statistics.median(times['flat']) / 1e6:12.3f} "
+                  f"{ax.size / statistics.median(cpus['flat']) / 1e6:8.3f} {flat.n_steps:7d} "
+                  f"{flat.peak_displacement_m:10.4f}  ({'steps' if 'implicit steps' in flat.model_reason else 'events'})")
         if args.before:
             old = answers["before"]
             before_rates.append(ax.size / statistics.median(times["before"]) / 1e6)
@@ -128,10 +148,11 @@ def main(argv=None) -> int:
         extra = ""
         if args.accuracy:
             peak = res.peak_displacement_m
-            fine = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="steps", step_tol=DEFAULT_STEP_TOL / 10)
+            fine = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="steps", step_tol=DEFAULT_STEP_TOL / 10,
+                                         az_m_s2=az)
             extra = f"{_distance(res.displacement_m, fine.displacement_m, peak):10.1e} "
             try:
-                ev = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="events")
+                ev = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="events", az_m_s2=az)
                 closed = abs(ev.energy_balance_error_J_per_kg) <= EVENTS_BALANCE_TOL * ev.energy_input_J_per_kg
                 extra += f"{_distance(res.displacement_m, ev.displacement_m, peak):10.1e} " if closed else (
                     f"{'(imbal.)':>10s} ")

@@ -10,8 +10,12 @@ The rims: a slider reaching its rim stays on the circle |ū_i| = c̄_i (it slide
 leaves it inward; the force transfers to the other surfaces), and with every slider on its rim
 the bearing is at its ultimate displacement (plastic impact).  The event-driven kernel has no
 rim: where it reaches one, ``auto`` hands the record to the implicit steps, which have the rims
-(:mod:`isolator.solver.planar_multisurface_stepper`).  Not modelled here, each refused in one
-line: a vertical component, a superstructure.
+(:mod:`isolator.solver.planar_multisurface_stepper`).
+
+A vertical component (model ``2d-multisurface+vertical``): every surface carries the same normal force
+N = M n, n = g + a_z (massless sliders), so in units of the normal force the series model is unchanged
+and only the mass's equation takes n(t): X'' = −n r − cV − a_g (docs/multisurface.md, "The vertical").
+Not modelled here, each refused in one line: the bearing lifting off (n ≤ 0), a superstructure.
 """
 
 from __future__ import annotations
@@ -133,12 +137,12 @@ def scene_needs(scene) -> tuple[str, str] | None:
 
 
 def simulate_scene(scene) -> PlanarMultisurfaceResponse:
-    """The 2-D response of the scene's multi-surface bearing (:func:`simulate_bearing_pair`).
+    """The 2-D response of the scene's multi-surface bearing (:func:`simulate_bearing_pair`), its vertical too.
 
     Raises
     ------
-    RecordInputError
-        A vertical component (not modelled for a double or triple bearing in the plane).
+    SolverError
+        The vertical lifts the bearing off (n = g + a_z ≤ 0).
     DesignError
         A superstructure on a double or triple bearing.
     """
@@ -146,12 +150,10 @@ def simulate_scene(scene) -> PlanarMultisurfaceResponse:
     if getattr(scene.design, "superstructure", None) is not None:
         raise DesignError(f"{scene.design.source}: a {kind} bearing under a [superstructure] is not modelled "
                           "(2d-multisurface carries a rigid mass)")
-    if scene.has_z:
-        raise RecordInputError(f"a {kind} bearing under a vertical component is not modelled (2d-multisurface takes "
-                               "the two horizontal components; the normal force is the weight)")
     ax = np.asarray(scene.ax_m_s2, dtype=np.float64)
     ay = np.zeros_like(ax) if scene.ay_m_s2 is None else scene.ay_m_s2
     return simulate_bearing_pair(ax, ay, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
+                                 az_m_s2=scene.az_m_s2 if scene.has_z else None,
                                  damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
                                  gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
 
@@ -263,7 +265,7 @@ def _collinear(ax, ay):
 
 
 def _imbalance(summary, out_v, ub, rb, g):
-    # |input − (kinetic + stored + friction + viscous)| / input of a finished run
+    # |input − (kinetic + stored + friction + viscous)| / input of a finished run (g: n at its end)
     e_in = float(summary[_pm.S_E_IN])
     if not e_in > 0.0:
         return 0.0
@@ -272,23 +274,23 @@ def _imbalance(summary, out_v, ub, rb, g):
     return abs(e_in - e_kin - e_pot - float(summary[_pm.S_E_F]) - float(summary[_pm.S_E_V])) / e_in
 
 
-def _run_steps(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales, capacity):
+def _run_steps(t, ax, ay, nz, rb, mu, rim, members, tmat, c, tol, scales, capacity):
     # the implicit steps (planar_multisurface_stepper): the same outputs as _run
     global _STEPS_READY
     if not _STEPS_READY:
         with note_if_slow("compiling the 2-D multi-surface implicit steps (first use after installation only)"):
             _run_steps_once(np.array([0.0, 0.01, 0.02]), np.array([0.0, 1.0, -1.0]), np.array([0.0, 0.5, 0.0]),
-                            STANDARD_GRAVITY, np.array([1.0, 2.0]), np.array([0.02, 0.05]), np.array([1.0, 1.0]),
+                            np.full(3, STANDARD_GRAVITY), np.array([1.0, 2.0]), np.array([0.02, 0.05]), np.array([1.0, 1.0]),
                             np.array([[0.0, 1.0], [1.0, 2.0]]), np.eye(2), 0.0, 1e-6, scales, 8)
         _STEPS_READY = True
-    return _run_steps_once(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales, capacity)
+    return _run_steps_once(t, ax, ay, nz, rb, mu, rim, members, tmat, c, tol, scales, capacity)
 
 
-def _run_steps_once(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales, capacity):
+def _run_steps_once(t, ax, ay, nz, rb, mu, rim, members, tmat, c, tol, scales, capacity):
     floors = np.array([scales[_pm.SC_X_FLOOR], scales[_pm.SC_V_FLOOR]])
 
     def kernel(out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
-        _ps.planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, floors, out_x, out_v,
+        _ps.planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, tol, floors, out_x, out_v,
                                         out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub)
     return _with_event_room(kernel, t.size, rb.size, members.shape[0], tmat.shape[0], capacity)
 
@@ -304,7 +306,7 @@ def _samples(name, values, size=None):
     return a
 
 
-def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
+def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None, az_m_s2=None,
                           damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
                           rtol: float = DEFAULT_RTOL, method: str = "auto",
                           step_tol: float = DEFAULT_STEP_TOL) -> PlanarMultisurfaceResponse:
@@ -320,6 +322,9 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         The bearing (kinetic friction per surface).
     time_s : array_like, optional
         Sample times [s], strictly increasing.
+    az_m_s2 : array_like, optional
+        Vertical ground acceleration [m/s²], up positive, linear between samples: the normal force of
+        every surface is M (g + a_z) (model ``2d-multisurface+vertical``).
     damping_per_mass : float
         Supplemental linear damper γ/M [1/s] (isotropic in the plane).
     gravity_m_s2 : float
@@ -345,7 +350,8 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     ------
     SolverError
         ``method="events"`` and a slider reached its rim (the event-driven kernel has none), or a
-        step guard tripped (``method="events"``: the event-driven kernel could not finish).
+        step guard tripped (``method="events"``: the event-driven kernel could not finish), or the
+        vertical lifts the bearing off (n = g + a_z ≤ 0 at a sample: not modelled).
     """
     if method not in METHODS:
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
@@ -358,21 +364,30 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     g = float(gravity_m_s2)
     if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
         raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
+    az = None if az_m_s2 is None else _samples("az_m_s2", az_m_s2, ax.size)
+    # n = g + a_z, linear between the samples (g without a vertical)
+    nz = np.full(ax.size, g) if az is None else g + az
+    if az is not None and not np.all(nz > 0.0):
+        # massless sliders under no normal force have no position: the lift-off is not modelled
+        first_up = int(np.flatnonzero(~(nz > 0.0))[0])
+        raise SolverError(f"the {bearing.kind} bearing lifts off at t = {t0 + float(local[first_up]):.6g} s (n = g + "
+                          f"a_z = {float(nz[first_up]):.3g} m/s² ≤ 0): not modelled for a double or triple bearing")
     rb, mu, rim, members = element_groups(bearing)
     tmat = bearing.surface_matrix()
     # speed scales as the planar engine builds them (docs/planar.md), for the stiffest group
     pga = float(np.max(np.hypot(ax, ay)))
-    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(g / float(np.min(rb))))
+    # the largest n = g + a_z sets the fastest pendulum (g without a vertical)
+    n_max = float(np.max(nz))
+    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(n_max / float(np.min(rb))))
     if c > 0.0:
         t_scale = min(t_scale, 1.0 / c)
-    vref = max(float(np.max(mu)) * g, pga, 1e-12) * t_scale
+    vref = max(float(np.max(mu)) * n_max, pga, 1e-12) * t_scale
     scales = np.array([R_MIN_FACTOR * vref, R_SWITCH_MULTI_FACTOR * vref, 1e-3 * vref * t_scale, 1e-3 * vref,
                        R_SWITCH_MULTI_LO_FACTOR * vref])
     reason = f"a {bearing.kind} bearing: the series model in the plane, "
     how = "exact between events (event-driven kernel)"
     if method != "steps":
         _warm_up()
-        nz = np.full(ax.size, g)
         collinear = _collinear(ax, ay)
         if method == "auto" and not collinear:
             # "auto" discards a run that goes through a reduction on a record that is not collinear: the kernel stops
@@ -390,7 +405,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
         if method == "events":
             _refuse_rim(status, fail_t, bearing)
-        imbalance = 0.0 if status & (_STOPPED | _pm.STATUS_RIM) else _imbalance(summary, out_v, ub, rb, g)
+        imbalance = 0.0 if status & (_STOPPED | _pm.STATUS_RIM) else _imbalance(summary, out_v, ub, rb, nz[-1])
         merged = 0 if status & (_STOPPED | _pm.STATUS_RIM) or collinear else int(summary[_pm.S_N_MERGED])
         if status & _pm.STATUS_RIM:
             # the kernel has no rim: the steps take the record from the start, rims included
@@ -426,7 +441,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         # groups of equal friction whose rims differ part where the first reaches its rim
         rb, mu, rim, members = element_groups(bearing, split_rims=True)
         out_x, out_v, out_a, out_en, summary, surf_peak, first, ub, ev_t, ev_k, elapsed = _run_steps(
-            local, ax, ay, g, rb, mu, rim, members, tmat, c, step_tol, scales, 64 + ax.size // 4)
+            local, ax, ay, nz, rb, mu, rim, members, tmat, c, step_tol, scales, 64 + ax.size // 4)
         elapsed += events_seconds
         status = int(summary[_pm.S_STATUS])
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
@@ -460,7 +475,8 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
                                                                                  strict=True)]
     e_in, e_f, e_v = (float(summary[k]) for k in (_pm.S_E_IN, _pm.S_E_F, _pm.S_E_V))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
-    e_pot = float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rb)))
+    # the stored energy n Σ|ū_k|²/(2R̄_k) at the end (n = g without a vertical)
+    e_pot = float(nz[-1] * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rb)))
     peak_a = float(summary[_pm.S_PEAK_A])
     balance = e_in - (e_kin + e_pot + e_f + e_v + float(summary[_ps.S_E_IMP]))
     if summary[_ps.S_N_RIM_CONTACTS] > 0 and abs(balance) > RIM_BALANCE_TOL * e_in:
@@ -472,6 +488,9 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     e_imp = float(summary[_ps.S_E_IMP])
     if summary[_ps.S_PEAK_R] > 0.0:
         peak_r = float(summary[_ps.S_PEAK_R])
+    elif az is not None:
+        # per unit of the normal force M n(t), at the samples
+        peak_r = float(np.max(np.hypot(*(out_a.T + c * out_v.T)) / nz))
     else:
         peak_r = peak_a / g if c == 0.0 else float(np.max(np.hypot(*(out_a.T + c * out_v.T)))) / g
     return PlanarMultisurfaceResponse(
@@ -506,7 +525,8 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         n_steps=int(summary[_pm.S_N_STEPS]),
         status=status, message="ok", solver_seconds=elapsed,
         damping_per_mass=c, gravity_m_s2=g,
-        model=MODEL_NAME, model_reason=reason + how,
+        model=MODEL_NAME + ("+vertical" if az is not None else ""),
+        model_reason=reason + ("n = g + a_z (the vertical), " if az is not None else "") + how,
     )
 
 

@@ -2,14 +2,17 @@ r"""The compiled record loop of a multi-surface friction pendulum in the plane (
 
 Per unit mass, X and V in the horizontal plane relative to the ground; the bearing is the
 series model of :mod:`isolator.solver.multisurface_series` with every element a rigid–plastic
-element with linear hardening *in the plane*.  In units of the weight (r = F/(M n), n = g)
+element with linear hardening *in the plane*.  In units of the normal force (r = F/(M n), n = g + a_z: every
+surface carries the same normal force, the sliders being massless)
 element k has the back-force b_k = ū_k/R̄_k (a vector) and the friction circle of radius µ_k
 around it:
 
 * stuck:   |r − b_k| ≤ µ_k;
 * sliding: r − b_k = µ_k e_k with ū̇_k = λ_k e_k, λ_k ≥ 0;
 
-the bearing's displacement is X = Σ ū_k and the mass obeys X'' = −n r − c V − a_g.  The
+the bearing's displacement is X = Σ ū_k and the mass obeys X'' = −n r − c V − a_g.  Under a vertical
+the stored energy is n Σ|ū_k|²/(2R̄_k) and the input gains the vertical's work ∫ ṅ Σ|ū_k|²/(2R̄_k) dt
+(the rates' ``M_EIN``, ``_corr_xy`` in a one-group phase, the stuck intervals in closed form).  The
 rate problem (the v_k = ū̇_k minimise Σ µ_k |v_k| + b_k·v_k with Σ v_k = V) makes r the
 support point, in the direction V, of the intersection D of the friction discs.  So:
 
@@ -219,6 +222,24 @@ def _forcing(tau, raw):
 
 
 @njit(cache=True)
+def stored_per_n(y, rb):
+    """Σ_k |ū_k|²/(2R̄_k) of the multi-group state (the stored energy per unit n) [m²]."""
+    acc = 0.0
+    for k in range(rb.shape[0]):
+        acc += (y[M_U + 2 * k] ** 2 + y[M_U + 2 * k + 1] ** 2) / (2.0 * rb[k])
+    return acc
+
+
+@njit(cache=True)
+def stored_groups(ub, rb):
+    """Σ_k |ū_k|²/(2R̄_k) of the groups' displacements ``ub`` (a row per group) [m²]."""
+    acc = 0.0
+    for k in range(rb.shape[0]):
+        acc += (ub[k, 0] ** 2 + ub[k, 1] ** 2) / (2.0 * rb[k])
+    return acc
+
+
+@njit(cache=True)
 def multi_rhs(tau, y, raw, rb, mu, mask, c, d):
     """Derivative of the multi-group state (see the module docstring); False where C is singular."""
     ng = rb.shape[0]
@@ -266,6 +287,9 @@ def multi_rhs(tau, y, raw, rb, mu, mask, c, d):
     d[M_R] = rd1
     d[M_R + 1] = rd2
     d[M_EIN] = -(axx * v1 + ayy * v2)
+    if raw[5] != 0.0:
+        # the work of the vertical motion: ṅ Σ|ū_k|²/(2R̄_k) (the stored energy is n Σ|ū_k|²/(2R̄_k))
+        d[M_EIN] += raw[5] * stored_per_n(y, rb)
     d[M_EF] = nn * fric
     d[M_EV] = c * (v1 * v1 + v2 * v2)
     return True
@@ -292,6 +316,10 @@ def multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, 
                     for q in range(s):
                         acc += _A[s, q] * kk[q, j]
                     yt[j] = y[j] + h * acc
+            elif raw[5] != 0.0:
+                # under a vertical the stuck groups' ū enter the input's rate (multi_rhs: ṅ Σ|ū_k|²/(2R̄_k))
+                yt[M_U + 2 * k] = y[M_U + 2 * k]
+                yt[M_U + 2 * k + 1] = y[M_U + 2 * k + 1]
         if not multi_rhs(tau + _C[s] * h, yt, raw, rb, mu, mask, c, kk[s]):
             return False, np.inf
     for j in range(m):
@@ -1153,6 +1181,9 @@ def cross_tangency(tau, dt, y, d, raw, rb, mu, c, ka, kb, rate):
     q2 = 2.0 * along * d2 - q2
     jerk1 = -nn * d[M_R] - c * d[M_V] - raw[1]
     jerk2 = -nn * d[M_R + 1] - c * d[M_V + 1] - raw[3]
+    if raw[5] != 0.0:  # n(t) = g + a_z: −ṅ r too
+        jerk1 -= raw[5] * y[M_R]
+        jerk2 -= raw[5] * y[M_R + 1]
     dx1 = dt * (d[M_X] + 0.5 * dt * d[M_V])
     dx2 = dt * (d[M_X + 1] + 0.5 * dt * d[M_V + 1])
     y[M_X] += dx1
@@ -1413,10 +1444,30 @@ def element_mask(mask, members):
 
 
 @njit(cache=True)
-def _corr_xy(x1a, x2a, x1b, x2b, s, rc, raw):
-    # −∫ (n/R̄) S·V dt over a piece from X_a to X_b: the planar steps count the work of a_g* = a_g − (n/R̄) S
-    # (exact with n constant: the model takes no vertical record)
-    return -raw[4] / rc * (s[0] * (x1b - x1a) + s[1] * (x2b - x2a))
+def _corr_xy(x1a, x2a, x1b, x2b, s, rc, raw, ta, tb):
+    # the input of a one-group piece from (τ_a, X_a) to (τ_b, X_b) less what the planar steps count there.  They count
+    # ∫ (−a_g*·V + ½κ'|X|²) dt with a_g* = a_g − (n/R̄) S and κ = n/R̄; the input is ∫ (−a_g·V + ṅ P) dt with the stored
+    # energy per unit n P = P_0 + |X − S|²/(2R̄) (P_0 the stuck groups' and a composite's constant part).  The
+    # difference ∫ (−(n/R̄) S·V + ṅ (P_0 + |S|²/(2R̄) − X·S/R̄)) dt integrates exactly (S is constant):
+    # −(n_b X_b − n_a X_a)·S/R̄ + (n_b − n_a)(P_0 + |S|²/(2R̄)), the constant in s[5] (_phase_constant)
+    if raw[5] == 0.0:
+        return -raw[4] / rc * (s[0] * (x1b - x1a) + s[1] * (x2b - x2a))
+    na = raw[4] + raw[5] * ta
+    nb = raw[4] + raw[5] * tb
+    return -(s[0] * (nb * x1b - na * x1a) + s[1] * (nb * x2b - na * x2a)) / rc + (nb - na) * s[5]
+
+
+@njit(cache=True)
+def _phase_constant(s, ub, rb, mu, comp, rc, mue):
+    # s[5] = P_0 + |S|²/(2R̄) of a one-group phase (_corr_xy): the stuck groups' Σ|ū_k|²/(2R̄_k), and for groups
+    # sliding as one (r − b_k = µ_k e, Σ ū_k = X − S) Σ R̄_k (µ − µ_k)²/2, µ = Σ R̄_k µ_k / R̄ (0 for one group)
+    acc = 0.0
+    for k in range(rb.shape[0]):
+        if comp >> k & 1:
+            acc += 0.5 * rb[k] * (mue - mu[k]) ** 2
+        else:
+            acc += (ub[k, 0] ** 2 + ub[k, 1] ** 2) / (2.0 * rb[k])
+    s[5] = acc + (s[0] * s[0] + s[1] * s[1]) / (2.0 * rc)
 
 
 @njit(cache=True)
@@ -1764,7 +1815,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     prm = np.zeros(P_SIZE)
     prm[P_PENDULUM] = 1.0
     prm[P_C] = c
-    s = np.zeros(5)  #: centre S of a one-group phase [m], direction e0 and flag of a collinear one (see _one_group_r)
+    s = np.zeros(6)  #: centre S of a one-group phase [m], direction e0 and flag of a collinear one (see _one_group_r),
+    #: and the constant of its input's correction under a vertical (_corr_xy)
     for j in range(first.shape[0]):
         first[j] = -1.0
     phase = PH_STUCK
@@ -1830,6 +1882,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
         if phase == PH_STUCK and _holds(ub, rb, mu, ax[i], ay[i], nz[i]) < 0 and _holds(
                 ub, rb, mu, ax[i + 1], ay[i + 1], nz[i + 1]) < 0:
             # |a_g + n b| − µ n is convex in τ: held at both ends, held throughout
+            if nz[i + 1] != nz[i]:  # the work of the vertical motion on the stored energy n Σ|ū_k|²/(2R̄_k)
+                e_in += (nz[i + 1] - nz[i]) * stored_groups(ub, rb)
             out_x[i + 1, 0] = X1
             out_x[i + 1, 1] = X2
             out_v[i + 1, 0] = 0.0
@@ -1875,6 +1929,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
             # ------------------------------------------------------------------ stuck
             if phase == PH_STUCK:
                 tb, kb = breakaway(ub, rb, mu, raw, tau, target)
+                if raw[5] != 0.0:  # the work of the vertical motion while stuck (as above)
+                    e_in += raw[5] * ((target if kb < 0 else tb) - tau) * stored_groups(ub, rb)
                 if kb < 0:
                     tau = target
                     break
@@ -1894,6 +1950,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 prm[P_MU_S] = mue
                 prm[P_MU_K] = mue
                 prm[P_INV_R] = 1.0 / rc
+                _phase_constant(s, ub, rb, mu, comp, rc, mue)
                 _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
                 y[:] = 0.0
                 y[0] = X1
@@ -1946,6 +2003,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     prm[P_MU_S] = mue
                     prm[P_MU_K] = mue
                     prm[P_INV_R] = 1.0 / rc
+                    _phase_constant(s, ub, rb, mu, comp, rc, mue)
                     _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
                     y[:] = 0.0
                     y[0] = my[M_X]
@@ -2138,6 +2196,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         prm[P_MU_S] = mue
                         prm[P_MU_K] = mue
                         prm[P_INV_R] = 1.0 / rc
+                        _phase_constant(s, ub, rb, mu, comp, rc, mue)
                         _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
                         y[:] = 0.0
                         y[0] = my[M_X]
@@ -2193,6 +2252,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 prm[P_MU_S] = mue
                 prm[P_MU_K] = mue
                 prm[P_INV_R] = 1.0 / rc
+                _phase_constant(s, ub, rb, mu, comp, rc, mue)
                 _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
                 y[:] = 0.0
                 y[0] = my[M_X]
@@ -2259,7 +2319,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                                              ynew[7] - y[7], prm, frc, yb, fb, atol, rtol, work))
                     if hit:
                         ynew[7] = target
-                    ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw)
+                    ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw, y[7], ynew[7])
                     slip += ynew[7] - y[7]
                     x += theta * ds
                     y[:] = ynew
@@ -2273,6 +2333,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         r = math.exp(x)
                         phase, comp, rc, mue = _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub,
                                                      rb, mu, my, mf, c)
+                        if phase != PH_MULTI:  # groups sliding as one: the phase's constant (_corr_xy)
+                            _phase_constant(s, ub, rb, mu, comp, rc, mue)
                         if phase != PH_MULTI:
                             n_merged += 1
                             if exact_only:
@@ -2304,13 +2366,15 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 x0_1 = y[0]
                 x0_2 = y[1]
                 dtt = coast_to_rest(tau, y, r, r / f[7], target, prm, frc)
-                ein_corr += _corr_xy(x0_1, x0_2, y[0], y[1], s, rc, raw)
+                ein_corr += _corr_xy(x0_1, x0_2, y[0], y[1], s, rc, raw, tau, tau + dtt)
                 tau += dtt
                 slip += dtt
                 peak_x = max(peak_x, norm(y[0], y[1]))
                 phase, comp, rc, mue, n_ev, e_in, e_f, e_v = _at_rest(
                     tau, t[i], y, y[2], y[3], f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev,
                     e_in, e_f, e_v, ein_corr, members, tmat, surf_peak, first)
+                if phase == PH_START:  # a restart: the new one-group phase's constant (_corr_xy)
+                    _phase_constant(s, ub, rb, mu, comp, rc, mue)
                 ein_corr = 0.0
                 if phase == PH_STUCK:
                     X1 = y[0]
@@ -2353,13 +2417,15 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         e1 = y[2]
                         e2 = y[3]
                         dtt = coast_to_rest(tau, y, r, rdot, target, prm, frc)
-                        ein_corr += _corr_xy(x0_1, x0_2, y[0], y[1], s, rc, raw)
+                        ein_corr += _corr_xy(x0_1, x0_2, y[0], y[1], s, rc, raw, tau, tau + dtt)
                         tau += dtt
                         slip += dtt
                         peak_x = max(peak_x, norm(y[0], y[1]))
                     phase, comp, rc, mue, n_ev, e_in, e_f, e_v = _at_rest(
                         tau, t[i], y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev,
                         e_in, e_f, e_v, ein_corr, members, tmat, surf_peak, first)
+                    if phase == PH_START:  # a restart: the new one-group phase's constant (_corr_xy)
+                        _phase_constant(s, ub, rb, mu, comp, rc, mue)
                     ein_corr = 0.0
                     if phase == PH_STUCK:
                         X1 = y[0]
@@ -2436,7 +2502,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 h *= theta
             if restop:
                 ynew[2] = 0.0
-            ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw)
+            ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw, tau, tau + h)
             for which in range(2):
                 # |X| and |V| may peak inside the step (the planar engine's bracket and secant)
                 g0 = rate_of_peak(which, mode, y, f)
@@ -2482,6 +2548,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 phase, comp, rc, mue, n_ev, e_in, e_f, e_v = _at_rest(
                     tau, t[i], y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu, ev_t, ev_k, n_ev, e_in,
                     e_f, e_v, ein_corr, members, tmat, surf_peak, first)
+                if phase == PH_START:  # a restart: the new one-group phase's constant (_corr_xy)
+                    _phase_constant(s, ub, rb, mu, comp, rc, mue)
                 ein_corr = 0.0
                 if phase == PH_STUCK:
                     X1 = y[0]
@@ -2492,6 +2560,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
             if kj >= 0:
                 phase, comp, rc, mue = _join(kj, phase, x, tau, y, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
                                              my, mf, c)
+                if phase != PH_MULTI:  # groups sliding as one: the phase's constant (_corr_xy)
+                    _phase_constant(s, ub, rb, mu, comp, rc, mue)
                 if phase != PH_MULTI:
                     n_merged += 1
                     if exact_only:

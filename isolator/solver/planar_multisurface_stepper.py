@@ -1019,14 +1019,28 @@ def accept_step(y, y1, y2, ny, keep, ng, rim, m1, mh, m2, jump):
 
 
 @njit(cache=True)
-def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol, scales,
+def vertical_work(y0, y1, rb, dn):
+    """Book into y1's input the work of the vertical motion over a step from y0 to y1 in which n rose by ``dn``
+    [m/s²]: the step took n at its mean n̄ (linear in time), so its stored-energy change is n̄ ΔP (P = Σ|ū_k|²/(2R̄_k)),
+    and n_1 P_1 − n_0 P_0 = n̄ ΔP + dn (P_0 + P_1)/2 exactly: the balance closes as without a vertical."""
+    p0 = 0.0
+    p1 = 0.0
+    for k in range(rb.shape[0]):
+        p0 += (y0[Y_U + 2 * k] ** 2 + y0[Y_U + 2 * k + 1] ** 2) / (2.0 * rb[k])
+        p1 += (y1[Y_U + 2 * k] ** 2 + y1[Y_U + 2 * k + 1] ** 2) / (2.0 * rb[k])
+    y1[Y_EIN] += 0.5 * dn * (p0 + p1)
+
+
+@njit(cache=True)
+def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, tol, scales,
                                 out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, ub):
     """Response of a mass on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
 
     The arguments are those of :func:`~isolator.solver.planar_multisurface_kernel.planar_multisurface_kernel`
-    with g [m/s²] for its n = g (no vertical), ``tol`` the relative tolerance of the local error
-    estimate and ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
-    Events (breakaway, stick) are recorded at the end of the step in which they happen.
+    (``nz`` = g + a_z at the samples, linear between them), ``tol`` the relative tolerance of the local error
+    estimate and ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.  A step takes n at
+    its mean over the step (as it takes the ground's acceleration), and books the vertical's work
+    (:func:`vertical_work`).  Events (breakaway, stick) are recorded at the end of the step in which they happen.
     """
     n = t.shape[0]
     ng = rb.shape[0]
@@ -1055,7 +1069,6 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
 
     r = np.zeros(2)
     raw = np.zeros(6)
-    raw[4] = g
     for j in range(first.shape[0]):
         first[j] = -1.0
     x_floor = scales[0]
@@ -1091,6 +1104,9 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
         raw[1] = slope_x
         raw[2] = ay[i]
         raw[3] = slope_y
+        slope_z = (nz[i + 1] - nz[i]) / hi
+        raw[4] = nz[i]
+        raw[5] = slope_z
         tau = 0.0
         h_floor = H_MIN_FRACTION * hi
         h = hi if (h_sugg <= 0.0 or h_sugg > hi) else h_sugg
@@ -1109,12 +1125,14 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                     ub[k, 0] = y[Y_U + 2 * k]
                     ub[k, 1] = y[Y_U + 2 * k + 1]
                 tb, kb = breakaway(ub, rb, mu, raw, tau, hi)
+                if slope_z != 0.0:  # the vertical's work on the stored energy n P while at rest
+                    vertical_work(y, y, rb, slope_z * ((hi if kb < 0 else tb) - tau))
                 if kb < 0:
                     a1 = ax[i + 1]
                     a2 = ay[i + 1]
                     peak_a = max(peak_a, math.sqrt(a1 * a1 + a2 * a2))
-                    r[0] = -a1 / g
-                    r[1] = -a2 / g
+                    r[0] = -a1 / nz[i + 1]
+                    r[1] = -a2 / nz[i + 1]
                     tau = hi
                     break
                 tau = tb
@@ -1128,12 +1146,13 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             # the arrival at the ultimate (every group on its rim closing into alignment, the mass moving outward): the
             # steps end ARRIVAL_FRACTION × hi before it and the last of it is one move (arrive), the impact after it
             h_keep = h
-            h, jump = arrival_step(y, rim, r, g, h, hi, tau)
+            h, jump = arrival_step(y, rim, r, nz[i] + slope_z * tau, h, hi, tau)
             last_step = h >= hi - tau
             # at or below the floor a step is taken whatever its error estimate (progress; counted in S_STEPS_MULTI)
             at_floor = not h > h_floor
             dv_jump = 0.0
             if jump:
+                g = nz[i] + slope_z * (tau + 0.5 * h)
                 arrive(y, h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), g, c, mu, rim, y2)
                 # the rims' reaction over the move, taken off the outward velocity before the impact: it grows as
                 # 1/√(time left) (the gap closes ∝ the rims' angles², the reaction ∝ 1/angle), so its impulse over
@@ -1147,21 +1166,30 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                     y2[Y_V] -= 2.0 * h * g * rn * y[Y_X] / xn
                     y2[Y_V + 1] -= 2.0 * h * g * rn * y[Y_X + 1] / xn
                 dv_jump = ultimate_impact(y, y2, g, rb)
+                if slope_z != 0.0:
+                    vertical_work(y, y2, rb, slope_z * h)
                 m1 = low << ng | low
                 mh = m1
                 m2 = m1
-                r2[0] = -(ax[i] + slope_x * (tau + h)) / g
-                r2[1] = -(ay[i] + slope_y * (tau + h)) / g
+                r2[0] = -(ax[i] + slope_x * (tau + h)) / (nz[i] + slope_z * (tau + h))
+                r2[1] = -(ay[i] + slope_y * (tau + h)) / (nz[i] + slope_z * (tau + h))
                 err = 0.0
             else:
                 # mean ground acceleration over [τ, τ+h], its halves (linear inside the sample interval)
                 am_x = ax[i] + slope_x * (tau + 0.5 * h)
                 am_y = ay[i] + slope_y * (tau + 0.5 * h)
-                m1 = be_step(y, h, am_x, am_y, g, c, rb, mu, rim, r, y1, r1)
-                mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h), g, c,
-                             rb, mu, rim, r1, yh, rh)
-                m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h), g,
-                             c, rb, mu, rim, rh, y2, r2)
+                # n = g + a_z at its mean over each step (linear: at the step's middle), as ā
+                # (the vertical's work booked after each solve, the first half's before the second starts from it)
+                m1 = be_step(y, h, am_x, am_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1)
+                mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h),
+                             nz[i] + slope_z * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh)
+                if slope_z != 0.0:
+                    vertical_work(y, y1, rb, slope_z * h)
+                    vertical_work(y, yh, rb, 0.5 * slope_z * h)
+                m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h),
+                             nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2)
+                if slope_z != 0.0:
+                    vertical_work(yh, y2, rb, 0.5 * slope_z * h)
                 work += r1[2] + rh[2] + r2[2]
                 if work > max_evals:
                     status |= STATUS_WORK
@@ -1239,8 +1267,8 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
                     # in a long step: PTS ×2 double at 6.00 s, 0.058 m/s, and left its energy in the balance)
                     impact_v += dv
                     # the impulse is not a force of the surfaces: the transmitted acceleration is the ground's
-                    r[0] = -(ax[i] + slope_x * tau) / g
-                    r[1] = -(ay[i] + slope_y * tau) / g
+                    r[0] = -(ax[i] + slope_x * tau) / (nz[i] + slope_z * tau)
+                    r[1] = -(ay[i] + slope_y * tau) / (nz[i] + slope_z * tau)
                     impulsive = True
                 else:
                     impulsive = False
@@ -1262,6 +1290,7 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
             if rigid:
                 fr = min(fr, f_max)
             peak_r = max(peak_r, fr)
+            g = nz[i] + slope_z * tau  # n at the step's end
             if (vn == 0.0 and on_rim == 0
                     and _held(y, rb, mu, -(ax[i] + slope_x * tau) / g, -(ay[i] + slope_y * tau) / g)):
                 # at rest with −a_g/g inside every circle: stuck (the quadratic then finds the break-away); a
@@ -1309,8 +1338,8 @@ def planar_multisurface_stepper(t, ax, ay, g, rb, mu, rim, members, tmat, c, tol
         out_x[i + 1, 1] = y[Y_X + 1]
         out_v[i + 1, 0] = y[Y_V]
         out_v[i + 1, 1] = y[Y_V + 1]
-        out_a[i + 1, 0] = -g * r[0] - c * y[Y_V]
-        out_a[i + 1, 1] = -g * r[1] - c * y[Y_V + 1]
+        out_a[i + 1, 0] = -nz[i + 1] * r[0] - c * y[Y_V]
+        out_a[i + 1, 1] = -nz[i + 1] * r[1] - c * y[Y_V + 1]
         out_en[0, i + 1] = y[Y_EIN]
         out_en[1, i + 1] = y[Y_EF]
         out_en[2, i + 1] = y[Y_EV]

@@ -136,8 +136,7 @@ def test_a_rim_contact_is_refused_by_the_event_kernel_alone_and_taken_by_the_ste
     assert "reached a rim at t = " in res.model_reason and res.n_rim_contacts == 2
 
 
-def test_registry_runs_the_2d_model_for_a_pair_and_refuses_a_vertical():
-    from isolator.errors import RecordInputError
+def test_registry_runs_the_2d_model_for_a_pair_and_its_vertical():
     from isolator.solver.models import Scene, select_model, simulate
 
     class _Design:
@@ -158,8 +157,11 @@ def test_registry_runs_the_2d_model_for_a_pair_and_refuses_a_vertical():
         assert key in summary
     vertical = Scene(ax_m_s2=ax, ay_m_s2=ay, az_m_s2=0.1 * ax, dt_s=dt, isolator={}, design=_Design())
     assert select_model(vertical)[0] == "2d-multisurface+vertical"
-    with pytest.raises(RecordInputError, match="vertical component is not modelled"):
-        simulate(vertical)
+    # the vertical is taken (tests/solver/test_planar_multisurface_vertical.py): n = g + a_z on every surface
+    up = simulate(vertical)
+    assert up.model == "2d-multisurface+vertical"
+    np.testing.assert_array_equal(up.displacement_m, simulate_bearing_pair(ax, ay, dt, bearing=TFP,
+                                                                           az_m_s2=0.1 * ax).displacement_m)
 
 
 # ---------------------------------------------------------------------------------------------------
