@@ -54,6 +54,7 @@ from isolator.solver import (
     planar_building,
     planar_building_multisurface,
     planar_multisurface,
+    planar_multisurface_rate,
     planar_rim,
     record,
 )
@@ -87,6 +88,9 @@ class Model:
 MODELS: dict[str, Model] = {model.name: model for model in (
     Model(multisurface_rate.MODEL_NAME, multisurface_rate.scene_needs, multisurface_rate.simulate_scene,
           "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
+    Model(planar_multisurface_rate.MODEL_NAME, planar_multisurface_rate.scene_needs,
+          planar_multisurface_rate.simulate_scene, "mass on a double or triple friction pendulum with µ(v) surfaces "
+          "under a pair: Radau IIA with events, coupled friction, no rims"),
     Model(planar_building_multisurface.MODEL_NAME, planar_building_multisurface.scene_needs,
           planar_building_multisurface.simulate_scene, "shear building on a double or triple friction pendulum under a "
           "pair: implicit steps with rims, the floors exact within each step"),

@@ -38,13 +38,14 @@ def is_rate_dependent(bearing) -> bool:
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
-    """``(model, reason)`` for a double or triple bearing with µ(v) on its surfaces; else None.
+    """``(model, reason)`` for a double or triple bearing with µ(v) on its surfaces under one component; else None.
 
-    It answers under two components or a vertical too, so that such a scene is refused in one
-    line (:func:`simulate_scene`) rather than run with constant friction by the 2-D model.
+    It answers with a vertical too, so that such a scene is refused in one line (:func:`simulate_scene`)
+    rather than run with constant friction by the 2-D model; two components go to ``2d-multisurface+mu(v)``
+    (:mod:`isolator.solver.planar_multisurface_rate`).
     """
     bearing = getattr(scene.design, "bearing", None)
-    if bearing is None or bearing.is_simple or not is_rate_dependent(bearing):
+    if bearing is None or bearing.is_simple or scene.has_y or not is_rate_dependent(bearing):
         return None
     return MODEL_NAME, (f"a {bearing.kind} friction pendulum with velocity-dependent friction µ_i(v_i) on its "
                         "surfaces: the series model of Fenz & Constantinou as an index-1 DAE, Radau IIA "
@@ -74,11 +75,12 @@ def simulate_scene(scene) -> SolverResult:
                                  gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
 
 
-def _laws(bearing):
+def rate_laws(bearing, model: str = MODEL_NAME):
+    """(µ_slow, µ_fast, rate) of every surface as arrays; ValueError naming the surface without a µ(v) law."""
     mu_s, mu_f, rate = [], [], []
     for i, s in enumerate(bearing.surfaces, start=1):
         if s.rate_s_per_m is None or not s.mu_slow < s.mu_fast:
-            raise ValueError(f"surface {i}: {MODEL_NAME} needs µ(v) with mu_slow < mu_fast on every surface "
+            raise ValueError(f"surface {i}: {model} needs µ(v) with mu_slow < mu_fast on every surface "
                              "(a surface of constant friction in series with µ(v) ones is not modelled)")
         mu_s.append(s.mu_slow)
         mu_f.append(s.mu_fast)
@@ -192,7 +194,7 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
         raise ValueError(f"saturation_levels must be (join, leave) with join >= leave > 0, got {saturation_levels!r}")
     if bearing.is_simple:
         raise ValueError("a single surface with µ(v) runs on the 2-D engine (2d+mu(v)), not here")
-    mu_s, mu_f, rate = _laws(bearing)
+    mu_s, mu_f, rate = rate_laws(bearing)
     rbar, _, _ = bearing.elements()
     tmat = bearing.surface_matrix()
     smat = np.linalg.inv(tmat)
@@ -229,5 +231,5 @@ def simulate_bearing_rate(acceleration_m_s2, dt_s: float | None = None, *, beari
     )
 
 
-__all__ = ["MODEL_NAME", "DEFAULT_TOLERANCE", "is_rate_dependent", "scene_needs",
+__all__ = ["MODEL_NAME", "DEFAULT_TOLERANCE", "is_rate_dependent", "rate_laws", "scene_needs",
            "simulate_scene", "simulate_bearing_rate"]

@@ -1,0 +1,243 @@
+"""Driver of the 2-D multi-surface model with velocity-dependent friction: model ``2d-multisurface+mu(v)``.
+
+A double or triple friction pendulum whose surfaces follow µ_i(v) = µ_fast,i − (µ_fast,i − µ_slow,i)
+exp(−a_i |v_i|) (``mu_slow``/``mu_fast``/``rate_s_per_m`` in ``[[bearing.surface]]``) under two horizontal
+components: the series model of Fenz & Constantinou in the plane with coupled friction on every surface.
+The equations, the method (Radau IIA collocation with events, the pieces of the 1-D model
+:mod:`isolator.solver.multisurface_rate_kernel`) and its error are in
+:mod:`isolator.solver.planar_multisurface_rate_kernel` and docs/multisurface.md.  The result is a
+:class:`~isolator.solver.planar_multisurface.PlanarMultisurfaceResponse` (the keys of ``2d-multisurface``).
+
+Not modelled, each refused in one line: a surface reaching its rim (the time and the surface are named), a
+vertical component, a superstructure.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from isolator.errors import DesignError, RecordInputError, SolverError
+from isolator.solver import planar_multisurface_rate_kernel as _pr
+from isolator.solver.multisurface_rate import is_rate_dependent, rate_laws
+from isolator.solver.notice import note_if_slow
+from isolator.solver.planar_multisurface import PlanarMultisurfaceResponse
+from isolator.solver.record import record_timing
+from isolator.units import STANDARD_GRAVITY
+
+MODEL_NAME = "2d-multisurface+mu(v)"
+
+#: Default step tolerance (as in 1-D): the largest difference of a step of h from two of h/2, as a fraction of
+#: the running peak displacement and velocity (measured against the tests' reference: docs/multisurface.md).
+DEFAULT_TOLERANCE = 1e-11
+
+
+def scene_needs(scene) -> tuple[str, str] | None:
+    """``(model, reason)`` for a double or triple bearing with µ(v) surfaces under two components; else None.
+
+    It answers with a vertical or a superstructure too, so that such a scene is refused in one line
+    (:func:`simulate_scene`) rather than run with constant friction by another model.
+    """
+    bearing = getattr(scene.design, "bearing", None)
+    if bearing is None or bearing.is_simple or not scene.has_y or not is_rate_dependent(bearing):
+        return None
+    return MODEL_NAME, (f"a {bearing.kind} friction pendulum with velocity-dependent friction µ_i(v_i) on its "
+                        "surfaces under two horizontal components: the series model of Fenz & Constantinou in the "
+                        "plane (coupled friction) as an index-1 DAE, Radau IIA collocation with events (error "
+                        "controlled, not closed form; no rims)")
+
+
+def simulate_scene(scene) -> PlanarMultisurfaceResponse:
+    """The 2-D response of the scene's µ(v) double or triple bearing (:func:`simulate_bearing_pair_rate`).
+
+    Raises
+    ------
+    RecordInputError
+        A vertical component.
+    DesignError
+        A superstructure.
+    """
+    kind = scene.design.bearing.kind
+    if getattr(scene.design, "superstructure", None) is not None:
+        raise DesignError(f"{scene.design.source}: a {kind} bearing with µ(v) under a [superstructure] is not "
+                          f"modelled ({MODEL_NAME} carries a rigid mass)")
+    if scene.has_z:
+        raise RecordInputError(f"a {kind} bearing with velocity-dependent friction under a vertical component is not "
+                               f"modelled ({MODEL_NAME} takes the two horizontal components); give each surface a "
+                               "constant 'mu' or leave the vertical out")
+    return simulate_bearing_pair_rate(scene.ax_m_s2, scene.ay_m_s2, scene.dt_s, time_s=scene.time_s,
+                                      bearing=scene.design.bearing,
+                                      damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
+                                      gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
+
+
+class RatePlanarMultisurfaceResponse(PlanarMultisurfaceResponse):
+    """:class:`~isolator.solver.planar_multisurface.PlanarMultisurfaceResponse` of ``2d-multisurface+mu(v)``
+    (its event kinds: :data:`isolator.solver.planar_multisurface_rate_kernel.EVENT_NAMES`)."""
+
+    EVENT_NAMES = _pr.EVENT_NAMES
+
+
+_READY = False
+
+
+def _warm_up() -> None:
+    global _READY
+    if _READY:
+        return
+    with note_if_slow("compiling the 2-D µ(v) multi-surface solver (its first use after installation takes a "
+                      "minute or two; the machine code is cached for later runs)"):
+        eye = np.eye(2)
+        _run(np.array([0.0, 1.0, -1.0]), np.array([0.0, 0.5, 0.0]), np.array([0.0, 0.01, 0.02]),
+             STANDARD_GRAVITY, 0.0, eye, eye, np.array([0.03, 0.03]), np.array([0.06, 0.06]), np.array([20.0, 20.0]),
+             np.array([0.1, 0.1]), 1e-10, 8)
+    _READY = True
+
+
+def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
+    n = ax.size
+    ns = bmat.shape[0]
+    out_x = np.empty((n, 2))
+    out_v = np.empty((n, 2))
+    out_a = np.empty((n, 2))
+    out_en = np.empty((3, n))
+    summary = np.zeros(_pr.SUMMARY_SIZE)
+    surf_peak = np.zeros(ns)
+    first = np.empty(1 << ns)
+    h_first = float(np.min(np.diff(times))) if n > 1 else 1.0
+    while True:  # once more with room for every event when the first run overflowed its list
+        ev_t = np.empty(capacity)
+        ev_k = np.empty(capacity, dtype=np.int8)
+        u = np.zeros((ns, 2))
+        surf_peak[:] = 0.0
+        start = time.perf_counter()
+        _pr.planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, h_first,
+                               out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, u)
+        elapsed = time.perf_counter() - start
+        n_ev = int(summary[_pr.S_N_EVENTS])
+        if n_ev <= capacity:
+            return out_x, out_v, out_a, out_en, summary, surf_peak, first, u, ev_t[:n_ev], ev_k[:n_ev], elapsed
+        capacity = n_ev + 16
+
+
+def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
+                               damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
+                               tolerance: float = DEFAULT_TOLERANCE) -> RatePlanarMultisurfaceResponse:
+    """Response of a mass on a double or triple friction pendulum with µ(v) surfaces to two components.
+
+    Parameters
+    ----------
+    ax_m_s2, ay_m_s2 : array_like
+        Ground acceleration along x and y [m/s²], linear between samples.
+    dt_s : float, optional
+        Sample interval [s] (or give ``time_s``).
+    bearing : isolator.bearing.Bearing
+        Every surface with ``mu_slow < mu_fast`` and ``rate_s_per_m``.
+    time_s : array_like, optional
+        Sample times [s], strictly increasing.
+    damping_per_mass : float
+        Supplemental linear damper γ/M [1/s] (isotropic in the plane).
+    gravity_m_s2 : float
+        g [m/s²].
+    tolerance : float
+        Step tolerance: largest difference of a collocation step from its two halves, as a fraction of the
+        running peak displacement (≥ 1e-4 m) and speed (≥ 1e-3 m/s) [-].
+
+    Returns
+    -------
+    RatePlanarMultisurfaceResponse
+        ``model`` ``2d-multisurface+mu(v)``.
+
+    Raises
+    ------
+    SolverError
+        A surface reached its rim (not modelled: the time and the surface are named), or the step size fell
+        below 1e-13 of the sample interval.
+    """
+    timing = record_timing(ax_m_s2, dt_s, time_s)
+    ax, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
+    ay = record_timing(ay_m_s2, dt_s, time_s).acceleration_m_s2
+    if ay.size != ax.size:
+        raise RecordInputError(f"ay_m_s2: {ay.size} samples, the first component has {ax.size}")
+    local = dt * np.arange(ax.size) if relative is None else relative
+    c = float(damping_per_mass)
+    g = float(gravity_m_s2)
+    if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
+        raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
+    if not (0.0 < tolerance < 1e-3):
+        raise ValueError(f"tolerance must be in (0, 1e-3), got {tolerance!r}")
+    if bearing.is_simple:
+        raise ValueError("a single surface with µ(v) runs on the 2-D engine (2d+mu(v)), not here")
+    mu_s, mu_f, rate = rate_laws(bearing, MODEL_NAME)
+    rbar, _, _ = bearing.elements()
+    smat = np.linalg.inv(bearing.surface_matrix())
+    bmat = smat / rbar[:, None]  # b = diag(1/R̄) T⁻¹ u, on each component
+    cap = bearing.effective_capacities_m.astype(np.float64)
+    _warm_up()
+    out_x, out_v, out_a, out_en, summary, surf_peak, first, u, ev_t, ev_k, elapsed = _run(
+        ax, ay, np.ascontiguousarray(local, dtype=np.float64), g, c, bmat, smat, mu_s, mu_f, rate, cap,
+        float(tolerance), 64 + ax.size // 4)
+    status = int(summary[_pr.S_STATUS])
+    fail_t = t0 + float(summary[_pr.S_FAIL_T])
+    if status & _pr.STATUS_RIM:
+        raise SolverError(f"{MODEL_NAME}: surface {int(summary[_pr.S_RIM_SURFACE]) + 1} of the {bearing.kind} bearing "
+                          f"reaches its rim at t = {fail_t:.6g} s; the rims of the µ(v) model in the plane are not "
+                          "modelled (no answer is given; with a constant 'mu' per surface 2d-multisurface takes them)")
+    if status & _pr.STATUS_STEP_FAILED:
+        raise SolverError(f"{MODEL_NAME}: the step size fell below 1e-13 of the sample interval at t = {fail_t:.6g} s "
+                          "(the force through the sliders was not found: two surfaces saturated together, or a "
+                          "stop not resolved); no answer is given")
+    message = "ok"
+    if status & _pr.STATUS_CHATTER:
+        message = (f"chatter guard: more than {_pr.MAX_EVENTS_PER_INTERVAL} events in one sample interval; the "
+                   "bearing was held to the end of that interval")
+    elements = smat @ u  # ū = T⁻¹ u, (n, 2)
+    regimes: dict = {}
+    for code in np.flatnonzero(first >= 0.0):
+        name = bearing.regime_name(int(code), 0)
+        if name and (name not in regimes or first[code] + t0 < regimes[name]):
+            regimes[name] = float(first[code] + t0)
+    regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
+    on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
+                                                                                 strict=True)]
+    e_in, e_f, e_v = (float(summary[k]) for k in (_pr.S_E_IN, _pr.S_E_F, _pr.S_E_V))
+    e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
+    e_pot = float(g * np.sum(np.sum(elements * elements, axis=1) / (2.0 * rbar)))
+    n_steps = int(summary[_pr.S_N_STEPS])
+    return RatePlanarMultisurfaceResponse(
+        bearing=bearing,
+        time_s=t0 + local,
+        ground_acceleration_m_s2=np.column_stack((ax, ay)),
+        displacement_m=out_x, velocity_m_s=out_v, absolute_acceleration_m_s2=out_a,
+        event_time_s=t0 + ev_t, event_kind=ev_k,
+        peak_displacement_m=float(summary[_pr.S_PEAK_X]),
+        residual_displacement_m=float(math.hypot(out_x[-1, 0], out_x[-1, 1])),
+        residual_displacement_x_m=float(out_x[-1, 0]),
+        residual_displacement_y_m=float(out_x[-1, 1]),
+        peak_velocity_m_s=float(summary[_pr.S_PEAK_V]),
+        peak_transmitted_acceleration_m_s2=float(summary[_pr.S_PEAK_A]),
+        slip_time_s=float(summary[_pr.S_SLIP_TIME]),
+        n_events=int(summary[_pr.S_N_EVENTS]),
+        energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
+        energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v),
+        energy_history_J_per_kg=out_en,
+        surface_peak_displacement_m=on_surface,
+        regimes=regimes,
+        element_displacement_m=elements,
+        ultimate_displacement_m=bearing.ultimate_displacement_m,
+        peak_force_per_weight=float(summary[_pr.S_PEAK_R]),
+        n_steps=n_steps,
+        status=status, message=message, solver_seconds=elapsed,
+        damping_per_mass=c, gravity_m_s2=g,
+        model=MODEL_NAME,
+        model_reason=(f"a {bearing.kind} bearing with µ(v) on its surfaces in the plane: Radau IIA collocation with "
+                      f"events, step tolerance {tolerance:g} of the peaks ({n_steps} steps, "
+                      f"{int(summary[_pr.S_N_NEWTON])} Newton iterations); no rims (refused where one is reached)"),
+    )
+
+
+__all__ = ["MODEL_NAME", "DEFAULT_TOLERANCE", "RatePlanarMultisurfaceResponse", "scene_needs", "simulate_scene",
+           "simulate_bearing_pair_rate"]

@@ -1,0 +1,1118 @@
+r"""The compiled record loop of a double or triple friction pendulum with µ(v) surfaces in the plane.
+
+The 2-D counterpart of :mod:`isolator.solver.multisurface_rate_kernel` (model ``2d-multisurface+mu(v)``).
+Per surface i (displacement u_i ∈ ℝ² on the surface, effective geometry; X = Σ u_i), in units of the
+weight, the one force r = F/W ∈ ℝ² through the massless sliders obeys (coupled friction on each surface,
+associated flow: the slide velocity along the friction excess f_i = r − b_i)
+
+.. math::
+
+    \dot u_i = \varphi_i(|f_i|)\,\frac{f_i}{|f_i|}\ (\text{sliding}),\qquad
+    |f_i| \le \mu_{slow,i}\ (\text{stuck}),\qquad
+    \mu_i(v) = \mu_{fast,i} - (\mu_{fast,i} - \mu_{slow,i})\,e^{-a_i v},
+
+φ_i the inverse of µ_i, the back-forces b = B u of the series model (B = diag(1/R̄) T⁻¹ acting on each
+component: the rotated slide plates of Fenz & Constantinou), and the mass Ẍ = −g r − c Ẋ − a_g(t).
+Σ_i u̇_i = Ẋ fixes r (each map r ↦ φ_i(|r − b_i|)(r − b_i)/|r − b_i| is the gradient of a convex
+function, strictly convex where the surface slides: the sum is strongly monotone, one root for Ẋ ≠ 0):
+an index-1 DAE.  The force is found as in 1-D from a *pivot* surface k (the sliding surface with the
+largest a_i |u̇_i| at the step's start, :func:`pick_pivot`): u̇_k = Ẋ − Σ_{j≠k} φ_j(|f_j|) f̂_j and
+f_k = µ_k(|u̇_k|) û̇_k, the forward law (well conditioned where φ_k is not); r is the root of
+G(r) = r − b_k − µ_k(|u̇_k|) û̇_k, ∂G/∂r = I + DM_k Σ_j DΦ_j (a product of two symmetric
+positive semi-definite matrices plus I: invertible), by Newton kept inside the discs |f_j| < µ_fast,j
+(:func:`solve_force`).  The state y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by the 3-stage Radau IIA
+collocation of the 1-D kernel (its tableau, Newton start and stage matrix imported), with the analytic
+Jacobian (:func:`rhs`), every step taken twice (h, two of h/2) and the difference held below the tolerance.
+
+Modes and events (each located on re-stepped collocation steps by Illinois secant, as in 1-D):
+
+* a sliding surface (not the pivot) stops: |f_i| = µ_slow,i from above (its slide law is continued
+  through the onset, φ < 0 inside the disc); a stuck one starts: |f_i| = µ_slow,i from below;
+* the mass stops (its speed decreasing to 0, the last sliding surface the pivot): the steps are cut to
+  0.7 of the time to rest at the present deceleration, |Ẋ|²/(−Ẋ·Ẍ), and at |Ẋ| ≤ :data:`STOP_SPEED` of the
+  speed scale the mass is put at rest (the coast left, ≤ STOP_SPEED of the peak speed for ≤ that over the
+  deceleration of time, is not integrated; its kinetic energy ½|Ẋ|² is booked as friction);
+* at rest the mass sticks while r_need(t) = −a_g(t)/g stays in every static disc |r_need − b_i| ≤ µ_slow,i;
+  with a piecewise-linear record each disc's exit is a quadratic's root: the break-away is exact; at the
+  break-away the surfaces whose disc is left start, the pivot the farthest out, in the direction of
+  r_need − b_k;
+* a sliding surface reaching its rim |u_i| = d_i*: **not modelled** — the run stops there
+  (:data:`STATUS_RIM`, the time and the surface in the summary) and the driver refuses in one line.
+
+Energies per unit mass: input −∫a_g·Ẋ dt, viscous c∫|Ẋ|², friction g Σ∫(r − b_i)·dū_i on the series
+elements ū = T⁻¹u (the accounting of the 1-D kernels; stored g Σ|ū_i|²/(2R̄_i)), by the collocation's own
+quadrature with the stage derivatives A⁻¹Z/h as the slide rates.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from isolator.solver.dense import lu_factor, lu_solve
+from isolator.solver.events import BREAKAWAY, REVERSAL, STICK
+from isolator.solver.jit import njit
+from isolator.solver.multisurface_rate_kernel import (
+    GUESS_FIRST_HALF,
+    GUESS_SECOND_HALF,
+    RADAU_A,
+    RADAU_A_INV,
+    RADAU_C,
+    friction_at_rate,
+    slide_rate,
+    stage_matrix,
+)
+from isolator.solver.planar_events import record_event
+
+REGIME = 3  #: the sliding set changed (a surface started or stopped while the mass moves)
+EVENT_NAMES = ("breakaway", "stick", "reversal", "regime")
+
+MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
+MAX_STEPS_PER_INTERVAL = 200000  #: bound on the steps of one sample interval
+LEVEL_TIE = 1e-13  #: static discs left within this (F/W) of each other start together
+#: the mass is put at rest when decelerating at a speed ≤ this fraction of the speed scale (max(peak, 1e-3 m/s))
+STOP_SPEED = 1e-10
+
+STATUS_OK = 0
+STATUS_CHATTER = 1
+STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the run stops there)
+STATUS_RIM = 8  #: a surface reached its rim (not modelled: the run stops there)
+
+# the summary vector
+S_PEAK_X = 0
+S_PEAK_V = 1
+S_PEAK_A = 2
+S_PEAK_R = 3
+S_SLIP_TIME = 4
+S_E_IN = 5
+S_E_F = 6
+S_E_V = 7
+S_N_EVENTS = 8
+S_STATUS = 9
+S_N_STEPS = 10
+S_FAIL_T = 11  #: time [s] where the run stopped (-1: none)
+S_N_NEWTON = 12
+S_RIM_SURFACE = 13  #: the surface (0-based) that reached its rim (-1: none)
+SUMMARY_SIZE = 14
+
+
+@njit(cache=True)
+def back_forces(y, bmat, out_b):
+    """b_i = Σ_q B_iq u_q [-] on each component, u_q = (y[2+2q], y[3+2q])."""
+    n = bmat.shape[0]
+    for i in range(n):
+        bx = 0.0
+        by = 0.0
+        for q in range(n):
+            bx += bmat[i, q] * y[2 + 2 * q]
+            by += bmat[i, q] * y[3 + 2 * q]
+        out_b[i, 0] = bx
+        out_b[i, 1] = by
+
+
+@njit(cache=True)
+def slide_vector(fx, fy, mu_s, mu_f, a, out_d):
+    """Slide velocity [m/s] of a surface at friction excess f = r − b: φ(|f|) f/|f| (continued through the onset:
+    φ < 0 inside the static disc), and its derivative d(u̇)/df in ``out_d`` [2 × 2]; NaN outside |f| < µ_fast."""
+    rho = math.hypot(fx, fy)
+    if not rho > 0.0:
+        return math.nan, math.nan
+    sp, dsp = slide_rate(rho, 1.0, mu_s, mu_f, a)
+    if not math.isfinite(sp):
+        return math.nan, math.nan
+    ex = fx / rho
+    ey = fy / rho
+    t = sp / rho
+    out_d[0, 0] = dsp * ex * ex + t * (1.0 - ex * ex)
+    out_d[0, 1] = (dsp - t) * ex * ey
+    out_d[1, 0] = out_d[0, 1]
+    out_d[1, 1] = dsp * ey * ey + t * (1.0 - ey * ey)
+    return sp * ex, sp * ey
+
+
+@njit(cache=True)
+def friction_vector(vx, vy, ex0, ey0, mu_s, mu_f, a, out_d):
+    """The forward law µ(|v|) v/|v| [-] of a surface sliding at v [m/s] (along (ex0, ey0) at v = 0, a start from
+    rest) and its derivative in ``out_d`` [2 × 2] (the tangential part µ/|v| left out at v = 0)."""
+    s = math.hypot(vx, vy)
+    if s > 0.0:
+        ex = vx / s
+        ey = vy / s
+    else:
+        ex = ex0
+        ey = ey0
+    mu, dmu = friction_at_rate(s, 1.0, mu_s, mu_f, a)
+    t = mu / s if s > 0.0 else 0.0
+    out_d[0, 0] = dmu * ex * ex + t * (1.0 - ex * ex)
+    out_d[0, 1] = (dmu - t) * ex * ey
+    out_d[1, 0] = out_d[0, 1]
+    out_d[1, 1] = dmu * ey * ey + t * (1.0 - ey * ey)
+    return mu * ex, mu * ey
+
+
+@njit(cache=True)
+def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, dphi, dm, out):
+    """G(r) = r − b_k − µ_k(|u̇_k|) û̇_k with u̇_k = Ẋ − Σ_j φ_j(|f_j|) f̂_j (``out`` [6]: G, then ∂G/∂r row by row);
+    False outside a non-pivot disc |f_j| < µ_fast,j.  ``dphi``/``dm`` receive DΦ_j and DM_k at r."""
+    k = pivot
+    sx = 0.0
+    sy = 0.0
+    d00 = 0.0
+    d01 = 0.0
+    d11 = 0.0
+    for j in range(mode.shape[0]):
+        if j != k and mode[j] == 1:
+            vjx, vjy = slide_vector(rx - bf[j, 0], ry - bf[j, 1], mu_s[j], mu_f[j], a[j], dphi[j])
+            if not math.isfinite(vjx):
+                return False
+            sx += vjx
+            sy += vjy
+            d00 += dphi[j, 0, 0]
+            d01 += dphi[j, 0, 1]
+            d11 += dphi[j, 1, 1]
+    fx, fy = friction_vector(vx - sx, vy - sy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+    out[0] = rx - bf[k, 0] - fx
+    out[1] = ry - bf[k, 1] - fy
+    out[2] = 1.0 + dm[0, 0] * d00 + dm[0, 1] * d01
+    out[3] = dm[0, 0] * d01 + dm[0, 1] * d11
+    out[4] = dm[1, 0] * d00 + dm[1, 1] * d01
+    out[5] = 1.0 + dm[1, 0] * d01 + dm[1, 1] * d11
+    return True
+
+
+@njit(cache=True)
+def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
+    """F/W (in ``r``, which holds a first guess) at which the sliding surfaces' rates sum to Ẋ = (vx, vy).
+
+    The pivot k takes the rest of the velocity and its friction by the forward law (module docstring): Newton on
+    the 2 × 2 system G(r) = 0 (:func:`force_residual`) from the better of two starts (the guess; the pivot
+    carrying its share of Ẋ), its step halved until |G| falls (≤ 60 halvings: inside the static discs the continued
+    laws are not monotone), ≤ 100 iterations.  ``dphi`` [n × 2 × 2] receives DΦ_j of the non-pivot sliding
+    surfaces, ``dm`` DM_k.  Returns False when Newton does not converge (the caller shortens the step).
+    """
+    n = mode.shape[0]
+    k = pivot
+    others = 0
+    for j in range(n):
+        if j != k and mode[j] == 1:
+            others += 1
+    if others == 0 or (vx == 0.0 and vy == 0.0):
+        # one surface (the forward law), or at rest at a start: every sliding surface at its onset, r on the
+        # pivot's static circle along the start direction (the non-pivot rates are 0, :func:`rhs`)
+        fx, fy = friction_vector(vx, vy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+        r[0] = bf[k, 0] + fx
+        r[1] = bf[k, 1] + fy
+        return True
+    out = np.empty(6)
+    trial = np.empty(6)
+    best = math.inf
+    if math.isfinite(r[0]) and math.isfinite(r[1]) and force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a,
+                                                                        k, ex0, ey0, dphi, dm, out):
+        best = math.hypot(out[0], out[1])
+    fx, fy = friction_vector(vx / (others + 1), vy / (others + 1), ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+    if force_residual(bf[k, 0] + fx, bf[k, 1] + fy, vx, vy, bf, mode, mu_s, mu_f, a, k, ex0, ey0, dphi, dm, trial):
+        if math.hypot(trial[0], trial[1]) < best:
+            r[0] = bf[k, 0] + fx
+            r[1] = bf[k, 1] + fy
+            best = math.hypot(trial[0], trial[1])
+    if not math.isfinite(best):
+        return False
+    force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a, k, ex0, ey0, dphi, dm, out)
+    prev = math.inf
+    for it in range(100):
+        det = out[2] * out[5] - out[3] * out[4]
+        if not (det != 0.0 and math.isfinite(det)):
+            return False
+        stx = (out[5] * out[0] - out[3] * out[1]) / det
+        sty = (out[2] * out[1] - out[4] * out[0]) / det
+        size = math.hypot(stx, sty)
+        floor = 1e-15 * (math.hypot(r[0], r[1]) + mu_f[k])
+        if size <= floor or (it >= 2 and size >= 0.5 * prev and size <= 1e3 * floor):
+            # converged (or at the rounding floor): DΦ_j and DM_k are those at r
+            return True
+        lam = 1.0
+        for _ in range(60):
+            if force_residual(r[0] - lam * stx, r[1] - lam * sty, vx, vy, bf, mode, mu_s, mu_f, a, k, ex0, ey0,
+                              dphi, dm, trial) and (math.hypot(trial[0], trial[1]) < best or lam * size <= floor):
+                break
+            lam *= 0.5
+        else:
+            return False
+        r[0] -= lam * stx
+        r[1] -= lam * sty
+        for p in range(6):
+            out[p] = trial[p]
+        best = math.hypot(out[0], out[1])
+        prev = size
+    return False
+
+
+@njit(cache=True)
+def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, bf, out_dy, out_jac, want_jac):
+    """dy/dt of y = (Ẋ, u_1..u_n) in a mode; ``r`` [2] in: a guess, out: F/W.  Returns (ok, friction power g Σ
+    (r − b_i)·dū_i/dt per unit mass).  ``out_jac`` [m × m] receives ∂(dy/dt)/∂y when ``want_jac`` (the implicit
+    function theorem on G(r; Ẋ, u) = 0, module docstring)."""
+    n = bmat.shape[0]
+    m = 2 + 2 * n
+    back_forces(y, bmat, bf)
+    dphi = np.zeros((n, 2, 2))
+    dm = np.empty((2, 2))
+    for p in range(m):
+        out_dy[p] = 0.0
+    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
+        return False, 0.0
+    out_dy[0] = -g * r[0] - c * y[0] - agx
+    out_dy[1] = -g * r[1] - c * y[1] - agy
+    sx = 0.0
+    sy = 0.0
+    at_rest = y[0] == 0.0 and y[1] == 0.0
+    for j in range(n):
+        if j != pivot and mode[j] == 1 and not at_rest:
+            vjx, vjy = slide_vector(r[0] - bf[j, 0], r[1] - bf[j, 1], mu_s[j], mu_f[j], a[j], dphi[j])
+            out_dy[2 + 2 * j] = vjx
+            out_dy[3 + 2 * j] = vjy
+            sx += vjx
+            sy += vjy
+    out_dy[2 + 2 * pivot] = y[0] - sx
+    out_dy[3 + 2 * pivot] = y[1] - sy
+    power = 0.0
+    for i in range(n):
+        ubx = 0.0
+        uby = 0.0
+        for q in range(n):
+            ubx += smat[i, q] * out_dy[2 + 2 * q]
+            uby += smat[i, q] * out_dy[3 + 2 * q]
+        power += (r[0] - bf[i, 0]) * ubx + (r[1] - bf[i, 1]) * uby
+    if want_jac:
+        k = pivot
+        for p in range(m):
+            for q in range(m):
+                out_jac[p, q] = 0.0
+        dsum = np.zeros((2, 2))
+        for j in range(n):
+            if j != k and mode[j] == 1:
+                dsum += dphi[j]
+        amat = np.eye(2) + dm @ dsum
+        det = amat[0, 0] * amat[1, 1] - amat[0, 1] * amat[1, 0]
+        if not (det != 0.0 and math.isfinite(det)):
+            return False, 0.0
+        ainv = np.empty((2, 2))
+        ainv[0, 0] = amat[1, 1] / det
+        ainv[0, 1] = -amat[0, 1] / det
+        ainv[1, 0] = -amat[1, 0] / det
+        ainv[1, 1] = amat[0, 0] / det
+        # dr/dẊ = A⁻¹ DM; dr/du_q = A⁻¹ (B_kq I + DM Σ_j DΦ_j B_jq)
+        drv = ainv @ dm
+        dru = np.empty((n, 2, 2))
+        for q in range(n):
+            inner = bmat[k, q] * np.eye(2)
+            for j in range(n):
+                if j != k and mode[j] == 1:
+                    inner += bmat[j, q] * (dm @ dphi[j])
+            dru[q] = ainv @ inner
+        for p in range(2):
+            for s in range(2):
+                out_jac[p, s] = -g * drv[p, s] - (c if p == s else 0.0)
+                for q in range(n):
+                    out_jac[p, 2 + 2 * q + s] = -g * dru[q, p, s]
+        # non-pivot rates: du̇_j = DΦ_j (dr − Σ_q B_jq du_q); the pivot's: dẊ − Σ_j du̇_j
+        for p in range(2):
+            for s in range(2):
+                out_jac[2 + 2 * k + p, s] = 1.0 if p == s else 0.0
+        for j in range(n):
+            if j != k and mode[j] == 1:
+                dv = dphi[j] @ drv
+                for p in range(2):
+                    for s in range(2):
+                        out_jac[2 + 2 * j + p, s] = dv[p, s]
+                        out_jac[2 + 2 * k + p, s] -= dv[p, s]
+                for q in range(n):
+                    du = dphi[j] @ (dru[q] - bmat[j, q] * np.eye(2))
+                    for p in range(2):
+                        for s in range(2):
+                            out_jac[2 + 2 * j + p, 2 + 2 * q + s] = du[p, s]
+                            out_jac[2 + 2 * k + p, 2 + 2 * q + s] -= du[p, s]
+    return True, g * power
+
+
+@njit(cache=True)
+def stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rs, bf, ys, dy,
+                   fz, jac, want_jac, res):
+    """The collocation's residual −(Z − h (A ⊗ I) F(y0 + Z)) at the stage increments ``z`` [3 × m] into ``res``;
+    the stage Jacobians into ``jac`` when ``want_jac``; ``rs`` [3 × 2] the stages' forces (in: guesses).  False
+    where a stage has no force (outside the slide laws' domain)."""
+    m = y0.shape[0]
+    for j in range(3):
+        for p in range(m):
+            ys[p] = y0[p] + z[j, p]
+        tj = RADAU_C[j] * h
+        good, _ = rhs(ys, a_start[0] + slope[0] * tj, a_start[1] + slope[1] * tj, g, c, bmat, smat, mode, mu_s,
+                      mu_f, a, pivot, ex0, ey0, rs[j], bf, dy, jac[j], want_jac)
+        if not good:
+            return False
+        for p in range(m):
+            fz[j, p] = dy[p]
+    for j in range(3):
+        for p in range(m):
+            total = z[j, p]
+            for k in range(3):
+                total -= h * RADAU_A[j, k] * fz[k, p]
+            res[j * m + p] = -total
+            if not math.isfinite(total):
+                return False
+    return True
+
+
+@njit(cache=True)
+def _scaled_norm(vec, scale, m):
+    size = 0.0
+    for q in range(vec.shape[0]):
+        size = max(size, abs(vec[q]) / scale[q % m])
+    return size
+
+
+@njit(cache=True)
+def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r_guess, scale, y1,
+               quad, z_full, guess, lu, piv, use_lu):
+    """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ, 2-vectors); Newton's
+    iterations, or −1 when Newton fails.  The conventions of
+    :func:`isolator.solver.multisurface_rate_kernel.radau_step` (``guess``/``z_full``: the half steps start from
+    the full step's polynomial; ``use_lu``: simplified Newton with the caller's factors, full Newton where it does
+    not contract); the full Newton steps are damped (halved while the scaled residual does not fall, ≤ 20 times:
+    near Ẋ = 0 the friction's direction turns fast and undamped Newton cycles).  ``quad``: the step's
+    (−∫a_g·Ẋ, c∫|Ẋ|², friction work) [J/kg]."""
+    m = y0.shape[0]
+    n = (m - 2) // 2
+    z = np.zeros((3, m))
+    if guess.shape[0] == 3:
+        for j in range(3):
+            for p in range(m):
+                total = 0.0
+                for k in range(3):
+                    total += guess[j, k] * z_full[k, p]
+                z[j, p] = total
+    fz = np.empty((3, m))
+    jac = np.empty((3, m, m))
+    big = np.empty((3 * m, 3 * m))
+    res = np.empty(3 * m)
+    res_try = np.empty(3 * m)
+    z_try = np.empty((3, m))
+    delta = np.empty(3 * m)
+    ys = np.empty(m)
+    dy = np.empty(m)
+    bf = np.empty((n, 2))
+    rs = np.empty((3, 2))
+    for j in range(3):
+        rs[j, 0] = r_guess[0]
+        rs[j, 1] = r_guess[1]
+    if guess.shape[0] != 3 and y0[0] == 0.0 and y0[1] == 0.0:
+        # a start from rest: the direction of the motion is undefined at Ẋ = 0 (every Jacobian there singular);
+        # Newton starts from the stages moving along the start direction e with the acceleration the mass at
+        # rest has along e (linear in τ between the step's ends), the displacement shared by the sliding surfaces
+        good0, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rs[0],
+                       bf, dy, jac[0], False)
+        p0 = dy[0] * ex0 + dy[1] * ey0
+        good1, _ = rhs(y0, a_start[0] + slope[0] * h, a_start[1] + slope[1] * h, g, c, bmat, smat, mode, mu_s, mu_f,
+                       a, pivot, ex0, ey0, rs[1], bf, dy, jac[0], False)
+        p1 = dy[0] * ex0 + dy[1] * ey0
+        n_sliding = 0
+        for i in range(n):
+            n_sliding += mode[i]
+        if good0 and good1 and n_sliding > 0:
+            for j in range(3):
+                tj = RADAU_C[j] * h
+                speed = p0 * tj + 0.5 * (p1 - p0) * tj * tj / h
+                dist = (0.5 * p0 * tj * tj + (p1 - p0) * tj * tj * tj / (6.0 * h)) / n_sliding
+                z[j, 0] = speed * ex0
+                z[j, 1] = speed * ey0
+                for i in range(n):
+                    if mode[i] == 1:
+                        z[j, 2 + 2 * i] = dist * ex0
+                        z[j, 3 + 2 * i] = dist * ey0
+        for j in range(3):
+            rs[j, 0] = r_guess[0]
+            rs[j, 1] = r_guess[1]
+    z_start = z.copy()
+    simplified = use_lu
+    prev = math.inf
+    converged = False
+    it = 0
+    n_it = 0
+    size = 0.0
+    have_res = False
+    while n_it < 40:
+        n_it += 1
+        fall_back = False
+        if not have_res:
+            ok = stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0,
+                                rs, bf, ys, dy, fz, jac, not simplified, res)
+        else:
+            ok = True
+        have_res = False
+        if not ok:
+            if not simplified:
+                return -1
+            fall_back = True
+        elif simplified:
+            for p in range(3 * m):
+                delta[p] = res[p]
+            lu_solve(lu, piv, delta)
+            size = 0.0
+            for j in range(3):
+                for p in range(m):
+                    z[j, p] += delta[j * m + p]
+                    size = max(size, abs(delta[j * m + p]) / scale[p])
+            if not math.isfinite(size):
+                fall_back = True
+            else:
+                theta = size / prev if it >= 1 else 0.0
+                if size <= 1e-15 or (it >= 1 and theta < 0.9 and theta * size <= 1e-16 * (1.0 - theta)):
+                    converged = True
+                    break
+                if (it >= 1 and theta >= 1.0) or it >= 10:
+                    fall_back = True
+        else:
+            for j in range(3):
+                for p in range(m):
+                    for k in range(3):
+                        for q in range(m):
+                            big[j * m + p, k * m + q] = ((1.0 if (j == k and p == q) else 0.0)
+                                                         - h * RADAU_A[j, k] * jac[k, p, q])
+            for p in range(3 * m):
+                for q in range(3 * m):
+                    if not math.isfinite(big[p, q]):
+                        return -1
+            delta[:] = np.linalg.solve(big, res)
+            full = _scaled_norm(delta, scale, m)
+            if not math.isfinite(full):
+                return -1
+            norm0 = _scaled_norm(res, scale, m)
+            lam = 1.0
+            accepted = False
+            for _ in range(20):
+                for j in range(3):
+                    for p in range(m):
+                        z_try[j, p] = z[j, p] + lam * delta[j * m + p]
+                if stage_residual(y0, z_try, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0,
+                                  ey0, rs, bf, ys, dy, fz, jac, True, res_try):
+                    if _scaled_norm(res_try, scale, m) < norm0 or lam * full <= 1e-13:
+                        accepted = True
+                        break
+                lam *= 0.5
+            if not accepted:
+                return -1
+            for j in range(3):
+                for p in range(m):
+                    z[j, p] = z_try[j, p]
+            for p in range(3 * m):
+                res[p] = res_try[p]
+            have_res = True  # the residual and Jacobians at the new z are those just computed
+            size = lam * full
+            if size <= 1e-15 or (it >= 2 and size >= 0.5 * prev and size <= 1e-11):
+                converged = True
+                break
+        if fall_back:
+            simplified = False
+            for j in range(3):
+                for p in range(m):
+                    z[j, p] = z_start[j, p]
+            prev = math.inf
+            it = 0
+            have_res = False
+            continue
+        prev = size
+        it += 1
+    if not converged:
+        return -1
+    if guess.shape[0] != 3:
+        for j in range(3):
+            for p in range(m):
+                z_full[j, p] = z[j, p]
+    # the energies by the collocation's quadrature, the slide rates the stage derivatives A⁻¹Z/h (as in 1-D)
+    q_in = 0.0
+    q_visc = 0.0
+    q_fric = 0.0
+    inv_h = 1.0 / h
+    for j in range(3):
+        for p in range(m):
+            ys[p] = y0[p] + z[j, p]
+        tj = RADAU_C[j] * h
+        agx = a_start[0] + slope[0] * tj
+        agy = a_start[1] + slope[1] * tj
+        good, _ = rhs(ys, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rs[j], bf, dy, jac[j],
+                      False)
+        if not good:
+            return -1
+        for p in range(2, m):
+            total = 0.0
+            for k in range(3):
+                total += RADAU_A_INV[j, k] * z[k, p]
+            dy[p] = total * inv_h
+        stage_power = 0.0
+        for i in range(n):
+            ubx = 0.0
+            uby = 0.0
+            for q in range(n):
+                ubx += smat[i, q] * dy[2 + 2 * q]
+                uby += smat[i, q] * dy[3 + 2 * q]
+            stage_power += (rs[j, 0] - bf[i, 0]) * ubx + (rs[j, 1] - bf[i, 1]) * uby
+        w = h * RADAU_A[2, j]
+        q_in -= w * (agx * ys[0] + agy * ys[1])
+        q_visc += w * c * (ys[0] * ys[0] + ys[1] * ys[1])
+        q_fric += w * g * stage_power
+    for p in range(m):
+        y1[p] = y0[p] + z[2, p]
+    r_guess[0] = rs[2, 0]
+    r_guess[1] = rs[2, 1]
+    quad[0] = q_in
+    quad[1] = q_visc
+    quad[2] = q_fric
+    return n_it
+
+
+@njit(cache=True)
+def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r_guess, scale, y1,
+                quad):
+    """Two Radau steps of h/2 (kept) and one of h (the estimate); the scaled difference (inf: failed).
+
+    ``quad`` [4]: the halves' energies and the Newton iterations of the three steps; simplified Newton with one
+    Jacobian at y0 factored for h and for h/2, as :func:`isolator.solver.multisurface_rate_kernel.double_step`.
+    """
+    m = y0.shape[0]
+    n = (m - 2) // 2
+    jac0 = np.empty((m, m))
+    lu_full = np.empty((3 * m, 3 * m))
+    lu_half = np.empty((3 * m, 3 * m))
+    piv_full = np.zeros(3 * m, dtype=np.int64)
+    piv_half = np.zeros(3 * m, dtype=np.int64)
+    dy0 = np.empty(m)
+    bf = np.empty((n, 2))
+    r0 = r_guess.copy()
+    good, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r0, bf, dy0,
+                  jac0, True)
+    use_full = False
+    use_half = False
+    if good and not (y0[0] == 0.0 and y0[1] == 0.0):  # at rest the Jacobian is singular: full Newton
+        stage_matrix(h, jac0, lu_full)
+        use_full = lu_factor(lu_full, piv_full)
+        stage_matrix(0.5 * h, jac0, lu_half)
+        use_half = lu_factor(lu_half, piv_half)
+    y_full = np.empty(m)
+    y_mid = np.empty(m)
+    q_full = np.empty(3)
+    q1 = np.empty(3)
+    q2 = np.empty(3)
+    z_full = np.empty((3, m))
+    no_guess = np.empty((0, 3))
+    a_mid = np.empty(2)
+    half = 0.5 * h
+    a_mid[0] = a_start[0] + slope[0] * half
+    a_mid[1] = a_start[1] + slope[1] * half
+    quad[3] = 0.0
+    rg = r0.copy()
+    it0 = radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rg, scale,
+                     y_full, q_full, z_full, no_guess, lu_full, piv_full, use_full)
+    if it0 < 0:
+        return math.inf
+    quad[3] = it0
+    rg[0] = r0[0]
+    rg[1] = r0[1]
+    it1 = radau_step(y0, half, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rg, scale,
+                     y_mid, q1, z_full, GUESS_FIRST_HALF, lu_half, piv_half, use_half)
+    if it1 < 0:
+        return math.inf
+    quad[3] += it1
+    it2 = radau_step(y_mid, half, a_mid, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rg, scale,
+                     y1, q2, z_full, GUESS_SECOND_HALF, lu_half, piv_half, use_half)
+    if it2 < 0:
+        return math.inf
+    quad[3] += it2
+    err = 0.0
+    for p in range(m):
+        err = max(err, abs(y1[p] - y_full[p]) / scale[p])
+    for k in range(3):
+        quad[k] = q1[k] + q2[k]
+    r_guess[0] = rg[0]
+    r_guess[1] = rg[1]
+    return err
+
+
+@njit(cache=True)
+def event_values(y, r, mode, pivot, mu_s, cap, bmat, bf, out_e):
+    """The event functions at a state (≥ 0: no event): slot 2i a non-pivot surface stopping (|f_i| − µ_slow,i) or
+    a stuck one starting (µ_slow,i − |f_i|), slot 2i+1 a sliding surface's rim (d_i* − |u_i|)."""
+    n = mode.shape[0]
+    back_forces(y, bmat, bf)
+    for i in range(n):
+        rho = math.hypot(r[0] - bf[i, 0], r[1] - bf[i, 1])
+        out_e[2 * i + 1] = math.inf
+        if mode[i] == 1:
+            out_e[2 * i] = math.inf if i == pivot else rho - mu_s[i]
+            if math.isfinite(cap[i]):
+                out_e[2 * i + 1] = cap[i] - math.hypot(y[2 + 2 * i], y[3 + 2 * i])
+        else:
+            out_e[2 * i] = mu_s[i] - rho
+
+
+@njit(cache=True)
+def pick_pivot(dy, mode, a):
+    """The sliding surface farthest into saturation (largest a_i |u̇_i|): the pivot of :func:`solve_force`."""
+    best = -1
+    worst = -math.inf
+    for i in range(mode.shape[0]):
+        if mode[i] == 1:
+            w = a[i] * math.hypot(dy[2 + 2 * i], dy[3 + 2 * i])
+            if best < 0 or w > worst:
+                worst = w
+                best = i
+    return best
+
+
+@njit(cache=True)
+def exit_time(nx, ny, qx, qy, bf, mu_s):
+    """First local time s ≥ 0 at which r_need + q s leaves a static disc |r − b_i| ≤ µ_slow,i (inf: never, 0: out
+    already): the smaller over the discs of the larger root of |p + q s|² = µ² (p = r_need − b_i)."""
+    first = math.inf
+    qq = qx * qx + qy * qy
+    for i in range(bf.shape[0]):
+        px = nx - bf[i, 0]
+        py = ny - bf[i, 1]
+        cc = px * px + py * py - mu_s[i] * mu_s[i]
+        if cc > 0.0:
+            return 0.0
+        if qq > 0.0:
+            bb = 2.0 * (px * qx + py * qy)
+            disc = math.sqrt(max(bb * bb - 4.0 * qq * cc, 0.0))
+            s = (-bb + disc) / (2.0 * qq) if bb <= 0.0 else -2.0 * cc / (bb + disc)
+            first = min(first, max(s, 0.0))
+    return first
+
+
+@njit(cache=True)
+def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
+    """The surfaces whose static disc r_need = (nx, ny) has left (within :data:`LEVEL_TIE`) start; returns the
+    pivot (the farthest out), its direction of start r_need − b_k in ``direction`` and r = b_k + µ_slow,k e."""
+    best = -1
+    worst = -math.inf
+    for i in range(mode.shape[0]):
+        over = math.hypot(nx - bf[i, 0], ny - bf[i, 1]) - mu_s[i]
+        if over >= -LEVEL_TIE:
+            mode[i] = 1
+            fresh[i] = 1
+            if best < 0 or over > worst:
+                worst = over
+                best = i
+    if best < 0:
+        return best
+    dx = nx - bf[best, 0]
+    dy = ny - bf[best, 1]
+    rho = math.hypot(dx, dy)
+    direction[0] = dx / rho
+    direction[1] = dy / rho
+    r[0] = bf[best, 0] + mu_s[best] * direction[0]
+    r[1] = bf[best, 1] + mu_s[best] * direction[1]
+    return best
+
+
+@njit(cache=True)
+def _mask(mode):
+    sliding = 0
+    for i in range(mode.shape[0]):
+        if mode[i] == 1:
+            sliding |= 1 << i
+    return sliding
+
+
+@njit(cache=True)
+def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
+                       out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, state_first_time, u):
+    """Response of a mass on a multi-surface bearing with µ(v) surfaces to a sampled pair.
+
+    Parameters
+    ----------
+    ax, ay : float64[n]
+        Ground acceleration [m/s²], linear between samples.
+    times : float64[n]
+        Sample times from the first [s].
+    g, c : float
+        Gravity [m/s²] and damping per unit mass [1/s].
+    bmat, smat : float64[ns, ns]
+        Back-force matrix B (b = B u) [1/m] and the element map ū = S u [-].
+    mu_s, mu_f, a : float64[ns]
+        µ_slow, µ_fast [-] and the rate [s/m] of each surface (µ_slow < µ_fast).
+    cap : float64[ns]
+        d_i* [m] (inf: no rim).
+    tol : float
+        Largest scaled difference of a step from its two halves (scales: the running peaks).
+    h_first : float
+        First trial step [s].
+    out_x, out_v, out_a : float64[n, 2]
+        Displacement [m], velocity [m/s] relative to the ground, absolute acceleration [m/s²] at the samples.
+    out_en : float64[3, n]
+        Input, friction and viscous energy [J/kg] at the samples.
+    ev_t, ev_k, summary, surf_peak, state_first_time
+        Events, the summary (``S_*``), peak |u_i|, first time of each set of sliding surfaces (index: the mask).
+    u : float64[ns, 2]
+        Out: the final surface displacements [m].
+    """
+    n_samples = ax.shape[0]
+    ns = mu_s.shape[0]
+    m = 2 + 2 * ns
+    mode = np.zeros(ns, dtype=np.int64)
+    fresh = np.zeros(ns, dtype=np.int64)
+    y = np.zeros(m)
+    y_try = np.empty(m)
+    y_ev = np.empty(m)
+    dy = np.empty(m)
+    jac = np.empty((m, m))
+    quad = np.empty(4)
+    quad_ev = np.empty(4)
+    bf = np.empty((ns, 2))
+    e0 = np.empty(2 * ns)
+    e1 = np.empty(2 * ns)
+    scale = np.empty(m)
+    r = np.zeros(2)
+    r_try = np.zeros(2)
+    r_ev = np.zeros(2)
+    r1 = np.zeros(2)
+    direction = np.array([1.0, 0.0])
+    a_now = np.empty(2)
+    slope = np.empty(2)
+    for j in range(state_first_time.shape[0]):
+        state_first_time[j] = -1.0
+    stuck = True
+    n_ev = 0
+    status = 0
+    peak_x = 0.0
+    peak_v = 0.0
+    peak_a = math.hypot(ax[0], ay[0])
+    peak_r = 0.0
+    slip_time = 0.0
+    e_in = 0.0
+    e_f = 0.0
+    e_v = 0.0
+    n_steps = 0
+    n_newton = 0.0
+    fail_t = -1.0
+    rim_surface = -1
+    h = h_first
+    pivot = -1
+    x_floor = 1e-4
+    v_floor = 1e-3
+    for row in range(3):
+        out_en[row, 0] = 0.0
+    out_x[0, 0] = 0.0
+    out_x[0, 1] = 0.0
+    out_v[0, 0] = 0.0
+    out_v[0, 1] = 0.0
+    out_a[0, 0] = ax[0]
+    out_a[0, 1] = ay[0]
+    for idx in range(n_samples - 1):
+        t_i = times[idx]
+        dt_i = times[idx + 1] - t_i
+        slope[0] = (ax[idx + 1] - ax[idx]) / dt_i
+        slope[1] = (ay[idx + 1] - ay[idx]) / dt_i
+        tau = 0.0
+        events_here = 0
+        steps_here = 0
+        while tau < dt_i and status & (STATUS_STEP_FAILED | STATUS_RIM) == 0:
+            a_now[0] = ax[idx] + slope[0] * tau
+            a_now[1] = ay[idx] + slope[1] * tau
+            if stuck:
+                back_forces(y, bmat, bf)
+                s_exit = exit_time(-a_now[0] / g, -a_now[1] / g, -slope[0] / g, -slope[1] / g, bf, mu_s)
+                if tau + s_exit >= dt_i:
+                    break  # stuck to the end of the interval
+                tau += s_exit
+                nx = -(ax[idx] + slope[0] * tau) / g
+                ny = -(ay[idx] + slope[1] * tau) / g
+                pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction)
+                if pivot < 0:  # rounding at the disc's edge: nothing left it yet
+                    tau = min(dt_i, tau + 1e-13 * dt_i)
+                    continue
+                stuck = False
+                h = 0.1 * dt_i  # the steps of the stop before were cut to its approach
+                n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, BREAKAWAY)
+                code = _mask(mode)
+                if state_first_time[code] < 0.0:
+                    state_first_time[code] = t_i + tau
+                continue
+            steps_here += 1
+            if steps_here > MAX_STEPS_PER_INTERVAL:
+                status |= STATUS_STEP_FAILED
+                fail_t = t_i + tau
+                break
+            h = min(h, dt_i - tau)
+            scale[0] = max(peak_v, v_floor)
+            scale[1] = scale[0]
+            for p in range(2, m):
+                scale[p] = max(peak_x, x_floor)
+            # the pivot: the sliding surface farthest into saturation at the step's start
+            good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
+                          direction[1], r, bf, dy, jac, False)
+            if good:
+                k_new = pick_pivot(dy, mode, a)
+                if k_new != pivot:
+                    pivot = k_new
+                    good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
+                                  direction[1], r, bf, dy, jac, False)
+            # the mass coming to rest: steps cut to 0.7 of the time to rest; at rest below STOP_SPEED
+            vv = y[0] * y[0] + y[1] * y[1]
+            vd = y[0] * dy[0] + y[1] * dy[1]
+            if good and vv > 0.0 and vd >= 0.0 and math.sqrt(vv) <= STOP_SPEED * scale[0]:
+                # still starting (a step from rest too short to leave the rounding of Ẋ = 0): from rest again, in
+                # the start direction (the residue, ≤ STOP_SPEED of the speed scale, is dropped)
+                e_f += 0.5 * vv
+                y[0] = 0.0
+                y[1] = 0.0
+                vv = 0.0
+                vd = 0.0
+            if good and vv > 0.0 and vd < 0.0:
+                if math.sqrt(vv) <= STOP_SPEED * scale[0]:
+                    e_f += 0.5 * vv
+                    y[0] = 0.0
+                    y[1] = 0.0
+                    for i in range(ns):
+                        mode[i] = 0
+                    back_forces(y, bmat, bf)
+                    nx = -a_now[0] / g
+                    ny = -a_now[1] / g
+                    holds = True
+                    for i in range(ns):
+                        if math.hypot(nx - bf[i, 0], ny - bf[i, 1]) > mu_s[i]:
+                            holds = False
+                    if holds:
+                        stuck = True
+                        n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, STICK)
+                    else:
+                        pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction)
+                        h = 0.1 * dt_i
+                        n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, REVERSAL)
+                        code = _mask(mode)
+                        if state_first_time[code] < 0.0:
+                            state_first_time[code] = t_i + tau
+                    events_here += 1
+                    if events_here > MAX_EVENTS_PER_INTERVAL:
+                        status |= STATUS_CHATTER
+                        for i in range(ns):
+                            mode[i] = 0
+                        stuck = True
+                        break
+                    continue
+                h = min(h, 0.7 * vv / -vd)
+            if vv == 0.0 and not good:
+                good = True  # at rest at a start: the first step decides
+            for p in range(2):
+                r_try[p] = r[p]
+            err = double_step(y, h, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
+                              direction[1], r_try, scale, y_try, quad)
+            n_newton += quad[3]
+            reversed_ = vv > 0.0 and y[0] * y_try[0] + y[1] * y_try[1] < 0.0
+            if not err <= tol or reversed_:
+                if h <= 1e-13 * dt_i:
+                    status |= STATUS_STEP_FAILED
+                    fail_t = t_i + tau
+                    break
+                if reversed_:
+                    h = 0.5 * h
+                elif math.isfinite(err):
+                    h = h * max(0.1, 0.9 * (tol / err) ** (1.0 / 6.0))
+                else:
+                    h = 0.25 * h
+                continue
+            # events between y and y_try
+            event_values(y, r, mode, pivot, mu_s, cap, bmat, bf, e0)
+            for p in range(2):
+                r1[p] = r_try[p]
+            a_end0 = a_now[0] + slope[0] * h
+            a_end1 = a_now[1] + slope[1] * h
+            rhs(y_try, a_end0, a_end1, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0], direction[1], r1,
+                bf, dy, jac, False)
+            event_values(y_try, r1, mode, pivot, mu_s, cap, bmat, bf, e1)
+            first_slot = -1
+            first_t = math.inf
+            for slot in range(2 * ns):
+                armed = not (slot % 2 == 0 and fresh[slot // 2] == 1)
+                if not armed:
+                    continue
+                if e0[slot] < 0.0:
+                    t_root = 0.0  # past already (a surface started a hair late): taken at once
+                elif e1[slot] < 0.0:
+                    ta = 0.0
+                    fa = e0[slot]
+                    tb_ = h
+                    fb = e1[slot]
+                    side = 0
+                    for _ in range(100):
+                        tm = (ta * fb - tb_ * fa) / (fb - fa)
+                        if not (ta < tm < tb_):
+                            tm = 0.5 * (ta + tb_)
+                        for p in range(2):
+                            r_ev[p] = r[p]
+                        double_step(y, tm, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot,
+                                    direction[0], direction[1], r_ev, scale, y_ev, quad_ev)
+                        n_newton += quad_ev[3]
+                        rhs(y_ev, a_now[0] + slope[0] * tm, a_now[1] + slope[1] * tm, g, c, bmat, smat, mode, mu_s,
+                            mu_f, a, pivot, direction[0], direction[1], r_ev, bf, dy, jac, False)
+                        event_values(y_ev, r_ev, mode, pivot, mu_s, cap, bmat, bf, e1)
+                        fm = e1[slot]
+                        if fm == 0.0:
+                            tb_ = tm
+                            break
+                        if fm < 0.0:
+                            tb_ = tm
+                            fb = fm
+                            if side == -1:
+                                fa *= 0.5
+                            side = -1
+                        else:
+                            ta = tm
+                            fa = fm
+                            if side == 1:
+                                fb *= 0.5
+                            side = 1
+                        if tb_ - ta <= 1e-13 * dt_i:
+                            break
+                    t_root = tb_
+                    event_values(y_try, r1, mode, pivot, mu_s, cap, bmat, bf, e1)
+                else:
+                    continue
+                if t_root < first_t:
+                    first_t = t_root
+                    first_slot = slot
+            if first_slot < 0:
+                for i in range(ns):
+                    fresh[i] = 0
+                for p in range(m):
+                    y[p] = y_try[p]
+                for p in range(2):
+                    r[p] = r1[p]
+                e_in += quad[0]
+                e_v += quad[1]
+                e_f += quad[2]
+                tau += h
+                slip_time += h
+                n_steps += 1
+                peak_v = max(peak_v, math.hypot(y[0], y[1]))
+                peak_r = max(peak_r, math.hypot(r[0], r[1]))
+                peak_a = max(peak_a, math.hypot(g * r[0] + c * y[0], g * r[1] + c * y[1]))
+                xx = 0.0
+                xy = 0.0
+                for i in range(ns):
+                    xx += y[2 + 2 * i]
+                    xy += y[3 + 2 * i]
+                    surf_peak[i] = max(surf_peak[i], math.hypot(y[2 + 2 * i], y[3 + 2 * i]))
+                peak_x = max(peak_x, math.hypot(xx, xy))
+                err_next = max(err, 1e-3 * tol)
+                h = h * min(4.0, 0.9 * (tol / err_next) ** (1.0 / 6.0))
+                continue
+            # ---- the event: advance to it ----
+            if first_t > 0.0:
+                for p in range(2):
+                    r_ev[p] = r[p]
+                double_step(y, first_t, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
+                            direction[1], r_ev, scale, y_ev, quad_ev)
+                n_newton += quad_ev[3]
+                for p in range(m):
+                    y[p] = y_ev[p]
+                rhs(y, a_now[0] + slope[0] * first_t, a_now[1] + slope[1] * first_t, g, c, bmat, smat, mode, mu_s,
+                    mu_f, a, pivot, direction[0], direction[1], r_ev, bf, dy, jac, False)
+                for p in range(2):
+                    r[p] = r_ev[p]
+                e_in += quad_ev[0]
+                e_v += quad_ev[1]
+                e_f += quad_ev[2]
+                tau += first_t
+                slip_time += first_t
+                n_steps += 1
+            t_now = t_i + tau
+            for i in range(ns):
+                surf_peak[i] = max(surf_peak[i], math.hypot(y[2 + 2 * i], y[3 + 2 * i]))
+            i = first_slot // 2
+            if first_slot % 2 == 1:
+                status |= STATUS_RIM
+                fail_t = t_now
+                rim_surface = i
+                break
+            events_here += 1
+            if events_here > MAX_EVENTS_PER_INTERVAL:
+                status |= STATUS_CHATTER
+                y[0] = 0.0
+                y[1] = 0.0
+                for q in range(ns):
+                    mode[q] = 0
+                stuck = True
+                break
+            mode[i] = 0 if mode[i] == 1 else 1
+            fresh[i] = 1
+            n_ev = record_event(ev_t, ev_k, n_ev, t_now, REGIME)
+            code = _mask(mode)
+            if code == 0:
+                y[0] = 0.0  # nothing slides: only after rounding at a stop
+                y[1] = 0.0
+                stuck = True
+            elif state_first_time[code] < 0.0:
+                state_first_time[code] = t_now
+        if status & (STATUS_STEP_FAILED | STATUS_RIM):
+            for j in range(idx + 1, n_samples):
+                xx = 0.0
+                xy = 0.0
+                for i in range(ns):
+                    xx += y[2 + 2 * i]
+                    xy += y[3 + 2 * i]
+                out_x[j, 0] = xx
+                out_x[j, 1] = xy
+                out_v[j, 0] = y[0]
+                out_v[j, 1] = y[1]
+                out_a[j, 0] = ax[j]
+                out_a[j, 1] = ay[j]
+                out_en[0, j] = e_in
+                out_en[1, j] = e_f
+                out_en[2, j] = e_v
+            break
+        j = idx + 1
+        xx = 0.0
+        xy = 0.0
+        for i in range(ns):
+            xx += y[2 + 2 * i]
+            xy += y[3 + 2 * i]
+        out_x[j, 0] = xx
+        out_x[j, 1] = xy
+        out_v[j, 0] = y[0]
+        out_v[j, 1] = y[1]
+        if stuck:
+            out_a[j, 0] = ax[j]
+            out_a[j, 1] = ay[j]
+        else:
+            rhs(y, ax[j], ay[j], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0], direction[1], r, bf, dy,
+                jac, False)
+            out_a[j, 0] = -(g * r[0] + c * y[0])
+            out_a[j, 1] = -(g * r[1] + c * y[1])
+            peak_r = max(peak_r, math.hypot(r[0], r[1]))
+        peak_a = max(peak_a, math.hypot(out_a[j, 0], out_a[j, 1]))
+        peak_x = max(peak_x, math.hypot(xx, xy))
+        peak_v = max(peak_v, math.hypot(y[0], y[1]))
+        out_en[0, j] = e_in
+        out_en[1, j] = e_f
+        out_en[2, j] = e_v
+    for i in range(ns):
+        u[i, 0] = y[2 + 2 * i]
+        u[i, 1] = y[3 + 2 * i]
+    summary[S_PEAK_X] = peak_x
+    summary[S_PEAK_V] = peak_v
+    summary[S_PEAK_A] = peak_a
+    summary[S_PEAK_R] = peak_r
+    summary[S_SLIP_TIME] = slip_time
+    summary[S_E_IN] = e_in
+    summary[S_E_F] = e_f
+    summary[S_E_V] = e_v
+    summary[S_N_EVENTS] = n_ev
+    summary[S_STATUS] = status
+    summary[S_N_STEPS] = n_steps
+    summary[S_FAIL_T] = fail_t
+    summary[S_N_NEWTON] = n_newton
+    summary[S_RIM_SURFACE] = rim_surface
+
+
+__all__ = ["planar_rate_kernel", "solve_force", "EVENT_NAMES", "SUMMARY_SIZE"]
