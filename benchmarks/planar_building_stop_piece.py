@@ -27,7 +27,7 @@ _HISTORIES = ("displacement_m", "velocity_m_s", "floor_displacement_m", "floor_a
               "superstructure_shear_N", "isolator_force_N", "overturning_moment_Nm", "energy_history_J_per_kg")
 
 
-def _cases(records: Path) -> dict:
+def cases(records: Path) -> dict:
     from isolator.bench.building import BUILDING_PAIR, FIXED_BASE_PERIOD_Y_S, building_case
     from isolator.motion import read_ground_motion
     from isolator.solver.planar_building import simulate_planar_building
@@ -66,7 +66,7 @@ def _cases(records: Path) -> dict:
     }
 
 
-def _difference(new, old) -> str:
+def difference(new, old) -> str:
     hist = max(float(np.max(np.abs(getattr(new, k) - getattr(old, k))) / max(np.max(np.abs(getattr(old, k))), 1e-300))
                for k in _HISTORIES)
     same_events = new.event_names == old.event_names
@@ -80,32 +80,43 @@ def _difference(new, old) -> str:
             f"{new.energy_balance_error_J_per_kg / e_in:.1e}")
 
 
+def alternate(records: Path, runs: int, name: str, off, on, describe) -> None:
+    """Each case of :func:`cases` with ``planar_building.<name>`` set to ``off`` and ``on``: the answers' differences,
+    ``describe(old, new)``'s counts and the CPU per call, the two settings alternated call by call (medians of
+    ``runs``); the setting is left at ``on``."""
+    from isolator.solver import planar_building
+
+    for label, run in cases(records).items():
+        results = {}
+        for value in (off, on):
+            setattr(planar_building, name, value)
+            results[value] = run()
+        old, new = results[off], results[on]
+        print(f"{label}: {describe(old, new)}; {difference(new, old)}")
+        times = {off: [], on: []}
+        for k in range(runs):
+            for value in ((off, on) if k % 2 == 0 else (on, off)):
+                setattr(planar_building, name, value)
+                start = time.process_time()
+                run()
+                times[value].append(time.process_time() - start)
+        ratio = float(np.median(np.array(times[on]) / np.array(times[off])))
+        print(f"    CPU per call, medians of {runs}: {name} = {off}: {1e3 * np.median(times[off]):.2f} ms, {on}: "
+              f"{1e3 * np.median(times[on]):.2f} ms, ratio {ratio:.3f}; load {os.getloadavg()[0]:.1f}", flush=True)
+    setattr(planar_building, name, on)
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--records", default="../shared/records")
     parser.add_argument("--runs", type=int, default=21)
     args = parser.parse_args(argv)
-    from isolator.solver import planar_building
 
-    for name, run in _cases(Path(args.records)).items():
-        results = {}
-        for flag in (False, True):
-            planar_building.STOP_PIECE = flag
-            results[flag] = run()
-        old, new = results[False], results[True]
-        print(f"{name}: pieces {old.n_pieces} -> {new.n_pieces} (FINISH {old.n_pieces_by_phase[3]} -> "
-              f"{new.n_pieces_by_phase[3]}, stop pieces {new.n_stop_pieces}); {_difference(new, old)}")
-        times = {False: [], True: []}
-        for k in range(args.runs):
-            for flag in ((False, True) if k % 2 == 0 else (True, False)):
-                planar_building.STOP_PIECE = flag
-                start = time.process_time()
-                run()
-                times[flag].append(time.process_time() - start)
-        ratio = float(np.median(np.array(times[True]) / np.array(times[False])))
-        print(f"    CPU per call, medians of {args.runs}: off {1e3 * np.median(times[False]):.2f} ms, on "
-              f"{1e3 * np.median(times[True]):.2f} ms, ratio {ratio:.3f}; load {os.getloadavg()[0]:.1f}", flush=True)
-    planar_building.STOP_PIECE = True
+    def describe(old, new):
+        return (f"pieces {old.n_pieces} -> {new.n_pieces} (FINISH {old.n_pieces_by_phase[3]} -> "
+                f"{new.n_pieces_by_phase[3]}, stop pieces {new.n_stop_pieces})")
+
+    alternate(Path(args.records), args.runs, "STOP_PIECE", False, True, describe)
 
 
 if __name__ == "__main__":

@@ -161,7 +161,7 @@ def _now(buf):
 #: 24 + rung the sliding rungs taken, 40 + 5 phase + part the parts, 51 and 53 the calls, 59 the kernel's whole time
 _PROBES = (
     ("from isolator.solver.jit import njit", [_CLOCK], "replace", None),
-    ("SUMMARY_SIZE = 19", ["SUMMARY_SIZE = 60"], "replace", None),
+    ("SUMMARY_SIZE = 20", ["SUMMARY_SIZE = 60"], "replace", None),
     ("    counter = np.zeros(1, dtype=np.int64)", ["    counter = np.zeros(16, dtype=np.int64)"], "replace", None),
     ("    n = ax.shape[0]", ["    tbuf = np.zeros(2, dtype=np.int64)", "    t_start = _now(tbuf)"], "after",
      "building2d_kernel"),

@@ -82,6 +82,11 @@ STOP_REACH_SERIES = True
 #: speed left there below FINISH's entry speed 1e-10 v_ref) instead of at STOP_REACH r0 and a FINISH piece
 #: (with STOP_REACH_SERIES only; docs/building.md, "The stop in one piece").
 STOP_PIECE = True
+#: Truncation tolerance of the friction's polynomial in a fast sub-step, relative to µk N and |V| (the kernel's
+#: law[10], default ``planar_building_kernel.FAST_TRUNC_EPS`` = 1e-12, the fraction its end check FAST_CHECK
+#: accepts): 1e-16 is the previous rule, the pieces' own; 1e-12 lengthens the rungs near stops and departures, the
+#: answers moving at rounding (docs/building.md, h114).
+FAST_TRUNC_EPS = _pk.FAST_TRUNC_EPS
 
 
 @dataclass
@@ -761,13 +766,14 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(10)
+    law = np.zeros(11)
     law[1] = g
     law[5] = 1.0 if STOP_APPROACH else 0.0
     law[6] = 1.0 if DEPARTURE_SERIES else 0.0
     law[7] = 1.0 if LEAVE_SERIES else 0.0
     law[8] = 1.0 if STOP_REACH_SERIES else 0.0
     law[9] = 1.0 if STOP_PIECE else 0.0
+    law[10] = FAST_TRUNC_EPS
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert

@@ -127,6 +127,13 @@ FAST_POW = 31
 #: The friction at the sub-step's end from its polynomial and from V/|V| of the propagated state agree to
 #: this fraction of µk N, or the sub-step is redone by series pieces (a safety net under the truncation rule).
 FAST_CHECK = 1e-12
+#: Truncation tolerance of the friction's polynomial in a fast sub-step (Jorba–Zou: its last two terms and |V|'s
+#: below this fraction of µk N and of |V|), the same fraction FAST_CHECK accepts at the end.  The friction's error
+#: is then ≤ 1e-12 µk N over a sub-step (h ≤ 1.5/ρ(A)): a force of that size over h moves the state by ~1e-15 of
+#: its scale, so the answers move at rounding (the bench case 4e-14 of its peaks against 1e-16, docs/building.md
+#: "h114"); the rungs near stops and departures lengthen as (1e-12/1e-16)^(1/K), and the series pieces keep
+#: TRUNC_EPS.  The kernel reads it from law[10] (``planar_building.FAST_TRUNC_EPS``); this is the default.
+FAST_TRUNC_EPS = 1e-12
 
 
 @njit(cache=True)
@@ -1110,7 +1117,7 @@ def by_columns(fprop, fvrow):
 
 @njit(cache=True, _nrt=False)
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
-               fvt,
+               fvt, fast_eps,
                farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
@@ -1187,14 +1194,14 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
                 t_f1 = max(abs(eser[0, k - 1]), abs(eser[1, k - 1])) * hk1 * mu_k_n
                 t_r = abs(rser[k]) * hk
                 t_r1 = abs(rser[k - 1]) * hk1
-                if max(t_f, t_f1) <= TRUNC_EPS * scale and (mu_k_n == 0.0 or max(t_r, t_r1) <= TRUNC_EPS * rser[0]):
+                if max(t_f, t_f1) <= fast_eps * scale and (mu_k_n == 0.0 or max(t_r, t_r1) <= fast_eps * rser[0]):
                     k_eff = k
                     converged = True
                     break
         if not converged:
             # the whole series is there: the longest shorter rung at which it reaches rounding
             for lev in range(lev0 + 1, n_lev):
-                k_eff = _order_at(eser, rser, nch, h_top / (1 << (lev - lev0)), mu_k_n)
+                k_eff = _order_at(eser, rser, nch, h_top / (1 << (lev - lev0)), mu_k_n, fast_eps)
                 if k_eff > 0:
                     lev_first = lev
                     converged = True
@@ -1214,8 +1221,8 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
 
 
 @njit(cache=True, _nrt=False)
-def _order_at(eser, rser, nch, h, mu_k_n):
-    """The least order k ≥ 3 at which the friction's and |V|'s series reach rounding over h (Jorba–Zou), or −1."""
+def _order_at(eser, rser, nch, h, mu_k_n, fast_eps):
+    """The least order k ≥ 3 at which the friction's and |V|'s series reach fast_eps over h (Jorba–Zou), or −1."""
     hk = 1.0
     for k in range(nch):
         hk1 = hk
@@ -1225,7 +1232,7 @@ def _order_at(eser, rser, nch, h, mu_k_n):
             t_f = max(abs(eser[0, k]), abs(eser[1, k])) * hk
             t_f1 = max(abs(eser[0, k - 1]), abs(eser[1, k - 1])) * hk1
             t_r = max(abs(rser[k]) * hk, abs(rser[k - 1]) * hk1)
-            if mu_k_n == 0.0 or (max(t_f, t_f1) <= TRUNC_EPS and t_r <= TRUNC_EPS * rser[0]):
+            if mu_k_n == 0.0 or (max(t_f, t_f1) <= fast_eps and t_r <= fast_eps * rser[0]):
                 return k
     return -1
 
@@ -1602,6 +1609,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     reach_shrink = (2.0 * STOP_REACH) ** (1.0 / n_order)
     # ... and such a piece ends at the stop itself when the stop lies within it (law[9])
     use_stop_piece = use_reach and law.shape[0] > 9 and law[9] != 0.0
+    # the fast sub-steps' truncation tolerance of the friction's polynomial (law[10], FAST_TRUNC_EPS)
+    fast_eps = law[10] if law.shape[0] > 10 and law[10] > 0.0 else FAST_TRUNC_EPS
     n_stop_pieces = 0
     r_approach = APPROACH_SPEED * v_ref
     nl1 = n_order + 1
@@ -1711,7 +1720,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fpropt, fpinrow, fpvis, fvt, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
+                                           half_target, fpropt, fpinrow, fpvis, fvt, fast_eps, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
