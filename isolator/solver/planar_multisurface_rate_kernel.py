@@ -691,18 +691,30 @@ def exit_time(nx, ny, qx, qy, bf, mu_s):
 
 @njit(cache=True)
 def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
-    """The surfaces whose static disc r_need = (nx, ny) has left (within :data:`LEVEL_TIE`) start; returns the
-    pivot (the farthest out), its direction of start r_need − b_k in ``direction`` and r = b_k + µ_slow,k e."""
+    """The mass at rest with r_need = (nx, ny) outside the intersection of the static discs: r becomes the nearest
+    point of that intersection, on the circle of the pivot k (the disc left whose nearest point b_k + µ_slow,k e,
+    e = (r_need − b_k)/|r_need − b_k|, lies in every other disc; where none does, a corner, the disc left farthest),
+    and the surfaces on that circle start (equal circles together, within :data:`LEVEL_TIE`).  Returns the pivot,
+    e in ``direction`` and r in ``r``; −1 when r_need is in every disc."""
+    n = mode.shape[0]
     best = -1
     worst = -math.inf
-    for i in range(mode.shape[0]):
-        over = math.hypot(nx - bf[i, 0], ny - bf[i, 1]) - mu_s[i]
-        if over >= -LEVEL_TIE:
-            mode[i] = 1
-            fresh[i] = 1
-            if best < 0 or over > worst:
-                worst = over
-                best = i
+    for i in range(n):
+        dist = math.hypot(nx - bf[i, 0], ny - bf[i, 1])
+        over = dist - mu_s[i]
+        if over < -LEVEL_TIE:
+            continue
+        px = bf[i, 0] + mu_s[i] * (nx - bf[i, 0]) / dist
+        py = bf[i, 1] + mu_s[i] * (ny - bf[i, 1]) / dist
+        held = True
+        for j in range(n):
+            if j != i and math.hypot(px - bf[j, 0], py - bf[j, 1]) > mu_s[j] + LEVEL_TIE:
+                held = False
+        # the nearest point held by every other disc wins; among the rest, the disc left farthest
+        score = over + (1e3 if held else 0.0)
+        if best < 0 or score > worst:
+            worst = score
+            best = i
     if best < 0:
         return best
     dx = nx - bf[best, 0]
@@ -712,6 +724,12 @@ def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
     direction[1] = dy / rho
     r[0] = bf[best, 0] + mu_s[best] * direction[0]
     r[1] = bf[best, 1] + mu_s[best] * direction[1]
+    for i in range(n):
+        if abs(math.hypot(r[0] - bf[i, 0], r[1] - bf[i, 1]) - mu_s[i]) <= LEVEL_TIE:
+            mode[i] = 1
+            fresh[i] = 1
+    mode[best] = 1
+    fresh[best] = 1
     return best
 
 
