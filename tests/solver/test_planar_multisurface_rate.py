@@ -161,6 +161,16 @@ def test_a_rim_is_refused_in_one_line_with_its_time_and_surface(records_dir):
     assert "\n" not in str(info.value)
 
 
+def test_two_surfaces_saturated_together_are_refused_in_one_line():
+    """The equal double at a = 30 s/m reaches 2 m/s (a·v ≈ 30 on both surfaces from 1.76 s): the 1-D model's
+    saturated set is not carried over to the plane, so the run is refused in one line with the time."""
+    dbl = rate_bearing("double", [(1.5, 1.5), (1.5, 1.5)], [0.04, 0.04], [0.08, 0.08], 30.0)
+    ax, ay, dt = pulse_pair(0.3, 0.25)
+    with pytest.raises(SolverError, match=r"at t = 1\.7\d* s \(.*two surfaces saturated together") as info:
+        simulate_bearing_pair_rate(ax, ay, dt, bearing=dbl)
+    assert "\n" not in str(info.value)
+
+
 def test_real_pair_energy_balance(records_dir):
     ax, ay, dt = read_pair(records_dir, 1e9)
     res = simulate_bearing_pair_rate(ax, ay, dt, bearing=TFP)
