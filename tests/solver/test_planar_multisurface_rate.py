@@ -3,8 +3,9 @@
 Truths: the 1-D µ(v) model ``1d-multisurface+mu(v)`` (a pair whose second component is zero, and that record
 along another azimuth), the single-surface engine ``2d+mu(v)`` (an equal double: each surface slides at V/2, so
 it is one pendulum of radius 2R̄ with the rate a/2), rotation and mirror invariance, the energy balance, the
-constant-µ model (µ_slow = µ_fast runs ``2d-multisurface``).  Not here yet: a reference of the equations alone on a
-real pair (scipy's Radau stalled at the first start from rest, docs/multisurface.md).
+constant-µ model (µ_slow = µ_fast runs ``2d-multisurface``); on a real pair, the equal double against the planar
+engine.  Not here yet: a reference of the equations alone on a real pair (scipy's Radau stalled at the first start
+from rest, docs/multisurface.md).
 """
 
 from __future__ import annotations
@@ -169,6 +170,20 @@ def test_two_surfaces_saturated_together_are_refused_in_one_line():
     with pytest.raises(SolverError, match=r"at t = 1\.7\d* s \(.*two surfaces saturated together") as info:
         simulate_bearing_pair_rate(ax, ay, dt, bearing=dbl)
     assert "\n" not in str(info.value)
+
+
+def test_equal_double_on_a_real_pair_is_the_single_pendulum(records_dir):
+    """Superstition Hills PTS (26 events: starts from rest, stops, turns in the plane) on the equal double against
+    the planar engine's single pendulum of radius 2R̄ and rate a/2: measured 1.8e-11 of the peak."""
+    ax, ay, dt = read_pair(records_dir, 1e9)
+    dbl = rate_bearing("double", [(1.5, 1.5), (1.5, 1.5)], [0.04, 0.04], [0.08, 0.08], 10.0)
+    rbar, _, _ = dbl.elements()
+    res = simulate_bearing_pair_rate(ax, ay, dt, bearing=dbl)
+    ref = simulate_pair(ax, ay, dt, mu_static=0.04, radius_m=float(rbar.sum()), mu_slow=0.04, mu_fast=0.08,
+                        rate_s_per_m=5.0)
+    assert res.n_events >= 10
+    assert np.max(np.hypot(*(res.displacement_m - ref.displacement_m).T)) <= 1e-9 * ref.peak_displacement_m
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
 
 def test_real_pair_energy_balance(records_dir):
