@@ -185,6 +185,10 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
         raise SolverError(f"{MODEL_NAME}: surface {int(summary[_pr.S_RIM_SURFACE]) + 1} of the {bearing.kind} bearing "
                           f"reaches its rim at t = {fail_t:.6g} s; the rims of the µ(v) model in the plane are not "
                           "modelled (no answer is given; with a constant 'mu' per surface 2d-multisurface takes them)")
+    if status & _pr.STATUS_WORK:
+        raise SolverError(f"{MODEL_NAME}: more than {_pr.MAX_STEPS_PER_INTERVAL} collocation steps in one sample "
+                          f"interval at t = {fail_t:.6g} s (not resolved: two surfaces saturated together, or a stop "
+                          "approached without end); no answer is given")
     if status & _pr.STATUS_STEP_FAILED:
         raise SolverError(f"{MODEL_NAME}: the step size fell below 1e-13 of the sample interval at t = {fail_t:.6g} s "
                           "(the force through the sliders was not found: two surfaces saturated together, or a "

@@ -69,7 +69,9 @@ REGIME = 3  #: the sliding set changed (a surface started or stopped while the m
 EVENT_NAMES = ("breakaway", "stick", "reversal", "regime")
 
 MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
-MAX_STEPS_PER_INTERVAL = 200000  #: bound on the steps of one sample interval
+#: bound on the collocation double steps of one sample interval, event location included (the run stops there,
+#: :data:`STATUS_WORK`); the real pairs at ×1 take ≤ 21 000 in a whole record
+MAX_STEPS_PER_INTERVAL = 20000
 LEVEL_TIE = 1e-13  #: static discs left within this (F/W) of each other start together
 #: the mass is put at rest when decelerating at a speed ≤ this fraction of the speed scale (max(peak, 1e-3 m/s))
 STOP_SPEED = 1e-10
@@ -78,6 +80,7 @@ STATUS_OK = 0
 STATUS_CHATTER = 1
 STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the run stops there)
 STATUS_RIM = 8  #: a surface reached its rim (not modelled: the run stops there)
+STATUS_WORK = 16  #: more than MAX_STEPS_PER_INTERVAL double steps in one sample interval (the run stops there)
 
 # the summary vector
 S_PEAK_X = 0
@@ -691,18 +694,30 @@ def exit_time(nx, ny, qx, qy, bf, mu_s):
 
 @njit(cache=True)
 def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
-    """The surfaces whose static disc r_need = (nx, ny) has left (within :data:`LEVEL_TIE`) start; returns the
-    pivot (the farthest out), its direction of start r_need − b_k in ``direction`` and r = b_k + µ_slow,k e."""
+    """The mass at rest with r_need = (nx, ny) outside the intersection of the static discs: r becomes the nearest
+    point of that intersection, on the circle of the pivot k (the disc left whose nearest point b_k + µ_slow,k e,
+    e = (r_need − b_k)/|r_need − b_k|, lies in every other disc; where none does, a corner, the disc left farthest),
+    and the surfaces on that circle start (equal circles together, within :data:`LEVEL_TIE`).  Returns the pivot,
+    e in ``direction`` and r in ``r``; −1 when r_need is in every disc."""
+    n = mode.shape[0]
     best = -1
     worst = -math.inf
-    for i in range(mode.shape[0]):
-        over = math.hypot(nx - bf[i, 0], ny - bf[i, 1]) - mu_s[i]
-        if over >= -LEVEL_TIE:
-            mode[i] = 1
-            fresh[i] = 1
-            if best < 0 or over > worst:
-                worst = over
-                best = i
+    for i in range(n):
+        dist = math.hypot(nx - bf[i, 0], ny - bf[i, 1])
+        over = dist - mu_s[i]
+        if over < -LEVEL_TIE:
+            continue
+        px = bf[i, 0] + mu_s[i] * (nx - bf[i, 0]) / dist
+        py = bf[i, 1] + mu_s[i] * (ny - bf[i, 1]) / dist
+        held = True
+        for j in range(n):
+            if j != i and math.hypot(px - bf[j, 0], py - bf[j, 1]) > mu_s[j] + LEVEL_TIE:
+                held = False
+        # the nearest point held by every other disc wins; among the rest, the disc left farthest
+        score = over + (1e3 if held else 0.0)
+        if best < 0 or score > worst:
+            worst = score
+            best = i
     if best < 0:
         return best
     dx = nx - bf[best, 0]
@@ -712,6 +727,12 @@ def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
     direction[1] = dy / rho
     r[0] = bf[best, 0] + mu_s[best] * direction[0]
     r[1] = bf[best, 1] + mu_s[best] * direction[1]
+    for i in range(n):
+        if abs(math.hypot(r[0] - bf[i, 0], r[1] - bf[i, 1]) - mu_s[i]) <= LEVEL_TIE:
+            mode[i] = 1
+            fresh[i] = 1
+    mode[best] = 1
+    fresh[best] = 1
     return best
 
 
@@ -816,7 +837,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
         tau = 0.0
         events_here = 0
         steps_here = 0
-        while tau < dt_i and status & (STATUS_STEP_FAILED | STATUS_RIM) == 0:
+        while tau < dt_i and status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK) == 0:
             a_now[0] = ax[idx] + slope[0] * tau
             a_now[1] = ay[idx] + slope[1] * tau
             if stuck:
@@ -840,7 +861,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 continue
             steps_here += 1
             if steps_here > MAX_STEPS_PER_INTERVAL:
-                status |= STATUS_STEP_FAILED
+                status |= STATUS_WORK
                 fail_t = t_i + tau
                 break
             h = min(h, dt_i - tau)
@@ -953,6 +974,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                         double_step(y, tm, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot,
                                     direction[0], direction[1], r_ev, scale, y_ev, quad_ev)
                         n_newton += quad_ev[3]
+                        steps_here += 1
                         rhs(y_ev, a_now[0] + slope[0] * tm, a_now[1] + slope[1] * tm, g, c, bmat, smat, mode, mu_s,
                             mu_f, a, pivot, direction[0], direction[1], r_ev, bf, dy, jac, False)
                         event_values(y_ev, r_ev, mode, pivot, mu_s, cap, bmat, bf, e1)
@@ -1054,7 +1076,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 stuck = True
             elif state_first_time[code] < 0.0:
                 state_first_time[code] = t_now
-        if status & (STATUS_STEP_FAILED | STATUS_RIM):
+        if status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK):
             for j in range(idx + 1, n_samples):
                 xx = 0.0
                 xy = 0.0
