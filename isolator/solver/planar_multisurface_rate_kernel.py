@@ -737,6 +737,20 @@ def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
 
 
 @njit(cache=True)
+def store_sample(y, ns, j, out_x, out_v):
+    """Sample j of the outputs from the state y: X the sum of the ns surfaces' displacements, V."""
+    xx = 0.0
+    xy = 0.0
+    for i in range(ns):
+        xx += y[2 + 2 * i]
+        xy += y[3 + 2 * i]
+    out_x[j, 0] = xx
+    out_x[j, 1] = xy
+    out_v[j, 0] = y[0]
+    out_v[j, 1] = y[1]
+
+
+@njit(cache=True)
 def _mask(mode):
     sliding = 0
     for i in range(mode.shape[0]):
@@ -1078,15 +1092,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 state_first_time[code] = t_now
         if status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK):
             for j in range(idx + 1, n_samples):
-                xx = 0.0
-                xy = 0.0
-                for i in range(ns):
-                    xx += y[2 + 2 * i]
-                    xy += y[3 + 2 * i]
-                out_x[j, 0] = xx
-                out_x[j, 1] = xy
-                out_v[j, 0] = y[0]
-                out_v[j, 1] = y[1]
+                store_sample(y, ns, j, out_x, out_v)
                 out_a[j, 0] = ax[j]
                 out_a[j, 1] = ay[j]
                 out_en[0, j] = e_in
@@ -1094,15 +1100,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 out_en[2, j] = e_v
             break
         j = idx + 1
-        xx = 0.0
-        xy = 0.0
-        for i in range(ns):
-            xx += y[2 + 2 * i]
-            xy += y[3 + 2 * i]
-        out_x[j, 0] = xx
-        out_x[j, 1] = xy
-        out_v[j, 0] = y[0]
-        out_v[j, 1] = y[1]
+        store_sample(y, ns, j, out_x, out_v)
         if stuck:
             out_a[j, 0] = ax[j]
             out_a[j, 1] = ay[j]
