@@ -9,7 +9,12 @@ closed form, and their reaction enters the step as an effective slab mass and a 
 (:mod:`isolator.solver.planar_building_multisurface_kernel`).  The local error is controlled on the slab and on the
 floors (relative tolerance ``step_tol``); the error is measured in docs/building.md.
 
-Not modelled, each refused in one line: a vertical component, µ(v), a damping ratio ≥ 1 (or differing between
+A vertical component (model ``2d-building-multisurface+vertical``): every surface carries N = M n(t), n = g + a_z
+(the floors and the slab move with the ground vertically; the floors are horizontal shear springs the vertical does
+not load), each implicit step takes n at its mean and books the vertical's work as the rigid block's steps
+(docs/multisurface.md, "The vertical"); the bearings' axial loads take its share P_k,g a_z/g as the 2-D building's.
+
+Not modelled, each refused in one line: the bearing lifting off (n ≤ 0), µ(v), a damping ratio ≥ 1 (or differing between
 modes), static friction above kinetic on a double or triple (a single surface's µs is modelled: held at rest inside µs, sliding at µk).
 
 Outputs: the 2-D building's keys (:class:`~isolator.solver.planar_building.PlanarBuildingResponse`: resultant story
@@ -110,18 +115,16 @@ def scene_needs(scene) -> tuple[str, str] | None:
     floors = getattr(design.superstructure, "floors", None)
     if floors is None:
         return None  # not a superstructure this model reads (2d-multisurface refuses it in one line)
-    return MODEL_NAME, (f"a {len(floors)}-story superstructure on a {bearing.kind} friction pendulum "
-                        f"({len(bearing.surfaces)} surfaces) under two horizontal components: the 2-D series model "
-                        "with rims by implicit steps, the floors propagated exactly within each step (a vertical "
-                        "and µ(v) are refused)")
+    vertical = " and a vertical (n = g + a_z on every surface)" if scene.has_z else ""
+    return MODEL_NAME + ("+vertical" if scene.has_z else ""), (
+        f"a {len(floors)}-story superstructure on a {bearing.kind} friction pendulum ({len(bearing.surfaces)} "
+        f"surfaces) under two horizontal components{vertical}: the 2-D series model with rims by implicit steps, the "
+        "floors propagated exactly within each step (µ(v) is refused)")
 
 
 def _refusal(scene) -> str | None:
     """One line naming what this model does not take for the scene, or None."""
     kind = scene.design.bearing.kind
-    if scene.has_z:
-        return (f"a {kind} bearing under a [superstructure] with a vertical component is not modelled "
-                f"({MODEL_NAME} takes the two horizontal components; the normal force is the weight)")
     if scene.velocity_dependent or any(s.rate_s_per_m is not None and s.mu_slow < s.mu_fast
                                        for s in scene.design.bearing.surfaces):
         return f"µ(v) on a {kind} bearing under a [superstructure] is not modelled (constant µ per surface)"
@@ -134,7 +137,9 @@ def simulate_scene(scene) -> PlanarBuildingMultisurfaceResponse:
     Raises
     ------
     DesignError
-        A vertical component or µ(v) (not modelled).
+        µ(v) (not modelled).
+    SolverError
+        The vertical lifts the bearing off (n = g + a_z ≤ 0).
     InvalidSystemError
         Floors whose damping ratio differs between modes or is ≥ 1.
     """
@@ -164,7 +169,7 @@ def simulate_on(scene, bearing, step_tol: float = DEFAULT_STEP_TOL) -> PlanarBui
         return simulate_building_bearing_pair(
             ax, ay, scene.dt_s, time_s=scene.time_s, superstructure=design.superstructure, bearing=bearing,
             total_mass_kg=mass, damping_Ns_per_m=mass * float(iso.get("damping_per_mass", 0.0)), gravity_m_s2=g,
-            bearing_layout=design.bearing_layout, step_tol=step_tol)
+            bearing_layout=design.bearing_layout, step_tol=step_tol, az_m_s2=scene.az_m_s2 if scene.has_z else None)
 
 
 def static_friction(bearing, mu):
@@ -264,7 +269,7 @@ def _warm_up() -> None:
 def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, time_s=None, superstructure,
                                    bearing, total_mass_kg: float, damping_Ns_per_m: float = 0.0,
                                    gravity_m_s2: float = STANDARD_GRAVITY, bearing_layout=None,
-                                   step_tol: float = DEFAULT_STEP_TOL) -> PlanarBuildingMultisurfaceResponse:
+                                   step_tol: float = DEFAULT_STEP_TOL, az_m_s2=None) -> PlanarBuildingMultisurfaceResponse:
     """Response of a shear building on a multi-surface friction pendulum to two horizontal components.
 
     Parameters
@@ -284,6 +289,9 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     step_tol : float
         Relative tolerance of the implicit steps' local error (of the peak displacement and velocity of the slab
         and of the floors' modes).
+    az_m_s2 : array_like, optional
+        Vertical ground acceleration [m/s²] (up positive), linear between samples: every surface carries
+        N = M (g + a_z) (model ``2d-building-multisurface+vertical``); the bearings' loads take P_k,g a_z/g.
 
     Returns
     -------
@@ -293,7 +301,8 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     ------
     SolverError
         The steps could not finish (their guards: a work bound per sample interval, Newton's failure at the
-        misaligned ultimate, an energy balance open by more than ``RIM_BALANCE_TOL`` with rims reached).
+        misaligned ultimate, an energy balance open by more than ``RIM_BALANCE_TOL`` with rims reached); the
+        vertical lifts the bearing off (n = g + a_z ≤ 0 at a sample: not modelled).
     """
     _warm_up()
     if not (math.isfinite(step_tol) and 1e-12 <= step_tol <= 1e-2):
@@ -307,6 +316,17 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     t0, local = sample_clock(ax.size, dt_s, time_s)
     mass = float(total_mass_kg)
     g = float(gravity_m_s2)
+    az = None
+    if az_m_s2 is not None:
+        az = np.ascontiguousarray(az_m_s2, dtype=np.float64)
+        if az.shape != ax.shape or not np.all(np.isfinite(az)):
+            raise RecordInputError(f"the vertical needs {ax.size} finite samples (the horizontals'), got {az.size}")
+    # n = g + a_z, linear between the samples (g without a vertical)
+    nz = np.full(ax.size, g) if az is None else g + az
+    if not np.all(nz > 0.0):
+        up = int(np.flatnonzero(~(nz > 0.0))[0])
+        raise SolverError(f"the {bearing.kind} bearing under the building lifts off at t = {t0 + float(local[up]):.6g} "
+                          f"s (n = g + a_z = {float(nz[up]):.3g} m/s² ≤ 0): not modelled")
     building = planar_building_system(superstructure, total_mass_kg=mass, stiffness_N_per_m=0.0, mu_static=0.0,
                                       damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=g)
     om, zeta, gam, lin, sig = modal_rows(building, bearing_layout)
@@ -316,10 +336,11 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     tmat = bearing.surface_matrix()
     # the error norm's floors as the rigid block's steps build them (planar_multisurface), for the stiffest group
     pga = float(np.max(np.hypot(ax, ay)))
-    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(g / float(np.min(rb))))
+    n_max = float(np.max(nz))  # the largest n sets the fastest pendulum (g without a vertical)
+    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(n_max / float(np.min(rb))))
     if c > 0.0:
         t_scale = min(t_scale, 1.0 / c)
-    vref = max(float(np.max(mu)) * g, pga, 1e-12) * t_scale
+    vref = max(float(np.max(mu)) * n_max, pga, 1e-12) * t_scale
     scales = np.array([1e-3 * vref * t_scale, 1e-3 * vref, 1e-3 * vref * t_scale, 1e-3 * vref, FLOOR_SCALE])
     n = ax.size
     ny = _ps.carry_slot(rb.size) + 1 + 4 * om.shape[1]
@@ -333,9 +354,13 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     first = np.empty(1 << (2 * members.shape[0]))
     ub = np.zeros((rb.size, 2))
     start = time.perf_counter()
-    _bk.planar_building_multisurface_kernel(local, ax, ay, g, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig,
+    # the vertical's share of the signed rows: a bearing's P_k,g a_z/g (the 2-D building's), none for the moments
+    sig_z = np.zeros(sig.shape[0])
+    if bearing_layout is not None:
+        sig_z[2:] = np.asarray(bearing_layout.gravity_loads_N) / building.gravity_m_s2
+    _bk.planar_building_multisurface_kernel(local, ax, ay, nz, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig,
                                             float(step_tol), scales, out_y, out_r, peaks, sig_max, sig_min, summary,
-                                            surf_peak, first, ub, mu_s)
+                                            surf_peak, first, ub, mu_s, np.zeros(ax.size) if az is None else az, sig_z)
     elapsed = time.perf_counter() - start
     status = int(summary[_pm.S_STATUS])
     fail_t = t0 + float(summary[_pm.S_FAIL_T])
@@ -361,11 +386,12 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     rows = np.stack([modal[d] @ lin[d].T for d in range(2)], axis=2)  # (N, 2n + 1, 2)
     moments = np.stack([modal[d] @ sig[d, d] for d in range(2)], axis=1)
     final = out_y[-1]
-    e_total = float(_bk.total_energy(final, g, rb, om, gam))
+    n_end = float(nz[-1])  # n at the end: the bearing's stored energy n Σ|ū|²/(2R̄)
+    e_total = float(_bk.total_energy(final, n_end, rb, om, gam))
     elements = np.array([members[i, 1] / rb[int(members[i, 0])] * ub[int(members[i, 0])]
                          for i in range(members.shape[0])])
     rbar = np.array([members[i, 1] for i in range(members.shape[0])])
-    stored = float(g * np.sum(np.sum(elements * elements, axis=1) / (2.0 * rbar)))
+    stored = float(n_end * np.sum(np.sum(elements * elements, axis=1) / (2.0 * rbar)))
     kinetic = 0.5 * float(v_b[-1] @ v_b[-1]) + sum(
         float(v_b[-1, d] * (gam[d] @ modal[d][-1, nm:]) + 0.5 * modal[d][-1, nm:] @ modal[d][-1, nm:]) for d in range(2))
     strain = e_total - stored - kinetic
@@ -382,14 +408,14 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         ms_summary[theirs] = summary[ours]
     size = np.hypot(x_b[:, 0], x_b[:, 1])
     fields = response_fields(bearing, ms_summary, {"x": size, "v": size, "a": size, "r": size}, None, surf_peak,
-                             first, np.hypot(elements[:, 0], elements[:, 1]), rbar, g, t0, np.empty(0),
+                             first, np.hypot(elements[:, 0], elements[:, 1]), rbar, n_end, t0, np.empty(0),
                              np.empty(0, dtype=np.int8), np.empty(0))
     bearing_fields = {key: fields[key] for key in (
         "surface_peak_displacement_m", "regimes", "n_rim_contacts", "ultimate_displacement_reached",
         "ultimate_displacement_m", "ultimate_first_time_s", "impact_impulse_m_s", "max_impact_velocity_m_s",
         "peak_force_per_weight")}
     n_floors = nm
-    force = g * out_r + c * v_b
+    force = nz[:, None] * out_r + c * v_b
     peak_resultants = np.zeros(2 * n_floors + 4)
     peak_resultants[:2 * n_floors + 3] = peaks[:2 * n_floors + 3]
     peak_resultants[3 + 2 * n_floors] = peaks[-1] * mass
@@ -416,8 +442,10 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         n_steps=int(summary[_pm.S_N_STEPS]), step_tol=float(step_tol),
         impact_impulse_N_s=building.slab_mass_kg * bearing_fields["impact_impulse_m_s"],
         element_displacement_m=elements,
-        model_reason=(f"a shear building on a {bearing.kind} bearing under a pair: implicit steps, local error "
-                      f"tolerance {step_tol:g}, the floors exact within each step"),
+        model=MODEL_NAME + ("+vertical" if az is not None else ""), vertical_acceleration_m_s2=az,
+        model_reason=(f"a shear building on a {bearing.kind} bearing under a pair"
+                      + (" and a vertical (n = g + a_z)" if az is not None else "")
+                      + f": implicit steps, local error tolerance {step_tol:g}, the floors exact within each step"),
         **bearing_fields,
     )
 

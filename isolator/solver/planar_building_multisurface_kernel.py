@@ -108,6 +108,7 @@ from isolator.solver.planar_multisurface_stepper import (
     groups_within_rims,
     popcount,
     ultimate_impact,
+    vertical_work,
     work_bound,
 )
 
@@ -370,9 +371,10 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
 
 
 @njit(cache=True)
-def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
+def _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
     """Whether the force the stuck slab needs at τ into a step from y (V = 0: the floors propagated with ẍ_b = 0)
-    lies outside a friction circle: r = −(a_g + Σ Γ̃_i q̃_i'')/g, q̃'' from the modes' equations.  A single group on
+    lies outside a friction circle: r = −(a_g + Σ Γ̃_i q̃_i'')/n, q̃'' from the modes' equations (n = g + sz τ: the
+    normal force per unit mass at τ, g + a_z with a vertical of slope sz [m/s³] over the step).  A single group on
     its rim also holds any outward push (its rim's reaction): it lets go only of a force whose part along the rim,
     or (pulling inward) whose whole, leaves its circle (a single pendulum held at its capacity: without it every
     held step there broke away at once, 7.7e-4 of the peak off the 1-D building; with more groups on their rims
@@ -392,9 +394,9 @@ def _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
             q1, v1, _, _ = floor_mode(y[j], y[j + nm], a0, s, tau, om[d, i], zeta, gam[d, i], False)
             acc += gam[d, i] * (-2.0 * zeta * om[d, i] * v1 - om[d, i] * om[d, i] * q1 - gam[d, i] * ag)
         if d == 0:
-            r_x = -acc / g
+            r_x = -acc / (g + sz * tau)
         else:
-            r_y = -acc / g
+            r_y = -acc / (g + sz * tau)
     for k in range(ng):
         u1 = y[Y_U + 2 * k]
         u2 = y[Y_U + 2 * k + 1]
@@ -417,20 +419,21 @@ STUCK_CHECKS = 8
 
 
 @njit(cache=True)
-def breakaway_in(y, h, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
+def breakaway_in(y, h, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
     """The break-away inside a stuck step of length h from y: the first of STUCK_CHECKS points where the force the
-    slab needs leaves a circle, then bisection to rounding between it and the point before; -1 when none."""
+    slab needs leaves a circle, then bisection to rounding between it and the point before; -1 when none (``g``
+    the normal force per unit mass at the step's start, ``sz`` its slope [m/s³])."""
     prev = 0.0
     for j in range(1, STUCK_CHECKS + 1):
         tau = h * j / STUCK_CHECKS
-        if _outside(y, tau, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
+        if _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
             lo = prev
             hi = tau
             for _ in range(200):
                 mid = 0.5 * (lo + hi)
                 if not (lo < mid < hi):
                     break
-                if _outside(y, mid, a0x, a0y, sx, sy, g, rb, mu, rim, om, zeta, gam):
+                if _outside(y, mid, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
                     hi = mid
                 else:
                     lo = mid
@@ -467,8 +470,9 @@ MAX_WATCH_POINTS = 200
 
 
 @njit(cache=True)
-def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min):
-    # the peaks of the watched rows' resultants (peaks[2:]) and the signed rows' extremes at the state y
+def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z, az):
+    # the peaks of the watched rows' resultants (peaks[2:]) and the signed rows' extremes at the state y, the
+    # vertical's share sig_z a_z added to the signed rows (a bearing's P_k,g a_z/g, the 2-D building's; 0 for the moments)
     _floor_rows(y, f0, nm, 0, lin, rowx)
     _floor_rows(y, f0, nm, 1, lin, rowy)
     for k in range(lin.shape[1]):
@@ -478,6 +482,8 @@ def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min):
         for d in range(2):
             for j in range(2 * nm):
                 acc += sig[k, d, j] * y[f0 + 2 * nm * d + j]
+        if az != 0.0:
+            acc += sig_z[k] * az
         sig_max[k] = max(sig_max[k], acc)
         sig_min[k] = min(sig_min[k], acc)
 
@@ -503,13 +509,18 @@ def _floor_rows(y, f0, nm, d, lin, row):
 
 
 @njit(cache=True)
-def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig, tol,
+def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig, tol,
                                         scales, out_y, out_r, peaks, sig_max, sig_min, summary, surf_peak, first, ub,
-                                        mu_s):
+                                        mu_s, az, sig_z):
     """Response of a shear building on a multi-surface bearing to a piecewise-linear pair, by implicit steps.
 
-    ``g`` [m/s²], ``c`` the isolator's dashpot per unit total mass [1/s]; ``rb, mu, rim, members, tmat`` the
-    stepper's groups; ``om, zeta, gam`` the floors' fixed-base modes (ω_i [rad/s], ζ, Γ̃_i = φ_iᵀ M_s 1/√M);
+    ``nz`` = g + a_z [m/s²] at the samples (linear between them; g without a vertical): the normal force per unit
+    mass on every surface, each step taking it at its mean (as the rigid block's steps,
+    :func:`~isolator.solver.planar_multisurface_stepper.planar_multisurface_stepper`) and booking the vertical's work
+    (:func:`~isolator.solver.planar_multisurface_stepper.vertical_work`); the floors are horizontal shear springs, the
+    vertical does not load them; ``az`` the vertical [m/s²] at the samples and ``sig_z`` its share of the signed rows
+    (a bearing's P_k,g/g, 0 for the moments).  ``c`` the isolator's dashpot per unit total mass [1/s]; ``rb, mu,
+    rim, members, tmat`` the stepper's groups; ``om, zeta, gam`` the floors' fixed-base modes (ω_i [rad/s], ζ, Γ̃_i = φ_iᵀ M_s 1/√M);
     ``lin`` (rows, 2 n_modes) the watched rows per direction on (q̃, q̃'), ``sig`` (rows, 2, 2 n_modes) the signed
     rows on both directions; ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
     Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants,
@@ -582,14 +593,16 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
     stop_h = -1.0
     for j in range(ny):
         out_y[0, j] = 0.0
-    out_r[0, 0] = -ax[0] / g
-    out_r[0, 1] = -ay[0] / g
+    out_r[0, 0] = -ax[0] / nz[0]
+    out_r[0, 1] = -ay[0] / nz[0]
     peaks[nk + 2] = math.sqrt(ax[0] * ax[0] + ay[0] * ay[0])
     last = 0
     for i in range(n - 1):
         hi = t[i + 1] - t[i]
         slope_x = (ax[i + 1] - ax[i]) / hi
         slope_y = (ay[i + 1] - ay[i]) / hi
+        slope_z = (nz[i + 1] - nz[i]) / hi
+        slope_az = (az[i + 1] - az[i]) / hi
         tau = 0.0
         h_floor = H_MIN_FRACTION * hi
         h = hi if (h_sugg <= 0.0 or h_sugg > hi) else h_sugg
@@ -609,24 +622,36 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
             # planar_multisurface_stepper.arrival_time): the steps end ARRIVAL_FRACTION × hi before it, the last of it
             # is one move (arrive, the floors carried with the slab's velocity kept), the impact after it
             h_keep = h
-            h, jump = arrival_step(y, rim, r, g, h, hi, tau)
+            h, jump = arrival_step(y, rim, r, nz[i] + slope_z * tau, h, hi, tau)
             last_step = h >= hi - tau
             at_floor = not h > h_floor
             a0x = ax[i] + slope_x * tau
             a0y = ay[i] + slope_y * tau
             mu_now = mu_s if held_s else mu
+            # n = g + a_z at its mean over each step (linear: at its middle), the vertical's work booked after each solve
+            # (the first half's before the second starts from it), as the rigid block's steps
             if jump:
-                m1 = _jump(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y2, r2)
+                m1 = _jump(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu, rim, om,
+                           zeta, gam, r, y2, r2)
                 mh = m1
                 work += 0.0
+                if slope_z != 0.0:
+                    vertical_work(y, y2, rb, slope_z * h)
+                    r2[0] = -(a0x + h * slope_x) / (nz[i] + slope_z * (tau + h))
+                    r2[1] = -(a0y + h * slope_y) / (nz[i] + slope_z * (tau + h))
             else:
-                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, g, c, rb, mu_now, rim, om, zeta, gam, r, y1,
-                                   r1)
-                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, g, c, rb, mu_now, rim, om, zeta, gam, r1,
-                                   yh, rh)
+                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu_now,
+                                   rim, om, zeta, gam, r, y1, r1)
+                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.25 * h), c, rb,
+                                   mu_now, rim, om, zeta, gam, r1, yh, rh)
+                if slope_z != 0.0:
+                    vertical_work(y, y1, rb, slope_z * h)
+                    vertical_work(y, yh, rb, 0.5 * slope_z * h)
             m2 = mh if jump else building_step(
                 yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), slope_x, slope_y,
-                g, c, rb, mu_now, rim, om, zeta, gam, rh, y2, r2)
+                nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu_now, rim, om, zeta, gam, rh, y2, r2)
+            if slope_z != 0.0 and not jump:
+                vertical_work(yh, y2, rb, 0.5 * slope_z * h)
             if jump:
                 for j in range(ny):
                     y1[j] = y2[j]
@@ -644,7 +669,8 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     and h > 2.0 * h_floor):
                 # stuck in all three solves: the break-away inside the step, if any, ends it (the steps restart from
                 # it with a short one, as the rigid block's from its exact break-away)
-                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, g, rb, mu_now, rim, om, zeta, gam)
+                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_now, rim, om,
+                                   zeta, gam)
                 if t_b > h_floor:
                     h = t_b
                     started = True
@@ -653,7 +679,8 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                 # at rest under µs and a solve slid: the break-away is inside the step (the force the slab needs
                 # leaves a µs circle: the step ends there, held) or at its start (the slab leaves at µk); none found
                 # (every group held, those on their rims by them): the µs solves stand
-                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, g, rb, mu_s, rim, om, zeta, gam)
+                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_s, rim, om,
+                                   zeta, gam)
                 if h_floor < t_b < h and h > 2.0 * h_floor:
                     h = t_b
                     started = True
@@ -678,7 +705,8 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     if up - lo <= h_floor:
                         break
                     mid = 0.5 * (lo + up)
-                    ma = building_step(y, mid, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y0, ra)
+                    ma = building_step(y, mid, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * mid), c, rb,
+                                       mu, rim, om, zeta, gam, r, y0, ra)
                     work += ra[2]
                     if ra[R_IMPULSE] > 0.0 or (ma >> ng) & ~rims0 & away:
                         up = mid
@@ -753,13 +781,15 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                     mid = 0.5 * (lo + up)
                     if not (lo < mid < up):
                         break
-                    building_step(y, mid, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y0, ra)
+                    building_step(y, mid, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * mid), c, rb, mu,
+                                  rim, om, zeta, gam, r, y0, ra)
                     work += ra[2]
                     if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
                         lo = mid
                     else:
                         up = mid
-                building_step(y, up, a0x, a0y, slope_x, slope_y, g, c, rb, mu, rim, om, zeta, gam, r, y0, ra)
+                building_step(y, up, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * up), c, rb, mu, rim,
+                              om, zeta, gam, r, y0, ra)
                 if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= vs and up < h:
                     h = up
                     stop_h = up
@@ -772,12 +802,12 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
             if stop_h == h:
                 # the step cut at the stop: the slab's velocity left (below the velocity tolerance) is taken away as
                 # an impulse on the slab alone (the floors keep their absolute velocity), its energy booked as friction
-                e_before = total_energy(y, g, rb, om, gam)
+                e_before = total_energy(y, nz[i], rb, om, gam)  # the bearing's stored energy unchanged: any n
                 for d in range(2):
                     for k in range(nm):
                         y[f0 + 2 * nm * d + nm + k] += gam[d, k] * y[Y_V + d]
                     y[Y_V + d] = 0.0
-                y[Y_EF] += e_before - total_energy(y, g, rb, om, gam)
+                y[Y_EF] += e_before - total_energy(y, nz[i], rb, om, gam)
             stop_h = -1.0
             if static:
                 if y[Y_V] == 0.0 and y[Y_V + 1] == 0.0:
@@ -785,6 +815,7 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                 if started:
                     held_s = False
             tau = hi if last_step else tau + h
+            g = nz[i] + slope_z * tau  # n at the step's end
             on_rim = m2 >> ng
             if on_rim & away:
                 n_rim += popcount(element_mask(on_rim & away, members))
@@ -869,14 +900,15 @@ def planar_building_multisurface_kernel(t, ax, ay, g, c, rb, mu, rim, members, t
                                                       False)
                             yw[jj] = q1
                             yw[jj + nm] = v1
-                    _watch(yw, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min)
+                    _watch(yw, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z,
+                           az[i] + slope_az * (tau - h + tp))
                     if held_step:
                         # the slab held (stuck, or at the ultimate) through the step: the bearing's force is what the
                         # slab needs, −(a_g + Σ Γ̃ q̃''), per unit total mass
                         f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, 0)
                         f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
                         peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
-            _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min)
+            _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z, az[i] + slope_az * tau)
             if not groups_within_rims(y, ub, rim):
                 status |= STATUS_RIM
                 fail_t = t[i] + tau

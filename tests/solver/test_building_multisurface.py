@@ -479,8 +479,8 @@ def test_cli_simulate_with_a_building_on_a_double(records_dir, tmp_path):
 
 
 @pytest.mark.parametrize("what, match", [
-    # a pair alone is 2d-building-multisurface's (tests/solver/test_planar_building_multisurface.py)
-    ("pair+vertical", "triple bearing under a \\[superstructure\\] with a vertical component is not modelled"),
+    # a pair alone is 2d-building-multisurface's (tests/solver/test_planar_building_multisurface.py), a pair and a
+    # vertical 2d-building-multisurface+vertical's (tests/solver/test_planar_building_multisurface_vertical.py)
     ("vertical", "triple bearing under a \\[superstructure\\] is not modelled"),
     ("mu(v)", "µ\\(v\\) under a \\[superstructure\\] is not modelled"),
 ])
