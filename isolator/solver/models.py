@@ -93,7 +93,7 @@ MODELS: dict[str, Model] = {model.name: model for model in (
           "under a pair: Radau IIA with events, coupled friction, no rims"),
     Model(planar_building_multisurface.MODEL_NAME, planar_building_multisurface.scene_needs,
           planar_building_multisurface.simulate_scene, "shear building on a double or triple friction pendulum under a "
-          "pair: implicit steps with rims, the floors exact within each step"),
+          "pair (and its vertical): implicit steps with rims, the floors exact within each step"),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
           "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
     Model(building_multisurface.MODEL_NAME, building_multisurface.scene_needs, building_multisurface.simulate_scene,
