@@ -44,7 +44,13 @@ from isolator.solver.multisurface import response_fields
 from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_building import PlanarBuildingResponse, planar_building_system
-from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, RIM_BALANCE_TOL, element_groups
+from isolator.solver.planar_multisurface import (
+    DEFAULT_STEP_TOL,
+    RIM_BALANCE_TOL,
+    element_groups,
+    normal_per_mass,
+    speed_scales,
+)
 from isolator.solver.record import sample_clock
 from isolator.units import STANDARD_GRAVITY
 
@@ -321,12 +327,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         az = np.ascontiguousarray(az_m_s2, dtype=np.float64)
         if az.shape != ax.shape or not np.all(np.isfinite(az)):
             raise RecordInputError(f"the vertical needs {ax.size} finite samples (the horizontals'), got {az.size}")
-    # n = g + a_z, linear between the samples (g without a vertical)
-    nz = np.full(ax.size, g) if az is None else g + az
-    if not np.all(nz > 0.0):
-        up = int(np.flatnonzero(~(nz > 0.0))[0])
-        raise SolverError(f"the {bearing.kind} bearing under the building lifts off at t = {t0 + float(local[up]):.6g} "
-                          f"s (n = g + a_z = {float(nz[up]):.3g} m/s² ≤ 0): not modelled")
+    nz = normal_per_mass(az, g, t0, local, f"the {bearing.kind} bearing under the building")
     building = planar_building_system(superstructure, total_mass_kg=mass, stiffness_N_per_m=0.0, mu_static=0.0,
                                       damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=g)
     om, zeta, gam, lin, sig = modal_rows(building, bearing_layout)
@@ -335,12 +336,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
     mu_s = static_friction(bearing, mu)
     tmat = bearing.surface_matrix()
     # the error norm's floors as the rigid block's steps build them (planar_multisurface), for the stiffest group
-    pga = float(np.max(np.hypot(ax, ay)))
-    n_max = float(np.max(nz))  # the largest n sets the fastest pendulum (g without a vertical)
-    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(n_max / float(np.min(rb))))
-    if c > 0.0:
-        t_scale = min(t_scale, 1.0 / c)
-    vref = max(float(np.max(mu)) * n_max, pga, 1e-12) * t_scale
+    t_scale, vref = speed_scales(ax, ay, local, nz, rb, mu, c)
     scales = np.array([1e-3 * vref * t_scale, 1e-3 * vref, 1e-3 * vref * t_scale, 1e-3 * vref, FLOOR_SCALE])
     n = ax.size
     ny = _ps.carry_slot(rb.size) + 1 + 4 * om.shape[1]

@@ -158,6 +158,36 @@ def simulate_scene(scene) -> PlanarMultisurfaceResponse:
                                  gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
 
 
+def normal_per_mass(az, g: float, t0: float, local, subject: str) -> np.ndarray:
+    """n = g + a_z at the samples [m/s²] (g without a vertical), linear between them: the normal force per unit of
+    the isolated mass that every surface carries.
+
+    Raises
+    ------
+    SolverError
+        n ≤ 0 at a sample (``subject`` lifts off): massless sliders under no normal force have no position, so the
+        lift-off is not modelled for a double or triple bearing.
+    """
+    nz = np.full(local.size, g) if az is None else g + az
+    if az is not None and not np.all(nz > 0.0):
+        up = int(np.flatnonzero(~(nz > 0.0))[0])
+        raise SolverError(f"{subject} lifts off at t = {t0 + float(local[up]):.6g} s (n = g + a_z = {float(nz[up]):.3g} "
+                          "m/s² ≤ 0): not modelled for a double or triple bearing")
+    return nz
+
+
+def speed_scales(ax, ay, local, nz, rb, mu, c: float) -> tuple[float, float]:
+    """``(t_scale [s], vref [m/s])`` as the planar engine builds them (docs/planar.md), for the stiffest group: the
+    sample interval, the fastest pendulum (at the largest n = g + a_z) and 1/c bound the time; the largest friction
+    force per mass or the PGA over it gives the speed."""
+    pga = float(np.max(np.hypot(ax, ay)))
+    n_max = float(np.max(nz))
+    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(n_max / float(np.min(rb))))
+    if c > 0.0:
+        t_scale = min(t_scale, 1.0 / c)
+    return t_scale, max(float(np.max(mu)) * n_max, pga, 1e-12) * t_scale
+
+
 def element_groups(bearing, split_rims: bool = False):
     """The series elements gathered into groups of equal friction (equal circles: they slide together).
 
@@ -365,23 +395,10 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     if not (c >= 0.0 and math.isfinite(c) and g > 0.0 and math.isfinite(g)):
         raise ValueError("damping_per_mass must be >= 0 and gravity_m_s2 > 0, both finite")
     az = None if az_m_s2 is None else _samples("az_m_s2", az_m_s2, ax.size)
-    # n = g + a_z, linear between the samples (g without a vertical)
-    nz = np.full(ax.size, g) if az is None else g + az
-    if az is not None and not np.all(nz > 0.0):
-        # massless sliders under no normal force have no position: the lift-off is not modelled
-        first_up = int(np.flatnonzero(~(nz > 0.0))[0])
-        raise SolverError(f"the {bearing.kind} bearing lifts off at t = {t0 + float(local[first_up]):.6g} s (n = g + "
-                          f"a_z = {float(nz[first_up]):.3g} m/s² ≤ 0): not modelled for a double or triple bearing")
+    nz = normal_per_mass(az, g, t0, local, f"the {bearing.kind} bearing")
     rb, mu, rim, members = element_groups(bearing)
     tmat = bearing.surface_matrix()
-    # speed scales as the planar engine builds them (docs/planar.md), for the stiffest group
-    pga = float(np.max(np.hypot(ax, ay)))
-    # the largest n = g + a_z sets the fastest pendulum (g without a vertical)
-    n_max = float(np.max(nz))
-    t_scale = min(float(np.median(np.diff(local))), 1.0 / math.sqrt(n_max / float(np.min(rb))))
-    if c > 0.0:
-        t_scale = min(t_scale, 1.0 / c)
-    vref = max(float(np.max(mu)) * n_max, pga, 1e-12) * t_scale
+    t_scale, vref = speed_scales(ax, ay, local, nz, rb, mu, c)
     scales = np.array([R_MIN_FACTOR * vref, R_SWITCH_MULTI_FACTOR * vref, 1e-3 * vref * t_scale, 1e-3 * vref,
                        R_SWITCH_MULTI_LO_FACTOR * vref])
     reason = f"a {bearing.kind} bearing: the series model in the plane, "

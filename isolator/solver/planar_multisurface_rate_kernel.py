@@ -115,6 +115,16 @@ def back_forces(y, bmat, out_b):
 
 
 @njit(cache=True)
+def radial_jacobian(ex, ey, radial, tangential, out_d):
+    """The 2 × 2 derivative of a radial law q(ρ) e (e = (ex, ey) the unit direction) in ``out_d``: ``radial`` = q'(ρ)
+    along e, ``tangential`` = q/ρ across it."""
+    out_d[0, 0] = radial * ex * ex + tangential * (1.0 - ex * ex)
+    out_d[0, 1] = (radial - tangential) * ex * ey
+    out_d[1, 0] = out_d[0, 1]
+    out_d[1, 1] = radial * ey * ey + tangential * (1.0 - ey * ey)
+
+
+@njit(cache=True)
 def slide_vector(fx, fy, mu_s, mu_f, a, out_d):
     """Slide velocity [m/s] of a surface at friction excess f = r − b: φ(|f|) f/|f| (continued through the onset:
     φ < 0 inside the static disc), and its derivative d(u̇)/df in ``out_d`` [2 × 2]; NaN outside |f| < µ_fast."""
@@ -126,11 +136,7 @@ def slide_vector(fx, fy, mu_s, mu_f, a, out_d):
         return math.nan, math.nan
     ex = fx / rho
     ey = fy / rho
-    t = sp / rho
-    out_d[0, 0] = dsp * ex * ex + t * (1.0 - ex * ex)
-    out_d[0, 1] = (dsp - t) * ex * ey
-    out_d[1, 0] = out_d[0, 1]
-    out_d[1, 1] = dsp * ey * ey + t * (1.0 - ey * ey)
+    radial_jacobian(ex, ey, dsp, sp / rho, out_d)
     return sp * ex, sp * ey
 
 
@@ -146,11 +152,7 @@ def friction_vector(vx, vy, ex0, ey0, mu_s, mu_f, a, out_d):
         ex = ex0
         ey = ey0
     mu, dmu = friction_at_rate(s, 1.0, mu_s, mu_f, a)
-    t = mu / s if s > 0.0 else 0.0
-    out_d[0, 0] = dmu * ex * ex + t * (1.0 - ex * ex)
-    out_d[0, 1] = (dmu - t) * ex * ey
-    out_d[1, 0] = out_d[0, 1]
-    out_d[1, 1] = dmu * ey * ey + t * (1.0 - ey * ey)
+    radial_jacobian(ex, ey, dmu, mu / s if s > 0.0 else 0.0, out_d)
     return mu * ex, mu * ey
 
 
