@@ -87,14 +87,6 @@ STOP_PIECE = True
 #: accepts): 1e-16 is the previous rule, the pieces' own; 1e-12 lengthens the rungs near stops and departures, the
 #: answers moving at rounding (docs/building.md, h114).
 FAST_TRUNC_EPS = _pk.FAST_TRUNC_EPS
-#: Departures by collocation (the kernel's law[11], ``_colloc_step``): within COLLOC_WINDOW sub-steps of a break-away
-#: or a reversal, a sliding sub-step takes the rung within COLLOC_REACH of the time since it with the friction's
-#: polynomial fixed at Chebyshev–Lobatto nodes (docs/building.md, h121). Exact (the answers within 1e-13) but not faster
-#: (bench +1 %, µs > µk +3 %): off, and reverted in the next commit; kept in the history for the next attempt.
-DEPARTURE_COLLOCATION = False
-#: the collocation's rung at most COLLOC_REACH × the time since the departure, tried within COLLOC_WINDOW sub-steps
-COLLOC_REACH = _pk.COLLOC_REACH
-COLLOC_WINDOW = _pk.COLLOC_WINDOW
 
 
 @dataclass
@@ -298,72 +290,6 @@ def _fast_tables(system: PlanarBuildingSystem, h: float, watched: tuple) -> tupl
     return prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig, prop_t, v_t, end
 
 
-def _chebyshev_tables(kc: int) -> tuple:
-    """The collocation's fixed tables on x ∈ [0, 1] (:func:`planar_building_kernel._colloc_step`): the points (the
-    kc + 1 Chebyshev–Lobatto nodes x_j = (1 − cos(π j/kc))/2, then three check points halfway in angle between nodes
-    at both ends and in the middle), node values → Chebyshev coefficients of T_k(2x − 1), those → monomials in x
-    (integers, exact), and the interpolant's integral over [0, 1] (Clenshaw–Curtis)."""
-    nodes = 0.5 * (1.0 - np.cos(np.pi * np.arange(kc + 1) / kc))
-    checks = 0.5 * (1.0 - np.cos(np.pi * (np.array([0, kc // 2, kc - 1]) + 0.5) / kc))
-    points = np.concatenate([nodes, checks])
-    t_nodes = np.cos(np.outer(np.arccos(np.clip(2.0 * nodes - 1.0, -1.0, 1.0)), np.arange(kc + 1)))
-    ccheb = np.linalg.inv(t_nodes)
-    # T_k(y) by T_{k+1} = 2y T_k − T_{k−1} in integers, then y = 2x − 1 by the binomial theorem
-    cheb = [[1], [0, 1]]
-    for k in range(1, kc):
-        nxt = [0] + [2 * c for c in cheb[k]]
-        for j, c in enumerate(cheb[k - 1]):
-            nxt[j] -= c
-        cheb.append(nxt)
-    ct2m = np.zeros((kc + 1, kc + 1))
-    for k in range(kc + 1):
-        mono = [0] * (kc + 1)
-        for p, c in enumerate(cheb[k]):
-            for j in range(p + 1):
-                mono[j] += c * math.comb(p, j) * 2 ** j * (-1) ** (p - j)
-        ct2m[:, k] = mono
-    even = np.array([1.0 / (1.0 - k * k) if k % 2 == 0 else 0.0 for k in range(kc + 1)])
-    return points, ccheb, ct2m, even @ ccheb
-
-
-def _colloc_tables(system: PlanarBuildingSystem, h: float) -> tuple:
-    """The collocation's tables for the ladder h, h/2 … (the kernel's cx, cfree, cmat, ccheb, ct2m, cquad): per rung
-    and direction V at each point from [z, a_g, ȧ_g] (the sliding linear block's e^{Lτ}) and from the friction's
-    value at each node (∫₀^τ k(τ − s) L_i(s/h_l) ds, k(σ) = e_v e^{Lσ} p its Taylor series, ρ h ≤ THETA_FAST, by
-    48-point Gauss–Legendre: the Lagrange basis directly, no monomials).  Kept in ``system.cache``."""
-    from scipy.linalg import expm
-
-    kc = _pk.COLLOC_ORDER
-    key = ("colloc", h, kc, *(one.a_modes.tobytes() for one in system.directions))
-    if key not in system.cache:
-        m = 2 * system.n_floors + 2
-        points, ccheb, ct2m, cquad = _chebyshev_tables(kc)
-        levels = _pk.FAST_LEVELS
-        cfree = np.empty((levels, 2, points.size, m + 2))
-        cmat = np.empty((levels, 2, points.size, kc + 1))
-        g_x, g_w = np.polynomial.legendre.leggauss(48)
-        orders = np.arange(kc + 1)
-        for d, one in enumerate(system.directions):
-            linear = one.a_modes[1][:m + 2, :m + 2]
-            p_col = one.a_modes[1][:m + 2, m + 2]
-            coef = np.empty(64)
-            vec = p_col.copy()
-            for n in range(coef.size):
-                coef[n] = vec[1]
-                vec = linear @ vec / (n + 1)
-            for lev in range(levels):
-                h_lev = h / 2 ** lev
-                for j, x in enumerate(points):
-                    tau = x * h_lev
-                    cfree[lev, d, j] = expm(linear * tau)[1]
-                    s = 0.5 * tau * (1.0 + g_x)
-                    kern = np.polynomial.polynomial.polyval(tau - s, coef)
-                    basis = np.cos(np.outer(np.arccos(np.clip(2.0 * s / h_lev - 1.0, -1.0, 1.0)), orders)) @ ccheb
-                    cmat[lev, d, j] = 0.5 * tau * (g_w * kern) @ basis
-        system.cache[key] = (points, cfree, cmat, ccheb, ct2m, cquad)
-    return system.cache[key]
-
-
 def _layout_key(layout) -> tuple | None:
     """What the watched rows read of a bearing layout (positions and gravity loads), as a cache key (None: none)."""
     if layout is None:
@@ -376,13 +302,12 @@ def _run_tables(system: PlanarBuildingSystem, layout, h: float | None) -> tuple:
     bearing layout and the sub-step length h (None: no fast sub-steps, tables of zeros), kept in ``system.cache``:
     they depend only on the system (the design), the layout and h, so a review's runs of one design build them once.
     """
-    key = ("run", h, _layout_key(layout), _pk.COLLOC_ORDER)
+    key = ("run", h, _layout_key(layout))
     if key not in system.cache:
         watched = _watched(system, layout)
         if h is not None:
             (prop, p_in_rows, p_vis, v_rows, rate1, rate2, mon, sig, prop_t, v_t,
              end) = _fast_tables(system, h, watched)
-            colloc = _colloc_tables(system, h)
         else:
             m = 2 * system.n_floors + 2
             size = m + 3 + _pk.FAST_ORDER
@@ -393,11 +318,9 @@ def _run_tables(system: PlanarBuildingSystem, layout, h: float | None) -> tuple:
             mon, sig = np.zeros((2, nk, 2, _pk.FAST_POW, size)), np.zeros((2, nj, 2, _pk.FAST_POW, size))
             prop_t, v_t = np.zeros((levels, 2, 2, size, m)), np.zeros((2, size, _pk.FAST_ORDER + 1))
             end = _pk.end_rows(mon, sig, m)
-            colloc = (np.zeros(1), np.zeros((1, 2, 1, m + 2)), np.zeros((1, 2, 1, 1)), np.zeros((1, 1)),
-                      np.zeros((1, 1)), np.zeros(1))
         if len(system.cache) > 16:
             system.cache.pop(next(iter(system.cache)))
-        system.cache[key] = (watched, (prop_t, p_in_rows, p_vis, v_t, rate1, rate2, mon, sig, end, *colloc))
+        system.cache[key] = (watched, (prop_t, p_in_rows, p_vis, v_t, rate1, rate2, mon, sig, end))
     return system.cache[key]
 
 
@@ -523,8 +446,6 @@ class PlanarBuildingResponse(BuildingKeys, SolverResult):
     n_pieces_by_phase: tuple = ()
     #: slides whose slowing series piece ran to the stop itself (``STOP_PIECE``)
     n_stop_pieces: int = 0
-    #: the departure's collocation sub-steps (h121): taken, and tried but not taken (then the Taylor sub-step)
-    n_colloc_steps: tuple = (0, 0)
     n_extrema_located: int = 0
     bearing_layout: object = None
     residual_displacement_x_m: float = 0.0
@@ -859,7 +780,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(14)
+    law = np.zeros(11)
     law[1] = g
     law[5] = 1.0 if STOP_APPROACH else 0.0
     law[6] = 1.0 if DEPARTURE_SERIES else 0.0
@@ -867,9 +788,6 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     law[8] = 1.0 if STOP_REACH_SERIES else 0.0
     law[9] = 1.0 if STOP_PIECE else 0.0
     law[10] = FAST_TRUNC_EPS
-    law[11] = 1.0 if DEPARTURE_COLLOCATION else 0.0
-    law[12] = COLLOC_REACH
-    law[13] = COLLOC_WINDOW
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert
@@ -970,7 +888,6 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
         n_pieces_by_phase=tuple(int(v) for v in summary[_pk.S_N_PIECES_BY_MODE:_pk.S_N_PIECES_BY_MODE + _pk.N_PIECE_KINDS]),
         n_extrema_located=int(summary[_pk.S_N_LOCATED]),
         n_stop_pieces=int(summary[_pk.S_N_STOP_PIECES]),
-        n_colloc_steps=(int(summary[_pk.S_N_COLLOC]), int(summary[_pk.S_N_COLLOC_REFUSED])),
         bearing_layout=bearing_layout,
         vertical_acceleration_m_s2=normal.az,
     )

@@ -111,10 +111,7 @@ S_N_PIECES_BY_MODE = 13
 N_PIECE_KINDS = 6
 #: slides whose slowing piece ran to the stop itself (law[9])
 S_N_STOP_PIECES = 19
-#: collocation sub-steps taken (h121's departures), and tried but not taken
-S_N_COLLOC = 20
-S_N_COLLOC_REFUSED = 21
-SUMMARY_SIZE = 22
+SUMMARY_SIZE = 20
 
 #: Fast sub-steps (stuck or sliding, a uniform record): the longest, as ρ(A) h [-].  Within it a
 #: watched quantity's slope changes sign at most once (the fastest mode turns by less than π/2).
@@ -1119,13 +1116,13 @@ def by_columns(fprop, fvrow):
 
 
 @njit(cache=True, _nrt=False)
-def _fast_step(mode, w, a0, b, h_top, lev0, lev_end, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt,
-               fpinrow, fpvis, fvt, fast_eps,
+def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
+               fvt, fast_eps,
                farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
     """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
-    ladder h_top = h_{lev0}, h_top/2 … h_{lev_end − 1} that the friction's series and the events allow.
+    ladder h_top = h_{lev0}, h_top/2 … that the friction's series and the events allow.
 
     The augmented state per direction is w̃ = [z, a_g, ȧ_g, c_0 … c_K] with c_j = F^{(j)}/j! the chain of
     the friction's polynomial F(τ) = Σ F_k τ^k (F_k from the recurrences of |V| and V/|V|, V's
@@ -1140,7 +1137,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, lev_end, mu_k_n, mu_s_n, l_d, slab_m
     m = w.shape[1]
     phase = 0 if mode == STUCK else 1
     nch = fpropt.shape[3] - m - 2  # chain entries c_0 .. c_K
-    n_lev = min(lev_end, fpropt.shape[0])
+    n_lev = fpropt.shape[0]
     for d in range(2):
         for c in range(m):
             wa[d, c] = w[d, c]
@@ -1410,224 +1407,10 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
     return 0
 
 
-#: The departure's collocation sub-steps (h121, docs/building.md "The departure by collocation"): the friction's
-#: polynomial over a rung of the ladder is fixed by its direction at COLLOC_ORDER + 1 Chebyshev–Lobatto nodes, where
-#: F = µk N V/|V| holds with V the exact propagation of that polynomial (Newton on the nodes' angles).  Its error is
-#: then the interpolation error of the true friction, set by the distance to the singularity at the break-away
-#: relative to the rung (a Bernstein ellipse), not by the Taylor radius ~ the time since the break-away, and the
-#: stiff relaxation of the direction is solved, not integrated.  A rung is taken when the friction's last two
-#: Chebyshev coefficients are below the fast sub-steps' tolerance and the polynomial matches V/|V| to FAST_CHECK at
-#: every node and at COLLOC_CHECKS points between nodes; otherwise the Taylor sub-step (and series pieces) as before.
-COLLOC_ORDER = 16
-#: Newton iterations at most (a start from V's direction after one fixed-point pass).
-COLLOC_ITER = 12
-#: A collocation rung is at most COLLOC_REACH × the time since the break-away (or reversal): the singularity of
-#: V/|V| lies about there, and beyond it the polynomial's monomial chain loses digits.
-COLLOC_REACH = 0.5
-#: Collocation is tried while the time since the break-away is below COLLOC_WINDOW sub-steps h.
-COLLOC_WINDOW = 3.0
-
-
-@njit(cache=True, _nrt=False)
-def _lu_factor(a, piv, n):
-    """The leading n × n block of a in place as its LU factors (Gaussian elimination, partial pivoting; the row
-    exchanges in piv).  False when a pivot vanishes."""
-    for k in range(n):
-        p = k
-        big = abs(a[k, k])
-        for i in range(k + 1, n):
-            if abs(a[i, k]) > big:
-                big = abs(a[i, k])
-                p = i
-        if not big > 0.0:
-            return False
-        piv[k] = p
-        if p != k:
-            for j in range(n):
-                t = a[k, j]
-                a[k, j] = a[p, j]
-                a[p, j] = t
-        for i in range(k + 1, n):
-            f = a[i, k] / a[k, k]
-            a[i, k] = f
-            if f != 0.0:
-                for j in range(k + 1, n):
-                    a[i, j] -= f * a[k, j]
-    return True
-
-
-@njit(cache=True, _nrt=False)
-def _lu_solve(a, piv, r, n):
-    """r ← A⁻¹ r from :func:`_lu_factor`'s factors."""
-    for k in range(n):
-        p = piv[k]
-        if p != k:
-            t = r[k]
-            r[k] = r[p]
-            r[p] = t
-        for i in range(k + 1, n):
-            r[i] -= a[i, k] * r[k]
-    for k in range(n - 1, -1, -1):
-        acc = r[k]
-        for j in range(k + 1, n):
-            acc -= a[k, j] * r[j]
-        r[k] = acc / a[k, k]
-
-
-@njit(cache=True, _nrt=False)
-def _colloc_step(w, a0, b, h, lev, mu_k_n, fast_eps, cx, cfree, cmat, ccheb, ct2m, cquad, fn, vfree, vv, jac, piv, rhs,
-                 ac, chat, wa, rcol):
-    """The friction's polynomial over a rung h (level lev) by collocation (:data:`COLLOC_ORDER`): True when found,
-    with wa = [z, a_g, ȧ_g, c_0 … c_K] (c_k = F^{(k)}(0)/k!, K = COLLOC_ORDER) and rcol[0] h = ∫|V| dτ over the rung
-    (Clenshaw–Curtis on the nodes); the caller then takes the rung by :func:`_fast_try`.
-
-    cfree[lev, d, j, c] and cmat[lev, d, j, i]: V_d at the row j (cx[j] h: the nodes, then the check points) from
-    [z, a_g, ȧ_g] and from the friction's value at node i (the Lagrange basis), the exact propagation; ccheb: node
-    values → Chebyshev coefficients on [0, 1]; ct2m: Chebyshev → monomials in x = τ/h; cquad: ∫₀¹ of the
-    interpolant.  Unknowns: the directions e_1 … e_K of F at the nodes (e_0 is V(0)'s), each turned by its Newton
-    angle; residuals V_j × e_j.
-    """
-    m = w.shape[1]
-    kc = ccheb.shape[0] - 1
-    nrow = cfree.shape[2]
-    for d in range(2):
-        for c in range(m):
-            wa[d, c] = w[d, c]
-        wa[d, m] = a0[d]
-        wa[d, m + 1] = b[d]
-        for j in range(m + 2, wa.shape[1]):
-            wa[d, j] = 0.0
-        for j in range(nrow):
-            acc = cfree[lev, d, j, m] * a0[d] + cfree[lev, d, j, m + 1] * b[d]
-            for c in range(m):
-                acc += cfree[lev, d, j, c] * w[d, c]
-            vfree[d, j] = acc
-    r0 = math.sqrt(w[0, 1] ** 2 + w[1, 1] ** 2)
-    if not (r0 > 0.0 and mu_k_n > 0.0):
-        return False
-    c0 = w[0, 1] / r0
-    s0 = w[1, 1] / r0
-    for i in range(kc + 1):
-        fn[0, i] = c0
-        fn[1, i] = s0
-    done = False
-    converged = False
-    factored = False
-    step_prev = 1.0
-    for it in range(COLLOC_ITER + 2):
-        for d in range(2):
-            for j in range(nrow):
-                acc = 0.0
-                for i in range(kc + 1):
-                    acc += cmat[lev, d, j, i] * fn[d, i]
-                vv[d, j] = vfree[d, j] + mu_k_n * acc
-        if done:
-            converged = True
-            break
-        if it == 0:
-            # the start: one fixed-point pass from the friction held along V(0)
-            for j in range(1, kc + 1):
-                rv = math.sqrt(vv[0, j] ** 2 + vv[1, j] ** 2)
-                if not rv > 0.0:
-                    return False
-                fn[0, j] = vv[0, j] / rv
-                fn[1, j] = vv[1, j] / rv
-            continue
-        # Newton, the Jacobian kept (a chord iteration) once the steps are below 1e-3 rad
-        refresh = not factored or step_prev > 1e-3
-        for j in range(1, kc + 1):
-            cj = fn[0, j]
-            sj = fn[1, j]
-            along = cj * vv[0, j] + sj * vv[1, j]
-            if not along > 0.0:
-                return False
-            rhs[j - 1] = sj * vv[0, j] - cj * vv[1, j]
-            if refresh:
-                for i in range(1, kc + 1):
-                    jac[j - 1, i - 1] = mu_k_n * (cj * cmat[lev, 1, j, i] * fn[0, i] + sj * cmat[lev, 0, j, i] * fn[1, i])
-                jac[j - 1, j - 1] -= along
-        if refresh:
-            if not _lu_factor(jac, piv, kc):
-                return False
-            factored = True
-        _lu_solve(jac, piv, rhs, kc)
-        step = 0.0
-        for j in range(kc):
-            step = max(step, abs(rhs[j]))
-        if not step < 1.0:
-            return False
-        for j in range(kc):
-            # the node's direction turned by δ (cos δ, sin δ by their series below 1e-3 rad: the terms left out
-            # are below 1e-19)
-            dl = rhs[j]
-            if abs(dl) < 1e-3:
-                d2 = dl * dl
-                cd = 1.0 - 0.5 * d2 * (1.0 - d2 / 12.0)
-                sd = dl * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0))
-            else:
-                cd = math.cos(dl)
-                sd = math.sin(dl)
-            cj = fn[0, j + 1]
-            sj = fn[1, j + 1]
-            fn[0, j + 1] = cj * cd - sj * sd
-            fn[1, j + 1] = sj * cd + cj * sd
-        if step < 1e-3:
-            # early out: this iterate's last two Chebyshev coefficients exceed the tolerance by more than what is
-            # left of the iteration can move them (|Σ ccheb[k, i] δθ_i| ≤ 2 max|δθ|, the steps contracting)
-            for d in range(2):
-                t1 = 0.0
-                t2 = 0.0
-                for i in range(kc + 1):
-                    t1 += ccheb[kc, i] * fn[d, i]
-                    t2 += ccheb[kc - 1, i] * fn[d, i]
-                if max(abs(t1), abs(t2)) > fast_eps + 4.0 * step:
-                    return False
-        done = step <= 1e-10
-        step_prev = step
-    if not converged:
-        return False
-    # the tail: the last two Chebyshev coefficients of F at the fast sub-steps' tolerance
-    for d in range(2):
-        for k in range(kc + 1):
-            acc = 0.0
-            for i in range(kc + 1):
-                acc += ccheb[k, i] * fn[d, i]
-            ac[d, k] = mu_k_n * acc
-        if max(abs(ac[d, kc]), abs(ac[d, kc - 1])) > fast_eps * mu_k_n:
-            return False
-    # the monomial chain ĉ_k = c_k h^k, and F against µk N V/|V| at every node and check point
-    for d in range(2):
-        hk = 1.0
-        for j in range(kc + 1):
-            acc = 0.0
-            for k in range(j, kc + 1):
-                acc += ct2m[j, k] * ac[d, k]
-            chat[d, j] = acc
-            wa[d, m + 2 + j] = acc / hk
-            hk *= h
-    rsum = 0.0
-    for j in range(nrow):
-        rv = math.sqrt(vv[0, j] ** 2 + vv[1, j] ** 2)
-        if not rv > 0.0:
-            return False
-        if j <= kc:
-            rsum += cquad[j] * rv
-        for d in range(2):
-            poly = 0.0
-            for k in range(kc, -1, -1):
-                poly = poly * cx[j] + chat[d, k]
-            if abs(poly - mu_k_n * vv[d, j] / rv) > FAST_CHECK * mu_k_n:
-                return False
-    for k in range(rcol.shape[0]):
-        rcol[k] = 0.0
-    rcol[0] = rsum
-    return True
-
-
 @njit(cache=True)
 def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
                       c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fpropt, fpinrow,
-                      fpvis, fvt, farow1, farow2, fmon, fsig, fend, cx, cfree, cmat, ccheb, ct2m, cquad, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
+                      fpvis, fvt, farow1, farow2, fmon, fsig, fend, out_state, out_mon, out_sig, out_energy, peak_sq, sig_max, sig_min, ev_time, ev_kind, ev_x,
                       summary):
     """Response of the slab + shear building on the friction isolation plane to two horizontal components.
 
@@ -1794,25 +1577,6 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     wend = np.zeros((2, fend.shape[3]))
     n_fast_steps = 0
     n_refused = np.zeros(6, dtype=np.int64)
-    # the departure's collocation sub-steps (law[11]; their tables cx … cquad, empty when off)
-    kc = ccheb.shape[0] - 1
-    use_colloc = law.shape[0] > 11 and law[11] != 0.0 and kc >= 2 and law[0] == 0.0
-    kw = max(kc, 1)
-    fn = np.zeros((2, kw + 1))
-    vfree = np.zeros((2, cfree.shape[2]))
-    vv = np.zeros((2, cfree.shape[2]))
-    jac = np.zeros((kw, kw))
-    piv = np.zeros(kw, dtype=np.int64)
-    rhs = np.zeros(kw + 1)
-    ac = np.zeros((2, kw + 1))
-    chat = np.zeros((2, kw + 1))
-    rcol = np.zeros(max(n_ch, kw + 1))
-    t_dep = -math.inf
-    # the collocation's reach (a multiple of the time since the departure) and window (sub-steps h since it)
-    colloc_reach = law[12] if law.shape[0] > 13 else COLLOC_REACH
-    colloc_window = law[13] if law.shape[0] > 13 else COLLOC_WINDOW
-    n_colloc = 0
-    n_colloc_refused = 0
     e0 = np.zeros(2)
     varying = law[0] != 0.0
     gravity = law[1]
@@ -1955,57 +1719,11 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     h_lev = h_fast / (1 << lev0)
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
-                        taken = -1
-                        lev_end = n_levels
-                        since = t_i + tau - t_dep
-                        lev_c = n_levels
-                        if use_colloc and mode == SLIDE and since < colloc_window * h_fast:
-                            # near a departure: the rung within COLLOC_REACH of the time since it (the singularity of
-                            # V/|V| at the break-away), taken by collocation unless the Taylor sub-step reaches as far
-                            lev_c = lev0
-                            while lev_c < n_levels - 1 and h_fast / (1 << lev_c) > colloc_reach * since:
-                                lev_c += 1
-                            if h_fast / (1 << lev_c) <= colloc_reach * since:
-                                lev_end = lev_c + 1
-                            else:
-                                lev_c = n_levels
-                        taken = _fast_step(mode, w, a0, b, h_lev, lev0, lev_end, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fpropt, fpinrow, fpvis, fvt, fast_eps, farow1, farow2, flrow,
-                                           fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val,
-                                           slope, sval, sslope, val1, slope1, sval1, sslope1, peak_sq, sig_max,
-                                           sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl, zh, zdh,
-                                           zddh, cpoly, energy, counter, out2)
-                        if taken < 0 and lev_c < n_levels:
-                            # collocation on the rung lev_c; refused, the Taylor sub-step on the shorter rungs; refused
-                            # again, collocation on each shorter rung before series pieces
-                            for lev_t in range(lev_c, n_levels):
-                                h_c = h_fast / (1 << lev_t)
-                                code = 1
-                                if _colloc_step(w, a0, b, h_c, lev_t, mu_k_n, fast_eps, cx, cfree, cmat, ccheb, ct2m,
-                                                cquad, fn, vfree, vv, jac, piv, rhs, ac, chat, wa, rcol):
-                                    code = _fast_try(SLIDE, 1, w, a0, b, h_c, kc, mu_k_n, mu_s_n, l_d, slab_mass, e0,
-                                                     vz, half_target, fpropt[lev_t], fpinrow[lev_t], fpvis[lev_t],
-                                                     farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1,
-                                                     sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1,
-                                                     sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rcol, zl,
-                                                     zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
-                                if code == 0:
-                                    taken = lev_t
-                                    n_colloc += 1
-                                    break
-                                n_colloc_refused += 1
-                                if lev_t == lev_c and lev_c + 1 < n_levels:
-                                    taken = _fast_step(mode, w, a0, b, h_fast / (1 << (lev_c + 1)), lev_c + 1,
-                                                       n_levels, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target,
-                                                       fpropt, fpinrow, fpvis, fvt, fast_eps, farow1, farow2, flrow,
-                                                       fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3,
-                                                       start_valid, val, slope, sval, sslope, val1, slope1, sval1,
-                                                       sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
-                                                       rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
-                                                       counter, out2)
-                                    if taken >= 0 or taken == -3:
-                                        # taken, or an event possible (series pieces locate it)
-                                        break
+                        taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
+                                           half_target, fpropt, fpinrow, fpvis, fvt, fast_eps, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
+                                           m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
+                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
+                                           rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
                         if taken >= 0:
                             h_lev = h_fast / (1 << taken)
                         else:
@@ -2276,9 +1994,6 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                 e0[1] = w[1, 1] / r
                                 half_target = 0.5 * r
                                 start_valid = False
-                                if use_colloc:
-                                    # back to the ladder: the departure's collocation sub-steps take over
-                                    slow_end = tau
                         # hand-overs that are not stops: a slide's piece end (the speed halved along e0, or not)
                         # renews the friction's direction; a slide slowing below r_finish enters FINISH; FINISH that
                         # did not stop slides on.  The FINISH test is made at every piece end of a slide, not only
@@ -2359,7 +2074,6 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     if mode == STUCK:
                         kind = BREAKAWAY
                         mode = START
-                        t_dep = t_i + tau
                         from_rest = True
                         depart_lag = 2 if hold <= mu_k_n * (1.0 + DEPART_EXCESS) else 1
                         depart_pending = use_depart and (depart_lag == 2 or use_leave)
@@ -2374,7 +2088,6 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     else:
                         kind = REVERSAL
                         mode = START
-                        t_dep = t_i + tau
                         from_rest = True
                         # leaving the stop with |D| > µs N ≥ µk N: a finite acceleration, V = τ W
                         depart_lag = 1
@@ -2438,5 +2151,3 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     for k in range(N_PIECE_KINDS):
         summary[S_N_PIECES_BY_MODE + k] = pieces_by_mode[k]
     summary[S_N_STOP_PIECES] = n_stop_pieces
-    summary[S_N_COLLOC] = n_colloc
-    summary[S_N_COLLOC_REFUSED] = n_colloc_refused
