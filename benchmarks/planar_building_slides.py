@@ -107,30 +107,21 @@ def slides(trace) -> list[dict]:
     return out
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--records", default="../shared/records")
-    parser.add_argument("--seconds", type=float, default=20.0)
-    parser.add_argument("--mu-static", type=float, default=None)
-    parser.add_argument("--mu-kinetic", type=float, default=None)
-    parser.add_argument("--per-slide", action="store_true")
-    args = parser.parse_args(argv)
-    os.environ["NUMBA_DISABLE_JIT"] = "1"
-    import numba
-
-    if not numba.config.DISABLE_JIT:
-        raise SystemExit("numba was imported before NUMBA_DISABLE_JIT was set: run this module on its own")
+def traced_run(records, seconds: float, mu_static=None, mu_kinetic=None):
+    """(the response, its trace, µs, µk): the bench's 2-D building over the first ``seconds`` of its pair through
+    the traced kernel (:func:`_traced_kernel`; NUMBA_DISABLE_JIT must be set before numba is imported), the
+    warm-up run's records left out."""
     import isolator.solver.planar_building as planar_building
     from isolator.bench.building import BUILDING_PAIR, FIXED_BASE_PERIOD_Y_S, building_case
     from isolator.motion import read_ground_motion
 
     _, folder, fx, fy = BUILDING_PAIR
-    mx, my = (read_ground_motion(Path(args.records) / folder / f) for f in (fx, fy))
-    keep = round(args.seconds / mx.dt_s) + 1
+    mx, my = (read_ground_motion(Path(records) / folder / f) for f in (fx, fy))
+    keep = round(seconds / mx.dt_s) + 1
     case = building_case("2-D building", mx.acceleration_m_s2[:keep], mx.dt_s,
                          acceleration_y_m_s2=my.acceleration_m_s2[:keep], period_y_s=FIXED_BASE_PERIOD_Y_S)
-    mu_s = case.mu if args.mu_static is None else args.mu_static
-    mu_k = mu_s if args.mu_kinetic is None else args.mu_kinetic
+    mu_s = case.mu if mu_static is None else mu_static
+    mu_k = mu_s if mu_kinetic is None else mu_kinetic
     installed = planar_building._pk.building2d_kernel
     with tempfile.TemporaryDirectory() as folder:
         traced = _traced_kernel(Path(folder))
@@ -142,12 +133,36 @@ def main(argv=None) -> None:
                 mu_kinetic=mu_k, gravity_m_s2=case.gravity_m_s2)
         finally:
             planar_building._pk.building2d_kernel = installed
-    print(f"PTS 0-{args.seconds:g} s, µs {mu_s:g}, µk {mu_k:g}: {r.n_events} events, {r.n_fast_steps} fast sub-steps, "
-          f"{r.n_pieces} pieces {r.n_pieces_by_phase} (stuck, start, slide, finish, approach, departure)")
     # the warm-up run (planar_building._warm_up) is traced too: keep the last run's steps only
     trace = traced.TRACE
     restarts = [i for i in range(1, len(trace)) if trace[i][1] < trace[i - 1][1]]
-    trace = trace[restarts[-1]:] if restarts else trace
+    return r, (trace[restarts[-1]:] if restarts else trace), mu_s, mu_k
+
+
+def traced_args(argv, description: str, per_slide: bool = False) -> argparse.Namespace:
+    """The traced runs' options (records, seconds, µs, µk[, per slide]) parsed, with NUMBA_DISABLE_JIT set (numba
+    must not be imported before: the run stops with its reason)."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--records", default="../shared/records")
+    parser.add_argument("--seconds", type=float, default=20.0)
+    parser.add_argument("--mu-static", type=float, default=None)
+    parser.add_argument("--mu-kinetic", type=float, default=None)
+    if per_slide:
+        parser.add_argument("--per-slide", action="store_true")
+    args = parser.parse_args(argv)
+    os.environ["NUMBA_DISABLE_JIT"] = "1"
+    import numba
+
+    if not numba.config.DISABLE_JIT:
+        raise SystemExit("numba was imported before NUMBA_DISABLE_JIT was set: run this module on its own")
+    return args
+
+
+def main(argv=None) -> None:
+    args = traced_args(argv, __doc__.splitlines()[0], per_slide=True)
+    r, trace, mu_s, mu_k = traced_run(args.records, args.seconds, args.mu_static, args.mu_kinetic)
+    print(f"PTS 0-{args.seconds:g} s, µs {mu_s:g}, µk {mu_k:g}: {r.n_events} events, {r.n_fast_steps} fast sub-steps, "
+          f"{r.n_pieces} pieces {r.n_pieces_by_phase} (stuck, start, slide, finish, approach, departure)")
     found = slides(trace)
     totals = {"departure": Counter(), "approach": Counter()}
     for s in found:
