@@ -28,10 +28,12 @@ support point, in the direction V, of the intersection D of the friction discs. 
   (X, V, r, ū_k, energies) is integrated with a DOP853 step written here (scipy's tableau, written out in planar_multisurface_tableau);
 * a group **joins** when |r − b_j| reaches µ_j, **leaves** when λ_k reaches 0 (both located
   by an Illinois secant on re-stepped DOP853 sub-steps to 1e-13 of the step);
-* where two sliding normals are within IMPLICIT_ANGLE of each other the split of V between the groups
-  relaxes at a rate ∝ 1/s² (s = e_a × e_b): the corner runs on Radau IIA steps (``radau_step``), a corner of
-  two groups in its reduced state (X, V, the normal's direction θ_a, the opening φ: ``reduce_corner``), a corner
-  of three groups likewise with the third normal's angle from e_a (``reduce_state``);
+* where the two sliding normals of a corner of two groups are within IMPLICIT_ANGLE of each other the split of V
+  between the groups relaxes at a rate ∝ |V|/s² (s = e_a × e_b): the corner runs on Radau IIA steps
+  (``radau_step``) in its reduced state (X, V, the normal's direction θ_a, the opening φ: ``reduce_corner``); a
+  corner of three groups relaxes at ≈ 4.4 |V|/κ² (κ = √det C / tr C, set by the normals' spread, not by the closest
+  pair) and takes them where κ < IMPLICIT_SPREAD, likewise with the third normal's angle from e_a
+  (``reduce_state``; ``corner_implicit`` chooses);
 * a corner of two groups closing to tangency (s falling at a finite rate: tangency in finite time, where C
   is singular) is stepped over at |s| < CROSS_ANGLE (``cross_tangency``: docs/multisurface.md);
 * at a join the sliding set is the rate problem's (``sliding_set``);
@@ -381,6 +383,16 @@ _RT, _RTI, _RGAMMA, _RALPHA, _RBETA = _radau_eigenbasis()
 #: of Radau IIA at a tenth of their cost (PTS at 0.02 instead of 0.05: 1 178 instead of 1 933 implicit steps,
 #: 6 569 instead of 4 003 explicit ones, the same answer to 5e-11 of the peak)
 IMPLICIT_ANGLE = 0.02
+#: corners of three or more groups take the implicit steps where C = Σ R̄_k e_k e_kᵀ is this close to singular,
+#: κ = √det C / tr C (for two groups κ = √(R̄_a R̄_b) s/(R̄_a + R̄_b)).  Three circles through r do not relax at the
+#: closest pair's 1/s² (the third normal keeps C regular): their fast rate is ≈ 4.4 |V|/κ² (PTS, the Jacobian of the
+#: reduced state at 700 logged three-group steps: 4.1–5.5, against the closest pair's 55 |V|/s² on two groups), so
+#: the smallest sine sent them to the implicit steps where the explicit ones are no shorter (docs/multisurface.md,
+#: "The corner steps by time, and the three-group switch").  At κ = 0.01 and |V| = 0.5 m/s that rate is ~2e4 1/s and
+#: DOP853's steps ~1e-4 s, a fifth of the implicit steps' ~5e-4 s there (an implicit step costs ~5 explicit ones);
+#: below it, as κ → 0 (three normals parallel), the explicit steps would collapse.  PTS at 0 / 0.003 / 0.006 / 0.01
+#: / 0.02: 621 / 627 / 639 / 680 / 806 implicit corner steps, the same time within the noise
+IMPLICIT_SPREAD = 0.01
 #: a corner of two groups closing towards tangency steps at most this fraction of its time to tangency s/|ṡ| (the
 #: simplified Newton's Jacobian, ∝ 1/s², then changes by at most (1 − CLOSING_STEP)^−2 over the step, about half of
 #: that from the step's middle, where it is taken).  PTS: 0.15 / 0.25 / 0.35 gave 1 121 / 951 / 1 027 implicit steps,
@@ -426,6 +438,34 @@ def corner_angle(y, rb, mask):
             if a1 * b1 + a2 * b2 > 0.0:
                 best = min(best, abs(a1 * b2 - a2 * b1) / (an * bn))
     return best
+
+
+@njit(cache=True)
+def compliance(y, rb, mask):
+    """C = Σ R̄_k e_k e_kᵀ over the groups of ``mask`` in the multi-group state: (C11, C12, C22, their count)."""
+    n = 0
+    c11 = 0.0
+    c12 = 0.0
+    c22 = 0.0
+    for k in range(rb.shape[0]):
+        if mask >> k & 1:
+            n += 1
+            e1, e2 = _normal(y, rb, k)
+            c11 += rb[k] * e1 * e1
+            c12 += rb[k] * e1 * e2
+            c22 += rb[k] * e2 * e2
+    return c11, c12, c22, n
+
+
+@njit(cache=True)
+def corner_implicit(y, rb, mask):
+    """Whether the corner of the multi-group state takes the implicit steps: two groups whose normals' sine is below
+    IMPLICIT_ANGLE, three or more whose compliance's κ = √det C / tr C is below IMPLICIT_SPREAD."""
+    c11, c12, c22, n = compliance(y, rb, mask)
+    if n < 3:
+        return corner_angle(y, rb, mask) < IMPLICIT_ANGLE
+    det = max(c11 * c22 - c12 * c12, 0.0)
+    return math.sqrt(det) < IMPLICIT_SPREAD * (c11 + c22)
 
 
 @njit(cache=True)
@@ -1071,8 +1111,8 @@ def _radau_raw(v, f0, h, z, act, na, m, e1, p1, est, w):
 
 @njit(cache=True)
 def corner_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt, st, rm):
-    """One step of the multi-group state: DOP853, or Radau IIA where the corner is close to closing."""
-    if corner_angle(y, rb, mask) < IMPLICIT_ANGLE:
+    """One step of the multi-group state: DOP853, or Radau IIA where the corner is stiff (``corner_implicit``)."""
+    if corner_implicit(y, rb, mask):
         return radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, rm)
     return multi_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, kk, yt)
 
@@ -1093,17 +1133,7 @@ def sliding_set(y, rb, cand, must):
     for sub in range(1, 1 << ng):
         if sub & ~cand or not sub & must:
             continue
-        c11 = 0.0
-        c12 = 0.0
-        c22 = 0.0
-        nb = 0
-        for k in range(ng):
-            if sub >> k & 1:
-                e1, e2 = _normal(y, rb, k)
-                c11 += rb[k] * e1 * e1
-                c12 += rb[k] * e1 * e2
-                c22 += rb[k] * e2 * e2
-                nb += 1
+        c11, c12, c22, nb = compliance(y, rb, sub)
         det = c11 * c22 - c12 * c12
         trace = c11 + c22
         if nb < 2 or not det > 1e-24 * trace * trace:
@@ -2034,7 +2064,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 matol[M_EIN] = etol
                 matol[M_EF] = etol
                 matol[M_EV] = etol
-                implicit = corner_angle(my, rb, comp) < IMPLICIT_ANGLE
+                implicit = corner_implicit(my, rb, comp)
                 stats[ST_RADAU_MAIN if implicit else ST_DOP_MAIN] += 1
                 ok, err = corner_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt, stats, rm)
                 n_steps += 1

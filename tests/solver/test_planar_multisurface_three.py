@@ -69,10 +69,12 @@ def test_the_reduced_state_of_three_groups_is_on_the_three_circles_and_moves_as_
 
 
 def test_the_three_group_corners_of_a_real_pair_take_reduced_steps_at_the_tolerance(monkeypatch):
-    # Superstition Hills PTS: most of its implicit corner steps are on corners of three groups (Fenz & Constantinou's
-    # outer surfaces and the inner pair).  Truth: the same kernel at rtol 1e-12 (10x tighter), which the default
-    # answer reaches to 7.8e-11 of the peak, peaks 1.3e-12 apart (measured; 7.8e-11 also with those corners in the
-    # Cartesian state); a step taken too long on the three-group corners (their estimate) moves it off
+    # Superstition Hills PTS: corners of three groups (Fenz & Constantinou's outer surfaces and the inner pair) take
+    # implicit steps where their compliance is nearly singular (κ < IMPLICIT_SPREAD: 59 steps; 626 when the closest
+    # pair's sine chose them, before the switch read κ).  Truth: the same kernel at rtol 1e-12 (10x tighter), which
+    # the default answer reaches to 7.8e-11 of the peak, peaks 1.4e-12 apart (measured, as before the switch; 7.8e-11
+    # also with those corners in the Cartesian state); a step taken too long on the three-group corners (their
+    # estimate) moved it off when they took 626 implicit steps (below; not re-measured at 59)
     from isolator.solver import planar_multisurface as pm
 
     ax, ay, dt = _pts()
@@ -81,7 +83,7 @@ def test_the_three_group_corners_of_a_real_pair_take_reduced_steps_at_the_tolera
     ev = simulate_bearing_pair(ax, ay, dt, bearing=_tfp(), method="events")
     st = calls[-1][-1]
     print("implicit", st[pk.ST_RADAU], "of them on three groups, reduced", st[pk.ST_RADAU_THREE])
-    assert st[pk.ST_RADAU_THREE] >= 300 and st[pk.ST_RADAU_THREE] <= st[pk.ST_RADAU]
+    assert st[pk.ST_RADAU_THREE] >= 30 and st[pk.ST_RADAU_THREE] <= st[pk.ST_RADAU]
     assert abs(ev.energy_balance_error_J_per_kg) <= 1e-9 * ev.energy_input_J_per_kg
     tight = simulate_bearing_pair(ax, ay, dt, bearing=_tfp(), method="events", rtol=1e-12)
     peak = tight.peak_displacement_m
