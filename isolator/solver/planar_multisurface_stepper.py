@@ -395,12 +395,13 @@ def carry_slot(ng):
 
 
 @njit(cache=True)
-def half_discs(y, rim):
+def half_discs(y, rim, ult=-1):
     """The groups whose set for a step from y is the disc of radius c̄/2 tangent inside the rim at ū (bit k for group
-    k; :func:`group_return`): every group when the mass is held on the ultimate circle (:func:`at_ultimate`), the
-    carrying group when the step that ended in y carried the mass on its rim circle and it is still on its rim."""
+    k; :func:`group_return`): every group when the mass is held on the ultimate circle (``ult`` = 1, or with ``ult``
+    = -1 :func:`at_ultimate` of y), the carrying group when the step that ended in y carried the mass on its rim
+    circle and it is still on its rim."""
     ng = rim.shape[0]
-    if at_ultimate(y, rim):
+    if ult == 1 or (ult < 0 and at_ultimate(y, rim)):
         return (1 << ng) - 1
     k = int(y[carry_slot(ng)]) - 1
     if k >= 0 and y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 >= (rim[k] * (1.0 - RIM_ON)) ** 2:
@@ -507,20 +508,23 @@ def _held(y, rb, mu, r1, r2):
 
 
 @njit(cache=True)
-def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0):
+def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0, ult=-1):
     """The force r/W of one backward-Euler step: the minimiser of Ψ (module docstring), by Newton's method
     from the guess (rx, ry), the step cut back until Ψ or |∇Ψ| decreases.  Returns (rx, ry, iterations, evaluations
-    of ∇Ψ).  ``mx, my``: Ψ's metric g r·M r/2 (be_step's per-direction masses; 1 for the rigid block)."""
+    of ∇Ψ).  ``mx, my``: Ψ's metric g r·M r/2 (be_step's per-direction masses; 1 for the rigid block); ``ult``: the
+    step's classification of the ultimate (:func:`half_discs`)."""
     ng = rb.shape[0]
-    half = half_discs(y, rim)
+    half = half_discs(y, rim, ult)
     iso_m = mx == my
     # stuck: p/(g M) inside every circle is the answer (Ψ's gradient g M r − p vanishes there)
     if _held(y, rb, mu, px / (g * mx), py / (g * my)):
         return px / (g * mx), py / (g * my), 0, 0
     # one group sliding has a closed form: r − b_k ∥ p − g b_k, |r − b_k| = (|p − g b_k| + αR̄µ)/(g + αR̄); it is
     # the answer when that r lies inside every other circle, else the nearest such point starts Newton (the
-    # valley of Ψ is curved along a circle: from far away the Cartesian steps crawl)
+    # valley of Ψ is curved along a circle: from far away the Cartesian steps crawl) — unless the guess lies lower
     best = np.inf
+    guess_x = rx
+    guess_y = ry
     for k in range(ng):
         b1 = y[Y_U + 2 * k] / rb[k]
         b2 = y[Y_U + 2 * k + 1] / rb[k]
@@ -576,8 +580,21 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0):
     r_scale = 0.0
     for k in range(ng):
         r_scale = max(r_scale, mu[k])
-    _, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
+    psi, fx, fy = _psi_grad(rx, ry, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
     evals = 1
+    if best < np.inf:
+        # Newton starts from the lower of the guess (the last step's force) and that point: with one group sliding
+        # along its rim and another inside at its circle, 7° apart, the one-group point lay 0.07 W off along the
+        # rim's strip and Newton crawled back along it, 0.003 W an iteration (26–57 iterations a solve, ~300–940
+        # gradients a step); the guess, 3e-5 W off, converges in a few (NWH360 ×1.2 on the double with an
+        # intermediate rim, 3.0–3.058 s: the work bound; docs/multisurface.md, "Once per step")
+        psi_g, gx, gy = _psi_grad(guess_x, guess_y, y, rb, mu, rim, alpha, px, py, g, half, mx, my)
+        evals += 1
+        if psi_g < psi:
+            rx = guess_x
+            ry = guess_y
+            fx = gx
+            fy = gy
     cm = np.zeros(ng)
     cv = np.zeros((ng, 2))
     it = 0
@@ -762,13 +779,17 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0):
 
 
 @njit(cache=True)
-def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0):
+def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0, ult=-1):
     """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout[:2], the evaluations
     of Ψ's gradient it took into rout[2].
 
     ``m_x, m_y``: the slab's mass per direction (per unit of the mass g r acts on; 1 for the rigid block), the
     balance m_d (V'_d − V_d)/h + c V'_d = −g r_d − ā_d: Ψ gets the metric M_d = (1 + ch)/(m_d + ch) and the
     momentum p_d = M_d (m_d V_d/h − ā_d) (a building's floors that differ along x and y).
+
+    ``ult``: the step's classification of the ultimate (1 held on the ultimate circle, 0 not), given by the caller
+    for the whole step and its two halves alike (planar_multisurface_stepper); -1 takes :func:`at_ultimate` of y,
+    and the velocity is then turned onto the ultimate circle only when the end is aligned too.
 
     Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
     set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
@@ -785,9 +806,11 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
         met_y = (1.0 + c * h) / (m_y + c * h)
         px = met_x * (m_x * y[Y_V] / h - abar_x)
         py = met_y * (m_y * y[Y_V + 1] / h - abar_y)
-    rx, ry, iterations, evals = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1], met_x, met_y)
-    ult = at_ultimate(y, rim)
-    half = half_discs(y, rim)
+    given = ult >= 0
+    if not given:
+        ult = 1 if at_ultimate(y, rim) else 0
+    rx, ry, iterations, evals = step_force(y, rb, mu, rim, alpha, px, py, g, rguess[0], rguess[1], met_x, met_y, ult)
+    half = half_discs(y, rim, ult)
     rout[0] = rx
     rout[1] = ry
     rout[2] = evals
@@ -841,18 +864,18 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     out[Y_EF] = y[Y_EF] + fric
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
     out[Y_EIMP] = y[Y_EIMP]
-    carried = -1 if ult else carried_group(y, mask, rim)
+    carried = -1 if ult == 1 else carried_group(y, mask, rim)
     # the carrying group for the next step: this step's, else the one that carried into this step while it goes on
     # sliding along its rim with other groups sliding too (the mass is then free, and the force is set by their
     # frictions' tangential balances, the same to O(h) on either disc; on the full disc the next step that carries
     # the mass again would see half the centripetal need: Chuetsu-oki 65025's upper bound at 26.3237 s, the inner
     # group carrying on its rim and surface 1's group 3.8° behind, at its friction: the two discs chattered)
     k = int(y[carry_slot(ng)]) - 1
-    if carried < 0 and not ult and k >= 0 and half >> k & 1 and mask >> k & 1 and mask >> (ng + k) & 1:
+    if carried < 0 and ult == 0 and k >= 0 and half >> k & 1 and mask >> k & 1 and mask >> (ng + k) & 1:
         out[carry_slot(ng)] = k + 1.0
     else:
         out[carry_slot(ng)] = carried + 1.0
-    if ult and mask >> ng == (1 << ng) - 1 and at_ultimate(out, rim):
+    if ult == 1 and mask >> ng == (1 << ng) - 1 and (given or at_ultimate(out, rim)):
         # held on the ultimate circle from start to end: the velocity along the end's tangent, its magnitude kept
         s1, s2, sn = _groups_sum(out, ng)
         _velocity_along(out, -s2 / sn, s1 / sn)
@@ -1213,14 +1236,22 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                 am_y = ay[i] + slope_y * (tau + 0.5 * h)
                 # n = g + a_z at its mean over each step (linear: at the step's middle), as ā
                 # (the vertical's work booked after each solve, the first half's before the second starts from it)
-                m1 = be_step(y, h, am_x, am_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1)
+                # the ultimate classified once, at the step's start, for the three solves: classified at each solve's
+                # start and end, a full step that ended 1.27e-7 rad out of alignment (> ALIGNED) took the chord's
+                # velocity while its first half (6.4e-8 rad) was turned onto the ultimate circle and the second half
+                # started on the half discs; the two motions' velocities differed by h × 24 m/s², an error first
+                # order in h, and the steps settled at 4.75e-9 s until the work bound (NWH360 ×1.2 on the double with
+                # an intermediate rim, 2.97154 s; docs/multisurface.md, "Once per step")
+                ult = 1 if at_ultimate(y, rim) else 0
+                m1 = be_step(y, h, am_x, am_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1,
+                             1.0, 1.0, ult)
                 mh = be_step(y, 0.5 * h, ax[i] + slope_x * (tau + 0.25 * h), ay[i] + slope_y * (tau + 0.25 * h),
-                             nz[i] + slope_z * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh)
+                             nz[i] + slope_z * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult)
                 if slope_z != 0.0:
                     vertical_work(y, y1, rb, slope_z * h)
                     vertical_work(y, yh, rb, 0.5 * slope_z * h)
                 m2 = be_step(yh, 0.5 * h, ax[i] + slope_x * (tau + 0.75 * h), ay[i] + slope_y * (tau + 0.75 * h),
-                             nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2)
+                             nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult)
                 if slope_z != 0.0:
                     vertical_work(yh, y2, rb, 0.5 * slope_z * h)
                 work += r1[2] + rh[2] + r2[2]
