@@ -1015,20 +1015,23 @@ def arrival_step(y, rim, r, g, h, hi, tau):
 
 
 @njit(cache=True)
-def accept_step(y, y1, y2, ny, keep, ng, rim, m1, mh, m2, jump):
+def accept_step(y, y1, y2, ny, keep, ng, rim, m1, mh, m2, jump, from_rest=False):
     """The accepted step's end state, written over ``y`` (which holds the step's start).
 
     The Richardson combination 2 y2 − y1 of the whole step ``y1`` and the two halves ``y2`` (second order) where the
     same groups slid in the three solves (masks ``m1``, ``mh``, ``m2``), nothing jumped (``jump``: an impact) and the
     velocity kept its sense; across a change of the sliding set (a stop, a start, a join) or a reversal (the friction
-    turns over) the error expansion does not hold and the two halves are kept.  ``y[keep]`` is the halves' (an energy
+    turns over) the error expansion does not hold and the two halves are kept.  ``from_rest``: the step starts at
+    V = 0 at a located event (a reversal or a break-away the caller cut the previous step at), so the motion is
+    smooth over the whole step and the velocity's sense is the step's own: combined where the masks agree.  ``y[keep]`` is the halves' (an energy
     the combination does not take).  A group on its rim in all three solves is put back on its circle after the
     combination (the chord of two points on it lies inside by O(h²)), X moved with it; when the extrapolation of a
     group arriving at its rim crossed it, the halves are kept.
     """
     low = (1 << ng) - 1
     if (not jump and m1 == mh and mh == m2
-            and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
+            and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0
+                 or (from_rest and y[Y_V] == 0.0 and y[Y_V + 1] == 0.0))):
         for j in range(ny):
             y[j] = 2.0 * y2[j] - y1[j]
         y[keep] = y2[keep]
