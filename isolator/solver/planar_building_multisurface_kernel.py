@@ -77,6 +77,7 @@ from isolator.solver.planar_multisurface_kernel import (
     surface_peaks,
 )
 from isolator.solver.planar_multisurface_stepper import (
+    CUT_ROUNDING,
     H_MIN_FRACTION,
     MAX_STEPS_PER_INTERVAL,
     RIM_AWAY,
@@ -809,13 +810,16 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # under static friction the step ends where the velocity has turned or vanished (then held); under
                 # kinetic friction where it still points forward (a reversal: the same groups slide to its end, so
                 # the step's Richardson combination holds, and the next step starts from V = 0 with the reversed set)
+                # (its velocity is rounding below CUT_ROUNDING |X| / cut: the slips' last bits over the step)
                 cut = up if static else lo
-                building_step(y, cut, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * cut), c, rb, mu,
-                              rim, om, zeta, gam, r, y0, ra)
-                if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= vs and 0.0 < cut < h:
-                    h = cut
-                    stop_h = cut
-                    continue
+                if 0.0 < cut < h:
+                    building_step(y, cut, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * cut), c, rb,
+                                  mu, rim, om, zeta, gam, r, y0, ra)
+                    if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
+                            vs, CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / cut):
+                        h = cut
+                        stop_h = cut
+                        continue
             for j in range(ny):
                 y0[j] = y[j]
             accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted, True)
