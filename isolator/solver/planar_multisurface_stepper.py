@@ -25,8 +25,10 @@ needs locating.
 The step is first order; each step is taken twice (h, then two halves of h/2), the difference is
 the local error estimate that sets the step size (relative tolerance ``tol`` of the peak
 displacement and velocity), and the two are combined (Richardson, 2·y_{h/2} − y_h) for second-order
-accuracy where the motion is smooth.  The error is measured against the event-driven kernel on the
-records it finishes (docs/multisurface.md) and converges with ``tol``.
+accuracy where the motion is smooth.  A step whose velocity turns back or vanishes (a reversal, a stop) is cut
+where its velocity still points forward, so the combination holds on both sides (step doubling cannot see such an
+event in a step's first half).  The error is measured against the event-driven kernel on the records it finishes
+(docs/multisurface.md) and converges with ``tol``.
 """
 
 from __future__ import annotations
