@@ -41,6 +41,13 @@ each on its own scale).  Not taken over from the rigid block's loop: the exact h
 (the floors keep moving while the slab is stuck; a stuck step costs one force test and its error is nil, so the
 steps grow to the sample interval), and the arrival at the ultimate as an event (``arrive``).
 
+**Events located inside a step** (step doubling cannot see an event in a step's first half: the full step and
+the first half both take it whole).  A step whose velocity turns back or vanishes (a reversal, a stop) is cut where
+its velocity still points forward (bisection on its length to rounding), the velocity left there taken away; a slab
+at rest whose solves slide is cut at its break-away (:func:`breakaway_in`, the rims holding an outward push); a
+step from V = 0 at such a cut keeps its Richardson combination where the masks agree (docs/building.md, "Reversals,
+stops and break-aways located inside the steps": 1.3e-4 → 3.3e-7 of the peak at step_tol 1e-7 on Kobe ×1.6).
+
 **Static friction** (a single surface's µs above µk: the rerun of a single pendulum at its capacity).  The slab at
 rest (it starts so, and is so after every stop) is held while the force it needs stays inside the µs circle — the
 steps solve with µs, and a solve that slides means a break-away inside the step (located to rounding by
@@ -77,6 +84,7 @@ from isolator.solver.planar_multisurface_kernel import (
     surface_peaks,
 )
 from isolator.solver.planar_multisurface_stepper import (
+    CUT_ROUNDING,
     H_MIN_FRACTION,
     MAX_STEPS_PER_INTERVAL,
     RIM_AWAY,
@@ -371,14 +379,16 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
 
 
 @njit(cache=True)
-def _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
+def _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam, hold=False):
     """Whether the force the stuck slab needs at τ into a step from y (V = 0: the floors propagated with ẍ_b = 0)
     lies outside a friction circle: r = −(a_g + Σ Γ̃_i q̃_i'')/n, q̃'' from the modes' equations (n = g + sz τ: the
     normal force per unit mass at τ, g + a_z with a vertical of slope sz [m/s³] over the step).  A single group on
     its rim also holds any outward push (its rim's reaction): it lets go only of a force whose part along the rim,
     or (pulling inward) whose whole, leaves its circle (a single pendulum held at its capacity: without it every
     held step there broke away at once, 7.7e-4 of the peak off the 1-D building; with more groups on their rims
-    the groups' circles are kept as they are — the TFP held at its ultimate ran into the work bound with them)."""
+    the groups' circles are kept as they are — the TFP held at its ultimate ran into the work bound with them —
+    unless ``hold``: then every group on its rim holds the outward push, the test of a slab at rest whose solves
+    slide, :func:`planar_building_multisurface_kernel`)."""
     ng = rb.shape[0]
     nm = om.shape[1]
     f0 = carry_slot(ng) + 1
@@ -403,7 +413,7 @@ def _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
         d1 = r_x - u1 / rb[k]
         d2 = r_y - u2 / rb[k]
         un = math.sqrt(u1 * u1 + u2 * u2)
-        if ng == 1 and un >= rim[k] * (1.0 - RIM_ON) and un > 0.0:
+        if (ng == 1 or hold) and un >= rim[k] * (1.0 - RIM_ON) and un > 0.0:
             dn = (d1 * u1 + d2 * u2) / un  # the push outward, held by the rim
             if dn > 0.0:
                 d1 -= dn * u1 / un
@@ -419,21 +429,21 @@ STUCK_CHECKS = 8
 
 
 @njit(cache=True)
-def breakaway_in(y, h, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
+def breakaway_in(y, h, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam, hold=False):
     """The break-away inside a stuck step of length h from y: the first of STUCK_CHECKS points where the force the
     slab needs leaves a circle, then bisection to rounding between it and the point before; -1 when none (``g``
-    the normal force per unit mass at the step's start, ``sz`` its slope [m/s³])."""
+    the normal force per unit mass at the step's start, ``sz`` its slope [m/s³]; ``hold`` as :func:`_outside`'s)."""
     prev = 0.0
     for j in range(1, STUCK_CHECKS + 1):
         tau = h * j / STUCK_CHECKS
-        if _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
+        if _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam, hold):
             lo = prev
             hi = tau
             for _ in range(200):
                 mid = 0.5 * (lo + hi)
                 if not (lo < mid < hi):
                     break
-                if _outside(y, mid, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam):
+                if _outside(y, mid, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam, hold):
                     hi = mid
                 else:
                     lo = mid
@@ -670,7 +680,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # stuck in all three solves: the break-away inside the step, if any, ends it (the steps restart from
                 # it with a short one, as the rigid block's from its exact break-away)
                 t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_now, rim, om,
-                                   zeta, gam)
+                                   zeta, gam, True)
                 if t_b > h_floor:
                     h = t_b
                     started = True
@@ -687,6 +697,21 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     continue
                 if 0.0 <= t_b < h:
                     held_s = False
+                    continue
+            at_rest = y[Y_V] == 0.0 and y[Y_V + 1] == 0.0
+            if (not held_s and at_rest and (m1 | mh | m2) & low and not jump and not started
+                    and h > 2.0 * h_floor):
+                # at rest (from the start, a stop or a located reversal) and a solve slid: the backward-Euler test is
+                # on the step's mean force, so the slide may start inside the step; the steps started it at the
+                # step's start, early by up to h (Kobe KJM ×1.6, the small TFP: the break-away from the ultimate
+                # 3.9e-5 s early at step_tol 1e-7, a velocity error that grew to 4e-5 of the peak).  The break-away
+                # (the force the slab needs leaving a circle; an outward push held by every group on its rim) ends
+                # the step, held, when it lies inside; at its start (a reversal) the step stands
+                t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_now, rim,
+                                   om, zeta, gam, True)
+                if h_floor < t_b < h:
+                    h = t_b
+                    started = True
                     continue
             rims0 = _rim_bits(y, rim)
             if ((r1[R_IMPULSE] > 0.0 or (m1 >> ng) & ~rims0 & away) and not arrival and h > 4.0 * h_floor
@@ -768,8 +793,9 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     continue
                 n_floor += 1
             impacted = r1[R_IMPULSE] + rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0
-            if (static and not held_s and stop_h != h and not jump and not impacted and m2 & low
-                    and y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] < 0.0):
+            turned = y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1]
+            if (not held_s and stop_h != h and not jump and not impacted and not at_rest
+                    and (turned < 0.0 or (turned == 0.0 and not (static or m2 & low)))):
                 # sliding under static friction, the velocity turned back within the step: it passed through zero,
                 # a stop (then at rest under µs, held or leaving at µk as the force the slab needs says).  The stop
                 # is located by bisection on the step's length (to rounding) between the length whose velocity
@@ -788,15 +814,22 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         lo = mid
                     else:
                         up = mid
-                building_step(y, up, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * up), c, rb, mu, rim,
-                              om, zeta, gam, r, y0, ra)
-                if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= vs and up < h:
-                    h = up
-                    stop_h = up
-                    continue
+                # under static friction the step ends where the velocity has turned or vanished (then held); under
+                # kinetic friction where it still points forward (a reversal: the same groups slide to its end, so
+                # the step's Richardson combination holds, and the next step starts from V = 0 with the reversed set)
+                # (its velocity is rounding below CUT_ROUNDING |X| / cut: the slips' last bits over the step)
+                cut = up if static else lo
+                if 0.0 < cut < h:
+                    building_step(y, cut, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * cut), c, rb,
+                                  mu, rim, om, zeta, gam, r, y0, ra)
+                    if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
+                            vs, CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / cut):
+                        h = cut
+                        stop_h = cut
+                        continue
             for j in range(ny):
                 y0[j] = y[j]
-            accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted)
+            accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted, True)
             r[0] = r2[0]
             r[1] = r2[1]
             if stop_h == h:

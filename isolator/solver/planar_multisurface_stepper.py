@@ -25,8 +25,10 @@ needs locating.
 The step is first order; each step is taken twice (h, then two halves of h/2), the difference is
 the local error estimate that sets the step size (relative tolerance ``tol`` of the peak
 displacement and velocity), and the two are combined (Richardson, 2·y_{h/2} − y_h) for second-order
-accuracy where the motion is smooth.  The error is measured against the event-driven kernel on the
-records it finishes (docs/multisurface.md) and converges with ``tol``.
+accuracy where the motion is smooth.  A step whose velocity turns back or vanishes (a reversal, a stop) is cut
+where its velocity still points forward, so the combination holds on both sides (step doubling cannot see such an
+event in a step's first half).  The error is measured against the event-driven kernel on the records it finishes
+(docs/multisurface.md) and converges with ``tol``.
 """
 
 from __future__ import annotations
@@ -115,6 +117,11 @@ RIM_ROUNDING = 8e-16
 #: is the floor of Ψ's gradient from the sliding groups near their circles (step_force; a term in |r| made the floor
 #: ~1e2 at an impact, r ~ 1e5 W, and Newton stopped on a wrong force: balances open by 5.8e-2 and 4.5)
 SLIP_ROUNDING = 4e-16
+#: a step cut where its velocity turns (a reversal or a stop) ends where the velocity still points forward; that velocity
+#: is rounding when it is below this fraction of |X| over the cut's length (the slips' last bits over the step: a step
+#: of 7e-7 s at |X| = 0.32 m left 6.8e-10 m/s, 6.6 ulp of X, where step_tol 8e-10 asked 6.4e-10 m/s: the cut was
+#: refused and the reversal's error, 1.4e-6 of the peak, stayed — NWH360 on a double with an intermediate rim)
+CUT_ROUNDING = 1e-14
 #: a group is on its rim when |ū| ≥ c̄ (1 − RIM_ON) (the rim's return puts it on the circle to the last bits)
 RIM_ON = 1e-12
 #: a group counts as having left its rim (and its next arrival as a new rim contact, S_N_RIM_CONTACTS) only once
@@ -1038,20 +1045,23 @@ def arrival_step(y, rim, r, g, h, hi, tau):
 
 
 @njit(cache=True)
-def accept_step(y, y1, y2, ny, keep, ng, rim, m1, mh, m2, jump):
+def accept_step(y, y1, y2, ny, keep, ng, rim, m1, mh, m2, jump, from_rest=False):
     """The accepted step's end state, written over ``y`` (which holds the step's start).
 
     The Richardson combination 2 y2 − y1 of the whole step ``y1`` and the two halves ``y2`` (second order) where the
     same groups slid in the three solves (masks ``m1``, ``mh``, ``m2``), nothing jumped (``jump``: an impact) and the
     velocity kept its sense; across a change of the sliding set (a stop, a start, a join) or a reversal (the friction
-    turns over) the error expansion does not hold and the two halves are kept.  ``y[keep]`` is the halves' (an energy
+    turns over) the error expansion does not hold and the two halves are kept.  ``from_rest``: the step starts at
+    V = 0 at a located event (a reversal or a break-away the caller cut the previous step at), so the motion is
+    smooth over the whole step and the velocity's sense is the step's own: combined where the masks agree.  ``y[keep]`` is the halves' (an energy
     the combination does not take).  A group on its rim in all three solves is put back on its circle after the
     combination (the chord of two points on it lies inside by O(h²)), X moved with it; when the extrapolation of a
     group arriving at its rim crossed it, the halves are kept.
     """
     low = (1 << ng) - 1
     if (not jump and m1 == mh and mh == m2
-            and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0)):
+            and (y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1] > 0.0 or m2 & low == 0
+                 or (from_rest and y[Y_V] == 0.0 and y[Y_V + 1] == 0.0))):
         for j in range(ny):
             y[j] = 2.0 * y2[j] - y1[j]
         y[keep] = y2[keep]
@@ -1142,6 +1152,7 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
     fail_t = -1.0
     moving = False
     h_sugg = -1.0
+    cut_h = -1.0  # the length of a step cut at a reversal or a stop (or -1)
     out_x[0, 0] = 0.0
     out_x[0, 1] = 0.0
     out_v[0, 0] = 0.0
@@ -1296,10 +1307,46 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                     h = max(h * max(0.1, 0.9 / math.sqrt(err)), h_floor)
                     continue
                 n_floor += 1
+            turned = y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1]
+            if (cut_h != h and not jump and y1[Y_EIMP] == y[Y_EIMP] and y2[Y_EIMP] == y[Y_EIMP]
+                    and (y[Y_V] != 0.0 or y[Y_V + 1] != 0.0) and (turned < 0.0 or (turned == 0.0 and not m2 & low))):
+                # the velocity turned back or vanished inside the step (a reversal or a stop): the friction's jump
+                # there is first order in the step (the velocity off by the time before it × the jump) and
+                # invisible to the halves when it falls in the first (both solves take it whole); the step is cut
+                # where its velocity still points forward (bisection on its length, to rounding), so the same
+                # groups slide to its end and its combination holds, and the velocity there (at most the velocity
+                # tolerance) is taken away (docs/building.md, "Reversals located")
+                lo = 0.0
+                part = h
+                for _ in range(200):  # the length's binary digits, from the largest, until they fall below its ulp
+                    part *= 0.5
+                    t_try = lo + part
+                    if not lo < t_try:
+                        break
+                    be_step(y, t_try, ax[i] + slope_x * (tau + 0.5 * t_try), ay[i] + slope_y * (tau + 0.5 * t_try),
+                            nz[i] + slope_z * (tau + 0.5 * t_try), c, rb, mu, rim, r, y0, rh)
+                    work += rh[2]
+                    if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
+                        lo = t_try
+                if lo > 0.0:
+                    be_step(y, lo, ax[i] + slope_x * (tau + 0.5 * lo), ay[i] + slope_y * (tau + 0.5 * lo),
+                            nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu, rim, r, y0, rh)
+                    if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
+                            tol * max(peak_v, v_floor), CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / lo):
+                        h = lo
+                        cut_h = lo
+                        continue
             # accepted: the Richardson combination where it holds, else the two half steps (accept_step)
             for j in range(ny):
                 y0[j] = y[j]
-            accept_step(y, y1, y2, ny, ny - 1, ng, rim, m1, mh, m2, jump)
+            accept_step(y, y1, y2, ny, ny - 1, ng, rim, m1, mh, m2, jump, True)
+            if cut_h == h:
+                # the step cut at a reversal or a stop: the velocity left (below its tolerance) is taken away, its
+                # kinetic energy booked as friction
+                y[Y_EF] += 0.5 * (y[Y_V] ** 2 + y[Y_V + 1] ** 2)
+                y[Y_V] = 0.0
+                y[Y_V + 1] = 0.0
+            cut_h = -1.0
             r[0] = r2[0]
             r[1] = r2[1]
             tau = hi if last_step else tau + h

@@ -58,14 +58,19 @@ def _pair_segment(records_dir, start_s=7.0, duration_s=5.0):
     return a.acceleration_m_s2[i0:i0 + n], b.acceleration_m_s2[i0:i0 + n], a.dt_s
 
 
-#: the bounds asserted against the exact 1-D building, by step_tol (measured at 1e-8: history 2.4e-5 of the peak,
-#: drifts 1.1e-4, floor accelerations 9.3e-5, impulse 1.4e-5, balance 7.1e-8 of the input; at 1e-7: history 1.3e-4,
-#: drifts 2.0e-4, floor accelerations 1.6e-4, balance 8.2e-7)
-BOUNDS = {1e-8: dict(history=1e-4, peaks=5e-4, balance=1e-6), 1e-7: dict(history=5e-4, peaks=1e-3, balance=5e-6)}
+#: the bounds asserted against the exact 1-D building, by step_tol, as fractions of the peak: the slab's and the floors'
+#: histories, the impulse, the balance of the input; the extremes (drifts, floor accelerations, shears) are taken at the
+#: steps' ends and watch points WATCH_TURN of the fastest mode apart (a miss ≤ 1.2e-3), so not tightened with step_tol.
+#: Measured (docs/building.md, "Reversals, stops and break-aways located inside the steps"), worst of the two cases
+#: along 0° and 35°: at 1e-8 history 1.2e-7, floors 4.5e-7, impulse 1.5e-7, balance 4.7e-8, drifts 3.2e-4; at 1e-7
+#: history 7.0e-7, floors 4.5e-6, impulse 1.6e-7, balance 3.8e-7, drifts 3.2e-4 (before the reversals were located:
+#: history 2.4e-5 / 1.3e-4, floors 9.9e-5 / 3.0e-4, impulse 1.3e-5 / 7.2e-5)
+BOUNDS = {1e-8: dict(history=5e-7, floors=3e-6, impulse=2e-6, peaks=5e-4, balance=2e-7),
+          1e-7: dict(history=3e-6, floors=3e-5, impulse=2e-6, peaks=1e-3, balance=2e-6)}
 
 
 @pytest.mark.parametrize("name, degrees, step_tol", [(name, degrees, 1e-8) for name in CASES for degrees in (0.0, 35.0)]
-                         + [(next(iter(CASES)), 35.0, 1e-7)])
+                         + [(name, 0.0, 1e-7) for name in CASES] + [(next(iter(CASES)), 35.0, 1e-7)])
 def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, degrees, step_tol):
     acc, dt, s, b, total, ref = _case(records_dir, name)
     c, sn = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
@@ -77,7 +82,7 @@ def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, 
     across = ours.displacement_m @ [-sn, c]
     assert np.max(np.abs(across)) <= 1e-9 * peak
     assert _rel(along, ref.displacement_m) <= bound["history"]
-    assert _rel(ours.floor_displacement_m @ [c, sn], ref.floor_displacement_m) <= bound["peaks"]
+    assert _rel(ours.floor_displacement_m @ [c, sn], ref.floor_displacement_m) <= bound["floors"]
     assert ours.peak_displacement_m == pytest.approx(peak, rel=1e-6)
     assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=bound["peaks"])
     assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=bound["peaks"])
@@ -88,8 +93,8 @@ def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, 
     assert list(ours.regimes) == list(ref.regimes)
     assert ours.n_rim_contacts == ref.n_rim_contacts > 0
     assert ours.ultimate_displacement_reached is ref.ultimate_displacement_reached
-    assert ours.impact_impulse_m_s == pytest.approx(ref.impact_impulse_m_s, rel=1e-4)
-    assert ours.impact_impulse_N_s == pytest.approx(ref.impact_impulse_N_s, rel=1e-4)
+    assert ours.impact_impulse_m_s == pytest.approx(ref.impact_impulse_m_s, rel=bound["impulse"])
+    assert ours.impact_impulse_N_s == pytest.approx(ref.impact_impulse_N_s, rel=bound["impulse"])
     assert ours.energy_impact_J_per_kg == pytest.approx(ref.energy_impact_J_per_kg, rel=1e-3)
     assert ours.energy_input_J_per_kg == pytest.approx(ref.energy_input_J_per_kg, rel=bound["peaks"])
     assert abs(ours.energy_balance_error_J_per_kg) <= bound["balance"] * ours.energy_input_J_per_kg

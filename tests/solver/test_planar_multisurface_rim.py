@@ -31,10 +31,13 @@ G = 9.80665
 #: the implicit steps' error against the truths below, as a fraction of the peak (docs/multisurface.md): measured
 #: 1.3e-7 (1-D), 2e-7 (the reference); asserted with a margin of ~5
 STEPS_ERROR = 1e-6
-#: a zero second component against the exact 1-D model over a whole record: the steps' known collinear-reversal
-#: discrepancy (tests/solver/test_planar_multisurface.py asserts ≤ 1e-4 of the peak, 3.2e-5 measured there, not
-#: understood) dominates; 7.1e-6 measured here
+#: a zero second component against the exact 1-D model over a whole record: the impulses, impact energies and the
+#: surfaces' peaks (6.2e-5 and 8.6e-5 measured on the impulse along x and along 35°)
 COLLINEAR_ERROR = 1e-4
+#: the same, the displacement and velocity histories (of their peaks): 3.7e-7 / 2.0e-7 along x, 4.6e-7 along 35°
+#: measured since the steps cut at reversals and stops (7.1e-6 and 1.4e-5 before: a reversal in the first half of a
+#: step was taken whole by both solves, unseen by the error estimate; docs/building.md)
+COLLINEAR_HISTORY = 2e-6
 
 
 def bearing(kind, surfaces):
@@ -69,8 +72,8 @@ def test_zero_second_component_through_regimes_iv_v_and_the_ultimate_is_the_1d_m
     assert np.all(two.displacement_m[:, 1] == 0.0)
     peak = one.peak_displacement_m  # 0.9 m: the ultimate
     err = np.max(np.abs(two.displacement_m[:, 0] - one.displacement_m)) / peak
-    assert err <= COLLINEAR_ERROR  # 7.1e-6 measured
-    assert np.max(np.abs(two.velocity_m_s[:, 0] - one.velocity_m_s)) <= 10 * COLLINEAR_ERROR * one.peak_velocity_m_s
+    assert err <= COLLINEAR_HISTORY  # 3.7e-7 measured
+    assert np.max(np.abs(two.velocity_m_s[:, 0] - one.velocity_m_s)) <= COLLINEAR_HISTORY * one.peak_velocity_m_s
     assert two.peak_displacement_m == pytest.approx(peak, rel=1e-12)  # held at the ultimate, never past it
     assert two.n_impacts == sum(1 for k in one.event_names if k == "ultimate" or k == "rim impact")
     for key in ("impact_impulse_m_s", "max_impact_velocity_m_s", "energy_impact_J_per_kg", "energy_input_J_per_kg",
@@ -210,7 +213,7 @@ def test_the_ultimate_along_35_degrees_is_the_1d_model(through_the_rims):
     across = turned.displacement_m @ np.array([-math.sin(theta), math.cos(theta)])
     peak = one.peak_displacement_m
     assert turned.ultimate_displacement_reached and turned.n_rim_contacts == one.n_rim_contacts
-    assert np.max(np.abs(along - one.displacement_m)) <= COLLINEAR_ERROR * peak  # 1.4e-5 measured
+    assert np.max(np.abs(along - one.displacement_m)) <= COLLINEAR_HISTORY * peak  # 4.6e-7 measured
     assert np.max(np.abs(across)) <= 1e-12 * peak  # 2.5e-14 measured
     assert turned.peak_displacement_m == pytest.approx(peak, rel=1e-12)  # held at the ultimate, never past it
     # the impulse and the impact energy against the exact model's: 8.7e-5 and 2.3e-6 measured
