@@ -203,7 +203,8 @@ def saturating_pulse(dt=0.01):
 def test_saturated_pair_with_a_zero_second_component_is_the_1d_model():
     """Surfaces 1 and 4 of a TFP saturated together (a·v up to 40 each): a pair with ay = 0 is the 1-D model (its
     saturated set, set_split) — the plane's set is the same map on each component — and the record along 35° is
-    that history rotated; without the set the plane's run is refused (the window covers the failure).  Measured
+    that history rotated (the run without the set is refused here too, after ~2 min on the work bound: left to the
+    equal double's test, which shows the same refusal at once).  Measured
     (h122): 4.4e-16 of the peak along x, 8.8e-15 along 35° (2.0e-15 across), balance 4e-14 of the input."""
     acc, dt = saturating_pulse()
     one = simulate_bearing_rate(acc, dt, bearing=BIG_TFP)
@@ -225,8 +226,6 @@ def test_saturated_pair_with_a_zero_second_component_is_the_1d_model():
     print("saturated, along 35°:", along, across)
     assert along <= 1e-9 and across <= 1e-9
     assert abs(rot.energy_balance_error_J_per_kg) <= 1e-9 * rot.energy_input_J_per_kg
-    with pytest.raises(SolverError, match="two surfaces saturated together"):
-        simulate_bearing_pair_rate(acc, np.zeros_like(acc), dt, bearing=BIG_TFP, saturation_levels=(np.inf, np.inf))
 
 
 def test_pts_lower_bound_of_the_review_runs_past_its_old_stop(records_dir):
