@@ -22,6 +22,7 @@ import numpy as np
 from isolator.errors import DesignError, RecordInputError, SolverError
 from isolator.solver import planar_multisurface_rate_kernel as _pr
 from isolator.solver.multisurface_rate import is_rate_dependent, rate_laws
+from isolator.solver.multisurface_rate_kernel import LOCK_LEVELS
 from isolator.solver.notice import note_if_slow
 from isolator.solver.planar_multisurface import PlanarMultisurfaceResponse
 from isolator.solver.record import record_timing
@@ -96,7 +97,7 @@ def _warm_up() -> None:
     _READY = True
 
 
-def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
+def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity, levels=LOCK_LEVELS):
     n = ax.size
     ns = bmat.shape[0]
     out_x = np.empty((n, 2))
@@ -114,7 +115,7 @@ def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
         surf_peak[:] = 0.0
         start = time.perf_counter()
         _pr.planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, h_first,
-                               out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, u)
+                               out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, first, u, levels)
         elapsed = time.perf_counter() - start
         n_ev = int(summary[_pr.S_N_EVENTS])
         if n_ev <= capacity:
@@ -124,7 +125,8 @@ def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity):
 
 def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
                                damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
-                               tolerance: float = DEFAULT_TOLERANCE) -> RatePlanarMultisurfaceResponse:
+                               tolerance: float = DEFAULT_TOLERANCE,
+                               saturation_levels=None) -> RatePlanarMultisurfaceResponse:
     """Response of a mass on a double or triple friction pendulum with µ(v) surfaces to two components.
 
     Parameters
@@ -144,6 +146,9 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
     tolerance : float
         Step tolerance: largest difference of a collocation step from its two halves, as a fraction of the
         running peak displacement (≥ 1e-4 m) and speed (≥ 1e-3 m/s) [-].
+    saturation_levels : (float, float), optional
+        (join, leave) levels of a_i |u̇_i| of the saturated set (default
+        :data:`isolator.solver.multisurface_rate_kernel.LOCK_LEVELS`, (28, 26); ``(inf, inf)``: no set).
 
     Returns
     -------
@@ -178,7 +183,8 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
     _warm_up()
     out_x, out_v, out_a, out_en, summary, surf_peak, first, u, ev_t, ev_k, elapsed = _run(
         ax, ay, np.ascontiguousarray(local, dtype=np.float64), g, c, bmat, smat, mu_s, mu_f, rate, cap,
-        float(tolerance), 64 + ax.size // 4)
+        float(tolerance), 64 + ax.size // 4,
+        LOCK_LEVELS if saturation_levels is None else np.asarray(saturation_levels, dtype=np.float64))
     status = int(summary[_pr.S_STATUS])
     fail_t = t0 + float(summary[_pr.S_FAIL_T])
     if status & _pr.STATUS_RIM:

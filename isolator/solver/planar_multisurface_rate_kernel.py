@@ -16,11 +16,17 @@ component: the rotated slide plates of Fenz & Constantinou), and the mass Ẍ = 
 Σ_i u̇_i = Ẋ fixes r (each map r ↦ φ_i(|r − b_i|)(r − b_i)/|r − b_i| is the gradient of a convex
 function, strictly convex where the surface slides: the sum is strongly monotone, one root for Ẋ ≠ 0):
 an index-1 DAE.  The force is found as in 1-D from a *pivot* surface k (the sliding surface with the
-largest a_i |u̇_i| at the step's start, :func:`pick_pivot`): u̇_k = Ẋ − Σ_{j≠k} φ_j(|f_j|) f̂_j and
+largest a_i |u̇_i| at the step's start, the 1-D kernel's ``pick_pivot``): u̇_k = Ẋ − Σ_{j≠k} φ_j(|f_j|) f̂_j and
 f_k = µ_k(|u̇_k|) û̇_k, the forward law (well conditioned where φ_k is not); r is the root of
 G(r) = r − b_k − µ_k(|u̇_k|) û̇_k, ∂G/∂r = I + DM_k Σ_j DΦ_j (a product of two symmetric
 positive semi-definite matrices plus I: invertible), by Newton kept inside the discs |f_j| < µ_fast,j
-(:func:`solve_force`).  The state y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by the 3-stage Radau IIA
+(:func:`solve_force`), each collocation stage's from the force predicted along dr/dy (:func:`stage_residual`).
+Two or more sliding surfaces saturated together (a_i |u̇_i| ≥ 28, left at 26: µ_fast − µ(v) near the rounding of r,
+φ not resolvable) share the velocity by the 1-D model's map on each component (its ``update_lock`` and ``set_split``
+on the speeds |u̇_i|: the back-forces of the set move together, u̇_ℓ = G_ℓ0 Ẋ + Σ_U G_ℓj u̇_j), exact where the
+motion keeps one direction (a pair along a line, an equal double); a motion that turns while two surfaces are
+saturated is not checked (docs/multisurface.md, h122).  The state y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by
+the 3-stage Radau IIA
 collocation of the 1-D kernel (its tableau, Newton start and stage matrix imported), with the analytic
 Jacobian (:func:`rhs`), every step taken twice (h, two of h/2) and the difference held below the tolerance.
 
@@ -60,8 +66,10 @@ from isolator.solver.multisurface_rate_kernel import (
     RADAU_A_INV,
     RADAU_C,
     friction_at_rate,
+    set_split,
     slide_rate,
     stage_matrix,
+    update_lock,
 )
 from isolator.solver.planar_events import record_event
 
@@ -75,6 +83,8 @@ MAX_STEPS_PER_INTERVAL = 20000
 LEVEL_TIE = 1e-13  #: static discs left within this (F/W) of each other start together
 #: the mass is put at rest when decelerating at a speed ≤ this fraction of the speed scale (max(peak, 1e-3 m/s))
 STOP_SPEED = 1e-10
+#: the saturated set is formed only where its members slide the pivot's way to this sine of the angle (:func:`aligned_set`)
+ALIGNED_SET = 1e-9
 
 STATUS_OK = 0
 STATUS_CHATTER = 1
@@ -157,9 +167,11 @@ def friction_vector(vx, vy, ex0, ey0, mu_s, mu_f, a, out_d):
 
 
 @njit(cache=True)
-def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, dphi, dm, out):
-    """G(r) = r − b_k − µ_k(|u̇_k|) û̇_k with u̇_k = Ẋ − Σ_j φ_j(|f_j|) f̂_j (``out`` [6]: G, then ∂G/∂r row by row);
-    False outside a non-pivot disc |f_j| < µ_fast,j.  ``dphi``/``dm`` receive DΦ_j and DM_k at r."""
+def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, dphi, dm, out):
+    """G(r) = r − b_k − µ_k(|u̇_k|) û̇_k with u̇_k = G_k0 Ẋ + Σ_U G_kj φ_j(|f_j|) f̂_j (``out`` [6]: G, then ∂G/∂r row
+    by row; G = ``gmap`` of :func:`isolator.solver.multisurface_rate_kernel.set_split`, U the sliding surfaces neither
+    the pivot nor in the saturated set ``lock``: without a set u̇_k = Ẋ − Σ_j φ_j(|f_j|) f̂_j); False outside a disc
+    |f_j| < µ_fast,j of U.  ``dphi``/``dm`` receive DΦ_j and DM_k at r."""
     k = pivot
     sx = 0.0
     sy = 0.0
@@ -167,16 +179,17 @@ def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, dph
     d01 = 0.0
     d11 = 0.0
     for j in range(mode.shape[0]):
-        if j != k and mode[j] == 1:
+        if j != k and mode[j] == 1 and lock[j] == 0:
             vjx, vjy = slide_vector(rx - bf[j, 0], ry - bf[j, 1], mu_s[j], mu_f[j], a[j], dphi[j])
             if not math.isfinite(vjx):
                 return False
-            sx += vjx
-            sy += vjy
-            d00 += dphi[j, 0, 0]
-            d01 += dphi[j, 0, 1]
-            d11 += dphi[j, 1, 1]
-    fx, fy = friction_vector(vx - sx, vy - sy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+            wk = gmap[k, 1 + j]
+            sx += wk * vjx
+            sy += wk * vjy
+            d00 -= wk * dphi[j, 0, 0]
+            d01 -= wk * dphi[j, 0, 1]
+            d11 -= wk * dphi[j, 1, 1]
+    fx, fy = friction_vector(gmap[k, 0] * vx + sx, gmap[k, 0] * vy + sy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
     out[0] = rx - bf[k, 0] - fx
     out[1] = ry - bf[k, 1] - fy
     out[2] = 1.0 + dm[0, 0] * d00 + dm[0, 1] * d01
@@ -187,7 +200,7 @@ def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, dph
 
 
 @njit(cache=True)
-def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
+def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm):
     """F/W (in ``r``, which holds a first guess) at which the sliding surfaces' rates sum to Ẋ = (vx, vy).
 
     The pivot k takes the rest of the velocity and its friction by the forward law (module docstring): Newton on
@@ -200,12 +213,14 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
     k = pivot
     others = 0
     for j in range(n):
-        if j != k and mode[j] == 1:
+        if j != k and mode[j] == 1 and lock[j] == 0:
             others += 1
+    c0 = gmap[k, 0]
     if others == 0 or (vx == 0.0 and vy == 0.0):
-        # one surface (the forward law), or at rest at a start: every sliding surface at its onset, r on the
-        # pivot's static circle along the start direction (the non-pivot rates are 0, :func:`rhs`)
-        fx, fy = friction_vector(vx, vy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+        # one surface (the forward law; or the pivot of a saturated set, its share c0 Ẋ), or at rest at a start:
+        # every sliding surface at its onset, r on the pivot's static circle along the start direction (the
+        # non-pivot rates are 0, :func:`rhs`)
+        fx, fy = friction_vector(c0 * vx, c0 * vy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
         r[0] = bf[k, 0] + fx
         r[1] = bf[k, 1] + fy
         return True
@@ -213,17 +228,17 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
     trial = np.empty(6)
     best = math.inf
     if math.isfinite(r[0]) and math.isfinite(r[1]) and force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a,
-                                                                        k, ex0, ey0, dphi, dm, out):
+                                                                        k, gmap, lock, ex0, ey0, dphi, dm, out):
         best = math.hypot(out[0], out[1])
-    fx, fy = friction_vector(vx / (others + 1), vy / (others + 1), ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
-    if force_residual(bf[k, 0] + fx, bf[k, 1] + fy, vx, vy, bf, mode, mu_s, mu_f, a, k, ex0, ey0, dphi, dm, trial):
+    fx, fy = friction_vector(c0 * vx / (others + 1), c0 * vy / (others + 1), ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+    if force_residual(bf[k, 0] + fx, bf[k, 1] + fy, vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0, dphi, dm, trial):
         if math.hypot(trial[0], trial[1]) < best:
             r[0] = bf[k, 0] + fx
             r[1] = bf[k, 1] + fy
             best = math.hypot(trial[0], trial[1])
     if not math.isfinite(best):
         return False
-    force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a, k, ex0, ey0, dphi, dm, out)
+    force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0, dphi, dm, out)
     prev = math.inf
     for it in range(100):
         det = out[2] * out[5] - out[3] * out[4]
@@ -238,7 +253,7 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
             return True
         lam = 1.0
         for _ in range(60):
-            if force_residual(r[0] - lam * stx, r[1] - lam * sty, vx, vy, bf, mode, mu_s, mu_f, a, k, ex0, ey0,
+            if force_residual(r[0] - lam * stx, r[1] - lam * sty, vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0,
                               dphi, dm, trial) and (math.hypot(trial[0], trial[1]) < best or lam * size <= floor):
                 break
             lam *= 0.5
@@ -254,7 +269,7 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
 
 
 @njit(cache=True)
-def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, bf, out_dy, out_jac, want_jac):
+def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, bf, out_dy, out_jac, want_jac):
     """dy/dt of y = (Ẋ, u_1..u_n) in a mode; ``r`` [2] in: a guess, out: F/W.  Returns (ok, friction power g Σ
     (r − b_i)·dū_i/dt per unit mass).  ``out_jac`` [m × m] receives ∂(dy/dt)/∂y when ``want_jac`` (the implicit
     function theorem on G(r; Ẋ, u) = 0, module docstring)."""
@@ -265,22 +280,28 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, 
     dm = np.empty((2, 2))
     for p in range(m):
         out_dy[p] = 0.0
-    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, dphi, dm):
+    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm):
         return False, 0.0
     out_dy[0] = -g * r[0] - c * y[0] - agx
     out_dy[1] = -g * r[1] - c * y[1] - agy
-    sx = 0.0
-    sy = 0.0
     at_rest = y[0] == 0.0 and y[1] == 0.0
     for j in range(n):
-        if j != pivot and mode[j] == 1 and not at_rest:
+        if j != pivot and mode[j] == 1 and lock[j] == 0 and not at_rest:
             vjx, vjy = slide_vector(r[0] - bf[j, 0], r[1] - bf[j, 1], mu_s[j], mu_f[j], a[j], dphi[j])
             out_dy[2 + 2 * j] = vjx
             out_dy[3 + 2 * j] = vjy
-            sx += vjx
-            sy += vjy
-    out_dy[2 + 2 * pivot] = y[0] - sx
-    out_dy[3 + 2 * pivot] = y[1] - sy
+    # the pivot's rate and the saturated set's by the split's map: G_ℓ0 Ẋ + Σ_U G_ℓj u̇_j (the series constraint
+    # Ẋ − Σ_j u̇_j without a set)
+    for ell in range(n):
+        if ell == pivot or lock[ell] == 1:
+            sx = 0.0
+            sy = 0.0
+            for j in range(n):
+                if j != pivot and mode[j] == 1 and lock[j] == 0:
+                    sx += gmap[ell, 1 + j] * out_dy[2 + 2 * j]
+                    sy += gmap[ell, 1 + j] * out_dy[3 + 2 * j]
+            out_dy[2 + 2 * ell] = gmap[ell, 0] * y[0] + sx
+            out_dy[3 + 2 * ell] = gmap[ell, 0] * y[1] + sy
     power = 0.0
     for i in range(n):
         ubx = 0.0
@@ -296,8 +317,8 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, 
                 out_jac[p, q] = 0.0
         dsum = np.zeros((2, 2))
         for j in range(n):
-            if j != k and mode[j] == 1:
-                dsum += dphi[j]
+            if j != k and mode[j] == 1 and lock[j] == 0:
+                dsum += -gmap[k, 1 + j] * dphi[j]
         amat = np.eye(2) + dm @ dsum
         det = amat[0, 0] * amat[1, 1] - amat[0, 1] * amat[1, 0]
         if not (det != 0.0 and math.isfinite(det)):
@@ -307,55 +328,79 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r, 
         ainv[0, 1] = -amat[0, 1] / det
         ainv[1, 0] = -amat[1, 0] / det
         ainv[1, 1] = amat[0, 0] / det
-        # dr/dẊ = A⁻¹ DM; dr/du_q = A⁻¹ (B_kq I + DM Σ_j DΦ_j B_jq)
-        drv = ainv @ dm
+        # A = I − DM Σ_U G_kj DΦ_j; dr/dẊ = A⁻¹ DM G_k0; dr/du_q = A⁻¹ (B_kq I − DM Σ_U G_kj DΦ_j B_jq)
+        drv = (ainv @ dm) * gmap[k, 0]
         dru = np.empty((n, 2, 2))
         for q in range(n):
             inner = bmat[k, q] * np.eye(2)
             for j in range(n):
-                if j != k and mode[j] == 1:
-                    inner += bmat[j, q] * (dm @ dphi[j])
+                if j != k and mode[j] == 1 and lock[j] == 0:
+                    inner += (-gmap[k, 1 + j] * bmat[j, q]) * (dm @ dphi[j])
             dru[q] = ainv @ inner
         for p in range(2):
             for s in range(2):
                 out_jac[p, s] = -g * drv[p, s] - (c if p == s else 0.0)
                 for q in range(n):
                     out_jac[p, 2 + 2 * q + s] = -g * dru[q, p, s]
-        # non-pivot rates: du̇_j = DΦ_j (dr − Σ_q B_jq du_q); the pivot's: dẊ − Σ_j du̇_j
-        for p in range(2):
-            for s in range(2):
-                out_jac[2 + 2 * k + p, s] = 1.0 if p == s else 0.0
+        # the other rates: du̇_j = DΦ_j (dr − Σ_q B_jq du_q); the pivot's and the set's: G_ℓ0 dẊ + Σ_U G_ℓj du̇_j
+        for ell in range(n):
+            if ell == k or lock[ell] == 1:
+                for p in range(2):
+                    for s in range(2):
+                        out_jac[2 + 2 * ell + p, s] = gmap[ell, 0] if p == s else 0.0
         for j in range(n):
-            if j != k and mode[j] == 1:
+            if j != k and mode[j] == 1 and lock[j] == 0:
                 dv = dphi[j] @ drv
                 for p in range(2):
                     for s in range(2):
                         out_jac[2 + 2 * j + p, s] = dv[p, s]
-                        out_jac[2 + 2 * k + p, s] -= dv[p, s]
+                        for ell in range(n):
+                            if ell == k or lock[ell] == 1:
+                                out_jac[2 + 2 * ell + p, s] += gmap[ell, 1 + j] * dv[p, s]
                 for q in range(n):
                     du = dphi[j] @ (dru[q] - bmat[j, q] * np.eye(2))
                     for p in range(2):
                         for s in range(2):
                             out_jac[2 + 2 * j + p, 2 + 2 * q + s] = du[p, s]
-                            out_jac[2 + 2 * k + p, 2 + 2 * q + s] -= du[p, s]
+                            for ell in range(n):
+                                if ell == k or lock[ell] == 1:
+                                    out_jac[2 + 2 * ell + p, 2 + 2 * q + s] += gmap[ell, 1 + j] * du[p, s]
     return True, g * power
 
 
 @njit(cache=True)
-def stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rs, bf, ys, dy,
-                   fz, jac, want_jac, res):
+def stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rs, bf, ys, dy,
+                   fz, jac, want_jac, res, rs_last, ys_last, drdy):
     """The collocation's residual −(Z − h (A ⊗ I) F(y0 + Z)) at the stage increments ``z`` [3 × m] into ``res``;
-    the stage Jacobians into ``jac`` when ``want_jac``; ``rs`` [3 × 2] the stages' forces (in: guesses).  False
-    where a stage has no force (outside the slide laws' domain)."""
+    the stage Jacobians into ``jac`` when ``want_jac``; ``rs`` [3 × 2] out: the stages' forces.  False where a stage
+    has no force (outside the slide laws' domain).
+
+    Each stage's force is sought from the *predictor* rs_last[j] + (dr/dy)(y_j − ys_last[j]): the force last found
+    for that stage (at ys_last[j]) moved along the force's derivative ``drdy`` [2 × m] at the step's start (zero:
+    no predictor).  Without it Newton started from the force of another state: where a non-pivot surface is near
+    saturation its circle |r − b_j| = µ_fast,j moves with b_j by far more than the gap µ_fast,j − |r − b_j| within a
+    step (PTS ×1.75 lower bound at 11.8755 s, a·v ≈ 15.8 on surfaces 1 and 4: b_1 moves 1e-7 in a 3e-7 s step, the
+    gap is 2.7e-9), the start lies outside that circle, and the damped Newton of :func:`solve_force` stalled (its
+    residual at 1.5e-6 after 100 iterations) until the steps fell to 1e-8 s and the work bound stopped the run.  On
+    success ``rs_last``/``ys_last`` take the stage's force and state."""
     m = y0.shape[0]
     for j in range(3):
         for p in range(m):
             ys[p] = y0[p] + z[j, p]
+        for q in range(2):
+            guess = rs_last[j, q]
+            for p in range(m):
+                guess += drdy[q, p] * (ys[p] - ys_last[j, p])
+            rs[j, q] = guess
         tj = RADAU_C[j] * h
         good, _ = rhs(ys, a_start[0] + slope[0] * tj, a_start[1] + slope[1] * tj, g, c, bmat, smat, mode, mu_s,
-                      mu_f, a, pivot, ex0, ey0, rs[j], bf, dy, jac[j], want_jac)
+                      mu_f, a, pivot, gmap, lock, ex0, ey0, rs[j], bf, dy, jac[j], want_jac)
         if not good:
             return False
+        for q in range(2):
+            rs_last[j, q] = rs[j, q]
+        for p in range(m):
+            ys_last[j, p] = ys[p]
         for p in range(m):
             fz[j, p] = dy[p]
     for j in range(3):
@@ -378,10 +423,11 @@ def _scaled_norm(vec, scale, m):
 
 
 @njit(cache=True)
-def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r_guess, scale, y1,
-               quad, z_full, guess, lu, piv, use_lu):
+def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r_guess, scale, y1,
+               quad, z_full, guess, lu, piv, use_lu, drdy):
     """One Radau IIA step of length h from y0 (ground acceleration a_start + slope τ, 2-vectors); Newton's
-    iterations, or −1 when Newton fails.  The conventions of
+    iterations, or −1 when Newton fails (``r_guess``: the force at y0; ``drdy``: its derivative, the stages' force
+    predictor of :func:`stage_residual`).  The conventions of
     :func:`isolator.solver.multisurface_rate_kernel.radau_step` (``guess``/``z_full``: the half steps start from
     the full step's polynomial; ``use_lu``: simplified Newton with the caller's factors, full Newton where it does
     not contract); the full Newton steps are damped (halved while the scaled residual does not fall, ≤ 20 times:
@@ -408,18 +454,24 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
     dy = np.empty(m)
     bf = np.empty((n, 2))
     rs = np.empty((3, 2))
+    rs_last = np.empty((3, 2))
+    ys_last = np.empty((3, m))
     for j in range(3):
         rs[j, 0] = r_guess[0]
         rs[j, 1] = r_guess[1]
+        rs_last[j, 0] = r_guess[0]
+        rs_last[j, 1] = r_guess[1]
+        for p in range(m):
+            ys_last[j, p] = y0[p]
     if guess.shape[0] != 3 and y0[0] == 0.0 and y0[1] == 0.0:
         # a start from rest: the direction of the motion is undefined at Ẋ = 0 (every Jacobian there singular);
         # Newton starts from the stages moving along the start direction e with the acceleration the mass at
         # rest has along e (linear in τ between the step's ends), the displacement shared by the sliding surfaces
-        good0, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rs[0],
+        good0, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rs[0],
                        bf, dy, jac[0], False)
         p0 = dy[0] * ex0 + dy[1] * ey0
         good1, _ = rhs(y0, a_start[0] + slope[0] * h, a_start[1] + slope[1] * h, g, c, bmat, smat, mode, mu_s, mu_f,
-                       a, pivot, ex0, ey0, rs[1], bf, dy, jac[0], False)
+                       a, pivot, gmap, lock, ex0, ey0, rs[1], bf, dy, jac[0], False)
         p1 = dy[0] * ex0 + dy[1] * ey0
         n_sliding = 0
         for i in range(n):
@@ -450,8 +502,8 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
         n_it += 1
         fall_back = False
         if not have_res:
-            ok = stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0,
-                                rs, bf, ys, dy, fz, jac, not simplified, res)
+            ok = stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0,
+                                rs, bf, ys, dy, fz, jac, not simplified, res, rs_last, ys_last, drdy)
         else:
             ok = True
         have_res = False
@@ -499,8 +551,8 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
                 for j in range(3):
                     for p in range(m):
                         z_try[j, p] = z[j, p] + lam * delta[j * m + p]
-                if stage_residual(y0, z_try, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0,
-                                  ey0, rs, bf, ys, dy, fz, jac, True, res_try):
+                if stage_residual(y0, z_try, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0,
+                                  ey0, rs, bf, ys, dy, fz, jac, True, res_try, rs_last, ys_last, drdy):
                     if _scaled_norm(res_try, scale, m) < norm0 or lam * full <= 1e-13:
                         accepted = True
                         break
@@ -542,10 +594,15 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
     for j in range(3):
         for p in range(m):
             ys[p] = y0[p] + z[j, p]
+        for q in range(2):
+            guess_q = rs_last[j, q]
+            for p in range(m):
+                guess_q += drdy[q, p] * (ys[p] - ys_last[j, p])
+            rs[j, q] = guess_q
         tj = RADAU_C[j] * h
         agx = a_start[0] + slope[0] * tj
         agy = a_start[1] + slope[1] * tj
-        good, _ = rhs(ys, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rs[j], bf, dy, jac[j],
+        good, _ = rhs(ys, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rs[j], bf, dy, jac[j],
                       False)
         if not good:
             return -1
@@ -577,7 +634,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
 
 
 @njit(cache=True)
-def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r_guess, scale, y1,
+def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r_guess, scale, y1,
                 quad):
     """Two Radau steps of h/2 (kept) and one of h (the estimate); the scaled difference (inf: failed).
 
@@ -594,11 +651,18 @@ def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pi
     dy0 = np.empty(m)
     bf = np.empty((n, 2))
     r0 = r_guess.copy()
-    good, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, r0, bf, dy0,
+    good, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r0, bf, dy0,
                   jac0, True)
     use_full = False
     use_half = False
+    # the force's derivative dr/dy = −(∂Ẍ/∂y + c [I 0])/g from the Jacobian's first rows: the stages' force predictor
+    drdy = np.zeros((2, m))
     if good and not (y0[0] == 0.0 and y0[1] == 0.0):  # at rest the Jacobian is singular: full Newton
+        for q in range(2):
+            for p in range(m):
+                drdy[q, p] = -(jac0[q, p] + (c if p == q else 0.0)) / g
+                if not math.isfinite(drdy[q, p]):
+                    drdy[q, p] = 0.0
         stage_matrix(h, jac0, lu_full)
         use_full = lu_factor(lu_full, piv_full)
         stage_matrix(0.5 * h, jac0, lu_half)
@@ -616,20 +680,20 @@ def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pi
     a_mid[1] = a_start[1] + slope[1] * half
     quad[3] = 0.0
     rg = r0.copy()
-    it0 = radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rg, scale,
-                     y_full, q_full, z_full, no_guess, lu_full, piv_full, use_full)
+    it0 = radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rg, scale,
+                     y_full, q_full, z_full, no_guess, lu_full, piv_full, use_full, drdy)
     if it0 < 0:
         return math.inf
     quad[3] = it0
     rg[0] = r0[0]
     rg[1] = r0[1]
-    it1 = radau_step(y0, half, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rg, scale,
-                     y_mid, q1, z_full, GUESS_FIRST_HALF, lu_half, piv_half, use_half)
+    it1 = radau_step(y0, half, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rg, scale,
+                     y_mid, q1, z_full, GUESS_FIRST_HALF, lu_half, piv_half, use_half, drdy)
     if it1 < 0:
         return math.inf
     quad[3] += it1
-    it2 = radau_step(y_mid, half, a_mid, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, ex0, ey0, rg, scale,
-                     y1, q2, z_full, GUESS_SECOND_HALF, lu_half, piv_half, use_half)
+    it2 = radau_step(y_mid, half, a_mid, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rg, scale,
+                     y1, q2, z_full, GUESS_SECOND_HALF, lu_half, piv_half, use_half, drdy)
     if it2 < 0:
         return math.inf
     quad[3] += it2
@@ -661,17 +725,26 @@ def event_values(y, r, mode, pivot, mu_s, cap, bmat, bf, out_e):
 
 
 @njit(cache=True)
-def pick_pivot(dy, mode, a):
-    """The sliding surface farthest into saturation (largest a_i |u̇_i|): the pivot of :func:`solve_force`."""
-    best = -1
-    worst = -math.inf
-    for i in range(mode.shape[0]):
-        if mode[i] == 1:
-            w = a[i] * math.hypot(dy[2 + 2 * i], dy[3 + 2 * i])
-            if best < 0 or w > worst:
-                worst = w
-                best = i
-    return best
+def aligned_set(dy, lock, pivot):
+    """True when every member of the saturated set slides the pivot's way, |û̇_ℓ × û̇_k| ≤ :data:`ALIGNED_SET` and
+    û̇_ℓ·û̇_k > 0 (or the set is empty): the only motions where the 1-D set's map on each component is the slow
+    manifold (a pair along a line, an equal double).  Where the directions part it is not: on a saturating TFP pulse
+    with a turning cross component the levels (24, 22), (22, 20), (20, 18) moved the history by 3e-4 and 1.4e-4 of
+    the peak (h122; the 1-D set: 5e-13), so no set is formed there and the run stops where the slide law is not
+    resolvable, refused in one line."""
+    if not (0 <= pivot < lock.shape[0]):
+        return True
+    kx = dy[2 + 2 * pivot]
+    ky = dy[3 + 2 * pivot]
+    sk = math.hypot(kx, ky)
+    for ell in range(lock.shape[0]):
+        if lock[ell] == 1 and ell != pivot:
+            lx = dy[2 + 2 * ell]
+            ly = dy[3 + 2 * ell]
+            sl = math.hypot(lx, ly)
+            if not (abs(lx * ky - ly * kx) <= ALIGNED_SET * sl * sk and lx * kx + ly * ky > 0.0):
+                return False
+    return True
 
 
 @njit(cache=True)
@@ -763,7 +836,7 @@ def _mask(mode):
 
 @njit(cache=True)
 def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first,
-                       out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, state_first_time, u):
+                       out_x, out_v, out_a, out_en, ev_t, ev_k, summary, surf_peak, state_first_time, u, lock_levels):
     """Response of a mass on a multi-surface bearing with µ(v) surfaces to a sampled pair.
 
     Parameters
@@ -792,11 +865,17 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
         Events, the summary (``S_*``), peak |u_i|, first time of each set of sliding surfaces (index: the mask).
     u : float64[ns, 2]
         Out: the final surface displacements [m].
+    lock_levels : float64[2]
+        (join, leave) levels of a_i |u̇_i| of the saturated set (:data:`LOCK_LEVELS`; (inf, inf): no set).
     """
     n_samples = ax.shape[0]
     ns = mu_s.shape[0]
     m = 2 + 2 * ns
     mode = np.zeros(ns, dtype=np.int64)
+    lock = np.zeros(ns, dtype=np.int64)
+    lock_before = np.zeros(ns, dtype=np.int64)
+    gmap = np.zeros((ns, ns + 1))
+    speeds = np.zeros(ns + 1)
     fresh = np.zeros(ns, dtype=np.int64)
     y = np.zeros(m)
     y_try = np.empty(m)
@@ -865,6 +944,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 nx = -(ax[idx] + slope[0] * tau) / g
                 ny = -(ay[idx] + slope[1] * tau) / g
                 pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction)
+                for i in range(ns):
+                    lock[i] = 0
                 if pivot < 0:  # rounding at the disc's edge: nothing left it yet
                     tau = min(dt_i, tau + 1e-13 * dt_i)
                     continue
@@ -885,15 +966,28 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             scale[1] = scale[0]
             for p in range(2, m):
                 scale[p] = max(peak_x, x_floor)
-            # the pivot: the sliding surface farthest into saturation at the step's start
-            good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
-                          direction[1], r, bf, dy, jac, False)
+            # the pivot (the sliding surface farthest into saturation) and the saturated set at the step's start: the
+            # 1-D model's update_lock and set_split on the speeds |u̇_i|, held for the step and its event search
+            pivot = set_split(mode, pivot, lock, bmat, gmap)
+            good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
+                          direction[0], direction[1], r, bf, dy, jac, False)
             if good:
-                k_new = pick_pivot(dy, mode, a)
-                if k_new != pivot:
+                changed = False
+                for i in range(ns):
+                    speeds[1 + i] = math.hypot(dy[2 + 2 * i], dy[3 + 2 * i])
+                    lock_before[i] = lock[i]
+                k_new = update_lock(speeds, mode, a, lock, lock_levels[0], lock_levels[1])
+                if not aligned_set(dy, lock, k_new):
+                    for i in range(ns):
+                        lock[i] = 0  # the set's map is not the slow manifold there: no set (docs, h122)
+                k_new = set_split(mode, k_new, lock, bmat, gmap)
+                for i in range(ns):
+                    if lock[i] != lock_before[i]:
+                        changed = True
+                if k_new != pivot or changed:
                     pivot = k_new
-                    good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
-                                  direction[1], r, bf, dy, jac, False)
+                    good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
+                                  direction[0], direction[1], r, bf, dy, jac, False)
             # the mass coming to rest: steps cut to 0.7 of the time to rest; at rest below STOP_SPEED
             vv = y[0] * y[0] + y[1] * y[1]
             vd = y[0] * dy[0] + y[1] * dy[1]
@@ -924,6 +1018,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                         n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, STICK)
                     else:
                         pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction)
+                        for i in range(ns):
+                            lock[i] = 0
                         h = 0.1 * dt_i
                         n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, REVERSAL)
                         code = _mask(mode)
@@ -942,7 +1038,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 good = True  # at rest at a start: the first step decides
             for p in range(2):
                 r_try[p] = r[p]
-            err = double_step(y, h, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
+            err = double_step(y, h, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0],
                               direction[1], r_try, scale, y_try, quad)
             n_newton += quad[3]
             reversed_ = vv > 0.0 and y[0] * y_try[0] + y[1] * y_try[1] < 0.0
@@ -964,7 +1060,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 r1[p] = r_try[p]
             a_end0 = a_now[0] + slope[0] * h
             a_end1 = a_now[1] + slope[1] * h
-            rhs(y_try, a_end0, a_end1, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0], direction[1], r1,
+            rhs(y_try, a_end0, a_end1, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0], direction[1], r1,
                 bf, dy, jac, False)
             event_values(y_try, r1, mode, pivot, mu_s, cap, bmat, bf, e1)
             first_slot = -1
@@ -987,12 +1083,12 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                             tm = 0.5 * (ta + tb_)
                         for p in range(2):
                             r_ev[p] = r[p]
-                        double_step(y, tm, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot,
+                        double_step(y, tm, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
                                     direction[0], direction[1], r_ev, scale, y_ev, quad_ev)
                         n_newton += quad_ev[3]
                         steps_here += 1
                         rhs(y_ev, a_now[0] + slope[0] * tm, a_now[1] + slope[1] * tm, g, c, bmat, smat, mode, mu_s,
-                            mu_f, a, pivot, direction[0], direction[1], r_ev, bf, dy, jac, False)
+                            mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, False)
                         event_values(y_ev, r_ev, mode, pivot, mu_s, cap, bmat, bf, e1)
                         fm = e1[slot]
                         if fm == 0.0:
@@ -1049,13 +1145,13 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             if first_t > 0.0:
                 for p in range(2):
                     r_ev[p] = r[p]
-                double_step(y, first_t, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0],
+                double_step(y, first_t, a_now, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0],
                             direction[1], r_ev, scale, y_ev, quad_ev)
                 n_newton += quad_ev[3]
                 for p in range(m):
                     y[p] = y_ev[p]
                 rhs(y, a_now[0] + slope[0] * first_t, a_now[1] + slope[1] * first_t, g, c, bmat, smat, mode, mu_s,
-                    mu_f, a, pivot, direction[0], direction[1], r_ev, bf, dy, jac, False)
+                    mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, False)
                 for p in range(2):
                     r[p] = r_ev[p]
                 e_in += quad_ev[0]
@@ -1084,6 +1180,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 break
             mode[i] = 0 if mode[i] == 1 else 1
             fresh[i] = 1
+            for q in range(ns):
+                lock[q] = 0  # the set is the old mode's: chosen again at the next step's start (as in 1-D)
             n_ev = record_event(ev_t, ev_k, n_ev, t_now, REGIME)
             code = _mask(mode)
             if code == 0:
@@ -1107,7 +1205,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             out_a[j, 0] = ax[j]
             out_a[j, 1] = ay[j]
         else:
-            rhs(y, ax[j], ay[j], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, direction[0], direction[1], r, bf, dy,
+            pivot = set_split(mode, pivot, lock, bmat, gmap)
+            rhs(y, ax[j], ay[j], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0], direction[1], r, bf, dy,
                 jac, False)
             out_a[j, 0] = -(g * r[0] + c * y[0])
             out_a[j, 1] = -(g * r[1] + c * y[1])

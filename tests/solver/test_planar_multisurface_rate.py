@@ -4,8 +4,9 @@ Truths: the 1-D µ(v) model ``1d-multisurface+mu(v)`` (a pair whose second compo
 along another azimuth), the single-surface engine ``2d+mu(v)`` (an equal double: each surface slides at V/2, so
 it is one pendulum of radius 2R̄ with the rate a/2), rotation and mirror invariance, the energy balance, the
 constant-µ model (µ_slow = µ_fast runs ``2d-multisurface``); on a real pair, the equal double against the planar
-engine.  Not here yet: a reference of the equations alone on a real pair (scipy's Radau stalled at the first start
-from rest, docs/multisurface.md).
+engine; through saturation (two surfaces in the 1-D model's saturated set) the equal double and the 1-D model along
+a line.  Not here yet: a reference of the equations alone on a real pair (scipy's Radau stalled at the first start
+from rest, docs/multisurface.md), two saturated surfaces whose directions part.
 """
 
 from __future__ import annotations
@@ -162,14 +163,89 @@ def test_a_rim_is_refused_in_one_line_with_its_time_and_surface(records_dir):
     assert "\n" not in str(info.value)
 
 
-def test_two_surfaces_saturated_together_are_refused_in_one_line():
-    """The equal double at a = 30 s/m reaches 2 m/s (a·v ≈ 30 on both surfaces from 1.76 s): the 1-D model's
-    saturated set is not carried over to the plane, so the run is refused in one line with the time."""
+def test_equal_double_through_saturation_is_the_single_pendulum():
+    """The equal double at a = 30 s/m reaches 2.2 m/s (a·v ≈ 30–33 on both surfaces from 1.76 s): the two surfaces
+    saturate together and the non-pivot one's slide law µ_fast − µ(v) ≈ 1e-15 cannot be inverted from the state.
+    They now share the velocity on their slow manifold (the 1-D model's saturated set, set_split/update_lock, on each
+    component: b_1 = b_2 moves together, each slides at V/2), exact here: against the planar engine's single pendulum
+    of radius 2R̄ and rate a/2, measured 4.4e-12 of the peak (balance 1.9e-12 of the input).  Without the set (levels
+    (inf, inf)) the run is refused in one line at the time the two saturate (the window covers the failure)."""
     dbl = rate_bearing("double", [(1.5, 1.5), (1.5, 1.5)], [0.04, 0.04], [0.08, 0.08], 30.0)
+    rbar, _, _ = dbl.elements()
     ax, ay, dt = pulse_pair(0.3, 0.25)
+    res = simulate_bearing_pair_rate(ax, ay, dt, bearing=dbl)
+    ref = simulate_pair(ax, ay, dt, mu_static=0.04, radius_m=float(rbar.sum()), mu_slow=0.04, mu_fast=0.08,
+                        rate_s_per_m=15.0)
+    peak = ref.peak_displacement_m
+    dist = np.max(np.hypot(*(res.displacement_m - ref.displacement_m).T)) / peak
+    print("equal double through saturation vs 2d+mu(v):", dist, "peak speed", res.peak_velocity_m_s)
+    assert 30.0 * res.peak_velocity_m_s / 2 >= 32.0  # each surface well past the set's join level (28)
+    assert dist <= 1e-9
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
     with pytest.raises(SolverError, match=r"at t = 1\.7\d* s \(.*two surfaces saturated together") as info:
-        simulate_bearing_pair_rate(ax, ay, dt, bearing=dbl)
+        simulate_bearing_pair_rate(ax, ay, dt, bearing=dbl, saturation_levels=(np.inf, np.inf))
     assert "\n" not in str(info.value)
+
+
+#: F&C's TFP radii with plates large enough to stay off the rims, a = 40 s/m: surfaces 1 and 4 saturate together
+#: (a·v ≥ 28 on both) under :func:`saturating_pulse`
+BIG_TFP = rate_bearing("triple", [(2.1, 1.5), (0.3, 0.1), (0.3, 0.1), (2.1, 1.5)], MU_SLOW, MU_FAST, 40.0)
+
+
+def saturating_pulse(dt=0.01):
+    """A half-sine of 0.5 g and 1 s, then 0.4 s free: the mass reaches 2.0 m/s, surfaces 1 and 4 ~1 m/s each.  (At
+    1.437 s the mass stops and starts back on surfaces 1 and 3 from rest, where the plane's start from rest fails:
+    docs/multisurface.md, h122; the window ends before.)"""
+    t = np.arange(0.0, 1.405, dt)
+    return 0.5 * G * np.sin(np.pi * t) * (t < 1.0), dt
+
+
+def test_saturated_pair_with_a_zero_second_component_is_the_1d_model():
+    """Surfaces 1 and 4 of a TFP saturated together (a·v up to 40 each): a pair with ay = 0 is the 1-D model (its
+    saturated set, set_split) — the plane's set is the same map on each component — and the record along 35° is
+    that history rotated (the run without the set is refused here too, after ~2 min on the work bound: left to the
+    equal double's test, which shows the same refusal at once).  Measured
+    (h122): 4.4e-16 of the peak along x, 8.8e-15 along 35° (2.0e-15 across), balance 4e-14 of the input."""
+    acc, dt = saturating_pulse()
+    one = simulate_bearing_rate(acc, dt, bearing=BIG_TFP)
+    two = simulate_bearing_pair_rate(acc, np.zeros_like(acc), dt, bearing=BIG_TFP)
+    peak = one.peak_displacement_m
+    dist = np.max(np.abs(two.displacement_m[:, 0] - one.displacement_m)) / peak
+    print("saturated, zero component:", dist, "peak", peak, "speed", one.peak_velocity_m_s, two.model_reason)
+    assert one.status == 0 and one.n_rim_contacts == 0
+    assert 40.0 * one.peak_velocity_m_s / 2 >= 38.0
+    assert dist <= 1e-9
+    assert np.all(two.displacement_m[:, 1] == 0.0)
+    assert list(two.regimes) == list(one.regimes)
+    assert abs(two.energy_balance_error_J_per_kg) <= 1e-9 * two.energy_input_J_per_kg
+    theta = np.radians(35.0)
+    rot = simulate_bearing_pair_rate(np.cos(theta) * acc, np.sin(theta) * acc, dt, bearing=BIG_TFP)
+    back_x, back_y = rotate(*rot.displacement_m.T, -theta)
+    along = np.max(np.abs(back_x - one.displacement_m)) / peak
+    across = np.max(np.abs(back_y)) / peak
+    print("saturated, along 35°:", along, across)
+    assert along <= 1e-9 and across <= 1e-9
+    assert abs(rot.energy_balance_error_J_per_kg) <= 1e-9 * rot.energy_input_J_per_kg
+
+
+def test_pts_lower_bound_of_the_review_runs_past_its_old_stop(records_dir):
+    """The review's scene that stopped it (h113): last session's µ(v) TFP (0.4 m plates, a = 20 s/m) under PTS
+    ×1.512437746473765, which took more than 20 000 collocation steps in one sample interval at 11.8755 s.  Not a
+    saturated pair (a·v ≈ 15.8 on surfaces 1 and 4): each stage's force was sought from the force of the step's
+    start, outside the circle |r − b_1| = µ_fast,1 that had moved with b_1 by 40 times its gap, and the force's
+    Newton stalled.  From the force predicted along dr/dy it answers; its first 12.0 s here (the rim of surface 1
+    follows at 12.18 s, refused in one line), balance ≤ 1e-9 of the input."""
+    bearing = parse_bearing({"type": "triple", "surface": [
+        {"radius_m": r, "mu_slow": s, "mu_fast": f, "rate_s_per_m": 20.0, "displacement_capacity_m": d}
+        for (r, d), s, f in zip(GEOMETRY, [0.04, 0.01, 0.01, 0.07], [0.06, 0.02, 0.02, 0.10], strict=True)]},
+        DesignError)
+    ax, ay, dt = read_pair(records_dir, 12.0)
+    factor = 1.512437746473765
+    res = simulate_bearing_pair_rate(factor * ax, factor * ay, dt, bearing=bearing)
+    print("PTS lower bound, 12 s:", res.model_reason, res.regimes, "balance",
+          res.energy_balance_error_J_per_kg / res.energy_input_J_per_kg)
+    assert res.status == 0 and res.time_s[-1] >= 12.0 - 1e-9
+    assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
 
 def test_equal_double_on_a_real_pair_is_the_single_pendulum(records_dir):
