@@ -49,11 +49,18 @@ from isolator.solver.multisurface_series import (
     stick_window,
     surface_matrix,
 )
-from isolator.solver.system import MAX_STIFFNESS_PER_MASS
+from isolator.solver.system import MAX_STIFFNESS_PER_MASS, RATE_MAX_S_PER_M
 from isolator.units import STANDARD_GRAVITY
 
 #: The number of surfaces of each bearing type.
 SURFACES_PER_TYPE = {"single": 1, "double": 2, "triple": 4}
+
+#: Least slope at rest a (µ_fast - µ_slow) [s/m] of a surface's µ(v) on a double or triple bearing: the series
+#: models invert each µ_i(v) (the slide speed from the force), whose derivative 1/(a (µ_fast - µ)) grows without
+#: bound as the slope vanishes.  rate_s_per_m = 1e-300 was a LinAlgError traceback (1-D and 2-D); 1e-2 ground for
+#: 79 s before the 2-D engine gave up, 1e-3 ran past 90 s (slopes 2e-4 and 2e-5; session 13, docs/security.md).
+#: Below 1e-3 the law differs from constant friction at mu_slow by < 2e-3 at 2 m/s, faster than sliders move.
+MIN_RATE_SLOPE_S_PER_M = 1e-3
 
 #: Keys of a ``[[bearing.surface]]`` entry.
 SURFACE_KEYS = {
@@ -531,9 +538,26 @@ def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearin
         raise fail(f"bearing surface {i}: give µ(v) with mu_slow < mu_fast on every surface of a {kind} bearing "
                    "with µ(v), or a constant mu on every surface (a surface of constant friction in series with "
                    "µ(v) ones is not modelled)")
+    for i, s in enumerate(surfaces, start=1):
+        if kind != "single" and rate_law[i - 1]:
+            _check_rate(s, f"bearing surface {i}", fail)
     bearing = Bearing(kind=kind, surfaces=surfaces)
     _check_geometry(bearing, fail)
     return bearing
+
+
+def _check_rate(surface: Surface, where: str, fail) -> None:
+    """µ(v) of a series bearing's surface: neither steeper than the engines follow nor too flat to invert."""
+    rate = surface.rate_s_per_m
+    if rate > RATE_MAX_S_PER_M:
+        raise fail(f"{where}: rate_s_per_m = {rate:g} s/m exceeds {RATE_MAX_S_PER_M:g} s/m: µ would change from "
+                   f"mu_slow to mu_fast within {1.0 / rate:.1g} m/s; so steep a law is constant friction at mu_fast "
+                   "(give 'mu'; measured rates are 10-200 s/m)")
+    slope = rate * (surface.mu_fast - surface.mu_slow)
+    if slope < MIN_RATE_SLOPE_S_PER_M:
+        raise fail(f"{where}: µ(v) rises by rate_s_per_m × (mu_fast - mu_slow) = {slope:.3g} per m/s at rest, "
+                   f"below {MIN_RATE_SLOPE_S_PER_M:g}: the law is constant friction at mu_slow over any slider's "
+                   "speed and the series model cannot invert it (give 'mu' = mu_slow)")
 
 
 def _surface(entry: dict, index: int, kind: str, fail) -> Surface:

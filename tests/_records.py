@@ -175,3 +175,13 @@ BAD_RECORD_TYPES = {
     "dt_tiny": ("RecordValuesError", ""),
     "dt_huge": ("RecordValuesError", ""),
 }
+
+
+def assert_one_line_exit_2(result, *needles: str) -> str:
+    """A CLI mistake as the brief wants it: exit 2, one non-empty line holding every needle, no traceback."""
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert result.exit_code == 2, result.output
+    assert len(lines) == 1 and "Traceback" not in result.output, result.output
+    for needle in needles:
+        assert needle in lines[0], (needle, lines[0])
+    return lines[0]

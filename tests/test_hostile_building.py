@@ -12,6 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from _records import assert_one_line_exit_2
 from typer.testing import CliRunner
 
 from isolator.cli import app
@@ -22,13 +23,7 @@ RUNNER = CliRunner()
 
 
 def _one_line_exit_2(args, *needles):
-    result = RUNNER.invoke(app, args)
-    lines = [line for line in result.output.splitlines() if line.strip()]
-    assert result.exit_code == 2, result.output
-    assert len(lines) == 1 and "Traceback" not in result.output, result.output
-    for needle in needles:
-        assert needle in lines[0], (needle, lines[0])
-    return lines[0]
+    return assert_one_line_exit_2(RUNNER.invoke(app, args), *needles)
 
 
 def test_review_refuses_a_bad_scheduler_before_reading_the_suite(tmp_path):

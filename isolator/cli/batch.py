@@ -66,6 +66,7 @@ def batch(
         grids = [parse_grid(spec) for spec in grid or []]
         if len({key for key, _ in grids}) != len(grids):
             raise BatchError("--grid: each key may be swept once")
+        _refuse_grid_of_replaced_keys(designs, grids)
         if dt is not None and not (math.isfinite(dt) and dt > 0):
             raise BatchError(f"--dt must be a time step > 0 in seconds, got {dt:g}")
         if dt is not None and dt_problem(dt):
@@ -187,3 +188,20 @@ def batch(
     typer.echo(result.final_line())
     if result.n_failed or result.n_lost_tasks:
         raise typer.Exit(1)
+
+
+def _refuse_grid_of_replaced_keys(designs_file: str, grids) -> None:
+    """A --grid of a key every design's [bearing] replaces (radius, friction, capacity) made every row fail alike,
+    exit 1 after the whole batch (``--grid mu_static=…`` over triple pendulums; session 13 sweep): one line instead,
+    as ``design --vary`` (session 10).  A designs file with any design that keeps the key sweeps it as before."""
+    from isolator.batch import BatchError, load_design_mappings
+    from isolator.bearing import REPLACED_DESIGN_KEYS
+
+    replaced = [key for key, _ in grids if key in REPLACED_DESIGN_KEYS]
+    if not replaced:
+        return
+    mappings = load_design_mappings(designs_file)
+    if all(isinstance(m, dict) and "bearing" in m for m in mappings):
+        raise BatchError(f"--grid {replaced[0]}: every design of {designs_file} gives its bearing surface by surface "
+                         f"([bearing]), whose [[bearing.surface]] entries replace '{replaced[0]}': sweep a key the "
+                         "designs keep (mass_kg, damping_ratio, the property factors)")
