@@ -369,6 +369,20 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
 
 
 @njit(cache=True)
+def stage_predict(y0, z, j, rs_last, ys_last, drdy, ys, rs):
+    """Stage ``j``'s state ys = y0 + z[j] and its force's start rs[j] = rs_last[j] + (dr/dy)(ys − ys_last[j]) (the
+    predictor of :func:`stage_residual`, also taken by :func:`radau_step`'s energy quadrature)."""
+    m = y0.shape[0]
+    for p in range(m):
+        ys[p] = y0[p] + z[j, p]
+    for q in range(2):
+        guess = rs_last[j, q]
+        for p in range(m):
+            guess += drdy[q, p] * (ys[p] - ys_last[j, p])
+        rs[j, q] = guess
+
+
+@njit(cache=True)
 def stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rs, bf, ys, dy,
                    fz, jac, want_jac, res, rs_last, ys_last, drdy):
     """The collocation's residual −(Z − h (A ⊗ I) F(y0 + Z)) at the stage increments ``z`` [3 × m] into ``res``;
@@ -385,13 +399,7 @@ def stage_residual(y0, z, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f,
     success ``rs_last``/``ys_last`` take the stage's force and state."""
     m = y0.shape[0]
     for j in range(3):
-        for p in range(m):
-            ys[p] = y0[p] + z[j, p]
-        for q in range(2):
-            guess = rs_last[j, q]
-            for p in range(m):
-                guess += drdy[q, p] * (ys[p] - ys_last[j, p])
-            rs[j, q] = guess
+        stage_predict(y0, z, j, rs_last, ys_last, drdy, ys, rs)
         tj = RADAU_C[j] * h
         good, _ = rhs(ys, a_start[0] + slope[0] * tj, a_start[1] + slope[1] * tj, g, c, bmat, smat, mode, mu_s,
                       mu_f, a, pivot, gmap, lock, ex0, ey0, rs[j], bf, dy, jac[j], want_jac)
@@ -592,13 +600,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
     q_fric = 0.0
     inv_h = 1.0 / h
     for j in range(3):
-        for p in range(m):
-            ys[p] = y0[p] + z[j, p]
-        for q in range(2):
-            guess_q = rs_last[j, q]
-            for p in range(m):
-                guess_q += drdy[q, p] * (ys[p] - ys_last[j, p])
-            rs[j, q] = guess_q
+        stage_predict(y0, z, j, rs_last, ys_last, drdy, ys, rs)
         tj = RADAU_C[j] * h
         agx = a_start[0] + slope[0] * tj
         agy = a_start[1] + slope[1] * tj
