@@ -62,6 +62,13 @@ SURFACES_PER_TYPE = {"single": 1, "double": 2, "triple": 4}
 #: Below 1e-3 the law differs from constant friction at mu_slow by < 2e-3 at 2 m/s, faster than sliders move.
 MIN_RATE_SLOPE_S_PER_M = 1e-3
 
+#: Least displacement capacity d_i of a surface [m].  No bearing is built with less travel on a surface (catalogue
+#: triple pendulums: inner surfaces 25-75 mm, outer 100-500 mm; a double's 100-600 mm), so a smaller one is a
+#: mistake in units or a lost digit, not a design: read as given, the slider sits at its rim from its first slip and
+#: the rim's contacts, not the isolator, are analysed (an outer capacity of 1e-9 m ran for 69.7 s and answered,
+#: session 13 sweep, docs/security.md).  1 mm is 25 times below the least catalogue value.
+MIN_CAPACITY_M = 1e-3
+
 #: Keys of a ``[[bearing.surface]]`` entry.
 SURFACE_KEYS = {
     "radius_m": "radius of curvature R_i [m], > 0",
@@ -475,19 +482,31 @@ class Bearing:
         return (d, lp.effective_stiffness_N_per_m, lp.effective_period_s, beta,
                 lp.force_at_displacement_N + damping_Ns_per_m * omega * d)
 
-    def with_friction_factor(self, factor: float) -> Bearing:
-        """Every µ_i multiplied by λ (a property bound) [-]."""
+    def with_friction_factor(self, factor: float, fail=DesignError) -> Bearing:
+        """Every µ_i multiplied by λ (a property bound) [-], read again by the rules of :func:`parse_bearing`.
+
+        λ moves the friction, so the rules that hold friction are checked again: a µ(v) law's slope at rest
+        a λ (µ_fast − µ_slow) (:data:`MIN_RATE_SLOPE_S_PER_M`; a law at 1.1e-3 read at nominal fell to 9.35e-4
+        at λ = 0.85 and was run, session 14) and a triple's regime-II reach d*_i ≥ λ (µ_o − µ_i) R_eff,i.
+        ``fail(message) -> DesignError`` says where (the design file and the bound).
+        """
         from dataclasses import replace
 
         if max(max(s.mu_kinetic, s.mu_static) for s in self.surfaces) * factor >= 1.0:
-            raise DesignError(f"a bearing surface's µ × λ ({factor:g}) must stay < 1")
+            raise fail(f"a bearing surface's µ × λ ({factor:g}) must stay < 1")
 
         def scaled(v):
             return None if v is None else v * factor
 
-        return replace(self, surfaces=tuple(replace(s, mu_kinetic=s.mu_kinetic * factor,
-                                                    mu_static=s.mu_static * factor, mu_slow=scaled(s.mu_slow),
-                                                    mu_fast=scaled(s.mu_fast)) for s in self.surfaces))
+        bearing = replace(self, surfaces=tuple(replace(s, mu_kinetic=s.mu_kinetic * factor,
+                                                       mu_static=s.mu_static * factor, mu_slow=scaled(s.mu_slow),
+                                                       mu_fast=scaled(s.mu_fast)) for s in self.surfaces))
+        if self.kind != "single":
+            for i, s in enumerate(bearing.surfaces, start=1):
+                if s.rate_s_per_m is not None:
+                    _check_rate(s, f"bearing surface {i}", fail)
+        _check_geometry(bearing, fail)
+        return bearing
 
 
 def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearing:
@@ -614,6 +633,9 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
         raise fail(f"{where}: mu_static ({mu_s:g}) > mu_kinetic ({mu_k:g}) is not modelled on a {kind} bearing: "
                    f"{STATIC_FRICTION_REASON}; give 'mu' (or mu_static = mu_kinetic)")
     capacity = number("displacement_capacity_m", required=kind != "single", positive=True)
+    if capacity is not None and capacity < MIN_CAPACITY_M:
+        raise fail(f"{where}: displacement_capacity_m = {capacity:g} m is below {MIN_CAPACITY_M * 1e3:g} mm: no "
+                   "bearing surface has so little travel (25-500 mm are built); is it in metres?")
     return Surface(radius_m=radius, height_m=height, mu_kinetic=mu_k, mu_static=mu_s,
                    displacement_capacity_m=capacity, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate)
 

@@ -387,7 +387,9 @@ class Design:
         return replace(self, name=f"{self.name} ({label})", mu_static=self.mu_static * factor,
                        mu_kinetic=self.mu_kinetic * factor, mu_slow=None if self.mu_slow is None else self.mu_slow * factor,
                        mu_fast=None if self.mu_fast is None else self.mu_fast * factor,
-                       bearing=None if self.bearing is None else self.bearing.with_friction_factor(factor))
+                       bearing=None if self.bearing is None else self.bearing.with_friction_factor(
+                           factor, lambda message: DesignError(f"{self.source}: at the {label} (λ = {factor:g}), "
+                                                               f"{message}")))
 
     @property
     def velocity_dependent(self) -> bool:

@@ -46,6 +46,29 @@ def one_line(message) -> str:
     return " ".join(str(message).split())
 
 
+def analysis_owner(records, design_source: str | None = None) -> str:
+    """Who an analysis that could not be done belongs to: ``DESIGN under RECORD`` (the record alone without a
+    design file); ``records`` is one path or the files of a set (X, then its --pair and --vertical files) [-]."""
+    files = [str(r) for r in ([records] if isinstance(records, str) else records) if r]
+    where = " + ".join(files) or "the record"
+    return f"{design_source} under {where}" if design_source else where
+
+
+def owned(owner: str, message, file: str | None = None) -> str:
+    """``owner: message`` on one line, unless the message names the owner first already.
+
+    An engine's refusal (a rim it does not model, its step-size floor, lift-off, its work bound) names the
+    instant, not the files; ``file``: the message's own first name (a design's ``D.toml: ``), replaced by the
+    owner rather than said twice.
+    """
+    message = one_line(message)
+    if message.startswith(f"{owner}:"):
+        return message
+    if file and message.startswith(f"{file}: "):
+        message = message[len(file) + 2:]
+    return f"{owner}: {message}"
+
+
 class IsolatorError(ValueError):
     """Base of every error isolator raises for a user's input (one-line message)."""
 

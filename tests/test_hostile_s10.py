@@ -189,5 +189,6 @@ def test_a_slab_too_light_for_its_first_story_is_refused_naming_the_design(tmp_p
     lines = [line for line in result.output.splitlines() if line.strip()]
     assert result.exit_code == 2, result.output
     assert len(lines) == 1 and "Traceback" not in result.output, result.output
-    assert f"{design}: the building's fastest rate" in lines[0], lines[0]
+    # the design and the record are named (session 14: "D under R: …"), then the refusal
+    assert f"{design} under " in lines[0] and ": the building's fastest rate" in lines[0], lines[0]
     assert "sub-steps per sample interval of 0.01 s (at most 5000)" in lines[0], lines[0]

@@ -11,7 +11,6 @@ from isolator.batch.pairs import read_pair
 from isolator.batch.pairs import record_columns as pair_record_columns
 from isolator.batch.plan import GRID_KEYS, SET_COMPONENTS, DesignCase, ReadOptions, Task, file_version
 from isolator.batch.store import ROW_SCHEMA, model_columns
-from isolator.errors import one_line
 from isolator.serialize import json_safe
 
 _MOTION_CACHE: dict = {}
@@ -150,29 +149,27 @@ def row_error(err: Exception, record: str, design_source: str | None) -> str:
     raw exception text.
     """
     from isolator.design import DesignError
+    from isolator.errors import analysis_owner
+    from isolator.errors import owned as named
     from isolator.motion import RecordError
     from isolator.solver.record import RecordInputError
     from isolator.solver.system import InvalidSystemError
     from isolator.units import UnitsError
 
-    def named(owner: str, message: str) -> str:
-        message = one_line(message)
-        return message if message.startswith(owner) else f"{owner}: {message}"
-
     if isinstance(err, (RecordError, RecordInputError, UnitsError)):
         return named(record, str(err))
-    if isinstance(err, (DesignError, InvalidSystemError)):
+    if isinstance(err, DesignError):
         return named(design_source or record, str(err))
     from isolator.errors import SolverError
 
-    if isinstance(err, SolverError):  # the solver could not finish this design on this record: no answer
-        return named(f"{design_source} under {record}" if design_source else record, str(err))
+    if isinstance(err, (InvalidSystemError, SolverError)):  # the engine refuses this design on this record
+        return named(analysis_owner(record, design_source), err, design_source)
     if isinstance(err, OSError):
         return f"{err.filename or record}: cannot read or write ({err.strerror or type(err).__name__})"
     if isinstance(err, ValueError) and design_source is None:  # scaling a record (a sentence of ours)
         return named(record, str(err))
-    where = f"{design_source} under {record}" if design_source else record
-    return f"{where}: internal error in isolator (please report it with this record and design)"
+    return (f"{analysis_owner(record, design_source)}: internal error in isolator (please report it with this "
+            "record and design)")
 
 
 def run_task(task: Task) -> list[dict]:

@@ -251,8 +251,10 @@ def parse_set(items) -> dict:
     for item in items or ():
         if "=" not in item:
             user_error(f"--set {item}: expected NAME=VALUE")
-        name, value = item.split("=", 1)
-        out[name.strip()] = value.strip()
+        name, value = (part.strip() for part in item.split("=", 1))
+        if name in out and out[name] != value:  # the last one won without a word (session 14 sweep)
+            user_error(f"--set {name} is given twice ({out[name]!r} and {value!r}): give it once")
+        out[name] = value
     return out
 
 

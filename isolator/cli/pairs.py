@@ -70,18 +70,38 @@ def system_keywords(*, mu_s, mu_k=None, stiffness_per_mass=0.0, damping_per_mass
     return {key: value for key, value in keywords.items() if value is not None}
 
 
-def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, system: dict, design=None):
-    """Run :func:`~isolator.solver.models.simulate_motion` (the model the scene needs); errors end the command."""
+def solve(record_label: str, x, y=None, z=None, *, dt_s: float, time_s=None, system: dict, design=None,
+          files=()):
+    """Run :func:`~isolator.solver.models.simulate_motion` (the model the scene needs); errors end the command.
+
+    ``files``: the record's files (X, then the --pair and --vertical ones; default ``record_label``).  An engine's
+    refusal (a rim it does not model, its step-size floor, lift-off, its work bound: :class:`SolverError`) and a
+    design the engine refuses (:class:`InvalidSystemError`) end it in one line naming the design file and the
+    record's files (:func:`refusal_line`).
+    """
+    from isolator.errors import InvalidSystemError, RecordInputError, SolverError
     from isolator.solver.models import simulate_motion
-    from isolator.solver.record import RecordInputError
-    from isolator.solver.system import InvalidSystemError
 
     try:
         return simulate_motion(x, y, z, dt_s, time_s=time_s, design=design, **system)
-    except InvalidSystemError as err:
-        user_error(str(err))
     except RecordInputError as err:
         user_error(f"{record_label}: {err}")
+    except (InvalidSystemError, SolverError) as err:
+        if design is None and isinstance(err, InvalidSystemError):  # the isolator options' own numbers
+            user_error(str(err))
+        user_error(refusal_line(err, files or record_label, design))
+
+
+def refusal_line(err, files, design=None) -> str:
+    """An analysis' refusal as the command line shows it: ``DESIGN under X + Y + Z: what and when``.
+
+    The one place the commands (``simulate``, ``report``) turn an engine's refusal into their line: the engines
+    name the instant (``reaches its rim at t = 0.3795 s``), this names the files the user ran (session 14).
+    """
+    from isolator.errors import analysis_owner, owned
+
+    source = getattr(design, "source", None)
+    return owned(analysis_owner(files, source), err, source)
 
 
 def history_columns(result) -> tuple[str, list]:

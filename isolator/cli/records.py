@@ -194,7 +194,8 @@ def _simulate_and_print(record, pair, vertical, component, trim, resample, units
         parts = motions.components
         result = solve(record, parts["x"].acceleration_m_s2, parts["y"].acceleration_m_s2 if "y" in parts else None,
                        parts["z"].acceleration_m_s2 if "z" in parts else None, dt_s=motions.dt_s,
-                       time_s=motions.sample_times_s, system=system, design=the_design)
+                       time_s=motions.sample_times_s, system=system, design=the_design,
+                       files=[record, pair, vertical])
         described = ", ".join(f"{axis} = {m.component}" for axis, m in parts.items())
         samples = (motions.npts, motions.dt_s, motions.sample_times_s is None)
         record_group = record_dict(motions, str(record))

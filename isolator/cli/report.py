@@ -158,6 +158,8 @@ def report(
                        f"got {scale_to_pga:g}")
     from isolator.analysis import analyse
     from isolator.atomic import output_lock
+    from isolator.cli.pairs import refusal_line
+    from isolator.errors import InvalidSystemError, SolverError
     from isolator.report.analysis_report import write_analysis_report
     from isolator.report.model_pages import n_model_pages
     from isolator.report.summary import write_json
@@ -184,7 +186,9 @@ def report(
                 analysis = with_record_checks(analyse(the_design, motion, record_label=record_label,
                                                       scaling_note=scaling_note, map_resolution=map_resolution),
                                               overrides)
-            except ValueError as err:  # RecordInputError, InvalidSystemError: the record's or the design's numbers
+            except (InvalidSystemError, SolverError) as err:  # the engine refuses the design under the record
+                user_error(refusal_line(err, [record_label, pair, vertical] if as_set else record_label, the_design))
+            except ValueError as err:  # RecordInputError: the record's numbers
                 user_error(f"{record_label}: {err}")
             if no_pdf:
                 numbers = write_json(analysis, json_path, parameters=parameters)

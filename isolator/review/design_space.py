@@ -141,6 +141,31 @@ class DesignSearch:
         })
 
 
+def _refuse_a_space_of_no_design(candidates: list, source: str) -> None:
+    """Refuse a space none of whose candidates reads as a design, before any review (``parameter`` "vary").
+
+    One invalid candidate is a row with its reason (the module docstring); a space of none reviewed every
+    candidate to its reading error and wrote a chart of nothing, exit 0 (``--vary radius_m=-1,-2``: 42 s; session
+    14 sweep), as session 10's ``--vary mu_static`` of a triple did.  Stops at the first candidate that reads
+    (bounded by the candidates, at most :data:`~isolator.review.design_grid.MAX_CANDIDATES`).
+    """
+    from isolator.design import Design
+    from isolator.review.design_workers import candidate_source
+
+    first = None
+    for c in candidates:
+        try:
+            Design.from_mapping(c.mapping, source=candidate_source(source, c.values))
+            return
+        except (ValueError, ArithmeticError) as err:  # DesignError, or what a candidate's row would say
+            first = first or err
+    if first is not None:
+        others = len(candidates) - 1
+        raise ReviewError(f"gives no candidate that is a design: {first}"
+                          + (f" (and {others} other candidate{'s' if others > 1 else ''} refused)" if others else ""),
+                          parameter="vary")
+
+
 def search(design, target, suite, vary, *, objective: str = "base_shear", code: str = "asce7-22",
            scaling: str | None = "common", parameters: dict | None = None, jobs: int | None = None,
            scheduler: str | None = None, store_dir=None, progress=None, design_mapping: dict | None = None
@@ -231,6 +256,7 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
             f"{k}={v:.6g}" for k, v in values.items()) + "]"}
         candidates.append(Candidate(index, values, mapping, key=content_digest([context_key, numbers]), group=group))
 
+    _refuse_a_space_of_no_design(candidates, str(design.source))
     store = RowStore(store_dir) if store_dir is not None else None
     rows: dict[int, dict] = {}
     if store is not None:

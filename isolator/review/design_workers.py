@@ -154,6 +154,11 @@ def error_row(values: dict, mapping: dict, reason: str) -> dict:
                if k not in values}}
 
 
+
+def candidate_source(source: str, values: dict) -> str:
+    """A candidate's source in its messages: the file and the numbers that replaced the file's."""
+    return f"{source} with " + ", ".join(f"{k}={v:.6g}" for k, v in values.items())
+
 def review_group(context: dict, group: list[dict], memo: SpectraMemo | None = None) -> list[dict]:
     """Review the candidates of one group (one worker; they share one analysis cache).
 
@@ -184,8 +189,7 @@ def review_group(context: dict, group: list[dict], memo: SpectraMemo | None = No
         analyses_s = 0.0
         try:
             # the candidate is not the file: its source says which numbers replaced the file's
-            design = Design.from_mapping(mapping, source=f"{context['source']} with " + ", ".join(
-                f"{k}={v:.6g}" for k, v in values.items()))
+            design = Design.from_mapping(mapping, source=candidate_source(context["source"], values))
             review = run_review(design, context["target"], context["suite"], code=context["code"],
                                 scaling=context["scaling"], jobs=1, parameters=context["parameters"],
                                 spectra_source=memo, analysis_cache=cache)

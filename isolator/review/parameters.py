@@ -226,7 +226,10 @@ def _coerce(name: str, value, default):
             raise ReviewError(f"review parameter '{name}' must be one of {', '.join(allowed)}, got {value!r}")
         return str(value)
     if isinstance(value, str) and value.lower() in ("none", "null", ""):
-        return None
+        if default is None:  # a parameter that may be left unset (mean_ratio_min …)
+            return None
+        # `--set min_ratio=` was a TypeError traceback from the comparisons downstream (session 14 sweep)
+        raise ReviewError(f"review parameter '{name}' needs a number (its default is {default:g}), got {value!r}")
     try:
         number = float(value)
     except (TypeError, ValueError):

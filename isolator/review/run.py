@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from isolator.errors import ReviewError
+from isolator.errors import ReviewError, analysis_owner, owned
 from isolator.review import checks as C
 from isolator.review import parameters as P
 from isolator.review.bounds import friction_bounds
@@ -346,8 +346,12 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
                if r.get("error", "").startswith(ENGINE_REFUSALS)]
     if refused:  # the engine cannot take this design under the suite's motions: never drop floors or surfaces
         b, name, error = refused[0]
-        vertical = next(p.az_m_s2 is not None for p in suite.pairs if p.name == name) and not horizontal_only
-        raise ReviewError(f"the engine refuses the design under pair '{name}' ({b} bound): {error.split(': ', 1)[-1]}"
+        pair = next(p for p in suite.pairs if p.name == name)
+        vertical = pair.az_m_s2 is not None and not horizontal_only
+        files = [pair.files[k] for k in ("x", "y", "z") if k in pair.files and (k != "z" or vertical)]
+        message = error.split(": ", 1)[-1]  # the row's error: "SolverError: what and when"
+        raise ReviewError(owned(f"the engine refuses {analysis_owner(files, design.source)} (pair '{name}', {b} "
+                                "bound)", message, design.source)
                           + ("; the pair has a vertical component (review parameter horizontal_only = true analyses "
                              "the horizontal components only)" if vertical else ""))
     if len(failed) == len(names):

@@ -353,19 +353,28 @@ def simulate_building_bearing(acceleration_m_s2, dt_s: float | None = None, *, t
             _MATRICES.pop(next(iter(_MATRICES)))
         _MATRICES[key] = mats
     timing = record_timing(acceleration_m_s2, dt_s, time_s)
+    _substeps(mats, timing)
     _warm_up()
     return _run(mats, bearing, timing, bearing_layout)
 
 
-def _run(mats: _Matrices, bearing, timing, bearing_layout=None) -> BuildingMultisurfaceResponse:
-    acc, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
-    system = mats.base
-    longest = dt if relative is None else float(np.max(np.diff(relative)))
+def _substeps(mats: _Matrices, timing) -> int:
+    """Sub-steps per sample interval; refuses more than MAX_SUBSTEPS_PER_INTERVAL, before the kernel is loaded (a
+    refused design waits for no compilation and prints no compile note before its line; session 14)."""
+    relative = timing.relative_time_s
+    longest = timing.dt_s if relative is None else float(np.max(np.diff(relative)))
     n_sub = max(1, math.ceil(longest / mats.h_max))
     if n_sub > MAX_SUBSTEPS_PER_INTERVAL:
         raise InvalidSystemError(f"the building on its bearing needs {n_sub} sub-steps per sample interval of "
                                  f"{longest:g} s (at most {MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light "
                                  "for the first story's stiffness, or a story too stiff for its mass")
+    return n_sub
+
+
+def _run(mats: _Matrices, bearing, timing, bearing_layout=None) -> BuildingMultisurfaceResponse:
+    acc, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
+    system = mats.base
+    n_sub = _substeps(mats, timing)
     rbar, mu, rim = bearing.elements()
     # static friction above kinetic on a single surface only (simulate_building_bearing refuses it on more)
     mu_static = np.ascontiguousarray(bearing.mu_static, dtype=np.float64) if rbar.size == 1 else mu
