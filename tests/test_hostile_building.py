@@ -39,7 +39,7 @@ def test_review_refuses_a_bad_scheduler_before_reading_the_suite(tmp_path):
     ("bogus=1", ("--set", "'bogus' is not a parameter of the report")),
     ("n_pairs_min=3", ("--set", "'n_pairs_min' is not a parameter of the report")),  # a review's, not the report's
     ("drift_limit_rha=abc", ("--set", "'drift_limit_rha' must be a number")),
-    ("drift_limit_rha=none", ("--set", "'drift_limit_rha' must be a number for the report")),
+    ("drift_limit_rha=none", ("--set", "'drift_limit_rha' needs a number (its default is 0.02), got 'none'")),
     ("drift_limit_rha=0.5", ("--set", "outside (0, 0.1]")),
     ("drift_limit_rha=-0.01", ("--set", "finite number ≥ 0")),
     ("drift_limit_rha=nan", ("--set", "finite number ≥ 0")),
