@@ -21,6 +21,9 @@ from isolator.cli import app
 
 RUNNER = CliRunner()
 
+#: A friction pendulum (the review's and the design search's), R = 2.5 m, µ = 0.06, capacity 0.6 m.
+FPS = 'name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\ndisplacement_capacity_m = 0.6\n'
+
 #: The triple pendulum of _model_designs with µ(v) at the reader's least slope and a little above it:
 #: µ_fast − µ_slow = 1e-3 on every surface, rate 1.1 s/m, so a (µ_fast − µ_slow) = 1.1e-3 per m/s ≥ 1e-3.
 EDGE_SLOW = {"0.06": "0.059", "0.02": "0.019", "0.10": "0.099"}
@@ -43,6 +46,17 @@ def _records(tmp_path, n: int = 200) -> dict:
         out[name] = tmp_path / f"{name}.AT2"
         out[name].write_text(text)
     return out
+
+
+def _suite_and_design(tmp_path, design_text: str):
+    """A one-pair SUITE.toml of two 2 s square waves (0.1 g) and the design file ``design_text``."""
+    (tmp_path / "x.AT2").write_text(at2_text([0.1 * (-1) ** (i // 20) for i in range(200)]))
+    (tmp_path / "y.AT2").write_text(at2_text([0.1 * (-1) ** (i // 30) for i in range(200)]))
+    suite = tmp_path / "suite.toml"
+    suite.write_text('[[pair]]\nname = "a"\nx = "x.AT2"\ny = "y.AT2"\n')
+    design = tmp_path / "d.toml"
+    design.write_text(design_text)
+    return suite, design
 
 
 # ---- the engines' own refusals name the design file and the record's files (one place: cli.pairs.refusal_line)
@@ -79,12 +93,7 @@ def test_a_batch_row_names_the_design_and_the_record_of_a_refusal():
 def test_a_lower_bound_below_the_rate_slope_floor_is_refused_naming_design_and_bound(tmp_path):
     """main: λ_min = 0.85 took the edge law's slope 1.1e-3 to 9.35e-4 per m/s, below the reader's 1e-3
     (bearing.MIN_RATE_SLOPE_S_PER_M), and the review ran it; now one line before any analysis."""
-    (tmp_path / "x.AT2").write_text(at2_text([0.1 * (-1) ** (i // 20) for i in range(200)]))
-    (tmp_path / "y.AT2").write_text(at2_text([0.1 * (-1) ** (i // 30) for i in range(200)]))
-    suite = tmp_path / "suite.toml"
-    suite.write_text('[[pair]]\nname = "a"\nx = "x.AT2"\ny = "y.AT2"\n')
-    design = tmp_path / "d.toml"
-    design.write_text(_edge_triple("lambda_min = 0.85\nlambda_max = 1.2\n"))
+    suite, design = _suite_and_design(tmp_path, _edge_triple("lambda_min = 0.85\nlambda_max = 1.2\n"))
     result = RUNNER.invoke(app, ["review", "-d", str(design), "-t", "example", "-s", str(suite), "-j", "1",
                                  "--no-cache", "-o", str(tmp_path / "rv.pdf")])
     assert_one_line_exit_2(result, f"{design}: at the lower bound (λ = 0.85), bearing surface 1: ",
@@ -170,13 +179,7 @@ def test_a_slab_too_light_is_refused_before_the_kernel_loads(tmp_path, monkeypat
     (["min_ratio=0.9", "min_ratio=0.8"], "--set min_ratio is given twice ('0.9' and '0.8'): give it once"),
 ])
 def test_review_set_abuse_is_one_line(tmp_path, settings, words):
-    (tmp_path / "x.AT2").write_text(at2_text([0.1 * (-1) ** (i // 20) for i in range(200)]))
-    (tmp_path / "y.AT2").write_text(at2_text([0.1 * (-1) ** (i // 30) for i in range(200)]))
-    suite = tmp_path / "suite.toml"
-    suite.write_text('[[pair]]\nname = "a"\nx = "x.AT2"\ny = "y.AT2"\n')
-    design = tmp_path / "d.toml"
-    design.write_text('name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n'
-                      "displacement_capacity_m = 0.6\n")
+    suite, design = _suite_and_design(tmp_path, FPS)
     args = ["review", "-d", str(design), "-t", "example", "-s", str(suite), "-j", "1", "--no-cache", "-o",
             str(tmp_path / "rv.pdf")]
     for item in settings:
@@ -200,13 +203,7 @@ def test_report_set_twice_is_one_line(tmp_path):
 def test_a_design_space_of_no_design_is_refused_before_any_review(tmp_path):
     """main: ``design --vary radius_m=-1,-2`` reviewed both candidates to their reading error and wrote a chart of
     nothing, exit 0 (42 s); one invalid candidate among valid ones stays a row (docs/design_search.md)."""
-    (tmp_path / "x.AT2").write_text(at2_text([0.1 * (-1) ** (i // 20) for i in range(200)]))
-    (tmp_path / "y.AT2").write_text(at2_text([0.1 * (-1) ** (i // 30) for i in range(200)]))
-    suite = tmp_path / "suite.toml"
-    suite.write_text('[[pair]]\nname = "a"\nx = "x.AT2"\ny = "y.AT2"\n')
-    design = tmp_path / "d.toml"
-    design.write_text('name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n'
-                      "displacement_capacity_m = 0.6\n")
+    suite, design = _suite_and_design(tmp_path, FPS)
     result = RUNNER.invoke(app, ["design", "-d", str(design), "-t", "example", "-s", str(suite), "-j", "1",
                                  "--vary", "radius_m=-1,-2", "-o", str(tmp_path / "c.pdf")])
     assert_one_line_exit_2(result, f"--vary gives no candidate that is a design: {design} with radius_m=-1: key "
