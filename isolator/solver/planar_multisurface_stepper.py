@@ -135,14 +135,15 @@ RIM_AWAY = 1e-3
 #: apart turn on their rims under finite (large) forces, which the steps resolve
 ALIGNED = 1e-7
 
-#: a group's slip turning by more than this angle [rad] inside a step whose three solves agree on the sliding set
-#: (between its slip over the last step and over the first half, or between the halves) refuses the step (it is
-#: retried shorter, down to the floor): the friction's direction then turns on a time scale shorter than the step,
-#: the step's error expansion in h does not hold there and step doubling does not see it.  A group slowing to a near
-#: stop while the mass slides on (its slip speed through a minimum, its friction turning at ~g µ / speed) turned by
-#: 102° inside one step of 5.8e-5 s accepted with an estimate of 0.00, leaving a velocity error of ~5e-6 m/s that did
-#: not fall with step_tol (NWH360 ×1.2 with the reversed record ×0.72 on the double with an intermediate rim, 3.612 s;
-#: docs/multisurface.md, "A group's slip turning inside a step").  A step whose mass turns back is the reversal cut's
+#: a group's slip turning by more than this angle [rad] inside a step (between its slip over the last step and over
+#: the first half, or between the halves) refuses the step (it is retried shorter, down to the floor): the friction's
+#: direction then turns on a time scale shorter than the step, the step's error expansion in h does not hold there
+#: and step doubling does not see it.  A group slowing to a near stop while the mass slides on (its slip speed through
+#: a minimum, its friction turning at ~g µ / speed) turned by 102° inside one step of 5.8e-5 s accepted with an
+#: estimate of 0.00, leaving a velocity error of ~5e-6 m/s that did not fall with step_tol (NWH360 ×1.2 with the
+#: reversed record ×0.72 on the double with an intermediate rim, 3.612 s; docs/multisurface.md, "A group's slip
+#: turning inside a step").  Where the mass itself turns back the reversal cut takes the step (the groups' slips
+#: all turn there); after a cut's stop, a stick or an impact the last step's slip is not compared
 SLIP_TURN = 0.1
 
 # the state vector: X, V, energies (input, friction, viscous, impacts), then ū of each group, then the carried group's
@@ -1439,8 +1440,8 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                     continue
                 n_floor += 1
             turned = y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1]
-            if not (jump or at_floor) and turned > 0.0 and m1 == mh and mh == m2:
-                # a group's slip turning inside a step the combination would take (SLIP_TURN): retried shorter
+            if not (jump or at_floor) and turned > 0.0:
+                # a group's slip turning inside the step (SLIP_TURN): retried shorter
                 turn = slip_turn(y, yh, y2, qlast, mh & m2 & low)
                 if turn > SLIP_TURN:
                     n_rej += 1
