@@ -21,7 +21,9 @@ beside it.  The counts go to spare slots of the kernel's ``stats`` array.  Per p
   steps by the corner's sine s (the smallest |sin| between two sliding normals, ``corner_angle``) in bands
   (BAND_EDGES): their count, mean length over the sample interval, and count per unit of ln s (a corner closing
   or opening at a steady rate ṡ has the time scale s/|ṡ|: steps of a fixed fraction of it are a fixed number per
-  unit of ln s).
+  unit of ln s); and per band the time of its explicit and implicit corner steps (refused ones included), the record
+  time the corner spent in the band and its accepted steps per sample interval, of them implicit (a corner that
+  hovers in a band spends record time there at many steps per interval: docs/multisurface.md, h125, h135).
 
 The counter is the wall clock: on a loaded machine a run's split carries the time it was descheduled, so take the
 fractions from a quiet run (``call`` close to the call's CPU time); the least values of the columns need not come
@@ -89,11 +91,14 @@ PATCHES = (
     ("                ok, err = corner_step(tau, my, mf, h, raw, rb, mu, comp, c, mynew, mfnew, matol, rtol, kk, yt,"
      " stats, rm)\n",
      "                _t0 = _cycles()\n",
-     f"                stats[{SLOT + B_DOP} + (1 if implicit else 0)] += _cycles() - _t0\n"
+     "                _dc = _cycles() - _t0\n"
+     f"                stats[{SLOT + B_DOP} + (1 if implicit else 0)] += _dc\n"
      "                _sa = corner_angle(my, rb, comp)\n"
      "                _bd = 0\n"
      "                while _bd < 6 and _sa >= _BAND_EDGES[_bd + 1]:\n"
      "                    _bd += 1\n"
+     f"                stats[{SLOT + N_BUCKETS + 2 * N_BANDS} + (_bd + {N_BANDS} if implicit else _bd)] += _dc\n"
+     f"                stats[{SLOT + N_BUCKETS + 4 * N_BANDS} + _bd] += 1 if implicit and ok and err <= 1.0 else 0\n"
      "                if ok and err <= 1.0:\n"
      f"                    stats[{SLOT + N_BUCKETS} + _bd] += 1\n"
      f"                    stats[{SLOT + N_BUCKETS + N_BANDS} + _bd] += int(1e6 * h / hi)\n"),
@@ -172,7 +177,7 @@ def main(argv=None) -> int:
           f"per column")
     print(f"{'pair':22s} {'call':>6s} {'kernel':>6s} | {'dop':>5s} {'radau':>5s} {'locate':>6s} {'peaks':>5s} "
           f"{'corner':>6s} {'one':>5s} {'stuck':>5s} {'samples':>7s} | dop/step radau/step | steps (dop, radau)")
-    pm.ST_SIZE = SLOT + N_BUCKETS + 2 * N_BANDS
+    pm.ST_SIZE = SLOT + N_BUCKETS + 5 * N_BANDS
     drv._run = counting_run
     pm.planar_multisurface_kernel = split.planar_multisurface_kernel
     try:
@@ -183,6 +188,7 @@ def main(argv=None) -> int:
                 continue
             dt, ax, ay, _ = load(folder)
             rows = []
+            band_ms = []
             try:
                 for _ in range(args.repeat):
                     start = time.perf_counter()
@@ -194,10 +200,13 @@ def main(argv=None) -> int:
                     rest = cyc[B_LOOP + 1] - cyc[B_DOP] - cyc[B_RADAU] - cyc[B_LOCATE] - cyc[B_PEAKS]
                     rows.append((call, res.solver_seconds, cyc[B_DOP], cyc[B_RADAU], cyc[B_LOCATE], cyc[B_PEAKS],
                                  rest, cyc[B_LOOP + 2], cyc[B_LOOP], cyc[B_LOOP + 3] + cyc[B_LOOP + 4]))
+                    band_ms.append(st[SLOT + N_BUCKETS + 2 * N_BANDS:SLOT + N_BUCKETS + 4 * N_BANDS] / hz * 1e3)
             except SolverError as exc:
                 print(f"{folder[:22]:22s} {str(exc)[:90]}")
                 continue
-            m = (np.min if args.stat == "min" else np.median)(np.array(rows), axis=0) * 1e3
+            stat = np.min if args.stat == "min" else np.median
+            m = stat(np.array(rows), axis=0) * 1e3
+            bm = stat(np.array(band_ms), axis=0)
             n_dop, n_radau = int(st[pm.ST_DOP_MAIN]), int(st[pm.ST_RADAU_MAIN])
             per = (f"{1e3 * m[2] / n_dop:6.2f} µs" if n_dop else f"{'-':>9s}") + (
                 f" {1e3 * m[3] / n_radau:8.2f} µs" if n_radau else f" {'-':>11s}")
@@ -210,6 +219,13 @@ def main(argv=None) -> int:
                 print(f"{'':22s} " + "; ".join(
                     f"{BAND_EDGES[b]:g}–{BAND_EDGES[b + 1]:g}: {counts[b]}, {lengths[b] / max(counts[b], 1):.3f}, "
                     f"{counts[b] / math.log(BAND_EDGES[b + 1] / BAND_EDGES[b]):.0f}" for b in range(N_BANDS)))
+                implicit = st[SLOT + N_BUCKETS + 4 * N_BANDS:SLOT + N_BUCKETS + 5 * N_BANDS]
+                print(f"{'':22s} by band: ms of explicit + implicit corner steps (refused ones included), record "
+                      f"seconds in the band, accepted steps per sample interval (of them implicit)")
+                print(f"{'':22s} " + "; ".join(
+                    f"{BAND_EDGES[b]:g}–{BAND_EDGES[b + 1]:g}: {bm[b]:.2f} + {bm[N_BANDS + b]:.2f} ms, "
+                    f"{lengths[b] * dt:.2f} s, {counts[b] / max(lengths[b], 1e-9):.1f} ({implicit[b]})"
+                    for b in range(N_BANDS)))
             sys.stdout.flush()
     finally:
         pm.ST_SIZE, drv._run, pm.planar_multisurface_kernel = size, run, kernel

@@ -24,7 +24,7 @@ def test_every_anchor_of_the_split_is_in_the_kernel_once_and_the_patched_source_
         patched = patched.replace(anchor, before + anchor + after)
     tree = ast.parse(patched)
     names = {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)}
-    assert {"_cycles", "_last", "_bk", "_t0", "_t1", "_t2", "_sa", "_bd", "_BAND_EDGES"} <= names
+    assert {"_cycles", "_last", "_bk", "_t0", "_t1", "_t2", "_sa", "_bd", "_dc", "_BAND_EDGES"} <= names
     # the counters go to slots the kernel does not use
     assert split.SLOT >= pm.ST_SIZE
     assert split.BAND_EDGES[0] == pm.CROSS_ANGLE and split.BAND_EDGES[-1] == 1.0
