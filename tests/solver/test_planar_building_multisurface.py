@@ -63,7 +63,8 @@ def _pair_segment(records_dir, start_s=7.0, duration_s=5.0):
 #: the superstructure's shear: each resultant's maximum located inside the steps, docs/building.md, "Floor peaks
 #: located inside the steps"; on main they were sampled at watch points and erred by 3.2e-4 at every step_tol);
 #: ``peaks`` the base shear and the input.  Measured (docs/building.md, "The ultimate once per step, stops located
-#: past the rounding of the slips, floor peaks located"), worst of the two cases along 0° and 35°: see BOUNDS_MEASURED
+#: past the slips' rounding, rim arrivals to rounding, floor peaks located"), worst of the two cases along 0° and 35°:
+#: at 1e-8 history 1.2e-7 (Kobe along 35°), rows 3.4e-7; at 1e-7 history 7.0e-7, rows 3.3e-6 (main: rows 3.2e-4 at both)
 BOUNDS = {1e-8: dict(history=5e-7, floors=3e-6, impulse=2e-6, rows=3e-6, peaks=5e-4, balance=2e-7),
           1e-7: dict(history=3e-6, floors=3e-5, impulse=2e-6, rows=2e-5, peaks=1e-3, balance=2e-6)}
 
@@ -110,7 +111,7 @@ def test_the_intermediate_rim_and_the_reversals_on_it_at_step_tol_1e_9(records_d
     acc, dt, s, b, total, ref = _case(records_dir, "double with an intermediate rim, 2 stories")
     ours = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=s, bearing=b, total_mass_kg=total,
                                           step_tol=1e-9)
-    assert _rel(ours.displacement_m[:, 0], ref.displacement_m) <= 3e-9
+    assert _rel(ours.displacement_m[:, 0], ref.displacement_m) <= 4e-9
     assert _rel(ours.floor_displacement_m[..., 0], ref.floor_displacement_m) <= 3e-7
     assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=3e-8)
     assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=1e-7)
