@@ -635,8 +635,9 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     rim, members, tmat`` the stepper's groups; ``om, zeta, gam`` the floors' fixed-base modes (ω_i [rad/s], ζ, Γ̃_i = φ_iᵀ M_s 1/√M);
     ``lin`` (rows, 2 n_modes) the watched rows per direction on (q̃, q̃'), ``sig`` (rows, 2, 2 n_modes) the signed
     rows on both directions; ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
-    Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants,
-    |g r + c V|) at the steps' ends; the signed rows' extremes; the stepper's summary slots.
+    Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants —
+    their maxima located inside the steps, :func:`row_peak` —, |g r + c V|); the signed rows' extremes (at the steps'
+    ends and watch points); the stepper's summary slots.
 
     ``mu_s`` the groups' static friction (≥ ``mu``; equal: kinetic friction throughout, the steps unchanged).  Above
     ``mu`` (module docstring, Static friction): the slab at rest is held while the force it needs stays inside the
