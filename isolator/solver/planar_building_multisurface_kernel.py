@@ -111,6 +111,7 @@ from isolator.solver.planar_multisurface_stepper import (
     accept_step,
     arrival_step,
     arrive,
+    at_ultimate,
     be_step,
     carry_slot,
     groups_within_rims,
@@ -239,7 +240,7 @@ def total_energy(y, g, rb, om, gam):
 
 
 @njit(cache=True)
-def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rguess, out, rout):
+def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rguess, out, rout, ult=-1):
     """One backward-Euler step of the slab on the bearing with the floors propagated exactly (module docstring).
 
     ``a0x, a0y`` the ground's acceleration at the step's start, ``sx, sy`` its slope [m/s³]; the state y (the
@@ -247,7 +248,8 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
     be_step's, rout[R_IMPULSE] the velocity an impact removed from the slab (0 without one), rout[R_SIZE:] the
     scratch of the step length's tables (R_SIZE + 2 × TABLE_SIZE × modes long).  ``om, gam`` (2, modes): the
     floors' modes per direction; the same along x and y, the rigid block's step with g/µ_h (module docstring), else
-    be_step with the slab's effective mass per direction (Ψ's diagonal metric)."""
+    be_step with the slab's effective mass per direction (Ψ's diagonal metric).  ``ult``: the step's classification
+    of the ultimate, be_step's (the loop classifies it once at the step's start for its three solves)."""
     ng = rb.shape[0]
     nm = om.shape[1]
     f0 = carry_slot(ng) + 1
@@ -287,12 +289,12 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
     if iso:
         gp = g / mu_h
         cp = c / mu_h
-        mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout)
+        mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout, 1.0, 1.0, ult)
     else:
         # the floors differ along x and y: the slab's effective mass µ_d per direction, Ψ's metric diagonal
         gp = g
         cp = c
-        mask = be_step(y, h, ap_x, ap_y, g, c, rb, mu, rim, rguess, out, rout, mu_d[0], mu_d[1])
+        mask = be_step(y, h, ap_x, ap_y, g, c, rb, mu, rim, rguess, out, rout, mu_d[0], mu_d[1], ult)
         mu_h = 1.0  # be_step books the friction and the dashpot with g and c themselves
     impact = out[Y_EIMP] != y[Y_EIMP]
     slid = mask & ((1 << ng) - 1)
@@ -518,6 +520,106 @@ def _floor_rows(y, f0, nm, d, lin, row):
         row[k] = acc
 
 
+#: a row's maximum between two watch points is located only where one of them is within this fraction of the row's
+#: peak so far (between points WATCH_TURN apart the maximum exceeds them by at most 1 − cos(WATCH_TURN/2) ≈ 1.2e-3)
+LOCATE_BAND = 1e-2
+#: Newton's iterations on a row's maximum (safeguarded by its bracket; it stops when its step is below
+#: LOCATE_ROUNDING of the bracket: the resultant is flat there, its error the square of that)
+LOCATE_ITERATIONS = 60
+LOCATE_ROUNDING = 1e-10
+
+
+@njit(cache=True)
+def floors_at(y0, tp, fx, fy, sx, sy, f0, nm, om, zeta, gam, yw):
+    """The floors' modal (q̃, q̃') at τ = tp into a step from y0, exact, into yw: per direction the forcing
+    a_g + ẍ_b = f_d + s_d τ (``fx, fy`` at the step's start, ``sx, sy`` the ground's slopes [m/s³])."""
+    for d in range(2):
+        f = fx if d == 0 else fy
+        s_d = sx if d == 0 else sy
+        for k in range(nm):
+            jj = f0 + 2 * nm * d + k
+            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], f, s_d, tp, om[d, k], zeta, gam[d, k], False)
+            yw[jj] = q1
+            yw[jj + nm] = v1
+
+
+@njit(cache=True)
+def _modal_rates(yw, tp, fx, fy, sx, sy, f0, nm, om, zeta, gam, qdd):
+    # the modes' second and third derivatives at yw, τ = tp (their equation and its derivative): qdd[d, 0], qdd[d, 1]
+    for d in range(2):
+        f = (fx if d == 0 else fy) + (sx if d == 0 else sy) * tp
+        s_d = sx if d == 0 else sy
+        for k in range(nm):
+            jj = f0 + 2 * nm * d + k
+            w = om[d, k]
+            a = -2.0 * zeta * w * yw[jj + nm] - w * w * yw[jj] - gam[d, k] * f
+            qdd[d, 0, k] = a
+            qdd[d, 1, k] = -2.0 * zeta * w * a - w * w * yw[jj + nm] - gam[d, k] * s_d
+
+
+@njit(cache=True)
+def _row_and_rates(yw, f0, nm, lin, d, k, qdd):
+    # row k of direction d at yw, its first and second derivatives in τ (qdd: _modal_rates')
+    v = 0.0
+    v1 = 0.0
+    v2 = 0.0
+    for i in range(nm):
+        jj = f0 + 2 * nm * d + i
+        v += lin[d, k, i] * yw[jj] + lin[d, k, nm + i] * yw[jj + nm]
+        v1 += lin[d, k, i] * yw[jj + nm] + lin[d, k, nm + i] * qdd[d, 0, i]
+        v2 += lin[d, k, i] * qdd[d, 0, i] + lin[d, k, nm + i] * qdd[d, 1, i]
+    return v, v1, v2
+
+
+@njit(cache=True)
+def row_rises(yw, tp, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, rise):
+    """Each watched row's (d|row|²/dτ / 2, |row|) at the state yw, τ = tp into the step (the forcing as
+    :func:`floors_at`'s) into rise (rows, 2): the resultant rises where the first is positive."""
+    _modal_rates(yw, tp, fx, fy, sx, sy, f0, nm, om, zeta, gam, qdd)
+    for k in range(lin.shape[1]):
+        g = 0.0
+        r2 = 0.0
+        for d in range(2):
+            v, v1, _ = _row_and_rates(yw, f0, nm, lin, d, k, qdd)
+            g += v * v1
+            r2 += v * v
+        rise[k, 0] = g
+        rise[k, 1] = math.sqrt(r2)
+
+
+@njit(cache=True)
+def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw):
+    """The maximum of watched row k's resultant between τ = lo and hi into a step from y0 (where it rises at lo and
+    does not at hi): Newton on d|row|²/dτ = 0 with the rows' closed-form first and second derivatives, kept inside
+    its bracket (bisection where a Newton step leaves it), to LOCATE_ROUNDING of the bracket."""
+    tau = 0.5 * (lo + hi)
+    width = hi - lo
+    best = 0.0
+    for _ in range(LOCATE_ITERATIONS):
+        floors_at(y0, tau, fx, fy, sx, sy, f0, nm, om, zeta, gam, yw)
+        _modal_rates(yw, tau, fx, fy, sx, sy, f0, nm, om, zeta, gam, qdd)
+        g = 0.0
+        gp = 0.0
+        r2 = 0.0
+        for d in range(2):
+            v, v1, v2 = _row_and_rates(yw, f0, nm, lin, d, k, qdd)
+            g += v * v1
+            gp += v1 * v1 + v * v2
+            r2 += v * v
+        best = max(best, math.sqrt(r2))
+        if g > 0.0:
+            lo = tau
+        else:
+            hi = tau
+        nxt = tau - g / gp if gp < 0.0 else 0.5 * (lo + hi)
+        if not lo < nxt < hi:
+            nxt = 0.5 * (lo + hi)
+        if abs(nxt - tau) <= LOCATE_ROUNDING * width or not lo < nxt < hi:
+            break
+        tau = nxt
+    return best
+
+
 @njit(cache=True)
 def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, tmat, om, zeta, gam, lin, sig, tol,
                                         scales, out_y, out_r, peaks, sig_max, sig_min, summary, surf_peak, first, ub,
@@ -533,8 +635,9 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     rim, members, tmat`` the stepper's groups; ``om, zeta, gam`` the floors' fixed-base modes (ω_i [rad/s], ζ, Γ̃_i = φ_iᵀ M_s 1/√M);
     ``lin`` (rows, 2 n_modes) the watched rows per direction on (q̃, q̃'), ``sig`` (rows, 2, 2 n_modes) the signed
     rows on both directions; ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
-    Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants,
-    |g r + c V|) at the steps' ends; the signed rows' extremes; the stepper's summary slots.
+    Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants —
+    their maxima located inside the steps, :func:`row_peak` —, |g r + c V|); the signed rows' extremes (at the steps'
+    ends and watch points); the stepper's summary slots.
 
     ``mu_s`` the groups' static friction (≥ ``mu``; equal: kinetic friction throughout, the steps unchanged).  Above
     ``mu`` (module docstring, Static friction): the slab at rest is held while the force it needs stays inside the
@@ -559,6 +662,10 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     yw = np.zeros(ny)
     rowx = np.zeros(nk)
     rowy = np.zeros(nk)
+    qdd = np.zeros((2, 2, nm))
+    rise0 = np.zeros((nk, 2))
+    rise1 = np.zeros((nk, 2))
+    r_last = np.zeros(nk)
     low = (1 << ng) - 1
     ne = members.shape[0]
     for j in range(first.shape[0]):
@@ -640,6 +747,10 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
             mu_now = mu_s if held_s else mu
             # n = g + a_z at its mean over each step (linear: at its middle), the vertical's work booked after each solve
             # (the first half's before the second starts from it), as the rigid block's steps
+            # the ultimate classified once, at the step's start, for its three solves and the trial solves of its cuts
+            # (the rigid block's rule, planar_multisurface_stepper; docs/multisurface.md, "Once per step"): classified
+            # per solve, the second half read it at its own start (docs/building.md, "The ultimate once per step")
+            ult = 1 if at_ultimate(y, rim) else 0
             if jump:
                 m1 = _jump(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu, rim, om,
                            zeta, gam, r, y2, r2)
@@ -651,15 +762,15 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     r2[1] = -(a0y + h * slope_y) / (nz[i] + slope_z * (tau + h))
             else:
                 m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu_now,
-                                   rim, om, zeta, gam, r, y1, r1)
+                                   rim, om, zeta, gam, r, y1, r1, ult)
                 mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.25 * h), c, rb,
-                                   mu_now, rim, om, zeta, gam, r1, yh, rh)
+                                   mu_now, rim, om, zeta, gam, r1, yh, rh, ult)
                 if slope_z != 0.0:
                     vertical_work(y, y1, rb, slope_z * h)
                     vertical_work(y, yh, rb, 0.5 * slope_z * h)
             m2 = mh if jump else building_step(
                 yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), slope_x, slope_y,
-                nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu_now, rim, om, zeta, gam, rh, y2, r2)
+                nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu_now, rim, om, zeta, gam, rh, y2, r2, ult)
             if slope_z != 0.0 and not jump:
                 vertical_work(yh, y2, rb, 0.5 * slope_z * h)
             if jump:
@@ -720,18 +831,26 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # the whole step — at the ultimate the floors would see the impact as a pulse of that length, and at
                 # any rim the reaction's work ν·δ over the step's slip (g ν δ, ν the force's jump to the next surface)
                 # is lost from the balance (NWH360 with a double of an intermediate rim: 2.8e-5 of the input in one
-                # step of 5e-5 s).  The step is cut to end just before the arrival (bisection on its length to the
-                # floor), and the arrival is a step of at most 2 floors.  Only an arrival from away (off the rim by
-                # more than RIM_AWAY, as a rim contact is counted): a group turning on its rim touches it in
-                # nearly every step (Chuetsu-oki 65025 with F&C's TFP: the work bound at 26.46 s otherwise)
+                # step of 5e-5 s).  The step is cut to end just before the arrival (bisection on its length to
+                # rounding), and the arrival is a step of at most 2 floors that starts there.  Bisected only to the
+                # floor, the arrival fell up to a floor into its step, whose force (the rim's, the next surface's
+                # friction) then acted from the step's start: the velocity off by up to the force's jump × a floor
+                # (NWH360 on the double with an intermediate rim at step_tol 1e-9, the arrival at 3.60987 s: 6.7e-9
+                # m/s, 2e-9 of the peak by the record's end).  Only an arrival from away (off the rim by more than
+                # RIM_AWAY, as a rim contact is counted): a group turning on its rim touches it in nearly every step
+                # (Chuetsu-oki 65025 with F&C's TFP: the work bound at 26.46 s otherwise).  The ultimate's arrival
+                # (an impact in the step) is bisected to the floor only: the rigid block's arrival event takes it
+                # from there (to rounding, Kobe KJM ×1.6 on the small TFP erred by 3.7e-8 of the peak instead of
+                # 1.8e-8 at step_tol 1e-8)
                 lo = 0.0
                 up = h
-                for _ in range(80):
-                    if up - lo <= h_floor:
-                        break
+                bracket = h_floor if r1[R_IMPULSE] > 0.0 else 0.0
+                for _ in range(200):  # the length's binary digits, until the bracket's ends are adjacent floats
                     mid = 0.5 * (lo + up)
+                    if not lo < mid < up or up - lo <= bracket:
+                        break
                     ma = building_step(y, mid, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * mid), c, rb,
-                                       mu, rim, om, zeta, gam, r, y0, ra)
+                                       mu, rim, om, zeta, gam, r, y0, ra, ult)
                     work += ra[2]
                     if ra[R_IMPULSE] > 0.0 or (ma >> ng) & ~rims0 & away:
                         up = mid
@@ -808,7 +927,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     if not (lo < mid < up):
                         break
                     building_step(y, mid, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * mid), c, rb, mu,
-                                  rim, om, zeta, gam, r, y0, ra)
+                                  rim, om, zeta, gam, r, y0, ra, ult)
                     work += ra[2]
                     if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
                         lo = mid
@@ -819,9 +938,25 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # the step's Richardson combination holds, and the next step starts from V = 0 with the reversed set)
                 # (its velocity is rounding below CUT_ROUNDING |X| / cut: the slips' last bits over the step)
                 cut = up if static else lo
+                if 0.0 < lo < h:
+                    # the bracket's forward end extrapolated to the velocity's zero: a solve's stick-or-slide
+                    # decision for a slip V t near the ulp of |ū| is rounding, so the bisection's bracket can close
+                    # short of the zero (NWH360 on the double with an intermediate rim at step_tol 1e-9, the reversal
+                    # at 2.31973 s: sliding at 2.2467e-7 s into the step with 2.1e-9 m/s left, stuck at the next
+                    # float; the steps then crept to the zero at the floor and took 2.9e-8 m/s away, 5e-9 of the peak
+                    # later).  Over so short a length the velocity is linear in it, V0 − t (g r + ā') with r at the
+                    # sliding groups' friction: its zero is lo V0 / (V0 − V(lo)) along V0
+                    building_step(y, lo, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu,
+                                  rim, om, zeta, gam, r, y0, ra, ult)
+                    v_0 = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
+                    v_lo = (y0[Y_V] * y[Y_V] + y0[Y_V + 1] * y[Y_V + 1]) / v_0
+                    if 0.0 < v_lo < v_0:
+                        t_zero = lo * v_0 / (v_0 - v_lo)
+                        if cut < t_zero < h:
+                            cut = t_zero
                 if 0.0 < cut < h:
                     building_step(y, cut, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * cut), c, rb,
-                                  mu, rim, om, zeta, gam, r, y0, ra)
+                                  mu, rim, om, zeta, gam, r, y0, ra, ult)
                     if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
                             vs, CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / cut):
                         h = cut
@@ -914,25 +1049,34 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     peak_q = max(peak_q, abs(y[jj]))
                     peak_qd = max(peak_qd, abs(y[jj + nm]))
             # the floors' watched rows inside the step (its constant ẍ_b, from its start), points at most WATCH_TURN
-            # of the fastest mode apart, and at its end
+            # of the fastest mode apart, and at its end; between two points (the step's ends included) where a row's
+            # resultant turns from rising to falling, its maximum is located (row_peak).  Not in a step with an
+            # impulse (an impact: its velocity change is not the step's ẍ_b)
             n_in = min(int(h * max(om[0, nm - 1], om[1, nm - 1]) / WATCH_TURN), MAX_WATCH_POINTS)
             held_step = (y0[Y_V] == 0.0 and y0[Y_V + 1] == 0.0 and y[Y_V] == 0.0 and y[Y_V + 1] == 0.0
                          and c == 0.0)
-            if n_in > 0:
-                xbx = (y[Y_V] - y0[Y_V]) / h
-                xby = (y[Y_V + 1] - y0[Y_V + 1]) / h
-                for p in range(1, n_in + 1):
-                    tp = h * p / (n_in + 1)
-                    for d in range(2):
-                        a0 = (ax[i] + slope_x * (tau - h)) if d == 0 else (ay[i] + slope_y * (tau - h))
-                        s_d = slope_x if d == 0 else slope_y
-                        xb = xbx if d == 0 else xby
-                        for k in range(nm):
-                            jj = f0 + 2 * nm * d + k
-                            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], a0 + xb, s_d, tp, om[d, k], zeta, gam[d, k],
-                                                      False)
-                            yw[jj] = q1
-                            yw[jj + nm] = v1
+            locate = not (jump or impacted)
+            if locate and n_in == 0:
+                # a short step: located only where a row at one of its ends is within LOCATE_BAND of its peak (most
+                # steps are far from the rows' peaks: their rates are not computed)
+                near = False
+                _floor_rows(y, f0, nm, 0, lin, rowx)
+                _floor_rows(y, f0, nm, 1, lin, rowy)
+                for k in range(nk):
+                    if max(math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]), r_last[k]) >= (
+                            1.0 - LOCATE_BAND) * peaks[2 + k]:
+                        near = True
+                locate = near
+            # the forcing a_g + ẍ_b at the step's start per direction
+            fx = ax[i] + slope_x * (tau - h) + (y[Y_V] - y0[Y_V]) / h
+            fy = ay[i] + slope_y * (tau - h) + (y[Y_V + 1] - y0[Y_V + 1]) / h
+            if locate:
+                row_rises(y0, 0.0, fx, fy, slope_x, slope_y, f0, nm, lin, om, zeta, gam, qdd, rise0)
+            tp0 = 0.0
+            for p in range(1, n_in + 2):
+                tp = h * p / (n_in + 1)
+                if p <= n_in:
+                    floors_at(y0, tp, fx, fy, slope_x, slope_y, f0, nm, om, zeta, gam, yw)
                     _watch(yw, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z,
                            az[i] + slope_az * (tau - h + tp))
                     if held_step:
@@ -941,7 +1085,21 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, 0)
                         f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
                         peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
+                if not locate:
+                    continue
+                row_rises(yw if p <= n_in else y, tp, fx, fy, slope_x, slope_y, f0, nm, lin, om, zeta, gam, qdd,
+                          rise1)
+                for k in range(nk):
+                    if (rise0[k, 0] > 0.0 >= rise1[k, 0]
+                            and max(rise0[k, 1], rise1[k, 1]) >= (1.0 - LOCATE_BAND) * peaks[2 + k]):
+                        peaks[2 + k] = max(peaks[2 + k], row_peak(y0, tp0, tp, k, fx, fy, slope_x, slope_y, f0, nm,
+                                                                   lin, om, zeta, gam, qdd, yw))
+                    rise0[k, 0] = rise1[k, 0]
+                    rise0[k, 1] = rise1[k, 1]
+                tp0 = tp
             _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z, az[i] + slope_az * tau)
+            for k in range(nk):
+                r_last[k] = math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k])  # the rows' resultants at the step's end
             if not groups_within_rims(y, ub, rim):
                 status |= STATUS_RIM
                 fail_t = t[i] + tau

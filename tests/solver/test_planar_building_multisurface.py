@@ -59,14 +59,14 @@ def _pair_segment(records_dir, start_s=7.0, duration_s=5.0):
 
 
 #: the bounds asserted against the exact 1-D building, by step_tol, as fractions of the peak: the slab's and the floors'
-#: histories, the impulse, the balance of the input; the extremes (drifts, floor accelerations, shears) are taken at the
-#: steps' ends and watch points WATCH_TURN of the fastest mode apart (a miss ≤ 1.2e-3), so not tightened with step_tol.
-#: Measured (docs/building.md, "Reversals, stops and break-aways located inside the steps"), worst of the two cases
-#: along 0° and 35°: at 1e-8 history 1.2e-7, floors 4.5e-7, impulse 1.5e-7, balance 4.7e-8, drifts 3.2e-4; at 1e-7
-#: history 7.0e-7, floors 4.5e-6, impulse 1.6e-7, balance 3.8e-7, drifts 3.2e-4 (before the reversals were located:
-#: history 2.4e-5 / 1.3e-4, floors 9.9e-5 / 3.0e-4, impulse 1.3e-5 / 7.2e-5)
-BOUNDS = {1e-8: dict(history=5e-7, floors=3e-6, impulse=2e-6, peaks=5e-4, balance=2e-7),
-          1e-7: dict(history=3e-6, floors=3e-5, impulse=2e-6, peaks=1e-3, balance=2e-6)}
+#: histories, the impulse, the balance of the input; ``rows`` the floors' located peaks (drifts, floor accelerations,
+#: the superstructure's shear: each resultant's maximum located inside the steps, docs/building.md, "Floor peaks
+#: located inside the steps"; on main they were sampled at watch points and erred by 3.2e-4 at every step_tol);
+#: ``peaks`` the base shear and the input.  Measured (docs/building.md, "The ultimate once per step, stops located
+#: past the slips' rounding, rim arrivals to rounding, floor peaks located"), worst of the two cases along 0° and 35°:
+#: at 1e-8 history 1.2e-7 (Kobe along 35°), rows 3.4e-7; at 1e-7 history 7.0e-7, rows 3.3e-6 (main: rows 3.2e-4 at both)
+BOUNDS = {1e-8: dict(history=5e-7, floors=3e-6, impulse=2e-6, rows=3e-6, peaks=5e-4, balance=2e-7),
+          1e-7: dict(history=3e-6, floors=3e-5, impulse=2e-6, rows=2e-5, peaks=1e-3, balance=2e-6)}
 
 
 @pytest.mark.parametrize("name, degrees, step_tol", [(name, degrees, 1e-8) for name in CASES for degrees in (0.0, 35.0)]
@@ -84,11 +84,11 @@ def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, 
     assert _rel(along, ref.displacement_m) <= bound["history"]
     assert _rel(ours.floor_displacement_m @ [c, sn], ref.floor_displacement_m) <= bound["floors"]
     assert ours.peak_displacement_m == pytest.approx(peak, rel=1e-6)
-    assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=bound["peaks"])
-    assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=bound["peaks"])
+    assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=bound["rows"])
+    assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=bound["rows"])
     assert ours.base_shear_coefficient == pytest.approx(ref.base_shear_coefficient, rel=bound["peaks"])
     assert ours.superstructure_shear_coefficient == pytest.approx(ref.superstructure_shear_coefficient,
-                                                                  rel=bound["peaks"])
+                                                                  rel=bound["rows"])
     assert ours.surface_peak_displacement_m == pytest.approx(ref.surface_peak_displacement_m, rel=1e-6)
     assert list(ours.regimes) == list(ref.regimes)
     assert ours.n_rim_contacts == ref.n_rim_contacts > 0
@@ -101,6 +101,21 @@ def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, 
     if name.startswith("TFP"):
         assert list(ours.regimes) == ["I", "II", "III", "IV", "V"] and ours.ultimate_displacement_reached
         assert ours.impact_impulse_m_s > 0.5
+
+
+def test_the_intermediate_rim_and_the_reversals_on_it_at_step_tol_1e_9(records_dir):
+    # NWH360 on the double with an intermediate rim along x at step_tol 1e-9: a reversal with surface 1 on its rim
+    # (2.31973 s; the solves' stick-or-slide decision for a slip near the ulp of |ū| closed the bisection short of the
+    # velocity's zero, 2.9e-8 m/s taken away) and the rim arrival at 3.60987 s (bisected to the floor only) left 6.5e-9
+    # of the peak on main; now the steps' own error, ∝ step_tol (1.4e-9 measured, 1.5e-8 at 1e-8)
+    acc, dt, s, b, total, ref = _case(records_dir, "double with an intermediate rim, 2 stories")
+    ours = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=s, bearing=b, total_mass_kg=total,
+                                          step_tol=1e-9)
+    assert _rel(ours.displacement_m[:, 0], ref.displacement_m) <= 4e-9
+    assert _rel(ours.floor_displacement_m[..., 0], ref.floor_displacement_m) <= 3e-7
+    assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=3e-8)
+    assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=1e-7)
+    assert list(ours.regimes) == list(ref.regimes) and ours.n_rim_contacts == ref.n_rim_contacts
 
 
 @pytest.fixture(scope="module")
