@@ -1151,6 +1151,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
         converged = False
         scale = max(mu_k_n, 1e-300)
         hk = 1.0
+        inv_r = 0.0
         # V's coefficients e_v Ã^k/k! w̃ (fvt[d, c, k]: the rows by columns): the share of [z, a_g, ȧ_g] for every
         # order at once, column by column (the orders accumulate independently), then per order the chain's
         # c_0 … c_{k-1} (known only once the orders below are): each sum in the order of a row-by-row product
@@ -1175,16 +1176,18 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
                 if not sser[0] > 0.0:
                     return -4
                 rser[0] = math.sqrt(sser[0])
+                # one reciprocal for the divisions by |V|_0 (three an order before; h134: the bench's kernel 1–3 % faster)
+                inv_r = 1.0 / rser[0]
             else:
                 acc = sser[k]
                 for j in range(1, k):
                     acc -= rser[j] * rser[k - j]
-                rser[k] = acc / (2.0 * rser[0])
+                rser[k] = 0.5 * acc * inv_r
             for d in range(2):
                 acc = vser[d, k]
                 for j in range(k):
                     acc -= eser[d, j] * rser[k - j]
-                eser[d, k] = acc / rser[0]
+                eser[d, k] = acc * inv_r
                 wa[d, m + 2 + k] = mu_k_n * eser[d, k]
             hk1 = hk
             if k > 0:
@@ -1250,8 +1253,10 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
     rate_h = zddh
     r_int = 0.0
     if mode == SLIDE:
-        for j in range(k_eff + 1):
-            r_int += rser[j] * h ** (j + 1) / (j + 1)
+        # ∫₀^h |V| dτ = h Σ_j |V|_j h^j/(j + 1), by Horner (no power a term)
+        for j in range(k_eff, -1, -1):
+            r_int = r_int * h + rser[j] / (j + 1)
+        r_int *= h
     # stuck, the chain is zero (the friction is not an input of the held slab's floors): [z, a_g, ȧ_g] only
     s_eff = m + 3 + k_eff if mode == SLIDE else m + 2
     # the tables are for the chain scaled to this rung, c_j h^j (entries of one size: rounding stays relative)
