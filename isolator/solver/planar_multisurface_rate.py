@@ -8,8 +8,10 @@ The equations, the method (Radau IIA collocation with events, the pieces of the 
 :mod:`isolator.solver.planar_multisurface_rate_kernel` and docs/multisurface.md.  The result is a
 :class:`~isolator.solver.planar_multisurface.PlanarMultisurfaceResponse` (the keys of ``2d-multisurface``).
 
-Not modelled, each refused in one line: a surface reaching its rim (the time and the surface are named), a
-vertical component, a superstructure.
+The rims: a surface reaching its rim is held there or slides along it (the rim's frictionless reaction normal to
+it) and leaves it inward; every surface on its rim is the ultimate displacement, a plastic impact (the velocity
+removed, its impulse and energy reported) as in 1-D (docs/multisurface.md, h131).  Not modelled, each refused in one
+line: a slide along the rims from rest with no surface free inside its rim, a vertical component, a superstructure.
 """
 
 from __future__ import annotations
@@ -47,7 +49,7 @@ def scene_needs(scene) -> tuple[str, str] | None:
     return MODEL_NAME, (f"a {bearing.kind} friction pendulum with velocity-dependent friction µ_i(v_i) on its "
                         "surfaces under two horizontal components: the series model of Fenz & Constantinou in the "
                         "plane (coupled friction) as an index-1 DAE, Radau IIA collocation with events (error "
-                        "controlled, not closed form; no rims)")
+                        "controlled, not closed form; the rims held, slid along and left, the ultimate a plastic impact)")
 
 
 def simulate_scene(scene) -> PlanarMultisurfaceResponse:
@@ -106,7 +108,7 @@ def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity, 
     out_en = np.empty((3, n))
     summary = np.zeros(_pr.SUMMARY_SIZE)
     surf_peak = np.zeros(ns)
-    first = np.empty(1 << ns)
+    first = np.empty(1 << (2 * ns))  # index: sliding bits + 2^ns × rim bits
     h_first = float(np.min(np.diff(times))) if n > 1 else 1.0
     while True:  # once more with room for every event when the first run overflowed its list
         ev_t = np.empty(capacity)
@@ -158,8 +160,9 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
     Raises
     ------
     SolverError
-        A surface reached its rim (not modelled: the time and the surface are named), or the step size fell
-        below 1e-13 of the sample interval.
+        A slide along the rims alone from rest (not modelled: the time and a surface are named), more than
+        MAX_STEPS_PER_INTERVAL steps in one sample interval, or the step size fell below 1e-13 of the sample
+        interval.
     """
     timing = record_timing(ax_m_s2, dt_s, time_s)
     ax, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
@@ -188,9 +191,10 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
     status = int(summary[_pr.S_STATUS])
     fail_t = t0 + float(summary[_pr.S_FAIL_T])
     if status & _pr.STATUS_RIM:
-        raise SolverError(f"{MODEL_NAME}: surface {int(summary[_pr.S_RIM_SURFACE]) + 1} of the {bearing.kind} bearing "
-                          f"reaches its rim at t = {fail_t:.6g} s; the rims of the µ(v) model in the plane are not "
-                          "modelled (no answer is given; with a constant 'mu' per surface 2d-multisurface takes them)")
+        raise SolverError(f"{MODEL_NAME}: at t = {fail_t:.6g} s the mass at rest is pushed along the rims with no "
+                          f"surface of the {bearing.kind} bearing free to slide inside its rim (surface "
+                          f"{int(summary[_pr.S_RIM_SURFACE]) + 1} on its rim): a slide along the rims alone is not "
+                          "modelled; no answer is given")
     if status & _pr.STATUS_WORK:
         raise SolverError(f"{MODEL_NAME}: more than {_pr.MAX_STEPS_PER_INTERVAL} collocation steps in one sample "
                           f"interval at t = {fail_t:.6g} s (not resolved: two surfaces saturated together, or a stop "
@@ -205,14 +209,15 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
                    "bearing was held to the end of that interval")
     elements = smat @ u  # ū = T⁻¹ u, (n, 2)
     regimes: dict = {}
+    n_surf = len(bearing.surfaces)
     for code in np.flatnonzero(first >= 0.0):
-        name = bearing.regime_name(int(code), 0)
+        name = bearing.regime_name(int(code) % (1 << n_surf), int(code) >> n_surf)
         if name and (name not in regimes or first[code] + t0 < regimes[name]):
             regimes[name] = float(first[code] + t0)
     regimes = dict(sorted(regimes.items(), key=lambda item: item[1]))
     on_surface = [float(p) * s.radius_m / s.effective_radius_m for p, s in zip(surf_peak, bearing.surfaces,
                                                                                  strict=True)]
-    e_in, e_f, e_v = (float(summary[k]) for k in (_pr.S_E_IN, _pr.S_E_F, _pr.S_E_V))
+    e_in, e_f, e_v, e_imp = (float(summary[k]) for k in (_pr.S_E_IN, _pr.S_E_F, _pr.S_E_V, _pr.S_E_IMPACT))
     e_kin = 0.5 * float(out_v[-1, 0] ** 2 + out_v[-1, 1] ** 2)
     e_pot = float(g * np.sum(np.sum(elements * elements, axis=1) / (2.0 * rbar)))
     n_steps = int(summary[_pr.S_N_STEPS])
@@ -232,7 +237,13 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
         n_events=int(summary[_pr.S_N_EVENTS]),
         energy_input_J_per_kg=e_in, energy_friction_J_per_kg=e_f, energy_viscous_J_per_kg=e_v,
         energy_kinetic_final_J_per_kg=e_kin, energy_potential_final_J_per_kg=e_pot,
-        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v),
+        energy_balance_error_J_per_kg=e_in - (e_kin + e_pot + e_f + e_v + e_imp),
+        energy_impact_J_per_kg=e_imp,
+        n_rim_contacts=int(summary[_pr.S_N_RIM]),
+        ultimate_displacement_reached=bool(summary[_pr.S_FIRST_ULT] >= 0.0),
+        impact_impulse_m_s=float(summary[_pr.S_IMPULSE]),
+        max_impact_velocity_m_s=float(summary[_pr.S_MAX_IMPACT_V]),
+        n_impacts=int(summary[_pr.S_N_ULT]),
         energy_history_J_per_kg=out_en,
         surface_peak_displacement_m=on_surface,
         regimes=regimes,
@@ -245,7 +256,8 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
         model=MODEL_NAME,
         model_reason=(f"a {bearing.kind} bearing with µ(v) on its surfaces in the plane: Radau IIA collocation with "
                       f"events, step tolerance {tolerance:g} of the peaks ({n_steps} steps, "
-                      f"{int(summary[_pr.S_N_NEWTON])} Newton iterations); no rims (refused where one is reached)"),
+                      f"{int(summary[_pr.S_N_NEWTON])} Newton iterations); rims held, slid along and left, the ultimate a "
+                      "plastic impact"),
     )
 
 

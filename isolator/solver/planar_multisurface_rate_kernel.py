@@ -42,8 +42,17 @@ Modes and events (each located on re-stepped collocation steps by Illinois secan
   with a piecewise-linear record each disc's exit is a quadratic's root: the break-away is exact; at the
   break-away the surfaces whose disc is left start, the pivot the farthest out, in the direction of
   r_need − b_k;
-* a sliding surface reaching its rim |u_i| = d_i*: **not modelled** — the run stops there
-  (:data:`STATUS_RIM`, the time and the surface in the summary) and the driver refuses in one line.
+* a sliding surface reaches its rim |u_i| = d_i* (put on the circle, :data:`HELD`): held while r − b_i lies in
+  its static disc plus the rim's normal cone (:func:`held_value`), it slides along the rim (:data:`ON_RIM`,
+  :func:`rim_slide`: its slip on the tangent, ψ(f·t) t, the rim's frictionless reaction f·e ≥ 0 normal to it) when
+  |f·t| passes µ_slow, stops on it when |f·t| falls back, and leaves it inward when the reaction f·e turns negative
+  (the 1-D model's held surface, which leaves only inward; a rim slider is never the pivot).  The force jumps so
+  that the others take its velocity; with no surface left sliding inside its rim a stuck one starts
+  (:func:`restart_free`), and with every surface on its rim the mass is at the ultimate: a plastic impact removes
+  its velocity (impulse |Ẋ|, energy ½|Ẋ|² booked; the tangential part too — exact where the arrival is radial, as
+  in 1-D; its largest fraction is in the summary, :data:`S_IMPACT_TANGENTIAL`), then it holds or starts as from
+  rest.  A start from rest pushed only along the rims (no surface free inside its rim) is not modelled
+  (:data:`STATUS_RIM`, the driver refuses in one line).
 
 Energies per unit mass: input −∫a_g·Ẋ dt, viscous c∫|Ẋ|², friction g Σ∫(r − b_i)·dū_i on the series
 elements ū = T⁻¹u (the accounting of the 1-D kernels; stored g Σ|ū_i|²/(2R̄_i)), by the collocation's own
@@ -73,8 +82,16 @@ from isolator.solver.multisurface_rate_kernel import (
 )
 from isolator.solver.planar_events import record_event
 
-REGIME = 3  #: the sliding set changed (a surface started or stopped while the mass moves)
-EVENT_NAMES = ("breakaway", "stick", "reversal", "regime")
+REGIME = 3  #: the sliding set changed (a surface started, stopped, reached, left or slid along its rim)
+RIM_REACHED = 4  #: a surface reached its rim (held there or sliding along it; no impact)
+ULTIMATE = 5  #: plastic impact at the ultimate displacement (every surface on its rim)
+EVENT_NAMES = ("breakaway", "stick", "reversal", "regime", "rim reached", "ultimate")
+
+# a surface's mode
+STUCK = 0
+SLIDING = 1  #: sliding inside its rim
+ON_RIM = 2  #: sliding along its rim (its slip on the rim's tangent, the rim's frictionless reaction normal to it)
+HELD = 3  #: on its rim, not sliding: r − b in the static disc plus the rim's normal cone
 
 MAX_EVENTS_PER_INTERVAL = 1000  #: chatter guard
 #: bound on the collocation double steps of one sample interval, event location included (the run stops there,
@@ -89,7 +106,7 @@ ALIGNED_SET = 1e-9
 STATUS_OK = 0
 STATUS_CHATTER = 1
 STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the run stops there)
-STATUS_RIM = 8  #: a surface reached its rim (not modelled: the run stops there)
+STATUS_RIM = 8  #: every surface on its rim, one of them made to slide along it from rest (not modelled: the run stops)
 STATUS_WORK = 16  #: more than MAX_STEPS_PER_INTERVAL double steps in one sample interval (the run stops there)
 
 # the summary vector
@@ -106,8 +123,15 @@ S_STATUS = 9
 S_N_STEPS = 10
 S_FAIL_T = 11  #: time [s] where the run stopped (-1: none)
 S_N_NEWTON = 12
-S_RIM_SURFACE = 13  #: the surface (0-based) that reached its rim (-1: none)
-SUMMARY_SIZE = 14
+S_RIM_SURFACE = 13  #: the surface (0-based) on its rim where the run stopped (-1: none)
+S_N_RIM = 14  #: rim contacts (arrivals of a surface at its rim)
+S_N_ULT = 15  #: plastic impacts at the ultimate displacement
+S_IMPULSE = 16  #: Σ velocity the impacts removed [m/s]
+S_MAX_IMPACT_V = 17  #: largest velocity an impact removed [m/s]
+S_E_IMPACT = 18  #: the kinetic energy the impacts took [J/kg]
+S_FIRST_ULT = 19  #: time of the first impact [s] (-1: none)
+S_IMPACT_TANGENTIAL = 20  #: largest |Ẋ × ē|/|Ẋ| at an impact (the tangential part it removed, ē the rims' direction)
+SUMMARY_SIZE = 21
 
 
 @njit(cache=True)
@@ -151,6 +175,69 @@ def slide_vector(fx, fy, mu_s, mu_f, a, out_d):
 
 
 @njit(cache=True)
+def rim_slide(fx, fy, ex, ey, mu_s, mu_f, a, out_d):
+    """Slide velocity [m/s] of a surface on its rim (e = (ex, ey) its outward unit normal, t = (−ey, ex) the rim's
+    tangent) at friction excess f = r − b: ψ(f·t) t, ψ(s) = φ(|s|) sign(s) the slide law along the tangent (continued
+    through the onset as :func:`slide_vector`); the normal part f·e is the rim's reaction (frictionless, ≥ 0 while
+    the surface stays on it).  ``out_d`` receives d(u̇)/df = ψ'(f·t) t tᵀ; NaN outside |f·t| < µ_fast."""
+    tx = -ey
+    ty = ex
+    ft = fx * tx + fy * ty
+    sp, dsp = slide_rate(abs(ft), 1.0, mu_s, mu_f, a)
+    if not math.isfinite(sp):
+        return math.nan, math.nan
+    if ft < 0.0:
+        sp = -sp
+    out_d[0, 0] = dsp * tx * tx
+    out_d[0, 1] = dsp * tx * ty
+    out_d[1, 0] = out_d[0, 1]
+    out_d[1, 1] = dsp * ty * ty
+    return sp * tx, sp * ty
+
+
+@njit(cache=True)
+def rim_turn(fx, fy, ux, uy, mu_s, mu_f, a, out_e):
+    """The direct derivative ∂u̇/∂u [1/s] of a rim slide (:func:`rim_slide`) through its tangent t = J u/|u| (the
+    rim's turning; ∂t/∂u = (J − t eᵀ)/|u|): ψ' t (∂(f·t)/∂u) + ψ ∂t/∂u, in ``out_e`` [2 × 2]."""
+    rho = math.hypot(ux, uy)
+    ex = ux / rho
+    ey = uy / rho
+    tx = -ey
+    ty = ex
+    ft = fx * tx + fy * ty
+    sp, dsp = slide_rate(abs(ft), 1.0, mu_s, mu_f, a)
+    if ft < 0.0:
+        sp = -sp
+    # ∂t/∂u = (J − t eᵀ)/ρ, J = [[0, −1], [1, 0]]
+    t00 = -tx * ex / rho
+    t01 = (-1.0 - tx * ey) / rho
+    t10 = (1.0 - ty * ex) / rho
+    t11 = -ty * ey / rho
+    gx = fx * t00 + fy * t10
+    gy = fx * t01 + fy * t11
+    out_e[0, 0] = dsp * tx * gx + sp * t00
+    out_e[0, 1] = dsp * tx * gy + sp * t01
+    out_e[1, 0] = dsp * ty * gx + sp * t10
+    out_e[1, 1] = dsp * ty * gy + sp * t11
+
+
+@njit(cache=True)
+def contributes(md, locked):
+    """Whether a surface's rate is its own slide law in the force's equation (not the pivot): sliding, not in the
+    saturated set, or sliding along its rim."""
+    return (md == SLIDING and locked == 0) or md == ON_RIM
+
+
+@njit(cache=True)
+def surface_rate(fx, fy, md, ex, ey, mu_s, mu_f, a, out_d):
+    """The slide velocity of a contributing surface (:func:`contributes`): :func:`slide_vector`, or
+    :func:`rim_slide` on its rim (e = (ex, ey))."""
+    if md == ON_RIM:
+        return rim_slide(fx, fy, ex, ey, mu_s, mu_f, a, out_d)
+    return slide_vector(fx, fy, mu_s, mu_f, a, out_d)
+
+
+@njit(cache=True)
 def friction_vector(vx, vy, ex0, ey0, mu_s, mu_f, a, out_d):
     """The forward law µ(|v|) v/|v| [-] of a surface sliding at v [m/s] (along (ex0, ey0) at v = 0, a start from
     rest) and its derivative in ``out_d`` [2 × 2] (the tangential part µ/|v| left out at v = 0)."""
@@ -167,7 +254,7 @@ def friction_vector(vx, vy, ex0, ey0, mu_s, mu_f, a, out_d):
 
 
 @njit(cache=True)
-def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, dphi, dm, out):
+def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, dphi, dm, out, rim_dir):
     """G(r) = r − b_k − µ_k(|u̇_k|) û̇_k with u̇_k = G_k0 Ẋ + Σ_U G_kj φ_j(|f_j|) f̂_j (``out`` [6]: G, then ∂G/∂r row
     by row; G = ``gmap`` of :func:`isolator.solver.multisurface_rate_kernel.set_split`, U the sliding surfaces neither
     the pivot nor in the saturated set ``lock``: without a set u̇_k = Ẋ − Σ_j φ_j(|f_j|) f̂_j); False outside a disc
@@ -179,8 +266,9 @@ def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, e
     d01 = 0.0
     d11 = 0.0
     for j in range(mode.shape[0]):
-        if j != k and mode[j] == 1 and lock[j] == 0:
-            vjx, vjy = slide_vector(rx - bf[j, 0], ry - bf[j, 1], mu_s[j], mu_f[j], a[j], dphi[j])
+        if j != k and contributes(mode[j], lock[j]):
+            vjx, vjy = surface_rate(rx - bf[j, 0], ry - bf[j, 1], mode[j], rim_dir[j, 0], rim_dir[j, 1], mu_s[j],
+                                    mu_f[j], a[j], dphi[j])
             if not math.isfinite(vjx):
                 return False
             wk = gmap[k, 1 + j]
@@ -200,7 +288,7 @@ def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, e
 
 
 @njit(cache=True)
-def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm):
+def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir):
     """F/W (in ``r``, which holds a first guess) at which the sliding surfaces' rates sum to Ẋ = (vx, vy).
 
     The pivot k takes the rest of the velocity and its friction by the forward law (module docstring): Newton on
@@ -213,7 +301,7 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
     k = pivot
     others = 0
     for j in range(n):
-        if j != k and mode[j] == 1 and lock[j] == 0:
+        if j != k and contributes(mode[j], lock[j]):
             others += 1
     c0 = gmap[k, 0]
     if others == 0 or (vx == 0.0 and vy == 0.0):
@@ -228,17 +316,18 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
     trial = np.empty(6)
     best = math.inf
     if math.isfinite(r[0]) and math.isfinite(r[1]) and force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a,
-                                                                        k, gmap, lock, ex0, ey0, dphi, dm, out):
+                                                                        k, gmap, lock, ex0, ey0, dphi, dm, out, rim_dir):
         best = math.hypot(out[0], out[1])
     fx, fy = friction_vector(c0 * vx / (others + 1), c0 * vy / (others + 1), ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
-    if force_residual(bf[k, 0] + fx, bf[k, 1] + fy, vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0, dphi, dm, trial):
+    if force_residual(bf[k, 0] + fx, bf[k, 1] + fy, vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0, dphi, dm, trial,
+                      rim_dir):
         if math.hypot(trial[0], trial[1]) < best:
             r[0] = bf[k, 0] + fx
             r[1] = bf[k, 1] + fy
             best = math.hypot(trial[0], trial[1])
     if not math.isfinite(best):
         return False
-    force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0, dphi, dm, out)
+    force_residual(r[0], r[1], vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0, dphi, dm, out, rim_dir)
     prev = math.inf
     for it in range(100):
         det = out[2] * out[5] - out[3] * out[4]
@@ -254,7 +343,7 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
         lam = 1.0
         for _ in range(60):
             if force_residual(r[0] - lam * stx, r[1] - lam * sty, vx, vy, bf, mode, mu_s, mu_f, a, k, gmap, lock, ex0, ey0,
-                              dphi, dm, trial) and (math.hypot(trial[0], trial[1]) < best or lam * size <= floor):
+                              dphi, dm, trial, rim_dir) and (math.hypot(trial[0], trial[1]) < best or lam * size <= floor):
                 break
             lam *= 0.5
         else:
@@ -269,6 +358,19 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
 
 
 @njit(cache=True)
+def rim_normals(y, mode, out_e):
+    """The outward unit normal e_i = u_i/|u_i| of each surface on its rim (:data:`ON_RIM`, :data:`HELD`) in ``out_e``."""
+    for i in range(mode.shape[0]):
+        if mode[i] == ON_RIM or mode[i] == HELD:
+            ux = y[2 + 2 * i]
+            uy = y[3 + 2 * i]
+            rho = math.hypot(ux, uy)
+            if rho > 0.0:
+                out_e[i, 0] = ux / rho
+                out_e[i, 1] = uy / rho
+
+
+@njit(cache=True)
 def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, bf, out_dy, out_jac, want_jac):
     """dy/dt of y = (Ẋ, u_1..u_n) in a mode; ``r`` [2] in: a guess, out: F/W.  Returns (ok, friction power g Σ
     (r − b_i)·dū_i/dt per unit mass).  ``out_jac`` [m × m] receives ∂(dy/dt)/∂y when ``want_jac`` (the implicit
@@ -278,16 +380,19 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
     back_forces(y, bmat, bf)
     dphi = np.zeros((n, 2, 2))
     dm = np.empty((2, 2))
+    rim_dir = np.zeros((n, 2))
+    rim_normals(y, mode, rim_dir)
     for p in range(m):
         out_dy[p] = 0.0
-    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm):
+    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir):
         return False, 0.0
     out_dy[0] = -g * r[0] - c * y[0] - agx
     out_dy[1] = -g * r[1] - c * y[1] - agy
     at_rest = y[0] == 0.0 and y[1] == 0.0
     for j in range(n):
-        if j != pivot and mode[j] == 1 and lock[j] == 0 and not at_rest:
-            vjx, vjy = slide_vector(r[0] - bf[j, 0], r[1] - bf[j, 1], mu_s[j], mu_f[j], a[j], dphi[j])
+        if j != pivot and contributes(mode[j], lock[j]) and not at_rest:
+            vjx, vjy = surface_rate(r[0] - bf[j, 0], r[1] - bf[j, 1], mode[j], rim_dir[j, 0], rim_dir[j, 1], mu_s[j],
+                                    mu_f[j], a[j], dphi[j])
             out_dy[2 + 2 * j] = vjx
             out_dy[3 + 2 * j] = vjy
     # the pivot's rate and the saturated set's by the split's map: G_ℓ0 Ẋ + Σ_U G_ℓj u̇_j (the series constraint
@@ -297,7 +402,7 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
             sx = 0.0
             sy = 0.0
             for j in range(n):
-                if j != pivot and mode[j] == 1 and lock[j] == 0:
+                if j != pivot and contributes(mode[j], lock[j]):
                     sx += gmap[ell, 1 + j] * out_dy[2 + 2 * j]
                     sy += gmap[ell, 1 + j] * out_dy[3 + 2 * j]
             out_dy[2 + 2 * ell] = gmap[ell, 0] * y[0] + sx
@@ -316,9 +421,13 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
             for q in range(m):
                 out_jac[p, q] = 0.0
         dsum = np.zeros((2, 2))
+        turn = np.zeros((n, 2, 2))  # the rim slides' direct ∂u̇_j/∂u_j (rim_turn)
         for j in range(n):
-            if j != k and mode[j] == 1 and lock[j] == 0:
+            if j != k and contributes(mode[j], lock[j]):
                 dsum += -gmap[k, 1 + j] * dphi[j]
+                if mode[j] == ON_RIM:
+                    rim_turn(r[0] - bf[j, 0], r[1] - bf[j, 1], y[2 + 2 * j], y[3 + 2 * j], mu_s[j], mu_f[j], a[j],
+                             turn[j])
         amat = np.eye(2) + dm @ dsum
         det = amat[0, 0] * amat[1, 1] - amat[0, 1] * amat[1, 0]
         if not (det != 0.0 and math.isfinite(det)):
@@ -334,8 +443,10 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
         for q in range(n):
             inner = bmat[k, q] * np.eye(2)
             for j in range(n):
-                if j != k and mode[j] == 1 and lock[j] == 0:
+                if j != k and contributes(mode[j], lock[j]):
                     inner += (-gmap[k, 1 + j] * bmat[j, q]) * (dm @ dphi[j])
+            if q != k and mode[q] == ON_RIM:
+                inner += gmap[k, 1 + q] * (dm @ turn[q])
             dru[q] = ainv @ inner
         for p in range(2):
             for s in range(2):
@@ -349,7 +460,7 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
                     for s in range(2):
                         out_jac[2 + 2 * ell + p, s] = gmap[ell, 0] if p == s else 0.0
         for j in range(n):
-            if j != k and mode[j] == 1 and lock[j] == 0:
+            if j != k and contributes(mode[j], lock[j]):
                 dv = dphi[j] @ drv
                 for p in range(2):
                     for s in range(2):
@@ -359,6 +470,8 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
                                 out_jac[2 + 2 * ell + p, s] += gmap[ell, 1 + j] * dv[p, s]
                 for q in range(n):
                     du = dphi[j] @ (dru[q] - bmat[j, q] * np.eye(2))
+                    if q == j:
+                        du += turn[j]
                     for p in range(2):
                         for s in range(2):
                             out_jac[2 + 2 * j + p, 2 + 2 * q + s] = du[p, s]
@@ -710,20 +823,43 @@ def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pi
 
 
 @njit(cache=True)
+def held_value(fx, fy, md, ex, ey, mu_s):
+    """How far a standing surface holds at friction excess f = r − b (≥ 0: it holds): µ_slow − |f| in its static
+    disc (:data:`STUCK`); on its rim (:data:`HELD`, e = (ex, ey) outward) the disc plus the rim's normal cone,
+    µ_slow − |f·t| where f·e ≥ 0 (the rim takes the normal part) and µ_slow − |f| where f·e < 0 (continuous at
+    f·e = 0): the 1-D model's held surface, which leaves its rim only inward (its window loses that side's limit)."""
+    if md == HELD and fx * ex + fy * ey >= 0.0:
+        return mu_s - abs(-fx * ey + fy * ex)
+    return mu_s - math.hypot(fx, fy)
+
+
+@njit(cache=True)
 def event_values(y, r, mode, pivot, mu_s, cap, bmat, bf, out_e):
-    """The event functions at a state (≥ 0: no event): slot 2i a non-pivot surface stopping (|f_i| − µ_slow,i) or
-    a stuck one starting (µ_slow,i − |f_i|), slot 2i+1 a sliding surface's rim (d_i* − |u_i|)."""
+    """The event functions at a state (≥ 0: no event): slot 2i a non-pivot surface stopping (|f_i| − µ_slow,i; on
+    its rim |f_i·t_i| − µ_slow,i) or a standing one starting (:func:`held_value`), slot 2i+1 a sliding surface's rim
+    (d_i* − |u_i|) or a surface sliding along its rim leaving it inward (the rim's reaction f_i·e_i)."""
     n = mode.shape[0]
     back_forces(y, bmat, bf)
     for i in range(n):
-        rho = math.hypot(r[0] - bf[i, 0], r[1] - bf[i, 1])
+        fx = r[0] - bf[i, 0]
+        fy = r[1] - bf[i, 1]
         out_e[2 * i + 1] = math.inf
-        if mode[i] == 1:
-            out_e[2 * i] = math.inf if i == pivot else rho - mu_s[i]
+        md = mode[i]
+        if md == SLIDING:
+            out_e[2 * i] = math.inf if i == pivot else math.hypot(fx, fy) - mu_s[i]
             if math.isfinite(cap[i]):
                 out_e[2 * i + 1] = cap[i] - math.hypot(y[2 + 2 * i], y[3 + 2 * i])
+        elif md == ON_RIM:
+            rho = math.hypot(y[2 + 2 * i], y[3 + 2 * i])
+            ex = y[2 + 2 * i] / rho
+            ey = y[3 + 2 * i] / rho
+            out_e[2 * i] = abs(-fx * ey + fy * ex) - mu_s[i]
+            out_e[2 * i + 1] = fx * ex + fy * ey
+        elif md == HELD:
+            rho = math.hypot(y[2 + 2 * i], y[3 + 2 * i])
+            out_e[2 * i] = held_value(fx, fy, md, y[2 + 2 * i] / rho, y[3 + 2 * i] / rho, mu_s[i])
         else:
-            out_e[2 * i] = mu_s[i] - rho
+            out_e[2 * i] = mu_s[i] - math.hypot(fx, fy)
 
 
 @njit(cache=True)
@@ -750,14 +886,39 @@ def aligned_set(dy, lock, pivot):
 
 
 @njit(cache=True)
-def exit_time(nx, ny, qx, qy, bf, mu_s):
-    """First local time s ≥ 0 at which r_need + q s leaves a static disc |r − b_i| ≤ µ_slow,i (inf: never, 0: out
-    already): the smaller over the discs of the larger root of |p + q s|² = µ² (p = r_need − b_i)."""
+def exit_time(nx, ny, qx, qy, bf, mu_s, mode, rim_dir):
+    """First local time s ≥ 0 at which r_need + q s leaves a standing surface's set (inf: never, 0: out already):
+    a static disc |r − b_i| ≤ µ_slow,i, the larger root of |p + q s|² = µ² (p = r_need − b_i); for a surface held
+    on its rim (outward normal e = ``rim_dir[i]``, tangent t) the disc plus the rim's normal cone
+    (:func:`held_value`, convex): the first of the tangent lines p·t = ±µ crossed outward where p·e ≥ 0 and the
+    circle's larger root where p·e ≤ 0."""
     first = math.inf
     qq = qx * qx + qy * qy
     for i in range(bf.shape[0]):
         px = nx - bf[i, 0]
         py = ny - bf[i, 1]
+        if mode[i] == HELD:
+            ex = rim_dir[i, 0]
+            ey = rim_dir[i, 1]
+            if held_value(px, py, HELD, ex, ey, mu_s[i]) < 0.0:
+                return 0.0
+            if not qq > 0.0:
+                continue
+            qt = -qx * ey + qy * ex
+            if qt != 0.0:
+                side = mu_s[i] if qt > 0.0 else -mu_s[i]
+                s = max((side - (-px * ey + py * ex)) / qt, 0.0)
+                if (px + qx * s) * ex + (py + qy * s) * ey >= 0.0:
+                    first = min(first, s)
+            cc = px * px + py * py - mu_s[i] * mu_s[i]
+            bb = 2.0 * (px * qx + py * qy)
+            disc = bb * bb - 4.0 * qq * cc
+            if disc >= 0.0:
+                root = math.sqrt(disc)
+                s = (-bb + root) / (2.0 * qq) if bb <= 0.0 else -2.0 * cc / (bb + root)
+                if s >= 0.0 and (px + qx * s) * ex + (py + qy * s) * ey <= 0.0:
+                    first = min(first, s)
+            continue
         cc = px * px + py * py - mu_s[i] * mu_s[i]
         if cc > 0.0:
             return 0.0
@@ -770,33 +931,53 @@ def exit_time(nx, ny, qx, qy, bf, mu_s):
 
 
 @njit(cache=True)
-def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
-    """The mass at rest with r_need = (nx, ny) outside the intersection of the static discs: r becomes the nearest
+def holds_at_rest(nx, ny, bf, mode, mu_s, rim_dir):
+    """Whether r_need = (nx, ny) lies in every standing surface's set (:func:`held_value` ≥ 0)."""
+    for i in range(bf.shape[0]):
+        if held_value(nx - bf[i, 0], ny - bf[i, 1], mode[i], rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) < 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir):
+    """The mass at rest with r_need = (nx, ny) outside the intersection of the standing sets: r becomes the nearest
     point of that intersection, on the circle of the pivot k (the disc left whose nearest point b_k + µ_slow,k e,
-    e = (r_need − b_k)/|r_need − b_k|, lies in every other disc; where none does, a corner, the disc left farthest),
-    and the surfaces on that circle start (equal circles together, within :data:`LEVEL_TIE`).  Returns the pivot,
-    e in ``direction`` and r in ``r``; −1 when r_need is in every disc."""
+    e = (r_need − b_k)/|r_need − b_k|, lies in every other set; where none does, a corner, the disc left farthest),
+    and the surfaces on that circle start (equal circles together, within :data:`LEVEL_TIE`).  A surface held on
+    its rim (:func:`held_value`) is a disc here only where r_need pulls it inward ((r_need − b)·e < 0: it leaves
+    its rim, as in 1-D); pushed along its rim it slides along it (:data:`ON_RIM`) where r lands on its tangent
+    line.  Returns the pivot, e in ``direction`` and r in ``r``; −1 when r_need is in every set; −2 when only rims
+    are left along their tangents (no surface slides freely: not modelled)."""
     n = mode.shape[0]
     best = -1
     worst = -math.inf
+    along = False
     for i in range(n):
-        dist = math.hypot(nx - bf[i, 0], ny - bf[i, 1])
+        px0 = nx - bf[i, 0]
+        py0 = ny - bf[i, 1]
+        dist = math.hypot(px0, py0)
+        if mode[i] == HELD and px0 * rim_dir[i, 0] + py0 * rim_dir[i, 1] >= 0.0:
+            if held_value(px0, py0, HELD, rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) < -LEVEL_TIE:
+                along = True
+            continue
         over = dist - mu_s[i]
         if over < -LEVEL_TIE:
             continue
-        px = bf[i, 0] + mu_s[i] * (nx - bf[i, 0]) / dist
-        py = bf[i, 1] + mu_s[i] * (ny - bf[i, 1]) / dist
+        px = bf[i, 0] + mu_s[i] * px0 / dist
+        py = bf[i, 1] + mu_s[i] * py0 / dist
         held = True
         for j in range(n):
-            if j != i and math.hypot(px - bf[j, 0], py - bf[j, 1]) > mu_s[j] + LEVEL_TIE:
+            if j != i and held_value(px - bf[j, 0], py - bf[j, 1], mode[j], rim_dir[j, 0], rim_dir[j, 1],
+                                     mu_s[j]) < -LEVEL_TIE:
                 held = False
-        # the nearest point held by every other disc wins; among the rest, the disc left farthest
+        # the nearest point held by every other set wins; among the rest, the disc left farthest
         score = over + (1e3 if held else 0.0)
         if best < 0 or score > worst:
             worst = score
             best = i
     if best < 0:
-        return best
+        return -2 if along else best
     dx = nx - bf[best, 0]
     dy = ny - bf[best, 1]
     rho = math.hypot(dx, dy)
@@ -805,12 +986,127 @@ def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction):
     r[0] = bf[best, 0] + mu_s[best] * direction[0]
     r[1] = bf[best, 1] + mu_s[best] * direction[1]
     for i in range(n):
-        if abs(math.hypot(r[0] - bf[i, 0], r[1] - bf[i, 1]) - mu_s[i]) <= LEVEL_TIE:
-            mode[i] = 1
+        fx = r[0] - bf[i, 0]
+        fy = r[1] - bf[i, 1]
+        if mode[i] == HELD and fx * rim_dir[i, 0] + fy * rim_dir[i, 1] >= 0.0:
+            if held_value(fx, fy, HELD, rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) <= LEVEL_TIE:
+                mode[i] = ON_RIM
+                fresh[i] = 1
+        elif abs(math.hypot(fx, fy) - mu_s[i]) <= LEVEL_TIE:
+            mode[i] = SLIDING
             fresh[i] = 1
-    mode[best] = 1
+    mode[best] = SLIDING
     fresh[best] = 1
     return best
+
+
+@njit(cache=True)
+def to_rims(y, mode, cap):
+    """Every surface on its rim put back on its circle |u_i| = d_i* (a slide along the rim keeps |u_i| in the
+    equations; the collocation keeps it to its local error)."""
+    for i in range(mode.shape[0]):
+        if mode[i] == ON_RIM or mode[i] == HELD:
+            rho = math.hypot(y[2 + 2 * i], y[3 + 2 * i])
+            if rho > 0.0:
+                y[2 + 2 * i] *= cap[i] / rho
+                y[3 + 2 * i] *= cap[i] / rho
+
+
+@njit(cache=True)
+def first_held(mode):
+    """The first surface on its rim (−1: none): named where a run stops on the rims."""
+    for i in range(mode.shape[0]):
+        if mode[i] == ON_RIM or mode[i] == HELD:
+            return i
+    return -1
+
+
+@njit(cache=True)
+def trial_force(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock, direction, r, bf, j, smode, rt, dy):
+    """The force (into ``rt``, from the guess ``r``) and the rates (``dy``) with surface j as the pivot and no
+    saturated set; False where it is not found (:func:`choose_pivot`, :func:`restart_free`)."""
+    n = mode.shape[0]
+    split_modes(mode, smode)
+    for q in range(n):
+        lock[q] = 0
+    k = set_split(smode, j, lock, bmat, gmap)
+    rt[0] = r[0]
+    rt[1] = r[1]
+    jac = np.empty((dy.shape[0], dy.shape[0]))
+    good, _ = rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, k, gmap, lock, direction[0], direction[1],
+                  rt, bf, dy, jac, False)
+    return good
+
+
+@njit(cache=True)
+def choose_pivot(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock, direction, r, bf, pivot):
+    """The pivot for a moving mass whose force was not found with ``pivot``: each surface sliding inside its rim
+    tried (no saturated set), the one with the largest a_i |u̇_i| where the force is found (``pivot`` where none)."""
+    n = mode.shape[0]
+    m = 2 + 2 * n
+    smode = np.zeros(n, dtype=np.int64)
+    dy = np.empty(m)
+    rt = np.empty(2)
+    best = pivot
+    worst = -math.inf
+    for j in range(n):
+        if mode[j] != SLIDING:
+            continue
+        good = trial_force(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock, direction, r, bf, j,
+                           smode, rt, dy)
+        if good:
+            w = a[j] * math.hypot(dy[2 + 2 * j], dy[3 + 2 * j])
+            if w > worst:
+                worst = w
+                best = j
+    for q in range(n):
+        lock[q] = 0
+    split_modes(mode, smode)
+    return set_split(smode, best, lock, bmat, gmap)
+
+
+@njit(cache=True)
+def restart_free(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock, direction, r, bf, fresh):
+    """The mass moves and no surface slides inside its rim (the last one reached it): the stuck surface that takes
+    the motion starts (the 1-D model's consistent mode: the force jumps so that the rates sum to Ẋ).  Each stuck
+    surface is tried as the pivot; the one whose force leaves every other standing surface in its set
+    (:func:`held_value`; else the least outside) starts, and is returned (the others' past starts are then taken at
+    once by the next step's events).  −1: no stuck surface (every surface on its rim: the ultimate); −3: no force
+    found for any."""
+    n = mode.shape[0]
+    m = 2 + 2 * n
+    smode = np.zeros(n, dtype=np.int64)
+    dy = np.empty(m)
+    rt = np.empty(2)
+    rim_dir = np.zeros((n, 2))
+    rim_normals(y, mode, rim_dir)
+    best = -1
+    best_v = math.inf
+    tried = False
+    for j in range(n):
+        if mode[j] != STUCK:
+            continue
+        tried = True
+        mode[j] = SLIDING
+        good = trial_force(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock, direction, r, bf, j,
+                           smode, rt, dy)
+        mode[j] = STUCK
+        if not good:
+            continue
+        viol = 0.0
+        for i in range(n):
+            if i != j and (mode[i] == STUCK or mode[i] == HELD):
+                viol = max(viol, -held_value(rt[0] - bf[i, 0], rt[1] - bf[i, 1], mode[i], rim_dir[i, 0],
+                                             rim_dir[i, 1], mu_s[i]))
+        if viol < best_v:
+            best_v = viol
+            best = j
+    if best < 0:
+        return -3 if tried else -1
+    mode[best] = SLIDING
+    fresh[best] = 1
+    split_modes(mode, smode)
+    return set_split(smode, best, lock, bmat, gmap)
 
 
 @njit(cache=True)
@@ -829,11 +1125,42 @@ def store_sample(y, ns, j, out_x, out_v):
 
 @njit(cache=True)
 def _mask(mode):
+    """The state's code: the sliding surfaces' bits plus 2^n times those on their rims (the 1-D model's)."""
+    n = mode.shape[0]
     sliding = 0
-    for i in range(mode.shape[0]):
-        if mode[i] == 1:
+    rimmed = 0
+    for i in range(n):
+        if mode[i] == SLIDING:
             sliding |= 1 << i
-    return sliding
+        elif mode[i] == ON_RIM or mode[i] == HELD:
+            rimmed |= 1 << i
+    return sliding + (1 << n) * rimmed
+
+
+@njit(cache=True)
+def stand_all(mode):
+    """Every surface stands: stuck, or held on its rim."""
+    for i in range(mode.shape[0]):
+        mode[i] = HELD if (mode[i] == ON_RIM or mode[i] == HELD) else STUCK
+
+
+@njit(cache=True)
+def free_pivot(mode, pivot):
+    """``pivot`` when it slides inside its rim, else the first surface that does (−1: none)."""
+    if 0 <= pivot < mode.shape[0] and mode[pivot] == SLIDING:
+        return pivot
+    for i in range(mode.shape[0]):
+        if mode[i] == SLIDING:
+            return i
+    return -1
+
+
+@njit(cache=True)
+def split_modes(mode, out_mode):
+    """The modes the 1-D model's ``set_split``/``update_lock`` read (1: its rate in the series sum, 0: none): a
+    surface sliding along its rim is in the sum, never the pivot nor in the saturated set (its rate is −inf there)."""
+    for i in range(mode.shape[0]):
+        out_mode[i] = 1 if (mode[i] == SLIDING or mode[i] == ON_RIM) else 0
 
 
 @njit(cache=True)
@@ -895,6 +1222,15 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     r_ev = np.zeros(2)
     r1 = np.zeros(2)
     direction = np.array([1.0, 0.0])
+    rim_dir = np.zeros((ns, 2))
+    smode = np.zeros(ns, dtype=np.int64)
+    n_rim = 0
+    n_ult = 0
+    impulse = 0.0
+    max_imp_v = 0.0
+    e_imp = 0.0
+    first_ult = -1.0
+    imp_tangential = 0.0
     a_now = np.empty(2)
     slope = np.empty(2)
     for j in range(state_first_time.shape[0]):
@@ -939,15 +1275,21 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             a_now[1] = ay[idx] + slope[1] * tau
             if stuck:
                 back_forces(y, bmat, bf)
-                s_exit = exit_time(-a_now[0] / g, -a_now[1] / g, -slope[0] / g, -slope[1] / g, bf, mu_s)
+                rim_normals(y, mode, rim_dir)
+                s_exit = exit_time(-a_now[0] / g, -a_now[1] / g, -slope[0] / g, -slope[1] / g, bf, mu_s, mode, rim_dir)
                 if tau + s_exit >= dt_i:
                     break  # stuck to the end of the interval
                 tau += s_exit
                 nx = -(ax[idx] + slope[0] * tau) / g
                 ny = -(ay[idx] + slope[1] * tau) / g
-                pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction)
+                pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir)
                 for i in range(ns):
                     lock[i] = 0
+                if pivot == -2:  # only rims left along their tangents: no free surface to take the motion
+                    status |= STATUS_RIM
+                    fail_t = t_i + tau
+                    rim_surface = first_held(mode)
+                    break
                 if pivot < 0:  # rounding at the disc's edge: nothing left it yet
                     tau = min(dt_i, tau + 1e-13 * dt_i)
                     continue
@@ -970,19 +1312,27 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 scale[p] = max(peak_x, x_floor)
             # the pivot (the sliding surface farthest into saturation) and the saturated set at the step's start: the
             # 1-D model's update_lock and set_split on the speeds |u̇_i|, held for the step and its event search
-            pivot = set_split(mode, pivot, lock, bmat, gmap)
+            split_modes(mode, smode)
+            pivot = set_split(smode, free_pivot(mode, pivot), lock, bmat, gmap)
             good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
                           direction[0], direction[1], r, bf, dy, jac, False)
+            if not good and not (y[0] == 0.0 and y[1] == 0.0):
+                # no force with this pivot (after a rim: the surfaces left take the velocity, one of them may be
+                # saturated, its φ unresolvable): the pivot becomes the sliding surface farthest into saturation
+                pivot = choose_pivot(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock,
+                                     direction, r, bf, pivot)
+                good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
+                              direction[0], direction[1], r, bf, dy, jac, False)
             if good:
                 changed = False
                 for i in range(ns):
-                    speeds[1 + i] = math.hypot(dy[2 + 2 * i], dy[3 + 2 * i])
+                    speeds[1 + i] = -math.inf if mode[i] == ON_RIM else math.hypot(dy[2 + 2 * i], dy[3 + 2 * i])
                     lock_before[i] = lock[i]
-                k_new = update_lock(speeds, mode, a, lock, lock_levels[0], lock_levels[1])
+                k_new = update_lock(speeds, smode, a, lock, lock_levels[0], lock_levels[1])
                 if not aligned_set(dy, lock, k_new):
                     for i in range(ns):
                         lock[i] = 0  # the set's map is not the slow manifold there: no set (docs, h122)
-                k_new = set_split(mode, k_new, lock, bmat, gmap)
+                k_new = set_split(smode, free_pivot(mode, k_new), lock, bmat, gmap)
                 for i in range(ns):
                     if lock[i] != lock_before[i]:
                         changed = True
@@ -1006,22 +1356,23 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     e_f += 0.5 * vv
                     y[0] = 0.0
                     y[1] = 0.0
-                    for i in range(ns):
-                        mode[i] = 0
+                    stand_all(mode)
                     back_forces(y, bmat, bf)
+                    rim_normals(y, mode, rim_dir)
                     nx = -a_now[0] / g
                     ny = -a_now[1] / g
-                    holds = True
-                    for i in range(ns):
-                        if math.hypot(nx - bf[i, 0], ny - bf[i, 1]) > mu_s[i]:
-                            holds = False
-                    if holds:
+                    if holds_at_rest(nx, ny, bf, mode, mu_s, rim_dir):
                         stuck = True
                         n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, STICK)
                     else:
-                        pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction)
+                        pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir)
                         for i in range(ns):
                             lock[i] = 0
+                        if pivot == -2:
+                            status |= STATUS_RIM
+                            fail_t = t_i + tau
+                            rim_surface = first_held(mode)
+                            break
                         h = 0.1 * dt_i
                         n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, REVERSAL)
                         code = _mask(mode)
@@ -1030,8 +1381,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     events_here += 1
                     if events_here > MAX_EVENTS_PER_INTERVAL:
                         status |= STATUS_CHATTER
-                        for i in range(ns):
-                            mode[i] = 0
+                        stand_all(mode)
                         stuck = True
                         break
                     continue
@@ -1122,6 +1472,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     fresh[i] = 0
                 for p in range(m):
                     y[p] = y_try[p]
+                to_rims(y, mode, cap)
                 for p in range(2):
                     r[p] = r1[p]
                 e_in += quad[0]
@@ -1152,6 +1503,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 n_newton += quad_ev[3]
                 for p in range(m):
                     y[p] = y_ev[p]
+                to_rims(y, mode, cap)
                 rhs(y, a_now[0] + slope[0] * first_t, a_now[1] + slope[1] * first_t, g, c, bmat, smat, mode, mu_s,
                     mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, False)
                 for p in range(2):
@@ -1166,29 +1518,91 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             for i in range(ns):
                 surf_peak[i] = max(surf_peak[i], math.hypot(y[2 + 2 * i], y[3 + 2 * i]))
             i = first_slot // 2
-            if first_slot % 2 == 1:
-                status |= STATUS_RIM
-                fail_t = t_now
-                rim_surface = i
-                break
             events_here += 1
             if events_here > MAX_EVENTS_PER_INTERVAL:
                 status |= STATUS_CHATTER
                 y[0] = 0.0
                 y[1] = 0.0
-                for q in range(ns):
-                    mode[q] = 0
+                stand_all(mode)
                 stuck = True
                 break
-            mode[i] = 0 if mode[i] == 1 else 1
-            fresh[i] = 1
+            kind = REGIME
+            md = mode[i]
+            if first_slot % 2 == 1 and md == SLIDING:
+                # the surface reaches its rim: put on the circle, held there (the next step's start decides,
+                # from its force, whether it slides along the rim: a past event is taken at once)
+                rho = math.hypot(y[2 + 2 * i], y[3 + 2 * i])
+                y[2 + 2 * i] *= cap[i] / rho
+                y[3 + 2 * i] *= cap[i] / rho
+                mode[i] = HELD
+                n_rim += 1
+                kind = RIM_REACHED
+            elif first_slot % 2 == 1:
+                mode[i] = SLIDING  # along its rim, the rim's reaction turned inward: it leaves the rim
+            elif md == SLIDING:
+                mode[i] = STUCK
+            elif md == ON_RIM:
+                mode[i] = HELD
+            elif md == HELD:
+                back_forces(y, bmat, bf)
+                rim_normals(y, mode, rim_dir)
+                outward = (r[0] - bf[i, 0]) * rim_dir[i, 0] + (r[1] - bf[i, 1]) * rim_dir[i, 1] >= 0.0
+                mode[i] = ON_RIM if outward else SLIDING
+                fresh[i] = 1
+            else:
+                mode[i] = SLIDING
+                fresh[i] = 1
             for q in range(ns):
                 lock[q] = 0  # the set is the old mode's: chosen again at the next step's start (as in 1-D)
-            n_ev = record_event(ev_t, ev_k, n_ev, t_now, REGIME)
+            n_ev = record_event(ev_t, ev_k, n_ev, t_now, kind)
+            if free_pivot(mode, pivot) < 0 and not (y[0] == 0.0 and y[1] == 0.0):
+                # no surface slides inside its rim while the mass moves: a stuck one takes the motion, else every
+                # surface is on its rim and the mass stops there (the ultimate)
+                pivot = restart_free(y, a_now[0] + slope[0] * first_t, a_now[1] + slope[1] * first_t, g, c, bmat,
+                                     smat, mode, mu_s, mu_f, a, gmap, lock, direction, r, bf, fresh)
+                if pivot == -3:
+                    status |= STATUS_STEP_FAILED
+                    fail_t = t_now
+                    break
+                if pivot < 0:
+                    xx = 0.0
+                    xy = 0.0
+                    for q in range(ns):
+                        xx += y[2 + 2 * q]
+                        xy += y[3 + 2 * q]
+                    vimp = math.hypot(y[0], y[1])
+                    xn = math.hypot(xx, xy)
+                    if vimp > 0.0 and xn > 0.0:
+                        imp_tangential = max(imp_tangential, abs(y[0] * xy - y[1] * xx) / (vimp * xn))
+                    impulse += vimp
+                    max_imp_v = max(max_imp_v, vimp)
+                    e_imp += 0.5 * vimp * vimp
+                    y[0] = 0.0
+                    y[1] = 0.0
+                    stand_all(mode)
+                    n_ult += 1
+                    if first_ult < 0.0:
+                        first_ult = t_now
+                    n_ev = record_event(ev_t, ev_k, n_ev, t_now, ULTIMATE)
+                    back_forces(y, bmat, bf)
+                    rim_normals(y, mode, rim_dir)
+                    nx = -(a_now[0] + slope[0] * first_t) / g
+                    ny = -(a_now[1] + slope[1] * first_t) / g
+                    if holds_at_rest(nx, ny, bf, mode, mu_s, rim_dir):
+                        stuck = True
+                    else:
+                        pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir)
+                        if pivot == -2:
+                            status |= STATUS_RIM
+                            fail_t = t_now
+                            rim_surface = first_held(mode)
+                            break
+                        h = 0.1 * dt_i
             code = _mask(mode)
-            if code == 0:
+            if not stuck and free_pivot(mode, -1) < 0:
                 y[0] = 0.0  # nothing slides: only after rounding at a stop
                 y[1] = 0.0
+                stand_all(mode)
                 stuck = True
             elif state_first_time[code] < 0.0:
                 state_first_time[code] = t_now
@@ -1207,7 +1621,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             out_a[j, 0] = ax[j]
             out_a[j, 1] = ay[j]
         else:
-            pivot = set_split(mode, pivot, lock, bmat, gmap)
+            split_modes(mode, smode)
+            pivot = set_split(smode, free_pivot(mode, pivot), lock, bmat, gmap)
             rhs(y, ax[j], ay[j], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0], direction[1], r, bf, dy,
                 jac, False)
             out_a[j, 0] = -(g * r[0] + c * y[0])
@@ -1236,6 +1651,13 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     summary[S_FAIL_T] = fail_t
     summary[S_N_NEWTON] = n_newton
     summary[S_RIM_SURFACE] = rim_surface
+    summary[S_N_RIM] = n_rim
+    summary[S_N_ULT] = n_ult
+    summary[S_IMPULSE] = impulse
+    summary[S_MAX_IMPACT_V] = max_imp_v
+    summary[S_E_IMPACT] = e_imp
+    summary[S_FIRST_ULT] = first_ult
+    summary[S_IMPACT_TANGENTIAL] = imp_tangential
 
 
 __all__ = ["planar_rate_kernel", "solve_force", "EVENT_NAMES", "SUMMARY_SIZE"]

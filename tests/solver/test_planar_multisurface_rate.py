@@ -149,20 +149,6 @@ def test_a_constant_law_runs_the_constant_model_and_the_registry_says_which():
     np.testing.assert_array_equal(res.displacement_m, direct.displacement_m)
 
 
-def test_a_rim_is_refused_in_one_line_with_its_time_and_surface(records_dir):
-    """Chuetsu-oki 65025 drives surface 1 to its rim (25.76 s; the constant-µ event kernel's first rim: 25.74 s)."""
-    from isolator.motion import read_ground_motion
-
-    folder = records_dir / "pairs" / "chuetsuoki2007_65025"
-    mx, my = (read_ground_motion(folder / name) for name in ("RSN4856_CHUETSU_65025EW.AT2",
-                                                              "RSN4856_CHUETSU_65025NS.AT2"))
-    n = min(mx.npts, my.npts)
-    with pytest.raises(SolverError, match=r"surface 1 of the triple bearing reaches its rim at t = 25\.7\d* s; the "
-                                          r"rims of the µ\(v\) model in the plane are not modelled") as info:
-        simulate_bearing_pair_rate(mx.acceleration_m_s2[:n], my.acceleration_m_s2[:n], mx.dt_s, bearing=TFP)
-    assert "\n" not in str(info.value)
-
-
 def test_equal_double_through_saturation_is_the_single_pendulum():
     """The equal double at a = 30 s/m reaches 2.2 m/s (a·v ≈ 30–33 on both surfaces from 1.76 s): the two surfaces
     saturate together and the non-pivot one's slide law µ_fast − µ(v) ≈ 1e-15 cannot be inverted from the state.
