@@ -79,3 +79,21 @@ def test_a_planar_rim_arrival_converges_is_rotation_invariant_and_balances():
     assert run.surface_peak_displacement_m[0] == pytest.approx(0.4, rel=1e-12)
     assert np.all(np.asarray(run.surface_peak_displacement_m) <= CAPS * (1 + 1e-12))
     assert abs(run.energy_balance_error_J_per_kg) <= 1e-9 * run.energy_input_J_per_kg
+
+
+def test_an_impact_taking_a_tangential_velocity_is_refused(monkeypatch):
+    """The plastic impact at the ultimate takes the whole velocity away: exact for an arrival along the rims'
+    direction (the 1-D pulse above, its tangential part 0 to rounding, answers), but a slide along the rims is not
+    modelled, so an arrival with a tangential part above IMPACT_TANGENTIAL_LIMIT is refused in one line.  With the
+    limit set below the 1-D pulse's own (rounding-level) part, the same run must be refused, naming the ultimate's
+    time (0.7338 s; its tangential part there 5.3e-16) — the guard is wired to the kernel's measure, not to a constant."""
+    import isolator.solver.planar_multisurface_rate as driver
+    from isolator.errors import SolverError
+
+    t = np.arange(0.0, 0.8, 0.02)
+    acc = 0.7 * G * np.sin(2 * np.pi * t / 2.0)
+    ax, ay = rotate(acc, np.zeros_like(acc), np.radians(35.0))
+    assert simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP).ultimate_displacement_reached
+    monkeypatch.setattr(driver, "IMPACT_TANGENTIAL_LIMIT", -1.0)
+    with pytest.raises(SolverError, match=r"ultimate displacement was reached \(first at t = 0\.7338"):
+        simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
