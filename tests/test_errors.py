@@ -161,7 +161,7 @@ def test_a_typed_error_no_command_caught_is_still_one_line_and_exit_2(capsys):
 
 #: Modules that still import a typed error from another module than isolator.errors (H1's files of
 #: issue 21, being rewritten); remove a line when its module is fixed (a stale line fails).
-ERRORS_IMPORTED_ELSEWHERE = {"batch/run.py", "batch/worker.py", "cli/batch.py", "cli/pairs.py",
+ERRORS_IMPORTED_ELSEWHERE = {"batch/run.py", "batch/worker.py", "cli/batch.py",
                              "cli/records.py", "cli/report.py", "cli/review.py",
                              "solver/planar.py"}
 
