@@ -949,7 +949,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     building_step(y, lo, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu,
                                   rim, om, zeta, gam, r, y0, ra, ult)
                     v_0 = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
-                    v_lo = (y0[Y_V] * y[Y_V] + y0[Y_V + 1] * y[Y_V + 1]) / v_0
+                    v_lo = (y0[Y_V] * y[Y_V] + y0[Y_V + 1] * y[Y_V + 1]) / v_0 if v_0 > 0.0 else 0.0  # (squares' underflow)
                     if 0.0 < v_lo < v_0:
                         t_zero = lo * v_0 / (v_0 - v_lo)
                         if cut < t_zero < h:
