@@ -139,7 +139,7 @@ def traced_run(records, seconds: float, mu_static=None, mu_kinetic=None):
     return r, (trace[restarts[-1]:] if restarts else trace), mu_s, mu_k
 
 
-def traced_args(argv, description: str, per_slide: bool = False) -> argparse.Namespace:
+def traced_args(argv, description: str, per_slide: bool = False, bounds: bool = False) -> argparse.Namespace:
     """The traced runs' options (records, seconds, µs, µk[, per slide]) parsed, with NUMBA_DISABLE_JIT set (numba
     must not be imported before: the run stops with its reason)."""
     parser = argparse.ArgumentParser(description=description)
@@ -149,6 +149,8 @@ def traced_args(argv, description: str, per_slide: bool = False) -> argparse.Nam
     parser.add_argument("--mu-kinetic", type=float, default=None)
     if per_slide:
         parser.add_argument("--per-slide", action="store_true")
+    if bounds:
+        parser.add_argument("--bounds", default=None, help="write the slides' sample bounds (JSON) to this file")
     args = parser.parse_args(argv)
     os.environ["NUMBA_DISABLE_JIT"] = "1"
     import numba
