@@ -41,7 +41,7 @@ import numpy as np
 from isolator.errors import InvalidSystemError
 from isolator.solver import building_kernel as _bk
 from isolator.solver.base import SolverResult
-from isolator.solver.record import building_substeps, record_timing
+from isolator.solver.record import AlongOneComponent, building_substeps, record_timing
 from isolator.solver.system import System
 from isolator.units import STANDARD_GRAVITY
 
@@ -276,7 +276,7 @@ class BuildingKeys:
 
 
 @dataclass(kw_only=True)
-class BuildingResponse(BuildingKeys, SolverResult):
+class BuildingResponse(BuildingKeys, AlongOneComponent, SolverResult):
     """Exact response of the building on its isolation plane to one record (model ``1d-building``, SI units).
 
     The fields of :class:`~isolator.solver.base.SolverResult` describe the isolator (the slab
@@ -310,20 +310,10 @@ class BuildingResponse(BuildingKeys, SolverResult):
     bearing_layout: object = None
     model: str = MODEL_NAME
     model_reason: str = MODEL_REASON
-    uplift_time_s = 0.0  #: the isolator does not lift off in this model [s]
-    n_uplifts = 0
 
     def _peak(self, key) -> np.ndarray:
         sl = _monitor_slices(self.building.n_floors)[key]
         return np.maximum(self.peak_max[sl], -self.peak_min[sl])
-
-    @property
-    def residual_displacement_x_m(self) -> float:
-        return self.residual_displacement_m
-
-    @property
-    def residual_displacement_y_m(self) -> float:
-        return 0.0
 
     @property
     def configuration(self) -> str:

@@ -27,22 +27,12 @@ MODEL_NAME = "1d-exact"
 MODEL_REASON = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
 
 
-@dataclass(kw_only=True)
-class Response(SolverResult):
-    """Exact response of the block to one component (model ``1d-exact``; SI units).
+class AlongOneComponent:
+    """What a response to one horizontal component says of the plane (the 1-D models: the block, the building, the
+    multi-surface bearing): it moves along X only, so its residual is ``residual_displacement_x_m`` (signed), Y is
+    zero, and it never lifts off."""
 
-    The fields of :class:`~isolator.solver.base.SolverResult` (histories of shape (N,),
-    along the record), the isolator (``system``), the displacement at each event and the
-    sub-steps per sample interval.  One component moves along X: its residual is
-    ``residual_displacement_x_m`` (signed), Y is zero, and it never lifts off.
-    """
-
-    system: System
-    event_displacement_m: np.ndarray
-    substeps_per_interval: int = 1
-    model: str = MODEL_NAME
-    model_reason: str = MODEL_REASON
-    uplift_time_s = 0.0  #: a block under one horizontal component never lifts off [s]
+    uplift_time_s = 0.0  #: one horizontal component: no lift-off [s]
     n_uplifts = 0
 
     @property
@@ -54,6 +44,22 @@ class Response(SolverResult):
     def residual_displacement_y_m(self) -> float:
         """No motion across the record [m]."""
         return 0.0
+
+
+@dataclass(kw_only=True)
+class Response(AlongOneComponent, SolverResult):
+    """Exact response of the block to one component (model ``1d-exact``; SI units).
+
+    The fields of :class:`~isolator.solver.base.SolverResult` (histories of shape (N,),
+    along the record), the isolator (``system``), the displacement at each event and the
+    sub-steps per sample interval; along X only (:class:`AlongOneComponent`).
+    """
+
+    system: System
+    event_displacement_m: np.ndarray
+    substeps_per_interval: int = 1
+    model: str = MODEL_NAME
+    model_reason: str = MODEL_REASON
 
     @property
     def configuration(self) -> str:
