@@ -503,8 +503,8 @@ class Bearing:
                                                        mu_fast=scaled(s.mu_fast)) for s in self.surfaces))
         if self.kind != "single":
             for i, s in enumerate(bearing.surfaces, start=1):
-                if s.rate_s_per_m is not None:
-                    _check_rate(s, f"bearing surface {i}", fail)
+                if s.rate_s_per_m is not None and s.mu_slow < s.mu_fast:  # parse_bearing's rule: µ(v), not a flat law
+                    _check_rate(s, f"bearing surface {i}", fail, factor)
         _check_geometry(bearing, fail)
         return bearing
 
@@ -565,8 +565,12 @@ def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearin
     return bearing
 
 
-def _check_rate(surface: Surface, where: str, fail) -> None:
-    """µ(v) of a series bearing's surface: neither steeper than the engines follow nor too flat to invert."""
+def _check_rate(surface: Surface, where: str, fail, factor: float | None = None) -> None:
+    """µ(v) of a series bearing's surface: neither steeper than the engines follow nor too flat to invert.
+
+    ``factor``: the property bound λ the surface was scaled by (:meth:`Bearing.with_friction_factor`), None for the
+    design as read; the hint of a refused slope then says which λ the law holds to, not to give µ = mu_slow.
+    """
     rate = surface.rate_s_per_m
     if rate > RATE_MAX_S_PER_M:
         raise fail(f"{where}: rate_s_per_m = {rate:g} s/m exceeds {RATE_MAX_S_PER_M:g} s/m: µ would change from "
@@ -574,9 +578,17 @@ def _check_rate(surface: Surface, where: str, fail) -> None:
                    "(give 'mu'; measured rates are 10-200 s/m)")
     slope = rate * (surface.mu_fast - surface.mu_slow)
     if slope < MIN_RATE_SLOPE_S_PER_M:
+        if factor is None:
+            hint = "give 'mu' = mu_slow"
+        else:  # the design read at λ = 1: its slope is slope/λ, and λ scales it (µ_fast, µ_slow both × λ)
+            nominal = slope / factor if factor > 0.0 else 0.0
+            # the smallest λ that keeps the slope, rounded up to 3 decimals so that the λ printed reads
+            lowest = math.ceil(MIN_RATE_SLOPE_S_PER_M / nominal * 1e3) / 1e3 if nominal > 0.0 else math.inf
+            hint = (f"the design's own slope {nominal:.3g} stays above {MIN_RATE_SLOPE_S_PER_M:g} for λ >= {lowest:g}: "
+                    "give a lower bound at or above that, or this bound as a design of constant 'mu'")
         raise fail(f"{where}: µ(v) rises by rate_s_per_m × (mu_fast - mu_slow) = {slope:.3g} per m/s at rest, "
                    f"below {MIN_RATE_SLOPE_S_PER_M:g}: the law is constant friction at mu_slow over any slider's "
-                   "speed and the series model cannot invert it (give 'mu' = mu_slow)")
+                   f"speed and the series model cannot invert it ({hint})")
 
 
 def _surface(entry: dict, index: int, kind: str, fail) -> Surface:

@@ -139,36 +139,41 @@ def _analysis_columns(task: Task, case: DesignCase, design, motion, measures, wi
     return {**analysis.row(), **model_columns(json_safe(analysis.flat()))}
 
 
-def row_error(err: Exception, record: str, design_source: str | None) -> str:
+def row_error(err: Exception, record: str, design_source: str | None, partners: tuple = ()) -> str:
     """The ``error`` column of a failed row: one line that blames the right thing.
 
     Our typed errors already say what is wrong: a record's (:class:`RecordError`,
     :class:`RecordInputError` — e.g. a record of zeros), a design's
     (:class:`DesignError`, :class:`InvalidSystemError` from its K/M, γ/M).  A write error
     names its path.  Anything else is a defect of isolator: the row says so without the
-    raw exception text.
+    raw exception text.  ``partners``: the other files of a set (Y, Z) read with ``record``;
+    a row names them all (``X + Y``), or the one file at fault when its reader named it.
     """
     from isolator.design import DesignError
-    from isolator.errors import analysis_owner
+    from isolator.errors import analysis_owner, one_line
     from isolator.errors import owned as named
     from isolator.motion import RecordError
     from isolator.solver.record import RecordInputError
     from isolator.solver.system import InvalidSystemError
     from isolator.units import UnitsError
 
+    files = (record, *partners)
     if isinstance(err, (RecordError, RecordInputError, UnitsError)):
-        return named(record, str(err))
+        text = one_line(err)
+        if any(text.startswith(f"{path}: ") for path in files):  # the reader named the file at fault
+            return text
+        return named(analysis_owner(files), text)
     if isinstance(err, DesignError):
-        return named(design_source or record, str(err))
+        return named(design_source or analysis_owner(files), str(err))
     from isolator.errors import SolverError
 
     if isinstance(err, (InvalidSystemError, SolverError)):  # the engine refuses this design on this record
-        return named(analysis_owner(record, design_source), err, design_source)
+        return named(analysis_owner(files, design_source), err, design_source)
     if isinstance(err, OSError):
-        return f"{err.filename or record}: cannot read or write ({err.strerror or type(err).__name__})"
+        return f"{err.filename or analysis_owner(files)}: cannot read or write ({err.strerror or type(err).__name__})"
     if isinstance(err, ValueError) and design_source is None:  # scaling a record (a sentence of ours)
-        return named(record, str(err))
-    return (f"{analysis_owner(record, design_source)}: internal error in isolator (please report it with this "
+        return named(analysis_owner(files), str(err))
+    return (f"{analysis_owner(files, design_source)}: internal error in isolator (please report it with this "
             "record and design)")
 
 
@@ -184,7 +189,7 @@ def run_task(task: Task) -> list[dict]:
         else:
             motion, measures, window, factor, read_seconds = _read_motion(task.record, task.component, task.options)
     except Exception as err:  # noqa: BLE001 - any failure to read is the rows' error, the batch goes on
-        message = row_error(err, task.record, None)
+        message = row_error(err, task.record, None, task.partners)
         return [{**base, **_design_columns(case), "error": message, "row_key": key} for case, key in task.designs]
     if task.component in SET_COMPONENTS:
         record_cols = pair_record_columns(task, motion, factor, read_seconds)
@@ -207,6 +212,6 @@ def run_task(task: Task) -> list[dict]:
             row["error"] = ""
         except Exception as err:  # noqa: BLE001 - one design's failure is its row's error
             row.update(_design_columns(case))
-            row["error"] = row_error(err, task.record, case.source)
+            row["error"] = row_error(err, task.record, case.source, task.partners)
         rows.append(row)
     return rows

@@ -41,12 +41,10 @@ import numpy as np
 from isolator.errors import InvalidSystemError
 from isolator.solver import building_kernel as _bk
 from isolator.solver.base import SolverResult
-from isolator.solver.record import record_timing
+from isolator.solver.record import AlongOneComponent, building_substeps, record_timing
 from isolator.solver.system import System
 from isolator.units import STANDARD_GRAVITY
 
-#: Most sub-steps per sample interval (a slab far lighter than the first story's stiffness asks for more).
-MAX_SUBSTEPS_PER_INTERVAL = 5000
 #: The solver model's name in the registry.
 MODEL_NAME = "1d-building"
 MODEL_REASON = "a superstructure above the isolation plane, one horizontal component: the exact 1-D building"
@@ -81,6 +79,17 @@ class BuildingSystem:
     @property
     def weight_N(self) -> float:
         return self.total_mass_kg * self.gravity_m_s2
+
+    @property
+    def max_step_s(self) -> float:
+        """The longest sub-step, THETA over the fastest rate (‖Ã‖ h ≤ THETA) [s]; inf for a rate of 0."""
+        return _bk.THETA / self.fastest_rate_per_s if self.fastest_rate_per_s > 0 else math.inf
+
+    def substeps(self, timing) -> int:
+        """Sub-steps per sample interval of a record (:class:`~isolator.solver.record.RecordTiming`); refuses
+        more than MAX_SUBSTEPS_PER_INTERVAL (:func:`~isolator.solver.record.building_substeps`)."""
+        return building_substeps(timing.dt_s, timing.relative_time_s, self.max_step_s,
+                                 f"the building's fastest rate {self.fastest_rate_per_s:.3g} 1/s")
 
     @property
     def superstructure_weight_N(self) -> float:
@@ -267,7 +276,7 @@ class BuildingKeys:
 
 
 @dataclass(kw_only=True)
-class BuildingResponse(BuildingKeys, SolverResult):
+class BuildingResponse(BuildingKeys, AlongOneComponent, SolverResult):
     """Exact response of the building on its isolation plane to one record (model ``1d-building``, SI units).
 
     The fields of :class:`~isolator.solver.base.SolverResult` describe the isolator (the slab
@@ -301,20 +310,10 @@ class BuildingResponse(BuildingKeys, SolverResult):
     bearing_layout: object = None
     model: str = MODEL_NAME
     model_reason: str = MODEL_REASON
-    uplift_time_s = 0.0  #: the isolator does not lift off in this model [s]
-    n_uplifts = 0
 
     def _peak(self, key) -> np.ndarray:
         sl = _monitor_slices(self.building.n_floors)[key]
         return np.maximum(self.peak_max[sl], -self.peak_min[sl])
-
-    @property
-    def residual_displacement_x_m(self) -> float:
-        return self.residual_displacement_m
-
-    @property
-    def residual_displacement_y_m(self) -> float:
-        return 0.0
 
     @property
     def configuration(self) -> str:
@@ -452,8 +451,9 @@ def _warm_up() -> None:
         s = Superstructure(floors=(Floor(1.0, 1.0, 100.0, 100.0),), damping_ratio=0.05, gravity_m_s2=9.81)
         for times in (None, [0.0, 0.01, 0.03]):
             acc = np.array([0.0, 5.0, -5.0])
-            _run(building_system(s, total_mass_kg=2.0, stiffness_N_per_m=10.0, mu_static=0.1),
-                 record_timing(acc, None if times else 0.01, times), None)
+            system = building_system(s, total_mass_kg=2.0, stiffness_N_per_m=10.0, mu_static=0.1)
+            timing = record_timing(acc, None if times else 0.01, times)
+            _run(system, timing, system.substeps(timing), None)
     _READY = True
 
 
@@ -487,9 +487,9 @@ def simulate_building(acceleration_m_s2, dt_s: float | None = None, *, time_s=No
                          damping_Ns_per_m=float(damping_Ns_per_m), gravity_m_s2=float(gravity_m_s2),
                          direction=direction)
     timing = record_timing(acceleration_m_s2, dt_s, time_s)
-    _substeps(system, timing)
+    n_sub = system.substeps(timing)  # refused before the kernel is loaded
     _warm_up()
-    return _run(system, timing, bearing_layout)
+    return _run(system, timing, n_sub, bearing_layout)
 
 
 def simulate_design_building(design, acceleration_m_s2, dt_s: float | None = None, *, time_s=None,
@@ -541,27 +541,12 @@ def _system_for(superstructure, **parameters) -> BuildingSystem:
     return system
 
 
-def _substeps(system: BuildingSystem, timing) -> tuple[int, float, float]:
-    """(sub-steps per sample interval, h_max [s], the longest interval [s]); refuses more than
-    MAX_SUBSTEPS_PER_INTERVAL.  Checked before the kernel is loaded: a refused design waits for no compilation
-    and prints no compile note before its line (the s10 hostile test's flake under load, session 14)."""
-    relative = timing.relative_time_s
-    h_max = _bk.THETA / system.fastest_rate_per_s if system.fastest_rate_per_s > 0 else math.inf
-    longest = timing.dt_s if relative is None else float(np.max(np.diff(relative)))
-    n_sub = max(1, math.ceil(longest / h_max))
-    if n_sub > MAX_SUBSTEPS_PER_INTERVAL:
-        raise InvalidSystemError(
-            f"the building's fastest rate {system.fastest_rate_per_s:.3g} 1/s needs {n_sub} sub-steps per "
-            f"sample interval of {longest:g} s (at most {MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light "
-            "for the first story's stiffness, or a story too stiff for its mass")
-    return n_sub, h_max, longest
-
-
-def _run(system: BuildingSystem, timing, bearing_layout) -> BuildingResponse:
+def _run(system: BuildingSystem, timing, n_sub: int, bearing_layout) -> BuildingResponse:
+    """The kernel on a checked record; ``n_sub`` from :meth:`BuildingSystem.substeps` (the public entry's)."""
     from scipy.linalg import expm
 
     acc, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
-    n_sub, h_max, _ = _substeps(system, timing)
+    h_max = system.max_step_s
     size = system.size
     if relative is None:
         h = dt / n_sub

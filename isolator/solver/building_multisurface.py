@@ -38,11 +38,11 @@ from isolator.errors import InvalidSystemError
 from isolator.solver import building as _building
 from isolator.solver import building_multisurface_kernel as _bmk
 from isolator.solver import multisurface_kernel as _ms
-from isolator.solver.building import MAX_SUBSTEPS_PER_INTERVAL, BuildingResponse, building_system, van_loan
+from isolator.solver.building import BuildingResponse, building_system, van_loan
 from isolator.solver.building_kernel import THETA
 from isolator.solver.multisurface import response_fields, rim_of_single
 from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
-from isolator.solver.record import record_timing
+from isolator.solver.record import building_substeps, record_timing
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
@@ -248,6 +248,11 @@ class _Matrices:
     modes: list  #: Ã per mode: 0 stuck, 1 + mask sliding on that set (W/ΣR̄ in series); None for mask 0
     cache: dict = field(default_factory=dict)  #: full sub-step propagators by their length
 
+    def substeps(self, timing) -> int:
+        """Sub-steps per sample interval of a record (:class:`~isolator.solver.record.RecordTiming`); refuses
+        more than MAX_SUBSTEPS_PER_INTERVAL (:func:`~isolator.solver.record.building_substeps`)."""
+        return building_substeps(timing.dt_s, timing.relative_time_s, self.h_max, "the building on its bearing")
+
     def full_steps(self, h: float) -> tuple:
         """(e^{Ãh}, ∫e^{Ãᵀτ}Q_in e^{Ãτ}, ∫e^{Ãᵀτ}Q_vis e^{Ãτ}) per mode, for full sub-steps of length h."""
         if h not in self.cache:
@@ -309,7 +314,8 @@ def _warm_up() -> None:
         b = Bearing(kind="double", surfaces=tuple(Surface(radius_m=1.0, height_m=0.0, mu_kinetic=0.05,
                                                           mu_static=0.05, displacement_capacity_m=0.01)
                                                   for _ in range(2)))
-        _run(_matrices(s, b, 2.0, 0.0, 9.81), b, record_timing(np.array([0.0, 5.0, -5.0]), 0.01, None))
+        mats, timing = _matrices(s, b, 2.0, 0.0, 9.81), record_timing(np.array([0.0, 5.0, -5.0]), 0.01, None)
+        _run(mats, b, timing, mats.substeps(timing))
     _READY = True
 
 
@@ -353,28 +359,15 @@ def simulate_building_bearing(acceleration_m_s2, dt_s: float | None = None, *, t
             _MATRICES.pop(next(iter(_MATRICES)))
         _MATRICES[key] = mats
     timing = record_timing(acceleration_m_s2, dt_s, time_s)
-    _substeps(mats, timing)
+    n_sub = mats.substeps(timing)  # refused before the kernel is loaded
     _warm_up()
-    return _run(mats, bearing, timing, bearing_layout)
+    return _run(mats, bearing, timing, n_sub, bearing_layout)
 
 
-def _substeps(mats: _Matrices, timing) -> int:
-    """Sub-steps per sample interval; refuses more than MAX_SUBSTEPS_PER_INTERVAL, before the kernel is loaded (a
-    refused design waits for no compilation and prints no compile note before its line; session 14)."""
-    relative = timing.relative_time_s
-    longest = timing.dt_s if relative is None else float(np.max(np.diff(relative)))
-    n_sub = max(1, math.ceil(longest / mats.h_max))
-    if n_sub > MAX_SUBSTEPS_PER_INTERVAL:
-        raise InvalidSystemError(f"the building on its bearing needs {n_sub} sub-steps per sample interval of "
-                                 f"{longest:g} s (at most {MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light "
-                                 "for the first story's stiffness, or a story too stiff for its mass")
-    return n_sub
-
-
-def _run(mats: _Matrices, bearing, timing, bearing_layout=None) -> BuildingMultisurfaceResponse:
+def _run(mats: _Matrices, bearing, timing, n_sub: int, bearing_layout=None) -> BuildingMultisurfaceResponse:
+    """The kernel on a checked record; ``n_sub`` from :meth:`_Matrices.substeps` (the public entry's)."""
     acc, dt, relative, t0 = timing.acceleration_m_s2, timing.dt_s, timing.relative_time_s, timing.t0_s
     system = mats.base
-    n_sub = _substeps(mats, timing)
     rbar, mu, rim = bearing.elements()
     # static friction above kinetic on a single surface only (simulate_building_bearing refuses it on more)
     mu_static = np.ascontiguousarray(bearing.mu_static, dtype=np.float64) if rbar.size == 1 else mu

@@ -21,7 +21,7 @@ from isolator.solver.base import SolverResult
 from isolator.solver.kernel import max_piece_s, substeps_per_interval
 from isolator.solver.multisurface_series import STATIC_FRICTION_REASON
 from isolator.solver.notice import note_if_slow
-from isolator.solver.record import record_timing
+from isolator.solver.record import AlongOneComponent, record_timing
 from isolator.solver.system import classify_configuration
 from isolator.units import STANDARD_GRAVITY
 
@@ -29,7 +29,7 @@ MODEL_NAME = "1d-multisurface"
 
 
 @dataclass(kw_only=True)
-class MultisurfaceResponse(SolverResult):
+class MultisurfaceResponse(AlongOneComponent, SolverResult):
     """Exact response of a mass on a multi-surface bearing to one component (model ``1d-multisurface``).
 
     The fields of :class:`~isolator.solver.base.SolverResult` (SI units, energies per unit
@@ -68,21 +68,10 @@ class MultisurfaceResponse(SolverResult):
     gravity_m_s2: float = STANDARD_GRAVITY
     model: str = MODEL_NAME
     model_reason: str = "a multi-surface bearing: the exact 1-D series model with rims"
-    uplift_time_s = 0.0  #: one horizontal component: no lift-off [s]
-    n_uplifts = 0
 
     @property
     def bearing_type(self) -> str:
         return self.bearing.kind
-
-    @property
-    def residual_displacement_x_m(self) -> float:
-        """Signed residual along the record [m]."""
-        return self.residual_displacement_m
-
-    @property
-    def residual_displacement_y_m(self) -> float:
-        return 0.0
 
     @property
     def configuration(self) -> str:

@@ -44,6 +44,7 @@ from isolator.solver.system import (
     InvalidSystemError,
     check_friction_coefficient,
     check_friction_rate,
+    check_nonnegative,
     classify_configuration,
 )
 from isolator.units import STANDARD_GRAVITY
@@ -161,16 +162,6 @@ def simulate_scene(scene) -> PairResponse:
 # ---------------------------------------------------------------------------------------
 # inputs
 # ---------------------------------------------------------------------------------------
-def _finite_nonnegative(name: str, value) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise InvalidSystemError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(value) or value < 0.0:
-        raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
-    return value
-
-
 def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per_mass, gravity_m_s2,
                 mu_slow, mu_fast, rate_s_per_m):
     mu_s = check_friction_coefficient("mu_static", mu_static)
@@ -195,7 +186,7 @@ def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per
         if slow > mu_s:
             raise InvalidSystemError(f"mu_slow ({slow}) must not exceed mu_static ({mu_s}): "
                                      "a block that breaks away must be able to slide")
-    kappa = _finite_nonnegative("stiffness_per_mass", stiffness_per_mass)
+    kappa = check_nonnegative("stiffness_per_mass", stiffness_per_mass)
     inv_r = 0.0
     if radius_m is not None:
         if kappa != 0.0:
@@ -207,7 +198,7 @@ def _parameters(mu_static, mu_kinetic, stiffness_per_mass, radius_m, damping_per
         if not math.isfinite(radius) or radius <= 0.0:
             raise InvalidSystemError(f"radius_m must be a finite number > 0, got {radius_m!r}")
         inv_r = 1.0 / radius
-    c = _finite_nonnegative("damping_per_mass", damping_per_mass)
+    c = check_nonnegative("damping_per_mass", damping_per_mass)
     g = STANDARD_GRAVITY if gravity_m_s2 is None else float(gravity_m_s2)
     if not math.isfinite(g) or g <= 0.0:
         raise InvalidSystemError(f"gravity_m_s2 must be a finite number > 0, got {gravity_m_s2!r}")

@@ -42,14 +42,13 @@ from isolator.errors import InvalidSystemError, RecordInputError
 from isolator.solver import planar_building_kernel as _pk
 from isolator.solver.base import SolverResult
 from isolator.solver.building import (
-    MAX_SUBSTEPS_PER_INTERVAL,
     BuildingKeys,
     BuildingResponse,
     building_system,
     naming_design,
     van_loan,
 )
-from isolator.solver.record import sample_timing
+from isolator.solver.record import building_substeps, sample_timing
 from isolator.solver.system import System, check_friction_coefficient, check_friction_rate
 from isolator.units import STANDARD_GRAVITY
 
@@ -605,7 +604,7 @@ def _warm_up() -> None:
         s = Superstructure(floors=(Floor(1.0, 1.0, 100.0, 100.0),), damping_ratio=0.05, gravity_m_s2=9.81)
         acc = np.array([0.0, 5.0, -5.0])
         system = planar_building_system(s, total_mass_kg=2.0, stiffness_N_per_m=10.0, mu_static=0.1)
-        _run(system, acc, acc[::-1].copy(), 0.01, None, None)
+        _run(system, acc, acc[::-1].copy(), _timing(system, acc, 0.01, None), None)
     _READY = True
 
 
@@ -672,9 +671,9 @@ def simulate_planar_building(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, tim
         raise TypeError("give dt_s or time_s")
     normal = _normal_force(ax.size, az_m_s2, pendulum, mu_static, mu_kinetic, mu_slow, mu_fast, rate_s_per_m,
                            float(gravity_m_s2))
-    _timing(system, ax, dt_s, time_s)
+    timing = _timing(system, ax, dt_s, time_s)  # refused before the kernel is loaded
     _warm_up()
-    return _run(system, ax, ay, dt_s, time_s, bearing_layout, normal)
+    return _run(system, ax, ay, timing, bearing_layout, normal)
 
 
 @dataclass(frozen=True)
@@ -728,10 +727,9 @@ def _normal_force(n, az_m_s2, pendulum, mu_static, mu_kinetic, mu_slow, mu_fast,
 
 
 def _timing(system: PlanarBuildingSystem, ax, dt_s, time_s) -> tuple:
-    """(dt, relative times or None, t0, the fastest rate, the longest interval); refuses more than
-    MAX_SUBSTEPS_PER_INTERVAL fast sub-steps per interval.  Checked before the kernel is loaded: a refused design
-    waits for no compilation and prints no compile note before its line (the s10 hostile test's flake under load,
-    session 14)."""
+    """(dt, relative times or None, t0, fast sub-steps per interval); refuses more than MAX_SUBSTEPS_PER_INTERVAL
+    fast sub-steps (the fastest mode turns by at most THETA_FAST in one) in the longest interval
+    (:func:`~isolator.solver.record.building_substeps`, the 1-D buildings' rule)."""
     if time_s is not None:
         times = np.asarray(time_s, dtype=np.float64)
         if times.shape != ax.shape:
@@ -744,19 +742,16 @@ def _timing(system: PlanarBuildingSystem, ax, dt_s, time_s) -> tuple:
             raise RecordInputError(f"dt must be a finite number > 0, got {dt_s!r}")
         relative, t0 = None, 0.0
     rate = system.fastest_rate_per_s
-    longest = dt if relative is None else float(np.max(np.diff(relative)))
-    n_needed = max(1, math.ceil(rate * longest / _pk.THETA_FAST))
-    if n_needed > MAX_SUBSTEPS_PER_INTERVAL:  # as the 1-D building: a slab of 1e-5 of the floors ran for minutes
-        raise InvalidSystemError(
-            f"the building's fastest rate {rate:.3g} 1/s needs {n_needed} sub-steps per sample interval of "
-            f"{longest:g} s (at most {MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light for the first story's "
-            "stiffness, or a story too stiff for its mass")
-    return dt, relative, t0, rate, longest
+    n_sub = building_substeps(dt, relative, _pk.THETA_FAST / rate if rate > 0 else math.inf,
+                              f"the building's fastest rate {rate:.3g} 1/s")
+    return dt, relative, t0, n_sub
 
 
-def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
+def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
          normal: _Normal | None = None) -> PlanarBuildingResponse:
-    dt, relative, t0, rate, _ = _timing(system, ax, dt_s, time_s)
+    """The kernel on a record; ``timing`` from :func:`_timing` (the public entry's: checked once)."""
+    dt, relative, t0, n_sub = timing
+    rate = system.fastest_rate_per_s
     if not ORDER_RANGE[0] <= _pk.N_ORDER <= ORDER_RANGE[1]:
         raise ValueError(f"planar_building_kernel.N_ORDER = {_pk.N_ORDER} is outside {ORDER_RANGE} (tested range)")
     h_max = _pk.THETA / rate if rate > 0 else math.inf
@@ -771,7 +766,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, dt_s, time_s, bearing_layout,
     # fast sub-steps (uniform records): the fastest mode turns by at most THETA_FAST in one
     # the exact propagators hold a constant A and a constant µ: with a vertical or µ(v) the kernel takes them
     # while stuck only (the floors' fixed-base system), sliding by series pieces
-    n_fast = 0 if relative is not None else max(1, math.ceil(rate * dt / _pk.THETA_FAST))
+    n_fast = 0 if relative is not None else n_sub
     watched, tables = _run_tables(system, bearing_layout, dt / n_fast if n_fast > 0 else None)
     m1, m2, m3, sig1, sig2, sig3 = watched
     n_samples = ax.size

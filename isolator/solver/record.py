@@ -27,22 +27,12 @@ MODEL_NAME = "1d-exact"
 MODEL_REASON = "one horizontal component, constant friction, no vertical: the exact 1-D kernel"
 
 
-@dataclass(kw_only=True)
-class Response(SolverResult):
-    """Exact response of the block to one component (model ``1d-exact``; SI units).
+class AlongOneComponent:
+    """What a response to one horizontal component says of the plane (the 1-D models: the block, the building, the
+    multi-surface bearing): it moves along X only, so its residual is ``residual_displacement_x_m`` (signed), Y is
+    zero, and it never lifts off."""
 
-    The fields of :class:`~isolator.solver.base.SolverResult` (histories of shape (N,),
-    along the record), the isolator (``system``), the displacement at each event and the
-    sub-steps per sample interval.  One component moves along X: its residual is
-    ``residual_displacement_x_m`` (signed), Y is zero, and it never lifts off.
-    """
-
-    system: System
-    event_displacement_m: np.ndarray
-    substeps_per_interval: int = 1
-    model: str = MODEL_NAME
-    model_reason: str = MODEL_REASON
-    uplift_time_s = 0.0  #: a block under one horizontal component never lifts off [s]
+    uplift_time_s = 0.0  #: one horizontal component: no lift-off [s]
     n_uplifts = 0
 
     @property
@@ -54,6 +44,22 @@ class Response(SolverResult):
     def residual_displacement_y_m(self) -> float:
         """No motion across the record [m]."""
         return 0.0
+
+
+@dataclass(kw_only=True)
+class Response(AlongOneComponent, SolverResult):
+    """Exact response of the block to one component (model ``1d-exact``; SI units).
+
+    The fields of :class:`~isolator.solver.base.SolverResult` (histories of shape (N,),
+    along the record), the isolator (``system``), the displacement at each event and the
+    sub-steps per sample interval; along X only (:class:`AlongOneComponent`).
+    """
+
+    system: System
+    event_displacement_m: np.ndarray
+    substeps_per_interval: int = 1
+    model: str = MODEL_NAME
+    model_reason: str = MODEL_REASON
 
     @property
     def configuration(self) -> str:
@@ -240,6 +246,51 @@ def record_timing(acceleration_m_s2, dt_s=None, time_s=None) -> RecordTiming:
     if not low <= given_dt <= high:
         raise RecordInputError(f"dt = {given_dt:g} s is outside the solver's range [{low:g}, {high:g}] s")
     return RecordTiming(acc, given_dt, None, 0.0)
+
+
+#: Most sub-steps per sample interval of the building engines (1-D, 1-D on a multi-surface bearing, 2-D): a base
+#: slab of 1e-5 of the floors asked for ~1e6 and ran for minutes (session 10); real buildings need tens.
+MAX_SUBSTEPS_PER_INTERVAL = 5000
+
+
+def building_substeps(dt_s: float, relative_time_s, step_s: float, what: str) -> int:
+    """Sub-steps of at most ``step_s`` that fill the record's longest sample interval (the building engines' rule).
+
+    The one rule of the three building drivers: the longest interval over the step their fastest rate allows
+    (``THETA / rate``), at most :data:`MAX_SUBSTEPS_PER_INTERVAL`.  Called by each public entry before its kernel
+    is loaded, so that a refused design waits for no compilation and prints no compile note before its line (the
+    s10 hostile test's flake under load, session 14); the count is then passed to the driver's run.
+
+    Parameters
+    ----------
+    dt_s : float
+        The (mean) sample interval [s].
+    relative_time_s : numpy.ndarray or None
+        Sample times from the first one for unequal steps (:class:`RecordTiming`); None for a uniform record [s].
+    step_s : float
+        The longest sub-step the system allows [s], > 0 (``inf`` for a system that does not move).
+    what : str
+        The refusal's subject, e.g. ``"the building's fastest rate 3.4e+10 1/s"``.
+
+    Returns
+    -------
+    int
+        ``max(1, ceil(longest interval / step_s))``.
+
+    Raises
+    ------
+    InvalidSystemError
+        More than :data:`MAX_SUBSTEPS_PER_INTERVAL` (one line: the count, the interval, the cause).
+    """
+    longest = dt_s if relative_time_s is None else float(np.max(np.diff(relative_time_s)))
+    ratio = longest / step_s if step_s > 0.0 else math.inf  # a step that vanishes (never: THETA / a finite rate)
+    if not ratio <= MAX_SUBSTEPS_PER_INTERVAL:  # ceil(ratio) <= the bound exactly when ratio <= it (an integer)
+        needed = math.ceil(ratio) if math.isfinite(ratio) else ratio
+        raise InvalidSystemError(
+            f"{what} needs {needed} sub-steps per sample interval of {longest:g} s (at most "
+            f"{MAX_SUBSTEPS_PER_INTERVAL}): the base slab is too light for the first story's stiffness, or a story "
+            "too stiff for its mass")
+    return max(1, math.ceil(ratio))
 
 
 _KERNEL_READY = False

@@ -69,14 +69,23 @@ MU_MAX = 1.0
 RATE_MAX_S_PER_M = 1e4
 
 
-def check_friction_coefficient(name: str, value) -> float:
-    """A friction coefficient as a float in [0, :data:`MU_MAX`), or :class:`InvalidSystemError`."""
+def check_nonnegative(name: str, value, maximum: float = math.inf, why: str = "") -> float:
+    """A parameter as a finite float in [0, ``maximum``], or :class:`InvalidSystemError` (one line naming it; ``why``
+    follows the bound: its unit and reason)."""
     try:
         value = float(value)
     except (TypeError, ValueError):
         raise InvalidSystemError(f"{name} must be a number, got {value!r}") from None
     if not math.isfinite(value) or value < 0.0:
         raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
+    if value > maximum:
+        raise InvalidSystemError(f"{name} = {value:g} exceeds {maximum:g}{why}")
+    return value
+
+
+def check_friction_coefficient(name: str, value) -> float:
+    """A friction coefficient as a float in [0, :data:`MU_MAX`), or :class:`InvalidSystemError`."""
+    value = check_nonnegative(name, value)
     if value >= MU_MAX:
         raise InvalidSystemError(f"{name} = {value:g} must be < {MU_MAX:g}: a friction force above the weight "
                                  "(sliding isolators have 0.02-0.15)")
@@ -97,15 +106,6 @@ def check_friction_rate(value) -> float:
                                  f"from mu_slow to mu_fast within {1.0 / value:.1g} m/s, which the 2-D engine "
                                  "cannot follow in bounded steps; so steep a law is Coulomb friction at mu_fast "
                                  "(measured rates are 10-200 s/m)")
-    return value
-
-
-def _check_finite_nonnegative(name: str, value: float, maximum: float = math.inf, why: str = "") -> float:
-    value = float(value)
-    if not math.isfinite(value) or value < 0.0:
-        raise InvalidSystemError(f"{name} must be a finite number ≥ 0, got {value!r}")
-    if value > maximum:
-        raise InvalidSystemError(f"{name} = {value:g} exceeds {maximum:g}{why}")
     return value
 
 
@@ -140,10 +140,10 @@ class System:
             raise InvalidSystemError(f"mu_kinetic ({mu_k}) must not exceed mu_static ({mu_s})")
         object.__setattr__(self, "mu_static", mu_s)
         object.__setattr__(self, "mu_kinetic", mu_k)
-        object.__setattr__(self, "stiffness_per_mass", _check_finite_nonnegative(
+        object.__setattr__(self, "stiffness_per_mass", check_nonnegative(
             "stiffness_per_mass", self.stiffness_per_mass, MAX_STIFFNESS_PER_MASS,
             " 1/s² (a natural period below 63 µs: the isolator is rigid for any record)"))
-        object.__setattr__(self, "damping_per_mass", _check_finite_nonnegative(
+        object.__setattr__(self, "damping_per_mass", check_nonnegative(
             "damping_per_mass", self.damping_per_mass, MAX_DAMPING_PER_MASS,
             " 1/s (a relaxation time M/γ below 1 ps: no damper is that strong)"))
         g = float(self.gravity_m_s2)

@@ -5,8 +5,10 @@ piece (the friction frozen along e0) ended at the stop: 3–4 pieces per stop be
 (e0·V = 0) lies within the piece's reach (held to REACH_SHRINK of it, as before), the piece ends at the stop itself,
 located on its own series (the friction V/|V| of the series' V up to there), if the speed left there is below
 FINISH's entry speed.  Checked against the route it replaces (1e-10), the 1-D building (an independent exact kernel)
-and the independent solve_ivp reference of test_planar_building.py, and on the series itself: the slab's equation
-holds to rounding up to the stop, and the series taken past the stop is not the solution.
+and on the series itself: the slab's equation holds to rounding up to the stop, and the series taken past the stop
+is not the solution.  Against the independent solve_ivp reference: test_planar_building.py's real pairs (the cases
+that stop, to 1e-10, with their stop pieces; that test ran here too, on a second run of the same references, 21.6 s
+of 1 min at load 8, until h145).
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from isolator.solver.building import simulate_building
 from isolator.solver.planar_building import simulate_planar_building
 from isolator.superstructure import BearingLayout
 
-from .test_planar_building import BUILDING, CASES, G, _run_case, make_superstructure, pair_segment
+from .test_planar_building import BUILDING, G, make_superstructure, pair_segment
 from .test_planar_building_series import _bench_pair_mu, _residual, slowing_series
 from .test_planar_building_stops import _assert_same_answer, _run_bench_pair, bench_pair  # noqa: F401 (fixture)
 
@@ -90,31 +92,6 @@ def test_a_zero_second_component_stops_in_one_piece_as_the_1d_building(records_d
     assert np.max(np.abs(two.velocity_m_s[:, 0] - one.velocity_m_s)) <= 1e-10 * np.max(np.abs(one.velocity_m_s))
     assert two.peak_displacement_m == pytest.approx(one.peak_displacement_m, rel=1e-10)
     assert two.energy_friction_J_per_kg == pytest.approx(one.energy_friction_J_per_kg, rel=1e-10)
-
-
-def test_the_reference_cases_stop_in_one_piece_and_match_the_reference(records_dir):
-    """The real-pair cases of test_planar_building.py whose slides stop (4 of 5, 9 stops, 8 by the slowing piece
-    itself) against the independent solve_ivp reference (Cartesian friction, DOP853/Radau at rtol 1e-12): events,
-    X, V, the peak and the friction's work to 1e-10 (measured ≤ 8.7e-12)."""
-    checked = stop_pieces = 0
-    for name in CASES:
-        ours, ref = _run_case(records_dir, name)
-        if _stops(ours) == 0:
-            continue
-        assert ours.message == "ok" and ours.n_stop_pieces >= 1, name
-        stop_pieces += ours.n_stop_pieces
-        assert ours.event_names == [kind for _, kind in ref["events"]], name
-        assert np.max(np.abs(ours.event_time_s - [t for t, _ in ref["events"]])) <= 1e-10, name
-        # the floors of the stiff case read 1.2e-10 after its last break-away (0.27 s), with or without this route
-        for key, ref_key, tol in (("displacement_m", "X", 1e-10), ("velocity_m_s", "V", 1e-10),
-                                  ("floor_displacement_m", "u", 1e-9)):
-            scale = np.max(np.abs(ref[ref_key]))
-            assert np.max(np.abs(getattr(ours, key) - ref[ref_key])) <= tol * scale, (name, key)
-        assert ours.peak_displacement_m == pytest.approx(ref["peak_x"], rel=1e-10)
-        assert ours.energy_friction_J_per_kg == pytest.approx(ref["energy"][1] / ours.building.total_mass_kg,
-                                                              rel=1e-10)
-        checked += 1
-    assert checked >= 4 and stop_pieces >= 8
 
 
 def _stop_on_series(zs, off, hi):
