@@ -483,6 +483,26 @@ def output_lock(path):
 _SECRET: bytes | None = None
 
 
+def read_key_file(path, limit: int = 4096) -> bytes:
+    """The first ``limit`` bytes of a small regular file (a key), never blocking nor filling the memory.
+
+    A key file replaced by a FIFO blocked every batch for ever, a link to ``/dev/zero`` read until the memory
+    ran out (Session 15 sweep, docs/security.md): the file is opened without blocking and read only if regular.
+
+    Raises
+    ------
+    OSError
+        The file is missing, unreadable or not a regular file.
+    """
+    handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            raise OSError(errno.EINVAL, "not a regular file", str(path))
+        return os.read(handle, limit)
+    finally:
+        os.close(handle)
+
+
 def user_secret() -> bytes:
     """This user's key for content keys of outputs that a later run reads back (32 random bytes).
 
@@ -501,7 +521,7 @@ def user_secret() -> bytes:
         try:
             handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         except FileExistsError:
-            key = path.read_bytes()
+            key = read_key_file(path)
         else:
             key = os.urandom(32)
             with os.fdopen(handle, "wb") as stream:

@@ -337,7 +337,8 @@ class Design:
             damping = number("damping_Ns_per_m") or 0.0
         _check_derived(fail, mass_kg, stiffness, damping, radius_m, damping_ratio)
 
-        # velocity-dependent friction (all three or none): 0 <= µ_slow <= µ_fast < 1, a > 0
+        # velocity-dependent friction (all three or none): 0 <= µ_slow <= µ_fast < 1, 0 < a <= RATE_MAX_S_PER_M
+        from isolator.solver.system import RATE_MAX_S_PER_M
         velocity_keys = ("mu_slow", "mu_fast", "rate_s_per_m")
         given = [key for key in velocity_keys if key in mapping]
         mu_slow = mu_fast = rate = None
@@ -348,6 +349,11 @@ class Design:
                            f"missing {', '.join(repr(k) for k in missing)}")
             mu_slow, mu_fast = number("mu_slow"), number("mu_fast")
             rate = number("rate_s_per_m", strict=True)
+            if rate > RATE_MAX_S_PER_M:  # the engine's bound, read here: a design search's candidates are designs
+                raise fail(f"key 'rate_s_per_m' = {rate:g} s/m exceeds {RATE_MAX_S_PER_M:g} s/m: µ would change "
+                           f"from mu_slow to mu_fast within {1.0 / rate:.1g} m/s, which the 2-D engine cannot follow "
+                           "in bounded steps; so steep a law is Coulomb friction at mu_fast (give 'mu_kinetic'; "
+                           "measured rates are 10-200 s/m)")
             if mu_slow > mu_fast:
                 raise fail(f"key 'mu_slow' ({mu_slow:g}) must not exceed 'mu_fast' ({mu_fast:g})")
             if mu_fast >= 1.0:
