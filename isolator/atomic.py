@@ -483,8 +483,13 @@ def output_lock(path):
 _SECRET: bytes | None = None
 
 
-def read_key_file(path, limit: int = 4096) -> bytes:
-    """The first ``limit`` bytes of a small regular file (a key), never blocking nor filling the memory.
+#: The longest cache entry read back [bytes]: a review's cached analysis or a design search's row is a few kB
+#: (0.7-2.3 kB measured, Session 15); the bound keeps a damaged or hostile entry from making a run read without end.
+MAX_CACHE_ENTRY_BYTES = 64 * 2**20
+
+
+def read_regular_file(path, limit: int = 4096) -> bytes:
+    """The first ``limit`` bytes of a regular file (a key, a cache entry), never blocking nor filling the memory.
 
     A key file replaced by a FIFO blocked every batch for ever, a link to ``/dev/zero`` read until the memory
     ran out (Session 15 sweep, docs/security.md): the file is opened without blocking and read only if regular.
@@ -492,12 +497,15 @@ def read_key_file(path, limit: int = 4096) -> bytes:
     Raises
     ------
     OSError
-        The file is missing, unreadable or not a regular file.
+        The file is missing (``FileNotFoundError``), unreadable, not a regular file, or longer than ``limit``.
     """
     handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
-        if not stat.S_ISREG(os.fstat(handle).st_mode):
+        info = os.fstat(handle)
+        if not stat.S_ISREG(info.st_mode):
             raise OSError(errno.EINVAL, "not a regular file", str(path))
+        if info.st_size > limit:
+            raise OSError(errno.EFBIG, f"longer than {limit} bytes", str(path))
         return os.read(handle, limit)
     finally:
         os.close(handle)
@@ -521,7 +529,7 @@ def user_secret() -> bytes:
         try:
             handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         except FileExistsError:
-            key = read_key_file(path)
+            key = read_regular_file(path)
         else:
             key = os.urandom(32)
             with os.fdopen(handle, "wb") as stream:

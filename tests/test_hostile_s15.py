@@ -218,3 +218,14 @@ def test_a_batch_table_key_that_is_a_fifo_does_not_block_the_batch(tmp_path):
     assert done.returncode == 2, done.stderr
     lines = [line for line in done.stderr.splitlines() if line.strip() and not line.startswith("note:")]
     assert len(lines) == 1 and ".t.csv.key: is a FIFO (named pipe), not a regular file" in lines[0], done.stderr
+
+
+@pytest.mark.parametrize("store", ["isolator.review.worker:Cache", "isolator.review.design_store:RowStore"])
+def test_a_cache_entry_that_is_a_fifo_is_no_entry(tmp_path, store):
+    """main: a review's cache entry (``.NAME.cache/KEY.json``) or a design search's finished row
+    (``.NAME.design/KEY.json``) replaced by a FIFO blocked the run for ever.  Now it is no entry (recomputed)."""
+    os.mkfifo(tmp_path / "k.json")
+    module, name = store.split(":")
+    code = f"from {module} import {name}; print({name}({str(tmp_path)!r}).get('k'))"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and done.stdout.strip() == "None", done.stderr
