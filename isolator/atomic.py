@@ -488,27 +488,39 @@ _SECRET: bytes | None = None
 MAX_CACHE_ENTRY_BYTES = 64 * 2**20
 
 
+def open_regular_file(path):
+    """``path`` opened for binary reading if it is a regular file; never blocks (a FIFO) nor reads a device.
+
+    Raises
+    ------
+    OSError
+        The file is missing (``FileNotFoundError``), unreadable or not a regular file.
+    """
+    handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # O_NONBLOCK: a FIFO opens at once; no effect on a file
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            raise OSError(errno.EINVAL, "not a regular file", str(path))
+    except OSError:
+        os.close(handle)
+        raise
+    return os.fdopen(handle, "rb")
+
+
 def read_regular_file(path, limit: int = 4096) -> bytes:
-    """The first ``limit`` bytes of a regular file (a key, a cache entry), never blocking nor filling the memory.
+    """The content of a regular file of at most ``limit`` bytes (a key, a cache entry).
 
     A key file replaced by a FIFO blocked every batch for ever, a link to ``/dev/zero`` read until the memory
-    ran out (Session 15 sweep, docs/security.md): the file is opened without blocking and read only if regular.
+    ran out (Session 15 sweep, docs/security.md): the file is opened by :func:`open_regular_file`.
 
     Raises
     ------
     OSError
         The file is missing (``FileNotFoundError``), unreadable, not a regular file, or longer than ``limit``.
     """
-    handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
-    try:
-        info = os.fstat(handle)
-        if not stat.S_ISREG(info.st_mode):
-            raise OSError(errno.EINVAL, "not a regular file", str(path))
-        if info.st_size > limit:
+    with open_regular_file(path) as stream:
+        if os.fstat(stream.fileno()).st_size > limit:
             raise OSError(errno.EFBIG, f"longer than {limit} bytes", str(path))
-        return os.read(handle, limit)
-    finally:
-        os.close(handle)
+        return stream.read(limit)
 
 
 def user_secret() -> bytes:

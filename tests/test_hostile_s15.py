@@ -229,3 +229,14 @@ def test_a_cache_entry_that_is_a_fifo_is_no_entry(tmp_path, store):
     code = f"from {module} import {name}; print({name}({str(tmp_path)!r}).get('k'))"
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0 and done.stdout.strip() == "None", done.stderr
+
+
+def test_a_regime_map_cache_entry_that_is_a_fifo_is_recomputed(tmp_path):
+    """main: ``regime-map`` with a FIFO in place of its cached ``.npz`` blocked in ``np.load`` (past `timeout 60`).
+    Now the entry is damaged (``CacheEntryError``): the map is recomputed with a note."""
+    entry = tmp_path / "map.npz"
+    os.mkfifo(entry)
+    code = ("from isolator.maps import RegimeMap\nfrom isolator.errors import CacheEntryError\n"
+            f"try:\n    RegimeMap.load({str(entry)!r})\nexcept CacheEntryError as err:\n    print(err)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and "not a regular file" in done.stdout, (done.stdout, done.stderr)
