@@ -70,6 +70,11 @@ PLAN_KEYS = {
     "y_m": "distance from the centre of rigidity to the bearing considered, perpendicular to the loading [m], >= 0",
     "P_T": "ratio of torsional to translational period of the isolation system [-], > 0",
 }
+#: A plan dimension b or d [m]: 1 cm (an isolated cabinet) to 10 km, the bearings' own bound
+#: (superstructure.BEARING_POSITION_MAX_M).  Below it r_I = sqrt((b² + d²)/12) of ASCE 7-22 Eq. 17.5-4 vanishes:
+#: b = d = 1e-300 m underflowed to r_I = 0 and P_T's division was a ZeroDivisionError traceback from `report` and
+#: `review` (Session 15 sweep, docs/security.md).
+PLAN_DIMENSION_RANGE_M = (1e-2, 1e4)
 
 #: the three ways a file may give the bounds of µ (one at most)
 BOUND_FORMS = (("lambda_max", "lambda_min"), ("mu_upper", "mu_lower"),
@@ -570,4 +575,7 @@ def _plan(table, fail) -> dict | None:
     for key in ("b_m", "d_m"):
         if key not in out:
             raise fail(f"missing key 'plan.{key}' ({PLAN_KEYS[key]})")
+        low, high = PLAN_DIMENSION_RANGE_M
+        if not low <= out[key] <= high:
+            raise fail(f"key 'plan.{key}' must lie in [{low:g}, {high:g}] m, a plan dimension, got {out[key]:g}")
     return out

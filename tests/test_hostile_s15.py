@@ -240,3 +240,18 @@ def test_a_regime_map_cache_entry_that_is_a_fifo_is_recomputed(tmp_path):
             f"try:\n    RegimeMap.load({str(entry)!r})\nexcept CacheEntryError as err:\n    print(err)\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0 and "not a regular file" in done.stdout, (done.stdout, done.stderr)
+
+
+def test_a_plan_too_small_for_its_torsion_ratio_is_refused_at_reading(tmp_path):
+    """main: ``[plan] b_m = d_m = 1e-300`` was read; `report` of the building then divided by r_I = sqrt((b² + d²)/12),
+    which underflows to 0 (ASCE 7-22 Eq. 17.5-4's P_T): a ZeroDivisionError traceback, exit 1."""
+    from _model_designs import BUILDING
+
+    record = tmp_path / "x.AT2"
+    record.write_text(at2_text(SINE_G[:100]))
+    design = _write(tmp_path / "plan.toml", BUILDING.replace("[superstructure]", "[plan]\nb_m = 1e-300\nd_m = 1e-300\n"
+                                                                                 "[superstructure]", 1))
+    assert_one_line_exit_2(RUNNER.invoke(app, ["report", str(record), "--design", str(design), "--no-pdf", "-o",
+                                               str(tmp_path / "r.pdf")]),
+                           f"{design}: key 'plan.b_m' must lie in [0.01, 10000] m, a plan dimension, got 1e-300")
+    assert not (tmp_path / "r.json").exists()
