@@ -255,3 +255,17 @@ def test_a_plan_too_small_for_its_torsion_ratio_is_refused_at_reading(tmp_path):
                                                str(tmp_path / "r.pdf")]),
                            f"{design}: key 'plan.b_m' must lie in [0.01, 10000] m, a plan dimension, got 1e-300")
     assert not (tmp_path / "r.json").exists()
+
+
+def test_a_torsion_period_ratio_floor_near_zero_is_refused(tmp_path):
+    """main: ``--set P_T_min=1e-300`` was in (0, 10]; with the plan's ``P_T = 1e-300`` the torsion factor of ASCE 7-22
+    Eq. 17.5-3 divided by P_T² = 0 (underflow): a ZeroDivisionError traceback from `report`, exit 1."""
+    from _model_designs import BUILDING
+
+    record = tmp_path / "x.AT2"
+    record.write_text(at2_text(SINE_G[:100]))
+    design = _write(tmp_path / "pt.toml", BUILDING.replace("[superstructure]", "[plan]\nb_m = 10\nd_m = 20\n"
+                                                                               "P_T = 1e-300\n[superstructure]", 1))
+    assert_one_line_exit_2(RUNNER.invoke(app, ["report", str(record), "--design", str(design), "--no-pdf", "-o",
+                                               str(tmp_path / "r.pdf"), "--set", "P_T_min=1e-300"]),
+                           "review parameter 'P_T_min' = 1e-300 is outside [0.1, 10]")
