@@ -45,10 +45,10 @@ from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 #: predominant period sit on its search floor and A0 = 0); above 0.5 s the record cannot
 #: carry ground shaking (0.1 to 25 Hz) and its spectrum would need unbounded work.
 RECORD_DT_RANGE_S = (1e-5, 0.5)
-#: The largest record file read [bytes]: 64 MiB, 2.7 times the 1,000,000-sample text record of
-#: docs/performance.md ("A long record", 24 MB; a strong-motion record is 0.1-10 MB).  A larger file is
-#: refused from its size before any reader opens it: obspy's format detection alone read 100 MB of zero
-#: bytes for 39 s (262 MB of memory) and an 8 GB file ran past 60 s and 2.9 GB (Session 15 sweep,
+#: The largest record file read [bytes]: 64 MiB, 2.9 times the 1,000,000-sample text record of
+#: docs/performance.md ("A long record", 23.4 MB by its command; the largest of ../shared/records is 0.27 MB).
+#: A larger file is refused from its size before any reader opens it: `info` on 100 MB of zero bytes took 39 s
+#: and 262 MB (obspy's format detection alone 5.8 s), on 8 GB it ran past 60 s and 2.9 GB (Session 15 sweep,
 #: docs/security.md).
 MAX_RECORD_BYTES = 64 * 2**20
 #: Suffixes read as plain text when no reader claims the file by content.
@@ -396,7 +396,7 @@ def _check_path(path: Path) -> None:
         raise _fail(path, "file is empty", RecordNotFoundError)
     if size > MAX_RECORD_BYTES:
         raise _fail(path, f"is {size / 2**20:.1f} MiB, larger than any accelerogram (a 1,000,000-sample record "
-                          f"is ~24 MB as text); isolator reads record files up to {MAX_RECORD_BYTES // 2**20} MiB",
+                          f"is ~23 MB as text); isolator reads record files up to {MAX_RECORD_BYTES // 2**20} MiB",
                     RecordNotFoundError)
 
 
