@@ -483,6 +483,46 @@ def output_lock(path):
 _SECRET: bytes | None = None
 
 
+#: The longest cache entry read back [bytes]: a review's cached analysis or a design search's row is a few kB
+#: (0.7-2.3 kB measured, Session 15); the bound keeps a damaged or hostile entry from making a run read without end.
+MAX_CACHE_ENTRY_BYTES = 64 * 2**20
+
+
+def open_regular_file(path):
+    """``path`` opened for binary reading if it is a regular file; never blocks (a FIFO) nor reads a device.
+
+    Raises
+    ------
+    OSError
+        The file is missing (``FileNotFoundError``), unreadable or not a regular file.
+    """
+    handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # O_NONBLOCK: a FIFO opens at once; no effect on a file
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            raise OSError(errno.EINVAL, "not a regular file", str(path))
+    except OSError:
+        os.close(handle)
+        raise
+    return os.fdopen(handle, "rb")
+
+
+def read_regular_file(path, limit: int = 4096) -> bytes:
+    """The content of a regular file of at most ``limit`` bytes (a key, a cache entry).
+
+    A key file replaced by a FIFO blocked every batch for ever, a link to ``/dev/zero`` read until the memory
+    ran out (Session 15 sweep, docs/security.md): the file is opened by :func:`open_regular_file`.
+
+    Raises
+    ------
+    OSError
+        The file is missing (``FileNotFoundError``), unreadable, not a regular file, or longer than ``limit``.
+    """
+    with open_regular_file(path) as stream:
+        if os.fstat(stream.fileno()).st_size > limit:
+            raise OSError(errno.EFBIG, f"longer than {limit} bytes", str(path))
+        return stream.read(limit)
+
+
 def user_secret() -> bytes:
     """This user's key for content keys of outputs that a later run reads back (32 random bytes).
 
@@ -501,7 +541,7 @@ def user_secret() -> bytes:
         try:
             handle = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         except FileExistsError:
-            key = path.read_bytes()
+            key = read_regular_file(path)
         else:
             key = os.urandom(32)
             with os.fdopen(handle, "wb") as stream:

@@ -70,6 +70,11 @@ PLAN_KEYS = {
     "y_m": "distance from the centre of rigidity to the bearing considered, perpendicular to the loading [m], >= 0",
     "P_T": "ratio of torsional to translational period of the isolation system [-], > 0",
 }
+#: A plan dimension b or d [m]: 1 cm (an isolated cabinet) to 10 km, the bearings' own bound
+#: (superstructure.BEARING_POSITION_MAX_M).  Below it r_I = sqrt((b² + d²)/12) of ASCE 7-22 Eq. 17.5-4 vanishes:
+#: b = d = 1e-300 m underflowed to r_I = 0 and P_T's division was a ZeroDivisionError traceback from `report` and
+#: `review` (Session 15 sweep, docs/security.md).
+PLAN_DIMENSION_RANGE_M = (1e-2, 1e4)
 
 #: the three ways a file may give the bounds of µ (one at most)
 BOUND_FORMS = (("lambda_max", "lambda_min"), ("mu_upper", "mu_lower"),
@@ -337,7 +342,8 @@ class Design:
             damping = number("damping_Ns_per_m") or 0.0
         _check_derived(fail, mass_kg, stiffness, damping, radius_m, damping_ratio)
 
-        # velocity-dependent friction (all three or none): 0 <= µ_slow <= µ_fast < 1, a > 0
+        # velocity-dependent friction (all three or none): 0 <= µ_slow <= µ_fast < 1, 0 < a <= RATE_MAX_S_PER_M
+        from isolator.solver.system import RATE_MAX_S_PER_M
         velocity_keys = ("mu_slow", "mu_fast", "rate_s_per_m")
         given = [key for key in velocity_keys if key in mapping]
         mu_slow = mu_fast = rate = None
@@ -348,6 +354,11 @@ class Design:
                            f"missing {', '.join(repr(k) for k in missing)}")
             mu_slow, mu_fast = number("mu_slow"), number("mu_fast")
             rate = number("rate_s_per_m", strict=True)
+            if rate > RATE_MAX_S_PER_M:  # the engine's bound, read here: a design search's candidates are designs
+                raise fail(f"key 'rate_s_per_m' = {rate:g} s/m exceeds {RATE_MAX_S_PER_M:g} s/m: µ would change "
+                           f"from mu_slow to mu_fast within {1.0 / rate:.1g} m/s, which the 2-D engine cannot follow "
+                           "in bounded steps; so steep a law is Coulomb friction at mu_fast (give 'mu_kinetic'; "
+                           "measured rates are 10-200 s/m)")
             if mu_slow > mu_fast:
                 raise fail(f"key 'mu_slow' ({mu_slow:g}) must not exceed 'mu_fast' ({mu_fast:g})")
             if mu_fast >= 1.0:
@@ -564,4 +575,7 @@ def _plan(table, fail) -> dict | None:
     for key in ("b_m", "d_m"):
         if key not in out:
             raise fail(f"missing key 'plan.{key}' ({PLAN_KEYS[key]})")
+        low, high = PLAN_DIMENSION_RANGE_M
+        if not low <= out[key] <= high:
+            raise fail(f"key 'plan.{key}' must lie in [{low:g}, {high:g}] m, a plan dimension, got {out[key]:g}")
     return out

@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.atomic import atomic_path
+from isolator.atomic import atomic_path, open_regular_file
 from isolator.errors import CacheEntryError, InvalidSystemError
 from isolator.metrics import FORCE_NAMES
 from isolator.metrics import REGIMES as REGIME_NAMES
@@ -175,7 +175,7 @@ class RegimeMap:
         import zipfile
 
         try:
-            with np.load(path, allow_pickle=False) as data:
+            with open_regular_file(path) as stream, np.load(stream, allow_pickle=False) as data:  # a FIFO: no entry
                 missing = [name for name in (*cls._ARRAYS, "params", "content_key") if name not in data.files]
                 if missing:
                     raise CacheEntryError(f"missing arrays {', '.join(missing)}")

@@ -12,7 +12,7 @@ import uuid
 from pathlib import Path
 
 from isolator.analysis import ROW_ENGINEERING_KEYS, ROW_KEYS, SCHEMA_VERSION, TIMING_KEYS
-from isolator.atomic import atomic_path, keyed_digest, write_text_atomically
+from isolator.atomic import atomic_path, keyed_digest, read_regular_file, write_text_atomically
 from isolator.serialize import dumps, json_safe
 
 #: The batch's own columns that name a row and its record (then the record's intensity measures).
@@ -208,7 +208,7 @@ def table_key_path(output: Path) -> Path:
 def table_is_ours(output: Path) -> bool:
     """True when the table at ``output`` is whole and was written by this user's batch (its content key matches)."""
     try:
-        stored = table_key_path(output).read_text(encoding="ascii").strip()
+        stored = read_regular_file(table_key_path(output)).decode("ascii").strip()  # a FIFO, /dev/zero: not ours
         return hmac.compare_digest(stored, content_key(output.read_bytes()))
     except (OSError, UnicodeDecodeError):
         return False

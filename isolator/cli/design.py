@@ -139,6 +139,12 @@ def design(
         _refuse_varying_replaced_keys(isolator_file, ranges)
         the_target = load_target(target_path)
         the_suite = load_suite(suite_args, units=units, trim=trim)
+        # the files a SUITE.toml lists and the target's table are inputs too: `-o rec.pdf` wrote its table rec.csv
+        # over a suite record rec.csv (Session 15 sweep, docs/security.md)
+        from isolator.cli.review import review_inputs
+
+        check_outputs([str(p) for k, p in paths.items() if k != "store"],
+                      [str(p) for p in review_inputs(the_target, target_path, the_suite)])
         check_given_scale_factors(the_suite)
     except (DesignError, ReviewError, RecordError, UnitsError) as err:
         _user_error(str(err))

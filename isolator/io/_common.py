@@ -22,6 +22,9 @@ from isolator.errors import RecordFormatError
 
 CHUNK_LINES = 65536  # lines parsed per numpy call; bounds the temporary text held in memory
 DETECT_BYTES = 8192  # bytes looked at by the format detectors
+#: The UTF-8 byte-order mark as the latin-1 text the readers decode (spreadsheets save CSV with it): it is not part
+#: of the first line, whose "# units: g" it would otherwise hide (Session 15 sweep, docs/security.md).
+UTF8_BOM = "\xef\xbb\xbf"
 
 # A floating-point number as written by Fortran formats (E, F, optionally D exponents).
 NUMBER_RE = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?")
@@ -101,6 +104,7 @@ def read_head(filename_or_buf, nbytes: int = DETECT_BYTES) -> bytes:
 
 def looks_like_text(head: bytes) -> bool:
     """True when ``head`` is plausibly ASCII text (no NUL bytes, few control characters)."""
+    head = head.removeprefix(UTF8_BOM.encode("latin-1"))
     if not head or b"\x00" in head:
         return False
     control = sum(1 for byte in head if byte < 32 and byte not in (9, 10, 13, 12))
@@ -110,7 +114,7 @@ def looks_like_text(head: bytes) -> bool:
 
 def head_lines(head: bytes) -> list[str]:
     """Lines of a detection head, any line ending (LF, CRLF, CR CR LF), blank lines dropped."""
-    text = head.decode("latin-1")
+    text = head.decode("latin-1").removeprefix(UTF8_BOM)
     lines = [line for line in re.split(r"\r\n|\r|\n", text) if line.strip()]
     if head and not head.endswith((b"\n", b"\r")) and len(head) >= DETECT_BYTES and lines:
         lines.pop()  # the last line may be cut by the byte limit
@@ -118,13 +122,16 @@ def head_lines(head: bytes) -> list[str]:
 
 
 def open_text(filename_or_buf) -> IO[str]:
-    """A text stream with universal newlines over a path or a buffer (latin-1, never fails)."""
+    """A text stream with universal newlines over a path or a buffer (latin-1, never fails), past a UTF-8 BOM."""
     if hasattr(filename_or_buf, "read"):
         raw = filename_or_buf.read()
         if isinstance(raw, bytes):
             raw = raw.decode("latin-1")
-        return io.StringIO(raw, newline=None)
-    return open(os.fspath(filename_or_buf), encoding="latin-1", newline=None)
+        return io.StringIO(raw.removeprefix(UTF8_BOM), newline=None)
+    stream = open(os.fspath(filename_or_buf), encoding="latin-1", newline=None)
+    if stream.read(len(UTF8_BOM)) != UTF8_BOM:
+        stream.seek(0)
+    return stream
 
 
 def parse_float(token: str) -> float:

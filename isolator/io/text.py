@@ -7,7 +7,8 @@ ending; no final newline needed.
 
 Metadata in comment lines, all optional, ``key: value`` or ``key = value``::
 
-    # units: g            (g, m/s2, gal, cm/s2 — see isolator.units)
+    # units: g            (g, m/s2, gal, cm/s2 — see isolator.units; or the acceleration
+                          column's name: ``acc_g``, ``a (cm/s2)``; both must agree)
     # dt_s: 0.01          (time step for a one-column file) [s]
     # station: El Centro
     # component: 180
@@ -93,7 +94,7 @@ def _one_unit(comment_lines: list[str]) -> str:
 
 
 #: Units of a length or a velocity, as a column name may end with them (``disp_mm``, ``v (cm/s)``).
-_NOT_ACCELERATION_UNITS = {"mm", "cm", "m", "in", "ft", "mm/s", "cm/s", "m/s", "in/s", "ft/s", "kine"}
+NOT_ACCELERATION_UNITS = {"mm", "cm", "m", "in", "ft", "mm/s", "cm/s", "m/s", "in/s", "ft/s", "kine"}
 _NAME_UNIT_RE = re.compile(r"(?:[_\s]|^)\(?\[?([A-Za-z/]+)\]?\)?$")
 
 
@@ -101,10 +102,46 @@ def _column_unit_problem(names: list[str]) -> str | None:
     """Words for a column named in a length or velocity unit (``acc_mm``): not an acceleration."""
     for name in names:
         match = _NAME_UNIT_RE.search(name.strip())
-        if match and match.group(1).lower() in _NOT_ACCELERATION_UNITS:
+        if match and match.group(1).lower() in NOT_ACCELERATION_UNITS:
             return (f"column '{name}' is named in {match.group(1)}, a unit of length or velocity, not of "
                     "acceleration; isolator reads accelerograms")
     return None
+
+
+#: An acceleration unit a column's name may end with (``acc_g``, ``a (cm/s2)``, ``a[m/s^2]``).
+_NAME_ACCELERATION_UNIT_RE = re.compile(r"(?:^|[_\s(\[])([A-Za-z0-9/*^\u00b2]+)[)\]]?$")
+
+
+def _column_units(name: str) -> str | None:
+    """The acceleration unit the column ``name`` is named in (``acc_g`` → ``g``), or None."""
+    match = _NAME_ACCELERATION_UNIT_RE.search(name.strip())
+    unit = match.group(1).lower().replace("\u00b2", "2") if match else ""
+    return unit if unit in ACCELERATION_UNITS_TO_M_S2 else None
+
+
+def _stated_units(comment_lines: list[str], names: list[str]) -> tuple[str, str]:
+    """The file's units and where they are stated: its ``# units:`` line or its acceleration column's name.
+
+    A column named in an acceleration unit (``acc (cm/s2)``) states the units as a ``# units:`` line does; the
+    two disagreeing (``# units: g`` over ``acc (cm/s2)``: a factor of 980) is refused, never settled by a guess.
+
+    Raises
+    ------
+    ValueError
+        Two different ``# units:`` lines, or a ``# units:`` line and a column name in different units.
+    """
+    units = _one_unit(comment_lines)
+    column = names[-1] if names else ""
+    named = _column_units(column)
+    if named is None:
+        return units, ""
+    if not units:
+        return named, f"column '{column}'"
+    stated = units.lower().replace(" ", "")
+    if ACCELERATION_UNITS_TO_M_S2.get(stated) != ACCELERATION_UNITS_TO_M_S2[named]:
+        raise ValueError(f"states its units as '# units: {units}' but names its acceleration column '{column}' "
+                         f"(in {named}): ambiguous; make them agree")
+    return units, ""
 
 
 def _numeric_fields(line: str) -> int | None:
@@ -228,10 +265,10 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
             message = message.replace("could not convert string", "non-numeric value")
             raise RecordFormatError(message) from None
     meta = _metadata(comments)
-    units = _one_unit(comments)
     problem = _column_unit_problem((names or [])[-1:])  # the acceleration column (time may be in s)
     if problem:
         raise ValueError(problem)
+    units, units_from = _stated_units(comments, names or [])
     info = AttribDict()
     info.comments = comments
     info.metadata = meta
@@ -284,6 +321,8 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     trace.stats.starttime = UTCDateTime(0) + t0_s
     if units:
         trace.stats.units = units
+        if units_from:
+            info.units_from = units_from  # stated by the column's name, not by a '# units:' line
     trace.stats.station = meta.get("station", "")[:16]
     if "component" in meta:
         info.component = meta["component"]

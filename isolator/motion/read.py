@@ -45,6 +45,12 @@ from isolator.units import STANDARD_GRAVITY, acceleration_factor_to_m_s2
 #: predominant period sit on its search floor and A0 = 0); above 0.5 s the record cannot
 #: carry ground shaking (0.1 to 25 Hz) and its spectrum would need unbounded work.
 RECORD_DT_RANGE_S = (1e-5, 0.5)
+#: The largest record file read [bytes]: 64 MiB, 2.9 times the 1,000,000-sample text record of
+#: docs/performance.md ("A long record", 23.4 MB by its command; the largest of ../shared/records is 0.27 MB).
+#: A larger file is refused from its size before any reader opens it: `info` on 100 MB of zero bytes took 39 s
+#: and 262 MB (obspy's format detection alone 5.8 s), on 8 GB it ran past 60 s and 2.9 GB (Session 15 sweep,
+#: docs/security.md).
+MAX_RECORD_BYTES = 64 * 2**20
 #: Suffixes read as plain text when no reader claims the file by content.
 TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
 #: SAC ``idep`` codes for quantities that are not acceleration.
@@ -145,11 +151,28 @@ def _select(path: Path, stream, component: str | None):
     return chosen[0]
 
 
+def _merge(path: Path, stream) -> None:
+    """``--merge``: join each channel's segments (obspy ``Stream.merge``), refusing segments of different rates.
+
+    obspy raises a bare ``Exception`` for one channel's segments at different sampling rates (a traceback
+    through ``info --merge``, Session 15 sweep): no merge can join them without resampling one, a guess.
+    """
+    rates: dict[str, set] = {}
+    for trace in stream:
+        rates.setdefault(trace.id, set()).add(float(trace.stats.sampling_rate))
+    for trace_id, found in rates.items():
+        if len(found) > 1:
+            raise _fail(path, f"channel {trace_id} has segments at different sampling rates ("
+                              + ", ".join(f"{rate:g}" for rate in sorted(found)) + " Hz): they cannot be merged "
+                              "without resampling one; give each segment in a file of its own")
+    stream.merge(method=1, fill_value="interpolate")
+
+
 def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
     gaps = stream.get_gaps()
     if not gaps:
         if len({trace.id for trace in stream}) < len(stream) and merge:
-            stream.merge(method=1, fill_value="interpolate")
+            _merge(path, stream)
             return [{"step": "merge", "method": "obspy Stream.merge(method=1, fill_value='interpolate')",
                      "gaps": 0}]
         if len({trace.id for trace in stream}) < len(stream):
@@ -164,7 +187,7 @@ def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
             f"{'.'.join(first[:4])} at {first[4]}), not merged",
             GapsError,
         )
-    stream.merge(method=1, fill_value="interpolate")
+    _merge(path, stream)
     return [{"step": "merge", "method": "obspy Stream.merge(method=1, fill_value='interpolate')",
              "gaps": len(gaps), "gap_lengths_s": [float(g[6]) for g in gaps]}]
 
@@ -187,7 +210,8 @@ def _file_units(trace) -> tuple[str | None, str]:
     if fmt == "USGS_SMC":
         return stats.units, "file format (USGS SMC corrected: cm/s2)"
     if fmt == "ISOLATOR_TEXT" and stats.get("units"):
-        return stats.units, f"file header ('# units: {stats.units}')"
+        named = stats.get("isolator_text", {}).get("units_from")
+        return stats.units, f"file header ({named})" if named else f"file header ('# units: {stats.units}')"
     if fmt == "SAC":
         stated = str(stats.sac.get("kuser0", "") or "").strip()
         if stated and stated.lower().replace(" ", "") in _known_units():
@@ -209,6 +233,13 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
     if fmt == "SAC" and int(stats.sac.get("idep", 5)) in _SAC_NOT_ACCELERATION:
         raise _fail(path, f"SAC header says the data are {_SAC_NOT_ACCELERATION[int(stats.sac.idep)]}, "
                           "not acceleration", RecordValuesError)
+    if fmt == "SAC":  # kuser0 naming a length or a velocity states the data are not accelerations, whatever --units
+        from isolator.io.text import NOT_ACCELERATION_UNITS
+
+        stated = str(stats.sac.get("kuser0", "") or "").strip()
+        if stated.lower().replace(" ", "") in NOT_ACCELERATION_UNITS:
+            raise _fail(path, f"SAC header kuser0 = {stated!r} is a unit of length or velocity: the data are not "
+                              "accelerations", RecordValuesError)
     if response is not None:
         if units is not None or counts_factor is not None:
             raise _fail(path, "an instrument response and units or a counts factor were given: one or the other, not both",
@@ -360,8 +391,13 @@ def _check_path(path: Path) -> None:
             handle.read(1)
     except OSError as err:
         raise _fail(path, f"cannot be opened: {err.strerror or err}", RecordNotFoundError) from None
-    if path.stat().st_size == 0:
+    size = path.stat().st_size
+    if size == 0:
         raise _fail(path, "file is empty", RecordNotFoundError)
+    if size > MAX_RECORD_BYTES:
+        raise _fail(path, f"is {size / 2**20:.1f} MiB, larger than any accelerogram (a 1,000,000-sample record "
+                          f"is ~23 MB as text); isolator reads record files up to {MAX_RECORD_BYTES // 2**20} MiB",
+                    RecordNotFoundError)
 
 
 def read_header(path: str | Path) -> tuple[str, dict] | None:

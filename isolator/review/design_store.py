@@ -54,8 +54,10 @@ class RowStore:
         self.directory = Path(directory)
 
     def get(self, key: str):
-        try:
-            row = json.loads((self.directory / f"{key}.json").read_text(encoding="utf-8"))
+        from isolator.atomic import MAX_CACHE_ENTRY_BYTES, read_regular_file
+
+        try:  # a FIFO or a link to /dev/zero in the store is no row, never a blocked or endless read
+            row = json.loads(read_regular_file(self.directory / f"{key}.json", MAX_CACHE_ENTRY_BYTES).decode("utf-8"))
         except (OSError, ValueError):
             return None
         return row if isinstance(row, dict) and row.get("key") == key else None

@@ -151,7 +151,8 @@ RANGES = {
     "restoring_min": Range(0.0, 1.0, "a fraction of the weight W (ASCE 7-22 17.2.4.4: 0.025)"),
     "accidental_e": Range(0.0, 0.5, "a fraction of the plan dimension (ASCE 7-22 17.5.3.3: 0.05)"),
     "D_TM_floor": Range(1.0, 2.0, "a multiple of D_M (ASCE 7-22 Eq. 17.5-3: 1.15)"),
-    "P_T_min": Range(0.0, 10.0, "a ratio of periods (ASCE 7-22 17.5.3.3: 1.0)", lo_open=True),
+    # below 0.1 the y/P_T² of Eq. 17.5-3 grows without bound: 1e-300 squared to 0, a ZeroDivisionError (Session 15)
+    "P_T_min": Range(0.1, 10.0, "a ratio of periods (ASCE 7-22 17.5.3.3: 1.0; Eq. 17.5-3 divides by its square)"),
     "Ws_over_W": Range(0.0, 1.0, "a fraction of the total weight", lo_open=True),
     "R_I": Range(1.0, 2.0, "ASCE 7-22 17.5.4.2: 1 ≤ R_I ≤ 2"),
     "importance_factor_Ie": Range(1.0, 1.5, "an importance factor (ASCE 7-22 Table 1.5-2: 1.0, 1.25 or 1.5)"),

@@ -172,13 +172,13 @@ class Cache:
         self.rejected: list[Path] = []  #: entries found damaged or edited, recomputed
 
     def get(self, key: str):
-        from isolator.atomic import digest_matches
+        from isolator.atomic import MAX_CACHE_ENTRY_BYTES, digest_matches, read_regular_file
 
         if self.directory is None:
             return None
         path = self.directory / f"{key}.json"
-        try:
-            entry = json.loads(path.read_bytes().decode("utf-8"))
+        try:  # a FIFO or a link to /dev/zero in the cache is a damaged entry, never a blocked or endless read
+            entry = json.loads(read_regular_file(path, MAX_CACHE_ENTRY_BYTES).decode("utf-8"))
         except FileNotFoundError:
             return None
         except (OSError, ValueError):
