@@ -712,6 +712,23 @@ def row_rises(yw, tp, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, rise):
 
 
 @njit(cache=True)
+def held_rises(yw, tp, fx, fy, sx, sy, f0, nm, hl, off, om, zeta, gam, qdd):
+    """The held slab's force per unit total mass, −(a_g + Σ Γ̃ q̃'') per direction (:func:`_held_force`: the row ``hl``
+    on the modes, Σ Γ̃ (ω² q̃ + 2ζω q̃'), and ``off`` = −(1 − Σ Γ̃²) a_g(τ), (o0, os) per direction), at the state yw,
+    τ = tp into a held step: (d|f|²/dτ / 2, |f|)."""
+    _modal_rates(yw, tp, fx, fy, sx, sy, f0, nm, om, zeta, gam, qdd)
+    g = 0.0
+    r2 = 0.0
+    for d in range(2):
+        v, v1, _ = _row_and_rates(yw, f0, nm, hl, d, 0, qdd)
+        v += off[d, 0] + off[d, 1] * tp
+        v1 += off[d, 1]
+        g += v * v1
+        r2 += v * v
+    return g, math.sqrt(r2)
+
+
+@njit(cache=True)
 def _near_extreme(v, high, low):
     # a signed row's value v within LOCATE_BAND of the extreme of its sign so far (``high`` ≥ 0, ``low`` ≤ 0); a row
     # at 0 is near none (a moment about the axis across a record along x is 0 throughout: its steps were all located)
@@ -746,12 +763,14 @@ def signed_rises(yw, tp, f0, nm, sgl, qdd, z0, zs, rise):
 
 
 @njit(cache=True)
-def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw, signed=False, z0=0.0, zs=0.0):
+def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw, signed=False, z0=0.0, zs=0.0,
+             off=None):
     """The maximum of watched row k's resultant between τ = lo and hi into a step from y0 (where it rises at lo and
     does not at hi): Newton on d|row|²/dτ = 0 with the rows' closed-form first and second derivatives, kept inside
     its bracket (bisection where a Newton step leaves it), to LOCATE_ROUNDING of the bracket.  ``signed``: row k of
     the signed rows ``lin`` (both directions summed, ``z0 + zs τ`` added: the vertical's share), its extreme of the
-    largest magnitude returned with its sign."""
+    largest magnitude returned with its sign.  ``off`` (2, 2), optional: per direction an offset o0 + os τ added to
+    the row (the held slab's force, :func:`held_rises`)."""
     tau = 0.5 * (lo + hi)
     width = hi - lo
     best = 0.0
@@ -770,6 +789,9 @@ def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw,
         else:
             for d in range(2):
                 v, v1, v2 = _row_and_rates(yw, f0, nm, lin, d, k, qdd)
+                if off is not None:
+                    v += off[d, 0] + off[d, 1] * tau
+                    v1 += off[d, 1]
                 g += v * v1
                 gp += v1 * v1 + v * v2
                 r2 += v * v
@@ -840,6 +862,13 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
         for d in range(2):
             sgl[d, k, :] = sig[k, d, :]
     srise0 = np.zeros((nj, 2))
+    # the held slab's force as a row (held_rises): Σ Γ̃ (ω² q̃ + 2ζω q̃') per direction, and −(1 − Σ Γ̃²) a_g's share
+    hl = np.zeros((2, 1, 2 * nm))
+    hoff = np.zeros((2, 2))
+    for d in range(2):
+        for k in range(nm):
+            hl[d, 0, k] = gam[d, k] * om[d, k] * om[d, k]
+            hl[d, 0, nm + k] = gam[d, k] * 2.0 * zeta * om[d, k]
     srise1 = np.zeros((nj, 2))
     s_last = np.zeros(nj)
     sz0 = np.zeros(nj)
@@ -1314,6 +1343,17 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
             if locate:
                 row_rises(y0, 0.0, fx, fy, slope_x, slope_y, f0, nm, lin, om, zeta, gam, qdd, rise0)
                 signed_rises(y0, 0.0, f0, nm, sgl, qdd, sz0, szs, srise0)
+            hg0 = 0.0
+            hv0 = 0.0
+            if held_step:
+                # the held slab's force, located as the rows' peaks where it turns from rising to falling near its peak
+                for d in range(2):
+                    share = 1.0
+                    for k in range(nm):
+                        share -= gam[d, k] * gam[d, k]
+                    hoff[d, 0] = -share * (fx if d == 0 else fy)
+                    hoff[d, 1] = -share * (slope_x if d == 0 else slope_y)
+                hg0, hv0 = held_rises(y0, 0.0, fx, fy, slope_x, slope_y, f0, nm, hl, hoff, om, zeta, gam, qdd)
             tp0 = 0.0
             for p in range(1, n_in + 2):
                 tp = h * p / (n_in + 1)
@@ -1327,7 +1367,17 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, 0)
                         f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
                         peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
+                if held_step:
+                    hg1, hv1 = held_rises(yw if p <= n_in else y, tp, fx, fy, slope_x, slope_y, f0, nm, hl, hoff, om,
+                                          zeta, gam, qdd)
+                    if hg0 > 0.0 >= hg1 and max(hv0, hv1) >= (1.0 - LOCATE_BAND) * peaks[nk + 2]:
+                        peaks[nk + 2] = max(peaks[nk + 2], row_peak(y0, tp0, tp, 0, fx, fy, slope_x, slope_y, f0, nm,
+                                                                     hl, om, zeta, gam, qdd, yw, False, 0.0, 0.0,
+                                                                     hoff))
+                    hg0 = hg1
+                    hv0 = hv1
                 if not locate:
+                    tp0 = tp
                     continue
                 row_rises(yw if p <= n_in else y, tp, fx, fy, slope_x, slope_y, f0, nm, lin, om, zeta, gam, qdd,
                           rise1)

@@ -112,7 +112,8 @@ def test_one_component_in_the_plane_is_the_exact_1d_building(records_dir, name, 
     assert ours.peak_displacement_m == pytest.approx(peak, rel=1e-6)
     assert ours.story_drift_m == pytest.approx(ref.story_drift_m, rel=bound["rows"])
     assert ours.floor_peak_acceleration_m_s2 == pytest.approx(ref.floor_peak_acceleration_m_s2, rel=bound["rows"])
-    assert ours.base_shear_coefficient == pytest.approx(ref.base_shear_coefficient, rel=bound["peaks"])
+    # (the base shear's peak is the held slab's force at the ultimate, located: main −6.8e-5 / −1.5e-5 at 1e-7 / 1e-8)
+    assert ours.base_shear_coefficient == pytest.approx(ref.base_shear_coefficient, rel=bound["rows"])
     assert ours.superstructure_shear_coefficient == pytest.approx(ref.superstructure_shear_coefficient,
                                                                   rel=bound["rows"])
     assert ours.surface_peak_displacement_m == pytest.approx(ref.surface_peak_displacement_m, rel=1e-6)
@@ -162,6 +163,8 @@ def test_the_arrival_at_the_ultimate_located_at_step_tol_1e_9(records_dir):
     assert _rel(ours.displacement_m[:, 0], ref.displacement_m) <= 6e-9
     moment, loads = _signed_rows(ours, ref, 1.0, 0.0)
     assert moment <= 5e-8 and loads <= 5e-8
+    # the base shear's peak, the held slab's force at the ultimate located: 2.6e-9 (main −2.4e-5, sampled)
+    assert ours.base_shear_coefficient == pytest.approx(ref.base_shear_coefficient, rel=2e-8)
 
 
 @pytest.fixture(scope="module")
