@@ -18,7 +18,8 @@ Not modelled, each refused in one line: the bearing lifting off (n ≤ 0), µ(v)
 modes), static friction above kinetic on a double or triple (a single surface's µs is modelled: held at rest inside µs, sliding at µk).
 
 Outputs: the 2-D building's keys (:class:`~isolator.solver.planar_building.PlanarBuildingResponse`: resultant story
-drifts, floor accelerations, shears, bearing loads — here taken at the steps' ends) and the bearing's
+drifts, floor accelerations, the first story's shear, the overturning moments and bearing loads — their extremes
+located inside the steps; the base shear at the steps' ends and watch points) and the bearing's
 (:class:`~isolator.solver.building_multisurface.BuildingMultisurfaceResponse`'s: surface peaks, regimes, rim
 contacts, the ultimate and its impulse).
 """
@@ -65,8 +66,9 @@ FLOOR_SCALE = 1.0
 class PlanarBuildingMultisurfaceResponse(BearingFields, PlanarBuildingResponse):
     """Response of a shear building on a double or triple friction pendulum to a pair (``2d-building-multisurface``).
 
-    The fields of :class:`~isolator.solver.planar_building.PlanarBuildingResponse` (the peaks taken at the implicit
-    steps' ends, not located between them) and the bearing's, as in
+    The fields of :class:`~isolator.solver.planar_building.PlanarBuildingResponse` (the floors' peaks and the signed
+    rows' extremes located inside the implicit steps, the base shear at their ends and watch points) and the
+    bearing's, as in
     :class:`~isolator.solver.building_multisurface.BuildingMultisurfaceResponse`.  The balance ``input = kinetic +
     strain + stored + friction + viscous + impact`` holds to ``energy_balance_error_J_per_kg`` (the steps' own
     numerical dissipation, measured in docs/building.md).

@@ -37,9 +37,12 @@ steps book them for the slab; a step with an impact books its whole energy defec
 
 The steps are taken as the rigid block's are (h, then two halves; Richardson where the same groups slid and the
 velocity kept its sense; the local error on the slab's X, V and on the floors' modal displacements and velocities,
-each on its own scale).  Not taken over from the rigid block's loop: the exact hold at rest and its break-away
-(the floors keep moving while the slab is stuck; a stuck step costs one force test and its error is nil, so the
-steps grow to the sample interval), and the arrival at the ultimate as an event (``arrive``).
+each on its own scale; a step whose groups' slip turns by more than SLIP_TURN is retried shorter, as the rigid block's).
+Not taken over from the rigid block's loop: the exact hold at rest and its break-away (the floors keep moving while
+the slab is stuck; a stuck step costs one force test and its error is nil, so the steps grow to the sample interval).
+The arrival at the ultimate is the rigid block's: from groups off their rims it is located by bisection with their
+rims lifted (:func:`locate_arrival_floors`) and the impact taken there on the slab alone
+(:func:`arrival_impact_floors`); with every group on its rim closing into alignment it is the move ``arrive``.
 
 **Events located inside a step** (step doubling cannot see an event in a step's first half: the full step and
 the first half both take it whole).  A step whose velocity turns back or vanishes (a reversal, a stop) is cut where
@@ -98,6 +101,7 @@ from isolator.solver.planar_multisurface_stepper import (
     S_N_RIM_CONTACTS,
     S_N_ULTIMATE,
     S_PEAK_R,
+    SLIP_TURN,
     STATUS_UNSOLVED,
     STATUS_WORK,
     UNSOLVED,
@@ -109,6 +113,8 @@ from isolator.solver.planar_multisurface_stepper import (
     Y_V,
     Y_X,
     accept_step,
+    arrival_impact,
+    arrival_next,
     arrival_step,
     arrive,
     at_ultimate,
@@ -116,6 +122,7 @@ from isolator.solver.planar_multisurface_stepper import (
     carry_slot,
     groups_within_rims,
     popcount,
+    slip_turn,
     ultimate_impact,
     vertical_work,
     work_bound,
@@ -334,6 +341,115 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
 
 
 @njit(cache=True)
+def building_solves(y, h, tau, raw, c, rb, mu, rim, r, y1, yh, y2, r1, rh, r2, ult, floors):
+    """The step's three solves (:func:`building_step`: the whole step of h from y into y1, its halves into yh and y2,
+    forces into r1, rh, r2), as the rigid block's :func:`~isolator.solver.planar_multisurface_stepper.three_solves`
+    with its arguments (``raw`` = a_x, its slope, a_y, its slope, n, its slope at the sample interval's start; τ [s]
+    into it) and ``floors`` = (ω, ζ, Γ̃) of the floors' modes: the ground's acceleration from each solve's start and
+    its slope, n at each solve's middle, the vertical's work booked (:func:`vertical_work`).  Returns the masks."""
+    om, zeta, gam = floors
+    a0x = raw[0] + raw[1] * tau
+    a0y = raw[2] + raw[3] * tau
+    m1 = building_step(y, h, a0x, a0y, raw[1], raw[3], raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, om, zeta,
+                       gam, r, y1, r1, ult)
+    mh = building_step(y, 0.5 * h, a0x, a0y, raw[1], raw[3], raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, om,
+                       zeta, gam, r1, yh, rh, ult)
+    if raw[5] != 0.0:
+        vertical_work(y, y1, rb, raw[5] * h)
+        vertical_work(y, yh, rb, 0.5 * raw[5] * h)
+    m2 = building_step(yh, 0.5 * h, raw[0] + raw[1] * (tau + 0.5 * h), raw[2] + raw[3] * (tau + 0.5 * h), raw[1],
+                       raw[3], raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, om, zeta, gam, rh, y2, r2, ult)
+    if raw[5] != 0.0:
+        vertical_work(yh, y2, rb, 0.5 * raw[5] * h)
+    return m1, mh, m2
+
+
+@njit(cache=True)
+def building_error(y1, y2, m1, mh, m2, ng, nm, xs, vs, qs, qds):
+    """The step's local error estimate in units of the tolerance: the whole step y1 against its halves y2 in the
+    slab's X and V (``xs``, ``vs`` [m, m/s]), the floors' modal q̃ and q̃' (``qs``, ``qds``) and the groups' split of
+    X (``xs``), except between groups that slide along their rims in all three solves (below)."""
+    f0 = carry_slot(ng) + 1
+    low = (1 << ng) - 1
+    err = 0.0
+    for j in range(2):
+        err = max(err, abs(y2[Y_X + j] - y1[Y_X + j]) / xs, abs(y2[Y_V + j] - y1[Y_V + j]) / vs)
+    for j in range(2):
+        for k in range(nm):
+            jj = f0 + 2 * nm * j + k
+            err = max(err, abs(y2[jj] - y1[jj]) / qs, abs(y2[jj + nm] - y1[jj + nm]) / qds)
+    # the groups' split of X, except between groups that slide along their rims in all three solves when two
+    # or more do (or every group does, as the rigid block's steps), whatever the others do: the force sits on
+    # their friction edges at once (each pair of them fixes r), their split is slaved to the motion and
+    # relaxes as fast as the steps' α, and the full and half steps differ in it at first order (Chuetsu-oki
+    # 65025 ×1.556 under F&C's TFP with 5 floors, 26.459 s: two groups 6° apart on their rims and the inner
+    # one sliding; the split 0.81 of the tolerance in every step, X 2e-4 and V 9e-5 of theirs, the steps
+    # pinned at 1.1e-6 s until the work bound; then 31.209 s: all three on their rims, the inner one sliding
+    # in one solve of three).  On the rims |ū_k| = c̄_k: the stored energy does not depend on that split, and
+    # the friction work it does is in the balance
+    along = m1 & mh & m2 & (m1 >> ng) & (mh >> ng) & (m2 >> ng) & low
+    if popcount(along) >= 2:
+        # with them, the split of every group on its rim in all three solves, sliding along it in some and
+        # held by it in others (at its friction limit along the rim: the slip one solve makes and another
+        # does not is first order in h, so the error stayed at 1.25 of the tolerance as h fell — Chuetsu-oki
+        # 65025 ×1.5562, the review's nominal bound, 31.560–31.5654 s: the outer groups sliding along their
+        # rims, the inner group on its rim held in the full step and sliding in the second half, masks
+        # 61/61/63 in 5,133 of 6,525 steps of ~3.5e-6 s until the work bound; h112)
+        along = (m1 >> ng) & (mh >> ng) & (m2 >> ng) & low
+    elif not (m1 == mh and mh == m2 and m2 == (low << ng | low)):
+        along = 0
+    for k in range(ng):
+        if not along >> k & 1:
+            err = max(err, abs(y2[Y_U + 2 * k] - y1[Y_U + 2 * k]) / xs,
+                      abs(y2[Y_U + 2 * k + 1] - y1[Y_U + 2 * k + 1]) / xs)
+    return err
+
+
+@njit(cache=True)
+def locate_arrival_floors(y, h, tau, raw, c, rb, mu, rim, rim_free, free, r, y1, yh, y2, r1, rh, r2, floors):
+    """The rigid block's :func:`~isolator.solver.planar_multisurface_stepper.locate_arrival` (the same arguments) with
+    the building's three solves (:func:`building_solves`, ``floors`` = (ω, ζ, Γ̃)): the length of the step from y to
+    the instant a group of ``free`` reaches its rim (``rim_free``: their rims lifted), by bisection on its length to its
+    last bit (its trials and bracket :func:`~isolator.solver.planar_multisurface_stepper.arrival_next`'s); 0 when the
+    lifted step of h does not reach a rim.  The second return is the evaluations of Ψ's gradient it took."""
+    lo = 0.0
+    s = h
+    work = 0.0
+    for d in range(200):  # the length's binary digits (arrival_next ends the search)
+        m1, mh, m2 = building_solves(y, s, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, 0, floors)
+        work += r1[2] + rh[2] + r2[2]
+        lo, s = arrival_next(lo, s, h, d, m1, mh, m2, y1, y2, rim, free)
+        if s < 0.0:
+            break
+    return lo, work
+
+
+@njit(cache=True)
+def arrival_impact_floors(y, rim, free, g, rb, om, gam):
+    """The plastic impact at a located arrival at the ultimate on the slab alone
+    (:func:`~isolator.solver.planar_multisurface_stepper.arrival_impact`: the groups in ``free`` put on their rims,
+    the slab's outward velocity V·ē removed), the floors keeping their absolute velocities (q̃' −= Γ̃ ΔV) and the
+    kinetic energy the impact took booked as the impact's (per unit total mass: (m_b/M) (V·ē)²/2, taken as the
+    change of :func:`total_energy`, ``g`` the normal force per unit mass).  Returns arrival_impact's V·ē (-1: not at
+    the ultimate)."""
+    nm = om.shape[1]
+    f0 = carry_slot(rb.shape[0]) + 1
+    e_before = total_energy(y, g, rb, om, gam)
+    e_imp = y[Y_EIMP]
+    v1 = y[Y_V]
+    v2 = y[Y_V + 1]
+    vn = arrival_impact(y, rim, free)
+    y[Y_EIMP] = e_imp
+    if vn > 0.0:
+        for d in range(2):
+            dv = y[Y_V + d] - (v1 if d == 0 else v2)
+            for i in range(nm):
+                y[f0 + 2 * nm * d + nm + i] -= gam[d, i] * dv
+        y[Y_EIMP] += e_before - total_energy(y, g, rb, om, gam)
+    return vn
+
+
+@njit(cache=True)
 def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rout):
     """The last ``dt`` before the ultimate as one move and the impact (the rigid block's ``arrive`` and
     ``ultimate_impact``), the floors carried over dt with ẍ_b = 0 and then keeping their absolute velocities through
@@ -490,14 +606,22 @@ def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z, az):
     for k in range(lin.shape[1]):
         peaks[2 + k] = max(peaks[2 + k], math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]))
     for k in range(sig.shape[0]):
-        acc = 0.0
-        for d in range(2):
-            for j in range(2 * nm):
-                acc += sig[k, d, j] * y[f0 + 2 * nm * d + j]
-        if az != 0.0:
-            acc += sig_z[k] * az
+        acc = signed_row(y, f0, nm, sig, k, sig_z, az)
         sig_max[k] = max(sig_max[k], acc)
         sig_min[k] = min(sig_min[k], acc)
+
+
+@njit(cache=True)
+def signed_row(y, f0, nm, sig, k, sig_z, az):
+    """Signed row k (an overturning moment, a bearing's axial load change) at the state y, the vertical's share
+    ``sig_z[k]`` a_z added (a_z = ``az``)."""
+    acc = 0.0
+    for d in range(2):
+        for j in range(2 * nm):
+            acc += sig[k, d, j] * y[f0 + 2 * nm * d + j]
+    if az != 0.0:
+        acc += sig_z[k] * az
+    return acc
 
 
 @njit(cache=True)
@@ -588,10 +712,65 @@ def row_rises(yw, tp, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, rise):
 
 
 @njit(cache=True)
-def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw):
+def held_rises(yw, tp, fx, fy, sx, sy, f0, nm, hl, off, om, zeta, gam, qdd):
+    """The held slab's force per unit total mass, −(a_g + Σ Γ̃ q̃'') per direction (:func:`_held_force`: the row ``hl``
+    on the modes, Σ Γ̃ (ω² q̃ + 2ζω q̃'), and ``off`` = −(1 − Σ Γ̃²) a_g(τ), (o0, os) per direction), at the state yw,
+    τ = tp into a held step: (d|f|²/dτ / 2, |f|)."""
+    _modal_rates(yw, tp, fx, fy, sx, sy, f0, nm, om, zeta, gam, qdd)
+    g = 0.0
+    r2 = 0.0
+    for d in range(2):
+        v, v1, _ = _row_and_rates(yw, f0, nm, hl, d, 0, qdd)
+        v += off[d, 0] + off[d, 1] * tp
+        v1 += off[d, 1]
+        g += v * v1
+        r2 += v * v
+    return g, math.sqrt(r2)
+
+
+@njit(cache=True)
+def _near_extreme(v, high, low):
+    # a signed row's value v within LOCATE_BAND of the extreme of its sign so far (``high`` ≥ 0, ``low`` ≤ 0); a row
+    # at 0 is near none (a moment about the axis across a record along x is 0 throughout: its steps were all located)
+    if v > 0.0:
+        return v >= (1.0 - LOCATE_BAND) * high
+    return v < 0.0 and v <= (1.0 - LOCATE_BAND) * low
+
+
+@njit(cache=True)
+def _signed_and_rates(yw, f0, nm, sgl, k, qdd, z0, zs, tp):
+    # signed row k (sgl: the signed rows in the watched rows' layout, per direction) at yw, τ = tp, its first and second
+    # derivatives (qdd: _modal_rates'), the vertical's share z0 + zs τ added
+    v = z0 + zs * tp
+    v1 = zs
+    v2 = 0.0
+    for d in range(2):
+        a, a1, a2 = _row_and_rates(yw, f0, nm, sgl, d, k, qdd)
+        v += a
+        v1 += a1
+        v2 += a2
+    return v, v1, v2
+
+
+@njit(cache=True)
+def signed_rises(yw, tp, f0, nm, sgl, qdd, z0, zs, rise):
+    """Each signed row's (s ds/dτ, s) at the state yw, τ = tp into the step, after :func:`row_rises` there (its modal
+    rates ``qdd``): |s| rises where the first is positive.  ``z0 + zs τ`` per row: the vertical's share."""
+    for k in range(sgl.shape[1]):
+        v, v1, _ = _signed_and_rates(yw, f0, nm, sgl, k, qdd, z0[k], zs[k], tp)
+        rise[k, 0] = v * v1
+        rise[k, 1] = v
+
+
+@njit(cache=True)
+def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw, signed=False, z0=0.0, zs=0.0,
+             off=None):
     """The maximum of watched row k's resultant between τ = lo and hi into a step from y0 (where it rises at lo and
     does not at hi): Newton on d|row|²/dτ = 0 with the rows' closed-form first and second derivatives, kept inside
-    its bracket (bisection where a Newton step leaves it), to LOCATE_ROUNDING of the bracket."""
+    its bracket (bisection where a Newton step leaves it), to LOCATE_ROUNDING of the bracket.  ``signed``: row k of
+    the signed rows ``lin`` (both directions summed, ``z0 + zs τ`` added: the vertical's share), its extreme of the
+    largest magnitude returned with its sign.  ``off`` (2, 2), optional: per direction an offset o0 + os τ added to
+    the row (the held slab's force, :func:`held_rises`)."""
     tau = 0.5 * (lo + hi)
     width = hi - lo
     best = 0.0
@@ -601,12 +780,22 @@ def row_peak(y0, lo, hi, k, fx, fy, sx, sy, f0, nm, lin, om, zeta, gam, qdd, yw)
         g = 0.0
         gp = 0.0
         r2 = 0.0
-        for d in range(2):
-            v, v1, v2 = _row_and_rates(yw, f0, nm, lin, d, k, qdd)
-            g += v * v1
-            gp += v1 * v1 + v * v2
-            r2 += v * v
-        best = max(best, math.sqrt(r2))
+        if signed:
+            v, v1, v2 = _signed_and_rates(yw, f0, nm, lin, k, qdd, z0, zs, tau)
+            g = v * v1
+            gp = v1 * v1 + v * v2
+            if abs(v) > abs(best):
+                best = v
+        else:
+            for d in range(2):
+                v, v1, v2 = _row_and_rates(yw, f0, nm, lin, d, k, qdd)
+                if off is not None:
+                    v += off[d, 0] + off[d, 1] * tau
+                    v1 += off[d, 1]
+                g += v * v1
+                gp += v1 * v1 + v * v2
+                r2 += v * v
+            best = max(best, math.sqrt(r2))
         if g > 0.0:
             lo = tau
         else:
@@ -636,8 +825,8 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     ``lin`` (rows, 2 n_modes) the watched rows per direction on (q̃, q̃'), ``sig`` (rows, 2, 2 n_modes) the signed
     rows on both directions; ``scales`` = (displacement floor [m], velocity floor [m/s]) of the error norm.
     Outputs: the state and the force r/W at the samples; ``peaks`` = (|X|, |V|, the watched rows' resultants —
-    their maxima located inside the steps, :func:`row_peak` —, |g r + c V|); the signed rows' extremes (at the steps'
-    ends and watch points); the stepper's summary slots.
+    their maxima located inside the steps, :func:`row_peak` —, |g r + c V|); the signed rows' extremes (located as
+    the watched rows' peaks, :func:`row_peak` with ``signed``); the stepper's summary slots.
 
     ``mu_s`` the groups' static friction (≥ ``mu``; equal: kinetic friction throughout, the steps unchanged).  Above
     ``mu`` (module docstring, Static friction): the slab at rest is held while the force it needs stays inside the
@@ -666,7 +855,35 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     rise0 = np.zeros((nk, 2))
     rise1 = np.zeros((nk, 2))
     r_last = np.zeros(nk)
+    # the signed rows located as the watched rows' peaks: in the watched rows' layout (sgl[d, k] = sig[k, d]), their
+    # (s ds/dτ, s) at the watch points, their values at the last step's end, the vertical's share at the step's start
+    sgl = np.zeros((2, nj, 2 * nm))
+    for k in range(nj):
+        for d in range(2):
+            sgl[d, k, :] = sig[k, d, :]
+    srise0 = np.zeros((nj, 2))
+    # the held slab's force as a row (held_rises): Σ Γ̃ (ω² q̃ + 2ζω q̃') per direction, and −(1 − Σ Γ̃²) a_g's share
+    hl = np.zeros((2, 1, 2 * nm))
+    hoff = np.zeros((2, 2))
+    for d in range(2):
+        for k in range(nm):
+            hl[d, 0, k] = gam[d, k] * om[d, k] * om[d, k]
+            hl[d, 0, nm + k] = gam[d, k] * 2.0 * zeta * om[d, k]
+    srise1 = np.zeros((nj, 2))
+    s_last = np.zeros(nj)
+    sz0 = np.zeros(nj)
+    szs = np.zeros(nj)
     low = (1 << ng) - 1
+    raw = np.zeros(6)  # the sample interval's a_x, its slope, a_y, its slope, n, its slope (building_solves)
+    floors = (om, zeta, gam)
+    # the located arrival at the ultimate (locate_arrival_by): its three solves, their combination, the lifted rims
+    ya1 = np.zeros(ny)
+    yah = np.zeros(ny)
+    ya2 = np.zeros(ny)
+    ya = np.zeros(ny)
+    rl = np.zeros(R_SIZE + 2 * nm * TABLE_SIZE)
+    rim_free = np.zeros(ng)
+    qlast = np.zeros((ng, 2))  # each group's slip over the last accepted step (slip_turn)
     ne = members.shape[0]
     for j in range(first.shape[0]):
         first[j] = -1.0
@@ -720,6 +937,12 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
         slope_y = (ay[i + 1] - ay[i]) / hi
         slope_z = (nz[i + 1] - nz[i]) / hi
         slope_az = (az[i + 1] - az[i]) / hi
+        raw[0] = ax[i]
+        raw[1] = slope_x
+        raw[2] = ay[i]
+        raw[3] = slope_y
+        raw[4] = nz[i]
+        raw[5] = slope_z
         tau = 0.0
         h_floor = H_MIN_FRACTION * hi
         h = hi if (h_sugg <= 0.0 or h_sugg > hi) else h_sugg
@@ -760,19 +983,9 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     vertical_work(y, y2, rb, slope_z * h)
                     r2[0] = -(a0x + h * slope_x) / (nz[i] + slope_z * (tau + h))
                     r2[1] = -(a0y + h * slope_y) / (nz[i] + slope_z * (tau + h))
+                m2 = mh
             else:
-                m1 = building_step(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.5 * h), c, rb, mu_now,
-                                   rim, om, zeta, gam, r, y1, r1, ult)
-                mh = building_step(y, 0.5 * h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * (tau + 0.25 * h), c, rb,
-                                   mu_now, rim, om, zeta, gam, r1, yh, rh, ult)
-                if slope_z != 0.0:
-                    vertical_work(y, y1, rb, slope_z * h)
-                    vertical_work(y, yh, rb, 0.5 * slope_z * h)
-            m2 = mh if jump else building_step(
-                yh, 0.5 * h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), slope_x, slope_y,
-                nz[i] + slope_z * (tau + 0.75 * h), c, rb, mu_now, rim, om, zeta, gam, rh, y2, r2, ult)
-            if slope_z != 0.0 and not jump:
-                vertical_work(yh, y2, rb, 0.5 * slope_z * h)
+                m1, mh, m2 = building_solves(y, h, tau, raw, c, rb, mu_now, rim, r, y1, yh, y2, r1, rh, r2, ult, floors)
             if jump:
                 for j in range(ny):
                     y1[j] = y2[j]
@@ -825,8 +1038,11 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     started = True
                     continue
             rims0 = _rim_bits(y, rim)
-            if ((r1[R_IMPULSE] > 0.0 or (m1 >> ng) & ~rims0 & away) and not arrival and h > 4.0 * h_floor
-                    and not (m1 | mh | m2) & UNSOLVED):
+            # the step reaches the ultimate from groups off their rims (an impact booked in a solve): its arrival is
+            # located after the step's error test (locate_arrival_by, below), as the rigid block's
+            reach = ult == 0 and rims0 != low and r1[R_IMPULSE] + rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0 and not jump
+            if ((r1[R_IMPULSE] > 0.0 or (m1 >> ng) & ~rims0 & away) and not reach and not arrival
+                    and h > 4.0 * h_floor and not (m1 | mh | m2) & UNSOLVED):
                 # the step brings a group onto its rim (or the bearing to its ultimate): the rim's reaction acts over
                 # the whole step — at the ultimate the floors would see the impact as a pulse of that length, and at
                 # any rim the reaction's work ν·δ over the step's slip (g ν δ, ν the force's jump to the next surface)
@@ -839,9 +1055,9 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # m/s, 2e-9 of the peak by the record's end).  Only an arrival from away (off the rim by more than
                 # RIM_AWAY, as a rim contact is counted): a group turning on its rim touches it in nearly every step
                 # (Chuetsu-oki 65025 with F&C's TFP: the work bound at 26.46 s otherwise).  The ultimate's arrival
-                # (an impact in the step) is bisected to the floor only: the rigid block's arrival event takes it
-                # from there (to rounding, Kobe KJM ×1.6 on the small TFP erred by 3.7e-8 of the peak instead of
-                # 1.8e-8 at step_tol 1e-8)
+                # from groups off their rims is located below (``reach``); one from groups on their rims (an impact
+                # in a step that started at the ultimate's classification) is bisected to the floor only: the rigid
+                # block's arrival event takes it from there
                 lo = 0.0
                 up = h
                 bracket = h_floor if r1[R_IMPULSE] > 0.0 else 0.0
@@ -873,37 +1089,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
             vs = tol * max(peak_v, v_floor)
             qs = tol * max(peak_q, floor_rel * peak_x, q_floor)
             qds = tol * max(peak_qd, floor_rel * peak_v, qd_floor)
-            err = 0.0
-            for j in range(2):
-                err = max(err, abs(y2[Y_X + j] - y1[Y_X + j]) / xs, abs(y2[Y_V + j] - y1[Y_V + j]) / vs)
-            for j in range(2):
-                for k in range(nm):
-                    jj = f0 + 2 * nm * j + k
-                    err = max(err, abs(y2[jj] - y1[jj]) / qs, abs(y2[jj + nm] - y1[jj + nm]) / qds)
-            # the groups' split of X, except between groups that slide along their rims in all three solves when two
-            # or more do (or every group does, as the rigid block's steps), whatever the others do: the force sits on
-            # their friction edges at once (each pair of them fixes r), their split is slaved to the motion and
-            # relaxes as fast as the steps' α, and the full and half steps differ in it at first order (Chuetsu-oki
-            # 65025 ×1.556 under F&C's TFP with 5 floors, 26.459 s: two groups 6° apart on their rims and the inner
-            # one sliding; the split 0.81 of the tolerance in every step, X 2e-4 and V 9e-5 of theirs, the steps
-            # pinned at 1.1e-6 s until the work bound; then 31.209 s: all three on their rims, the inner one sliding
-            # in one solve of three).  On the rims |ū_k| = c̄_k: the stored energy does not depend on that split, and
-            # the friction work it does is in the balance
-            along = m1 & mh & m2 & (m1 >> ng) & (mh >> ng) & (m2 >> ng) & low
-            if popcount(along) >= 2:
-                # with them, the split of every group on its rim in all three solves, sliding along it in some and
-                # held by it in others (at its friction limit along the rim: the slip one solve makes and another
-                # does not is first order in h, so the error stayed at 1.25 of the tolerance as h fell — Chuetsu-oki
-                # 65025 ×1.5562, the review's nominal bound, 31.560–31.5654 s: the outer groups sliding along their
-                # rims, the inner group on its rim held in the full step and sliding in the second half, masks
-                # 61/61/63 in 5,133 of 6,525 steps of ~3.5e-6 s until the work bound; h112)
-                along = (m1 >> ng) & (mh >> ng) & (m2 >> ng) & low
-            elif not (m1 == mh and mh == m2 and m2 == (low << ng | low)):
-                along = 0
-            for k in range(ng):
-                if not along >> k & 1:
-                    err = max(err, abs(y2[Y_U + 2 * k] - y1[Y_U + 2 * k]) / xs,
-                              abs(y2[Y_U + 2 * k + 1] - y1[Y_U + 2 * k + 1]) / xs)
+            err = building_error(y1, y2, m1, mh, m2, ng, nm, xs, vs, qs, qds)
             n_steps += 1
             if err > 1.0:
                 if not at_floor:
@@ -913,6 +1099,14 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 n_floor += 1
             impacted = r1[R_IMPULSE] + rh[R_IMPULSE] + r2[R_IMPULSE] > 0.0
             turned = y[Y_V] * y2[Y_V] + y[Y_V + 1] * y2[Y_V + 1]
+            if not (jump or at_floor) and turned > 0.0:
+                # a group's slip turning inside the step by more than SLIP_TURN: retried shorter (the rigid block's
+                # rule, planar_multisurface_stepper.slip_turn)
+                turn = slip_turn(y, yh, y2, qlast, mh & m2 & low)
+                if turn > SLIP_TURN:
+                    n_rej += 1
+                    h = max(h * max(0.1, 0.9 * SLIP_TURN / turn), h_floor)
+                    continue
             if (not held_s and stop_h != h and not jump and not impacted and not at_rest
                     and (turned < 0.0 or (turned == 0.0 and not (static or m2 & low)))):
                 # sliding under static friction, the velocity turned back within the step: it passed through zero,
@@ -962,9 +1156,66 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         h = cut
                         stop_h = cut
                         continue
+            dv_imp_x = 0.0  # the velocity a located impact took from the slab at the step's end (the rows' forcing)
+            dv_imp_y = 0.0
+            f_arr = -1.0  # the isolator's force per unit total mass at a located arrival, before its impact
+            if reach:
+                # the step reached the ultimate: taken at its end, the impulse was the velocity change of a step
+                # ending on the rims, the finite force over the step counted in it (Kobe KJM ×1.6 on the small TFP,
+                # 3.2375 s: 2.6e-8 / 4.6e-8 of the 1-D building's impulse at step_tol 1e-8 / 1e-9, not falling).  The
+                # arrival located as the rigid block's (planar_multisurface_stepper: locate_arrival, arrival_impact):
+                # the three solves with the arriving groups' rims lifted, their combination on the rim by bisection
+                # on the step's length, the impulse the slab's outward velocity there, the floors keeping theirs
+                for k in range(ng):
+                    rim_free[k] = math.inf if (low & ~rims0) >> k & 1 else rim[k]
+                lo, w_arr = locate_arrival_floors(y, h, tau, raw, c, rb, mu_now, rim, rim_free, low & ~rims0, r, ya1,
+                                                  yah, ya2, r1, rh, rl, floors)
+                work += w_arr
+                if lo > 0.0:
+                    m1a, mha, m2a = building_solves(y, lo, tau, raw, c, rb, mu_now, rim_free, r, ya1, yah, ya2, r1, rh,
+                                                    rl, 0, floors)
+                    for j in range(ny):
+                        ya[j] = y[j]
+                    accept_step(ya, ya1, ya2, ny, f0 - 1, ng, rim, m1a, mha, m2a, False, True)
+                    v_x = ya[Y_V]
+                    v_y = ya[Y_V + 1]
+                    vn = arrival_impact_floors(ya, rim, low & ~rims0, nz[i] + slope_z * (tau + lo), rb, om, gam)
+                    if vn >= 0.0:
+                        err_a = building_error(ya1, ya2, m1a, mha, m2a, ng, nm, xs, vs, qs, qds)
+                        if err_a > 1.0 and not at_floor:
+                            n_rej += 1
+                            h = max(lo * max(0.1, 0.9 / math.sqrt(err_a)), h_floor)
+                            continue
+                        err = err_a
+                        last_step = last_step and lo == h
+                        h = lo
+                        m1 = m1a
+                        mh = mha
+                        m2 = (m2a & low) | _rim_bits(ya, rim) << ng
+                        r1[R_IMPULSE] = 0.0
+                        rh[R_IMPULSE] = 0.0
+                        r2[R_IMPULSE] = vn
+                        r2[0] = rl[0]
+                        r2[1] = rl[1]
+                        impacted = vn > 0.0
+                        dv_imp_x = ya[Y_V] - v_x
+                        dv_imp_y = ya[Y_V + 1] - v_y
+                        # the surfaces' force as the groups arrive (the impulse then takes the step's end): the
+                        # force's peak is there on the way to the ultimate
+                        n_arr = nz[i] + slope_z * (tau + lo)
+                        f_arr = math.hypot(n_arr * rl[0] + c * v_x, n_arr * rl[1] + c * v_y)
+                        peak_r = max(peak_r, math.hypot(rl[0], rl[1]))
+                    else:
+                        reach = False
+                else:
+                    reach = False
             for j in range(ny):
                 y0[j] = y[j]
-            accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted, True)
+            if reach:
+                for j in range(ny):
+                    y[j] = ya[j]
+            else:
+                accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted, True)
             r[0] = r2[0]
             r[1] = r2[1]
             if stop_h == h:
@@ -976,6 +1227,10 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         y[f0 + 2 * nm * d + nm + k] += gam[d, k] * y[Y_V + d]
                     y[Y_V + d] = 0.0
                 y[Y_EF] += e_before - total_energy(y, nz[i], rb, om, gam)
+            for k in range(ng):  # each group's slip over the accepted step (slip_turn); none after a stop or an impact
+                slid = stop_h != h and y[Y_EIMP] == y0[Y_EIMP] and (m1 | m2) >> k & 1
+                qlast[k, 0] = y[Y_U + 2 * k] - y0[Y_U + 2 * k] if slid else 0.0
+                qlast[k, 1] = y[Y_U + 2 * k + 1] - y0[Y_U + 2 * k + 1] if slid else 0.0
             stop_h = -1.0
             if static:
                 if y[Y_V] == 0.0 and y[Y_V + 1] == 0.0:
@@ -1016,6 +1271,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
             fr = math.sqrt(r[0] * r[0] + r[1] * r[1])
+            peaks[nk + 2] = max(peaks[nk + 2], f_arr)
             if not impulsive:
                 # the surfaces' force (at the ultimate the rims' reaction left out, as the rigid block's); the isolator
                 # force on the slab with it: held at the ultimate the bearing holds the slab against the floors
@@ -1041,6 +1297,12 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         a_cap += vn * vn / xn
                     f_abs = min(f_abs, a_cap)
                 peaks[nk + 2] = max(peaks[nk + 2], f_abs)
+            elif y[Y_V] == 0.0 and y[Y_V + 1] == 0.0:
+                # the slab stopped by the impact, held at the ultimate: the bearing's force is what it needs there,
+                # −(a_g + Σ Γ̃ q̃''), the floors' dampers at their velocities just after the impact
+                h1 = _held_force(y, f0, nm, ax[i] + slope_x * tau, om, zeta, gam, 0)
+                h2 = _held_force(y, f0, nm, ay[i] + slope_y * tau, om, zeta, gam, 1)
+                peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(h1 * h1 + h2 * h2))
             peak_x = max(peak_x, math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2))
             peak_v = max(peak_v, math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2))
             for j in range(2):
@@ -1066,12 +1328,32 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     if max(math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]), r_last[k]) >= (
                             1.0 - LOCATE_BAND) * peaks[2 + k]:
                         near = True
+                for k in range(nj):
+                    v = signed_row(y, f0, nm, sig, k, sig_z, az[i] + slope_az * tau)
+                    if (_near_extreme(v, sig_max[k], sig_min[k])
+                            or _near_extreme(s_last[k], sig_max[k], sig_min[k])):
+                        near = True
                 locate = near
             # the forcing a_g + ẍ_b at the step's start per direction
-            fx = ax[i] + slope_x * (tau - h) + (y[Y_V] - y0[Y_V]) / h
-            fy = ay[i] + slope_y * (tau - h) + (y[Y_V + 1] - y0[Y_V + 1]) / h
+            fx = ax[i] + slope_x * (tau - h) + (y[Y_V] - dv_imp_x - y0[Y_V]) / h
+            fy = ay[i] + slope_y * (tau - h) + (y[Y_V + 1] - dv_imp_y - y0[Y_V + 1]) / h
+            for k in range(nj):  # the vertical's share of the signed rows over the step: z0 + zs τ
+                sz0[k] = sig_z[k] * (az[i] + slope_az * (tau - h))
+                szs[k] = sig_z[k] * slope_az
             if locate:
                 row_rises(y0, 0.0, fx, fy, slope_x, slope_y, f0, nm, lin, om, zeta, gam, qdd, rise0)
+                signed_rises(y0, 0.0, f0, nm, sgl, qdd, sz0, szs, srise0)
+            hg0 = 0.0
+            hv0 = 0.0
+            if held_step:
+                # the held slab's force, located as the rows' peaks where it turns from rising to falling near its peak
+                for d in range(2):
+                    share = 1.0
+                    for k in range(nm):
+                        share -= gam[d, k] * gam[d, k]
+                    hoff[d, 0] = -share * (fx if d == 0 else fy)
+                    hoff[d, 1] = -share * (slope_x if d == 0 else slope_y)
+                hg0, hv0 = held_rises(y0, 0.0, fx, fy, slope_x, slope_y, f0, nm, hl, hoff, om, zeta, gam, qdd)
             tp0 = 0.0
             for p in range(1, n_in + 2):
                 tp = h * p / (n_in + 1)
@@ -1085,10 +1367,21 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, 0)
                         f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
                         peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
+                if held_step:
+                    hg1, hv1 = held_rises(yw if p <= n_in else y, tp, fx, fy, slope_x, slope_y, f0, nm, hl, hoff, om,
+                                          zeta, gam, qdd)
+                    if hg0 > 0.0 >= hg1 and max(hv0, hv1) >= (1.0 - LOCATE_BAND) * peaks[nk + 2]:
+                        peaks[nk + 2] = max(peaks[nk + 2], row_peak(y0, tp0, tp, 0, fx, fy, slope_x, slope_y, f0, nm,
+                                                                     hl, om, zeta, gam, qdd, yw, False, 0.0, 0.0,
+                                                                     hoff))
+                    hg0 = hg1
+                    hv0 = hv1
                 if not locate:
+                    tp0 = tp
                     continue
                 row_rises(yw if p <= n_in else y, tp, fx, fy, slope_x, slope_y, f0, nm, lin, om, zeta, gam, qdd,
                           rise1)
+                signed_rises(yw if p <= n_in else y, tp, f0, nm, sgl, qdd, sz0, szs, srise1)
                 for k in range(nk):
                     if (rise0[k, 0] > 0.0 >= rise1[k, 0]
                             and max(rise0[k, 1], rise1[k, 1]) >= (1.0 - LOCATE_BAND) * peaks[2 + k]):
@@ -1096,10 +1389,24 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                                                                    lin, om, zeta, gam, qdd, yw))
                     rise0[k, 0] = rise1[k, 0]
                     rise0[k, 1] = rise1[k, 1]
+                for k in range(nj):
+                    # a signed row's extreme (|s| turning from rising to falling, its sign kept between the points)
+                    # near the extreme of its sign so far: located as the watched rows' peaks
+                    if (srise0[k, 0] > 0.0 >= srise1[k, 0] and srise0[k, 1] * srise1[k, 1] > 0.0
+                            and (_near_extreme(srise0[k, 1], sig_max[k], sig_min[k])
+                                 or _near_extreme(srise1[k, 1], sig_max[k], sig_min[k]))):
+                        v = row_peak(y0, tp0, tp, k, fx, fy, slope_x, slope_y, f0, nm, sgl, om, zeta, gam, qdd, yw,
+                                     True, sz0[k], szs[k])
+                        sig_max[k] = max(sig_max[k], v)
+                        sig_min[k] = min(sig_min[k], v)
+                    srise0[k, 0] = srise1[k, 0]
+                    srise0[k, 1] = srise1[k, 1]
                 tp0 = tp
             _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z, az[i] + slope_az * tau)
             for k in range(nk):
                 r_last[k] = math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k])  # the rows' resultants at the step's end
+            for k in range(nj):
+                s_last[k] = signed_row(y, f0, nm, sig, k, sig_z, az[i] + slope_az * tau)
             if not groups_within_rims(y, ub, rim):
                 status |= STATUS_RIM
                 fail_t = t[i] + tau

@@ -1168,24 +1168,39 @@ def locate_arrival(y, h, tau, raw, c, rb, mu, rim, rim_free, free, r, y1, yh, y2
     """The length [s] of the longest step from y (at τ in its sample interval, shorter than h) whose three solves,
     with the rims of the groups in ``free`` (bits) lifted (``rim_free``), agree on the sliding set and whose
     Richardson combination keeps those groups inside their rims (``rim``): the instant one of them reaches its rim,
-    by bisection on the length to its last bit.  0 when the lifted step of h does not reach a rim (nothing to
-    locate).  The second return is the evaluations of Ψ's gradient it took."""
-    ng = rb.shape[0]
-    work = 0.0
-    m1, mh, m2 = three_solves(y, h, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, 0)
-    work += r1[2] + rh[2] + r2[2]
-    if (m1 | mh | m2) & UNSOLVED or not _arrived(y1, y2, ng, rim, free):
-        return 0.0, work
+    by bisection on the length to its last bit (:func:`arrival_next`).  0 when the lifted step of h does not reach a
+    rim (nothing to locate).  The second return is the evaluations of Ψ's gradient it took."""
     lo = 0.0
-    for d in range(1, 200):  # the length's binary digits, from the largest, until they fall below its ulp
-        s = lo + h * 0.5 ** d
-        if not lo < s:
-            break
+    s = h
+    work = 0.0
+    for d in range(200):  # the length's binary digits (arrival_next ends the search)
         m1, mh, m2 = three_solves(y, s, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, 0)
         work += r1[2] + rh[2] + r2[2]
-        if not ((m1 | mh | m2) & UNSOLVED) and m1 == mh and mh == m2 and not _arrived(y1, y2, ng, rim, free):
-            lo = s
+        lo, s = arrival_next(lo, s, h, d, m1, mh, m2, y1, y2, rim, free)
+        if s < 0.0:
+            break
     return lo, work
+
+
+@njit(cache=True)
+def arrival_next(lo, s, h, d, m1, mh, m2, y1, y2, rim, free):
+    """One trial of the located arrival's bisection (:func:`locate_arrival`; a model whose steps carry more than the
+    mass runs its own three solves, planar_building_multisurface_kernel): after the d-th trial, of length s (d = 0:
+    the whole step h; then lo + h/2^d, the length's binary digits from the largest) whose three solves with the
+    arriving groups' rims lifted have the masks m1, mh, m2 and end in y1 (the whole) and y2 (the halves), the
+    bracket's lower end and the next trial's length (-1: done).  The whole step goes on only when its combination
+    reaches a rim of ``free`` (solved; else lo = 0: nothing to locate); a shorter trial becomes lo when its solves
+    agree on the sliding set and its combination stays inside the rims.  Done when the digits fall below lo's ulp
+    (at most 200 trials)."""
+    ng = rim.shape[0]
+    solved = not (m1 | mh | m2) & UNSOLVED
+    if d == 0:
+        if not (solved and _arrived(y1, y2, ng, rim, free)):
+            return 0.0, -1.0
+    elif solved and m1 == mh and mh == m2 and not _arrived(y1, y2, ng, rim, free):
+        lo = s
+    nxt = lo + h * 0.5 ** (d + 1)
+    return lo, (nxt if lo < nxt and d + 1 < 200 else -1.0)
 
 
 @njit(cache=True)
