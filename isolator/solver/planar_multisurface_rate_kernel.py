@@ -25,9 +25,7 @@ Two or more sliding surfaces saturated together (a_i |u̇_i| ≥ 28, left at 26:
 φ not resolvable) share the velocity by the 1-D model's map on each component (its ``update_lock`` and ``set_split``
 on the speeds |u̇_i|: the back-forces of the set move together, u̇_ℓ = G_ℓ0 Ẋ + Σ_U G_ℓj u̇_j), exact where the
 motion keeps one direction (a pair along a line, an equal double); a motion that turns while two surfaces are
-saturated is not checked (docs/multisurface.md, h122).  Where two surfaces slide near µ_fast with slips a small
-angle apart (r at the corner of their circles, no set) and φ is not resolvable, the force is found with every law
-forward, the non-pivot speeds as unknowns (:func:`forward_force`, h141).  The state y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by
+saturated is not checked (docs/multisurface.md, h122).  The state y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by
 the 3-stage Radau IIA
 collocation of the 1-D kernel (its tableau, Newton start and stage matrix imported), with the analytic
 Jacobian (:func:`rhs`), every step taken twice (h, two of h/2) and the difference held below the tolerance.
@@ -290,7 +288,7 @@ def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, e
 
 
 @njit(cache=True)
-def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir, stalled):
+def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir):
     """F/W (in ``r``, which holds a first guess) at which the sliding surfaces' rates sum to Ẋ = (vx, vy).
 
     The pivot k takes the rest of the velocity and its friction by the forward law (module docstring): Newton on
@@ -339,12 +337,8 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
         sty = (out[2] * out[1] - out[4] * out[0]) / det
         size = math.hypot(stx, sty)
         floor = 1e-15 * (math.hypot(r[0], r[1]) + mu_f[k])
-        if size <= floor:
-            return True  # converged: DΦ_j and DM_k are those at r
-        if it >= 2 and size >= 0.5 * prev and size <= 1e3 * floor:
-            # at the rounding floor; with a residual left (∂G/∂r ~ 1e10 where φ_j is not resolvable) it is no root:
-            # the caller then tries :func:`forward_force` (h141; ``stalled[0]`` set)
-            stalled[0] = math.hypot(out[0], out[1]) > FORCE_RESIDUAL
+        if size <= floor or (it >= 2 and size >= 0.5 * prev and size <= 1e3 * floor):
+            # converged (or at the rounding floor): DΦ_j and DM_k are those at r
             return True
         lam = 1.0
         for _ in range(60):
@@ -360,129 +354,6 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
             out[p] = trial[p]
         best = math.hypot(out[0], out[1])
         prev = size
-    return False
-
-
-#: the force's residual |G| (F/W) below which :func:`solve_force`'s answer is taken; past it (or where it found no
-#: force) the force is sought by :func:`forward_force`
-FORCE_RESIDUAL = 1e-13
-#: :func:`forward_force`'s Newton iterations at the most
-FORWARD_ITERATIONS = 50
-
-
-@njit(cache=True)
-def forward_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, sv):
-    """F/W (in ``r``, which holds a first guess) and the slide speeds ``sv`` [m/s] of the non-pivot sliding surfaces,
-    every surface by its forward law µ_j(s_j) (never its inverse φ_j).
-
-    The equations of :func:`solve_force` with the non-pivot speeds as unknowns: G(r, s) = r − b_k − µ_k(|w|) ŵ,
-    w = G_k0 Ẋ + Σ_U G_kj s_j n_j, n_j = (r − b_j)/|r − b_j|, and |r − b_j| − µ_j(s_j) = 0 for j ∈ U (U: the
-    contributing surfaces sliding inside their rims).  It is the same root (s_j = φ_j(|r − b_j|)), but where two
-    surfaces slide together near µ_fast (the saturated pair turning in the plane: their slips part by a small angle,
-    r at the corner of their circles) φ_j is not resolvable — µ_fast − |r − b_j| is a few hundred ulp of r, one ulp
-    of r moves φ_j by ~1e-4 m/s — while the forward law and the corner's geometry are (docs/multisurface.md, h141:
-    0.7 g x + 0.02 g y at 0.7172 s, the inner pair at a·s = 27.73, slips 2.19e-2 rad apart; this Newton matches a
-    60-digit solution of Σ φ_i(|r − b_i|) f̂_i = Ẋ to 2e-17 in r and 1.3e-13 m/s in s, where :func:`solve_force`
-    stopped at |G| = 1.8e-8).  Newton on the 2 + |U| unknowns with the analytic Jacobian, ≤ FORWARD_ITERATIONS;
-    False where it does not converge or a surface slides along its rim (its tangent law is not carried here)."""
-    n = mode.shape[0]
-    k = pivot
-    idx = np.empty(n, dtype=np.int64)
-    nu = 0
-    for j in range(n):
-        if j != k and contributes(mode[j], lock[j]):
-            if mode[j] != SLIDING:
-                return False
-            idx[nu] = j
-            nu += 1
-    size = 2 + nu
-    z = np.empty(size)
-    z[0] = r[0]
-    z[1] = r[1]
-    speed = math.hypot(vx, vy)
-    for q in range(nu):
-        j = idx[q]
-        rho = math.hypot(r[0] - bf[j, 0], r[1] - bf[j, 1])
-        sp, _ = slide_rate(rho, 1.0, mu_s[j], mu_f[j], a[j])
-        z[2 + q] = sp if math.isfinite(sp) else speed / (nu + 1)
-    res = np.empty(size)
-    step = np.empty(size)
-    jm = np.empty((size, size))
-    perm = np.zeros(size, dtype=np.int64)
-    dm = np.empty((2, 2))
-    for _ in range(FORWARD_ITERATIONS):
-        for p in range(size):
-            for q in range(size):
-                jm[p, q] = 0.0
-        wx = gmap[k, 0] * vx
-        wy = gmap[k, 0] * vy
-        for q in range(nu):
-            j = idx[q]
-            fx = z[0] - bf[j, 0]
-            fy = z[1] - bf[j, 1]
-            rho = math.hypot(fx, fy)
-            if not rho > 0.0:
-                return False
-            nx = fx / rho
-            ny = fy / rho
-            wk = gmap[k, 1 + j]
-            wx += wk * z[2 + q] * nx
-            wy += wk * z[2 + q] * ny
-            mu, dmu = friction_at_rate(z[2 + q], 1.0, mu_s[j], mu_f[j], a[j])
-            res[2 + q] = rho - mu
-            jm[2 + q, 0] = nx
-            jm[2 + q, 1] = ny
-            jm[2 + q, 2 + q] = -dmu
-        fx, fy = friction_vector(wx, wy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
-        res[0] = z[0] - bf[k, 0] - fx
-        res[1] = z[1] - bf[k, 1] - fy
-        # ∂G/∂r = I − DM_k Σ_U G_kj s_j (I − n nᵀ)/ρ_j; ∂G/∂s_j = −DM_k G_kj n_j
-        jm[0, 0] = 1.0
-        jm[1, 1] = 1.0
-        for q in range(nu):
-            j = idx[q]
-            fx = z[0] - bf[j, 0]
-            fy = z[1] - bf[j, 1]
-            rho = math.hypot(fx, fy)
-            nx = fx / rho
-            ny = fy / rho
-            wk = gmap[k, 1 + j]
-            c = wk * z[2 + q] / rho
-            p00 = c * (1.0 - nx * nx)
-            p01 = -c * nx * ny
-            p11 = c * (1.0 - ny * ny)
-            jm[0, 0] -= dm[0, 0] * p00 + dm[0, 1] * p01
-            jm[0, 1] -= dm[0, 0] * p01 + dm[0, 1] * p11
-            jm[1, 0] -= dm[1, 0] * p00 + dm[1, 1] * p01
-            jm[1, 1] -= dm[1, 0] * p01 + dm[1, 1] * p11
-            jm[0, 2 + q] = -wk * (dm[0, 0] * nx + dm[0, 1] * ny)
-            jm[1, 2 + q] = -wk * (dm[1, 0] * nx + dm[1, 1] * ny)
-        for p in range(size):
-            if not math.isfinite(res[p]):
-                return False
-        if not lu_factor(jm, perm):
-            return False  # singular: the members' slips parallel (an aligned pair: the set's map, not this)
-        for p in range(size):
-            step[p] = res[p]
-        lu_solve(jm, perm, step)
-        big_r = 0.0
-        big_s = 0.0
-        for p in range(size):
-            z[p] -= step[p]
-            if p < 2:
-                big_r = max(big_r, abs(step[p]))
-            else:
-                big_s = max(big_s, abs(step[p]))
-        if not (math.isfinite(big_r) and math.isfinite(big_s)):
-            return False
-        if big_r <= 2e-15 * (abs(z[0]) + abs(z[1]) + mu_f[k]) and big_s <= 1e-12 * speed:
-            r[0] = z[0]
-            r[1] = z[1]
-            for j in range(n):
-                sv[j] = 0.0
-            for q in range(nu):
-                sv[idx[q]] = z[2 + q]
-            return True
     return False
 
 
@@ -513,51 +384,13 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
     rim_normals(y, mode, rim_dir)
     for p in range(m):
         out_dy[p] = 0.0
-    r0x = r[0]
-    r0y = r[1]
-    stalled = np.zeros(1, dtype=np.bool_)
-    good = solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir, stalled)
-    forward = False
-    sv = np.zeros(n)
-    rf = np.empty(2)
-    if not (y[0] == 0.0 and y[1] == 0.0):
-        if not good or stalled[0]:
-            # φ not resolvable (the saturated pair turning, r at the corner of their circles): every law forward; where
-            # that finds no force either, the answer before (none, or the stalled one)
-            rf[0] = r0x if math.isfinite(r0x) else r[0]
-            rf[1] = r0y if math.isfinite(r0y) else r[1]
-            forward = forward_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rf, sv)
-            if not forward and not good:
-                return False, 0.0
-        if forward:
-            r[0] = rf[0]
-            r[1] = rf[1]
-            # DΦ_j and DM_k at the root from the forward laws (DΦ_j's radial part 1/µ_j'(s_j): finite and resolved where
-            # 1/(a (µ_fast − |f_j|)) is not), for the Jacobian below
-            wx = gmap[pivot, 0] * y[0]
-            wy = gmap[pivot, 0] * y[1]
-            for j in range(n):
-                if j != pivot and contributes(mode[j], lock[j]):
-                    fx = r[0] - bf[j, 0]
-                    fy = r[1] - bf[j, 1]
-                    rho = math.hypot(fx, fy)
-                    _, dmu = friction_at_rate(sv[j], 1.0, mu_s[j], mu_f[j], a[j])
-                    radial_jacobian(fx / rho, fy / rho, 1.0 / dmu, sv[j] / rho, dphi[j])
-                    wx += gmap[pivot, 1 + j] * sv[j] * fx / rho
-                    wy += gmap[pivot, 1 + j] * sv[j] * fy / rho
-            friction_vector(wx, wy, ex0, ey0, mu_s[pivot], mu_f[pivot], a[pivot], dm)
-    elif not good:
+    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir):
         return False, 0.0
     out_dy[0] = -g * r[0] - c * y[0] - agx
     out_dy[1] = -g * r[1] - c * y[1] - agy
     at_rest = y[0] == 0.0 and y[1] == 0.0
     for j in range(n):
         if j != pivot and contributes(mode[j], lock[j]) and not at_rest:
-            if forward:
-                rho = math.hypot(r[0] - bf[j, 0], r[1] - bf[j, 1])
-                out_dy[2 + 2 * j] = sv[j] * (r[0] - bf[j, 0]) / rho
-                out_dy[3 + 2 * j] = sv[j] * (r[1] - bf[j, 1]) / rho
-                continue
             vjx, vjy = surface_rate(r[0] - bf[j, 0], r[1] - bf[j, 1], mode[j], rim_dir[j, 0], rim_dir[j, 1], mu_s[j],
                                     mu_f[j], a[j], dphi[j])
             out_dy[2 + 2 * j] = vjx
