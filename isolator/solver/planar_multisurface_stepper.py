@@ -815,7 +815,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0, ult=-1)
 
 
 @njit(cache=True)
-def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0, ult=-1):
+def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0, ult=-1, block=False):
     """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout[:2], the evaluations
     of Ψ's gradient it took into rout[2].
 
@@ -826,6 +826,10 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     ``ult``: the step's classification of the ultimate (1 held on the ultimate circle, 0 not), given by the caller
     for the whole step and its two halves alike (planar_multisurface_stepper); -1 takes :func:`at_ultimate` of y,
     and the velocity is then turned onto the ultimate circle only when the end is aligned too.
+
+    ``block``: the rigid block's steps (planar_multisurface_stepper; the building's calls leave it False): a step
+    without slip whose p/g leaves a group's held set takes V = h A, and a group carries the mass only if its return
+    slid along its rim (docs/multisurface.md, "A restart below the rounding").
 
     Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
     set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
@@ -892,7 +896,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     if mask & ((1 << ng) - 1) and not unit:
         out[Y_V] = (m_x * y[Y_V] - h * (g * rx + abar_x)) / (m_x + c * h)
         out[Y_V + 1] = (m_y * y[Y_V + 1] - h * (g * ry + abar_y)) / (m_y + c * h)
-    elif mask & ((1 << ng) - 1) or (unit and not rest_holds(y, rb, mu, rim, px / g, py / g)):
+    elif mask & ((1 << ng) - 1) or (block and not rest_holds(y, rb, mu, rim, px / g, py / g)):
         # (the rigid block: also when no group's slip rose above the rounding of its ū — ~1e-17 m, A h² at a start
         # from rest with h ≲ 3e-9 s — while p/g leaves a group's held set: the mass moves, V = h A.  Zeroed there, a
         # restart from a stop was lost in every step the step-doubling allowed (the full step slid, its halves
@@ -909,7 +913,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
     out[Y_EIMP] = y[Y_EIMP]
     carried = -1 if ult == 1 else carried_group(y, mask, rim)
-    if unit and carried >= 0 and not along >> carried & 1:
+    if block and carried >= 0 and not along >> carried & 1:
         # (the rigid block) a group sliding inward off its rim by less than the rounding of ū (its slip ~A h² below
         # ~1e-17 m in a short step) ends "on its rim" but does not carry the mass: turned onto the rim's tangent,
         # its inward velocity was lost in every such step and the mass crept along the rim at ~5e-9 m/s under an
@@ -1180,14 +1184,14 @@ def three_solves(y, h, tau, raw, c, rb, mu, rim, r, y1, yh, y2, r1, rh, r2, ult)
     booked (:func:`vertical_work`).  ``ult``: the ultimate classified once for the three (:func:`be_step`).
     Returns the three masks of :func:`be_step`."""
     m1 = be_step(y, h, raw[0] + raw[1] * (tau + 0.5 * h), raw[2] + raw[3] * (tau + 0.5 * h),
-                 raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1, 1.0, 1.0, ult)
+                 raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1, 1.0, 1.0, ult, True)
     mh = be_step(y, 0.5 * h, raw[0] + raw[1] * (tau + 0.25 * h), raw[2] + raw[3] * (tau + 0.25 * h),
-                 raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult)
+                 raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult, True)
     if raw[5] != 0.0:
         vertical_work(y, y1, rb, raw[5] * h)
         vertical_work(y, yh, rb, 0.5 * raw[5] * h)
     m2 = be_step(yh, 0.5 * h, raw[0] + raw[1] * (tau + 0.75 * h), raw[2] + raw[3] * (tau + 0.75 * h),
-                 raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult)
+                 raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult, True)
     if raw[5] != 0.0:
         vertical_work(yh, y2, rb, 0.5 * raw[5] * h)
     return m1, mh, m2
@@ -1553,13 +1557,13 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                     if not lo < t_try:
                         break
                     be_step(y, t_try, ax[i] + slope_x * (tau + 0.5 * t_try), ay[i] + slope_y * (tau + 0.5 * t_try),
-                            nz[i] + slope_z * (tau + 0.5 * t_try), c, rb, mu, rim, r, y0, rh)
+                            nz[i] + slope_z * (tau + 0.5 * t_try), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, -1, True)
                     work += rh[2]
                     if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
                         lo = t_try
                 if lo > 0.0:
                     be_step(y, lo, ax[i] + slope_x * (tau + 0.5 * lo), ay[i] + slope_y * (tau + 0.5 * lo),
-                            nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu, rim, r, y0, rh)
+                            nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, -1, True)
                     if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
                             tol * max(peak_v, v_floor), CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / lo):
                         h = lo
