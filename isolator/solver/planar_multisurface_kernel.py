@@ -1374,16 +1374,87 @@ def _holds(ub, rb, mu, axx, ayy, nn):
 
 
 @njit(cache=True)
-def breakaway(ub, rb, mu, raw, tau0, tau1):
+def _quadratic_roots(qa, qb, qc):
+    """The real roots of qa τ² + qb τ + qc (the numerically stable pair; inf where there is none)."""
+    c0 = np.inf
+    c1 = np.inf
+    disc = qb * qb - 4.0 * qa * qc
+    if disc >= 0.0:
+        sq = math.sqrt(disc)
+        if qa != 0.0:
+            # the stable pair of roots
+            qq = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
+            c0 = qq / qa
+            c1 = qc / qq if qq != 0.0 else np.inf
+        elif qb != 0.0:
+            c0 = -qc / qb
+    return c0, c1
+
+
+@njit(cache=True)
+def _rim_breakaway(b1, b2, e1, e2, mu, raw, tau0, tau1):
+    """First τ in [τ0, τ1] where a group held on its rim (unit outward normal e, back-force b) lets go; -1 if none.
+
+    With w = a_g + n b (linear in τ) the force on the element is d = r − b = −w/n.  The rim carries any outward push
+    (d·e ≥ 0, i.e. w·e ≤ 0: the element is held while |d·t| ≤ µ, t the rim's tangent — :func:`rim_holds` of the
+    stepper, the optimality of the step's problem at the rim); a pull inward (w·e > 0) is the ordinary friction disc
+    |d| ≤ µ.  So the group lets go where f = (w·t)² + max(w·e, 0)² − (µ n)² turns positive: on the branch w·e ≤ 0 the
+    first upward root of the quadratic (w·t)² − (µ n)², on w·e > 0 of |w|² − (µ n)² (f is continuous and smooth
+    across w·e = 0, where the two agree)."""
+    t1 = -e2
+    t2 = e1
+    w0x = raw[0] + raw[4] * b1
+    w1x = raw[1] + raw[5] * b1
+    w0y = raw[2] + raw[4] * b2
+    w1y = raw[3] + raw[5] * b2
+    wt0 = w0x * t1 + w0y * t2
+    wt1 = w1x * t1 + w1y * t2
+    we0 = w0x * e1 + w0y * e2
+    we1 = w1x * e1 + w1y * e2
+    we = we0 + we1 * tau0
+    n0 = raw[4] + raw[5] * tau0
+    wt = wt0 + wt1 * tau0
+    if wt * wt + max(we, 0.0) ** 2 > (mu * n0) ** 2:
+        return tau0
+    root = -1.0
+    for branch in range(2):
+        # 0: the outward push held (w·e ≤ 0), the tangential part against the friction; 1: a pull inward, all of it
+        qa = wt1 * wt1 - (mu * raw[5]) ** 2
+        qb = 2.0 * wt0 * wt1 - 2.0 * mu * mu * raw[4] * raw[5]
+        qc = wt0 * wt0 - (mu * raw[4]) ** 2
+        if branch == 1:
+            qa += we1 * we1
+            qb += 2.0 * we0 * we1
+            qc += we0 * we0
+        c0, c1 = _quadratic_roots(qa, qb, qc)
+        for tr in (c0, c1):
+            on_branch = (we0 + we1 * tr <= 0.0) if branch == 0 else (we0 + we1 * tr >= 0.0)
+            if (tau0 <= tr <= tau1 and on_branch and (root < 0.0 or tr < root)
+                    and 2.0 * qa * tr + qb >= 0.0):
+                root = tr
+    return root
+
+
+@njit(cache=True)
+def breakaway(ub, rb, mu, raw, tau0, tau1, held=0):
     """First τ in [τ0, τ1] where −a_g/n leaves a friction circle (a stuck bearing breaks away).
 
     |a_g + n b_k|² − (µ_k n)² = 0 is a quadratic in τ (a_g and n linear, raw = (a_x, a_x', a_y, a_y',
-    n, n')); returns (τ, group) or (-1, -1)."""
+    n, n')); returns (τ, group) or (-1, -1).  ``held``: the groups (bit k for group k) at rest on their rims, whose
+    rim carries the outward push (:func:`_rim_breakaway`); 0 (the event kernel's, and a rest off every rim) is the
+    plain test."""
     best = -1.0
     best_k = -1
     for k in range(rb.shape[0]):
         b1 = ub[k, 0] / rb[k]
         b2 = ub[k, 1] / rb[k]
+        un = math.sqrt(ub[k, 0] * ub[k, 0] + ub[k, 1] * ub[k, 1])
+        if held >> k & 1 and un > 0.0:
+            root = _rim_breakaway(b1, b2, ub[k, 0] / un, ub[k, 1] / un, mu[k], raw, tau0, tau1)
+            if root >= 0.0 and (best_k < 0 or root < best):
+                best = root
+                best_k = k
+            continue
         w0x = raw[0] + raw[4] * b1
         w1x = raw[1] + raw[5] * b1
         w0y = raw[2] + raw[4] * b2
@@ -1395,22 +1466,11 @@ def breakaway(ub, rb, mu, raw, tau0, tau1):
             root = tau0
         else:
             root = -1.0
-            disc = qb * qb - 4.0 * qa * qc
-            if disc >= 0.0:
-                sq = math.sqrt(disc)
-                c0 = np.inf
-                c1 = np.inf
-                if qa != 0.0:
-                    # the stable pair of roots
-                    qq = -0.5 * (qb + (sq if qb >= 0.0 else -sq))
-                    c0 = qq / qa
-                    c1 = qc / qq if qq != 0.0 else np.inf
-                elif qb != 0.0:
-                    c0 = -qc / qb
-                for tr in (c0, c1):
-                    # an upward crossing inside the stretch: q grows there
-                    if tau0 <= tr <= tau1 and (root < 0.0 or tr < root) and 2.0 * qa * tr + qb >= 0.0:
-                        root = tr
+            c0, c1 = _quadratic_roots(qa, qb, qc)
+            for tr in (c0, c1):
+                # an upward crossing inside the stretch: q grows there
+                if tau0 <= tr <= tau1 and (root < 0.0 or tr < root) and 2.0 * qa * tr + qb >= 0.0:
+                    root = tr
         if root >= 0.0 and (best_k < 0 or root < best):
             best = root
             best_k = k
