@@ -729,6 +729,19 @@ def held_rises(yw, tp, fx, fy, sx, sy, f0, nm, hl, off, om, zeta, gam, qdd):
 
 
 @njit(cache=True)
+def parabola_peak(f0, fh, f1):
+    """The maximum of the parabola through (0, f0), (½, fh), (1, f1) when it is concave with its vertex inside (0, 1),
+    else -1: a step's largest force from its start, the end of its first half and its end (the base shear while the
+    slab slides, smooth inside a step: the events are located at the steps' ends).  p(s) = f0 + s d − s² k, d = 4 fh
+    − 3 f0 − f1, k = 4 fh − 2 f0 − 2 f1; the vertex s* = d / 2k, p(s*) = f0 + d² / 4k."""
+    k = 4.0 * fh - 2.0 * f0 - 2.0 * f1
+    d = 4.0 * fh - 3.0 * f0 - f1
+    if not (k > 0.0 and 0.0 < d < 2.0 * k):
+        return -1.0
+    return f0 + d * d / (4.0 * k)
+
+
+@njit(cache=True)
 def _near_extreme(v, high, low):
     # a signed row's value v within LOCATE_BAND of the extreme of its sign so far (``high`` ≥ 0, ``low`` ≤ 0); a row
     # at 0 is near none (a moment about the axis across a record along x is 0 throughout: its steps were all located)
@@ -925,6 +938,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     # at rest under static friction (the slab starts at rest); stop_h: the length of a step cut at a stop (or -1)
     held_s = static
     stop_h = -1.0
+    prev_plain = False  # the last accepted step slid plainly (its end force starts the next step's parabola_peak)
     for j in range(ny):
         out_y[0, j] = 0.0
     out_r[0, 0] = -ax[0] / nz[0]
@@ -1209,6 +1223,14 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                         reach = False
                 else:
                     reach = False
+            # a plain sliding step (the same groups sliding in its three solves, no impact, no stop): its base shear's
+            # maximum inside it is located on the parabola through its start, its first half's end and its end
+            # (parabola_peak); the start's force from the last step's end when that step was plain too
+            plain = not (jump or impacted) and m1 == mh and mh == m2 and (m1 & low) != 0 and stop_h != h
+            f_start = -1.0
+            if plain and prev_plain:
+                n_0 = nz[i] + slope_z * tau
+                f_start = math.hypot(n_0 * r[0] + c * y[Y_V], n_0 * r[1] + c * y[Y_V + 1])
             for j in range(ny):
                 y0[j] = y[j]
             if reach:
@@ -1296,6 +1318,12 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     if xn > 0.0:
                         a_cap += vn * vn / xn
                     f_abs = min(f_abs, a_cap)
+                elif f_start >= 0.0:
+                    # the base shear while the slab slides was taken at the steps' ends: its maximum inside the step
+                    # on the parabola through the step's start, half and end (the first half's end state and force)
+                    n_h = nz[i] + slope_z * (tau - 0.5 * h)
+                    f_h = math.hypot(n_h * rh[0] + c * yh[Y_V], n_h * rh[1] + c * yh[Y_V + 1])
+                    f_abs = max(f_abs, parabola_peak(f_start, f_h, f_abs))
                 peaks[nk + 2] = max(peaks[nk + 2], f_abs)
             elif y[Y_V] == 0.0 and y[Y_V + 1] == 0.0:
                 # the slab stopped by the impact, held at the ultimate: the bearing's force is what it needs there,
@@ -1303,6 +1331,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 h1 = _held_force(y, f0, nm, ax[i] + slope_x * tau, om, zeta, gam, 0)
                 h2 = _held_force(y, f0, nm, ay[i] + slope_y * tau, om, zeta, gam, 1)
                 peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(h1 * h1 + h2 * h2))
+            prev_plain = plain and not (rigid or impulsive)
             peak_x = max(peak_x, math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2))
             peak_v = max(peak_v, math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2))
             for j in range(2):
