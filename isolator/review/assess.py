@@ -352,7 +352,12 @@ def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, ba
                         "×"))
     rows.append(C.usable_band([(pair.name, pair.high_pass_hz) for pair in review.suite.pairs], hi,
                               p["usable_band_factor"]))
-    rows += selection_rows(review.suite.pairs, list(review.factors.values()), mu_lower=review.bounds.mu_lower,
+    multi = asce7_22.is_multisurface(review.design)  # its equivalent µ never ran: the lower bound's breakaway does
+    rows += selection_rows(review.suite.pairs, list(review.factors.values()),
+                           mu_lower=(review.bounds.lambda_min * asce7_22.breakaway_force_per_weight(review.design)
+                                     if multi else review.bounds.mu_lower),
+                           mu_lower_said=("the lower bound's breakaway force / W (the bearing at rest: its smallest "
+                                          "µ_i)" if multi else "µ_lower"),
                            gravity_m_s2=review.design.gravity_m_s2, controlling=review.target.controlling, params=p,
                            closest=review.suite.closest, code=review.code)
     return rows

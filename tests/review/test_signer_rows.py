@@ -184,3 +184,37 @@ def test_a_surface_on_its_rim_reads_its_rims_d_over_r_not_a_rounding_fail():
     past = {"lower": {"DZC": {"surface_peak_displacement_m": [0.5 * (1 + 1e-6), 0.1]}}}  # past it: said as it is
     row = surface_d_over_r(SimpleNamespace(design=_double(), analyses=past), 0.25)
     assert row["value"] == 0.5 * (1 + 1e-6) / 2.0 and row["status"] == "fail"
+
+
+def test_a_triple_review_shows_what_its_analyses_ran_with(inputs, tmp_path):
+    """A TFP over three short real pairs, the JSON and the PDF read as the signer reads them: every µ_i of each bound
+    (λ given: 0.8 / 1.3), the record-strength floor on the bearing's breakaway (its smallest µ_i, not the equivalent
+    single pendulum's µ that no analysis ran), the activation and breakaway forces named, each model with its reason,
+    the implicit steps' tolerance on the rows whose values are the analyses' peaks."""
+    import pypdf
+
+    from isolator.report.review_pages import write_review_pdf
+
+    mu = (0.06, 0.02, 0.02, 0.10)
+    design = Design.from_mapping({"name": "tfp", "mass_kg": 1.0e6, "lambda_max": 1.3, "lambda_min": 0.8,
+                                  "bearing": {"type": "triple", "surface": [
+                                      {"radius_m": r, "mu": m, "displacement_capacity_m": d} for r, m, d in
+                                      zip((2.1, 0.3, 0.3, 2.1), mu, (0.8, 0.05, 0.05, 0.8), strict=True)]}})
+    review = run_review(design, two_period_target(1.5, 0.9, 8.0), load_suite(inputs / "suite.toml"), jobs=1,
+                        nominal=False)
+    r = write_review_pdf(review, tmp_path / "tfp.pdf")
+    for bound, lam in (("lower", 0.8), ("upper", 1.3)):
+        assert r["bounds"][bound]["lambda"] == lam
+        assert np.allclose(r["bounds"][bound]["surface_mu"], [lam * m for m in mu], rtol=1e-15, atol=0)
+        assert {a["model"] for a in r["bounds"][bound]["pairs"].values()} == {"2d-multisurface"}
+    rows = {row["id"]: row for row in r["checks"]}
+    assert rows["record_strength"]["limit"] == pytest.approx(0.1 * 0.8 * 0.02, rel=1e-14)  # not 0.1 × 0.8 × 0.0714
+    assert "breakaway force / W (the bearing at rest: its smallest µ_i)" in rows["record_strength"]["note"]
+    assert "backbone's force at the start of the regime" in rows["V_s_activation_limit"]["note"]
+    assert rows["wind_restraint"]["limit"] == pytest.approx(0.8 * 0.02, rel=1e-14)
+    assert "smallest µ_i" in rows["wind_restraint"]["note"]
+    assert "implicit steps at step_tol 1e-07" in rows["base_shear_elf_floor"]["note"]
+    text = " ".join(" ".join(page.extract_text().split()) for page in pypdf.PdfReader(tmp_path / "tfp.pdf").pages)
+    assert "lower µ_i 0.048/0.016/0.016/0.08 (λ 0.8)" in text and "upper µ_i 0.078/0.026/0.026/0.13 (λ 1.3)" in text
+    assert "ELF lower bound (µ_i 0.048/0.016/0.016/0.08)" in text
+    assert "Engine (the model each analysis ran, and why): 2d-multisurface (6 analyses): a triple" in text
