@@ -350,9 +350,12 @@ def _checks(flow: Flow, r: dict) -> None:
 def _parameters(flow: Flow, r: dict) -> None:
     flow.heading("Parameters used (marks: U = unverified, a parameter by rule; S = secondary source; practice, "
                  "convention, interpretation, input)")
+    def said(v):  # a text parameter (D_M_form, multisurface_activation) as it is; `--set D_M_form=SM1` raised here
+        return "none" if v is None else v if isinstance(v, str) else fmt(v)
+
     for p in r["parameters"]:
-        value = "none" if p["value"] is None else (p["value"] if isinstance(p["value"], str) else fmt(p["value"]))
-        changed = "" if p["value"] == p["default"] else f" (default {fmt(p['default'])})"
+        value = said(p["value"])
+        changed = "" if p["value"] == p["default"] else f" (default {said(p['default'])})"
         source = f" — from the {p['source']}" if p.get("source") else ""
         flow.paragraph(f"{p['name']} = {value}{changed} [{p['mark']}]{source} — {p['rule']}: {p['meaning']}", x=0.05)
 

@@ -491,8 +491,9 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
                            f"RHA isolation-system shear / W ({env['V_b_bound']} bound) ≥ {p['f_below']:g} V_b/W (ELF "
                            f"{elf_vb:.4g})", "V/W"))
     v_s = max(elf[b].get("V_s_over_W", math.nan) for b in ("lower", "upper"))
-    activation = {b: asce7_22.activation_force_per_weight(designs[b]) for b in ("lower", "upper")}
-    activation["nominal"] = asce7_22.activation_force_per_weight(design)  # analysed or not: the design's own
+    mode = p.get("multisurface_activation", "outer")
+    activation = {b: asce7_22.activation_force_per_weight(designs[b], mode) for b in ("lower", "upper")}
+    activation["nominal"] = asce7_22.activation_force_per_weight(design, mode)  # analysed or not: the design's own
     r_fixed = design.superstructure.response_modification_R if design.superstructure is not None else None
     fixed_base = asce7_22.fixed_base_limits(elf, design_values(review.target), r_fixed, p)
     rows.append(_superstructure_shear_row(review, v_s, activation, fixed_base))
@@ -513,7 +514,8 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
         story_drift_ratio=drift[story] if drift else None,
         story_drift_note=(f"story {story + 1} of {len(drift)} (from the bottom), {env['rule']} of {env['n']} analyses "
                           f"per bound, {s.get('story_drift_bound')} bound; limit drift_limit_rha [U]") if drift else "",
-        bearing_axial_loads_N=loads, fixed_base=fixed_base, multisurface=asce7_22.is_multisurface(design))
+        bearing_axial_loads_N=loads, fixed_base=fixed_base, multisurface=asce7_22.is_multisurface(design),
+        activation_mode=mode)
     accel = s.get("floor_peak_acceleration_m_s2")
     rows.append(C.floor_acceleration(
         max(accel) if accel else None,

@@ -218,3 +218,48 @@ def test_a_triple_review_shows_what_its_analyses_ran_with(inputs, tmp_path):
     assert "lower µ_i 0.048/0.016/0.016/0.08 (λ 0.8)" in text and "upper µ_i 0.078/0.026/0.026/0.13 (λ 1.3)" in text
     assert "ELF lower bound (µ_i 0.048/0.016/0.016/0.08)" in text
     assert "Engine (the model each analysis ran, and why): 2d-multisurface (6 analyses): a triple" in text
+
+
+def test_the_activation_reading_of_a_double_or_triple_is_a_printed_parameter():
+    """17.5.4.3(3) for a TFP: the review's default reads 'fully activate' as the start of regime III (µ4: V_b 0.15 W on
+    the building on the TFP, whose V_s_activation_limit then fails 0.0803 against 0.1322); REVIEW_RULES 1.9 names the
+    breakaway friction for sliders (µ2: 0.03 W).  Unverified, so a parameter with its mark, printed, either way."""
+    from isolator.errors import ReviewError
+    from isolator.review import parameters as P
+    from isolator.review.codes import asce7_22
+
+    mu = (0.06, 0.02, 0.02, 0.10)
+    triple = Design.from_mapping({"name": "tfp", "mass_kg": 1.0e6, "bearing": {"type": "triple", "surface": [
+        {"radius_m": r, "mu": m, "displacement_capacity_m": d}
+        for r, m, d in zip((2.1, 0.3, 0.3, 2.1), mu, (0.4, 0.05, 0.05, 0.4), strict=True)]}})
+    assert asce7_22.activation_force_per_weight(triple) == pytest.approx(0.10, rel=1e-15)  # regime III starts at µ4
+    assert asce7_22.activation_force_per_weight(triple, "breakaway") == pytest.approx(0.02, rel=1e-15)  # µ2
+    single = Design.from_mapping(DESIGN)
+    assert asce7_22.activation_force_per_weight(single, "breakaway") == single.mu_static == 0.06
+    table = {row["name"]: row for row in P.table("asce7-22", P.resolve("asce7-22", {}))}
+    assert table["multisurface_activation"]["value"] == "outer" and table["multisurface_activation"]["mark"] == "U"
+    assert P.resolve("asce7-22", {"multisurface_activation": "breakaway"})["multisurface_activation"] == "breakaway"
+    with pytest.raises(ReviewError, match="multisurface_activation"):
+        P.resolve("asce7-22", {"multisurface_activation": "regime III"})
+    elf = {b: {"T_M_s": 3.0, "beta_M": 0.2, "V_s_over_W": 0.2} for b in ("lower", "upper")}
+    params = {"wind_shear_over_W": None, "Ws_over_W": 1.0, "abrupt_hysteresis": False, "drift_limit_rha": 0.02}
+    row = next(row for row in asce7_22.requirement_rows(
+        elf, params, mu_static_lower=0.0153, mu_static_upper=0.02967, mu_static_nominal=0.02, multisurface=True,
+        activation_mode="breakaway") if row["id"] == "V_s_activation_limit")
+    assert row["limit"] == pytest.approx(0.03, rel=1e-15) and "multisurface_activation 'breakaway'" in row["note"]
+
+
+def test_a_text_parameter_set_away_from_its_default_is_printed_not_a_traceback(inputs, tmp_path):
+    """`isolator review … --set multisurface_activation=breakaway` (or `--set D_M_form=SM1`) raised ValueError in the
+    PDF's parameter table (fmt of the default 'outer' / 'SaM'); now printed with its default."""
+    import pypdf
+
+    from isolator.report.review_pages import write_review_pdf
+
+    review = run_review(Design.from_mapping(DESIGN), two_period_target(1.5, 0.9, 8.0),
+                        load_suite(inputs / "suite.toml"), jobs=1, nominal=False,
+                        parameters={"D_M_form": "SM1", "multisurface_activation": "breakaway"})
+    write_review_pdf(review, tmp_path / "r.pdf")
+    text = " ".join(" ".join(page.extract_text().split()) for page in pypdf.PdfReader(tmp_path / "r.pdf").pages)
+    assert "D_M_form = SM1 (default SaM) [U]" in text
+    assert "multisurface_activation = breakaway (default outer) [U]" in text
