@@ -484,7 +484,7 @@ def _pairs(flow: Flow, r: dict) -> None:
     for x, head in columns:
         flow.text(x, head, 7.2, weight="bold")
     flow.y -= 1.15 * LINE
-    beyond = 0
+    beyond = impacts = 0
     failing = {(c.get("pair"), c.get("bound")) for c in r["checks"] if c["id"] == "record_capacity"
                and c["status"] == "fail"}  # at the corner bearing with capacity_at_corner, as the checks read it
     corner = next((c.get("torsion_factor") for c in r["checks"] if c.get("torsion_factor")), None)
@@ -499,7 +499,10 @@ def _pairs(flow: Flow, r: dict) -> None:
                 value = result.get(quantity)
                 over = quantity == "peak_displacement_m" and (name, b) in failing  # the record_capacity rows
                 beyond += bool(over)
-                text = "failed" if "error" in result else fmt(value) + (" *" if over else "")
+                impact = quantity == "base_shear_coefficient" and bool(result.get("ultimate_displacement_reached")
+                                                                       and result.get("rim_modelled", True))
+                impacts += impact
+                text = "failed" if "error" in result else fmt(value) + (" *" if over else " †" if impact else "")
                 flow.text(x, text, 7.4, color=STATUS_COLOUR["fail"] if over else "black",
                           weight="bold" if over else "normal")
                 x += 0.092 if quantity == "peak_displacement_m" else 0.083
@@ -513,6 +516,11 @@ def _pairs(flow: Flow, r: dict) -> None:
                        "pendulum that reaches it is held there by its rim (plastic impact, the impulse on the checks pages): its peak is the capacity and "
                        "understates the demand.  Where no rim is modelled (a flat slider) the analysis continues "
                        "past it as if the surface were unbounded: those numbers are not physical.",
+                       color=STATUS_COLOUR["fail"])
+    if impacts:
+        flow.paragraph(f"† the analysis reached the bearing's ultimate displacement ({impacts} analyses): its V/W "
+                       "includes the plastic impact of the slab (or the mass) on the rims, an idealisation of the "
+                       "restraint; the suite values below include it, and no row passes on them (the checks pages).",
                        color=STATUS_COLOUR["fail"])
     flow.heading("Suite values and spread per bound (D and V/W over the analyses that ran)")
     multi = "surface_mu" in r["bounds"].get("lower", {})  # a double / triple: the µ_i of each bound below the table

@@ -263,3 +263,21 @@ def test_a_text_parameter_set_away_from_its_default_is_printed_not_a_traceback(i
     text = " ".join(" ".join(page.extract_text().split()) for page in pypdf.PdfReader(tmp_path / "r.pdf").pages)
     assert "D_M_form = SM1 (default SaM) [U]" in text
     assert "multisurface_activation = breakaway (default outer) [U]" in text
+
+
+def test_the_pairs_page_marks_the_force_of_an_analysis_past_the_ultimate(inputs, tmp_path, monkeypatch):
+    """Page 'Analyses per pair and bound' printed V/W 4.315 for Chuetsu-oki 65025 (lower) on the building on the TFP
+    with nothing to say that it is the force of an impact on the rims."""
+    import pypdf
+
+    from isolator.report.review_pages import write_review_pdf
+
+    review = _review_with_one_analysis_at_the_ultimate(inputs, tmp_path, monkeypatch)
+    write_review_pdf(review, tmp_path / "r.pdf")
+    text = " ".join(" ".join(page.extract_text().split()) for page in pypdf.PdfReader(tmp_path / "r.pdf").pages)
+    vw = review.analyses["lower"]["hectormine1999_ABY"]["base_shear_coefficient"]
+    from isolator.report.layout import fmt
+
+    assert f"{fmt(vw)} †" in text
+    assert "† the analysis reached the bearing's ultimate displacement (2 analyses)" in text
+    assert "6 run, 0 failed; 2 reached the bearing's ultimate displacement (#2 lower, #2 upper)" in text
