@@ -7,6 +7,11 @@ pages must say.
   /tmp/coord/building_on_tfp.toml over the example suite (docs/review.md, session 16): 7 of 24 analyses reached the
   ultimate; the suite V/W of the lower bound was 1.07 (the five analyses below the ultimate 0.09–0.22) and
   ``base_shear_elf_floor`` and ``superstructure_shear`` passed on it.  Such rows now say ``not checked``.
+* An inner surface of a triple past its own rim (the planar model's limit) is said and takes the capacity pass away;
+  a surface on its rim reads its rim's D/R (not a fail by rounding).
+* What the analyses ran with is on the JSON and the pages: every µ_i of each bound, each model and its reason, the
+  implicit steps' tolerance; the forces of a double/triple named for what they are (the record-strength floor on the
+  bearing's breakaway, the activation force a printed [U] parameter).
 """
 
 from __future__ import annotations
