@@ -130,7 +130,7 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
         How the loads were factored (the 2.3.6 combination, 17.2.4.7); without it the loads are unfactored and the
         note says so.
     """
-    vertical = (f"the rigid block's normal force g + a_z vanished in {n_vertical_exceedances} episode(s) over "
+    vertical = (f"the isolated mass's normal force M (g + a_z) vanished in {n_vertical_exceedances} episode(s) over "
                 f"{n_pairs_with_vertical} pair(s) with a vertical (vertical ground acceleration ≤ −1 g: a ground "
                 "quantity, not bearing uplift)"
                 if n_pairs_with_vertical else
