@@ -161,12 +161,18 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
                  + f" → D_TM/D_M = {fmt(r['torsion']['factor'])}")
     if r["torsion"].get("code") == "en15129":  # EN 1998-1 10.9.6's δ_i, not ASCE's D_TM/D_M
         plan_text = f"largest δ_i = {fmt(r['torsion']['factor'])}: {r['torsion']['basis']}"
+    bounds = (f"µ lower {fmt(b['mu_lower'])} (λ_min {fmt(b['lambda_min'])}), nominal {fmt(b['mu_nominal'])}, upper "
+              f"{fmt(b['mu_upper'])} (λ_max {fmt(b['lambda_max'])}); {b['basis']}")
+    if "surface_mu" in r["bounds"].get("lower", {}):  # a double / triple: the µ_i each bound's analyses and ELF used
+        bounds = ("µ_i (surfaces in file order) " + ", ".join(
+            f"{bound} {bound_friction(r, bound)} (λ {fmt(r['bounds'][bound]['lambda'])})"
+            for bound in ("lower", "nominal", "upper") if bound in r["bounds"])
+                  + f"; {b['basis']}; the equivalent single pendulum's µ lower {fmt(b['mu_lower'])}, upper "
+                    f"{fmt(b['mu_upper'])} (not analysed)")
     lines = [("Design", f"{d['name']}  (file {d['source']})"),
              ("Weight, isolator", f"W = {fmt(weight / 1e3)} kN (M = {fmt(d['mass_kg'])} kg); {kind}"),
              ("Friction", friction),
-             ("Property bounds", f"µ lower {fmt(b['mu_lower'])} (λ_min {fmt(b['lambda_min'])}), nominal "
-                                 f"{fmt(b['mu_nominal'])}, upper {fmt(b['mu_upper'])} (λ_max {fmt(b['lambda_max'])}); "
-                                 f"{b['basis']}"),
+             ("Property bounds", bounds),
              ("Capacity", f"{fmt(d['displacement_capacity_m'])} m (bearing displacement, resultant)"
               if d["displacement_capacity_m"] else "not given (displacement_capacity_m)"),
              ("Plan", plan_text)]
@@ -174,6 +180,32 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
     if d.get("damping_Ns_per_m"):
         lines.insert(3, ("Damper", f"γ = {fmt(d['damping_Ns_per_m'] / 1e3)} kN·s/m (ratio {fmt(d['damping_ratio'])})"))
     return lines
+
+
+def bound_friction(r: dict, bound: str) -> str:
+    """The friction a bound's analyses ran with: ``µ_i a/b/c/d`` of a double or triple bearing (λ on every µ_i; with
+    µ(v) µ_fast of each surface), else ``µ = …``."""
+    v = r["bounds"].get(bound, {})
+    if "surface_mu" not in v:
+        return f"µ = {fmt(v.get('mu'))}"
+    if "surface_mu_fast" in v:
+        return "µ_fast,i " + "/".join(fmt(m) for m in v["surface_mu_fast"])
+    return "µ_i " + "/".join(fmt(m) for m in v["surface_mu"])
+
+
+def models_text(r: dict) -> str:
+    """Each model that ran, how many analyses ran it (naming them when they are fewer than half), and its
+    ``model_reason``."""
+    ran: dict = {}
+    for b, v in r["bounds"].items():
+        for name, res in v["pairs"].items():
+            if res.get("model"):
+                ran.setdefault(res["model"], {"reason": res.get("model_reason", ""), "who": []})["who"].append(
+                    f"#{pair_key(r).get(name, '?')} {b}")
+    total = sum(len(m["who"]) for m in ran.values())
+    return "; ".join(f"{model} ({len(m['who'])} analyses" + ("" if 2 * len(m["who"]) > total else
+                                                             ": " + ", ".join(m["who"]))
+                     + (f"): {m['reason']}" if m["reason"] else ")") for model, m in sorted(ran.items()))
 
 
 def _structure_lines(r: dict) -> list[tuple[str, str]]:
@@ -234,9 +266,14 @@ def failed_analyses(r: dict) -> tuple[int, list]:
 
 def _analyses_text(r: dict) -> str:
     n_run, broken = failed_analyses(r)
+    held = [f"#{pair_key(r).get(name, '?')} {b}" for b, v in r["bounds"].items() for name, a in v["pairs"].items()
+            if a.get("ultimate_displacement_reached") and a.get("rim_modelled", True)]
     return f"{n_run} run, {len(broken)} failed" + (
         f" (the rows needing them say not checked): {'; '.join(f'{n} ({b}): {e}' for n, b, e in broken)}"
-        if broken else "")
+        if broken else "") + (
+        f"; {len(held)} reached the bearing's ultimate displacement ({', '.join(held)}): held at the rims after a "
+        "plastic impact, they fail the capacity rows and no row passes on their response (the suite values include "
+        "them)" if held else "")
 
 
 def _summary(flow: Flow, r: dict) -> None:
@@ -313,9 +350,12 @@ def _checks(flow: Flow, r: dict) -> None:
 def _parameters(flow: Flow, r: dict) -> None:
     flow.heading("Parameters used (marks: U = unverified, a parameter by rule; S = secondary source; practice, "
                  "convention, interpretation, input)")
+    def said(v):  # a text parameter (D_M_form, multisurface_activation) as it is; `--set D_M_form=SM1` raised here
+        return "none" if v is None else v if isinstance(v, str) else fmt(v)
+
     for p in r["parameters"]:
-        value = "none" if p["value"] is None else (p["value"] if isinstance(p["value"], str) else fmt(p["value"]))
-        changed = "" if p["value"] == p["default"] else f" (default {fmt(p['default'])})"
+        value = said(p["value"])
+        changed = "" if p["value"] == p["default"] else f" (default {said(p['default'])})"
         source = f" — from the {p['source']}" if p.get("source") else ""
         flow.paragraph(f"{p['name']} = {value}{changed} [{p['mark']}]{source} — {p['rule']}: {p['meaning']}", x=0.05)
 
@@ -444,7 +484,7 @@ def _pairs(flow: Flow, r: dict) -> None:
     for x, head in columns:
         flow.text(x, head, 7.2, weight="bold")
     flow.y -= 1.15 * LINE
-    beyond = 0
+    beyond = impacts = 0
     failing = {(c.get("pair"), c.get("bound")) for c in r["checks"] if c["id"] == "record_capacity"
                and c["status"] == "fail"}  # at the corner bearing with capacity_at_corner, as the checks read it
     corner = next((c.get("torsion_factor") for c in r["checks"] if c.get("torsion_factor")), None)
@@ -459,7 +499,10 @@ def _pairs(flow: Flow, r: dict) -> None:
                 value = result.get(quantity)
                 over = quantity == "peak_displacement_m" and (name, b) in failing  # the record_capacity rows
                 beyond += bool(over)
-                text = "failed" if "error" in result else fmt(value) + (" *" if over else "")
+                impact = quantity == "base_shear_coefficient" and bool(result.get("ultimate_displacement_reached")
+                                                                       and result.get("rim_modelled", True))
+                impacts += impact
+                text = "failed" if "error" in result else fmt(value) + (" *" if over else " †" if impact else "")
                 flow.text(x, text, 7.4, color=STATUS_COLOUR["fail"] if over else "black",
                           weight="bold" if over else "normal")
                 x += 0.092 if quantity == "peak_displacement_m" else 0.083
@@ -474,8 +517,14 @@ def _pairs(flow: Flow, r: dict) -> None:
                        "understates the demand.  Where no rim is modelled (a flat slider) the analysis continues "
                        "past it as if the surface were unbounded: those numbers are not physical.",
                        color=STATUS_COLOUR["fail"])
+    if impacts:
+        flow.paragraph(f"† the analysis reached the bearing's ultimate displacement ({impacts} analyses): its V/W "
+                       "includes the plastic impact of the slab (or the mass) on the rims, an idealisation of the "
+                       "restraint; the suite values below include it, and no row passes on them (the checks pages).",
+                       color=STATUS_COLOUR["fail"])
     flow.heading("Suite values and spread per bound (D and V/W over the analyses that ran)")
-    heads = ((0.05, "bound"), (0.14, "µ"), (0.22, "rule"), (0.32, "D suite [m]"), (0.42, "std [m]"), (0.5, "CV"),
+    multi = "surface_mu" in r["bounds"].get("lower", {})  # a double / triple: the µ_i of each bound below the table
+    heads = ((0.05, "bound"), (0.14, "λ on µ_i" if multi else "µ"), (0.22, "rule"), (0.32, "D suite [m]"), (0.42, "std [m]"), (0.5, "CV"),
              (0.57, "max/mean"), (0.66, "V/W suite"), (0.75, "std"), (0.82, "CV"), (0.88, "max/mean"))
     for x, head in heads:
         flow.text(x, head, 7.2, weight="bold")
@@ -484,13 +533,16 @@ def _pairs(flow: Flow, r: dict) -> None:
         v = r["bounds"][b]
         sd = r.get("spread", {}).get(b, {})
         d, vw = sd.get("peak_displacement_m", {}), sd.get("base_shear_coefficient", {})
-        cells = (b, fmt(v["mu"]), f"{v['rule']} of {v['n']}", fmt(v["D_M_rha_m"]), fmt(d.get("std")), fmt(d.get("cv"), 3),
+        cells = (b, fmt(v["lambda"] if multi else v["mu"]), f"{v['rule']} of {v['n']}", fmt(v["D_M_rha_m"]), fmt(d.get("std")), fmt(d.get("cv"), 3),
                  fmt(d.get("max_over_mean"), 3), fmt(v["base_shear_coefficient"]), fmt(vw.get("std")),
                  fmt(vw.get("cv"), 3), fmt(vw.get("max_over_mean"), 3))
         flow.need(LINE)
         for (x, _), cell in zip(heads, cells, strict=True):
             flow.text(x, cell, 7.4)
         flow.y -= LINE
+    if multi:
+        flow.paragraph("Friction of each bound's analyses and ELF, surface by surface (file order): "
+                       + "; ".join(f"{b} {bound_friction(r, b)}" for b in bounds) + ".")
     flow.paragraph("Suite value: mean of ≥ n_for_mean analyses, else the maximum.  std: sample standard deviation; "
                    "CV = std/mean.  D: peak resultant isolator displacement (vector sum of the two directions, 2-D "
                    "analysis of the scaled pair); V/W: peak transmitted (absolute) acceleration of the supported mass "
@@ -500,11 +552,11 @@ def _pairs(flow: Flow, r: dict) -> None:
         if b not in r["elf"]:
             continue
         e = r["elf"][b]
-        flow.paragraph(f"ELF {b} bound (µ = {fmt(e['mu'])}): T_M = {fmt(e['T_M_s'])} s, β_M = {fmt(e['beta_M'])}, "
+        flow.paragraph(f"ELF {b} bound ({bound_friction(r, b) if multi else 'µ = ' + fmt(e['mu'])}): T_M = {fmt(e['T_M_s'])} s, β_M = {fmt(e['beta_M'])}, "
                        f"B_M = {fmt(e['B_M'])}, D_M = {fmt(e['D_M_m'])} m, D_TM = {fmt(e.get('D_TM_m'))} m, V_b/W = "
                        f"{fmt(e['V_b_over_W'])}" + (f", V_s/W = {fmt(e['V_s_over_W'])}" if "V_s_over_W" in e else ""))
-    models = sorted({res.get("model", "") for b in bounds for res in r["bounds"][b]["pairs"].values()})
-    flow.paragraph(f"Engine: {', '.join(m for m in models if m) or 'n/a'}; torsion: {r['torsion']['basis']}.")
+    flow.paragraph("Engine (the model each analysis ran, and why): " + (models_text(r) or "n/a")
+                   + f".  Torsion: {r['torsion']['basis']}.")
     flow.heading("Key to the pairs: names, metadata, processing")
     by_name = {p["name"]: p for p in r["suite"]["pairs"]}
     for name, number in key.items():
@@ -553,7 +605,7 @@ def _orbits_page(review, r: dict):
     width = 0.27
     for j, b in enumerate(b for b in ("lower", "nominal", "upper") if b in r["bounds"]):
         values = [r["bounds"][b]["pairs"][n].get("peak_displacement_m", np.nan) for n in names]
-        ax.bar(xs + (j - 1) * width, values, width, color=BOUND_COLOUR[b], label=f"{b} (µ = {fmt(r['bounds'][b]['mu'], 3)})")
+        ax.bar(xs + (j - 1) * width, values, width, color=BOUND_COLOUR[b], label=f"{b} ({bound_friction(r, b)})")
         ax.axhline(r["bounds"][b]["D_M_rha_m"], color=BOUND_COLOUR[b], lw=0.9, ls=":")
     if cap:
         ax.axhline(cap, color="k", ls="--", lw=1.0, label="capacity")

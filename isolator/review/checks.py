@@ -130,7 +130,7 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
         How the loads were factored (the 2.3.6 combination, 17.2.4.7); without it the loads are unfactored and the
         note says so.
     """
-    vertical = (f"the rigid block's normal force g + a_z vanished in {n_vertical_exceedances} episode(s) over "
+    vertical = (f"the isolated mass's normal force M (g + a_z) vanished in {n_vertical_exceedances} episode(s) over "
                 f"{n_pairs_with_vertical} pair(s) with a vertical (vertical ground acceleration ≤ −1 g: a ground "
                 "quantity, not bearing uplift)"
                 if n_pairs_with_vertical else
@@ -338,6 +338,80 @@ def never_pass_at_ultimate(row: dict, reached: list[str]) -> dict:
             "note": row["note"] + f"; {len(reached)} analysis(es) reached the bearing's ultimate displacement "
                                   f"({', '.join(reached[:4])}{' …' if len(reached) > 4 else ''}): their peaks are "
                                   "held at the rims, so the suite value understates the demand"}
+
+
+#: Relative amount by which a surface's peak may pass its own displacement capacity before the review says so (the
+#: rims hold the outer surfaces to rounding: 0.4000000000000002 m against 0.4 m measured).
+SURFACE_RIM_TOLERANCE = 1e-9
+
+
+def surface_rims_passed(analyses: dict, capacities_m: list[float] | None) -> list[str]:
+    """"pair (bound): surface i d m > d_i m" of every analysis whose peak displacement on a surface of a double or
+    triple bearing passed that surface's own capacity (``surface_peak_displacement_m`` against ``capacities_m``, both
+    on the surface, file order).
+
+    The planar series model holds its elements within their rims, which are the surfaces' rims for a double and for a
+    triple's outer surfaces but not for a triple's inner ones in a planar motion (docs/multisurface.md, "What the rims
+    are in the plane — a limit"): there an inner slider can pass its rim, which the real bearing's rim would stop.
+    """
+    if not capacities_m:
+        return []
+    out = []
+    for bound, results in analyses.items():
+        for name, r in results.items():
+            peaks = r.get("surface_peak_displacement_m")
+            if "error" in r or not peaks:
+                continue
+            over = [(i, d, c) for i, (d, c) in enumerate(zip(peaks, capacities_m, strict=True), 1)
+                    if d > c * (1.0 + SURFACE_RIM_TOLERANCE)]
+            if over:
+                out.append(f"{name} ({bound}): " + ", ".join(f"surface {i} {d:.4g} m > its {c:.4g} m"
+                                                             for i, d, c in over))
+    return out
+
+
+def within_surface_rims(rows: list, passed: list[str]) -> list:
+    """The capacity rows of analyses in which a surface passed its own rim (``passed``: :func:`surface_rims_passed`):
+    the model let an inner slider past its rim, so the bearing's capacity is not checked by that analysis —
+    ``record_capacity`` cannot pass (``not checked``, naming them), a failure stands with them named;
+    ``D_over_R`` (read from the same surface peaks) says so."""
+    if not passed:
+        return rows
+    said = (f"in {len(passed)} analysis(es) a surface passed its own displacement capacity ({'; '.join(passed[:3])}"
+            f"{' …' if len(passed) > 3 else ''}): the planar model's element rims are not a triple's inner rims "
+            "(docs/multisurface.md), the real rim would have stopped the slider")
+    out = []
+    for row in rows:
+        if row["id"] == "record_capacity" and row["status"] == PASS:
+            out.append({**row, "status": NOT_CHECKED, "note": row["note"] + f"; would pass, but {said}"})
+        elif row["id"] in ("record_capacity", "D_over_R"):
+            out.append({**row, "note": row["note"] + f"; {said}"})
+        else:
+            out.append(row)
+    return out
+
+
+#: The models that integrate by implicit steps under a relative local-error tolerance (not exact; their errors are
+#: measured in docs/multisurface.md and docs/building.md), by the name before any ``+vertical``.
+IMPLICIT_STEP_MODELS = ("2d-multisurface", "2d-building-multisurface")
+
+
+def implicit_step_limit(analyses: dict) -> str:
+    """What a row computed from the analyses must say when some of them ran an implicit-step model (else ''): the
+    tolerance they ran at and, for a building on a double or triple, that its base shear is taken at the steps' ends
+    and watch points (a sampled peak, at most the true one: a floor row that passes on it stands, one that fails may
+    be the sampling; a limit row may understate)."""
+    models = sorted({r.get("model", "") for results in analyses.values() for r in results.values()
+                     if "error" not in r and r.get("model", "").split("+")[0] in IMPLICIT_STEP_MODELS})
+    if not models:
+        return ""
+    from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL  # the tolerance the analyses ran at
+
+    building = any(m.startswith("2d-building-multisurface") for m in models)
+    return (f"model {', '.join(models)}: implicit steps at step_tol {DEFAULT_STEP_TOL:g} (relative local error; not "
+            "exact, measured in docs/multisurface.md and docs/building.md)"
+            + ("; the base shear is taken at the steps' ends and watch points (a sampled peak, at most the true one)"
+               if building else ""))
 
 
 def spread(values) -> dict:

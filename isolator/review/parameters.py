@@ -99,6 +99,11 @@ PARAMETERS = {p.name: p for p in [
               "each analysis's capacity row reads the corner bearing: the centre-of-mass displacement × the "
               "review's torsion factor (ASCE: D_TM/D_M of Eq. 17.5-3; EN: the largest δ_i of EN 1998-1 10.9.6); "
               "false: the centre of mass"),
+    Parameter("multisurface_activation", "outer", "U", "ASCE 7-22 17.5.4.3(3) (REVIEW_RULES 1.9: for sliders the "
+              "breakaway friction)",
+              "a double or triple bearing's force that fully activates it: 'outer' the backbone's force at the start "
+              "of the regime of the largest compliance (a triple's regime III: the outer surfaces slide), "
+              "'breakaway' its force at rest (its smallest µ_i); a single surface: µs either way", ("asce7-22",)),
     Parameter("horizontal_only", False, "input", "ASCE 7-22 17.3.2 (pairs of horizontal components)",
               "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
               "building); false: a vertical is analysed or the review refuses it"),
@@ -222,7 +227,7 @@ def _coerce(name: str, value, default):
             return value
         raise ReviewError(f"review parameter '{name}' must be true or false, got {value!r}")
     if isinstance(default, str):
-        allowed = {"D_M_form": ("SaM", "SM1")}.get(name)
+        allowed = {"D_M_form": ("SaM", "SM1"), "multisurface_activation": ("outer", "breakaway")}.get(name)
         if allowed and value not in allowed:
             raise ReviewError(f"review parameter '{name}' must be one of {', '.join(allowed)}, got {value!r}")
         return str(value)

@@ -75,7 +75,8 @@ class Review:
             if bound not in self.analyses:
                 continue
             pairs = {name: {k: v for k, v in r.items() if k != "orbit_m"} for name, r in self.analyses[bound].items()}
-            bounds[bound] = {"mu": self.bound_mu[bound], "pairs": pairs, **self.design_values.get(bound, {})}
+            bounds[bound] = {"mu": self.bound_mu[bound], **self.surface_friction(bound), "pairs": pairs,
+                             **self.design_values.get(bound, {})}
         elf = {b: {k: v for k, v in self.elf[b].items()} for b in self.elf}
         env = self.design_values["envelope"]
         return json_safe({
@@ -125,6 +126,21 @@ class Review:
     @property
     def bound_mu(self) -> dict:
         return {"lower": self.bounds.mu_lower, "upper": self.bounds.mu_upper, "nominal": self.bounds.mu_nominal}
+
+    def surface_friction(self, bound: str) -> dict:
+        """A double or triple bearing's friction at a bound, surface by surface in file order (λ on every µ_i, as
+        the bound's analyses and ELF ran: :meth:`isolator.design.Design.with_friction_factor`): ``lambda``,
+        ``surface_mu`` (kinetic) and, with µ(v), ``surface_mu_slow`` / ``surface_mu_fast``; empty for one surface
+        (``mu`` is then its own µ)."""
+        if not asce7_22.is_multisurface(self.design):
+            return {}
+        factor = {"lower": self.bounds.lambda_min, "upper": self.bounds.lambda_max, "nominal": 1.0}[bound]
+        surfaces = (self.design if factor == 1.0 else self.design.with_friction_factor(factor, f"{bound} bound")
+                    ).bearing.surfaces
+        out = {"lambda": factor, "surface_mu": [s.mu_kinetic for s in surfaces]}
+        if any(s.mu_fast is not None for s in surfaces):
+            out |= {"surface_mu_slow": [s.mu_slow for s in surfaces], "surface_mu_fast": [s.mu_fast for s in surfaces]}
+        return out
 
     @property
     def min_ratio_required(self) -> float:

@@ -175,7 +175,8 @@ def _in_range(value, bounds) -> bool:
 
 
 def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, controlling: dict,
-                   params: dict, closest: dict | None, code: str = "asce7-22") -> list[dict]:
+                   params: dict, closest: dict | None, code: str = "asce7-22", mu_lower_said: str = "µ_lower"
+                   ) -> list[dict]:
     """The record-selection rows of a review (the code's clauses, :data:`CLAUSES`, and practice).
 
     Parameters
@@ -184,7 +185,10 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
     factors : sequence of float
         The scale factor of each pair as analysed [-].
     mu_lower : float
-        Lower-bound kinetic friction [-].
+        Lower-bound kinetic friction [-] (a double or triple bearing: the lower bound's breakaway force / W, its
+        smallest µ_i, where it starts to slide).
+    mu_lower_said : str
+        What ``mu_lower`` is, in the row's note.
     gravity_m_s2 : float
     controlling : dict
         The target's ``magnitude_range``, ``distance_km_range``, ``vs30_m_s_range`` ([lo, hi]) and
@@ -263,7 +267,8 @@ def selection_rows(pairs, factors, *, mu_lower: float, gravity_m_s2: float, cont
     weak = [f"{name} {value:.3g} g" for name, value in pgas.items() if value < floor]
     rows.append(C.check("record_strength", "record selection (practice)", C.FAIL if weak else C.PASS,
                         min(pgas.values()), floor,
-                        f"scaled resultant PGA ≥ {params['weak_pga_fraction']:g} µ_lower g; "
+                        f"scaled resultant PGA ≥ {params['weak_pga_fraction']:g} × {mu_lower_said} "
+                        f"{mu_lower:.4g} × g; "
                         + (f"cannot move the isolator, only dilute the mean: {', '.join(weak)}" if weak
                            else "every pair can move the isolator"), "g"))
     widths = {f"{p.name} {k}": spectral_bandwidth(a, p.dt_s) for p in pairs

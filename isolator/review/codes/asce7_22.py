@@ -165,14 +165,17 @@ def breakaway_force_per_weight(design, mu_static: float | None = None) -> float:
     return design.mu_static if mu_static is None else mu_static
 
 
-def activation_force_per_weight(design) -> float:
+def activation_force_per_weight(design, mode: str = "outer") -> float:
     """The force per unit weight that fully activates the isolation system (17.5.4.3(3)) [-].
 
-    µs for a single surface; for a double or triple pendulum the backbone's force at the start of the
-    regime where every element of largest compliance slides (regime III of a triple pendulum).
+    µs for a single surface; for a double or triple pendulum (review parameter ``multisurface_activation`` [U])
+    ``"outer"``: the backbone's force at the start of the regime where every element of largest compliance slides
+    (regime III of a triple pendulum), ``"breakaway"``: its force at rest (REVIEW_RULES 1.9's breakaway friction).
     """
     if not is_multisurface(design):
         return design.mu_static
+    if mode == "breakaway":
+        return breakaway_force_per_weight(design)
     bb = design.bearing.backbone()
     compliance = [1.0 / k if k > 0 else 0.0 for k in bb.stiffness_per_weight_1_m]
     return float(bb.force_per_weight[int(np.argmax(compliance))])
@@ -376,7 +379,8 @@ def fixed_base_limits(elf: dict, design_spectrum: dict | None, r: float | None, 
 def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_static_upper: float,
                      mu_static_nominal: float, story_drift_ratio: float | None = None,
                      story_drift_note: str = "", bearing_axial_loads_N: dict | None = None,
-                     fixed_base: dict | None = None) -> list[dict]:
+                     fixed_base: dict | None = None, multisurface: bool = False,
+                     activation_mode: str = "outer") -> list[dict]:
     """The Chapter 17 requirements beside the response-history checks, each with its clause and status.
 
     ``pass`` / ``fail`` only where the review computes the quantity; otherwise ``not checked`` naming
@@ -398,15 +402,22 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         (:func:`breakaway_force_per_weight`, :func:`activation_force_per_weight`).
     fixed_base : dict, optional
         17.5.4.3(1)'s limits (:func:`fixed_base_limits`); without it the row is ``not checked``.
+    multisurface : bool
+        A double or triple bearing: the notes say what the forces are (the backbone's at rest for the wind row, at
+        the start of the regime of the largest compliance for 17.5.4.3(3), :func:`activation_force_per_weight`),
+        not µs.
+    activation_mode : {"outer", "breakaway"}
+        Which force activates a double or triple (``multisurface_activation``), for the note.
     """
     from isolator.review import checks as C
 
     rows = []
+    breakaway = "force / W (the bearing's backbone at rest: its smallest µ_i)" if multisurface else "µs"
     wind = params.get("wind_shear_over_W")
     if wind is None:
         rows.append(C.check("wind_restraint", "ASCE 7-22 17.2.4.2", C.NOT_CHECKED, None, mu_static_lower,
                             "needs the design wind base shear / W (parameter wind_shear_over_W); the isolation system "
-                            f"must not slide under wind: lower-bound breakaway µs = {mu_static_lower:.4g}", "V/W"))
+                            f"must not slide under wind: lower-bound breakaway {breakaway} = {mu_static_lower:.4g}", "V/W"))
     else:
         rows.append(C.at_most("wind_restraint", "ASCE 7-22 17.2.4.2", wind, mu_static_lower,
                               "design wind base shear / W ≤ lower-bound breakaway friction µs (no sliding under wind; "
@@ -447,7 +458,15 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         b = min(margins, key=lambda k: margins[k][0] / margins[k][1])
         rows.append(C.at_least("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", margins[b][0], margins[b][1],
                                f"ELF V_s/W ({b} bound) ≥ V_st of Eq. 17.5-8 with V_b = the activation force "
-                               f"max(µs upper, 1.5 µs nominal) W = {v_act:.4g} W", "V/W"))
+                               + (("max(upper, 1.5 × nominal) of the backbone's force at the start of the regime "
+                                   "of the largest compliance (regime III of a triple: the outer surfaces slide; "
+                                   "multisurface_activation 'outer' [U]: REVIEW_RULES 1.9 names the breakaway friction "
+                                   "for sliders, the bearing's breakaway is its smallest µ_i) "
+                                   if activation_mode == "outer" else
+                                   "max(upper, 1.5 × nominal) of the bearing's breakaway force (the backbone at rest: "
+                                   "its smallest µ_i; multisurface_activation 'breakaway' [U]) ")
+                                  if multisurface else "max(µs upper, 1.5 µs nominal) ")
+                               + f"W = {v_act:.4g} W", "V/W"))
     else:
         rows.append(C.check("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", C.NOT_CHECKED, None, None,
                             "no ELF V_s (the ELF found no sliding)", "V/W"))
