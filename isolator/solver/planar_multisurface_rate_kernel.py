@@ -26,7 +26,7 @@ Two or more sliding surfaces saturated together (a_i |u̇_i| ≥ 28, left at 26:
 on the speeds |u̇_i|: the back-forces of the set move together, u̇_ℓ = G_ℓ0 Ẋ + Σ_U G_ℓj u̇_j), exact where the
 motion keeps one direction (a pair along a line, an equal double); a motion that turns while two surfaces are
 saturated is not checked (docs/multisurface.md, h122).  Where the pivot and another surface slide saturated
-(a·s ≥ 20) with slips apart (|ŵ × n_j| ≥ 1e-4: r at the corner of their circles |r − b| = µ_fast, where φ is not
+(a·s ≥ 10) with slips apart (|ŵ × n_j| ≥ 1e-4: r at the corner of their circles |r − b| = µ_fast, where φ is not
 resolvable and no set is formed) the force and the speeds come from every law forward (:func:`corner_force`) and
 the Jacobian from the implicit function theorem on that system (:func:`corner_jacobian`; h151).  The state
 y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by
@@ -369,9 +369,9 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
 FORCE_RESIDUAL = 1e-13
 #: :func:`corner_force`'s Newton iterations at the most
 CORNER_ITERATIONS = 50
-#: a_i s_i from which a surface counts as saturated for :func:`corner_force` (µ_fast − µ there ≤ e^-20 of
-#: µ_fast − µ_slow: ~1e5 ulp of r, φ_i resolvable to ~1e-5 of a·s below it)
-CORNER_SATURATED = 20.0
+#: a_i s_i from which a surface counts as saturated for :func:`corner_force` (µ_fast − µ there ≤ e^-10 of
+#: µ_fast − µ_slow; with 20 PTS's lower bound stopped at 14.9669 s on the step floor, with 10 it runs to its end)
+CORNER_SATURATED = 10.0
 #: the sine |ŵ × n_j| from which a saturated surface's slip is apart from the pivot's (a corner); below it the slips
 #: are parallel (the saturated set's map, or the answer of :func:`solve_force`)
 CORNER_APART = 1e-4
