@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from isolator.solver.jit import njit
 
 
@@ -66,3 +68,16 @@ def lu_solve(lu, piv, rhs_vec):
         for q in range(i + 1, size):
             total -= lu[i, q] * rhs_vec[q]
         rhs_vec[i] = total / lu[i, i]
+
+
+@njit(cache=True)
+def solve_or_refuse(mat, rhs_vec, out):
+    """``out`` = ``mat``⁻¹ ``rhs_vec`` by LAPACK's LU with partial pivoting (``np.linalg.solve``: the same arithmetic
+    as a direct call); False where ``mat`` is singular (a zero pivot) or not finite instead of raising ``LinAlgError``.  The full
+    Newton of the µ(v) kernels' Radau steps calls it so that a singular stage matrix refuses the step, which the
+    caller then shortens (docs/multisurface.md, h141: the corner of two saturated circles raised here)."""
+    try:
+        out[:] = np.linalg.solve(mat, rhs_vec)
+    except Exception:  # np.linalg.LinAlgError: a zero pivot, or a non-finite entry
+        return False
+    return True

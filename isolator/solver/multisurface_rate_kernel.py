@@ -54,7 +54,7 @@ import math
 
 import numpy as np
 
-from isolator.solver.dense import lu_factor, lu_solve
+from isolator.solver.dense import lu_factor, lu_solve, solve_or_refuse
 from isolator.solver.events import BREAKAWAY, REVERSAL, STICK, record_event
 from isolator.solver.jit import njit
 from isolator.solver.multisurface_kernel import (  # noqa: F401 (the summary layout, re-exported)
@@ -559,7 +559,8 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sca
                 for q in range(3 * m):
                     if not math.isfinite(big[p, q]):
                         return -1  # a stage left the slide law's domain: the caller shortens the step
-            delta[:] = np.linalg.solve(big, res)
+            if not solve_or_refuse(big, res, delta):
+                return -1  # a singular stage matrix: the caller shortens the step
         if not fall_back:
             size = 0.0
             for j in range(3):

@@ -25,7 +25,11 @@ Two or more sliding surfaces saturated together (a_i |u̇_i| ≥ 28, left at 26:
 φ not resolvable) share the velocity by the 1-D model's map on each component (its ``update_lock`` and ``set_split``
 on the speeds |u̇_i|: the back-forces of the set move together, u̇_ℓ = G_ℓ0 Ẋ + Σ_U G_ℓj u̇_j), exact where the
 motion keeps one direction (a pair along a line, an equal double); a motion that turns while two surfaces are
-saturated is not checked (docs/multisurface.md, h122).  The state y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by
+saturated is not checked (docs/multisurface.md, h122).  Where the pivot and another surface slide saturated
+(a·s ≥ 10) with slips apart (|ŵ × n_j| ≥ 1e-4: r at the corner of their circles |r − b| = µ_fast, where φ is not
+resolvable and no set is formed) the force and the speeds come from every law forward (:func:`corner_force`) and
+the Jacobian from the implicit function theorem on that system (:func:`corner_jacobian`; h151).  The state
+y = (Ẋ, u_1, …, u_n) ∈ ℝ^(2+2n) is integrated by
 the 3-stage Radau IIA
 collocation of the 1-D kernel (its tableau, Newton start and stage matrix imported), with the analytic
 Jacobian (:func:`rhs`), every step taken twice (h, two of h/2) and the difference held below the tolerance.
@@ -65,7 +69,7 @@ import math
 
 import numpy as np
 
-from isolator.solver.dense import lu_factor, lu_solve
+from isolator.solver.dense import lu_factor, lu_solve, solve_or_refuse
 from isolator.solver.events import BREAKAWAY, REVERSAL, STICK
 from isolator.solver.jit import njit
 from isolator.solver.multisurface_rate_kernel import (
@@ -288,14 +292,16 @@ def force_residual(rx, ry, vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, e
 
 
 @njit(cache=True)
-def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir):
+def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir, stalled):
     """F/W (in ``r``, which holds a first guess) at which the sliding surfaces' rates sum to Ẋ = (vx, vy).
 
     The pivot k takes the rest of the velocity and its friction by the forward law (module docstring): Newton on
     the 2 × 2 system G(r) = 0 (:func:`force_residual`) from the better of two starts (the guess; the pivot
     carrying its share of Ẋ), its step halved until |G| falls (≤ 60 halvings: inside the static discs the continued
     laws are not monotone), ≤ 100 iterations.  ``dphi`` [n × 2 × 2] receives DΦ_j of the non-pivot sliding
-    surfaces, ``dm`` DM_k.  Returns False when Newton does not converge (the caller shortens the step).
+    surfaces, ``dm`` DM_k.  Returns False when Newton does not converge (the caller shortens the step);
+    ``stalled[0]`` is set where it stopped at the rounding floor with |G| > :data:`FORCE_RESIDUAL` left (∂G/∂r ~
+    1e10 where a non-pivot φ_j is not resolvable: no root; :func:`rhs` then tries :func:`corner_force`).
     """
     n = mode.shape[0]
     k = pivot
@@ -339,6 +345,7 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
         floor = 1e-15 * (math.hypot(r[0], r[1]) + mu_f[k])
         if size <= floor or (it >= 2 and size >= 0.5 * prev and size <= 1e3 * floor):
             # converged (or at the rounding floor): DΦ_j and DM_k are those at r
+            stalled[0] = size > floor and math.hypot(out[0], out[1]) > FORCE_RESIDUAL
             return True
         lam = 1.0
         for _ in range(60):
@@ -355,6 +362,302 @@ def solve_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r,
         best = math.hypot(out[0], out[1])
         prev = size
     return False
+
+
+#: the force's residual |G| (F/W) past which :func:`solve_force`'s rounding-floor answer is no root: the corner of two
+#: saturated circles is then tried (:func:`corner_force`)
+FORCE_RESIDUAL = 1e-13
+#: :func:`corner_force`'s Newton iterations at the most
+CORNER_ITERATIONS = 50
+#: a_i s_i from which a surface counts as saturated for :func:`corner_force` (µ_fast − µ there ≤ e^-10 of
+#: µ_fast − µ_slow; with 20 PTS's lower bound stopped at 14.9669 s on the step floor, with 10 it runs to its end)
+CORNER_SATURATED = 10.0
+#: the sine |ŵ × n_j| from which a saturated surface's slip is apart from the pivot's (a corner); below it the slips
+#: are parallel (the saturated set's map, or the answer of :func:`solve_force`)
+CORNER_APART = 1e-4
+
+
+@njit(cache=True)
+def at_corner(r, bf, mode, lock, pivot, mu_s, mu_f):
+    """Whether the force r lies at a corner of two saturated circles: the pivot k and a contributing surface j both
+    within (µ_fast − µ_slow) e^(−:data:`CORNER_SATURATED`) of µ_fast (a·s ≥ CORNER_SATURATED: at the root
+    r − b_k = µ_k(|u̇_k|) û̇_k), their friction directions (their slips) apart, |f̂_k × f̂_j| ≥ :data:`CORNER_APART`."""
+    k = pivot
+    if not (0 <= k < mode.shape[0]) or mode[k] != SLIDING:
+        return False
+    fkx = r[0] - bf[k, 0]
+    fky = r[1] - bf[k, 1]
+    rk = math.hypot(fkx, fky)
+    edge = math.exp(-CORNER_SATURATED)
+    if not (rk > 0.0 and mu_f[k] - rk <= (mu_f[k] - mu_s[k]) * edge):
+        return False
+    for j in range(mode.shape[0]):
+        if j != k and mode[j] == SLIDING and lock[j] == 0:
+            fx = r[0] - bf[j, 0]
+            fy = r[1] - bf[j, 1]
+            rj = math.hypot(fx, fy)
+            if rj > 0.0 and mu_f[j] - rj <= (mu_f[j] - mu_s[j]) * edge and abs(fkx * fy - fky * fx) >= CORNER_APART * rk * rj:
+                return True
+    return False
+
+
+@njit(cache=True)
+def corner_members(mode, lock, pivot, idx):
+    """The contributing non-pivot surfaces (:func:`contributes`) into ``idx``; their count, or −1 where one slides
+    along its rim (its tangent law is not carried by :func:`corner_system`)."""
+    nu = 0
+    for j in range(mode.shape[0]):
+        if j != pivot and contributes(mode[j], lock[j]):
+            if mode[j] != SLIDING:
+                return -1
+            idx[nu] = j
+            nu += 1
+    return nu
+
+
+@njit(cache=True)
+def corner_arrays(mode, lock, pivot, r):
+    """The members U (:func:`corner_members`: ``idx``, their count ``nu``, −1 with a rim slider) and the work arrays
+    of :func:`corner_system` for its 2 + nu unknowns: z (r in its first two entries), res, jm, perm, dm, geo."""
+    n = mode.shape[0]
+    idx = np.empty(n, dtype=np.int64)
+    nu = corner_members(mode, lock, pivot, idx)
+    size = 2 + max(nu, 0)
+    z = np.zeros(size)
+    z[0] = r[0]
+    z[1] = r[1]
+    return (idx, nu, z, np.empty(size), np.empty((size, size)), np.zeros(size, dtype=np.int64), np.empty((2, 2)),
+            np.empty((max(nu, 0), 3)))
+
+
+@njit(cache=True)
+def corner_system(vx, vy, bf, mu_s, mu_f, a, k, gmap, idx, nu, z, ex0, ey0, res, jm, dm, geo):
+    """The force's equations with every law forward, at z = (r, s_U) (r = F/W, s_j the slide speeds of the
+    contributing non-pivot surfaces U = ``idx[:nu]``): residual ``res`` [2 + nu] and Jacobian ``jm`` [(2+nu)²] of
+
+        G(r, s) = r − b_k − µ_k(|w|) ŵ,  w = G_k0 Ẋ + Σ_U G_kj s_j n_j,  n_j = (r − b_j)/|r − b_j|,
+        H_j(r, s) = |r − b_j| − µ_j(s_j),
+
+    ∂G/∂r = I − DM_k Σ_U G_kj s_j (I − n_j n_jᵀ)/ρ_j, ∂G/∂s_j = −DM_k G_kj n_j, ∂H_j/∂r = n_jᵀ, ∂H_j/∂s_j = −µ_j'(s_j).
+    ``dm`` receives DM_k at w, ``geo`` [nu × 3] (n_j, ρ_j).  Returns (ok, w_x, w_y); not ok where a ρ_j or an entry
+    is not finite or zero."""
+    size = 2 + nu
+    for p in range(size):
+        for q in range(size):
+            jm[p, q] = 0.0
+    wx = gmap[k, 0] * vx
+    wy = gmap[k, 0] * vy
+    for q in range(nu):
+        j = idx[q]
+        fx = z[0] - bf[j, 0]
+        fy = z[1] - bf[j, 1]
+        rho = math.hypot(fx, fy)
+        if not (rho > 0.0 and math.isfinite(rho)):
+            return False, 0.0, 0.0
+        nx = fx / rho
+        ny = fy / rho
+        geo[q, 0] = nx
+        geo[q, 1] = ny
+        geo[q, 2] = rho
+        wx += gmap[k, 1 + j] * z[2 + q] * nx
+        wy += gmap[k, 1 + j] * z[2 + q] * ny
+        mu, dmu = friction_at_rate(z[2 + q], 1.0, mu_s[j], mu_f[j], a[j])
+        res[2 + q] = rho - mu
+        jm[2 + q, 0] = nx
+        jm[2 + q, 1] = ny
+        jm[2 + q, 2 + q] = -dmu
+    fx, fy = friction_vector(wx, wy, ex0, ey0, mu_s[k], mu_f[k], a[k], dm)
+    res[0] = z[0] - bf[k, 0] - fx
+    res[1] = z[1] - bf[k, 1] - fy
+    jm[0, 0] = 1.0
+    jm[1, 1] = 1.0
+    for q in range(nu):
+        j = idx[q]
+        nx = geo[q, 0]
+        ny = geo[q, 1]
+        wk = gmap[k, 1 + j]
+        cc = wk * z[2 + q] / geo[q, 2]
+        p00 = cc * (1.0 - nx * nx)
+        p01 = -cc * nx * ny
+        p11 = cc * (1.0 - ny * ny)
+        jm[0, 0] -= dm[0, 0] * p00 + dm[0, 1] * p01
+        jm[0, 1] -= dm[0, 0] * p01 + dm[0, 1] * p11
+        jm[1, 0] -= dm[1, 0] * p00 + dm[1, 1] * p01
+        jm[1, 1] -= dm[1, 0] * p01 + dm[1, 1] * p11
+        jm[0, 2 + q] = -wk * (dm[0, 0] * nx + dm[0, 1] * ny)
+        jm[1, 2 + q] = -wk * (dm[1, 0] * nx + dm[1, 1] * ny)
+    for p in range(size):
+        if not math.isfinite(res[p]):
+            return False, 0.0, 0.0
+    return True, wx, wy
+
+
+@njit(cache=True)
+def corner_force(vx, vy, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, sv):
+    """F/W (in ``r``, which holds a first guess) and the slide speeds ``sv`` [m/s] of the contributing non-pivot
+    surfaces at a *corner of two saturated circles*, every law used forward (never the inverse φ_j); False where it
+    is not such a corner or Newton does not converge (the caller keeps :func:`solve_force`'s answer).
+
+    The root of :func:`corner_system` (the same root as :func:`solve_force`'s, s_j = φ_j(|r − b_j|)).  Where two
+    surfaces slide near µ_fast with slips a small angle θ apart, r lies at the corner of their circles |r − b| =
+    µ_fast; µ_fast − |r − b_j| is a few hundred ulp of r, one ulp of r moves φ_j by ~1e-4 m/s, and the 2 × 2 Newton
+    of :func:`solve_force` stalls (h141: the probe 0.7 g x + 0.02 g y at 0.7172 s, the inner pair at a·s = 27.73,
+    slips 2.19e-2 rad apart: |G| = 1.8e-8, ∂G/∂r of condition 8e10), while the forward laws and the corner's
+    geometry are well conditioned (1/sin θ).  Newton on the 2 + |U| unknowns with the analytic Jacobian (LU with a
+    zero-pivot guard), ≤ :data:`CORNER_ITERATIONS`.  Taken only at a corner: the pivot and at least one other surface
+    saturated (a·s ≥ :data:`CORNER_SATURATED`), every saturated one's slip apart from the pivot's, |ŵ × n_j| ≥
+    :data:`CORNER_APART`.  Parallel saturated slips (a motion along a line, an equal double) are not a corner: there
+    the split of the speed between the members rests on µ'(s) ~ e^(−a s) and is set by the rounding (h141's
+    unguarded attempt moved the 1-D 35° pulse's impulse by 1.4e-3); the saturated set's map carries them."""
+    n = mode.shape[0]
+    k = pivot
+    idx, nu, z, res, jm, perm, dm, geo = corner_arrays(mode, lock, k, r)
+    if nu < 1:
+        return False
+    size = 2 + nu
+    speed = math.hypot(vx, vy)
+    for q in range(nu):
+        j = idx[q]
+        sp, _ = slide_rate(math.hypot(r[0] - bf[j, 0], r[1] - bf[j, 1]), 1.0, mu_s[j], mu_f[j], a[j])
+        z[2 + q] = sp if math.isfinite(sp) else speed / (nu + 1)
+    prev_s = math.inf
+    for it in range(CORNER_ITERATIONS):
+        ok, wx, wy = corner_system(vx, vy, bf, mu_s, mu_f, a, k, gmap, idx, nu, z, ex0, ey0, res, jm, dm, geo)
+        if not ok or not lu_factor(jm, perm):
+            return False
+        lu_solve(jm, perm, res)
+        # damped where a speed would move by more than 4/a_j (the law's exponential); a speed may pass 0 (the law
+        # continued through the onset, as :func:`solve_force`'s: a surface about to stop)
+        lam = 1.0
+        for q in range(nu):
+            ds = abs(res[2 + q])
+            if not math.isfinite(ds):
+                return False
+            if a[idx[q]] * ds > 4.0:
+                lam = min(lam, 4.0 / (a[idx[q]] * ds))
+        big_r = 0.0
+        big_s = 0.0
+        for p in range(size):
+            z[p] -= lam * res[p]
+            if p < 2:
+                big_r = max(big_r, abs(lam * res[p]))
+            else:
+                big_s = max(big_s, abs(lam * res[p]))
+        if not (math.isfinite(big_r) and math.isfinite(big_s)):
+            return False
+        # converged: r to its rounding and the speeds to 1e-12, or the speeds' steps stalled at their rounding
+        # (below 1e-6 of the speed: the split's sensitivity to the rounding of r grows as 1/sin²θ)
+        floor_s = 1e-12 * speed
+        s_done = big_s <= floor_s or (it >= 2 and lam == 1.0 and big_s >= 0.5 * prev_s and big_s <= 1e-6 * speed)
+        prev_s = big_s
+        if big_r <= 2e-15 * (abs(z[0]) + abs(z[1]) + mu_f[k]) and s_done:
+            # a corner?  the pivot and a member saturated, every saturated member's slip apart from the pivot's
+            ok, wx, wy = corner_system(vx, vy, bf, mu_s, mu_f, a, k, gmap, idx, nu, z, ex0, ey0, res, jm, dm, geo)
+            ws = math.hypot(wx, wy)
+            if not (ok and a[k] * ws >= CORNER_SATURATED):
+                return False
+            members = 0
+            for q in range(nu):
+                if a[idx[q]] * z[2 + q] >= CORNER_SATURATED:
+                    members += 1
+                    if not abs(wx * geo[q, 1] - wy * geo[q, 0]) >= CORNER_APART * ws:
+                        return False
+            if members == 0:
+                return False
+            r[0] = z[0]
+            r[1] = z[1]
+            for j in range(n):
+                sv[j] = 0.0
+            for q in range(nu):
+                sv[idx[q]] = z[2 + q]
+            return True
+    return False
+
+
+@njit(cache=True)
+def corner_jacobian(y, g, c, bmat, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, sv, out_jac):
+    """∂(dy/dt)/∂y at a corner (:func:`corner_force`'s root) by the implicit function theorem on its 2 + |U| system
+    (:func:`corner_system`, well conditioned there): dz/dy = −(∂F/∂z)⁻¹ ∂F/∂y for z = (r, s_U), with
+    ∂G/∂Ẋ = −DM_k G_k0, ∂G/∂u_p = −B_kp I + DM_k Σ_U G_kj s_j (I − n_j n_jᵀ)/ρ_j B_jp, ∂H_j/∂u_p = −B_jp n_jᵀ; then
+    Ẍ = −g r − c Ẋ − a_g, u̇_j = s_j n_j (d(u̇_j) = n_j ds_j + s_j (I − n_j n_jᵀ)/ρ_j (dr − Σ_p B_jp du_p)) and the
+    pivot's and the set's rates by the split's map.  Not from DΦ_j, whose radial part 1/µ_j'(s_j) ~ e^(a s) is ~1e27
+    at a·s ≈ 60 (h141).  False where the system is singular."""
+    n = bmat.shape[0]
+    m = 2 + 2 * n
+    k = pivot
+    idx, nu, z, res, jm, perm, dm, geo = corner_arrays(mode, lock, k, r)
+    if nu < 1:
+        return False
+    size = 2 + nu
+    for q in range(nu):
+        z[2 + q] = sv[idx[q]]
+    ok, _, _ = corner_system(y[0], y[1], bf, mu_s, mu_f, a, k, gmap, idx, nu, z, ex0, ey0, res, jm, dm, geo)
+    if not ok or not lu_factor(jm, perm):
+        return False
+    dz = np.empty((size, m))
+    col = np.empty(size)
+    for s in range(m):
+        if s < 2:
+            col[0] = -dm[0, s] * gmap[k, 0]
+            col[1] = -dm[1, s] * gmap[k, 0]
+            for q in range(nu):
+                col[2 + q] = 0.0
+        else:
+            p = (s - 2) // 2
+            comp = (s - 2) % 2
+            px = 0.0
+            py = 0.0
+            for q in range(nu):
+                j = idx[q]
+                nx = geo[q, 0]
+                ny = geo[q, 1]
+                ncomp = nx if comp == 0 else ny
+                cc = gmap[k, 1 + j] * z[2 + q] / geo[q, 2] * bmat[j, p]
+                px += cc * ((1.0 if comp == 0 else 0.0) - nx * ncomp)
+                py += cc * ((1.0 if comp == 1 else 0.0) - ny * ncomp)
+                col[2 + q] = -bmat[j, p] * ncomp
+            col[0] = (-bmat[k, p] if comp == 0 else 0.0) + dm[0, 0] * px + dm[0, 1] * py
+            col[1] = (-bmat[k, p] if comp == 1 else 0.0) + dm[1, 0] * px + dm[1, 1] * py
+        lu_solve(jm, perm, col)
+        for p in range(size):
+            dz[p, s] = -col[p]
+            if not math.isfinite(dz[p, s]):
+                return False
+    for p in range(m):
+        for s in range(m):
+            out_jac[p, s] = 0.0
+    for p in range(2):
+        for s in range(m):
+            out_jac[p, s] = -g * dz[p, s] - (c if p == s else 0.0)
+    for ell in range(n):
+        if ell == k or lock[ell] == 1:
+            out_jac[2 + 2 * ell, 0] = gmap[ell, 0]
+            out_jac[3 + 2 * ell, 1] = gmap[ell, 0]
+    dv = np.empty((2, m))
+    for q in range(nu):
+        j = idx[q]
+        nx = geo[q, 0]
+        ny = geo[q, 1]
+        cc = z[2 + q] / geo[q, 2]
+        for s in range(m):
+            ex = dz[0, s]
+            ey = dz[1, s]
+            if s >= 2:
+                p = (s - 2) // 2
+                if s % 2 == 0:
+                    ex -= bmat[j, p]
+                else:
+                    ey -= bmat[j, p]
+            along = nx * ex + ny * ey
+            dv[0, s] = nx * dz[2 + q, s] + cc * (ex - nx * along)
+            dv[1, s] = ny * dz[2 + q, s] + cc * (ey - ny * along)
+        for p in range(2):
+            for s in range(m):
+                out_jac[2 + 2 * j + p, s] = dv[p, s]
+                for ell in range(n):
+                    if ell == k or lock[ell] == 1:
+                        out_jac[2 + 2 * ell + p, s] += gmap[ell, 1 + j] * dv[p, s]
+    return True
 
 
 @njit(cache=True)
@@ -384,13 +687,35 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
     rim_normals(y, mode, rim_dir)
     for p in range(m):
         out_dy[p] = 0.0
-    if not solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir):
+    at_rest = y[0] == 0.0 and y[1] == 0.0
+    r0x = r[0]
+    r0y = r[1]
+    stalled = np.zeros(1, dtype=np.bool_)
+    good = solve_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, dphi, dm, rim_dir, stalled)
+    corner = False
+    sv = np.zeros(n)
+    if not at_rest and (not good or stalled[0] or at_corner(r, bf, mode, lock, pivot, mu_s, mu_f)):
+        # at a corner of two saturated circles every law forward (corner_force): where solve_force stalled or found
+        # no force, and where it converged too (its φ_j there carries ~1e-3 of a·s of noise: µ_fast − |f_j| a few
+        # hundred ulp; the stages' Newton then failed at every step longer than ~5e-7 s, the probe at 0.7332 s);
+        # elsewhere the answer before (none, or the stalled one, as before h151)
+        rf = np.empty(2)
+        rf[0] = r0x if (math.isfinite(r0x) and math.isfinite(r0y)) else r[0]
+        rf[1] = r0y if (math.isfinite(r0x) and math.isfinite(r0y)) else r[1]
+        corner = corner_force(y[0], y[1], bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rf, sv)
+        if corner:
+            r[0] = rf[0]
+            r[1] = rf[1]
+    if not good and not corner:
         return False, 0.0
     out_dy[0] = -g * r[0] - c * y[0] - agx
     out_dy[1] = -g * r[1] - c * y[1] - agy
-    at_rest = y[0] == 0.0 and y[1] == 0.0
     for j in range(n):
-        if j != pivot and contributes(mode[j], lock[j]) and not at_rest:
+        if corner and j != pivot and contributes(mode[j], lock[j]):
+            rho = math.hypot(r[0] - bf[j, 0], r[1] - bf[j, 1])
+            out_dy[2 + 2 * j] = sv[j] * (r[0] - bf[j, 0]) / rho
+            out_dy[3 + 2 * j] = sv[j] * (r[1] - bf[j, 1]) / rho
+        elif j != pivot and contributes(mode[j], lock[j]) and not at_rest:
             vjx, vjy = surface_rate(r[0] - bf[j, 0], r[1] - bf[j, 1], mode[j], rim_dir[j, 0], rim_dir[j, 1], mu_s[j],
                                     mu_f[j], a[j], dphi[j])
             out_dy[2 + 2 * j] = vjx
@@ -415,7 +740,10 @@ def rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, e
             ubx += smat[i, q] * out_dy[2 + 2 * q]
             uby += smat[i, q] * out_dy[3 + 2 * q]
         power += (r[0] - bf[i, 0]) * ubx + (r[1] - bf[i, 1]) * uby
-    if want_jac:
+    if want_jac and corner:
+        if not corner_jacobian(y, g, c, bmat, bf, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r, sv, out_jac):
+            return False, 0.0
+    elif want_jac:
         k = pivot
         for p in range(m):
             for q in range(m):
@@ -661,7 +989,8 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
                 for q in range(3 * m):
                     if not math.isfinite(big[p, q]):
                         return -1
-            delta[:] = np.linalg.solve(big, res)
+            if not solve_or_refuse(big, res, delta):
+                return -1  # a singular stage matrix: the caller shortens the step
             full = _scaled_norm(delta, scale, m)
             if not math.isfinite(full):
                 return -1
