@@ -288,3 +288,45 @@ def test_a_layout_of_more_bearings_than_any_building_is_refused_at_reading(tmp_p
     design.write_text(head + "[[bearing_position]]\nx_m = 1\ny_m = 1\n" * 2)
     with pytest.raises(DesignError, match="bearing_position 2: at the same place as bearing_position 1"):
         Design.from_toml(design)
+
+
+def test_a_time_history_file_that_cannot_be_written_is_refused_before_the_analysis(tmp_path):
+    """main: `simulate --out-csv /proc/x.csv` ran the analysis (a building: 13 s with its compile) before the write
+    failed.  Now its lock is made first, as report's and regime-map's; a stream (`-`) still works."""
+    record = tmp_path / "x.AT2"
+    record.write_text(at2_text(SINE_G))
+    result = RUNNER.invoke(app, ["simulate", str(record), "--mu-s", "0.05", "--out-csv", "/proc/x.csv"])
+    assert_one_line_exit_2(result, "/proc/x.csv: cannot write (its lock /proc/x.csv.lock")
+    assert "peak" not in result.output  # no analysis ran: its table is not printed
+    streamed = RUNNER.invoke(app, ["simulate", str(record), "--mu-s", "0.05", "--out-csv", "-"])
+    assert streamed.exit_code == 0 and streamed.output.startswith("time_s,"), streamed.output
+
+
+def test_matplotlib_logs_nothing_on_stderr_for_a_config_folder_it_cannot_write(tmp_path):
+    """main: MPLCONFIGDIR=/proc/x printed matplotlib's "mkdir -p failed …" and "Matplotlib created a temporary
+    cache directory …" (its logger, not a Python warning) before a figure written correctly."""
+    import subprocess
+    import sys
+
+    command = os.path.join(os.path.dirname(sys.executable), "isolator")
+    done = subprocess.run([command, "regime-map", "-n", "4", "-o", str(tmp_path / "m.png")], capture_output=True,
+                          text=True, timeout=120, env={**os.environ, "MPLCONFIGDIR": "/proc/x",
+                                                       "ISOLATOR_CACHE_DIR": str(tmp_path)})
+    assert done.returncode == 0 and done.stderr == "", done.stderr
+    assert (tmp_path / "m.png").stat().st_size > 1000
+
+
+def test_a_record_of_more_segments_than_any_accelerogram_is_refused_before_its_gaps(tmp_path):
+    """main: obspy's get_gaps compares every pair of segments: a 1 MB MiniSEED of 2,000 three-sample segments took
+    42 s to "1999 gap(s)/overlap(s) … not merged", 20,000 segments (10 MB) ran past 120 s."""
+    from obspy import Stream, Trace, UTCDateTime
+
+    from isolator.motion.read import MAX_SEGMENTS
+
+    header = {"network": "XX", "station": "STA", "channel": "HNE", "delta": 0.01}
+    path = tmp_path / "segments.mseed"
+    Stream([Trace(np.full(3, 1.0 + i % 7), header={**header, "starttime": UTCDateTime(0) + i * 0.05})
+            for i in range(MAX_SEGMENTS + 1)]).write(str(path), format="MSEED", reclen=512)
+    assert_one_line_exit_2(RUNNER.invoke(app, ["info", str(path), "--units", "m/s2", "--merge"]),
+                           f"{path}: holds {MAX_SEGMENTS + 1} segments, more than any accelerogram",
+                           f"up to {MAX_SEGMENTS} segments")

@@ -115,6 +115,12 @@ class OneLineErrors(TyperGroup):
 
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         skip_final_collection()
+        # matplotlib logs its own warnings (not Python warnings): an MPLCONFIGDIR it cannot write printed two lines
+        # ("mkdir -p failed …", "Matplotlib created a temporary cache directory …") on stderr before a figure
+        # written correctly (session 16 sweep); its errors still show
+        import logging  # here, not at import: logging registers an exit callback (tests/cli/test_exit.py)
+
+        logging.getLogger("matplotlib").setLevel(logging.ERROR)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:

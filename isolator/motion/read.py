@@ -51,6 +51,11 @@ RECORD_DT_RANGE_S = (1e-5, 0.5)
 #: and 262 MB (obspy's format detection alone 5.8 s), on 8 GB it ran past 60 s and 2.9 GB (Session 15 sweep,
 #: docs/security.md).
 MAX_RECORD_BYTES = 64 * 2**20
+#: The most segments (obspy traces) a record file may hold: an accelerogram has one per channel, a few more where
+#: its data have gaps.  obspy's ``Stream.get_gaps`` compares every pair of segments: a 1 MB MiniSEED of 2,000
+#: three-sample segments of one channel took 42 s to its "gaps" refusal, 20,000 (10 MB) ran past 120 s (Session
+#: 16 sweep, docs/security.md); 200 is about 0.4 s by that rate.
+MAX_SEGMENTS = 200
 #: The largest ``--response`` inventory read [bytes]: obspy parsed a 16.4 MB StationXML (61 copies of its example
 #: network, responses included) in 4.2 s, so 64 MiB is ~17 s; 100 MB of zero bytes took 16.6 s and 267 MB to
 #: "Unknown format" (Session 16 sweep, docs/security.md).  One station's response is ~0.3 MB.
@@ -202,11 +207,15 @@ def _refuse_differing_overlap(path: Path, trace_id: str, segments) -> None:
         why = ("with different samples" if aligned else
                f"at sample times {abs(offset - first):.3g} of a step apart")
         raise _fail(path, f"channel {trace_id}: two segments overlap from {later.stats.starttime} to "
-                          f"{overlap_end} {why}; --merge joins segments whose overlap is identical, and which of "
+                          f"{overlap_end} {why}; a merge joins only segments whose overlap is identical, and which of "
                           "these holds the ground motion is not known: keep one")
 
 
 def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
+    if len(stream) > MAX_SEGMENTS:  # before obspy's get_gaps, whose time grows with the square of the segments
+        raise _fail(path, f"holds {len(stream)} segments, more than any accelerogram (one per channel, a few more "
+                          f"where the data have gaps); isolator reads files of up to {MAX_SEGMENTS} segments",
+                    RecordValuesError)
     gaps = stream.get_gaps()
     if not gaps:
         if len({trace.id for trace in stream}) < len(stream) and merge:
