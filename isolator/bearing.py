@@ -670,6 +670,19 @@ def _check_geometry(bearing: Bearing, fail) -> None:
         if si.effective_capacity_m < need:
             raise fail(f"bearing surface {i}: effective capacity d*_{i} = {si.effective_capacity_m:.4g} m is too small "
                        f"to reach regime II: it must be >= (mu_{o} - mu_{i}) R_eff,{i} = {need:.4g} m")
+    # The outer surface of lower friction slides alone (regime II) until the force reaches the other's µ W; on its
+    # rim before that, the bearing enters a state Fenz & Constantinou's regimes do not have (the slider on one outer
+    # rim, no outer surface sliding: the backbone named it "", session 16 sweep).  Either outer may be the lower
+    # one: µ1 > µ4 is the bearing upside down, whose series model and responses are those of µ1 < µ4 with the
+    # surfaces in reverse order (tests/test_hostile_s16.py), and the regime names count outer surfaces, not which.
+    first, other = (0, 3) if s[0].mu_kinetic <= s[3].mu_kinetic else (3, 0)
+    sf, so = s[first], s[other]
+    f, o = first + 1, other + 1
+    need = (so.mu_kinetic - sf.mu_kinetic) * sf.effective_radius_m
+    if sf.effective_capacity_m < need:
+        raise fail(f"bearing surface {f}: effective capacity d*_{f} = {sf.effective_capacity_m:.4g} m is too small "
+                   f"to reach regime III: it must be >= (mu_{o} - mu_{f}) R_eff,{f} = {need:.4g} m (surface {f} "
+                   f"slides alone until the force reaches mu_{o} W, Fenz & Constantinou 2008)")
 
 
 #: Top-level design keys that a ``[bearing]`` table replaces.

@@ -422,6 +422,13 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
             notes.append(f"cached map {entry} was damaged ({err}): recomputed")
             return None
 
+    def store(computed: RegimeMap) -> None:
+        try:
+            computed.save(path)
+        except OSError as err:  # a read-only cache never stops a map, but a FIFO left in an entry's place made
+            # every run recompute without a word (session 15 sweep): said
+            notes.append(f"the map could not be cached ({err}): the next run computes it again")
+
     rmap = cached(path)
     if rmap is not None:
         rmap.notes = notes
@@ -430,11 +437,8 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
     if base is not None:
         rmap = refine_boundaries(base, workers)
         rmap.from_cache = False
+        store(rmap)
         rmap.notes = notes
-        try:
-            rmap.save(path)
-        except OSError:
-            pass
         return rmap
     k = np.linspace(k_range[0], k_range[1], n_k)
     alpha = np.linspace(alpha_range[0], alpha_range[1], n_alpha)
@@ -454,10 +458,7 @@ def regime_map(eta: float, mu_s: float, mu_k: float | None = None, *, k_range=(0
         refine_boundaries(rmap, workers)
         rmap.elapsed_s = time.perf_counter() - start
     if use_cache:
-        try:
-            rmap.save(path)
-        except OSError:
-            pass  # a read-only cache never stops a map
+        store(rmap)
     rmap.notes = notes
     return rmap
 

@@ -136,12 +136,14 @@ def test_a_capacity_below_a_millimetre_is_refused_naming_file_and_surface(tmp_pa
 
 def test_the_least_capacity_reads(tmp_path):
     """The floor is 1 mm, 25 × below the least catalogue surface: 1 mm outer surfaces read (the inner ones keep
-    their regime-II rule: (0.06 - 0.02) × 0.3 = 0.012 m)."""
+    their regime-II rule: (0.06 - 0.02) × 0.3 = 0.012 m).  The outer µ are made equal: an outer surface of lower
+    friction must reach regime III, d*_1 >= (µ4 - µ1) R_eff,1 (session 16), which 1 mm is not at 0.06/0.10."""
     from isolator.bearing import MIN_CAPACITY_M
     from isolator.design import Design
 
     path = tmp_path / "d.toml"
-    path.write_text(TRIPLE.replace("displacement_capacity_m = 0.4", "displacement_capacity_m = 0.001"))
+    path.write_text(TRIPLE.replace("displacement_capacity_m = 0.4", "displacement_capacity_m = 0.001")
+                    .replace("mu = 0.10", "mu = 0.06"))
     assert MIN_CAPACITY_M == 1e-3
     assert [s.displacement_capacity_m for s in Design.from_toml(path).bearing.surfaces] == [1e-3, 0.05, 0.05, 1e-3]
 

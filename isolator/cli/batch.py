@@ -4,7 +4,16 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import RECORD_HELP, app, check_outputs, echo_table, error_line, user_error, write_error
+from isolator.cli.common import (
+    RECORD_HELP,
+    app,
+    check_outputs,
+    echo_table,
+    error_line,
+    say,
+    user_error,
+    write_error,
+)
 from isolator.cli.pairs import PAIR_HELP
 
 
@@ -103,7 +112,7 @@ def batch(
 
         jobs, note = capped_workers(jobs)
         if note:
-            typer.echo(f"note: {note}", err=True)
+            say(f"note: {note}")
     options = ReadOptions(units=units, scale_to_pga_g=scale_to_pga, dt_s=dt, harmonic=not no_harmonic, trim=trim,
                           resample=resample)
 
@@ -159,9 +168,9 @@ def batch(
     if progress_bar is not None:
         progress_bar.stop()
     for message in result.lost_messages:
-        typer.echo(f"lost: {message}", err=True)
+        say(f"lost: {message}")
     for note in result.notes:
-        typer.echo(f"note: {note}", err=True)
+        say(f"note: {note}")
     rows = [("table", result.output, f"({len(result.table.columns)} columns)")]
     if result.n_resumed:
         rows.append(("resumed", f"{result.n_resumed} rows", "(done by an earlier run)"))

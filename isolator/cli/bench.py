@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import typer
 
-from isolator.cli.common import app, check_outputs, echo_json, user_error, write_error
+from isolator.cli.common import app, check_outputs, echo_json, say, user_error, write_error
 
 #: What `bench` writes into --out.
 BENCH_FILES = ("bench.csv", "bench_pareto.csv", "bench.json", "bench.md", "bench.png")
+#: The most runs of a timing: the medians of docs/bench.md take 3 (quick) or 5 (full); the quick bench at one run
+#: is 32 runs in 8.0 s (docs/security.md, Session 10 sweep), so 20 is minutes, and `--repeats 1000000000` ran on
+#: without end (Session 16 sweep).
+MAX_REPEATS = 20
 
 
 @app.command()
@@ -19,7 +23,8 @@ def bench(
     records: str = typer.Option("../shared/records", "--records", help="Folder of the records of the bench "
                                 "(at2/RSN1044_NORTHR_NWH360.AT2, pairs/superstitionhills1987_PTS/…, "
                                 "as in ../shared/records)."),
-    repeats: int = typer.Option(None, "--repeats", min=1, help="Runs per timing (median); default 3 quick, 5 full."),
+    repeats: int = typer.Option(None, "--repeats", min=1, max=MAX_REPEATS,
+                                help=f"Runs per timing (median, at most {MAX_REPEATS}); default 3 quick, 5 full."),
 ) -> None:
     """Speed against error: our exact solver against fixed-step, Newmark, solve_ivp and OpenSees.
 
@@ -56,16 +61,16 @@ def bench(
     check_outputs(outputs, [path for path in outputs if os.path.isfile(path) and os.path.commonpath(
         [root, os.path.realpath(path)]) == root])
     started = time.perf_counter()
-    progress = None if as_json else (lambda line: typer.echo(line, err=True))
+    progress = None if as_json else say
     cases = bench_module.bench_cases(quick, records_dir)
     if not any(case.kind == "record" for case in cases):
-        typer.echo(f"note: none of the bench records in {records_dir}: harmonic cases only", err=True)
+        say(f"note: none of the bench records in {records_dir}: harmonic cases only")
     elif not any(case.kind == "pair" for case in cases):
-        typer.echo(f"note: none of the bench pairs in {records_dir}/pairs: no 2-D cases", err=True)
+        say(f"note: none of the bench pairs in {records_dir}/pairs: no 2-D cases")
     rows, pareto = bench_module.run_bench(quick=quick, repeats=repeats, cases=cases, progress=progress)
     building_cases = bench_module.building_cases(quick, records_dir)
     if not building_cases:
-        typer.echo(f"note: the building's record is not in {records_dir}: no building case", err=True)
+        say(f"note: the building's record is not in {records_dir}: no building case")
     buildings = [bench_module.run_building_case(case, rounds=repeats or (3 if quick else 5), progress=progress)
                  for case in building_cases]
     building_lines = bench_module.building_summary(buildings)

@@ -21,9 +21,36 @@ except ImportError:  # pragma: no cover - older typer over click
     from click import exceptions as click_exceptions
 
 
+def printable(text) -> str:
+    """``text`` with every character a terminal would act on shown as its escape (``\\x1b``, ``\\u202e``).
+
+    A file name, a header field or a flag's value is printed in errors, notes and tables: a name holding ESC
+    sequences set the terminal's title or colours (``info $'nope\\x1b]0;title\\x07.AT2'`` printed them raw on
+    stderr; click strips only colour codes, and only off a terminal), and a right-to-left override shows a name
+    reversed (session 16 sweep).  Control and format characters are escaped; letters of any script stay.
+    """
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
+
+
+def _escape(ch: str) -> str:
+    """One character as its escape; a byte of a file name that is not UTF-8 (a surrogate of Python's reading of
+    it) as that byte, ``\\xe9``."""
+    if 0xDC80 <= ord(ch) <= 0xDCFF:
+        return f"\\x{ord(ch) - 0xDC00:02x}"
+    return ch.encode("unicode_escape").decode("ascii")
+
+
+def say(line: str) -> None:
+    """Print a note (``note: …``, ``lost: …``) on stderr, as :func:`printable` shows it."""
+    typer.echo(printable(line), err=True)
+
+
 def usage_line(err) -> str:
     """One line for a usage mistake: ``error: … (see 'isolator CMD --help')``."""
-    message = one_line(err.format_message())
+    message = printable(one_line(err.format_message()))
     context = getattr(err, "ctx", None)
     command = context.command_path if context is not None else "isolator"
     hint = f" (see '{command} --help')" if isinstance(err, click_exceptions.UsageError) else ""
@@ -88,6 +115,12 @@ class OneLineErrors(TyperGroup):
 
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         skip_final_collection()
+        # matplotlib logs its own warnings (not Python warnings): an MPLCONFIGDIR it cannot write printed two lines
+        # ("mkdir -p failed …", "Matplotlib created a temporary cache directory …") on stderr before a figure
+        # written correctly (session 16 sweep); its errors still show
+        import logging  # here, not at import: logging registers an exit callback (tests/cli/test_exit.py)
+
+        logging.getLogger("matplotlib").setLevel(logging.ERROR)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
@@ -113,7 +146,7 @@ class OneLineErrors(TyperGroup):
                 # one line and exit 2, never a traceback (a bug, any other type, keeps its traceback)
                 if not standalone_mode or not isinstance(err, IsolatorError):
                     raise
-                typer.echo(f"error: {one_line(error_line(err))}", err=True)
+                typer.echo(f"error: {printable(one_line(error_line(err)))}", err=True)
                 sys.exit(2)
         if not standalone_mode:
             return result
@@ -236,12 +269,12 @@ def echo_table(rows) -> None:
     """Print (name, value, unit) rows aligned, one per line."""
     width = max(len(name) for name, _, _ in rows)
     for name, value, unit in rows:
-        typer.echo(f"{name:<{width}}  {value} {unit}".rstrip())
+        typer.echo(printable(f"{name:<{width}}  {value} {unit}".rstrip()))
 
 
 def user_error(message: str) -> None:
     """End the command with one line on stderr and exit code 2."""
-    typer.echo(f"error: {one_line(message)}", err=True)
+    typer.echo(f"error: {printable(one_line(message))}", err=True)
     raise typer.Exit(2)
 
 

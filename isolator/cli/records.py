@@ -135,8 +135,19 @@ def simulate(
                                            mu_slow, mu_fast, rate_s_per_m)
     streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
     check_outputs([None if out_csv == "-" else out_csv], [record, response, pair, vertical, design], streams=[out_csv])
-    _simulate_and_print(record, pair, vertical, component, trim, resample, units, merge, dt, response,
-                        counts_factor, as_json, out_csv, streamed, system, nominal, the_design)
+    from contextlib import nullcontext
+
+    from isolator.atomic import OutputError, output_lock, resolve_output
+
+    # a file's lock is made before the analysis, as report's: a folder that cannot be written is one line at once
+    # (`--out-csv /proc/x.csv` ran a building for 13 s first, session 16 sweep); a stream (-, a pipe) has none
+    locked = out_csv is not None and not streamed and not resolve_output(out_csv, allow_stream=True)[1]
+    try:
+        with output_lock(out_csv) if locked else nullcontext():
+            _simulate_and_print(record, pair, vertical, component, trim, resample, units, merge, dt, response,
+                                counts_factor, as_json, out_csv, streamed, system, nominal, the_design)
+    except OutputError as err:  # the lock: an unwritable folder, another run on this file
+        write_error(err, out_csv)
 
 
 def _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass, radius_m, mu_slow, mu_fast,

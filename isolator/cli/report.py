@@ -255,33 +255,37 @@ def regime_map_command(
             user_error(f"{output}: cannot tell the figure format from {suffix or 'no suffix'!r} "
                        f"(use {', '.join(FIGURE_SUFFIXES)})")
         check_outputs([output], [])
-    try:
-        start = time.perf_counter()
-        rmap = regime_map(eta, mu_s, mu_k, k_range=k_range, alpha_range=alpha_range, n_k=resolution,
-                          n_alpha=resolution, workers=workers, use_cache=not no_cache, refine=refine)
-        wall = time.perf_counter() - start
-        triple = triple_point(eta, mu_s, mu_k, alpha_max=alpha_range[1]) if eta > 0 else None
-    except InvalidSystemError as err:
-        user_error(str(err))
-    rows = [("grid", f"{resolution} × {resolution}", f"(k in [{k_range[0]:g}, {k_range[1]:g}], "
-                                                      f"α in [{alpha_range[0]:g}, {alpha_range[1]:g}])"),
-            ("parameters", f"η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}", ""),
-            ("time", f"{wall:.3g} s", "(read from cache)" if rmap.from_cache else
-             f"(computed, {capped_workers(workers)[0]} worker(s))"),
-            *[("note", note, "") for note in rmap.notes],
-            ("triple point", "none in frame" if triple is None else f"α̂ = {triple[0]:.4g}, k̂ = {triple[1]:.4g}", "")]
-    if output:
-        from isolator.report.figures import regime_map_figure
+    from contextlib import nullcontext
 
-        title = f"Harmonic regime map, η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}" + (
-            f" (frame of the paper's {frame.replace('fig', 'Fig. ')})" if frame else "")
-        fig = regime_map_figure(rmap, triple=triple, title=title)
-        from isolator.atomic import atomic_path
+    from isolator.atomic import atomic_path, output_lock
 
-        try:
-            with atomic_path(output) as temporary:
-                fig.savefig(temporary, dpi=130, format=suffix[1:])
-        except OSError as err:
-            write_error(err, output)
-        rows.append(("figure", output, ""))
+    try:  # the figure's lock is made before the map is computed: a folder that cannot be written is one line at
+        # once (/proc/x.png computed the map for 10 s first, session 15 sweep), as report and review do
+        with output_lock(output) if output else nullcontext():
+            try:
+                start = time.perf_counter()
+                rmap = regime_map(eta, mu_s, mu_k, k_range=k_range, alpha_range=alpha_range, n_k=resolution,
+                                  n_alpha=resolution, workers=workers, use_cache=not no_cache, refine=refine)
+                wall = time.perf_counter() - start
+                triple = triple_point(eta, mu_s, mu_k, alpha_max=alpha_range[1]) if eta > 0 else None
+            except InvalidSystemError as err:
+                user_error(str(err))
+            rows = [("grid", f"{resolution} × {resolution}", f"(k in [{k_range[0]:g}, {k_range[1]:g}], "
+                                                              f"α in [{alpha_range[0]:g}, {alpha_range[1]:g}])"),
+                    ("parameters", f"η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}", ""),
+                    ("time", f"{wall:.3g} s", "(read from cache)" if rmap.from_cache else
+                     f"(computed, {capped_workers(workers)[0]} worker(s))"),
+                    *[("note", note, "") for note in rmap.notes],
+                    ("triple point", "none in frame" if triple is None else f"α̂ = {triple[0]:.4g}, k̂ = {triple[1]:.4g}", "")]
+            if output:
+                from isolator.report.figures import regime_map_figure
+
+                title = f"Harmonic regime map, η = {eta:g}, µs = {mu_s:g}, µk = {rmap.mu_k:g}" + (
+                    f" (frame of the paper's {frame.replace('fig', 'Fig. ')})" if frame else "")
+                fig = regime_map_figure(rmap, triple=triple, title=title)
+                with atomic_path(output) as temporary:
+                    fig.savefig(temporary, dpi=130, format=suffix[1:])
+                rows.append(("figure", output, ""))
+    except OSError as err:  # OutputError: the lock (an unwritable folder, another run on this -o) names the path
+        write_error(err, output)
     echo_table(rows)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app, check_given_scale_factors, parse_set
+from isolator.cli.common import app, check_given_scale_factors, parse_set, say
 from isolator.cli.common import user_error as _user_error
 
 
@@ -82,7 +82,7 @@ def review(
 
         jobs, note = capped_workers(jobs)
         if note:
-            typer.echo(f"note: {note}", err=True)
+            say(f"note: {note}")
     if output is None:
         output = str(Path("reports") / f"review_{Path(design).stem}.pdf")
     if Path(output).suffix.lower() != ".pdf":

@@ -51,6 +51,15 @@ RECORD_DT_RANGE_S = (1e-5, 0.5)
 #: and 262 MB (obspy's format detection alone 5.8 s), on 8 GB it ran past 60 s and 2.9 GB (Session 15 sweep,
 #: docs/security.md).
 MAX_RECORD_BYTES = 64 * 2**20
+#: The most segments (obspy traces) a record file may hold: an accelerogram has one per channel, a few more where
+#: its data have gaps.  obspy's ``Stream.get_gaps`` compares every pair of segments: a 1 MB MiniSEED of 2,000
+#: three-sample segments of one channel took 42 s to its "gaps" refusal, 20,000 (10 MB) ran past 120 s (Session
+#: 16 sweep, docs/security.md); 200 is about 0.4 s by that rate.
+MAX_SEGMENTS = 200
+#: The largest ``--response`` inventory read [bytes]: obspy parsed a 16.4 MB StationXML (61 copies of its example
+#: network, responses included) in 4.2 s, so 64 MiB is ~17 s; 100 MB of zero bytes took 16.6 s and 267 MB to
+#: "Unknown format" (Session 16 sweep, docs/security.md).  One station's response is ~0.3 MB.
+MAX_INVENTORY_BYTES = 64 * 2**20
 #: Suffixes read as plain text when no reader claims the file by content.
 TEXT_SUFFIXES = frozenset({".txt", ".csv", ".acc", ".dat", ".tsv", ".asc", ".th", ".xy"})
 #: SAC ``idep`` codes for quantities that are not acceleration.
@@ -165,10 +174,48 @@ def _merge(path: Path, stream) -> None:
             raise _fail(path, f"channel {trace_id} has segments at different sampling rates ("
                               + ", ".join(f"{rate:g}" for rate in sorted(found)) + " Hz): they cannot be merged "
                               "without resampling one; give each segment in a file of its own")
+    for trace_id in rates:
+        _refuse_differing_overlap(path, trace_id, sorted((trace for trace in stream if trace.id == trace_id),
+                                                         key=lambda trace: trace.stats.starttime))
     stream.merge(method=1, fill_value="interpolate")
 
 
+def _refuse_differing_overlap(path: Path, trace_id: str, segments) -> None:
+    """Refuse two segments of one channel that overlap with different samples.
+
+    obspy's ``merge(method=1)`` keeps the later segment's samples where two overlap (Session 15 sweep): which
+    one holds the ground motion is a guess.  Each segment is compared with the earlier one reaching latest; an
+    overlap is identical when the later segment's samples sit on the earlier one's sample times (to 1e-3 of a
+    step) and equal them exactly.
+    """
+    reach = segments[0]  # the segment reaching latest so far: any earlier one a segment overlaps, it overlaps
+    for later in segments[1:]:  # bounded: each segment once
+        earlier = reach
+        if later.stats.endtime > reach.stats.endtime:
+            reach = later
+        dt = earlier.stats.delta
+        end = earlier.stats.endtime
+        if later.stats.starttime > end + 1e-3 * dt:
+            continue  # a gap (interpolated by --merge and recorded), no overlap
+        offset = (later.stats.starttime - earlier.stats.starttime) / dt
+        first = round(offset)
+        count = min(len(earlier.data) - first, len(later.data))
+        aligned = abs(offset - first) <= 1e-3
+        if aligned and np.array_equal(earlier.data[first:first + count], later.data[:count]):
+            continue
+        overlap_end = min(end, later.stats.endtime)
+        why = ("with different samples" if aligned else
+               f"at sample times {abs(offset - first):.3g} of a step apart")
+        raise _fail(path, f"channel {trace_id}: two segments overlap from {later.stats.starttime} to "
+                          f"{overlap_end} {why}; a merge joins only segments whose overlap is identical, and which of "
+                          "these holds the ground motion is not known: keep one")
+
+
 def _check_gaps(path: Path, stream, merge: bool) -> list[dict]:
+    if len(stream) > MAX_SEGMENTS:  # before obspy's get_gaps, whose time grows with the square of the segments
+        raise _fail(path, f"holds {len(stream)} segments, more than any accelerogram (one per channel, a few more "
+                          f"where the data have gaps); isolator reads files of up to {MAX_SEGMENTS} segments",
+                    RecordValuesError)
     gaps = stream.get_gaps()
     if not gaps:
         if len({trace.id for trace in stream}) < len(stream) and merge:
@@ -249,6 +296,9 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
         from isolator.io._common import input_file_problem, literal_pattern
 
         problem = input_file_problem(response)
+        if problem is None and os.path.getsize(response) > MAX_INVENTORY_BYTES:
+            problem = _too_large(os.path.getsize(response), "larger than a network's StationXML with its "
+                                 "responses; isolator reads inventories", MAX_INVENTORY_BYTES)
         if problem is not None:
             raise _fail(path, f"cannot remove the instrument response: {response}: {problem}",
                         InstrumentResponseError)
@@ -395,9 +445,14 @@ def _check_path(path: Path) -> None:
     if size == 0:
         raise _fail(path, "file is empty", RecordNotFoundError)
     if size > MAX_RECORD_BYTES:
-        raise _fail(path, f"is {size / 2**20:.1f} MiB, larger than any accelerogram (a 1,000,000-sample record "
-                          f"is ~23 MB as text); isolator reads record files up to {MAX_RECORD_BYTES // 2**20} MiB",
+        raise _fail(path, _too_large(size, "larger than any accelerogram (a 1,000,000-sample record is ~23 MB as "
+                                           "text); isolator reads record files", MAX_RECORD_BYTES),
                     RecordNotFoundError)
+
+
+def _too_large(size: int, what: str, limit: int) -> str:
+    """The words for a file refused from its size."""
+    return f"is {size / 2**20:.1f} MiB, {what} up to {limit // 2**20} MiB"
 
 
 def read_header(path: str | Path) -> tuple[str, dict] | None:
