@@ -10,6 +10,8 @@
   back in turn; now a departure of a carrying group is retaken on its half disc (the exact reaction) and kept only if
   it holds there.  The truth: the same scene at a much tighter step_tol (the error falls with it), and the jump that
   was there (5.1e-5 / 2.2e-5 m/s at step_tol 1e-7 / 3e-8) gone.
+- A group's stop inside a step (the others sliding on) is located, and the step after an arrival at the ultimate is
+  not below the floor (docs/multisurface.md, "The step after an arrival, a group's stop located").
 """
 
 from __future__ import annotations
