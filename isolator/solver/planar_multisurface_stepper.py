@@ -1566,7 +1566,9 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                     fail_t = t[i] + tau
                     summary[S_FAIL_RIMS] = popcount(rim_before)
                     break
-                if ult == 0 and not after_stop and group_stops(mh, m2, ng):
+                if (ult == 0 and not after_stop and group_stops(mh, m2, ng)
+                        and 0.5 * h * (raw[4] + raw[5] * (tau + 0.5 * h)) * math.sqrt((r2[0] - rh[0]) ** 2 + (r2[1] - rh[1]) ** 2)
+                        > tol * max(peak_v, v_floor)):
                     # a group that slid in the first half stops inside the step while another slides on: the force
                     # jumps there (from the stopping group's friction circle to the others' edges and rims), an
                     # error first order in the step that the two halves, taken apart, keep.  The stop is located
