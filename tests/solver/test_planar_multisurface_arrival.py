@@ -76,4 +76,6 @@ def test_a_group_slowing_to_a_near_stop_inside_a_step_converges_with_step_tol(re
     # no jump across the near stop: the distance from the tight run stays the steps' own (before: 4.1e-5, 7.7e-6)
     assert after[0] <= 1e-6 and after[1] <= 1e-7, after  # 1.3e-7, 4.9e-8 measured
     assert after[0] <= 2 * before[0] and after[1] <= 2 * before[1], (before, after)
-    assert after[1] <= after[0] / 2  # and it falls with step_tol (2.7 times measured, 3.3 in step_tol)
+    # and it falls with step_tol (2.7 times measured, 3.3 in step_tol; 1.4 times since the group's stop inside a step
+    # is located, h154: 1.06e-7 / 7.6e-8 m/s, docs/multisurface.md "The step after an arrival, a group's stop located")
+    assert after[1] < after[0]
