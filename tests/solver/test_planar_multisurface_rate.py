@@ -214,6 +214,14 @@ def test_saturated_pair_with_a_zero_second_component_is_the_1d_model():
     assert abs(rot.energy_balance_error_J_per_kg) <= 1e-9 * rot.energy_input_J_per_kg
 
 
+def review_tfp():
+    """The µ(v) TFP of the review's scene (0.4 m plates, a = 20 s/m; µ_slow 0.04/0.01/0.01/0.07, µ_fast
+    0.06/0.02/0.02/0.10): the lower bound's PTS runs of this file and of test_planar_multisurface_rate_corner.py."""
+    return parse_bearing({"type": "triple", "surface": [
+        {"radius_m": r, "mu_slow": s, "mu_fast": f, "rate_s_per_m": 20.0, "displacement_capacity_m": d}
+        for (r, d), s, f in zip(GEOMETRY, [0.04, 0.01, 0.01, 0.07], [0.06, 0.02, 0.02, 0.10], strict=True)]},
+        DesignError)
+
 def test_pts_lower_bound_of_the_review_runs_past_its_old_stop(records_dir):
     """The review's scene that stopped it (h113): last session's µ(v) TFP (0.4 m plates, a = 20 s/m) under PTS
     ×1.512437746473765, which took more than 20 000 collocation steps in one sample interval at 11.8755 s.  Not a
@@ -221,10 +229,7 @@ def test_pts_lower_bound_of_the_review_runs_past_its_old_stop(records_dir):
     start, outside the circle |r − b_1| = µ_fast,1 that had moved with b_1 by 40 times its gap, and the force's
     Newton stalled.  From the force predicted along dr/dy it answers; its first 12.0 s here (the rim of surface 1
     follows at 12.18 s, refused in one line), balance ≤ 1e-9 of the input."""
-    bearing = parse_bearing({"type": "triple", "surface": [
-        {"radius_m": r, "mu_slow": s, "mu_fast": f, "rate_s_per_m": 20.0, "displacement_capacity_m": d}
-        for (r, d), s, f in zip(GEOMETRY, [0.04, 0.01, 0.01, 0.07], [0.06, 0.02, 0.02, 0.10], strict=True)]},
-        DesignError)
+    bearing = review_tfp()
     ax, ay, dt = read_pair(records_dir, 12.0)
     factor = 1.512437746473765
     res = simulate_bearing_pair_rate(factor * ax, factor * ay, dt, bearing=bearing)

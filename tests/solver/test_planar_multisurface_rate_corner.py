@@ -156,14 +156,10 @@ def test_pts_lower_bound_of_the_review_passes_its_corner(records_dir):
     corner).  Now it passes there; to 12.8 s the run's only refusal is the rule on the ultimate's tangential part
     (its first impact at 12.2899 s with 0.253 of the velocity along the rims: the slide along the rims at the
     ultimate is not modelled) — the status checks (work bound, step floor) come first in the driver."""
-    from isolator.bearing import parse_bearing
-    from isolator.errors import DesignError, SolverError
-    from tests.solver.test_planar_multisurface_rate import GEOMETRY, read_pair
+    from isolator.errors import SolverError
+    from tests.solver.test_planar_multisurface_rate import read_pair, review_tfp
 
-    bearing = parse_bearing({"type": "triple", "surface": [
-        {"radius_m": r, "mu_slow": s, "mu_fast": f, "rate_s_per_m": 20.0, "displacement_capacity_m": d}
-        for (r, d), s, f in zip(GEOMETRY, [0.04, 0.01, 0.01, 0.07], [0.06, 0.02, 0.02, 0.10], strict=True)]},
-        DesignError)
+    bearing = review_tfp()
     ax, ay, dt = read_pair(records_dir, 12.8)
     factor = 1.512437746473765
     with pytest.raises(SolverError, match=r"first at t = 12\.2899 s\) with 0\.25\d* of the velocity along the rims") as info:
