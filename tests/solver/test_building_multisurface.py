@@ -603,7 +603,7 @@ def drawn_case(records_dir, seed):
     else:
         ro, ri, mi = rng.uniform(1.5, 3.0), rng.uniform(0.2, 0.5), rng.uniform(0.01, 0.03)
         mo1, mo4 = rng.uniform(mi + 0.01, 0.1, 2)
-        do = rng.uniform(0.08, 0.3)
+        do = max(rng.uniform(0.08, 0.3), 1.05 * abs(mo4 - mo1) * ro)  # the lower-friction outer reaches regime III
         di = max(rng.uniform(0.03, 0.08), 1.05 * (max(mo1, mo4) - mi) * ri)
         b = bearing("triple", [(ro, mo1, do), (ri, mi, di), (ri, mi, di), (ro, mo4, do)])
     record = RECORDS[int(rng.integers(len(RECORDS)))]
