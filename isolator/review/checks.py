@@ -398,9 +398,9 @@ IMPLICIT_STEP_MODELS = ("2d-multisurface", "2d-building-multisurface")
 
 def implicit_step_limit(analyses: dict) -> str:
     """What a row computed from the analyses must say when some of them ran an implicit-step model (else ''): the
-    tolerance they ran at and, for a building on a double or triple, that its base shear is taken at the steps' ends
-    and watch points (a sampled peak, at most the true one: a floor row that passes on it stands, one that fails may
-    be the sampling; a limit row may understate)."""
+    tolerance they ran at and, for a building on a double or triple, that its base shear while the slab slides is
+    the peak of each step's parabola (not located exactly, docs/building.md h153: a floor row that passes on it
+    stands, one that fails may be the sampling; a limit row may understate)."""
     models = sorted({r.get("model", "") for results in analyses.values() for r in results.values()
                      if "error" not in r and r.get("model", "").split("+")[0] in IMPLICIT_STEP_MODELS})
     if not models:
@@ -410,7 +410,8 @@ def implicit_step_limit(analyses: dict) -> str:
     building = any(m.startswith("2d-building-multisurface") for m in models)
     return (f"model {', '.join(models)}: implicit steps at step_tol {DEFAULT_STEP_TOL:g} (relative local error; not "
             "exact, measured in docs/multisurface.md and docs/building.md)"
-            + ("; the base shear is taken at the steps' ends and watch points (a sampled peak, at most the true one)"
+            + ("; the base shear while the slab slides is the peak of each step's parabola through its start, half and "
+               "end (not located exactly: it may understate the true peak)"
                if building else ""))
 
 

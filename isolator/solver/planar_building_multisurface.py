@@ -20,7 +20,8 @@ modes), static friction above kinetic on a double or triple (a single surface's 
 
 Outputs: the 2-D building's keys (:class:`~isolator.solver.planar_building.PlanarBuildingResponse`: resultant story
 drifts, floor accelerations, the first story's shear, the overturning moments and bearing loads — their extremes
-located inside the steps; the base shear at the steps' ends and watch points) and the bearing's
+located inside the steps; the base shear while sliding the peak of each step's parabola through its start, half
+and end) and the bearing's
 (:class:`~isolator.solver.building_multisurface.BuildingMultisurfaceResponse`'s: surface peaks, regimes, rim
 contacts, the ultimate and its impulse).
 """

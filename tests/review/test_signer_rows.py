@@ -141,7 +141,7 @@ def test_the_implicit_step_limit_names_the_models_and_the_sampled_base_shear():
                           "c": {"error": "x", "model": "2d-multisurface"}}}
     said = C.implicit_step_limit(analyses)
     assert said.startswith("model 2d-building-multisurface+vertical: implicit steps at step_tol 1e-07")
-    assert "the base shear is taken at the steps' ends and watch points" in said
+    assert "the base shear while the slab slides is the peak of each step's parabola" in said
     assert C.implicit_step_limit({"lower": {"a": {"model": "2d"}, "b": {"model": "2d+rim"}}}) == ""
 
 
