@@ -666,23 +666,27 @@ def _check_geometry(bearing: Bearing, fail) -> None:
         if si.mu_kinetic > so.mu_kinetic:
             raise fail(f"bearing surface {i}: mu_{i} = {si.mu_kinetic:g} must not exceed mu_{o} = {so.mu_kinetic:g} "
                        "(the inner surfaces slide first, regime I of Fenz & Constantinou 2008)")
-        need = (so.mu_kinetic - si.mu_kinetic) * si.effective_radius_m
-        if si.effective_capacity_m < need:
-            raise fail(f"bearing surface {i}: effective capacity d*_{i} = {si.effective_capacity_m:.4g} m is too small "
-                       f"to reach regime II: it must be >= (mu_{o} - mu_{i}) R_eff,{i} = {need:.4g} m")
+        _check_reaches(s, inner, outer, "II", "", fail)
     # The outer surface of lower friction slides alone (regime II) until the force reaches the other's µ W; on its
     # rim before that, the bearing enters a state Fenz & Constantinou's regimes do not have (the slider on one outer
     # rim, no outer surface sliding: the backbone named it "", session 16 sweep).  Either outer may be the lower
     # one: µ1 > µ4 is the bearing upside down, whose series model and responses are those of µ1 < µ4 with the
     # surfaces in reverse order (tests/test_hostile_s16.py), and the regime names count outer surfaces, not which.
     first, other = (0, 3) if s[0].mu_kinetic <= s[3].mu_kinetic else (3, 0)
-    sf, so = s[first], s[other]
-    f, o = first + 1, other + 1
-    need = (so.mu_kinetic - sf.mu_kinetic) * sf.effective_radius_m
-    if sf.effective_capacity_m < need:
-        raise fail(f"bearing surface {f}: effective capacity d*_{f} = {sf.effective_capacity_m:.4g} m is too small "
-                   f"to reach regime III: it must be >= (mu_{o} - mu_{f}) R_eff,{f} = {need:.4g} m (surface {f} "
-                   f"slides alone until the force reaches mu_{o} W, Fenz & Constantinou 2008)")
+    _check_reaches(s, first, other, "III", f" (surface {first + 1} slides alone until the force reaches "
+                   f"mu_{other + 1} W, Fenz & Constantinou 2008)", fail)
+
+
+def _check_reaches(surfaces, lower: int, upper: int, regime: str, why: str, fail) -> None:
+    """Surface ``lower`` (index) slides alone until the force reaches the next friction level, µ_upper W: its effective
+    capacity must hold that travel, d* >= (µ_upper − µ_lower) R_eff, or the bearing reaches its rim before ``regime``
+    (Fenz & Constantinou 2008)."""
+    sl, su = surfaces[lower], surfaces[upper]
+    i, o = lower + 1, upper + 1
+    need = (su.mu_kinetic - sl.mu_kinetic) * sl.effective_radius_m
+    if sl.effective_capacity_m < need:
+        raise fail(f"bearing surface {i}: effective capacity d*_{i} = {sl.effective_capacity_m:.4g} m is too small "
+                   f"to reach regime {regime}: it must be >= (mu_{o} - mu_{i}) R_eff,{i} = {need:.4g} m{why}")
 
 
 #: Top-level design keys that a ``[bearing]`` table replaces.
