@@ -515,7 +515,7 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
         story_drift_note=(f"story {story + 1} of {len(drift)} (from the bottom), {env['rule']} of {env['n']} analyses "
                           f"per bound, {s.get('story_drift_bound')} bound; limit drift_limit_rha [U]") if drift else "",
         bearing_axial_loads_N=loads, fixed_base=fixed_base, multisurface=asce7_22.is_multisurface(design),
-        activation_mode=mode)
+        activation_mode=mode, activation_regime=asce7_22.activation_regime(design))
     accel = s.get("floor_peak_acceleration_m_s2")
     rows.append(C.floor_acceleration(
         max(accel) if accel else None,

@@ -102,8 +102,9 @@ PARAMETERS = {p.name: p for p in [
     Parameter("multisurface_activation", "outer", "U", "ASCE 7-22 17.5.4.3(3) (REVIEW_RULES 1.9: for sliders the "
               "breakaway friction)",
               "a double or triple bearing's force that fully activates it: 'outer' the backbone's force at the start "
-              "of the regime of the largest compliance (a triple's regime III: the outer surfaces slide), "
-              "'breakaway' its force at rest (its smallest µ_i); a single surface: µs either way", ("asce7-22",)),
+              "of the regime of the largest compliance (a triple's regime III: both outer surfaces slide; a double's "
+              "1+2: both surfaces slide), 'breakaway' its force at rest (its smallest µ_i); a single surface: µs either "
+              "way", ("asce7-22",)),
     Parameter("horizontal_only", False, "input", "ASCE 7-22 17.3.2 (pairs of horizontal components)",
               "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
               "building); false: a vertical is analysed or the review refuses it"),

@@ -216,6 +216,7 @@ def test_a_triple_review_shows_what_its_analyses_ran_with(inputs, tmp_path):
     assert rows["record_strength"]["limit"] == pytest.approx(0.1 * 0.8 * 0.02, rel=1e-14)  # not 0.1 × 0.8 × 0.0714
     assert "breakaway force / W (the bearing at rest: its smallest µ_i)" in rows["record_strength"]["note"]
     assert "backbone's force at the start of the regime" in rows["V_s_activation_limit"]["note"]
+    assert "regime III of the triple (both outer surfaces slide)" in rows["V_s_activation_limit"]["note"]
     assert rows["wind_restraint"]["limit"] == pytest.approx(0.8 * 0.02, rel=1e-14)
     assert "smallest µ_i" in rows["wind_restraint"]["note"]
     assert "implicit steps at step_tol 1e-07" in rows["base_shear_elf_floor"]["note"]

@@ -177,8 +177,33 @@ def activation_force_per_weight(design, mode: str = "outer") -> float:
     if mode == "breakaway":
         return breakaway_force_per_weight(design)
     bb = design.bearing.backbone()
+    return float(bb.force_per_weight[_largest_compliance(bb)])
+
+
+def _largest_compliance(bb) -> int:
+    """Index of the backbone's regime of the largest compliance (1/stiffness; a rigid step has none)."""
     compliance = [1.0 / k if k > 0 else 0.0 for k in bb.stiffness_per_weight_1_m]
-    return float(bb.force_per_weight[int(np.argmax(compliance))])
+    return int(np.argmax(compliance))
+
+
+def activation_regime(design) -> str:
+    """Which regime 17.5.4.3(3)'s 'outer' reading starts, named for the design's bearing type [-].
+
+    A triple pendulum: "regime III of the triple (both outer surfaces slide)"; a double: "regime 1+2 of the double
+    (both surfaces slide)"; "" for a single surface (µs: no regime to name).
+    """
+    if not is_multisurface(design):
+        return ""
+    bearing = design.bearing
+    name = bearing.backbone().regimes[_largest_compliance(bearing.backbone())]
+    if bearing.kind == "triple" and name == "III":
+        sliding = "both outer surfaces slide"
+    else:
+        surfaces = name.split("+")
+        sliding = ("both surfaces slide" if len(surfaces) == 2 == len(bearing.surfaces) else
+                   f"surface{'s' if len(surfaces) > 1 else ''} {' and '.join(surfaces)} slide"
+                   f"{'' if len(surfaces) > 1 else 's'}")
+    return f"regime {name} of the {bearing.kind} ({sliding})"
 
 
 def torsion_amplification(y_m: float, eccentricity_m: float, p_t: float, b_m: float, d_m: float) -> float:
@@ -380,7 +405,7 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                      mu_static_nominal: float, story_drift_ratio: float | None = None,
                      story_drift_note: str = "", bearing_axial_loads_N: dict | None = None,
                      fixed_base: dict | None = None, multisurface: bool = False,
-                     activation_mode: str = "outer") -> list[dict]:
+                     activation_mode: str = "outer", activation_regime: str = "") -> list[dict]:
     """The Chapter 17 requirements beside the response-history checks, each with its clause and status.
 
     ``pass`` / ``fail`` only where the review computes the quantity; otherwise ``not checked`` naming
@@ -408,6 +433,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         not µs.
     activation_mode : {"outer", "breakaway"}
         Which force activates a double or triple (``multisurface_activation``), for the note.
+    activation_regime : str
+        The regime the 'outer' reading starts, named for the bearing type (:func:`activation_regime`), for the note.
     """
     from isolator.review import checks as C
 
@@ -459,9 +486,10 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         rows.append(C.at_least("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", margins[b][0], margins[b][1],
                                f"ELF V_s/W ({b} bound) ≥ V_st of Eq. 17.5-8 with V_b = the activation force "
                                + (("max(upper, 1.5 × nominal) of the backbone's force at the start of the regime "
-                                   "of the largest compliance (regime III of a triple: the outer surfaces slide; "
-                                   "multisurface_activation 'outer' [U]: REVIEW_RULES 1.9 names the breakaway friction "
-                                   "for sliders, the bearing's breakaway is its smallest µ_i) "
+                                   "of the largest compliance ("
+                                   + (f"{activation_regime}; " if activation_regime else "")
+                                   + "multisurface_activation 'outer' [U]: REVIEW_RULES 1.9 names the breakaway "
+                                   "friction for sliders, the bearing's breakaway is its smallest µ_i) "
                                    if activation_mode == "outer" else
                                    "max(upper, 1.5 × nominal) of the bearing's breakaway force (the backbone at rest: "
                                    "its smallest µ_i; multisurface_activation 'breakaway' [U]) ")
