@@ -315,7 +315,9 @@ class Bearing:
         """
         bb = self.backbone()
         times = dict(regimes_entered) if isinstance(regimes_entered, dict) else dict.fromkeys(regimes_entered)
-        reached = [k for k, name in enumerate(bb.regimes) if name in times]
+        # a name counts at its first place: a double's "1" again past surface 2's rim is told from the "1" it starts in
+        # by no name (the response keeps each name's first time), so entering "1" is not reaching past the rim
+        reached = [k for k, name in enumerate(bb.regimes) if name in times and name not in bb.regimes[:k]]
         if not reached:
             k = 0
             top = None
