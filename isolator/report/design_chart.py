@@ -116,8 +116,9 @@ def _paper_panel(ax, data, colours) -> None:
     best = [(k, a) for k, a, _, c in points if c == data["recommended_candidate"]]
     if best:
         ax.scatter(*zip(*best, strict=True), marker="*", s=220, color="gold", edgecolor="k", zorder=6)
-    ax.set_xlabel("k = K A0 / (M g) [-]")
-    ax.set_ylabel("α = PGA / (µs g) [-]")
+    on = data.get("paper_regimes")  # a double or triple: each candidate's point on the regime its motions reached
+    ax.set_xlabel("k = A0 / R of the regime reached [-]" if on else "k = K A0 / (M g) [-]")
+    ax.set_ylabel("α = PGA / (µ g), µ of the regime reached [-]" if on else "α = PGA / (µs g) [-]")
     title = "the paper's measure (Nicolas 2017): context, not a check"
     ax.set_title(title, fontsize=8.5)
 
@@ -158,6 +159,10 @@ def _chart_page(summary: dict, data: dict):
                "each candidate at the median over the suite of the paper's dimensionless point at nominal friction "
                "(k = K A0/(M g), α = PGA/(µs g), A0 = PGV²/PGA of the scaled pair); the paper's harmonic map "
                "classifies a one-component harmonic motion: context only.")
+    if data.get("paper_regimes"):
+        caption += (" A double or triple's point is on the backbone regime its motions reached (k = A0/R, α = PGA/(µ g) "
+                    "of that regime's line; column paper_regime); a candidate whose motions reached different regimes "
+                    "has no median point (not drawn), and no map is drawn (the map is a rigid block's on one surface).")
     if data["fixed"]:
         caption += " Other varied keys held at " + ", ".join(f"{k} = {fmt(v)}" for k, v in data["fixed"].items()) + "."
     fig.text(0.05, 0.012, textwrap.fill(caption, 150), fontsize=6.8, va="bottom", color="0.15")

@@ -621,14 +621,29 @@ def _orbits_page(review, r: dict):
     return fig
 
 
+def paper_regimes(r: dict) -> dict:
+    """bound → pair → the backbone regime its paper's point stands on (a double or triple: the regime the motion
+    reached, :meth:`isolator.bearing.Bearing.point_regime`); empty for a single surface."""
+    out = {b: {name: v["point_regime"] for name, v in r["bounds"][b]["pairs"].items() if v.get("point_regime")}
+           for b in ("lower", "upper") if b in r["bounds"]}
+    return {b: names for b, names in out.items() if names}
+
+
 def _paper_page(review, r: dict):
     fig = new_page("Appendix A  The paper's measures (context, not a verdict)", r["design"]["name"])
+    regimes = paper_regimes(r)
+    alpha_text = ("α = PGA/(µ g) and k = A0/R on the line F/W = x/R + µ of the backbone regime each motion reached "
+                  "(the 'on' columns: R the sum of the sliding surfaces' R, µ the line's F/W intercept at that bound's "
+                  "µ_i; a regime past a rim, whose intercept is ≤ 0, is not a pendulum: the last one before it), not on "
+                  "an equivalent µs no analysis ran; sliding needs α > 1"
+                  if regimes else "α = PGA/(µs g) (sliding needs α > 1)")
     for k, text in enumerate(textwrap.wrap(
         "These are the measures of the paper behind isolator (Nicolas 2017), shown for context.  They are NOT "
         "design checks.  A = peak relative displacement / A0 with A0 = PGV²/PGA of the (resultant, scaled) ground "
         "motion: A compares the isolator's displacement with the amplitude of the harmonic motion of equal PGA and "
         "PGV, not with the ground's displacement, so A > 1 does not mean that the isolator amplifies the ground "
-        "motion.  α = PGA/(µs g) (sliding needs α > 1); slip = share of the D5-95 window spent sliding (the paper's ζ, at the samples).", 135)):
+        f"motion.  {alpha_text}; slip = share of the D5-95 window spent sliding (the paper's ζ, at the samples).",
+            135)):
         line(fig, 0.05, 0.93 - k * 1.2 * 7.6 / (72 * A4_IN[1]), text, 7.6)  # lines 1.2 x 7.6 pt apart
     ax = fig.add_axes([0.08, 0.47, 0.4, 0.34])
     y = 0.37
@@ -639,7 +654,7 @@ def _paper_page(review, r: dict):
         alpha = [v.get("alpha", np.nan) for v in pairs.values()]
         a = [v.get("peak_displacement_over_a0", np.nan) for v in pairs.values()]
         ax.scatter(alpha, a, color=BOUND_COLOUR[b], label=f"{b} bound", s=18)
-    ax.set_xlabel("α = PGA/(µs g) [-]")
+    ax.set_xlabel("α = PGA/(µ g), µ of the regime reached [-]" if regimes else "α = PGA/(µs g) [-]")
     ax.set_ylabel("A = D / A0,  A0 = PGV²/PGA [-]")
     ax.set_title("the paper's measures of each pair", fontsize=8.5)
     ax.legend(loc="best")
@@ -652,22 +667,28 @@ def _paper_page(review, r: dict):
                     s=40, color="k", zorder=5, label="pairs (equivalent points)")
         axm.legend(loc="upper right", fontsize=7)
     line(fig, 0.05, y, "pair", 7.4, weight="bold")
-    for x, head in ((0.4, "α lo"), (0.48, "A lo"), (0.56, "slip lo"), (0.66, "α up"), (0.74, "A up"),
-                    (0.82, "slip up")):
+    heads = ((0.4, "α lo"), (0.48, "A lo"), (0.56, "slip lo"), (0.66, "α up"), (0.74, "A up"), (0.82, "slip up"))
+    ons = ((0.16, "lower"), (0.26, "upper")) if regimes else ()
+    for x, head in (*heads, *((x, f"on ({b[:2]})") for x, b in ons)):
         line(fig, x, y, head, 7.4, weight="bold")
     y -= 0.015
     for name in r["scale_factors"]:
         line(fig, 0.05, y, f"#{pair_key(r)[name]}", 7.0)
+        for x, b in ons:
+            line(fig, x, y, regimes.get(b, {}).get(name, "-"), 7.0)
         for x0, b in ((0.4, "lower"), (0.66, "upper")):
             v = r["bounds"].get(b, {}).get("pairs", {}).get(name, {})
             for dx, key in ((0.0, "alpha"), (0.08, "peak_displacement_over_a0"), (0.16, "zeta_record")):
                 line(fig, x0 + dx, y, fmt(v.get(key), 3), 7.0)
         y -= 0.013
-    _caption(fig, "Right: the paper's (k, α) regime map of the steady harmonic response (one component) at the "
-                  "design's friction, with each scaled pair placed at its equivalent harmonic point (k = K A0/(M g), "
-                  "α = PGA/(µs g)); regions and shading as in the single-record report.  The map classifies a "
-                  "harmonic motion in one direction; the pairs were analysed in 2-D: context only.  Pairs numbered as in the "
-                  "key of the analyses page.")
+    drawn = ("Right: the paper's (k, α) regime map of the steady harmonic response (one component) at the design's "
+             "friction, with each scaled pair placed at its equivalent harmonic point (k = K A0/(M g), α = PGA/(µs g)); "
+             "regions and shading as in the single-record report.  The map classifies a harmonic motion in one "
+             "direction; the pairs were analysed in 2-D: context only.  " if review.paper_map is not None else
+             "The paper's regime map is that of a rigid block on one surface: not drawn for a building or a double or "
+             "triple bearing.  ")
+    _caption(fig, ("Each pair's α and k on the backbone regime its motion reached at that bound (the 'on' columns).  "
+                   if regimes else "") + drawn + "Pairs numbered as in the key of the analyses page.")
     return fig
 
 

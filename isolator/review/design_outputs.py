@@ -70,7 +70,8 @@ def chart_data(result: DesignSearch) -> dict:
     return {"x_key": x_key, "y_key": y_key, "x": np.array(xs, float), "y": np.array(ys, float) if y_key else None,
             "fixed": fixed, "candidate": cell, "design_total_displacement_m": d_tm, "base_shear_coefficient": vb,
             "passes": passes, "state": state, "recommended": rec, "recommended_candidate":
-            None if best is None else best["candidate"], "paper": paper, "objective": result.objective}
+            None if best is None else best["candidate"], "paper": paper, "objective": result.objective,
+            "paper_regimes": sorted({r["paper_regime"] for r in result.rows if r.get("paper_regime")})}
 
 
 def _number(value) -> float:
@@ -86,10 +87,11 @@ def paper_context(data: dict, result: DesignSearch, resolution: int = 30, jobs: 
     are equal (the usual case: µs follows µk by the design's ratio); ``shared`` says whether they are.
     """
     from isolator.maps import design_frame, regime_map
+    from isolator.review.run import paper_map_applies
 
     analysed = [r for r in result.rows if r.get("error") is None and r.get("paper_k") is not None]
-    if resolution <= 0 or not analysed:
-        return None
+    if resolution <= 0 or not analysed or not paper_map_applies(result.design):
+        return None  # the map is a rigid block's on one surface (as isolator review: not for a building, a double …)
     anchor = next((r for r in analysed if r["candidate"] == data["recommended_candidate"]), analysed[0])
     ratios = {round(r["mu_kinetic"] / r["mu_static"], 12) for r in analysed}
     design = result.design

@@ -60,7 +60,7 @@ COLUMNS = ("candidate", "error", "passes", "first_failing_check", "n_failing_che
            "base_shear_governing_bound", "elf_total_displacement_m", "superstructure_shear_over_W",
            "restoring_force_over_W", "restoring_force_limit_over_W", "restoring_force_margin",
            "residual_displacement_m", "period_range_lo_s", "period_range_hi_s", "scale_factor_min",
-           "scale_factor_max", "paper_k", "paper_alpha", "paper_eta", "analyses_cached", "review_seconds",
+           "scale_factor_max", "paper_k", "paper_alpha", "paper_eta", "paper_regime", "analyses_cached", "review_seconds",
            "spectra_seconds", "analyses_seconds", "key")
 
 

@@ -97,9 +97,13 @@ def candidate_row(review, values: dict) -> dict:
     design = review.design
     nominal = review.analyses.get("nominal") or review.analyses.get("lower") or {}
     # the paper's dimensionless point of each pair (k = K A0/(M g), α = PGA/(µs g), η = c sqrt(A0/g)), as the
-    # review's page 5 places them
+    # review's page 5 places them; a double or triple's on the backbone regime each motion reached (k = A0/R,
+    # α = PGA/(µ g) of that regime's line): a median is taken over one regime only, never across regimes
     points = [(a["k"], a["alpha"], a["eta"]) for a in nominal.values()  # the analysis' point (isolator.analysis)
               if "error" not in a and a.get("k") is not None and math.isfinite(a["k"])]
+    on = [a.get("point_regime") for a in nominal.values()
+          if "error" not in a and a.get("k") is not None and math.isfinite(a["k"])]
+    regime, points = paper_regime(on, points)
     factors = list(r["scale_factors"].values())
     row = {
         **values,
@@ -131,9 +135,27 @@ def candidate_row(review, values: dict) -> dict:
         "paper_k": float(np.median([p[0] for p in points])) if points else None,
         "paper_alpha": float(np.median([p[1] for p in points])) if points else None,
         "paper_eta": float(np.median([p[2] for p in points])) if points else None,
+        "paper_regime": regime,
     }
     row.update({f"check_{cid}": s for cid, s in status.items()})
     return row
+
+
+def paper_regime(regimes: list, points: list) -> tuple[str | None, list]:
+    """The regime the candidate's paper point stands on, and the points whose median is taken.
+
+    ``regimes``: each pair's ``point_regime`` (None for one surface).  One surface: (None, every point).  A double or
+    triple whose motions all reached one regime: (that regime, every point).  Motions on different regimes: their
+    points are on different lines (k = A0/R, α = PGA/(µ g) with each line's R and µ), so no median means anything:
+    ("mixed: 1 ×3, 1+2 ×5", []), and the columns are empty.
+    """
+    named = [name for name in regimes if name]
+    if not named:
+        return None, points
+    counts = {name: named.count(name) for name in dict.fromkeys(named)}
+    if len(counts) == 1:
+        return named[0], points
+    return "mixed: " + ", ".join(f"{name} ×{n}" for name, n in counts.items()), []
 
 
 def check_statuses(checks: list) -> dict:

@@ -380,7 +380,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
         notes.extend(f"analysis of pair '{name}' ({b} bound) is used, but its solver says: {r['solver_status']}"
                      for name, r in analyses[b].items() if "error" not in r and r.get("solver_status", "ok") != "ok")
 
-    rigid_block = design.superstructure is None and not asce7_22.is_multisurface(design)
+    rigid_block = paper_map_applies(design)
     paper_map = (_paper_map(designs, analyses, paper_map_resolution, jobs) if paper_map_resolution and rigid_block
                  else None)
     if paper_map_resolution and not rigid_block:
@@ -448,6 +448,12 @@ def _safe_target(target, periods):
     out = np.full(periods.size, np.nan)
     out[inside] = target.sa_g(periods[inside])
     return out
+
+
+def paper_map_applies(design) -> bool:
+    """The paper's harmonic regime map applies: a rigid block on one surface (no superstructure, no double or
+    triple bearing); the review's Appendix A and the design search's chart draw it only then."""
+    return design.superstructure is None and not asce7_22.is_multisurface(design)
 
 
 def _paper_map(designs: dict, analyses: dict, resolution: int, jobs) -> dict | None:

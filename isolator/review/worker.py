@@ -49,7 +49,7 @@ def _engine_version() -> str:
     digest = hashlib.sha256()
     package = Path(__file__).resolve().parents[1]
     for path in sorted((package / "solver").glob("*.py")) + [package / "analysis.py", package / "metrics.py",
-                                                             package / "adapter.py"]:
+                                                             package / "adapter.py", package / "bearing.py"]:
         digest.update(path.read_bytes())
     return f"{__version__}+{digest.hexdigest()[:16]}"
 
@@ -87,7 +87,9 @@ def analyse_task(task: dict) -> dict:
         :meth:`isolator.analysis.Analysis.row` of the design under the scaled pair (the
         model that ran and why, the paper's point α, k, η of the resultant horizontal
         motion, the response keys, ``zeta_record`` over its D5–95, ``peak_displacement_over_a0``,
-        ``transmitted_over_pga``, ``base_shear_coefficient`` …), plus ``pga_m_s2`` and ``pgv_m_s``
+        ``transmitted_over_pga``, ``base_shear_coefficient`` …), plus ``point_regime`` and ``point_mu`` (the
+        backbone regime a double or triple's point stands on and its line's µ; None and µs for one surface),
+        ``pga_m_s2`` and ``pgv_m_s``
         (the resultant's), ``orbit_m`` (decimated X–Y path) and ``analysis_seconds``; and the model's own
         summary keys (``EXTRA_SUMMARY_KEYS``: a building's ``story_drift_ratio``,
         ``superstructure_shear_coefficient``, ``floor_peak_acceleration_m_s2``, bearing axial loads; a
@@ -110,7 +112,9 @@ def analyse_task(task: dict) -> dict:
     extra = {key: value.tolist() if isinstance(value, np.ndarray) else value
              for key, value in response.summary().items() if key in response.EXTRA_SUMMARY_KEYS and key not in row}
     extra = json_safe(extra)
-    return {**row, **extra, "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
+    point = analysis.adaptation.point  # a double or triple: the regime the paper's point stands on, and its µ
+    return {**row, **extra, "point_regime": point.regime, "point_mu": point.mu_s,
+            "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
             "orbit_m": _decimate(np.asarray(analysis.response.displacement_m, dtype=np.float64)),
             "analysis_seconds": time.perf_counter() - start}
 

@@ -60,3 +60,62 @@ def test_the_activation_note_of_a_double_names_its_own_regime(double_review):
     assert "regime III" not in row["note"] and "triple" not in row["note"]
     # V_b = max(1.3 × 0.07, 1.5 × 0.07) W = 0.105 W (the backbone's force at the start of 1+2, upper / nominal)
     assert "W = 0.105 W" in row["note"]
+
+
+G = 9.80665
+
+
+def _line(regime: str, lam: float) -> tuple[float, float]:
+    """(R, µ) of the double's backbone line, written out: surface 1 alone F/W = x/R1 + µ1; both sliding
+    F/W = x/(R1 + R2) + (µ1 R1 + µ2 R2)/(R1 + R2) (x = R1 (F − µ1) + R2 (F − µ2))."""
+    r1, r2, mu1, mu2 = 2.0, 2.5, 0.04 * lam, 0.07 * lam
+    return (r1, mu1) if regime == "1" else (r1 + r2, (mu1 * r1 + mu2 * r2) / (r1 + r2))
+
+
+def test_a_doubles_point_entering_only_surface_1_is_on_surface_1():
+    """The double's backbone is 1, 1+2, then 1 again past surface 2's rim (x = 0.96 m): the point of a motion that
+    entered only '1' was put on regime 1+2 (R 4.5 m) because the name '1' matched the regime past the rim too
+    (Hector Mine ABY, upper bound, /tmp/h165/double.toml: k 0.01364 = A0/4.5 instead of A0/2.0)."""
+    bearing = _double().bearing
+    assert bearing.backbone().regimes == ("1", "1+2", "1")
+    name, radius, mu, reason = bearing.point_regime({"1": 6.14})
+    assert (name, radius, mu) == ("1", 2.0, pytest.approx(0.04, rel=1e-14))
+    assert "reached regime 1 (first at 6.14 s)" in reason
+    name, radius, mu, _ = bearing.point_regime({"1": 1.0, "1+2": 3.0, "2": 5.0})
+    assert (name, radius, mu) == ("1+2", pytest.approx(4.5, rel=1e-14), pytest.approx(_line("1+2", 1.0)[1], rel=1e-14))
+
+
+def test_appendix_a_of_a_double_says_which_regime_each_point_stands_on(double_review, tmp_path):
+    import pypdf
+
+    from isolator.report.review_pages import write_review_pdf
+
+    r = write_review_pdf(double_review, tmp_path / "double.pdf")
+    seen = set()
+    for bound, lam in (("lower", 0.8), ("upper", 1.3)):
+        for name, a in r["bounds"][bound]["pairs"].items():
+            on = "1+2" if "1+2" in a["regimes"] else "1"  # both surfaces slid, else surface 1 only
+            radius, mu = _line(on, lam)
+            a0 = a["pgv_m_s"] ** 2 / a["pga_m_s2"]
+            assert a["point_regime"] == on, (bound, name)
+            assert a["point_mu"] == pytest.approx(mu, rel=1e-13)
+            assert a["k"] == pytest.approx(a0 / radius, rel=1e-13)
+            assert a["alpha"] == pytest.approx(a["pga_m_s2"] / (mu * G), rel=1e-13)
+            seen.add(on)
+    text = " ".join(" ".join(page.extract_text().split()) for page in pypdf.PdfReader(tmp_path / "double.pdf").pages)
+    appendix = text[text.index("Appendix A"):]
+    assert "α = PGA/(µ g) and k = A0/R on the line F/W = x/R + µ of the backbone regime each motion reached" in appendix
+    assert "on (lo)" in appendix and "on (up)" in appendix and "#1 1+2 1+2" in appendix  # the short suite's: 1+2
+    assert "not on an equivalent µs no analysis ran" in appendix
+    assert "not drawn for a building or a double or triple bearing" in appendix
+    assert "Right: the paper's (k, α) regime map" not in appendix  # no map is drawn: the caption said one was
+    assert seen  # the regimes reached are the suite's, whichever they are
+
+
+def test_the_design_searchs_paper_point_never_mixes_regimes():
+    from isolator.review.design_workers import paper_regime
+
+    points = [(0.1, 5.0, 0.0), (0.2, 7.0, 0.0), (0.3, 9.0, 0.0)]
+    assert paper_regime([None, None, None], points) == (None, points)  # one surface: µs, every point
+    assert paper_regime(["1+2"] * 3, points) == ("1+2", points)
+    assert paper_regime(["1", "1+2", "1+2"], points) == ("mixed: 1 ×1, 1+2 ×2", [])  # no median across lines
