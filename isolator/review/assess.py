@@ -414,7 +414,10 @@ def _uplift_row(review, values: dict) -> dict:
     env = review.design_values["envelope"]
     single = factored["min_single_N"] if factored else s["bearing_axial_load_min_single_N"]
     lifted = factored["lifted"] if factored else s["uplift_analyses"]
-    detail = (f"bearing {k + 1}'s least load, {env['rule']} of {env['n']} analyses per bound, the smaller bound; "
+    # a least load's suite value: the mean of ≥ n_for_mean analyses, else the least of them (the most unfavourable:
+    # the suite rule's 'max' of a demand is the minimum of a load that must stay ≥ 0)
+    rule = "mean" if env["rule"] == "mean" else "the least"
+    detail = (f"bearing {k + 1}'s least load, {rule} of {env['n']} analyses per bound, the smaller bound; "
               f"{len(lifted)} analysis(es) lift a bearing"
               + (f" ({', '.join(lifted[:4])}{' …' if len(lifted) > 4 else ''})" if lifted else "")
               + f"; least single analysis {single['value']:.4g} N ({single['pair']}, {single['bound']} bound)"

@@ -119,3 +119,60 @@ def test_the_design_searchs_paper_point_never_mixes_regimes():
     assert paper_regime([None, None, None], points) == (None, points)  # one surface: µs, every point
     assert paper_regime(["1+2"] * 3, points) == ("1+2", points)
     assert paper_regime(["1", "1+2", "1+2"], points) == ("mixed: 1 ×1, 1+2 ×2", [])  # no median across lines
+
+
+# ---- 17.2.4.7: a tall narrow building lifts its bearings, a wide one does not --------------------------------------
+
+def _tower(half_m: float) -> Design:
+    """Six 4 m stories (0.4e6 kg each, 2e9 N/m) on a 0.6e6 kg base slab, four bearings at (±half, ±half) m."""
+    floors = [{"mass_kg": 4.0e5, "story_height_m": 4.0, "stiffness_x_N_per_m": 2.0e9} for _ in range(6)]
+    positions = [{"x_m": sx * half_m, "y_m": sy * half_m, "axial_capacity_N": 2.0e7} for sx in (-1, 1) for sy in (-1, 1)]
+    return Design.from_mapping({"name": f"tower {half_m:g}", "mass_kg": 3.0e6, "radius_m": 3.0, "mu_static": 0.06,
+                                "mu_kinetic": 0.05, "displacement_capacity_m": 2.0, "lambda_max": 1.3,
+                                "lambda_min": 0.8, "plan": {"b_m": 2 * half_m, "d_m": 2 * half_m},
+                                "superstructure": {"damping_ratio": 0.05, "response_modification_R": 8.0,
+                                                   "floor": floors}, "bearing_position": positions})
+
+
+@pytest.fixture(scope="module")
+def towers(inputs):
+    suite = load_suite(inputs / "suite.toml")
+    return {half: run_review(_tower(half), TARGET, suite, jobs=1, nominal=False) for half in (3.0, 20.0)}
+
+
+def test_the_uplift_row_of_a_tower_that_lifts_and_of_one_that_does_not(towers):
+    """Three real pairs (fewer than n_for_mean 7: the suite value is the most unfavourable, the least load), no
+    vertical: 2.3.6's minimum 0.9 D − E_v − E_h = (0.9 − 0.2 × 1.5) D − E_h = 0.6 D − E_h on each bearing's share
+    D = W/4.  The note said 'max of 3 analyses' of a least load; it is the least of them."""
+    share = 3.0e6 * G / 4
+    for half, status in ((3.0, "fail"), (20.0, "pass")):
+        r = towers[half]
+        row = next(c for c in r.checks if c["id"] == "uplift")
+        per = {(b, name): [low + (0.6 - 1.0) * share for low in a["bearing_axial_load_min_N"]]
+               for b in ("lower", "upper") for name, a in r.analyses[b].items()}
+        least = min(min(min(loads[k] for (b2, _), loads in per.items() if b2 == b) for k in range(4))
+                    for b in ("lower", "upper"))
+        lifted = [f"{name} ({b})" for (b, name), loads in per.items() if min(loads) < 0]
+        assert row["status"] == status and row["value"] == pytest.approx(least, rel=1e-13)
+        assert (least < 0) is (status == "fail")
+        assert "least load, the least of 3 analyses per bound, the smaller bound" in row["note"]
+        assert "max of 3" not in row["note"]
+        assert f"{len(lifted)} analysis(es) lift a bearing" in row["note"]
+        assert "min 0.6 D − E_h" in row["note"] and "no vertical analysed, so E_v is applied" in row["note"]
+        assert "no vertical components in the suite" in row["note"]
+        if lifted:
+            assert f"({', '.join(lifted[:4])}" in row["note"]
+        else:
+            assert "lift a bearing (" not in row["note"]
+
+
+def test_the_overturning_load_scales_as_one_over_the_lever_arm(towers):
+    """Same floors, same friction, the bearings symmetric about the centre of mass: the horizontal response is the
+    same, and each bearing's overturning load E_h = share − its least load varies as 1/half exactly (20/3)."""
+    share = 3.0e6 * G / 4
+    for b in ("lower", "upper"):
+        for name, narrow in towers[3.0].analyses[b].items():
+            wide = towers[20.0].analyses[b][name]
+            assert narrow["peak_displacement_m"] == pytest.approx(wide["peak_displacement_m"], rel=1e-12)
+            for lo3, lo20 in zip(narrow["bearing_axial_load_min_N"], wide["bearing_axial_load_min_N"], strict=True):
+                assert (share - lo3) == pytest.approx((share - lo20) * 20.0 / 3.0, rel=1e-9)
