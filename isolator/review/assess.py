@@ -389,9 +389,28 @@ def _common_back(review, values: dict, d_tm_design: float, what: str = "design t
     ratio = max(v["transmitted_over_pga_max"] for v in values.values())
     rows.append(C.at_most("transmitted_over_pga", "isolation effectiveness (practice)", ratio,
                           p["transmitted_over_pga_max"],
-                          "largest peak transmitted acceleration / resultant PGA of the scaled pair, any bound", "-"))
+                          "largest peak transmitted acceleration / resultant PGA of the scaled pair, any bound"
+                          + _largest_transmitted(review.analyses), "-"))
     rows.append(_uplift_row(review, values))
     return rows
+
+
+def _largest_transmitted(analyses: dict) -> str:
+    """Which analysis gives the largest transmitted / PGA, and — when it reached the ultimate (its peak is the force
+    of the plastic impact on the rims, an idealisation) — the largest of the analyses below the ultimate."""
+    reached = set(C.ultimate_reached(analyses))
+    ratios = sorted(((r["transmitted_over_pga"], f"{name} ({bound})") for bound, results in analyses.items()
+                     for name, r in results.items() if "error" not in r and r.get("transmitted_over_pga") is not None),
+                    reverse=True)
+    if not ratios:
+        return ""
+    top = ratios[0][1]
+    if top not in reached:
+        return f": {top}"
+    below = next(((value, name) for value, name in ratios if name not in reached), None)
+    return (f": {top}, which reached the bearing's ultimate displacement (its peak is the plastic impact on the rims, "
+            "an idealisation of the restraint); " + ("every analysis reached it" if below is None else
+                                                    f"below the ultimate the largest is {below[0]:.4g} ({below[1]})"))
 
 
 #: The uplift row's clause in an EN review: REVIEW_RULES §2 gives no EN clause, a slider carries no tension.

@@ -176,3 +176,41 @@ def test_the_overturning_load_scales_as_one_over_the_lever_arm(towers):
             assert narrow["peak_displacement_m"] == pytest.approx(wide["peak_displacement_m"], rel=1e-12)
             for lo3, lo20 in zip(narrow["bearing_axial_load_min_N"], wide["bearing_axial_load_min_N"], strict=True):
                 assert (share - lo3) == pytest.approx((share - lo20) * 20.0 / 3.0, rel=1e-9)
+
+
+def test_the_transmitted_row_names_its_analysis_and_an_impacts_force(inputs, monkeypatch):
+    """/tmp/h165/double.toml over the example suite: transmitted_over_pga failed 1.469 > 1 on Chuetsu-oki 65025
+    (lower), an analysis at the ultimate (its peak the plastic impact on the rims); the note named no analysis, and
+    below the ultimate the largest was 0.359 (Landers YER, upper).  A fail stands; the note now says both."""
+    from isolator.review import worker
+
+    real = worker.analyse_task
+    aby = next(p.ax_m_s2 for p in load_suite(inputs / "suite.toml").pairs if p.name == "hectormine1999_ABY")
+
+    def analyse(task):  # ABY reaches the ultimate and transmits 2 × its PGA (an impact)
+        result = real(task)
+        if task["ax"].shape == aby.shape and (task["ax"] == aby).all():
+            return {**result, "ultimate_displacement_reached": True, "impact_impulse_m_s": 0.25,
+                    "transmitted_over_pga": 2.0 + result["transmitted_over_pga"]}
+        return result
+
+    monkeypatch.setattr(worker, "analyse_task", analyse)
+    design = Design.from_mapping({"name": "fps", "mass_kg": 1.0e6, "radius_m": 2.5, "mu_static": 0.06,
+                                  "mu_kinetic": 0.05, "displacement_capacity_m": 5.0, "lambda_max": 1.3,
+                                  "lambda_min": 0.8})
+    r = run_review(design, TARGET, load_suite(inputs / "suite.toml"), jobs=1, nominal=False)
+    row = next(c for c in r.checks if c["id"] == "transmitted_over_pga")
+    below = max((a["transmitted_over_pga"], f"{name} ({b})") for b in ("lower", "upper")
+                for name, a in r.analyses[b].items() if name != "hectormine1999_ABY")
+    top = max(("lower", "upper"), key=lambda b: r.analyses[b]["hectormine1999_ABY"]["transmitted_over_pga"])
+    assert row["status"] == "fail" and row["value"] == r.analyses[top]["hectormine1999_ABY"]["transmitted_over_pga"]
+    assert (f": hectormine1999_ABY ({top}), which reached the bearing's ultimate displacement (its peak is the plastic "
+            "impact on the rims") in row["note"]
+    assert f"below the ultimate the largest is {below[0]:.4g} ({below[1]})" in row["note"]
+
+
+def test_the_transmitted_row_names_its_analysis(review):
+    row = next(c for c in review.checks if c["id"] == "transmitted_over_pga")
+    value, name = max((a["transmitted_over_pga"], f"{name} ({b})") for b, results in review.analyses.items()
+                      for name, a in results.items())
+    assert row["value"] == value and f"any bound: {name}" in row["note"]
