@@ -56,6 +56,12 @@ def _summary_page(analysis, numbers: dict, label: str, command: str):
                    ("isolator", f"pendulum R = {fmt(d.radius_m)} m" if d.is_pendulum
                     else f"K = {fmt(d.stiffness_N_per_m)} N/m"),
                    ("friction", f"µs = {fmt(d.mu_static)}, µk = {fmt(d.mu_kinetic)}")]
+    surfaces = d.bearing.surfaces if d.bearing is not None and not d.bearing.is_simple else ()
+    if surfaces:  # a double or triple: its surfaces ran; R and µ above are its every-surface-sliding equivalent only
+        design_rows[2:] = [("isolator", f"{d.bearing.kind}: R_i = {'/'.join(fmt(s.radius_m) for s in surfaces)} m "
+                                        f"(equivalent R {fmt(d.radius_m)} m)"),
+                           ("friction", f"µ_i = {'/'.join(fmt(s.mu_kinetic) for s in surfaces)} "
+                                        f"(equivalent µ {fmt(d.mu_static)}: every surface sliding)")]
     if d.velocity_dependent:
         design_rows.append(("µ(v)", f"µ_slow = {fmt(d.mu_slow)}, µ_fast = {fmt(d.mu_fast)}, "
                                     f"a = {fmt(d.rate_s_per_m)} s/m"))

@@ -214,3 +214,22 @@ def test_the_transmitted_row_names_its_analysis(review):
     value, name = max((a["transmitted_over_pga"], f"{name} ({b})") for b, results in review.analyses.items()
                       for name, a in results.items())
     assert row["value"] == value and f"any bound: {name}" in row["note"]
+
+
+def test_the_single_record_report_of_a_double_names_its_surfaces_not_only_the_equivalent(inputs, tmp_path):
+    """`isolator report` of /tmp/h165/double.toml printed 'pendulum R = 4.5 m, µs = 0.05667, µk = 0.05667': the
+    every-surface-sliding equivalent, a pendulum no analysis ran, as if it were the isolator."""
+    import numpy as np
+    import pypdf
+
+    from isolator.analysis import analyse
+    from isolator.motion import GroundMotion
+    from isolator.report.pair import write_pair_report
+
+    pair = next(p for p in load_suite(inputs / "suite.toml").pairs if p.name == "hectormine1999_ABY")
+    analysis = analyse(_double(lam=False), GroundMotion.from_array(np.asarray(pair.ax_m_s2), pair.dt_s))
+    write_pair_report(analysis, tmp_path / "r.pdf")
+    text = " ".join(" ".join(page.extract_text().split()) for page in pypdf.PdfReader(tmp_path / "r.pdf").pages)
+    assert "isolator double: R_i = 2/2.5 m (equivalent R 4.5 m)" in text
+    assert "friction µ_i = 0.04/0.07 (equivalent µ 0.05667: every surface sliding)" in text
+    assert "pendulum R = 4.5 m" not in text
