@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 #: bump when the numbers an analysis returns change meaning
-CACHE_VERSION = "review-4"
+CACHE_VERSION = "review-5"  # review-5: point_regime, mu_s (the paper point's regime and µ)
 ORBIT_POINTS = 1500
 #: Samples of the first task analysed by :func:`warm_up` (enough to reach the engine's compiled kernel).
 WARM_UP_SAMPLES = 200
@@ -87,7 +87,7 @@ def analyse_task(task: dict) -> dict:
         :meth:`isolator.analysis.Analysis.row` of the design under the scaled pair (the
         model that ran and why, the paper's point α, k, η of the resultant horizontal
         motion, the response keys, ``zeta_record`` over its D5–95, ``peak_displacement_over_a0``,
-        ``transmitted_over_pga``, ``base_shear_coefficient`` …), plus ``point_regime`` and ``point_mu`` (the
+        ``transmitted_over_pga``, ``base_shear_coefficient`` …), plus ``point_regime`` and ``mu_s`` (the
         backbone regime a double or triple's point stands on and its line's µ; None and µs for one surface),
         ``pga_m_s2`` and ``pgv_m_s``
         (the resultant's), ``orbit_m`` (decimated X–Y path) and ``analysis_seconds``; and the model's own
@@ -113,7 +113,7 @@ def analyse_task(task: dict) -> dict:
              for key, value in response.summary().items() if key in response.EXTRA_SUMMARY_KEYS and key not in row}
     extra = json_safe(extra)
     point = analysis.adaptation.point  # a double or triple: the regime the paper's point stands on, and its µ
-    return {**row, **extra, "point_regime": point.regime, "point_mu": point.mu_s,
+    return {**row, **extra, "point_regime": point.regime, "mu_s": point.mu_s,
             "pga_m_s2": intensity.pga_m_s2, "pgv_m_s": intensity.pgv_m_s,
             "orbit_m": _decimate(np.asarray(analysis.response.displacement_m, dtype=np.float64)),
             "analysis_seconds": time.perf_counter() - start}

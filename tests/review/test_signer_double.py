@@ -98,7 +98,7 @@ def test_appendix_a_of_a_double_says_which_regime_each_point_stands_on(double_re
             radius, mu = _line(on, lam)
             a0 = a["pgv_m_s"] ** 2 / a["pga_m_s2"]
             assert a["point_regime"] == on, (bound, name)
-            assert a["point_mu"] == pytest.approx(mu, rel=1e-13)
+            assert a["mu_s"] == pytest.approx(mu, rel=1e-13)
             assert a["k"] == pytest.approx(a0 / radius, rel=1e-13)
             assert a["alpha"] == pytest.approx(a["pga_m_s2"] / (mu * G), rel=1e-13)
             seen.add(on)
