@@ -109,7 +109,8 @@ PARAMETERS = {p.name: p for p in [
               "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
               "building); false: a vertical is analysed or the review refuses it"),
     Parameter("weak_pga_fraction", 0.1, "practice", "record selection (practice)",
-              "a scaled pair with resultant PGA < fraction × µ_lower g can hardly move the isolator"),
+              "a scaled pair with resultant PGA < fraction × µ_lower g can hardly move the isolator (a double or "
+              "triple: × its lower bound's breakaway force / W, its smallest µ_i)"),
     Parameter("bandwidth_min", 0.25, "practice", "record selection (practice)",
               "Vanmarcke spectral bandwidth below which a component is not an earthquake record (sinusoid)"),
     Parameter("gamma_x", 1.2, "U", "EN 1998-1 10.3(2)", "reliability factor on isolator displacements",

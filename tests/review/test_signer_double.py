@@ -233,3 +233,11 @@ def test_the_single_record_report_of_a_double_names_its_surfaces_not_only_the_eq
     assert "isolator double: R_i = 2/2.5 m (equivalent R 4.5 m)" in text
     assert "friction µ_i = 0.04/0.07 (equivalent µ 0.05667: every surface sliding)" in text
     assert "pendulum R = 4.5 m" not in text
+
+
+def test_the_parameters_say_what_a_double_or_triple_uses():
+    from isolator.review import parameters as P
+
+    table = {row["name"]: row for row in P.table("asce7-22", P.resolve("asce7-22", {}))}
+    assert "a double or triple: × its lower bound's breakaway force / W" in table["weak_pga_fraction"]["meaning"]
+    assert "a double's 1+2: both surfaces slide" in table["multisurface_activation"]["meaning"]
