@@ -633,7 +633,7 @@ def _paper_page(review, r: dict):
     fig = new_page("Appendix A  The paper's measures (context, not a verdict)", r["design"]["name"])
     regimes = paper_regimes(r)
     alpha_text = ("α = PGA/(µ g) and k = A0/R on the line F/W = x/R + µ of the backbone regime each motion reached "
-                  "(the 'on' columns: R the sum of the sliding surfaces' R, µ the line's F/W intercept at that bound's "
+                  "(the 'on' columns: R the sum of the sliding surfaces' effective R, µ the line's F/W intercept at that bound's "
                   "µ_i; a regime past a rim, whose intercept is ≤ 0, is not a pendulum: the last one before it), not on "
                   "an equivalent µs no analysis ran; sliding needs α > 1"
                   if regimes else "α = PGA/(µs g) (sliding needs α > 1)")
