@@ -398,17 +398,53 @@ def _watched(system: PlanarBuildingSystem, layout) -> tuple:
     return m1, m2, m3, sig1, sig2, sig3
 
 
-def sampled_floor(peaks, x_b, v_b, u):
+#: A sample whose x² + y² is within this fraction of the largest is a candidate for the largest hypot(x, y): the two
+#: order the samples alike to a few ulp (x² + y² within 3 ulp of its exact value, hypot within 1), so the largest
+#: hypot lies among the candidates (:func:`largest_resultant`)
+RESULTANT_MARGIN = 1e-12
+#: Below this x² + y² (squares near the subnormals, whose rounding is coarser) every sample is a candidate
+RESULTANT_TINY = 1e-280
+
+
+def largest_resultant(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """max over the last axis of hypot(x, y), per leading index — the same value as ``np.max(np.hypot(x, y),
+    axis=-1)`` bit for bit, with hypot taken only at the candidates of :data:`RESULTANT_MARGIN` (hypot is ~10× the
+    sum of squares; a record's resultant has one or two candidates).  Finite x and y (else: hypot throughout)."""
+    with np.errstate(over="ignore", under="ignore"):
+        squares = x * x + y * y
+    top = np.max(squares, axis=-1, keepdims=True)
+    if not np.all(np.isfinite(squares)):  # an overflowing square (|x| > 1e154) or a non-finite value
+        return np.max(np.hypot(x, y), axis=-1)
+    near = squares >= np.where(top < RESULTANT_TINY, 0.0, top * (1.0 - RESULTANT_MARGIN))
+    return np.max(np.hypot(x, y, where=near, out=np.zeros(squares.shape)), axis=-1)
+
+
+def sampled_floor(peaks, state, n: int):
     """The located peaks (slab displacement, slab velocity, story drifts: the kernel's order) held at or above the
     samples' own resultants: the largest value between samples can lie at a sample, where its series value may round
     below the sample's by an ulp or two (the bench case's slab peak by 2 ulp once the fast sub-steps' friction was cut at
-    1e-12 µk N) — a peak under one of its own samples would be a contradiction, not a located value."""
-    n = u.shape[1]
-    drift = np.diff(np.concatenate([np.zeros((u.shape[0], 1, 2)), u], axis=1), axis=1)
+    1e-12 µk N) — a peak under one of its own samples would be a contradiction, not a located value.
+
+    ``state`` is the kernel's (samples, 2, m) history (x_b, v_b, the n floors' u, their u̇ per direction); a story's
+    drift at a sample is u_i − u_{i−1} (u_0 = 0), as the response's floor displacements give it."""
+    drift = np.empty((2, n, state.shape[0]))  # by direction and story, the samples contiguous
+    for d in range(2):
+        floors = state[:, d, 2:2 + n].T
+        drift[d, 0] = floors[0] - 0.0
+        np.subtract(floors[1:], floors[:-1], out=drift[d, 1:])
     out = peaks.copy()
-    out[0] = max(out[0], float(np.max(np.hypot(x_b[:, 0], x_b[:, 1]))))
-    out[1] = max(out[1], float(np.max(np.hypot(v_b[:, 0], v_b[:, 1]))))
-    out[2:2 + n] = np.maximum(out[2:2 + n], np.max(np.hypot(drift[..., 0], drift[..., 1]), axis=0))
+    slab = largest_resultant(np.stack([state[:, 0, 0], state[:, 0, 1]]), np.stack([state[:, 1, 0], state[:, 1, 1]]))
+    out[0] = max(out[0], float(slab[0]))
+    out[1] = max(out[1], float(slab[1]))
+    out[2:2 + n] = np.maximum(out[2:2 + n], largest_resultant(drift[0], drift[1]))
+    return out
+
+
+def _by_floor(state: np.ndarray, first: int, n: int) -> np.ndarray:
+    """(samples, n, 2) of the state's columns first … first + n − 1 per direction (a contiguous copy)."""
+    out = np.empty((state.shape[0], n, 2))
+    out[:, :, 0] = state[:, 0, first:first + n]
+    out[:, :, 1] = state[:, 1, first:first + n]
     return out
 
 
@@ -832,8 +868,8 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
         message = "the 2-D building's state became non-finite (NaN or inf): no result"
     x_b = out_state[:, :, 0]
     v_b = out_state[:, :, 1]
-    u = np.transpose(out_state[:, :, 2:2 + n], (0, 2, 1))
-    ud = np.transpose(out_state[:, :, 2 + n:], (0, 2, 1))
+    u = _by_floor(out_state, 2, n)
+    ud = _by_floor(out_state, 2 + n, n)
     mass = system.total_mass_kg
     v_end, ud_end, u_end = v_b[-1], ud[-1], u[-1]
     kinetic = 0.5 * system.slab_mass_kg * float(v_end @ v_end) + 0.5 * float(
@@ -843,7 +879,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
     k_end = system.isolator_stiffness_N_per_m + k_vert * float(az[-1]) / g
     potential = 0.5 * k_end * float(x_b[-1] @ x_b[-1])
     e_in, e_f, e_v = (float(summary[k]) for k in (_pk.S_E_INPUT, _pk.S_E_FRICTION, _pk.S_E_VISCOUS))
-    peaks = sampled_floor(np.sqrt(peak_sq), x_b, v_b, u)
+    peaks = sampled_floor(np.sqrt(peak_sq), out_state, n)
     force = out_mon[:, 3 + 2 * n, :]
     equivalent = System(mu_static=system.mu_static, mu_kinetic=system.mu_kinetic,
                         stiffness_per_mass=system.isolator_stiffness_N_per_m / mass,
@@ -875,8 +911,8 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
         energy_strain_final_J_per_kg=strain / mass,
         energy_balance_error_J_per_kg=(e_in - (kinetic + strain + potential + e_f + e_v)) / mass,
         energy_history_J_per_kg=out_energy / mass,
-        floor_displacement_m=u.copy(),
-        floor_velocity_m_s=ud.copy(),
+        floor_displacement_m=u,
+        floor_velocity_m_s=ud,
         floor_absolute_acceleration_m_s2=out_mon[:, 2 + n:2 + 2 * n, :].copy(),
         superstructure_shear_N=out_mon[:, 2 + 2 * n, :].copy(),
         isolator_force_N=force.copy(),
