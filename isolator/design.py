@@ -126,6 +126,17 @@ from isolator.errors import DesignError  # noqa: E402,F401 - the design's error,
 MASS_RANGE_KG = (1e-3, 1e10)
 
 
+def _check_meant(fail, **values) -> None:
+    """Refuse a number no engineer means (:data:`isolator.bearing.MEANT_RANGES`), naming the key."""
+    from isolator.bearing import outside_meant
+
+    for key, value in values.items():
+        kind = "mu" if key.startswith("mu_") else key
+        problem = "" if value is None else outside_meant(kind, value)
+        if problem:
+            raise fail(f"key '{key}' = {value:g} is {problem}")
+
+
 def _check_derived(fail, mass_kg, stiffness_N_per_m, damping_Ns_per_m, radius_m, damping_ratio) -> None:
     """Refuse a design whose K/M or γ/M the solver cannot take, naming the key at fault."""
     from isolator.solver.system import MAX_DAMPING_PER_MASS, MAX_STIFFNESS_PER_MASS
@@ -364,6 +375,9 @@ class Design:
             if mu_fast >= 1.0:
                 raise fail(f"key 'mu_fast' must be < 1 for a sliding isolator, got {mu_fast:g}")
         capacity = number("displacement_capacity_m", strict=True)
+        if bearing is None:  # a [bearing]'s surfaces were checked each; the keys are then its equivalent pendulum
+            _check_meant(fail, radius_m=radius_m, mu_static=mu_static, mu_slow=mu_slow, mu_fast=mu_fast,
+                         rate_s_per_m=rate, displacement_capacity_m=capacity)
         factors = _property_factors(mapping, number, fail, mu_kinetic)
         plan = _plan(mapping.get("plan"), fail)
         from isolator.superstructure import parse_bearing_layout, parse_superstructure
@@ -527,7 +541,9 @@ class Design:
 
 
 def _property_factors(mapping: dict, number, fail, mu_kinetic: float) -> dict:
-    """The bounding keys of a design file, checked (one form, pairs complete, λ_min ≤ 1 ≤ λ_max)."""
+    """The bounding keys of a design file, checked (one form, pairs complete, λ_min ≤ 1 ≤ λ_max, the bounds' µ)."""
+    from isolator.bearing import outside_meant
+
     forms = [form for form in BOUND_FORMS if any(key in mapping for key in form)]
     if not forms:
         return {}
@@ -544,12 +560,25 @@ def _property_factors(mapping: dict, number, fail, mu_kinetic: float) -> dict:
             raise fail(f"key 'mu_upper' ({values['mu_upper']:g}) must be >= the nominal µk ({mu_kinetic:g})")
         if values["mu_lower"] > mu_kinetic:
             raise fail(f"key 'mu_lower' ({values['mu_lower']:g}) must be <= the nominal µk ({mu_kinetic:g})")
+        for key, value in values.items():
+            problem = outside_meant("mu", value)
+            if problem:
+                raise fail(f"key '{key}' = {value:g} is {problem}")
         return values
     for key, value in values.items():
         if key.endswith("_max") and value < 1.0:
             raise fail(f"key '{key}' must be >= 1, got {value:g}")
         if key.endswith("_min") and value > 1.0:
             raise fail(f"key '{key}' must be <= 1, got {value:g}")
+    # the bounds' friction is a friction coefficient too: lambda_max = 1e300 was read (an upper-bound µ of 6e298)
+    # and lambda_min = 1e-300 (a lower bound of no friction at all; session 17 sweep)
+    highest = math.prod(value for key, value in values.items() if key.endswith("_max"))
+    lowest = math.prod(value for key, value in values.items() if key.endswith("_min"))
+    for which, product in (("max", highest), ("min", lowest)):
+        problem = outside_meant("mu", mu_kinetic * product) if mu_kinetic > 0 else ""
+        if problem:
+            keys = " x ".join(key for key in values if key.endswith(f"_{which}"))
+            raise fail(f"the bound's friction µk x {keys} = {mu_kinetic * product:g} is {problem}")
     return values
 
 

@@ -1,0 +1,103 @@
+"""A hostile sweep (session 17): what session 16's sweep left (a gravity of 1e300 answered, an over-critical damping
+ratio ran, a triple's states named twice, a relative cache folder made in the working folder, a refusal without its
+reason) and what the new sweep found (docs/security.md, "Session 17 sweep").
+Each case failed on main before its fix (a silent guess, a wrong regime's line, a folder made unasked).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+
+import pytest
+from _model_designs import TRIPLE
+from _records import assert_one_line_exit_2, at2_text
+from typer.testing import CliRunner
+
+from isolator.cli import app
+
+RUNNER = CliRunner()
+
+
+def _record(tmp_path, peak_g=0.1, n=200, name="x.AT2"):
+    """A 1 Hz sine of ``peak_g`` at 0.01 s."""
+    path = tmp_path / name
+    path.write_text(at2_text([peak_g * math.sin(2 * math.pi * i * 0.01) for i in range(n)]))
+    return path
+
+
+# ---- 1. physical flags: a number an engineer cannot mean is refused, naming the flag and its range
+
+@pytest.mark.parametrize("options, words", [
+    (["--gravity", "1e300"], "--gravity 1e+300 is outside [9.7, 10] m/s²"),
+    (["--gravity", "981"], "--gravity 981 is outside [9.7, 10] m/s²"),  # cm/s²
+    (["--gravity", "1"], "--gravity 1 is outside"),  # g itself
+    (["--radius-m", "2500"], "--radius-m 2500 is outside [0.05, 50] m"),  # mm
+    (["--mu-s", "1e-300"], "--mu-s 1e-300 is outside [0.0001, 1)"),  # harmonic's and regime-map's range
+    (["--radius-m", "2", "--mu-slow", "0", "--mu-fast", "0.08", "--rate-s-per-m", "20"], "--mu-slow 0 is outside"),
+    (["--radius-m", "2", "--mu-slow", "0.03", "--mu-fast", "0.08", "--rate-s-per-m", "1e-300"],
+     "--rate-s-per-m 1e-300 is outside [1, 10000] s/m"),
+])
+def test_simulate_refuses_physical_flags_no_engineer_means(tmp_path, options, words):
+    """main: each ran and answered (exit 0; --gravity 1e300: nothing slid)."""
+    record = _record(tmp_path)
+    base = [] if "--mu-s" in options else ["--mu-s", "0.05"]
+    result = RUNNER.invoke(app, ["simulate", str(record), *base, *options])
+    assert_one_line_exit_2(result, words)
+
+
+def test_gravity_beside_a_design_is_bounded_too(tmp_path):
+    design = tmp_path / "d.toml"
+    design.write_text('name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n')
+    result = RUNNER.invoke(app, ["simulate", str(_record(tmp_path)), "--design", str(design), "--gravity", "32.2"])
+    assert_one_line_exit_2(result, "--gravity 32.2 is outside [9.7, 10] m/s²")
+
+
+def test_earth_gravity_and_the_library_messages_are_kept(tmp_path):
+    """The range adds to the library's checks: 0 and 1.5 keep their own messages; 9.81 still runs."""
+    record = _record(tmp_path)
+    assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", str(record), "--mu-s", "0.05", "--gravity", "0"]),
+                           "gravity_m_s2 must be a finite number > 0")
+    assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", str(record), "--mu-s", "1.5"]), "must be < 1")
+    ran = RUNNER.invoke(app, ["simulate", str(record), "--mu-s", "0.05", "--gravity", "9.81", "--json"])
+    assert ran.exit_code == 0, ran.output
+
+
+# ---- 5. a design file's numbers no engineer means (the new sweep)
+
+@pytest.mark.parametrize("keys, words", [
+    ({"radius_m": 1e300}, "key 'radius_m' = 1e+300 is outside [0.05, 50] m"),
+    ({"radius_m": 2500.0}, "key 'radius_m' = 2500 is outside [0.05, 50] m"),  # mm, as --radius-m
+    ({"mu_static": 1e-300}, "key 'mu_static' = 1e-300 is outside [0.0001, 1)"),
+    ({"displacement_capacity_m": 1e300}, "key 'displacement_capacity_m' = 1e+300 is outside [0.001, 10] m"),
+    ({"displacement_capacity_m": 1e-300}, "key 'displacement_capacity_m' = 1e-300 is outside [0.001, 10] m"),
+    ({"mu_slow": 1e-300, "mu_fast": 0.06, "rate_s_per_m": 20.0}, "key 'mu_slow' = 1e-300 is outside"),
+    ({"mu_slow": 0.03, "mu_fast": 0.06, "rate_s_per_m": 1e-300}, "key 'rate_s_per_m' = 1e-300 is outside [1, 10000]"),
+    ({"lambda_max": 1e300, "lambda_min": 0.9}, "µk x lambda_max = 6e+298 is outside [0.0001, 1)"),
+    ({"lambda_max": 1.2, "lambda_min": 1e-300}, "µk x lambda_min = 6e-302 is outside [0.0001, 1)"),
+    ({"mu_upper": 1.5, "mu_lower": 0.03}, "key 'mu_upper' = 1.5 is outside [0.0001, 1)"),
+])
+def test_design_numbers_no_engineer_means_are_refused_as_the_flags_are(keys, words):
+    """main: each was read (a radius of 1e300 m reviewed by `design --vary radius_m=1e300,2`, exit 0); the
+    command-line flags and the design file now share one table of ranges (isolator.bearing.MEANT_RANGES)."""
+    from isolator.design import Design, DesignError
+
+    mapping = {"name": "FPS", "mass_kg": 1e6, "radius_m": 2.5, "mu_static": 0.06, **keys}
+    with pytest.raises(DesignError) as caught:
+        Design.from_mapping(mapping, source="d.toml")
+    assert str(caught.value).startswith("d.toml: ") and words in str(caught.value), str(caught.value)
+
+
+@pytest.mark.parametrize("surface, words", [
+    ({"radius_m": 1e300}, "bearing surface 4: key 'radius_m' = 1e+300 is outside [0.05, 50] m"),
+    ({"displacement_capacity_m": 1e300}, "bearing surface 4: key 'displacement_capacity_m' = 1e+300 is outside"),
+    ({"mu": 1e-300}, "bearing surface 4: key 'mu' = 1e-300 is outside [0.0001, 1)"),
+])
+def test_a_triple_surface_number_no_engineer_means_is_refused(surface, words):
+    from isolator.design import Design, DesignError
+
+    mapping = tomllib.loads(TRIPLE)
+    mapping["bearing"]["surface"][3].update(surface)
+    with pytest.raises(DesignError, match=re.escape(words)):
+        Design.from_mapping(mapping, source="d.toml")
