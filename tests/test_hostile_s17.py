@@ -64,6 +64,33 @@ def test_earth_gravity_and_the_library_messages_are_kept(tmp_path):
     assert ran.exit_code == 0, ran.output
 
 
+# ---- 2. the isolator's damping ratio is a fraction of critical
+
+@pytest.mark.parametrize("zeta", ["1.5", "5", "1"])
+def test_an_over_critical_damping_ratio_is_refused_naming_the_file_and_key(tmp_path, zeta):
+    """main: damping_ratio = 1.5 (and 5, likely 5 % typed as a percent) was read and ran."""
+    from isolator.design import Design, DesignError
+
+    design = tmp_path / "d.toml"
+    design.write_text(f'name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\ndamping_ratio = {zeta}\n')
+    with pytest.raises(DesignError, match=rf"d.toml: key 'damping_ratio' must lie in \[0, 1\), a fraction of "
+                                          rf"critical .*got {zeta}; give an over-critical damper as "
+                                          r"'damping_Ns_per_m'"):
+        Design.from_toml(design)
+
+
+def test_an_over_critical_damper_given_by_its_coefficient_is_kept():
+    """The paper's configuration 4c stays reachable: γ = 2 ζ sqrt(K M) with ζ = 1.5, as damping_Ns_per_m."""
+    from isolator.design import Design
+
+    mass, radius = 1e6, 2.5
+    gamma = 2 * 1.5 * math.sqrt(mass * 9.80665 / radius * mass)
+    design = Design.from_mapping({"name": "FPS", "mass_kg": mass, "radius_m": radius, "mu_static": 0.06,
+                                  "damping_Ns_per_m": gamma})
+    assert design.system().configuration == "4c"
+    assert design.damping_ratio == pytest.approx(1.5, rel=1e-12)
+
+
 # ---- 5. a design file's numbers no engineer means (the new sweep)
 
 @pytest.mark.parametrize("keys, words", [
