@@ -275,8 +275,12 @@ class Bearing:
         A triple pendulum's regimes follow Fenz & Constantinou: I (inner sliding, no outer
         on its rim), II (one outer sliding), III (both outer), IV (one outer on its rim, the
         other sliding), V (both outer on their rims); an unloading state with one outer on
-        its rim and only the inner sliding has no name of its own (``""``).  Other types
-        name the sliding surfaces: ``"1"``, ``"2"``, ``"1+2"``.
+        its rim and only the inner sliding has no name of its own (``""``).  In each of F&C's
+        regimes both inner sliders slide; a state where one of them slides alone (the other
+        not yet started, µ2 ≠ µ3, or on its rim first, unequal inner capacities or radii) is
+        the regime's name with ``" (one inner)"``: it was named I, I or V, V before (session 17
+        sweep), and a motion that entered only the first was read as having reached the second
+        (:meth:`point_regime`).  Other types name the sliding surfaces: ``"1"``, ``"2"``, ``"1+2"``.
         """
         if self.kind != "triple":
             return "+".join(str(i + 1) for i in range(len(self.surfaces)) if mask >> i & 1)
@@ -285,10 +289,13 @@ class Bearing:
         if mask == 0:
             return ""
         if outer_rim == 0:
-            return TRIPLE_REGIMES[outer_active]
-        if outer_rim == 1:
-            return "IV" if outer_active == 1 else ""
-        return "V"
+            name = TRIPLE_REGIMES[outer_active]
+        elif outer_rim == 1:
+            name = "IV" if outer_active == 1 else ""
+        else:
+            name = "V"
+        inner_active = (mask >> 1 & 1) + (mask >> 2 & 1)
+        return f"{name} (one inner)" if name and inner_active == 1 else name
 
     def backbone(self) -> Backbone:
         """The monotonic loading curve from rest, its transition points and regimes."""

@@ -6,6 +6,7 @@ Each case failed on main before its fix (a silent guess, a wrong regime's line, 
 
 from __future__ import annotations
 
+import json
 import math
 import re
 import tomllib
@@ -89,6 +90,42 @@ def test_an_over_critical_damper_given_by_its_coefficient_is_kept():
                                   "damping_Ns_per_m": gamma})
     assert design.system().configuration == "4c"
     assert design.damping_ratio == pytest.approx(1.5, rel=1e-12)
+
+
+# ---- 3. a triple's states where one inner slider slides alone have a name of their own
+
+#: Fenz & Constantinou's triple with µ3 = 0.04 instead of 0.02 (its inner surfaces start one after the other).
+TRIPLE_UNEQUAL_INNER = "mu = 0.04".join(TRIPLE.rsplit("mu = 0.02", 1))
+
+
+def test_a_motion_on_one_inner_surface_is_not_read_as_both(tmp_path):
+    """µ2 = 0.02 < µ3 = 0.04: under a 0.025 g sine only surface 2 slides (its peak > 0, surface 3's exactly 0).
+    main named that state "I", as the next one (both inner sliding), so the backbone read I, I and the single
+    pendulum of the response was taken on the second: R = R̄2 + R̄3 = 0.6 m, µ = 0.03.  Now the state is
+    "I (one inner)" and the point is on its own line: R = R̄2 = 0.3 m, µ = µ2 = 0.02."""
+    from isolator.design import Design
+
+    design = tmp_path / "tri.toml"
+    design.write_text(TRIPLE_UNEQUAL_INNER)
+    record = _record(tmp_path, peak_g=0.025, n=300)
+    result = RUNNER.invoke(app, ["simulate", str(record), "--design", str(design), "--json"])
+    assert result.exit_code == 0, result.output
+    summary = json.loads(result.stdout)
+    peaks = summary["surface_peak_displacement_m"]
+    assert peaks[1] > 1e-4 and peaks[0] == peaks[2] == peaks[3] == 0.0, peaks  # what happened: surface 2 alone
+    assert list(summary["regimes"]) == ["I (one inner)"]
+    bearing = Design.from_toml(design).bearing
+    assert bearing.backbone().regimes == ("I (one inner)", "I", "II", "III", "IV", "V", "V (one inner)")
+    name, radius, mu, _ = bearing.point_regime(summary["regimes"])
+    assert (name, radius, mu) == ("I (one inner)", pytest.approx(bearing.elements()[0][1], rel=1e-12),
+                                  pytest.approx(0.02, rel=1e-12))
+
+
+def test_the_symmetric_triple_keeps_fenz_and_constantinou_names():
+    from isolator.design import Design
+
+    assert Design.from_mapping(tomllib.loads(TRIPLE)).bearing.backbone().regimes == (
+        "I", "II", "III", "IV", "V")
 
 
 # ---- 5. a design file's numbers no engineer means (the new sweep)
