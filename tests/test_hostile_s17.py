@@ -128,6 +128,23 @@ def test_the_symmetric_triple_keeps_fenz_and_constantinou_names():
         "I", "II", "III", "IV", "V")
 
 
+# ---- 4. environment and refusals with their reason
+
+def test_a_relative_cache_folder_is_refused_before_any_folder_is_made(tmp_path, monkeypatch):
+    """main: ISOLATOR_CACHE_DIR=cache made ./cache/maps in the working folder (a new cache in every folder)."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("ISOLATOR_CACHE_DIR", "cache")
+    result = RUNNER.invoke(app, ["regime-map", "-n", "4", "-o", str(tmp_path / "m.png")])
+    assert_one_line_exit_2(result, "ISOLATOR_CACHE_DIR=cache is a relative path")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bench_repeats_refusal_gives_its_reason():
+    """main: "Input should be less than or equal to 20", without why."""
+    result = RUNNER.invoke(app, ["bench", "--repeats", "21"])
+    assert_one_line_exit_2(result, "--repeats 21 is more than 20 runs per timing: the docs' medians take 3")
+
+
 # ---- 5. a design file's numbers no engineer means (the new sweep)
 
 @pytest.mark.parametrize("keys, words", [

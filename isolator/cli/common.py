@@ -165,9 +165,26 @@ app = typer.Typer(
 @app.callback()
 def _main() -> None:
     """isolator: friction isolators under harmonic and recorded ground motion."""
+    check_cache_variable()
     from isolator.solver import notice
 
     notice.ENABLED = True  # a first run that compiles an engine says so on stderr (not a hang)
+
+
+def check_cache_variable() -> None:
+    """Refuse a relative ``ISOLATOR_CACHE_DIR`` in one line, before any command runs.
+
+    The regime maps, the batch key (which checks a batch's earlier rows) and, where the package's folder is
+    read-only, the compiled engines live under it: a relative name made a new cache folder in every working
+    folder a command ran from (session 16 and 17 sweeps), a fresh key and map cache each, and a Dask worker
+    resolves it in its own working folder.  Empty is the default (``~/.cache/isolator``), as before.
+    """
+    import os
+
+    value = os.environ.get("ISOLATOR_CACHE_DIR")
+    if value and not os.path.isabs(value):
+        user_error(f"ISOLATOR_CACHE_DIR={value} is a relative path: the cache would be a new folder in each working "
+                   f"folder; give an absolute one (e.g. {os.path.abspath(value)}) or unset it for ~/.cache/isolator")
 
 
 #: Help texts of the record options, shared by every command that reads a record.
