@@ -567,7 +567,7 @@ def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearin
         if key not in BEARING_KEYS:
             raise fail(f"unknown key 'bearing.{key}' (valid keys: {', '.join(BEARING_KEYS)})")
     kind = table.get("type")
-    if kind not in SURFACES_PER_TYPE:
+    if not isinstance(kind, str) or kind not in SURFACES_PER_TYPE:  # an array or table: unhashable (session 17)
         raise fail(f"key 'bearing.type' must be one of {', '.join(repr(k) for k in SURFACES_PER_TYPE)}, got {kind!r}")
     entries = table.get("surface")
     n = SURFACES_PER_TYPE[kind]

@@ -182,3 +182,14 @@ def test_a_triple_surface_number_no_engineer_means_is_refused(surface, words):
     mapping["bearing"]["surface"][3].update(surface)
     with pytest.raises(DesignError, match=re.escape(words)):
         Design.from_mapping(mapping, source="d.toml")
+
+
+# ---- 6. the new sweep: a design file's keys, each wrong in turn
+
+def test_a_bearing_type_given_as_an_array_or_a_table_is_one_line(tmp_path):
+    """main: a traceback (TypeError: unhashable type: 'list') from `simulate --design`."""
+    design = tmp_path / "d.toml"
+    for value in ('["triple"]', "{ a = 1 }"):
+        design.write_text(f'name = "t"\nmass_kg = 1e5\n[bearing]\ntype = {value}\n')
+        result = RUNNER.invoke(app, ["simulate", str(_record(tmp_path)), "--design", str(design)])
+        assert_one_line_exit_2(result, "key 'bearing.type' must be one of 'single', 'double', 'triple', got")
