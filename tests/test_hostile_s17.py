@@ -8,7 +8,10 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
+import subprocess
+import sys
 import tomllib
 
 import pytest
@@ -193,3 +196,18 @@ def test_a_bearing_type_given_as_an_array_or_a_table_is_one_line(tmp_path):
         design.write_text(f'name = "t"\nmass_kg = 1e5\n[bearing]\ntype = {value}\n')
         result = RUNNER.invoke(app, ["simulate", str(_record(tmp_path)), "--design", str(design)])
         assert_one_line_exit_2(result, "key 'bearing.type' must be one of 'single', 'double', 'triple', got")
+
+
+# ---- 7. the new sweep: standard output that cannot take the answer
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full on this system")
+@pytest.mark.parametrize("args", [["harmonic", "--alpha", "2", "--mu-s", "0.1"],
+                                  ["harmonic", "--alpha", "2", "--mu-s", "0.1", "--json"]])
+def test_a_full_standard_output_is_one_line(args):
+    """main: `isolator harmonic … > /dev/full` ended in a traceback (OSError: No space left on device)."""
+    with open("/dev/full", "w") as full:
+        done = subprocess.run([sys.executable, "-c", "from isolator.cli import app; app()", *args], stdout=full, stderr=subprocess.PIPE,
+                              text=True, timeout=120)
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert done.returncode == 2 and lines == ["error: standard output: cannot write (No space left on device)"], \
+        done.stderr
