@@ -314,6 +314,11 @@ class Design:
             raise fail(f"missing key 'name' ({DESIGN_KEYS['name']})")
         if not isinstance(name, str) or not name.strip():
             raise fail(f"key 'name' must be a non-empty text, got {name!r}")
+        if not name.isprintable():  # it names rows of CSV tables and report pages: an ESC sequence there drove the
+            # terminal of whoever printed the table (`batch` wrote "\x1b]0;pwned\x07 FPS" raw; session 17 sweep)
+            shown = "".join(ch if ch.isprintable() else f"\\u{ord(ch):04x}" for ch in name)
+            raise fail(f"key 'name' holds a control or format character ('{shown}'): a design's name is printed in "
+                       "tables, CSV files and reports; use letters, digits, spaces and punctuation")
         description = mapping.get("description", "")
         if not isinstance(description, str):
             raise fail(f"key 'description' must be text, got {description!r}")

@@ -211,3 +211,21 @@ def test_a_full_standard_output_is_one_line(args):
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert done.returncode == 2 and lines == ["error: standard output: cannot write (No space left on device)"], \
         done.stderr
+
+
+# ---- 8. the new sweep: a design's name that drives a terminal
+
+@pytest.mark.parametrize("name", ["\x1b]0;pwned\x07 FPS", "FPS\u202e", "two\nlines"])
+def test_a_design_name_with_control_characters_is_refused(name):
+    """main: read, and `batch` wrote it raw into its CSV table (`cat t.csv` set the terminal's title)."""
+    from isolator.design import Design, DesignError
+
+    with pytest.raises(DesignError, match=r"d.toml: key 'name' holds a control or format character \('.*\\u[0-9a-f]{4}"):
+        Design.from_mapping({"name": name, "mass_kg": 1e6, "radius_m": 2.5, "mu_static": 0.06}, source="d.toml")
+
+
+def test_a_design_name_in_any_script_is_kept():
+    from isolator.design import Design
+
+    name = "café 建物 Ωμέγα"
+    assert Design.from_mapping({"name": name, "mass_kg": 1e6, "radius_m": 2.5, "mu_static": 0.06}).name == name
