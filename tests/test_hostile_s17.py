@@ -229,3 +229,18 @@ def test_a_design_name_in_any_script_is_kept():
 
     name = "café 建物 Ωμέγα"
     assert Design.from_mapping({"name": name, "mass_kg": 1e6, "radius_m": 2.5, "mu_static": 0.06}).name == name
+
+
+# ---- 9. the new sweep: a TOML file of absurd size
+
+def test_a_toml_file_beyond_64_mib_is_refused_before_it_is_read(tmp_path):
+    """main: read whole (a 200 MB design file of comments: 13.5 s and 441 MB, then simulated); a few GB would
+    exhaust the memory.  A sparse file: its size is stated, nothing is read."""
+    from isolator.design import Design, DesignError
+
+    path = tmp_path / "big.toml"
+    with path.open("wb") as stream:
+        stream.truncate(65 * 2**20)
+    with pytest.raises(DesignError, match=r"big.toml: is 65.0 MiB, larger than any design file \(isolator reads "
+                                          r"TOML files up to 64 MiB"):
+        Design.from_toml(path)
