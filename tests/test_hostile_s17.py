@@ -244,3 +244,33 @@ def test_a_toml_file_beyond_64_mib_is_refused_before_it_is_read(tmp_path):
     with pytest.raises(DesignError, match=r"big.toml: is 65.0 MiB, larger than any design file \(isolator reads "
                                           r"TOML files up to 64 MiB"):
         Design.from_toml(path)
+
+
+# ---- 10. the new sweep: JSON nested past Python's stack (a review JSON, a cache entry, a batch part)
+
+DEEP = "[" * 100_000 + "]" * 100_000
+
+
+def test_a_review_json_nested_too_deep_is_one_line(tmp_path):
+    """main: a traceback (RecursionError) from `review --verify` (json's decoder recurses per level)."""
+    path = tmp_path / "deep.json"
+    path.write_text(DEEP)
+    assert_one_line_exit_2(RUNNER.invoke(app, ["review", "--verify", str(path)]),
+                           "deep.json: cannot read the review JSON (maximum recursion depth exceeded")
+
+
+def test_cache_entries_and_batch_parts_nested_too_deep_are_damaged_not_fatal(tmp_path):
+    """main: the review's analysis cache, the design search's row store and a batch's part lines let RecursionError
+    through (a traceback at the next run); each is now a damaged entry, recomputed."""
+    from isolator.batch.store import PartStore
+    from isolator.review.design_store import RowStore
+    from isolator.review.worker import Cache
+
+    (tmp_path / "k.json").write_text(DEEP)
+    cache = Cache(tmp_path)
+    assert cache.get("k") is None and cache.rejected == [tmp_path / "k.json"]
+    assert RowStore(tmp_path).get("k") is None
+    store = PartStore(tmp_path / "t.csv")
+    store.directory.mkdir()
+    (store.directory / "part-0.jsonl").write_text(DEEP + "\n")
+    assert store.rows() == [] and store.damaged == 1
