@@ -680,7 +680,8 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
         raise fail(f"{where}: displacement_capacity_m = {capacity:g} m is below {MIN_CAPACITY_M * 1e3:g} mm: no "
                    "bearing surface has so little travel (25-500 mm are built); is it in metres?")
     for key, range_kind, value in (("radius_m", "radius_m", radius), ("displacement_capacity_m",
-                                   "displacement_capacity_m", capacity), ("rate_s_per_m", "rate_s_per_m", rate),
+                                   "displacement_capacity_m", capacity),  # a > 1e4 s/m: the engine's own message
+                                   ("rate_s_per_m", "rate_s_per_m", None if rate is None or rate > 1e4 else rate),
                                    ("mu_slow" if mu_slow is not None else "mu", "mu", mu_s)):
         problem = "" if value is None else outside_meant(range_kind, value)
         if problem:
