@@ -26,6 +26,7 @@ from __future__ import annotations
 import difflib
 import math
 import os
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -86,6 +87,12 @@ BOUND_FORMS = (("lambda_max", "lambda_min"), ("mu_upper", "mu_lower"),
 #: sweep), so a few GB would exhaust the memory.  The largest real inputs are far below: a building on the layout
 #: bound (10,000 [[bearing_position]] tables) is 0.46 MiB, a batch designs file of 10,000 designs 0.9 MiB.
 MAX_TOML_BYTES = 64 * 2**20
+#: A key of this many dotted parts (``a.b.c…``, bare or quoted) is refused before tomllib reads the file: its time
+#: grows as the square of a key's parts (2,000 / 5,000 / 10,000 parts: 0.28 / 0.85 / 2.8 s; a 100 kB key of
+#: 50,000 ran past a minute; session 17 sweep).  Scanning 61 MiB of floats for it takes 8.4 s (/tmp/h166).
+MAX_KEY_PARTS = 32
+DEEP_TOML_KEY = re.compile(r"""(?<![\w"'-])(?:(?:[\w-]+|"[^"\n]*"|'[^'\n]*')[ \t]*\.[ \t]*)"""
+                           + f"{{{MAX_KEY_PARTS}}}")
 
 
 def load_toml(path, what: str, error_type: type[Exception]) -> dict:
@@ -126,10 +133,17 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         raise error_type(f"{path}: no such {what}") from None
     except (OSError, UnicodeDecodeError) as err:
         raise error_type(f"{path}: cannot read the {what} ({' '.join(str(err).split())})") from None
+    deep = DEEP_TOML_KEY.search(text)
+    if deep:  # tomllib's time grows as the square of a key's parts: 10,000 took 2.8 s, 50,000 ran past a minute
+        line = text.count("\n", 0, deep.start()) + 1
+        raise error_type(f"{path}: line {line}: a key of {MAX_KEY_PARTS} or more dotted parts; isolator's files nest "
+                         "keys 3 deep at most (superstructure.floor.mass_kg)")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise error_type(f"{path}: not valid TOML ({' '.join(str(err).split())})") from None
+    except RecursionError:  # arrays or inline tables nested 100,000 deep: tomllib recurses per level
+        raise error_type(f"{path}: not valid TOML (arrays or tables nested deeper than Python's stack)") from None
 
 
 from isolator.errors import DesignError  # noqa: E402,F401 - the design's error, defined with the others

@@ -274,3 +274,28 @@ def test_cache_entries_and_batch_parts_nested_too_deep_are_damaged_not_fatal(tmp
     store.directory.mkdir()
     (store.directory / "part-0.jsonl").write_text(DEEP + "\n")
     assert store.rows() == [] and store.damaged == 1
+
+
+# ---- 11. the new sweep: TOML nested past the stack, keys of absurd depth
+
+@pytest.mark.parametrize("text, words", [
+    ("name = " + "[" * 100_000 + "]" * 100_000 + "\n", "not valid TOML (arrays or tables nested deeper than Python's"),
+    ("x = " + "{a = " * 100_000 + "1" + "}" * 100_000 + "\n", "not valid TOML (arrays or tables nested deeper"),
+    ("a." * 50_000 + "b = 1\n", "line 1: a key of 32 or more dotted parts"),
+    ('"a".' * 40 + "b = 1\n", "line 1: a key of 32 or more dotted parts"),
+])
+def test_toml_nested_or_dotted_past_reason_is_one_line(tmp_path, text, words):
+    """main: a traceback (RecursionError) for the nested arrays and tables; the 100 kB key of 50,000 parts ran past
+    a minute (tomllib's time grows as the square of a key's parts)."""
+    from isolator.design import Design, DesignError
+
+    path = tmp_path / "d.toml"
+    path.write_text(text)
+    with pytest.raises(DesignError, match=re.escape(words)):
+        Design.from_toml(path)
+
+
+def test_real_files_pass_the_key_depth_scan():
+    from isolator.design import DEEP_TOML_KEY
+
+    assert DEEP_TOML_KEY.search("superstructure.floor.mass_kg = 1\nx = 1.2345\npath = \"../a.b.c.AT2\"\n") is None
