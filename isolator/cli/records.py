@@ -192,7 +192,7 @@ def _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass, r
     if given:
         user_error(f"give the isolator with --design or with {given[0]} and its other options, not both")
     if gravity is not None:
-        check_static_gravity(gravity)
+        check_gravity_flag(gravity)
     try:
         the_design = Design.from_toml(design, gravity_m_s2=STANDARD_GRAVITY if gravity is None else gravity)
     except DesignError as err:
@@ -230,8 +230,8 @@ def _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, 
     return system, nominal
 
 
-def check_static_gravity(gravity) -> None:
-    """``--gravity`` beside a design file: the System's checks (finite, > 0), then :data:`FLAG_RANGES`."""
+def check_gravity_flag(gravity) -> None:
+    """``--gravity`` beside a design file: the System's checks (finite, > 0), then :data:`GRAVITY_RANGE_M_S2`."""
     from isolator.solver.system import InvalidSystemError, System
 
     try:
