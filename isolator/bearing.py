@@ -68,6 +68,30 @@ MIN_RATE_SLOPE_S_PER_M = 1e-3
 #: the rim's contacts, not the isolator, are analysed (an outer capacity of 1e-9 m ran for 69.7 s and answered,
 #: session 13 sweep, docs/security.md).  1 mm is 25 times below the least catalogue value.
 MIN_CAPACITY_M = 1e-3
+#: What a structural engineer can mean by a design's numbers, read from a design file and its command-line flags
+#: alike (key: (low, high, unit, why)); outside, the number is another unit or a slip of the keyboard: a design's
+#: radius_m = 1e300 or a capacity of 1e300 m was read, and `design --vary radius_m=1e300,2` reviewed it (23 s, exit
+#: 0), while `--radius-m 2500` (mm) ran as 2.5 km (session 17 sweep).  A friction coefficient's upper end, 1, is
+#: open and has its own message; its lower one is harmonic's (isolator.solver.harmonic.MU_S_RANGE).
+MEANT_RANGES = {
+    "radius_m": (0.05, 50.0, "m", "a sliding surface's radius: isolation periods 0.45-14 s (2500 is mm, 98 in)"),
+    "mu": (1e-4, 1.0, "", "a friction coefficient (sliding isolators have 0.02-0.15; below 1e-4 it is no friction "
+                          "at all)"),
+    "rate_s_per_m": (1.0, 1e4, "s/m", "measured rates of PTFE on steel are 10-200 s/m; below 1 s/m µ stays at "
+                                      "mu_slow through any earthquake's velocities: give mu_kinetic instead"),
+    "displacement_capacity_m": (MIN_CAPACITY_M, 10.0, "m", "a bearing's travel: 25-600 mm per surface are built "
+                                                          "(MIN_CAPACITY_M's note); 10 m is 16 times that"),
+}
+
+
+def outside_meant(kind: str, value: float) -> str:
+    """"" if ``value`` lies in :data:`MEANT_RANGES` ``[kind]``, else the sentence after "<key> = <value> is ..."."""
+    low, high, unit, why = MEANT_RANGES[kind]
+    inside = low <= value < high if not unit else low <= value <= high
+    if inside:
+        return ""
+    shown = f"[{low:g}, {high:g})" if not unit else f"[{low:g}, {high:g}] {unit}"
+    return f"outside {shown}: {why}"
 
 #: Keys of a ``[[bearing.surface]]`` entry.
 SURFACE_KEYS = {
@@ -251,8 +275,12 @@ class Bearing:
         A triple pendulum's regimes follow Fenz & Constantinou: I (inner sliding, no outer
         on its rim), II (one outer sliding), III (both outer), IV (one outer on its rim, the
         other sliding), V (both outer on their rims); an unloading state with one outer on
-        its rim and only the inner sliding has no name of its own (``""``).  Other types
-        name the sliding surfaces: ``"1"``, ``"2"``, ``"1+2"``.
+        its rim and only the inner sliding has no name of its own (``""``).  In each of F&C's
+        regimes both inner sliders slide; a state where one of them slides alone (the other
+        not yet started, µ2 ≠ µ3, or on its rim first, unequal inner capacities or radii) is
+        the regime's name with ``" (one inner)"``: it was named I, I or V, V before (session 17
+        sweep), and a motion that entered only the first was read as having reached the second
+        (:meth:`point_regime`).  Other types name the sliding surfaces: ``"1"``, ``"2"``, ``"1+2"``.
         """
         if self.kind != "triple":
             return "+".join(str(i + 1) for i in range(len(self.surfaces)) if mask >> i & 1)
@@ -261,10 +289,13 @@ class Bearing:
         if mask == 0:
             return ""
         if outer_rim == 0:
-            return TRIPLE_REGIMES[outer_active]
-        if outer_rim == 1:
-            return "IV" if outer_active == 1 else ""
-        return "V"
+            name = TRIPLE_REGIMES[outer_active]
+        elif outer_rim == 1:
+            name = "IV" if outer_active == 1 else ""
+        else:
+            name = "V"
+        inner_active = (mask >> 1 & 1) + (mask >> 2 & 1)
+        return f"{name} (one inner)" if name and inner_active == 1 else name
 
     def backbone(self) -> Backbone:
         """The monotonic loading curve from rest, its transition points and regimes."""
@@ -538,7 +569,7 @@ def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearin
         if key not in BEARING_KEYS:
             raise fail(f"unknown key 'bearing.{key}' (valid keys: {', '.join(BEARING_KEYS)})")
     kind = table.get("type")
-    if kind not in SURFACES_PER_TYPE:
+    if not isinstance(kind, str) or kind not in SURFACES_PER_TYPE:  # an array or table: unhashable (session 17)
         raise fail(f"key 'bearing.type' must be one of {', '.join(repr(k) for k in SURFACES_PER_TYPE)}, got {kind!r}")
     entries = table.get("surface")
     n = SURFACES_PER_TYPE[kind]
@@ -650,6 +681,13 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
     if capacity is not None and capacity < MIN_CAPACITY_M:
         raise fail(f"{where}: displacement_capacity_m = {capacity:g} m is below {MIN_CAPACITY_M * 1e3:g} mm: no "
                    "bearing surface has so little travel (25-500 mm are built); is it in metres?")
+    for key, range_kind, value in (("radius_m", "radius_m", radius), ("displacement_capacity_m",
+                                   "displacement_capacity_m", capacity),  # a > 1e4 s/m: the engine's own message
+                                   ("rate_s_per_m", "rate_s_per_m", None if rate is None or rate > 1e4 else rate),
+                                   ("mu_slow" if mu_slow is not None else "mu", "mu", mu_s)):
+        problem = "" if value is None else outside_meant(range_kind, value)
+        if problem:
+            raise fail(f"{where}: key '{key}' = {value:g} is {problem}")
     return Surface(radius_m=radius, height_m=height, mu_kinetic=mu_k, mu_static=mu_s,
                    displacement_capacity_m=capacity, mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate)
 

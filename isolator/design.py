@@ -26,6 +26,7 @@ from __future__ import annotations
 import difflib
 import math
 import os
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -41,7 +42,7 @@ DESIGN_KEYS = {
     "mu_static": "static friction coefficient µs [-], > 0",
     "mu_kinetic": "kinetic friction coefficient µk [-], 0 <= µk <= µs (default µs)",
     "damping_Ns_per_m": "supplemental linear damper γ [N·s/m], >= 0",
-    "damping_ratio": "supplemental damper as a fraction of critical at sqrt(K/M) [-], >= 0",
+    "damping_ratio": "supplemental damper as a fraction of critical at sqrt(K/M) [-], 0 <= ζ < 1",
     "mu_slow": "velocity-dependent friction: µ at zero sliding velocity [-], 0 <= µ_slow <= µ_fast",
     "mu_fast": "velocity-dependent friction: µ at high sliding velocity [-], < 1",
     "rate_s_per_m": "velocity-dependent friction: rate a in µ(v) = µ_fast - (µ_fast - µ_slow) exp(-a|v|) [s/m], > 0",
@@ -82,6 +83,18 @@ BOUND_FORMS = (("lambda_max", "lambda_min"), ("mu_upper", "mu_lower"),
                 "lambda_spec_min"))
 
 
+#: The largest TOML file read [bytes]: a 200 MB design file of comments was read whole (13.5 s, 441 MB; session 17
+#: sweep), so a few GB would exhaust the memory.  The largest real inputs are far below: a building on the layout
+#: bound (10,000 [[bearing_position]] tables) is 0.46 MiB, a batch designs file of 10,000 designs 0.9 MiB.
+MAX_TOML_BYTES = 64 * 2**20
+#: A key of this many dotted parts (``a.b.c…``, bare or quoted) is refused before tomllib reads the file: its time
+#: grows as the square of a key's parts (2,000 / 5,000 / 10,000 parts: 0.28 / 0.85 / 2.8 s; a 100 kB key of
+#: 50,000 ran past a minute; session 17 sweep).  Scanning 61 MiB of floats for it takes 8.4 s (/tmp/h166).
+MAX_KEY_PARTS = 32
+DEEP_TOML_KEY = re.compile(r"""(?<![\w"'-])(?:(?:[\w-]+|"[^"\n]*"|'[^'\n]*')[ \t]*\.[ \t]*)"""
+                           + f"{{{MAX_KEY_PARTS}}}")
+
+
 def load_toml(path, what: str, error_type: type[Exception]) -> dict:
     """Read a TOML file; a missing, unreadable or invalid file raises ``error_type``.
 
@@ -107,15 +120,30 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
     if problem is not None and problem != "file is empty":
         raise error_type(f"{path}: {problem}")
     try:
-        text = path.read_bytes().decode("utf-8")
+        size = path.stat().st_size
+        if size > MAX_TOML_BYTES:
+            raise error_type(f"{path}: is {size / 2**20:.1f} MiB, larger than any {what} (isolator reads TOML files up "
+                             f"to {MAX_TOML_BYTES // 2**20} MiB; 10,000 bearing positions take about 0.5 MiB)")
+        with path.open("rb") as stream:  # read at most the bound: a file that grows meanwhile is not read whole
+            data = stream.read(MAX_TOML_BYTES + 1)
+        if len(data) > MAX_TOML_BYTES:
+            raise error_type(f"{path}: grew past {MAX_TOML_BYTES // 2**20} MiB while read")
+        text = data.decode("utf-8")
     except FileNotFoundError:
         raise error_type(f"{path}: no such {what}") from None
     except (OSError, UnicodeDecodeError) as err:
         raise error_type(f"{path}: cannot read the {what} ({' '.join(str(err).split())})") from None
+    deep = DEEP_TOML_KEY.search(text)
+    if deep:  # tomllib's time grows as the square of a key's parts: 10,000 took 2.8 s, 50,000 ran past a minute
+        line = text.count("\n", 0, deep.start()) + 1
+        raise error_type(f"{path}: line {line}: a key of {MAX_KEY_PARTS} or more dotted parts; isolator's files nest "
+                         "keys 3 deep at most (superstructure.floor.mass_kg)")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise error_type(f"{path}: not valid TOML ({' '.join(str(err).split())})") from None
+    except RecursionError:  # arrays or inline tables nested 100,000 deep: tomllib recurses per level
+        raise error_type(f"{path}: not valid TOML (arrays or tables nested deeper than Python's stack)") from None
 
 
 from isolator.errors import DesignError  # noqa: E402,F401 - the design's error, defined with the others
@@ -124,6 +152,17 @@ from isolator.errors import DesignError  # noqa: E402,F401 - the design's error,
 #: the heaviest isolated structure); outside, K/M and γ/M lose their meaning (1e-320 kg is
 #: a subnormal number: K/M overflows).
 MASS_RANGE_KG = (1e-3, 1e10)
+
+
+def _check_meant(fail, **values) -> None:
+    """Refuse a number no engineer means (:data:`isolator.bearing.MEANT_RANGES`), naming the key."""
+    from isolator.bearing import outside_meant
+
+    for key, value in values.items():
+        kind = "mu" if key.startswith("mu_") else key
+        problem = "" if value is None else outside_meant(kind, value)
+        if problem:
+            raise fail(f"key '{key}' = {value:g} is {problem}")
 
 
 def _check_derived(fail, mass_kg, stiffness_N_per_m, damping_Ns_per_m, radius_m, damping_ratio) -> None:
@@ -303,6 +342,11 @@ class Design:
             raise fail(f"missing key 'name' ({DESIGN_KEYS['name']})")
         if not isinstance(name, str) or not name.strip():
             raise fail(f"key 'name' must be a non-empty text, got {name!r}")
+        if not name.isprintable():  # it names rows of CSV tables and report pages: an ESC sequence there drove the
+            # terminal of whoever printed the table (`batch` wrote "\x1b]0;pwned\x07 FPS" raw; session 17 sweep)
+            shown = "".join(ch if ch.isprintable() else f"\\u{ord(ch):04x}" for ch in name)
+            raise fail(f"key 'name' holds a control or format character ('{shown}'): a design's name is printed in "
+                       "tables, CSV files and reports; use letters, digits, spaces and punctuation")
         description = mapping.get("description", "")
         if not isinstance(description, str):
             raise fail(f"key 'description' must be text, got {description!r}")
@@ -333,6 +377,12 @@ class Design:
         if "damping_Ns_per_m" in mapping and "damping_ratio" in mapping:
             raise fail("give at most one of 'damping_Ns_per_m' and 'damping_ratio'")
         damping_ratio = number("damping_ratio")
+        if damping_ratio is not None and not damping_ratio < 1.0:
+            # a fraction of critical, as [superstructure]'s: 1.5 (150 %, an over-critical damper) ran without a word
+            # and 5 is most likely 5 % typed as a percent (session 17 sweep); an over-critical damper (the paper's
+            # configuration 4c, exact in the kernels) is given by its coefficient
+            raise fail(f"key 'damping_ratio' must lie in [0, 1), a fraction of critical (5 % is 0.05), got "
+                       f"{damping_ratio:g}; give an over-critical damper as 'damping_Ns_per_m'")
         if damping_ratio is not None:
             if stiffness == 0.0 and damping_ratio > 0.0:
                 raise fail("key 'damping_ratio' needs a restoring stiffness (radius_m or stiffness_N_per_m > 0); "
@@ -364,6 +414,9 @@ class Design:
             if mu_fast >= 1.0:
                 raise fail(f"key 'mu_fast' must be < 1 for a sliding isolator, got {mu_fast:g}")
         capacity = number("displacement_capacity_m", strict=True)
+        if bearing is None:  # a [bearing]'s surfaces were checked each; the keys are then its equivalent pendulum
+            _check_meant(fail, radius_m=radius_m, mu_static=mu_static, mu_slow=mu_slow, mu_fast=mu_fast,
+                         rate_s_per_m=rate, displacement_capacity_m=capacity)
         factors = _property_factors(mapping, number, fail, mu_kinetic)
         plan = _plan(mapping.get("plan"), fail)
         from isolator.superstructure import parse_bearing_layout, parse_superstructure
@@ -527,7 +580,9 @@ class Design:
 
 
 def _property_factors(mapping: dict, number, fail, mu_kinetic: float) -> dict:
-    """The bounding keys of a design file, checked (one form, pairs complete, λ_min ≤ 1 ≤ λ_max)."""
+    """The bounding keys of a design file, checked (one form, pairs complete, λ_min ≤ 1 ≤ λ_max, the bounds' µ)."""
+    from isolator.bearing import outside_meant
+
     forms = [form for form in BOUND_FORMS if any(key in mapping for key in form)]
     if not forms:
         return {}
@@ -544,12 +599,25 @@ def _property_factors(mapping: dict, number, fail, mu_kinetic: float) -> dict:
             raise fail(f"key 'mu_upper' ({values['mu_upper']:g}) must be >= the nominal µk ({mu_kinetic:g})")
         if values["mu_lower"] > mu_kinetic:
             raise fail(f"key 'mu_lower' ({values['mu_lower']:g}) must be <= the nominal µk ({mu_kinetic:g})")
+        for key, value in values.items():
+            problem = outside_meant("mu", value)
+            if problem:
+                raise fail(f"key '{key}' = {value:g} is {problem}")
         return values
     for key, value in values.items():
         if key.endswith("_max") and value < 1.0:
             raise fail(f"key '{key}' must be >= 1, got {value:g}")
         if key.endswith("_min") and value > 1.0:
             raise fail(f"key '{key}' must be <= 1, got {value:g}")
+    # the bounds' friction is a friction coefficient too: lambda_max = 1e300 was read (an upper-bound µ of 6e298)
+    # and lambda_min = 1e-300 (a lower bound of no friction at all; session 17 sweep)
+    highest = math.prod(value for key, value in values.items() if key.endswith("_max"))
+    lowest = math.prod(value for key, value in values.items() if key.endswith("_min"))
+    for which, product in (("max", highest), ("min", lowest)):
+        problem = outside_meant("mu", mu_kinetic * product) if mu_kinetic > 0 else ""
+        if problem:
+            keys = " x ".join(key for key in values if key.endswith(f"_{which}"))
+            raise fail(f"the bound's friction µk x {keys} = {mu_kinetic * product:g} is {problem}")
     return values
 
 

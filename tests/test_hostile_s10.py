@@ -37,25 +37,30 @@ def _replace(text: str, old: str, new: str) -> str:
     return text.replace(old, new)
 
 
-@pytest.mark.parametrize(("old", "new", "surface"), [
-    ("radius_m = 0.3", "radius_m = 1e-300", 2),  # main: OverflowError from the solver's sub-step count (exit 1)
-    ("radius_m = 0.3", "radius_m = 1e-11", 2),  # g/R_eff = 1e12 1/s²: past the rigid block's K/M limit
-    ("radius_m = 2.1\n", "radius_m = 2.1\nheight_m = 2.09999999999\n", 1),  # R_eff = R - h = 1e-11 m
+@pytest.mark.parametrize(("old", "new", "surface", "words"), [
+    # main: OverflowError from the solver's sub-step count (exit 1); since session 17 a radius no engineer means
+    ("radius_m = 0.3", "radius_m = 1e-300", 2, ("key 'radius_m' = 1e-300 is outside [0.05, 50] m",)),
+    ("radius_m = 0.3", "radius_m = 1e-11", 2, ("key 'radius_m' = 1e-11 is outside [0.05, 50] m",)),
+    # R_eff = R - h = 1e-11 m: g/R_eff = 1e12 1/s², past the rigid block's K/M limit
+    ("radius_m = 2.1\n", "radius_m = 2.1\nheight_m = 2.09999999999\n", 1,
+     ("R_eff = ", "above 1e+10 1/s²", "no isolator is that stiff")),
 ])
-def test_a_surface_stiffer_than_any_isolator_is_refused_in_one_line(tmp_path, old, new, surface):
-    """g/R_eff of a surface is held to the limit a design's own radius_m is (MAX_STIFFNESS_PER_MASS)."""
+def test_a_surface_stiffer_than_any_isolator_is_refused_in_one_line(tmp_path, old, new, surface, words):
+    """g/R_eff of a surface is held to the limit a design's own radius_m is (MAX_STIFFNESS_PER_MASS), and R to
+    what an engineer means (isolator.bearing.MEANT_RANGES, session 17)."""
     text = TRIPLE.replace(old, new, 1) if "height" in new else _replace(TRIPLE, old, new)
-    _refused(tmp_path, text, f"bearing surface {surface}: R_eff = ", "above 1e+10 1/s²", "no isolator is that stiff")
+    _refused(tmp_path, text, f"bearing surface {surface}: {words[0]}", *words[1:])
 
 
 def test_the_stiffest_surface_accepted_reads(tmp_path):
-    """The limit is the rigid block's, not tighter: inner radii of 1e-9 m (g/R = 9.8e9 1/s²) read."""
+    """The smallest radius an engineer means reads: inner radii of 0.05 m (session 17; 1e-9 m, g/R = 9.8e9 1/s²,
+    read before, the rigid block's limit)."""
     from isolator.design import Design
 
     path = tmp_path / "d.toml"
-    path.write_text(_replace(TRIPLE, "radius_m = 0.3", "radius_m = 1e-9"))
+    path.write_text(_replace(TRIPLE, "radius_m = 0.3", "radius_m = 0.05"))
     bearing = Design.from_toml(path).bearing
-    assert [s.effective_radius_m for s in bearing.surfaces] == [2.1, 1e-9, 1e-9, 2.1]
+    assert [s.effective_radius_m for s in bearing.surfaces] == [2.1, 0.05, 0.05, 2.1]
 
 
 @pytest.mark.parametrize(("old", "new"), [

@@ -40,9 +40,9 @@ def _simulate(tmp_path, design_text: str):
 
 @pytest.mark.parametrize(("rate", "slow", "words"), [
     # int13: numpy LinAlgError traceback from the µ(v) series kernels (1-D and 2-D), exit 1
-    ("1e-300", None, "= 2e-302 per m/s at rest, below 0.001"),
+    ("1e-300", None, "key 'rate_s_per_m' = 1e-300 is outside [1, 10000] s/m"),  # since session 17 (MEANT_RANGES)
     # int13: the 2-D engine ground 79 s and gave up without naming the design; 1e-3 ran past 90 s
-    ("1e-2", None, "= 0.0002 per m/s at rest, below 0.001"),
+    ("1e-2", None, "key 'rate_s_per_m' = 0.01 is outside [1, 10000] s/m"),
     # mu_slow within 1e-14 of mu_fast: int13's engines gave up ("the step size fell below 1e-13"), no file named
     ("20", {"0.06": "0.05999999999999", "0.02": "0.01999999999999", "0.10": "0.09999999999999"},
      "per m/s at rest, below 0.001"),

@@ -167,7 +167,8 @@ class PartStore:
                     row, key = line["row"], line["key"]
                     if not isinstance(key, str) or not hmac.compare_digest(key, content_key(_canonical(row))):
                         raise ValueError("content key")
-                except (ValueError, KeyError, TypeError, AttributeError):  # JSON/Unicode errors are ValueErrors
+                except (ValueError, KeyError, TypeError, AttributeError, RecursionError):  # JSON/Unicode: ValueError;
+                    # RecursionError: arrays nested past the stack (session 17 sweep)
                     self.damaged += 1
                     continue
                 if planned is not None and isinstance(row, dict) and row.get("row_key") not in planned:

@@ -141,6 +141,13 @@ class OneLineErrors(TyperGroup):
                     raise
                 typer.echo("interrupted", err=True)
                 sys.exit(130)
+            except OSError as err:
+                # standard output that cannot take the answer (a full disk, /dev/full, a closed pipe): a traceback
+                # before (`isolator harmonic … > /dev/full`, session 17 sweep); any other OSError keeps its own
+                if not standalone_mode or not stdout_write_failed(err):
+                    raise
+                typer.echo(f"error: standard output: cannot write ({err.strerror or err})", err=True)
+                sys.exit(2)
             except Exception as err:
                 # a typed error of the library that a command did not turn into its own line: still
                 # one line and exit 2, never a traceback (a bug, any other type, keeps its traceback)
@@ -151,6 +158,29 @@ class OneLineErrors(TyperGroup):
         if not standalone_mode:
             return result
         sys.exit(result if isinstance(result, int) else 0)
+
+
+def stdout_write_failed(err: OSError) -> bool:
+    """True if ``err`` was raised writing a command's answer to standard output (click's ``echo`` without
+    ``err=True``); then standard output is pointed at the null device, so that the interpreter's own flush at exit
+    does not print a second error."""
+    import os
+
+    frame = None
+    trace = err.__traceback__
+    while trace is not None:  # bounded by the traceback's depth
+        if trace.tb_frame.f_code.co_name == "echo" and trace.tb_frame.f_locals.get("err") is False:
+            frame = trace.tb_frame
+        trace = trace.tb_next
+    if frame is None:
+        return False
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+        os.close(null)
+    except (OSError, ValueError, AttributeError):  # no file descriptor (tests' captured output)
+        pass
+    return True
 
 
 app = typer.Typer(
@@ -165,9 +195,26 @@ app = typer.Typer(
 @app.callback()
 def _main() -> None:
     """isolator: friction isolators under harmonic and recorded ground motion."""
+    check_cache_variable()
     from isolator.solver import notice
 
     notice.ENABLED = True  # a first run that compiles an engine says so on stderr (not a hang)
+
+
+def check_cache_variable() -> None:
+    """Refuse a relative ``ISOLATOR_CACHE_DIR`` in one line, before any command runs.
+
+    The regime maps, the batch key (which checks a batch's earlier rows) and, where the package's folder is
+    read-only, the compiled engines live under it: a relative name made a new cache folder in every working
+    folder a command ran from (session 16 and 17 sweeps), a fresh key and map cache each, and a Dask worker
+    resolves it in its own working folder.  Empty is the default (``~/.cache/isolator``), as before.
+    """
+    import os
+
+    value = os.environ.get("ISOLATOR_CACHE_DIR")
+    if value and not os.path.isabs(value):
+        user_error(f"ISOLATOR_CACHE_DIR={value} is a relative path: the cache would be a new folder in each working "
+                   f"folder; give an absolute one (e.g. {os.path.abspath(value)}) or unset it for ~/.cache/isolator")
 
 
 #: Help texts of the record options, shared by every command that reads a record.

@@ -150,6 +150,33 @@ def simulate(
         write_error(err, out_csv)
 
 
+#: Earth's gravity as an engineer means it (``--gravity``; low, high [m/s²], why): ``--gravity 1e300`` answered
+#: (nothing slid) and ``981`` (cm/s²) ran without a word (session 17 sweep).  The other physical flags share the
+#: design file's ranges (:data:`isolator.bearing.MEANT_RANGES`); the library's own checks come first (0, negative,
+#: non-finite, µ ≥ 1, a > 1e4 s/m keep their messages); K/M and γ/M keep the solver's tested bounds
+#: (isolator.solver.system: the paper's configurations use them beyond an isolator's).
+GRAVITY_RANGE_M_S2 = (9.7, 10.0, "Earth's gravity, 9.76-9.84 at its surface and 9.8, 9.81 or 10 in hand checks; "
+                                 "1 is g itself, 32.2 ft/s², 386 in/s², 981 cm/s²")
+
+
+def check_flag_ranges(**given) -> None:
+    """Refuse a physical flag outside its range in one line naming it, the range and why (``given``: the flag's
+    name with ``_`` for ``-`` and without ``--``, its value or None)."""
+    from isolator.bearing import outside_meant
+
+    for name, value in given.items():
+        if value is None:
+            continue
+        flag = "--" + name.replace("_", "-")
+        if name == "gravity":
+            low, high, why = GRAVITY_RANGE_M_S2
+            problem = "" if low <= value <= high else f"outside [{low:g}, {high:g}] m/s²: {why}"
+        else:
+            problem = outside_meant("mu" if name.startswith("mu_") else name, value)
+        if problem:
+            user_error(f"{flag} {value:g} is {problem}")
+
+
 def _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass, radius_m, mu_slow, mu_fast,
                      rate_s_per_m, gravity):
     """The design file's isolator keywords, its nominal system; refuses isolator options beside it."""
@@ -164,6 +191,8 @@ def _design_isolator(design, mu_s, mu_k, stiffness_per_mass, damping_per_mass, r
                                        ("--damping-per-mass", damping_per_mass)) if value]
     if given:
         user_error(f"give the isolator with --design or with {given[0]} and its other options, not both")
+    if gravity is not None:
+        check_gravity_flag(gravity)
     try:
         the_design = Design.from_toml(design, gravity_m_s2=STANDARD_GRAVITY if gravity is None else gravity)
     except DesignError as err:
@@ -177,7 +206,7 @@ def _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, 
     import math
 
     from isolator.cli.pairs import system_keywords
-    from isolator.solver.system import InvalidSystemError, System
+    from isolator.solver.system import InvalidSystemError, System, check_friction_coefficient, check_friction_rate
 
     system = system_keywords(mu_s=mu_s, mu_k=mu_k, stiffness_per_mass=stiffness_per_mass,
                              damping_per_mass=damping_per_mass, gravity=gravity, radius_m=radius_m,
@@ -189,9 +218,27 @@ def _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, 
         kappa = stiffness_per_mass if radius_m is None else System(mu_static=mu_s, **kwargs).gravity_m_s2 / radius_m
         nominal = System(mu_static=mu_s, mu_kinetic=mu_k, stiffness_per_mass=kappa,
                          damping_per_mass=damping_per_mass, **kwargs)
+        for name, value in (("mu_slow", mu_slow), ("mu_fast", mu_fast)):  # the engine's own checks, before the
+            if value is not None:  # record is read and before the ranges below (their messages kept)
+                check_friction_coefficient(name, value)
+        if rate_s_per_m is not None:
+            check_friction_rate(rate_s_per_m)
     except InvalidSystemError as err:
         user_error(error_line(err))
+    check_flag_ranges(gravity=gravity, radius_m=radius_m, mu_s=mu_s, mu_slow=mu_slow, mu_fast=mu_fast,
+                      rate_s_per_m=rate_s_per_m)
     return system, nominal
+
+
+def check_gravity_flag(gravity) -> None:
+    """``--gravity`` beside a design file: the System's checks (finite, > 0), then :data:`GRAVITY_RANGE_M_S2`."""
+    from isolator.solver.system import InvalidSystemError, System
+
+    try:
+        System(mu_static=0.1, gravity_m_s2=gravity)
+    except InvalidSystemError as err:
+        user_error(error_line(err))
+    check_flag_ranges(gravity=gravity)
 
 
 def _simulate_and_print(record, pair, vertical, component, trim, resample, units, merge, dt, response,

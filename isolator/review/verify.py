@@ -75,7 +75,7 @@ def verify_review(json_path, *, jobs: int | None = None) -> dict:
 
     try:
         saved = json.loads(Path(json_path).read_text(encoding="utf-8"))
-    except (OSError, ValueError) as err:
+    except (OSError, ValueError, RecursionError) as err:  # RecursionError: arrays nested 100,000 deep (s17)
         raise ReviewError(f"{json_path}: cannot read the review JSON ({err})") from None
     if not isinstance(saved, dict) or not {"inputs", "run", "checks"} <= set(saved):
         raise ReviewError(f"{json_path}: not a review JSON with inputs and run (written by isolator review)")

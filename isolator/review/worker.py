@@ -185,7 +185,7 @@ class Cache:
             entry = json.loads(read_regular_file(path, MAX_CACHE_ENTRY_BYTES).decode("utf-8"))
         except FileNotFoundError:
             return None
-        except (OSError, ValueError):
+        except (OSError, ValueError, RecursionError):  # RecursionError: nesting past the stack (s17)
             self.rejected.append(path)
             return None
         if not (isinstance(entry, dict) and set(entry) == {"schema", "key", "result", "mac"}

@@ -334,7 +334,7 @@ def test_triple_pulse_against_the_reference():
     err = np.max(np.abs(res.displacement_m - ref_x))
     print("triple pulse: peak", res.peak_displacement_m, "max |x - ref|", err, "regimes", res.regimes,
           "balance", res.energy_balance_error_J_per_kg, "of", res.energy_input_J_per_kg)
-    assert list(res.regimes) == ["I", "II", "III"]
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III"]
     assert err <= 1e-9 * res.peak_displacement_m
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
@@ -354,7 +354,7 @@ def test_triple_reaching_its_rims_to_the_ultimate():
     res = simulate_bearing_rate(acc, dt, bearing=b)
     print("rims: regimes", res.regimes, "peak", res.peak_displacement_m, "balance", res.energy_balance_error_J_per_kg,
           "of", res.energy_input_J_per_kg, "rim contacts", res.n_rim_contacts)
-    assert list(res.regimes) == ["I", "II", "III", "IV", "V"]
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III", "IV", "V"]
     assert 0.68 < res.regimes["IV"] < 0.685
     assert res.ultimate_displacement_reached
     assert res.peak_displacement_m == pytest.approx(0.9, rel=1e-12)
@@ -378,7 +378,7 @@ def test_real_record_without_chatter(records_dir):
     print("NWH360 x1:", res.model_reason, "events", res.n_events, "balance", res.energy_balance_error_J_per_kg,
           "of", res.energy_input_J_per_kg)
     assert res.status == 0 and res.n_events < 1000
-    assert list(res.regimes) == ["I", "II", "III"]
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III"]
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
 
@@ -396,7 +396,7 @@ def test_real_record_through_its_rims_energy(records_dir):
     print("NWH360 x2.5:", res.model_reason, "events", res.n_events, "rims", res.n_rim_contacts, "balance",
           res.energy_balance_error_J_per_kg, "of", res.energy_input_J_per_kg)
     assert res.ultimate_displacement_reached and res.n_rim_contacts >= 4
-    assert list(res.regimes) == ["I", "II", "III", "IV", "V"]
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III", "IV", "V"]
     assert res.energy_impact_J_per_kg > 1.0  # the ultimate's plastic impacts are in the balance
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
 
@@ -419,7 +419,7 @@ def test_two_surfaces_saturated_together_at_x3(records_dir):
     print("NWH360 x3, 5.2 s:", res.model_reason, "events", res.n_events, "rims", res.n_rim_contacts, "balance",
           res.energy_balance_error_J_per_kg, "of", res.energy_input_J_per_kg)
     assert res.status == 0
-    assert list(res.regimes) == ["I", "II", "III", "IV", "V"]
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III", "IV", "V"]
     assert res.ultimate_displacement_reached and res.peak_displacement_m == pytest.approx(0.9, rel=1e-12)
     assert np.all(np.asarray(res.surface_peak_displacement_m) <= np.array([0.4, 0.05, 0.05, 0.4]) * (1 + 1e-12))
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
@@ -460,7 +460,7 @@ def test_saturated_set_against_the_inverted_slide_law(records_dir):
     exact = _nwh360_run(records_dir, 2.5, 270, saturation_levels=(math.inf, math.inf))
     err = np.max(np.abs(exact.displacement_m - res.displacement_m))
     print("NWH360 x2.5, 5.4 s: set vs none", err, "of", res.peak_displacement_m)
-    assert list(res.regimes) == ["I", "II", "III", "IV", "V"] and res.ultimate_displacement_reached
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III", "IV", "V"] and res.ultimate_displacement_reached
     assert err <= 1e-11 * res.peak_displacement_m
 
 

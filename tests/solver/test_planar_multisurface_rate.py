@@ -69,7 +69,7 @@ def test_zero_second_component_is_the_1d_model():
     two = simulate_bearing_pair_rate(acc, np.zeros_like(acc), 0.02, bearing=TFP)
     peak = one.peak_displacement_m
     print("zero component:", two.model_reason, np.max(np.abs(two.displacement_m[:, 0] - one.displacement_m)) / peak)
-    assert list(one.regimes) == ["I", "II", "III"] and list(two.regimes) == list(one.regimes)
+    assert [name for name in one.regimes if "(one inner)" not in name] == ["I", "II", "III"] and list(two.regimes) == list(one.regimes)
     assert np.max(np.abs(two.displacement_m[:, 0] - one.displacement_m)) <= 1e-9 * peak
     assert np.all(two.displacement_m[:, 1] == 0.0)
     assert abs(two.peak_displacement_m - peak) <= 1e-9 * peak
@@ -258,7 +258,7 @@ def test_real_pair_energy_balance(records_dir):
     res = simulate_bearing_pair_rate(ax, ay, dt, bearing=TFP)
     print("PTS whole:", res.model_reason, res.regimes, "balance", res.energy_balance_error_J_per_kg, "of",
           res.energy_input_J_per_kg)
-    assert list(res.regimes) == ["I", "II", "III"]
+    assert [name for name in res.regimes if "(one inner)" not in name] == ["I", "II", "III"]
     assert abs(res.energy_balance_error_J_per_kg) <= 1e-9 * res.energy_input_J_per_kg
     hist = res.energy_history_J_per_kg
     assert np.all(np.diff(hist[1]) >= -1e-12 * res.energy_input_J_per_kg)  # friction work never decreases
