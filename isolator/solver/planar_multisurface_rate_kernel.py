@@ -1748,13 +1748,11 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             first_slot = -1
             first_t = math.inf
             for slot in range(2 * ns):
-                armed = not (slot % 2 == 0 and fresh[slot // 2] == 1)
-                if not armed:
-                    continue
-                if slot % 2 == 0 and fresh[slot // 2] == JUST_STOPPED and e0[slot] < 0.0:
-                    # a surface that has just stopped is at its onset from the standing side: a residue of the
-                    # force's rounding (−9.7e-17 on PTS at 11.1837 s, h157) is not a start already past (taken at
-                    # once it restarted the surface for a whole step); only its value at the step's end tells
+                if slot % 2 == 0 and fresh[slot // 2] != 0 and e0[slot] < 0.0:
+                    # a surface that has just stopped or started is at its onset: a residue of the force's rounding
+                    # (−9.7e-17 on PTS at 11.1837 s, h157) is not an event already past; only the step's end tells,
+                    # and a real stop or restart inside the step is located (the 1-D kernel's rule; a just-started
+                    # surface's stop slot switched off for its first step missed CHY028's stop at 55.154 s, h162)
                     e0[slot] = 0.0
                 if e0[slot] < 0.0:
                     t_root = 0.0  # past already (a surface started a hair late): taken at once
