@@ -26,7 +26,7 @@ on that kernel, the two alternately in the same process (old, new, old, new, ...
 gives both rates (median of --repeat each) and the largest distance between the two histories
 as a fraction of the peak.
 
-    python -m benchmarks.planar_multisurface_throughput [--repeat 5] [--scale 2] [--accuracy]
+    python -m benchmarks.planar_multisurface_throughput [--repeat 5] [--scale 2] [--accuracy] [--rtol 1e-9]
                                                        [--records ../shared/records] [--before FILE]
                                                        [--vertical [with|both]]
 """
@@ -64,6 +64,8 @@ def main(argv=None) -> int:
     parser.add_argument("--repeat", type=int, default=5, help="runs per pair (median)")
     parser.add_argument("--scale", type=float, default=1.0, help="factor on both components")
     parser.add_argument("--method", default="auto", choices=("auto", "events", "steps"))
+    parser.add_argument("--rtol", type=float, default=None,
+                        help="the event kernel's relative tolerance (default: its DEFAULT_RTOL; RTOL_RANGE)")
     parser.add_argument("--accuracy", action="store_true", help="distances from the two references")
     parser.add_argument("--records", help="the records folder (holding pairs/); default: ../shared/records of the "
                         "repository's parent")
@@ -77,7 +79,14 @@ def main(argv=None) -> int:
     from isolator.bearing import parse_bearing
     from isolator.errors import DesignError, SolverError
     from isolator.solver import planar_multisurface_kernel as _pm
-    from isolator.solver.planar_multisurface import DEFAULT_STEP_TOL, EVENTS_BALANCE_TOL, simulate_bearing_pair
+    from isolator.solver.planar_multisurface import (
+        DEFAULT_RTOL,
+        DEFAULT_STEP_TOL,
+        EVENTS_BALANCE_TOL,
+        simulate_bearing_pair,
+    )
+
+    rtol = DEFAULT_RTOL if args.rtol is None else args.rtol
 
     kernels = [("new", _pm.planar_multisurface_kernel)]
     if args.before:
@@ -86,7 +95,7 @@ def main(argv=None) -> int:
     tfp = parse_bearing({"type": "triple", "surface": [
         {"radius_m": r, "mu": m, "displacement_capacity_m": d}
         for r, m, d in ((2.1, 0.06, 0.4), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.4))]}, DesignError)
-    print(f"scale {args.scale:g}, method {args.method}, step tolerance {DEFAULT_STEP_TOL:g}")
+    print(f"scale {args.scale:g}, method {args.method}, rtol {rtol:g}, step tolerance {DEFAULT_STEP_TOL:g}")
     print(f"{'pair':26s} {'samples':>8s} {'method':>6s} {'M samples/s':>12s} {'CPU M/s':>8s} {'steps':>7s} {'peak x [m]':>10s} {'balance':>8s} "
           + (f"{'vs tol/10':>10s} {'vs events':>10s} " if args.accuracy else "") + " regimes")
     rates = []
@@ -114,7 +123,8 @@ def main(argv=None) -> int:
                 for name, kernel, vert in runs:
                     _pm.planar_multisurface_kernel = kernel
                     start = time.thread_time()
-                    answers[name] = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method, az_m_s2=vert)
+                    answers[name] = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method=args.method, az_m_s2=vert,
+                                                          rtol=rtol)
                     cpus[name].append(time.thread_time() - start)
                     times[name].append(answers[name].solver_seconds)
         except SolverError as exc:
@@ -152,7 +162,7 @@ def main(argv=None) -> int:
                                          az_m_s2=az)
             extra = f"{_distance(res.displacement_m, fine.displacement_m, peak):10.1e} "
             try:
-                ev = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="events", az_m_s2=az)
+                ev = simulate_bearing_pair(ax, ay, dt, bearing=tfp, method="events", az_m_s2=az, rtol=rtol)
                 closed = abs(ev.energy_balance_error_J_per_kg) <= EVENTS_BALANCE_TOL * ev.energy_input_J_per_kg
                 extra += f"{_distance(res.displacement_m, ev.displacement_m, peak):10.1e} " if closed else (
                     f"{'(imbal.)':>10s} ")

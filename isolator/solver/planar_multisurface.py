@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import DesignError, RecordInputError, SolverError
+from isolator.errors import DesignError, InvalidSystemError, RecordInputError, SolverError
 from isolator.solver import planar_multisurface_kernel as _pm
 from isolator.solver import planar_multisurface_stepper as _ps
 from isolator.solver.base import SolverResult
@@ -53,6 +53,12 @@ R_SWITCH_MULTI_FACTOR = 1e-5
 R_SWITCH_MULTI_LO_FACTOR = 1e-6
 #: relative tolerance of the DOP853 steps (the planar engine's default)
 DEFAULT_RTOL = 1e-11
+#: the relative tolerances accepted (h171, docs/bench.md "The 2-D TFP's work-precision curve"): below 1e-13 the steps
+#: chase round-off; at 1e-9 the five pairs the kernel finishes (PTS, DZC, CHY028, ABY, AOM017) erred by 5.8e-10 to
+#: 1.3e-8 of the peak from the kernel at 1e-13.  Looser, "auto" threw the kernel's answer away for the implicit steps
+#: (50-75x slower): at 1e-8 ABY stopped at 48.4 s where only a reduction went on, at 1e-7 CHY028's energy balance
+#: opened past EVENTS_BALANCE_TOL, from 1e-6 PTS's and DZC's
+RTOL_RANGE = (1e-13, 1e-9)
 #: two friction coefficients closer than this (relative) make one group: equal circles slide together
 MU_TIE = 1e-12
 #: relative tolerance of the implicit steps' local error estimate (the method where the events cannot be
@@ -155,7 +161,30 @@ def simulate_scene(scene) -> PlanarMultisurfaceResponse:
     return simulate_bearing_pair(ax, ay, scene.dt_s, time_s=scene.time_s, bearing=scene.design.bearing,
                                  az_m_s2=scene.az_m_s2 if scene.has_z else None,
                                  damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
-                                 gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY))
+                                 gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY),
+                                 rtol=tolerance(DEFAULT_RTOL if scene.isolator.get("rtol") is None
+                                                else scene.isolator["rtol"]))
+
+
+def tolerance(rtol) -> float:
+    """``rtol`` as a float in :data:`RTOL_RANGE` (the event kernel's relative tolerance).
+
+    Raises
+    ------
+    InvalidSystemError
+        Not a number, or outside :data:`RTOL_RANGE` (one line).
+    """
+    if isinstance(rtol, bool):
+        raise InvalidSystemError(f"rtol must be a number, got {rtol!r}")
+    try:
+        value = float(rtol)
+    except (TypeError, ValueError):
+        raise InvalidSystemError(f"rtol must be a number, got {rtol!r}") from None
+    if not RTOL_RANGE[0] <= value <= RTOL_RANGE[1]:
+        raise InvalidSystemError(f"rtol = {rtol!r} must lie in [{RTOL_RANGE[0]:g}, {RTOL_RANGE[1]:g}] (2d-multisurface's "
+                                 "event kernel; looser, it stops or its energy balance opens on real pairs, and 'auto' "
+                                 "runs the implicit steps, 50-75x slower)")
+    return value
 
 
 def normal_per_mass(az, g: float, t0: float, local, subject: str) -> np.ndarray:
@@ -360,7 +389,9 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     gravity_m_s2 : float
         g [m/s²].
     rtol : float
-        Relative tolerance of the DOP853 steps.
+        Relative tolerance of the event kernel's non-exact steps (DOP853 and the corner steps), in
+        :data:`RTOL_RANGE`; the scene's ``rtol`` key in the registry.  Measured on six real pairs: the
+        history within ~rtol of the peak from the kernel at 1e-13 (docs/bench.md).
     method : {"auto", "events", "steps"}
         ``"events"``: the event-driven kernel (exact between events; stops with a SolverError where
         the sliding set cannot be resolved: three friction circles meeting at small angles, a corner
@@ -387,6 +418,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     if not (math.isfinite(step_tol) and 1e-12 <= step_tol <= 1e-2):
         raise ValueError(f"step_tol must be in [1e-12, 1e-2], got {step_tol!r}")
+    rtol = tolerance(rtol)
     ax = _samples("ax_m_s2", ax_m_s2)
     ay = _samples("ay_m_s2", ay_m_s2, ax.size)
     t0, local = sample_clock(ax.size, dt_s, time_s)
@@ -547,5 +579,6 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
     )
 
 
-__all__ = ["MODEL_NAME", "PlanarMultisurfaceResponse", "element_groups", "scene_needs", "simulate_bearing_pair",
-           "simulate_scene"]
+__all__ = ["MODEL_NAME", "RTOL_RANGE", "PlanarMultisurfaceResponse", "element_groups", "scene_needs", "simulate_bearing_pair",
+           "simulate_scene",
+           "tolerance"]

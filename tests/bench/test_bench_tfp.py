@@ -159,3 +159,18 @@ def test_2d_errors_are_vector_differences():
     truth = np.column_stack([np.sin(np.linspace(0, 3, 31)), np.cos(np.linspace(0, 3, 31))])
     e = tfp_bench.trajectory_errors(truth + [0.03, 0.04], truth)
     assert e["error_trajectory"] == pytest.approx(0.05 / float(np.max(np.hypot(*truth.T))), rel=1e-12)
+
+
+@needs_opensees
+def test_the_2d_pair_has_a_second_row_at_the_loose_rtol_with_its_own_error_and_ratios(records_dir):
+    # h171: ours at TFP_LOOSE_RTOL beside the default, each row with its own measured error and ratios
+    case = _pair_case(records_dir, 4.0)
+    tight = tfp_bench.ours_tfp(case, rtol=1e-13).displacement_m.copy()
+    result = tfp_bench.run_tfp_case(case, rounds=1, ours_per_round=1, reference=lambda c: tight)
+    loose = result["ours_loose"]
+    assert loose["rtol"] == tfp_bench.TFP_LOOSE_RTOL and loose["errors_against"] == "the reference"
+    assert loose["error_trajectory"] > result["ours"]["error_trajectory"] and loose["error_trajectory"] < 1e-8
+    assert loose["time_ratio"] == pytest.approx(loose["opensees_seconds"] / loose["seconds"])
+    assert loose["error_ratio"] == pytest.approx(result["opensees"]["error_trajectory"] / loose["error_trajectory"])
+    lines = tfp_bench.tfp_summary([result])
+    assert len(lines) == 2 and f"at rtol {tfp_bench.TFP_LOOSE_RTOL:g}" in lines[1]
