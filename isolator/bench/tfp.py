@@ -46,7 +46,8 @@ TFP_PAIR_SCALE = 1.0
 PLANAR_TFP_MODEL = "2d-multisurface"
 #: the 2-D row's second tolerance: the event kernel's loosest accepted rtol (``RTOL_RANGE``; the default is 1e-11).
 #: On PTS 0-20 s it erred by 5.8e-10 of the peak from the kernel at 1e-13 (OpenSees 8.5e-3), in 6 350 steps against
-#: 9 046 (docs/bench.md, "The 2-D TFP's work-precision curve"); the bench measures its error again in every run
+#: 9 046 (docs/bench.md, "The 2-D TFP's work-precision curve"); the bench measures its error again in every run.
+#: Not a default: Landers YER at 1e-9 leaves the kernel for the implicit steps (50x slower; RTOL_RANGE)
 TFP_LOOSE_RTOL = 1e-9
 
 

@@ -54,10 +54,11 @@ R_SWITCH_MULTI_LO_FACTOR = 1e-6
 #: relative tolerance of the DOP853 steps (the planar engine's default)
 DEFAULT_RTOL = 1e-11
 #: the relative tolerances accepted (h171, docs/bench.md "The 2-D TFP's work-precision curve"): below 1e-13 the steps
-#: chase round-off; at 1e-9 the five pairs the kernel finishes (PTS, DZC, CHY028, ABY, AOM017) erred by 5.8e-10 to
-#: 1.3e-8 of the peak from the kernel at 1e-13.  Looser, "auto" threw the kernel's answer away for the implicit steps
-#: (50-75x slower): at 1e-8 ABY stopped at 48.4 s where only a reduction went on, at 1e-7 CHY028's energy balance
-#: opened past EVENTS_BALANCE_TOL, from 1e-6 PTS's and DZC's
+#: chase round-off; at 1e-9 the pairs the kernel finishes (PTS, DZC, CHY028, ABY, AOM017 measured) erred by 5.8e-10 to
+#: 1.3e-8 of the peak from the kernel at 1e-13, but Landers YER stopped at 39.8 s where only a reduction went on and
+#: "auto" ran the implicit steps (0.002 against 0.1 M samples/s; at 1e-10 all 10 such pairs stayed on the kernel).
+#: Looser, the kernel's own answer breaks: method "events" erred by 5.2e-2 on CHY028 at 1e-7, 0.25 on ABY at 1e-6,
+#: and divided by zero on PTS at 1e-5 ("auto" caught the first two through EVENTS_BALANCE_TOL, at 50-75x the cost)
 RTOL_RANGE = (1e-13, 1e-9)
 #: two friction coefficients closer than this (relative) make one group: equal circles slide together
 MU_TIE = 1e-12
@@ -182,8 +183,7 @@ def tolerance(rtol) -> float:
         raise InvalidSystemError(f"rtol must be a number, got {rtol!r}") from None
     if not RTOL_RANGE[0] <= value <= RTOL_RANGE[1]:
         raise InvalidSystemError(f"rtol = {rtol!r} must lie in [{RTOL_RANGE[0]:g}, {RTOL_RANGE[1]:g}] (2d-multisurface's "
-                                 "event kernel; looser, it stops or its energy balance opens on real pairs, and 'auto' "
-                                 "runs the implicit steps, 50-75x slower)")
+                                 "event kernel; looser, its answer breaks on real pairs)")
     return value
 
 
