@@ -49,7 +49,7 @@ class Scene:
         [1/s], ``gravity_m_s2`` [m/s²], or ``mu_slow``, ``mu_fast``, ``rate_s_per_m`` [s/m]
         for µ(v) (:func:`isolator.adapter.motion_keywords` gives them for a design); ``rtol``, the
         relative tolerance of the engine's steps (``simulate_pair``'s, and ``2d-multisurface``'s event
-        kernel's in its ``RTOL_RANGE``; absent or None: the default).
+        kernel's in its ``RTOL_RANGE``; absent: the default).
     design : isolator.design.Design or None
         The design, for a model that needs more than the equivalent single bearing
         (a superstructure, a multi-surface bearing); None for a bare isolator.
