@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 import time
 from pathlib import Path
 
@@ -44,6 +45,12 @@ _KNOBS = {"fast_eps": (planar_building, "FAST_TRUNC_EPS", float), "order": (kern
           "theta": (kernel, "THETA", float), "departure": (planar_building, "DEPARTURE_SERIES", lambda v: bool(int(v)))}
 
 
+def _refuse(message: str) -> None:
+    """A user mistake: one line on stderr, exit 2."""
+    print(f"building_precision: {message}", file=sys.stderr)
+    raise SystemExit(2)
+
+
 def parse_setting(text: str) -> dict:
     """``default`` or ``knob=value[,...]`` joined by ``+`` (e.g. ``order=12+fast_eps=1e-8``)."""
     if text == "default":
@@ -52,8 +59,11 @@ def parse_setting(text: str) -> dict:
     for part in text.split("+"):
         key, _, value = part.partition("=")
         if key not in _KNOBS or not value:
-            raise SystemExit(f"--settings: {part!r} is not one of {', '.join(_KNOBS)}=VALUE")
-        out[key] = _KNOBS[key][2](value)
+            _refuse(f"--settings: {part!r} is not one of {', '.join(_KNOBS)}=VALUE")
+        try:
+            out[key] = _KNOBS[key][2](value)
+        except ValueError:
+            _refuse(f"--settings: {part!r}: {value!r} is not a number")
     return out
 
 
@@ -84,7 +94,11 @@ def main(argv=None) -> None:
     names = args.pairs.split(",")
     for name in names:
         if name not in PAIRS:
-            raise SystemExit(f"--pairs: {name!r} is not one of {', '.join(PAIRS)}")
+            _refuse(f"--pairs: {name!r} is not one of {', '.join(PAIRS)}")
+    for name in names:
+        folder = Path(args.records) / "pairs" / PAIRS[name][0]
+        if not folder.is_dir():
+            _refuse(f"--records: {folder} is not a folder (the shared records' pairs/)")
     labels = args.settings.split(",")
     settings = {label: parse_setting(label) for label in labels}
     defaults = {key: getattr(module, attr) for key, (module, attr, _) in _KNOBS.items()}
@@ -96,10 +110,17 @@ def main(argv=None) -> None:
     print("|---|---|---|---|---|---|---|")
     for name in names:
         case = pair_case(Path(args.records), name, args.seconds)
+        for label in labels:  # compiled, tables cached; a value the model refuses stops here in one line
+            _apply(settings[label], defaults)
+            try:
+                bench_building.ours_building(case)
+            except ValueError as error:
+                _refuse(f"--settings: {label}: {error}")
+            finally:
+                _apply({}, defaults)
         truth = bench_building.reference_building(case)
         os_error = (bench_building.building_errors(bench_building.opensees_building_solver(case), truth)["error_max"]
                     if with_opensees else float("nan"))
-        bench_building.ours_building(case)  # compiled, tables cached
         cpu = {label: [] for label in labels}
         answers = {}
         try:
