@@ -86,6 +86,11 @@ STOP_PIECE = True
 #: accepts): 1e-16 is the previous rule, the pieces' own; 1e-12 lengthens the rungs near stops and departures, the
 #: answers moving at rounding (docs/building.md, h114).
 FAST_TRUNC_EPS = _pk.FAST_TRUNC_EPS
+#: The range of FAST_TRUNC_EPS measured (docs/building.md, h172): from the pieces' own 1e-16 to 1e-2 the answer stays
+#: within 6.3e-13 of the default's on the bench's PTS 0-20 s (the sub-steps' end check FAST_CHECK bounds it), but
+#: above the default every looser value is slower (the end check refuses the longer rungs).  Outside it (or NaN,
+#: or ≤ 0, which the kernel would silently replace by its default) :func:`simulate_planar_building` refuses.
+FAST_TRUNC_EPS_RANGE = (1e-16, 1e-2)
 
 
 @dataclass
@@ -790,6 +795,9 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
     rate = system.fastest_rate_per_s
     if not ORDER_RANGE[0] <= _pk.N_ORDER <= ORDER_RANGE[1]:
         raise ValueError(f"planar_building_kernel.N_ORDER = {_pk.N_ORDER} is outside {ORDER_RANGE} (tested range)")
+    if not FAST_TRUNC_EPS_RANGE[0] <= FAST_TRUNC_EPS <= FAST_TRUNC_EPS_RANGE[1]:
+        raise ValueError(f"planar_building.FAST_TRUNC_EPS = {FAST_TRUNC_EPS!r} is outside {FAST_TRUNC_EPS_RANGE} "
+                         "(measured range)")
     h_max = _pk.THETA / rate if rate > 0 else math.inf
     n = system.n_floors
     m = 2 * n + 2
