@@ -13,34 +13,12 @@ from contextlib import contextmanager
 import typer
 from typer.core import TyperGroup
 
-from isolator.errors import IsolatorError, one_line
+from isolator.errors import IsolatorError, one_line, printable  # noqa: F401 - printable: the commands' one escape
 
 try:  # typer ≥ 0.20 carries its own copy of click: its exceptions are not click's
     from typer._click import exceptions as click_exceptions
 except ImportError:  # pragma: no cover - older typer over click
     from click import exceptions as click_exceptions
-
-
-def printable(text) -> str:
-    """``text`` with every character a terminal would act on shown as its escape (``\\x1b``, ``\\u202e``).
-
-    A file name, a header field or a flag's value is printed in errors, notes and tables: a name holding ESC
-    sequences set the terminal's title or colours (``info $'nope\\x1b]0;title\\x07.AT2'`` printed them raw on
-    stderr; click strips only colour codes, and only off a terminal), and a right-to-left override shows a name
-    reversed (session 16 sweep).  Control and format characters are escaped; letters of any script stay.
-    """
-    text = str(text)
-    if text.isprintable():
-        return text
-    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
-
-
-def _escape(ch: str) -> str:
-    """One character as its escape; a byte of a file name that is not UTF-8 (a surrogate of Python's reading of
-    it) as that byte, ``\\xe9``."""
-    if 0xDC80 <= ord(ch) <= 0xDCFF:
-        return f"\\x{ord(ch) - 0xDC00:02x}"
-    return ch.encode("unicode_escape").decode("ascii")
 
 
 def say(line: str) -> None:
