@@ -414,8 +414,9 @@ class Design:
                 raise fail(f"key 'mu_fast' must be < 1 for a sliding isolator, got {mu_fast:g}")
         capacity = number("displacement_capacity_m", strict=True)
         if bearing is None:  # a [bearing]'s surfaces were checked each; the keys are then its equivalent pendulum
-            _check_meant(fail, radius_m=radius_m, mu_static=mu_static, mu_slow=mu_slow, mu_fast=mu_fast,
-                         rate_s_per_m=rate, displacement_capacity_m=capacity)
+            # µk = 0 is the paper's (kept); a µk of 1e-300 was read (session 18 sweep)
+            _check_meant(fail, radius_m=radius_m, mu_static=mu_static, mu_kinetic=mu_kinetic or None, mu_slow=mu_slow,
+                         mu_fast=mu_fast, rate_s_per_m=rate, displacement_capacity_m=capacity)
         factors = _property_factors(mapping, number, fail, mu_kinetic)
         plan = _plan(mapping.get("plan"), fail)
         from isolator.superstructure import parse_bearing_layout, parse_superstructure

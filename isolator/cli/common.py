@@ -80,6 +80,40 @@ def collector_skips_existing_objects():
         gc.unfreeze()
 
 
+@contextmanager
+def terminate_as_interrupt():
+    """While a command runs, SIGTERM (``kill``, a batch system's time limit) ends it as Ctrl-C does.
+
+    SIGTERM's default ended the process at once: no line said so, and no ``finally`` ran (a review's
+    ``r.pdf.lock`` stayed behind; session 18 sweep).  Now it raises :class:`KeyboardInterrupt` in the command's
+    own process, so the output lock and the temporary files go, the finished work stays in the caches, and the
+    command says ``interrupted`` in one line (exit 130).  A forked worker that inherits the handler dies as
+    SIGTERM meant (its parent's death sends it one); a SIGTERM ignored by the caller stays ignored.
+    """
+    import os
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGTERM) is signal.SIG_IGN:
+        yield
+        return
+    owner = os.getpid()
+
+    def on_terminate(signum, frame):
+        if os.getpid() != owner:
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            os.kill(os.getpid(), signal.SIGTERM)
+            return
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, on_terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 class OneLineErrors(TyperGroup):
     """The command group: usage mistakes are one line and exit 2, and no Python warning
     reaches stderr.
@@ -91,6 +125,17 @@ class OneLineErrors(TyperGroup):
     command says so in a sentence of its own.
     """
 
+    def invoke(self, ctx):
+        """A command interrupted (Ctrl-C, SIGTERM) says so in one line, exit 130: typer turned the interrupt into
+        a silent exit 130 (`review` killed mid-run printed nothing; session 18 sweep); `batch` and `design` say
+        where their finished work is kept before this."""
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            typer.echo("interrupted: outputs are written whole or not at all; run the same command again (a review "
+                       "reuses the analyses it finished from its cache)", err=True)
+            raise typer.Exit(130) from None
+
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         skip_final_collection()
         # matplotlib logs its own warnings (not Python warnings): an MPLCONFIGDIR it cannot write printed two lines
@@ -99,7 +144,7 @@ class OneLineErrors(TyperGroup):
         import logging  # here, not at import: logging registers an exit callback (tests/cli/test_exit.py)
 
         logging.getLogger("matplotlib").setLevel(logging.ERROR)
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), terminate_as_interrupt():
             warnings.simplefilter("ignore")
             try:
                 result = super().main(args=args, prog_name="isolator", complete_var=complete_var,
