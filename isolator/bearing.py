@@ -684,7 +684,9 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
     for key, range_kind, value in (("radius_m", "radius_m", radius), ("displacement_capacity_m",
                                    "displacement_capacity_m", capacity),  # a > 1e4 s/m: the engine's own message
                                    ("rate_s_per_m", "rate_s_per_m", None if rate is None or rate > 1e4 else rate),
-                                   ("mu_slow" if mu_slow is not None else "mu", "mu", mu_s)):
+                                   ("mu_slow" if mu_slow is not None else "mu", "mu", mu_s),
+                                   # µk ≤ µs: 1e-300 was read (session 18 sweep); 'mu', µ_fast ≥ µ_slow: above
+                                   ("mu_kinetic", "mu", mu_k if forms[0][0] == "mu_kinetic" else None)):
         problem = "" if value is None else outside_meant(range_kind, value)
         if problem:
             raise fail(f"{where}: key '{key}' = {value:g} is {problem}")

@@ -146,7 +146,7 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         raise error_type(f"{path}: not valid TOML (arrays or tables nested deeper than Python's stack)") from None
 
 
-from isolator.errors import DesignError  # noqa: E402,F401 - the design's error, defined with the others
+from isolator.errors import DesignError, printable  # noqa: E402,F401 - the design's error, defined with the others
 
 #: Supported mass M accepted [kg]: from a gram (a laboratory specimen) to 1e10 kg (ten times
 #: the heaviest isolated structure); outside, K/M and γ/M lose their meaning (1e-320 kg is
@@ -344,9 +344,8 @@ class Design:
             raise fail(f"key 'name' must be a non-empty text, got {name!r}")
         if not name.isprintable():  # it names rows of CSV tables and report pages: an ESC sequence there drove the
             # terminal of whoever printed the table (`batch` wrote "\x1b]0;pwned\x07 FPS" raw; session 17 sweep)
-            shown = "".join(ch if ch.isprintable() else f"\\u{ord(ch):04x}" for ch in name)
-            raise fail(f"key 'name' holds a control or format character ('{shown}'): a design's name is printed in "
-                       "tables, CSV files and reports; use letters, digits, spaces and punctuation")
+            raise fail(f"key 'name' holds a control or format character ('{printable(name)}'): a design's name is "
+                       "printed in tables, CSV files and reports; use letters, digits, spaces and punctuation")
         description = mapping.get("description", "")
         if not isinstance(description, str):
             raise fail(f"key 'description' must be text, got {description!r}")
@@ -415,8 +414,9 @@ class Design:
                 raise fail(f"key 'mu_fast' must be < 1 for a sliding isolator, got {mu_fast:g}")
         capacity = number("displacement_capacity_m", strict=True)
         if bearing is None:  # a [bearing]'s surfaces were checked each; the keys are then its equivalent pendulum
-            _check_meant(fail, radius_m=radius_m, mu_static=mu_static, mu_slow=mu_slow, mu_fast=mu_fast,
-                         rate_s_per_m=rate, displacement_capacity_m=capacity)
+            # µk = 0 is the paper's (kept); a µk of 1e-300 was read (session 18 sweep)
+            _check_meant(fail, radius_m=radius_m, mu_static=mu_static, mu_kinetic=mu_kinetic or None, mu_slow=mu_slow,
+                         mu_fast=mu_fast, rate_s_per_m=rate, displacement_capacity_m=capacity)
         factors = _property_factors(mapping, number, fail, mu_kinetic)
         plan = _plan(mapping.get("plan"), fail)
         from isolator.superstructure import parse_bearing_layout, parse_superstructure

@@ -35,7 +35,9 @@ Hierarchy::
     │   └── SuiteError                an invalid suite (file, pair, duplicate, mismatched components)
     └── CacheEntryError               a damaged regime-map cache entry (never reaches the user: the map is recomputed)
 
-:func:`one_line` is the one place a message (or an exception's text) is folded onto one line.
+:func:`one_line` is the one place a message (or an exception's text) is folded onto one line, :func:`printable`
+the one place a name or a value holding control or format characters is shown escaped (the design's name check
+and every line the commands print).
 """
 
 from __future__ import annotations
@@ -44,6 +46,28 @@ from __future__ import annotations
 def one_line(message) -> str:
     """``message`` (any object: an exception, a string) as one line, runs of white space as one blank [-]."""
     return " ".join(str(message).split())
+
+
+def printable(text) -> str:
+    """``text`` with every character a terminal would act on shown as its escape (``\\x1b``, ``\\u202e``) [-].
+
+    A file name, a header field or a flag's value is printed in errors, notes and tables: a name holding ESC
+    sequences set the terminal's title or colours (``info $'nope\\x1b]0;title\\x07.AT2'`` printed them raw on
+    stderr; click strips only colour codes, and only off a terminal), and a right-to-left override shows a name
+    reversed (session 16 sweep).  Control and format characters are escaped; letters of any script stay.
+    """
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
+
+
+def _escape(ch: str) -> str:
+    """One character as its escape; a byte of a file name that is not UTF-8 (a surrogate of Python's reading of
+    it) as that byte, ``\\xe9``."""
+    if 0xDC80 <= ord(ch) <= 0xDCFF:
+        return f"\\x{ord(ch) - 0xDC00:02x}"
+    return ch.encode("unicode_escape").decode("ascii")
 
 
 def analysis_owner(records, design_source: str | None = None) -> str:

@@ -220,7 +220,7 @@ def test_a_design_name_with_control_characters_is_refused(name):
     """main: read, and `batch` wrote it raw into its CSV table (`cat t.csv` set the terminal's title)."""
     from isolator.design import Design, DesignError
 
-    with pytest.raises(DesignError, match=r"d.toml: key 'name' holds a control or format character \('.*\\u[0-9a-f]{4}"):
+    with pytest.raises(DesignError, match=r"d.toml: key 'name' holds a control or format character \('.*\\(x[0-9a-f]{2}|u[0-9a-f]{4}|n)"):
         Design.from_mapping({"name": name, "mass_kg": 1e6, "radius_m": 2.5, "mu_static": 0.06}, source="d.toml")
 
 

@@ -13,34 +13,12 @@ from contextlib import contextmanager
 import typer
 from typer.core import TyperGroup
 
-from isolator.errors import IsolatorError, one_line
+from isolator.errors import IsolatorError, one_line, printable  # noqa: F401 - printable: the commands' one escape
 
 try:  # typer ≥ 0.20 carries its own copy of click: its exceptions are not click's
     from typer._click import exceptions as click_exceptions
 except ImportError:  # pragma: no cover - older typer over click
     from click import exceptions as click_exceptions
-
-
-def printable(text) -> str:
-    """``text`` with every character a terminal would act on shown as its escape (``\\x1b``, ``\\u202e``).
-
-    A file name, a header field or a flag's value is printed in errors, notes and tables: a name holding ESC
-    sequences set the terminal's title or colours (``info $'nope\\x1b]0;title\\x07.AT2'`` printed them raw on
-    stderr; click strips only colour codes, and only off a terminal), and a right-to-left override shows a name
-    reversed (session 16 sweep).  Control and format characters are escaped; letters of any script stay.
-    """
-    text = str(text)
-    if text.isprintable():
-        return text
-    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
-
-
-def _escape(ch: str) -> str:
-    """One character as its escape; a byte of a file name that is not UTF-8 (a surrogate of Python's reading of
-    it) as that byte, ``\\xe9``."""
-    if 0xDC80 <= ord(ch) <= 0xDCFF:
-        return f"\\x{ord(ch) - 0xDC00:02x}"
-    return ch.encode("unicode_escape").decode("ascii")
 
 
 def say(line: str) -> None:
@@ -102,6 +80,40 @@ def collector_skips_existing_objects():
         gc.unfreeze()
 
 
+@contextmanager
+def terminate_as_interrupt():
+    """While a command runs, SIGTERM (``kill``, a batch system's time limit) ends it as Ctrl-C does.
+
+    SIGTERM's default ended the process at once: no line said so, and no ``finally`` ran (a review's
+    ``r.pdf.lock`` stayed behind; session 18 sweep).  Now it raises :class:`KeyboardInterrupt` in the command's
+    own process, so the output lock and the temporary files go, the finished work stays in the caches, and the
+    command says ``interrupted`` in one line (exit 130).  A forked worker that inherits the handler dies as
+    SIGTERM meant (its parent's death sends it one); a SIGTERM ignored by the caller stays ignored.
+    """
+    import os
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGTERM) is signal.SIG_IGN:
+        yield
+        return
+    owner = os.getpid()
+
+    def on_terminate(signum, frame):
+        if os.getpid() != owner:
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            os.kill(os.getpid(), signal.SIGTERM)
+            return
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, on_terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 class OneLineErrors(TyperGroup):
     """The command group: usage mistakes are one line and exit 2, and no Python warning
     reaches stderr.
@@ -113,6 +125,17 @@ class OneLineErrors(TyperGroup):
     command says so in a sentence of its own.
     """
 
+    def invoke(self, ctx):
+        """A command interrupted (Ctrl-C, SIGTERM) says so in one line, exit 130: typer turned the interrupt into
+        a silent exit 130 (`review` killed mid-run printed nothing; session 18 sweep); `batch` and `design` say
+        where their finished work is kept before this."""
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            typer.echo("interrupted: outputs are written whole or not at all; run the same command again (a review "
+                       "reuses the analyses it finished from its cache)", err=True)
+            raise typer.Exit(130) from None
+
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         skip_final_collection()
         # matplotlib logs its own warnings (not Python warnings): an MPLCONFIGDIR it cannot write printed two lines
@@ -121,7 +144,7 @@ class OneLineErrors(TyperGroup):
         import logging  # here, not at import: logging registers an exit callback (tests/cli/test_exit.py)
 
         logging.getLogger("matplotlib").setLevel(logging.ERROR)
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), terminate_as_interrupt():
             warnings.simplefilter("ignore")
             try:
                 result = super().main(args=args, prog_name="isolator", complete_var=complete_var,

@@ -159,6 +159,31 @@ GRAVITY_RANGE_M_S2 = (9.7, 10.0, "Earth's gravity, 9.76-9.84 at its surface and 
                                  "1 is g itself, 32.2 ft/s², 386 in/s², 981 cm/s²")
 
 
+#: ``--stiffness-per-mass`` and ``--damping-per-mass`` as an engineer means them (0: none; else low, high, unit,
+#: why).  ``1e-300`` ran as a period of 6e150 s without a word, and above the solver's bounds the refusal named
+#: the System's keyword, not the flag (session 18 sweep).  The high ends are the solver's tested bounds.
+PER_MASS_FLAG_RANGES = {
+    "--stiffness-per-mass": (1e-6, "MAX_STIFFNESS_PER_MASS", "1/s²",
+                             "K/M = (2π/T)²; below 1e-6 the period (6283 s) is longer than any record: give 0 for "
+                             "no restoring force; above, the isolator is rigid (T < 63 µs)"),
+    "--damping-per-mass": (1e-6, "MAX_DAMPING_PER_MASS", "1/s",
+                           "γ/M; below 1e-6 the relaxation time M/γ (11.6 days) is longer than any record: give 0 "
+                           "for no damper; above, M/γ is below 1 ps"),
+}
+
+
+def check_per_mass_flags(stiffness_per_mass, damping_per_mass) -> None:
+    """Refuse ``--stiffness-per-mass``/``--damping-per-mass`` outside 0 or :data:`PER_MASS_FLAG_RANGES`, naming
+    the flag (a NaN, an infinity and a negative number too)."""
+    from isolator.solver import system as solver_system
+
+    for flag, value in (("--stiffness-per-mass", stiffness_per_mass), ("--damping-per-mass", damping_per_mass)):
+        low, bound, unit, why = PER_MASS_FLAG_RANGES[flag]
+        high = getattr(solver_system, bound)
+        if value is not None and value != 0 and not low <= value <= high:  # NaN fails the comparison too
+            user_error(f"{flag} {value:g} is outside 0 or [{low:g}, {high:g}] {unit}: {why}")
+
+
 def check_flag_ranges(**given) -> None:
     """Refuse a physical flag outside its range in one line naming it, the range and why (``given``: the flag's
     name with ``_`` for ``-`` and without ``--``, its value or None)."""
@@ -213,6 +238,7 @@ def _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, 
                              mu_slow=mu_slow, mu_fast=mu_fast, rate_s_per_m=rate_s_per_m)
     if radius_m is not None and not (math.isfinite(radius_m) and radius_m > 0):
         user_error(f"--radius-m must be a finite number > 0, got {radius_m:g}")
+    check_per_mass_flags(stiffness_per_mass, damping_per_mass)
     try:  # the isolator is checked before any file is read
         kwargs = {} if gravity is None else {"gravity_m_s2": gravity}
         kappa = stiffness_per_mass if radius_m is None else System(mu_static=mu_s, **kwargs).gravity_m_s2 / radius_m

@@ -153,6 +153,12 @@ def _pair_options(table: dict, where: str) -> dict:
     if pulse is not None and not isinstance(pulse, bool):
         raise SuiteError(f"{where}: 'pulse' must be true or false")
     metadata.update(mechanism=mechanism.strip() if mechanism else None, pulse=pulse)
+    from isolator.review.target import outside_earthquake
+
+    for key in ("magnitude", "distance_km", "vs30_m_s"):
+        problem = "" if metadata[key] is None else outside_earthquake(key, metadata[key])
+        if problem:
+            raise SuiteError(f"{where}: '{key}' = {metadata[key]:g} is {problem}")
     return {"scale_factor": _number(table, "scale_factor", where), "matched": matched, "strike_deg": strike,
             "azimuths_deg": azimuths, "metadata": {k: v for k, v in metadata.items() if v is not None}}
 

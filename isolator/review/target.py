@@ -33,6 +33,27 @@ import numpy as np
 from isolator.errors import TargetError
 
 RANGE_KEYS = ("magnitude_range", "distance_km_range", "vs30_m_s_range")
+
+#: An earthquake's magnitude, distance and site as an engineer means them (low, high, unit, why): a suite's
+#: ``magnitude = 1e-300`` and ``distance_km = 1e300`` were read and compared with the target's ranges (session 17
+#: sweep's leftover).  The suite's metadata and the target's ``*_range`` ends (a low end of 0: no lower bound) share
+#: them.
+EARTHQUAKE_RANGES = {
+    "magnitude": (1.0, 10.0, "", "a moment magnitude: records that move a structure come from M 4-9.5 (the largest "
+                                 "measured, Valdivia 1960)"),
+    "distance_km": (0.0, 1000.0, "km", "a source-to-site distance: strong motions reach ~500 km (Mexico City 1985: "
+                                       "350 km); is it in metres?"),
+    "vs30_m_s": (50.0, 3500.0, "m/s", "a site's V_s30: soft clay ~100 m/s, hard rock 1500-3000 m/s; is it in ft/s "
+                                      "or km/s?"),
+}
+
+
+def outside_earthquake(key: str, value: float) -> str:
+    """"" if ``value`` lies in :data:`EARTHQUAKE_RANGES` ``[key]``, else the sentence after "'key' = value is ..."."""
+    low, high, unit, why = EARTHQUAKE_RANGES[key]
+    if low <= value <= high:
+        return ""
+    return f"outside [{low:g}, {high:g}]{' ' + unit if unit else ''}: {why}"
 TARGET_KEYS = {"name", "S_MS", "S_M1", "S_DS", "S_D1", "T_L", "a_g_g", "S", "T_B", "T_C", "T_D", "spectrum_csv",
                "mechanisms", *RANGE_KEYS}
 
@@ -219,6 +240,11 @@ def load_target(path) -> Target:
                 isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v >= 0
                 for v in value) and value[0] <= value[1]):
             raise TargetError(f"{path}: key '{key}' must be [low, high] with 0 ≤ low ≤ high, got {value!r}")
+        quantity = key.removesuffix("_range")
+        for end in value:
+            problem = "" if end == value[0] == 0 else outside_earthquake(quantity, end)
+            if problem:
+                raise TargetError(f"{path}: key '{key}' end {end:g} is {problem}")
         controlling[key] = [float(v) for v in value]
     if "mechanisms" in mapping:
         value = mapping["mechanisms"]
