@@ -152,21 +152,34 @@ def _chart_page(summary: dict, data: dict):
         fig.text(0.52, y, name, fontsize=7.6, weight="bold", va="top")
         fig.text(0.66, y, textwrap.shorten(str(value), 60), fontsize=7.6, va="top")
         y -= 0.017
+    fig.text(0.05, 0.012, textwrap.fill(chart_caption(data), 150), fontsize=6.8, va="bottom", color="0.15")
+    return fig
+
+
+def chart_caption(data: dict) -> str:
+    """The chart page's caption: what is drawn — the paper's regime map only where it is (``data["paper_map"]``: a
+    rigid block on one surface), each candidate's point on the line it stands on."""
     caption = ("Every candidate was reviewed exactly as 'isolator review' reviews it (its own ELF values and period "
                "range, the suite scaled for that range, every pair at the lower, upper and nominal friction, every "
                "check); nothing is interpolated between candidates.  Contours: the design values of the reviews. "
                "Shading: the first failing check of each candidate (cells centred on the candidates). Bottom left: "
-               "each candidate at the median over the suite of the paper's dimensionless point at nominal friction "
-               "(k = K A0/(M g), α = PGA/(µs g), A0 = PGV²/PGA of the scaled pair); the paper's harmonic map "
-               "classifies a one-component harmonic motion: context only.")
+               "each candidate at the median over the suite of the paper's dimensionless point at nominal friction")
     if data.get("paper_regimes"):
-        caption += (" A double or triple's point is on the backbone regime its motions reached (k = A0/R, α = PGA/(µ g) "
-                    "of that regime's line; column paper_regime); a candidate whose motions reached different regimes "
-                    "has no median point (not drawn), and no map is drawn (the map is a rigid block's on one surface).")
+        caption += (" on the backbone regime its motions reached (k = A0/R, α = PGA/(µ g) of that regime's line, "
+                    "A0 = PGV²/PGA of the scaled pair; column paper_regime); a candidate whose motions reached "
+                    "different regimes has no median point (not drawn).")
+    else:
+        caption += " (k = K A0/(M g), α = PGA/(µs g), A0 = PGV²/PGA of the scaled pair)."
+    if data.get("paper_map") is not None:
+        caption += (" Behind the points, the paper's harmonic regime map, which classifies a rigid block on one "
+                    "surface under a one-component harmonic motion: context only.")
+    else:
+        caption += (" No regime map is drawn: the paper's map is a rigid block's on one surface"
+                    + (f", and these candidates are {data['isolated']}" if data.get("isolated") and
+                       data["isolated"] != "a rigid block on one surface" else "") + "; the points are context only.")
     if data["fixed"]:
         caption += " Other varied keys held at " + ", ".join(f"{k} = {fmt(v)}" for k, v in data["fixed"].items()) + "."
-    fig.text(0.05, 0.012, textwrap.fill(caption, 150), fontsize=6.8, va="bottom", color="0.15")
-    return fig
+    return caption
 
 
 def _ranking_page(summary: dict, rows: list, columns: list):

@@ -352,12 +352,13 @@ def _common_front(review, n_min: int, clause_size: str, clause_spectrum: str, ba
                         "×"))
     rows.append(C.usable_band([(pair.name, pair.high_pass_hz) for pair in review.suite.pairs], hi,
                               p["usable_band_factor"]))
-    multi = asce7_22.is_multisurface(review.design)  # its equivalent µ never ran: the lower bound's breakaway does
+    # a record moves the isolator once its force passes the breakaway at rest — µs, not µk (a double's or triple's
+    # equivalent µ never ran: its smallest µ_i does) — at the lower bound, where the bearing slides most easily
+    multi = asce7_22.is_multisurface(review.design)
     rows += selection_rows(review.suite.pairs, list(review.factors.values()),
-                           mu_lower=(review.bounds.lambda_min * asce7_22.breakaway_force_per_weight(review.design)
-                                     if multi else review.bounds.mu_lower),
+                           mu_lower=review.bounds.lambda_min * asce7_22.breakaway_force_per_weight(review.design),
                            mu_lower_said=("the lower bound's breakaway force / W (the bearing at rest: its smallest "
-                                          "µ_i)" if multi else "µ_lower"),
+                                          "µ_i)" if multi else "the lower bound's breakaway µs (λ_min × µs)"),
                            gravity_m_s2=review.design.gravity_m_s2, controlling=review.target.controlling, params=p,
                            closest=review.suite.closest, code=review.code)
     return rows
@@ -579,7 +580,7 @@ def _superstructure_shear_row(review, v_s: float, activation: dict, fixed_base: 
                f"{per[b]['V_over_W']:.4g} (T_M {per[b]['T_M_s']:.4g} s, {b} bound, R = "
                f"{review.design.superstructure.response_modification_R:g}, I_e = {p['importance_factor_Ie']:g})"] = \
             per[b]["V_over_W"]
-    v_act = asce7_22.activation_shear_over_w(activation["upper"], activation["nominal"])
+    v_act = asce7_22.activation_shear_over_w(activation["upper"], activation["nominal"], p["activation_nominal_factor"])
     act = [asce7_22.activation_superstructure_shear_over_w(v_act, elf[b]["beta_M"], p)
            for b in ("lower", "upper") if math.isfinite(elf[b].get("beta_M", math.nan))]
     if act:

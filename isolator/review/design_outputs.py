@@ -71,7 +71,17 @@ def chart_data(result: DesignSearch) -> dict:
             "fixed": fixed, "candidate": cell, "design_total_displacement_m": d_tm, "base_shear_coefficient": vb,
             "passes": passes, "state": state, "recommended": rec, "recommended_candidate":
             None if best is None else best["candidate"], "paper": paper, "objective": result.objective,
-            "paper_regimes": sorted({r["paper_regime"] for r in result.rows if r.get("paper_regime")})}
+            "paper_regimes": sorted({r["paper_regime"] for r in result.rows if r.get("paper_regime")}),
+            "isolated": _isolated_kind(result.design)}
+
+
+def _isolated_kind(design) -> str:
+    """What the search's candidates are, for the chart's caption: "a building on a double pendulum", "a triple
+    pendulum", "a rigid block on one surface" …"""
+    bearing = getattr(getattr(design, "bearing", None), "kind", "single") or "single"
+    on = {"single": "one surface", "double": "a double pendulum", "triple": "a triple pendulum"}.get(bearing, bearing)
+    return f"a building on {on}" if design.superstructure is not None else (
+        "a rigid block on one surface" if bearing == "single" else on)
 
 
 def _number(value) -> float:

@@ -105,12 +105,16 @@ PARAMETERS = {p.name: p for p in [
               "of the regime of the largest compliance (a triple's regime III: both outer surfaces slide; a double's "
               "1+2: both surfaces slide), 'breakaway' its force at rest (its smallest µ_i); a single surface: µs either "
               "way", ("asce7-22",)),
+    Parameter("activation_nominal_factor", 1.5, "U", "ASCE 7-22 17.5.4.3(3) (REVIEW_RULES 1.9)",
+              "the force that fully activates the isolation system: the greater of its upper-bound value and this "
+              "factor × its nominal value (the row also prints its verdict with the upper bound alone)", ("asce7-22",)),
     Parameter("horizontal_only", False, "input", "ASCE 7-22 17.3.2 (pairs of horizontal components)",
               "analyse the pairs without their vertical components (a model that does not take a vertical, e.g. the "
               "building); false: a vertical is analysed or the review refuses it"),
     Parameter("weak_pga_fraction", 0.1, "practice", "record selection (practice)",
-              "a scaled pair with resultant PGA < fraction × µ_lower g can hardly move the isolator (a double or "
-              "triple: × its lower bound's breakaway force / W, its smallest µ_i)"),
+              "a scaled pair with resultant PGA < fraction × the lower bound's breakaway g can hardly move the "
+              "isolator (a single surface: × λ_min µs; a double or triple: × its lower bound's breakaway force / W, "
+              "its smallest µ_i)"),
     Parameter("bandwidth_min", 0.25, "practice", "record selection (practice)",
               "Vanmarcke spectral bandwidth below which a component is not an earthquake record (sinusoid)"),
     Parameter("gamma_x", 1.2, "U", "EN 1998-1 10.3(2)", "reliability factor on isolator displacements",
@@ -163,6 +167,8 @@ RANGES = {
     "Ws_over_W": Range(0.0, 1.0, "a fraction of the total weight", lo_open=True),
     "R_I": Range(1.0, 2.0, "ASCE 7-22 17.5.4.2: 1 ≤ R_I ≤ 2"),
     "importance_factor_Ie": Range(1.0, 1.5, "an importance factor (ASCE 7-22 Table 1.5-2: 1.0, 1.25 or 1.5)"),
+    "activation_nominal_factor": Range(1.0, 3.0, "a factor on the nominal activation force (ASCE 7-22 17.5.4.3(3): "
+                                                 "1.5)"),
     "n_for_mean": Range(1, 1000, "a number of analyses (ASCE 7-22 17.6.3.4: 7)"),
     "f_disp": Range(0.0, 1.0, "a fraction of the ELF displacement (ASCE 7-22 17.6.4.1: 0.8)", lo_open=True),
     "f_below": Range(0.0, 1.0, "a fraction of the ELF shear (ASCE 7-22 17.6.4.2: 0.9)", lo_open=True),
@@ -172,7 +178,7 @@ RANGES = {
     "transmitted_over_pga_max": Range(0.0, 100.0, "a ratio of accelerations (practice: 1)", lo_open=True),
     "wind_shear_over_W": Range(0.0, 1.0, "a base shear as a fraction of the weight"),
     "drift_limit_rha": Range(0.0, 0.1, "a story drift ratio (ASCE 7-22 17.6.4.4: 0.020)", lo_open=True),
-    "weak_pga_fraction": Range(0.0, 1.0, "a fraction of µ_lower g"),
+    "weak_pga_fraction": Range(0.0, 1.0, "a fraction of the lower bound's breakaway acceleration"),
     "bandwidth_min": Range(0.0, 1.0, "a Vanmarcke bandwidth (between 0 and 1)"),
     "dead_load_factor_max": Range(1.0, 2.0, "a factor on the dead load (ASCE 7-22 2.3.6: 1.2)"),
     "dead_load_factor_min": Range(0.0, 1.0, "a factor on the dead load (ASCE 7-22 2.3.6: 0.9)"),

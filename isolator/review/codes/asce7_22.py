@@ -275,9 +275,10 @@ def superstructure_shear(v_b_over_w: float, beta: float, params: dict) -> dict:
     return {"V_st_over_W": v_st, "V_s_over_W": v_st / params["R_I"]}
 
 
-def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float) -> float:
-    """Breakaway friction force of the isolation system / W (17.5.4.3: greater of UB or 1.5 × nominal)."""
-    return max(mu_static_upper, 1.5 * mu_static_nominal)
+def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float, nominal_factor: float = 1.5) -> float:
+    """Breakaway friction force of the isolation system / W (17.5.4.3: greater of UB or 1.5 × nominal; the 1.5 is
+    the review parameter ``activation_nominal_factor`` [U])."""
+    return max(mu_static_upper, nominal_factor * mu_static_nominal)
 
 
 def vertical_load_factors(s_ms: float, params: dict, *, vertical_analysed: bool) -> tuple[float, float]:
@@ -475,7 +476,8 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         rows.append(C.at_least("V_s_wind_limit", "ASCE 7-22 17.5.4.3(2) [U]", lowest, wind,
                                "smaller ELF V_s/W of the two bounds ≥ the (factored) design wind base shear / W",
                                "V/W"))
-    v_act = activation_shear_over_w(mu_static_upper, mu_static_nominal)
+    factor = params.get("activation_nominal_factor", 1.5)
+    v_act = activation_shear_over_w(mu_static_upper, mu_static_nominal, factor)
     margins = {}
     for b, value in v_s.items():
         beta = elf[b].get("beta_M", math.nan)
@@ -494,12 +496,32 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                                    "max(upper, 1.5 × nominal) of the bearing's breakaway force (the backbone at rest: "
                                    "its smallest µ_i; multisurface_activation 'breakaway' [U]) ")
                                   if multisurface else "max(µs upper, 1.5 µs nominal) ")
-                               + f"W = {v_act:.4g} W", "V/W"))
+                               + f"W = {v_act:.4g} W" + _activation_reading(margins[b], mu_static_upper,
+                                                                           mu_static_nominal, factor), "V/W"))
     else:
         rows.append(C.check("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", C.NOT_CHECKED, None, None,
                             "no ELF V_s (the ELF found no sliding)", "V/W"))
     rows.append(C.story_drift(story_drift_ratio, params.get("drift_limit_rha"), story_drift_note))
     return rows
+
+
+def _activation_reading(value_limit: tuple, upper: float, nominal: float, factor: float) -> str:
+    """What 17.5.4.3(3)'s row hangs on, for its note: which term of max(upper, factor × nominal) [U] governs, the
+    row's margin, and its verdict under the other reading (the upper-bound force alone, without the factor)."""
+    value, limit = value_limit
+    scaled = factor * nominal
+    words = (f" (upper {upper:.4g}, {factor:g} × nominal {nominal:.4g} = {scaled:.4g}: "
+             + (f"the {factor:g} × nominal reading governs (activation_nominal_factor {factor:g} [U])" if scaled > upper
+                else "the upper bound governs") + ")")
+    if not limit > 0 or not math.isfinite(value):
+        return words
+    words += f"; margin {100.0 * (value / limit - 1.0):+.3g} %"
+    if scaled > upper and scaled > 0:  # without the factor the limit scales by upper / (factor × nominal)
+        other = limit * upper / scaled
+        words += (f"; with the upper bound alone (the other reading) the limit is {other:.4g}: "
+                  f"{'pass' if value >= other else 'fail'}, margin {100.0 * (value / other - 1.0):+.3g} %"
+                  if other > 0 else "")
+    return words
 
 
 def _fixed_base_row(v_s: dict, fixed_base: dict | None) -> dict:
