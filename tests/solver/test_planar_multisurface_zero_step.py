@@ -13,5 +13,5 @@ def test_radau_matrix_refuses_a_zero_step_and_factors_a_positive_one():
     p1 = np.empty(na, dtype=np.int64)
     p2 = np.empty(na, dtype=np.int64)
     # on 4412bf7 this raised ZeroDivisionError (numba's python error model)
-    assert not getattr(pmk, "_radau_matrix")(0.0, jac, na, e1, p1, e2, p2)
-    assert getattr(pmk, "_radau_matrix")(1e-3, jac, na, e1, p1, e2, p2)
+    assert not pmk._radau_matrix(0.0, jac, na, e1, p1, e2, p2)
+    assert pmk._radau_matrix(1e-3, jac, na, e1, p1, e2, p2)
