@@ -488,7 +488,10 @@ def _active(mask, m, act):
 def _radau_matrix(h, jac, na, e1, p1, e2, p2):
     """The simplified-Newton matrix of the three stages over the active components, h⁻¹ A⁻¹ ⊗ I − I ⊗ J, in A's
     eigenbasis (:func:`_radau_eigenbasis`): γ/h − J (real, ``e1``) and (α − iβ)/h − J (complex, ``e2``), LU-factored
-    in place: False if singular."""
+    in place: False if singular, or if h is not positive (a zero step reached it at rtol >= 1e-5 with a division by zero:
+    the caller then gives up with its singular status, h178)."""
+    if not h > 0.0:
+        return False
     for p in range(na):
         for q in range(na):
             e1[p, q] = -jac[p, q]
