@@ -699,8 +699,15 @@ def double_step(y0, h, a_start, slope, g, c, bmat, mode, mu_s, mu_f, a, smat, sc
 
 
 @njit(cache=True)
-def event_values(y, r, dy, mode, mu_s, cap, bmat, wb, out_e):
-    """The event functions at a state (≥ 0: no event); slots 2i (stop/start/leave), 2i+1 (rim), 2n (mass stop)."""
+def event_values(y, r, dy, mode, pivot, mu_s, cap, bmat, wb, out_e):
+    """The event functions at a state (≥ 0: no event); slots 2i (stop/start/leave), 2i+1 (rim), 2n (mass stop).
+
+    The pivot's stop slot is off (+inf), as in the 2-D kernel: its rate is the rest of the velocity, re-chosen at
+    every step's start as the fastest surface, so it stops only with the mass (slot 2n) or after another surface
+    became the pivot.  Left on, the rest of the velocity after a non-pivot rate at its resolution floor (two equal
+    surfaces whose split had relaxed to rounding, a·v ≈ 24–32) crossed 0 for one 6.5e-12 s step: a stop and a restart
+    at one instant (the rim pulse of tests/solver/test_planar_multisurface_rate_rim.py at 0.7173546 s, h177).
+    """
     n = mode.shape[0]
     back_force(y[1:], bmat, wb)
     same = 0
@@ -711,7 +718,7 @@ def event_values(y, r, dy, mode, mu_s, cap, bmat, wb, out_e):
         out_e[2 * i + 1] = math.inf
         if md == 1 or md == -1:
             s = float(md)
-            out_e[2 * i] = s * dy[1 + i]
+            out_e[2 * i] = math.inf if i == pivot else s * dy[1 + i]
             if math.isfinite(cap[i]):
                 out_e[2 * i + 1] = cap[i] - s * y[1 + i]
             if same == 0:
@@ -858,6 +865,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
     wb = np.empty(ns)
     e0 = np.empty(2 * ns + 1)
     e1 = np.empty(2 * ns + 1)
+    e_end = np.empty(2 * ns + 1)  # e1 at the step's end, kept while the secant overwrites e1 (and dy)
     scale = np.empty(m)
     for i in range(ns):
         y[1 + i] = u[i]
@@ -962,10 +970,12 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                 continue
             # events between y and y_try
             r0, _ = rhs(y, a0 + slope * tau, g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap, lock)
-            event_values(y, r0, dy, mode, mu_s, cap, bmat, wb, e0)
+            event_values(y, r0, dy, mode, pivot, mu_s, cap, bmat, wb, e0)
             r1, _ = rhs(y_try, a0 + slope * (tau + h), g, c, bmat, mode, mu_s, mu_f, a, smat, wb, dy, jac, False, pivot, gmap,
                          lock)
-            event_values(y_try, r1, dy, mode, mu_s, cap, bmat, wb, e1)
+            event_values(y_try, r1, dy, mode, pivot, mu_s, cap, bmat, wb, e1)
+            for slot in range(2 * ns + 1):
+                e_end[slot] = e1[slot]
             first_slot = -1
             first_t = math.inf
             for slot in range(2 * ns + 1):
@@ -1002,7 +1012,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                             n_newton += quad_ev[3]
                             rm, _ = rhs(y_ev, a0 + slope * (tau + tm), g, c, bmat, mode, mu_s, mu_f, a, smat, wb,
                                         dy, jac, False, pivot, gmap, lock)
-                            event_values(y_ev, rm, dy, mode, mu_s, cap, bmat, wb, e1)
+                            event_values(y_ev, rm, dy, mode, pivot, mu_s, cap, bmat, wb, e1)
                             fm = e1[slot]
                             if fm == 0.0:  # on the event: the root is tm (not the bracket's far end)
                                 tb_ = tm
@@ -1022,8 +1032,10 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                             if tb_ - ta <= 1e-13 * dt_i:  # ≤ 1e-13 of the interval
                                 break
                         t_root = tb_
-                        # restore the end values for the other slots
-                        event_values(y_try, r1, dy, mode, mu_s, cap, bmat, wb, e1)
+                        # restore the end values for the other slots (a copy: re-evaluated here they took the
+                        # rates dy of the secant's last point, not the step end's; h177)
+                        for q in range(2 * ns + 1):
+                            e1[q] = e_end[q]
                     if t_root < first_t or (t_root == first_t and slot == 2 * ns):
                         first_t = t_root
                         first_slot = slot
