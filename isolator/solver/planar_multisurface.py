@@ -163,8 +163,7 @@ def simulate_scene(scene) -> PlanarMultisurfaceResponse:
                                  az_m_s2=scene.az_m_s2 if scene.has_z else None,
                                  damping_per_mass=float(scene.isolator.get("damping_per_mass") or 0.0),
                                  gravity_m_s2=float(scene.isolator.get("gravity_m_s2") or STANDARD_GRAVITY),
-                                 rtol=tolerance(DEFAULT_RTOL if scene.isolator.get("rtol") is None
-                                                else scene.isolator["rtol"]))
+                                 rtol=DEFAULT_RTOL if scene.isolator.get("rtol") is None else scene.isolator["rtol"])
 
 
 def tolerance(rtol) -> float:
