@@ -270,20 +270,25 @@ def remove_stale_temporaries(folder) -> list[Path]:
 
 
 @contextmanager
-def atomic_paths(paths):
+def atomic_paths(paths, *, remove=()):
     """Yield temporary paths for a set of outputs; rename them all onto their targets on success.
 
-    A set of files that belong together (a review's PDF and JSON, a report's PDF and JSON) is
-    written completely or not at all: every file is written and flushed to disk before the first
-    rename, so a full disk, a write error or an exception in any of them leaves every older
-    target as it was and removes every temporary file.  (The renames themselves allocate nothing;
-    only a crash between two of them can still mix two runs, which the lock of
-    :func:`output_lock` prevents from going unnoticed.)
+    A set of files that belong together (a review's PDF and JSON, a report's PDF and JSON, everything
+    ``isolator design`` writes) is written completely or not at all: every file is written and flushed
+    to disk before the first rename, so a full disk, a write error or an exception in any of them
+    leaves every older target as it was and removes every temporary file.  A Ctrl-C or SIGTERM that
+    arrives during the renames waits until they are done (:func:`interrupts_deferred`), so an
+    interrupt leaves the old set or the new one.  (Only a crash between two renames, a SIGKILL or a
+    power cut, can still mix two runs, which the lock of :func:`output_lock` prevents from going
+    unnoticed.)
 
     Parameters
     ----------
     paths : sequence of str or path-like
         The outputs of the set; streams are not allowed.
+    remove : sequence of str or path-like
+        Files of an older set that the new set does not have (a design search's recommended review when
+        no candidate passes any more): removed with the renames, and only if they land.
 
     Yields
     ------
@@ -307,9 +312,14 @@ def atomic_paths(paths):
         for path, temporary in zip(paths, temporaries, strict=True):
             current = path
             _flush(temporary)
-        for path, temporary, target in zip(paths, temporaries, targets, strict=True):
-            current = path
-            os.replace(temporary, target)
+        with interrupts_deferred():
+            for path, temporary, target in zip(paths, temporaries, targets, strict=True):
+                current = path
+                os.replace(temporary, target)
+            for stale in remove:
+                current = Path(stale)
+                if os.path.isfile(stale):
+                    os.unlink(stale)
     except OutputError:
         raise
     except Exception as raised:
@@ -328,6 +338,34 @@ def atomic_paths(paths):
         for temporary in temporaries:
             if os.path.lexists(temporary):
                 os.unlink(temporary)
+
+
+@contextmanager
+def interrupts_deferred():
+    """Hold SIGINT and SIGTERM until the block ends, then act on the first that came.
+
+    A few renames must not be cut in two by Ctrl-C.  The handlers are swapped only in the main thread (the
+    only one where Python runs them); elsewhere the block runs as it is.  A signal that arrived is passed
+    to the handler that was in place (Ctrl-C's KeyboardInterrupt, the commands' SIGTERM one) once the block
+    has finished.
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    wanted = [s for s in (signal.SIGINT, signal.SIGTERM) if callable(signal.getsignal(s))]
+    caught: list = []
+    saved = {s: signal.signal(s, lambda number, frame: caught.append((number, frame))) for s in wanted}
+    try:
+        yield
+    finally:
+        for number, handler in saved.items():
+            signal.signal(number, handler)
+        if caught:
+            number, frame = caught[0]
+            saved[number](number, frame)
 
 
 def dump_json(data, path) -> None:

@@ -27,6 +27,7 @@ import difflib
 import math
 import os
 import re
+import sys
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -139,11 +140,33 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         raise error_type(f"{path}: line {line}: a key of {MAX_KEY_PARTS} or more dotted parts; isolator's files nest "
                          "keys 3 deep at most (superstructure.floor.mass_kg)")
     try:
-        return tomllib.loads(text)
+        content = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise error_type(f"{path}: not valid TOML ({' '.join(str(err).split())})") from None
     except RecursionError:  # arrays or inline tables nested 100,000 deep: tomllib recurses per level
         raise error_type(f"{path}: not valid TOML (arrays or tables nested deeper than Python's stack)") from None
+    huge = _huge_integer(content)
+    if huge is not None:  # every reader takes float(value): an integer of 400 digits was an OverflowError traceback
+        key, digits = huge
+        raise error_type(f"{path}: key '{key}' is an integer of {digits} digits, beyond any number (a float ends at "
+                         "1.8e308)")
+    return content
+
+
+def _huge_integer(content) -> tuple[str, int] | None:
+    """(key, digits) of the first integer of a TOML document too large for a float, or None."""
+    from collections import deque
+
+    queue = deque([("", content)])
+    while queue:  # bounded: each value is visited once, in the file's order
+        key, value = queue.popleft()
+        if isinstance(value, dict):
+            queue.extend((f"{key}.{k}" if key else str(k), v) for k, v in value.items())
+        elif isinstance(value, list):
+            queue.extend((key, v) for v in value)
+        elif isinstance(value, int) and not isinstance(value, bool) and abs(value) > sys.float_info.max:
+            return key, len(str(abs(value)))
+    return None
 
 
 from isolator.errors import DesignError, printable  # noqa: E402,F401 - the design's error, defined with the others

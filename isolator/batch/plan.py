@@ -83,12 +83,17 @@ def load_design_mappings(path) -> list[dict]:
         Missing or unreadable file, invalid TOML, no ``[[design]]`` list.
     """
     from isolator.design import load_toml
+    from isolator.errors import printable
 
     path = Path(path)
     content = load_toml(path, "designs file", BatchError)
     designs = content.get("design")
     if not isinstance(designs, list) or not designs:
         raise BatchError(f"{path}: expected a list of designs ([[design]] tables), found none")
+    outside = [key for key in content if key != "design"]
+    if outside:  # read as nothing: `radius_m = 3` above the tables looked like a value every design shares
+        raise BatchError(f"{path}: key '{printable(outside[0])}' is outside the [[design]] tables, where it is read by "
+                         "no design: a designs file holds only [[design]] tables (give each design its keys)")
     return designs
 
 
@@ -257,7 +262,7 @@ class Task:
 
 
 def plan(records, designs_file, grids=(), component: str | None = None, options: ReadOptions = ReadOptions(),
-         design_mappings: list | None = None, outputs=(), excluded: list | None = None):
+         design_mappings: list | None = None, outputs=(), excluded: list | None = None, repeated: list | None = None):
     """(record files, [(record, component, partners)], design cases) of a batch.
 
     ``partners`` are the other files of a station's set of one-component files
@@ -268,7 +273,7 @@ def plan(records, designs_file, grids=(), component: str | None = None, options:
     BatchError
         Including a plan of more than :data:`MAX_PLAN_ROWS` rows.
     """
-    files = expand_records(records, outputs, excluded)
+    files = expand_records(records, outputs, excluded, repeated)
     mappings = design_mappings if design_mappings is not None else load_design_mappings(designs_file)
     cases = expand_designs(mappings, list(grids), source=str(designs_file))
     sets = station_sets(files, component)

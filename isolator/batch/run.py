@@ -85,11 +85,15 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
         raise BatchError(f"{output}: the table must end with .csv or .parquet", parameter="output")
     outputs = [output, *(extra_outputs or ()), *([reports_dir] if reports_dir else [])]
     excluded: list = []
-    files, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings, outputs, excluded)
+    repeated: list = []
+    files, pairs, cases = plan(records, designs_file, grids, component, options, design_mappings, outputs, excluded,
+                               repeated)
     refuse_overwriting_inputs(outputs, [*files, designs_file])
     # a file among the records that an output would replace is an input unless this batch wrote it
     refuse_overwriting_inputs([item for item in excluded if not table_is_ours(Path(item))], excluded)
     notes = check_scheduler(scheduler) if scheduler else []
+    if repeated:
+        notes.insert(0, repeated_records_note(repeated))
     with output_lock(output):  # a second run on the same -o is refused, naming this one
         return _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map_resolution, progress,
                            clock, notes)
@@ -150,6 +154,17 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
                        n_resumed=len(planned) - n_todo, n_lost_tasks=lost, lost_messages=lost_messages, notes=notes,
                        seconds={"plan": planning_seconds, "compute": compute_seconds, "write": write_seconds},
                        table=table)
+
+
+def repeated_records_note(repeated: list) -> str:
+    """One sentence for the record files named more than once on the command line: each is analysed once.
+
+    A note, not a refusal: folders and patterns that overlap (``recs/ recs/new/*.AT2``) are a batch's usual input,
+    and a second row of the same file would only be counted twice by the summary."""
+    shown = ", ".join(str(p) for p in repeated[:3]) + (f" and {len(repeated) - 3} more" if len(repeated) > 3 else "")
+    if len(repeated) == 1:
+        return f"{shown} was given more than once: it is analysed once (one row per design)"
+    return f"{len(repeated)} record files were given more than once ({shown}): each is analysed once"
 
 
 def _duplicate_motion_notes(table) -> list[str]:

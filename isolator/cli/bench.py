@@ -39,6 +39,11 @@ def bench(
     if repeats is not None and repeats > MAX_REPEATS:  # click's own refusal named the bound, not why (session 16)
         user_error(f"--repeats {repeats} is more than {MAX_REPEATS} runs per timing: the docs' medians take 3 "
                    "(quick) or 5 (full, the default), and each run repeats the whole bench (8 s for the quick one)")
+    for flag, given in (("--out", out), ("--records", records)):  # Path('') is '.': the bench ran on the working folder
+        if not given:
+            user_error(f"{flag} '': a folder is named by a path (give . for the working folder)")
+    if out == "-":  # a folder named '-' was made and written
+        user_error("--out - : --out is a folder for five files, not standard output; print the rows with --json")
     import os
     import platform
     import time

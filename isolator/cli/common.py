@@ -13,7 +13,7 @@ from contextlib import contextmanager
 import typer
 from typer.core import TyperGroup
 
-from isolator.errors import IsolatorError, one_line, printable  # noqa: F401 - printable: the commands' one escape
+from isolator.errors import IsolatorError, one_line, printable
 
 try:  # typer ≥ 0.20 carries its own copy of click: its exceptions are not click's
     from typer._click import exceptions as click_exceptions
@@ -407,7 +407,9 @@ def check_outputs(outputs, inputs, *, streams=()) -> None:
     """
     from isolator.atomic import OutputError, refuse_overwriting_inputs, resolve_output
 
-    outputs = [item for item in outputs if item]
+    outputs = [item for item in outputs if item is not None]
+    if any(not str(item) for item in outputs):  # `--out-csv ''` took the lock of '' and ended in a traceback
+        user_error("an output is named by a file path, got ''")
     try:
         refuse_overwriting_inputs(outputs, inputs)
         for output in outputs:

@@ -298,7 +298,9 @@ def _simulate_and_print(record, pair, vertical, component, trim, resample, units
     if out_csv:
         header, columns = history_columns(result)
         try:
-            write_csv_atomically(out_csv, header, columns, allow_stream=True)
+            # standard output however named is written in place: /dev/stdout of `>> log.txt` resolves to log.txt,
+            # which the rename replaced (the log's earlier lines lost; session 19 sweep)
+            write_csv_atomically("-" if streamed else out_csv, header, columns, allow_stream=True)
         except OSError as err:
             write_error(err, out_csv)
     if streamed:

@@ -99,14 +99,16 @@ def _encloses(outer: str, folder: str) -> bool:
     return inner == outer or inner.startswith(outer.rstrip(os.sep) + os.sep)
 
 
-def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[str]:
+def expand_records(arguments, outputs=(), excluded: list | None = None, repeated: list | None = None) -> list[str]:
     """Record files from files, folders (recursively, sorted) and glob patterns.
 
     A literal path that does not exist is kept (its rows will say why); a glob that
     matches nothing and an empty folder are user mistakes.  Files of the batch itself
     (``outputs``: the table, its ``.parts/`` and lock, the summary, chart and reports
     folder) and any ``*.parts`` folder are never records, so that ``-o`` may sit inside
-    the records folder.
+    the records folder.  A file named more than once (``x.AT2 x.AT2``, ``x.AT2 ./x.AT2``,
+    a folder and a pattern that overlap) is kept once; ``repeated`` receives each such file
+    once, as first given, for the caller to say so.
 
     Raises
     ------
@@ -124,6 +126,8 @@ def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[
 
     for argument in arguments:
         argument = str(argument)
+        if not argument:  # `batch ''` ran a row that failed (exit 1): a mistake in the command, as an unmatched glob
+            raise BatchError("a record is named by a file path, got ''")
         if os.path.isdir(argument):
             found = sorted(path for path in folder_files(argument) if not _NOT_RECORDS.match(os.path.basename(path))
                            and wanted(path))
@@ -138,12 +142,16 @@ def expand_records(arguments, outputs=(), excluded: list | None = None) -> list[
             files.extend(found)
         else:  # a literal path, even with [ ] * ? in its name, names exactly that file
             files.append(argument)
-    unique, seen = [], set()
+    unique, seen = [], {}
     for path in files:
         key = os.path.abspath(path)
         if key not in seen:
-            seen.add(key)
+            seen[key] = 1
             unique.append(path)
+        else:
+            seen[key] += 1
+            if seen[key] == 2 and repeated is not None:
+                repeated.append(next(p for p in unique if os.path.abspath(p) == key))
     if not unique:
         raise BatchError("no record given")
     return unique

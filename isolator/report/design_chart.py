@@ -203,7 +203,7 @@ def _ranking_page(summary: dict, rows: list, columns: list):
     return fig
 
 
-def write_design_chart(pdf_path, data: dict, summary: dict, ranked: list, columns: list) -> int:
+def write_design_chart(pdf_path, data: dict, summary: dict, ranked: list, columns: list, *, into=None) -> int:
     """Write the chart PDF atomically; return its page count.
 
     Parameters
@@ -217,11 +217,16 @@ def write_design_chart(pdf_path, data: dict, summary: dict, ranked: list, column
         The passing rows, best first.
     columns : list of str
         The columns of the ranking page.
+    into : path-like, optional
+        The temporary file of a larger output set to write instead (``isolator design``'s,
+        :func:`isolator.atomic.atomic_paths`); the caller renames it onto ``pdf_path``.
     """
+    from contextlib import nullcontext
+
     from matplotlib.backends.backend_pdf import PdfPages
 
     pages = (lambda: _chart_page(summary, data), lambda: _ranking_page(summary, ranked, columns))
-    with atomic_path(pdf_path) as tmp, PdfPages(tmp) as pdf:
+    with (nullcontext(into) if into is not None else atomic_path(pdf_path)) as tmp, PdfPages(tmp) as pdf:
         for make in pages:
             pdf.savefig(make())
         pdf.infodict()["Title"] = "isolator design search"

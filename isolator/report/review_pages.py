@@ -692,41 +692,51 @@ def _paper_page(review, r: dict):
     return fig
 
 
-def write_review_pdf(review, pdf_path, *, command: str = "") -> dict:
+def write_review_pdf(review, pdf_path, *, command: str = "", into: tuple | None = None) -> dict:
     """Write the review PDF and its JSON (same name, ``.json``) atomically; return the JSON dict (with
-    ``pdf`` and ``pdf_pages``)."""
+    ``pdf`` and ``pdf_pages``).
+
+    ``into``: the (PDF, JSON) temporary files of a larger output set to write instead (``isolator design``'s,
+    :func:`isolator.atomic.atomic_paths`); the caller renames them.
+    """
+    pdf_path = Path(pdf_path)
+    if into is not None:
+        return _write_review_files(review, pdf_path, *into, command)
+    # the PDF and its JSON are one output set: both land, or neither (a full disk between them)
+    with atomic_paths([pdf_path, pdf_path.with_suffix(".json")]) as (tmp, tmp_json):
+        return _write_review_files(review, pdf_path, tmp, tmp_json, command)
+
+
+def _write_review_files(review, pdf_path: Path, tmp, tmp_json, command: str) -> dict:
     from matplotlib.backends.backend_pdf import PdfPages
 
     r = review.to_dict()
     r["command"] = command
-    pdf_path = Path(pdf_path)
     counter = [0]
-    # the PDF and its JSON are one output set: both land, or neither (a full disk between them)
-    with atomic_paths([pdf_path, pdf_path.with_suffix(".json")]) as (tmp, tmp_json):
-        with PdfPages(tmp) as pdf:
-            flow = Flow(pdf, r, counter)
-            _summary(flow, r)
-            _checks(flow, r)
-            _parameters(flow, r)
-            _notes(flow, r)
-            _traceability(flow, r, command)
-            flow.close()
+    with PdfPages(tmp) as pdf:
+        flow = Flow(pdf, r, counter)
+        _summary(flow, r)
+        _checks(flow, r)
+        _parameters(flow, r)
+        _notes(flow, r)
+        _traceability(flow, r, command)
+        flow.close()
 
-            def figure_page(fig):
-                counter[0] += 1
-                add_footer(fig, r, counter[0])
-                pdf.savefig(fig)
+        def figure_page(fig):
+            counter[0] += 1
+            add_footer(fig, r, counter[0])
+            pdf.savefig(fig)
 
-            figure_page(_spectra_page(review, r))
-            _pairs(flow, r)
-            flow.close()
-            figure_page(_orbits_page(review, r))
-            figure_page(_paper_page(review, r))
-            info = pdf.infodict()
-            info["Title"] = f"isolator review: {r['design']['name']}"
-            sw = r.get("software") or {}
-            info["Creator"] = f"isolator {sw.get('version')}" + (f" ({sw['commit'][:12]})" if sw.get("commit") else "")
-        r["pdf"] = str(pdf_path)
-        r["pdf_pages"] = counter[0]
-        tmp_json.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+        figure_page(_spectra_page(review, r))
+        _pairs(flow, r)
+        flow.close()
+        figure_page(_orbits_page(review, r))
+        figure_page(_paper_page(review, r))
+        info = pdf.infodict()
+        info["Title"] = f"isolator review: {r['design']['name']}"
+        sw = r.get("software") or {}
+        info["Creator"] = f"isolator {sw.get('version')}" + (f" ({sw['commit'][:12]})" if sw.get("commit") else "")
+    r["pdf"] = str(pdf_path)
+    r["pdf_pages"] = counter[0]
+    tmp_json.write_text(json.dumps(r, indent=2, allow_nan=False) + "\n", encoding="utf-8")
     return r

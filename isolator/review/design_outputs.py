@@ -142,17 +142,22 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
                   scheduler: str | None = None, paper_map_resolution: int = 30) -> dict:
     """Write the table (CSV, Parquet, JSON), the chart PDF and the recommended candidate's full review.
 
-    Every file is written atomically.  The recommended candidate is reviewed again by
-    :func:`~isolator.review.run.run_review` with the review command's extras (RotD50, the paper's map) and
-    written by :func:`~isolator.report.review_pages.write_review_pdf`; its numbers are those of its row.
-    When no candidate passes, a recommended review left by an earlier run is removed (it would mislead).
+    The files are one set (:func:`isolator.atomic.atomic_paths`): everything is computed first (the recommended
+    review too), then every file is written to its temporary and the set renamed at once, so an interrupt or a
+    write error leaves the older set whole, never a mixture of two runs.  The recommended candidate is reviewed
+    again by :func:`~isolator.review.run.run_review` with the review command's extras (RotD50, the paper's map) and
+    written by :func:`~isolator.report.review_pages.write_review_pdf`; its numbers are those of its row.  When no
+    candidate passes, a recommended review left by an earlier run is removed with the renames (it would mislead).
 
     Returns
     -------
     dict
         The search JSON (:meth:`DesignSearch.to_dict`) with ``outputs`` and ``timing_s`` completed.
     """
-    from isolator.atomic import atomic_path, write_text_atomically
+    import hashlib
+    import tomllib
+
+    from isolator.atomic import atomic_paths
     from isolator.design import Design
     from isolator.report.design_chart import write_design_chart
     from isolator.report.review_pages import write_review_pdf
@@ -163,18 +168,72 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
     timing = dict(result.timing)
     start = time.perf_counter()
     table = result.table()
-    with atomic_path(paths["csv"]) as tmp:
-        table.to_csv(tmp, index=False)
-    with atomic_path(paths["parquet"]) as tmp:
-        _parquet_ready(table).to_parquet(tmp, index=False)
     timing["tables"] = time.perf_counter() - start
 
     start = time.perf_counter()
     data = chart_data(result)
     data["paper_map"] = paper_context(data, result, paper_map_resolution, jobs)
     timing["paper_map"] = time.perf_counter() - start
-    start = time.perf_counter()
     best = result.recommended()
+    lines = _summary_lines(result, best, data)
+    column = OBJECTIVES[result.objective][0]
+    ranked = sorted((r for r in result.rows if r.get("passes") and r.get("error") is None),
+                    key=lambda r: (_number(r.get(column)), r["candidate"]))
+    subtitle = f"{result.design.name} | {result.target_name} | {result.suite_source}"
+
+    start = time.perf_counter()
+    review, toml_text = None, None
+    if best is not None:
+        # the recommended design as a design file of its own: `isolator review --design` of it reproduces the review
+        toml_text = design_toml(
+            result.mappings[best["candidate"]],
+            f"Recommended by `isolator design` ({result.objective}) from {result.design.source}: "
+            + ", ".join(f"{k} = {best[k]!r}" for k in result.varied_keys))
+        source = paths["recommended_toml"]
+        mapping = tomllib.loads(toml_text)
+        if "name" not in mapping:
+            mapping = {"name": source.stem, **mapping}  # as Design.from_toml names an unnamed design
+        review = run_review(Design.from_mapping(mapping, source=str(source)), target, suite, code=result.code,
+                            scaling=result.scaling, jobs=jobs, scheduler=scheduler,
+                            parameters=result.parameters, rotd50_points=12, paper_map_resolution=paper_map_resolution,
+                            cache_dir=paths["store"] / "recommended")
+        # the file is written with the set, after the review: its trace names the bytes it will hold
+        inputs = review.trace.get("inputs", {})
+        review.trace["inputs"] = {str(source): hashlib.sha256(toml_text.encode("utf-8")).hexdigest(),
+                                  **{k: v for k, v in inputs.items() if k != str(source)}}
+    timing["recommended_review"] = time.perf_counter() - start
+
+    names = ["csv", "parquet", "chart", *(["recommended_toml", "recommended_pdf", "recommended_json"]
+                                          if review is not None else []), "json"]
+    stale = [] if review is not None else [paths[k] for k in ("recommended_pdf", "recommended_json",
+                                                              "recommended_toml")]
+    with atomic_paths([paths[k] for k in names], remove=stale) as temporaries:
+        tmp = dict(zip(names, temporaries, strict=True))
+        table.to_csv(tmp["csv"], index=False)
+        _parquet_ready(table).to_parquet(tmp["parquet"], index=False)
+        start = time.perf_counter()
+        pages = write_design_chart(paths["chart"], data, {"subtitle": subtitle, "lines": lines}, ranked,
+                                   ranking_columns(result), into=tmp["chart"])
+        timing["chart"] = time.perf_counter() - start
+        if review is not None:
+            tmp["recommended_toml"].write_text(toml_text, encoding="utf-8")
+            write_review_pdf(review, paths["recommended_pdf"], command=command,
+                             into=(tmp["recommended_pdf"], tmp["recommended_json"]))
+        result.timing = timing
+        out = result.to_dict()
+        out["outputs"] = {"chart": str(paths["chart"]), "chart_pages": pages, "csv": str(paths["csv"]),
+                          "parquet": str(paths["parquet"]), "json": str(paths["json"]),
+                          "recommended_pdf": str(paths["recommended_pdf"]) if review else None,
+                          "recommended_json": str(paths["recommended_json"]) if review else None,
+                          "recommended_design": str(paths["recommended_toml"]) if review else None,
+                          "store": str(paths["store"])}
+        out["command"] = command
+        tmp["json"].write_text(json.dumps(json_safe(out), indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    return out
+
+
+def _summary_lines(result: DesignSearch, best: dict | None, data: dict) -> list:
+    """The (name, value) rows printed beside the paper's map on the chart page."""
     column = OBJECTIVES[result.objective][0]
     lines = [("objective", f"{result.objective}: least {OBJECTIVES[result.objective][1]}"),
              ("candidates", f"{len(result.rows)} ({sum(bool(r.get('passes')) for r in result.rows)} pass, "
@@ -196,44 +255,7 @@ def write_outputs(result: DesignSearch, pdf_path, target, suite, *, command: str
         pm = data["paper_map"]
         lines.append(("paper's map", f"µs {pm['mu_static']:.3g}, µk {pm['mu_kinetic']:.3g}, {pm['note']}"
                       + ("; the same for every candidate" if pm["shared"] else "; at the recommended candidate")))
-    ranked = sorted((r for r in result.rows if r.get("passes") and r.get("error") is None),
-                    key=lambda r: (_number(r.get(column)), r["candidate"]))
-    subtitle = f"{result.design.name} | {result.target_name} | {result.suite_source}"
-    pages = write_design_chart(paths["chart"], data, {"subtitle": subtitle, "lines": lines}, ranked,
-                               ranking_columns(result))
-    timing["chart"] = time.perf_counter() - start
-
-    start = time.perf_counter()
-    review_out = None
-    if best is not None:
-        # the recommended design as a design file of its own: `isolator review --design` of it reproduces the review
-        write_text_atomically(paths["recommended_toml"], design_toml(
-            result.mappings[best["candidate"]],
-            f"Recommended by `isolator design` ({result.objective}) from {result.design.source}: "
-            + ", ".join(f"{k} = {best[k]!r}" for k in result.varied_keys)))
-        review = run_review(Design.from_toml(paths["recommended_toml"]), target, suite, code=result.code,
-                            scaling=result.scaling, jobs=jobs, scheduler=scheduler,
-                            parameters=result.parameters, rotd50_points=12, paper_map_resolution=paper_map_resolution,
-                            cache_dir=paths["store"] / "recommended")
-        review_out = write_review_pdf(review, paths["recommended_pdf"], command=command)
-    else:
-        for stale in (paths["recommended_pdf"], paths["recommended_json"], paths["recommended_toml"]):
-            if stale.is_file():
-                stale.unlink()
-    timing["recommended_review"] = time.perf_counter() - start
-
-    result.timing = timing
-    out = result.to_dict()
-    out["outputs"] = {"chart": str(paths["chart"]), "chart_pages": pages, "csv": str(paths["csv"]),
-                      "parquet": str(paths["parquet"]), "json": str(paths["json"]),
-                      "recommended_pdf": str(paths["recommended_pdf"]) if review_out else None,
-                      "recommended_json": str(paths["recommended_json"]) if review_out else None,
-                      "recommended_design": str(paths["recommended_toml"]) if review_out else None,
-                      "store": str(paths["store"])}
-    out["command"] = command
-    with atomic_path(paths["json"]) as tmp:
-        tmp.write_text(json.dumps(json_safe(out), indent=2, allow_nan=False) + "\n", encoding="utf-8")
-    return out
+    return lines
 
 
 def design_toml(mapping: dict, comment: str = "") -> str:

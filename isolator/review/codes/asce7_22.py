@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from isolator.review.parameters import PARAMETERS
 from isolator.review.target import Target
 
 #: Table 17.5-1 damping coefficient B_M at β_M [S: P1, P2; P1 stops at 1.9 for ≥ 40 %]
@@ -275,9 +276,10 @@ def superstructure_shear(v_b_over_w: float, beta: float, params: dict) -> dict:
     return {"V_st_over_W": v_st, "V_s_over_W": v_st / params["R_I"]}
 
 
-def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float, nominal_factor: float = 1.5) -> float:
+def activation_shear_over_w(mu_static_upper: float, mu_static_nominal: float, nominal_factor: float) -> float:
     """Breakaway friction force of the isolation system / W (17.5.4.3: greater of UB or 1.5 × nominal; the 1.5 is
-    the review parameter ``activation_nominal_factor`` [U])."""
+    the review parameter ``activation_nominal_factor`` [U], its default in :data:`isolator.review.parameters.
+    PARAMETERS`)."""
     return max(mu_static_upper, nominal_factor * mu_static_nominal)
 
 
@@ -476,7 +478,7 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         rows.append(C.at_least("V_s_wind_limit", "ASCE 7-22 17.5.4.3(2) [U]", lowest, wind,
                                "smaller ELF V_s/W of the two bounds ≥ the (factored) design wind base shear / W",
                                "V/W"))
-    factor = params.get("activation_nominal_factor", 1.5)
+    factor = params.get("activation_nominal_factor", PARAMETERS["activation_nominal_factor"].default)
     v_act = activation_shear_over_w(mu_static_upper, mu_static_nominal, factor)
     margins = {}
     for b, value in v_s.items():
@@ -487,15 +489,15 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
         b = min(margins, key=lambda k: margins[k][0] / margins[k][1])
         rows.append(C.at_least("V_s_activation_limit", "ASCE 7-22 17.5.4.3(3) [U]", margins[b][0], margins[b][1],
                                f"ELF V_s/W ({b} bound) ≥ V_st of Eq. 17.5-8 with V_b = the activation force "
-                               + (("max(upper, 1.5 × nominal) of the backbone's force at the start of the regime "
+                               + ((f"max(upper, {factor:g} × nominal) of the backbone's force at the start of the regime "
                                    "of the largest compliance ("
                                    + (f"{activation_regime}; " if activation_regime else "")
                                    + "multisurface_activation 'outer' [U]: REVIEW_RULES 1.9 names the breakaway "
                                    "friction for sliders, the bearing's breakaway is its smallest µ_i) "
                                    if activation_mode == "outer" else
-                                   "max(upper, 1.5 × nominal) of the bearing's breakaway force (the backbone at rest: "
+                                   f"max(upper, {factor:g} × nominal) of the bearing's breakaway force (the backbone at rest: "
                                    "its smallest µ_i; multisurface_activation 'breakaway' [U]) ")
-                                  if multisurface else "max(µs upper, 1.5 µs nominal) ")
+                                  if multisurface else f"max(µs upper, {factor:g} µs nominal) ")
                                + f"W = {v_act:.4g} W" + _activation_reading(margins[b], mu_static_upper,
                                                                            mu_static_nominal, factor), "V/W"))
     else:
