@@ -244,7 +244,7 @@ def run_review(design, target, suite, *, code: str = "asce7-22", scaling: str = 
     params, sources = P.from_design(code, params, design, parameters)
     structure = structure_inputs(design)
     notes = []
-    bounds = friction_bounds(design, code=code, f_ae=params.get("f_ae", 0.75))
+    bounds = friction_bounds(design, code=code, f_ae=params.get("f_ae", P.PARAMETERS["f_ae"].default))
     designs = {"lower": design.with_friction_factor(bounds.lambda_min, "lower bound"),
                "upper": design.with_friction_factor(bounds.lambda_max, "upper bound")}
     if nominal:

@@ -94,6 +94,12 @@ def test_json_contract_outputs_and_resume(files, tmp_path):
     recommended = Design.from_toml(tmp_path / "reports" / "search.recommended.toml")
     assert (recommended.radius_m, recommended.mu_kinetic) == (best["radius_m"], best["mu_kinetic"])
     assert review["design"]["source"] == str(tmp_path / "reports" / "search.recommended.toml")
+    # its trace names the bytes of that file (written with the set, after the review: h185)
+    import hashlib
+
+    source = tmp_path / "reports" / "search.recommended.toml"
+    assert review["inputs"][str(source)] == hashlib.sha256(source.read_bytes()).hexdigest()
+    assert list(review["inputs"])[0] == str(source)
     assert out_pdf.read_bytes()[:5] == b"%PDF-"
     table = pd.read_csv(tmp_path / "reports" / "search.csv")
     assert list(table["radius_m"]) == [2.0, 2.0, 4.0, 4.0] and list(table["passes"]) == [c["passes"] for c in
