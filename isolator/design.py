@@ -129,7 +129,9 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
             data = stream.read(MAX_TOML_BYTES + 1)
         if len(data) > MAX_TOML_BYTES:
             raise error_type(f"{path}: grew past {MAX_TOML_BYTES // 2**20} MiB while read")
-        text = data.decode("utf-8")
+        # a byte-order mark (Notepad's "UTF-8 with BOM") is an encoding's mark, not content: tomllib called it "Invalid
+        # statement (at line 1, column 1)"
+        text = data.decode("utf-8-sig")
     except FileNotFoundError:
         raise error_type(f"{path}: no such {what}") from None
     except (OSError, UnicodeDecodeError) as err:

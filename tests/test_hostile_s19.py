@@ -240,3 +240,22 @@ def test_a_scene_rtol_that_is_no_tolerance_is_refused_by_every_model(rtol):
     ax = np.sin(np.linspace(0.0, 6.0, 50))
     with pytest.raises(InvalidSystemError, match=r"rtol must be a finite number > 0 \(a relative tolerance"):
         simulate_motion(ax, dt_s=0.01, mu_static=0.05, mu_kinetic=0.05, radius_m=2.5, rtol=rtol)
+
+
+def test_a_toml_file_with_a_byte_order_mark_is_read(tmp_path):
+    """d556246: a design file saved as Notepad's "UTF-8 with BOM" was `not valid TOML (Invalid statement (at line 1,
+    column 1))`; the mark is the encoding's, as for CSV records (session 15)."""
+    from isolator.design import Design
+
+    path = tmp_path / "d.toml"
+    path.write_text(DESIGN, encoding="utf-8-sig")
+    assert path.read_bytes()[:3] == b"\xef\xbb\xbf" and Design.from_toml(path).radius_m == 2.5
+
+
+@pytest.mark.parametrize("flag", ["--target", "--suite", "--design"])
+def test_review_says_an_empty_file_name_is_empty_not_missing(flag):
+    """d556246: `review --target ''` said `missing option --target`."""
+    args = {"--design": "d.toml", "--target": "example", "--suite": "example", flag: ""}
+    result = RUNNER.invoke(app, ["review", *[x for kv in args.items() for x in kv], "-o", "r.pdf"])
+    assert result.exit_code == 2 and result.stderr.strip().splitlines()[-1].startswith(f"error: {flag} '': a file is "
+                                                                                       "named by a path")

@@ -60,8 +60,10 @@ def review(
         _verify(verify, jobs)
         return
     for flag, value in (("--design", design), ("--target", target), ("--suite", suite)):
-        if not value:
+        if value is None or value == []:
             _user_error(f"missing option {flag}")
+        if value == "" or value == [""]:  # `--target ''` was "missing option --target": it was given, empty
+            _user_error(f"{flag} '': a file is named by a path" + (" (or 'example')" if flag != "--design" else ""))
     if code not in CODES:
         _user_error(f"--code must be one of {', '.join(CODES)}, got {code!r}")
     if scaling is not None and scaling not in SCALING_METHODS:
