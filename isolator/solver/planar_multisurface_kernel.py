@@ -2183,13 +2183,22 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                 theta = th
                                 kind = EV_JOIN
                                 which = k
-                if kind >= 0:
+                if kind >= 0 and theta > 0.0:
                     stats[ST_RESTEP] += 1
                     ok2, _ = corner_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
                                         kk, yt, stats, rm)
                     mynew[:] = myb
                     mfnew[:] = mfb
                     h = theta * h
+                elif kind >= 0:
+                    # the event at the step's start (θ = 0: a group that joined with its λ already negative leaves at
+                    # once, PTS at rtol 1e-5, 5.718 s: a corner of three groups, two normals parallel to rounding):
+                    # the state is the start's.  Before (h186), a re-step of length 0 here reached the Radau matrix's
+                    # division by h (h178 made it refuse), and the refused re-step's stale myb (a state of another
+                    # θ) was taken as the step's end
+                    mynew[:] = my
+                    mfnew[:] = mf
+                    h = 0.0
                 for wp in range(2):
                     o = M_X if wp == 0 else M_V
                     g0 = my[o] * mf[o] + my[o + 1] * mf[o + 1]
