@@ -1636,35 +1636,52 @@ def _joins_in_step(mode, x, y, f, h, theta_max, prm, frc, yb, fb, atol, rtol, s,
     return best, best_k
 
 
+#: the re-steps' secant on θ stops where its bracket is this narrow (in units of the step), or after so many re-steps:
+#: an event (a group leaving or joining) and a peak of |X| or |V| inside a multi-group step
+LOCATE_BRACKET = 1e-13
+LOCATE_RESTEPS = 80
+PEAK_BRACKET = 1e-12
+PEAK_RESTEPS = 60
+#: what a re-step's secant follows (:func:`_restep_value`)
+RS_LEAVE = 0
+RS_JOIN = 1
+RS_PEAK = 2
+
+
 @njit(cache=True)
-def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm):
-    """Fraction θ of a multi-group step where group k leaves (kind 0: λ_k = 0) or joins (kind 1)."""
-    ng = rb.shape[0]
-    ub = np.empty((ng, 2))
-    for q in range(ng):
-        ub[q, 0] = my[M_U + 2 * q]
-        ub[q, 1] = my[M_U + 2 * q + 1]
-    if kind == 0:
-        g0 = -_lambda(my, mf, rb, k)
-    else:
-        g0 = _outside(my[M_R], my[M_R + 1], ub, rb, mu, k)
-    if g0 >= 0.0:
-        return 0.0
+def _restep_value(what, k, o, myb, mfb, rb, mu, ub):
+    """The function whose sign change the re-steps locate, at a re-step's end (myb, mfb): RS_LEAVE −λ_k (group k
+    leaves where it turns positive), RS_JOIN group k's circle reached (:func:`_outside`), RS_PEAK the rate of
+    |y[o:o+2]|²/2 (a peak of |X| or |V| where it turns negative)."""
+    if what == RS_LEAVE:
+        return -_lambda(myb, mfb, rb, k)
+    if what == RS_JOIN:
+        return _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
+    return myb[o] * mfb[o] + myb[o + 1] * mfb[o + 1]
+
+
+@njit(cache=True)
+def _secant_resteps(what, k, o, glo, ghi, rising, bracket, n_max, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb,
+                    matol, rtol, kk, yt, st, rm, ub):
+    """Illinois secant on the fraction θ ∈ (0, 1) of a multi-group step where :func:`_restep_value` changes sign
+    (``glo``, ``ghi``: its values at θ = 0 and 1; ``rising``: from ≤ 0 to > 0, else from > 0 to ≤ 0), each value from
+    a re-step of θh from the step's start (DOP853 or Radau IIA, :func:`corner_step`); at most ``n_max`` re-steps,
+    until the bracket is ``bracket`` wide.  (θ at the bracket's far end, the largest |y[o:o+2]| over the re-steps'
+    ends: RS_PEAK only.)  The one loop of the event location and the peaks (h186: written twice before)."""
     lo = 0.0
     hi = 1.0
-    glo = g0
-    st[ST_RESTEP] += 1
-    corner_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
-    ghi = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
+    best = 0.0
     side = 0
-    for _ in range(80):
+    for _ in range(n_max):
         th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
         if not (lo < th < hi):
             th = 0.5 * (lo + hi)
         st[ST_RESTEP] += 1
         corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
-        gv = -_lambda(myb, mfb, rb, k) if kind == 0 else _outside(myb[M_R], myb[M_R + 1], ub, rb, mu, k)
-        if gv > 0.0:
+        if what == RS_PEAK:
+            best = max(best, norm(myb[o], myb[o + 1]))
+        gv = _restep_value(what, k, o, myb, mfb, rb, mu, ub)
+        if (gv > 0.0) == rising:
             hi = th
             ghi = gv
             if side == 1:
@@ -1676,43 +1693,38 @@ def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol
             if side == -1:
                 ghi *= 0.5
             side = -1
-        if hi - lo <= 1e-13:
+        if hi - lo <= bracket:
             break
+    return hi, best
+
+
+@njit(cache=True)
+def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm):
+    """Fraction θ of a multi-group step where group k leaves (kind 0: λ_k = 0) or joins (kind 1); 0 where it does
+    at the step's start."""
+    ng = rb.shape[0]
+    ub = np.empty((ng, 2))
+    for q in range(ng):
+        ub[q, 0] = my[M_U + 2 * q]
+        ub[q, 1] = my[M_U + 2 * q + 1]
+    what = RS_LEAVE if kind == 0 else RS_JOIN
+    g0 = _restep_value(what, k, 0, my, mf, rb, mu, ub)
+    if g0 >= 0.0:
+        return 0.0
+    st[ST_RESTEP] += 1
+    corner_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
+    ghi = _restep_value(what, k, 0, myb, mfb, rb, mu, ub)
+    hi, _ = _secant_resteps(what, k, 0, g0, ghi, True, LOCATE_BRACKET, LOCATE_RESTEPS, tau, my, mf, h, raw, rb, mu,
+                            comp, c, myb, mfb, matol, rtol, kk, yt, st, rm, ub)
     return hi
 
 
 @njit(cache=True)
 def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm):
     """Largest |y[o:o+2]| inside a multi-group step where its rate goes from + to −: Illinois secant on
-    the rate of its square over DOP853 sub-steps."""
-    lo = 0.0
-    hi = 1.0
-    glo = g0
-    ghi = g1
-    best = 0.0
-    side = 0
-    for _ in range(60):
-        th = (lo * ghi - hi * glo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
-        if not (lo < th < hi):
-            th = 0.5 * (lo + hi)
-        st[ST_RESTEP] += 1
-        corner_step(tau, my, mf, th * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
-        best = max(best, norm(myb[o], myb[o + 1]))
-        gv = myb[o] * mfb[o] + myb[o + 1] * mfb[o + 1]
-        if gv > 0.0:
-            lo = th
-            glo = gv
-            if side == -1:
-                ghi *= 0.5
-            side = -1
-        else:
-            hi = th
-            ghi = gv
-            if side == 1:
-                glo *= 0.5
-            side = 1
-        if hi - lo <= 1e-12:
-            break
+    the rate of its square over re-steps (:func:`_secant_resteps`)."""
+    _, best = _secant_resteps(RS_PEAK, -1, o, g0, g1, False, PEAK_BRACKET, PEAK_RESTEPS, tau, my, mf, h, raw, rb, mu,
+                              comp, c, myb, mfb, matol, rtol, kk, yt, st, rm, np.empty((0, 2)))
     return best
 
 
@@ -2171,13 +2183,22 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                                 theta = th
                                 kind = EV_JOIN
                                 which = k
-                if kind >= 0:
+                if kind >= 0 and theta > 0.0:
                     stats[ST_RESTEP] += 1
                     ok2, _ = corner_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
                                         kk, yt, stats, rm)
                     mynew[:] = myb
                     mfnew[:] = mfb
                     h = theta * h
+                elif kind >= 0:
+                    # the event at the step's start (θ = 0: a group that joined with its λ already negative leaves at
+                    # once, PTS at rtol 1e-5, 5.718 s: a corner of three groups, two normals parallel to rounding):
+                    # the state is the start's.  Before (h186), a re-step of length 0 here reached the Radau matrix's
+                    # division by h (h178 made it refuse), and the refused re-step's stale myb (a state of another
+                    # θ) was taken as the step's end
+                    mynew[:] = my
+                    mfnew[:] = mf
+                    h = 0.0
                 for wp in range(2):
                     o = M_X if wp == 0 else M_V
                     g0 = my[o] * mf[o] + my[o + 1] * mf[o + 1]
