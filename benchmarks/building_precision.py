@@ -16,9 +16,11 @@ The run-time parameters it varies (module constants read at each call): ``fast_e
 ``planar_building.FAST_TRUNC_EPS`` (the fast sub-steps' friction polynomial truncation, default 1e-12),
 ``order`` = ``planar_building_kernel.N_ORDER`` (the series pieces' Taylor order, default 18), ``theta`` =
 ``planar_building_kernel.THETA`` (the series pieces' longest ρ h, default 0.75), ``departure`` =
-``planar_building.DEPARTURE_SERIES`` (0: departures by START and pieces).  The kernel's compile-time constants
-(``TRUNC_EPS`` of the series pieces, ``FAST_CHECK`` of the sub-steps' end check) are not varied here: they need a
-fresh compilation (docs/building.md, h172, gives the scratch recipe and its numbers).
+``planar_building.DEPARTURE_SERIES`` (0: departures by START and pieces), ``check`` = ``planar_building.FAST_CHECK``
+(the fast sub-steps' end check, default 1e-12; run-time since h184: ``check=1e-8+fast_eps=1e-8`` is the bench's
+second 2-D building row).  The kernel's compile-time ``TRUNC_EPS`` of the series pieces is not varied here: it needs
+a fresh compilation (docs/building.md, h172, gives the scratch recipe and its numbers).  The last column is the
+energy balance's error of each setting's last call over its input energy (the registry's result).
 """
 
 from __future__ import annotations
@@ -42,7 +44,8 @@ PAIRS = {"PTS": ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RS
 DEFAULT_SETTINGS = ("default", "fast_eps=1e-10", "fast_eps=1e-8", "fast_eps=1e-6", "fast_eps=1e-4", "order=14",
                     "order=12", "order=10", "order=8", "theta=1.5", "departure=0")
 _KNOBS = {"fast_eps": (planar_building, "FAST_TRUNC_EPS", float), "order": (kernel, "N_ORDER", int),
-          "theta": (kernel, "THETA", float), "departure": (planar_building, "DEPARTURE_SERIES", lambda v: bool(int(v)))}
+          "theta": (kernel, "THETA", float), "departure": (planar_building, "DEPARTURE_SERIES", lambda v: bool(int(v))),
+          "check": (planar_building, "FAST_CHECK", float)}
 
 
 def _refuse(message: str) -> None:
@@ -106,8 +109,8 @@ def main(argv=None) -> None:
 
     with_opensees = opensees_available()[0]
     print("| pair | setting | CPU per call [ms] | ours vs the reference | vs the default | OpenSees vs the reference "
-          "| OpenSees' error / ours |")
-    print("|---|---|---|---|---|---|---|")
+          "| OpenSees' error / ours | energy balance / input |")
+    print("|---|---|---|---|---|---|---|---|")
     for name in names:
         case = pair_case(Path(args.records), name, args.seconds)
         for label in labels:  # compiled, tables cached; a value the model refuses stops here in one line
@@ -138,7 +141,8 @@ def main(argv=None) -> None:
             vs_default = ("—" if base is None else
                           f"{bench_building.building_errors(answers[label], base)['error_max']:.1e}")
             print(f"| {name} | {label} | {1e3 * float(np.median(cpu[label])):.2f} | {error:.2e} | {vs_default} | "
-                  f"{os_error:.2g} | {os_error / max(error, 1e-300):.1e} |", flush=True)
+                  f"{os_error:.2g} | {os_error / max(error, 1e-300):.1e} | "
+                  f"{answers[label].get('energy_balance', float('nan')):.1e} |", flush=True)
     print(f"load average (1, 5, 15 min): {os.getloadavg()}; {time.strftime('%H:%M UTC', time.gmtime())}")
 
 

@@ -54,12 +54,19 @@ def _raised_strings(tree):
                     yield arg.value
 
 
-def test_library_messages_never_name_a_flag():
+@pytest.fixture(scope="module")
+def package_trees():
+    """{path: syntax tree} of every module of the package, parsed once for the module's three walks over them
+    (a parse of the package is ~2 s of CPU; the trees are read, never changed)."""
+    return {path: ast.parse(path.read_text()) for path in PACKAGE.rglob("*.py")}
+
+
+def test_library_messages_never_name_a_flag(package_trees):
     offenders = []
-    for path in PACKAGE.rglob("*.py"):
+    for path, tree in package_trees.items():
         if "cli" in path.relative_to(PACKAGE).parts:
             continue  # the command line is where flags are named
-        for text in _raised_strings(ast.parse(path.read_text())):
+        for text in _raised_strings(tree):
             if " --" in f" {text}":
                 offenders.append(f"{path.relative_to(PACKAGE)}: {text!r}")
     assert not offenders, offenders
@@ -166,15 +173,15 @@ ERRORS_IMPORTED_ELSEWHERE = {"batch/run.py", "batch/worker.py", "cli/batch.py",
                              "solver/planar.py"}
 
 
-def test_errors_are_imported_from_isolator_errors_only():
+def test_errors_are_imported_from_isolator_errors_only(package_trees):
     """Every import of a typed error names isolator.errors (the one place they are defined), not a module
     that re-exports it (isolator.motion.RecordError, isolator.solver.system.InvalidSystemError …)."""
     defined = {name for name, kind in inspect.getmembers(errors, inspect.isclass)
                if issubclass(kind, Exception) and kind.__module__ == "isolator.errors"}
     assert {"MotionError", "ReviewError", "RecordError", "BatchError"} <= defined
     offenders = set()
-    for path in PACKAGE.rglob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
+    for path, tree in package_trees.items():
+        for node in ast.walk(tree):
             if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("isolator") \
                     and node.module != "isolator.errors" and {a.name for a in node.names} & defined:
                 offenders.add(path.relative_to(PACKAGE).as_posix())
@@ -182,8 +189,8 @@ def test_errors_are_imported_from_isolator_errors_only():
     assert not ERRORS_IMPORTED_ELSEWHERE - offenders, f"fixed: remove {sorted(ERRORS_IMPORTED_ELSEWHERE - offenders)}"
     # and every error class is defined there, nowhere else in the package (but the output errors of
     # atomic.py, OSErrors by design: docs/errors.md)
-    elsewhere = [f"{path.relative_to(PACKAGE)}: {node.name}" for path in PACKAGE.rglob("*.py")
+    elsewhere = [f"{path.relative_to(PACKAGE)}: {node.name}" for path, tree in package_trees.items()
                  if path.name not in ("errors.py", "atomic.py")
-                 for node in ast.walk(ast.parse(path.read_text()))
+                 for node in ast.walk(tree)
                  if isinstance(node, ast.ClassDef) and node.name.endswith("Error")]
     assert elsewhere == []

@@ -7,6 +7,7 @@ fresh interpreter, since this test process has long imported everything.
 
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 import sys
@@ -94,8 +95,11 @@ def _longest_module(modules, dotted: str) -> str | None:
     return dotted or None
 
 
+@functools.cache  # the package's graph is built once per process: 6 tests read it (each parse ~2 s of CPU)
 def import_graph(package: Path = ROOT / "isolator"):
     """(edges {module: set of modules it imports}, [(importer, source, private name)]) from the AST.
+
+    Cached per ``package`` (the sources do not change while the tests run); callers only read the result.
 
     Every ``import`` and ``from … import`` counts, wherever it sits (a function body, a package's
     ``__init__``); a relative import is resolved against the importing module's package.

@@ -169,6 +169,22 @@ def time_ours_and_opensees(ours, baseline, case, rounds: int, ours_per_round: in
     return None, None, None, statistics.median(times), out, len(times), ""
 
 
+def time_rounds(runs: dict, rounds: int) -> tuple[dict, dict, dict]:
+    """``runs``: name -> (callable without arguments, calls per round); every name in turn, round by round
+    (alternation: the ratios between names come from the same minutes).  Returns the median seconds, the number of
+    calls and the last answer, each by name."""
+    times = {name: [] for name in runs}
+    last = {}
+    for _ in range(max(1, rounds)):
+        for name, (call, per_round) in runs.items():
+            for _ in range(max(1, per_round)):
+                start = time.perf_counter()
+                last[name] = call()
+                times[name].append(time.perf_counter() - start)
+    return ({name: statistics.median(values) for name, values in times.items()},
+            {name: len(values) for name, values in times.items()}, last)
+
+
 def warm_up() -> None:
     """Compile or load every numba function once, so that timings measure solving."""
     case = harmonic_case("warm-up", 1.5, 1.0, 0.5, 0.25, 0.2, n_periods=1)

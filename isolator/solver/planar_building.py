@@ -91,6 +91,16 @@ FAST_TRUNC_EPS = _pk.FAST_TRUNC_EPS
 #: above the default every looser value is slower (the end check refuses the longer rungs).  Outside it (or NaN,
 #: or ≤ 0, which the kernel would silently replace by its default) :func:`simulate_planar_building` refuses.
 FAST_TRUNC_EPS_RANGE = (1e-16, 1e-2)
+#: The fast sub-steps' end check (the kernel's law[11], default ``planar_building_kernel.FAST_CHECK`` = 1e-12): the
+#: friction at a sub-step's end from its polynomial and from V/|V| of the propagated state agree to this fraction of
+#: µk N, or the sub-step is redone by series pieces.  It, not FAST_TRUNC_EPS, bounds the sub-steps' friction error.
+#: With FAST_TRUNC_EPS at the same value the looser pair is a little faster (1e-8: 5-9 % less CPU on PTS, YER, DZC
+#: 0-20 s, the bench's error against the independent reference 1.1e-11 -> 3.4e-11; docs/building.md, h184).
+FAST_CHECK = _pk.FAST_CHECK
+#: The range of FAST_CHECK measured (docs/building.md, h184): from 1e-14 (below it rounding of the check itself
+#: refuses sub-steps) to 1e-6 (the sub-steps' friction error ~1e-6 µk N: the answers ~1e-8 of their scale).  Outside
+#: it (or NaN) :func:`simulate_planar_building` refuses.
+FAST_CHECK_RANGE = (1e-14, 1e-6)
 
 
 @dataclass
@@ -798,6 +808,8 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
     if not FAST_TRUNC_EPS_RANGE[0] <= FAST_TRUNC_EPS <= FAST_TRUNC_EPS_RANGE[1]:
         raise ValueError(f"planar_building.FAST_TRUNC_EPS = {FAST_TRUNC_EPS!r} is outside {FAST_TRUNC_EPS_RANGE} "
                          "(measured range)")
+    if not FAST_CHECK_RANGE[0] <= FAST_CHECK <= FAST_CHECK_RANGE[1]:
+        raise ValueError(f"planar_building.FAST_CHECK = {FAST_CHECK!r} is outside {FAST_CHECK_RANGE} (measured range)")
     h_max = _pk.THETA / rate if rate > 0 else math.inf
     n = system.n_floors
     m = 2 * n + 2
@@ -829,7 +841,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
     g = system.gravity_m_s2
     k_vert = system.isolator_stiffness_N_per_m if normal.pendulum else 0.0
     mu_k_n = system.mu_kinetic * weight
-    law = np.zeros(11)
+    law = np.zeros(12)
     law[1] = g
     law[5] = 1.0 if STOP_APPROACH else 0.0
     law[6] = 1.0 if DEPARTURE_SERIES else 0.0
@@ -837,6 +849,7 @@ def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
     law[8] = 1.0 if STOP_REACH_SERIES else 0.0
     law[9] = 1.0 if STOP_PIECE else 0.0
     law[10] = FAST_TRUNC_EPS
+    law[11] = FAST_CHECK
     if normal.varying:
         law[0] = 1.0
         law[2] = k_vert

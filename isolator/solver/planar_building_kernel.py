@@ -126,6 +126,7 @@ FAST_ORDER = 24
 FAST_POW = 31
 #: The friction at the sub-step's end from its polynomial and from V/|V| of the propagated state agree to
 #: this fraction of µk N, or the sub-step is redone by series pieces (a safety net under the truncation rule).
+#: The kernel reads it from law[11] (``planar_building.FAST_CHECK``); this is the default.
 FAST_CHECK = 1e-12
 #: Truncation tolerance of the friction's polynomial in a fast sub-step (Jorba–Zou: its last two terms and |V|'s
 #: below this fraction of µk N and of |V|), the same fraction FAST_CHECK accepts at the end.  The friction's error
@@ -1117,7 +1118,7 @@ def by_columns(fprop, fvrow):
 
 @njit(cache=True, _nrt=False)
 def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
-               fvt, fast_eps,
+               fvt, fast_eps, fast_check,
                farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
                val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
                zh, zdh, zddh, cpoly, energy, counter, out2):
@@ -1130,8 +1131,8 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
     the energies are the Van Loan quadratic forms w̃ᵀ P w̃.  Returns the rung taken (≥ 0): zh, zdh, zddh
     hold the end, val1 … sslope1 the watched values there, energy[0:3] the energies over the sub-step.
     Otherwise, having changed nothing the caller reads (the caller then runs series pieces), minus the
-    reason on the shortest rung tried: 1 the friction's series does not reach rounding, 2 the friction
-    at the end does not match V/|V| of the propagated state, 3 an event may lie in the sub-step
+    reason on the shortest rung tried: 1 the friction's series does not reach fast_eps, 2 the friction
+    at the end does not match V/|V| of the propagated state to fast_check µk N, 3 an event may lie in the sub-step
     (break-away; the speed along e0 halving), 4 V = 0.
     """
     m = w.shape[1]
@@ -1213,7 +1214,7 @@ def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, 
             return -1
     code = 0
     for lev in range(lev_first, n_lev):
-        code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, mu_s_n, l_d,
+        code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, fast_check, mu_s_n, l_d,
                          slab_mass, e0, vz, half_target, fpropt[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
                          m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
                          sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
@@ -1241,12 +1242,12 @@ def _order_at(eser, rser, nch, h, mu_k_n, fast_eps):
 
 
 @njit(cache=True, _nrt=False)
-def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
+def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, fast_check, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
               slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
               counter, out2):
-    """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff): 0 when taken, else
-    the reason (2, 3)."""
+    """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff, its end checked to
+    fast_check µk N): 0 when taken, else the reason (2, 3)."""
     m = w.shape[1]
     # ż's entries that φ reads, at the start and the end (work rows of the end's rates, not read by the caller)
     rate_l = zdh
@@ -1317,7 +1318,7 @@ def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, mu_s_n, l_d, slab_mass, e
         if not r_end > 0.0:
             return 2
         for d in range(2):
-            if abs(out2[d] - mu_k_n * zh[d, 1] / r_end) > FAST_CHECK * mu_k_n:
+            if abs(out2[d] - mu_k_n * zh[d, 1] / r_end) > fast_check * mu_k_n:
                 return 2
         kind = PHI_HALF
         target = half_target
@@ -1425,14 +1426,16 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         Ground acceleration [m/s²], linear between samples.
     az : float64[n]
         Vertical ground acceleration [m/s²], up positive, linear between samples (read when law[0] ≠ 0).
-    law : float64[10]
+    law : float64[12]
         [1 with a vertical or µ(v) else 0, g [m/s²], k_v: the stiffness that follows the normal force
         N = W (1 + a_z/g) (W/R of a pendulum, 0 for a spring) [N/m], (µ_fast − µ_slow) W [N], a [s/m],
         1 to take the approach to a stop in ln s (``APPROACH``; constant µ and N only) else 0, 1 to leave rest at a
         break-away with µs = µk by the departure series (V = τ² W), 1 to leave rest with |D| > µk N (µs > µk, a
         reversal) by the departure series V = τ W, 1 to let a slide's piece slowing along e0 run to e0·V =
         STOP_REACH r0 instead of r0/2, 1 to end such a piece at the stop itself (e0·V = 0 on its series, the speed
-        left there ≤ 1e-10 v_ref) when the stop lies within its reach, instead of a FINISH piece];
+        left there ≤ 1e-10 v_ref) when the stop lies within its reach, instead of a FINISH piece, the fast
+        sub-steps' friction truncation as a fraction of µk N (FAST_TRUNC_EPS when ≤ 0 or absent), their end check's
+        fraction of µk N (FAST_CHECK when ≤ 0 or absent)];
         mu_k_n is then µ_fast W (µ_slow = µ_fast: constant µ).  Fast sub-steps are then taken stuck only (sliding: series pieces).
     dt : float
         Sample interval [s] of a uniform record (``times`` empty).
@@ -1616,6 +1619,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
     use_stop_piece = use_reach and law.shape[0] > 9 and law[9] != 0.0
     # the fast sub-steps' truncation tolerance of the friction's polynomial (law[10], FAST_TRUNC_EPS)
     fast_eps = law[10] if law.shape[0] > 10 and law[10] > 0.0 else FAST_TRUNC_EPS
+    # ... and their end check's fraction of µk N (law[11], FAST_CHECK)
+    fast_check = law[11] if law.shape[0] > 11 and law[11] > 0.0 else FAST_CHECK
     n_stop_pieces = 0
     r_approach = APPROACH_SPEED * v_ref
     nl1 = n_order + 1
@@ -1725,7 +1730,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
                         taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fpropt, fpinrow, fpvis, fvt, fast_eps, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
+                                           half_target, fpropt, fpinrow, fpvis, fvt, fast_eps, fast_check, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
                                            m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
                                            slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
                                            rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)

@@ -213,3 +213,12 @@ def test_ours_in_2d_agrees_with_the_reference_and_the_harness_reports_both_ratio
         assert result["time_ratio"] == pytest.approx(result["opensees"]["seconds"] / ours["seconds"])
         assert result["error_ratio"] > 1e3
         assert "faster than OpenSees" in building_bench.building_summary([result])[0]
+        # h184: the second row at the looser end check, with its own measured errors and ratios from one alternation
+        loose = result["ours_loose"]
+        assert loose["check"] == building_bench.BUILDING_LOOSE_CHECK and loose["runs"] == 2
+        assert loose["errors_against"] == "the reference" and loose["error_max"] < 1e-9, loose
+        assert loose["time_ratio"] == pytest.approx(loose["opensees_seconds"] / loose["seconds"])
+        assert loose["default_time_ratio"] == pytest.approx(loose["opensees_seconds"] / loose["default_seconds"])
+        assert loose["error_ratio"] == pytest.approx(result["opensees"]["error_max"] / loose["error_max"])
+        lines = building_bench.building_summary([result])
+        assert len(lines) == 2 and f"at end check {building_bench.BUILDING_LOOSE_CHECK:g}" in lines[1]
