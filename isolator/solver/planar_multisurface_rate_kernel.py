@@ -136,7 +136,12 @@ S_MAX_IMPACT_V = 17  #: largest velocity an impact removed [m/s]
 S_E_IMPACT = 18  #: the kinetic energy the impacts took [J/kg]
 S_FIRST_ULT = 19  #: time of the first impact [s] (-1: none)
 S_IMPACT_TANGENTIAL = 20  #: largest |Ẋ × ē|/|Ẋ| at an impact (the tangential part it removed, ē the rims' direction)
-SUMMARY_SIZE = 21
+#: largest |e_i × ē| at an impact (the sine of the angle between a surface's rim normal e_i = u_i/|u_i| and ē = X/|X|:
+#: 0 where the rims are aligned, the ultimate |X| = Σ d_i*; above it the mass is not at its ultimate and could go on
+#: along the rims, closing them into alignment — not modelled for µ(v) in the plane, the driver refuses)
+S_IMPACT_SPREAD = 21
+S_IMPACT_GAP = 22  #: largest 1 − |X|/Σ|u_i| at an impact (how far inside the ultimate circle the impact was taken)
+SUMMARY_SIZE = 23
 
 
 @njit(cache=True)
@@ -1561,6 +1566,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     e_imp = 0.0
     first_ult = -1.0
     imp_tangential = 0.0
+    imp_spread = 0.0
+    imp_gap = 0.0
     a_now = np.empty(2)
     slope = np.empty(2)
     for j in range(state_first_time.shape[0]):
@@ -1909,6 +1916,14 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     xn = math.hypot(xx, xy)
                     if vimp > 0.0 and xn > 0.0:
                         imp_tangential = max(imp_tangential, abs(y[0] * xy - y[1] * xx) / (vimp * xn))
+                    if xn > 0.0:
+                        reach = 0.0
+                        for q in range(ns):
+                            uq = math.hypot(y[2 + 2 * q], y[3 + 2 * q])
+                            reach += uq
+                            if uq > 0.0:
+                                imp_spread = max(imp_spread, abs(y[2 + 2 * q] * xy - y[3 + 2 * q] * xx) / (uq * xn))
+                        imp_gap = max(imp_gap, 1.0 - xn / reach)
                     impulse += vimp
                     max_imp_v = max(max_imp_v, vimp)
                     e_imp += 0.5 * vimp * vimp
@@ -1993,6 +2008,8 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     summary[S_E_IMPACT] = e_imp
     summary[S_FIRST_ULT] = first_ult
     summary[S_IMPACT_TANGENTIAL] = imp_tangential
+    summary[S_IMPACT_SPREAD] = imp_spread
+    summary[S_IMPACT_GAP] = imp_gap
 
 
 __all__ = ["planar_rate_kernel", "solve_force", "EVENT_NAMES", "SUMMARY_SIZE"]

@@ -98,3 +98,28 @@ def test_an_impact_taking_a_tangential_velocity_is_refused(monkeypatch):
     monkeypatch.setattr(driver, "IMPACT_TANGENTIAL_LIMIT", -1.0)
     with pytest.raises(SolverError, match=r"ultimate displacement was reached \(first at t = 0\.7338"):
         simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
+
+
+def test_an_impact_with_the_rims_apart_is_refused_before_its_consequence(monkeypatch):
+    """The kernel takes the plastic impact when every surface is on its rim.  Off the axes the rims are then apart and
+    the mass is still inside its ultimate circle (it would slide on along the rims, closing them into alignment, as
+    the constant-µ model integrates): 0.7 g sin(πt) along x with 0.1 g sin(2πt/1.6) along y reaches that state at
+    0.72978 s with the rims 1.08e-2 apart (sine), the mass 5.5e-6 m inside Σ d* = 0.9 m, 2.29e-2 of its velocity along
+    the rims (h181).  The refusal names that impact — on d556246 the run was refused by its consequence instead (the
+    mass left at rest pushed along the rims, STATUS_RIM), which hid the state; and with the tangential rule lifted the
+    spread alone refuses it (the guard reads the kernel's S_IMPACT_SPREAD; a 1-D motion along 35° has 1.9e-15 and
+    answers, test above)."""
+    import isolator.solver.planar_multisurface_rate as driver
+    from isolator.errors import SolverError
+
+    t = np.arange(0.0, 0.8, 0.02)
+    ax = 0.7 * G * np.sin(2 * np.pi * t / 2.0)
+    ay = 0.1 * G * np.sin(2 * np.pi * t / 1.6)
+    pattern = (r"ultimate displacement was reached \(first at t = 0\.72978\d* s\) with 0\.022\d* of the velocity "
+               r"along the rims and the rims 0\.010\d* apart \(sine; the mass 5\.\d*e-06 m inside")
+    with pytest.raises(SolverError, match=pattern) as info:
+        simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
+    assert "\n" not in str(info.value)
+    monkeypatch.setattr(driver, "IMPACT_TANGENTIAL_LIMIT", np.inf)
+    with pytest.raises(SolverError, match=pattern):
+        simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
