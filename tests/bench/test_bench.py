@@ -70,14 +70,28 @@ def test_baselines_converge_with_their_setting():
     assert tight < loose / 100
 
 
-def test_cli_bench_json_and_files(tmp_path, monkeypatch):
-    monkeypatch.setattr(bench, "bench_cases", lambda quick=False, records_dir=None: tiny_cases())
+def test_cli_bench_json_and_files(tmp_path, monkeypatch, tiny_run):
+    # the command hands the cases it reads to run_bench with its flags; run_bench on these very cases and
+    # flags is the module's tiny_run (its rows are checked by the tests above), so it is not run a second
+    # time here (3.9 s of CPU): the spy checks the call and returns tiny_run's result
+    cases = tiny_cases()
+    monkeypatch.setattr(bench, "bench_cases", lambda quick=False, records_dir=None: cases)
+    calls = []
+
+    def run_bench(**kwargs):
+        calls.append(kwargs)
+        return tiny_run
+
+    monkeypatch.setattr(bench, "run_bench", run_bench)
     result = CliRunner().invoke(app, ["bench", "--quick", "--json", "--repeats", "1", "--out", str(tmp_path),
                                       "--records", str(tmp_path)])  # any folder: the cases are patched
     assert result.exit_code == 0, result.output
+    assert len(calls) == 1 and calls[0]["cases"] is cases
+    assert calls[0]["quick"] is True and calls[0]["repeats"] == 1
     rows = json.loads(result.stdout)
     assert isinstance(rows, list) and all(ROW_KEYS <= set(row) for row in rows)
     assert any("exact" in row["method"] for row in rows)
+    assert len(rows) == len(tiny_run[0])  # every row of the run reaches the JSON
     for name in ("bench.csv", "bench_pareto.csv", "bench.json", "bench.md", "bench.png"):
         assert (tmp_path / name).stat().st_size > 0
     assert not list(tmp_path.glob(".*tmp")) and not list(tmp_path.glob(".bench.*"))

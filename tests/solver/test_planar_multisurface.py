@@ -7,6 +7,7 @@ friction is one pendulum of radius R1 + R2), rotation invariance, the energy bal
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -463,14 +464,24 @@ class PlanarSeriesReference:
         return tt, X, V, u, r, active, not slow, peak_x
 
 
+@functools.lru_cache(maxsize=1)
+def _pulse_pair_reference():
+    """The pulse pair of the two tests below and the independent reference on it, computed once per process: the
+    same run (PlanarSeriesReference(TFP) on the same record, ~7 s of CPU) was computed by both tests.  Its history is
+    read-only: neither test may change what the other reads."""
+    ax, ay, dt = pulse_pair(0.22, 0.18, duration=6.0, until=1.3)
+    t = dt * np.arange(ax.size)
+    ref_x, ref_peak, ref_events = PlanarSeriesReference(TFP).run(t, ax, ay)
+    ref_x.setflags(write=False)
+    return ax, ay, dt, ref_x, ref_peak, tuple(ref_events)
+
+
 def test_against_an_independent_solve_ivp_reference():
     # regimes I-III in the plane: corners of two and three circles, groups leaving, reversals and sticks
     # (measured: peak 6e-14, history 4.8e-13 of the peak; a 2.8 s cut of the 3 s pulse: 4e-14, 5.1e-12)
     events = {"join", "leave", "reversal", "stick"}
-    ax, ay, dt = pulse_pair(0.22, 0.18, duration=6.0, until=1.3)
-    t = dt * np.arange(ax.size)
+    ax, ay, dt, ref_x, ref_peak, ref_events = _pulse_pair_reference()
     res = simulate_bearing_pair(ax, ay, dt, bearing=TFP, method="events")
-    ref_x, ref_peak, ref_events = PlanarSeriesReference(TFP).run(t, ax, ay)
     assert events <= {name for _, name in ref_events}
     assert set(res.regimes) == {"I", "II", "III"}
     assert abs(res.peak_displacement_m - ref_peak) <= 1e-9 * ref_peak
@@ -481,9 +492,7 @@ def test_against_an_independent_solve_ivp_reference():
 # the implicit steps (method "steps"; "auto" falls back on them where the events cannot be resolved)
 # ---------------------------------------------------------------------------------------------------
 def test_implicit_steps_against_the_independent_reference_and_converging():
-    ax, ay, dt = pulse_pair(0.22, 0.18, duration=6.0, until=1.3)
-    t = dt * np.arange(ax.size)
-    ref_x, ref_peak, _ = PlanarSeriesReference(TFP).run(t, ax, ay)
+    ax, ay, dt, ref_x, ref_peak, _ = _pulse_pair_reference()  # the reference of the test above, shared
     errors = []
     for tol in (1e-5, 1e-7):
         res = simulate_bearing_pair(ax, ay, dt, bearing=TFP, method="steps", step_tol=tol)
