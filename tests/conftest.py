@@ -52,6 +52,74 @@ def make_bad_record(tmp_path):
     return build
 
 
+#: The engines whose compiled kernels the xdist controller builds before its workers start (module, warm-up),
+#: the costliest first: cold on this project's 2-core CI machine the 2-D ones take 1.5-10 min of CPU each.
+ENGINE_WARM_UPS = (
+    ("isolator.solver.planar_multisurface_rate", "_warm_up"),
+    ("isolator.solver.planar_building_multisurface", "_warm_up"),
+    ("isolator.solver.planar_multisurface", "_warm_up"),
+    ("isolator.solver.planar_building", "_warm_up"),
+    ("isolator.solver.planar", "_warm_up"),
+    ("isolator.solver.building_multisurface", "_warm_up"),
+    ("isolator.solver.multisurface_rate", "_warm_up"),
+    ("isolator.solver.building", "_warm_up"),
+    ("isolator.solver.multisurface", "_warm_up"),
+    ("isolator.solver.record", "_warm_up_kernel"),
+)
+#: A warm-up process that has not finished after this long is left to the workers (they compile what is missing).
+WARM_UP_TIMEOUT_S = 1800.0
+#: Where :func:`pytest_configure` leaves the warm-up's line for the terminal summary.
+WARM_LINE = pytest.StashKey[str]()
+
+
+def _warm_engines(processes: int) -> str:
+    """Compile (or load) every engine's kernels into numba's disk cache, ``processes`` at a time.
+
+    Under ``pytest -n N`` each worker is a fresh interpreter: on a cold cache (a fresh clone, CI) every worker
+    compiled every kernel it met, at the same time as the others, since numba writes a kernel's cache only when
+    its compilation ends.  Built once here, before the workers start, each worker loads them from the cache.
+    Returns a line for the report's header; a warm-up that fails or times out is said there and changes nothing
+    else (the workers then compile as before, and a test of that engine shows the failure)."""
+    import subprocess
+    import time
+
+    start = time.monotonic()
+    todo = list(ENGINE_WARM_UPS)
+    running: list[tuple[str, subprocess.Popen]] = []
+    failed: list[str] = []
+    while todo or running:  # bounded: ≤ len(ENGINE_WARM_UPS) processes, each waited at most WARM_UP_TIMEOUT_S
+        while todo and len(running) < processes:
+            module, function = todo.pop(0)
+            code = f"import {module} as m; m.{function}()"
+            running.append((module, subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
+                                                     stderr=subprocess.DEVNULL)))
+        module, process = running.pop(0)
+        try:
+            if process.wait(timeout=max(1.0, WARM_UP_TIMEOUT_S - (time.monotonic() - start))) != 0:
+                failed.append(module)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+            failed.append(module)
+    line = f"engines' kernels compiled or loaded before the workers: {time.monotonic() - start:.0f} s"
+    return line + (f" (not warmed: {', '.join(failed)})" if failed else "")
+
+
+def pytest_configure(config):
+    """On the xdist controller (``-n N``, N ≥ 2), warm the engines' kernels before the workers start."""
+    if hasattr(config, "workerinput"):
+        return
+    workers = getattr(config.option, "numprocesses", None)
+    if isinstance(workers, int) and workers >= 2 and not config.option.collectonly:
+        config.stash[WARM_LINE] = _warm_engines(workers)
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    line = config.stash.get(WARM_LINE, None)
+    if line:
+        terminalreporter.write_line(line)
+
+
 @pytest.fixture(scope="session", autouse=True)
 def _engines_loaded():
     """Load (on a fresh clone: compile) the 1-D and 2-D engines once, before any test, so that a
