@@ -83,6 +83,10 @@ def segment_root(which, sign, lo, hi, x0, v0, p, q, force, theta0, c, kappa, ome
         # Newton step, accepted only if it stays strictly inside the bracket
         t_new = t - f / df if df != 0.0 else 0.5 * (a + b)
         if not (a < t_new < b):
+            if df != 0.0 and abs(t_new - t) <= 2e-16 * t:
+                # the correction is below rounding (t_new == t, an end of the bracket): t is the root to rounding;
+                # bisecting on from the bracket's far end would only take ~50 more evaluations to come back here
+                return t
             t_new = 0.5 * (a + b)
         elif abs(t_new - t) <= 2e-16 * t:
             return t_new  # quadratic convergence reached rounding level

@@ -185,9 +185,13 @@ def _ramp_basis_taylor(tau, c, kappa):
     h3 = tau3 * tau / 24.0
     de1 = 1.0  # Σ n z_n / τ  (= E1')
     inv_tau = 1.0 / tau
-    for n in range(1, _MAX_TERMS):
-        # z_{n+1} from z_n and z_{n-1}
-        z_next = (a * n * z_cur + b * z_prev) * _RECIP_STEP[n]
+    # no damper (a = 0): every even term z_2, z_4, ... is zero, so the loop steps over them.  The odd terms are the
+    # general recurrence's to the bit (z_{n+1} = (0 + b z_{n-1}) / ((n+1) n)), and it stops after the same term: the
+    # general test after a zero term, |z_{n+1}| <= 1e-17 |e1|, covers its test after the odd one (1e-18).
+    undamped = c == 0.0
+    for n in range(2 if undamped else 1, _MAX_TERMS, 2 if undamped else 1):
+        # z_{n+1} from z_n and z_{n-1} (undamped: z_cur holds z_{n-1}, z_n = 0)
+        z_next = b * z_cur * _RECIP_STEP[n] if undamped else (a * n * z_cur + b * z_prev) * _RECIP_STEP[n]
         k = n + 1
         e1 += z_next
         h1 += z_next * tau * _RECIP_K1[k]
@@ -196,7 +200,10 @@ def _ramp_basis_taylor(tau, c, kappa):
         de1 += k * z_next * inv_tau
         z_prev = z_cur
         z_cur = z_next
-        if abs(z_next) <= 1e-18 * abs(e1) and abs(z_prev) <= 1e-17 * abs(e1):
+        if undamped:
+            if abs(z_next) <= 1e-17 * abs(e1):
+                break
+        elif abs(z_next) <= 1e-18 * abs(e1) and abs(z_prev) <= 1e-17 * abs(e1):
             break
     e0 = de1 + 0.5 * c * e1  # E0 = E1' - m E1
     return e0, e1, h1, h2, h3
