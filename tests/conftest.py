@@ -68,6 +68,9 @@ ENGINE_WARM_UPS = (
 )
 #: A warm-up process that has not finished after this long is left to the workers (they compile what is missing).
 WARM_UP_TIMEOUT_S = 1800.0
+#: Prefixed to a warm-up process's code: on Linux it gets SIGTERM when pytest dies, however pytest died.
+DIE_WITH_PARENT = ("import ctypes, signal\ntry:\n    ctypes.CDLL(None).prctl(1, signal.SIGTERM, 0, 0, 0)\n"
+                   "except (OSError, AttributeError):\n    pass\n")
 #: Where :func:`pytest_configure` leaves the warm-up's line for the terminal summary.
 WARM_LINE = pytest.StashKey[str]()
 
@@ -87,20 +90,25 @@ def _warm_engines(processes: int) -> str:
     todo = list(ENGINE_WARM_UPS)
     running: list[tuple[str, subprocess.Popen]] = []
     failed: list[str] = []
-    while todo or running:  # bounded: ≤ len(ENGINE_WARM_UPS) processes, each waited at most WARM_UP_TIMEOUT_S
-        while todo and len(running) < processes:
-            module, function = todo.pop(0)
-            code = f"import {module} as m; m.{function}()"
-            running.append((module, subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
-                                                     stderr=subprocess.DEVNULL)))
-        module, process = running.pop(0)
-        try:
-            if process.wait(timeout=max(1.0, WARM_UP_TIMEOUT_S - (time.monotonic() - start))) != 0:
+    try:
+        while todo or running:  # bounded: ≤ len(ENGINE_WARM_UPS) processes, each waited at most WARM_UP_TIMEOUT_S
+            while todo and len(running) < processes:
+                module, function = todo.pop(0)
+                code = DIE_WITH_PARENT + f"import {module} as m; m.{function}()"
+                running.append((module, subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
+                                                         stderr=subprocess.DEVNULL)))
+            module, process = running.pop(0)
+            try:
+                if process.wait(timeout=max(1.0, WARM_UP_TIMEOUT_S - (time.monotonic() - start))) != 0:
+                    failed.append(module)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
                 failed.append(module)
-        except subprocess.TimeoutExpired:
+    finally:  # Ctrl-C (or an error) here: no compilation goes on without its run
+        for _, process in running:
             process.kill()
             process.wait()
-            failed.append(module)
     line = f"engines' kernels compiled or loaded before the workers: {time.monotonic() - start:.0f} s"
     return line + (f" (not warmed: {', '.join(failed)})" if failed else "")
 
