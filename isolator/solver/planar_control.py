@@ -20,6 +20,8 @@ docs/dev-notes.md; the accuracy they keep, in docs/planar.md.
 
 from __future__ import annotations
 
+import numpy as np
+
 from isolator.solver.jit import njit
 from isolator.solver.planar_events import PH_STUCK, at_rest, locate_peak, record_event, tangent_bound
 from isolator.solver.planar_layout import EV_REVERSAL, EV_STICK
@@ -93,7 +95,7 @@ def leave_log(tau, y, r, prm, frc, f):
     returns the time, the Cartesian form's independent variable [s]."""
     y[2] *= r
     y[3] *= r
-    rhs(CARTESIAN, tau, y, prm, frc, f)
+    rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
     return y[7]
 
 
@@ -103,7 +105,7 @@ def enter_polar(tau, y, v1, v2, r, prm, frc, f):
     y[2] = v1 / r
     y[3] = v2 / r
     y[7] = r
-    rhs(POLAR, tau, y, prm, frc, f)
+    rhs(np.int64(POLAR), tau, y, prm, frc, f)
 
 
 @njit(cache=True, _nrt=False, inline="always")

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from isolator.solver.jit import njit
 from isolator.solver.planar_dop853 import dop853_step
 from isolator.solver.planar_rk import (
@@ -165,7 +167,7 @@ def start_lag(tau, y, prm, frc):
     fm = norm(fx, fy)
     if fm == 0.0 or y[2] == 0.0:
         return 0.0
-    v1, v2 = velocity(PH_START, 0.0, tau, y, prm, frc)
+    v1, v2 = velocity(np.int64(PH_START), 0.0, tau, y, prm, frc)
     return abs(fx * v2 - fy * v1) / (fm * abs(y[2]))
 
 
@@ -518,7 +520,7 @@ def at_rest(tau, y, prm, frc, f):
     y[3] = 0.0
     if holds_at(y[0], y[1], frc[0] + frc[1] * tau, frc[2] + frc[3] * tau, frc[4] + frc[5] * tau, prm):
         return PH_STUCK
-    rhs(START, tau, y, prm, frc, f)
+    rhs(np.int64(START), tau, y, prm, frc, f)
     return PH_START
 
 
@@ -529,7 +531,7 @@ def lift_off(phase, x, tau, y, prm, frc, f):
     y[2] = v1
     y[3] = v2
     frc[6] = 0.0
-    rhs(CARTESIAN, tau, y, prm, frc, f)
+    rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
     return PH_FLIGHT
 
 
@@ -538,7 +540,7 @@ def land(tau, y, prm, frc, f):
     """Landing: n becomes positive; slide on, or (at rest) stick or start."""
     frc[6] = 1.0
     if y[2] != 0.0 or y[3] != 0.0:
-        rhs(CARTESIAN, tau, y, prm, frc, f)
+        rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
         return PH_SLIDE
     return at_rest(tau, y, prm, frc, f)
 
@@ -657,8 +659,8 @@ def rim_crossing(mode, x, y, f, h, d2, prm, frc, yb, fb, atol, rtol, work):
         # a graze: the largest |X| where d|X|²/dt goes from + to −
         lo_p = 0.0
         hi_p = 1.0
-        r_lo = rate_of_peak(0, mode, y, f)
-        r_hi = rate_of_peak(0, mode, yb, fb)
+        r_lo = rate_of_peak(np.int64(0), mode, y, f)
+        r_hi = rate_of_peak(np.int64(0), mode, yb, fb)
         if not r_lo > 0.0 >= r_hi:
             return -1.0
         side = 0
@@ -674,7 +676,7 @@ def rim_crossing(mode, x, y, f, h, d2, prm, frc, yb, fb, atol, rtol, work):
                 best_theta = theta
             if gap > 0.0:
                 break
-            rate = rate_of_peak(0, mode, yb, fb)
+            rate = rate_of_peak(np.int64(0), mode, yb, fb)
             if rate > 0.0:
                 lo_p = theta
                 r_lo = rate

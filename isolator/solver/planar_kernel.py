@@ -202,7 +202,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     atol = np.full(NSTATE, np.inf)
     frc = np.zeros(7)
     work = np.zeros(2)
-    phase = PH_STUCK
+    phase = np.int64(PH_STUCK)
     x = 0.0
     h_sugg = -1.0
     ds_sugg = -0.5
@@ -248,7 +248,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
     xs = 0.0
     ts = 0.0
     step_h = -1.0
-    step_mode = CARTESIAN
+    step_mode = np.int64(CARTESIAN)
     pxs = 0.0
     pvs = 0.0
     pas = 0.0
@@ -280,7 +280,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         n_lim = int(summary[S_STEPS_LIMITED])
         work[0] = summary[S_SUB_LAND]
         work[1] = summary[S_SUB_PEAK]
-        phase = PH_START if restart == RS_START else PH_SLIDE
+        phase = np.int64(PH_START if restart == RS_START else PH_SLIDE)
     for i in range(i0, n - 1):
         restart_here = restart != RS_FRESH and i == i0
         if phase == PH_STUCK and holds_at(y[0], y[1], ax[i], ay[i], nz[i], prm) and holds_at(
@@ -316,12 +316,12 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if restart == RS_START:  # a break-away from rest on the rim, inward
                 y[2] = 0.0
                 y[3] = 0.0
-                rhs(START, tau, y, prm, frc, f)
+                rhs(np.int64(START), tau, y, prm, frc, f)
                 h_sugg = 0.01 * hi
             else:  # leaving the rim along its tangent
                 y[2] = rim[RM_V1]
                 y[3] = rim[RM_V2]
-                rhs(CARTESIAN, tau, y, prm, frc, f)
+                rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
         tz = hi
         if (nz[i] > 0.0 > nz[i + 1]) or (nz[i] < 0.0 < nz[i + 1]):
             tz = nz[i] / (nz[i] - nz[i + 1]) * hi
@@ -331,16 +331,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
         if restart_here:
             pass  # the rim's phase ended in contact (n > 0): the phase is set above
         elif phase == PH_FLIGHT and nplus > 0.0:
-            n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_LANDING)
+            n_ev = record_event(ev_t, ev_k, n_ev, t0, np.int64(EV_LANDING))
             phase = land(0.0, y, prm, frc, f)
             if phase == PH_START:
-                n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_BREAKAWAY)
+                n_ev = record_event(ev_t, ev_k, n_ev, t0, np.int64(EV_BREAKAWAY))
                 h_sugg = 0.01 * hi
         elif phase != PH_FLIGHT and nplus <= 0.0:
             phase = lift_off(phase, x, 0.0, y, prm, frc, f)
             x = 0.0
             n_up += 1
-            n_ev = record_event(ev_t, ev_k, n_ev, t0, EV_UPLIFT)
+            n_ev = record_event(ev_t, ev_k, n_ev, t0, np.int64(EV_UPLIFT))
         atol[0] = rtol * max(peak_x, scales[SC_X_FLOOR])
         atol[1] = atol[0]
         # the energies are error-controlled too (the balance is a check of the integration)
@@ -372,14 +372,16 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         a1, a2 = transmitted(sp_ph, x_hit, tau_hit, yb, prm, frc)
                         if step_mode != START and theta > 0.0:
                             # |V| and |a| may peak inside the part of the step before the impact
-                            pvs = peak_in_step(pvs, 1, step_mode, xs, ys, fs, theta * step_h,
-                                               peak_value(1, step_mode, ys), rate_of_peak(1, step_mode, ys, fs),
-                                               peak_value(1, step_mode, yb), rate_of_peak(1, step_mode, yb, fb),
+                            pvs = peak_in_step(pvs, np.int64(1), step_mode, xs, ys, fs, theta * step_h,
+                                               peak_value(np.int64(1), step_mode, ys),
+                                               rate_of_peak(np.int64(1), step_mode, ys, fs),
+                                               peak_value(np.int64(1), step_mode, yb),
+                                               rate_of_peak(np.int64(1), step_mode, yb, fb),
                                                tau_hit - ts, prm, frc, ynew, fnew, atol, rtol, work)
                             a_lo, g0 = acceleration_peak_rate(step_mode, xs, ys, fs, prm, frc)
                             a_hi, g1 = acceleration_peak_rate(step_mode, x_hit, yb, fb, prm, frc)
-                            pas = peak_in_step(pas, 2, step_mode, xs, ys, fs, theta * step_h, a_lo, g0, a_hi, g1,
-                                               tau_hit - ts, prm, frc, ynew, fnew, atol, rtol, work)
+                            pas = peak_in_step(pas, np.int64(2), step_mode, xs, ys, fs, theta * step_h, a_lo, g0, a_hi,
+                                               g1, tau_hit - ts, prm, frc, ynew, fnew, atol, rtol, work)
                     scale = d_rim / norm(yb[0], yb[1])  # on the circle (the crossing is located to rounding)
                     rim[RM_X1] = yb[0] * scale
                     rim[RM_X2] = yb[1] * scale
@@ -423,23 +425,23 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
             if events_here > MAX_EVENTS_PER_INTERVAL:
                 # chatter guard: let the static friction hold the block to the end of the interval
                 status |= STATUS_CHATTER
-                phase = PH_STUCK
+                phase = np.int64(PH_STUCK)
                 y[2] = 0.0
                 y[3] = 0.0
                 break
             if not crossed and tau >= tz:
                 crossed = True
                 if phase == PH_FLIGHT:
-                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_LANDING)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_LANDING))
                     events_here += 1
                     phase = land(tau, y, prm, frc, f)
                     if phase == PH_START:
-                        n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                        n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_BREAKAWAY))
                         h_sugg = 0.01 * hi
                 else:
                     phase = lift_off(phase, x, tau, y, prm, frc, f)
                     n_up += 1
-                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_UPLIFT)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_UPLIFT))
                     events_here += 1
                 x = tau
             target = tz if tau < tz else hi
@@ -453,11 +455,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     y[4] += 0.5 * (y[0] * y[0] + y[1] * y[1]) * (kappa_at(tau_new, prm, frc) - kappa_at(tau, prm, frc))
                 tau = tau_new
                 if u >= 0.0 and not up:
-                    phase = PH_START
+                    phase = np.int64(PH_START)
                     y[2] = 0.0
                     y[3] = 0.0
-                    rhs(START, tau, y, prm, frc, f)
-                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, EV_BREAKAWAY)
+                    rhs(np.int64(START), tau, y, prm, frc, f)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_BREAKAWAY))
                     events_here += 1
                     h_sugg = 0.01 * hi
                     a1, a2 = transmitted(phase, x, tau, y, prm, frc)
@@ -472,7 +474,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     if x > s_stop:
                         # the speed no longer falls fast: back to Cartesian form (a turn, not a stop)
                         x = leave_log(tau, y, r, prm, frc, f)
-                        phase = PH_SLIDE
+                        phase = np.int64(PH_SLIDE)
                         h_sugg = r / max(fscale, 1e-300)
                         continue
                 else:
@@ -491,7 +493,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         pas = peak_a
                         slips = slip
                         upts = upt
-                    ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
+                    ok, err = dop853_step(np.int64(LOG), x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
                     n_steps += 1
                     n_log += 1
                     if not ok or err > 1.0:
@@ -501,27 +503,28 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         same_state = True  # a rejected step leaves the state as it was
                         if abs(ds_sugg) < 1e-9:
                             x = leave_log(tau, y, r, prm, frc, f)
-                            phase = PH_SLIDE
+                            phase = np.int64(PH_SLIDE)
                             h_sugg = r / max(fscale, 1e-300)
                         continue
                     hit = False
                     if ynew[7] >= target:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, ynew[7], fnew[7], prm, frc, yb, fb, atol, rtol,
-                                        work)
+                        theta = land_on(np.int64(LOG), x, y, f, ds, np.int64(7), target, ynew[7], fnew[7], prm, frc, yb,
+                                        fb, atol, rtol, work)
                         ynew[:] = yb
                         fnew[:] = fb
                         ds *= theta
                         ynew[7] = target
                         hit = True
                     if rim_on:
-                        step_mode = LOG
+                        step_mode = np.int64(LOG)
                         step_h = ds
-                    a_lo, g0 = acceleration_peak_rate(LOG, x, y, f, prm, frc)
-                    a_hi, g1 = acceleration_peak_rate(LOG, x + ds, ynew, fnew, prm, frc)
-                    peak_a = peak_in_step(peak_a, 2, LOG, x, y, f, ds, a_lo, g0, a_hi, g1, ynew[7] - y[7], prm, frc,
-                                          yb, fb, atol, rtol, work)
-                    peak_x = peak_in_step(peak_x, 0, LOG, x, y, f, ds, norm(y[0], y[1]), rate_of_peak(0, LOG, y, f),
-                                          norm(ynew[0], ynew[1]), rate_of_peak(0, LOG, ynew, fnew), ynew[7] - y[7],
+                    a_lo, g0 = acceleration_peak_rate(np.int64(LOG), x, y, f, prm, frc)
+                    a_hi, g1 = acceleration_peak_rate(np.int64(LOG), x + ds, ynew, fnew, prm, frc)
+                    peak_a = peak_in_step(peak_a, np.int64(2), np.int64(LOG), x, y, f, ds, a_lo, g0, a_hi, g1,
+                                          ynew[7] - y[7], prm, frc, yb, fb, atol, rtol, work)
+                    peak_x = peak_in_step(peak_x, np.int64(0), np.int64(LOG), x, y, f, ds, norm(y[0], y[1]),
+                                          rate_of_peak(np.int64(0), np.int64(LOG), y, f), norm(ynew[0], ynew[1]),
+                                          rate_of_peak(np.int64(0), np.int64(LOG), ynew, fnew), ynew[7] - y[7],
                                           prm, frc, yb, fb, atol, rtol, work)
                     slip += ynew[7] - y[7]
                     x += ds
@@ -563,8 +566,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         y[2] *= r
                         y[3] *= r
                         y[7] = 0.0
-                        phase = PH_SLIDE
-                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                        phase = np.int64(PH_SLIDE)
+                        rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                         continue
                 if phase == PH_SLIDE:
                     r = norm(y[2], y[3])
@@ -587,7 +590,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         h_sugg = 0.01 * hi
                         if events_here > MAX_EVENTS_PER_INTERVAL:
                             status |= STATUS_CHATTER
-                            phase = PH_STUCK
+                            phase = np.int64(PH_STUCK)
                             break
                         continue
                     if r < 0.5 * r_switch_lo and not rdot < -ENTER_LOG * fscale:
@@ -595,8 +598,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         # (a slide that decelerates goes on to the LOG form below, which locates its stop)
                         y[2] = r
                         y[3] = 0.0
-                        phase = PH_START
-                        rhs(START, tau, y, prm, frc, f)
+                        phase = np.int64(PH_START)
+                        rhs(np.int64(START), tau, y, prm, frc, f)
                         continue
                     h_try = h_sugg if h_sugg > 0.0 else target - tau
                     if stop_ahead(r, rdot, fscale, h_try):
@@ -604,18 +607,18 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         y[3] /= r
                         y[7] = tau
                         x = math.log(r)
-                        if rhs(LOG, x, y, prm, frc, f):
-                            phase = PH_APPROACH
+                        if rhs(np.int64(LOG), x, y, prm, frc, f):
+                            phase = np.int64(PH_APPROACH)
                             s_stop = s_end
                             ds_sugg = -0.5
                             continue
                         y[2] *= r
                         y[3] *= r
                         x = tau
-                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                        rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     elif polar_ok:
                         enter_polar(tau, y, y[2], y[3], r, prm, frc, f)
-                        phase = PH_POLAR
+                        phase = np.int64(PH_POLAR)
                         continue
                 hmax = target - tau
                 h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
@@ -661,10 +664,10 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     continue
                 if mode == START and ynew[2] < 0.0 and fnew[2] < 0.0:
                     # it stops again inside the step
-                    theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], fnew[2], prm, frc, yb, fb, atol, rtol,
-                                    work)
+                    theta = land_on(np.int64(START), tau, y, f, h, np.int64(2), 0.0, ynew[2], fnew[2], prm, frc, yb, fb,
+                                    atol, rtol, work)
                     if rim_on:
-                        step_mode = START
+                        step_mode = np.int64(START)
                         step_h = theta * h
                     y[:] = yb
                     slip += theta * h
@@ -676,7 +679,7 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     h_sugg = 0.01 * hi
                     if events_here > MAX_EVENTS_PER_INTERVAL:
                         status |= STATUS_CHATTER
-                        phase = PH_STUCK
+                        phase = np.int64(PH_STUCK)
                         break
                     continue
                 if mode == START and ynew[2] > 1.5 * r_switch and y[2] < r_switch:
@@ -684,11 +687,11 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     # accepted as it is): end this one inside that band, where the cubic Hermite interpolant of
                     # the speed reaches 1.2 r_switch (one sub-step), or else on r_switch itself (secant)
                     theta = hermite_crossing(y[2], h * f[2], ynew[2], h * fnew[2], 1.2 * r_switch)
-                    ok, _ = dop853_step(START, tau, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
+                    ok, _ = dop853_step(np.int64(START), tau, y, f, theta * h, prm, frc, yb, fb, atol, rtol)
                     work[0] += 1
                     if not (ok and r_switch <= yb[2] <= 1.5 * r_switch):
-                        theta = land_on(START, tau, y, f, h, 2, r_switch, ynew[2], fnew[2], prm, frc, yb, fb, atol,
-                                        rtol, work)
+                        theta = land_on(np.int64(START), tau, y, f, h, np.int64(2), r_switch, ynew[2], fnew[2], prm,
+                                        frc, yb, fb, atol, rtol, work)
                     ynew[:] = yb
                     fnew[:] = fb
                     h *= theta
@@ -717,7 +720,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     # |a| ≤ µ n + κ|X| + c|V| over the step (|X| and |V| at most their values at the ends, or the
                     # running peaks where they may peak inside): not above the peak so far, nothing to locate
                     x_top = peak_x if turns & 1 else max(norm(y[0], y[1]), norm(ynew[0], ynew[1]))
-                    v_top = peak_v if turns & 2 else max(peak_value(1, mode, y), peak_value(1, mode, ynew))
+                    v_top = peak_v if turns & 2 else max(peak_value(np.int64(1), mode, y),
+                                                           peak_value(np.int64(1), mode, ynew))
                     if acceleration_bound(frc[4] + frc[5] * tau, frc[4] + frc[5] * (tau + h), x_top, v_top,
                                           prm) <= peak_a:
                         acc_i = -1  # the end's value is not computed (the next step computes its start)
@@ -732,8 +736,8 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                         acc_i = i
                         acc_tau = target if h == hmax else tau + h
                         if g0 > 0.0 >= g_end and tangent_bound(a_lo, g0, a_end, g_end, h) > peak_a:
-                            peak_a = max(peak_a, locate_peak(2, mode, tau, y, f, h, a_lo, g0, a_end, g_end, h, prm,
-                                                             frc, yb, fb, atol, rtol, work))
+                            peak_a = max(peak_a, locate_peak(np.int64(2), mode, tau, y, f, h, a_lo, g0, a_end, g_end, h,
+                                                             prm, frc, yb, fb, atol, rtol, work))
                 tau = target if h == hmax else tau + h
                 y[:] = ynew
                 f[:] = fnew
@@ -756,14 +760,14 @@ def planar_kernel(t, ax, ay, nz, prm, scales, rtol, refresh, out_x, out_v, out_a
                     h_prev = -1.0
                 just_rejected = False
                 peak_x = max(peak_x, norm(y[0], y[1]))
-                peak_v = max(peak_v, peak_value(1, mode, y))
+                peak_v = max(peak_v, peak_value(np.int64(1), mode, y))
                 x = tau
                 polar_ok = True
                 if phase == PH_START and (y[2] >= r_switch or (
                         y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > LAG_MAX_RAD)):
-                    v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
+                    v1, v2 = velocity(np.int64(PH_START), x, tau, y, prm, frc)
                     enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
-                    phase = PH_POLAR
+                    phase = np.int64(PH_POLAR)
         if failed_at >= 0 or at_rim:
             break
         v1, v2 = velocity(phase, x, hi, y, prm, frc)

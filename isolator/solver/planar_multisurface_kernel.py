@@ -1844,7 +1844,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     prm[P_MU_K] = mue
     prm[P_INV_R] = 1.0 / rc
     _set_frc(frc, raw, s[0], s[1], 1.0 / rc)
-    rhs(START, tau, y, prm, frc, f)
+    rhs(np.int64(START), tau, y, prm, frc, f)
     em = element_mask(comp, members)
     if first[em] < 0.0:
         first[em] = t0 + tau
@@ -2064,7 +2064,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 ein_corr = 0.0
                 x = tau
                 phase = PH_START
-                rhs(START, tau, y, prm, frc, f)
+                rhs(np.int64(START), tau, y, prm, frc, f)
                 n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_BREAKAWAY)
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
@@ -2119,10 +2119,10 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         y[2] = my[M_V]
                         y[3] = my[M_V + 1]
                         phase = PH_SLIDE
-                        rhs(CARTESIAN, tau, y, prm, frc, f)
+                        rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     else:
                         phase = PH_START
-                        rhs(START, tau, y, prm, frc, f)
+                        rhs(np.int64(START), tau, y, prm, frc, f)
                     n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
                     events_here += 1
                     continue
@@ -2400,7 +2400,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     atol[5] = atol[4]
                     atol[6] = atol[4]
                     atol[7] = max(rtol * hi, speed_tol / max(-rdot, 1e-300))
-                    ok, err = dop853_step(LOG, x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
+                    ok, err = dop853_step(np.int64(LOG), x, y, f, ds, prm, frc, ynew, fnew, atol, rtol)
                     n_steps += 1
                     if not ok or err > 1.0:
                         n_rej += 1
@@ -2414,23 +2414,24 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     hit = ynew[7] >= target
                     theta = 1.0
                     if hit:
-                        theta = land_on(LOG, x, y, f, ds, 7, target, ynew[7], fnew[7], prm, frc, yb, fb, atol,
-                                        rtol, work)
+                        theta = land_on(np.int64(LOG), x, y, f, ds, np.int64(7), target, ynew[7], fnew[7], prm, frc, yb,
+                                        fb, atol, rtol, work)
                     th_j, kj = _joins_in_step(LOG, x, y, f, ds, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue,
                                               ub, rb, mu, comp, ynew, fnew)
                     if kj >= 0:
                         theta = th_j
                         hit = False
                     if theta < 1.0 or kj >= 0:
-                        dop853_step(LOG, x, y, f, theta * ds, prm, frc, ynew, fnew, atol, rtol)
-                    g0 = rate_of_peak(0, LOG, y, f)
-                    g1 = rate_of_peak(0, LOG, ynew, fnew)
+                        dop853_step(np.int64(LOG), x, y, f, theta * ds, prm, frc, ynew, fnew, atol, rtol)
+                    g0 = rate_of_peak(np.int64(0), np.int64(LOG), y, f)
+                    g1 = rate_of_peak(np.int64(0), np.int64(LOG), ynew, fnew)
                     if g0 > 0.0 >= g1:
                         v0 = norm(y[0], y[1])
                         v1 = norm(ynew[0], ynew[1])
                         if tangent_bound(v0, g0, v1, g1, ynew[7] - y[7]) > peak_x:
-                            peak_x = max(peak_x, locate_peak(0, LOG, x, y, f, theta * ds, v0, g0, v1, g1,
-                                                             ynew[7] - y[7], prm, frc, yb, fb, atol, rtol, work))
+                            peak_x = max(peak_x, locate_peak(np.int64(0), np.int64(LOG), x, y, f, theta * ds, v0, g0,
+                                                             v1, g1, ynew[7] - y[7], prm, frc, yb, fb, atol, rtol,
+                                                             work))
                     if hit:
                         ynew[7] = target
                     ein_corr += _corr_xy(y[0], y[1], ynew[0], ynew[1], s, rc, raw, y[7], ynew[7])
@@ -2514,7 +2515,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[3] *= r
                     y[7] = 0.0
                     phase = PH_SLIDE
-                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                    rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     continue
             if phase == PH_SLIDE:
                 r = norm(y[2], y[3])
@@ -2552,7 +2553,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[2] = r
                     y[3] = 0.0
                     phase = PH_START
-                    rhs(START, tau, y, prm, frc, f)
+                    rhs(np.int64(START), tau, y, prm, frc, f)
                     continue
                 h_try = h_sugg if h_sugg > 0.0 else target - tau
                 if stop_ahead(r, rdot, fscale, h_try):
@@ -2560,7 +2561,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[3] /= r
                     y[7] = tau
                     x = math.log(r)
-                    if rhs(LOG, x, y, prm, frc, f):
+                    if rhs(np.int64(LOG), x, y, prm, frc, f):
                         phase = PH_APPROACH
                         s_stop = s_end
                         ds_sugg = -0.5
@@ -2568,7 +2569,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[2] *= r
                     y[3] *= r
                     x = tau
-                    rhs(CARTESIAN, tau, y, prm, frc, f)
+                    rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                 else:
                     enter_polar(tau, y, y[2], y[3], r, prm, frc, f)
                     phase = PH_POLAR
@@ -2605,7 +2606,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
             theta = 1.0
             restop = mode == START and ynew[2] < 0.0 and fnew[2] < 0.0
             if restop:
-                theta = land_on(START, tau, y, f, h, 2, 0.0, ynew[2], fnew[2], prm, frc, yb, fb, atol, rtol, work)
+                theta = land_on(np.int64(START), tau, y, f, h, np.int64(2), 0.0, ynew[2], fnew[2], prm, frc, yb, fb,
+                                atol, rtol, work)
             th_j, kj = _joins_in_step(mode, tau, y, f, h, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue, ub, rb,
                                       mu, comp, ynew, fnew)
             if kj >= 0:
@@ -2700,7 +2702,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 continue
             if phase == PH_START and (y[2] >= r_switch or (
                     y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > LAG_MAX_RAD)):
-                v1, v2 = velocity(PH_START, x, tau, y, prm, frc)
+                v1, v2 = velocity(np.int64(PH_START), x, tau, y, prm, frc)
                 enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
                 phase = PH_POLAR
         if failed:
