@@ -22,14 +22,18 @@ from .test_planar_building_fast_eps import _assert_within
 from .test_planar_building_stops import _run_bench_pair, bench_pair  # noqa: F401 (fixture)
 
 
-@pytest.mark.parametrize("value", (0.0, -1e-12, math.nan, math.inf, 1e-1, 1e-17))
-def test_a_truncation_outside_the_measured_range_is_refused(monkeypatch, value):
-    """≤ 0 or NaN the kernel would silently replace by its default; above 1e-2 or below 1e-16 it is not measured."""
+@pytest.mark.parametrize(("setting", "value", "measured"), [
+    *(("FAST_TRUNC_EPS", value, r"\(1e-16, 0\.01\)") for value in (0.0, -1e-12, math.nan, math.inf, 1e-1, 1e-17)),
+    *(("FAST_CHECK", value, r"\(1e-14, 1e-06\)") for value in (0.0, -1e-12, math.nan, math.inf, 1e-5, 1e-15)),
+])
+def test_a_setting_outside_its_measured_range_is_refused(monkeypatch, setting, value, measured):
+    """≤ 0 or NaN the kernel would silently replace by its default; outside the range (the truncation (1e-16, 1e-2),
+    the end check (1e-14, 1e-6)) it is not measured."""
     t = np.arange(200) * 0.01
     case = building_case("sine", 3.0 * np.sin(2 * np.pi * t), 0.01, acceleration_y_m_s2=2.0 * np.cos(3 * t),
                          period_y_s=FIXED_BASE_PERIOD_Y_S)
-    monkeypatch.setattr(planar_building, "FAST_TRUNC_EPS", value)
-    with pytest.raises(ValueError, match=r"FAST_TRUNC_EPS = .* is outside \(1e-16, 0\.01\)"):
+    monkeypatch.setattr(planar_building, setting, value)
+    with pytest.raises(ValueError, match=rf"{setting} = .* is outside {measured}"):
         _run_bench_pair(case)
 
 
@@ -42,17 +46,6 @@ def test_a_looser_truncation_stays_within_its_measured_bound_of_the_default(benc
     loose = _run_bench_pair(bench_pair)
     _assert_within(loose, base, 1e-12)
     assert loose.n_fast_refused[1] > base.n_fast_refused[1]
-
-
-@pytest.mark.parametrize("value", (0.0, -1e-12, math.nan, math.inf, 1e-5, 1e-15))
-def test_an_end_check_outside_the_measured_range_is_refused(monkeypatch, value):
-    """≤ 0 or NaN the kernel would silently replace by its default; outside (1e-14, 1e-6) it is not measured."""
-    t = np.arange(200) * 0.01
-    case = building_case("sine", 3.0 * np.sin(2 * np.pi * t), 0.01, acceleration_y_m_s2=2.0 * np.cos(3 * t),
-                         period_y_s=FIXED_BASE_PERIOD_Y_S)
-    monkeypatch.setattr(planar_building, "FAST_CHECK", value)
-    with pytest.raises(ValueError, match=r"FAST_CHECK = .* is outside \(1e-14, 1e-06\)"):
-        _run_bench_pair(case)
 
 
 def test_the_loose_end_check_takes_fewer_pieces_within_its_measured_bound(bench_pair, monkeypatch):  # noqa: F811
