@@ -165,10 +165,9 @@ _PROBES = (
     ("    counter = np.zeros(1, dtype=np.int64)", ["    counter = np.zeros(16, dtype=np.int64)"], "replace", None),
     ("    n = ax.shape[0]", ["    tbuf = np.zeros(2, dtype=np.int64)", "    t_start = _now(tbuf)"], "after",
      "building2d_kernel"),
-    ("                        taken = _fast_step(", ["                        mode_was = mode",
-                                                    "                        t_a = _now(tbuf)",
-                                                    "                        counter[12] = int(_now(counter[14:]))"],
-     "before", "building2d_kernel"),
+    ("                        taken = -1000", ["                        mode_was = mode", "                        t_a = _now(tbuf)"], "before", "building2d_kernel"),
+    ("                        taken = -1000", ["                        _t0 = _now(counter[14:])", "                        _pb = 1 if mode != STUCK else 0"], "after",
+     "building2d_kernel"),
     ("                        if taken >= 0:", [
         "                        slot = 20 + (0 if mode_was == STUCK else 2) + (0 if taken >= 0 else 1)",
         "                        summary[slot] += _now(tbuf) - t_a",
@@ -178,18 +177,17 @@ _PROBES = (
     ("    summary[S_N_LOCATED] = counter[0]", [
         "    summary[59] = _now(tbuf) - t_start", "    summary[51] = counter[11]", "    summary[53] = counter[13]",
         "    for _q in range(1, 11):", "        summary[39 + _q] = counter[_q]"], "after", "building2d_kernel"),
-    ("    m = w.shape[1]", ["    _t0 = _now(counter[14:])", "    _pb = 1 if mode != STUCK else 0",
-                          "    counter[11] += int(_t0) - counter[12]"], "after", "_fast_step"),
-    ("    code = 0", ["    counter[1 + 5 * _pb] += _now(counter[14:]) - _t0"], "before", "_fast_step"),
-    ("        code = _fast_try(", ["        counter[12] = int(_now(counter[14:]))"], "before", "_fast_step"),
-    ("    m = w.shape[1]", ["    _t0 = _now(counter[14:])", "    _pb = phase", "    counter[13] += int(_t0) - counter[12]"],
-     "after", "_fast_try"),
-    ("    # ---- committed: watched values, peaks, energies ----",
-     ["    _t1 = _now(counter[14:])", "    counter[2 + 5 * _pb] += _t1 - _t0"], "before", "_fast_try"),
-    ("    nterm = fmon.shape[3]", ["    _t2 = _now(counter[14:])", "    counter[3 + 5 * _pb] += _t2 - _t1"], "before",
-     "_fast_try"),
-    ("    e_in = 0.0", ["    _t3 = _now(counter[14:])", "    counter[4 + 5 * _pb] += _t3 - _t2"], "before", "_fast_try"),
-    ("    energy[2] = e_v", ["    counter[5 + 5 * _pb] += _now(counter[14:]) - _t3"], "after", "_fast_try"),
+    ("                            fx_code = 0", ["                            counter[1 + 5 * _pb] += _now(counter[14:]) - _t0"], "before",
+     "building2d_kernel"),
+    ("                                fx_fpvis_l = fpvis[fx_lev]", ["                                _t0 = _now(counter[14:])"], "after", "building2d_kernel"),
+    ("                                # ---- committed: watched values, peaks, energies ----",
+     ["                                _t1 = _now(counter[14:])", "                                counter[2 + 5 * _pb] += _t1 - _t0"], "before", "building2d_kernel"),
+    ("                                fx_nterm = fmon.shape[3]", ["                                _t2 = _now(counter[14:])", "                                counter[3 + 5 * _pb] += _t2 - _t1"],
+     "before", "building2d_kernel"),
+    ("                                fx_e_in = 0.0", ["                                _t3 = _now(counter[14:])", "                                counter[4 + 5 * _pb] += _t3 - _t2"], "before",
+     "building2d_kernel"),
+    ("                                energy[2] = fx_e_v", ["                                counter[5 + 5 * _pb] += _now(counter[14:]) - _t3"], "after",
+     "building2d_kernel"),
 )
 
 
@@ -314,9 +312,6 @@ def substeps(records: Path, runs: int) -> None:
                     print(f"  per {label} sub-step [µs]: friction's series {parts[0]:.2f}, propagation and event test "
                           f"{parts[1]:.2f}, watched values at the end {parts[2]:.2f}, peaks {parts[3]:.2f}, energy "
                           f"forms {parts[4]:.2f}")
-                count = max(s[10:14].sum(), 1)
-                print(f"  per sub-step, the calls [µs]: into _fast_step {s[31] / count / 1e3:.2f}, into _fast_try "
-                      f"{s[33] / count / 1e3:.2f}")
                 rest = total - s[0:4].sum()
                 print(f"  the rest (series pieces, the sample loop): {rest / 1e6:.2f} ms ({100 * rest / total:.0f} %)")
         finally:

@@ -1117,114 +1117,6 @@ def by_columns(fprop, fvrow):
 
 
 @njit(cache=True, _nrt=False)
-def _fast_step(mode, w, a0, b, h_top, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
-               fvt, fast_eps, fast_check,
-               farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope,
-               val1, slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser, rser, eser, zl, zdl, zddl,
-               zh, zdh, zddh, cpoly, energy, counter, out2):
-    """One sub-step stuck or sliding by the exact propagators of the linear part: the longest rung of the
-    ladder h_top = h_{lev0}, h_top/2 … that the friction's series and the events allow.
-
-    The augmented state per direction is w̃ = [z, a_g, ȧ_g, c_0 … c_K] with c_j = F^{(j)}/j! the chain of
-    the friction's polynomial F(τ) = Σ F_k τ^k (F_k from the recurrences of |V| and V/|V|, V's
-    coefficients from the rows e_v Ã^k / k!), so w̃(h) = e^{Ãh} w̃(0) is exact for that polynomial and
-    the energies are the Van Loan quadratic forms w̃ᵀ P w̃.  Returns the rung taken (≥ 0): zh, zdh, zddh
-    hold the end, val1 … sslope1 the watched values there, energy[0:3] the energies over the sub-step.
-    Otherwise, having changed nothing the caller reads (the caller then runs series pieces), minus the
-    reason on the shortest rung tried: 1 the friction's series does not reach fast_eps, 2 the friction
-    at the end does not match V/|V| of the propagated state to fast_check µk N, 3 an event may lie in the sub-step
-    (break-away; the speed along e0 halving), 4 V = 0.
-    """
-    m = w.shape[1]
-    phase = 0 if mode == STUCK else 1
-    nch = fpropt.shape[3] - m - 2  # chain entries c_0 .. c_K
-    n_lev = fpropt.shape[0]
-    for d in range(2):
-        for c in range(m):
-            wa[d, c] = w[d, c]
-        wa[d, m] = a0[d]
-        wa[d, m + 1] = b[d]
-        for j in range(nch):
-            wa[d, m + 2 + j] = 0.0
-    k_eff = 1
-    lev_first = lev0
-    if mode == SLIDE:
-        converged = False
-        scale = max(mu_k_n, 1e-300)
-        hk = 1.0
-        inv_r = 0.0
-        # V's coefficients e_v Ã^k/k! w̃ (fvt[d, c, k]: the rows by columns): the share of [z, a_g, ȧ_g] for every
-        # order at once, column by column (the orders accumulate independently), then per order the chain's
-        # c_0 … c_{k-1} (known only once the orders below are): each sum in the order of a row-by-row product
-        for d in range(2):
-            for k in range(nch):
-                vser[d, k] = 0.0
-            for c in range(m + 2):
-                wc = wa[d, c]
-                for k in range(nch):
-                    vser[d, k] += fvt[d, c, k] * wc
-        for k in range(nch):
-            for d in range(2):
-                acc = vser[d, k]
-                for c in range(m + 2, m + 2 + k):
-                    acc += fvt[d, c, k] * wa[d, c]
-                vser[d, k] = acc
-            acc = 0.0
-            for j in range(k + 1):
-                acc += vser[0, j] * vser[0, k - j] + vser[1, j] * vser[1, k - j]
-            sser[k] = acc
-            if k == 0:
-                if not sser[0] > 0.0:
-                    return -4
-                rser[0] = math.sqrt(sser[0])
-                # one reciprocal for the divisions by |V|_0 (three an order before; h134: the bench's kernel 1–3 % faster)
-                inv_r = 1.0 / rser[0]
-            else:
-                acc = sser[k]
-                for j in range(1, k):
-                    acc -= rser[j] * rser[k - j]
-                rser[k] = 0.5 * acc * inv_r
-            for d in range(2):
-                acc = vser[d, k]
-                for j in range(k):
-                    acc -= eser[d, j] * rser[k - j]
-                eser[d, k] = acc * inv_r
-                wa[d, m + 2 + k] = mu_k_n * eser[d, k]
-            hk1 = hk
-            if k > 0:
-                hk *= h_top
-            if k >= 3:
-                t_f = max(abs(eser[0, k]), abs(eser[1, k])) * hk * mu_k_n
-                t_f1 = max(abs(eser[0, k - 1]), abs(eser[1, k - 1])) * hk1 * mu_k_n
-                t_r = abs(rser[k]) * hk
-                t_r1 = abs(rser[k - 1]) * hk1
-                if max(t_f, t_f1) <= fast_eps * scale and (mu_k_n == 0.0 or max(t_r, t_r1) <= fast_eps * rser[0]):
-                    k_eff = k
-                    converged = True
-                    break
-        if not converged:
-            # the whole series is there: the longest shorter rung at which it reaches rounding
-            for lev in range(lev0 + 1, n_lev):
-                k_eff = _order_at(eser, rser, nch, h_top / (1 << (lev - lev0)), mu_k_n, fast_eps)
-                if k_eff > 0:
-                    lev_first = lev
-                    converged = True
-                    break
-        if not converged:
-            return -1
-    code = 0
-    for lev in range(lev_first, n_lev):
-        code = _fast_try(mode, phase, w, a0, b, h_top / (1 << (lev - lev0)), k_eff, mu_k_n, fast_check, mu_s_n, l_d,
-                         slab_mass, e0, vz, half_target, fpropt[lev], fpinrow[lev], fpvis[lev], farow1, farow2, flrow, fmon, fsig, fend, wend,
-                         m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1, slope1, sval1,
-                         sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
-                         counter, out2)
-        if code == 0:
-            return lev
-    return -code
-
-
-@njit(cache=True, _nrt=False)
 def _order_at(eser, rser, nch, h, mu_k_n, fast_eps):
     """The least order k ≥ 3 at which the friction's and |V|'s series reach fast_eps over h (Jorba–Zou), or −1."""
     hk = 1.0
@@ -1239,178 +1131,6 @@ def _order_at(eser, rser, nch, h, mu_k_n, fast_eps):
             if mu_k_n == 0.0 or (max(t_f, t_f1) <= fast_eps and t_r <= fast_eps * rser[0]):
                 return k
     return -1
-
-
-@njit(cache=True, _nrt=False)
-def _fast_try(mode, phase, w, a0, b, h, k_eff, mu_k_n, fast_check, mu_s_n, l_d, slab_mass, e0, vz, half_target, fpropt, fpinrow, fpvis,
-              farow1, farow2, flrow, fmon, fsig, fend, wend, m1, m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-              slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, rser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy,
-              counter, out2):
-    """One rung of :func:`_fast_step` (length h, the friction's polynomial of degree k_eff, its end checked to
-    fast_check µk N): 0 when taken, else the reason (2, 3)."""
-    m = w.shape[1]
-    # ż's entries that φ reads, at the start and the end (work rows of the end's rates, not read by the caller)
-    rate_l = zdh
-    rate_h = zddh
-    r_int = 0.0
-    if mode == SLIDE:
-        # ∫₀^h |V| dτ = h Σ_j |V|_j h^j/(j + 1), by Horner (no power a term)
-        for j in range(k_eff, -1, -1):
-            r_int = r_int * h + rser[j] / (j + 1)
-        r_int *= h
-    # stuck, the chain is zero (the friction is not an input of the held slab's floors): [z, a_g, ȧ_g] only
-    s_eff = m + 3 + k_eff if mode == SLIDE else m + 2
-    # the tables are for the chain scaled to this rung, c_j h^j (entries of one size: rounding stays relative)
-    for d in range(2):
-        for c in range(m + 2):
-            wsc[d, c] = wa[d, c]
-        hk = 1.0
-        for k in range(k_eff + 1):
-            wsc[d, m + 2 + k] = wa[d, m + 2 + k] * hk
-            hk *= h
-    # z(h) = E w̃ column by column (fpropt[phase, d, c2, c] = E[c, c2]; each entry summed in the order of a
-    # row-by-row product, the entries independently)
-    for d in range(2):
-        for c in range(m):
-            zh[d, c] = 0.0
-        for c2 in range(s_eff):
-            wc = wsc[d, c2]
-            for c in range(m):
-                zh[d, c] += fpropt[phase, d, c2, c] * wc
-    # φ at the ends reads only ℓ_D·z, ℓ_D·ż and z[0], z[1], ż[0], ż[1]: ż's entries from the rows ℓ_D Ã (flrow[…, 2])
-    # and Ã's rows 0, 1 on [z, a_g, ȧ_g, c_0, c_1]; the whole ż, z̈ at the start only when the watched values there
-    # are recomputed (the end's come from the watched rows below)
-    fe_x, fde_x = _chain_end(wa[0], m, k_eff, h)
-    fe_y, fde_y = _chain_end(wa[1], m, k_eff, h)
-    for d in range(2):
-        f_end = fe_x if d == 0 else fe_y
-        fd_end = fde_x if d == 0 else fde_y
-        a_end = a0[d] + b[d] * h
-        for q in range(3):
-            acc_l = flrow[phase, d, q, m] * a0[d] + flrow[phase, d, q, m + 1] * b[d] + flrow[
-                phase, d, q, m + 2] * wa[d, m + 2] + flrow[phase, d, q, m + 3] * wa[d, m + 3]
-            acc_h = flrow[phase, d, q, m] * a_end + flrow[phase, d, q, m + 1] * b[d] + flrow[
-                phase, d, q, m + 2] * f_end + flrow[phase, d, q, m + 3] * fd_end
-            for c2 in range(m):
-                acc_l += flrow[phase, d, q, c2] * w[d, c2]
-                acc_h += flrow[phase, d, q, c2] * zh[d, c2]
-            rate_l[d, q] = acc_l
-            rate_h[d, q] = acc_h
-        if not start_valid:
-            for c in range(m):
-                acc_l = farow1[phase, d, c, m] * a0[d] + farow1[phase, d, c, m + 1] * b[d] + farow1[
-                    phase, d, c, m + 2] * wa[d, m + 2] + farow1[phase, d, c, m + 3] * wa[d, m + 3]
-                acd_l = farow2[phase, d, c, m] * a0[d] + farow2[phase, d, c, m + 1] * b[d] + farow2[
-                    phase, d, c, m + 2] * wa[d, m + 2] + farow2[phase, d, c, m + 3] * wa[d, m + 3]
-                for c2 in range(m):
-                    acc_l += farow1[phase, d, c, c2] * w[d, c2]
-                    acd_l += farow2[phase, d, c, c2] * w[d, c2]
-                zl[d, c] = w[d, c]
-                zdl[d, c] = acc_l
-                zddl[d, c] = acd_l
-    out2[0] = fe_x
-    out2[1] = fe_y
-    ax1 = a0[0] + b[0] * h
-    ay1 = a0[1] + b[1] * h
-    if mode == SLIDE:
-        # the friction's polynomial at the end against V/|V| of the propagated state
-        r_end = math.sqrt(zh[0, 1] ** 2 + zh[1, 1] ** 2)
-        if not r_end > 0.0:
-            return 2
-        for d in range(2):
-            if abs(out2[d] - mu_k_n * zh[d, 1] / r_end) > fast_check * mu_k_n:
-                return 2
-        kind = PHI_HALF
-        target = half_target
-    else:
-        kind = PHI_BREAK
-        target = mu_s_n
-    # an event in the sub-step (φ rising through zero at an end or at an interior maximum): series pieces
-    _phi_core(kind, _dot(l_d[0], w[0]) - slab_mass * a0[0], _dot(l_d[1], w[1]) - slab_mass * a0[1],
-              rate_l[0, 2] - slab_mass * b[0], rate_l[1, 2] - slab_mass * b[1], w[0, 0], w[1, 0], rate_l[0, 0],
-              rate_l[1, 0], w[0, 1], w[1, 1], rate_l[0, 1], rate_l[1, 1], 0.0, target, e0, vz, out2)
-    f0 = out2[0]
-    s0 = out2[1]
-    _phi_core(kind, _dot(l_d[0], zh[0]) - slab_mass * ax1, _dot(l_d[1], zh[1]) - slab_mass * ay1,
-              rate_h[0, 2] - slab_mass * b[0], rate_h[1, 2] - slab_mass * b[1], zh[0, 0], zh[1, 0], rate_h[0, 0],
-              rate_h[1, 0], zh[0, 1], zh[1, 1], rate_h[0, 1], rate_h[1, 1], h, target, e0, vz, out2)
-    f1 = out2[0]
-    s1 = out2[1]
-    if f0 > 0.0 or f1 > 0.0:
-        return 3
-    if s0 > 0.0 and s1 < 0.0 and max(f0, f1) + 2.0 * h * max(abs(s0), abs(s1)) > 0.0:
-        return 3
-    # ---- committed: watched values, peaks, energies ----
-    if start_valid:
-        # the watched values at the start are the last piece's (or sub-step's) end values
-        for k in range(m1.shape[0]):
-            for d in range(2):
-                val[k, d] = val1[k, d]
-                slope[k, d] = slope1[k, d]
-        for j in range(sig1.shape[0]):
-            sval[j] = sval1[j]
-            sslope[j] = sslope1[j]
-    else:
-        _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
-    # the end's watched values and slopes from their rows ℓ, ℓÃ on w̃(h) = [z(h), a_g(h), ȧ_g, F(h), F'(h)] (the
-    # rows vanish beyond c_0, c_1): one product each instead of ż, z̈ and the monitors' three rows
-    _watched_end(fend, phase, zh, ax1, ay1, a0[2] + b[2] * h, b, fe_x, fde_x, fe_y, fde_y, sig3, wend, val1, slope1,
-                 sval1, sslope1)
-    nterm = fmon.shape[3]
-    nk = m1.shape[0]
-    for k in range(nk):
-        g0 = val[k, 0] ** 2 + val[k, 1] ** 2
-        g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
-        peak_sq[k] = max(peak_sq[k], g0, g1)
-        q0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
-        q1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
-        reach = 4.0 * h * max(abs(q0), abs(q1))
-        if q0 > 0.0 and q1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
-            counter[0] += 1
-            for d in range(2):
-                for j in range(nterm):
-                    cpoly[d, j] = 0.0
-                _rows_series(fmon[phase, k, d], wa[d], s_eff, nterm, cpoly, d)
-            peak_sq[k] = max(peak_sq[k], _poly_max(cpoly, 0, nterm, h))
-    for j in range(sig1.shape[0]):
-        sig_max[j] = max(sig_max[j], sval[j], sval1[j])
-        sig_min[j] = min(sig_min[j], sval[j], sval1[j])
-        reach = 2.0 * h * max(abs(sslope[j]), abs(sslope1[j]))
-        up = sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > sig_max[j]
-        down = sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < sig_min[j]
-        if up or down:
-            counter[0] += 1
-            for jj in range(nterm):
-                cpoly[0, jj] = 0.0
-            for d in range(2):
-                _rows_series(fsig[phase, j, d], wa[d], s_eff, nterm, cpoly, 0)
-            # the vertical's share (a bearing's P_g a_z/g), linear in τ: not in the tables' augmented state
-            cpoly[0, 0] += sig3[j, 2] * a0[2]
-            cpoly[0, 1] += sig3[j, 2] * b[2]
-            if up:
-                sig_max[j] = max(sig_max[j], _poly_max(cpoly, 1, nterm, h))
-            else:
-                sig_min[j] = min(sig_min[j], -_poly_max(cpoly, -1, nterm, h))
-    # the input power a_g (ℓ_p·w̃) with a_g = a0 + ȧ_g τ: its integral a0 (R1·w̃) + ȧ_g (R2·w̃), R1 = ℓ_p ∫e^{Ãτ}dτ and
-    # R2 = ℓ_p ∫τ e^{Ãτ}dτ (fpinrow: the Van Loan form of a rank-2 power, as two rows); the viscous power's form is
-    # symmetric (below)
-    e_in = 0.0
-    e_v = 0.0
-    for d in range(2):
-        r1 = 0.0
-        r2 = 0.0
-        for c in range(s_eff):
-            r1 += fpinrow[phase, d, 0, c] * wsc[d, c]
-            r2 += fpinrow[phase, d, 1, c] * wsc[d, c]
-        e_in += wsc[d, m] * r1 + wsc[d, m + 1] * r2
-        e_v = _form_add(e_v, fpvis[phase, d], wsc[d], s_eff, pw)
-    if vz[V_VARYING] != 0.0 and mode == STUCK:
-        # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
-        e_in += 0.5 * vz[V_K_VERT] * vz[V_NU1] * (w[0, 0] ** 2 + w[1, 0] ** 2) * h
-    energy[0] = e_in
-    energy[1] = mu_k_n * r_int
-    energy[2] = e_v
-    return 0
 
 
 @njit(cache=True)
@@ -1729,11 +1449,282 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                     h_lev = h_fast / (1 << lev0)
                     refused = 0
                     if tau + h_lev <= tau_end + 1e-12 * h_fast:
-                        taken = _fast_step(mode, w, a0, b, h_lev, lev0, mu_k_n, mu_s_n, l_d, slab_mass, e0, vz,
-                                           half_target, fpropt, fpinrow, fpvis, fvt, fast_eps, fast_check, farow1, farow2, flrow, fmon, fsig, fend, wend, m1,
-                                           m2, m3, sig1, sig2, sig3, start_valid, val, slope, sval, sslope, val1,
-                                           slope1, sval1, sslope1, peak_sq, sig_max, sig_min, wa, wsc, pw, vser, sser,
-                                           rser, eser, zl, zdl, zddl, zh, zdh, zddh, cpoly, energy, counter, out2)
+                        # one sub-step stuck or sliding by the exact propagators of the linear part (written here, not
+                        # as calls: h194, the calls into _fast_step and _fast_try with ~60 array arguments each cost
+                        # ~0.6 µs a sub-step; the answers are bit for bit theirs): the longest rung of the ladder h_lev
+                        # = h_{lev0}, h_lev/2 … that the friction's series and the events allow.  The augmented state
+                        # per direction is w̃ = [z, a_g, ȧ_g, c_0 … c_K] with c_j = F^{(j)}/j! the chain of the
+                        # friction's polynomial F(τ) = Σ F_k τ^k (F_k from the recurrences of |V| and V/|V|, V's
+                        # coefficients from the rows e_v Ã^k / k!), so w̃(h) = e^{Ãh} w̃(0) is exact for that polynomial
+                        # and the energies are the Van Loan quadratic forms w̃ᵀ P w̃.  taken ≥ 0: the rung taken; zh,
+                        # zdh, zddh hold the end, val1 … sslope1 the watched values there, energy[0:3] the energies over
+                        # the sub-step.  Otherwise, having changed nothing read below (series pieces then run), minus
+                        # the reason on the shortest rung tried: 1 the friction's series does not reach fast_eps, 2 the
+                        # friction at the end does not match V/|V| of the propagated state to fast_check µk N, 3 an
+                        # event may lie in the sub-step (break-away; the speed along e0 halving), 4 V = 0.  Locals:
+                        # fx_*.
+                        taken = -1000
+                        fx_m = w.shape[1]
+                        fx_phase = 0 if mode == STUCK else 1
+                        fx_nch = fpropt.shape[3] - fx_m - 2  # chain entries c_0 .. c_K
+                        fx_n_lev = fpropt.shape[0]
+                        for fx_d in range(2):
+                            for fx_c in range(fx_m):
+                                wa[fx_d, fx_c] = w[fx_d, fx_c]
+                            wa[fx_d, fx_m] = a0[fx_d]
+                            wa[fx_d, fx_m + 1] = b[fx_d]
+                            for fx_j in range(fx_nch):
+                                wa[fx_d, fx_m + 2 + fx_j] = 0.0
+                        fx_k_eff = 1
+                        fx_lev_first = lev0
+                        if mode == SLIDE:
+                            fx_converged = False
+                            fx_scale = max(mu_k_n, 1e-300)
+                            fx_hk = 1.0
+                            fx_inv_r = 0.0
+                            # V's coefficients e_v Ã^k/k! w̃ (fvt[d, c, k]: the rows by columns): the share of [z, a_g, ȧ_g] for every
+                            # order at once, column by column (the orders accumulate independently), then per order the chain's
+                            # c_0 … c_{k-1} (known only once the orders below are): each sum in the order of a row-by-row product
+                            for fx_d in range(2):
+                                for fx_k in range(fx_nch):
+                                    vser[fx_d, fx_k] = 0.0
+                                for fx_c in range(fx_m + 2):
+                                    fx_wc = wa[fx_d, fx_c]
+                                    for fx_k in range(fx_nch):
+                                        vser[fx_d, fx_k] += fvt[fx_d, fx_c, fx_k] * fx_wc
+                            for fx_k in range(fx_nch):
+                                for fx_d in range(2):
+                                    fx_acc = vser[fx_d, fx_k]
+                                    for fx_c in range(fx_m + 2, fx_m + 2 + fx_k):
+                                        fx_acc += fvt[fx_d, fx_c, fx_k] * wa[fx_d, fx_c]
+                                    vser[fx_d, fx_k] = fx_acc
+                                fx_acc = 0.0
+                                for fx_j in range(fx_k + 1):
+                                    fx_acc += vser[0, fx_j] * vser[0, fx_k - fx_j] + vser[1, fx_j] * vser[1, fx_k - fx_j]
+                                sser[fx_k] = fx_acc
+                                if fx_k == 0:
+                                    if not sser[0] > 0.0:
+                                        taken = -4
+                                        break
+                                    rser[0] = math.sqrt(sser[0])
+                                    # one reciprocal for the divisions by |V|_0 (three an order before; h134: the bench's kernel 1–3 % faster)
+                                    fx_inv_r = 1.0 / rser[0]
+                                else:
+                                    fx_acc = sser[fx_k]
+                                    for fx_j in range(1, fx_k):
+                                        fx_acc -= rser[fx_j] * rser[fx_k - fx_j]
+                                    rser[fx_k] = 0.5 * fx_acc * fx_inv_r
+                                for fx_d in range(2):
+                                    fx_acc = vser[fx_d, fx_k]
+                                    for fx_j in range(fx_k):
+                                        fx_acc -= eser[fx_d, fx_j] * rser[fx_k - fx_j]
+                                    eser[fx_d, fx_k] = fx_acc * fx_inv_r
+                                    wa[fx_d, fx_m + 2 + fx_k] = mu_k_n * eser[fx_d, fx_k]
+                                fx_hk1 = fx_hk
+                                if fx_k > 0:
+                                    fx_hk *= h_lev
+                                if fx_k >= 3:
+                                    fx_t_f = max(abs(eser[0, fx_k]), abs(eser[1, fx_k])) * fx_hk * mu_k_n
+                                    fx_t_f1 = max(abs(eser[0, fx_k - 1]), abs(eser[1, fx_k - 1])) * fx_hk1 * mu_k_n
+                                    fx_t_r = abs(rser[fx_k]) * fx_hk
+                                    fx_t_r1 = abs(rser[fx_k - 1]) * fx_hk1
+                                    if max(fx_t_f, fx_t_f1) <= fast_eps * fx_scale and (mu_k_n == 0.0 or max(fx_t_r, fx_t_r1) <= fast_eps * rser[0]):
+                                        fx_k_eff = fx_k
+                                        fx_converged = True
+                                        break
+                            if taken == -1000 and not fx_converged:
+                                # the whole series is there: the longest shorter rung at which it reaches rounding
+                                for fx_lev in range(lev0 + 1, fx_n_lev):
+                                    fx_k_eff = _order_at(eser, rser, fx_nch, h_lev / (1 << (fx_lev - lev0)), mu_k_n, fast_eps)
+                                    if fx_k_eff > 0:
+                                        fx_lev_first = fx_lev
+                                        fx_converged = True
+                                        break
+                            if taken == -1000 and not fx_converged:
+                                taken = -1
+                        # the rungs from fx_lev_first down: each the length fx_h, the friction's polynomial of degree
+                        # fx_k_eff, its end checked to fast_check µk N; taken, or refused (fx_code: 2 the end check, 3 a
+                        # possible event) with nothing read below changed
+                        if taken == -1000:
+                            fx_code = 0
+                            for fx_lev in range(fx_lev_first, fx_n_lev):
+                                fx_h = h_lev / (1 << (fx_lev - lev0))
+                                fx_fpropt_l = fpropt[fx_lev]
+                                fx_fpinrow_l = fpinrow[fx_lev]
+                                fx_fpvis_l = fpvis[fx_lev]
+                                # ż's entries that φ reads, at the start and the end (work rows of the end's rates, not read by the caller)
+                                fx_rate_l = zdh
+                                fx_rate_h = zddh
+                                fx_r_int = 0.0
+                                if mode == SLIDE:
+                                    # ∫₀^h |V| dτ = h Σ_j |V|_j h^j/(j + 1), by Horner (no power a term)
+                                    for fx_j in range(fx_k_eff, -1, -1):
+                                        fx_r_int = fx_r_int * fx_h + rser[fx_j] / (fx_j + 1)
+                                    fx_r_int *= fx_h
+                                # stuck, the chain is zero (the friction is not an input of the held slab's floors): [z, a_g, ȧ_g] only
+                                fx_s_eff = fx_m + 3 + fx_k_eff if mode == SLIDE else fx_m + 2
+                                # the tables are for the chain scaled to this rung, c_j h^j (entries of one size: rounding stays relative)
+                                for fx_d in range(2):
+                                    for fx_c in range(fx_m + 2):
+                                        wsc[fx_d, fx_c] = wa[fx_d, fx_c]
+                                    fx_hk = 1.0
+                                    for fx_k in range(fx_k_eff + 1):
+                                        wsc[fx_d, fx_m + 2 + fx_k] = wa[fx_d, fx_m + 2 + fx_k] * fx_hk
+                                        fx_hk *= fx_h
+                                # z(h) = E w̃ column by column (fpropt_l[phase, d, c2, c] = E[c, c2]; each entry summed in the order of a
+                                # row-by-row product, the entries independently)
+                                for fx_d in range(2):
+                                    for fx_c in range(fx_m):
+                                        zh[fx_d, fx_c] = 0.0
+                                    for fx_c2 in range(fx_s_eff):
+                                        fx_wc = wsc[fx_d, fx_c2]
+                                        for fx_c in range(fx_m):
+                                            zh[fx_d, fx_c] += fx_fpropt_l[fx_phase, fx_d, fx_c2, fx_c] * fx_wc
+                                # φ at the ends reads only ℓ_D·z, ℓ_D·ż and z[0], z[1], ż[0], ż[1]: ż's entries from the rows ℓ_D Ã (flrow[…, 2])
+                                # and Ã's rows 0, 1 on [z, a_g, ȧ_g, c_0, c_1]; the whole ż, z̈ at the start only when the watched values there
+                                # are recomputed (the end's come from the watched rows below)
+                                fx_fe_x, fx_fde_x = _chain_end(wa[0], fx_m, fx_k_eff, fx_h)
+                                fx_fe_y, fx_fde_y = _chain_end(wa[1], fx_m, fx_k_eff, fx_h)
+                                for fx_d in range(2):
+                                    fx_f_end = fx_fe_x if fx_d == 0 else fx_fe_y
+                                    fx_fd_end = fx_fde_x if fx_d == 0 else fx_fde_y
+                                    fx_a_end = a0[fx_d] + b[fx_d] * fx_h
+                                    for fx_q in range(3):
+                                        fx_acc_l = flrow[fx_phase, fx_d, fx_q, fx_m] * a0[fx_d] + flrow[fx_phase, fx_d, fx_q, fx_m + 1] * b[fx_d] + flrow[
+                                            fx_phase, fx_d, fx_q, fx_m + 2] * wa[fx_d, fx_m + 2] + flrow[fx_phase, fx_d, fx_q, fx_m + 3] * wa[fx_d, fx_m + 3]
+                                        fx_acc_h = flrow[fx_phase, fx_d, fx_q, fx_m] * fx_a_end + flrow[fx_phase, fx_d, fx_q, fx_m + 1] * b[fx_d] + flrow[
+                                            fx_phase, fx_d, fx_q, fx_m + 2] * fx_f_end + flrow[fx_phase, fx_d, fx_q, fx_m + 3] * fx_fd_end
+                                        for fx_c2 in range(fx_m):
+                                            fx_acc_l += flrow[fx_phase, fx_d, fx_q, fx_c2] * w[fx_d, fx_c2]
+                                            fx_acc_h += flrow[fx_phase, fx_d, fx_q, fx_c2] * zh[fx_d, fx_c2]
+                                        fx_rate_l[fx_d, fx_q] = fx_acc_l
+                                        fx_rate_h[fx_d, fx_q] = fx_acc_h
+                                    if not start_valid:
+                                        for fx_c in range(fx_m):
+                                            fx_acc_l = farow1[fx_phase, fx_d, fx_c, fx_m] * a0[fx_d] + farow1[fx_phase, fx_d, fx_c, fx_m + 1] * b[fx_d] + farow1[
+                                                fx_phase, fx_d, fx_c, fx_m + 2] * wa[fx_d, fx_m + 2] + farow1[fx_phase, fx_d, fx_c, fx_m + 3] * wa[fx_d, fx_m + 3]
+                                            fx_acd_l = farow2[fx_phase, fx_d, fx_c, fx_m] * a0[fx_d] + farow2[fx_phase, fx_d, fx_c, fx_m + 1] * b[fx_d] + farow2[
+                                                fx_phase, fx_d, fx_c, fx_m + 2] * wa[fx_d, fx_m + 2] + farow2[fx_phase, fx_d, fx_c, fx_m + 3] * wa[fx_d, fx_m + 3]
+                                            for fx_c2 in range(fx_m):
+                                                fx_acc_l += farow1[fx_phase, fx_d, fx_c, fx_c2] * w[fx_d, fx_c2]
+                                                fx_acd_l += farow2[fx_phase, fx_d, fx_c, fx_c2] * w[fx_d, fx_c2]
+                                            zl[fx_d, fx_c] = w[fx_d, fx_c]
+                                            zdl[fx_d, fx_c] = fx_acc_l
+                                            zddl[fx_d, fx_c] = fx_acd_l
+                                out2[0] = fx_fe_x
+                                out2[1] = fx_fe_y
+                                fx_ax1 = a0[0] + b[0] * fx_h
+                                fx_ay1 = a0[1] + b[1] * fx_h
+                                if mode == SLIDE:
+                                    # the friction's polynomial at the end against V/|V| of the propagated state
+                                    fx_r_end = math.sqrt(zh[0, 1] ** 2 + zh[1, 1] ** 2)
+                                    if not fx_r_end > 0.0:
+                                        fx_code = 2
+                                        continue
+                                    fx_off = False
+                                    for fx_d in range(2):
+                                        if abs(out2[fx_d] - mu_k_n * zh[fx_d, 1] / fx_r_end) > fast_check * mu_k_n:
+                                            fx_off = True
+                                            break
+                                    if fx_off:
+                                        fx_code = 2
+                                        continue
+                                    fx_kind = PHI_HALF
+                                    fx_target = half_target
+                                else:
+                                    fx_kind = PHI_BREAK
+                                    fx_target = mu_s_n
+                                # an event in the sub-step (φ rising through zero at an end or at an interior maximum): series pieces
+                                _phi_core(fx_kind, _dot(l_d[0], w[0]) - slab_mass * a0[0], _dot(l_d[1], w[1]) - slab_mass * a0[1],
+                                          fx_rate_l[0, 2] - slab_mass * b[0], fx_rate_l[1, 2] - slab_mass * b[1], w[0, 0], w[1, 0], fx_rate_l[0, 0],
+                                          fx_rate_l[1, 0], w[0, 1], w[1, 1], fx_rate_l[0, 1], fx_rate_l[1, 1], 0.0, fx_target, e0, vz, out2)
+                                fx_f0 = out2[0]
+                                fx_s0 = out2[1]
+                                _phi_core(fx_kind, _dot(l_d[0], zh[0]) - slab_mass * fx_ax1, _dot(l_d[1], zh[1]) - slab_mass * fx_ay1,
+                                          fx_rate_h[0, 2] - slab_mass * b[0], fx_rate_h[1, 2] - slab_mass * b[1], zh[0, 0], zh[1, 0], fx_rate_h[0, 0],
+                                          fx_rate_h[1, 0], zh[0, 1], zh[1, 1], fx_rate_h[0, 1], fx_rate_h[1, 1], fx_h, fx_target, e0, vz, out2)
+                                fx_f1 = out2[0]
+                                fx_s1 = out2[1]
+                                if fx_f0 > 0.0 or fx_f1 > 0.0:
+                                    fx_code = 3
+                                    continue
+                                if fx_s0 > 0.0 and fx_s1 < 0.0 and max(fx_f0, fx_f1) + 2.0 * fx_h * max(abs(fx_s0), abs(fx_s1)) > 0.0:
+                                    fx_code = 3
+                                    continue
+                                # ---- committed: watched values, peaks, energies ----
+                                if start_valid:
+                                    # the watched values at the start are the last piece's (or sub-step's) end values
+                                    for fx_k in range(m1.shape[0]):
+                                        for fx_d in range(2):
+                                            val[fx_k, fx_d] = val1[fx_k, fx_d]
+                                            slope[fx_k, fx_d] = slope1[fx_k, fx_d]
+                                    for fx_j in range(sig1.shape[0]):
+                                        sval[fx_j] = sval1[fx_j]
+                                        sslope[fx_j] = sslope1[fx_j]
+                                else:
+                                    _monitors(zl, zdl, zddl, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
+                                # the end's watched values and slopes from their rows ℓ, ℓÃ on w̃(h) = [z(h), a_g(h), ȧ_g, F(h), F'(h)] (the
+                                # rows vanish beyond c_0, c_1): one product each instead of ż, z̈ and the monitors' three rows
+                                _watched_end(fend, fx_phase, zh, fx_ax1, fx_ay1, a0[2] + b[2] * fx_h, b, fx_fe_x, fx_fde_x, fx_fe_y, fx_fde_y, sig3, wend, val1, slope1,
+                                             sval1, sslope1)
+                                fx_nterm = fmon.shape[3]
+                                fx_nk = m1.shape[0]
+                                for fx_k in range(fx_nk):
+                                    fx_g0 = val[fx_k, 0] ** 2 + val[fx_k, 1] ** 2
+                                    fx_g1 = val1[fx_k, 0] ** 2 + val1[fx_k, 1] ** 2
+                                    peak_sq[fx_k] = max(peak_sq[fx_k], fx_g0, fx_g1)
+                                    fx_q0 = val[fx_k, 0] * slope[fx_k, 0] + val[fx_k, 1] * slope[fx_k, 1]
+                                    fx_q1 = val1[fx_k, 0] * slope1[fx_k, 0] + val1[fx_k, 1] * slope1[fx_k, 1]
+                                    fx_reach = 4.0 * fx_h * max(abs(fx_q0), abs(fx_q1))
+                                    if fx_q0 > 0.0 and fx_q1 < 0.0 and max(fx_g0, fx_g1) + fx_reach > peak_sq[fx_k]:
+                                        counter[0] += 1
+                                        for fx_d in range(2):
+                                            for fx_j in range(fx_nterm):
+                                                cpoly[fx_d, fx_j] = 0.0
+                                            _rows_series(fmon[fx_phase, fx_k, fx_d], wa[fx_d], fx_s_eff, fx_nterm, cpoly, fx_d)
+                                        peak_sq[fx_k] = max(peak_sq[fx_k], _poly_max(cpoly, 0, fx_nterm, fx_h))
+                                for fx_j in range(sig1.shape[0]):
+                                    sig_max[fx_j] = max(sig_max[fx_j], sval[fx_j], sval1[fx_j])
+                                    sig_min[fx_j] = min(sig_min[fx_j], sval[fx_j], sval1[fx_j])
+                                    fx_reach = 2.0 * fx_h * max(abs(sslope[fx_j]), abs(sslope1[fx_j]))
+                                    fx_up = sslope[fx_j] > 0.0 and sslope1[fx_j] < 0.0 and max(sval[fx_j], sval1[fx_j]) + fx_reach > sig_max[fx_j]
+                                    fx_down = sslope[fx_j] < 0.0 and sslope1[fx_j] > 0.0 and min(sval[fx_j], sval1[fx_j]) - fx_reach < sig_min[fx_j]
+                                    if fx_up or fx_down:
+                                        counter[0] += 1
+                                        for fx_jj in range(fx_nterm):
+                                            cpoly[0, fx_jj] = 0.0
+                                        for fx_d in range(2):
+                                            _rows_series(fsig[fx_phase, fx_j, fx_d], wa[fx_d], fx_s_eff, fx_nterm, cpoly, 0)
+                                        # the vertical's share (a bearing's P_g a_z/g), linear in τ: not in the tables' augmented state
+                                        cpoly[0, 0] += sig3[fx_j, 2] * a0[2]
+                                        cpoly[0, 1] += sig3[fx_j, 2] * b[2]
+                                        if fx_up:
+                                            sig_max[fx_j] = max(sig_max[fx_j], _poly_max(cpoly, 1, fx_nterm, fx_h))
+                                        else:
+                                            sig_min[fx_j] = min(sig_min[fx_j], -_poly_max(cpoly, -1, fx_nterm, fx_h))
+                                # the input power a_g (ℓ_p·w̃) with a_g = a0 + ȧ_g τ: its integral a0 (R1·w̃) + ȧ_g (R2·w̃), R1 = ℓ_p ∫e^{Ãτ}dτ and
+                                # R2 = ℓ_p ∫τ e^{Ãτ}dτ (fpinrow: the Van Loan form of a rank-2 power, as two rows); the viscous power's form is
+                                # symmetric (below)
+                                fx_e_in = 0.0
+                                fx_e_v = 0.0
+                                for fx_d in range(2):
+                                    fx_r1 = 0.0
+                                    fx_r2 = 0.0
+                                    for fx_c in range(fx_s_eff):
+                                        fx_r1 += fx_fpinrow_l[fx_phase, fx_d, 0, fx_c] * wsc[fx_d, fx_c]
+                                        fx_r2 += fx_fpinrow_l[fx_phase, fx_d, 1, fx_c] * wsc[fx_d, fx_c]
+                                    fx_e_in += wsc[fx_d, fx_m] * fx_r1 + wsc[fx_d, fx_m + 1] * fx_r2
+                                    fx_e_v = _form_add(fx_e_v, fx_fpvis_l[fx_phase, fx_d], wsc[fx_d], fx_s_eff, pw)
+                                if vz[V_VARYING] != 0.0 and mode == STUCK:
+                                    # the vertical's work ½ k_v ν1 ∫|X|² dτ on the held slab (X constant), as _energies counts it
+                                    fx_e_in += 0.5 * vz[V_K_VERT] * vz[V_NU1] * (w[0, 0] ** 2 + w[1, 0] ** 2) * fx_h
+                                energy[0] = fx_e_in
+                                energy[1] = mu_k_n * fx_r_int
+                                energy[2] = fx_e_v
+                                taken = fx_lev
+                                break
+                            if taken == -1000:
+                                taken = -fx_code
                         if taken >= 0:
                             h_lev = h_fast / (1 << taken)
                         else:
