@@ -30,8 +30,9 @@ touched)::
 
 It prints the kernel time split into stuck sub-steps, sliding sub-steps and the rest (series pieces, the sample loop),
 µs per sub-step, the sliding sub-steps' rungs (h, h/2 … h/32) and, per sub-step, the friction's series, the
-propagation with the event test, the watched values at the end, the peaks, the energy forms and the two calls. The
-clock (``clock_gettime``, ~25 ns a read, 9 reads a sub-step) is included in the figures. The copy is made by
+propagation with the event test, the watched values at the end, the peaks and the energy forms (the sub-step is
+written into the kernel since h194: no calls to time). The clock (``clock_gettime``, ~25 ns a read, 9 reads a sub-step)
+is included in the figures. The copy is made by
 inserting lines at marker lines of the kernel's source; a marker not found stops the script with its text.
 
 ``--split`` times the whole call a user makes on the bench's 2-D building (the registry's ``2d-building`` model from a
@@ -158,7 +159,7 @@ def _now(buf):
 '''
 #: (marker line of the kernel, lines to insert, before or after it, in which function): the clock reads. Slots of the
 #: enlarged summary: 20 + (stuck 0 / sliding 2) + (taken 0 / refused 1) the sub-steps' time, 10 more their count,
-#: 24 + rung the sliding rungs taken, 40 + 5 phase + part the parts, 51 and 53 the calls, 59 the kernel's whole time
+#: 24 + rung the sliding rungs taken, 40 + 5 phase + part the parts, 59 the kernel's whole time
 _PROBES = (
     ("from isolator.solver.jit import njit", [_CLOCK], "replace", None),
     ("SUMMARY_SIZE = 20", ["SUMMARY_SIZE = 60"], "replace", None),
