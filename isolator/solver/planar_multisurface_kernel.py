@@ -2187,6 +2187,17 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     stats[ST_RESTEP] += 1
                     ok2, _ = corner_step(tau, my, mf, theta * h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
                                         kk, yt, stats, rm)
+                    if not ok2:
+                        # the re-step to the event refused (Radau IIA's Newton or a singular stage): myb is not its
+                        # end but a state of another θ (h186 (c): it was handed on as the step's end).  The step is
+                        # refused as a whole and retaken at a quarter of the event's fraction, so the event falls into
+                        # a later step; a step that keeps shrinking meets the main steps' floor (STATUS_SINGULAR) or
+                        # MAX_STEPS_PER_INTERVAL
+                        stats[ST_REF_NEWTON if implicit else ST_REF_DOP] += 1
+                        n_rej += 1
+                        just_rejected = True
+                        h_sugg = 0.25 * theta * h
+                        continue
                     mynew[:] = myb
                     mfnew[:] = mfb
                     h = theta * h
