@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import DesignError
+from isolator.errors import DesignError, printable
 from isolator.solver.multisurface_series import (
     DECREASING_RATE_REASON,
     STATIC_FRICTION_REASON,
@@ -542,6 +542,14 @@ class Bearing:
         return bearing
 
 
+def _what(value) -> str:
+    """A TOML value named by its kind and (at most 40 characters of) its text, for a message."""
+    kinds = {bool: "a boolean", int: "an integer", float: "a number", str: "a text", list: "an array"}
+    kind = next((k for t, k in kinds.items() if isinstance(value, t)), f"a {type(value).__name__}")
+    text = printable(repr(value))
+    return f"{kind} ({text if len(text) <= 40 else text[:37] + '…'})"
+
+
 def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearing:
     """Validate a ``[bearing]`` table.
 
@@ -573,8 +581,16 @@ def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearin
         raise fail(f"key 'bearing.type' must be one of {', '.join(repr(k) for k in SURFACES_PER_TYPE)}, got {kind!r}")
     entries = table.get("surface")
     n = SURFACES_PER_TYPE[kind]
-    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
-        raise fail(f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}")
+    needs = f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}"
+    if entries is None:
+        raise fail(f"{needs}; the design has none")
+    if not isinstance(entries, list):  # it said "needs 4 entries" of `surface = "x"` (session 19 sweep)
+        raise fail(f"key 'bearing.surface' must be an array of tables, one [[bearing.surface]] per surface (a {kind} "
+                   f"bearing has {n}), got {_what(entries)}")
+    for i, entry in enumerate(entries, start=1):  # `surface = [1, 2, 3, 4]` has 4 entries, none a table
+        if not isinstance(entry, dict):
+            raise fail(f"bearing surface {i} must be a table ([[bearing.surface]] with radius_m, mu_kinetic, …), "
+                       f"got {_what(entry)}")
     if len(entries) != n:
         raise fail(f"a {kind} bearing needs {n} [[bearing.surface]] entr{'y' if n == 1 else 'ies'}, got {len(entries)}")
     surfaces = tuple(_surface(entry, i + 1, kind, fail) for i, entry in enumerate(entries))

@@ -33,6 +33,13 @@ from pathlib import Path
 
 from isolator.units import STANDARD_GRAVITY
 
+#: the longest design name [characters]: a name heads every table, CSV row and report page
+NAME_MAX_CHARS = 200
+#: what a design search or a batch grid appends to a name, " [radius_m=2.5, mu_static=0.06]", is not counted in
+#: NAME_MAX_CHARS up to this length [characters]
+SUFFIX_MAX_CHARS = 2000
+_CANDIDATE_SUFFIX = re.compile(r" \[[A-Za-z_.]+=[^,\[\]]+(?:, [A-Za-z_.]+=[^,\[\]]+)*\]$")
+
 #: keys a design file may hold, with their meaning (used in messages and the README)
 DESIGN_KEYS = {
     "name": "design name (text)",
@@ -371,6 +378,11 @@ class Design:
             # terminal of whoever printed the table (`batch` wrote "\x1b]0;pwned\x07 FPS" raw; session 17 sweep)
             raise fail(f"key 'name' holds a control or format character ('{printable(name)}'): a design's name is "
                        "printed in tables, CSV files and reports; use letters, digits, spaces and punctuation")
+        written = _CANDIDATE_SUFFIX.sub("", name) if len(name) <= NAME_MAX_CHARS + SUFFIX_MAX_CHARS else name
+        if len(written.strip()) > NAME_MAX_CHARS:  # it heads every table, CSV row and report page (a 100,000-character
+            # name was read, session 19 sweep); a search's candidates append their values in brackets to it
+            raise fail(f"key 'name' is {len(name.strip()):,} characters long, more than a design's name may be "
+                       f"({NAME_MAX_CHARS}): it heads tables and report pages; put longer text in 'description'")
         description = mapping.get("description", "")
         if not isinstance(description, str):
             raise fail(f"key 'description' must be text, got {description!r}")

@@ -21,7 +21,9 @@ convert: :func:`isolator.motion.read_ground_motion` does, once, to m/s².
 
 from __future__ import annotations
 
+import math
 import re
+import sys
 
 import numpy as np
 from obspy import Stream, Trace
@@ -55,6 +57,13 @@ def _match_npts_dt(line: str) -> tuple[int, float] | None:
     if match is None:
         return None
     return int(match.group(1)), parse_float(match.group(2))
+
+
+def _dt_text(line: str) -> str:
+    """The DT as written in the NPTS/DT line (at most 40 characters)."""
+    match = _NPTS_DT_RE.search(line) or _NPTS_DT_REVERSED_RE.search(line)
+    text = match.group(2) if match else "?"
+    return text if len(text) <= 40 else f"{text[:20]}…{text[-10:]} ({len(text)} characters)"
 
 
 def _is_at2(filename_or_buf) -> bool:
@@ -211,6 +220,14 @@ def _read_at2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
         stated = _UNITS_STATED_RE.search(header_text)
         if stated and stated.group(1).upper().rstrip(".,") not in ("G", "G'S"):
             raise RecordFormatError(f"header states units {stated.group(1)!r}; a PEER AT2 file is in g")
+        if not math.isfinite(dt_s):  # float("1e400") is inf, then 0 Hz: it was told "dt = 0 s is not positive"
+            raise RecordFormatError(f"header DT={_dt_text(header[-1])} s overflows: beyond any number (a float ends "
+                                    "at 1.8e308 s); a corrupt header?")
+        if abs(dt_s) < sys.float_info.min and re.search(r"[1-9]", re.split("[EeDd]", _dt_text(header[-1]))[0]):
+            # a subnormal step's sampling rate 1/DT is inf, its step then 0 (1e-320 was told "dt = 0 s")
+            raise RecordFormatError(f"header DT={_dt_text(header[-1])} s underflows: below a float's smallest normal "
+                                    "number (2.2e-308); no accelerogram has such a step (1e-05 to 0.5 s); a corrupt "
+                                    "header?")
         if not dt_s > 0:
             raise RecordFormatError(f"header DT={dt_s:g} s is not positive")
         if npts < 1:

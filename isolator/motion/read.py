@@ -366,8 +366,6 @@ def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float, allow_
     if acceleration_m_s2.size < MIN_SAMPLES:
         raise _fail(path, f"only {acceleration_m_s2.size} sample(s); a record needs at least {MIN_SAMPLES}",
                     RecordValuesError)
-    if not (math.isfinite(dt_s) and dt_s > 0):
-        raise _fail(path, f"time step dt = {dt_s:g} s is not positive", RecordValuesError)
     problem = dt_problem(dt_s)
     if problem:
         raise _fail(path, problem, RecordValuesError)
@@ -388,7 +386,9 @@ def _check_values(path: Path, acceleration_m_s2: np.ndarray, dt_s: float, allow_
 def dt_problem(dt_s: float) -> str:
     """Why ``dt_s`` [s] is not the time step of an accelerogram, or "" (see :data:`RECORD_DT_RANGE_S`)."""
     low, high = RECORD_DT_RANGE_S
-    if not math.isfinite(dt_s) or dt_s <= 0:
+    if not math.isfinite(dt_s):
+        return f"time step dt = {dt_s:g} s is not a finite number"
+    if dt_s <= 0:
         return f"time step dt = {dt_s:g} s is not positive"
     if dt_s < low:
         return (f"time step dt = {dt_s:g} s is below {low:g} s (sampling above 100 kHz): no accelerogram has it; "

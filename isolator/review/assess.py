@@ -594,10 +594,18 @@ def _superstructure_shear_row(review, v_s: float, activation: dict, fixed_base: 
     env = review.design_values["envelope"]
     note = (f"first-story shear / W_s {coefficient:.4g} × W_s/W {ws:.4g}, {env['rule']} of {env['n']} analyses per "
             f"bound, {s.get('superstructure_shear_bound')} bound; f_above_rha = {p['f_above_rha']:g} (regular; 0.8 "
-            "irregular)" + ("" if per else f"; 17.5.4.3(1) not computed: {fixed_base['missing']}")
-            + ("" if p.get("wind_shear_over_W") is not None else "; 17.5.4.3(2) not computed: needs wind_shear_over_W")
-            ) if rha is not None else ""
-    return C.superstructure_shear(v_s, p["f_above_rha"], rha, limits=limits, r_i=p["R_I"], note=note)
+            "irregular)") if rha is not None else ""
+    not_computed = "; ".join(([] if per else [f"17.5.4.3(1) not computed: {fixed_base['missing']}"])
+                             + ([] if p.get("wind_shear_over_W") is not None
+                                else ["17.5.4.3(2) not computed: needs wind_shear_over_W"]))
+    if review.design.superstructure is None:
+        missing = ("no value: the design has no [superstructure], so its analyses (the isolated mass as one rigid "
+                   "block) give no superstructure shear; give the floors in [superstructure] for the building model")
+    else:
+        missing = (f"no value: the design's {review.design.superstructure.n_floors}-floor [superstructure] was not "
+                   "analysed by the building model, so no first-story shear came out of the analyses")
+    return C.superstructure_shear(v_s, p["f_above_rha"], rha, limits=limits, r_i=p["R_I"], note=note,
+                                  missing=missing, not_computed=not_computed)
 
 
 def _en_checks(review, values: dict, designs: dict) -> list:

@@ -150,7 +150,7 @@ def uplift(n_vertical_exceedances: int, n_pairs_with_vertical: int, min_axial_lo
 
 def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: float | None = None,
                          clause: str = "ASCE 7-22 17.6.4.2", *, limits: dict | None = None, r_i: float = 1.0,
-                         note: str = "") -> dict:
+                         note: str = "", missing: str = "", not_computed: str = "") -> dict:
     """RHA superstructure design shear ≥ ``f_above`` × ELF V_s and ≥ the 17.5.4.3 limits (17.6.4.2).
 
     The value is the response-history superstructure shear / W reduced by R_I (the elastic first-story shear of
@@ -172,6 +172,10 @@ def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: floa
         R_I of 17.5.4.2 [-].
     note : str
         What the value is made of (suite rule, bound).
+    missing : str
+        Why there is no value (``rha_over_w`` None): said first in the row's note.
+    not_computed : str
+        The limits that could not be computed, and why (said in the note with or without a value).
     """
     candidates = {}
     if v_s_elf_over_w is not None and math.isfinite(v_s_elf_over_w):
@@ -182,14 +186,20 @@ def superstructure_shear(v_s_elf_over_w: float, f_above: float, rha_over_w: floa
             candidates[name] = value
     limit, governs = (max(candidates.values()), max(candidates, key=candidates.get)) if candidates else (None, "")
     if rha_over_w is None or not math.isfinite(rha_over_w):
+        # it said "limit <the governing one>" alone, whatever else was computed and whether or not the design had a
+        # superstructure (session 19 sweep): now why no value, every limit computed and what was not
+        why = missing or ("needs the superstructure shear of the response histories (a design with a "
+                          "[superstructure] analysed by the building model)")
+        said = ("the limit computed: the largest of " + "; ".join(candidates) + f" — {governs} governs"
+                if candidates else "no limit computed (no ELF V_s)")
         return check("superstructure_shear", clause, NOT_CHECKED, None, limit,
-                     "needs the superstructure shear of the response histories (a design with a [superstructure] "
-                     f"analysed by the building model); limit {governs or 'none (no ELF V_s)'}", "V/W")
+                     f"{why}; {said}" + (f"; {not_computed}" if not_computed else ""), "V/W")
     value = rha_over_w / r_i
     return at_least("superstructure_shear", clause, value, limit,
                     f"RHA superstructure shear / W ÷ R_I = {rha_over_w:.4g} / {r_i:g} [U: RHA forces reduced by R_I]"
                     + (f" ({note})" if note else "") + " ≥ the largest of 17.6.4.2 and the 17.5.4.3 limits: "
-                    + "; ".join(candidates) + f" — {governs} governs", "V/W")
+                    + "; ".join(candidates) + f" — {governs} governs" + (f"; {not_computed}" if not_computed else ""),
+                    "V/W")
 
 
 def story_drift(drift_ratio: float | None, limit: float | None, note: str = "",

@@ -120,6 +120,9 @@ PARAMETERS = {p.name: p for p in [
     Parameter("gamma_x", 1.2, "U", "EN 1998-1 10.3(2)", "reliability factor on isolator displacements",
               ("en15129",)),
     Parameter("delta", 0.5, "U", "EN 1998-2 7.7.1 / EN 15129", "restoring capability d_Ed/d_r ≥ δ", ("en15129",)),
+    Parameter("eta_min", 0.55, "U", "EN 1998-1 3.2.2.2(3) (REVIEW_RULES 2)",
+              "least damping correction η = sqrt(10/(5 + ξ)) of the elastic spectrum at the isolation system's "
+              "effective damping (0.55: ξ = 28 %)", ("en15129",)),
     Parameter("en_accidental_e", 0.05, "U", "EN 1998-1 4.3.2(1) / 10.9.6",
               "accidental eccentricity / the plan dimension ⟂ the loading, in each isolator's torsion amplification "
               "δ_i = 1 + e_tot y_i / r²", ("en15129",)),
@@ -185,6 +188,8 @@ RANGES = {
     "vertical_Ev_coefficient": Range(0.0, 1.0, "a coefficient of S_MS D (ASCE 7-22 12.4.2.2: 0.2)"),
     "gamma_x": Range(1.0, 3.0, "a reliability factor (EN 1998-1 10.3(2): 1.2)"),
     "delta": Range(0.0, 1.0, "a ratio d_Ed/d_r (EN 1998-2 7.7.1: 0.5)", lo_open=True),
+    "eta_min": Range(0.1, 1.0, "a least damping correction of the spectrum (EN 1998-1 3.2.2.2(3): 0.55; 1 no "
+                               "reduction by damping)"),
     "en_accidental_e": Range(0.0, 0.5, "a fraction of the plan dimension (EN 1998-1 4.3.2(1): 0.05)"),
 }
 #: Pairs (low, high) of parameters whose low must stay below their high.
@@ -202,19 +207,31 @@ def _check_range(name: str, value) -> None:
         raise ReviewError(f"review parameter '{name}' = {value:g} is outside {interval}: {bounds.reason}")
 
 
-def resolve(code: str, overrides: dict | None = None) -> dict:
+#: Why a parameter of one code is not read by the other's review (said when it is set there).
+NOT_READ = {("f_ae", "en15129"): "EN 1998-2 7.5.2.4 bounds are the plain product of the λ factors, no 0.75 "
+                                  "combination (REVIEW_RULES 2)"}
+
+
+def resolve(code: str, overrides: dict | None = None, *, other_codes: bool = False) -> dict:
     """The parameter values of a review: defaults of ``code`` with ``overrides`` applied.
+
+    ``other_codes``: take a parameter of the other code's review too (the record checks of ``report`` and
+    ``batch``, which read ASCE 7-22's values whatever review the same ``--set`` serves); otherwise it is refused,
+    since the review would print it as used and not read it (``--set f_ae=0.5`` of an EN 15129 review).
 
     Raises
     ------
     ReviewError
-        An unknown parameter name, a value of the wrong kind, a value outside its range
-        (:data:`RANGES`, with the reason) or a low bound at or above its high (:data:`ORDERED`).
+        An unknown parameter name, one of the other code's review, a value of the wrong kind, a value outside its
+        range (:data:`RANGES`, with the reason) or a low bound at or above its high (:data:`ORDERED`).
     """
     values = {name: p.default for name, p in PARAMETERS.items() if code in p.codes}
     for name, value in (overrides or {}).items():
         if name not in PARAMETERS:
             raise ReviewError(f"unknown review parameter '{name}' (known: {', '.join(PARAMETERS)})")
+        if not other_codes and code not in PARAMETERS[name].codes:
+            why = NOT_READ.get((name, code), f"it serves {PARAMETERS[name].rule} only")
+            raise ReviewError(f"review parameter '{name}' is not read by the {code} review: {why}")
         default = PARAMETERS[name].default
         values[name] = _coerce(name, value, default)
         _check_range(name, values[name])

@@ -31,7 +31,7 @@ def capacity_reading(design, parameters: dict | None = None) -> dict:
     """
     from isolator.superstructure import review_inputs
 
-    p = resolve("asce7-22", parameters)
+    p = resolve("asce7-22", parameters, other_codes=True)
     if not p["capacity_at_corner"]:
         return {"factor": 1.0, "at_corner": False, "where": "the centre of mass (capacity_at_corner false)",
                 "basis": "capacity_at_corner false"}
@@ -67,7 +67,7 @@ def record_checks(design, motion, engineering: dict, parameters: dict | None = N
     """
     from isolator.review.suite_components import high_pass_corner_hz
 
-    p = resolve("asce7-22", parameters)
+    p = resolve("asce7-22", parameters, other_codes=True)
     d = float(engineering["peak_displacement_m"])
     reading = capacity_reading(design, parameters)
     d_read = reading["factor"] * d

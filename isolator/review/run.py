@@ -152,7 +152,9 @@ class Review:
 def elf_values(design, mu, target, code, params, t_fixed_s: float | None = None) -> dict:
     """The ELF values of one bound; with a superstructure also D'_M of Eq. 17.6-1 at its fixed-base period."""
     if code == "en15129":  # the effective period of the isolated system at its design displacement, η damping
-        return asce7_22.elf_displacement(design, mu, target, form="SaM", reduction=en15129.damping_divisor)
+        eta_min = params.get("eta_min", P.PARAMETERS["eta_min"].default)
+        return asce7_22.elf_displacement(design, mu, target, form="SaM",
+                                         reduction=lambda beta: en15129.damping_divisor(beta, eta_min))
     out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"))
     if code == "asce7-22" and out["D_M_m"] > 0:
         out.update(asce7_22.superstructure_shear(out["V_b_over_W"], out["beta_M"], params))

@@ -798,18 +798,31 @@ def _timing(system: PlanarBuildingSystem, ax, dt_s, time_s) -> tuple:
     return dt, relative, t0, n_sub
 
 
+def _check_settings() -> None:
+    """The module's run-time settings, each of its kind and in its range, or a one-line ValueError (a text such as
+    FAST_TRUNC_EPS = "1e-10" was a TypeError from the comparison; a text "no" as STOP_PIECE read as true)."""
+    numbers = (("planar_building_kernel.N_ORDER", _pk.N_ORDER, ORDER_RANGE, "tested range", True),
+               ("planar_building.FAST_TRUNC_EPS", FAST_TRUNC_EPS, FAST_TRUNC_EPS_RANGE, "measured range", False),
+               ("planar_building.FAST_CHECK", FAST_CHECK, FAST_CHECK_RANGE, "measured range", False))
+    for name, value, (low, high), why, whole in numbers:
+        kinds = (int, np.integer) if whole else (int, float, np.integer, np.floating)
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, kinds):
+            raise ValueError(f"{name} = {value!r} is not {'a whole number' if whole else 'a number'} (a run-time "
+                             f"setting in {low:g} … {high:g}, {why})")
+        if not low <= value <= high:
+            raise ValueError(f"{name} = {value!r} is outside {(low, high)} ({why})")
+    for name in ("STOP_APPROACH", "DEPARTURE_SERIES", "LEAVE_SERIES", "STOP_REACH_SERIES", "STOP_PIECE"):
+        value = globals()[name]
+        if not isinstance(value, (bool, np.bool_)):
+            raise ValueError(f"planar_building.{name} = {value!r} is not True or False (a run-time setting)")
+
+
 def _run(system: PlanarBuildingSystem, ax, ay, timing: tuple, bearing_layout,
          normal: _Normal | None = None) -> PlanarBuildingResponse:
     """The kernel on a record; ``timing`` from :func:`_timing` (the public entry's: checked once)."""
     dt, relative, t0, n_sub = timing
     rate = system.fastest_rate_per_s
-    if not ORDER_RANGE[0] <= _pk.N_ORDER <= ORDER_RANGE[1]:
-        raise ValueError(f"planar_building_kernel.N_ORDER = {_pk.N_ORDER} is outside {ORDER_RANGE} (tested range)")
-    if not FAST_TRUNC_EPS_RANGE[0] <= FAST_TRUNC_EPS <= FAST_TRUNC_EPS_RANGE[1]:
-        raise ValueError(f"planar_building.FAST_TRUNC_EPS = {FAST_TRUNC_EPS!r} is outside {FAST_TRUNC_EPS_RANGE} "
-                         "(measured range)")
-    if not FAST_CHECK_RANGE[0] <= FAST_CHECK <= FAST_CHECK_RANGE[1]:
-        raise ValueError(f"planar_building.FAST_CHECK = {FAST_CHECK!r} is outside {FAST_CHECK_RANGE} (measured range)")
+    _check_settings()
     h_max = _pk.THETA / rate if rate > 0 else math.inf
     n = system.n_floors
     m = 2 * n + 2

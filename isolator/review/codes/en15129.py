@@ -115,7 +115,8 @@ def restoring_capability_ratio(design, mu: float, displacement_m: float) -> floa
     return 0.0 if math.isinf(d_r) else displacement_m / d_r
 
 
-def damping_divisor(beta: float) -> float:
-    """1/η with η = sqrt(10/(5 + ξ)) ≥ 0.55, ξ in % (EN 1998-1 3.2.2.2(3)) [-]: divides the 5 % spectrum."""
-    eta = max(math.sqrt(0.10 / (0.05 + max(beta, 0.0))), 0.55)
+def damping_divisor(beta: float, eta_min: float = 0.55) -> float:
+    """1/η with η = sqrt(10/(5 + ξ)) ≥ η_min, ξ in % (EN 1998-1 3.2.2.2(3); η_min 0.55 [U], the review parameter
+    ``eta_min``) [-]: divides the 5 % spectrum."""
+    eta = max(math.sqrt(0.10 / (0.05 + max(beta, 0.0))), eta_min)
     return 1.0 / eta
