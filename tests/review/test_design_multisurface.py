@@ -20,21 +20,9 @@ PAIRS = [("landers1992_YER", "RSN900_LANDERS_YER270.AT2", "RSN900_LANDERS_YER360
          ("hectormine1999_ABY", "RSN1762_HECTOR_ABY090.AT2", "RSN1762_HECTOR_ABY360.AT2"),
          ("superstitionhills1987_PTS", "RSN723_SUPER.B_B-PTS225.AT2", "RSN723_SUPER.B_B-PTS315.AT2")]
 SAMPLES = 600  # the first 600 samples (12 s at 0.02 s, 6 s at 0.01 s) of each component: a fast suite
-DOUBLE = """name = "DFP R 2.5/2.5 m, mu 0.04/0.07"
-mass_kg = 1.0e6
-lambda_max = 1.3
-lambda_min = 0.8
-[bearing]
-type = "double"
-[[bearing.surface]]
-radius_m = 2.5
-mu = 0.04
-displacement_capacity_m = 0.5
-[[bearing.surface]]
-radius_m = 2.5
-mu = 0.07
-displacement_capacity_m = 0.5
-"""
+DOUBLE = ('name = "DFP R 2.5/2.5 m, mu 0.04/0.07"\nmass_kg = 1.0e6\nlambda_max = 1.3\nlambda_min = 0.8\n'
+          '[bearing]\ntype = "double"\n' + "".join(f"[[bearing.surface]]\nradius_m = 2.5\nmu = {mu}\n"
+                                                 "displacement_capacity_m = 0.5\n" for mu in (0.04, 0.07)))
 
 
 def _cut(source: Path, target: Path, samples: int) -> None:
