@@ -63,18 +63,21 @@ def warm_up() -> None:
     import numpy as np
 
     from isolator.motion import intensity_measures
+    from isolator.solver import models, record
     from isolator.solver.harmonic import harmonic_response
-    from isolator.solver.record import simulate_record
 
     wave = np.sin(np.arange(400) * 0.05)
     intensity_measures(wave, 0.01)
-    simulate_record(wave, 0.01, mu_static=0.05, stiffness_per_mass=1.0, damping_per_mass=0.1)
+    models.warm_up(record.MODEL_NAME)  # the registry's warm-up of the 1-D engine, the one a batch runs
     harmonic_response(2.0, 0.1, 0.1, 0.05, samples_per_period=2)
     _WARM = True
 
 
-def _die_with_parent(parent_pid: int) -> None:
-    """Pool initializer: this worker ends when the process that started it ends.
+def die_with_parent(parent_pid: int) -> None:
+    """This process ends when the process ``parent_pid`` (the one that started it) ends.
+
+    The initializer of :func:`process_pool`'s workers, and the first line of the tests' warm-up processes
+    (tests/conftest.py).
 
     On Linux the kernel sends SIGTERM on the parent's death (``prctl(PR_SET_PDEATHSIG)``),
     whatever killed it (kill -9 included); elsewhere, and against the race where the
@@ -121,7 +124,7 @@ def process_pool(workers: int, *, warm: bool = True):
     except ValueError:  # pragma: no cover - no fork on this platform
         context = None
     # workers die with their parent: a killed batch leaves no process computing for nobody
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_die_with_parent,
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=die_with_parent,
                                initargs=(os.getpid(),))
     try:
         yield pool

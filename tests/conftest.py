@@ -52,25 +52,20 @@ def make_bad_record(tmp_path):
     return build
 
 
-#: The engines whose compiled kernels the xdist controller builds before its workers start (module, warm-up),
-#: the costliest first: cold on this project's 2-core CI machine the 2-D ones take 1.5-10 min of CPU each.
-ENGINE_WARM_UPS = (
-    ("isolator.solver.planar_multisurface_rate", "_warm_up"),
-    ("isolator.solver.planar_building_multisurface", "_warm_up"),
-    ("isolator.solver.planar_multisurface", "_warm_up"),
-    ("isolator.solver.planar_building", "_warm_up"),
-    ("isolator.solver.planar", "_warm_up"),
-    ("isolator.solver.building_multisurface", "_warm_up"),
-    ("isolator.solver.multisurface_rate", "_warm_up"),
-    ("isolator.solver.building", "_warm_up"),
-    ("isolator.solver.multisurface", "_warm_up"),
-    ("isolator.solver.record", "_warm_up_kernel"),
-)
+#: The models whose compiled kernels the xdist controller builds before its workers start, in this order (the
+#: costliest first, :data:`isolator.solver.models.WARM_UP_ORDER`), each in its own process by
+#: :func:`isolator.solver.models.warm_up`.
+def engine_warm_ups() -> tuple[str, ...]:
+    from isolator.solver import models
+
+    return models.WARM_UP_ORDER
+
+
 #: A warm-up process that has not finished after this long is left to the workers (they compile what is missing).
 WARM_UP_TIMEOUT_S = 1800.0
-#: Prefixed to a warm-up process's code: on Linux it gets SIGTERM when pytest dies, however pytest died.
-DIE_WITH_PARENT = ("import ctypes, signal\ntry:\n    ctypes.CDLL(None).prctl(1, signal.SIGTERM, 0, 0, 0)\n"
-                   "except (OSError, AttributeError):\n    pass\n")
+#: Prefixed to a warm-up process's code (``{pid}``: pytest's): it ends when pytest dies, however pytest died
+#: (:func:`isolator.parallel.die_with_parent`, the initializer of the batch's pool workers too).
+DIE_WITH_PARENT = "from isolator.parallel import die_with_parent\ndie_with_parent({pid})\n"
 #: Where :func:`pytest_configure` leaves the warm-up's line for the terminal summary.
 WARM_LINE = pytest.StashKey[str]()
 
@@ -87,14 +82,15 @@ def _warm_engines(processes: int) -> str:
     import time
 
     start = time.monotonic()
-    todo = list(ENGINE_WARM_UPS)
+    todo = list(engine_warm_ups())
     running: list[tuple[str, subprocess.Popen]] = []
     failed: list[str] = []
     try:
-        while todo or running:  # bounded: ≤ len(ENGINE_WARM_UPS) processes, each waited at most WARM_UP_TIMEOUT_S
+        while todo or running:  # bounded: ≤ len(WARM_UP_ORDER) processes, each waited at most WARM_UP_TIMEOUT_S
             while todo and len(running) < processes:
-                module, function = todo.pop(0)
-                code = DIE_WITH_PARENT + f"import {module} as m; m.{function}()"
+                module = todo.pop(0)  # a model's name
+                code = (DIE_WITH_PARENT.format(pid=os.getpid())
+                        + f"from isolator.solver import models\nmodels.warm_up({module!r})")
                 running.append((module, subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
                                                          stderr=subprocess.DEVNULL)))
             module, process = running.pop(0)
@@ -133,7 +129,6 @@ def _engines_loaded():
     """Load (on a fresh clone: compile) the 1-D and 2-D engines once, before any test, so that a
     test reading a command's output never meets the first-compilation note of
     :mod:`isolator.solver.notice` (tests/solver/test_notice.py tests the note itself)."""
-    from isolator.solver import planar, record
+    from isolator.solver import models, planar, record
 
-    record._warm_up_kernel()
-    planar._warm_up()
+    models.warm_up(record.MODEL_NAME, planar.MODEL_NAME)

@@ -17,7 +17,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from isolator.bench.cases import BenchCase, harmonic_case, record_case
+from isolator.bench.cases import BenchCase, harmonic_case
 from isolator.bench.methods import (
     OURS,
     MethodOutput,
@@ -31,7 +31,6 @@ from isolator.bench.pairs import (
     OPENSEES,
     PAIR_OURS,
     PAIR_TRUTH,
-    pair_case,
     pair_errors,
     pair_methods,
     planar_solver,
@@ -186,19 +185,22 @@ def time_rounds(runs: dict, rounds: int) -> tuple[dict, dict, dict]:
 
 
 def warm_up() -> None:
-    """Compile or load every numba function once, so that timings measure solving."""
+    """Compile or load every numba function once, so that timings measure solving: the 1-D engine by the model
+    registry's warm-up (:func:`isolator.solver.models.warm_up`), the harmonic solver and the baselines here."""
+    from isolator.solver import models, record
+
+    models.warm_up(record.MODEL_NAME)
     case = harmonic_case("warm-up", 1.5, 1.0, 0.5, 0.25, 0.2, n_periods=1)
     exact_solver(case)
     implicit_fixed_step(case, 0.5)
     newmark_elastic_plastic(case, 0.5)
-    rec = record_case("warm-up", np.sin(np.arange(50) * 0.3), 0.01, mu_static=0.05, stiffness_per_mass=4.9)
-    exact_solver(rec)
 
 
 def warm_up_pairs() -> None:
-    """Load the planar engine's numba functions once (2-D cases)."""
-    t = np.arange(60) * 0.01
-    planar_solver(pair_case("warm-up", 3.0 * np.sin(6.0 * t), 2.0 * np.cos(5.0 * t), 0.01))
+    """Load the planar engine's numba functions once (2-D cases), by the model registry's warm-up."""
+    from isolator.solver import models, planar
+
+    models.warm_up(planar.MODEL_NAME)
 
 
 def _failed_row(method: str, case, setting, note: str) -> dict:

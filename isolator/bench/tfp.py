@@ -216,28 +216,20 @@ def _loose_row(case, rounds, ours_per_round, truth, x, opensees, say) -> dict:
     # ours at TFP_LOOSE_RTOL, ours at the default and OpenSees in one three-way alternation (round by round: the
     # default ``ours_per_round`` times, the loose as often, OpenSees once): the loose row's time ratio, and the
     # default's in the same minutes, each measured here; the loose row's own error
-    import statistics
-    import time
+    from isolator.bench.harness import time_rounds
 
     say(f"{case.name}: ours at rtol {TFP_LOOSE_RTOL:g}, ours at the default and OpenSees, {rounds} rounds in alternation")
-    runs = {"default": (ours_tfp, None), "loose": (ours_tfp, TFP_LOOSE_RTOL), "opensees": (opensees_tfp_solver, 1)}
-    times = {name: [] for name in runs}
-    res = None
-    for _ in range(max(1, rounds)):
-        for name, (solver, arg) in runs.items():
-            for _ in range(1 if name == "opensees" else max(1, ours_per_round)):
-                start = time.perf_counter()
-                out = solver(case, rtol=arg) if solver is ours_tfp else solver(case, arg)
-                times[name].append(time.perf_counter() - start)
-                if name == "loose":
-                    res = out
-    seconds, default_s, os_s = (statistics.median(times[name]) for name in ("loose", "default", "opensees"))
+    medians, counts, last = time_rounds(
+        {"default": (lambda: ours_tfp(case, rtol=None), ours_per_round),
+         "loose": (lambda: ours_tfp(case, rtol=TFP_LOOSE_RTOL), ours_per_round),
+         "opensees": (lambda: opensees_tfp_solver(case, 1), 1)}, rounds)
+    seconds, default_s, os_s, res = medians["loose"], medians["default"], medians["opensees"], last["loose"]
     against = truth if truth is not None else x
     row = {"method": f"{TFP_OURS}, rtol {TFP_LOOSE_RTOL:g}", "rtol": TFP_LOOSE_RTOL, "seconds": seconds,
-           "runs": len(times["loose"]), "default_seconds": default_s, "peak_m": float(res.peak_displacement_m),
+           "runs": counts["loose"], "default_seconds": default_s, "peak_m": float(res.peak_displacement_m),
            "errors_against": "the reference" if truth is not None else "ours at the default rtol",
            **trajectory_errors(np.asarray(res.displacement_m), against), "opensees_seconds": os_s,
-           "opensees_runs": len(times["opensees"]), "time_ratio": os_s / seconds,
+           "opensees_runs": counts["opensees"], "time_ratio": os_s / seconds,
            "default_time_ratio": os_s / default_s}
     row["error_ratio"] = (opensees["error_trajectory"] / max(row["error_trajectory"], 1e-16)
                           if "error_trajectory" in opensees else None)

@@ -51,7 +51,7 @@ from isolator.review.design_grid import (
     recommend,
 )
 from isolator.review.design_store import RowStore, content_digest, search_context_key
-from isolator.review.design_workers import iterate_groups
+from isolator.review.design_workers import BEARING_COLUMNS, iterate_groups
 
 #: the columns of the table before the per-check statuses (``check_<id>``)
 COLUMNS = ("candidate", "error", "passes", "first_failing_check", "n_failing_checks", "n_not_checked",
@@ -99,7 +99,11 @@ class DesignSearch:
         table = pd.DataFrame(self.rows)
         checks = sorted({c for row in self.rows for c in row if c.startswith("check_")},
                         key=lambda c: next(i for i, row in enumerate(self.rows) if c in row))
-        order = [*self.varied_keys, *(c for c in COLUMNS if c not in self.varied_keys), *checks]
+        columns = [c for c in COLUMNS if c not in self.varied_keys]
+        if any(c in row for row in self.rows for c in BEARING_COLUMNS):  # a double or triple: its surfaces
+            at = columns.index("mu_static") + 1
+            columns[at:at] = BEARING_COLUMNS
+        order = [*self.varied_keys, *columns, *checks]
         for column in order:
             if column not in table.columns:
                 table[column] = None

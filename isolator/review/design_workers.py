@@ -112,9 +112,7 @@ def candidate_row(review, values: dict) -> dict:
         "first_failing_check": failing[0] if failing else None,
         "n_failing_checks": len(failing),
         "n_not_checked": sum(c["status"] == "not checked" for c in checks),
-        "radius_m": design.radius_m,
-        "mu_kinetic": design.mu_kinetic,
-        "mu_static": design.mu_static,
+        **design_columns(design),
         "displacement_capacity_m": design.displacement_capacity_m,
         "isolated_period_s": design.isolated_period_s,
         "design_displacement_m": r["design_displacement_m"]["value"],
@@ -156,6 +154,44 @@ def paper_regime(regimes: list, points: list) -> tuple[str | None, list]:
     if len(counts) == 1:
         return named[0], points
     return "mixed: " + ", ".join(f"{name} ×{n}" for name, n in counts.items()), []
+
+
+def design_columns(design) -> dict:
+    """The candidate's radius and friction as the engineer gave them.
+
+    A single surface: ``radius_m``, ``mu_kinetic``, ``mu_static``.  A double or triple pendulum has no one radius or
+    µ: its ``Design`` holds the equivalent single pendulum of its last sliding regime (:func:`isolator.bearing.
+    equivalent_single`), which the table showed as ``radius_m`` and ``mu_kinetic`` (session 20: "R 4.2 m, µ 0.08"
+    for the example triple, whose surfaces are 2.1/0.3/0.3/2.1 m).  Its row gives the surfaces
+    (``bearing_surfaces``) and the equivalent values under their own names (:data:`BEARING_COLUMNS`), the single
+    surface's columns empty."""
+    bearing = getattr(design, "bearing", None)
+    if bearing is None or bearing.is_simple:
+        return {"radius_m": design.radius_m, "mu_kinetic": design.mu_kinetic, "mu_static": design.mu_static}
+    return {"radius_m": None, "mu_kinetic": None, "mu_static": None,
+            "bearing_surfaces": surfaces_text(bearing),
+            "equivalent_radius_m": design.radius_m, "equivalent_mu": design.mu_kinetic}
+
+
+#: The columns of a double's or triple's row (:func:`design_columns`), in the table after ``mu_static``.
+BEARING_COLUMNS = ("bearing_surfaces", "equivalent_radius_m", "equivalent_mu")
+
+
+def surfaces_text(bearing) -> str:
+    """``"triple: R 2.1/0.3/0.3/2.1 m, mu 0.06/0.02/0.02/0.1, d* 0.8/0.05/0.05/0.8 m"`` (surface by surface, as
+    the design file gives them; µ(v) surfaces as ``mu_slow-mu_fast``; ``d*`` only when the surfaces have rims)."""
+    def mu(surface) -> str:
+        if getattr(surface, "rate_s_per_m", None) is not None:
+            return f"{surface.mu_slow:g}-{surface.mu_fast:g}"
+        return f"{surface.mu_kinetic:g}"
+
+    surfaces = bearing.surfaces
+    text = (f"{bearing.kind}: R {'/'.join(f'{s.radius_m:g}' for s in surfaces)} m, "
+            f"mu {'/'.join(mu(s) for s in surfaces)}")
+    capacities = [s.displacement_capacity_m for s in surfaces]
+    if all(c is not None for c in capacities):
+        text += f", d* {'/'.join(f'{c:g}' for c in capacities)} m"
+    return text
 
 
 def check_statuses(checks: list) -> dict:

@@ -76,42 +76,91 @@ class Model:
         ``run(scene) -> SolverResult``.
     description : str
         One line for the documentation.
+    warm_up : callable
+        ``warm_up()``: load (on a cold cache: compile) the model's numba kernels on a tiny problem, once per process
+        (later calls return at once); a model without compiled kernels leaves the default, which does nothing.
+        :func:`warm_up` calls it by the model's name.
     """
 
     name: str
     needs: Callable
     run: Callable
     description: str
+    warm_up: Callable = lambda: None
 
 
 #: The models, most specific first: :func:`select_model` takes the first whose ``needs`` answers.
 MODELS: dict[str, Model] = {model.name: model for model in (
     Model(multisurface_rate.MODEL_NAME, multisurface_rate.scene_needs, multisurface_rate.simulate_scene,
-          "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events"),
+          "mass on a double or triple friction pendulum with µ(v) surfaces, one component: Radau IIA with events",
+          warm_up=multisurface_rate._warm_up),
     Model(planar_multisurface_rate.MODEL_NAME, planar_multisurface_rate.scene_needs,
           planar_multisurface_rate.simulate_scene, "mass on a double or triple friction pendulum with µ(v) surfaces "
-          "under a pair: Radau IIA with events, coupled friction, no rims"),
+          "under a pair: Radau IIA with events, coupled friction, no rims",
+          warm_up=planar_multisurface_rate._warm_up),
     Model(planar_building_multisurface.MODEL_NAME, planar_building_multisurface.scene_needs,
           planar_building_multisurface.simulate_scene, "shear building on a double or triple friction pendulum under a "
-          "pair (and its vertical): implicit steps with rims, the floors exact within each step"),
+          "pair (and its vertical): implicit steps with rims, the floors exact within each step",
+          warm_up=planar_building_multisurface._warm_up),
     Model(planar_multisurface.MODEL_NAME, planar_multisurface.scene_needs, planar_multisurface.simulate_scene,
-          "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853"),
+          "mass on a double or triple friction pendulum in the plane (series model, coupled friction): DOP853",
+          warm_up=planar_multisurface._warm_up),
     Model(building_multisurface.MODEL_NAME, building_multisurface.scene_needs, building_multisurface.simulate_scene,
-          "shear building on a double or triple friction pendulum, one component: exact between events, rims"),
+          "shear building on a double or triple friction pendulum, one component: exact between events, rims",
+          warm_up=building_multisurface._warm_up),
     Model(multisurface.MODEL_NAME, multisurface.scene_needs, multisurface.simulate_scene,
-          "mass on a double or triple friction pendulum (series model, rims), one component: closed forms"),
+          "mass on a double or triple friction pendulum (series model, rims), one component: closed forms",
+          warm_up=multisurface._warm_up),
     Model(planar_building.MODEL_NAME, planar_building.scene_needs, planar_building.simulate_scene,
-          "shear building on the isolation plane under a pair: friction coupled in the plane, Taylor series pieces"),
+          "shear building on the isolation plane under a pair: friction coupled in the plane, Taylor series pieces",
+          warm_up=planar_building._warm_up),
     Model(building.MODEL_NAME, building.scene_needs, building.simulate_scene,
-          "shear building on the isolation plane under one component: exact linear propagation between events"),
+          "shear building on the isolation plane under one component: exact linear propagation between events",
+          warm_up=building._warm_up),
     Model(record.MODEL_NAME, record.scene_needs, record.simulate_scene,
-          "rigid block on one surface under one component, constant friction: closed forms between events"),
+          "rigid block on one surface under one component, constant friction: closed forms between events",
+          warm_up=record._warm_up_kernel),
     Model(planar_rim.MODEL_NAME, planar_rim.scene_needs, planar_rim.simulate_scene,
           "single pendulum with a displacement capacity under a pair (or a vertical, µ(v)): the 2-D engine, rerun "
-          "with the rim (plastic impact, sliding along it) when the peak reaches the capacity"),
+          "with the rim (plastic impact, sliding along it) when the peak reaches the capacity",
+          warm_up=planar._warm_up),
     Model(planar.MODEL_NAME, planar.scene_needs, planar.simulate_scene,
-          "rigid block on one surface in the plane: coupled friction, µ(v), n(t) = g + a_z (DOP853 between events)"),
+          "rigid block on one surface in the plane: coupled friction, µ(v), n(t) = g + a_z (DOP853 between events)",
+          warm_up=planar._warm_up),
 )}
+
+
+#: One model per distinct warm-up (``2d+rim`` is warmed by ``2d``, its engine), the costliest to compile cold first (on
+#: a 2-core machine the 2-D multi-surface ones take 1.5-10 min of CPU each): the order in which a warm-up of several
+#: processes starts them (tests/conftest.py), and :func:`warm_up`'s order when no name is given.
+WARM_UP_ORDER: tuple[str, ...] = (
+    planar_multisurface_rate.MODEL_NAME, planar_building_multisurface.MODEL_NAME, planar_multisurface.MODEL_NAME,
+    planar_building.MODEL_NAME, planar.MODEL_NAME, building_multisurface.MODEL_NAME, multisurface_rate.MODEL_NAME,
+    building.MODEL_NAME, multisurface.MODEL_NAME, record.MODEL_NAME,
+)
+
+
+def warm_up(*names: str) -> None:
+    """Load (on a cold cache: compile) the numba kernels of the models ``names`` (all models when none is given).
+
+    Each model's warm-up runs its engine once on a tiny problem and is cached in the process: a second call, or a
+    model sharing an engine with one already warmed (``2d+rim`` and ``2d``), returns at once.  Used by
+    :func:`isolator.parallel.warm_up` (before a pool forks), the bench (before it times) and the tests' warm-up.
+
+    Raises
+    ------
+    KeyError
+        A name not in :data:`MODELS` (the message lists the names).
+    """
+    unknown = [name for name in names if name not in MODELS]
+    if unknown:
+        raise KeyError(f"no solver model {', '.join(map(repr, unknown))}; the models: {', '.join(MODELS)}")
+    done: set = set()
+    for name in names or WARM_UP_ORDER:
+        function = MODELS[name].warm_up
+        if function not in done:  # bounded: one call per distinct warm-up
+            done.add(function)
+            function()
 
 
 def _choose(scene: Scene) -> tuple[Model, str, str]:
@@ -202,4 +251,5 @@ def simulate_motion(ax_m_s2, ay_m_s2=None, az_m_s2=None, dt_s=None, *, time_s=No
                           isolator=isolator, design=design))
 
 
-__all__ = ["MODELS", "SUMMARY_KEYS", "Model", "Scene", "SolverResult", "select_model", "simulate", "simulate_motion"]
+__all__ = ["MODELS", "SUMMARY_KEYS", "WARM_UP_ORDER", "Model", "Scene", "SolverResult", "select_model", "simulate",
+           "simulate_motion", "warm_up"]

@@ -101,3 +101,18 @@ def test_the_1d_model_refuses_an_invalid_isolator(isolator, word):
 
     with pytest.raises(InvalidSystemError, match=word):
         simulate(Scene(ax_m_s2=np.array([0.0, 1.0, 0.0]), dt_s=0.01, isolator=isolator))
+
+
+def test_the_registry_warms_every_kernel_the_tests_warmed_before_each_once():
+    """:data:`models.WARM_UP_ORDER` names one model per distinct warm-up, and together they are exactly the ten
+    engine warm-ups tests/conftest.py called by their private names up to e9efb0c, in the same order (the costliest
+    first): nothing compiles twice, nothing less than before.  Also: an unknown name is refused by name."""
+    before = [("planar_multisurface_rate", "_warm_up"), ("planar_building_multisurface", "_warm_up"),
+              ("planar_multisurface", "_warm_up"), ("planar_building", "_warm_up"), ("planar", "_warm_up"),
+              ("building_multisurface", "_warm_up"), ("multisurface_rate", "_warm_up"), ("building", "_warm_up"),
+              ("multisurface", "_warm_up"), ("record", "_warm_up_kernel")]
+    functions = [MODELS[name].warm_up for name in models.WARM_UP_ORDER]
+    assert [(f.__module__.removeprefix("isolator.solver."), f.__name__) for f in functions] == before
+    assert {model.warm_up for model in MODELS.values()} == set(functions)  # every model's warm-up is in the order
+    with pytest.raises(KeyError, match="no solver model 'nope'.*1d-exact"):
+        models.warm_up("1d-exact", "nope")
