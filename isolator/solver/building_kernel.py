@@ -218,8 +218,8 @@ def _monitor(mon_pow, w0, length, y0, y1, d0, d1, peak_max, peak_min, coef):
             located += 1
             _coefficients(mon_pow[:, k, :], w0, coef)
             sign = 1.0 if d0[k] > 0.0 else -1.0
-            t_e = _poly_root(coef, 1, 0.0, sign, 0.0, length)
-            v_e = _poly(coef, 0, t_e)
+            t_e = _poly_root(coef, np.int64(1), 0.0, sign, 0.0, length)
+            v_e = _poly(coef, np.int64(0), t_e)
             if v_e > peak_max[k]:
                 peak_max[k] = v_e
             if v_e < peak_min[k]:
@@ -371,8 +371,8 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                         if hd0 * hd1 < 0.0 and max(abs(h0), abs(h1)) + reach > mu_s_w:
                             n_located += 1
                             _coefficients(hold_pow, w, coef)
-                            t_ext = _poly_root(coef, 1, 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, rem)
-                            h_ext = _poly(coef, 0, t_ext)
+                            t_ext = _poly_root(coef, np.int64(1), 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, rem)
+                            h_ext = _poly(coef, np.int64(0), t_ext)
                         if t_ext >= 0.0 and abs(h_ext) > mu_s_w:
                             hit_sign = 1.0 if h_ext > 0.0 else -1.0
                             seg_hi = t_ext
@@ -384,7 +384,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                         if hit_sign != 0.0:
                             _coefficients(hold_pow, w, coef)
                             # root of hit·D − µs W from < 0 to >= 0: written as −(hit·D − µs W) from > 0
-                            t_event = _poly_root(coef, 0, hit_sign * mu_s_w, -hit_sign, lo_seg, seg_hi)
+                            t_event = _poly_root(coef, np.int64(0), hit_sign * mu_s_w, -hit_sign, lo_seg, seg_hi)
                 else:
                     v0 = s * w[idx_vb]
                     v1 = s * w1[idx_vb]
@@ -399,7 +399,7 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                             # a start that cannot move in direction s is a stop at once
                             if av0 > 0.0 and av1 < 0.0:
                                 _coefficients(vb_pow[mode], w, coef)
-                                lo_seg = _poly_root(coef, 1, 0.0, s, 0.0, rem)
+                                lo_seg = _poly_root(coef, np.int64(1), 0.0, s, 0.0, rem)
                             else:
                                 t_event = 0.0
                                 seg_hi = -1.0
@@ -409,12 +409,12 @@ def building_kernel(acc, dt, n_sub, times, h_max, a_modes, phi_modes, pin_modes,
                         # acceleration is rounding; the velocity that grew to v1 > 0 did not stop)
                         # an interior minimum of s·v_b: does it reach zero?
                         _coefficients(vb_pow[mode], w, coef)
-                        t_min = _poly_root(coef, 1, 0.0, -s, 0.0, rem)
-                        if s * _poly(coef, 0, t_min) <= 0.0:
+                        t_min = _poly_root(coef, np.int64(1), 0.0, -s, 0.0, rem)
+                        if s * _poly(coef, np.int64(0), t_min) <= 0.0:
                             seg_hi = t_min
                     if seg_hi >= 0.0:
                         _coefficients(vb_pow[mode], w, coef)
-                        t_event = _poly_root(coef, 0, 0.0, s, lo_seg, seg_hi)
+                        t_event = _poly_root(coef, np.int64(0), 0.0, s, lo_seg, seg_hi)
                 piece = rem if t_event < 0.0 else t_event
                 # ---- advance to the end of the piece (or the event) ----
                 if t_event >= 0.0:

@@ -155,8 +155,8 @@ def _extremes(mon, am, w, kry, have, length, y0, y1, d0, d1, peak_max, peak_min,
                 or (d0[k] < 0.0 < d1[k] and lo_v - reach < peak_min[k])):
             _series(am, w, kry, have)
             _coef(mon[k], kry, coef)
-            t_e = poly_root(coef, 1, 0.0, 1.0 if d0[k] > 0.0 else -1.0, 0.0, length)
-            v_e = poly(coef, 0, t_e)
+            t_e = poly_root(coef, np.int64(1), 0.0, 1.0 if d0[k] > 0.0 else -1.0, 0.0, length)
+            v_e = poly(coef, np.int64(0), t_e)
             peak_max[k] = max(peak_max[k], v_e)
             peak_min[k] = min(peak_min[k], v_e)
 
@@ -192,8 +192,8 @@ def _exit(kry, row, row_d, w1, length, lo, hi, coef):
     reach = 2.0 * length * max(abs(hd0), abs(hd1))
     if hd0 * hd1 < 0.0 and (max(h0, h1) + reach > hi or min(h0, h1) - reach < lo):
         _coef(row, kry, coef)
-        t_ext = poly_root(coef, 1, 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, length)
-        h_ext = poly(coef, 0, t_ext)
+        t_ext = poly_root(coef, np.int64(1), 0.0, 1.0 if hd0 > 0.0 else -1.0, 0.0, length)
+        h_ext = poly(coef, np.int64(0), t_ext)
     side = 0.0
     seg_lo = 0.0
     seg_hi = length
@@ -208,7 +208,7 @@ def _exit(kry, row, row_d, w1, length, lo, hi, coef):
         return -1.0, 0.0
     _coef(row, kry, coef)
     level = hi if side > 0.0 else lo
-    return poly_root(coef, 0, level, -side, seg_lo, seg_hi), side
+    return poly_root(coef, np.int64(0), level, -side, seg_lo, seg_hi), side
 
 
 @njit(cache=True)
@@ -221,7 +221,7 @@ def _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, weight, a0,
     for e in range(u.shape[0]):
         if s * u[e] >= rim[e]:
             rim_before |= 1 << e
-    f_k, fric = _setup(0, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, weight, a0, da, mon0, dmon, am, mon, mon_d)
+    f_k, fric = _setup(np.int64(0), reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, weight, a0, da, mon0, dmon, am, mon, mon_d)
     code = reg_mask[0] + (1 << u.shape[0]) * rim_before
     if state_first_time[code] < 0.0:
         state_first_time[code] = t
@@ -509,7 +509,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                     if abs(excess) <= 1e-9 * weight * abs(reg_r[0]):
                         f_k += excess
                     w[idx_f] = f_k
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, BREAKAWAY, x)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, np.int64(BREAKAWAY), x)
                 elif crossing:
                     left = reg_mask[k] & ~reg_mask[k + 1]
                     rim_before |= left
@@ -571,7 +571,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                         w[idx_f] = 0.0
                         _stuck_rows(a_st, mon_st, am, mon, mon_d)
                         mode = 0
-                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, STICK, x)
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, np.int64(STICK), x)
                     else:
                         s = 1.0 if need > weight * r_hi else -1.0
                         n_reg, rim_before, f_k, fric = _begin(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum,
@@ -581,7 +581,7 @@ def building_multisurface_kernel(acc, dt, times, h_max, a_st, a0, da, phi_modes,
                         k = 0
                         w[idx_f] = f_k
                         peak_r = max(peak_r, abs(reg_r[0]))
-                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, REVERSAL, x)
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_abs, np.int64(REVERSAL), x)
                 # the functionals jump with the mode or the regime: count the new side
                 matvec(mon, w, y1)
                 for j in range(nk):

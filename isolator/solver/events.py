@@ -15,6 +15,8 @@ Event kinds are small integers so that the compiled kernel can store them.
 
 from __future__ import annotations
 
+import numpy as np
+
 from isolator.solver.jit import njit
 from isolator.solver.segments import segment_state
 
@@ -185,23 +187,23 @@ def find_stop(s, from_rest, rem, x, v, v_end, acc_start, acc_end, p, q, force, t
     if s * v_end <= 0.0:
         if not from_rest:
             guess = secant_guess(0.0, rem, v, v_end)
-            return segment_root(0, s, 0.0, rem, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
+            return segment_root(np.int64(0), s, 0.0, rem, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
         # s·V rises first, so the stop lies after its maximum
         guess = secant_guess(0.0, rem, acc_start, acc_end)
-        t_ext = segment_root(1, s, 0.0, rem, x, v, p, q, force, theta0, c, kappa, omega, guess)
+        t_ext = segment_root(np.int64(1), s, 0.0, rem, x, v, p, q, force, theta0, c, kappa, omega, guess)
         _, v_ext, _, _ = segment_state(t_ext, x, v, p, q, force, theta0, c, kappa, omega)
         if s * v_ext <= 0.0:
             return t_ext, t_ext, v_ext  # no positive excursion: a grazing touch
         guess = secant_guess(t_ext, rem, v_ext, v_end)
-        return segment_root(0, s, t_ext, rem, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
+        return segment_root(np.int64(0), s, t_ext, rem, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
     if s * acc_start < 0.0 and s * acc_end > 0.0:
         # s·V has an interior minimum: does it reach zero?
         guess = secant_guess(0.0, rem, acc_start, acc_end)
-        t_ext = segment_root(1, -s, 0.0, rem, x, v, p, q, force, theta0, c, kappa, omega, guess)
+        t_ext = segment_root(np.int64(1), -s, 0.0, rem, x, v, p, q, force, theta0, c, kappa, omega, guess)
         _, v_ext, _, _ = segment_state(t_ext, x, v, p, q, force, theta0, c, kappa, omega)
         if s * v_ext <= 0.0:
             guess = secant_guess(0.0, t_ext, v, v_ext)
-            return segment_root(0, s, 0.0, t_ext, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
+            return segment_root(np.int64(0), s, 0.0, t_ext, x, v, p, q, force, theta0, c, kappa, omega, guess), t_ext, v_ext
     return -1.0, t_ext, v_ext
 
 

@@ -179,7 +179,7 @@ def velocity_peak(peak_v, length, x, v, v_end, acc_start, acc_end, p, q, c, kapp
     if max(abs(v), abs(v_end)) + 2.0 * length * max(abs(acc_start), abs(acc_end)) <= peak_v:
         return peak_v
     sign = 1.0 if acc_start > 0.0 else -1.0
-    t_e = segment_root(1, sign, 0.0, length, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+    t_e = segment_root(np.int64(1), sign, 0.0, length, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
                        secant_guess(0.0, length, acc_start, acc_end))
     _, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
     return max(peak_v, abs(v_e))
@@ -294,7 +294,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                     tau = tb
                     from_rest = True
                     exact_start = crossing
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, BREAKAWAY, x)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, np.int64(BREAKAWAY), x)
                     # the transmitted acceleration jumps at the break-away: a_g on the stuck side
                     # (|κx + a_g| = µs g there), −(µk g s + κx) on the sliding side; count both
                     jump = max(abs(mu_k_g * s + kappa * x), abs(a_sub + b * tb))
@@ -356,7 +356,7 @@ def record_kernel(acc, dt, n_sub, c, kappa, mu_s_g, mu_k_g, full_basis, gram,
                         a_ends = max(abs(mu_k_g * s + kappa * x + c * v), abs(mu_k_g * s + kappa * x1 + c * v1))
                         if d0 * d1 < 0.0 and a_ends + 2.0 * rem * max(abs(d0), abs(d1)) > peak_a:
                             sg = 1.0 if d0 > 0.0 else -1.0
-                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                            t_e = segment_root(np.int64(2), sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
                                                secant_guess(0.0, rem, d0, d1))
                             x_e, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                             a_e = abs(mu_k_g * s + kappa * x_e + c * v_e)

@@ -64,7 +64,7 @@ def _peak_displacement(acc, dt, c, kappa, n_sub, times, max_piece):
             if v * v1 < 0.0 and max(abs(x), abs(x1)) + h * max(abs(v), abs(v1)) > peak:
                 # an extremum of x between the samples: locate it exactly
                 sign = 1.0 if v > 0.0 else -1.0
-                t_e = segment_root(0, sign, 0.0, h, x, v, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, v, v1))
+                t_e = segment_root(np.int64(0), sign, 0.0, h, x, v, p, q, 0.0, 0.0, c, kappa, 0.0, secant_guess(0.0, h, v, v1))
                 x_e, _, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                 if abs(x_e) > peak:
                     peak = abs(x_e)

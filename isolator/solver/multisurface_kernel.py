@@ -145,7 +145,7 @@ def _enter_excursion(s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, g
     bk = 0.0
     fric = 0.0
     if reg_rsum[0] > 0.0:
-        kappa, bk, fric = _regime_setup(0, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, g)
+        kappa, bk, fric = _regime_setup(np.int64(0), reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, g)
         code = reg_mask[0] + (1 << u.shape[0]) * rim_before
         if state_first_time[code] < 0.0:
             state_first_time[code] = t
@@ -320,7 +320,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
                     tau = tb
                     stuck = False
                     from_rest = True
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, BREAKAWAY, x)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tb, np.int64(BREAKAWAY), x)
                     n_reg, rim_before, kappa, bk, fric = _enter_excursion(
                         s, u, rbar, mu, rim, x, reg_x, reg_r, reg_rsum, reg_mask, g, state_first_time, t_sub + tb)
                     k = 0
@@ -337,7 +337,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
                         state_first_time[code] = t_sub + tau
                     peak_r = max(peak_r, abs(reg_r[k]))
                     peak_a = max(peak_a, abs(g * reg_r[k] + c * v))
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, RIM_REACHED, x)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, np.int64(RIM_REACHED), x)
                     continue
                 if reg_rsum[k] == 0.0:
                     # entering a rigid regime at rest (it holds the force: stuck), or the ultimate
@@ -433,7 +433,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
                         a_ends = max(abs(kappa * x + bk + c * v), abs(kappa * x1 + bk + c * v1))
                         if d0 * d1 < 0.0 and a_ends + 2.0 * rem * max(abs(d0), abs(d1)) > peak_a:
                             sg = 1.0 if d0 > 0.0 else -1.0
-                            t_e = segment_root(2, sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
+                            t_e = segment_root(np.int64(2), sg, 0.0, rem, x, v, p, q, 0.0, 0.0, c, kappa, 0.0,
                                                secant_guess(0.0, rem, d0, d1))
                             x_e, v_e, _, _ = segment_state(t_e, x, v, p, q, 0.0, 0.0, c, kappa, 0.0)
                             peak_a = max(peak_a, abs(kappa * x_e + bk + c * v_e))
@@ -486,7 +486,7 @@ def multisurface_kernel(acc, dt, times, n_sub, max_piece, c, g, rbar, mu, mu_sta
                         left >>= 1
                     rim_before |= reg_mask[k] & ~reg_mask[k + 1]
                     k += 1
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, REGIME, x)
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_sub + tau, np.int64(REGIME), x)
                     if reg_rsum[k] > 0.0:
                         kappa, bk, fric = _regime_setup(k, reg_x, reg_r, reg_rsum, reg_mask, rbar, mu, g)
                         code = reg_mask[k] + n_masks * rim_before

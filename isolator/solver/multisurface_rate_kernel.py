@@ -933,7 +933,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                 tau = tb
                 stuck = False
                 start_from_rest(s, y[1:], bmat, mode, mu_s, wb)
-                n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_i + tau, BREAKAWAY, y[1:].sum())
+                n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_i + tau, np.int64(BREAKAWAY), y[1:].sum())
                 sliding, rimmed = _masks(mode)
                 code = sliding + n_masks * rimmed
                 if state_first_time[code] < 0.0:
@@ -1104,12 +1104,12 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                 need = -ag_now / g
                 if lo <= need <= hi:
                     stuck = True
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, STICK, y[1:].sum())
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, np.int64(STICK), y[1:].sum())
                     r_now = need
                 else:
                     s = 1.0 if need > hi else -1.0
                     start_from_rest(s, y[1:], bmat, mode, mu_s, wb)
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REVERSAL, y[1:].sum())
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, np.int64(REVERSAL), y[1:].sum())
             else:
                 i = first_slot // 2
                 if first_slot % 2 == 1:
@@ -1133,7 +1133,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                         n_ult += 1
                         if first_ult < 0.0:
                             first_ult = t_now
-                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, ULTIMATE, y[1:].sum())
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, np.int64(ULTIMATE), y[1:].sum())
                         lo, hi = window(y[1:], bmat, mode, mu_s, wb)
                         need = -ag_now / g
                         if lo <= need <= hi:
@@ -1144,7 +1144,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                             start_from_rest(s2, y[1:], bmat, mode, mu_s, wb)
                     else:
                         consistent_mode(y[0], y[1:], bmat, mode, mu_s, mu_f, a, wb)
-                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, RIM_REACHED, y[1:].sum())
+                        n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, np.int64(RIM_REACHED), y[1:].sum())
                 else:
                     md = mode[i]
                     back_force(y[1:], bmat, wb)
@@ -1155,7 +1155,7 @@ def rate_kernel(acc, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol, h_first, 
                                                 i, pivot, gmap, lock) > 0.0 else -1
                     else:
                         mode[i] = -1 if md > 0 else 1  # leaves its rim inward
-                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, REGIME, y[1:].sum())
+                    n_ev = record_event(ev_time, ev_kind, ev_x, n_ev, t_now, np.int64(REGIME), y[1:].sum())
             for i in range(ns):
                 if (mode[i] == 1 or mode[i] == -1) and mode[i] != before[i]:
                     fresh[i] = 1

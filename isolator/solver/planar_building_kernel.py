@@ -1380,7 +1380,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
         vz[V_NU0] = 1.0 + az[0] / gravity
     # the series' time scale H: about the last piece's length (the next one's radius is near), at most h_max
     h_last = min(h_max, dt if uniform else times[1] - times[0]) if n > 1 else 1.0
-    _series(STUCK, w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs,
+    _series(np.int64(STUCK), w, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws, ss, rs, es, vz, mus, exs,
             h_last)
     _eval(zs, 0.0, z, zd, zdd)
     _monitors(z, zd, zdd, a0[0], a0[1], a0[2], b, m1, m2, m3, sig1, sig2, sig3, val, slope, sval, sslope)
@@ -1682,7 +1682,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                             for fx_j in range(fx_nterm):
                                                 cpoly[fx_d, fx_j] = 0.0
                                             _rows_series(fmon[fx_phase, fx_k, fx_d], wa[fx_d], fx_s_eff, fx_nterm, cpoly, fx_d)
-                                        peak_sq[fx_k] = max(peak_sq[fx_k], _poly_max(cpoly, 0, fx_nterm, fx_h))
+                                        peak_sq[fx_k] = max(peak_sq[fx_k], _poly_max(cpoly, np.int64(0), fx_nterm, fx_h))
                                 for fx_j in range(sig1.shape[0]):
                                     sig_max[fx_j] = max(sig_max[fx_j], sval[fx_j], sval1[fx_j])
                                     sig_min[fx_j] = min(sig_min[fx_j], sval[fx_j], sval1[fx_j])
@@ -1694,14 +1694,14 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                         for fx_jj in range(fx_nterm):
                                             cpoly[0, fx_jj] = 0.0
                                         for fx_d in range(2):
-                                            _rows_series(fsig[fx_phase, fx_j, fx_d], wa[fx_d], fx_s_eff, fx_nterm, cpoly, 0)
+                                            _rows_series(fsig[fx_phase, fx_j, fx_d], wa[fx_d], fx_s_eff, fx_nterm, cpoly, np.int64(0))
                                         # the vertical's share (a bearing's P_g a_z/g), linear in τ: not in the tables' augmented state
                                         cpoly[0, 0] += sig3[fx_j, 2] * a0[2]
                                         cpoly[0, 1] += sig3[fx_j, 2] * b[2]
                                         if fx_up:
-                                            sig_max[fx_j] = max(sig_max[fx_j], _poly_max(cpoly, 1, fx_nterm, fx_h))
+                                            sig_max[fx_j] = max(sig_max[fx_j], _poly_max(cpoly, np.int64(1), fx_nterm, fx_h))
                                         else:
-                                            sig_min[fx_j] = min(sig_min[fx_j], -_poly_max(cpoly, -1, fx_nterm, fx_h))
+                                            sig_min[fx_j] = min(sig_min[fx_j], -_poly_max(cpoly, np.int64(-1), fx_nterm, fx_h))
                                 # the input power a_g (ℓ_p·w̃) with a_g = a0 + ȧ_g τ: its integral a0 (R1·w̃) + ȧ_g (R2·w̃), R1 = ℓ_p ∫e^{Ãτ}dτ and
                                 # R2 = ℓ_p ∫τ e^{Ãτ}dτ (fpinrow: the Van Loan form of a rank-2 power, as two rows); the viscous power's form is
                                 # symmetric (below)
@@ -1864,23 +1864,23 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         if events_here > MAX_EVENTS_PER_INTERVAL:
                             pass
                         elif mode == STUCK:
-                            t_event = _first_crossing(PHI_BREAK, zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, vz, False, z, zd,
+                            t_event = _first_crossing(np.int64(PHI_BREAK), zs, length, a0, b, l_d, slab_mass, mu_s_n, e0, vz, False, z, zd,
                                                       zdd, out2, counter, zl, zdl, zh, zdh)
                             kind_phi = PHI_BREAK
                         elif mode == START:
-                            t_event = _first_crossing(PHI_STOP_START, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, from_rest, z,
+                            t_event = _first_crossing(np.int64(PHI_STOP_START), zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, from_rest, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             kind_phi = PHI_STOP_START
                             if t_event >= 0.0:
                                 _eval(zs, t_event, zh, zdh, zddh)
                             # a departure's piece hands over to SLIDE at its end, not at r_switch
-                            t_sw = -1.0 if departing else _first_crossing(PHI_SWITCH, zs, length if t_event < 0.0 else t_event, a0, b, l_d,
+                            t_sw = -1.0 if departing else _first_crossing(np.int64(PHI_SWITCH), zs, length if t_event < 0.0 else t_event, a0, b, l_d,
                                                    slab_mass, r_switch, e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             if t_sw > 0.0:
                                 t_event = t_sw
                                 kind_phi = PHI_SWITCH
                         elif mode == SLIDE:
-                            t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
+                            t_event = _first_crossing(np.int64(PHI_HALF), zs, length, a0, b, l_d, slab_mass, half_target, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             kind_phi = PHI_HALF
                             far = min(rem, h_max, reach_shrink * limit)
@@ -1895,7 +1895,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                     # the stop itself within that reach: e0·V = 0 located on this series (the
                                     # friction V/|V| of the series' own V up to there, not frozen as in FINISH) and
                                     # taken as the stop when the speed left there is below FINISH's entry speed
-                                    t_stop = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0,
+                                    t_stop = _first_crossing(np.int64(PHI_STOP_FINISH), zs, length, a0, b, l_d, slab_mass, 0.0,
                                                              e0, vz, False, z, zd, zdd, out2, counter, zl, zdl, zh, zdh)
                                     if t_stop > 0.0:
                                         _eval(zs, t_stop, z, zd, zdd)
@@ -1904,11 +1904,11 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                             kind_phi = PHI_STOP_FINISH
                                             n_stop_pieces += 1
                                 if t_event < 0.0:
-                                    t_event = _first_crossing(PHI_HALF, zs, length, a0, b, l_d, slab_mass,
+                                    t_event = _first_crossing(np.int64(PHI_HALF), zs, length, a0, b, l_d, slab_mass,
                                                               2.0 * STOP_REACH * half_target, e0, vz, False, z, zd, zdd,
                                                               out2, counter, zl, zdl, zh, zdh)
                         else:
-                            t_event = _first_crossing(PHI_STOP_FINISH, zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
+                            t_event = _first_crossing(np.int64(PHI_STOP_FINISH), zs, length, a0, b, l_d, slab_mass, 0.0, e0, vz, False, z,
                                                       zd, zdd, out2, counter, zl, zdl, zh, zdh)
                             kind_phi = PHI_STOP_FINISH
                         piece = length if t_event < 0.0 else t_event
@@ -1950,7 +1950,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         reach = 4.0 * piece * max(abs(s0), abs(s1))
                         if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
                             counter[0] += 1
-                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, 0,
+                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, np.int64(0),
                                                z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
                             peak_sq[k] = max(peak_sq[k], best)
                     for j in range(nj):
@@ -1960,7 +1960,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         if piece > 0.0 and sslope[j] > 0.0 and sslope1[j] < 0.0 and max(sval[j], sval1[j]) + reach > \
                                 sig_max[j]:
                             counter[0] += 1
-                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, 1,
+                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, np.int64(1),
                                                z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
                             sig_max[j] = max(sig_max[j], best)
                         if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
@@ -2011,7 +2011,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                 # decelerating below r_finish: finish the stop with the friction's direction frozen
                                 if varying:
                                     vz[V_NU0] = 1.0 + (az[i] + bz * tau) / gravity
-                                _series(SLIDE, w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws,
+                                _series(np.int64(SLIDE), w, a1, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e0, zs, fs, ws,
                                         ss, rs, es, vz, mus, exs, h_last)
                                 _eval(zs, 0.0, z, zd, zdd)
                                 if e0[0] * zd[0, 1] + e0[1] * zd[1, 1] < 0.0:

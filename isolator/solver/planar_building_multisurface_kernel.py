@@ -420,7 +420,7 @@ def locate_arrival_floors(y, h, tau, raw, c, rb, mu, rim, rim_free, free, r, y1,
     s = h
     work = 0.0
     for d in range(200):  # the length's binary digits (arrival_next ends the search)
-        m1, mh, m2 = building_solves(y, s, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, 0, floors)
+        m1, mh, m2 = building_solves(y, s, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, np.int64(0), floors)
         work += r1[2] + rh[2] + r2[2]
         lo, s = arrival_next(lo, s, h, d, m1, mh, m2, y1, y2, rim, free)
         if s < 0.0:
@@ -605,8 +605,8 @@ MAX_WATCH_POINTS = 200
 def _watch(y, f0, nm, lin, sig, rowx, rowy, peaks, sig_max, sig_min, sig_z, az):
     # the peaks of the watched rows' resultants (peaks[2:]) and the signed rows' extremes at the state y, the
     # vertical's share sig_z a_z added to the signed rows (a bearing's P_k,g a_z/g, the 2-D building's; 0 for the moments)
-    _floor_rows(y, f0, nm, 0, lin, rowx)
-    _floor_rows(y, f0, nm, 1, lin, rowy)
+    _floor_rows(y, f0, nm, np.int64(0), lin, rowx)
+    _floor_rows(y, f0, nm, np.int64(1), lin, rowy)
     for k in range(lin.shape[1]):
         peaks[2 + k] = max(peaks[2 + k], math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]))
     for k in range(sig.shape[0]):
@@ -724,7 +724,7 @@ def held_rises(yw, tp, fx, fy, sx, sy, f0, nm, hl, off, om, zeta, gam, qdd):
     g = 0.0
     r2 = 0.0
     for d in range(2):
-        v, v1, _ = _row_and_rates(yw, f0, nm, hl, d, 0, qdd)
+        v, v1, _ = _row_and_rates(yw, f0, nm, hl, d, np.int64(0), qdd)
         v += off[d, 0] + off[d, 1] * tp
         v1 += off[d, 1]
         g += v * v1
@@ -1191,7 +1191,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 work += w_arr
                 if lo > 0.0:
                     m1a, mha, m2a = building_solves(y, lo, tau, raw, c, rb, mu_now, rim_free, r, ya1, yah, ya2, r1, rh,
-                                                    rl, 0, floors)
+                                                    rl, np.int64(0), floors)
                     for j in range(ny):
                         ya[j] = y[j]
                     accept_step(ya, ya1, ya2, ny, f0 - 1, ng, rim, m1a, mha, m2a, False, True)
@@ -1314,8 +1314,8 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     # differed by 61 % between the pair and the pair turned by 0.7 rad without the cap)
                     ag_x = ax[i] + slope_x * tau
                     ag_y = ay[i] + slope_y * tau
-                    h1 = _held_force(y, f0, nm, ag_x, om, zeta, gam, 0)
-                    h2 = _held_force(y, f0, nm, ag_y, om, zeta, gam, 1)
+                    h1 = _held_force(y, f0, nm, ag_x, om, zeta, gam, np.int64(0))
+                    h2 = _held_force(y, f0, nm, ag_y, om, zeta, gam, np.int64(1))
                     vn = math.sqrt(y[Y_V] ** 2 + y[Y_V + 1] ** 2)
                     xn = math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2)
                     a_cap = max(g * f_max, math.sqrt(h1 * h1 + h2 * h2)) + c * vn
@@ -1332,8 +1332,8 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
             elif y[Y_V] == 0.0 and y[Y_V + 1] == 0.0:
                 # the slab stopped by the impact, held at the ultimate: the bearing's force is what it needs there,
                 # −(a_g + Σ Γ̃ q̃''), the floors' dampers at their velocities just after the impact
-                h1 = _held_force(y, f0, nm, ax[i] + slope_x * tau, om, zeta, gam, 0)
-                h2 = _held_force(y, f0, nm, ay[i] + slope_y * tau, om, zeta, gam, 1)
+                h1 = _held_force(y, f0, nm, ax[i] + slope_x * tau, om, zeta, gam, np.int64(0))
+                h2 = _held_force(y, f0, nm, ay[i] + slope_y * tau, om, zeta, gam, np.int64(1))
                 peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(h1 * h1 + h2 * h2))
             prev_plain = plain and not (rigid or impulsive)
             peak_x = max(peak_x, math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2))
@@ -1355,8 +1355,8 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # a short step: located only where a row at one of its ends is within LOCATE_BAND of its peak (most
                 # steps are far from the rows' peaks: their rates are not computed)
                 near = False
-                _floor_rows(y, f0, nm, 0, lin, rowx)
-                _floor_rows(y, f0, nm, 1, lin, rowy)
+                _floor_rows(y, f0, nm, np.int64(0), lin, rowx)
+                _floor_rows(y, f0, nm, np.int64(1), lin, rowy)
                 for k in range(nk):
                     if max(math.sqrt(rowx[k] * rowx[k] + rowy[k] * rowy[k]), r_last[k]) >= (
                             1.0 - LOCATE_BAND) * peaks[2 + k]:
@@ -1397,14 +1397,14 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     if held_step:
                         # the slab held (stuck, or at the ultimate) through the step: the bearing's force is what the
                         # slab needs, −(a_g + Σ Γ̃ q̃''), per unit total mass
-                        f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, 0)
-                        f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, 1)
+                        f1 = _held_force(yw, f0, nm, ax[i] + slope_x * (tau - h + tp), om, zeta, gam, np.int64(0))
+                        f2 = _held_force(yw, f0, nm, ay[i] + slope_y * (tau - h + tp), om, zeta, gam, np.int64(1))
                         peaks[nk + 2] = max(peaks[nk + 2], math.sqrt(f1 * f1 + f2 * f2))
                 if held_step:
                     hg1, hv1 = held_rises(yw if p <= n_in else y, tp, fx, fy, slope_x, slope_y, f0, nm, hl, hoff, om,
                                           zeta, gam, qdd)
                     if hg0 > 0.0 >= hg1 and max(hv0, hv1) >= (1.0 - LOCATE_BAND) * peaks[nk + 2]:
-                        peaks[nk + 2] = max(peaks[nk + 2], row_peak(y0, tp0, tp, 0, fx, fy, slope_x, slope_y, f0, nm,
+                        peaks[nk + 2] = max(peaks[nk + 2], row_peak(y0, tp0, tp, np.int64(0), fx, fy, slope_x, slope_y, f0, nm,
                                                                      hl, om, zeta, gam, qdd, yw, False, 0.0, 0.0,
                                                                      hoff))
                     hg0 = hg1

@@ -16,9 +16,33 @@ import inspect
 
 from numba.core.registry import CPUDispatcher
 
-from isolator.solver import planar_control, planar_events, planar_kernel
+from isolator.solver import (
+    building_kernel,
+    building_multisurface_kernel,
+    events,
+    kernel,
+    linear,
+    multisurface_kernel,
+    multisurface_rate_kernel,
+    planar_building_kernel,
+    planar_building_multisurface_kernel,
+    planar_control,
+    planar_events,
+    planar_kernel,
+    record,
+    segments,
+)
 
 MODULES = (planar_kernel, planar_events, planar_control)
+#: The building kernels and the 1-D kernels (docs/performance.md, "Building and 1-D kernels' literal constants").
+BUILDING_AND_1D_MODULES = (planar_building_kernel, planar_building_multisurface_kernel, building_kernel,
+                           building_multisurface_kernel, events, kernel, segments, multisurface_kernel,
+                           multisurface_rate_kernel, record, linear)
+
+
+def _stored(stmt) -> set[str]:
+    """The names a statement assigns, tuple targets and nested statements included."""
+    return {n.id for n in ast.walk(stmt) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
 
 
 def _literal_passes(module) -> list[str]:
@@ -40,14 +64,13 @@ def _literal_passes(module) -> list[str]:
                   for b in (getattr(node, "body", None), getattr(node, "orelse", None)) if isinstance(b, list)):
         fixed: set[str] = set()  # names assigned a constant by an earlier statement of this block
         for stmt in block:
+            if isinstance(stmt, (ast.For, ast.While)):  # a name the loop assigns is int64 there, not a literal
+                fixed.difference_update(_stored(stmt))
             for call in (c for c in ast.walk(stmt) if isinstance(c, ast.Call) and compiled(c)):
                 for arg in call.args:
                     if constant(arg) or (isinstance(arg, ast.Name) and arg.id in fixed):
                         found.append(f"{module.__name__}:{call.lineno} {call.func.id}(… {ast.unparse(arg)} …)")
-            for node in ast.walk(stmt):
-                for target in getattr(node, "targets", [getattr(node, "target", None)]):
-                    if isinstance(target, ast.Name):
-                        fixed.discard(target.id)
+            fixed.difference_update(_stored(stmt))
             if isinstance(stmt, ast.Assign) and constant(stmt.value):
                 fixed.update(t.id for t in stmt.targets if isinstance(t, ast.Name))
     return sorted(set(found))
@@ -55,4 +78,9 @@ def _literal_passes(module) -> list[str]:
 
 def test_planar_engine_passes_no_literal_to_a_compiled_function():
     found = [line for module in MODULES for line in _literal_passes(module)]
+    assert found == [], f"{len(found)} literal arguments: " + "; ".join(found[:8])
+
+
+def test_building_and_1d_kernels_pass_no_literal_to_a_compiled_function():
+    found = [line for module in BUILDING_AND_1D_MODULES for line in _literal_passes(module)]
     assert found == [], f"{len(found)} literal arguments: " + "; ".join(found[:8])
