@@ -97,6 +97,36 @@ def _start(b, t, mu_f):
     return np.asarray(sol.x[:2], dtype=float)
 
 
+def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol):
+    """Where ψ' has outgrown the rounding (µ near µ_fast), the same root by the forward law: the rates ψ_j of the
+    sliding set (|s_j| > µ_slow at the stall) and r unknown, (r − b_j)·t_j = sign(ψ_j) µ_j(|ψ_j|), Σ ψ_j t_j = Ẋ —
+    well conditioned with exactly two sliding tangents apart (the rates fixed by Ẋ, r by the two frictions).  None
+    where the set has not two surfaces, or the answer leaves a held surface outside its dead zone or a rate's sign
+    against its friction (the caller refuses by name)."""
+    slide = np.flatnonzero(np.abs(s) > mu_s)
+    if len(slide) != 2:
+        return None
+    ts = t[slide]
+    rates = np.linalg.solve(ts.T, xdot)  # Σ ψ_j t_j = Ẋ over the two
+    if not np.all(rates * np.sign(psi[slide]) > 0.0):
+        return None
+    m_s, m_f, aa = mu_s[slide], mu_f[slide], a[slide]
+    fric = np.sign(rates) * (m_s - (m_f - m_s) * np.expm1(-aa * np.abs(rates)))
+    r = np.linalg.solve(ts, fric + np.einsum("ij,ij->i", b[slide], ts))
+    s_all = np.einsum("ij,ij->i", r[None, :] - b, t)
+    held = np.ones(len(t), dtype=bool)
+    held[slide] = False
+    if not np.all(np.abs(s_all[held]) <= mu_s[held]):
+        return None
+    out = np.zeros(len(t))
+    out[slide] = rates
+    res = t.T @ out - xdot
+    err = math.hypot(res[0], res[1])
+    if not err <= max(tol, 16.0 * np.finfo(float).eps * math.hypot(xdot[0], xdot[1])):
+        return None
+    return r, out, err, -1
+
+
 def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
     """The force r [-, per unit normal load] that moves surfaces on their rims at the mass's velocity Ẋ.
 
@@ -104,7 +134,8 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
     each on its rim; ``mu_s``, ``mu_f``, ``a`` the laws µ_j(v) = µ_f − (µ_f − µ_s) e^(−a v) [n].  Each surface is
     held (|(r − b_j)·t_j| ≤ µ_slow,j) or slides along its rim at ψ_j.  r minimises the convex
     Φ(r) = Σ_j Ψ_j((r − b_j)·t_j) − r·Ẋ (its gradient is the equation); damped Newton on Φ, bounded.
-    Returns (r [2], the rates ψ_j [n] (m/s, along t_j), the residual |Σ ψ_j t_j − Ẋ| (m/s), iterations).
+    Returns (r [2], the rates ψ_j [n] (m/s, along t_j), the residual |Σ ψ_j t_j − Ẋ| (m/s), iterations; −1 where
+    the Newton stalled on the law's slope and the forward law with two sliding surfaces answered, :func:`_forward`).
     Raises :class:`~isolator.errors.SolverError` where the tangents do not span the plane (the rims aligned: the
     ultimate's impact) or where the Newton does not reach ``rtol`` of the velocity scale (nor the rounding floor).
     """
@@ -147,6 +178,10 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
             return r, psi, err, it
         if err <= floor:
             if err > RESOLVED * scale:
+                s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
+                fwd = _forward(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
+                if fwd is not None:
+                    return fwd
                 raise SolverError(
                     f"the slide along the rims needs rates the µ(v) law does not resolve here (largest "
                     f"{float(np.max(np.abs(psi))):.3g} m/s, slope ψ' up to {float(np.max(dpsi)):.3g} m/s per unit "
