@@ -87,6 +87,10 @@ def test_four_rims_root_power_balance_and_rotation():
     assert np.max(np.abs(r_f - r_true)) < 1e-15 and np.max(np.abs(psi_f[:2] - c)) < 1e-14
     assert np.all(psi_f[2:] == 0.0)
     assert np.all(np.abs(np.einsum("ij,ij->i", r_f[None, :] - b, t)[2:]) <= MU_S[2:])
+    # three surfaces at µ_fast to rounding (rims 1 rad apart, 2 m/s): the split among them is not resolved — refused
+    with pytest.raises(SolverError, match="does not resolve here"):
+        slide_along_rims(2.0 * np.array([math.cos(1.3), math.sin(1.3)]), np.zeros((4, 2)),
+                         on_rims(np.array([0.0, 1.0, 2.0, 0.5]), caps), MU_S, MU_F, A)
     # rotating the whole state rotates the force
     q = rotation(1.1)
     r_rot, psi_rot, _, _ = slide_along_rims(q @ xdot, b @ q.T, u @ q.T, MU_S, MU_F, A)
