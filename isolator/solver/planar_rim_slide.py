@@ -27,6 +27,7 @@ driver refuses it by name (``IMPACT_SPREAD_LIMIT``).
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -41,6 +42,8 @@ MAX_HALVINGS = 60
 ALIGNED_SINE = 1e-9
 #: Where the Newton stops at the rounding floor (µ within rounding of µ_fast), the residual it accepts, relative
 RESOLVED = 1e-8
+#: Up to this many surfaces the forward law's sliding set is searched over the stall set's supersets
+MAX_SET_SEARCH = 6
 
 
 def rim_frames(u) -> tuple[np.ndarray, np.ndarray]:
@@ -97,34 +100,76 @@ def _start(b, t, mu_f):
     return np.asarray(sol.x[:2], dtype=float)
 
 
-def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol):
-    """Where ψ' has outgrown the rounding (µ near µ_fast), the same root by the forward law: the rates ψ_j of the
-    sliding set (|s_j| > µ_slow at the stall) and r unknown, (r − b_j)·t_j = sign(ψ_j) µ_j(|ψ_j|), Σ ψ_j t_j = Ẋ —
-    well conditioned with exactly two sliding tangents apart (the rates fixed by Ẋ, r by the two frictions).  None
-    where the set has not two surfaces, or the answer leaves a held surface outside its dead zone or a rate's sign
-    against its friction (the caller refuses by name)."""
-    slide = np.flatnonzero(np.abs(s) > mu_s)
-    if len(slide) != 2:
+def _forward_sets(xdot, b, t, s, psi, mu_s, mu_f, a, tol):
+    """:func:`_forward` over the set sliding at the stall, then over its supersets (each new surface in the sense of
+    its force at the stall; at most 2ⁿ sets, n ≤ :data:`MAX_SET_SEARCH`): the convex problem's root is unique, so the
+    first set whose answer passes the checks (held surfaces in their dead zones, rates in their senses) is it."""
+    n = len(t)
+    stall = [j for j in range(n) if abs(s[j]) > mu_s[j]]
+    others = [j for j in range(n) if j not in stall]
+    if n > MAX_SET_SEARCH:
+        others = []
+    for extra in range(len(others) + 1):
+        for add in itertools.combinations(others, extra):
+            chosen = sorted(stall + list(add))
+            if len(chosen) < 2:
+                continue
+            guess = psi.copy()
+            for j in add:
+                guess[j] = math.copysign(1e-3, s[j]) if s[j] != 0.0 else 1e-3
+            ans = _forward(xdot, b, t, s, guess, mu_s, mu_f, a, tol, np.array(chosen))
+            if ans is not None:
+                return ans
+    return None
+
+
+def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, slide):
+    """Where ψ' has outgrown the rounding (µ near µ_fast), the same root by the forward law over the set sliding at
+    the stall (|s_j| > µ_slow), each in its sense σ_j: unknowns the rates ψ_j and r, equations
+    (r − b_j)·t_j = σ_j µ_j(σ_j ψ_j) (µ continued through the onset in that sense) and Σ ψ_j t_j = Ẋ — Newton on the
+    saddle system [−µ', T; Tᵀ, 0], well conditioned at any speed while one sliding surface's µ' or exactly two
+    sliding tangents fix the split (bounded: :data:`MAX_NEWTON`).  None where it does not converge to ``tol``, or
+    the answer leaves a held surface outside its dead zone or a rate against its sense (the caller refuses)."""
+    ns = len(slide)
+    if ns < 2:
         return None
     ts = t[slide]
-    rates = np.linalg.solve(ts.T, xdot)  # Σ ψ_j t_j = Ẋ over the two
-    if not np.all(rates * np.sign(psi[slide]) > 0.0):
+    sig = np.where(psi[slide] != 0.0, np.sign(psi[slide]), np.sign(s[slide]))
+    if not np.all(sig != 0.0):
         return None
     m_s, m_f, aa = mu_s[slide], mu_f[slide], a[slide]
-    fric = np.sign(rates) * (m_s - (m_f - m_s) * np.expm1(-aa * np.abs(rates)))
-    r = np.linalg.solve(ts, fric + np.einsum("ij,ij->i", b[slide], ts))
-    s_all = np.einsum("ij,ij->i", r[None, :] - b, t)
+    bt = np.einsum("ij,ij->i", b[slide], ts)
+    rates = psi[slide].astype(float).copy()
+    r_s = np.linalg.lstsq(ts, s[slide] + bt, rcond=None)[0]
+    jac = np.zeros((ns + 2, ns + 2))
+    for _ in range(MAX_NEWTON):
+        decay = np.exp(-aa * sig * rates)
+        fric = sig * (m_s - (m_f - m_s) * np.expm1(-aa * sig * rates))
+        f = np.concatenate((ts @ r_s - bt - fric, ts.T @ rates - xdot))
+        if math.hypot(f[-2], f[-1]) <= tol and np.max(np.abs(f[:ns])) <= 4.0 * np.finfo(float).eps:
+            break
+        jac[:ns, :ns] = np.diag(-aa * (m_f - m_s) * decay)
+        jac[:ns, ns:] = ts
+        jac[ns:, :ns] = ts.T
+        try:
+            delta = np.linalg.solve(jac, -f)
+        except np.linalg.LinAlgError:
+            return None
+        if not np.all(np.isfinite(delta)):
+            return None
+        rates = rates + delta[:ns]
+        r_s = r_s + delta[ns:]
+    else:
+        return None
+    s_all = np.einsum("ij,ij->i", r_s[None, :] - b, t)
     held = np.ones(len(t), dtype=bool)
     held[slide] = False
-    if not np.all(np.abs(s_all[held]) <= mu_s[held]):
+    if not (np.all(np.abs(s_all[held]) <= mu_s[held]) and np.all(rates * sig > 0.0)):
         return None
     out = np.zeros(len(t))
     out[slide] = rates
     res = t.T @ out - xdot
-    err = math.hypot(res[0], res[1])
-    if not err <= max(tol, 16.0 * np.finfo(float).eps * math.hypot(xdot[0], xdot[1])):
-        return None
-    return r, out, err, -1
+    return r_s, out, math.hypot(res[0], res[1]), -1
 
 
 def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
@@ -179,7 +224,7 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
         if err <= floor:
             if err > RESOLVED * scale:
                 s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
-                fwd = _forward(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
+                fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
                 if fwd is not None:
                     return fwd
                 raise SolverError(

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from isolator.errors import SolverError
+from isolator.solver import planar_rim_slide
 from isolator.solver.planar_rim_slide import rim_spread, slide_along_rims
 
 # the lower-bound TFP's laws of docs/multisurface.md (h181): µ_slow/µ_fast per surface, a = 20 s/m
@@ -56,7 +57,7 @@ def test_two_rims_apart_take_any_velocity_in_closed_form():
         assert res < 1e-11 and its <= 60
 
 
-def test_four_rims_root_power_balance_and_rotation():
+def test_four_rims_root_power_balance_and_rotation(monkeypatch):
     caps = np.array([0.4, 0.05, 0.05, 0.4])
     ang = np.array([0.50, 0.62, 0.58, 0.50 + 0.1445])
     u = on_rims(ang, caps)
@@ -87,10 +88,22 @@ def test_four_rims_root_power_balance_and_rotation():
     assert np.max(np.abs(r_f - r_true)) < 1e-15 and np.max(np.abs(psi_f[:2] - c)) < 1e-14
     assert np.all(psi_f[2:] == 0.0)
     assert np.all(np.abs(np.einsum("ij,ij->i", r_f[None, :] - b, t)[2:]) <= MU_S[2:])
-    # three surfaces at µ_fast to rounding (rims 1 rad apart, 2 m/s): the split among them is not resolved — refused
+    # three surfaces sliding, two at µ_fast to rounding (rims 0/1/2/0.5 rad, 2 m/s): the stall's set (one surface)
+    # is not the root's; its supersets are searched — the answer certified by the convex problem's conditions with
+    # this file's own law (sliding: s_j = µ_j(ψ_j) in its sense; held: |s_j| ≤ µ_slow; Σ ψ_j t_j = Ẋ)
+    u3 = on_rims(np.array([0.0, 1.0, 2.0, 0.5]), caps)
+    t3 = np.column_stack((-np.sin([0.0, 1.0, 2.0, 0.5]), np.cos([0.0, 1.0, 2.0, 0.5])))
+    x3 = 2.0 * np.array([math.cos(2.5), math.sin(2.5)])
+    r3, psi3, res3, its3 = slide_along_rims(x3, np.zeros((4, 2)), u3, MU_S, MU_F, A)
+    s3 = t3 @ r3
+    on = psi3 != 0.0
+    assert its3 == -1 and np.count_nonzero(on) == 3 and np.max(np.abs(t3.T @ psi3 - x3)) < 1e-14
+    assert np.max(np.abs(s3[on] - np.sign(psi3[on]) * mu_forward(np.abs(psi3[on]), MU_S[on], MU_F[on], A[on]))) < 1e-15
+    assert np.all(np.abs(s3[~on]) <= MU_S[~on])
+    # without the search (the stall's own set only) it is refused by name
+    monkeypatch.setattr(planar_rim_slide, "MAX_SET_SEARCH", 0)
     with pytest.raises(SolverError, match="does not resolve here"):
-        slide_along_rims(2.0 * np.array([math.cos(1.3), math.sin(1.3)]), np.zeros((4, 2)),
-                         on_rims(np.array([0.0, 1.0, 2.0, 0.5]), caps), MU_S, MU_F, A)
+        slide_along_rims(x3, np.zeros((4, 2)), u3, MU_S, MU_F, A)
     # rotating the whole state rotates the force
     q = rotation(1.1)
     r_rot, psi_rot, _, _ = slide_along_rims(q @ xdot, b @ q.T, u @ q.T, MU_S, MU_F, A)
