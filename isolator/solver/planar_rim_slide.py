@@ -1,0 +1,256 @@
+r"""The slide along the rims of a µ(v) multi-surface pendulum in the plane: the constraint's force (issue 23).
+
+At the ultimate of ``2d-multisurface+mu(v)`` every surface i is on its rim, |u_i| = d_i*, its outward normal
+e_i = u_i/|u_i| and its tangent t_i = (−e_iy, e_ix).  A surface sliding *along* its rim moves as
+u̇_i = ψ_i((r − b_i)·t_i) t_i (:func:`isolator.solver.planar_multisurface_rate_kernel.rim_slide`: ψ the inverse of
+µ(v) on the tangent, the normal part (r − b_i)·e_i the rim's frictionless reaction).  With no surface sliding
+inside its rim there is no pivot: the force r per unit normal load is the root of
+
+    Σ_j ψ_j((r − b_j)·t_j) t_j = Ẋ                                   (sum over the surfaces sliding along their rims)
+
+— the gradient of the strictly convex Σ_j Ψ_j((r − b_j)·t_j) − r·Ẋ, Ψ_j' = ψ_j, so the root is unique where the
+tangents span the plane.  :func:`slide_along_rims` solves it by a damped Newton on the 2 × 2 system
+A = Σ_j ψ_j' t_j t_jᵀ (bounded: :data:`MAX_NEWTON` iterations, :data:`MAX_HALVINGS` halvings each, the step kept
+inside every law's domain |(r − b_j)·t_j| < µ_fast); its error is the residual it returns, asserted against the
+tolerance.  With two surfaces the root is in closed form (Ẋ = c_1 t_1 + c_2 t_2, (r − b_j)·t_j = µ_j(c_j)): the
+tests hold the Newton to it.
+
+Where the tangents are parallel (:func:`rim_spread` = 0, the rims aligned with the mass's direction) A is of rank 1:
+the mass is carried on the rims' common circle, Ẋ·e is not a slide of any surface — only there is the plastic
+impact of the ultimate due, removing Ẋ·e alone.  :func:`slide_along_rims` refuses that case by name
+(:class:`~isolator.errors.SolverError`); with the rims apart (sine > :data:`ALIGNED_SINE`) it answers for any Ẋ:
+no impact is due.
+
+Not wired into the kernel (docs/multisurface.md, h192): the kernel still takes the impact with the rims apart and the
+driver refuses it by name (``IMPACT_SPREAD_LIMIT``).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+from scipy.optimize import linprog
+
+from isolator.errors import SolverError
+
+#: Newton iterations of :func:`slide_along_rims` (bounded), and halvings of one step (each keeps the laws' domain)
+MAX_NEWTON = 200
+MAX_HALVINGS = 60
+#: Below this sine between two sliding rims' tangents the rims count as aligned (A of rank 1: refused)
+ALIGNED_SINE = 1e-9
+#: Where the Newton stops at the rounding floor (µ within rounding of µ_fast), the residual it accepts, relative
+RESOLVED = 1e-8
+#: Up to this many surfaces the forward law's sliding set is searched over the stall set's supersets
+MAX_SET_SEARCH = 6
+
+
+def rim_frames(u) -> tuple[np.ndarray, np.ndarray]:
+    """Outward normals e_i and tangents t_i = (−e_iy, e_ix) [n × 2] of surfaces at displacements u [n × 2] (m)."""
+    u = np.asarray(u, dtype=float)
+    rho = np.hypot(u[:, 0], u[:, 1])
+    if not np.all(rho > 0.0):
+        raise SolverError("a surface on its rim has zero displacement: its rim's normal is undefined")
+    e = u / rho[:, None]
+    t = np.column_stack((-e[:, 1], e[:, 0]))
+    return e, t
+
+
+def rim_spread(u) -> float:
+    """The largest sine between a surface's rim normal e_i and the mass's direction X/|X|, X = Σ u_i (the kernel's
+    ``S_IMPACT_SPREAD``): 0 where the rims are aligned, the only state where the ultimate's impact is due."""
+    e, _ = rim_frames(u)
+    x = np.sum(np.asarray(u, dtype=float), axis=0)
+    norm = math.hypot(x[0], x[1])
+    if not norm > 0.0:
+        raise SolverError("the mass is at the origin: the rims' alignment is undefined")
+    return float(np.max(np.abs(e[:, 0] * x[1] - e[:, 1] * x[0])) / norm)
+
+
+def _laws(s, mu_s, mu_f, a):
+    """Ψ_j(s_j), ψ_j(s_j) = Ψ_j', ψ_j' of the true law on the tangent (0 in the dead zone |s| ≤ µ_slow, held; past
+    it ψ = sign(s) ln((µ_f − µ_s)/(µ_f − |s|))/a, the inverse of µ(v)); None outside |s| < µ_fast.
+    Ψ(s) = (g ln(g/g₀) + g₀ − g)/a, g = µ_f − |s|, g₀ = µ_f − µ_s: the integral of ψ from the onset."""
+    x = np.abs(s)
+    if not np.all(x < mu_f):
+        return None
+    g0 = mu_f - mu_s
+    g = np.where(x > mu_s, mu_f - x, g0)
+    big = np.log(g0 / g) / a
+    pot = (g * np.log(g / g0) + g0 - g) / a
+    psi = np.sign(s) * big
+    dpsi = np.where(x > mu_s, 1.0 / (a * g), 0.0)
+    return pot, psi, dpsi
+
+
+def _start(b, t, mu_f):
+    """A force strictly inside every law's domain |(r − b_j)·t_j| < µ_fast,j with the largest margin (a linear
+    programme); refused by name where the strips do not meet."""
+    bt = np.einsum("ij,ij->i", b, t)
+    n = len(t)
+    # variables (r_x, r_y, m): maximise m subject to ±t_j·r + m ≤ µ_fast,j ± b_j·t_j
+    a_ub = np.vstack((np.column_stack((t, np.ones(n))), np.column_stack((-t, np.ones(n)))))
+    sol = linprog([0.0, 0.0, -1.0], A_ub=a_ub, b_ub=np.concatenate((mu_f + bt, mu_f - bt)),
+                  bounds=[(None, None), (None, None), (None, None)], method="highs")
+    if sol.status != 0 or not sol.x[2] > 0.0:
+        raise SolverError(
+            "the surfaces on their rims admit no force inside their friction laws (|f·t| < µ_fast for all): "
+            "their restoring terms are too far apart")
+    return np.asarray(sol.x[:2], dtype=float)
+
+
+def _forward_sets(xdot, b, t, s, psi, mu_s, mu_f, a, tol):
+    """:func:`_forward` over the set sliding at the stall, then over its supersets (each new surface in the sense of
+    its force at the stall; at most 2ⁿ sets, n ≤ :data:`MAX_SET_SEARCH`): the convex problem's root is unique, so the
+    first set whose answer passes the checks (held surfaces in their dead zones, rates in their senses) is it."""
+    n = len(t)
+    stall = [j for j in range(n) if abs(s[j]) > mu_s[j]]
+    others = [j for j in range(n) if j not in stall]
+    if n > MAX_SET_SEARCH:
+        others = []
+    for extra in range(len(others) + 1):
+        for add in itertools.combinations(others, extra):
+            chosen = sorted(stall + list(add))
+            if len(chosen) < 2:
+                continue
+            guess = psi.copy()
+            for j in add:
+                guess[j] = math.copysign(1e-3, s[j]) if s[j] != 0.0 else 1e-3
+            ans = _forward(xdot, b, t, s, guess, mu_s, mu_f, a, tol, np.array(chosen))
+            if ans is not None:
+                return ans
+    return None
+
+
+def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, slide):
+    """Where ψ' has outgrown the rounding (µ near µ_fast), the same root by the forward law over the set sliding at
+    the stall (|s_j| > µ_slow), each in its sense σ_j: unknowns the rates ψ_j and r, equations
+    (r − b_j)·t_j = σ_j µ_j(σ_j ψ_j) (µ continued through the onset in that sense) and Σ ψ_j t_j = Ẋ — Newton on the
+    saddle system [−µ', T; Tᵀ, 0], well conditioned at any speed while one sliding surface's µ' or exactly two
+    sliding tangents fix the split (bounded: :data:`MAX_NEWTON`).  None where it does not converge to ``tol``, or
+    the answer leaves a held surface outside its dead zone or a rate against its sense (the caller refuses)."""
+    ns = len(slide)
+    if ns < 2:
+        return None
+    ts = t[slide]
+    sig = np.where(psi[slide] != 0.0, np.sign(psi[slide]), np.sign(s[slide]))
+    if not np.all(sig != 0.0):
+        return None
+    m_s, m_f, aa = mu_s[slide], mu_f[slide], a[slide]
+    bt = np.einsum("ij,ij->i", b[slide], ts)
+    rates = psi[slide].astype(float).copy()
+    r_s = np.linalg.lstsq(ts, s[slide] + bt, rcond=None)[0]
+    jac = np.zeros((ns + 2, ns + 2))
+    for _ in range(MAX_NEWTON):
+        decay = np.exp(-aa * sig * rates)
+        fric = sig * (m_s - (m_f - m_s) * np.expm1(-aa * sig * rates))
+        f = np.concatenate((ts @ r_s - bt - fric, ts.T @ rates - xdot))
+        if math.hypot(f[-2], f[-1]) <= tol and np.max(np.abs(f[:ns])) <= 4.0 * np.finfo(float).eps:
+            break
+        jac[:ns, :ns] = np.diag(-aa * (m_f - m_s) * decay)
+        jac[:ns, ns:] = ts
+        jac[ns:, :ns] = ts.T
+        try:
+            delta = np.linalg.solve(jac, -f)
+        except np.linalg.LinAlgError:
+            return None
+        if not np.all(np.isfinite(delta)):
+            return None
+        rates = rates + delta[:ns]
+        r_s = r_s + delta[ns:]
+    else:
+        return None
+    s_all = np.einsum("ij,ij->i", r_s[None, :] - b, t)
+    held = np.ones(len(t), dtype=bool)
+    held[slide] = False
+    if not (np.all(np.abs(s_all[held]) <= mu_s[held]) and np.all(rates * sig > 0.0)):
+        return None
+    out = np.zeros(len(t))
+    out[slide] = rates
+    res = t.T @ out - xdot
+    return r_s, out, math.hypot(res[0], res[1]), -1
+
+
+def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
+    """The force r [-, per unit normal load] that moves surfaces on their rims at the mass's velocity Ẋ.
+
+    ``xdot`` Ẋ [2] (m/s); ``b`` the surfaces' restoring terms b_j [n × 2] (-); ``u`` their displacements [n × 2] (m),
+    each on its rim; ``mu_s``, ``mu_f``, ``a`` the laws µ_j(v) = µ_f − (µ_f − µ_s) e^(−a v) [n].  Each surface is
+    held (|(r − b_j)·t_j| ≤ µ_slow,j) or slides along its rim at ψ_j.  r minimises the convex
+    Φ(r) = Σ_j Ψ_j((r − b_j)·t_j) − r·Ẋ (its gradient is the equation); damped Newton on Φ, bounded.
+    Returns (r [2], the rates ψ_j [n] (m/s, along t_j), the residual |Σ ψ_j t_j − Ẋ| (m/s), iterations; −1 where
+    the Newton stalled on the law's slope and the forward law with two sliding surfaces answered, :func:`_forward`).
+    Raises :class:`~isolator.errors.SolverError` where the tangents do not span the plane (the rims aligned: the
+    ultimate's impact) or where the Newton does not reach ``rtol`` of the velocity scale (nor the rounding floor).
+    """
+    xdot = np.asarray(xdot, dtype=float)
+    b = np.asarray(b, dtype=float)
+    mu_s = np.asarray(mu_s, dtype=float)
+    mu_f = np.asarray(mu_f, dtype=float)
+    a = np.asarray(a, dtype=float)
+    if not (np.all(mu_f > mu_s) and np.all(a > 0.0)):
+        raise SolverError(
+            "the slide along the rims needs µ_fast > µ_slow and a > 0 on every surface (µ_fast = µ_slow is constant "
+            "friction: the constant-µ model's rim slide)")
+    _, t = rim_frames(u)
+    n = len(t)
+    sine = max((abs(t[i, 0] * t[j, 1] - t[i, 1] * t[j, 0]) for i in range(n) for j in range(i + 1, n)), default=0.0)
+    if not sine > ALIGNED_SINE:
+        raise SolverError(
+            f"the rims of the {n} surface(s) are aligned (largest sine {sine:.3g}): the mass is carried on their "
+            "common circle, the ultimate's impact is due (not a slide along the rims)")
+    r = _start(b, t, mu_f)
+    scale = math.hypot(xdot[0], xdot[1]) + float(np.max((mu_f - mu_s) / a))
+    eps = np.finfo(float).eps
+
+    def evaluate(rr):
+        s = np.einsum("ij,ij->i", rr[None, :] - b, t)
+        law = _laws(s, mu_s, mu_f, a)
+        if law is None:
+            return None
+        pot, psi, dpsi = law
+        return float(np.sum(pot) - rr @ xdot), psi, dpsi
+
+    state = evaluate(r)
+    for it in range(MAX_NEWTON):
+        phi, psi, dpsi = state
+        grad = t.T @ psi - xdot
+        err = math.hypot(grad[0], grad[1])
+        # near µ_fast ψ' = 1/(a (µ_fast − |s|)) is large: the residual cannot fall below ψ' × the rounding of s
+        floor = 16.0 * eps * float(np.sum(dpsi * (1.0 + math.hypot(r[0], r[1]) + np.hypot(b[:, 0], b[:, 1]))))
+        if err <= rtol * scale:
+            return r, psi, err, it
+        if err <= floor:
+            if err > RESOLVED * scale:
+                s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
+                fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
+                if fwd is not None:
+                    return fwd
+                raise SolverError(
+                    f"the slide along the rims needs rates the µ(v) law does not resolve here (largest "
+                    f"{float(np.max(np.abs(psi))):.3g} m/s, slope ψ' up to {float(np.max(dpsi)):.3g} m/s per unit "
+                    f"friction, µ_fast − µ down to {1.0 / float(np.max(a * dpsi)):.3g}): the Newton stops at a "
+                    f"residual of {err:.3g} m/s of {math.hypot(xdot[0], xdot[1]):.3g}")
+            return r, psi, err, it
+        # a held surface has ψ' = 0: the model takes its slope at the onset, 1/(a (µ_f − µ_s)), so that the
+        # Newton matrix is regular wherever the tangents span the plane (the line search on Φ keeps the descent)
+        model = np.where(dpsi > 0.0, dpsi, 1.0 / (a * (mu_f - mu_s)))
+        step = np.linalg.solve((t * model[:, None]).T @ t, -grad)
+        lam = 1.0
+        for _ in range(MAX_HALVINGS):
+            trial = evaluate(r + lam * step)
+            if trial is not None:
+                tgrad = t.T @ trial[1] - xdot
+                if trial[0] <= phi + 1e-4 * lam * float(grad @ step) or math.hypot(tgrad[0], tgrad[1]) < err:
+                    break
+            lam *= 0.5
+        else:
+            break
+        r = r + lam * step
+        state = trial
+    psi = state[1]
+    res = t.T @ psi - xdot
+    raise SolverError(
+        f"the force of the slide along the rims did not converge ({MAX_NEWTON} Newton iterations; residual "
+        f"{math.hypot(res[0], res[1]):.3g} m/s)")

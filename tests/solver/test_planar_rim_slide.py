@@ -1,0 +1,125 @@
+"""The slide along the rims of a µ(v) pendulum in the plane: the constraint's force (h192, issue 23).
+
+Independent truths written here: the forward law µ(v) = µ_f − (µ_f − µ_s) e^(−a v) and its inverse in closed form,
+the two-surface root in closed form (Ẋ = c_1 t_1 + c_2 t_2), the residual and the power balance evaluated with this
+file's own law, the rotation invariance."""
+
+import math
+
+import numpy as np
+import pytest
+
+from isolator.errors import SolverError
+from isolator.solver import planar_rim_slide
+from isolator.solver.planar_rim_slide import rim_spread, slide_along_rims
+
+# the lower-bound TFP's laws of docs/multisurface.md (h181): µ_slow/µ_fast per surface, a = 20 s/m
+MU_S = np.array([0.04, 0.01, 0.01, 0.07])
+MU_F = np.array([0.06, 0.02, 0.02, 0.10])
+A = np.array([20.0, 20.0, 20.0, 20.0])
+
+
+def mu_forward(v, mu_s, mu_f, a):
+    return mu_f - (mu_f - mu_s) * np.exp(-a * v)
+
+
+def psi_inverse(s, mu_s, mu_f, a):
+    """The slide rate along the tangent at tangential friction s: 0 held (|s| ≤ µ_s), else the inverse of µ(v)."""
+    x = np.minimum(np.abs(s), mu_f)
+    return np.where(x > mu_s, np.sign(s) * np.log((mu_f - mu_s) / (mu_f - np.maximum(x, mu_s))) / a, 0.0)
+
+
+def on_rims(angles, caps):
+    return np.column_stack((caps * np.cos(angles), caps * np.sin(angles)))
+
+
+def rotation(phi):
+    return np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]])
+
+
+def test_two_rims_apart_take_any_velocity_in_closed_form():
+    caps = np.array([0.4, 0.05])
+    u = on_rims(np.array([0.3, 0.3 + 0.144]), caps)  # PTS's 8.3°-ish apart
+    b = np.array([[0.011, -0.004], [0.002, 0.007]])
+    mu_s, mu_f, a = MU_S[:2], MU_F[:2], A[:2]
+    t = np.column_stack((-np.sin([0.3, 0.444]), np.cos([0.3, 0.444])))
+    for c in ([0.12, -0.05], [0.3, 0.1], [-0.02, -0.4]):  # a|c| ≤ 8: µ_f − µ ≥ 3e-4 (µ_f − µ_s), resolvable
+        c = np.array(c)
+        xdot = t.T @ c  # any Ẋ is a combination of the two tangents: no impact is due
+        sense = np.sign(c)
+        s_true = sense * mu_forward(np.abs(c), mu_s, mu_f, a)
+        r_true = np.linalg.solve(t, s_true + np.einsum("ij,ij->i", b, t))
+        r, psi, res, its = slide_along_rims(xdot, b, u, mu_s, mu_f, a)
+        assert np.max(np.abs(r - r_true)) < 5e-12
+        assert np.max(np.abs(np.einsum("ij,ij->i", r[None, :] - b, t) - s_true)) < 1e-12
+        fast = A[:2] * np.abs(c) < 10.0  # below that ψ' ≤ e^10/(a (µ_f − µ_s)): ψ to rounding × ψ'
+        assert np.max(np.abs(psi - c)[fast], initial=0.0) < 1e-11
+        assert res < 1e-11 and its <= 60
+
+
+def test_four_rims_root_power_balance_and_rotation(monkeypatch):
+    caps = np.array([0.4, 0.05, 0.05, 0.4])
+    ang = np.array([0.50, 0.62, 0.58, 0.50 + 0.1445])
+    u = on_rims(ang, caps)
+    b = np.array([[0.01, 0.02], [0.003, -0.001], [-0.002, 0.004], [0.02, 0.01]])
+    t = np.column_stack((-np.sin(ang), np.cos(ang)))
+    xdot = 0.3 * t[0] + 0.02 * np.array([math.cos(0.55), math.sin(0.55)])  # mostly along the outer rim
+    r, psi, res, its = slide_along_rims(xdot, b, u, MU_S, MU_F, A)
+    assert res < 1e-9 and its <= 60
+    s = np.einsum("ij,ij->i", r[None, :] - b, t)
+    psi_own = psi_inverse(s, MU_S, MU_F, A)
+    held = np.abs(s) <= MU_S
+    assert np.all(psi[held] == 0.0) and np.all(np.abs(s) < MU_F)
+    assert np.max(np.abs(psi - psi_own)) < 1e-14
+    assert np.max(np.abs(t.T @ psi_own - xdot)) < 1e-9
+    # the rims' reactions do no work: the power r·Ẋ − Σ b_j·u̇_j is the friction's Σ s_j ψ_j ≥ 0
+    udot = psi[:, None] * t
+    power = r @ xdot - np.sum(b * udot)
+    assert abs(power - np.sum(s * psi)) <= np.hypot(*r) * res + 1e-15 and power > 0.0
+    # PTS's speed at its first impact (0.868 m/s) across these rims (0.075 apart, sine): surfaces 1 and 2 take it at
+    # ~7 m/s in opposite senses, µ within rounding of µ_fast — the forward law answers; against the closed form over
+    # those two (this file's µ(v)), and the held two inside their dead zones (so it is the convex problem's root)
+    fast = 0.868 * np.array([math.cos(0.55), math.sin(0.55)])
+    r_f, psi_f, res_f, its_f = slide_along_rims(fast, b, u, MU_S, MU_F, A)
+    c = np.linalg.solve(t[:2].T, fast)
+    s_true = np.sign(c) * mu_forward(np.abs(c), MU_S[:2], MU_F[:2], A[:2])
+    r_true = np.linalg.solve(t[:2], s_true + np.einsum("ij,ij->i", b[:2], t[:2]))
+    assert its_f == -1 and res_f < 1e-14 and np.max(np.abs(c)) > 7.0
+    assert np.max(np.abs(r_f - r_true)) < 1e-15 and np.max(np.abs(psi_f[:2] - c)) < 1e-14
+    assert np.all(psi_f[2:] == 0.0)
+    assert np.all(np.abs(np.einsum("ij,ij->i", r_f[None, :] - b, t)[2:]) <= MU_S[2:])
+    # three surfaces sliding, two at µ_fast to rounding (rims 0/1/2/0.5 rad, 2 m/s): the stall's set (one surface)
+    # is not the root's; its supersets are searched — the answer certified by the convex problem's conditions with
+    # this file's own law (sliding: s_j = µ_j(ψ_j) in its sense; held: |s_j| ≤ µ_slow; Σ ψ_j t_j = Ẋ)
+    u3 = on_rims(np.array([0.0, 1.0, 2.0, 0.5]), caps)
+    t3 = np.column_stack((-np.sin([0.0, 1.0, 2.0, 0.5]), np.cos([0.0, 1.0, 2.0, 0.5])))
+    x3 = 2.0 * np.array([math.cos(2.5), math.sin(2.5)])
+    r3, psi3, res3, its3 = slide_along_rims(x3, np.zeros((4, 2)), u3, MU_S, MU_F, A)
+    s3 = t3 @ r3
+    on = psi3 != 0.0
+    assert its3 == -1 and np.count_nonzero(on) == 3 and np.max(np.abs(t3.T @ psi3 - x3)) < 1e-14
+    assert np.max(np.abs(s3[on] - np.sign(psi3[on]) * mu_forward(np.abs(psi3[on]), MU_S[on], MU_F[on], A[on]))) < 1e-15
+    assert np.all(np.abs(s3[~on]) <= MU_S[~on])
+    # without the search (the stall's own set only) it is refused by name
+    monkeypatch.setattr(planar_rim_slide, "MAX_SET_SEARCH", 0)
+    with pytest.raises(SolverError, match="does not resolve here"):
+        slide_along_rims(x3, np.zeros((4, 2)), u3, MU_S, MU_F, A)
+    # rotating the whole state rotates the force
+    q = rotation(1.1)
+    r_rot, psi_rot, _, _ = slide_along_rims(q @ xdot, b @ q.T, u @ q.T, MU_S, MU_F, A)
+    assert np.max(np.abs(r_rot - q @ r)) < 1e-13
+    assert np.max(np.abs(psi_rot - psi)) < 1e-11
+
+
+def test_aligned_rims_are_the_impact_and_are_refused_by_name():
+    caps = np.array([0.4, 0.05, 0.05, 0.4])
+    u = on_rims(np.full(4, 0.35), caps)
+    assert rim_spread(u) < 1e-15
+    apart = on_rims(np.array([0.35, 0.35, 0.35, 0.35 + math.asin(0.144)]), caps)
+    x = apart.sum(axis=0)
+    e4 = apart[3] / caps[3]
+    assert rim_spread(apart) == pytest.approx(abs(e4[0] * x[1] - e4[1] * x[0]) / math.hypot(*x), rel=1e-14)
+    with pytest.raises(SolverError, match="aligned .*the ultimate's impact is due"):
+        slide_along_rims([0.5, 0.1], np.zeros((4, 2)), u, MU_S, MU_F, A)
+    with pytest.raises(SolverError, match="µ_fast > µ_slow"):
+        slide_along_rims([0.5, 0.1], np.zeros((4, 2)), apart, MU_S, MU_S, A)
