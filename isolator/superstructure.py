@@ -411,7 +411,12 @@ def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, sourc
     if not 0.0 <= zeta < 1.0:
         raise DesignError(f"{where}: key 'damping_ratio' must lie in [0, 1), got {zeta:g}")
     entries = table.get("floor")
-    if not isinstance(entries, list) or not entries or not all(isinstance(e, dict) for e in entries):
+    wrong = next((i for i, e in enumerate(entries, start=1) if not isinstance(e, dict)), None) \
+        if isinstance(entries, list) else None
+    if wrong is not None:  # floor = [1, 2] was told "needs at least one entry" (session 20 sweep)
+        raise DesignError(f"{where}: key 'floor': entry {wrong} is {repr(entries[wrong - 1])[:60]}, not a table of "
+                          "keys (each [[superstructure.floor]] holds mass_kg, story_height_m, stiffness_x_N_per_m)")
+    if not isinstance(entries, list) or not entries:
         raise DesignError(f"{where}: needs at least one [[superstructure.floor]] entry (mass_kg, story_height_m, "
                           "stiffness_x_N_per_m)")
     if len(entries) > MAX_FLOORS:

@@ -16,6 +16,8 @@ from _records import at2_text
 from typer.testing import CliRunner
 
 from isolator.cli import app
+from isolator.design import Design
+from isolator.errors import DesignError
 
 RUNNER = CliRunner()
 DESIGN = 'name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n'
@@ -80,8 +82,6 @@ def test_an_at2_dt_beyond_a_float_names_the_overflow(tmp_path, monkeypatch, dt, 
 ])
 def test_bearing_surfaces_of_the_wrong_kind_are_named(tmp_path, surface, words):
     """e9efb0c: `surface = [1, 2, 3, 4]` said `a triple bearing needs 4 [[bearing.surface]] entries` (it has 4)."""
-    from isolator.design import Design
-    from isolator.errors import DesignError
 
     path = tmp_path / "t.toml"
     path.write_text(f'name = "t"\nmass_kg = 1e6\n[bearing]\ntype = "triple"\n{surface}\n')
@@ -210,3 +210,37 @@ def test_the_superstructure_shear_row_says_what_was_computed():
     assert row["value"] == pytest.approx(0.2) and row["status"] == "pass"
     assert "RHA superstructure shear / W ÷ R_I = 0.2 / 1" in row["note"] and "no value" not in row["note"]
     assert "17.5.4.3(1) not computed" in row["note"] and "17.5.4.3(2) not computed" in row["note"]
+
+
+# h195's sweep of this round's inputs (its other findings were the same leftovers as above)
+_TRIPLE = {"type": "triple", "surface": [
+    {"radius_m": 2.1, "mu": 0.06, "displacement_capacity_m": 0.8},
+    {"radius_m": 0.3, "mu": 0.02, "displacement_capacity_m": 0.05},
+    {"radius_m": 0.3, "mu": 0.02, "displacement_capacity_m": 0.05},
+    {"radius_m": 2.1, "mu": 0.10, "displacement_capacity_m": 0.8}]}
+
+
+def test_an_at2_npts_beyond_any_record_is_named(tmp_path, monkeypatch):
+    """e9efb0c: an NPTS of 400 digits was numpy's "Maximum allowed dimension exceeded"."""
+    monkeypatch.chdir(tmp_path)
+    assert "NPTS=   200" in SINE
+    (tmp_path / "x.AT2").write_text(SINE.replace("NPTS=   200", "NPTS= " + "9" * 400))
+    result = RUNNER.invoke(app, ["simulate", "x.AT2", "--mu-s", "0.05"])
+    assert result.exit_code == 2 and isinstance(result.exception, SystemExit), result.output
+    assert "header NPTS of 400 digits is more than the 1e+09 samples" in _one_line(result)
+
+
+def test_a_floor_list_of_the_wrong_kind_says_which_entry():
+    """e9efb0c: floor = [{}, 2] was told "needs at least one [[superstructure.floor]] entry"."""
+    with pytest.raises(DesignError, match=r"key 'floor': entry 2 is 2, not a table of keys"):
+        Design.from_mapping({"name": "FPS", "mass_kg": 1e6, "radius_m": 2.5, "mu_static": 0.06,
+                             "superstructure": {"damping_ratio": 0.05, "floor": [{}, 2]}})
+
+
+def test_a_surface_capacity_past_its_radius_is_refused():
+    """e9efb0c read an outer capacity of 5 m on a surface of R 2.1 m (past the sphere's end)."""
+    bearing = {**_TRIPLE, "surface": [{**_TRIPLE["surface"][0], "displacement_capacity_m": 5.0}, *_TRIPLE["surface"][1:]]}
+    with pytest.raises(DesignError, match=r"bearing surface 1: displacement_capacity_m = 5 m is not below its "
+                                          r"radius_m = 2.1 m"):
+        Design.from_mapping({"name": "TFP", "mass_kg": 1e6, "bearing": bearing})
+    assert Design.from_mapping({"name": "TFP", "mass_kg": 1e6, "bearing": _TRIPLE}).bearing.kind == "triple"

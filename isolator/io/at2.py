@@ -42,6 +42,8 @@ from isolator.io._common import (
 )
 
 MAX_HEADER_LINES = 12  # non-blank lines searched for the NPTS/DT line
+#: The most samples an AT2 header may announce (1e9 float64 samples are 8 GB; a day at 1 kHz is 8.6e7).
+MAX_NPTS = 10**9
 
 _FLOAT = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
 _NPTS_DT_RE = re.compile(rf"NPTS\s*=\s*([-+]?\d+)\s*,?\s*DT\s*=\s*({_FLOAT})", re.IGNORECASE)
@@ -232,6 +234,10 @@ def _read_at2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
             raise RecordFormatError(f"header DT={dt_s:g} s is not positive")
         if npts < 1:
             raise RecordFormatError(f"header NPTS={npts} holds no samples")
+        if npts > MAX_NPTS:  # 400 digits were numpy's "Maximum allowed dimension exceeded" (session 19 sweep)
+            shown = f"={npts}" if npts < 10**20 else f" of {len(str(npts))} digits"
+            raise RecordFormatError(f"header NPTS{shown} is more than the {MAX_NPTS:.0e} samples this reader takes: "
+                                    "a corrupt header?")
         if headonly:
             data, trailer = np.empty(0, dtype=np.float64), []
         else:
