@@ -947,7 +947,7 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
         tol[M_R + 1] = tol[M_R]
         for p in range(M_EIN):
             act[p] = p
-        na = np.int64(M_EIN)
+        na = M_EIN
         if kc >= 0:
             st[ST_RADAU_THREE] += 1
             tol[M_R] = atol[M_R] / max(mu[ka], mu[kb], mu[kc])
@@ -1040,14 +1040,14 @@ def radau_step(tau, y, f0, h, raw, rb, mu, mask, c, ynew, fnew, atol, rtol, st, 
     # Shampine's filter: at each sample the forcing's slope jumps and the state starts a boundary layer of length
     # ~1/|λ| (s²/40 s) that the L-stable step damps whatever h, and that the unfiltered estimate counts as error
     err = _radau_estimate(tau, v, fv, h, zf, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb, yw,
-                          np.bool_(False), st, fw)
+                          False, st, fw)
     if err >= 1.0 or tau == 0.0 or not recalled:
         # refused as it stands, or the first step of a sample interval or of a corner: the estimate once more from f
         # at y0 + the estimate (RADAU5's second filtering, which takes out the stiff components the first one leaves
         # in a boundary layer).  Without it at the samples' starts, Christchurch CBGS 0–12 s was 1.1e-9 of the peak
         # from the kernel at rtol 1e-12 instead of 4.9e-10
         err = _radau_estimate(tau, v, fv, h, zf, act, na, m, e1, p1, tol, rtol, vnew, raw, rb, mu, mask, c, ka, kb,
-                              yw, np.bool_(True), st, fw)
+                              yw, True, st, fw)
     if not err < np.inf:
         return False, np.inf
     if err < 1.0:
@@ -1708,14 +1708,14 @@ def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol
         ub[q, 0] = my[M_U + 2 * q]
         ub[q, 1] = my[M_U + 2 * q + 1]
     what = RS_LEAVE if kind == 0 else RS_JOIN
-    g0 = _restep_value(what, k, np.int64(0), my, mf, rb, mu, ub)
+    g0 = _restep_value(what, k, 0, my, mf, rb, mu, ub)
     if g0 >= 0.0:
         return 0.0
     st[ST_RESTEP] += 1
     corner_step(tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm)
-    ghi = _restep_value(what, k, np.int64(0), myb, mfb, rb, mu, ub)
-    hi, _ = _secant_resteps(what, k, np.int64(0), g0, ghi, np.bool_(True), LOCATE_BRACKET, np.int64(LOCATE_RESTEPS),
-                            tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm, ub)
+    ghi = _restep_value(what, k, 0, myb, mfb, rb, mu, ub)
+    hi, _ = _secant_resteps(what, k, 0, g0, ghi, True, LOCATE_BRACKET, LOCATE_RESTEPS, tau, my, mf, h, raw, rb, mu,
+                            comp, c, myb, mfb, matol, rtol, kk, yt, st, rm, ub)
     return hi
 
 
@@ -1723,9 +1723,8 @@ def _locate_multi(kind, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol
 def _multi_peak(o, tau, my, mf, h, g0, g1, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt, st, rm):
     """Largest |y[o:o+2]| inside a multi-group step where its rate goes from + to −: Illinois secant on
     the rate of its square over re-steps (:func:`_secant_resteps`)."""
-    _, best = _secant_resteps(np.int64(RS_PEAK), np.int64(-1), o, g0, g1, np.bool_(False), PEAK_BRACKET,
-                              np.int64(PEAK_RESTEPS), tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol, kk, yt,
-                              st, rm, np.empty((0, 2)))
+    _, best = _secant_resteps(RS_PEAK, -1, o, g0, g1, False, PEAK_BRACKET, PEAK_RESTEPS, tau, my, mf, h, raw, rb, mu,
+                              comp, c, myb, mfb, matol, rtol, kk, yt, st, rm, np.empty((0, 2)))
     return best
 
 
@@ -1834,7 +1833,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     y[0] = x1
     y[1] = x2
     if k < 0:
-        return PH_STUCK, 0, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_STICK)), e_in, e_f, e_v
+        return PH_STUCK, 0, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_STICK), e_in, e_f, e_v
     comp = 1 << k
     rc = rb[k]
     mue = mu[k]
@@ -1849,7 +1848,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     em = element_mask(comp, members)
     if first[em] < 0.0:
         first[em] = t0 + tau
-    return PH_START, comp, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_REVERSAL)), e_in, e_f, e_v
+    return PH_START, comp, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_REVERSAL), e_in, e_f, e_v
 
 
 @njit(cache=True)
@@ -1925,8 +1924,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     #: and the constant of its input's correction under a vertical (_corr_xy)
     for j in range(first.shape[0]):
         first[j] = -1.0
-    phase = np.int64(PH_STUCK)
-    comp = np.int64(0)  #: the sliding groups (bit set)
+    phase = PH_STUCK
+    comp = 0  #: the sliding groups (bit set)
     rc = 1.0
     mue = 0.0
     x = 0.0
@@ -1943,7 +1942,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     peak_v = 0.0
     peak_a = norm(ax[0], ay[0])
     slip = 0.0
-    n_ev = np.int64(0)
+    n_ev = 0
     status = 0
     n_steps = 0
     n_rej = 0
@@ -2064,9 +2063,9 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 y[4] = 0.0
                 ein_corr = 0.0
                 x = tau
-                phase = np.int64(PH_START)
+                phase = PH_START
                 rhs(np.int64(START), tau, y, prm, frc, f)
-                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_BREAKAWAY))
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_BREAKAWAY)
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
@@ -2087,7 +2086,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         failed = True
                         break
                     best = -1.0
-                    kb = np.int64(-1)
+                    kb = -1
                     for k in range(ng):
                         if comp >> k & 1:
                             lam = _lambda(my, mf, rb, k)
@@ -2119,12 +2118,12 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     if vmag > 0.0:
                         y[2] = my[M_V]
                         y[3] = my[M_V + 1]
-                        phase = np.int64(PH_SLIDE)
+                        phase = PH_SLIDE
                         rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     else:
-                        phase = np.int64(PH_START)
+                        phase = PH_START
                         rhs(np.int64(START), tau, y, prm, frc, f)
-                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_LEAVE))
+                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
                     events_here += 1
                     continue
                 hmax = target - tau
@@ -2164,11 +2163,11 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 # events inside the step: a sliding group's λ reaching 0, a stuck one's circle reached
                 theta = 2.0
                 kind = -1
-                which = np.int64(-1)
+                which = -1
                 for k in range(ng):
                     if comp >> k & 1:
                         if _lambda(mynew, mfnew, rb, k) < 0.0:
-                            th = _locate_multi(np.int64(0), k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                            th = _locate_multi(0, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
                                                kk, yt, stats, rm)
                             if th < theta:
                                 theta = th
@@ -2178,7 +2177,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         for q in range(2):
                             ub[k, q] = my[M_U + 2 * k + q]
                         if _outside(mynew[M_R], mynew[M_R + 1], ub, rb, mu, k) > 0.0:
-                            th = _locate_multi(np.int64(1), k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
+                            th = _locate_multi(1, k, tau, my, mf, h, raw, rb, mu, comp, c, myb, mfb, matol, rtol,
                                                kk, yt, stats, rm)
                             if th < theta:
                                 theta = th
@@ -2234,8 +2233,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         fac = min(1.0, fac)
                     h_sugg = h * fac
                     just_rejected = False
-                    ka = np.int64(-1)
-                    kb = np.int64(-1)
+                    ka = -1
+                    kb = -1
                     nact = 0
                     for k in range(ng):
                         if comp >> k & 1:
@@ -2319,7 +2318,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         x = tau
                         ein_corr = 0.0
                         enter_polar(tau, y, my[M_V], my[M_V + 1], norm(my[M_V], my[M_V + 1]), prm, frc, f)
-                        phase = np.int64(PH_POLAR)
+                        phase = PH_POLAR
                         n_merged += 1
                         if exact_only:
                             status |= STATUS_REDUCED
@@ -2335,19 +2334,19 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     chosen = sliding_set(my, rb, comp | 1 << which, 1 << which)
                     comp = chosen if chosen != 0 else comp | 1 << which
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
-                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_JOIN))
+                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
                     em = element_mask(comp, members)
                     if first[em] < 0.0:
                         first[em] = t[i] + tau
                     continue
                 # a group leaves
                 comp &= ~(1 << which)
-                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_LEAVE))
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
                 n_left = 0
-                kb = np.int64(-1)
+                kb = -1
                 for k in range(ng):
                     if comp >> k & 1:
                         n_left += 1
@@ -2376,7 +2375,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 x = tau
                 ein_corr = 0.0
                 enter_polar(tau, y, my[M_V], my[M_V + 1], vmag, prm, frc, f)
-                phase = np.int64(PH_POLAR)
+                phase = PH_POLAR
                 continue
             # ------------------------------------------------------------------ one group: planar forms
             if phase == PH_APPROACH:
@@ -2387,7 +2386,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     s_stop = s_floor
                 if x > s_stop and rdot > -LEAVE_LOG * fscale:
                     x = leave_log(tau, y, r, prm, frc, f)
-                    phase = np.int64(PH_SLIDE)
+                    phase = PH_SLIDE
                     h_sugg = r / max(fscale, 1e-300)
                     continue
                 if x > s_stop:
@@ -2409,7 +2408,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         just_rejected = True
                         if abs(ds_sugg) < 1e-9:
                             x = leave_log(tau, y, r, prm, frc, f)
-                            phase = np.int64(PH_SLIDE)
+                            phase = PH_SLIDE
                             h_sugg = r / max(fscale, 1e-300)
                         continue
                     hit = ynew[7] >= target
@@ -2417,7 +2416,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     if hit:
                         theta = land_on(np.int64(LOG), x, y, f, ds, np.int64(7), target, ynew[7], fnew[7], prm, frc, yb,
                                         fb, atol, rtol, work)
-                    th_j, kj = _joins_in_step(np.int64(LOG), x, y, f, ds, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue,
+                    th_j, kj = _joins_in_step(LOG, x, y, f, ds, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue,
                                               ub, rb, mu, comp, ynew, fnew)
                     if kj >= 0:
                         theta = th_j
@@ -2465,7 +2464,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             my[M_EIN] = 0.0
                             my[M_EF] = 0.0
                             my[M_EV] = 0.0
-                        n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_JOIN))
+                        n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
                         em = element_mask(comp, members)
                         if first[em] < 0.0:
                             first[em] = t[i] + tau
@@ -2515,7 +2514,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[2] *= r
                     y[3] *= r
                     y[7] = 0.0
-                    phase = np.int64(PH_SLIDE)
+                    phase = PH_SLIDE
                     rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     continue
             if phase == PH_SLIDE:
@@ -2553,7 +2552,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 if r < 0.5 * r_switch_lo and not rdot < -ENTER_LOG * fscale:
                     y[2] = r
                     y[3] = 0.0
-                    phase = np.int64(PH_START)
+                    phase = PH_START
                     rhs(np.int64(START), tau, y, prm, frc, f)
                     continue
                 h_try = h_sugg if h_sugg > 0.0 else target - tau
@@ -2563,7 +2562,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[7] = tau
                     x = math.log(r)
                     if rhs(np.int64(LOG), x, y, prm, frc, f):
-                        phase = np.int64(PH_APPROACH)
+                        phase = PH_APPROACH
                         s_stop = s_end
                         ds_sugg = -0.5
                         continue
@@ -2573,8 +2572,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                 else:
                     enter_polar(tau, y, y[2], y[3], r, prm, frc, f)
-                    phase = np.int64(PH_POLAR)
-                    mode = np.int64(POLAR)
+                    phase = PH_POLAR
+                    mode = POLAR
                     fm = fscale - mue * (raw[4] + raw[5] * tau)
             hmax = target - tau
             h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
@@ -2694,7 +2693,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     my[M_EF] = 0.0
                     my[M_EV] = 0.0
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
-                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_JOIN))
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
@@ -2705,7 +2704,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > LAG_MAX_RAD)):
                 v1, v2 = velocity(np.int64(PH_START), x, tau, y, prm, frc)
                 enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
-                phase = np.int64(PH_POLAR)
+                phase = PH_POLAR
         if failed:
             break
         # ---- the sample

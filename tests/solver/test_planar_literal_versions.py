@@ -21,15 +21,13 @@ from isolator.solver import (
     planar_control,
     planar_events,
     planar_kernel,
-    planar_multisurface_kernel,
-    planar_multisurface_stepper,
     planar_rim_kernel,
 )
 
 MODULES = (planar_kernel, planar_events, planar_control)
 #: The triple pendulum's engines: checked also for a name that ever holds a constant (its loop's first pass).
-#: planar_multisurface_rate_kernel not yet (49 such arguments: docs/performance.md, h188).
-MULTISURFACE = (planar_multisurface_kernel, planar_multisurface_stepper, planar_rim_kernel)
+#: planar_multisurface_kernel (99 such arguments) and planar_multisurface_stepper (22) not yet: docs/performance.md, h188.
+MULTISURFACE = (planar_rim_kernel,)
 
 
 def _literal_passes(module, loop_carried: bool = False) -> list[str]:
