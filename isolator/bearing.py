@@ -697,9 +697,6 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
     if capacity is not None and capacity < MIN_CAPACITY_M:
         raise fail(f"{where}: displacement_capacity_m = {capacity:g} m is below {MIN_CAPACITY_M * 1e3:g} mm: no "
                    "bearing surface has so little travel (25-500 mm are built); is it in metres?")
-    if capacity is not None and radius is not None and capacity >= radius:  # 5 m on R 2.1 m was read (session 20)
-        raise fail(f"{where}: displacement_capacity_m = {capacity:g} m is not below its radius_m = {radius:g} m: a "
-                   "spherical surface ends at its radius (built ones travel D/R <= 0.25); radius and capacity swapped?")
     for key, range_kind, value in (("radius_m", "radius_m", radius), ("displacement_capacity_m",
                                    "displacement_capacity_m", capacity),  # a > 1e4 s/m: the engine's own message
                                    ("rate_s_per_m", "rate_s_per_m", None if rate is None or rate > 1e4 else rate),
