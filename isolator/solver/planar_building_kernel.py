@@ -1133,6 +1133,22 @@ def _order_at(eser, rser, nch, h, mu_k_n, fast_eps):
     return -1
 
 
+@njit(cache=True, inline="always")
+def _peak_inside(val, slope, val1, slope1, k, h, peak_sq):
+    """Take monitor ``k``'s ends into its running peak of |·|²; True where a maximum of |·|² may lie inside the
+    piece of length ``h`` and exceed that peak (d|·|²/dτ falls through zero, the ends' reach above the peak).
+
+    Inlined by numba (no call in the sub-step, h194), shared by the fast sub-step and the series pieces.
+    """
+    g0 = val[k, 0] ** 2 + val[k, 1] ** 2
+    g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
+    peak_sq[k] = max(peak_sq[k], g0, g1)
+    s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
+    s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
+    reach = 4.0 * h * max(abs(s0), abs(s1))
+    return s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]
+
+
 @njit(cache=True)
 def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, p_vec, l_d, weights, slab_mass, total_mass, masses,
                       c_iso, c_floor, mu_s_n, mu_k_n, v_ref, m1, m2, m3, sig1, sig2, sig3, n_fast, fpropt, fpinrow,
@@ -1670,13 +1686,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                 fx_nterm = fmon.shape[3]
                                 fx_nk = m1.shape[0]
                                 for fx_k in range(fx_nk):
-                                    fx_g0 = val[fx_k, 0] ** 2 + val[fx_k, 1] ** 2
-                                    fx_g1 = val1[fx_k, 0] ** 2 + val1[fx_k, 1] ** 2
-                                    peak_sq[fx_k] = max(peak_sq[fx_k], fx_g0, fx_g1)
-                                    fx_q0 = val[fx_k, 0] * slope[fx_k, 0] + val[fx_k, 1] * slope[fx_k, 1]
-                                    fx_q1 = val1[fx_k, 0] * slope1[fx_k, 0] + val1[fx_k, 1] * slope1[fx_k, 1]
-                                    fx_reach = 4.0 * fx_h * max(abs(fx_q0), abs(fx_q1))
-                                    if fx_q0 > 0.0 and fx_q1 < 0.0 and max(fx_g0, fx_g1) + fx_reach > peak_sq[fx_k]:
+                                    if _peak_inside(val, slope, val1, slope1, fx_k, fx_h, peak_sq):
                                         counter[0] += 1
                                         for fx_d in range(2):
                                             for fx_j in range(fx_nterm):
@@ -1942,13 +1952,8 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         if mode != STUCK:
                             slip_time += piece
                     for k in range(nk):
-                        g0 = val[k, 0] ** 2 + val[k, 1] ** 2
-                        g1 = val1[k, 0] ** 2 + val1[k, 1] ** 2
-                        peak_sq[k] = max(peak_sq[k], g0, g1)
-                        s0 = val[k, 0] * slope[k, 0] + val[k, 1] * slope[k, 1]
-                        s1 = val1[k, 0] * slope1[k, 0] + val1[k, 1] * slope1[k, 1]
-                        reach = 4.0 * piece * max(abs(s0), abs(s1))
-                        if piece > 0.0 and s0 > 0.0 and s1 < 0.0 and max(g0, g1) + reach > peak_sq[k]:
+                        inside = _peak_inside(val, slope, val1, slope1, k, piece, peak_sq)  # updates peak_sq[k]
+                        if piece > 0.0 and inside:
                             counter[0] += 1
                             best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, k, np.int64(0),
                                                z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
@@ -1966,7 +1971,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                         if piece > 0.0 and sslope[j] < 0.0 and sslope1[j] > 0.0 and min(sval[j], sval1[j]) - reach < \
                                 sig_min[j]:
                             counter[0] += 1
-                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, -1,
+                            best = _locate_max(zs, lam_piece if on_log else piece, a0, b, m1, m2, m3, sig1, sig2, sig3, j, np.int64(-1),
                                                z, zd, zdd, val2, slope2, sval2, sslope2, lz, lzd, lt, on_log)
                             sig_min[j] = min(sig_min[j], -best)
                     # the state at the piece's end
