@@ -137,6 +137,16 @@ FAST_CHECK = 1e-12
 FAST_TRUNC_EPS = 1e-12
 
 
+@njit(cache=True, inline="always")
+def _sq_norm_term(ws, k):
+    """The order-k coefficient of |V|² = V·V from V's two directions' coefficients ws[d, 0 … k] (a Cauchy product,
+    j ascending).  Inlined by numba (no call in the fast sub-step), shared by the series pieces and the sub-step."""
+    acc = 0.0
+    for j in range(k + 1):
+        acc += ws[0, j] * ws[0, k - j] + ws[1, j] * ws[1, k - j]
+    return acc
+
+
 @njit(cache=True)
 def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_frozen, zs, fs, ws, ss, rs, es, vz, mus,
             exs, h_scale):
@@ -190,10 +200,7 @@ def _series(mode, z, a0, b, a_mat, g_vec, p_vec, l_d, slab_mass, mu_k_n, e_froze
                     if varying:
                         acc -= k_v * ((nu0 - 1.0) * zs[d, k, 0] + (nu1 * zs[d, k - 1, 0] if k > 0 else 0.0))
                     ws[d, k] = acc
-            acc = 0.0
-            for j in range(k + 1):
-                acc += ws[0, j] * ws[0, k - j] + ws[1, j] * ws[1, k - j]
-            ss[k] = acc
+            ss[k] = _sq_norm_term(ws, k)
             if k == 0:
                 rs[0] = math.sqrt(ss[0])
             else:
@@ -1514,10 +1521,7 @@ def building2d_kernel(ax, ay, az, law, dt, times, h_max, n_order, a_mat, g_vec, 
                                     for fx_c in range(fx_m + 2, fx_m + 2 + fx_k):
                                         fx_acc += fvt[fx_d, fx_c, fx_k] * wa[fx_d, fx_c]
                                     vser[fx_d, fx_k] = fx_acc
-                                fx_acc = 0.0
-                                for fx_j in range(fx_k + 1):
-                                    fx_acc += vser[0, fx_j] * vser[0, fx_k - fx_j] + vser[1, fx_j] * vser[1, fx_k - fx_j]
-                                sser[fx_k] = fx_acc
+                                sser[fx_k] = _sq_norm_term(vser, fx_k)
                                 if fx_k == 0:
                                     if not sser[0] > 0.0:
                                         taken = -4
