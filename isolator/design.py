@@ -38,6 +38,9 @@ NAME_MAX_CHARS = 200
 #: what a design search or a batch grid appends to a name, " [radius_m=2.5, mu_static=0.06]", is not counted in
 #: NAME_MAX_CHARS up to this length [characters]
 SUFFIX_MAX_CHARS = 2000
+#: the longest design description [characters]: free text, a paragraph or a page (a report shows its first 40
+#: characters), not a file pasted in (10^6 characters were read and carried by every candidate, h203)
+DESCRIPTION_MAX_CHARS = 10_000
 _CANDIDATE_SUFFIX = re.compile(r" \[[A-Za-z_.]+=[^,\[\]]+(?:, [A-Za-z_.]+=[^,\[\]]+)*\]$")
 
 #: keys a design file may hold, with their meaning (used in messages and the README)
@@ -386,6 +389,10 @@ class Design:
         description = mapping.get("description", "")
         if not isinstance(description, str):
             raise fail(f"key 'description' must be text, got {description!r}")
+        if len(description) > DESCRIPTION_MAX_CHARS:
+            raise fail(f"key 'description' is {len(description):,} characters long, more than a design's description "
+                       f"may be ({DESCRIPTION_MAX_CHARS:,}): it is free text, shortened to 40 characters in "
+                       "reports; keep longer notes in a file of their own")
 
         mass_kg = number("mass_kg", strict=True, required=True)
         mu_static = number("mu_static", strict=True, required=True)
