@@ -144,8 +144,14 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         text = data.decode("utf-8-sig")
     except FileNotFoundError:
         raise error_type(f"{path}: no such {what}") from None
-    except (OSError, UnicodeDecodeError) as err:
+    except UnicodeDecodeError as err:  # a binary file was "cannot read the design file ('utf-8' codec can't …)"
+        line = data.count(b"\n", 0, err.start) + 1
+        raise error_type(f"{path}: not UTF-8 text (line {line}: byte 0x{data[err.start]:02x}): a binary file, or text "
+                         "saved in another encoding (save it as UTF-8; TOML is UTF-8)") from None
+    except OSError as err:
         raise error_type(f"{path}: cannot read the {what} ({' '.join(str(err).split())})") from None
+    if not text.strip():  # an empty design file said "missing key 'mass_kg'" (h203): it is missing every key
+        raise error_type(f"{path}: the {what} is empty")
     deep = DEEP_TOML_KEY.search(text)
     if deep:  # tomllib's time grows as the square of a key's parts: 10,000 took 2.8 s, 50,000 ran past a minute
         line = text.count("\n", 0, deep.start()) + 1

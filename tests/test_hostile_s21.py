@@ -160,3 +160,21 @@ def test_scaling_given_without_every_factor_names_the_suite(tmp_path):
     assert line.startswith(f"error: suite {suite_dir / 'suite.toml'}: scaling 'given' needs a scale_factor for every "
                            "pair; pair ") and line.endswith("has none (and 6 more)"), line
     assert not (tmp_path / "r.pdf").exists()
+
+
+# ---- a binary or non-UTF-8 TOML file says so in its own terms
+
+@pytest.mark.parametrize("content, words", [
+    (bytes(range(256)) * 4, "d.toml: not UTF-8 text (line 2: byte 0x80): a binary file, or text saved in another "
+                            "encoding (save it as UTF-8; TOML is UTF-8)"),
+    (DESIGN.encode() + b"# \xb5 = 0.06 (cp1252)\n", "d.toml: not UTF-8 text (line 5: byte 0xb5)"),
+    (b" \n\n", "d.toml: the design file is empty"),
+])
+def test_a_toml_file_that_is_not_utf8_is_named_so(tmp_path, monkeypatch, content, words):
+    """edf7ccb: `d.toml: cannot read the design file ('utf-8' codec can't decode byte 0x80 in position 128: invalid
+    start byte)`: Python's words, and no line."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "d.toml").write_bytes(content)
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--design", "d.toml"]))
+    assert line.startswith("error: " + words), line
