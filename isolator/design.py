@@ -38,6 +38,9 @@ NAME_MAX_CHARS = 200
 #: what a design search or a batch grid appends to a name, " [radius_m=2.5, mu_static=0.06]", is not counted in
 #: NAME_MAX_CHARS up to this length [characters]
 SUFFIX_MAX_CHARS = 2000
+#: the longest design description [characters]: free text, a paragraph or a page (a report shows its first 40
+#: characters), not a file pasted in (10^6 characters were read and carried by every candidate, h203)
+DESCRIPTION_MAX_CHARS = 10_000
 _CANDIDATE_SUFFIX = re.compile(r" \[[A-Za-z_.]+=[^,\[\]]+(?:, [A-Za-z_.]+=[^,\[\]]+)*\]$")
 
 #: keys a design file may hold, with their meaning (used in messages and the README)
@@ -141,8 +144,14 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         text = data.decode("utf-8-sig")
     except FileNotFoundError:
         raise error_type(f"{path}: no such {what}") from None
-    except (OSError, UnicodeDecodeError) as err:
+    except UnicodeDecodeError as err:  # a binary file was "cannot read the design file ('utf-8' codec can't …)"
+        line = data.count(b"\n", 0, err.start) + 1
+        raise error_type(f"{path}: not UTF-8 text (line {line}: byte 0x{data[err.start]:02x}): a binary file, or text "
+                         "saved in another encoding (save it as UTF-8; TOML is UTF-8)") from None
+    except OSError as err:
         raise error_type(f"{path}: cannot read the {what} ({' '.join(str(err).split())})") from None
+    if not text.strip():  # an empty design file said "missing key 'mass_kg'" (h203): it is missing every key
+        raise error_type(f"{path}: the {what} is empty")
     deep = DEEP_TOML_KEY.search(text)
     if deep:  # tomllib's time grows as the square of a key's parts: 10,000 took 2.8 s, 50,000 ran past a minute
         line = text.count("\n", 0, deep.start()) + 1
@@ -386,6 +395,10 @@ class Design:
         description = mapping.get("description", "")
         if not isinstance(description, str):
             raise fail(f"key 'description' must be text, got {description!r}")
+        if len(description) > DESCRIPTION_MAX_CHARS:
+            raise fail(f"key 'description' is {len(description):,} characters long, more than a design's description "
+                       f"may be ({DESCRIPTION_MAX_CHARS:,}): it is free text, shortened to 40 characters in "
+                       "reports; keep longer notes in a file of their own")
 
         mass_kg = number("mass_kg", strict=True, required=True)
         mu_static = number("mu_static", strict=True, required=True)

@@ -94,6 +94,7 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     notes = check_scheduler(scheduler) if scheduler else []
     if repeated:
         notes.insert(0, repeated_records_note(repeated))
+    notes[:0] = shared_names_notes(cases, designs_file)
     with output_lock(output):  # a second run on the same -o is refused, naming this one
         return _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map_resolution, progress,
                            clock, notes)
@@ -165,6 +166,29 @@ def repeated_records_note(repeated: list) -> str:
     if len(repeated) == 1:
         return f"{shown} was given more than once: it is analysed once (one row per design)"
     return f"{len(repeated)} record files were given more than once ({shown}): each is analysed once"
+
+
+def shared_names_notes(cases, source) -> list[str]:
+    """One sentence per name that several ``[[design]]`` tables of the designs file share (h203: two tables named
+    'a' gave two rows named 'a', told apart only by ``design_index``, without a word).  Not an error: the rows are
+    right, and a copied table is a usual first step; the engineer is told which tables to rename."""
+    from isolator.errors import printable
+
+    tables: dict = {}
+    read: set = set()
+    for case in cases:  # a table's first case only: a grid's candidates append the same values to every table's name
+        name = case.mapping.get("name")
+        if case.file_index not in read and isinstance(name, str) and name.strip():
+            read.add(case.file_index)
+            tables.setdefault(" ".join(name.split()).casefold(), {}).setdefault(case.file_index, name.strip())
+    notes = []
+    for indices in tables.values():
+        if len(indices) > 1:
+            numbers = [str(i + 1) for i in sorted(indices)]
+            shown = ", ".join(numbers[:-1]) + " and " + numbers[-1]
+            notes.append(f"{source}: [[design]] tables {shown} share the name '{printable(next(iter(indices.values())))}"
+                         "': their rows are told apart only by design_index (give each design its own name)")
+    return notes
 
 
 def _duplicate_motion_notes(table) -> list[str]:

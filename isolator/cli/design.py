@@ -13,6 +13,7 @@ from isolator.cli.common import (
     collector_skips_existing_objects,
     echo_table,
     parse_set,
+    say,
     write_error,
 )
 from isolator.cli.common import user_error as _user_error
@@ -108,6 +109,12 @@ def design(
         _user_error(f"--objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}")
     if jobs is not None and jobs < 1:
         _user_error(f"--jobs must be ≥ 1, got {jobs}")
+    if jobs is not None:  # as review and batch: --jobs 10**8 forked one process per candidate, up to 20,000 (h203)
+        from isolator.parallel import capped_workers
+
+        jobs, note = capped_workers(jobs)
+        if note:
+            say(f"note: {note}")
     try:
         ranges = [parse_vary(spec) for spec in vary]
     except ReviewError as err:

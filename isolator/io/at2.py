@@ -222,12 +222,13 @@ def _read_at2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
         stated = _UNITS_STATED_RE.search(header_text)
         if stated and stated.group(1).upper().rstrip(".,") not in ("G", "G'S"):
             raise RecordFormatError(f"header states units {stated.group(1)!r}; a PEER AT2 file is in g")
+        written = _dt_text(header[-1]) if not math.isfinite(dt_s) or abs(dt_s) < sys.float_info.min else ""
         if not math.isfinite(dt_s):  # float("1e400") is inf, then 0 Hz: it was told "dt = 0 s is not positive"
-            raise RecordFormatError(f"header DT={_dt_text(header[-1])} s overflows: beyond any number (a float ends "
+            raise RecordFormatError(f"header DT={written} s overflows: beyond any number (a float ends "
                                     "at 1.8e308 s); a corrupt header?")
-        if abs(dt_s) < sys.float_info.min and re.search(r"[1-9]", re.split("[EeDd]", _dt_text(header[-1]))[0]):
+        if written and re.search(r"[1-9]", re.split("[EeDd]", written)[0]):
             # a subnormal step's sampling rate 1/DT is inf, its step then 0 (1e-320 was told "dt = 0 s")
-            raise RecordFormatError(f"header DT={_dt_text(header[-1])} s underflows: below a float's smallest normal "
+            raise RecordFormatError(f"header DT={written} s underflows: below a float's smallest normal "
                                     "number (2.2e-308); no accelerogram has such a step (1e-05 to 0.5 s); a corrupt "
                                     "header?")
         if not dt_s > 0:

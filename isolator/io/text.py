@@ -34,7 +34,9 @@ their mean, and the record is solved as the piecewise-linear signal through them
 
 from __future__ import annotations
 
+import math
 import re
+import sys
 
 import numpy as np
 from obspy import Stream, Trace, UTCDateTime
@@ -275,6 +277,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     info.column_names = names or []
     info.columns = ncols
     t0_s = 0.0
+    dt_from = ""  # what gave the step, when the file gave it
     if ncols == 2:
         time_s, acceleration = table[:, 0], table[:, 1]
         if time_s.size >= 2:
@@ -297,22 +300,25 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
                                                 given=dt_s)
                 info.time_s = time_s - time_s[0]  # unequal steps: kept, solved as they are
                 dt_s = float(step_s)
+                dt_from = "the time column's step"
             else:
                 if dt_s is not None and abs(dt_s - step_s) > tolerance_s:
                     raise TimeStepConflictError(f"the time step given ({dt_s:g} s) disagrees with the time column's "
                                                 f"{step_s:g} s", given=dt_s)
                 dt_s = float(f"{step_s:.12g}")  # drop the round-off of the division
+                dt_from = "the time column's step"
         elif dt_s is None:
             dt_s = 1.0  # a single sample: the caller refuses it anyway
         t0_s = float(time_s[0])
     else:
         acceleration = table[:, 0]
-        if dt_s is None and "dt_s" in meta:
-            dt_s = parse_float(meta["dt_s"])
-        if dt_s is None and "dt" in meta:
-            dt_s = parse_float(meta["dt"])
+        for key in ("dt_s", "dt"):
+            if dt_s is None and key in meta:
+                dt_s = parse_float(meta[key])
+                dt_from = f"'# {key}: {meta[key][:40]}'"
         if dt_s is None:
             raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
+    _refuse_step_beyond_float(dt_s, dt_from)
     if not dt_s > 0:
         raise RecordFormatError(f"time step dt = {dt_s:g} s is not positive")
     info.t0_s = t0_s
@@ -328,3 +334,18 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         info.component = meta["component"]
     trace.stats.isolator_text = info
     return Stream([trace])
+
+
+def _refuse_step_beyond_float(dt_s: float, dt_from: str) -> None:
+    """Refuse a step the file gave (``dt_from`` names it) that is beyond a float or below its smallest normal number.
+
+    ObsPy keeps 1/dt: an infinite step (``# dt_s: 1e400``) is 0 Hz and a subnormal one (``5e-324``, a time column of
+    such steps) an infinite rate, and both came back as "time step dt = 0 s is not positive" (h203).
+    """
+    if not dt_from or dt_s != dt_s:
+        return
+    if math.isinf(dt_s):
+        raise RecordFormatError(f"{dt_from} overflows: beyond any number (a float ends at 1.8e308 s); a corrupt file?")
+    if 0 < abs(dt_s) < sys.float_info.min:
+        raise RecordFormatError(f"{dt_from} of {dt_s:.3g} s underflows: below a float's smallest normal number "
+                                "(2.2e-308); no accelerogram has such a step (1e-05 to 0.5 s); a corrupt file?")

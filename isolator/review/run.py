@@ -422,8 +422,8 @@ def _factors(suite, scaling, spectra, target_grid, required, fit_mask, code, par
     if scaling == "given":
         try:
             return given_factors(names, suite.given_factors), "given", required
-        except ValueError as err:
-            raise ReviewError(str(err)) from None
+        except ValueError as err:  # it named no file (h203): the suite's own words, as its other refusals
+            raise ReviewError(f"suite {suite.source}: {err}") from None
     if any(f is not None for f in suite.given_factors):
         notes.append(f"the suite's scale_factor values are not used (scaling '{scaling}'); scaling 'given' checks them")
     return (scale_factors(spectra, target_grid, method=scaling, min_ratio=required, fit_mask=fit_mask), scaling,
