@@ -21,8 +21,10 @@ impact of the ultimate due, removing Ẋ·e alone.  :func:`slide_along_rims` ref
 (:class:`~isolator.errors.SolverError`); with the rims apart (sine > :data:`ALIGNED_SINE`) it answers for any Ẋ:
 no impact is due.
 
-Not wired into the kernel (docs/multisurface.md, h192): the kernel still takes the impact with the rims apart and the
-driver refuses it by name (``IMPACT_SPREAD_LIMIT``).
+Not wired into the kernel (docs/multisurface.md, h192, h199): the kernel still takes the impact with the rims apart
+and the driver refuses it by name (``IMPACT_SPREAD_LIMIT``).  :func:`close_along_rims` integrates that closing from
+a given state in numpy (DOP853 on the rims' angles and Ẋ, its energy booked as the kernel books it): the reference
+the kernel's mode "all on rims" is to be held to.
 """
 
 from __future__ import annotations
@@ -215,6 +217,14 @@ def _grown_sets(xdot, b, t, mu_s, mu_f, a, tol):
     return None
 
 
+def _forward_any(xdot, b, t, r, psi, mu_s, mu_f, a, tol):
+    """The forward law's answer at the Newton's last force ``r``: the stall's set and its supersets, else the set
+    grown from the pairs; None where neither answers."""
+    s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
+    fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, tol)
+    return fwd if fwd is not None else _grown_sets(xdot, b, t, mu_s, mu_f, a, tol)
+
+
 def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
     """The force r [-, per unit normal load] that moves surfaces on their rims at the mass's velocity Ẋ.
 
@@ -266,10 +276,7 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
             return r, psi, err, it
         if err <= floor:
             if err > RESOLVED * scale:
-                s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
-                fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
-                if fwd is None:
-                    fwd = _grown_sets(xdot, b, t, mu_s, mu_f, a, rtol * scale)
+                fwd = _forward_any(xdot, b, t, r, psi, mu_s, mu_f, a, rtol * scale)
                 if fwd is not None:
                     return fwd
                 raise SolverError(
@@ -297,10 +304,7 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
     psi = state[1]
     res = t.T @ psi - xdot
     # the Newton on Φ crawls where a law is near µ_fast (met along a closing, h199): the forward law's sets
-    s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
-    fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
-    if fwd is None:
-        fwd = _grown_sets(xdot, b, t, mu_s, mu_f, a, rtol * scale)
+    fwd = _forward_any(xdot, b, t, r, psi, mu_s, mu_f, a, rtol * scale)
     if fwd is not None:
         return fwd
     raise SolverError(
