@@ -21,8 +21,10 @@ impact of the ultimate due, removing Ẋ·e alone.  :func:`slide_along_rims` ref
 (:class:`~isolator.errors.SolverError`); with the rims apart (sine > :data:`ALIGNED_SINE`) it answers for any Ẋ:
 no impact is due.
 
-Not wired into the kernel (docs/multisurface.md, h192): the kernel still takes the impact with the rims apart and the
-driver refuses it by name (``IMPACT_SPREAD_LIMIT``).
+Not wired into the kernel (docs/multisurface.md, h192, h199): the kernel still takes the impact with the rims apart
+and the driver refuses it by name (``IMPACT_SPREAD_LIMIT``).  :func:`close_along_rims` integrates that closing from
+a given state in numpy (DOP853 on the rims' angles and Ẋ, its energy booked as the kernel books it): the reference
+the kernel's mode "all on rims" is to be held to.
 """
 
 from __future__ import annotations
@@ -123,7 +125,7 @@ def _forward_sets(xdot, b, t, s, psi, mu_s, mu_f, a, tol):
     return None
 
 
-def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, slide):
+def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, slide, checked=True):
     """Where ψ' has outgrown the rounding (µ near µ_fast), the same root by the forward law over the set sliding at
     the stall (|s_j| > µ_slow), each in its sense σ_j: unknowns the rates ψ_j and r, equations
     (r − b_j)·t_j = σ_j µ_j(σ_j ψ_j) (µ continued through the onset in that sense) and Σ ψ_j t_j = Ẋ — Newton on the
@@ -143,8 +145,11 @@ def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, slide):
     r_s = np.linalg.lstsq(ts, s[slide] + bt, rcond=None)[0]
     jac = np.zeros((ns + 2, ns + 2))
     for _ in range(MAX_NEWTON):
-        decay = np.exp(-aa * sig * rates)
-        fric = sig * (m_s - (m_f - m_s) * np.expm1(-aa * sig * rates))
+        power = -aa * sig * rates
+        if not np.all(power < 700.0):  # a rate driven far against its sense: this set is not the answer
+            return None
+        decay = np.exp(power)
+        fric = sig * (m_s - (m_f - m_s) * np.expm1(power))
         f = np.concatenate((ts @ r_s - bt - fric, ts.T @ rates - xdot))
         if math.hypot(f[-2], f[-1]) <= tol and np.max(np.abs(f[:ns])) <= 4.0 * np.finfo(float).eps:
             break
@@ -164,12 +169,60 @@ def _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, slide):
     s_all = np.einsum("ij,ij->i", r_s[None, :] - b, t)
     held = np.ones(len(t), dtype=bool)
     held[slide] = False
-    if not (np.all(np.abs(s_all[held]) <= mu_s[held]) and np.all(rates * sig > 0.0)):
+    if checked and not (np.all(np.abs(s_all[held]) <= mu_s[held]) and np.all(rates * sig > 0.0)):
         return None
     out = np.zeros(len(t))
     out[slide] = rates
     res = t.T @ out - xdot
     return r_s, out, math.hypot(res[0], res[1]), -1
+
+
+def _grown_sets(xdot, b, t, mu_s, mu_f, a, tol):
+    """The forward law's sliding set grown from each pair (h199): where the stall's set and its supersets do not
+    converge from their seeds (three surfaces sliding, the third between µ_slow and µ_fast — met along PTS's closing),
+    every pair and sense is solved by :func:`_forward`; a surface outside its dead zone at the answer joins with the
+    rate its own inverse law gives there as the seed (bounded: 2n growths per pair).  The first answer that passes
+    :func:`_forward`'s checks is the convex problem's unique root."""
+    n = len(t)
+    if n > MAX_SET_SEARCH:
+        return None
+    eps = np.finfo(float).eps
+    for pair in itertools.combinations(range(n), 2):
+        for sense in itertools.product((1.0, -1.0), repeat=2):
+            slide = list(pair)
+            psi = np.zeros(n)
+            s = np.zeros(n)
+            for j, sg in zip(pair, sense, strict=True):
+                psi[j] = 1e-3 * sg
+                s[j] = 0.999 * mu_f[j] * sg
+            for _ in range(2 * n):
+                ans = _forward(xdot, b, t, s, psi, mu_s, mu_f, a, tol, np.array(slide), checked=False)
+                if ans is None:
+                    break
+                r_s, rates = ans[0], ans[1]
+                s = np.einsum("ij,ij->i", r_s[None, :] - b, t)
+                bad = [j for j in range(n) if j not in slide and abs(s[j]) > mu_s[j]]
+                if not bad:
+                    final = _forward(xdot, b, t, s, rates, mu_s, mu_f, a, tol, np.array(slide))
+                    if final is not None:
+                        return final
+                    break
+                psi = rates.copy()
+                for j in bad:
+                    gap = max(mu_f[j] - abs(s[j]), 4.0 * eps * mu_f[j])
+                    psi[j] = math.copysign(math.log((mu_f[j] - mu_s[j]) / gap) / a[j] if gap < mu_f[j] - mu_s[j]
+                                           else 1e-6, s[j])
+                    slide.append(j)
+                slide.sort()
+    return None
+
+
+def _forward_any(xdot, b, t, r, psi, mu_s, mu_f, a, tol):
+    """The forward law's answer at the Newton's last force ``r``: the stall's set and its supersets, else the set
+    grown from the pairs; None where neither answers."""
+    s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
+    fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, tol)
+    return fwd if fwd is not None else _grown_sets(xdot, b, t, mu_s, mu_f, a, tol)
 
 
 def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
@@ -223,8 +276,7 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
             return r, psi, err, it
         if err <= floor:
             if err > RESOLVED * scale:
-                s_now = np.einsum("ij,ij->i", r[None, :] - b, t)
-                fwd = _forward_sets(xdot, b, t, s_now, psi, mu_s, mu_f, a, rtol * scale)
+                fwd = _forward_any(xdot, b, t, r, psi, mu_s, mu_f, a, rtol * scale)
                 if fwd is not None:
                     return fwd
                 raise SolverError(
@@ -251,6 +303,109 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
         state = trial
     psi = state[1]
     res = t.T @ psi - xdot
+    # the Newton on Φ crawls where a law is near µ_fast (met along a closing, h199): the forward law's sets
+    fwd = _forward_any(xdot, b, t, r, psi, mu_s, mu_f, a, rtol * scale)
+    if fwd is not None:
+        return fwd
     raise SolverError(
         f"the force of the slide along the rims did not converge ({MAX_NEWTON} Newton iterations; residual "
         f"{math.hypot(res[0], res[1]):.3g} m/s)")
+
+
+#: Where :func:`close_along_rims` stops before the alignment: 1 − |X|/Σ d* (the gap closes linearly in time while the
+#: angle between the rims closes as its square root; the friction work left is ~ µ g × that angle, ≤ 1e-6 rad here)
+ALIGNED_GAP = 1e-12
+
+
+def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, ax, ay, t_end, *, rtol=1e-10,
+                     gap_end=ALIGNED_GAP):
+    """The mass carried by surfaces that are all on their rims, the rims apart: integrated to the alignment (h199).
+
+    State: each surface's angle θ_i on its rim (u_i = d_i (cos θ_i, sin θ_i), d_i = |u_i| at the start) and Ẋ;
+    θ̇_i = ψ_i/d_i with r and the rates from :func:`slide_along_rims`, Ẍ = −g r − c Ẋ − a_g(t) (a_g linear between
+    the samples ``times``/``ax``/``ay``); b = B u (``bmat``).  DOP853 at ``rtol`` (numpy, not compiled; ~10–90 ms a
+    force at the saturated rates).  It stops at the first of: the rims aligned (1 − |X|/Σ d ≤ ``gap_end``: the
+    ultimate's impact is due there, of e·Ẋ only), a surface's rim reaction (r − b_i)·e_i turning negative (it
+    leaves its rim inward: the kernel's regime), the mass at rest (|Ẋ| ≤ 1e-9 m/s), ``t_end``.
+
+    Returns a dict: ``t``, ``u`` [n × 2], ``xdot``, ``reason`` (``"aligned"``, ``"leaves"``, ``"rest"``, ``"end"``),
+    the energies per unit mass over the closing (``input``, ``friction`` = g Σ∫(r − b_i)·dū_i on the elements
+    ū = S u as the kernel books it, ``viscous``, ``kinetic``/``potential`` at both ends as pairs, ``balance`` =
+    input − Δkinetic − Δpotential − friction − viscous), ``least_saturation`` (the least a_i|ψ_i| of a sliding
+    surface met: ≥ ~37 means µ = µ_fast to rounding, the constant-µ law), ``largest_held`` (the largest
+    |(r − b_i)·t_i|/µ_slow,i of a held surface: ≤ 1) and ``forces`` (the force evaluations).
+    """
+    from scipy.integrate import solve_ivp
+
+    u = np.asarray(u, dtype=float)
+    cap = np.hypot(u[:, 0], u[:, 1])
+    n = len(cap)
+    total = float(np.sum(cap))
+    rbar = np.asarray(rbar, dtype=float)
+    log = {"forces": 0, "least_saturation": math.inf, "largest_held": 0.0}
+
+    def frame(theta):
+        e = np.column_stack((np.cos(theta), np.sin(theta)))
+        return cap[:, None] * e, e, np.column_stack((-e[:, 1], e[:, 0]))
+
+    def force(z):
+        uu, e, t = frame(z[:n])
+        b = bmat @ uu
+        r, psi, _, _ = slide_along_rims(z[n:n + 2], b, uu, mu_s, mu_f, a)
+        log["forces"] += 1
+        return uu, e, t, b, r, psi
+
+    def rate(time_now, z):
+        _, _, t, b, r, psi = force(z)
+        gx = float(np.interp(time_now, times, ax))
+        gy = float(np.interp(time_now, times, ay))
+        v = z[n:n + 2]
+        sliding = psi != 0.0
+        s = np.einsum("ij,ij->i", r[None, :] - b, t)
+        if np.any(sliding):
+            log["least_saturation"] = min(log["least_saturation"], float(np.min(a[sliding] * np.abs(psi[sliding]))))
+        if not np.all(sliding):
+            log["largest_held"] = max(log["largest_held"], float(np.max(np.abs(s[~sliding]) / mu_s[~sliding])))
+        out = np.empty_like(z)
+        out[:n] = psi / cap
+        out[n] = -g * r[0] - c * v[0] - gx
+        out[n + 1] = -g * r[1] - c * v[1] - gy
+        out[n + 2] = -(gx * v[0] + gy * v[1])
+        out[n + 3] = g * float(np.sum((r[None, :] - b) * (smat @ (psi[:, None] * t))))
+        out[n + 4] = c * float(v @ v)
+        return out
+
+    def aligned(_, z):
+        x = np.sum(frame(z[:n])[0], axis=0)
+        return (total - math.hypot(x[0], x[1])) / total - gap_end
+
+    def leaves(_, z):
+        _, e, _, b, r, _ = force(z)
+        return float(np.min(np.einsum("ij,ij->i", r[None, :] - b, e)))
+
+    def rest(_, z):
+        return math.hypot(z[n], z[n + 1]) - 1e-9
+
+    for event in (aligned, leaves, rest):
+        event.terminal = True
+        event.direction = -1
+    z0 = np.concatenate((np.arctan2(u[:, 1], u[:, 0]), np.asarray(xdot, dtype=float), np.zeros(3)))
+    sol = solve_ivp(rate, (float(t0), float(t_end)), z0, method="DOP853", rtol=rtol, atol=1e-2 * rtol,
+                    events=(aligned, leaves, rest))
+    if sol.status < 0:
+        raise SolverError(f"the closing along the rims was not integrated from t = {t0:.6g} s: {sol.message}")
+    reason = "end"
+    for name, hits in zip(("aligned", "leaves", "rest"), sol.t_events, strict=True):
+        if len(hits):
+            reason = name
+    z1 = sol.y[:, -1]
+
+    def stored(z):
+        ub = smat @ frame(z[:n])[0]
+        return 0.5 * float(z[n] ** 2 + z[n + 1] ** 2), g * float(np.sum(np.sum(ub * ub, axis=1) / (2.0 * rbar)))
+
+    (k0, p0), (k1, p1) = stored(z0), stored(z1)
+    e_in, e_f, e_v = (float(x) for x in z1[n + 2:])
+    return {"t": float(sol.t[-1]), "u": frame(z1[:n])[0], "xdot": z1[n:n + 2].copy(), "reason": reason,
+            "input": e_in, "friction": e_f, "viscous": e_v, "kinetic": (k0, k1), "potential": (p0, p1),
+            "balance": e_in - (k1 - k0) - (p1 - p0) - e_f - e_v, **log}
