@@ -166,11 +166,11 @@ def floor_mode(q0, v0, phi0, psi, h, w, z, gm, integrals=True):
     cs = math.cos(wd * h)
     sn = math.sin(wd * h)
     if not integrals:
-        return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, 0.0, 0.0, 0.0, 0.0, 0.0, False)
+        return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, 0.0, 0.0, 0.0, 0.0, 0.0, np.bool_(False))
     ic, is_ = _ecs(sig, wd, h)
     e0 = h * _phi1(complex(-2.0 * sig * h, 0.0)).real
     ic2, is2 = _ecs(2.0 * sig, 2.0 * wd, h)
-    return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2, True)
+    return _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2, np.bool_(True))
 
 
 @njit(cache=True)
@@ -224,7 +224,7 @@ def mode_table(h, om, zeta, tab):
 def floor_mode_tab(q0, v0, phi0, psi, h, w, z, gm, row):
     """:func:`floor_mode` with the step's table row of the mode (:func:`mode_table`); the same formulas."""
     return _mode_core(q0, v0, phi0, psi, h, w, z, gm, row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7],
-                      True)
+                      np.bool_(True))
 
 
 @njit(cache=True)
@@ -470,7 +470,8 @@ def _jump(y, dt, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, r, out, rou
     for d in range(2):
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d], sl[d], dt, om[d, i], zeta, gam[d, i])
+            q1, v1, big_q, sq = floor_mode(y[j], y[j + nm], a0[d], sl[d], dt, om[d, i], zeta, gam[d, i],
+                                            np.bool_(True))
             e_in -= gam[d, i] * ((a0[d] + sl[d] * dt) * q1 - a0[d] * y[j] - sl[d] * big_q)
             e_vf += 2.0 * zeta * om[d, i] * sq
             out[j] = q1
@@ -523,7 +524,7 @@ def _outside(y, tau, a0x, a0y, sx, sy, g, sz, rb, mu, rim, om, zeta, gam, hold=F
         acc = ag
         for i in range(nm):
             j = f0 + 2 * nm * d + i
-            q1, v1, _, _ = floor_mode(y[j], y[j + nm], a0, s, tau, om[d, i], zeta, gam[d, i], False)
+            q1, v1, _, _ = floor_mode(y[j], y[j + nm], a0, s, tau, om[d, i], zeta, gam[d, i], np.bool_(False))
             acc += gam[d, i] * (-2.0 * zeta * om[d, i] * v1 - om[d, i] * om[d, i] * q1 - gam[d, i] * ag)
         if d == 0:
             r_x = -acc / (g + sz * tau)
@@ -666,7 +667,7 @@ def floors_at(y0, tp, fx, fy, sx, sy, f0, nm, om, zeta, gam, yw):
         s_d = sx if d == 0 else sy
         for k in range(nm):
             jj = f0 + 2 * nm * d + k
-            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], f, s_d, tp, om[d, k], zeta, gam[d, k], False)
+            q1, v1, _, _ = floor_mode(y0[jj], y0[jj + nm], f, s_d, tp, om[d, k], zeta, gam[d, k], np.bool_(False))
             yw[jj] = q1
             yw[jj + nm] = v1
 
@@ -1022,7 +1023,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # stuck in all three solves: the break-away inside the step, if any, ends it (the steps restart from
                 # it with a short one, as the rigid block's from its exact break-away)
                 t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_now, rim, om,
-                                   zeta, gam, True)
+                                   zeta, gam, np.bool_(True))
                 if t_b > h_floor:
                     h = t_b
                     started = True
@@ -1032,7 +1033,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # leaves a µs circle: the step ends there, held) or at its start (the slab leaves at µk); none found
                 # (every group held, those on their rims by them): the µs solves stand
                 t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_s, rim, om,
-                                   zeta, gam)
+                                   zeta, gam, np.bool_(False))
                 if h_floor < t_b < h and h > 2.0 * h_floor:
                     h = t_b
                     started = True
@@ -1050,7 +1051,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 # (the force the slab needs leaving a circle; an outward push held by every group on its rim) ends
                 # the step, held, when it lies inside; at its start (a reversal) the step stands
                 t_b = breakaway_in(y, h, a0x, a0y, slope_x, slope_y, nz[i] + slope_z * tau, slope_z, rb, mu_now, rim,
-                                   om, zeta, gam, True)
+                                   om, zeta, gam, np.bool_(True))
                 if h_floor < t_b < h:
                     h = t_b
                     started = True
@@ -1194,7 +1195,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                                                     rl, np.int64(0), floors)
                     for j in range(ny):
                         ya[j] = y[j]
-                    accept_step(ya, ya1, ya2, ny, f0 - 1, ng, rim, m1a, mha, m2a, False, True)
+                    accept_step(ya, ya1, ya2, ny, f0 - 1, ng, rim, m1a, mha, m2a, np.bool_(False), np.bool_(True))
                     v_x = ya[Y_V]
                     v_y = ya[Y_V + 1]
                     vn = arrival_impact_floors(ya, rim, low & ~rims0, nz[i] + slope_z * (tau + lo), rb, om, gam)
@@ -1241,7 +1242,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 for j in range(ny):
                     y[j] = ya[j]
             else:
-                accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted, True)
+                accept_step(y, y1, y2, ny, f0 - 1, ng, rim, m1, mh, m2, impacted, np.bool_(True))
             r[0] = r2[0]
             r[1] = r2[1]
             if stop_h == h:
@@ -1405,7 +1406,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                                           zeta, gam, qdd)
                     if hg0 > 0.0 >= hg1 and max(hv0, hv1) >= (1.0 - LOCATE_BAND) * peaks[nk + 2]:
                         peaks[nk + 2] = max(peaks[nk + 2], row_peak(y0, tp0, tp, np.int64(0), fx, fy, slope_x, slope_y, f0, nm,
-                                                                     hl, om, zeta, gam, qdd, yw, False, 0.0, 0.0,
+                                                                     hl, om, zeta, gam, qdd, yw, np.bool_(False), 0.0, 0.0,
                                                                      hoff))
                     hg0 = hg1
                     hv0 = hv1
@@ -1419,7 +1420,8 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                     if (rise0[k, 0] > 0.0 >= rise1[k, 0]
                             and max(rise0[k, 1], rise1[k, 1]) >= (1.0 - LOCATE_BAND) * peaks[2 + k]):
                         peaks[2 + k] = max(peaks[2 + k], row_peak(y0, tp0, tp, k, fx, fy, slope_x, slope_y, f0, nm,
-                                                                   lin, om, zeta, gam, qdd, yw))
+                                                                   lin, om, zeta, gam, qdd, yw, np.bool_(False),
+                                                                   0.0, 0.0))
                     rise0[k, 0] = rise1[k, 0]
                     rise0[k, 1] = rise1[k, 1]
                 for k in range(nj):
@@ -1429,7 +1431,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                             and (_near_extreme(srise0[k, 1], sig_max[k], sig_min[k])
                                  or _near_extreme(srise1[k, 1], sig_max[k], sig_min[k]))):
                         v = row_peak(y0, tp0, tp, k, fx, fy, slope_x, slope_y, f0, nm, sgl, om, zeta, gam, qdd, yw,
-                                     True, sz0[k], szs[k])
+                                     np.bool_(True), sz0[k], szs[k])
                         sig_max[k] = max(sig_max[k], v)
                         sig_min[k] = min(sig_min[k], v)
                     srise0[k, 0] = srise1[k, 0]

@@ -923,10 +923,10 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
         # Newton starts from the stages moving along the start direction e with the acceleration the mass at
         # rest has along e (linear in τ between the step's ends), the displacement shared by the sliding surfaces
         good0, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rs[0],
-                       bf, dy, jac[0], False)
+                       bf, dy, jac[0], np.bool_(False))
         p0 = dy[0] * ex0 + dy[1] * ey0
         good1, _ = rhs(y0, a_start[0] + slope[0] * h, a_start[1] + slope[1] * h, g, c, bmat, smat, mode, mu_s, mu_f,
-                       a, pivot, gmap, lock, ex0, ey0, rs[1], bf, dy, jac[0], False)
+                       a, pivot, gmap, lock, ex0, ey0, rs[1], bf, dy, jac[0], np.bool_(False))
         p1 = dy[0] * ex0 + dy[1] * ey0
         n_sliding = 0
         for i in range(n):
@@ -1008,7 +1008,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
                     for p in range(m):
                         z_try[j, p] = z[j, p] + lam * delta[j * m + p]
                 if stage_residual(y0, z_try, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0,
-                                  ey0, rs, bf, ys, dy, fz, jac, True, res_try, rs_last, ys_last, drdy):
+                                  ey0, rs, bf, ys, dy, fz, jac, np.bool_(True), res_try, rs_last, ys_last, drdy):
                     if _scaled_norm(res_try, scale, m) < norm0 or lam * full <= 1e-13:
                         accepted = True
                         break
@@ -1053,7 +1053,7 @@ def radau_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, piv
         agx = a_start[0] + slope[0] * tj
         agy = a_start[1] + slope[1] * tj
         good, _ = rhs(ys, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, rs[j], bf, dy, jac[j],
-                      False)
+                      np.bool_(False))
         if not good:
             return -1
         for p in range(2, m):
@@ -1102,9 +1102,9 @@ def double_step(y0, h, a_start, slope, g, c, bmat, smat, mode, mu_s, mu_f, a, pi
     bf = np.empty((n, 2))
     r0 = r_guess.copy()
     good, _ = rhs(y0, a_start[0], a_start[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, ex0, ey0, r0, bf, dy0,
-                  jac0, True)
-    use_full = False
-    use_half = False
+                  jac0, np.bool_(True))
+    use_full = np.bool_(False)
+    use_half = np.bool_(False)
     # the force's derivative dr/dy = −(∂Ẍ/∂y + c [I 0])/g from the Jacobian's first rows: the stages' force predictor
     drdy = np.zeros((2, m))
     if good and not (y0[0] == 0.0 and y0[1] == 0.0):  # at rest the Jacobian is singular: full Newton
@@ -1235,7 +1235,7 @@ def exit_time(nx, ny, qx, qy, bf, mu_s, mode, rim_dir):
         if mode[i] == HELD:
             ex = rim_dir[i, 0]
             ey = rim_dir[i, 1]
-            if held_value(px, py, HELD, ex, ey, mu_s[i]) < 0.0:
+            if held_value(px, py, np.int64(HELD), ex, ey, mu_s[i]) < 0.0:
                 return 0.0
             if not qq > 0.0:
                 continue
@@ -1293,7 +1293,7 @@ def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir):
         py0 = ny - bf[i, 1]
         dist = math.hypot(px0, py0)
         if mode[i] == HELD and px0 * rim_dir[i, 0] + py0 * rim_dir[i, 1] >= 0.0:
-            if held_value(px0, py0, HELD, rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) < -LEVEL_TIE:
+            if held_value(px0, py0, np.int64(HELD), rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) < -LEVEL_TIE:
                 along = True
             continue
         over = dist - mu_s[i]
@@ -1324,7 +1324,7 @@ def start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir):
         fx = r[0] - bf[i, 0]
         fy = r[1] - bf[i, 1]
         if mode[i] == HELD and fx * rim_dir[i, 0] + fy * rim_dir[i, 1] >= 0.0:
-            if held_value(fx, fy, HELD, rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) <= LEVEL_TIE:
+            if held_value(fx, fy, np.int64(HELD), rim_dir[i, 0], rim_dir[i, 1], mu_s[i]) <= LEVEL_TIE:
                 mode[i] = ON_RIM
                 fresh[i] = 1
         elif abs(math.hypot(fx, fy) - mu_s[i]) <= LEVEL_TIE:
@@ -1369,7 +1369,7 @@ def trial_force(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock, 
     rt[1] = r[1]
     jac = np.empty((dy.shape[0], dy.shape[0]))
     good, _ = rhs(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, k, gmap, lock, direction[0], direction[1],
-                  rt, bf, dy, jac, False)
+                  rt, bf, dy, jac, np.bool_(False))
     return good
 
 
@@ -1415,7 +1415,7 @@ def restart_free(y, agx, agy, g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock,
     rt = np.empty(2)
     rim_dir = np.zeros((n, 2))
     rim_normals(y, mode, rim_dir)
-    best = -1
+    best = np.int64(-1)
     best_v = math.inf
     tried = False
     for j in range(n):
@@ -1573,7 +1573,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     for j in range(state_first_time.shape[0]):
         state_first_time[j] = -1.0
     stuck = True
-    n_ev = 0
+    n_ev = np.int64(0)
     status = 0
     peak_x = 0.0
     peak_v = 0.0
@@ -1588,7 +1588,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     fail_t = -1.0
     rim_surface = -1
     h = h_first
-    pivot = -1
+    pivot = np.int64(-1)
     x_floor = 1e-4
     v_floor = 1e-3
     for row in range(3):
@@ -1632,7 +1632,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     continue
                 stuck = False
                 h = 0.1 * dt_i  # the steps of the stop before were cut to its approach
-                n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, BREAKAWAY)
+                n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, np.int64(BREAKAWAY))
                 code = _mask(mode)
                 if state_first_time[code] < 0.0:
                     state_first_time[code] = t_i + tau
@@ -1652,14 +1652,14 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             split_modes(mode, smode)
             pivot = set_split(smode, free_pivot(mode, pivot), lock, bmat, gmap)
             good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
-                          direction[0], direction[1], r, bf, dy, jac, False)
+                          direction[0], direction[1], r, bf, dy, jac, np.bool_(False))
             if not good and not (y[0] == 0.0 and y[1] == 0.0):
                 # no force with this pivot (after a rim: the surfaces left take the velocity, one of them may be
                 # saturated, its φ unresolvable): the pivot becomes the sliding surface farthest into saturation
                 pivot = choose_pivot(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, gmap, lock,
                                      direction, r, bf, pivot)
                 good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
-                              direction[0], direction[1], r, bf, dy, jac, False)
+                              direction[0], direction[1], r, bf, dy, jac, np.bool_(False))
             if good:
                 changed = False
                 for i in range(ns):
@@ -1676,7 +1676,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 if k_new != pivot or changed:
                     pivot = k_new
                     good, _ = rhs(y, a_now[0], a_now[1], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock,
-                                  direction[0], direction[1], r, bf, dy, jac, False)
+                                  direction[0], direction[1], r, bf, dy, jac, np.bool_(False))
             # the mass coming to rest: steps cut to 0.7 of the time to rest; at rest below STOP_SPEED
             vv = y[0] * y[0] + y[1] * y[1]
             vd = y[0] * dy[0] + y[1] * dy[1]
@@ -1700,7 +1700,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     ny = -a_now[1] / g
                     if holds_at_rest(nx, ny, bf, mode, mu_s, rim_dir):
                         stuck = True
-                        n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, STICK)
+                        n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, np.int64(STICK))
                     else:
                         pivot = start_from_rest(nx, ny, bf, mode, mu_s, fresh, r, direction, rim_dir)
                         for i in range(ns):
@@ -1711,7 +1711,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                             rim_surface = first_held(mode)
                             break
                         h = 0.1 * dt_i
-                        n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, REVERSAL)
+                        n_ev = record_event(ev_t, ev_k, n_ev, t_i + tau, np.int64(REVERSAL))
                         code = _mask(mode)
                         if state_first_time[code] < 0.0:
                             state_first_time[code] = t_i + tau
@@ -1750,7 +1750,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             a_end0 = a_now[0] + slope[0] * h
             a_end1 = a_now[1] + slope[1] * h
             rhs(y_try, a_end0, a_end1, g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0], direction[1], r1,
-                bf, dy, jac, False)
+                bf, dy, jac, np.bool_(False))
             event_values(y_try, r1, mode, pivot, mu_s, cap, bmat, bf, e1)
             first_slot = -1
             first_t = math.inf
@@ -1780,7 +1780,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                         n_newton += quad_ev[3]
                         steps_here += 1
                         rhs(y_ev, a_now[0] + slope[0] * tm, a_now[1] + slope[1] * tm, g, c, bmat, smat, mode, mu_s,
-                            mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, False)
+                            mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, np.bool_(False))
                         event_values(y_ev, r_ev, mode, pivot, mu_s, cap, bmat, bf, e1)
                         fm = e1[slot]
                         if fm == 0.0:
@@ -1845,7 +1845,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     y[p] = y_ev[p]
                 to_rims(y, mode, cap)
                 rhs(y, a_now[0] + slope[0] * first_t, a_now[1] + slope[1] * first_t, g, c, bmat, smat, mode, mu_s,
-                    mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, False)
+                    mu_f, a, pivot, gmap, lock, direction[0], direction[1], r_ev, bf, dy, jac, np.bool_(False))
                 for p in range(2):
                     r[p] = r_ev[p]
                 e_in += quad_ev[0]
@@ -1866,7 +1866,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 stand_all(mode)
                 stuck = True
                 break
-            kind = REGIME
+            kind = np.int64(REGIME)
             md = mode[i]
             if first_slot % 2 == 1 and md == SLIDING:
                 # the surface reaches its rim: put on the circle, held there (the next step's start decides,
@@ -1876,7 +1876,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 y[3 + 2 * i] *= cap[i] / rho
                 mode[i] = HELD
                 n_rim += 1
-                kind = RIM_REACHED
+                kind = np.int64(RIM_REACHED)
             elif first_slot % 2 == 1:
                 mode[i] = SLIDING  # along its rim, the rim's reaction turned inward: it leaves the rim
             elif md == SLIDING:
@@ -1933,7 +1933,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                     n_ult += 1
                     if first_ult < 0.0:
                         first_ult = t_now
-                    n_ev = record_event(ev_t, ev_k, n_ev, t_now, ULTIMATE)
+                    n_ev = record_event(ev_t, ev_k, n_ev, t_now, np.int64(ULTIMATE))
                     back_forces(y, bmat, bf)
                     rim_normals(y, mode, rim_dir)
                     nx = -(a_now[0] + slope[0] * first_t) / g
@@ -1949,7 +1949,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                             break
                         h = 0.1 * dt_i
             code = _mask(mode)
-            if not stuck and free_pivot(mode, -1) < 0:
+            if not stuck and free_pivot(mode, np.int64(-1)) < 0:
                 y[0] = 0.0  # nothing slides: only after rounding at a stop
                 y[1] = 0.0
                 stand_all(mode)
@@ -1974,7 +1974,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
             split_modes(mode, smode)
             pivot = set_split(smode, free_pivot(mode, pivot), lock, bmat, gmap)
             rhs(y, ax[j], ay[j], g, c, bmat, smat, mode, mu_s, mu_f, a, pivot, gmap, lock, direction[0], direction[1], r, bf, dy,
-                jac, False)
+                jac, np.bool_(False))
             out_a[j, 0] = -(g * r[0] + c * y[0])
             out_a[j, 1] = -(g * r[1] + c * y[1])
             peak_r = max(peak_r, math.hypot(r[0], r[1]))

@@ -857,7 +857,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     dx1 = 0.0
     dx2 = 0.0
     fric = 0.0
-    mask = 0
+    mask = np.int64(0)
     along = 0  # the groups whose return slid along their rims (state 2), not inside to a rounding of them
     for k in range(ng):
         u1 = y[Y_U + 2 * k]
@@ -1184,14 +1184,14 @@ def three_solves(y, h, tau, raw, c, rb, mu, rim, r, y1, yh, y2, r1, rh, r2, ult)
     booked (:func:`vertical_work`).  ``ult``: the ultimate classified once for the three (:func:`be_step`).
     Returns the three masks of :func:`be_step`."""
     m1 = be_step(y, h, raw[0] + raw[1] * (tau + 0.5 * h), raw[2] + raw[3] * (tau + 0.5 * h),
-                 raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1, 1.0, 1.0, ult, True)
+                 raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1, 1.0, 1.0, ult, np.bool_(True))
     mh = be_step(y, 0.5 * h, raw[0] + raw[1] * (tau + 0.25 * h), raw[2] + raw[3] * (tau + 0.25 * h),
-                 raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult, True)
+                 raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult, np.bool_(True))
     if raw[5] != 0.0:
         vertical_work(y, y1, rb, raw[5] * h)
         vertical_work(y, yh, rb, 0.5 * raw[5] * h)
     m2 = be_step(yh, 0.5 * h, raw[0] + raw[1] * (tau + 0.75 * h), raw[2] + raw[3] * (tau + 0.75 * h),
-                 raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult, True)
+                 raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult, np.bool_(True))
     if raw[5] != 0.0:
         vertical_work(yh, y2, rb, 0.5 * raw[5] * h)
     return m1, mh, m2
@@ -1235,7 +1235,7 @@ def locate_arrival(y, h, tau, raw, c, rb, mu, rim, rim_free, free, r, y1, yh, y2
     s = h
     work = 0.0
     for d in range(200):  # the length's binary digits (arrival_next ends the search)
-        m1, mh, m2 = three_solves(y, s, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, 0)
+        m1, mh, m2 = three_solves(y, s, tau, raw, c, rb, mu, rim_free, r, y1, yh, y2, r1, rh, r2, np.int64(0))
         work += r1[2] + rh[2] + r2[2]
         lo, s = arrival_next(lo, s, h, d, m1, mh, m2, y1, y2, rim, free)
         if s < 0.0:
@@ -1366,8 +1366,8 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
     y0 = np.zeros(ny)
     ne = members.shape[0]
     low = (1 << ng) - 1
-    rim_before = 0
-    rest_rims = 0  # the groups on their rims at the last declared rest (breakaway's held)
+    rim_before = np.int64(0)
+    rest_rims = np.int64(0)  # the groups on their rims at the last declared rest (breakaway's held)
     n_rim = 0
     away = (1 << ng) - 1  # the groups off their rims by more than RIM_AWAY (their next arrival is a rim contact)
     n_ult = 0
@@ -1480,7 +1480,7 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
             # at or below the floor a step is taken whatever its error estimate (progress; counted in S_STEPS_MULTI)
             at_floor = not h > h_floor
             dv_jump = 0.0
-            ult = -1
+            ult = np.int64(-1)
             located = False
             stop_cut = False
             if jump:
@@ -1634,19 +1634,21 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                     if not lo < t_try:
                         break
                     be_step(y, t_try, ax[i] + slope_x * (tau + 0.5 * t_try), ay[i] + slope_y * (tau + 0.5 * t_try),
-                            nz[i] + slope_z * (tau + 0.5 * t_try), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, -1, True)
+                            nz[i] + slope_z * (tau + 0.5 * t_try), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, np.int64(-1),
+                            np.bool_(True))
                     work += rh[2]
                     if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
                         lo = t_try
                 if lo > 0.0:
                     be_step(y, lo, ax[i] + slope_x * (tau + 0.5 * lo), ay[i] + slope_y * (tau + 0.5 * lo),
-                            nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, -1, True)
+                            nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, np.int64(-1),
+                            np.bool_(True))
                     if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
                             tol * max(peak_v, v_floor), CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / lo):
                         h = lo
                         cut_h = lo
                         continue
-            free = 0  # the groups off their rims at the step's start
+            free = np.int64(0)  # the groups off their rims at the step's start
             for k in range(ng):
                 if y[Y_U + 2 * k] ** 2 + y[Y_U + 2 * k + 1] ** 2 < (rim[k] * (1.0 - RIM_ON)) ** 2:
                     free |= 1 << k
@@ -1666,10 +1668,11 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                                            ra)
                 work += w_arr
                 if lo > 0.0:
-                    m1a, mha, m2a = three_solves(y, lo, tau, raw, c, rb, mu, rim_free, r, ya1, yah, ya2, r1, rh, ra, 0)
+                    m1a, mha, m2a = three_solves(y, lo, tau, raw, c, rb, mu, rim_free, r, ya1, yah, ya2, r1, rh, ra,
+                                                 np.int64(0))
                     for j in range(ny):
                         ya[j] = y[j]
-                    accept_step(ya, ya1, ya2, ny, ny - 1, ng, rim, m1a, mha, m2a, False, True)
+                    accept_step(ya, ya1, ya2, ny, ny - 1, ng, rim, m1a, mha, m2a, np.bool_(False), np.bool_(True))
                     vn = arrival_impact(ya, rim, free)
                     if vn >= 0.0:
                         err_a = step_error(ya1, ya2, m1a, mha, m2a, ng, tol * max(peak_x, x_floor),
@@ -1699,7 +1702,7 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                 for j in range(ny):
                     y[j] = ya[j]
             else:
-                accept_step(y, y1, y2, ny, ny - 1, ng, rim, m1, mh, m2, jump, True)
+                accept_step(y, y1, y2, ny, ny - 1, ng, rim, m1, mh, m2, jump, np.bool_(True))
             if cut_h == h:
                 # the step cut at a reversal or a stop: the velocity left (below its tolerance) is taken away, its
                 # kinetic energy booked as friction

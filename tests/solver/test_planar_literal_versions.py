@@ -29,6 +29,9 @@ from isolator.solver import (
     planar_control,
     planar_events,
     planar_kernel,
+    planar_multisurface_rate_kernel,
+    planar_multisurface_stepper,
+    planar_rim_kernel,
     record,
     segments,
 )
@@ -84,3 +87,68 @@ def test_planar_engine_passes_no_literal_to_a_compiled_function():
 def test_building_and_1d_kernels_pass_no_literal_to_a_compiled_function():
     found = [line for module in BUILDING_AND_1D_MODULES for line in _literal_passes(module)]
     assert found == [], f"{len(found)} literal arguments: " + "; ".join(found[:8])
+
+
+#: The triple pendulum's 2-D engines and the rim's slide (docs/performance.md, h197): bool constants are literals too
+#: (``Literal[bool](True)``), and so is a negative int (``-1``).
+MULTISURFACE_MODULES = (planar_multisurface_stepper, planar_multisurface_rate_kernel, planar_rim_kernel,
+                        planar_building_multisurface_kernel)
+
+
+def _strict_passes(module) -> list[str]:
+    """As :func:`_literal_passes`, with bool and negative constants (``True``, ``-1``) and keyword arguments."""
+    space = vars(module)
+
+    def constant(node) -> bool:
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return constant(node.operand)
+        if isinstance(node, ast.Constant):
+            return type(node.value) in (int, bool)
+        return isinstance(node, ast.Name) and type(space.get(node.id)) in (int, bool)
+
+    found = []
+    for block in (b for node in ast.walk(ast.parse(inspect.getsource(module)))
+                  for b in (getattr(node, "body", None), getattr(node, "orelse", None)) if isinstance(b, list)):
+        fixed: set[str] = set()
+        for stmt in block:
+            if isinstance(stmt, (ast.For, ast.While)):
+                fixed.difference_update(_stored(stmt))
+            for call in (c for c in ast.walk(stmt) if isinstance(c, ast.Call) and isinstance(c.func, ast.Name)):
+                fn = space.get(call.func.id)
+                if not (isinstance(fn, CPUDispatcher) and fn.targetoptions.get("inline", "never") == "never"):
+                    continue
+                for arg in [*call.args, *(k.value for k in call.keywords)]:
+                    if constant(arg) or (isinstance(arg, ast.Name) and arg.id in fixed):
+                        found.append(f"{module.__name__}:{call.lineno} {call.func.id}(… {ast.unparse(arg)} …)")
+            fixed.difference_update(_stored(stmt))
+            if isinstance(stmt, ast.Assign) and constant(stmt.value):
+                fixed.update(t.id for t in stmt.targets if isinstance(t, ast.Name))
+    return sorted(set(found))
+
+
+def _arities(modules) -> dict[str, set[int]]:
+    """Per compiled function, the numbers of arguments its calls in these modules pass: a default left out is an
+    ``Omitted`` type, so a call that leaves it out and one that passes it compile two versions."""
+    seen: dict[str, set[int]] = {}
+    for module in modules:
+        space = vars(module)
+        for call in (c for c in ast.walk(ast.parse(inspect.getsource(module)))
+                     if isinstance(c, ast.Call) and isinstance(c.func, ast.Name)):
+            fn = space.get(call.func.id)
+            if isinstance(fn, CPUDispatcher) and fn.targetoptions.get("inline", "never") == "never":
+                seen.setdefault(f"{fn.py_func.__module__}.{call.func.id}", set()).add(len(call.args) + len(call.keywords))
+    return seen
+
+
+def test_multisurface_kernels_pass_no_bool_or_int_literal_to_a_compiled_function():
+    found = [line for module in MULTISURFACE_MODULES for line in _strict_passes(module)]
+    assert found == [], f"{len(found)} literal arguments: " + "; ".join(found[:8])
+
+
+def test_the_2d_building_on_a_multi_surface_bearing_passes_each_default_always_or_never():
+    # each module on its own: its model's warm-up runs in a process of its own (be_step's ``block`` is left out by the
+    # building, passed by the stepper: one version in each).  row_peak's signed/z0/zs/off: 3 versions on edf7ccb;
+    # off (an array or left out) keeps 2
+    mixed = {name: counts for module in MULTISURFACE_MODULES for name, counts in _arities((module,)).items()
+             if len(counts) > 1}
+    assert mixed == {f"{planar_building_multisurface_kernel.__name__}.row_peak": {19, 20}}, mixed
