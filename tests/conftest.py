@@ -63,11 +63,51 @@ def engine_warm_ups() -> tuple[str, ...]:
 
 #: A warm-up process that has not finished after this long is left to the workers (they compile what is missing).
 WARM_UP_TIMEOUT_S = 1800.0
+#: How often the warm-up looks whether one of its processes has ended (a free core waits at most this long).
+WARM_UP_POLL_S = 0.1
 #: Prefixed to a warm-up process's code (``{pid}``: pytest's): it ends when pytest dies, however pytest died
 #: (:func:`isolator.parallel.die_with_parent`, the initializer of the batch's pool workers too).
 DIE_WITH_PARENT = "from isolator.parallel import die_with_parent\ndie_with_parent({pid})\n"
 #: Where :func:`pytest_configure` leaves the warm-up's line for the terminal summary.
 WARM_LINE = pytest.StashKey[str]()
+
+
+def run_at_most(jobs: dict[str, list[str]], processes: int, timeout_s: float) -> list[str]:
+    """Run the commands ``jobs`` (name → argv, in this order), at most ``processes`` at a time, and return the
+    names of those that failed (non-zero exit) or had not ended ``timeout_s`` after the first started (killed then,
+    the ones not started yet named too).
+
+    A command starts as soon as any running one ends, not when the oldest ends: waiting for the oldest left a core
+    idle behind a long compilation for ~3 min of last session's cold CI warm-up (docs/performance.md, h198)."""
+    import subprocess
+    import time
+
+    start = time.monotonic()
+    todo = list(jobs)
+    running: dict[str, subprocess.Popen] = {}
+    failed: list[str] = []
+    try:
+        # bounded: each command is started once and polled until it ends or timeout_s has passed
+        while todo or running:
+            while todo and len(running) < processes:
+                name = todo.pop(0)
+                running[name] = subprocess.Popen(jobs[name], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            ended = [name for name, process in running.items() if process.poll() is not None]
+            for name in ended:
+                if running.pop(name).returncode != 0:
+                    failed.append(name)
+            if ended:
+                continue
+            if time.monotonic() - start > timeout_s:
+                failed += list(running) + todo
+                todo.clear()
+                break  # the finally kills what still runs
+            time.sleep(WARM_UP_POLL_S)
+    finally:  # Ctrl-C (or an error, or the time-out) here: no compilation goes on without its run
+        for process in running.values():
+            process.kill()
+            process.wait()
+    return failed
 
 
 def _warm_engines(processes: int) -> str:
@@ -78,33 +118,13 @@ def _warm_engines(processes: int) -> str:
     its compilation ends.  Built once here, before the workers start, each worker loads them from the cache.
     Returns a line for the report's header; a warm-up that fails or times out is said there and changes nothing
     else (the workers then compile as before, and a test of that engine shows the failure)."""
-    import subprocess
     import time
 
     start = time.monotonic()
-    todo = list(engine_warm_ups())
-    running: list[tuple[str, subprocess.Popen]] = []
-    failed: list[str] = []
-    try:
-        while todo or running:  # bounded: ≤ len(WARM_UP_ORDER) processes, each waited at most WARM_UP_TIMEOUT_S
-            while todo and len(running) < processes:
-                module = todo.pop(0)  # a model's name
-                code = (DIE_WITH_PARENT.format(pid=os.getpid())
-                        + f"from isolator.solver import models\nmodels.warm_up({module!r})")
-                running.append((module, subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
-                                                         stderr=subprocess.DEVNULL)))
-            module, process = running.pop(0)
-            try:
-                if process.wait(timeout=max(1.0, WARM_UP_TIMEOUT_S - (time.monotonic() - start))) != 0:
-                    failed.append(module)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
-                failed.append(module)
-    finally:  # Ctrl-C (or an error) here: no compilation goes on without its run
-        for _, process in running:
-            process.kill()
-            process.wait()
+    jobs = {module: [sys.executable, "-c", DIE_WITH_PARENT.format(pid=os.getpid())
+                     + f"from isolator.solver import models\nmodels.warm_up({module!r})"]
+            for module in engine_warm_ups()}  # a model's name → its warm-up process
+    failed = run_at_most(jobs, processes, WARM_UP_TIMEOUT_S)
     line = f"engines' kernels compiled or loaded before the workers: {time.monotonic() - start:.0f} s"
     return line + (f" (not warmed: {', '.join(failed)})" if failed else "")
 
