@@ -48,15 +48,19 @@ def _stored(stmt) -> set[str]:
     return {n.id for n in ast.walk(stmt) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
 
 
-def _literal_passes(module) -> list[str]:
+def _literal_passes(module, strict: bool = False) -> list[str]:
     """Calls of a compiled function (not one inlined by numba) with an int constant as an argument, or with a
-    name assigned one earlier in the same block (nothing else reaches the call there)."""
+    name assigned one earlier in the same block (nothing else reaches the call there).  ``strict``: bool and
+    negative constants (``True``, ``-1``) count too, and keyword arguments are read."""
     space = vars(module)
+    kinds = (int, bool) if strict else (int,)
 
     def constant(node) -> bool:
+        if strict and isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return constant(node.operand)
         if isinstance(node, ast.Constant):
-            return type(node.value) is int
-        return isinstance(node, ast.Name) and type(space.get(node.id)) is int
+            return type(node.value) in kinds
+        return isinstance(node, ast.Name) and type(space.get(node.id)) in kinds
 
     def compiled(call) -> bool:
         fn = space.get(call.func.id) if isinstance(call.func, ast.Name) else None
@@ -70,7 +74,7 @@ def _literal_passes(module) -> list[str]:
             if isinstance(stmt, (ast.For, ast.While)):  # a name the loop assigns is int64 there, not a literal
                 fixed.difference_update(_stored(stmt))
             for call in (c for c in ast.walk(stmt) if isinstance(c, ast.Call) and compiled(c)):
-                for arg in call.args:
+                for arg in [*call.args, *((k.value for k in call.keywords) if strict else ())]:
                     if constant(arg) or (isinstance(arg, ast.Name) and arg.id in fixed):
                         found.append(f"{module.__name__}:{call.lineno} {call.func.id}(… {ast.unparse(arg)} …)")
             fixed.difference_update(_stored(stmt))
@@ -95,37 +99,6 @@ MULTISURFACE_MODULES = (planar_multisurface_stepper, planar_multisurface_rate_ke
                         planar_building_multisurface_kernel)
 
 
-def _strict_passes(module) -> list[str]:
-    """As :func:`_literal_passes`, with bool and negative constants (``True``, ``-1``) and keyword arguments."""
-    space = vars(module)
-
-    def constant(node) -> bool:
-        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
-            return constant(node.operand)
-        if isinstance(node, ast.Constant):
-            return type(node.value) in (int, bool)
-        return isinstance(node, ast.Name) and type(space.get(node.id)) in (int, bool)
-
-    found = []
-    for block in (b for node in ast.walk(ast.parse(inspect.getsource(module)))
-                  for b in (getattr(node, "body", None), getattr(node, "orelse", None)) if isinstance(b, list)):
-        fixed: set[str] = set()
-        for stmt in block:
-            if isinstance(stmt, (ast.For, ast.While)):
-                fixed.difference_update(_stored(stmt))
-            for call in (c for c in ast.walk(stmt) if isinstance(c, ast.Call) and isinstance(c.func, ast.Name)):
-                fn = space.get(call.func.id)
-                if not (isinstance(fn, CPUDispatcher) and fn.targetoptions.get("inline", "never") == "never"):
-                    continue
-                for arg in [*call.args, *(k.value for k in call.keywords)]:
-                    if constant(arg) or (isinstance(arg, ast.Name) and arg.id in fixed):
-                        found.append(f"{module.__name__}:{call.lineno} {call.func.id}(… {ast.unparse(arg)} …)")
-            fixed.difference_update(_stored(stmt))
-            if isinstance(stmt, ast.Assign) and constant(stmt.value):
-                fixed.update(t.id for t in stmt.targets if isinstance(t, ast.Name))
-    return sorted(set(found))
-
-
 def _arities(modules) -> dict[str, set[int]]:
     """Per compiled function, the numbers of arguments its calls in these modules pass: a default left out is an
     ``Omitted`` type, so a call that leaves it out and one that passes it compile two versions."""
@@ -141,7 +114,7 @@ def _arities(modules) -> dict[str, set[int]]:
 
 
 def test_multisurface_kernels_pass_no_bool_or_int_literal_to_a_compiled_function():
-    found = [line for module in MULTISURFACE_MODULES for line in _strict_passes(module)]
+    found = [line for module in MULTISURFACE_MODULES for line in _literal_passes(module, strict=True)]
     assert found == [], f"{len(found)} literal arguments: " + "; ".join(found[:8])
 
 
