@@ -203,14 +203,3 @@ def rim_slide_force(xdot, b, t, mu_s, mu_f, a, rtol, seed, r_out, psi_out):
                         break
     return NOT_FOUND
 
-
-@njit(cache=True)
-def tangents_on_rims(u, t_out):
-    """The rims' tangents t_i = (−e_iy, e_ix), e_i = u_i/|u_i|, into ``t_out``; False where a |u_i| is 0."""
-    for i in range(u.shape[0]):
-        rho = math.hypot(u[i, 0], u[i, 1])
-        if not rho > 0.0:
-            return False
-        t_out[i, 0] = -u[i, 1] / rho
-        t_out[i, 1] = u[i, 0] / rho
-    return True
