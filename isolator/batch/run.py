@@ -111,6 +111,9 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
     store = PartStore(output)
     done_rows = {}
     finished, n_other_schema = existing_rows(output, set(planned))
+    if output.is_file() and not table_is_ours(output):  # it was replaced without a word (session 23 sweep)
+        notes.append(f"{output} exists and is not a table this batch wrote whole (edited by hand, truncated, or "
+                     "another file): none of its rows are trusted, and it is replaced by the new table")
     for row in finished + store.rows(set(planned)):
         if row.get("row_key") in planned:
             path, case = planned[row["row_key"]]

@@ -55,8 +55,11 @@ def bench(
 
     records_dir = Path(records)
     if not records_dir.is_dir():
-        user_error(f"{records}: no such folder of records (give the folder of the bench records with --records)")
+        what = "is a file, not a folder of records" if records_dir.exists() else "no such folder of records"
+        user_error(f"{records}: {what} (give the folder of the bench records with --records)")
     out_dir = Path(out)
+    if out_dir.exists() and not out_dir.is_dir():  # mkdir said "File exists" of the file it would not replace
+        user_error(f"--out {out}: is a file, not a folder (--out is the folder for {', '.join(BENCH_FILES)})")
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
     except OSError as err:
