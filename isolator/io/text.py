@@ -34,16 +34,21 @@ their mean, and the record is solved as the piecewise-linear signal through them
 
 from __future__ import annotations
 
-import math
 import re
-import sys
 
 import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from isolator.errors import MissingTimeStepError, RecordFormatError, TimeStepConflictError
-from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
+from isolator.io._common import (
+    head_lines,
+    looks_like_text,
+    open_text,
+    parse_float,
+    read_head,
+    refuse_step_beyond_float,
+)
 from isolator.units import ACCELERATION_UNITS_TO_M_S2
 
 COMMENT_PREFIXES = ("#", "%", "!")
@@ -278,6 +283,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     info.columns = ncols
     t0_s = 0.0
     dt_from = ""  # what gave the step, when the file gave it
+    dt_written = ""  # the step as the file writes it (a '# dt_s:' line)
     if ncols == 2:
         time_s, acceleration = table[:, 0], table[:, 1]
         if time_s.size >= 2:
@@ -315,10 +321,11 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         for key in ("dt_s", "dt"):
             if dt_s is None and key in meta:
                 dt_s = parse_float(meta[key])
-                dt_from = f"'# {key}: {meta[key][:40]}'"
+                dt_from, dt_written = f"'# {key}: {meta[key][:40]}'", meta[key]
         if dt_s is None:
             raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
-    _refuse_step_beyond_float(dt_s, dt_from)
+    if dt_from:  # a step given by --dt keeps its own message (it names the flag)
+        refuse_step_beyond_float(dt_s, dt_written, dt_from, value_shown=True)
     if not dt_s > 0:
         raise RecordFormatError(f"time step dt = {dt_s:g} s is not positive")
     info.t0_s = t0_s
@@ -334,18 +341,3 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         info.component = meta["component"]
     trace.stats.isolator_text = info
     return Stream([trace])
-
-
-def _refuse_step_beyond_float(dt_s: float, dt_from: str) -> None:
-    """Refuse a step the file gave (``dt_from`` names it) that is beyond a float or below its smallest normal number.
-
-    ObsPy keeps 1/dt: an infinite step (``# dt_s: 1e400``) is 0 Hz and a subnormal one (``5e-324``, a time column of
-    such steps) an infinite rate, and both came back as "time step dt = 0 s is not positive" (h203).
-    """
-    if not dt_from or dt_s != dt_s:
-        return
-    if math.isinf(dt_s):
-        raise RecordFormatError(f"{dt_from} overflows: beyond any number (a float ends at 1.8e308 s); a corrupt file?")
-    if 0 < abs(dt_s) < sys.float_info.min:
-        raise RecordFormatError(f"{dt_from} of {dt_s:.3g} s underflows: below a float's smallest normal number "
-                                "(2.2e-308); no accelerogram has such a step (1e-05 to 0.5 s); a corrupt file?")
