@@ -63,3 +63,39 @@ def test_at2_and_text_say_a_step_beyond_a_float_in_one_wording(tmp_path):
         assert a == b, dt
         tails[dt] = b
     assert tails["1e-320"] == tails["1e-400"] != tails["1e400"]
+
+
+# ---- 2. `design --vary` of a key that cannot vary says which keys can
+
+@pytest.mark.parametrize("key, words", [
+    ("bearing.surface.radius_m", "'bearing.surface.radius_m' cannot vary: the search varies a design file's top-level "
+                                 "numbers, never its [bearing] keys (its [[bearing.surface]] entries)"),
+    ("superstructure.floor.mass_kg", "never its [superstructure] keys: every candidate keeps the file's tables. Keys "
+                                     "that can vary: radius_m, mu_kinetic"),
+    ("name", "'name' is text, not a number"),
+])
+def test_design_vary_of_a_key_that_cannot_vary_says_which_can(key, words):
+    """8e44dd2: `'bearing.surface.radius_m' is not a number of a design file that can vary (one of: …)`, the words
+    of a typo, not that surface keys cannot vary."""
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["design", "-d", "data/example_triple.toml", "-t", "example",
+                                                      "-s", "example", "--vary", f"{key}=2,3"]))
+    assert line.startswith(f"error: --vary '{key}=2,3': ") and words in line, line
+    if key.startswith("bearing"):  # the keys a design given surface by surface keeps (bearing.REPLACED_DESIGN_KEYS)
+        assert line.endswith("of these a design with [bearing] keeps mass_kg, damping_ratio, damping_Ns_per_m, "
+                             "lambda_max, lambda_min, mu_upper, mu_lower, lambda_ae_max, lambda_ae_min, "
+                             "lambda_test_max, lambda_test_min, lambda_spec_max, lambda_spec_min"), line
+
+
+def test_the_search_api_says_the_same_of_a_surface_key():
+    """`design_space` (the Python API's ranges as pairs) said the bare `is not a number of a design file that can
+    vary`, without the list: now the same words as `--vary`."""
+    from isolator.errors import ReviewError
+    from isolator.review.design_space import search
+    from isolator.review.examples import EXAMPLES
+    from isolator.review.suite import load_suite
+    from isolator.review.target import two_period_target
+
+    suite = load_suite(str(EXAMPLES["suite"]))
+    with pytest.raises(ReviewError, match=r"cannot vary: .* Keys that can vary: radius_m"):
+        search("data/example_triple.toml", two_period_target(0.75, 0.45, 8.0), suite,
+               [("bearing.surface.radius_m", [2.0])], jobs=1)
