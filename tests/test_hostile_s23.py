@@ -99,3 +99,63 @@ def test_the_search_api_says_the_same_of_a_surface_key():
     with pytest.raises(ReviewError, match=r"cannot vary: .* Keys that can vary: radius_m"):
         search("data/example_triple.toml", two_period_target(0.75, 0.45, 8.0), suite,
                [("bearing.surface.radius_m", [2.0])], jobs=1)
+
+
+# ---- 3. batch: resume files damaged by hand, a records folder with a link loop
+
+def _parts_with_one_row(tmp_path):
+    from isolator.batch.store import PartStore
+
+    store = PartStore(tmp_path / "T.csv")
+    store.write([{"record": "a.AT2", "row_key": "k1"}])
+    store.write([{"record": "b.AT2", "row_key": "k2"}])
+    return store, sorted(store.directory.glob("part-*.jsonl"))
+
+
+def test_a_huge_part_file_is_read_in_bounded_memory(tmp_path):
+    """8e44dd2 read each part whole (`read_bytes`, then split): a 1 GB part of NULs held 3.3 GB resident and took
+    32 s (the sweep, `batch` resuming); now line by line, a line over 1 MiB ends the part (damage, recomputed)."""
+    import tracemalloc
+
+    store, parts = _parts_with_one_row(tmp_path)
+    with open(parts[0], "ab") as stream:
+        stream.truncate(256 << 20)  # sparse: no disk, 256 MiB of NULs after the row
+    tracemalloc.start()
+    rows = store.rows({"k1", "k2"})
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert [row["row_key"] for row in rows] == ["k1", "k2"] and store.damaged == 1  # the whole line before is kept
+    assert peak < 16 << 20, peak  # 8e44dd2: > 256 MiB
+
+
+@pytest.mark.parametrize("damage", ["empty", "fifo", "folder"])
+def test_a_part_file_emptied_or_replaced_is_counted_as_damage(tmp_path, damage):
+    """8e44dd2 read an emptied part, a FIFO or a folder in its place as no rows, without the note `damaged
+    line(s) … skipped`: its rows were recomputed silently (a part holds at least one row: empty is truncated)."""
+    import os
+
+    store, parts = _parts_with_one_row(tmp_path)
+    parts[0].unlink()
+    {"empty": lambda p: p.write_bytes(b""), "fifo": os.mkfifo, "folder": os.mkdir}[damage](parts[0])
+    assert [row["row_key"] for row in store.rows({"k1", "k2"})] == ["k2"]
+    assert store.damaged == 1
+
+
+def test_a_records_folder_with_a_link_loop_lists_the_loop_as_a_record(tmp_path):
+    """8e44dd2: `batch recs` with `recs/loop1 -> loop2 -> loop1` stopped the whole batch: `error: recs/loop1: cannot
+    write (Too many levels of symbolic links)` (ELOOP from `DirEntry.is_dir`, taken for an output's error). Now the
+    loop is a record whose row says `symbolic-link loop`, and the batch runs the others."""
+    import os
+
+    from isolator.motion.files import expand_records
+
+    recs = tmp_path / "recs"
+    (recs / "sub").mkdir(parents=True)
+    (recs / "sub" / "a.AT2").write_text(SINE)
+    os.symlink("loop1", recs / "loop2")
+    os.symlink("loop2", recs / "loop1")
+    found = expand_records([str(recs)])
+    assert [os.path.relpath(p, recs) for p in found] == ["loop1", "loop2", "sub/a.AT2"]
+    from isolator.io._common import input_file_problem
+
+    assert input_file_problem(recs / "loop1") == "symbolic-link loop"
