@@ -159,3 +159,36 @@ def test_a_records_folder_with_a_link_loop_lists_the_loop_as_a_record(tmp_path):
     from isolator.io._common import input_file_problem
 
     assert input_file_problem(recs / "loop1") == "symbolic-link loop"
+
+
+# ---- 4. TOML files: a key in another case is named as the key meant
+
+@pytest.mark.parametrize("text, words", [
+    (DESIGN + "MASS_KG = 2e6\n", "t.toml: unknown key 'MASS_KG' (did you mean 'mass_kg'? keys are case-sensitive)"),
+    (DESIGN.replace("radius_m", "Radius_M"), "t.toml: unknown key 'Radius_M' (did you mean 'radius_m'? keys are "
+                                             "case-sensitive)"),
+    (DESIGN + "[Superstructure]\n", "unknown key 'Superstructure' (did you mean 'superstructure'? keys are "
+                                    "case-sensitive)"),
+])
+def test_a_design_key_in_another_case_is_named(tmp_path, monkeypatch, text, words):
+    """8e44dd2: `MASS_KG` was told the list of 24 valid keys (the likeness of difflib is case-sensitive), `Mass_kg`
+    `did you mean 'mass_kg'?` without why."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "t.toml").write_text(text)
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--design", "t.toml"]))
+    assert line.endswith(words), line
+
+
+def test_a_target_and_a_suite_key_in_another_case_are_named(tmp_path):
+    """8e44dd2: a target's `s_m1` and a pair's `Scale_Factor` were told the valid keys, not the one meant."""
+    from isolator.errors import SuiteError, TargetError
+    from isolator.review.suite_specs import specs_from_toml
+    from isolator.review.target import load_target
+
+    (tmp_path / "t.toml").write_text("s_ms = 1.0\nS_M1 = 0.6\nT_L = 8\n")
+    with pytest.raises(TargetError, match=r"unknown key 's_ms' \(did you mean 'S_MS'\? keys are case-sensitive\)$"):
+        load_target(tmp_path / "t.toml")
+    (tmp_path / "s.toml").write_text('[[pair]]\nname = "a"\nx = "x.AT2"\ny = "y.AT2"\nScale_Factor = 2\n')
+    with pytest.raises(SuiteError, match=r"pair 1: unknown key 'Scale_Factor' \(did you mean 'scale_factor'\? keys"):
+        specs_from_toml(tmp_path / "s.toml")
