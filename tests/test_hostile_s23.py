@@ -192,3 +192,67 @@ def test_a_target_and_a_suite_key_in_another_case_are_named(tmp_path):
     (tmp_path / "s.toml").write_text('[[pair]]\nname = "a"\nx = "x.AT2"\ny = "y.AT2"\nScale_Factor = 2\n')
     with pytest.raises(SuiteError, match=r"pair 1: unknown key 'Scale_Factor' \(did you mean 'scale_factor'\? keys"):
         specs_from_toml(tmp_path / "s.toml")
+
+
+# ---- 5. bench: its five files are one set; no openseespy is said in one line
+
+def _stub_bench(monkeypatch, plot):
+    """`bench` with no cases (its tables of nothing): the CLI's own work, in well under a second."""
+    import isolator.bench as bench_module
+
+    monkeypatch.setattr(bench_module, "bench_cases", lambda quick, records: [])
+    monkeypatch.setattr(bench_module, "run_bench", lambda **kwargs: ([], []))
+    monkeypatch.setattr(bench_module, "building_cases", lambda quick, records: [])
+    monkeypatch.setattr(bench_module, "tfp_cases", lambda quick, records: [])
+    monkeypatch.setattr(bench_module, "plot", plot)
+
+
+def test_bench_writes_its_five_files_as_one_set(tmp_path, monkeypatch):
+    """8e44dd2 renamed bench.csv, bench_pareto.csv, bench.json, bench.md one after the other, then drew the plot:
+    an interrupt while drawing left four new files beside an old bench.png (a mixture of two benches)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "recs").mkdir()
+    out = tmp_path / "out"
+    out.mkdir()
+    for name in ("bench.csv", "bench_pareto.csv", "bench.json", "bench.md", "bench.png"):
+        (out / name).write_text("old")
+
+    def interrupted(rows, path):
+        raise KeyboardInterrupt
+
+    _stub_bench(monkeypatch, interrupted)
+    result = RUNNER.invoke(app, ["bench", "--quick", "--out", "out", "--records", "recs"])
+    assert result.exit_code == 130, result.output
+    assert {p.name: p.read_text() for p in out.iterdir()} == dict.fromkeys(
+        ("bench.csv", "bench_pareto.csv", "bench.json", "bench.md", "bench.png"), "old")
+
+    _stub_bench(monkeypatch, lambda rows, path: path.write_bytes(b"\x89PNG new"))
+    result = RUNNER.invoke(app, ["bench", "--quick", "--out", "out", "--records", "recs"])
+    assert result.exit_code == 0, result.output
+    assert all(p.read_bytes() != b"old" for p in out.iterdir()) and len(list(out.iterdir())) == 5
+
+
+def test_bench_without_openseespy_says_so_in_one_line(tmp_path, monkeypatch):
+    """8e44dd2 said nothing of a missing openseespy until the 2-D summary at the end, and its progress lines said
+    `…: ours and OpenSees, 3 rounds in alternation` of runs where OpenSees did not run."""
+    import isolator.bench.opensees as opensees
+    from isolator.bench.harness import time_ours_and_opensees
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "recs").mkdir()
+    monkeypatch.setattr(opensees, "opensees_available", lambda: (False, "openseespy not installed"))
+    _stub_bench(monkeypatch, lambda rows, path: path.write_bytes(b"png"))
+    result = RUNNER.invoke(app, ["bench", "--quick", "--out", "out", "--records", "recs"])
+    assert result.exit_code == 0, result.output
+    notes = [line for line in result.stderr.splitlines() if "openseespy" in line]
+    assert notes == ['note: openseespy not installed: the OpenSees baselines are left out, ours is timed alone '
+                     '(pip install "isolator[bench]" for them)'], result.stderr
+
+    class Case:
+        name = "TFP x"
+
+    said = []
+    out = time_ours_and_opensees(lambda case, setting: "ours", None, Case(), rounds=2, ours_per_round=3,
+                                 progress=said.append)
+    assert said == ["TFP x: ours alone (openseespy not installed), 6 runs"]
+    assert out[1] == "ours" and out[2] == 6 and out[3:] == (None, None, None, "openseespy not installed")
