@@ -256,3 +256,34 @@ def test_bench_without_openseespy_says_so_in_one_line(tmp_path, monkeypatch):
                                  progress=said.append)
     assert said == ["TFP x: ours alone (openseespy not installed), 6 runs"]
     assert out[1] == "ours" and out[2] == 6 and out[3:] == (None, None, None, "openseespy not installed")
+
+
+# ---- 6. a text record written with decimal commas says so
+
+@pytest.mark.parametrize("text, words", [
+    ("# dt_s: 0,01\n0,0123\n-0,0456\n0,0789\n", "time column does not increase at data row 2 (t = 0 s then -0 s); "
+                                                 "decimal commas? (0,0123 is read as two numbers, 0 and 123: write "
+                                                 "the numbers with a decimal point, 0.0123)"),
+    ("t;acc\n0,00;0,0123\n0,01;-0,0456\n0,02;0,0789\n", "3 columns; expected 1 (acceleration, with a time step) or 2 "
+                                                        "(time, acceleration); decimal commas?"),
+    ("# dt_s: 0,01\n0.1\n0.2\n0.3\n", "'# dt_s: 0,01' is not a number (a decimal comma? write the step with a "
+                                      "decimal point)"),
+])
+def test_a_text_record_with_decimal_commas_says_so(tmp_path, text, words):
+    """8e44dd2: a comma locale's export (`0,0123`) was read with the comma as the separator and refused in other
+    words (`time column does not increase`, `3 columns`), and `# dt_s: 0,01` in float()'s (`could not convert
+    string to float: '0,01'`). No locale with decimal commas is installed here (`locale -a`: C, C.utf8, POSIX): the
+    commands read numbers in the C locale whatever LC_ALL says."""
+    from isolator.io import text as reader
+
+    (tmp_path / "t.txt").write_text(text)
+    with pytest.raises(RecordFormatError) as caught:
+        reader._read_text(tmp_path / "t.txt")
+    assert str(caught.value).endswith(words) or words in str(caught.value), str(caught.value)
+
+
+def test_a_record_with_decimal_points_and_commas_as_separators_reads_as_before(tmp_path):
+    from isolator.io import text as reader
+
+    (tmp_path / "t.txt").write_text("time,acc\n0,1\n0.01,2\n0.02,-1\n")  # a CSV of whole numbers: no hint, read
+    assert reader._read_text(tmp_path / "t.txt")[0].data.tolist() == [1.0, 2.0, -1.0]

@@ -223,7 +223,41 @@ def _layout(stream) -> tuple[list[str], list[str] | None, str | None, int, int]:
     return comments, names, None, 0, skip
 
 
+#: A number written with a decimal comma (``-0,0123``), alone between separators: spreadsheets of a comma locale
+#: export them, and the reader took the comma for its separator (``0,0123`` a time of 0 and 123 g).
+_DECIMAL_COMMA_RE = re.compile(r"(?<![\d.,])-?\d+,\d+(?![\d.,])")
+
+
+def _decimal_comma_hint(filename_or_buf) -> str:
+    """``; decimal commas? …`` when the file's first data lines hold numbers with decimal commas and no decimal
+    point (then every refusal of the reader — a time column that does not increase, 3 columns, a step of 1 s, a
+    ``# dt_s: 0,01`` — came from the commas, told in other words); else ''."""
+    lines = [line for line in head_lines(read_head(filename_or_buf))[:50]
+             if not line.lstrip().startswith(COMMENT_PREFIXES) or "dt" in line]
+    data = [line for line in lines if any(ch.isdigit() for ch in line)]
+    if data and not any("." in line for line in data) and all(_DECIMAL_COMMA_RE.search(line) for line in data):
+        return ("; decimal commas? (0,0123 is read as two numbers, 0 and 123: write the numbers with a decimal point, "
+                "0.0123)")
+    return ""
+
+
 def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = False, **kwargs) -> Stream:
+    """:func:`_parse_text`, whose refusals of a file written with decimal commas say so (session 23 sweep).
+
+    Parameters and returns as :func:`_parse_text`.
+    """
+    try:
+        return _parse_text(filename_or_buf, dt_s=dt_s, headonly=headonly, **kwargs)
+    except (MissingTimeStepError, TimeStepConflictError):
+        raise
+    except ValueError as err:  # a RecordFormatError, or float()'s words for a '# dt_s: 0,01'
+        hint = _decimal_comma_hint(filename_or_buf)
+        if not hint:
+            raise
+        raise RecordFormatError(f"{err}{hint}") from None
+
+
+def _parse_text(filename_or_buf, dt_s: float | None = None, headonly: bool = False, **kwargs) -> Stream:
     """Read a one- or two-column text accelerogram into a one-trace :class:`obspy.Stream`.
 
     Parameters
@@ -320,7 +354,11 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         acceleration = table[:, 0]
         for key in ("dt_s", "dt"):
             if dt_s is None and key in meta:
-                dt_s = parse_float(meta[key])
+                try:
+                    dt_s = parse_float(meta[key])
+                except ValueError:  # was float()'s "could not convert string to float: '0,01'"
+                    comma = " (a decimal comma? write the step with a decimal point)" if "," in meta[key] else ""
+                    raise RecordFormatError(f"'# {key}: {meta[key][:40]}' is not a number{comma}") from None
                 dt_from, dt_written = f"'# {key}: {meta[key][:40]}'", meta[key]
         if dt_s is None:
             raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
