@@ -287,3 +287,26 @@ def test_a_record_with_decimal_points_and_commas_as_separators_reads_as_before(t
 
     (tmp_path / "t.txt").write_text("time,acc\n0,1\n0.01,2\n0.02,-1\n")  # a CSV of whole numbers: no hint, read
     assert reader._read_text(tmp_path / "t.txt")[0].data.tolist() == [1.0, 2.0, -1.0]
+
+
+# ---- 7. review: a pair that is not a pair names the suite and the files
+
+def test_a_pair_of_different_time_steps_names_the_suite_and_its_files(tmp_path, monkeypatch):
+    """8e44dd2: `error: pair 'a': components have different time steps (x 0.01 s, y 0.02 s); resample them first`
+    named neither the suite file nor the records (a pair's other refusals, `--scaling given`'s since session 21,
+    name the suite)."""
+    from isolator.errors import SuiteError
+    from isolator.review.suite import load_suite
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "y2.AT2").write_text(at2_text([0.1 * math.cos(0.08 * i) for i in range(200)], dt=".0200"))
+    (tmp_path / "y3.AT2").write_text(at2_text([0.1 * math.cos(0.08 * i) for i in range(300)]))
+    for y, words in (("y2.AT2", "suite s.toml: pair 'a': components have different time steps (x 0.01 s in x.AT2, y "
+                                "0.02 s in y2.AT2): the components of a pair are recorded together; resample them "
+                                "first"),
+                     ("y3.AT2", "suite s.toml: pair 'a': components differ in length (x 200, y 300 samples)")):
+        (tmp_path / "s.toml").write_text(f'[[pair]]\nname = "a"\nx = "x.AT2"\ny = "{y}"\n')
+        with pytest.raises(SuiteError) as caught:
+            load_suite("s.toml")
+        assert str(caught.value).startswith(words), str(caught.value)
