@@ -310,3 +310,19 @@ def test_a_pair_of_different_time_steps_names_the_suite_and_its_files(tmp_path, 
         with pytest.raises(SuiteError) as caught:
             load_suite("s.toml")
         assert str(caught.value).startswith(words), str(caught.value)
+
+
+# ---- 8. an output named `.pdf`
+
+@pytest.mark.parametrize("command", [["report", "x.AT2", "-d", "d.toml"],
+                                     ["review", "-d", "d.toml", "-t", "example", "-s", "example"],
+                                     ["design", "-d", "d.toml", "-t", "example", "-s", "example", "--vary",
+                                      "radius_m=2,3"]])
+def test_an_output_named_dot_pdf_is_told_it_names_no_file(tmp_path, monkeypatch, command):
+    """8e44dd2: `-o .pdf` said `--output must end with .pdf, got .pdf` (to Python `.pdf` is a hidden file with no
+    suffix), in each of the three commands' copies of the check."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "d.toml").write_text(DESIGN)
+    line = assert_one_line_exit_2(RUNNER.invoke(app, [*command, "-o", "sub/.PDF"]))
+    assert line == "error: --output sub/.PDF names no file: give a name before .pdf (e.g. review.pdf)"
