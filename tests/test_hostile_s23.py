@@ -326,3 +326,14 @@ def test_an_output_named_dot_pdf_is_told_it_names_no_file(tmp_path, monkeypatch,
     (tmp_path / "d.toml").write_text(DESIGN)
     line = assert_one_line_exit_2(RUNNER.invoke(app, [*command, "-o", "sub/.PDF"]))
     assert line == "error: --output sub/.PDF names no file: give a name before .pdf (e.g. review.pdf)"
+
+
+def test_bench_records_given_a_file_says_it_is_a_file(tmp_path, monkeypatch):
+    """8e44dd2: `bench --records x.AT2` said `x.AT2: no such folder of records` of a file that exists."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["bench", "--quick", "--records", "x.AT2"]))
+    assert line == ("error: x.AT2: is a file, not a folder of records (give the folder of the bench records with "
+                    "--records)")
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["bench", "--quick", "--records", "nowhere"]))
+    assert line.startswith("error: nowhere: no such folder of records")

@@ -54,8 +54,9 @@ def bench(
     from isolator.serialize import dumps
 
     records_dir = Path(records)
-    if not records_dir.is_dir():
-        user_error(f"{records}: no such folder of records (give the folder of the bench records with --records)")
+    if not records_dir.is_dir():  # a file was told "no such folder"
+        what = "is a file, not a folder" if records_dir.exists() else "no such folder"
+        user_error(f"{records}: {what} of records (give the folder of the bench records with --records)")
     out_dir = Path(out)
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
