@@ -32,13 +32,12 @@ stiffness and damping from the force–displacement loop.
 
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import DesignError, printable
+from isolator.errors import DesignError, key_hint, printable
 from isolator.solver.multisurface_series import (
     DECREASING_RATE_REASON,
     STATIC_FRICTION_REASON,
@@ -575,7 +574,7 @@ def parse_bearing(table, fail, gravity_m_s2: float = STANDARD_GRAVITY) -> Bearin
         raise fail("key 'bearing' must be a table ([bearing] with type and [[bearing.surface]] entries)")
     for key in table:
         if key not in BEARING_KEYS:
-            raise fail(f"unknown key 'bearing.{key}' (valid keys: {', '.join(BEARING_KEYS)})")
+            raise fail(f"unknown key 'bearing.{key}'{key_hint(key, BEARING_KEYS)}")
     kind = table.get("type")
     if not isinstance(kind, str) or kind not in SURFACES_PER_TYPE:  # an array or table: unhashable (session 17)
         raise fail(f"key 'bearing.type' must be one of {', '.join(repr(k) for k in SURFACES_PER_TYPE)}, got {kind!r}")
@@ -644,9 +643,7 @@ def _surface(entry: dict, index: int, kind: str, fail) -> Surface:
     where = f"bearing surface {index}"
     for key in entry:
         if key not in SURFACE_KEYS:
-            close = difflib.get_close_matches(str(key), list(SURFACE_KEYS), n=1, cutoff=0.5)
-            hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(SURFACE_KEYS)})"
-            raise fail(f"{where}: unknown key '{key}'{hint}")
+            raise fail(f"{where}: unknown key '{key}'{key_hint(key, SURFACE_KEYS)}")
 
     def number(key, *, required=False, positive=False):
         if key not in entry:

@@ -23,7 +23,6 @@ Guide Specifications for Seismic Isolation Design, EN 15129): at a displacement 
 
 from __future__ import annotations
 
-import difflib
 import math
 import os
 import re
@@ -187,7 +186,7 @@ def _huge_integer(content) -> tuple[str, int] | None:
     return None
 
 
-from isolator.errors import DesignError, printable  # noqa: E402,F401 - the design's error, defined with the others
+from isolator.errors import DesignError, key_hint, printable  # noqa: E402,F401 - the design's error, defined with the others
 
 #: Supported mass M accepted [kg]: from a gram (a laboratory specimen) to 1e10 kg (ten times
 #: the heaviest isolated structure); outside, K/M and γ/M lose their meaning (1e-320 kg is
@@ -351,9 +350,7 @@ class Design:
         unknown = [key for key in mapping if key not in DESIGN_KEYS]
         if unknown:
             key = unknown[0]
-            close = difflib.get_close_matches(str(key), list(DESIGN_KEYS), n=1, cutoff=0.5)
-            hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(DESIGN_KEYS)})"
-            raise fail(f"unknown key '{key}'{hint}")
+            raise fail(f"unknown key '{key}'{key_hint(key, DESIGN_KEYS)}")
         bearing = None
         if "bearing" in mapping:  # surface by surface; the top-level keys become its equivalent single pendulum
             from isolator.bearing import equivalent_design_keys, parse_bearing
@@ -679,9 +676,7 @@ def _plan(table, fail) -> dict | None:
         raise fail("key 'plan' must be a table ([plan] with b_m, d_m, eccentricity_m, y_m or P_T)")
     unknown = [key for key in table if key not in PLAN_KEYS]
     if unknown:
-        close = difflib.get_close_matches(str(unknown[0]), list(PLAN_KEYS), n=1, cutoff=0.5)
-        hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(PLAN_KEYS)})"
-        raise fail(f"unknown key 'plan.{unknown[0]}'{hint}")
+        raise fail(f"unknown key 'plan.{unknown[0]}'{key_hint(unknown[0], PLAN_KEYS)}")
     out = {}
     for key, value in table.items():
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):

@@ -48,6 +48,28 @@ def one_line(message) -> str:
     return " ".join(str(message).split())
 
 
+def key_hint(key, valid, listed: str = "valid keys") -> str:
+    """The hint after "unknown key 'KEY'" of a TOML file: the valid key it meant, or the valid keys [-].
+
+    ``Mass_kg`` and ``MASS_KG`` are ``mass_kg`` typed in another case (TOML keys are case-sensitive): the hint says
+    so.  Keys are compared without case, then by likeness (:func:`difflib.get_close_matches`, cutoff 0.5); with no
+    likely key, ``listed`` and every valid key.  ``MASS_KG`` and a target's ``s_ms`` were told the whole list
+    (session 23 sweep): the likeness alone is case-sensitive.
+    """
+    import difflib
+
+    valid = [str(item) for item in valid]
+    text = str(key)
+    same = [item for item in valid if item.lower() == text.lower()]
+    if same:
+        return f" (did you mean '{same[0]}'? keys are case-sensitive)"
+    folded = {item.lower(): item for item in valid}
+    close = difflib.get_close_matches(text.lower(), list(folded), n=1, cutoff=0.5)
+    if close:
+        return f" (did you mean '{folded[close[0]]}'?)"
+    return f" ({listed}: {', '.join(valid)})"
+
+
 def printable(text) -> str:
     """``text`` with every character a terminal would act on shown as its escape (``\\x1b``, ``\\u202e``) [-].
 

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import DesignError
+from isolator.errors import DesignError, key_hint
 
 #: keys of the ``[superstructure]`` table
 SUPERSTRUCTURE_KEYS = {
@@ -369,13 +369,9 @@ def _number(table: dict, key: str, where: str, keys: dict, *, positive: bool = T
 
 
 def _unknown(table: dict, keys: dict, where: str) -> None:
-    import difflib
-
     for key in table:
         if key not in keys:
-            close = difflib.get_close_matches(str(key), list(keys), n=1, cutoff=0.5)
-            hint = f" (did you mean '{close[0]}'?)" if close else f" (valid keys: {', '.join(keys)})"
-            raise DesignError(f"{where}: unknown key '{key}'{hint}")
+            raise DesignError(f"{where}: unknown key '{key}'{key_hint(key, keys)}")
 
 
 def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, source: str = "<design>"):

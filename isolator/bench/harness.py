@@ -152,11 +152,12 @@ def time_ours_and_opensees(ours, baseline, case, rounds: int, ours_per_round: in
     from isolator.bench.opensees import opensees_available
 
     say = progress or (lambda line: None)
+    available, why = opensees_available()
     if not ours_missing:
         ours(case, None)
-        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation")
+        say(f"{case.name}: ours and OpenSees, {rounds} rounds in alternation" if available else
+            f"{case.name}: ours alone ({why}), {max(1, rounds) * max(1, ours_per_round)} runs")  # it said "and OpenSees"
         return time_against_opensees(ours, baseline, case, rounds, ours_per_round)
-    available, why = opensees_available()
     if not available:
         return None, None, None, None, None, None, why
     say(f"{case.name}: OpenSees alone ({ours_missing}), {rounds} runs")

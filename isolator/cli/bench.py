@@ -50,13 +50,13 @@ def bench(
     from pathlib import Path
 
     from isolator import bench as bench_module
-    from isolator.atomic import atomic_path, write_text_atomically
+    from isolator.atomic import atomic_paths
     from isolator.serialize import dumps
 
     records_dir = Path(records)
-    if not records_dir.is_dir():
-        what = "is a file, not a folder of records" if records_dir.exists() else "no such folder of records"
-        user_error(f"{records}: {what} (give the folder of the bench records with --records)")
+    if not records_dir.is_dir():  # a file was told "no such folder"
+        what = "is a file, not a folder" if records_dir.exists() else "no such folder"
+        user_error(f"{records}: {what} of records (give the folder of the bench records with --records)")
     out_dir = Path(out)
     if out_dir.exists() and not out_dir.is_dir():  # mkdir said "File exists" of the file it would not replace
         user_error(f"--out {out}: is a file, not a folder (--out is the folder for {', '.join(BENCH_FILES)})")
@@ -73,6 +73,12 @@ def bench(
         [root, os.path.realpath(path)]) == root])
     started = time.perf_counter()
     progress = None if as_json else say
+    from isolator.bench.opensees import opensees_available
+
+    available, why = opensees_available()
+    if not available:  # said by no line: the bench's progress claimed "ours and OpenSees" (session 23 sweep)
+        say(f"note: {why}: the OpenSees baselines are left out, ours is timed alone (pip install "
+            "\"isolator[bench]\" for them)")
     cases = bench_module.bench_cases(quick, records_dir)
     if not any(case.kind == "record" for case in cases):
         say(f"note: none of the bench records in {records_dir}: harmonic cases only")
@@ -108,16 +114,19 @@ def bench(
     document = {"command": command, "wall_seconds": wall_s, "machine": machine, "rows": rows, "pareto": pareto,
                 "summary_2d": summary, "building": buildings, "triple_friction_pendulum": tfps,
                 "summary_building": building_lines}
-    try:
-        write_text_atomically(out_dir / "bench.csv", bench_module.rows_to_csv(rows))
-        write_text_atomically(out_dir / "bench_pareto.csv", bench_module.pareto_to_csv(pareto))
-        write_text_atomically(out_dir / "bench.json", dumps(document, indent=1))
-        write_text_atomically(out_dir / "bench.md", bench_module.pareto_markdown(pareto) + "\n"
-                              + bench_module.rows_markdown(rows) + "".join(f"\n{line}\n" for line in summary)
-                              + ("\n" + bench_module.building_markdown(buildings) if buildings else "")
-                              + "".join(f"\n{line}\n" for line in building_lines))
-        with atomic_path(out_dir / "bench.png") as temporary:
-            bench_module.plot(rows, temporary)
+    texts = {"bench.csv": bench_module.rows_to_csv(rows), "bench_pareto.csv": bench_module.pareto_to_csv(pareto),
+             "bench.json": dumps(document, indent=1),
+             "bench.md": bench_module.pareto_markdown(pareto) + "\n" + bench_module.rows_markdown(rows)
+             + "".join(f"\n{line}\n" for line in summary)
+             + ("\n" + bench_module.building_markdown(buildings) if buildings else "")
+             + "".join(f"\n{line}\n" for line in building_lines)}
+    try:  # one set, renamed at once: each file was renamed in turn, so an interrupt mixed two benches' files
+        with atomic_paths(outputs) as temporaries:
+            for name, temporary in zip(BENCH_FILES, temporaries, strict=True):
+                if name in texts:
+                    temporary.write_text(texts[name], encoding="utf-8")
+                else:
+                    bench_module.plot(rows, temporary)
     except OSError as err:
         write_error(err, out)
     if as_json:

@@ -348,6 +348,20 @@ def user_error(message: str) -> None:
     raise typer.Exit(2)
 
 
+def check_pdf_output(output: str) -> None:
+    """End the command with one line unless ``--output`` names a PDF file (``report``, ``review``, ``design``).
+
+    ``-o .pdf`` (a name that is its extension alone: to Python a hidden file of no suffix) was told
+    "--output must end with .pdf, got .pdf" (session 23 sweep).
+    """
+    from pathlib import Path
+
+    if Path(output).name.lower() == ".pdf":
+        user_error(f"--output {output} names no file: give a name before .pdf (e.g. review.pdf)")
+    if Path(output).suffix.lower() != ".pdf":
+        user_error(f"--output must end with .pdf, got {output}")
+
+
 def parse_set(items) -> dict:
     """``--set NAME=VALUE`` options as {name: value text} (``review``, ``report``); one line and exit 2 otherwise."""
     out = {}

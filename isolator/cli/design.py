@@ -10,6 +10,7 @@ from isolator.cli.common import (
     app,
     check_given_scale_factors,
     check_outputs,
+    check_pdf_output,
     collector_skips_existing_objects,
     echo_table,
     parse_set,
@@ -121,8 +122,7 @@ def design(
         _search_error(err)
     if output is None:
         output = str(Path("reports") / f"design_{Path(isolator_file).stem}.pdf")
-    if Path(output).suffix.lower() != ".pdf":
-        _user_error(f"--output must end with .pdf, got {output}")
+    check_pdf_output(output)
     if scheduler is not None:
         from isolator.batch.executors import check_scheduler
         from isolator.errors import BatchError

@@ -8,6 +8,7 @@ from isolator.cli.common import (
     RECORD_HELP,
     app,
     check_outputs,
+    check_pdf_output,
     collector_skips_existing_objects,
     echo_table,
     load_record_for_cli,
@@ -25,8 +26,7 @@ def _output_pdf(output: str | None, record: str, design: str, tag: str = "") -> 
     if output is None:
         record_stem = record.split(":", 1)[1] if record.startswith("example:") else Path(record).stem
         output = str(Path("reports") / f"{Path(design).stem}_{record_stem}{tag}.pdf")
-    if Path(output).suffix.lower() != ".pdf":
-        user_error(f"--output must end with .pdf, got {output}")
+    check_pdf_output(output)
     return output
 
 

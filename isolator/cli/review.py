@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app, check_given_scale_factors, parse_set, say
+from isolator.cli.common import app, check_given_scale_factors, check_pdf_output, parse_set, say
 from isolator.cli.common import user_error as _user_error
 
 
@@ -87,8 +87,7 @@ def review(
             say(f"note: {note}")
     if output is None:
         output = str(Path("reports") / f"review_{Path(design).stem}.pdf")
-    if Path(output).suffix.lower() != ".pdf":
-        _user_error(f"--output must end with .pdf, got {output}")
+    check_pdf_output(output)
     parameters = parse_set(settings)
     try:
         from isolator.review.parameters import from_design, resolve

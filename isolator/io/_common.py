@@ -10,9 +10,11 @@ from __future__ import annotations
 import errno
 import glob
 import io
+import math
 import os
 import re
 import stat
+import sys
 from collections.abc import Iterator
 from typing import IO
 
@@ -132,6 +134,43 @@ def open_text(filename_or_buf) -> IO[str]:
     if stream.read(len(UTF8_BOM)) != UTF8_BOM:
         stream.seek(0)
     return stream
+
+
+def refuse_step_beyond_float(dt_s: float, written: str, named: str, corrupt: str = "file",
+                             value_shown: bool = False) -> None:
+    """Refuse a record's time step that is beyond a float, below its smallest normal number, or written non-zero
+    and read as 0.0 — the one wording of every reader (the AT2 header's DT, a text record's ``# dt_s:``).
+
+    ObsPy keeps the rate 1/dt: an infinite step is 0 Hz and a subnormal one an infinite rate, and both came back as
+    "time step dt = 0 s is not positive"; ``1e-400`` is read as 0.0 and was told the same (sessions 19-22).
+
+    Parameters
+    ----------
+    dt_s : float
+        The step as read [s].
+    written : str
+        The step as the file writes it ('' when computed, e.g. a time column's mean step): a text of 0.0 with a
+        non-zero digit before its exponent (``1e-400``) underflowed.
+    named : str
+        How the message names the step (``header DT=1e400 s``, ``'# dt_s: 1e-400'``).
+    corrupt : str
+        What may be corrupt (``header``, ``file``).
+    value_shown : bool
+        Add the subnormal value read (`` of 4.94e-324 s``) after ``named``.
+
+    Raises
+    ------
+    RecordFormatError
+        One line naming the step as written.
+    """
+    if math.isinf(dt_s):
+        raise RecordFormatError(f"{named} overflows: beyond any number (a float ends at 1.8e308 s); "
+                                f"a corrupt {corrupt}?")
+    zero_written_nonzero = dt_s == 0 and bool(re.search(r"[1-9]", re.split("[EeDd]", written)[0]))
+    if 0 < abs(dt_s) < sys.float_info.min or zero_written_nonzero:
+        shown = f" of {dt_s:.3g} s" if value_shown and dt_s else ""
+        raise RecordFormatError(f"{named}{shown} underflows: below a float's smallest normal number (2.2e-308); no "
+                                f"accelerogram has such a step (1e-05 to 0.5 s); a corrupt {corrupt}?")
 
 
 def parse_float(token: str) -> float:

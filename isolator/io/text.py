@@ -34,16 +34,21 @@ their mean, and the record is solved as the piecewise-linear signal through them
 
 from __future__ import annotations
 
-import math
 import re
-import sys
 
 import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core.util import AttribDict
 
 from isolator.errors import MissingTimeStepError, RecordFormatError, TimeStepConflictError
-from isolator.io._common import head_lines, looks_like_text, open_text, parse_float, read_head
+from isolator.io._common import (
+    head_lines,
+    looks_like_text,
+    open_text,
+    parse_float,
+    read_head,
+    refuse_step_beyond_float,
+)
 from isolator.units import ACCELERATION_UNITS_TO_M_S2
 
 COMMENT_PREFIXES = ("#", "%", "!")
@@ -218,7 +223,41 @@ def _layout(stream) -> tuple[list[str], list[str] | None, str | None, int, int]:
     return comments, names, None, 0, skip
 
 
+#: A number written with a decimal comma (``-0,0123``), alone between separators: spreadsheets of a comma locale
+#: export them, and the reader took the comma for its separator (``0,0123`` a time of 0 and 123 g).
+_DECIMAL_COMMA_RE = re.compile(r"(?<![\d.,])-?\d+,\d+(?![\d.,])")
+
+
+def _decimal_comma_hint(filename_or_buf) -> str:
+    """``; decimal commas? …`` when the file's first data lines hold numbers with decimal commas and no decimal
+    point (then every refusal of the reader — a time column that does not increase, 3 columns, a step of 1 s, a
+    ``# dt_s: 0,01`` — came from the commas, told in other words); else ''."""
+    lines = [line for line in head_lines(read_head(filename_or_buf))[:50]
+             if not line.lstrip().startswith(COMMENT_PREFIXES) or "dt" in line]
+    data = [line for line in lines if any(ch.isdigit() for ch in line)]
+    if data and not any("." in line for line in data) and all(_DECIMAL_COMMA_RE.search(line) for line in data):
+        return ("; decimal commas? (0,0123 is read as two numbers, 0 and 123: write the numbers with a decimal point, "
+                "0.0123)")
+    return ""
+
+
 def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = False, **kwargs) -> Stream:
+    """:func:`_parse_text`, whose refusals of a file written with decimal commas say so (session 23 sweep).
+
+    Parameters and returns as :func:`_parse_text`.
+    """
+    try:
+        return _parse_text(filename_or_buf, dt_s=dt_s, headonly=headonly, **kwargs)
+    except (MissingTimeStepError, TimeStepConflictError):
+        raise
+    except ValueError as err:  # a RecordFormatError, or float()'s words for a '# dt_s: 0,01'
+        hint = _decimal_comma_hint(filename_or_buf)
+        if not hint:
+            raise
+        raise RecordFormatError(f"{err}{hint}") from None
+
+
+def _parse_text(filename_or_buf, dt_s: float | None = None, headonly: bool = False, **kwargs) -> Stream:
     """Read a one- or two-column text accelerogram into a one-trace :class:`obspy.Stream`.
 
     Parameters
@@ -278,6 +317,7 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
     info.columns = ncols
     t0_s = 0.0
     dt_from = ""  # what gave the step, when the file gave it
+    dt_written = ""  # the step as the file writes it (a '# dt_s:' line)
     if ncols == 2:
         time_s, acceleration = table[:, 0], table[:, 1]
         if time_s.size >= 2:
@@ -314,11 +354,16 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         acceleration = table[:, 0]
         for key in ("dt_s", "dt"):
             if dt_s is None and key in meta:
-                dt_s = parse_float(meta[key])
-                dt_from = f"'# {key}: {meta[key][:40]}'"
+                try:
+                    dt_s = parse_float(meta[key])
+                except ValueError:  # was float()'s "could not convert string to float: '0,01'"
+                    comma = " (a decimal comma? write the step with a decimal point)" if "," in meta[key] else ""
+                    raise RecordFormatError(f"'# {key}: {meta[key][:40]}' is not a number{comma}") from None
+                dt_from, dt_written = f"'# {key}: {meta[key][:40]}'", meta[key]
         if dt_s is None:
             raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
-    _refuse_step_beyond_float(dt_s, dt_from)
+    if dt_from:  # a step given by --dt keeps its own message (it names the flag)
+        refuse_step_beyond_float(dt_s, dt_written, dt_from, value_shown=True)
     if not dt_s > 0:
         raise RecordFormatError(f"time step dt = {dt_s:g} s is not positive")
     info.t0_s = t0_s
@@ -334,18 +379,3 @@ def _read_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fals
         info.component = meta["component"]
     trace.stats.isolator_text = info
     return Stream([trace])
-
-
-def _refuse_step_beyond_float(dt_s: float, dt_from: str) -> None:
-    """Refuse a step the file gave (``dt_from`` names it) that is beyond a float or below its smallest normal number.
-
-    ObsPy keeps 1/dt: an infinite step (``# dt_s: 1e400``) is 0 Hz and a subnormal one (``5e-324``, a time column of
-    such steps) an infinite rate, and both came back as "time step dt = 0 s is not positive" (h203).
-    """
-    if not dt_from or dt_s != dt_s:
-        return
-    if math.isinf(dt_s):
-        raise RecordFormatError(f"{dt_from} overflows: beyond any number (a float ends at 1.8e308 s); a corrupt file?")
-    if 0 < abs(dt_s) < sys.float_info.min:
-        raise RecordFormatError(f"{dt_from} of {dt_s:.3g} s underflows: below a float's smallest normal number "
-                                "(2.2e-308); no accelerogram has such a step (1e-05 to 0.5 s); a corrupt file?")

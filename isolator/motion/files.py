@@ -77,7 +77,11 @@ def folder_files(folder: str) -> list[str]:
         for entry in listed:
             if entry.name.startswith("."):
                 continue
-            if not entry.is_dir():  # follows a link; a FIFO, a dangling link or a loop is not a folder
+            try:
+                is_folder = entry.is_dir()  # follows a link; a FIFO, a dangling link is not a folder
+            except OSError:  # a link loop raised ELOOP here: the whole batch stopped, "recs/loop: cannot write"
+                is_folder = False  # listed as a file: its row says "symbolic-link loop", the others run
+            if not is_folder:
                 found.append(os.path.join(current, entry.name))
                 if len(found) > MAX_FOLDER_FILES:
                     raise BatchError(f"{folder}: holds more than {MAX_FOLDER_FILES:,} files, more than the "

@@ -44,6 +44,35 @@ MAX_CANDIDATES = 20_000
 
 # ---- the design space ----------------------------------------------------------------------
 
+def vary_key_problem(key: str) -> str:
+    """Why ``key`` cannot vary, in words, naming the keys that can (``--vary``'s and the search's message).
+
+    A key of a design file's table (``bearing.surface.radius_m``, ``superstructure.…``) was told "is not a number of
+    a design file that can vary" with the whole list, as a typo was (session 21 sweep): the search varies the
+    design file's top-level numbers only; each candidate keeps the file's [bearing] surfaces and tables.
+    """
+    table = key.split(".", 1)[0].strip().lower()
+    can_vary = f"Keys that can vary: {', '.join(VARY_KEYS)}"
+    if table in ("bearing", "surface"):
+        from isolator.bearing import REPLACED_DESIGN_KEYS
+
+        kept = ", ".join(k for k in VARY_KEYS if k not in REPLACED_DESIGN_KEYS)
+        return (f"{key!r} cannot vary: the search varies a design file's top-level numbers, never its [bearing] keys "
+                "(its [[bearing.surface]] entries): every candidate keeps the file's surfaces (to compare other "
+                f"surfaces, write a design file per geometry). {can_vary}; of these a design with [bearing] keeps "
+                f"{kept}")
+    if table in ("superstructure", "plan", "bearing_position", "floor"):
+        return (f"{key!r} cannot vary: the search varies a design file's top-level numbers, never its [{table}] "
+                f"keys: every candidate keeps the file's tables. {can_vary}")
+    if key.strip().lower() in ("name", "description"):
+        return f"{key!r} is text, not a number: the search names each candidate by its values. {can_vary}"
+    import difflib
+
+    close = difflib.get_close_matches(key, VARY_KEYS, n=1, cutoff=0.6)
+    hint = f" (did you mean {close[0]!r}?)" if close else f" (one of: {', '.join(VARY_KEYS)})"
+    return f"{key!r} is not a number of a design file that can vary{hint}"
+
+
 def parse_vary(spec: str) -> tuple[str, list[float]]:
     """``KEY=START:STOP:COUNT`` (COUNT values, both ends included) or ``KEY=V1,V2,…`` → (key, values).
 
@@ -64,11 +93,7 @@ def parse_vary(spec: str) -> tuple[str, list[float]]:
         raise fail("expected KEY=START:STOP:COUNT or KEY=V1,V2,…, e.g. radius_m=1.5:4.5:13")
     key, _, text = (part.strip() for part in spec.partition("="))
     if key not in VARY_KEYS:
-        import difflib
-
-        close = difflib.get_close_matches(key, VARY_KEYS, n=1, cutoff=0.6)
-        hint = f" (did you mean {close[0]!r}?)" if close else f" (one of: {', '.join(VARY_KEYS)})"
-        raise fail(f"{key!r} is not a number of a design file that can vary{hint}")
+        raise fail(vary_key_problem(key))
     if ":" in text:
         parts = text.split(":")
         if len(parts) != 3:

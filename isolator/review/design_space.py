@@ -49,6 +49,7 @@ from isolator.review.design_grid import (
     candidate_mappings,
     parse_vary,
     recommend,
+    vary_key_problem,
 )
 from isolator.review.design_store import RowStore, content_digest, search_context_key
 from isolator.review.design_workers import BEARING_COLUMNS, iterate_groups
@@ -245,7 +246,7 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
     ranges = [parse_vary(v) if isinstance(v, str) else (str(v[0]), [float(x) for x in v[1]]) for v in vary]
     for key, values in ranges:
         if key not in VARY_KEYS:
-            raise ReviewError(f"{key!r} is not a number of a design file that can vary", parameter="vary")
+            raise ReviewError(vary_key_problem(key), parameter="vary")
         if not values or not all(math.isfinite(x) for x in values):
             raise ReviewError(f"{key!r}: the values must be finite numbers", parameter="vary")
     mappings = candidate_mappings(design_mapping, design.mu_kinetic, ranges)

@@ -173,7 +173,8 @@ def read_pair(spec: PairSpec, seen: dict | None = None) -> Pair:
     dts = {key: m.dt_s for key, m in motions.items()}
     if max(dts.values()) - min(dts.values()) > 1e-9 * max(dts.values()):
         raise SuiteError(f"pair '{spec.name}': components have different time steps "
-                         f"({', '.join(f'{k} {v:g} s' for k, v in dts.items())}); resample them first")
+                         f"({', '.join(f'{k} {v:g} s in {specs[k].label()}' for k, v in dts.items())}): the "
+                         "components of a pair are recorded together; resample them first")
     lengths = {key: m.npts for key, m in motions.items()}
     processing = list(time_base)
     n = min(lengths.values())
@@ -264,6 +265,8 @@ def load_suite(arguments, *, units: str | None = None, trim: bool = False) -> Su
         except (RecordError, UnitsError) as err:
             failed.append({"name": spec.name, "error": " ".join(str(err).split())})
             continue
+        except SuiteError as err:  # named no suite: `error: pair 'a': components have different time steps …`
+            raise SuiteError(f"suite {source}: {err}") from None
         pairs.append(pair)
     if not pairs:
         detail = ""

@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from isolator.errors import SuiteError
+from isolator.errors import SuiteError, key_hint
 
 SUITE_KEYS = {"units", "trim", "pair", "name", "description"}
 METADATA_KEYS = ("magnitude", "distance_km", "mechanism", "vs30_m_s", "pulse")
@@ -96,7 +96,7 @@ def specs_from_toml(path) -> list[PairSpec]:
             raise SuiteError(f"{where}: must be a table")
         bad = sorted(set(table) - PAIR_KEYS)
         if bad:
-            raise SuiteError(f"{where}: unknown key '{bad[0]}' (valid: {', '.join(sorted(PAIR_KEYS))})")
+            raise SuiteError(f"{where}: unknown key '{bad[0]}'{key_hint(bad[0], sorted(PAIR_KEYS), 'valid')}")
         for key in ("x", "y"):
             if key not in table:
                 raise SuiteError(f"{where}: missing key '{key}'")

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isolator.errors import TargetError
+from isolator.errors import TargetError, key_hint
 
 RANGE_KEYS = ("magnitude_range", "distance_km_range", "vs30_m_s_range")
 
@@ -271,7 +271,7 @@ def _load_spectrum(path) -> Target:
     mapping = load_toml(path, "target file", TargetError)
     unknown = sorted(set(mapping) - TARGET_KEYS)
     if unknown:
-        raise TargetError(f"{source}: unknown key '{unknown[0]}' (valid keys: {', '.join(sorted(TARGET_KEYS))})")
+        raise TargetError(f"{source}: unknown key '{unknown[0]}'{key_hint(unknown[0], sorted(TARGET_KEYS))}")
     name = mapping.get("name", path.stem)
     if not isinstance(name, str):
         raise TargetError(f"{source}: key 'name' must be text")
