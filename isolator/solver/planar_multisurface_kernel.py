@@ -2329,7 +2329,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         x = tau
                         ein_corr = 0.0
                         enter_polar(tau, y, my[M_V], my[M_V + 1], norm(my[M_V], my[M_V + 1]), prm, frc, f)
-                        phase = PH_POLAR
+                        phase = np.int64(PH_POLAR)
                         n_merged += 1
                         if exact_only:
                             status |= STATUS_REDUCED
@@ -2345,19 +2345,19 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     chosen = sliding_set(my, rb, comp | 1 << which, 1 << which)
                     comp = chosen if chosen != 0 else comp | 1 << which
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
-                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
+                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_JOIN))
                     em = element_mask(comp, members)
                     if first[em] < 0.0:
                         first[em] = t[i] + tau
                     continue
                 # a group leaves
                 comp &= ~(1 << which)
-                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_LEAVE))
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
                 n_left = 0
-                kb = -1
+                kb = np.int64(-1)
                 for k in range(ng):
                     if comp >> k & 1:
                         n_left += 1
@@ -2386,7 +2386,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 x = tau
                 ein_corr = 0.0
                 enter_polar(tau, y, my[M_V], my[M_V + 1], vmag, prm, frc, f)
-                phase = PH_POLAR
+                phase = np.int64(PH_POLAR)
                 continue
             # ------------------------------------------------------------------ one group: planar forms
             if phase == PH_APPROACH:
@@ -2397,7 +2397,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     s_stop = s_floor
                 if x > s_stop and rdot > -LEAVE_LOG * fscale:
                     x = leave_log(tau, y, r, prm, frc, f)
-                    phase = PH_SLIDE
+                    phase = np.int64(PH_SLIDE)
                     h_sugg = r / max(fscale, 1e-300)
                     continue
                 if x > s_stop:
@@ -2419,7 +2419,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         just_rejected = True
                         if abs(ds_sugg) < 1e-9:
                             x = leave_log(tau, y, r, prm, frc, f)
-                            phase = PH_SLIDE
+                            phase = np.int64(PH_SLIDE)
                             h_sugg = r / max(fscale, 1e-300)
                         continue
                     hit = ynew[7] >= target
@@ -2427,7 +2427,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     if hit:
                         theta = land_on(np.int64(LOG), x, y, f, ds, np.int64(7), target, ynew[7], fnew[7], prm, frc, yb,
                                         fb, atol, rtol, work)
-                    th_j, kj = _joins_in_step(LOG, x, y, f, ds, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue,
+                    th_j, kj = _joins_in_step(np.int64(LOG), x, y, f, ds, theta, prm, frc, yb, fb, atol, rtol, s, rc, mue,
                                               ub, rb, mu, comp, ynew, fnew)
                     if kj >= 0:
                         theta = th_j
@@ -2475,7 +2475,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                             my[M_EIN] = 0.0
                             my[M_EF] = 0.0
                             my[M_EV] = 0.0
-                        n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
+                        n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_JOIN))
                         em = element_mask(comp, members)
                         if first[em] < 0.0:
                             first[em] = t[i] + tau
@@ -2525,7 +2525,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[2] *= r
                     y[3] *= r
                     y[7] = 0.0
-                    phase = PH_SLIDE
+                    phase = np.int64(PH_SLIDE)
                     rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     continue
             if phase == PH_SLIDE:
@@ -2563,7 +2563,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 if r < 0.5 * r_switch_lo and not rdot < -ENTER_LOG * fscale:
                     y[2] = r
                     y[3] = 0.0
-                    phase = PH_START
+                    phase = np.int64(PH_START)
                     rhs(np.int64(START), tau, y, prm, frc, f)
                     continue
                 h_try = h_sugg if h_sugg > 0.0 else target - tau
@@ -2573,7 +2573,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[7] = tau
                     x = math.log(r)
                     if rhs(np.int64(LOG), x, y, prm, frc, f):
-                        phase = PH_APPROACH
+                        phase = np.int64(PH_APPROACH)
                         s_stop = s_end
                         ds_sugg = -0.5
                         continue
@@ -2583,8 +2583,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                 else:
                     enter_polar(tau, y, y[2], y[3], r, prm, frc, f)
-                    phase = PH_POLAR
-                    mode = POLAR
+                    phase = np.int64(PH_POLAR)
+                    mode = np.int64(POLAR)
                     fm = fscale - mue * (raw[4] + raw[5] * tau)
             hmax = target - tau
             h = hmax if (h_sugg <= 0.0 or h_sugg >= hmax) else h_sugg
@@ -2704,7 +2704,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     my[M_EF] = 0.0
                     my[M_EV] = 0.0
                     multi_rhs(tau, my, raw, rb, mu, comp, c, mf)
-                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_JOIN)
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_JOIN))
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
@@ -2715,7 +2715,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     y[2] >= r_switch_lo and start_lag(tau, y, prm, frc) > LAG_MAX_RAD)):
                 v1, v2 = velocity(np.int64(PH_START), x, tau, y, prm, frc)
                 enter_polar(tau, y, v1, v2, y[2], prm, frc, f)
-                phase = PH_POLAR
+                phase = np.int64(PH_POLAR)
         if failed:
             break
         # ---- the sample

@@ -29,6 +29,7 @@ from isolator.solver import (
     planar_control,
     planar_events,
     planar_kernel,
+    planar_multisurface_kernel,
     planar_multisurface_rate_kernel,
     planar_multisurface_stepper,
     planar_rim_kernel,
@@ -125,3 +126,23 @@ def test_the_2d_building_on_a_multi_surface_bearing_passes_each_default_always_o
     mixed = {name: counts for module in MULTISURFACE_MODULES for name, counts in _arities((module,)).items()
              if len(counts) > 1}
     assert mixed == {f"{planar_building_multisurface_kernel.__name__}.row_peak": {19, 20}}, mixed
+
+
+#: The 2-D multi-surface event kernel's literal arguments still passed (h215): the ones whose ``np.int64``/``np.bool_``
+#: form was not shown bit-identical on both the fresh-compile and the cached path (docs/performance.md, h207/h215).
+#: A ratchet: remove an entry when its call passes a typed value; never add one.
+EVENT_KERNEL_LITERALS_LEFT = {
+    "_radau_estimate(… False …)", "_radau_estimate(… True …)",
+    "_restep_value(… 0 …)", "_secant_resteps(… 0 …)", "_secant_resteps(… LOCATE_RESTEPS …)",
+    "_secant_resteps(… True …)", "_secant_resteps(… -1 …)", "_secant_resteps(… False …)",
+    "_secant_resteps(… PEAK_RESTEPS …)", "_secant_resteps(… RS_PEAK …)",
+    "_record(… EV_STICK …)", "_record(… EV_REVERSAL …)", "_record(… EV_BREAKAWAY …)", "_record(… EV_LEAVE …)",
+    "_locate_multi(… 0 …)", "_locate_multi(… 1 …)",
+}
+
+
+def test_the_2d_event_kernel_passes_no_literal_beyond_its_ratchet():
+    # 22 literal arguments on 8e44dd2 (_record(… EV_JOIN …) ×3, _joins_in_step(… LOG …), _record(… EV_LEAVE …) in the
+    # multi-group leave …); their versions cost compile time (h207: all 27 changes, 215.5 → 158–171 s CPU cold)
+    found = {line.split(" ", 1)[1] for line in _literal_passes(planar_multisurface_kernel, strict=True)}
+    assert found == EVENT_KERNEL_LITERALS_LEFT, sorted(found ^ EVENT_KERNEL_LITERALS_LEFT)
