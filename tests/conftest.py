@@ -129,12 +129,31 @@ def _warm_engines(processes: int) -> str:
     return line + (f" (not warmed: {', '.join(failed)})" if failed else "")
 
 
+#: The xdist scheduler of ``-n N`` when the command names none: an idle worker takes half of the other's queue
+#: (xdist ≥ 3.2).  xdist's own default, ``load``, hands each worker its queue ahead, and one core sat idle for the
+#: last ~1–2 min of a run while the other worked through its queue (docs/performance.md, h208, h217).
+DEFAULT_DIST = "worksteal"
+
+
+def default_dist(config) -> None:
+    """Use :data:`DEFAULT_DIST` under ``-n N`` unless the command line (or ``PYTEST_ADDOPTS``) names a ``--dist``.
+
+    xdist sets ``dist`` to ``load`` when ``-n`` comes without ``--dist``; the early parse (``known_args_namespace``)
+    still says ``no`` then, and says what the user gave otherwise.  It cannot go in pyproject's ``addopts``: the
+    per-file command ``-p no:xdist`` would reject the option."""
+    given = getattr(config.known_args_namespace, "dist", "no")
+    if config.option.dist == "load" and given == "no":
+        config.option.dist = DEFAULT_DIST
+
+
 def pytest_configure(config):
-    """On the xdist controller (``-n N``, N ≥ 2), warm the engines' kernels before the workers start."""
+    """On the xdist controller (``-n N``, N ≥ 2), warm the engines' kernels before the workers start, and
+    schedule the tests by :data:`DEFAULT_DIST` unless the command names a ``--dist``."""
     if hasattr(config, "workerinput"):
         return
     workers = getattr(config.option, "numprocesses", None)
     if isinstance(workers, int) and workers >= 2 and not config.option.collectonly:
+        default_dist(config)
         config.stash[WARM_LINE] = _warm_engines(workers)
 
 

@@ -4,8 +4,11 @@ as any running one ends, and a time-out kills what runs and names what did not r
 from __future__ import annotations
 
 import sys
+from types import SimpleNamespace
 
-from tests.conftest import run_at_most
+import pytest
+
+from tests.conftest import DEFAULT_DIST, default_dist, run_at_most
 
 
 def test_a_free_slot_takes_the_next_command_while_the_oldest_still_runs(tmp_path):
@@ -31,3 +34,24 @@ def test_a_time_out_kills_the_running_and_names_the_rest(tmp_path):
             "behind": [sys.executable, "-c", f"import pathlib; pathlib.Path({str(never)!r}).touch()"]}
     assert run_at_most(jobs, 1, timeout_s=1.0) == ["fails", "sleeps", "behind"]
     assert not never.exists()
+
+
+@pytest.mark.parametrize(("given", "after_xdist", "expected"), [
+    ("no", "load", "worksteal"),  # `-n auto` alone: xdist set `load`, the command named none
+    ("load", "load", "load"),  # `-n 2 --dist load` (or PYTEST_ADDOPTS): the user's choice stays
+    ("loadfile", "loadfile", "loadfile"),
+    ("no", "no", "no"),  # no xdist run
+])
+def test_the_default_scheduler_applies_only_when_the_command_names_none(given, after_xdist, expected):
+    """xdist turns `dist` into `load` under `-n` without `--dist`; the early parse still says `no` then."""
+    config = SimpleNamespace(known_args_namespace=SimpleNamespace(dist=given), option=SimpleNamespace(dist=after_xdist))
+    default_dist(config)
+    assert config.option.dist == expected
+
+
+def test_the_default_scheduler_is_one_xdist_knows():
+    """`worksteal` came with pytest-xdist 3.2: an older xdist would reject the scheduler at the first run."""
+    from xdist.dsession import DSession
+    from xdist.scheduler import WorkStealingScheduling
+
+    assert DEFAULT_DIST == "worksteal" and WorkStealingScheduling.__name__ in DSession.pytest_xdist_make_scheduler.__code__.co_names
