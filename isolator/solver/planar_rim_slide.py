@@ -317,14 +317,22 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
 ALIGNED_GAP = 1e-12
 
 
+#: Bound on the segments of :func:`close_along_rims` (each ends at a located change of the sliding set)
+MAX_SEGMENTS = 10_000
+
+
 def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, ax, ay, t_end, *, rtol=1e-10,
-                     gap_end=ALIGNED_GAP):
+                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS):
     """The mass carried by surfaces that are all on their rims, the rims apart: integrated to the alignment (h199).
 
     State: each surface's angle θ_i on its rim (u_i = d_i (cos θ_i, sin θ_i), d_i = |u_i| at the start) and Ẋ;
     θ̇_i = ψ_i/d_i with r and the rates from :func:`slide_along_rims`, Ẍ = −g r − c Ẋ − a_g(t) (a_g linear between
     the samples ``times``/``ax``/``ay``); b = B u (``bmat``).  DOP853 at ``rtol`` (numpy, not compiled; ~10–90 ms a
-    force at the saturated rates).  It stops at the first of: the rims aligned (1 − |X|/Σ d ≤ ``gap_end``: the
+    force at the saturated rates).  The sliding set changes where a surface's |(r − b_i)·t_i| crosses µ_slow,i (its
+    dead zone's edge: ψ_i' jumps from 0 to 1/(a (µ_f − µ_s)), a rate changing sign passes through it): each crossing
+    is located as an event and the integration restarted there (h216), so that within a segment the set is fixed
+    and the right-hand side smooth; at most ``max_segments`` segments (refused by name past it).  It stops at the
+    first of: the rims aligned (1 − |X|/Σ d ≤ ``gap_end``: the
     ultimate's impact is due there, of e·Ẋ only), a surface's rim reaction (r − b_i)·e_i turning negative (it
     leaves its rim inward: the kernel's regime), the mass at rest (|Ẋ| ≤ 1e-9 m/s), ``t_end``.
 
@@ -333,7 +341,8 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     ū = S u as the kernel books it, ``viscous``, ``kinetic``/``potential`` at both ends as pairs, ``balance`` =
     input − Δkinetic − Δpotential − friction − viscous), ``least_saturation`` (the least a_i|ψ_i| of a sliding
     surface met: ≥ ~37 means µ = µ_fast to rounding, the constant-µ law), ``largest_held`` (the largest
-    |(r − b_i)·t_i|/µ_slow,i of a held surface: ≤ 1) and ``forces`` (the force evaluations).
+    |(r − b_i)·t_i|/µ_slow,i of a held surface: ≤ 1), ``forces`` (the force evaluations) and ``set_changes`` (the
+    located crossings of a dead zone's edge).
     """
     from scipy.integrate import solve_ivp
 
@@ -386,19 +395,46 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     def rest(_, z):
         return math.hypot(z[n], z[n + 1]) - 1e-9
 
+    def edge(i, direction):
+        def crossing(_, z):
+            uu, _, t = frame(z[:n])
+            r = force(z)[4]
+            return abs(float((r - bmat[i] @ uu) @ t[i])) - float(mu_s[i])
+        crossing.terminal = True
+        crossing.direction = direction
+        return crossing
+
     for event in (aligned, leaves, rest):
         event.terminal = True
         event.direction = -1
-    z0 = np.concatenate((np.arctan2(u[:, 1], u[:, 0]), np.asarray(xdot, dtype=float), np.zeros(3)))
-    sol = solve_ivp(rate, (float(t0), float(t_end)), z0, method="DOP853", rtol=rtol, atol=1e-2 * rtol,
-                    events=(aligned, leaves, rest))
-    if sol.status < 0:
-        raise SolverError(f"the closing along the rims was not integrated from t = {t0:.6g} s: {sol.message}")
-    reason = "end"
-    for name, hits in zip(("aligned", "leaves", "rest"), sol.t_events, strict=True):
-        if len(hits):
-            reason = name
-    z1 = sol.y[:, -1]
+    z = np.concatenate((np.arctan2(u[:, 1], u[:, 0]), np.asarray(xdot, dtype=float), np.zeros(3)))
+    z0 = z.copy()
+    _, _, t_start, b_start, r_start, _ = force(z)
+    # held where inside the dead zone: its edge is met going out (+1), a sliding surface's going in (−1)
+    held = np.abs(np.einsum("ij,ij->i", r_start[None, :] - b_start, t_start)) <= mu_s
+    time_now, reason, changes = float(t0), "end", 0
+    for _ in range(max_segments):
+        edges = [edge(i, 1 if held[i] else -1) for i in range(n)]
+        sol = solve_ivp(rate, (time_now, float(t_end)), z, method="DOP853", rtol=rtol, atol=1e-2 * rtol,
+                        events=(aligned, leaves, rest, *edges))
+        if sol.status < 0:
+            raise SolverError(f"the closing along the rims was not integrated from t = {time_now:.6g} s: "
+                              f"{sol.message}")
+        z, time_now = sol.y[:, -1], float(sol.t[-1])
+        if sol.status == 0:
+            break
+        hit = [k for k, hits in enumerate(sol.t_events) if len(hits)]
+        if hit[0] < 3:
+            reason = ("aligned", "leaves", "rest")[hit[0]]
+            break
+        for k in hit:
+            held[k - 3] = not held[k - 3]
+        changes += 1
+    else:
+        raise SolverError(f"the closing along the rims changed its sliding set more than {max_segments} times "
+                          f"(stopped at t = {time_now:.6g} s)")
+    z1 = z
+    log["set_changes"] = changes
 
     def stored(z):
         ub = smat @ frame(z[:n])[0]
