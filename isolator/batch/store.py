@@ -36,10 +36,13 @@ TIMING_COLUMNS = ("read_seconds", *TIMING_KEYS, "row_seconds")
 
 #: Scalar results that only some models give (the building above the isolators, docs/building.md; a double
 #: or triple pendulum, docs/multisurface.md), under the analysis schema's names; empty in the other rows.
-#: ``regimes_reached`` is the schema's ``regimes`` (a dict) as text: the regimes entered, in order of entry.
+#: ``regimes_reached`` is the schema's ``regimes`` (a dict) as text: the regimes entered, in order of entry;
+#: ``regimes_first_time_s`` the same dict's first times, as JSON text in that order (issue 23: ``{"I": first
+#: time [s], …}``); ``ultimate_first_time_s`` when every surface first reached its rim (empty if never).
 MODEL_COLUMNS = (
     "superstructure_shear_coefficient", "n_bearings_uplifted", "energy_strain_final_J_per_kg",
-    "bearing_type", "regimes_reached", "n_rim_contacts", "ultimate_displacement_reached", "ultimate_displacement_m",
+    "bearing_type", "regimes_reached", "regimes_first_time_s", "n_rim_contacts", "ultimate_displacement_reached",
+    "ultimate_displacement_m", "ultimate_first_time_s",
     "impact_impulse_m_s", "max_impact_velocity_m_s", "energy_impact_J_per_kg", "peak_force_per_weight",
 )
 #: Lists of the analysis schema (per story and floor bottom to top, per bearing and per surface in file
@@ -94,7 +97,9 @@ def model_columns(flat: dict) -> dict:
     out = {key: flat[key] for key in MODEL_COLUMNS if flat.get(key) is not None}
     regimes = flat.get("regimes")
     if isinstance(regimes, dict):
-        out["regimes_reached"] = ", ".join(sorted(regimes, key=lambda name: regimes[name]))
+        entered = sorted(regimes, key=lambda name: regimes[name])
+        out["regimes_reached"] = ", ".join(entered)
+        out["regimes_first_time_s"] = json.dumps({name: regimes[name] for name in entered})
     for key in LIST_COLUMNS:
         values = flat.get(key)
         if values is not None:

@@ -1833,7 +1833,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     y[0] = x1
     y[1] = x2
     if k < 0:
-        return PH_STUCK, 0, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_STICK), e_in, e_f, e_v
+        return PH_STUCK, 0, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_STICK)), e_in, e_f, e_v
     comp = 1 << k
     rc = rb[k]
     mue = mu[k]
@@ -1848,7 +1848,7 @@ def _at_rest(tau, t0, y, e1, e2, f, prm, frc, raw, s, rc, mue, comp, ub, rb, mu,
     em = element_mask(comp, members)
     if first[em] < 0.0:
         first[em] = t0 + tau
-    return PH_START, comp, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, EV_REVERSAL), e_in, e_f, e_v
+    return PH_START, comp, rc, mue, _record(ev_t, ev_k, n_ev, t0 + tau, np.int64(EV_REVERSAL)), e_in, e_f, e_v
 
 
 @njit(cache=True)
@@ -1924,8 +1924,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     #: and the constant of its input's correction under a vertical (_corr_xy)
     for j in range(first.shape[0]):
         first[j] = -1.0
-    phase = PH_STUCK
-    comp = 0  #: the sliding groups (bit set)
+    phase = np.int64(PH_STUCK)
+    comp = np.int64(0)  #: the sliding groups (bit set)
     rc = 1.0
     mue = 0.0
     x = 0.0
@@ -1942,7 +1942,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
     peak_v = 0.0
     peak_a = norm(ax[0], ay[0])
     slip = 0.0
-    n_ev = 0
+    n_ev = np.int64(0)
     status = 0
     n_steps = 0
     n_rej = 0
@@ -2063,9 +2063,9 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                 y[4] = 0.0
                 ein_corr = 0.0
                 x = tau
-                phase = PH_START
+                phase = np.int64(PH_START)
                 rhs(np.int64(START), tau, y, prm, frc, f)
-                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_BREAKAWAY)
+                n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_BREAKAWAY))
                 em = element_mask(comp, members)
                 if first[em] < 0.0:
                     first[em] = t[i] + tau
@@ -2086,7 +2086,7 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         failed = True
                         break
                     best = -1.0
-                    kb = -1
+                    kb = np.int64(-1)
                     for k in range(ng):
                         if comp >> k & 1:
                             lam = _lambda(my, mf, rb, k)
@@ -2118,12 +2118,12 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                     if vmag > 0.0:
                         y[2] = my[M_V]
                         y[3] = my[M_V + 1]
-                        phase = PH_SLIDE
+                        phase = np.int64(PH_SLIDE)
                         rhs(np.int64(CARTESIAN), tau, y, prm, frc, f)
                     else:
-                        phase = PH_START
+                        phase = np.int64(PH_START)
                         rhs(np.int64(START), tau, y, prm, frc, f)
-                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, EV_LEAVE)
+                    n_ev = _record(ev_t, ev_k, n_ev, t[i] + tau, np.int64(EV_LEAVE))
                     events_here += 1
                     continue
                 hmax = target - tau
@@ -2244,8 +2244,8 @@ def planar_multisurface_kernel(t, ax, ay, nz, rb, mu, rim, members, tmat, c, sca
                         fac = min(1.0, fac)
                     h_sugg = h * fac
                     just_rejected = False
-                    ka = -1
-                    kb = -1
+                    ka = np.int64(-1)
+                    kb = np.int64(-1)
                     nact = 0
                     for k in range(ng):
                         if comp >> k & 1:
