@@ -18,3 +18,27 @@ def test_batch_keeps_each_regimes_first_time_and_the_ultimate_time():
     row = model_columns({"regimes": {"1+2": 26.182994229404322}, "ultimate_first_time_s": None})
     assert json.loads(row["regimes_first_time_s"]) == {"1+2": 26.182994229404322}
     assert "ultimate_first_time_s" not in row
+
+
+def test_stability_does_not_pass_beside_a_bearing_beyond_its_displacement_capacity():
+    """h218: `vertical_load_stability` passed at 0.694 × capacity while corner bearings reached 1.467–1.562 m of a
+    1.4 m capacity (`record_capacity` failing): the capacity is stated at the total displacement, so the row is
+    `not checked`, saying why; a failing stability row stays failing, and with the displacements within capacity the
+    row is untouched."""
+    from isolator.review import checks as C
+    from isolator.review.assess import no_stability_pass_beyond_capacity
+
+    stability = C.vertical_load_stability([4.0e6, 5.0e6], [7.2e6, 7.2e6], clause="ASCE 7-22 17.2.4.6")
+    assert stability["status"] == C.PASS and abs(stability["value"] - 5.0 / 7.2) < 1e-15
+    beyond = [C.check("record_capacity", "ASCE 7-22 17.2.4.5", C.FAIL, 1.562, 1.4, "pair 1 (upper)", "m"),
+              C.check("record_capacity", "ASCE 7-22 17.2.4.5", C.FAIL, 1.467, 1.4, "pair 2 (upper)", "m")]
+    out = no_stability_pass_beyond_capacity([*beyond, stability])
+    assert out[:2] == beyond
+    assert out[2]["status"] == C.NOT_CHECKED and out[2]["value"] == stability["value"]
+    assert out[2]["note"].endswith("; would pass, but 2 analysis(es) take a bearing beyond its displacement capacity "
+                                   "(record_capacity), where the axial capacity, stated at the total displacement, "
+                                   "does not apply")
+    failing = C.vertical_load_stability([8.0e6], [7.2e6], clause="ASCE 7-22 17.2.4.6")
+    assert no_stability_pass_beyond_capacity([*beyond, failing])[2] == failing
+    within = [C.check("record_capacity", "ASCE 7-22 17.2.4.5", C.PASS, 1.2, 1.4, "largest", "m"), stability]
+    assert no_stability_pass_beyond_capacity(within) == within

@@ -110,7 +110,9 @@ def test_en_building_rows_on_real_pairs(en_building_reviews, n_for_mean):
     ratio = max(suite(b, "bearing_axial_load_max_N", k) for b in per for k in range(4)) / 1.2e7
     stability = rows["vertical_load_stability"]
     assert stability["value"] == pytest.approx(ratio, rel=1e-13) and stability["clause"].startswith("EN 15129")
-    assert stability["status"] == ("pass" if ratio <= 1 else "fail") and "2.3.6" not in stability["note"]
+    beyond = any(row["id"] == "record_capacity" and row["status"] == "fail" for row in checks)
+    assert stability["status"] == ("fail" if ratio > 1 else "not checked" if beyond else "pass")
+    assert "2.3.6" not in stability["note"]
     least = min(-_suite_value([-a["bearing_axial_load_min_N"][k] for a in per[b]], n_for_mean) for b in per
                 for k in range(4))
     assert rows["uplift"]["value"] == pytest.approx(least, rel=1e-13) and "ASCE" not in rows["uplift"]["clause"]
