@@ -42,3 +42,24 @@ def test_stability_does_not_pass_beside_a_bearing_beyond_its_displacement_capaci
     assert no_stability_pass_beyond_capacity([*beyond, failing])[2] == failing
     within = [C.check("record_capacity", "ASCE 7-22 17.2.4.5", C.PASS, 1.2, 1.4, "largest", "m"), stability]
     assert no_stability_pass_beyond_capacity(within) == within
+
+
+def test_the_2d_triple_reason_names_the_vertical_it_runs_with():
+    """h218: `2d-multisurface+vertical`'s model_reason said "under two horizontal components" and left out the
+    vertical its name carries."""
+    from types import SimpleNamespace
+
+    from isolator.bearing import parse_bearing
+    from isolator.errors import DesignError
+    from isolator.solver.planar_multisurface import scene_needs
+
+    tfp = parse_bearing({"type": "triple", "surface": [
+        {"radius_m": r, "mu": m, "displacement_capacity_m": d}
+        for r, m, d in ((2.1, 0.06, 0.8), (0.3, 0.02, 0.05), (0.3, 0.02, 0.05), (2.1, 0.10, 0.8))]}, DesignError)
+    said = {(y, z): scene_needs(SimpleNamespace(design=SimpleNamespace(bearing=tfp), has_y=y, has_z=z))
+            for y, z in ((True, False), (True, True), (False, True))}
+    assert said[True, True][0] == "2d-multisurface+vertical"
+    assert "(4 surfaces) under two horizontal components and a vertical: " in said[True, True][1]
+    assert "(4 surfaces) under two horizontal components: " in said[True, False][1]
+    assert "(4 surfaces) under a vertical component: " in said[False, True][1]
+    assert scene_needs(SimpleNamespace(design=SimpleNamespace(bearing=tfp), has_y=False, has_z=False)) is None

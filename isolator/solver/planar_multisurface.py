@@ -139,7 +139,8 @@ def scene_needs(scene) -> tuple[str, str] | None:
         return None
     name = MODEL_NAME + ("+vertical" if scene.has_z else "")
     return name, (f"a {bearing.kind} friction pendulum ({len(bearing.surfaces)} surfaces) under "
-                  + ("two horizontal components" if scene.has_y else "a vertical component")
+                  + ("two horizontal components" + (" and a vertical" if scene.has_z else "") if scene.has_y
+                     else "a vertical component")
                   + ": the series model of Fenz & Constantinou in the plane (coupled friction on every surface)")
 
 
