@@ -110,8 +110,9 @@ def _run_locked(output, pairs, cases, options, jobs, scheduler, reports_dir, map
             planned[row_key(path, comp, case.design_hash, options, content)] = (path, case)
     store = PartStore(output)
     done_rows = {}
-    finished, n_other_schema = existing_rows(output, set(planned))
-    if output.is_file() and not table_is_ours(output):  # it was replaced without a word (session 23 sweep)
+    ours = output.is_file() and table_is_ours(output)
+    finished, n_other_schema = existing_rows(output, set(planned), ours)
+    if output.is_file() and not ours:  # it was replaced without a word (session 23 sweep)
         notes.append(f"{output} exists and is not a table this batch wrote whole (edited by hand, truncated, or "
                      "another file): none of its rows are trusted, and it is replaced by the new table")
     for row in finished + store.rows(set(planned)):

@@ -242,18 +242,21 @@ def table_is_ours(output: Path) -> bool:
         return False
 
 
-def existing_rows(output: Path, keys: set) -> tuple[list[dict], int]:
+def existing_rows(output: Path, keys: set, ours: bool | None = None) -> tuple[list[dict], int]:
     """Rows of a finished table at ``output`` whose key is planned (a rerun after completion).
 
     Only a table whose content key (written beside it by :func:`write_table_atomically`)
     still matches is reused: an edited or foreign table is recomputed, never trusted.
+    ``ours`` is :func:`table_is_ours`'s verdict when the caller has it (the table is hashed once); None: taken here.
 
     Returns
     -------
     tuple
         (the rows, how many of the table's rows were written under another :data:`ROW_SCHEMA`).
     """
-    if not output.is_file() or not table_is_ours(output):
+    if ours is None:
+        ours = output.is_file() and table_is_ours(output)
+    if not ours:
         return [], 0
     import pandas as pd
 
