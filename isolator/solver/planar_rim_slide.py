@@ -404,9 +404,8 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
 
     def edge(i, direction):
         def crossing(_, z):
-            uu, _, t = frame(z[:n])
-            r = force(z)[4]
-            return abs(float((r - bmat[i] @ uu) @ t[i])) - float(mu_s[i])
+            _, _, t, b, r, _ = force(z)  # the step's shared force: its frame and b = B u too
+            return abs(float((r - b[i]) @ t[i])) - float(mu_s[i])
         crossing.terminal = True
         crossing.direction = direction
         return crossing
