@@ -484,6 +484,48 @@ def output_lock(path):
     lock = lock_path(path)
     host = socket.gethostname()
     content = f"pid={os.getpid()} host={host} since={time.strftime('%Y-%m-%dT%H:%M:%S%z')}\n"
+    held = hold_interrupts()  # created and written whole, or not at all: a SIGTERM there left an empty lock
+    ours = None
+    try:
+        ours = _create_lock(path, lock, host, content)
+        held = release_interrupts(held)  # a SIGTERM held meanwhile is raised here, inside the clean-up's reach
+        yield lock
+    finally:
+        release_interrupts(held)
+        try:
+            now = os.stat(lock)
+            if ours is not None and (now.st_dev, now.st_ino) == ours:
+                os.unlink(lock)
+        except OSError:
+            pass
+
+
+def hold_interrupts():
+    """Hold SIGINT and SIGTERM back until :func:`release_interrupts`; the mask to restore (None: not held).
+
+    A report killed by SIGTERM just after creating its lock, before writing its holder into it, left
+    ``r.pdf.lock`` behind: the clean-up read an empty lock as someone else's (CI, 2026-11-29).  Held where POSIX
+    allows, in the main thread; elsewhere nothing is held.
+    """
+    import signal
+    import threading
+
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+
+
+def release_interrupts(held):
+    """Restore the mask :func:`hold_interrupts` returned (a held signal is delivered now); None always."""
+    if held is not None:
+        import signal
+
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
+    return None
+
+
+def _create_lock(path, lock: Path, host: str, content: str) -> tuple[int, int]:
+    """Create ``lock`` exclusively with ``content``; its (device, inode), by which the clean-up knows it."""
     for _ in range(3):  # bounded: one take-over of a stale lock, then a retry if another run raced us
         try:
             lock.parent.mkdir(parents=True, exist_ok=True)
@@ -509,13 +551,15 @@ def output_lock(path):
     try:
         with os.fdopen(handle, "w", encoding="utf-8") as stream:
             stream.write(content)
-        yield lock
-    finally:
+            stream.flush()
+            status = os.fstat(stream.fileno())
+    except OSError as err:
         try:
-            if _holder(lock)[0] == os.getpid():
-                os.unlink(lock)
+            os.unlink(lock)
         except OSError:
             pass
+        raise OutputError(path, f"cannot write (its lock {lock}: {_reason(err)})", err.errno or errno.EIO) from None
+    return status.st_dev, status.st_ino
 
 
 _SECRET: bytes | None = None

@@ -199,3 +199,27 @@ def test_a_report_killed_by_sigterm_leaves_no_lock(tmp_path):
     lines = [line for line in err.splitlines() if line.strip()]
     assert process.returncode == 130 and len(lines) == 1 and lines[0].startswith("interrupted: "), err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["d.toml", "x.AT2"]
+
+
+def test_a_sigterm_between_the_lock_and_its_holder_leaves_no_lock(tmp_path, monkeypatch):
+    """CI, 2026-11-29: SIGTERM just after the lock's creation, before its holder was written: the clean-up read the
+    empty lock as another run's and left `r.pdf.lock` (the subprocess test above, flaky).  Now the two signals are
+    held while the lock is made, and the interrupt is raised where the clean-up reaches it."""
+    from isolator.atomic import output_lock
+    from isolator.cli.common import terminate_as_interrupt
+
+    real_fdopen = os.fdopen
+
+    def fdopen_after_sigterm(*args, **kwargs):
+        os.kill(os.getpid(), signal.SIGTERM)  # arrives with the lock created and still empty
+        return real_fdopen(*args, **kwargs)
+
+    ran = []
+    monkeypatch.setattr(os, "fdopen", fdopen_after_sigterm)
+    with pytest.raises(KeyboardInterrupt), terminate_as_interrupt(), output_lock(tmp_path / "r.pdf"):
+        ran.append("body")
+    monkeypatch.undo()
+    assert ran == [] and sorted(p.name for p in tmp_path.iterdir()) == []
+    with output_lock(tmp_path / "r.pdf") as lock:  # taken again at once, and released
+        assert lock.read_text().startswith(f"pid={os.getpid()} ")
+    assert not lock.exists()
