@@ -86,6 +86,15 @@ def test_design_vary_of_a_key_that_cannot_vary_says_which_can(key, words):
                              "lambda_test_max, lambda_test_min, lambda_spec_max, lambda_spec_min"), line
 
 
+def test_design_vary_of_a_key_in_another_case_says_keys_are_case_sensitive():
+    """783294d: `--vary RADIUS_M=2,3` was told the whole list of 21 keys (its own likeness test is case-sensitive);
+    now the hint of every other unknown key (errors.key_hint): the key it meant, and that keys are case-sensitive."""
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["design", "-d", "data/example_triple.toml", "-t", "example",
+                                                      "-s", "example", "--vary", "RADIUS_M=2,3"]))
+    assert "'RADIUS_M' is not a number of a design file that can vary (did you mean 'radius_m'? keys are " \
+           "case-sensitive)" in line, line
+
+
 def test_the_search_api_says_the_same_of_a_surface_key():
     """`design_space` (the Python API's ranges as pairs) said the bare `is not a number of a design file that can
     vary`, without the list: now the same words as `--vary`."""

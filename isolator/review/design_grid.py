@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import ReviewError
+from isolator.errors import ReviewError, key_hint
 
 #: numbers of a design file that ``vary`` may replace
 VARY_KEYS = ("radius_m", "mu_kinetic", "mu_static", "displacement_capacity_m", "mass_kg", "stiffness_N_per_m",
@@ -66,11 +66,7 @@ def vary_key_problem(key: str) -> str:
                 f"keys: every candidate keeps the file's tables. {can_vary}")
     if key.strip().lower() in ("name", "description"):
         return f"{key!r} is text, not a number: the search names each candidate by its values. {can_vary}"
-    import difflib
-
-    close = difflib.get_close_matches(key, VARY_KEYS, n=1, cutoff=0.6)
-    hint = f" (did you mean {close[0]!r}?)" if close else f" (one of: {', '.join(VARY_KEYS)})"
-    return f"{key!r} is not a number of a design file that can vary{hint}"
+    return f"{key!r} is not a number of a design file that can vary{key_hint(key, VARY_KEYS, 'one of')}"
 
 
 def parse_vary(spec: str) -> tuple[str, list[float]]:
