@@ -1,0 +1,62 @@
+"""Session 24's hostile sweep (h222): inputs no earlier sweep had tried — special files given to `review --verify`,
+an empty bearing layout, two outputs on one standard output, a paper frame with its range flags, numba's thread
+count in the environment (docs/security.md, "Session 24 sweep").
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+
+from _records import assert_one_line_exit_2, at2_text
+from typer.testing import CliRunner
+
+from isolator.cli import app
+
+RUNNER = CliRunner()
+SINE = at2_text([0.1 * math.sin(2 * math.pi * i * 0.01) for i in range(200)])
+BUILDING = """name = "B"
+mass_kg = 2e6
+radius_m = 2.5
+mu_static = 0.06
+[superstructure]
+damping_ratio = 0.05
+[[superstructure.floor]]
+mass_kg = 1e6
+story_height_m = 3.5
+stiffness_x_N_per_m = 1e9
+"""
+
+
+# ---- 1. `review --verify` reads a regular file, up to a bound
+
+def test_review_verify_of_a_file_past_the_bound_is_refused_unread(tmp_path):
+    """783294d read the file whole (`read_text`): /dev/zero until the memory ran out (15 GB in 4 min, by hand), a
+    65 MiB file of NULs into memory, then `Expecting value: line 1 column 1`; now the size is checked first."""
+    big = tmp_path / "big.json"
+    with open(big, "wb") as stream:
+        stream.truncate(64 * 2**20 + 1)  # `isolator.review.verify.MAX_REVIEW_JSON_BYTES` + 1; sparse: no disk used
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["review", "--verify", str(big)]))
+    assert line == f"error: {big}: cannot read the review JSON ([Errno 27] longer than 67108864 bytes: '{big}')", line
+
+
+def test_review_verify_of_a_fifo_is_refused_without_blocking(tmp_path):
+    """783294d opened a FIFO and waited for a writer for ever (`timeout 40`: killed); now one line, unopened.
+    The writer thread here lets 783294d's read end (it reads the thread's `{}`: "not a review JSON") instead of
+    hanging the test."""
+    fifo = tmp_path / "v.json"
+    os.mkfifo(fifo)
+
+    def writer():
+        with open(fifo, "w") as stream:  # blocks until a reader opens the FIFO
+            stream.write("{}")
+
+    thread = threading.Thread(target=writer, daemon=True)
+    thread.start()
+    try:
+        line = assert_one_line_exit_2(RUNNER.invoke(app, ["review", "--verify", str(fifo)]))
+    finally:
+        os.close(os.open(fifo, os.O_RDONLY | os.O_NONBLOCK))  # release the writer if nothing read the FIFO
+        thread.join(5)
+    assert line == f"error: {fifo}: cannot read the review JSON (is a FIFO (named pipe), not a regular file)", line
