@@ -60,3 +60,38 @@ def test_review_verify_of_a_fifo_is_refused_without_blocking(tmp_path):
         os.close(os.open(fifo, os.O_RDONLY | os.O_NONBLOCK))  # release the writer if nothing read the FIFO
         thread.join(5)
     assert line == f"error: {fifo}: cannot read the review JSON (is a FIFO (named pipe), not a regular file)", line
+
+
+# ---- 2. an empty bearing layout
+
+def test_an_empty_bearing_layout_is_one_line(tmp_path, monkeypatch):
+    """783294d: `bearing_position = []` was a `ZeroDivisionError` traceback (W shared among no bearings)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "b.toml").write_text(BUILDING.replace("[superstructure]", "bearing_position = []\n[superstructure]"))
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--design", "b.toml"]))
+    assert line.startswith("error: b.toml: [[bearing_position]]: the array is empty; give at least three bearings"), line
+
+
+# ---- 2b. a building's numbers beyond any building
+
+def test_a_plan_length_longer_than_the_plan_and_an_r_off_the_table_are_refused(tmp_path, monkeypatch):
+    """783294d read `eccentricity_m = 1e300` and `y_m = 500` on a 34 x 26 m plan, and `response_modification_R` of
+    1e300 or 0.5 (R_I then clamped to 2 or 1 without a word): each ran (exit 0)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    plan = "[plan]\nb_m = 34.0\nd_m = 26.0\n"
+    cases = {
+        plan + "eccentricity_m = 1e300\n": "key 'plan.eccentricity_m' = 1e+300 m is longer than the plan's diagonal "
+                                            "(42.8 m, b_m = 34, d_m = 26): the centres of mass and rigidity both lie "
+                                            "within the plan",
+        plan + "y_m = 500.0\n": "key 'plan.y_m' = 500 m is longer than the plan's diagonal (42.8 m",
+        "": "key 'response_modification_R' must lie in [1, 8], ASCE 7-22 Table 12.2-1's R of a system, got 0.5",
+    }
+    for extra, words in cases.items():
+        text = BUILDING.replace("damping_ratio = 0.05", "damping_ratio = 0.05\nresponse_modification_R = "
+                                + ("0.5" if not extra else "4.0"))
+        (tmp_path / "b.toml").write_text(extra + text if not extra else text.replace("[superstructure]",
+                                                                                     extra + "[superstructure]"))
+        line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--design", "b.toml"]))
+        assert line.startswith("error: b.toml: ") and words in line, line
