@@ -95,3 +95,31 @@ def test_a_plan_length_longer_than_the_plan_and_an_r_off_the_table_are_refused(t
                                                                                      extra + "[superstructure]"))
         line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--design", "b.toml"]))
         assert line.startswith("error: b.toml: ") and words in line, line
+
+
+# ---- 2c. a review's target and suite files
+
+def test_a_target_number_out_of_range_names_its_file_once(tmp_path):
+    """783294d: `t.toml: t.toml: key 'S_MS' = 150 is outside …` (the two-period form's `try` named the file again)."""
+    target = tmp_path / "t.toml"
+    target.write_text("S_MS = 150.0\nS_M1 = 0.9\nT_L = 8.0\n")
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["review", "-d", "data/example_design.toml", "-t", str(target),
+                                                      "-s", "example", "-o", str(tmp_path / "r.pdf")]))
+    assert line == (f"error: {target}: key 'S_MS' = 150 is outside [0.0001, 10], a spectral acceleration [g]"), line
+
+
+def test_a_suite_pair_with_an_empty_file_name_or_too_many_pairs_is_refused(tmp_path, monkeypatch):
+    """783294d: `x = ""` read the suite's folder (`a: .: is a directory, not a record file`), and 100,000 pairs were
+    each read and hashed before any other check (43.8 s); 1,001 pairs here."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "y.AT2").write_text(SINE.replace("1.0000000E-01", "2.0000000E-01"))
+    review = ["review", "-d", "d.toml", "-t", "example", "-s", "s.toml", "-o", "r.pdf"]
+    (tmp_path / "d.toml").write_text('name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n')
+    (tmp_path / "s.toml").write_text('[[pair]]\nname = "a"\nx = {file = ""}\ny = "y.AT2"\n')
+    line = assert_one_line_exit_2(RUNNER.invoke(app, review))
+    assert line == "error: s.toml: pair 1 x: the file name is empty", line
+    (tmp_path / "s.toml").write_text("".join(f'[[pair]]\nname = "p{i}"\nx = "x.AT2"\ny = "y.AT2"\n'
+                                             for i in range(1001)))
+    line = assert_one_line_exit_2(RUNNER.invoke(app, review))
+    assert line.startswith("error: s.toml: 1,001 [[pair]] tables, more than a suite holds (1,000: "), line
