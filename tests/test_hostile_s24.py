@@ -123,3 +123,14 @@ def test_a_suite_pair_with_an_empty_file_name_or_too_many_pairs_is_refused(tmp_p
                                              for i in range(1001)))
     line = assert_one_line_exit_2(RUNNER.invoke(app, review))
     assert line.startswith("error: s.toml: 1,001 [[pair]] tables, more than a suite holds (1,000: "), line
+
+
+# ---- 3. two answers on one standard output
+
+def test_json_and_a_csv_on_standard_output_are_refused(tmp_path, monkeypatch):
+    """783294d: `simulate --json --out-csv -` wrote the CSV and dropped the JSON asked for (exit 0)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--mu-s", "0.05", "--json",
+                                                      "--out-csv", "-"]))
+    assert line == "error: --json and --out-csv - both write to standard output: give one (or the CSV a file)", line
