@@ -134,3 +134,15 @@ def test_json_and_a_csv_on_standard_output_are_refused(tmp_path, monkeypatch):
     line = assert_one_line_exit_2(RUNNER.invoke(app, ["simulate", "x.AT2", "--mu-s", "0.05", "--json",
                                                       "--out-csv", "-"]))
     assert line == "error: --json and --out-csv - both write to standard output: give one (or the CSV a file)", line
+
+
+# ---- 4. a paper frame and the range flags it sets
+
+def test_a_paper_frame_with_its_range_flags_is_refused():
+    """783294d: `regime-map --frame fig5a --k-max 3` drew k in [0, 6] (the frame's), the 3 dropped without a word."""
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["regime-map", "--frame", "fig6", "--k-max", "3", "-n", "4",
+                                                      "--no-cache"]))
+    assert line == "error: --frame fig6 sets k in [0, 5] and α in [0, 10]: drop --k-max (or --frame)", line
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["regime-map", "--frame", "fig5a", "--alpha-max", "6",
+                                                      "--k-max", "6", "-n", "4", "--no-cache"]))
+    assert line.endswith("drop --k-max and --alpha-max (or --frame)"), line
