@@ -146,3 +146,19 @@ def test_a_paper_frame_with_its_range_flags_is_refused():
     line = assert_one_line_exit_2(RUNNER.invoke(app, ["regime-map", "--frame", "fig5a", "--alpha-max", "6",
                                                       "--k-max", "6", "-n", "4", "--no-cache"]))
     assert line.endswith("drop --k-max and --alpha-max (or --frame)"), line
+
+
+# ---- 5. numba's thread count in the environment
+
+def test_a_numba_thread_count_below_one_or_not_a_number_is_one_line(tmp_path, monkeypatch):
+    """783294d: NUMBA_NUM_THREADS=0 or -1 was a 61-line traceback (`ValueError: Number of threads specified must be
+    > 0`, numba's import) from `simulate`; `abc` was dropped for every core without a word. In this process numba
+    is imported already, so 783294d ran the command (exit 0)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    for value in ("0", "-1", "abc"):
+        monkeypatch.setenv("NUMBA_NUM_THREADS", value)
+        line = assert_one_line_exit_2(RUNNER.invoke(app, ["info", "x.AT2"]))
+        assert line.startswith(f"error: NUMBA_NUM_THREADS={value} is not a whole number of threads ≥ 1"), line
+    monkeypatch.setenv("NUMBA_NUM_THREADS", "")  # empty is unset, as numba reads it
+    assert RUNNER.invoke(app, ["info", "x.AT2"]).exit_code == 0
