@@ -691,4 +691,11 @@ def _plan(table, fail) -> dict | None:
         low, high = PLAN_DIMENSION_RANGE_M
         if not low <= out[key] <= high:
             raise fail(f"key 'plan.{key}' must lie in [{low:g}, {high:g}] m, a plan dimension, got {out[key]:g}")
+    # both are lengths within the plan (`eccentricity_m = 1e300` was read: session 24 sweep)
+    diagonal = math.hypot(out["b_m"], out["d_m"])
+    for key, within in (("eccentricity_m", "the centres of mass and rigidity both lie within the plan"),
+                        ("y_m", "the centre of rigidity and the bearing considered lie within the plan")):
+        if out.get(key, 0.0) > diagonal:
+            raise fail(f"key 'plan.{key}' = {out[key]:g} m is longer than the plan's diagonal ({diagonal:.4g} m, "
+                       f"b_m = {out['b_m']:g}, d_m = {out['d_m']:g}): {within}")
     return out

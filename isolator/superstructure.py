@@ -53,7 +53,7 @@ SUPERSTRUCTURE_KEYS = {
     "damping_ratio": "classical damping ratio ζ in every fixed-base mode [-], 0 <= ζ < 1",
     "floor": "array of tables [[superstructure.floor]], bottom to top",
     "response_modification_R": "R of the seismic force-resisting system above the isolation (ASCE 7-22 Table "
-                               "12.2-1) [-], > 0, optional: the review's R_I = 3R/8 within [1, 2] (17.5.4.2)",
+                               "12.2-1) [-], 1 to 8, optional: the review's R_I = 3R/8 within [1, 2] (17.5.4.2)",
 }
 #: keys of one ``[[superstructure.floor]]`` entry
 FLOOR_KEYS = {
@@ -80,6 +80,9 @@ STORY_HEIGHT_RANGE_M = (1e-3, 1e3)
 #: A story's shear stiffness [N/m]: 1e-300 N/m cut the floors loose from the slab without a word (their
 #: shear read 8e-18 W_s), 1e300 N/m asked the solver for 1e148 sub-steps per sample.
 STORY_STIFFNESS_RANGE_N_PER_M = (1.0, 1e14)
+#: R of the system above the isolation: ASCE 7-22 Table 12.2-1 lists 1 to 8 (its R_I = 3R/8 is then taken within
+#: [1, 2], 17.5.4.2); 1e300 and 0.5 were read and clamped to an R_I without a word (session 24 sweep)
+RESPONSE_MODIFICATION_RANGE = (1.0, 8.0)
 #: Most floors of a [superstructure] (the tallest buildings have about 160 stories): the solve grows with the cube of
 #: the floors (NWH360: 100 floors 18 s, 300 floors 79 s; 2000 floors ran past 120 s, session 10 sweep).
 MAX_FLOORS = 200
@@ -434,7 +437,8 @@ def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, sourc
     if not floors_mass < total_mass_kg:
         raise DesignError(f"{where}: the floors weigh {floors_mass:g} kg, not less than the design's mass_kg = "
                           f"{total_mass_kg:g} kg (the total isolated mass: the base slab is the rest)")
-    r = _number(table, "response_modification_R", where, SUPERSTRUCTURE_KEYS, required=False)
+    r = _number(table, "response_modification_R", where, SUPERSTRUCTURE_KEYS, required=False,
+                within=RESPONSE_MODIFICATION_RANGE, what=", ASCE 7-22 Table 12.2-1's R of a system")
     return Superstructure(floors=tuple(floors), damping_ratio=zeta, gravity_m_s2=float(gravity_m_s2),
                           response_modification_R=r)
 
@@ -467,6 +471,9 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
     if len(entries) > MAX_BEARINGS:
         raise DesignError(f"{where}: {len(entries)} entries, more than {MAX_BEARINGS:,} (the largest isolated "
                           "buildings stand on about 1,500 bearings)")
+    if not entries:  # `bearing_position = []` divided W by no bearings (ZeroDivisionError; session 24 sweep)
+        raise DesignError(f"{where}: the array is empty; give at least three bearings, not on one line, for the "
+                          "rigid-slab statics (or no bearing_position key for a design without a layout)")
     xs, ys, loads, capacities = [], [], [], []
     places: dict = {}  # (x, y) -> the first bearing there: one look-up each (a scan of the others was quadratic:
     # 30,000 bearings read in 40 s, 100,000 past 120 s; session 16 sweep)

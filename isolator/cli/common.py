@@ -219,6 +219,7 @@ app = typer.Typer(
 def _main() -> None:
     """isolator: friction isolators under harmonic and recorded ground motion."""
     check_cache_variable()
+    check_numba_threads_variable()
     from isolator.solver import notice
 
     notice.ENABLED = True  # a first run that compiles an engine says so on stderr (not a hang)
@@ -238,6 +239,27 @@ def check_cache_variable() -> None:
     if value and not os.path.isabs(value):
         user_error(f"ISOLATOR_CACHE_DIR={value} is a relative path: the cache would be a new folder in each working "
                    f"folder; give an absolute one (e.g. {os.path.abspath(value)}) or unset it for ~/.cache/isolator")
+
+
+def check_numba_threads_variable() -> None:
+    """Refuse a ``NUMBA_NUM_THREADS`` that is not a whole number ≥ 1 in one line, before any command runs.
+
+    numba reads it when first imported: 0 and -1 were a 61-line traceback (``ValueError: Number of threads
+    specified must be > 0``) from every command that runs a solver, and a text (``abc``) was dropped for all the
+    cores without a word (session 24 sweep).  Empty is unset, as numba reads it.
+    """
+    import os
+
+    value = os.environ.get("NUMBA_NUM_THREADS", "")
+    if not value.strip():
+        return
+    try:
+        threads = int(value)
+    except ValueError:
+        threads = 0
+    if threads < 1:
+        user_error(f"NUMBA_NUM_THREADS={value} is not a whole number of threads ≥ 1 (numba's thread pool): give one, "
+                   "or unset it for every core")
 
 
 #: Help texts of the record options, shared by every command that reads a record.

@@ -134,6 +134,8 @@ def simulate(
         system, nominal = _option_isolator(mu_s, mu_k, stiffness_per_mass, damping_per_mass, gravity, radius_m,
                                            mu_slow, mu_fast, rate_s_per_m)
     streamed = out_csv == "-" or (out_csv is not None and _is_stdout(out_csv))
+    if streamed and as_json:  # the CSV was written and the JSON asked for dropped, silently (session 24 sweep)
+        user_error(f"--json and --out-csv {out_csv} both write to standard output: give one (or the CSV a file)")
     check_outputs([None if out_csv == "-" else out_csv], [record, response, pair, vertical, design], streams=[out_csv])
     from contextlib import nullcontext
 

@@ -220,8 +220,8 @@ def regime_map_command(
     mu_k: float = typer.Option(None, "--mu-k", help="Kinetic friction coefficient µk ≤ µs (default µs)."),
     frame: str = typer.Option(None, "--frame", help="A paper frame: fig5a (k, α in [0, 6], η = 0) or fig6 "
                               "(k in [0, 5], α in [0, 10], η = 0.5); sets η and µs = 0.25 unless given."),
-    k_max: float = typer.Option(6.0, "--k-max", help="Upper end of k."),
-    alpha_max: float = typer.Option(6.0, "--alpha-max", help="Upper end of α."),
+    k_max: float = typer.Option(None, "--k-max", help="Upper end of k (default 6)."),
+    alpha_max: float = typer.Option(None, "--alpha-max", help="Upper end of α (default 6)."),
     resolution: int = typer.Option(100, "--resolution", "-n", min=4, max=1000, help="Grid points per axis."),
     workers: int = typer.Option(None, "--workers", min=1, help="Processes (default: the idle cores)."),
     no_cache: bool = typer.Option(False, "--no-cache", help="Compute even if cached (and do not store)."),
@@ -237,11 +237,16 @@ def regime_map_command(
     from isolator.parallel import capped_workers
     from isolator.solver.system import InvalidSystemError
 
-    k_range, alpha_range = (0.0, k_max), (0.0, alpha_max)
+    k_range = (0.0, 6.0 if k_max is None else k_max)
+    alpha_range = (0.0, 6.0 if alpha_max is None else alpha_max)
     if frame is not None:
         if frame not in PAPER_FRAMES:
             user_error(f"unknown --frame {frame!r} (choose one of: {', '.join(PAPER_FRAMES)})")
         spec = PAPER_FRAMES[frame]
+        if k_max is not None or alpha_max is not None:  # the frame's ranges replaced them, silently (session 24)
+            given = "--k-max" if alpha_max is None else "--alpha-max" if k_max is None else "--k-max and --alpha-max"
+            user_error(f"--frame {frame} sets k in [0, {spec['k'][1]:g}] and α in [0, {spec['alpha'][1]:g}]: "
+                       f"drop {given} (or --frame)")
         k_range, alpha_range = spec["k"], spec["alpha"]
         eta = spec["eta"] if eta is None else eta
         mu_s = spec["mu_s"] if mu_s is None else mu_s

@@ -22,6 +22,10 @@ SUITE_KEYS = {"units", "trim", "pair", "name", "description"}
 METADATA_KEYS = ("magnitude", "distance_km", "mechanism", "vs30_m_s", "pulse")
 PAIR_KEYS = {"name", "x", "y", "z", "units", "trim", "scale_factor", "matched", "rotate_to_fault_normal_deg",
              "azimuth_x_deg", "azimuth_y_deg", *METADATA_KEYS}
+#: The most [[pair]] tables a SUITE.toml holds: a code review takes 7 to 11 pairs (ASCE 7-22 17.3.2: at least 7),
+#: FEMA P695's far- and near-field sets 22 and 28.  100,000 pairs were each read and hashed before any other
+#: check (43.8 s to refuse one record named twice; session 24 sweep).
+MAX_SUITE_PAIRS = 1000
 _CHECKSUMS_RE = re.compile(r"^(SHA\d*SUMS|MD5SUMS)(\.txt)?$", re.IGNORECASE)
 
 
@@ -56,6 +60,13 @@ class PairSpec:
 # ---- SUITE.toml --------------------------------------------------------------------------
 
 def _component(value, base: Path, where: str) -> ComponentSpec:
+    if isinstance(value, dict) and set(value) <= {"file", "component"}:
+        file = value.get("file")
+    else:
+        file = value
+    if isinstance(file, str) and not file.strip():  # `x = ""` read the suite's own folder (". : is a directory",
+        # session 24 sweep)
+        raise SuiteError(f"{where}: the file name is empty")
     if isinstance(value, str):
         return ComponentSpec(str(base / value))
     if isinstance(value, dict) and isinstance(value.get("file"), str) and set(value) <= {"file", "component"}:
@@ -89,6 +100,10 @@ def specs_from_toml(path) -> list[PairSpec]:
     pairs = mapping.get("pair")
     if not isinstance(pairs, list) or not pairs:
         raise SuiteError(f"{path}: no [[pair]] tables")
+    if len(pairs) > MAX_SUITE_PAIRS:
+        raise SuiteError(f"{path}: {len(pairs):,} [[pair]] tables, more than a suite holds ({MAX_SUITE_PAIRS:,}: a "
+                         "review takes 7 to 11 pairs, FEMA P695's sets 22 and 28); run many records with "
+                         "`isolator batch`")
     specs, names = [], set()
     for index, table in enumerate(pairs, 1):
         where = f"{path}: pair {index}"

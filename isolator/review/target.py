@@ -302,15 +302,18 @@ def _load_spectrum(path) -> Target:
     missing = [k for k in keys if k not in mapping]
     if missing:
         raise TargetError(f"{source}: missing key '{missing[0]}' for the {present[0]} target")
-    try:
-        if keys[0] == "S_MS":
-            return _named(two_period_target(number("S_MS"), number("S_M1"), number("T_L")), name, source)
-        if keys[0] == "S_DS":  # MCE_R = 1.5 × design spectrum (REVIEW_RULES 1.1)
-            target = two_period_target(1.5 * number("S_DS"), 1.5 * number("S_D1"), number("T_L"))
-            return _named(target, name, source, extra={"from_design_values": {"S_DS": mapping["S_DS"],
-                                                                               "S_D1": mapping["S_D1"]}})
-    except TargetError as err:
-        raise TargetError(f"{source}: {err}") from None
+    if keys[0] in ("S_MS", "S_DS"):
+        # the numbers first: their messages name the file (inside the `try` they named it twice, "t.toml: t.toml:
+        # key 'S_MS' …"; session 24 sweep)
+        short, long_, t_l = (number(key) for key in keys)
+        factor = 1.0 if keys[0] == "S_MS" else 1.5  # MCE_R = 1.5 × design spectrum (REVIEW_RULES 1.1)
+        try:
+            target = two_period_target(factor * short, factor * long_, t_l)
+        except TargetError as err:
+            raise TargetError(f"{source}: {err}") from None
+        extra = None if keys[0] == "S_MS" else {"from_design_values": {"S_DS": mapping["S_DS"],
+                                                                       "S_D1": mapping["S_D1"]}}
+        return _named(target, name, source, extra=extra)
     if keys[0] == "a_g_g":
         values = {k: number(k) for k in keys}
         if not values["T_B"] < values["T_C"] < values["T_D"]:

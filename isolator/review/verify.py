@@ -17,6 +17,10 @@ from isolator.review.trace import file_sha256, software
 #: this allows for the last bits of a sum taken in another order)
 VERIFY_RTOL = 1e-9
 
+#: The longest review JSON ``--verify`` reads [bytes]: the example review's is 124 kB; the bound keeps a device
+#: (``/dev/zero``) or a huge file from being read until the memory runs out.
+MAX_REVIEW_JSON_BYTES = 64 * 2**20
+
 
 def _numbers(review: dict) -> dict:
     """The numbers a re-run must reproduce, flattened: {"where": value}."""
@@ -67,14 +71,21 @@ def verify_review(json_path, *, jobs: int | None = None) -> dict:
     isolator.errors.ReviewError
         The JSON cannot be read or is not a review JSON.
     """
+    from isolator.atomic import read_regular_file
     from isolator.design import Design
     from isolator.errors import ReviewError
+    from isolator.io._common import input_file_problem
     from isolator.review.run import run_review
     from isolator.review.suite import load_suite
     from isolator.review.target import load_target
 
+    # a FIFO blocked for ever and /dev/zero was read until the memory ran out (15 GB in 4 min; session 24 sweep):
+    # a regular file only, read up to a bound
+    problem = input_file_problem(json_path)
+    if problem is not None:
+        raise ReviewError(f"{json_path}: cannot read the review JSON ({problem})")
     try:
-        saved = json.loads(Path(json_path).read_text(encoding="utf-8"))
+        saved = json.loads(read_regular_file(json_path, MAX_REVIEW_JSON_BYTES).decode("utf-8"))
     except (OSError, ValueError, RecursionError) as err:  # RecursionError: arrays nested 100,000 deep (s17)
         raise ReviewError(f"{json_path}: cannot read the review JSON ({err})") from None
     if not isinstance(saved, dict) or not {"inputs", "run", "checks"} <= set(saved):
