@@ -312,17 +312,67 @@ def slide_along_rims(xdot, b, u, mu_s, mu_f, a, *, rtol=1e-13):
         f"{math.hypot(res[0], res[1]):.3g} m/s)")
 
 
+def slide_derivatives(b, u, r, psi, bmat, mu_s, mu_f, a, *, sliding=None):
+    """The derivatives of the slide's force r and rates ψ (:func:`slide_along_rims`'s root) with respect to the
+    surfaces' angles θ_q on their rims (u_q = d_q (cos θ_q, sin θ_q)) and the mass's velocity Ẋ, within the sliding
+    set of the root given (ψ_i ≠ 0; the held ones stay at ψ = 0) — the implicit function theorem on the forward
+    law's saddle system (h221).  Over the sliding set S (each in its sense σ_i, m_i(ψ) = σ_i µ_i(σ_i ψ)):
+
+        F_i = (r − b_i)·t_i − m_i(ψ_i) = 0 (i ∈ S),   G = Σ_{i∈S} ψ_i t_i − Ẋ = 0,   b = B u,
+
+    K = ∂(F, G)/∂(ψ_S, r) = [−diag m', T; Tᵀ, 0] (T the sliding tangents as rows; m' = a (µ_f − µ_s) e^(−a|ψ|), the
+    reciprocal of the inverse law's slope ψ' — the 2 × 2 Schur complement Tᵀ diag(ψ') T = Σ ψ' t tᵀ is h216's
+    matrix, but the saddle form stays well conditioned where ψ' ~ 1/(a (µ_f − |s|)) has outgrown the rounding), and
+    ∂F_i/∂θ_q = −B_iq d_q t_q·t_i − δ_iq (r − b_i)·e_i, ∂G/∂θ_q = −ψ_q e_q, ∂G/∂Ẋ = −I, ∂F/∂Ẋ = 0 (∂t_q/∂θ_q = −e_q,
+    ∂u_q/∂θ_q = d_q t_q).  Returns (dr [2 × (n + 2)], dψ [n × (n + 2)]), the columns θ_1..θ_n, Ẋ_x, Ẋ_y.
+    ``sliding`` [n, bool] overrides the set (default ψ ≠ 0): a held surface named in it enters at its onset slope
+    m' = a (µ_f − µ_s) with ψ = 0 — the one-sided derivative toward its start (the implicit step's Jacobian where
+    fewer than two slide, e.g. Ẋ along one rim's tangent, where the two-sided one does not exist).
+    Raises :class:`~isolator.errors.SolverError` where K is singular (fewer than two sliding tangents apart)."""
+    u = np.asarray(u, dtype=float)
+    b = np.asarray(b, dtype=float)
+    r = np.asarray(r, dtype=float)
+    psi = np.asarray(psi, dtype=float)
+    e, t = rim_frames(u)
+    cap = np.hypot(u[:, 0], u[:, 1])
+    n = len(cap)
+    slide = np.flatnonzero(psi != 0.0 if sliding is None else np.asarray(sliding, dtype=bool))
+    ns = len(slide)
+    ts = t[slide]
+    slope = a[slide] * (mu_f[slide] - mu_s[slide]) * np.exp(-a[slide] * np.abs(psi[slide]))
+    kmat = np.zeros((ns + 2, ns + 2))
+    kmat[:ns, :ns] = -np.diag(slope)
+    kmat[:ns, ns:] = ts
+    kmat[ns:, :ns] = ts.T
+    rhs = np.zeros((ns + 2, n + 2))
+    # ∂F_i/∂θ_q: the restoring terms turn with every surface's angle, the tangent with its own
+    rhs[:ns, :n] = -np.asarray(bmat, dtype=float)[slide] * cap[None, :] * (ts @ t.T)
+    rhs[np.arange(ns), slide] -= np.einsum("ij,ij->i", r[None, :] - b[slide], e[slide])
+    rhs[ns:, :n] = -(psi[:, None] * e).T
+    rhs[ns:, n:] = -np.eye(2)
+    if ns < 2 or not abs(np.linalg.det(ts.T @ ts)) > ALIGNED_SINE ** 2:
+        raise SolverError(
+            f"the slide's derivatives need two sliding tangents apart ({ns} sliding): the saddle system is singular")
+    sol = np.linalg.solve(kmat, -rhs)
+    dpsi = np.zeros((n, n + 2))
+    dpsi[slide] = sol[:ns]
+    return sol[ns:], dpsi
+
+
 #: Where :func:`close_along_rims` stops before the alignment: 1 − |X|/Σ d* (the gap closes linearly in time while the
 #: angle between the rims closes as its square root; the friction work left is ~ µ g × that angle, ≤ 1e-6 rad here)
 ALIGNED_GAP = 1e-12
 
+
+#: The implicit methods of :func:`close_along_rims` (scipy's, with :func:`slide_derivatives`'s Jacobian, h221)
+IMPLICIT = ("Radau", "BDF")
 
 #: Bound on the segments of :func:`close_along_rims` (each ends at a located change of the sliding set)
 MAX_SEGMENTS = 10_000
 
 
 def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, ax, ay, t_end, *, rtol=1e-10,
-                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS):
+                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS, method="DOP853"):
     """The mass carried by surfaces that are all on their rims, the rims apart: integrated to the alignment (h199).
 
     State: each surface's angle θ_i on its rim (u_i = d_i (cos θ_i, sin θ_i), d_i = |u_i| at the start) and Ẋ;
@@ -345,6 +395,9 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     located crossings of a dead zone's edge).
     """
     from scipy.integrate import solve_ivp
+
+    if method not in IMPLICIT + ("DOP853",):
+        raise SolverError(f"the closing along the rims has no method {method!r} (DOP853, Radau or BDF)")
 
     u = np.asarray(u, dtype=float)
     cap = np.hypot(u[:, 0], u[:, 1])
@@ -391,6 +444,26 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
         out[n + 4] = c * float(v @ v)
         return out
 
+    def jacobian(time_now, z):
+        uu, e, t, b, r, psi = force(z)
+        sliding = psi != 0.0
+        dr, dpsi = slide_derivatives(b, uu, r, psi, bmat, mu_s, mu_f, a,
+                                     sliding=sliding if np.count_nonzero(sliding) >= 2 else np.ones(n, dtype=bool))
+        v = z[n:n + 2]
+        jac = np.zeros((n + 5, n + 5))
+        jac[:n, :n + 2] = dpsi / cap[:, None]
+        jac[n:n + 2, :n + 2] = -g * dr
+        jac[n:n + 2, n:n + 2] -= c * np.eye(2)
+        jac[n + 2, n:n + 2] = -np.array([np.interp(time_now, times, ax), np.interp(time_now, times, ay)])
+        # the friction power g Σ_i (r − b_i)·w_i, w = S (ψ t): through r, b = B u, ψ and the tangents
+        w = smat @ (psi[:, None] * t)
+        h = smat.T @ (r[None, :] - b)
+        power = np.sum(w, axis=0) @ dr + np.einsum("j,jp->p", np.einsum("ij,ij->i", h, t), dpsi)
+        power[:n] -= cap * np.einsum("ij,ij->i", t, bmat.T @ w) + psi * np.einsum("ij,ij->i", h, e)
+        jac[n + 3, :n + 2] = g * power
+        jac[n + 4, n:n + 2] = 2.0 * c * v
+        return jac
+
     def aligned(_, z):
         x = np.sum(frame(z[:n])[0], axis=0)
         return (total - math.hypot(x[0], x[1])) / total - gap_end
@@ -421,8 +494,9 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     time_now, reason, changes = float(t0), "end", 0
     for _ in range(max_segments):
         edges = [edge(i, 1 if held[i] else -1) for i in range(n)]
-        sol = solve_ivp(rate, (time_now, float(t_end)), z, method="DOP853", rtol=rtol, atol=1e-2 * rtol,
-                        events=(aligned, leaves, rest, *edges))
+        extra = {"jac": jacobian} if method in IMPLICIT else {}
+        sol = solve_ivp(rate, (time_now, float(t_end)), z, method=method, rtol=rtol, atol=1e-2 * rtol,
+                        events=(aligned, leaves, rest, *edges), **extra)
         if sol.status < 0:
             raise SolverError(f"the closing along the rims was not integrated from t = {time_now:.6g} s: "
                               f"{sol.message}")

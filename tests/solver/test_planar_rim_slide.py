@@ -177,3 +177,46 @@ def test_the_closing_along_the_rims_balances_its_energy():
     assert out["set_changes"] == 1
     assert out["friction"] > 5e-5 and abs(out["balance"]) < 1e-10 * out["input"]
     assert out["largest_held"] <= 1.0 and np.allclose(np.hypot(out["u"][:, 0], out["u"][:, 1]), caps, rtol=1e-14)
+    # h221: the implicit step (Radau with slide_derivatives' Jacobian, 72 forces against DOP853's 148) on the same
+    # closing: the same located change and end to its own error at rtol 1e-6 (measured: u 3.7e-12 m, Ẋ 2.7e-10 m/s,
+    # friction 6.5e-8 relative; its balance 4.5e-12 of 1.0e-4 J/kg — Radau's error, not DOP853's)
+    imp = planar_rim_slide.close_along_rims(
+        0.0, xdot, on_rims(ang, caps), bmat, smat, rbar, MU_S, MU_F, A, 9.80665, 0.3, np.array([0.0, 1.0]),
+        np.array([0.5, 0.5]), np.array([-0.5, -0.5]), 0.0005, rtol=1e-6, method="Radau")
+    assert imp["reason"] == "end" and imp["set_changes"] == 1 and abs(imp["balance"]) < 1e-6 * imp["input"]
+    assert np.max(np.abs(imp["u"] - out["u"])) < 1e-10 and np.max(np.abs(imp["xdot"] - out["xdot"])) < 1e-8
+    assert abs(imp["friction"] - out["friction"]) < 1e-6 * out["friction"]
+
+
+def test_the_slide_derivatives_match_finite_differences():
+    """h221: the implicit step's Jacobian — the derivatives of r and ψ in the rims' angles and Ẋ from the forward
+    law's saddle system — against central differences of the numpy root (h = 1e-9: within the set, the difference's
+    error ~h² plus the rounding of the root × 1/h), on h199's three-sliding state (surfaces 1 and 3 at µ_fast to
+    rounding, dψ/dθ ~ 1.5e5 m/s per rad: the slide's stiffness) and a two-sliding one (ψ from the tangents alone).
+    Measured: 1.3e-6 (three) of the largest entry."""
+    worst = []
+    bmat, _, _, caps = lower_bound_tfp_maps()
+    states = [(np.array([0.5001731855354982, 0.6199205030288358, 0.5788464920912926, 0.6445]),
+               np.array([0.02649932293741722, 0.367698050361364])),
+              (np.array([0.50, 0.62, 0.58, 0.6445]),
+               0.3 * np.array([-math.sin(0.5), math.cos(0.5)]) - 0.02 * np.array([math.cos(0.55), math.sin(0.55)]))]
+    for ang, xdot in states:
+        u = on_rims(ang, caps)
+        r, psi, _, _ = slide_along_rims(xdot, bmat @ u, u, MU_S, MU_F, A)
+        dr, dpsi = planar_rim_slide.slide_derivatives(bmat @ u, u, r, psi, bmat, MU_S, MU_F, A)
+        h = 1e-9
+        for q in range(6):
+            ends = []
+            for sign in (1.0, -1.0):
+                aa, xx = ang.copy(), xdot.copy()
+                if q < 4:
+                    aa[q] += sign * h
+                else:
+                    xx[q - 4] += sign * h
+                uu = on_rims(aa, caps)
+                rr, pp, _, _ = slide_along_rims(xx, bmat @ uu, uu, MU_S, MU_F, A)
+                ends.append((rr, pp))
+            worst.append((np.max(np.abs((ends[0][0] - ends[1][0]) / (2 * h) - dr[:, q])) / (1.0 + np.max(np.abs(dr))),
+                          np.max(np.abs((ends[0][1] - ends[1][1]) / (2 * h) - dpsi[:, q])) / np.max(np.abs(dpsi))))
+        assert np.all(dpsi[psi == 0.0] == 0.0)
+    assert np.max(worst) < 1e-5
