@@ -329,10 +329,7 @@ def slide_derivatives(b, u, r, psi, bmat, mu_s, mu_f, a, *, sliding=None):
     m' = a (µ_f − µ_s) with ψ = 0 — the one-sided derivative toward its start (the implicit step's Jacobian where
     fewer than two slide, e.g. Ẋ along one rim's tangent, where the two-sided one does not exist).
     Raises :class:`~isolator.errors.SolverError` where K is singular (fewer than two sliding tangents apart)."""
-    u = np.asarray(u, dtype=float)
-    b = np.asarray(b, dtype=float)
-    r = np.asarray(r, dtype=float)
-    psi = np.asarray(psi, dtype=float)
+    u, b, r, psi = (np.asarray(x, dtype=float) for x in (u, b, r, psi))
     e, t = rim_frames(u)
     cap = np.hypot(u[:, 0], u[:, 1])
     n = len(cap)
@@ -382,9 +379,7 @@ def saturated_slide(xdot, b, u, bmat, member, sense, mu_s, mu_f, a, *, floor=0.0
     stages and difference Jacobians see the continuation.  Returns (r [2], ψ [n], the lines' residual).  Raises
     :class:`~isolator.errors.SolverError` where a non-member is past µ_fast at r (floor 0) or the system is
     singular."""
-    u = np.asarray(u, dtype=float)
-    b = np.asarray(b, dtype=float)
-    bmat = np.asarray(bmat, dtype=float)
+    u, b, bmat = (np.asarray(x, dtype=float) for x in (u, b, bmat))
     e, t = rim_frames(u)
     cap = np.hypot(u[:, 0], u[:, 1])
     n = len(cap)
