@@ -329,10 +329,7 @@ def slide_derivatives(b, u, r, psi, bmat, mu_s, mu_f, a, *, sliding=None):
     m' = a (µ_f − µ_s) with ψ = 0 — the one-sided derivative toward its start (the implicit step's Jacobian where
     fewer than two slide, e.g. Ẋ along one rim's tangent, where the two-sided one does not exist).
     Raises :class:`~isolator.errors.SolverError` where K is singular (fewer than two sliding tangents apart)."""
-    u = np.asarray(u, dtype=float)
-    b = np.asarray(b, dtype=float)
-    r = np.asarray(r, dtype=float)
-    psi = np.asarray(psi, dtype=float)
+    u, b, r, psi = (np.asarray(x, dtype=float) for x in (u, b, r, psi))
     e, t = rim_frames(u)
     cap = np.hypot(u[:, 0], u[:, 1])
     n = len(cap)
@@ -359,6 +356,61 @@ def slide_derivatives(b, u, r, psi, bmat, mu_s, mu_f, a, *, sliding=None):
     return sol[ns:], dpsi
 
 
+#: The deficit µ_fast − |s| below which a sliding surface counts as at µ_fast (:func:`saturated_slide`, h221): µ(v) =
+#: µ_f − (µ_f − µ_s) e^(−a v) resolves v only while the deficit is above the rounding of µ (~4e-18 at µ_f = 0.02);
+#: with three or more surfaces there, the split of their rates is beyond the law's resolution
+SATURATED_GAP = 1e-12
+
+
+def saturated_slide(xdot, b, u, bmat, member, sense, mu_s, mu_f, a, *, floor=0.0):
+    """The slide along the rims with the surfaces ``member`` (k ≥ 3) at µ_fast taken exactly, (r − b_i)·t_i =
+    σ_i µ_f,i (``sense`` σ_i, in the order of the members) — h221, the limit that :func:`slide_along_rims` cannot
+    resolve: with k ≥ 3 such lines for the 2 unknowns of r, their concurrence is a constraint on the rims' angles
+    (a sliding mode: on either side of it the law's root swaps which surface is a hair below µ_fast, ~1e-25 apart in
+    the angles), and the rates are its multipliers.  r is the lines' least-squares point (exact on the constraint;
+    the residual returned is the drift); the other surfaces slide by their own law at r (held in their dead zones);
+    the members' rates solve Σ ψ_j t_j = Ẋ and the hidden constraints' time derivatives, Σ_i w_i d/dt[(r − b_i)·t_i]
+    = 0 for each w in the null space of the members' tangents (Σ w_i t_i = 0, so ṙ drops out):
+
+        Σ_i w_i [Σ_q B_iq (t_q·t_i) ψ_q + ((r − b_i)·e_i / d_i) ψ_i] = 0          (ḃ_i = Σ_q B_iq ψ_q t_q, θ̇_i = ψ_i/d_i)
+
+    ``floor`` > 0 continues a non-member's law past its domain (its deficit µ_f − |s| taken as at least ``floor``):
+    :func:`close_along_rims` stops where a deficit reaches a gap ≫ floor (the surface joins), so only its trial
+    stages and difference Jacobians see the continuation.  Returns (r [2], ψ [n], the lines' residual).  Raises
+    :class:`~isolator.errors.SolverError` where a non-member is past µ_fast at r (floor 0) or the system is
+    singular."""
+    u, b, bmat = (np.asarray(x, dtype=float) for x in (u, b, bmat))
+    e, t = rim_frames(u)
+    cap = np.hypot(u[:, 0], u[:, 1])
+    n = len(cap)
+    fset = np.flatnonzero(np.asarray(member, dtype=bool))
+    rest_set = np.setdiff1d(np.arange(n), fset)
+    if len(fset) < 3:
+        raise SolverError(f"the saturated slide needs three or more surfaces at µ_fast ({len(fset)} given)")
+    tf = t[fset]
+    lines = np.einsum("ij,ij->i", b[fset], tf) + np.asarray(sense, dtype=float) * mu_f[fset]
+    r = np.linalg.lstsq(tf, lines, rcond=None)[0]
+    residual = float(np.max(np.abs(tf @ r - lines)))
+    s = np.einsum("ij,ij->i", r[None, :] - b, t)
+    psi = np.zeros(n)
+    for q in rest_set:
+        x = abs(s[q])
+        if not (x < mu_f[q] or floor > 0.0):
+            raise SolverError(f"the saturated slide leaves surface {q + 1} past its µ_fast ({x:.6g} ≥ {mu_f[q]:.6g})")
+        if x > mu_s[q]:
+            psi[q] = math.copysign(math.log((mu_f[q] - mu_s[q]) / max(mu_f[q] - x, floor)) / a[q], s[q])
+    null = np.linalg.svd(tf.T)[2][2:]  # (k − 2) × k: Σ_i w_i t_i = 0
+    hidden = -(null @ (bmat[fset] * (tf @ t.T)))
+    hidden[:, fset] -= null * (np.einsum("ij,ij->i", r[None, :] - b[fset], e[fset]) / cap[fset])[None, :]
+    system = np.vstack((tf.T, hidden[:, fset]))
+    rhs = np.concatenate((np.asarray(xdot, dtype=float) - t.T @ psi, -hidden @ psi))
+    try:
+        psi[fset] = np.linalg.solve(system, rhs)
+    except np.linalg.LinAlgError as exc:
+        raise SolverError("the saturated slide's rates are singular (the members' tangents do not span)") from exc
+    return r, psi, residual
+
+
 #: Where :func:`close_along_rims` stops before the alignment: 1 − |X|/Σ d* (the gap closes linearly in time while the
 #: angle between the rims closes as its square root; the friction work left is ~ µ g × that angle, ≤ 1e-6 rad here)
 ALIGNED_GAP = 1e-12
@@ -372,7 +424,7 @@ MAX_SEGMENTS = 10_000
 
 
 def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, ax, ay, t_end, *, rtol=1e-10,
-                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS, method="DOP853"):
+                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS, method="DOP853", saturated_gap=SATURATED_GAP):
     """The mass carried by surfaces that are all on their rims, the rims apart: integrated to the alignment (h199).
 
     State: each surface's angle θ_i on its rim (u_i = d_i (cos θ_i, sin θ_i), d_i = |u_i| at the start) and Ẋ;
@@ -393,6 +445,16 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     surface met: ≥ ~37 means µ = µ_fast to rounding, the constant-µ law), ``largest_held`` (the largest
     |(r − b_i)·t_i|/µ_slow,i of a held surface: ≤ 1), ``forces`` (the force evaluations) and ``set_changes`` (the
     located crossings of a dead zone's edge).
+
+    ``method`` "Radau" or "BDF" (h221): the segments of the law's root are stepped implicitly with
+    :func:`slide_derivatives`' Jacobian, and the saturated mode is taken: where three or more sliding surfaces' lines
+    (r − b_i)·t_i = σ_i µ_f,i meet within ``saturated_gap`` (an event), the slide goes on by :func:`saturated_slide`
+    (DOP853: its rates are set by the geometry, not stiff) until a member's deficit (µ_f − µ_s) e^(−a|ψ|) would
+    exceed the gap (it leaves the set; with fewer than three the law's root again), another surface's deficit falls
+    to the gap (it joins), or a dead zone's edge; the dict then also holds ``saturated_segments``, ``drift`` (the
+    largest lines' residual at a saturated segment's end: the constraint's drift), ``set_exits`` (members dropped at
+    a segment's start, their rate below the resolution or against their sense) and ``modes`` (each segment's start
+    and its saturated members, numbered from 1; () for the law's root).
     """
     from scipy.integrate import solve_ivp
 
@@ -404,7 +466,10 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     n = len(cap)
     total = float(np.sum(cap))
     rbar = np.asarray(rbar, dtype=float)
-    log = {"forces": 0, "least_saturation": math.inf, "largest_held": 0.0}
+    log = {"forces": 0, "least_saturation": math.inf, "largest_held": 0.0, "saturated_segments": 0, "drift": 0.0,
+           "set_exits": 0, "modes": []}
+    mode = {"set": None, "sense": None}  # the saturated mode's members and senses (None: the law's root)
+    level = np.log((mu_f - mu_s) / saturated_gap)  # a|ψ| at which the deficit (µ_f − µ_s) e^(−a|ψ|) is the gap
 
     def frame(theta):
         e = np.column_stack((np.cos(theta), np.sin(theta)))
@@ -418,7 +483,11 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
             return last[key]
         uu, e, t = frame(z[:n])
         b = bmat @ uu
-        r, psi, _, _ = slide_along_rims(z[n:n + 2], b, uu, mu_s, mu_f, a)
+        if mode["set"] is None:
+            r, psi, _, _ = slide_along_rims(z[n:n + 2], b, uu, mu_s, mu_f, a)
+        else:
+            r, psi, _ = saturated_slide(z[n:n + 2], b, uu, bmat, mode["set"], mode["sense"], mu_s, mu_f, a,
+                                        floor=1e-3 * saturated_gap)
         log["forces"] += 1
         last.clear()
         last[key] = (uu, e, t, b, r, psi)
@@ -483,7 +552,34 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
         crossing.direction = direction
         return crossing
 
-    for event in (aligned, leaves, rest):
+    def lines_residual(z, member, sense):
+        uu, _, t = frame(z[:n])
+        tf = t[member]
+        lines = np.einsum("ij,ij->i", (bmat @ uu)[member], tf) + sense * mu_f[member]
+        return float(np.max(np.abs(tf @ np.linalg.lstsq(tf, lines, rcond=None)[0] - lines)))
+
+    def concurrent(_, z):
+        psi = force(z)[5]
+        if np.count_nonzero(psi) < 3:
+            return 1.0
+        return lines_residual(z, psi != 0.0, np.sign(psi[psi != 0.0])) - saturated_gap
+
+    def member_leaves(i, sense):
+        def deficit(_, z):
+            return a[i] * sense * force(z)[5][i] - level[i]
+        deficit.terminal = True
+        deficit.direction = -1
+        return deficit
+
+    def joins(i):
+        def deficit(_, z):
+            _, _, t, b, r, _ = force(z)
+            return mu_f[i] - abs(float((r - b[i]) @ t[i])) - saturated_gap
+        deficit.terminal = True
+        deficit.direction = -1
+        return deficit
+
+    for event in (aligned, leaves, rest, concurrent):
         event.terminal = True
         event.direction = -1
     z = np.concatenate((np.arctan2(u[:, 1], u[:, 0]), np.asarray(xdot, dtype=float), np.zeros(3)))
@@ -491,12 +587,79 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     _, _, t_start, b_start, r_start, _ = force(z)
     # held where inside the dead zone: its edge is met going out (+1), a sliding surface's going in (−1)
     held = np.abs(np.einsum("ij,ij->i", r_start[None, :] - b_start, t_start)) <= mu_s
-    time_now, reason, changes = float(t0), "end", 0
+    time_now, reason, changes, stalled = float(t0), "end", 0, 0
+    if method in IMPLICIT and concurrent(time_now, z) <= 0.0:  # handed over on the saturated mode's constraint
+        psi = force(z)[5]
+        mode["set"], mode["sense"] = psi != 0.0, np.sign(psi[psi != 0.0])
+        last.clear()
     for _ in range(max_segments):
         edges = [edge(i, 1 if held[i] else -1) for i in range(n)]
-        extra = {"jac": jacobian} if method in IMPLICIT else {}
+        if mode["set"] is not None:  # the saturated mode (h221): the implicit method, its Jacobian by differences
+            members = np.flatnonzero(mode["set"])
+            margin = a[members] * mode["sense"] * force(z)[5][members] - level[members]
+            if np.min(margin) <= 0.0:
+                # a member whose rate is below µ_fast's resolution or against its sense (met where a fourth line
+                # joins three concurrent ones, PTS at 12.29109 s): it leaves the set, its rate its own law's
+                worst = int(np.argmin(margin))
+                member = mode["set"].copy()
+                member[members[worst]] = False
+                last.clear()
+                log["set_exits"] += 1
+                if np.count_nonzero(member) >= 3:
+                    mode["set"], mode["sense"] = member, np.delete(mode["sense"], worst)
+                else:
+                    mode["set"] = mode["sense"] = None
+                    _, _, t_now, b_now, r_now, _ = force(z)
+                    held = np.abs(np.einsum("ij,ij->i", r_now[None, :] - b_now, t_now)) <= mu_s
+                continue
+            log["modes"].append((time_now, tuple(int(i) + 1 for i in members)))
+            quits = [member_leaves(i, sg) for i, sg in zip(members, mode["sense"], strict=True)]
+            others = [i for i in range(n) if not mode["set"][i]]
+            sol = solve_ivp(rate, (time_now, float(t_end)), z, method=method, rtol=rtol, atol=1e-2 * rtol,
+                            events=(aligned, leaves, rest, *quits, *[joins(i) for i in others],
+                                    *[edges[i] for i in others]))
+            if sol.status < 0:
+                raise SolverError(f"the saturated slide along the rims was not integrated from t = {time_now:.6g} "
+                                  f"s: {sol.message}")
+            stalled = stalled + 1 if float(sol.t[-1]) == time_now else 0
+            if stalled > 2 * n:
+                raise SolverError(f"the saturated set of the slide along the rims does not settle at t = "
+                                  f"{time_now:.9g} s: a surface joins and leaves it at the same instant (a tangency "
+                                  f"the set's rules do not resolve; met on PTS at rtol 1e-6)")
+            z, time_now = sol.y[:, -1], float(sol.t[-1])
+            log["saturated_segments"] += 1
+            log["drift"] = max(log["drift"], lines_residual(z, mode["set"], mode["sense"]))
+            if sol.status == 0:
+                break
+            hit = [k for k, hits in enumerate(sol.t_events) if len(hits)][0]
+            if hit < 3:
+                reason = ("aligned", "leaves", "rest")[hit]
+                break
+            hit -= 3
+            member, sense = mode["set"].copy(), list(mode["sense"])
+            if hit < len(members):
+                member[members[hit]] = False
+                del sense[hit]
+            elif hit < len(members) + len(others):
+                joined = others[hit - len(members)]
+                member[joined] = True
+                sense.insert(int(np.count_nonzero(member[:joined])), float(np.sign(force(z)[5][joined])))
+            else:
+                held[others[hit - len(members) - len(others)]] ^= True
+                changes += 1
+            last.clear()
+            if np.count_nonzero(member) >= 3:
+                mode["set"], mode["sense"] = member, np.array(sense)
+            else:
+                mode["set"] = mode["sense"] = None
+                _, _, t_now, b_now, r_now, _ = force(z)
+                held = np.abs(np.einsum("ij,ij->i", r_now[None, :] - b_now, t_now)) <= mu_s
+            continue
+        implicit = method in IMPLICIT
+        log["modes"].append((time_now, ()))
+        extra = {"jac": jacobian} if implicit else {}
         sol = solve_ivp(rate, (time_now, float(t_end)), z, method=method, rtol=rtol, atol=1e-2 * rtol,
-                        events=(aligned, leaves, rest, *edges), **extra)
+                        events=(aligned, leaves, rest, *edges, *((concurrent,) if implicit else ())), **extra)
         if sol.status < 0:
             raise SolverError(f"the closing along the rims was not integrated from t = {time_now:.6g} s: "
                               f"{sol.message}")
@@ -507,8 +670,14 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
         if hit[0] < 3:
             reason = ("aligned", "leaves", "rest")[hit[0]]
             break
+        if hit[0] == 3 + n:  # three or more lines at µ_fast concurrent within the gap: the saturated mode
+            psi = force(z)[5]
+            mode["set"], mode["sense"] = psi != 0.0, np.sign(psi[psi != 0.0])
+            last.clear()
+            continue
         for k in hit:
-            held[k - 3] = not held[k - 3]
+            if k < 3 + n:
+                held[k - 3] = not held[k - 3]
         changes += 1
     else:
         raise SolverError(f"the closing along the rims changed its sliding set more than {max_segments} times "

@@ -220,3 +220,62 @@ def test_the_slide_derivatives_match_finite_differences():
                           np.max(np.abs((ends[0][1] - ends[1][1]) / (2 * h) - dpsi[:, q])) / np.max(np.abs(dpsi))))
         assert np.all(dpsi[psi == 0.0] == 0.0)
     assert np.max(worst) < 1e-5
+
+
+def concurrence(ang, caps, bmat, members, sense):
+    """The signed concurrence C(θ) = −Σ_i w_i (b_i·t_i + σ_i µ_f,i) of three lines (r − b_i)·t_i = σ_i µ_f,i,
+    w = (t_2×t_3, t_3×t_1, t_1×t_2) (Σ w_i t_i = 0, so r drops out): 0 where they meet, computed here alone."""
+    t = np.column_stack((-np.sin(ang), np.cos(ang)))[members]
+    b = (bmat @ on_rims(ang, caps))[members]
+    def cross(p, q):
+        return p[0] * q[1] - p[1] * q[0]
+
+    w = np.array([cross(t[1], t[2]), cross(t[2], t[0]), cross(t[0], t[1])])
+    return -float(np.sum(w * (np.einsum("ij,ij->i", b, t) + sense * MU_F[members])))
+
+
+def test_the_saturated_mode_of_pts_slide_is_the_law_s_sliding_mode():
+    """h221: PTS's slide along the rims (the review's lower bound, 12.29005 s, 0.15 ms after "all on rims"):
+    surfaces 1, 2, 3 at µ_fast beyond the law's resolution, their lines concurrent — the law's root swaps which of
+    2 and 3 is a hair below µ_fast on either side (Radau's step collapsed here).  Independent truths: the law's
+    own roots (numpy) on either side of the constraint move toward it (a sliding mode) and the saturated rates lie
+    between them; the concurrence computed here alone is stationary along the saturated rates (to 1e-6 of its rate
+    along the law's); the force is the law's; then 1 ms integrated from there (rtol 1e-8, ~0.4 s CPU): the energy
+    balances, the constraint's drift stays below 1e-10, surface 4 leaves its dead zone at 0.806 ms (located)."""
+    bmat, smat, rbar, caps = lower_bound_tfp_maps()
+    ang = np.array([0.3494470994740643, 0.1970958857924142, 0.19958411314589533, 0.3425063447486146])
+    xdot = np.array([0.8638007303187606, 0.06333687617891821])
+    members, sense = np.array([0, 1, 2]), np.array([-1.0, 1.0, 1.0])
+    u = on_rims(ang, caps)
+    r_f, psi_f, residual = planar_rim_slide.saturated_slide(xdot, bmat @ u, u, bmat, [1, 1, 1, 0], sense, MU_S, MU_F, A)
+    assert residual < 1e-11 and np.all(sense * psi_f[:3] > 1.5) and psi_f[3] == 0.0
+    assert np.max(np.abs(t_of(ang).T @ psi_f - xdot)) < 1e-13
+
+    def drift_rate(psi, h=1e-9):  # dC/dt along θ̇ = ψ/d, by central differences
+        return (concurrence(ang + h * psi / caps, caps, bmat, members, sense)
+                - concurrence(ang - h * psi / caps, caps, bmat, members, sense)) / (2 * h)
+
+    sides = []
+    for shift in (-1e-10, 1e-10):  # surface 3's angle across the constraint: the law's own root on either side
+        a3 = ang.copy()
+        a3[2] += shift
+        us = on_rims(a3, caps)
+        r_s, psi_s, _, _ = slide_along_rims(xdot, bmat @ us, us, MU_S, MU_F, A)
+        sides.append((concurrence(a3, caps, bmat, members, sense), drift_rate(psi_s), psi_s))
+        assert np.max(np.abs(r_s - r_f)) < 1e-8
+    (c_a, rate_a, psi_a), (c_b, rate_b, psi_b) = sides
+    assert c_a * c_b < 0.0 and rate_a * c_a < 0.0 and rate_b * c_b < 0.0  # both sides move toward C = 0
+    alpha = (psi_f[1] - psi_b[1]) / (psi_a[1] - psi_b[1])
+    assert 0.0 < alpha < 1.0 and np.max(np.abs(psi_f - (psi_b + alpha * (psi_a - psi_b)))) < 1e-8
+    assert abs(drift_rate(psi_f)) < 1e-6 * min(abs(rate_a), abs(rate_b))
+    out = planar_rim_slide.close_along_rims(
+        0.0, xdot, u, bmat, smat, rbar, MU_S, MU_F, A, 9.80665, 0.0, np.array([0.0, 1.0]),
+        np.array([3.27, 3.27 - 29.1]), np.array([1.74, 1.74]), 0.001, rtol=1e-8, method="Radau")
+    assert out["reason"] == "end" and [m for _, m in out["modes"]] == [(1, 2, 3), (1, 2, 3)]
+    assert out["modes"][1][0] == pytest.approx(0.000806043, abs=1e-9) and out["set_changes"] == 1
+    assert abs(out["balance"]) < 1e-8 * out["friction"] and out["drift"] < 1e-10
+    assert np.allclose(np.hypot(out["u"][:, 0], out["u"][:, 1]), caps, rtol=1e-14)
+
+
+def t_of(ang):
+    return np.column_stack((-np.sin(ang), np.cos(ang)))
