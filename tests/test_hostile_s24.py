@@ -128,6 +128,21 @@ def test_a_suite_pair_with_an_empty_file_name_or_too_many_pairs_is_refused(tmp_p
     assert line.startswith("error: s.toml: 1,001 [[pair]] tables, more than a suite holds (1,000: "), line
 
 
+# ---- 2d. a batch grid of one value repeated
+
+def test_a_batch_grid_of_one_value_repeated_is_refused(tmp_path, monkeypatch):
+    """783294d: `batch --grid radius_m=2:2:3` ran three identical rows named `FPS [radius_m=2]` (exit 0, 9.6 s by
+    hand); `design --vary radius_m=2:2:3` refuses it."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "ds.toml").write_text('[[design]]\nname = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n')
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["batch", "x.AT2", "-d", "ds.toml", "-o", "t.csv", "--grid",
+                                                      "radius_m=2:2:3", "-j", "1", "--no-harmonic"]))
+    assert line == ("error: grid 'radius_m=2:2:3': START = STOP with COUNT > 1 gives the same value twice; "
+                    "check --grid"), line
+    assert not (tmp_path / "t.csv").exists()
+
+
 # ---- 3. two answers on one standard output
 
 def test_json_and_a_csv_on_standard_output_are_refused(tmp_path, monkeypatch):

@@ -71,7 +71,10 @@ def parse_grid(spec: str) -> tuple[str, list[float]]:
     if count > MAX_PLAN_ROWS:
         raise BatchError(f"grid {spec!r}: COUNT = {count} exceeds the largest batch, {MAX_PLAN_ROWS:,} rows "
                          "(split the sweep)", parameter="grid")
-    return key, [float(v) for v in np.linspace(start, stop, count)]
+    values = [float(v) for v in np.linspace(start, stop, count)]
+    if len(set(values)) != len(values):  # 2:2:3 ran three identical rows of one name, `design --vary`'s refusal
+        raise BatchError(f"grid {spec!r}: START = STOP with COUNT > 1 gives the same value twice", parameter="grid")
+    return key, values
 
 
 def load_design_mappings(path) -> list[dict]:
