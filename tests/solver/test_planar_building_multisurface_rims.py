@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pytest
 
+from isolator.solver.building_multisurface import simulate_building_bearing
 from isolator.solver.planar_building_multisurface import simulate_building_bearing_pair
 from isolator.solver.planar_multisurface_stepper import element_return
 from tests.solver.test_building import make_superstructure, real_segment
@@ -62,3 +63,29 @@ def test_a_double_with_an_intermediate_rim_answers_where_a_short_slip_on_its_rim
     # the mirror y → −y mirrors the answer
     mirror = simulate_building_bearing_pair(ax, -ay, dt, superstructure=s, bearing=b, total_mass_kg=7e5)
     assert np.max(np.abs(mirror.displacement_m * [1.0, -1.0] - out.displacement_m)) <= 1e-9 * out.peak_displacement_m
+
+
+def test_a_slab_at_rest_leaves_a_rim_inward_as_the_exact_1d_building():
+    # h220: the ground pushes the slab out (−0.2 g for 0.3 s) until the first group (R 2.5 m, µ 0.04) is on its rim,
+    # holds it there (−0.1 g: it sticks at 1.459 s), then eases at 0.4 g/s from 1.3 s, so the force the slab needs
+    # leaves that group's friction circle inward (1.494 s): the group leaves its rim from rest.  Its first slips are
+    # below the rounding of its rim test (~A h² ≪ 1e-12 c̄): taken as the one group carrying the mass along its rim,
+    # the velocity was turned onto the rim's tangent in every step (Christchurch CBGS's window at step_tol 1e-9 on
+    # IELC's case, 6.167 s); on 783294d this stopped with "more than 3000000 steps in one interval" at 1.50353 s.
+    # The truth: the exact 1-D building (an event-driven closed form), the second component 0
+    dt = 0.005
+    t = np.arange(0.0, 1.8 + dt / 2, dt)
+    g = 9.80665
+    acc = np.where(t < 0.3, -0.2 * g, -0.1 * g + 0.4 * g * np.clip(t - 1.3, 0.0, None))
+    s = make_superstructure([4e5], [3e8], 0.05)
+    b = bearing("double", [(2.5, 0.04, 0.3), (1.5, 0.07, 0.3)])
+    exact = simulate_building_bearing(acc, dt, superstructure=s, bearing=b, total_mass_kg=6e5, damping_Ns_per_m=5e4)
+    kinds = [exact.EVENT_NAMES[k] for k in exact.event_kind]
+    assert kinds[-2:] == ["stick", "breakaway"] and 1.45 < exact.event_time_s[-1] < 1.5
+    plane = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=s, bearing=b, total_mass_kg=6e5,
+                                           damping_Ns_per_m=5e4, step_tol=1e-8)
+    peak = exact.peak_displacement_m
+    assert exact.displacement_m[-1] < peak - 0.04  # it went back inward
+    # measured 1.66e-9 of the peak
+    assert np.max(np.abs(plane.displacement_m[:, 0] - exact.displacement_m)) <= 5e-9 * peak
+    assert np.max(np.abs(plane.displacement_m[:, 1])) <= 1e-12 * peak
