@@ -24,7 +24,9 @@ no impact is due.
 Not wired into the kernel (docs/multisurface.md, h192, h199): the kernel still takes the impact with the rims apart
 and the driver refuses it by name (``IMPACT_SPREAD_LIMIT``).  :func:`close_along_rims` integrates that closing from
 a given state in numpy (DOP853 on the rims' angles and Ẋ, its energy booked as the kernel books it): the reference
-the kernel's mode "all on rims" is to be held to.
+the kernel's mode "all on rims" is to be held to.  With ``method="Radau"`` (h221) it steps implicitly with
+:func:`slide_derivatives`' Jacobian and takes the law's sliding mode where three or more surfaces are at µ_fast
+beyond its resolution (:func:`saturated_slide`): PTS's slide then reaches the alignment (docs/multisurface.md, h221).
 """
 
 from __future__ import annotations
