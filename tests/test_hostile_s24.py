@@ -167,6 +167,21 @@ def test_a_one_bracket_table_where_double_brackets_are_read_says_so(tmp_path, mo
         assert assert_one_line_exit_2(RUNNER.invoke(app, args)) == words
 
 
+# ---- 2f. record flags given with a SUITE.toml
+
+def test_units_and_trim_given_with_a_suite_file_are_refused(tmp_path):
+    """783294d: `review -s SUITE.toml --units g` (or `--trim`, and `design`'s) dropped the flag without a word (the
+    SUITE.toml states its own) and ran the review (exit 0, 22 s by hand)."""
+    for command in (["review"], ["design", "--vary", "radius_m=2,3"]):
+        line = assert_one_line_exit_2(RUNNER.invoke(app, [*command, "-d", "data/example_design.toml", "-t", "example",
+                                                          "-s", "example", "-o", str(tmp_path / "r.pdf"), "--trim"]))
+        assert line.startswith("error: --trim serves record files and folders given to --suite, not a SUITE.toml"), line
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["review", "-d", "data/example_design.toml", "-t", "example",
+                                                      "-s", "example", "-o", str(tmp_path / "r.pdf"), "-u", "g",
+                                                      "--trim"]))
+    assert line.startswith("error: --units and --trim serve record files"), line
+
+
 # ---- 3. two answers on one standard output
 
 def test_json_and_a_csv_on_standard_output_are_refused(tmp_path, monkeypatch):
