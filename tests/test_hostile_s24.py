@@ -182,6 +182,18 @@ def test_units_and_trim_given_with_a_suite_file_are_refused(tmp_path):
     assert line.startswith("error: --units and --trim serve record files"), line
 
 
+# ---- 2g. a batch table named by its suffix alone
+
+def test_a_batch_table_named_by_its_suffix_alone_is_told_so(tmp_path, monkeypatch):
+    """783294d: `batch -o .csv` said `.csv: the table must end with .csv or .parquet` (session 23 fixed `-o .pdf`)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "ds.toml").write_text('[[design]]\nname = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n')
+    for name in (".csv", ".parquet"):
+        line = assert_one_line_exit_2(RUNNER.invoke(app, ["batch", "x.AT2", "-d", "ds.toml", "-o", name]))
+        assert line == f"error: {name}: names no file: give a name before {name} (e.g. table{name}); check --output"
+
+
 # ---- 3. two answers on one standard output
 
 def test_json_and_a_csv_on_standard_output_are_refused(tmp_path, monkeypatch):
