@@ -143,6 +143,57 @@ def test_a_batch_grid_of_one_value_repeated_is_refused(tmp_path, monkeypatch):
     assert not (tmp_path / "t.csv").exists()
 
 
+# ---- 2e. a table written with one bracket where an array of tables is read
+
+def test_a_one_bracket_table_where_double_brackets_are_read_says_so(tmp_path, monkeypatch):
+    """783294d: `[design]` said `expected a list of designs ([[design]] tables), found none`, `[pair]` `no [[pair]]
+    tables` and `[superstructure.floor]` `needs at least one [[superstructure.floor]] entry`: none said why."""
+    (tmp_path / "data").mkdir()
+    (tmp_path / "data" / "example_design.toml").write_text('name = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\n'
+                                                            'mu_static = 0.06\n')
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "ds.toml").write_text('[design]\nname = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n')
+    (tmp_path / "s.toml").write_text('[pair]\nname = "a"\nx = "x.AT2"\ny = "x.AT2"\n')
+    (tmp_path / "b.toml").write_text(BUILDING.replace("[[superstructure.floor]]", "[superstructure.floor]"))
+    for args, words in (
+            (["batch", "x.AT2", "-d", "ds.toml", "-o", "t.csv"], "error: ds.toml: 'design' is one table ([design]); "
+                                                                  "write each design as [[design]], double brackets"),
+            (["review", "-d", "data/example_design.toml", "-t", "example", "-s", "s.toml", "-o", "r.pdf"],
+             "error: s.toml: 'pair' is one table ([pair]); write each pair as [[pair]], double brackets"),
+            (["simulate", "x.AT2", "--design", "b.toml"],
+             "error: b.toml: [superstructure]: 'floor' is one table ([superstructure.floor]); write each floor as "
+             "[[superstructure.floor]], double brackets, bottom to top")):
+        assert assert_one_line_exit_2(RUNNER.invoke(app, args)) == words
+
+
+# ---- 2f. record flags given with a SUITE.toml
+
+def test_units_and_trim_given_with_a_suite_file_are_refused(tmp_path):
+    """783294d: `review -s SUITE.toml --units g` (or `--trim`, and `design`'s) dropped the flag without a word (the
+    SUITE.toml states its own) and ran the review (exit 0, 22 s by hand)."""
+    for command in (["review"], ["design", "--vary", "radius_m=2,3"]):
+        line = assert_one_line_exit_2(RUNNER.invoke(app, [*command, "-d", "data/example_design.toml", "-t", "example",
+                                                          "-s", "example", "-o", str(tmp_path / "r.pdf"), "--trim"]))
+        assert line.startswith("error: --trim serves record files and folders given to --suite, not a SUITE.toml"), line
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["review", "-d", "data/example_design.toml", "-t", "example",
+                                                      "-s", "example", "-o", str(tmp_path / "r.pdf"), "-u", "g",
+                                                      "--trim"]))
+    assert line.startswith("error: --units and --trim serve record files"), line
+
+
+# ---- 2g. a batch table named by its suffix alone
+
+def test_a_batch_table_named_by_its_suffix_alone_is_told_so(tmp_path, monkeypatch):
+    """783294d: `batch -o .csv` said `.csv: the table must end with .csv or .parquet` (session 23 fixed `-o .pdf`)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "x.AT2").write_text(SINE)
+    (tmp_path / "ds.toml").write_text('[[design]]\nname = "FPS"\nmass_kg = 1e6\nradius_m = 2.5\nmu_static = 0.06\n')
+    for name in (".csv", ".parquet"):
+        line = assert_one_line_exit_2(RUNNER.invoke(app, ["batch", "x.AT2", "-d", "ds.toml", "-o", name]))
+        assert line == f"error: {name}: names no file: give a name before {name} (e.g. table{name}); check --output"
+
+
 # ---- 3. two answers on one standard output
 
 def test_json_and_a_csv_on_standard_output_are_refused(tmp_path, monkeypatch):

@@ -91,6 +91,8 @@ def load_design_mappings(path) -> list[dict]:
     path = Path(path)
     content = load_toml(path, "designs file", BatchError)
     designs = content.get("design")
+    if isinstance(designs, dict):  # `[design]`, one bracket: "found none" (session 24 sweep)
+        raise BatchError(f"{path}: 'design' is one table ([design]); write each design as [[design]], double brackets")
     if not isinstance(designs, list) or not designs:
         raise BatchError(f"{path}: expected a list of designs ([[design]] tables), found none")
     outside = [key for key in content if key != "design"]

@@ -81,6 +81,9 @@ def run_batch(records, designs_file, output, *, grids=(), component: str | None 
     """
     clock = time.perf_counter()
     output = Path(output)
+    if output.name.lower() in (".csv", ".parquet"):  # to Python a hidden file of no suffix: "must end with .csv"
+        raise BatchError(f"{output}: names no file: give a name before {output.name} (e.g. table{output.name})",
+                         parameter="output")
     if output.suffix.lower() not in (".csv", ".parquet"):
         raise BatchError(f"{output}: the table must end with .csv or .parquet", parameter="output")
     outputs = [output, *(extra_outputs or ()), *([reports_dir] if reports_dir else [])]

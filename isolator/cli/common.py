@@ -262,6 +262,18 @@ def check_numba_threads_variable() -> None:
                    "or unset it for every core")
 
 
+def refuse_record_flags_for_a_suite_file(suite_args, units, trim) -> None:
+    """``--units`` and ``--trim`` serve records given to ``--suite`` (``review``, ``design``); a SUITE.toml states
+    its own (``units``, ``trim`` of the file or a pair), and with one they were dropped without a word (session 24
+    sweep)."""
+    suite_file = next((str(a) for a in suite_args if str(a).lower().endswith(".toml")), None)
+    given = [flag for flag, value in (("--units", units), ("--trim", trim)) if value]
+    if suite_file is not None and given:
+        user_error(f"{' and '.join(given)} {'serves' if len(given) == 1 else 'serve'} record files and folders given to --suite, not a SUITE.toml "
+                   f"({suite_file}), which states its own: write 'units = …' or 'trim = true' in it (for the suite "
+                   "or a pair)")
+
+
 #: Help texts of the record options, shared by every command that reads a record.
 RECORD_HELP = {
     "component": "Component to read from a multi-component file: channel code (HNE), its last "

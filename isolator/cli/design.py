@@ -14,6 +14,7 @@ from isolator.cli.common import (
     collector_skips_existing_objects,
     echo_table,
     parse_set,
+    refuse_record_flags_for_a_suite_file,
     say,
     write_error,
 )
@@ -141,6 +142,7 @@ def design(
         resolve(code, parameters)
         target_path = resolve_example("target", target)
         suite_args = [resolve_example("suite", s) for s in suite]
+        refuse_record_flags_for_a_suite_file(suite_args, units, trim)
         inputs = [isolator_file, target_path, *suite_args]
         check_outputs([str(p) for k, p in paths.items() if k != "store"], [p for p in inputs if Path(p).is_file()])
         _refuse_varying_replaced_keys(isolator_file, ranges)

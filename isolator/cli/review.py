@@ -6,7 +6,14 @@ from pathlib import Path
 
 import typer
 
-from isolator.cli.common import app, check_given_scale_factors, check_pdf_output, parse_set, say
+from isolator.cli.common import (
+    app,
+    check_given_scale_factors,
+    check_pdf_output,
+    parse_set,
+    refuse_record_flags_for_a_suite_file,
+    say,
+)
 from isolator.cli.common import user_error as _user_error
 
 
@@ -100,6 +107,7 @@ def review(
         the_target = load_target(resolve_example("target", target))
         suite_args = [resolve_example("suite", s) for s in suite]
         target_file = resolve_example("target", target)
+        refuse_record_flags_for_a_suite_file(suite_args, units, trim)
         refuse_review_over_inputs(output, no_cache, [design, target_file, *suite_args])
         the_suite = load_suite(suite_args, units=units, trim=trim)
         check_given_scale_factors(the_suite)

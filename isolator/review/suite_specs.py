@@ -98,6 +98,8 @@ def specs_from_toml(path) -> list[PairSpec]:
     if not isinstance(trim, bool):
         raise SuiteError(f"{path}: 'trim' must be true or false")
     pairs = mapping.get("pair")
+    if isinstance(pairs, dict):  # `[pair]`, one bracket: "no [[pair]] tables" (session 24 sweep)
+        raise SuiteError(f"{path}: 'pair' is one table ([pair]); write each pair as [[pair]], double brackets")
     if not isinstance(pairs, list) or not pairs:
         raise SuiteError(f"{path}: no [[pair]] tables")
     if len(pairs) > MAX_SUITE_PAIRS:
