@@ -87,6 +87,9 @@ class PlanarBuildingMultisurfaceResponse(BearingFields, PlanarBuildingResponse):
     EXTRA_SUMMARY_KEYS = PlanarBuildingResponse.EXTRA_SUMMARY_KEYS + BEARING_KEYS
 
     n_steps: int = 0
+    #: the steps accepted at the kernel's shortest length (H_MIN_FRACTION of the sample interval) with their error
+    #: estimate above the tolerance: not zero, the history's error is not held to ``step_tol`` there
+    n_steps_at_floor: int = 0
     step_tol: float = DEFAULT_STEP_TOL
     model: str = MODEL_NAME
     model_reason: str = ""
@@ -449,7 +452,7 @@ def simulate_building_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, 
         overturning_moment_Nm=moments, peak_resultants=peak_resultants,
         signed_max=sig_max.copy(), signed_min=sig_min.copy(),
         status=status, message="ok", solver_seconds=elapsed, bearing_layout=bearing_layout,
-        n_steps=int(summary[_pm.S_N_STEPS]), step_tol=float(step_tol),
+        n_steps=int(summary[_pm.S_N_STEPS]), n_steps_at_floor=int(summary[_pm.S_STEPS_MULTI]), step_tol=float(step_tol),
         impact_impulse_N_s=building.slab_mass_kg * bearing_fields["impact_impulse_m_s"],
         element_displacement_m=elements,
         model=MODEL_NAME + ("+vertical" if az is not None else ""), vertical_acceleration_m_s2=az,
