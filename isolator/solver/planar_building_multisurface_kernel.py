@@ -306,10 +306,12 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         cp = c / mu_h
         # the rigid block's rules for a restart below the rounding (be_step's ``block``): a group sliding inward off
         # its rim by less than the rounding of ū does not carry the mass (its velocity is not turned onto the rim's
-        # tangent), and a step without slip whose force is not held takes V = h A.  Without them a slab at rest
-        # leaving a rim inward lost its inward velocity in every step (Christchurch CBGS ×1.5 on IELC's case at
-        # step_tol 1e-9, 6.167 s: 3,000,000 steps in one interval; docs/building.md, h220's section)
-        mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout, 1.0, 1.0, ult, True)
+        # tangent), and a step without slip whose force is not held takes V = h A; and at the ultimate the velocity
+        # is turned onto its circle only when every group that slid slid along its rim (``leave``).  Without them a
+        # slab at rest leaving a rim, or the ultimate, inward lost its inward velocity in every step (Christchurch CBGS
+        # ×1.5 on IELC's case at step_tol 1e-9, 6.167 s: 3,000,000 steps in one interval; Chuetsu-oki 65025, 1.741 s:
+        # the work bound; docs/building.md, h220's section)
+        mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout, 1.0, 1.0, ult, True, True)
     else:
         # the floors differ along x and y: the slab's effective mass µ_d per direction, Ψ's metric diagonal
         gp = g

@@ -815,7 +815,8 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0, ult=-1)
 
 
 @njit(cache=True)
-def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0, ult=-1, block=False):
+def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0, ult=-1, block=False,
+            leave=False):
     """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout[:2], the evaluations
     of Ψ's gradient it took into rout[2].
 
@@ -830,6 +831,11 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     ``block``: the rigid block's steps (planar_multisurface_stepper; the building's calls leave it False): a step
     without slip whose p/g leaves a group's held set takes V = h A, and a group carries the mass only if its return
     slid along its rim (docs/multisurface.md, "A restart below the rounding").
+
+    ``leave``: held on the ultimate circle, the velocity is turned onto its tangent only when every group that slid
+    slid along its rim (its return on the rim, not inside it to a rounding of it): a group leaving its rim inward from
+    rest slips ~A h² ≪ RIM_ON c̄ and ends "on its rim", and turned, the inward velocity was lost in every step (the
+    building's steps set it: docs/building.md, h220's section; the rigid block's leave it False).
 
     Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
     set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
@@ -930,7 +936,8 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
         out[carry_slot(ng)] = k + 1.0
     else:
         out[carry_slot(ng)] = carried + 1.0
-    if ult == 1 and mask >> ng == (1 << ng) - 1 and (given or at_ultimate(out, rim)):
+    if (ult == 1 and mask >> ng == (1 << ng) - 1 and (given or at_ultimate(out, rim))
+            and not (leave and mask & ((1 << ng) - 1) & ~along)):
         # held on the ultimate circle from start to end: the velocity along the end's tangent, its magnitude kept
         s1, s2, sn = _groups_sum(out, ng)
         _velocity_along(out, -s2 / sn, s1 / sn)

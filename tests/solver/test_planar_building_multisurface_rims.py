@@ -73,19 +73,43 @@ def test_a_slab_at_rest_leaves_a_rim_inward_as_the_exact_1d_building():
     # the velocity was turned onto the rim's tangent in every step (Christchurch CBGS's window at step_tol 1e-9 on
     # IELC's case, 6.167 s); on 783294d this stopped with "more than 3000000 steps in one interval" at 1.50353 s.
     # The truth: the exact 1-D building (an event-driven closed form), the second component 0
-    dt = 0.005
-    t = np.arange(0.0, 1.8 + dt / 2, dt)
-    g = 9.80665
-    acc = np.where(t < 0.3, -0.2 * g, -0.1 * g + 0.4 * g * np.clip(t - 1.3, 0.0, None))
-    s = make_superstructure([4e5], [3e8], 0.05)
-    b = bearing("double", [(2.5, 0.04, 0.3), (1.5, 0.07, 0.3)])
-    exact = simulate_building_bearing(acc, dt, superstructure=s, bearing=b, total_mass_kg=6e5, damping_Ns_per_m=5e4)
+    exact, plane = _push_hold_ease(0.2, 0.3, 0.1, 1.8)
     kinds = [exact.EVENT_NAMES[k] for k in exact.event_kind]
     assert kinds[-2:] == ["stick", "breakaway"] and 1.45 < exact.event_time_s[-1] < 1.5
-    plane = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=s, bearing=b, total_mass_kg=6e5,
-                                           damping_Ns_per_m=5e4, step_tol=1e-8)
     peak = exact.peak_displacement_m
     assert exact.displacement_m[-1] < peak - 0.04  # it went back inward
     # measured 1.66e-9 of the peak
     assert np.max(np.abs(plane.displacement_m[:, 0] - exact.displacement_m)) <= 5e-9 * peak
     assert np.max(np.abs(plane.displacement_m[:, 1])) <= 1e-12 * peak
+
+
+def test_a_slab_held_at_the_ultimate_leaves_it_inward_as_the_exact_1d_building():
+    # h220: pushed harder (−0.3 g for 0.5 s) the slab reaches the double's ultimate (0.6 m, 0.787 s), the impact stops
+    # it there, and at 0.898 s (−0.16 g) the force it needs leaves the second group's friction circle inward: it
+    # leaves the ultimate from rest.  The velocity was turned onto the ultimate circle's tangent in every step while
+    # the groups' slips were below the rounding of their rim test (Chuetsu-oki 65025, Darfield GDLC, Superstition
+    # Hills PTS on IELC's case at step_tol 1e-9); on 783294d this stopped at the work bound at 0.898576 s
+    exact, plane = _push_hold_ease(0.3, 0.5, 0.16, 1.2)
+    kinds = [exact.EVENT_NAMES[k] for k in exact.event_kind]
+    assert "ultimate" in kinds and kinds[kinds.index("ultimate") + 1] == "breakaway"
+    peak = exact.peak_displacement_m
+    assert peak == pytest.approx(0.6, rel=1e-12)
+    # measured 8.5e-9 of the peak
+    assert np.max(np.abs(plane.displacement_m[:, 0] - exact.displacement_m)) <= 2e-8 * peak
+    assert np.max(np.abs(plane.displacement_m[:, 1])) <= 1e-12 * peak
+
+
+def _push_hold_ease(push_g, push_s, hold_g, end_s):
+    """The ground at −push_g g for push_s s, then −hold_g g, easing at 0.4 g/s from push_s + 1 s (0.005 s samples to
+    end_s); IELC's one-story building (h174's case) on the double along x: the exact 1-D building and the 2-D
+    model's answer at step_tol 1e-8."""
+    dt = 0.005
+    t = np.arange(0.0, end_s + dt / 2, dt)
+    g = 9.80665
+    acc = np.where(t < push_s, -push_g * g, -hold_g * g + 0.4 * g * np.clip(t - push_s - 1.0, 0.0, None))
+    s = make_superstructure([4e5], [3e8], 0.05)
+    b = bearing("double", [(2.5, 0.04, 0.3), (1.5, 0.07, 0.3)])
+    exact = simulate_building_bearing(acc, dt, superstructure=s, bearing=b, total_mass_kg=6e5, damping_Ns_per_m=5e4)
+    plane = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=s, bearing=b, total_mass_kg=6e5,
+                                           damping_Ns_per_m=5e4, step_tol=1e-8)
+    return exact, plane
