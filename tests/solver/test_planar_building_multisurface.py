@@ -279,7 +279,7 @@ def test_an_equal_friction_double_is_the_2d_building_on_one_pendulum_of_the_summ
 
 
 def test_stiff_floors_converge_to_the_rigid_block_on_the_bearing(records_dir):
-    ax, ay, dt = _pair_segment(records_dir, 7.0, 3.0)
+    ax, ay, dt = _pair_segment(records_dir, 7.0, 2.0)  # 7-9 s: regimes I, II as on 7-10 s, 0.70 of its CPU (h223)
     b = bearing("triple", TFP_SMALL)
     rigid = simulate_bearing_pair(ax, ay, dt, bearing=b, method="steps", step_tol=1e-8)
     distances = []
@@ -288,7 +288,8 @@ def test_stiff_floors_converge_to_the_rigid_block_on_the_bearing(records_dir):
         out = simulate_building_bearing_pair(ax, ay, dt, superstructure=s, bearing=b, total_mass_kg=1e6,
                                              step_tol=1e-8)
         distances.append(_rel(out.displacement_m, rigid.displacement_m))
-    # measured on 7-12 s at step_tol 1e-9: 1.3e-2, 3.0e-4, 9.9e-6 (the floors' share of the mass moves with the slab)
+    # measured on 7-9 s at step_tol 1e-8: 4.6e-2, 1.4e-3, 6.6e-5 (7-10 s: 2.9e-2, 9.1e-4, 3.0e-5; the floors' share of
+    # the mass moves with the slab)
     assert distances[0] > 1e-3
     assert distances[1] < distances[0] / 10.0 and distances[2] < distances[1] / 10.0
     assert distances[2] <= 1e-4
