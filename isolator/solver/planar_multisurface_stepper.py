@@ -828,7 +828,7 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     for the whole step and its two halves alike (planar_multisurface_stepper); -1 takes :func:`at_ultimate` of y,
     and the velocity is then turned onto the ultimate circle only when the end is aligned too.
 
-    ``block``: the rigid block's steps (planar_multisurface_stepper; the building's calls leave it False): a step
+    ``block``: the rigid block's steps and the building's isotropic ones (its anisotropic steps leave it False): a step
     without slip whose p/g leaves a group's held set takes V = h A, and a group carries the mass only if its return
     slid along its rim (docs/multisurface.md, "A restart below the rounding").
 
