@@ -501,26 +501,39 @@ def output_lock(path):
 
 
 def hold_interrupts():
-    """Hold SIGINT and SIGTERM back until :func:`release_interrupts`; the mask to restore (None: not held).
+    """Hold SIGINT and SIGTERM back until :func:`release_interrupts`: what to restore (None: not held).
 
     A report killed by SIGTERM just after creating its lock, before writing its holder into it, left
-    ``r.pdf.lock`` behind: the clean-up read an empty lock as someone else's (CI, 2026-11-29).  Held where POSIX
-    allows, in the main thread; elsewhere nothing is held.
+    ``r.pdf.lock`` behind: the clean-up read an empty lock as someone else's (CI, 2026-11-29).  Meanwhile the two
+    signals are only remembered by a handler of their own — Python runs every handler in the main thread, whichever
+    thread the system gave the signal to (a signal mask would hold it back in one thread only).  Outside the main
+    thread (where handlers cannot be set) nothing is held.
     """
     import signal
     import threading
 
-    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+    if threading.current_thread() is not threading.main_thread():
         return None
-    return signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+    pending: list[int] = []
+
+    def remember(signum, frame):
+        pending.append(signum)
+
+    return {number: signal.signal(number, remember) for number in (signal.SIGINT, signal.SIGTERM)}, pending
 
 
 def release_interrupts(held):
-    """Restore the mask :func:`hold_interrupts` returned (a held signal is delivered now); None always."""
+    """Restore the handlers :func:`hold_interrupts` replaced, then raise a signal it held to them; None always."""
     if held is not None:
         import signal
 
-        signal.pthread_sigmask(signal.SIG_SETMASK, held)
+        previous, pending = held
+        for number, handler in previous.items():
+            signal.signal(number, signal.SIG_DFL if handler is None else handler)
+        if pending:
+            number = pending[0]
+            pending.clear()  # raised once, even if this is called again from a clean-up
+            signal.raise_signal(number)
     return None
 
 
