@@ -70,6 +70,16 @@ def key_hint(key, valid, listed: str = "valid keys") -> str:
     return f" ({listed}: {', '.join(valid)})"
 
 
+def one_table_problem(value, table: str) -> str | None:
+    """What is wrong with an array of tables ``[[table]]`` written ``[table]``, one bracket (TOML then reads one
+    table): "found none" or "needs at least one entry" was said of it (session 24 sweep); None when ``value`` is not
+    one table.  ``table`` is the array's full name (``superstructure.floor``), its key the last part."""
+    if not isinstance(value, dict):
+        return None
+    key = table.rsplit(".", 1)[-1]
+    return f"'{key}' is one table ([{table}]); write each {key} as [[{table}]], double brackets"
+
+
 def printable(text) -> str:
     """``text`` with every character a terminal would act on shown as its escape (``\\x1b``, ``\\u202e``) [-].
 

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isolator.errors import DesignError, key_hint
+from isolator.errors import DesignError, key_hint, one_table_problem
 
 #: keys of the ``[superstructure]`` table
 SUPERSTRUCTURE_KEYS = {
@@ -415,9 +415,8 @@ def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, sourc
     if wrong is not None:  # floor = [1, 2] was told "needs at least one entry" (session 20 sweep)
         raise DesignError(f"{where}: key 'floor': entry {wrong} is {repr(entries[wrong - 1])[:60]}, not a table of "
                           "keys (each [[superstructure.floor]] holds mass_kg, story_height_m, stiffness_x_N_per_m)")
-    if isinstance(entries, dict):  # `[superstructure.floor]`, one bracket: "needs at least one" (session 24 sweep)
-        raise DesignError(f"{where}: 'floor' is one table ([superstructure.floor]); write each floor as "
-                          "[[superstructure.floor]], double brackets, bottom to top")
+    if (problem := one_table_problem(entries, "superstructure.floor")) is not None:
+        raise DesignError(f"{where}: {problem}, bottom to top")
     if not isinstance(entries, list) or not entries:
         raise DesignError(f"{where}: needs at least one [[superstructure.floor]] entry (mass_kg, story_height_m, "
                           "stiffness_x_N_per_m)")

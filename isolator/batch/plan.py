@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from isolator.batch.store import ROW_SCHEMA
-from isolator.errors import BatchError, one_line
+from isolator.errors import BatchError, one_line, one_table_problem
 
 # file discovery lives with the records (isolator.motion.files); its names stay importable from the batch
 from isolator.motion.components import label_is_vertical as is_vertical  # noqa: F401
@@ -91,8 +91,8 @@ def load_design_mappings(path) -> list[dict]:
     path = Path(path)
     content = load_toml(path, "designs file", BatchError)
     designs = content.get("design")
-    if isinstance(designs, dict):  # `[design]`, one bracket: "found none" (session 24 sweep)
-        raise BatchError(f"{path}: 'design' is one table ([design]); write each design as [[design]], double brackets")
+    if (problem := one_table_problem(designs, "design")) is not None:
+        raise BatchError(f"{path}: {problem}")
     if not isinstance(designs, list) or not designs:
         raise BatchError(f"{path}: expected a list of designs ([[design]] tables), found none")
     outside = [key for key in content if key != "design"]

@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from isolator.errors import SuiteError, key_hint
+from isolator.errors import SuiteError, key_hint, one_table_problem
 
 SUITE_KEYS = {"units", "trim", "pair", "name", "description"}
 METADATA_KEYS = ("magnitude", "distance_km", "mechanism", "vs30_m_s", "pulse")
@@ -98,8 +98,8 @@ def specs_from_toml(path) -> list[PairSpec]:
     if not isinstance(trim, bool):
         raise SuiteError(f"{path}: 'trim' must be true or false")
     pairs = mapping.get("pair")
-    if isinstance(pairs, dict):  # `[pair]`, one bracket: "no [[pair]] tables" (session 24 sweep)
-        raise SuiteError(f"{path}: 'pair' is one table ([pair]); write each pair as [[pair]], double brackets")
+    if (problem := one_table_problem(pairs, "pair")) is not None:
+        raise SuiteError(f"{path}: {problem}")
     if not isinstance(pairs, list) or not pairs:
         raise SuiteError(f"{path}: no [[pair]] tables")
     if len(pairs) > MAX_SUITE_PAIRS:
