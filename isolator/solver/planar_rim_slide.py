@@ -584,16 +584,33 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     for event in (aligned, leaves, rest, concurrent):
         event.terminal = True
         event.direction = -1
+    def held_at(z):
+        """Each surface inside its dead zone at z: its edge is met going out (+1), a sliding surface's going in (−1)."""
+        _, _, t, b, r, _ = force(z)
+        return np.abs(np.einsum("ij,ij->i", r[None, :] - b, t)) <= mu_s
+
+    def switch(member, sense, z):
+        """The saturated mode on ``member`` (three or more, in the ``sense`` given), else the law's root again (the
+        held set read afresh at z)."""
+        nonlocal held
+        last.clear()
+        if np.count_nonzero(member) >= 3:
+            mode["set"], mode["sense"] = member, np.asarray(sense, dtype=float)
+        else:
+            mode["set"] = mode["sense"] = None
+            held = held_at(z)
+
+    def saturate(z):
+        """The saturated mode on the surfaces sliding at z (three or more: the ``concurrent`` event)."""
+        psi = force(z)[5]
+        switch(psi != 0.0, np.sign(psi[psi != 0.0]), z)
+
     z = np.concatenate((np.arctan2(u[:, 1], u[:, 0]), np.asarray(xdot, dtype=float), np.zeros(3)))
     z0 = z.copy()
-    _, _, t_start, b_start, r_start, _ = force(z)
-    # held where inside the dead zone: its edge is met going out (+1), a sliding surface's going in (−1)
-    held = np.abs(np.einsum("ij,ij->i", r_start[None, :] - b_start, t_start)) <= mu_s
+    held = held_at(z)
     time_now, reason, changes, stalled = float(t0), "end", 0, 0
     if method in IMPLICIT and concurrent(time_now, z) <= 0.0:  # handed over on the saturated mode's constraint
-        psi = force(z)[5]
-        mode["set"], mode["sense"] = psi != 0.0, np.sign(psi[psi != 0.0])
-        last.clear()
+        saturate(z)
     for _ in range(max_segments):
         edges = [edge(i, 1 if held[i] else -1) for i in range(n)]
         if mode["set"] is not None:  # the saturated mode (h221): the implicit method, its Jacobian by differences
@@ -605,14 +622,8 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
                 worst = int(np.argmin(margin))
                 member = mode["set"].copy()
                 member[members[worst]] = False
-                last.clear()
                 log["set_exits"] += 1
-                if np.count_nonzero(member) >= 3:
-                    mode["set"], mode["sense"] = member, np.delete(mode["sense"], worst)
-                else:
-                    mode["set"] = mode["sense"] = None
-                    _, _, t_now, b_now, r_now, _ = force(z)
-                    held = np.abs(np.einsum("ij,ij->i", r_now[None, :] - b_now, t_now)) <= mu_s
+                switch(member, np.delete(mode["sense"], worst), z)
                 continue
             log["modes"].append((time_now, tuple(int(i) + 1 for i in members)))
             quits = [member_leaves(i, sg) for i, sg in zip(members, mode["sense"], strict=True)]
@@ -649,13 +660,7 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
             else:
                 held[others[hit - len(members) - len(others)]] ^= True
                 changes += 1
-            last.clear()
-            if np.count_nonzero(member) >= 3:
-                mode["set"], mode["sense"] = member, np.array(sense)
-            else:
-                mode["set"] = mode["sense"] = None
-                _, _, t_now, b_now, r_now, _ = force(z)
-                held = np.abs(np.einsum("ij,ij->i", r_now[None, :] - b_now, t_now)) <= mu_s
+            switch(member, sense, z)
             continue
         implicit = method in IMPLICIT
         log["modes"].append((time_now, ()))
@@ -673,9 +678,7 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
             reason = ("aligned", "leaves", "rest")[hit[0]]
             break
         if hit[0] == 3 + n:  # three or more lines at µ_fast concurrent within the gap: the saturated mode
-            psi = force(z)[5]
-            mode["set"], mode["sense"] = psi != 0.0, np.sign(psi[psi != 0.0])
-            last.clear()
+            saturate(z)
             continue
         for k in hit:
             if k < 3 + n:
