@@ -158,6 +158,7 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
                     "y = the farthest bearing (the bearing layout)" if "layout" in r["torsion"]["basis"]
                     else "y = half the plan dimension (assumed)")
                  + f", P_T = {fmt(r['torsion'].get('P_T'))}"
+                 + p_t_floor_said(r["torsion"])
                  + f" → D_TM/D_M = {fmt(r['torsion']['factor'])}")
     if r["torsion"].get("code") == "en15129":  # EN 1998-1 10.9.6's δ_i, not ASCE's D_TM/D_M
         plan_text = f"largest δ_i = {fmt(r['torsion']['factor'])}: {r['torsion']['basis']}"
@@ -180,6 +181,13 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
     if d.get("damping_Ns_per_m"):
         lines.insert(3, ("Damper", f"γ = {fmt(d['damping_Ns_per_m'] / 1e3)} kN·s/m (ratio {fmt(d['damping_ratio'])})"))
     return lines
+
+
+def p_t_floor_said(torsion: dict) -> str:
+    """" (the floor P_T_min; 0.2918 from the design)" when the design's P_T is below the floor that was used."""
+    raw, used = torsion.get("P_T_raw"), torsion.get("P_T")
+    return (f" (the floor P_T_min; {fmt(raw)} from the design)" if raw is not None and used is not None and raw < used
+            else "")
 
 
 def bound_friction(r: dict, bound: str) -> str:

@@ -250,7 +250,11 @@ def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) 
     layout = layout or {}
     b, d = plan["b_m"], plan["d_m"]
     p_t_source = "given" if "P_T" in plan else ("the bearing layout" if "P_T" in layout else "assumed")
-    p_t = max(plan.get("P_T", layout.get("P_T", params["P_T_min"])), params["P_T_min"])
+    p_t_raw = plan.get("P_T", layout.get("P_T", params["P_T_min"]))
+    p_t = max(p_t_raw, params["P_T_min"])
+    # a P_T below the floor said "P_T = 1 (the bearing layout)": the layout gave 0.29, the floor P_T_min was used
+    p_t_said = (f"P_T = {p_t:.4g} ({p_t_source})" if p_t_raw >= params["P_T_min"] else
+                f"P_T = {p_t:.4g} (P_T_min; {p_t_source}: {p_t_raw:.4g})")
     factors = []
     # perpendicular b (along x): loading along y, y measured along x; perpendicular d: loading along x
     for perpendicular, layout_y in ((b, layout.get("y_for_loading_y_m")), (d, layout.get("y_for_loading_x_m"))):
@@ -259,8 +263,8 @@ def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) 
         factors.append(torsion_amplification(y, e, p_t, b, d))
     raw = max(factors)
     y_source = "given" if "y_m" in plan else ("the bearing layout" if "y_for_loading_x_m" in layout else "assumed")
-    return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t,
-            "basis": f"Eq. 17.5-3 with b = {b:g} m, d = {d:g} m, P_T = {p_t:.4g} ({p_t_source})"
+    return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t, "P_T_raw": p_t_raw,
+            "basis": f"Eq. 17.5-3 with b = {b:g} m, d = {d:g} m, {p_t_said}"
                      + {"given": "",
                         "the bearing layout": ", y = the farthest bearing perpendicular to the loading (the bearing "
                                               "layout)",
