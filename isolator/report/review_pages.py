@@ -236,14 +236,28 @@ def _structure_lines(r: dict) -> list[tuple[str, str]]:
             lines.append(("Floors (suite)", "drift ratio per story " + ", ".join(fmt(v) for v in s["story_drift_ratio"])
                           + "; peak acceleration per floor " + ", ".join(fmt(v) for v in
                                                                         s["floor_peak_acceleration_m_s2"]) + " m/s²"))
-    layout = d.get("bearing_position")
-    if layout:
-        lines.append(("Bearings", f"{len(layout['x_m'])} positions"
-                      + ("" if layout.get("axial_capacity_N") is None else ", with axial capacities")
-                      + (f"; least suite load {fmt(min(s['bearing_axial_load_min_N']) / 1e3)} kN, largest "
-                         f"{fmt(max(s['bearing_axial_load_max_N']) / 1e3)} kN" if s.get("bearing_axial_load_min_N")
-                         else "")))
+    if d.get("bearing_position"):
+        lines.append(("Bearings", bearings_text(r)))
     return lines
+
+
+def bearings_text(r: dict) -> str:
+    """Page 1's bearing line: the layout, and the suite's least and largest axial loads — unfactored, and under the
+    2.3.6 combinations the `uplift` and `vertical_load_stability` rows check (their values), each said as such."""
+    layout, s = r["design"]["bearing_position"], r.get("structure") or {}
+    text = f"{len(layout['x_m'])} positions" + ("" if layout.get("axial_capacity_N") is None
+                                                 else ", with axial capacities")
+    if not s.get("bearing_axial_load_min_N"):
+        return text
+    # it printed the unfactored loads alone, beside rows whose values are the factored ones (session 25: "least
+    # suite load −1817 kN" on page 1, `uplift` −3.47e6 N in the checks)
+    text += (f"; least suite load {fmt(min(s['bearing_axial_load_min_N']) / 1e3)} kN, largest "
+             f"{fmt(max(s['bearing_axial_load_max_N']) / 1e3)} kN (unfactored)")
+    factored = s.get("factored_bearing_loads")
+    if factored:
+        text += (f"; factored by 2.3.6 [U] as the rows say: least {fmt(min(factored['min_N']) / 1e3)} kN (uplift), "
+                 f"largest {fmt(max(factored['max_N']) / 1e3)} kN (vertical_load_stability)")
+    return text
 
 
 def _target_text(t: dict) -> str:

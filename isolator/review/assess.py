@@ -503,10 +503,14 @@ def _asce_checks(review, values: dict, designs: dict) -> list:
     reached = C.ultimate_reached(review.analyses)
     rows[-1] = C.never_pass_at_ultimate(rows[-1], reached)
     rows += C.record_capacity(review.analyses, cap, mass_kg=design.mass_kg, torsion_factor=_corner_factor(review))
+    # the floor is f_disp × D'_TM (Eq. 17.6-1) with a superstructure: it said "0.8 D_TM ELF" whichever it was
+    floor_said = ("D'_TM ELF (Eq. 17.6-1)" if review.design_values["elf_floor_basis"]["key"] == "D_TM_prime_m"
+                  else "D_TM ELF")
     d_tm_row = C.never_pass_at_ultimate(
         C.at_most("D_TM_capacity", "ASCE 7-22 17.5.3.3 / 17.6.4.1", d_tm["value"], cap,
                   f"max(RHA D_M × {review.design_values['torsion']['factor']:.4g} (torsion: "
-                  f"{_torsion_said(review)}), {p['f_disp']:g} D_TM ELF); {d_tm['governs']} governs", "m"), reached)
+                  f"{_torsion_said(review)}) = {d_tm['rha_m']:.4g} m, {p['f_disp']:g} {floor_said} = "
+                  f"{d_tm['elf_floor_m']:.4g} m); {d_tm['governs']} governs", "m"), reached)
     beyond = [b for b in ("lower", "upper") if elf[b].get("beyond_ultimate")]
     if beyond and d_tm_row["status"] != C.FAIL:
         d_tm_row = {**d_tm_row, "status": C.FAIL, "note": d_tm_row["note"] + f"; the ELF demand of the "

@@ -16,6 +16,7 @@ import time
 import numpy as np
 
 from isolator.errors import ReviewError
+from isolator.review.assess import incomplete_analyses
 
 # ---- shared spectra and analyses --------------------------------------------------------------
 
@@ -90,6 +91,9 @@ def candidate_row(review, values: dict) -> dict:
     checks = r["checks"]
     status = check_statuses(checks)
     failing = [c["id"] for c in checks if c["status"] == "fail"]
+    # a review over part of the suite (an analysis failed or its solver flagged it) has no failing row where its
+    # rows would pass — they are 'not checked' (assess.no_pass_on_part) — and it 'passed' and could be recommended
+    incomplete = incomplete_analyses(review.analyses)
     by_id = {c["id"]: c for c in checks if "pair" not in c}  # the design-level rows (not per analysis)
     restoring = by_id.get("restoring_force") or by_id.get("restoring_capability") or {}
     r_value, r_limit = restoring.get("value"), restoring.get("limit")
@@ -108,8 +112,8 @@ def candidate_row(review, values: dict) -> dict:
     row = {
         **values,
         "error": None,
-        "passes": not failing,
-        "first_failing_check": failing[0] if failing else None,
+        "passes": not failing and not incomplete,
+        "first_failing_check": failing[0] if failing else ("incomplete_analyses" if incomplete else None),
         "n_failing_checks": len(failing),
         "n_not_checked": sum(c["status"] == "not checked" for c in checks),
         **design_columns(design),

@@ -224,6 +224,19 @@ def _assert_building_rows(r, *, n_stories, n_bearings, ws, r_i, mu_static, capac
     assert next(p for p in out["parameters"] if p["name"] == "Ws_over_W")["source"].startswith("design: ")
 
 
+def test_d_tm_capacity_says_the_floor_it_used(building_review):
+    """With a superstructure the 17.6.4.1 floor is f_disp × D'_TM (Eq. 17.6-1); D_TM_capacity said "0.8 D_TM ELF" and
+    no number (h227: on c765efa the note lacks "D'_TM ELF (Eq. 17.6-1) = "). The floor by hand from the ELF values:
+    0.8 × max over the bounds of D_M/√(1 + (T/T_M)²) × the torsion factor."""
+    elf, torsion = building_review.elf, building_review.design_values["torsion"]["factor"]
+    t = building_review.structure["T_fixed_s"]
+    floor = 0.8 * max(elf[b]["D_M_m"] / math.sqrt(1.0 + (t / elf[b]["T_M_s"]) ** 2) * torsion for b in ("lower", "upper"))
+    row = next(r for r in building_review.checks if r["id"] == "D_TM_capacity")
+    assert f"0.8 D'_TM ELF (Eq. 17.6-1) = {floor:.4g} m" in row["note"]
+    rha = building_review.design_values["envelope"]["D_M_rha_m"] * torsion
+    assert f"= {rha:.4g} m, 0.8 D'_TM" in row["note"] and row["value"] == pytest.approx(max(rha, floor), rel=1e-12)
+
+
 def test_rows_fail_when_the_numbers_say_so():
     """The check functions on hand-made numbers: tension is uplift, a load above the capacity fails, a drift above
     0.020 h fails, the larger of the 17.6.4.2 floor and the 17.5.4.3 limits governs."""
