@@ -143,9 +143,7 @@ def review(
         return
     counts = out["check_counts"]
     typer.echo(f"review   {output} ({out['pdf_pages']} pages), numbers in {Path(output).with_suffix('.json')}")
-    typer.echo(f"pairs    {len(out['suite']['pairs'])} read, {len(out['suite']['failed'])} failed to read; scale "
-               f"factors {min(out['scale_factors'].values()):.4g}–{max(out['scale_factors'].values()):.4g} ({scaling}), "
-               f"range {out['period_range_s'][0]:.4g}–{out['period_range_s'][1]:.4g} s")
+    typer.echo(pairs_line(out, scaling))
     for failure in out["suite"]["failed"]:
         typer.echo(f"failed   {failure['name']}: {failure['error']}")
     n_run, broken = failed_analyses(out)
@@ -161,6 +159,16 @@ def review(
         typer.echo(f"{c['status']:<12} {c['id']:<{width}}  {value} vs {limit} {c['unit']}  [{c['clause']}]{where}")
     typer.echo(f"checks   {counts['pass']} pass, {counts['fail']} fail, {counts['not checked']} not checked")
 
+
+
+def pairs_line(out: dict, scaling: str | None) -> str:
+    """The console's ``pairs`` line of a review's JSON: read and failed, the factors and how they were formed (the
+    JSON's ``run.scaling_basis``: a matched suite is never rescaled, whatever ``--scaling`` said — the line said
+    "(common)" for it), the period range."""
+    factors = out["scale_factors"].values()
+    return (f"pairs    {len(out['suite']['pairs'])} read, {len(out['suite']['failed'])} failed to read; scale factors "
+            f"{min(factors):.4g}–{max(factors):.4g} ({out.get('run', {}).get('scaling_basis') or scaling}), range "
+            f"{out['period_range_s'][0]:.4g}–{out['period_range_s'][1]:.4g} s")
 
 
 def review_cache_dir(output) -> Path:

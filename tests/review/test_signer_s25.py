@@ -96,3 +96,18 @@ def test_a_candidate_reviewed_over_part_of_the_suite_does_not_pass(inputs, tmp_p
     row = candidate_row(review, {})
     assert [c["id"] for c in review.checks if c["status"] == "fail"] == []
     assert row["passes"] is False and row["first_failing_check"] == "incomplete_analyses"
+
+
+
+def test_the_console_names_how_the_factors_were_formed_for_a_matched_suite():
+    """A suite of spectrally matched pairs is never rescaled (factor 1, the 110 % rule): the console said "scale
+    factors 1–1 (common)" — the --scaling default — while the JSON's run.scaling_basis said "matched" (the example
+    suite marked matched, /tmp/h227/out/matched.json, 07:13 UTC).  On c765efa ``pairs_line`` does not exist."""
+    from isolator.cli.review import pairs_line
+
+    out = {"suite": {"pairs": [{}] * 8, "failed": []}, "scale_factors": {"a": 1.0, "b": 1.0},
+           "period_range_s": [2.152, 4.365], "run": {"scaling_basis": "matched"}}
+    assert pairs_line(out, "common") == ("pairs    8 read, 0 failed to read; scale factors 1–1 (matched), "
+                                         "range 2.152–4.365 s")
+    del out["run"]  # a JSON without the run record: the argument
+    assert "(common)" in pairs_line(out, "common")
