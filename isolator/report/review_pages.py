@@ -184,8 +184,11 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
 
 
 def p_t_floor_said(torsion: dict) -> str:
-    """" (the floor P_T_min; 0.2918 from the design)" when the design's P_T is below the floor that was used."""
+    """" (the floor P_T_min; 0.2918 from the design)" when the design's P_T is below the floor that was used, and
+    " (assumed: …)" when the design gives no P_T (Eq. 17.5-3 then takes the floor)."""
     raw, used = torsion.get("P_T_raw"), torsion.get("P_T")
+    if used is not None and f"P_T = {used:.4g} (assumed)" in torsion.get("basis", ""):  # the row notes say so; page 1
+        return " (assumed: the design gives neither P_T nor a bearing layout; the floor P_T_min [U])"  # did not
     return (f" (the floor P_T_min; {fmt(raw)} from the design)" if raw is not None and used is not None and raw < used
             else "")
 

@@ -45,6 +45,11 @@ def test_the_summary_plan_line_says_when_the_floor_replaced_the_design_s_p_t():
     assert p_t_floor_said({"P_T": 1.0, "P_T_raw": 0.2918}) == " (the floor P_T_min; 0.2918 from the design)"
     assert p_t_floor_said({"P_T": 1.167, "P_T_raw": 1.167}) == ""
     assert p_t_floor_said({"P_T": 1.15}) == ""  # a JSON written before the raw value was kept
+    # the example triple (y given, no P_T, no layout): page 1 said "P_T = 1" where the rows said "(assumed)"
+    params = P.resolve("asce7-22", {})
+    assumed = asce7_22.torsion_factor({"b_m": 40.0, "d_m": 25.0, "eccentricity_m": 0.5, "y_m": 20.0}, params, {})
+    assert "P_T = 1 (assumed)" in assumed["basis"]
+    assert p_t_floor_said(assumed).startswith(" (assumed: the design gives neither P_T nor a bearing layout")
 
 
 def test_page_one_says_its_bearing_loads_are_unfactored_and_gives_the_rows_factored_ones():
