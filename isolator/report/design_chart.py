@@ -136,7 +136,9 @@ def _legend(fig, colours, y: float) -> None:
 def _chart_page(summary: dict, data: dict):
     fig = figures.new_figure(figsize=A4_IN)
     fig.text(0.05, 0.975, "Design search: the trade-off", fontsize=13, weight="bold", va="top")
-    fig.text(0.95, 0.952, summary["subtitle"][:110], fontsize=7.5, va="top", ha="right", color="0.35")
+    # the subtitle was cut at 110 characters and the summary's values at 60, and still ran off the page (session 25)
+    for k, text in enumerate(textwrap.wrap(summary["subtitle"], 120)[:2]):
+        fig.text(0.95, 0.952 - k * 0.011, text, fontsize=7.5, va="top", ha="right", color="0.35")
     colours = state_colours(["pass", *data["state"].ravel().tolist(), *(p[2] for p in data["paper"])])
     two_d = data["y_key"] is not None and data["x"].size >= 2 and data["y"].size >= 2
     panel = _contour_panel if two_d else _line_panel
@@ -147,13 +149,28 @@ def _chart_page(summary: dict, data: dict):
     _legend(fig, colours, 0.555)
     ax3 = fig.add_axes([0.08, 0.1, 0.38, 0.32])
     _paper_panel(ax3, data, colours)
-    y = 0.42
-    for name, value in summary["lines"]:
-        fig.text(0.52, y, name, fontsize=7.6, weight="bold", va="top")
-        fig.text(0.66, y, textwrap.shorten(str(value), 60), fontsize=7.6, va="top")
-        y -= 0.017
+    _summary_lines(fig, summary["lines"])
     fig.text(0.05, 0.012, textwrap.fill(chart_caption(data), 150), fontsize=6.8, va="bottom", color="0.15")
     return fig
+
+
+def _summary_lines(fig, lines: list, top: float = 0.42, bottom: float = 0.075) -> None:
+    """The (name, value) rows beside the paper's panel, each wrapped within its column (names at 18 characters of
+    bold 7.6 pt, values at 40), down to ``bottom``; rows that do not fit are counted on a last line (the table has
+    them)."""
+    step, y = 0.0132, top
+    for n, (name, value) in enumerate(lines):
+        names = textwrap.wrap(str(name), 18, break_long_words=True) or [""]
+        values = textwrap.wrap(" ".join(str(value).split()), 40, break_long_words=True) or [""]
+        height = step * max(len(names), len(values))
+        if y - height < bottom + step and n < len(lines) - 1:
+            fig.text(0.50, y, f"… {len(lines) - n} more rows: the table's columns", fontsize=7.6, va="top")
+            return
+        for k, text in enumerate(names):
+            fig.text(0.50, y - k * step, text, fontsize=7.6, weight="bold", va="top")
+        for k, text in enumerate(values):
+            fig.text(0.655, y - k * step, text, fontsize=7.6, va="top")
+        y -= height + 0.004
 
 
 def chart_caption(data: dict) -> str:

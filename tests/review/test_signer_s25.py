@@ -116,3 +116,52 @@ def test_the_console_names_how_the_factors_were_formed_for_a_matched_suite():
                                          "range 2.152–4.365 s")
     del out["run"]  # a JSON without the run record: the argument
     assert "(common)" in pairs_line(out, "common")
+
+
+def test_the_design_chart_keeps_every_text_on_the_page(tmp_path, monkeypatch):
+    """The chart page cut the subtitle at 110 characters and each summary value at 60 ("µs 0.07, µk 0.06, no damper:
+    η = 0; the same for eve…" ran past the page's right edge; "base_shear_coefficient" overprinted its value) —
+    `isolator design --isolator data/example_design.toml --vary radius_m=4.0,4.5 --vary mu_kinetic=0.06,0.09`,
+    07:09 UTC.  Every text artist of both pages must lie inside the page and no two summary texts overlap.  On c765efa
+    the value column's right end is at 1.13 of the page width."""
+    import numpy as np
+
+    from isolator.report import design_chart, figures
+
+    made = []
+    real = figures.new_figure
+
+    def keep(*args, **kwargs):
+        made.append(real(*args, **kwargs))
+        return made[-1]
+
+    monkeypatch.setattr(figures, "new_figure", keep)
+    data = {"x_key": "radius_m", "y_key": "mu_kinetic", "x": np.array([4.0, 4.5]), "y": np.array([0.06, 0.09]),
+            "fixed": {}, "candidate": np.array([[0, 2], [1, 3]]),
+            "design_total_displacement_m": np.array([[0.887, 0.882], [0.711, 0.727]]),
+            "base_shear_coefficient": np.array([[0.220, 0.203], [0.241, 0.232]]),
+            "passes": np.ones((2, 2), bool), "state": np.full((2, 2), "pass", dtype=object),
+            "recommended": (4.5, 0.06), "recommended_candidate": 2, "paper": [], "objective": "base_shear",
+            "paper_regimes": [], "isolated": "a rigid block on one surface", "paper_map": None}
+    lines = [("objective", "base_shear: least design base-shear coefficient V_b/W (response history, envelope)"),
+             ("candidates", "4 (4 pass, 0 not analysed)"), ("code, scaling", "asce7-22, common"),
+             ("recommended", "radius_m = 4.5, mu_kinetic = 0.06"), ("base_shear_coefficient", "0.2031"),
+             ("D_M, D_TM", "0.6945 m, 0.8818 m"), ("V_b/W", "0.2031 (upper bound)"),
+             ("paper's map", "µs 0.07, µk 0.06, no damper: η = 0; the same for every candidate")]
+    subtitle = ("FPS R = 4.0 m, mu_s = 0.07, mu_k = 0.06, capacity 2.0 m (example design search) | example MCE_R "
+                "(S_MS 1.5 g, S_M1 0.9 g, T_L 8 s) | /work/wt/h227/isolator/data/suites/example/suite.toml")
+    design_chart.write_design_chart(tmp_path / "c.pdf", data, {"subtitle": subtitle, "lines": lines}, [], ["candidate"])
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    page = made[0]
+    renderer = FigureCanvasAgg(page).get_renderer()
+    box = page.bbox
+    texts = [t for t in page.texts if t.get_text()]
+    for t in texts:
+        e = t.get_window_extent(renderer)
+        assert box.x0 - 0.5 <= e.x0 and e.x1 <= box.x1 + 0.5, (t.get_text(), e.x1 / box.x1)
+    said = " ".join(t.get_text() for t in texts)
+    assert "same for every candidate" in said and "T_L 8 s)" in said  # nothing cut
+    summary = [t.get_window_extent(renderer) for t in texts if 0.05 < t.get_position()[1] < 0.43]
+    overlaps = [(a, b) for i, a in enumerate(summary) for b in summary[i + 1:] if a.overlaps(b)]
+    assert not overlaps
