@@ -123,7 +123,7 @@ def test_the_design_chart_keeps_every_text_on_the_page(tmp_path, monkeypatch):
     η = 0; the same for eve…" ran past the page's right edge; "base_shear_coefficient" overprinted its value) —
     `isolator design --isolator data/example_design.toml --vary radius_m=4.0,4.5 --vary mu_kinetic=0.06,0.09`,
     07:09 UTC.  Every text artist of both pages must lie inside the page and no two summary texts overlap.  On c765efa
-    the value column's right end is at 1.13 of the page width."""
+    the objective's value ends at 1.064 of the page width."""
     import numpy as np
 
     from isolator.report import design_chart, figures
