@@ -165,3 +165,18 @@ def test_the_design_chart_keeps_every_text_on_the_page(tmp_path, monkeypatch):
     summary = [t.get_window_extent(renderer) for t in texts if 0.05 < t.get_position()[1] < 0.43]
     overlaps = [(a, b) for i, a in enumerate(summary) for b in summary[i + 1:] if a.overlaps(b)]
     assert not overlaps
+
+
+def test_the_wind_row_names_a_triple_s_breakaway_for_what_it_is():
+    """With `wind_shear_over_W` given, a triple's wind row said "lower-bound breakaway friction µs" — its limit is the
+    backbone at rest (λ_min × its smallest µ_i: 0.765 × 0.02 = 0.0153 on the example triple), as the row without wind
+    already said.  On c765efa the note has no "backbone at rest"."""
+    params = P.resolve("asce7-22", {"wind_shear_over_W": 0.01})
+    rows = asce7_22.requirement_rows({}, params, mu_static_lower=0.765 * 0.02, mu_static_upper=0.15,
+                                     mu_static_nominal=0.1, multisurface=True)
+    row = next(r for r in rows if r["id"] == "wind_restraint")
+    assert row["status"] == "pass" and row["limit"] == pytest.approx(0.0153, rel=1e-15)
+    assert "breakaway force / W (the bearing's backbone at rest: its smallest µ_i) = 0.0153" in row["note"]
+    single = asce7_22.requirement_rows({}, params, mu_static_lower=0.0459, mu_static_upper=0.089,
+                                       mu_static_nominal=0.06)
+    assert "lower-bound breakaway µs = 0.0459" in next(r for r in single if r["id"] == "wind_restraint")["note"]

@@ -453,9 +453,10 @@ def requirement_rows(elf: dict, params: dict, *, mu_static_lower: float, mu_stat
                             "needs the design wind base shear / W (parameter wind_shear_over_W); the isolation system "
                             f"must not slide under wind: lower-bound breakaway {breakaway} = {mu_static_lower:.4g}", "V/W"))
     else:
+        # it said "breakaway friction µs" on a double or triple too, whose limit is the backbone at rest (its smallest µ_i)
         rows.append(C.at_most("wind_restraint", "ASCE 7-22 17.2.4.2", wind, mu_static_lower,
-                              "design wind base shear / W ≤ lower-bound breakaway friction µs (no sliding under wind; "
-                              "friction as the wind restraint, a reading of the clause)", "V/W"))
+                              f"design wind base shear / W ≤ lower-bound breakaway {breakaway} = {mu_static_lower:.4g} "
+                              "(no sliding under wind; friction as the wind restraint, a reading of the clause)", "V/W"))
     rows.append(C.check("fire_resistance", "ASCE 7-22 17.2.4.3", C.NOT_CHECKED, note="the isolation system's fire "
                         "rating is not an input of the review"))
     rows.append(C.check("displacement_restraint", "ASCE 7-22 17.2.4.5", C.NOT_CHECKED,
