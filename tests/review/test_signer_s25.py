@@ -180,3 +180,21 @@ def test_the_wind_row_names_a_triple_s_breakaway_for_what_it_is():
     single = asce7_22.requirement_rows({}, params, mu_static_lower=0.0459, mu_static_upper=0.089,
                                        mu_static_nominal=0.06)
     assert "lower-bound breakaway µs = 0.0459" in next(r for r in single if r["id"] == "wind_restraint")["note"]
+
+
+def test_a_matched_suite_s_spectrum_row_cites_the_matching_clause(inputs, tmp_path):
+    """A spectrally matched suite is held to 16.2.3.3's 110 % (limit 1.1), but its row cited "ASCE 7-22 17.3.3 /
+    16.2.3.2" — the amplitude-scaling clause whose floor is 100 % (the example suite marked matched, /tmp/h227/out/
+    matched.json).  Three short pairs marked matched; on c765efa the clause ends "16.2.3.2"."""
+    from isolator.design import Design
+    from isolator.review.run import run_review
+    from isolator.review.suite import load_suite
+    from isolator.review.target import two_period_target
+
+    body = (inputs / "suite.toml").read_text().replace('y = "', 'matched = true\ny = "')
+    (tmp_path / "suite.toml").write_text(body)
+    review = run_review(Design.from_toml(inputs / "design.toml"), two_period_target(1.5, 0.9, 8.0),
+                        load_suite(tmp_path / "suite.toml"), jobs=1, nominal=False, cache_dir=tmp_path / "c")
+    row = next(r for r in review.checks if r["id"] == "suite_spectrum")
+    assert row["limit"] == 1.1 and row["clause"] == "ASCE 7-22 17.3.3 / 16.2.3.3"
+    assert set(review.factors.values()) == {1.0}
