@@ -111,6 +111,8 @@ def test_en_building_rows_on_real_pairs(en_building_reviews, n_for_mean):
     stability = rows["vertical_load_stability"]
     assert stability["value"] == pytest.approx(ratio, rel=1e-13) and stability["clause"].startswith("EN 15129")
     beyond = any(row["id"] == "record_capacity" and row["status"] == "fail" for row in checks)
+    # a history with a bearing in tension: the linear statics does not release it, so no pass on its loads (h227)
+    beyond = beyond or any(min(a["bearing_axial_load_min_N"]) < 0 for b in per for a in per[b])
     assert stability["status"] == ("fail" if ratio > 1 else "not checked" if beyond else "pass")
     assert "2.3.6" not in stability["note"]
     least = min(-_suite_value([-a["bearing_axial_load_min_N"][k] for a in per[b]], n_for_mean) for b in per

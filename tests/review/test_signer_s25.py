@@ -198,3 +198,20 @@ def test_a_matched_suite_s_spectrum_row_cites_the_matching_clause(inputs, tmp_pa
     row = next(r for r in review.checks if r["id"] == "suite_spectrum")
     assert row["limit"] == 1.1 and row["clause"] == "ASCE 7-22 17.3.3 / 16.2.3.3"
     assert set(review.factors.values()) == {1.0}
+
+
+def test_stability_does_not_pass_on_loads_of_a_history_with_a_bearing_in_tension():
+    """The bearing loads are the linear rigid-slab statics (a bearing in tension is not released, docs/building.md):
+    where an analysis put a bearing in tension the others' P_max is understated, so `vertical_load_stability` must not
+    pass on it (the narrow-base building: 18 of 24 analyses).  On c765efa ``no_stability_pass_past_uplift`` does
+    not exist."""
+    from isolator.review import checks as C
+    from isolator.review.assess import no_stability_pass_past_uplift
+
+    passing = C.at_most("vertical_load_stability", "ASCE 7-22 17.2.4.6", 0.69, 1.0, "bearing 5", "×capacity")
+    out = no_stability_pass_past_uplift([passing], ["Duzce 1999 DZC (lower)", "Chuetsu-oki 2007 65025 (upper)"])
+    assert out[0]["status"] == "not checked" and out[0]["value"] == 0.69
+    assert "would pass, but 2 analysis(es) put a bearing in tension (Duzce 1999 DZC (lower), Chuetsu" in out[0]["note"]
+    failing = C.at_most("vertical_load_stability", "ASCE 7-22 17.2.4.6", 1.45, 1.0, "bearing 5", "×capacity")
+    assert no_stability_pass_past_uplift([failing], ["x (lower)"]) == [failing]
+    assert no_stability_pass_past_uplift([passing], []) == [passing]
