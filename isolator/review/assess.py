@@ -281,10 +281,9 @@ def no_stability_pass_beyond_capacity(rows: list) -> list:
     beyond = [row for row in rows if row["id"] == "record_capacity" and row["status"] == C.FAIL]
     if not beyond:
         return rows
-    said = (f"{len(beyond)} analysis(es) take a bearing beyond its displacement capacity (record_capacity), where "
-            "the axial capacity, stated at the total displacement, does not apply")
-    return [{**row, "status": C.NOT_CHECKED, "note": row["note"] + f"; would pass, but {said}"}
-            if row["id"] == "vertical_load_stability" and row["status"] == C.PASS else row for row in rows]
+    return _stability_would_pass(rows, f"{len(beyond)} analysis(es) take a bearing beyond its displacement capacity "
+                                       "(record_capacity), where the axial capacity, stated at the total displacement, "
+                                       "does not apply")
 
 
 def no_stability_pass_past_uplift(rows: list, lifted: list) -> list:
@@ -295,8 +294,13 @@ def no_stability_pass_past_uplift(rows: list, lifted: list) -> list:
     building, 18 of 24 analyses with a bearing in tension)."""
     if not lifted:
         return rows
-    said = (f"{len(lifted)} analysis(es) put a bearing in tension ({', '.join(lifted[:3])}{' …' if len(lifted) > 3 else ''}"
-            "), which the linear rigid-slab statics does not release: the other bearings' loads are understated there")
+    return _stability_would_pass(rows, f"{len(lifted)} analysis(es) put a bearing in tension ({', '.join(lifted[:3])}"
+                                       f"{' …' if len(lifted) > 3 else ''}), which the linear rigid-slab statics does "
+                                       "not release: the other bearings' loads are understated there")
+
+
+def _stability_would_pass(rows: list, said: str) -> list:
+    """A passing ``vertical_load_stability`` row made ``not checked``, saying why; every other row as it is."""
     return [{**row, "status": C.NOT_CHECKED, "note": row["note"] + f"; would pass, but {said}"}
             if row["id"] == "vertical_load_stability" and row["status"] == C.PASS else row for row in rows]
 
