@@ -25,6 +25,7 @@ import numpy as np
 
 from isolator.errors import DesignError, RecordInputError, SolverError
 from isolator.solver import planar_multisurface_rate_kernel as _pr
+from isolator.solver import planar_rim_slide
 from isolator.solver.multisurface_rate import is_rate_dependent, rate_laws
 from isolator.solver.multisurface_rate_kernel import LOCK_LEVELS
 from isolator.solver.notice import note_if_slow
@@ -50,7 +51,58 @@ IMPACT_TANGENTIAL_LIMIT = 1e-9
 #: apart the mass is still inside its ultimate circle and would slide on along the rims, closing them into alignment
 #: (the constant-µ model integrates that), so such an impact is refused too (h181: the off-axis probes and PTS's lower
 #: bound reach it 2.2e-3 … 0.144 apart; a 1-D motion 1.9e-15).
-IMPACT_SPREAD_LIMIT = 1e-9
+IMPACT_SPREAD_LIMIT = _pr.ALIGNED_SPREAD
+
+#: The slide along the rims handed over from the kernel (h226): Radau with the slide's Jacobian at this tolerance
+#: (h221: on PTS its course converges at ≤ 1e-8 — the alignment within 5e-13 s and the friction within 1.9e-8 of
+#: rtol 1e-10 — and not at 1e-6)
+HAND_OVER_RTOL = 1e-8
+#: ... and the saturated mode's gap (h221's default 1e-12 is ~3× above PTS's onset of the roots' swapping and below
+#: the probe's, ~2e-11, where Radau's step then collapsed at the start, h226; 1e-10 gave PTS the same seven segments,
+#: the alignment within 1e-12 s and the friction within 3e-8, h221)
+HAND_OVER_GAP = 1e-10
+
+
+def _potential(u, smat, rbar, g):
+    ub = smat @ u
+    return float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rbar)))
+
+
+def hand_over(t_local, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, times, ax, ay, energies,
+              rtol=HAND_OVER_RTOL, saturated_gap=HAND_OVER_GAP) -> dict:
+    """The kernel's state with every surface on its rim and the rims apart (``STATUS_ALL_RIMS``) carried on: the slide
+    along the rims integrated (:func:`isolator.solver.planar_rim_slide.close_along_rims`, Radau with the compiled
+    force, ``rtol``) to its first event, and at the rims' alignment the ultimate's plastic impact of the normal
+    velocity e·Ẋ alone (issue 23: a rigid stop, its impulse reported; the velocity along the common circle kept).
+
+    ``energies`` (input, friction, viscous, impact) of the kernel to ``t_local``.  Returns the closing's dict
+    (:func:`~isolator.solver.planar_rim_slide.close_along_rims`) with ``impulse`` (e·Ẋ at the alignment, m/s per unit
+    mass; 0 elsewhere), ``impact_energy`` (½(e·Ẋ)²), ``along`` (t·Ẋ after it), ``normal`` (e), ``start_t`` and
+    ``total_balance``: input − (kinetic + potential + friction + viscous + impact) over the kernel's run and the
+    hand-over together [J/kg], the kinetic energy after the impact.
+    """
+    u = np.asarray(u, dtype=float)
+    rho = np.hypot(u[:, 0], u[:, 1])
+    u = u * (cap / np.where(rho > 0.0, rho, 1.0))[:, None]  # on the circles (the kernel's to_rims, to rounding)
+    root, counts = planar_rim_slide.compiled_root()
+    out = planar_rim_slide.close_along_rims(t_local, np.asarray(xdot, dtype=float), u, bmat, smat, rbar, mu_s, mu_f,
+                                            rate, g, c, times, ax, ay, float(times[-1]), rtol=rtol, method="Radau",
+                                            root=root, saturated_gap=saturated_gap)
+    xv = np.asarray(out["xdot"], dtype=float)
+    x = np.sum(out["u"], axis=0)
+    xn = math.hypot(x[0], x[1])
+    normal = x / xn if xn > 0.0 else np.zeros(2)
+    impulse = max(float(normal @ xv), 0.0) if out["reason"] == "aligned" else 0.0
+    after = xv - impulse * normal
+    e_in, e_f, e_v, e_imp = energies
+    impact = 0.5 * impulse * impulse
+    total_in = e_in + out["input"]
+    total_balance = total_in - (0.5 * float(after @ after) + _potential(out["u"], smat, rbar, g) + e_f + out["friction"]
+                                + e_v + out["viscous"] + e_imp + impact)
+    out.update(impulse=impulse, impact_energy=impact, along=float(normal[0] * after[1] - normal[1] * after[0]),
+               normal=normal, start_t=float(t_local), spread=planar_rim_slide.rim_spread(out["u"]), total_balance=total_balance, total_input=total_in,
+               compiled_forces=counts["compiled"], numpy_forces=counts["numpy"])
+    return out
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
@@ -141,6 +193,29 @@ def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity, 
         capacity = n_ev + 16
 
 
+def _refuse_after_hand_over(summary, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, local, ax, ay, t0, kind):
+    """The kernel stopped with every surface on its rim and the rims apart: the slide along the rims carried on to
+    its first event (:func:`hand_over`); what follows is not modelled yet, so the run ends in one line naming it."""
+    t1 = float(summary[_pr.S_FAIL_T])
+    energies = tuple(float(summary[k]) for k in (_pr.S_E_IN, _pr.S_E_F, _pr.S_E_V, _pr.S_E_IMPACT))
+    out = hand_over(t1, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, local, ax, ay, energies)
+    head = (f"{MODEL_NAME}: every surface of the {kind} bearing reached its rim at t = {t0 + t1:.6g} s with the rims "
+            f"{float(summary[_pr.S_RIMS_SPREAD]):.3g} apart (sine): the slide along the rims integrated from there "
+            f"(Radau, rtol {HAND_OVER_RTOL:g}; energy balance {out['total_balance']:.2g} of {out['total_input']:.3g} "
+            "J/kg input over the run)")
+    if out["reason"] == "aligned":
+        raise SolverError(f"{head} reaches the rims' alignment at t = {t0 + out['t']:.9g} s (1 − |X|/Σd* = "
+                          f"{out['gap']:.2g}, the rims {out['spread']:.2g} apart), the ultimate "
+                          f"displacement: a plastic impact of {out['impulse']:.4g} m/s into the rims (impulse "
+                          f"{out['impulse']:.4g} m/s per unit mass, {out['impact_energy']:.3g} J/kg taken); the slide "
+                          f"on the rims' common circle after it ({abs(out['along']):.3g} m/s along it) is not modelled "
+                          "for µ(v) in the plane; no answer is given")
+    what = {"leaves": "a surface's rim reaction turns inward (it leaves its rim)", "rest": "the mass comes to rest",
+            "end": "the record ends"}[out["reason"]]
+    raise SolverError(f"{head} ends at t = {t0 + out['t']:.9g} s where {what}: the run on from there (the kernel "
+                      "restarted from that state) is not modelled for µ(v) in the plane; no answer is given")
+
+
 def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
                                damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
                                tolerance: float = DEFAULT_TOLERANCE,
@@ -209,6 +284,9 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
         LOCK_LEVELS if saturation_levels is None else np.asarray(saturation_levels, dtype=np.float64))
     status = int(summary[_pr.S_STATUS])
     fail_t = t0 + float(summary[_pr.S_FAIL_T])
+    if status & _pr.STATUS_ALL_RIMS:
+        _refuse_after_hand_over(summary, out_v[-1], u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c,
+                                np.ascontiguousarray(local, dtype=np.float64), ax, ay, t0, bearing.kind)
     tangential = float(summary[_pr.S_IMPACT_TANGENTIAL])
     spread = float(summary[_pr.S_IMPACT_SPREAD])
     if tangential > IMPACT_TANGENTIAL_LIMIT or spread > IMPACT_SPREAD_LIMIT:
