@@ -10,10 +10,14 @@ The equations, the method (Radau IIA collocation with events, the pieces of the 
 
 The rims: a surface reaching its rim is held there or slides along it (the rim's frictionless reaction normal to
 it) and leaves it inward; every surface on its rim is the ultimate displacement, a plastic impact (the velocity
-removed, its impulse and energy reported) as in 1-D (docs/multisurface.md, h131).  Not modelled, each refused in one
-line: an impact at the ultimate with a velocity along the rims or with the rims apart (the closing into alignment
-and the slide along the rims; h181), a slide along the rims from rest with no surface free inside its rim, a vertical
-component, a superstructure.
+removed, its impulse and energy reported) as in 1-D (docs/multisurface.md, h131).  Every surface on its rim with the
+rims apart is not the ultimate (h181): the kernel stops there and :func:`hand_over` integrates the slide along the
+rims (:func:`isolator.solver.planar_rim_slide.close_along_rims`, Radau, the compiled force) to the rims' alignment,
+where the ultimate's plastic impact takes the normal velocity e·Ẋ alone (h226).  Not modelled, each refused in one
+line: what follows that slide (the slide on the rims' common circle after the impact, or the kernel restarted where
+a rim's reaction turns inward or the mass rests; the line names the impact's impulse and energy), an impact at the
+ultimate with a velocity along the rims, a slide along the rims from rest with no surface free inside its rim, a
+vertical component, a superstructure.
 """
 
 from __future__ import annotations
@@ -198,9 +202,13 @@ def _refuse_after_hand_over(summary, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f,
     its first event (:func:`hand_over`); what follows is not modelled yet, so the run ends in one line naming it."""
     t1 = float(summary[_pr.S_FAIL_T])
     energies = tuple(float(summary[k]) for k in (_pr.S_E_IN, _pr.S_E_F, _pr.S_E_V, _pr.S_E_IMPACT))
-    out = hand_over(t1, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, local, ax, ay, energies)
-    head = (f"{MODEL_NAME}: every surface of the {kind} bearing reached its rim at t = {t0 + t1:.6g} s with the rims "
-            f"{float(summary[_pr.S_RIMS_SPREAD]):.3g} apart (sine): the slide along the rims integrated from there "
+    reached = (f"{MODEL_NAME}: every surface of the {kind} bearing reached its rim at t = {t0 + t1:.6g} s with the "
+               f"rims {float(summary[_pr.S_RIMS_SPREAD]):.3g} apart (sine)")
+    try:
+        out = hand_over(t1, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, local, ax, ay, energies)
+    except SolverError as exc:
+        raise SolverError(f"{reached}: the slide along the rims from there stopped: {exc}; no answer is given") from None
+    head = (f"{reached}: the slide along the rims integrated from there "
             f"(Radau, rtol {HAND_OVER_RTOL:g}; energy balance {out['total_balance']:.2g} of {out['total_input']:.3g} "
             "J/kg input over the run)")
     if out["reason"] == "aligned":
@@ -251,9 +259,10 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
     Raises
     ------
     SolverError
-        An impact at the ultimate taking a velocity along the rims or taken with the rims apart (more than
-        IMPACT_TANGENTIAL_LIMIT / IMPACT_SPREAD_LIMIT: the closing into alignment and the slide along the rims are not
-        modelled; named first, before a stop it causes), a slide along the rims alone from rest (not modelled: the
+        An impact at the ultimate taking a velocity along the rims (more than IMPACT_TANGENTIAL_LIMIT; named first,
+        before a stop it causes); every surface on its rim with the rims apart, after the slide along the rims
+        (:func:`hand_over`) to its first event — the alignment's impact (named with its impulse and energy), a rim
+        left inward, rest or the record's end: what follows is not modelled; a slide along the rims alone from rest (not modelled: the
         time and a surface are named), more than
         MAX_STEPS_PER_INTERVAL steps in one sample interval, or the step size fell below 1e-13 of the sample
         interval.

@@ -52,7 +52,9 @@ Modes and events (each located on re-stepped collocation steps by Illinois secan
   |f·t| passes µ_slow, stops on it when |f·t| falls back, and leaves it inward when the reaction f·e turns negative
   (the 1-D model's held surface, which leaves only inward; a rim slider is never the pivot).  The force jumps so
   that the others take its velocity; with no surface left sliding inside its rim a stuck one starts
-  (:func:`restart_free`), and with every surface on its rim the mass is at the ultimate: a plastic impact removes
+  (:func:`restart_free`); with every surface on its rim and the rims apart the run stops (:data:`STATUS_ALL_RIMS`,
+  the driver carries the slide along the rims on), and with the rims aligned the mass is at the ultimate: a plastic
+  impact removes
   its velocity (impulse |Ẋ|, energy ½|Ẋ|² booked; the tangential part too — exact where the arrival is radial, as
   in 1-D; its largest fraction is in the summary, :data:`S_IMPACT_TANGENTIAL`), then it holds or starts as from
   rest.  A start from rest pushed only along the rims (no surface free inside its rim) is not modelled

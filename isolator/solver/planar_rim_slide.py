@@ -21,8 +21,9 @@ impact of the ultimate due, removing Ẋ·e alone.  :func:`slide_along_rims` ref
 (:class:`~isolator.errors.SolverError`); with the rims apart (sine > :data:`ALIGNED_SINE`) it answers for any Ẋ:
 no impact is due.
 
-Not wired into the kernel (docs/multisurface.md, h192, h199): the kernel still takes the impact with the rims apart
-and the driver refuses it by name (``IMPACT_SPREAD_LIMIT``).  :func:`close_along_rims` integrates that closing from
+Wired into the driver (h226): the kernel stops where every surface is on its rim with the rims apart
+(``STATUS_ALL_RIMS``) and :func:`isolator.solver.planar_multisurface_rate.hand_over` carries the slide on with
+:func:`close_along_rims` (Radau, :func:`compiled_root`).  :func:`close_along_rims` integrates that closing from
 a given state in numpy (DOP853 on the rims' angles and Ẋ, its energy booked as the kernel books it): the reference
 the kernel's mode "all on rims" is to be held to.  With ``method="Radau"`` (h221) it steps implicitly with
 :func:`slide_derivatives`' Jacobian and takes the law's sliding mode where three or more surfaces are at µ_fast

@@ -118,13 +118,13 @@ def test_every_surface_on_its_rim_with_the_rims_apart_slides_on_to_their_alignme
     ax = 0.7 * G * np.sin(2 * np.pi * t / 2.0)
     ay = 0.1 * G * np.sin(2 * np.pi * t / 1.6)
     seen = []
-    real = driver.hand_over
+    real = getattr(driver, "hand_over", None)  # absent on c765efa: the refusal below then fails the match
 
     def spy(*args, **kwargs):
         seen.append((args, real(*args, **kwargs)))
         return seen[-1][1]
 
-    monkeypatch.setattr(driver, "hand_over", spy)
+    monkeypatch.setattr(driver, "hand_over", spy, raising=False)
     pattern = (r"reached its rim at t = 0\.729784 s with the rims 0\.0108 apart \(sine\).* reaches the rims' "
                r"alignment at t = 0\.72978605\d* s \(1 − \|X\|/Σd\* = 1\.4e-09, the rims 5\.\de-05 apart\), the "
                r"ultimate displacement: a plastic impact of 2\.82 m/s")
