@@ -65,6 +65,9 @@ HAND_OVER_RTOL = 1e-8
 #: the probe's, ~2e-11, where Radau's step then collapsed at the start, h226; 1e-10 gave PTS the same seven segments,
 #: the alignment within 1e-12 s and the friction within 3e-8, h221)
 HAND_OVER_GAP = 1e-10
+#: ... and the bound on its force evaluations (PTS's slide to the alignment takes 3223, the probe's 1393; a slide in
+#: the example review at 24.47 s had taken 77 000 in 30 s CPU, 12 ms of slide, with no event: refused by name, h226)
+HAND_OVER_MAX_FORCES = 20_000
 
 
 def _potential(u, smat, rbar, g):
@@ -91,7 +94,7 @@ def hand_over(t_local, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, t
     root, counts = planar_rim_slide.compiled_root()
     out = planar_rim_slide.close_along_rims(t_local, np.asarray(xdot, dtype=float), u, bmat, smat, rbar, mu_s, mu_f,
                                             rate, g, c, times, ax, ay, float(times[-1]), rtol=rtol, method="Radau",
-                                            root=root, saturated_gap=saturated_gap)
+                                            root=root, saturated_gap=saturated_gap, max_forces=HAND_OVER_MAX_FORCES)
     xv = np.asarray(out["xdot"], dtype=float)
     x = np.sum(out["u"], axis=0)
     xn = math.hypot(x[0], x[1])

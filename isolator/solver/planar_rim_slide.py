@@ -465,7 +465,7 @@ def compiled_root():
 
 def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, ax, ay, t_end, *, rtol=1e-10,
                      gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS, method="DOP853", saturated_gap=SATURATED_GAP,
-                     root=slide_along_rims):
+                     root=slide_along_rims, max_forces=None):
     """The mass carried by surfaces that are all on their rims, the rims apart: integrated to the alignment (h199).
 
     State: each surface's angle θ_i on its rim (u_i = d_i (cos θ_i, sin θ_i), d_i = |u_i| at the start) and Ẋ;
@@ -498,7 +498,8 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     and its saturated members, numbered from 1; () for the law's root).
 
     ``root``: the law's root (the signature and answer of :func:`slide_along_rims`, the default); the driver's
-    hand-over passes :func:`compiled_root`'s (h226).
+    hand-over passes :func:`compiled_root`'s (h226).  ``max_forces``: a bound on the force evaluations (None: none),
+    refused by name past it.
     """
     from scipy.integrate import solve_ivp
 
@@ -525,6 +526,9 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
         key = z[:n + 2].tobytes()
         if key in last:  # the events at a step's end share one force (h216)
             return last[key]
+        if max_forces is not None and log["forces"] >= max_forces:
+            raise SolverError(f"the slide along the rims reached no event in {max_forces} force evaluations (from t = "
+                              f"{float(t0):.9g} s; the last segment from t = {time_now:.9g} s)")
         uu, e, t = frame(z[:n])
         b = bmat @ uu
         if mode["set"] is None:
