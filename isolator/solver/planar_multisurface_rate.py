@@ -10,10 +10,14 @@ The equations, the method (Radau IIA collocation with events, the pieces of the 
 
 The rims: a surface reaching its rim is held there or slides along it (the rim's frictionless reaction normal to
 it) and leaves it inward; every surface on its rim is the ultimate displacement, a plastic impact (the velocity
-removed, its impulse and energy reported) as in 1-D (docs/multisurface.md, h131).  Not modelled, each refused in one
-line: an impact at the ultimate with a velocity along the rims or with the rims apart (the closing into alignment
-and the slide along the rims; h181), a slide along the rims from rest with no surface free inside its rim, a vertical
-component, a superstructure.
+removed, its impulse and energy reported) as in 1-D (docs/multisurface.md, h131).  Every surface on its rim with the
+rims apart is not the ultimate (h181): the kernel stops there and :func:`hand_over` integrates the slide along the
+rims (:func:`isolator.solver.planar_rim_slide.close_along_rims`, Radau, the compiled force) to the rims' alignment,
+where the ultimate's plastic impact takes the normal velocity e·Ẋ alone (h226).  Not modelled, each refused in one
+line: what follows that slide (the slide on the rims' common circle after the impact, or the kernel restarted where
+a rim's reaction turns inward or the mass rests; the line names the impact's impulse and energy), an impact at the
+ultimate with a velocity along the rims, a slide along the rims from rest with no surface free inside its rim, a
+vertical component, a superstructure.
 """
 
 from __future__ import annotations
@@ -25,6 +29,7 @@ import numpy as np
 
 from isolator.errors import DesignError, RecordInputError, SolverError
 from isolator.solver import planar_multisurface_rate_kernel as _pr
+from isolator.solver import planar_rim_slide
 from isolator.solver.multisurface_rate import is_rate_dependent, rate_laws
 from isolator.solver.multisurface_rate_kernel import LOCK_LEVELS
 from isolator.solver.notice import note_if_slow
@@ -50,7 +55,61 @@ IMPACT_TANGENTIAL_LIMIT = 1e-9
 #: apart the mass is still inside its ultimate circle and would slide on along the rims, closing them into alignment
 #: (the constant-µ model integrates that), so such an impact is refused too (h181: the off-axis probes and PTS's lower
 #: bound reach it 2.2e-3 … 0.144 apart; a 1-D motion 1.9e-15).
-IMPACT_SPREAD_LIMIT = 1e-9
+IMPACT_SPREAD_LIMIT = _pr.ALIGNED_SPREAD
+
+#: The slide along the rims handed over from the kernel (h226): Radau with the slide's Jacobian at this tolerance
+#: (h221: on PTS its course converges at ≤ 1e-8 — the alignment within 5e-13 s and the friction within 1.9e-8 of
+#: rtol 1e-10 — and not at 1e-6)
+HAND_OVER_RTOL = 1e-8
+#: ... and the saturated mode's gap (h221's default 1e-12 is ~3× above PTS's onset of the roots' swapping and below
+#: the probe's, ~2e-11, where Radau's step then collapsed at the start, h226; 1e-10 gave PTS the same seven segments,
+#: the alignment within 1e-12 s and the friction within 3e-8, h221)
+HAND_OVER_GAP = 1e-10
+#: ... and the bound on its force evaluations (PTS's slide to the alignment takes 3223, the probe's 1393; a slide in
+#: the example review at 24.47 s had taken 77 000 in 30 s CPU, 12 ms of slide, with no event: refused by name, h226)
+HAND_OVER_MAX_FORCES = 20_000
+
+
+def _potential(u, smat, rbar, g):
+    ub = smat @ u
+    return float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rbar)))
+
+
+def hand_over(t_local, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, times, ax, ay, energies,
+              rtol=HAND_OVER_RTOL, saturated_gap=HAND_OVER_GAP) -> dict:
+    """The kernel's state with every surface on its rim and the rims apart (``STATUS_ALL_RIMS``) carried on: the slide
+    along the rims integrated (:func:`isolator.solver.planar_rim_slide.close_along_rims`, Radau with the compiled
+    force, ``rtol``) to its first event, and at the rims' alignment the ultimate's plastic impact of the normal
+    velocity e·Ẋ alone (issue 23: a rigid stop, its impulse reported; the velocity along the common circle kept).
+
+    ``energies`` (input, friction, viscous, impact) of the kernel to ``t_local``.  Returns the closing's dict
+    (:func:`~isolator.solver.planar_rim_slide.close_along_rims`) with ``impulse`` (e·Ẋ at the alignment, m/s per unit
+    mass; 0 elsewhere), ``impact_energy`` (½(e·Ẋ)²), ``along`` (t·Ẋ after it), ``normal`` (e), ``start_t`` and
+    ``total_balance``: input − (kinetic + potential + friction + viscous + impact) over the kernel's run and the
+    hand-over together [J/kg], the kinetic energy after the impact.
+    """
+    u = np.asarray(u, dtype=float)
+    rho = np.hypot(u[:, 0], u[:, 1])
+    u = u * (cap / np.where(rho > 0.0, rho, 1.0))[:, None]  # on the circles (the kernel's to_rims, to rounding)
+    root, counts = planar_rim_slide.compiled_root()
+    out = planar_rim_slide.close_along_rims(t_local, np.asarray(xdot, dtype=float), u, bmat, smat, rbar, mu_s, mu_f,
+                                            rate, g, c, times, ax, ay, float(times[-1]), rtol=rtol, method="Radau",
+                                            root=root, saturated_gap=saturated_gap, max_forces=HAND_OVER_MAX_FORCES)
+    xv = np.asarray(out["xdot"], dtype=float)
+    x = np.sum(out["u"], axis=0)
+    xn = math.hypot(x[0], x[1])
+    normal = x / xn if xn > 0.0 else np.zeros(2)
+    impulse = max(float(normal @ xv), 0.0) if out["reason"] == "aligned" else 0.0
+    after = xv - impulse * normal
+    e_in, e_f, e_v, e_imp = energies
+    impact = 0.5 * impulse * impulse
+    total_in = e_in + out["input"]
+    total_balance = total_in - (0.5 * float(after @ after) + _potential(out["u"], smat, rbar, g) + e_f + out["friction"]
+                                + e_v + out["viscous"] + e_imp + impact)
+    out.update(impulse=impulse, impact_energy=impact, along=float(normal[0] * after[1] - normal[1] * after[0]),
+               normal=normal, start_t=float(t_local), spread=planar_rim_slide.rim_spread(out["u"]), total_balance=total_balance, total_input=total_in,
+               compiled_forces=counts["compiled"], numpy_forces=counts["numpy"])
+    return out
 
 
 def scene_needs(scene) -> tuple[str, str] | None:
@@ -141,6 +200,33 @@ def _run(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, rate, cap, tol, capacity, 
         capacity = n_ev + 16
 
 
+def _refuse_after_hand_over(summary, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, local, ax, ay, t0, kind):
+    """The kernel stopped with every surface on its rim and the rims apart: the slide along the rims carried on to
+    its first event (:func:`hand_over`); what follows is not modelled yet, so the run ends in one line naming it."""
+    t1 = float(summary[_pr.S_FAIL_T])
+    energies = tuple(float(summary[k]) for k in (_pr.S_E_IN, _pr.S_E_F, _pr.S_E_V, _pr.S_E_IMPACT))
+    reached = (f"{MODEL_NAME}: every surface of the {kind} bearing reached its rim at t = {t0 + t1:.6g} s with the "
+               f"rims {float(summary[_pr.S_RIMS_SPREAD]):.3g} apart (sine)")
+    try:
+        out = hand_over(t1, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, local, ax, ay, energies)
+    except SolverError as exc:
+        raise SolverError(f"{reached}: the slide along the rims from there stopped: {exc}; no answer is given") from None
+    head = (f"{reached}: the slide along the rims integrated from there "
+            f"(Radau, rtol {HAND_OVER_RTOL:g}; energy balance {out['total_balance']:.2g} of {out['total_input']:.3g} "
+            "J/kg input over the run)")
+    if out["reason"] == "aligned":
+        raise SolverError(f"{head} reaches the rims' alignment at t = {t0 + out['t']:.9g} s (1 − |X|/Σd* = "
+                          f"{out['gap']:.2g}, the rims {out['spread']:.2g} apart), the ultimate "
+                          f"displacement: a plastic impact of {out['impulse']:.4g} m/s into the rims (impulse "
+                          f"{out['impulse']:.4g} m/s per unit mass, {out['impact_energy']:.3g} J/kg taken); the slide "
+                          f"on the rims' common circle after it ({abs(out['along']):.3g} m/s along it) is not modelled "
+                          "for µ(v) in the plane; no answer is given")
+    what = {"leaves": "a surface's rim reaction turns inward (it leaves its rim)", "rest": "the mass comes to rest",
+            "end": "the record ends"}[out["reason"]]
+    raise SolverError(f"{head} ends at t = {t0 + out['t']:.9g} s where {what}: the run on from there (the kernel "
+                      "restarted from that state) is not modelled for µ(v) in the plane; no answer is given")
+
+
 def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearing, time_s=None,
                                damping_per_mass: float = 0.0, gravity_m_s2: float = STANDARD_GRAVITY,
                                tolerance: float = DEFAULT_TOLERANCE,
@@ -176,9 +262,10 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
     Raises
     ------
     SolverError
-        An impact at the ultimate taking a velocity along the rims or taken with the rims apart (more than
-        IMPACT_TANGENTIAL_LIMIT / IMPACT_SPREAD_LIMIT: the closing into alignment and the slide along the rims are not
-        modelled; named first, before a stop it causes), a slide along the rims alone from rest (not modelled: the
+        An impact at the ultimate taking a velocity along the rims (more than IMPACT_TANGENTIAL_LIMIT; named first,
+        before a stop it causes); every surface on its rim with the rims apart, after the slide along the rims
+        (:func:`hand_over`) to its first event — the alignment's impact (named with its impulse and energy), a rim
+        left inward, rest or the record's end: what follows is not modelled; a slide along the rims alone from rest (not modelled: the
         time and a surface are named), more than
         MAX_STEPS_PER_INTERVAL steps in one sample interval, or the step size fell below 1e-13 of the sample
         interval.
@@ -209,6 +296,9 @@ def simulate_bearing_pair_rate(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, b
         LOCK_LEVELS if saturation_levels is None else np.asarray(saturation_levels, dtype=np.float64))
     status = int(summary[_pr.S_STATUS])
     fail_t = t0 + float(summary[_pr.S_FAIL_T])
+    if status & _pr.STATUS_ALL_RIMS:
+        _refuse_after_hand_over(summary, out_v[-1], u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c,
+                                np.ascontiguousarray(local, dtype=np.float64), ax, ay, t0, bearing.kind)
     tangential = float(summary[_pr.S_IMPACT_TANGENTIAL])
     spread = float(summary[_pr.S_IMPACT_SPREAD])
     if tangential > IMPACT_TANGENTIAL_LIMIT or spread > IMPACT_SPREAD_LIMIT:

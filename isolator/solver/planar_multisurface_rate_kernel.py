@@ -52,7 +52,9 @@ Modes and events (each located on re-stepped collocation steps by Illinois secan
   |f·t| passes µ_slow, stops on it when |f·t| falls back, and leaves it inward when the reaction f·e turns negative
   (the 1-D model's held surface, which leaves only inward; a rim slider is never the pivot).  The force jumps so
   that the others take its velocity; with no surface left sliding inside its rim a stuck one starts
-  (:func:`restart_free`), and with every surface on its rim the mass is at the ultimate: a plastic impact removes
+  (:func:`restart_free`); with every surface on its rim and the rims apart the run stops (:data:`STATUS_ALL_RIMS`,
+  the driver carries the slide along the rims on), and with the rims aligned the mass is at the ultimate: a plastic
+  impact removes
   its velocity (impulse |Ẋ|, energy ½|Ẋ|² booked; the tangential part too — exact where the arrival is radial, as
   in 1-D; its largest fraction is in the summary, :data:`S_IMPACT_TANGENTIAL`), then it holds or starts as from
   rest.  A start from rest pushed only along the rims (no surface free inside its rim) is not modelled
@@ -113,6 +115,13 @@ STATUS_CHATTER = 1
 STATUS_STEP_FAILED = 4  #: the step size fell below 1e-13 of the interval (the run stops there)
 STATUS_RIM = 8  #: every surface on its rim, one of them made to slide along it from rest (not modelled: the run stops)
 STATUS_WORK = 16  #: more than MAX_STEPS_PER_INTERVAL double steps in one sample interval (the run stops there)
+#: every surface on its rim with the rims apart (sine > :data:`ALIGNED_SPREAD`): the mass is not at its ultimate, it
+#: slides on along the rims, closing them into alignment (h181).  The run stops there, before any impact, its state
+#: (the time in ``S_FAIL_T``, Ẋ in the last ``out_v`` row, u in ``u``, the energies in the summary) handed to the
+#: driver, which integrates that slide (:func:`isolator.solver.planar_rim_slide.close_along_rims`, h226)
+STATUS_ALL_RIMS = 32
+#: the largest sine between a rim's normal and X/|X| at which every surface on its rim is the ultimate (an impact)
+ALIGNED_SPREAD = 1e-9
 
 # the summary vector
 S_PEAK_X = 0
@@ -141,7 +150,10 @@ S_IMPACT_TANGENTIAL = 20  #: largest |Ẋ × ē|/|Ẋ| at an impact (the tangent
 #: along the rims, closing them into alignment — not modelled for µ(v) in the plane, the driver refuses)
 S_IMPACT_SPREAD = 21
 S_IMPACT_GAP = 22  #: largest 1 − |X|/Σ|u_i| at an impact (how far inside the ultimate circle the impact was taken)
-SUMMARY_SIZE = 23
+S_RIMS_SPREAD = 23  #: at STATUS_ALL_RIMS: the largest |e_i × ē| (the rims apart, sine)
+S_RIMS_GAP = 24  #: at STATUS_ALL_RIMS: 1 − |X|/Σ|u_i|
+S_RIMS_TANGENTIAL = 25  #: at STATUS_ALL_RIMS: |Ẋ × ē|/|Ẋ|
+SUMMARY_SIZE = 26
 
 
 @njit(cache=True)
@@ -1568,6 +1580,9 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     imp_tangential = 0.0
     imp_spread = 0.0
     imp_gap = 0.0
+    rims_spread = 0.0
+    rims_gap = 0.0
+    rims_tangential = 0.0
     a_now = np.empty(2)
     slope = np.empty(2)
     for j in range(state_first_time.shape[0]):
@@ -1607,7 +1622,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
         tau = 0.0
         events_here = 0
         steps_here = 0
-        while tau < dt_i and status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK) == 0:
+        while tau < dt_i and status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK | STATUS_ALL_RIMS) == 0:
             a_now[0] = ax[idx] + slope[0] * tau
             a_now[1] = ay[idx] + slope[1] * tau
             if stuck:
@@ -1914,16 +1929,30 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                         xy += y[3 + 2 * q]
                     vimp = math.hypot(y[0], y[1])
                     xn = math.hypot(xx, xy)
+                    tang_here = 0.0
+                    spread_here = 0.0
+                    gap_here = 0.0
                     if vimp > 0.0 and xn > 0.0:
-                        imp_tangential = max(imp_tangential, abs(y[0] * xy - y[1] * xx) / (vimp * xn))
+                        tang_here = abs(y[0] * xy - y[1] * xx) / (vimp * xn)
                     if xn > 0.0:
                         reach = 0.0
                         for q in range(ns):
                             uq = math.hypot(y[2 + 2 * q], y[3 + 2 * q])
                             reach += uq
                             if uq > 0.0:
-                                imp_spread = max(imp_spread, abs(y[2 + 2 * q] * xy - y[3 + 2 * q] * xx) / (uq * xn))
-                        imp_gap = max(imp_gap, 1.0 - xn / reach)
+                                spread_here = max(spread_here, abs(y[2 + 2 * q] * xy - y[3 + 2 * q] * xx) / (uq * xn))
+                        gap_here = 1.0 - xn / reach
+                    if spread_here > ALIGNED_SPREAD and vimp > 0.0:
+                        # the rims apart: not the ultimate; the run stops before an impact, its state handed over
+                        status |= STATUS_ALL_RIMS
+                        fail_t = t_now
+                        rims_spread = spread_here
+                        rims_gap = gap_here
+                        rims_tangential = tang_here
+                        break
+                    imp_tangential = max(imp_tangential, tang_here)
+                    imp_spread = max(imp_spread, spread_here)
+                    imp_gap = max(imp_gap, gap_here)
                     impulse += vimp
                     max_imp_v = max(max_imp_v, vimp)
                     e_imp += 0.5 * vimp * vimp
@@ -1956,7 +1985,7 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
                 stuck = True
             elif state_first_time[code] < 0.0:
                 state_first_time[code] = t_now
-        if status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK):
+        if status & (STATUS_STEP_FAILED | STATUS_RIM | STATUS_WORK | STATUS_ALL_RIMS):
             for j in range(idx + 1, n_samples):
                 store_sample(y, ns, j, out_x, out_v)
                 out_a[j, 0] = ax[j]
@@ -2010,6 +2039,9 @@ def planar_rate_kernel(ax, ay, times, g, c, bmat, smat, mu_s, mu_f, a, cap, tol,
     summary[S_IMPACT_TANGENTIAL] = imp_tangential
     summary[S_IMPACT_SPREAD] = imp_spread
     summary[S_IMPACT_GAP] = imp_gap
+    summary[S_RIMS_SPREAD] = rims_spread
+    summary[S_RIMS_GAP] = rims_gap
+    summary[S_RIMS_TANGENTIAL] = rims_tangential
 
 
 __all__ = ["planar_rate_kernel", "solve_force", "EVENT_NAMES", "SUMMARY_SIZE"]

@@ -21,8 +21,9 @@ impact of the ultimate due, removing Ẋ·e alone.  :func:`slide_along_rims` ref
 (:class:`~isolator.errors.SolverError`); with the rims apart (sine > :data:`ALIGNED_SINE`) it answers for any Ẋ:
 no impact is due.
 
-Not wired into the kernel (docs/multisurface.md, h192, h199): the kernel still takes the impact with the rims apart
-and the driver refuses it by name (``IMPACT_SPREAD_LIMIT``).  :func:`close_along_rims` integrates that closing from
+Wired into the driver (h226): the kernel stops where every surface is on its rim with the rims apart
+(``STATUS_ALL_RIMS``) and :func:`isolator.solver.planar_multisurface_rate.hand_over` carries the slide on with
+:func:`close_along_rims` (Radau, :func:`compiled_root`).  :func:`close_along_rims` integrates that closing from
 a given state in numpy (DOP853 on the rims' angles and Ẋ, its energy booked as the kernel books it): the reference
 the kernel's mode "all on rims" is to be held to.  With ``method="Radau"`` (h221) it steps implicitly with
 :func:`slide_derivatives`' Jacobian and takes the law's sliding mode where three or more surfaces are at µ_fast
@@ -38,6 +39,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 from isolator.errors import SolverError
+from isolator.solver import planar_rim_slide_kernel
 
 #: Newton iterations of :func:`slide_along_rims` (bounded), and halvings of one step (each keeps the laws' domain)
 MAX_NEWTON = 200
@@ -416,6 +418,10 @@ def saturated_slide(xdot, b, u, bmat, member, sense, mu_s, mu_f, a, *, floor=0.0
 #: Where :func:`close_along_rims` stops before the alignment: 1 − |X|/Σ d* (the gap closes linearly in time while the
 #: angle between the rims closes as its square root; the friction work left is ~ µ g × that angle, ≤ 1e-6 rad here)
 ALIGNED_GAP = 1e-12
+#: Where the law's root is not found at a segment's start (an accepted state) with the rims this close to their
+#: alignment (1 − |X|/Σ d*), the alignment is taken there (h226): the last degree of the approach, rates ∝ 1/sine,
+#: is resolved by neither force (h204); the gap left is reported (``gap``), the impact's error ~ |Ẋ| × the sine left
+ALIGNED_FALLBACK_GAP = 1e-8
 
 
 #: The implicit methods of :func:`close_along_rims` (scipy's, with :func:`slide_derivatives`'s Jacobian, h221)
@@ -425,8 +431,41 @@ IMPLICIT = ("Radau", "BDF")
 MAX_SEGMENTS = 10_000
 
 
+def compiled_root():
+    """A root of the slide's force for :func:`close_along_rims` (``root=``): the compiled
+    :func:`isolator.solver.planar_rim_slide_kernel.rim_slide_force` (1.4–63 µs a force against numpy's 10–60 ms,
+    within 1.7e-12 of it: h204), seeded by its previous answer; where it finds no set, :func:`slide_along_rims`
+    (which then answers or refuses by name).  Returns (root, counts): counts["compiled"], counts["numpy"]."""
+    seed = np.zeros(0)
+    counts = {"compiled": 0, "numpy": 0}
+
+    def root(xdot, b, u, mu_s, mu_f, a):
+        nonlocal seed
+        _, t = rim_frames(u)
+        if seed.size != len(t):
+            seed = np.zeros(len(t))
+        r = np.zeros(2)
+        psi = np.zeros(len(t))
+        found = planar_rim_slide_kernel.rim_slide_force(
+            np.ascontiguousarray(xdot, dtype=float), np.ascontiguousarray(b, dtype=float), np.ascontiguousarray(t),
+            np.asarray(mu_s, dtype=float), np.asarray(mu_f, dtype=float), np.asarray(a, dtype=float), 1e-13, seed,
+            r, psi)
+        if found == planar_rim_slide_kernel.NOT_FOUND:
+            counts["numpy"] += 1
+            r, psi, res, it = slide_along_rims(xdot, b, u, mu_s, mu_f, a)
+        else:
+            counts["compiled"] += 1
+            res = float(np.hypot(*(t.T @ psi - np.asarray(xdot, dtype=float))))
+            it = 0
+        seed = np.array(psi, dtype=float)
+        return r, psi, res, it
+
+    return root, counts
+
+
 def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, ax, ay, t_end, *, rtol=1e-10,
-                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS, method="DOP853", saturated_gap=SATURATED_GAP):
+                     gap_end=ALIGNED_GAP, max_segments=MAX_SEGMENTS, method="DOP853", saturated_gap=SATURATED_GAP,
+                     root=slide_along_rims, max_forces=None):
     """The mass carried by surfaces that are all on their rims, the rims apart: integrated to the alignment (h199).
 
     State: each surface's angle θ_i on its rim (u_i = d_i (cos θ_i, sin θ_i), d_i = |u_i| at the start) and Ẋ;
@@ -457,6 +496,10 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     largest lines' residual at a saturated segment's end: the constraint's drift), ``set_exits`` (members dropped at
     a segment's start, their rate below the resolution or against their sense) and ``modes`` (each segment's start
     and its saturated members, numbered from 1; () for the law's root).
+
+    ``root``: the law's root (the signature and answer of :func:`slide_along_rims`, the default); the driver's
+    hand-over passes :func:`compiled_root`'s (h226).  ``max_forces``: a bound on the force evaluations (None: none),
+    refused by name past it.
     """
     from scipy.integrate import solve_ivp
 
@@ -469,7 +512,7 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
     total = float(np.sum(cap))
     rbar = np.asarray(rbar, dtype=float)
     log = {"forces": 0, "least_saturation": math.inf, "largest_held": 0.0, "saturated_segments": 0, "drift": 0.0,
-           "set_exits": 0, "modes": []}
+           "set_exits": 0, "modes": [], "no_force": 0}
     mode = {"set": None, "sense": None}  # the saturated mode's members and senses (None: the law's root)
     level = np.log((mu_f - mu_s) / saturated_gap)  # a|ψ| at which the deficit (µ_f − µ_s) e^(−a|ψ|) is the gap
 
@@ -483,10 +526,22 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
         key = z[:n + 2].tobytes()
         if key in last:  # the events at a step's end share one force (h216)
             return last[key]
+        if max_forces is not None and log["forces"] >= max_forces:
+            raise SolverError(f"the slide along the rims reached no event in {max_forces} force evaluations (from t = "
+                              f"{float(t0):.9g} s; the last segment from t = {time_now:.9g} s)")
         uu, e, t = frame(z[:n])
         b = bmat @ uu
         if mode["set"] is None:
-            r, psi, _, _ = slide_along_rims(z[n:n + 2], b, uu, mu_s, mu_f, a)
+            try:
+                r, psi, _, _ = root(z[n:n + 2], b, uu, mu_s, mu_f, a)
+            except SolverError:
+                if method not in IMPLICIT:
+                    raise
+                # a collocation iterate where no force exists (the strips |(r − b_j)·t_j| < µ_fast,j apart: met on a
+                # first step too long for rates ~250 m/s on 0.05 m caps, h226): NaN makes the implicit method's Newton
+                # fail and the step shrink; at an accepted state the method stops and the closing is refused by name
+                r, psi = np.full(2, np.nan), np.full(n, np.nan)
+                log["no_force"] += 1
         else:
             r, psi, _ = saturated_slide(z[n:n + 2], b, uu, bmat, mode["set"], mode["sense"], mu_s, mu_f, a,
                                         floor=1e-3 * saturated_gap)
@@ -663,8 +718,21 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
             switch(member, sense, z)
             continue
         implicit = method in IMPLICIT
+        if implicit and not np.all(np.isfinite(force(z)[5])):
+            left = aligned(time_now, z) + gap_end
+            if left <= ALIGNED_FALLBACK_GAP:
+                reason = "aligned"
+                break
+            raise SolverError(f"the force of the slide along the rims is not found at t = {time_now:.9g} s (the rims "
+                              f"{left:.3g} short of their alignment, 1 − |X|/Σd)")
         log["modes"].append((time_now, ()))
         extra = {"jac": jacobian} if implicit else {}
+        psi0 = force(z)[5]
+        if implicit and np.all(np.isfinite(psi0)) and np.any(psi0 != 0.0):
+            # the first step: a thousandth of a radian at the fastest rim's rate (scipy's own guess, from the
+            # slope alone, was ~1e3 × too long where the rates start at ~250 m/s on 0.05 m caps: its stages left
+            # the force's domain and the step collapsed, h226)
+            extra["first_step"] = min(float(t_end) - time_now, 1e-3 / float(np.max(np.abs(psi0) / cap)))
         sol = solve_ivp(rate, (time_now, float(t_end)), z, method=method, rtol=rtol, atol=1e-2 * rtol,
                         events=(aligned, leaves, rest, *edges, *((concurrent,) if implicit else ())), **extra)
         if sol.status < 0:
@@ -696,6 +764,7 @@ def close_along_rims(t0, xdot, u, bmat, smat, rbar, mu_s, mu_f, a, g, c, times, 
 
     (k0, p0), (k1, p1) = stored(z0), stored(z1)
     e_in, e_f, e_v = (float(x) for x in z1[n + 2:])
-    return {"t": float(sol.t[-1]), "u": frame(z1[:n])[0], "xdot": z1[n:n + 2].copy(), "reason": reason,
+    x1 = np.sum(frame(z1[:n])[0], axis=0)
+    return {"t": time_now, "gap": 1.0 - math.hypot(x1[0], x1[1]) / total, "u": frame(z1[:n])[0], "xdot": z1[n:n + 2].copy(), "reason": reason,
             "input": e_in, "friction": e_f, "viscous": e_v, "kinetic": (k0, k1), "potential": (p0, p1),
             "balance": e_in - (k1 - k0) - (p1 - p0) - e_f - e_v, **log}

@@ -153,15 +153,17 @@ def test_corner_jacobian_is_the_derivative_of_the_rates():
 def test_pts_lower_bound_of_the_review_passes_its_corner(records_dir):
     """The review's scene (/tmp/coord/muv_tfp.toml's TFP, 0.4 m plates, a = 20 s/m, under PTS ×1.512437746473765):
     on main the work bound stopped it at 12.736 s (the outer pair 1 and 4 at a·s 26.4, slips 2.7e-2 rad apart: a
-    corner).  Now it passes there; to 12.8 s the run's only refusal is the rule on the ultimate's tangential part
-    (its first impact at 12.2899 s with 0.253 of the velocity along the rims: the slide along the rims at the
-    ultimate is not modelled) — the status checks (work bound, step floor) come first in the driver."""
+    corner).  Now it passes there; to 12.8 s the run's only refusal is after the slide along the rims (every surface
+    on its rim at 12.2899 s, the rims 0.144 apart; the slide handed over to close_along_rims reaches their alignment
+    at 12.2912246 s, where the impact of 0.8146 m/s is taken and the common circle's slide is not modelled, h226) —
+    the status checks (work bound, step floor) come first in the driver."""
     from isolator.errors import SolverError
     from tests.solver.test_planar_multisurface_rate import read_pair, review_tfp
 
     bearing = review_tfp()
     ax, ay, dt = read_pair(records_dir, 12.8)
     factor = 1.512437746473765
-    with pytest.raises(SolverError, match=r"first at t = 12\.2899 s\) with 0\.25\d* of the velocity along the rims") as info:
+    with pytest.raises(SolverError, match=r"reached its rim at t = 12\.2899 s with the rims 0\.144 apart .* alignment at "
+                                          r"t = 12\.2912246 s .* impact of 0\.8146 m/s") as info:
         simulate_bearing_pair_rate(factor * ax, factor * ay, dt, bearing=bearing)
     assert "\n" not in str(info.value)

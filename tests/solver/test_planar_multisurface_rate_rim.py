@@ -100,26 +100,52 @@ def test_an_impact_taking_a_tangential_velocity_is_refused(monkeypatch):
         simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
 
 
-def test_an_impact_with_the_rims_apart_is_refused_before_its_consequence(monkeypatch):
-    """The kernel takes the plastic impact when every surface is on its rim.  Off the axes the rims are then apart and
-    the mass is still inside its ultimate circle (it would slide on along the rims, closing them into alignment, as
-    the constant-µ model integrates): 0.7 g sin(πt) along x with 0.1 g sin(2πt/1.6) along y reaches that state at
-    0.72978 s with the rims 1.08e-2 apart (sine), the mass 5.5e-6 m inside Σ d* = 0.9 m, 2.29e-2 of its velocity along
-    the rims (h181).  The refusal names that impact — on d556246 the run was refused by its consequence instead (the
-    mass left at rest pushed along the rims, STATUS_RIM), which hid the state; and with the tangential rule lifted the
-    spread alone refuses it (the guard reads the kernel's S_IMPACT_SPREAD; a 1-D motion along 35° has 1.9e-15 and
-    answers, test above)."""
+def test_every_surface_on_its_rim_with_the_rims_apart_slides_on_to_their_alignment(monkeypatch):
+    """Every surface on its rim with the rims apart is not the ultimate (h181): 0.7 g sin(πt) along x with
+    0.1 g sin(2πt/1.6) along y reaches that state at 0.729784 s with the rims 1.08e-2 apart (sine), the mass 5.5e-6 m
+    inside Σ d* = 0.9 m, moving at 2.82 m/s.  The kernel now stops there before any impact (STATUS_ALL_RIMS) and the
+    driver carries the slide along the rims on (close_along_rims, Radau, the compiled force; h226): the rims close
+    in 1.96 µs (the inner pair at ~290 m/s on 0.05 m caps), the ultimate's plastic impact there takes e·Ẋ alone, and
+    the slide on the common circle after it is refused by name.  Truths here: the impulse is e·Ẋ with e the mass's
+    direction at the alignment (recomputed), the velocity left is along the rims, and the energy balances over the
+    kernel's run, the slide and the impact — input = kinetic + potential (recomputed from the elements) + friction +
+    viscous + the impact's ½(e·Ẋ)² (2e-13 of 5.56 J/kg measured).  On c765efa the run is refused at the impact's
+    time with the rims apart (h181's line), the slide not taken."""
     import isolator.solver.planar_multisurface_rate as driver
     from isolator.errors import SolverError
 
     t = np.arange(0.0, 0.8, 0.02)
     ax = 0.7 * G * np.sin(2 * np.pi * t / 2.0)
     ay = 0.1 * G * np.sin(2 * np.pi * t / 1.6)
-    pattern = (r"ultimate displacement was reached \(first at t = 0\.72978\d* s\) with 0\.022\d* of the velocity "
-               r"along the rims and the rims 0\.010\d* apart \(sine; the mass 5\.\d*e-06 m inside")
+    seen = []
+    real = getattr(driver, "hand_over", None)  # absent on c765efa: the refusal below then fails the match
+
+    def spy(*args, **kwargs):
+        seen.append((args, real(*args, **kwargs)))
+        return seen[-1][1]
+
+    monkeypatch.setattr(driver, "hand_over", spy, raising=False)
+    pattern = (r"reached its rim at t = 0\.729784 s with the rims 0\.0108 apart \(sine\).* reaches the rims' "
+               r"alignment at t = 0\.72978605\d* s \(1 − \|X\|/Σd\* = 1\.4e-09, the rims 5\.\de-05 apart\), the "
+               r"ultimate displacement: a plastic impact of 2\.82 m/s")
     with pytest.raises(SolverError, match=pattern) as info:
         simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
-    assert "\n" not in str(info.value)
-    monkeypatch.setattr(driver, "IMPACT_TANGENTIAL_LIMIT", np.inf)
-    with pytest.raises(SolverError, match=pattern):
-        simulate_bearing_pair_rate(ax, ay, 0.02, bearing=TFP)
+    assert "\n" not in str(info.value) and "common circle" in str(info.value)
+    args, out = seen[0]
+    assert out["reason"] == "aligned" and out["gap"] <= 1e-8 and out["spread"] < 1e-3
+    np.testing.assert_allclose(np.hypot(out["u"][:, 0], out["u"][:, 1]), CAPS, rtol=1e-14)
+    x = out["u"].sum(axis=0)
+    e = x / np.hypot(*x)
+    assert abs(e @ out["xdot"] - out["impulse"]) < 1e-12 and out["impulse"] > 2.8
+    left = out["xdot"] - out["impulse"] * e
+    assert abs(left @ e) < 1e-12 and abs(abs(out["along"]) - np.hypot(*left)) < 1e-12
+    # the balance, its pieces recomputed: the kernel's energies to the hand-over (its arguments) and the closing's
+    e_in, e_f, e_v, e_imp = args[15]
+    rbar, _, _ = TFP.elements()
+    ub = np.linalg.inv(TFP.surface_matrix()) @ out["u"]
+    potential = G * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rbar))
+    total_in = e_in + out["input"]
+    balance = total_in - (0.5 * left @ left + potential + e_f + out["friction"] + e_v + out["viscous"] + e_imp
+                          + 0.5 * out["impulse"] ** 2)
+    assert total_in > 5.0 and abs(balance) < 1e-9 * total_in
+    assert abs(balance - out["total_balance"]) < 1e-12
