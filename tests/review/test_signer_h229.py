@@ -107,7 +107,7 @@ def test_the_torsion_basis_says_which_eccentricity_it_used_and_by_how_much_the_l
     centroid, computed here from the file) is at the centre of mass.  Eq. 17.5-3 uses the plan's 0.5 m (1.169); with
     the layout's 0 m it would be 1 + 16/P_T² × 12 × 0.05 × 34/(34² + 26²) = 1.131 → the floor 1.15.  The review's
     basis (in D_TM_capacity's note, the ELF page) and page 1's Plan line now say so; on c765efa they said nothing
-    (KeyError 'eccentricity_difference_m')."""
+    (ImportError of ``eccentricity_said``; without it, KeyError 'eccentricity_layout_m')."""
     from isolator.report.review_pages import eccentricity_said
     from isolator.superstructure import review_inputs
 
