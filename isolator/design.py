@@ -41,6 +41,11 @@ SUFFIX_MAX_CHARS = 2000
 #: characters), not a file pasted in (10^6 characters were read and carried by every candidate, h203)
 DESCRIPTION_MAX_CHARS = 10_000
 _CANDIDATE_SUFFIX = re.compile(r" \[[A-Za-z_.]+=[^,\[\]]+(?:, [A-Za-z_.]+=[^,\[\]]+)*\]$")
+#: how a design search names a candidate: its values first, then the base design's name ("[radius_m=4.5,
+#: mu_kinetic=0.06] varied from the base design: FPS R = 4.0 m …"), so that no page reads the base's numbers as the
+#: candidate's; the bracketed values and these words are not counted in NAME_MAX_CHARS (up to SUFFIX_MAX_CHARS)
+CANDIDATE_WORDS = " varied from the base design: "
+_CANDIDATE_PREFIX = re.compile(r"^\[[A-Za-z_.]+=[^,\[\]]+(?:, [A-Za-z_.]+=[^,\[\]]+)*\]" + re.escape(CANDIDATE_WORDS))
 
 #: keys a design file may hold, with their meaning (used in messages and the README)
 DESIGN_KEYS = {
@@ -384,7 +389,8 @@ class Design:
             # terminal of whoever printed the table (`batch` wrote "\x1b]0;pwned\x07 FPS" raw; session 17 sweep)
             raise fail(f"key 'name' holds a control or format character ('{printable(name)}'): a design's name is "
                        "printed in tables, CSV files and reports; use letters, digits, spaces and punctuation")
-        written = _CANDIDATE_SUFFIX.sub("", name) if len(name) <= NAME_MAX_CHARS + SUFFIX_MAX_CHARS else name
+        written = (_CANDIDATE_PREFIX.sub("", _CANDIDATE_SUFFIX.sub("", name))
+                   if len(name) <= NAME_MAX_CHARS + SUFFIX_MAX_CHARS else name)
         if len(written.strip()) > NAME_MAX_CHARS:  # it heads every table, CSV row and report page (a 100,000-character
             # name was read, session 19 sweep); a search's candidates append their values in brackets to it
             raise fail(f"key 'name' is {len(name.strip()):,} characters long, more than a design's name may be "

@@ -531,8 +531,9 @@ def review_inputs(design) -> dict:
         ``Ws_over_W`` (17.5.4.2, Eq. 17.5-8: W_s = g Σ m_i over W = g × mass_kg) [-];
         ``T_fixed_s`` (the fixed-base fundamental period along x and y, for D'_M of Eq. 17.6-1) [s];
         ``P_T`` (Eq. 17.5-4) and ``y_for_loading_x_m`` / ``y_for_loading_y_m`` (the corner distances of
-        Eq. 17.5-3) when the design has ``[[bearing_position]]`` and a ``[plan]``; ``basis``: one
-        sentence per value.
+        Eq. 17.5-3) when the design has ``[[bearing_position]]`` and a ``[plan]``, with ``rigidity_centre_m``
+        (x, y) [m] from the centre of mass (pendulum bearings: the load-weighted centroid, their stiffness being
+        proportional to their load; springs: the plain centroid); ``basis``: one sentence per value.
     """
     out: dict = {}
     basis = []
@@ -547,6 +548,15 @@ def review_inputs(design) -> dict:
     if layout is not None and plan is not None:
         torsion = layout.torsion_parameters(plan["b_m"], plan["d_m"])
         out.update({key: torsion[key] for key in ("P_T", "y_for_loading_x_m", "y_for_loading_y_m")})
+        # the centre of rigidity: a pendulum bearing's stiffness is its load / R (its friction's µ × load / D), so
+        # the load-weighted centroid; a flat slider on springs of one stiffness each: the plain centroid
+        bearing = getattr(design, "bearing", None)
+        weights = np.asarray(layout.gravity_loads_N, dtype=float) if design.is_pendulum or (
+            bearing is not None and not bearing.is_simple) else np.ones(layout.n_bearings)
+        total = float(np.sum(weights))
+        if total > 0:
+            out["rigidity_centre_m"] = (float(np.dot(weights, layout.x_m)) / total,
+                                        float(np.dot(weights, layout.y_m)) / total)
         basis.append(f"P_T = {torsion['P_T']:.4g} from the {layout.n_bearings} bearings (Eq. 17.5-4), corner "
                      f"y = {torsion['y_for_loading_x_m']:g} / {torsion['y_for_loading_y_m']:g} m (Eq. 17.5-3)")
     if out:

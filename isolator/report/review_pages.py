@@ -153,7 +153,8 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
     plan = d.get("plan")
     plan_text = ("none: D_TM = " + fmt(r["torsion"]["factor"]) + " D_M (the floor of Eq. 17.5-3)" if not plan else
                  f"b × d = {fmt(plan['b_m'])} × {fmt(plan['d_m'])} m, eccentricity "
-                 f"{fmt(plan.get('eccentricity_m', 0.0))} m, "
+                 f"{fmt(plan.get('eccentricity_m', 0.0))} m"
+                 + eccentricity_said(r["torsion"]) + ", "
                  + (f"y = {fmt(plan['y_m'])} m" if "y_m" in plan else
                     "y = the farthest bearing (the bearing layout)" if "layout" in r["torsion"]["basis"]
                     else "y = half the plan dimension (assumed)")
@@ -181,6 +182,17 @@ def _design_lines(r: dict) -> list[tuple[str, str]]:
     if d.get("damping_Ns_per_m"):
         lines.insert(3, ("Damper", f"γ = {fmt(d['damping_Ns_per_m'] / 1e3)} kN·s/m (ratio {fmt(d['damping_ratio'])})"))
     return lines
+
+
+def eccentricity_said(torsion: dict) -> str:
+    """" ([plan]'s, used; the bearing layout's 0 / 0 m: 0.5 m apart)" where the design gives both eccentricities and
+    they differ (the rows' torsion basis says the same); "" otherwise."""
+    difference = torsion.get("eccentricity_difference_m")
+    if not difference:
+        return ""
+    e_x, e_y = torsion["eccentricity_layout_m"]
+    return (f" ([plan]'s, used; the bearing layout's {fmt(e_x)} / {fmt(e_y)} m ⟂ loading x / y: {fmt(difference)} m "
+            f"apart, D_TM/D_M {fmt(torsion['factor_with_layout_eccentricity'])} with it)")
 
 
 def p_t_floor_said(torsion: dict) -> str:

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from isolator.design import CANDIDATE_WORDS
 from isolator.errors import ReviewError, key_hint
 
 #: numbers of a design file that ``vary`` may replace
@@ -170,6 +171,19 @@ def candidate_mappings(base: dict, base_mu_kinetic: float, vary: list[tuple[str,
         mapping.update(chosen)
         out.append(mapping)
     return out
+
+
+def candidate_name(base: dict, mapping: dict, values: dict) -> str:
+    """The name of a candidate: "[radius_m=4.5, mu_kinetic=0.09, mu_static=0.105] varied from the base design: NAME".
+
+    The varied values and every friction coefficient that followed µk (:data:`FRICTION_FOLLOWERS`) come first: the
+    base name ("FPS R = 4.0 m, mu_s = 0.07 …") says the base's numbers, which were printed as the candidate's on
+    every page of the recommended review (h227's audit).  Not an identifier: candidates are keyed by their content.
+    """
+    followed = {k: mapping[k] for k in FRICTION_FOLLOWERS
+                if k not in values and k in mapping and mapping[k] != base.get(k)}
+    said = ", ".join(f"{k}={v:.6g}" for k, v in {**values, **followed}.items())
+    return f"[{said}]{CANDIDATE_WORDS}{base['name']}"
 
 
 @dataclass

@@ -47,6 +47,7 @@ from isolator.review.design_grid import (
     VARY_KEYS,
     Candidate,
     candidate_mappings,
+    candidate_name,
     parse_vary,
     recommend,
     vary_key_problem,
@@ -257,8 +258,7 @@ def search(design, target, suite, vary, *, objective: str = "base_shear", code: 
         values = {k: mapping[k] for k in keys}
         numbers = {k: v for k, v in mapping.items() if k != "name"}
         group = content_digest({k: v for k, v in numbers.items() if k not in CHECK_ONLY_KEYS})
-        mapping = {**mapping, "name": f"{design_mapping['name']} [" + ", ".join(
-            f"{k}={v:.6g}" for k, v in values.items()) + "]"}
+        mapping = {**mapping, "name": candidate_name(design_mapping, mapping, values)}
         candidates.append(Candidate(index, values, mapping, key=content_digest([context_key, numbers]), group=group))
 
     _refuse_a_space_of_no_design(candidates, str(design.source))

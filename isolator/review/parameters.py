@@ -53,6 +53,9 @@ PARAMETERS = {p.name: p for p in [
               "F(D) − F(D/2) ≥ restoring_min × W (FPS: D ≥ 2 restoring_min R)", ("asce7-22",)),
     Parameter("D_M_form", "SaM", "U", "ASCE 7-22 17.5.3.1",
               "D_M = g S_a(T_M) T_M²/(4π² B_M) ('SaM') or g S_M1 T_M/(4π² B_M) ('SM1')", ("asce7-22",)),
+    Parameter("B_M_at_50pct", 2.0, "S", "ASCE 7-22 Table 17.5-1",
+              "damping coefficient B_M at β_M ≥ 50 % (linear from 1.9 at 40 %; P2 and a third code 2.0, P1 stops at "
+              "1.9 from 40 %): decides B_M only above β_M = 40 %", ("asce7-22",)),
     Parameter("accidental_e", 0.05, "S", "ASCE 7-22 17.5.3.3",
               "accidental eccentricity as a fraction of the plan dimension perpendicular to the loading", ("asce7-22",)),
     Parameter("D_TM_floor", 1.15, "S", "ASCE 7-22 17.5.3.3 (Eq. 17.5-3)", "D_TM ≥ floor × D_M", ("asce7-22",)),
@@ -163,6 +166,8 @@ RANGES = {
     "f_ae": Range(0.0, 1.0, "a weight of the aging and environment factor (ASCE 7-22 17.2.8.4: 0.75; 1 the "
                             "whole factor)"),
     "restoring_min": Range(0.0, 1.0, "a fraction of the weight W (ASCE 7-22 17.2.4.4: 0.025)"),
+    "B_M_at_50pct": Range(1.9, 2.0, "Table 17.5-1's last entry: 2.0 (P2), 1.9 (P1, held from 40 %); B_M does not "
+                                    "fall with β"),
     "accidental_e": Range(0.0, 0.5, "a fraction of the plan dimension (ASCE 7-22 17.5.3.3: 0.05)"),
     "D_TM_floor": Range(1.0, 2.0, "a multiple of D_M (ASCE 7-22 Eq. 17.5-3: 1.15)"),
     # below 0.1 the y/P_T² of Eq. 17.5-3 grows without bound: 1e-300 squared to 0, a ZeroDivisionError (Session 15)

@@ -155,7 +155,8 @@ def elf_values(design, mu, target, code, params, t_fixed_s: float | None = None)
         eta_min = params.get("eta_min", P.PARAMETERS["eta_min"].default)
         return asce7_22.elf_displacement(design, mu, target, form="SaM",
                                          reduction=lambda beta: en15129.damping_divisor(beta, eta_min))
-    out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"))
+    out = asce7_22.elf_displacement(design, mu, target, form=params.get("D_M_form", "SaM"),
+                                    b_m_at_50=params.get("B_M_at_50pct", asce7_22.B_M_TABLE[-1][1]))
     if code == "asce7-22" and out["D_M_m"] > 0:
         out.update(asce7_22.superstructure_shear(out["V_b_over_W"], out["beta_M"], params))
     if t_fixed_s is not None:

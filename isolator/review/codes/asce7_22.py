@@ -24,7 +24,8 @@ import numpy as np
 from isolator.review.parameters import PARAMETERS
 from isolator.review.target import Target
 
-#: Table 17.5-1 damping coefficient B_M at β_M [S: P1, P2; P1 stops at 1.9 for ≥ 40 %]
+#: Table 17.5-1 damping coefficient B_M at β_M [S: P1, P2; P1 stops at 1.9 for ≥ 40 %]; the last entry is the
+#: default of the review parameter ``B_M_at_50pct`` (the value at β ≥ 50 %, where the sources differ)
 B_M_TABLE = ((0.02, 0.8), (0.05, 1.0), (0.10, 1.2), (0.20, 1.5), (0.30, 1.7), (0.40, 1.9), (0.50, 2.0))
 CLAUSE = {"D_M": "ASCE 7-22 17.5.3.1 (Eq. 17.5-1)", "T_M": "ASCE 7-22 17.5.3.2 (Eq. 17.5-2)",
           "B_M": "ASCE 7-22 Table 17.5-1", "D_TM": "ASCE 7-22 17.5.3.3 (Eq. 17.5-3)",
@@ -32,16 +33,18 @@ CLAUSE = {"D_M": "ASCE 7-22 17.5.3.1 (Eq. 17.5-1)", "T_M": "ASCE 7-22 17.5.3.2 (
           "restoring": "ASCE 7-22 17.2.4.4", "limits_V_s": "ASCE 7-22 17.5.4.3"}
 
 
-def damping_coefficient(beta: float) -> float:
+def damping_coefficient(beta: float, b_m_at_50: float = B_M_TABLE[-1][1]) -> float:
     """B_M of Table 17.5-1, linear between the tabulated β, constant beyond the ends [-].
 
     Parameters
     ----------
     beta : float
         Effective damping ratio β_M [-].
+    b_m_at_50 : float
+        B_M at β ≥ 50 % (review parameter ``B_M_at_50pct``: 2.0 in P2 and a third code; P1 stops at 1.9 from 40 %).
     """
     betas, values = zip(*B_M_TABLE, strict=False)
-    return float(np.interp(beta, betas, values))
+    return float(np.interp(beta, betas, (*values[:-1], b_m_at_50)))
 
 
 def effective_properties(design, mu: float, displacement_m: float) -> tuple[float, float, float]:
@@ -74,7 +77,8 @@ def ultimate_displacement_m(design) -> float:
     return design.bearing.ultimate_displacement_m if is_multisurface(design) else math.inf
 
 
-def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", reduction=None) -> dict:
+def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", reduction=None,
+                     b_m_at_50: float = B_M_TABLE[-1][1]) -> dict:
     """D_M, T_M, β_M, B_M and V_b/W of one property bound (17.5.3).
 
     Parameters
@@ -89,6 +93,8 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", re
         Eq. 17.5-1 with S_a(T_M) T_M² (7-22) or S_M1 T_M (7-16; ASCE two-period targets only).
     reduction : callable, optional
         β ↦ the divisor of the 5 % spectrum (default: B_M of Table 17.5-1; EN: 1/η).
+    b_m_at_50 : float
+        Table 17.5-1's B_M at β ≥ 50 % (review parameter ``B_M_at_50pct``), when ``reduction`` is not given.
 
     Returns
     -------
@@ -98,7 +104,8 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", re
     """
     g = design.gravity_m_s2
     use_sm1 = form == "SM1" and target.kind == "asce7-two-period"
-    reduction = reduction or damping_coefficient
+    table = reduction is None
+    reduction = reduction or (lambda b: damping_coefficient(b, b_m_at_50))
 
     def image(d):
         _, t, beta = effective_properties(design, mu, d)
@@ -141,8 +148,10 @@ def elf_displacement(design, mu: float, target: Target, *, form: str = "SaM", re
         notes.append(f"T_M, β_M from the {design.bearing.kind} pendulum's loop between ±D_M (regime {regime} at D_M)")
     if t > target.long_period_s:
         notes.append(f"T_M = {t:.3g} s exceeds T_L = {target.long_period_s:g} s: the S_aM and S_M1 forms differ")
-    if beta > B_M_TABLE[-1][0]:
-        notes.append(f"β_M = {beta:.3g} beyond Table 17.5-1: B_M held at {B_M_TABLE[-1][1]}")
+    if table and beta > B_M_TABLE[-2][0]:  # only here does B_M_at_50pct decide B_M (the sources differ above 40 %)
+        notes.append(f"β_M = {beta:.3g} above 40 %: B_M = {reduction(beta):.4g} "
+                     + ("held at" if beta >= B_M_TABLE[-1][0] else "interpolated from 1.9 at 40 % to")
+                     + f" B_M_at_50pct = {b_m_at_50:g} at 50 % [S: P2; P1 stops at 1.9 from 40 %] (Table 17.5-1)")
     return {"D_M_m": d_m, "T_M_s": t, "beta_M": beta, "B_M": reduction(beta), "k_M_N_per_m": k,
             "V_b_over_W": k * d_m / design.weight_N, "mu": mu, "form": "SM1" if use_sm1 else "SaM", "notes": notes,
             "beyond_ultimate": False}
@@ -262,6 +271,7 @@ def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) 
         y = plan.get("y_m", layout_y if layout_y is not None else 0.5 * perpendicular)
         factors.append(torsion_amplification(y, e, p_t, b, d))
     raw = max(factors)
+    disagree = eccentricity_disagreement(plan, layout, params, p_t)
     y_source = "given" if "y_m" in plan else ("the bearing layout" if "y_for_loading_x_m" in layout else "assumed")
     return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t, "P_T_raw": p_t_raw,
             "basis": f"Eq. 17.5-3 with b = {b:g} m, d = {d:g} m, {p_t_said}"
@@ -269,8 +279,46 @@ def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) 
                         "the bearing layout": ", y = the farthest bearing perpendicular to the loading (the bearing "
                                               "layout)",
                         "assumed": ", y = half the plan dimension (corner bearing, assumed)"}[y_source]
-                     + (f"; floor {floor:g} governs" if raw < floor else ""),
-            "assumed": y_source == "assumed" or p_t_source == "assumed"}
+                     + (f"; floor {floor:g} governs" if raw < floor else "") + disagree.pop("said", ""),
+            "assumed": y_source == "assumed" or p_t_source == "assumed", **disagree}
+
+
+def eccentricity_disagreement(plan: dict, layout: dict, params: dict, p_t: float) -> dict:
+    """Which actual eccentricity Eq. 17.5-3 used where the design gives both ``[plan]``'s and a bearing layout's.
+
+    The layout's actual eccentricity ⟂ the loading is the offset of its centre of rigidity from the centre of mass
+    (``layout["rigidity_centre_m"]``: |ȳ| for loading along x, |x̄| along y).  Eq. 17.5-3 uses ``[plan]``'s
+    ``eccentricity_m`` (as given); the returned ``said`` tells the signer so, the layout's values, by how much they
+    differ and D_TM/D_M with the layout's instead.  Empty where the design does not give both.
+
+    Returns
+    -------
+    dict
+        ``eccentricity_plan_m``, ``eccentricity_layout_m`` (⟂ loading x, ⟂ loading y) [m],
+        ``eccentricity_difference_m`` (the larger |difference|) [m], ``factor_with_layout_eccentricity`` [-] and
+        ``said`` (text for the basis).
+    """
+    centre = layout.get("rigidity_centre_m")
+    if "eccentricity_m" not in plan or centre is None:
+        return {}
+    e_plan = float(plan["eccentricity_m"])
+    e_x, e_y = abs(centre[1]), abs(centre[0])  # ⟂ loading along x: the y offset; along y: the x offset
+    b, d = plan["b_m"], plan["d_m"]
+    factor = max(max(torsion_amplification(plan.get("y_m", layout_y if layout_y is not None else 0.5 * perp),
+                                           e + params["accidental_e"] * perp, p_t, b, d)
+                     for perp, layout_y, e in ((b, layout.get("y_for_loading_y_m"), e_y),
+                                               (d, layout.get("y_for_loading_x_m"), e_x))),
+                 params["D_TM_floor"])
+    difference = max(abs(e_plan - e_x), abs(e_plan - e_y))
+    floor_said = " (the floor)" if factor == params["D_TM_floor"] else ""
+    verdict = (f"they disagree by {difference:.3g} m; the bearing layout's would give D_TM/D_M = {factor:.4g}"
+               f"{floor_said}"
+               if difference > 1e-9 * max(1.0, e_plan) else "they agree")
+    return {"eccentricity_plan_m": e_plan, "eccentricity_layout_m": [e_x, e_y],
+            "eccentricity_difference_m": difference, "factor_with_layout_eccentricity": factor,
+            "said": f"; actual eccentricity e = {e_plan:g} m from [plan] eccentricity_m (used), the bearing layout's "
+                    f"centre of rigidity {e_x:.3g} m (⟂ loading x) and {e_y:.3g} m (⟂ loading y) from the centre of "
+                    f"mass: {verdict}"}
 
 
 def superstructure_shear(v_b_over_w: float, beta: float, params: dict) -> dict:
