@@ -1,0 +1,79 @@
+"""Session 25's hostile sweep (h228): session 24's leftovers (a story stiffness or a bearing's capacity in another
+unit, a triple's capacity beyond its sphere, a huge TOML's parse) and record headers that disagree with their data
+(docs/security.md, "Session 25 sweep").
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from isolator.design import Design
+from isolator.errors import DesignError
+
+RUNNER = CliRunner()
+DATA = Path(__file__).resolve().parents[1] / "data"
+BASE = {"name": "B", "mass_kg": 2.0e6, "radius_m": 2.5, "mu_static": 0.06}
+
+
+def _building(floors, **extra):
+    return Design.from_mapping({**BASE, "superstructure": {"damping_ratio": 0.05, "floor": floors}, **extra})
+
+
+# ---- 1. a story stiffness in kN/m: the fixed-base period beyond any building's
+
+def test_a_story_stiffness_in_kn_per_m_is_refused_by_the_fixed_base_period():
+    """c765efa read the example building with its stiffnesses in kN/m (T_1 = 15.5 s instead of 0.49 s) and with one
+    story in kN/m (top: 5.9 s); now T_1 above 4 C_u T_a (ASCE 7-22 Eq. 12.8-7, steel moment frame) is refused."""
+    from isolator.design import load_toml
+
+    mapping = load_toml(DATA / "example_building.toml", "design file", DesignError)
+    Design.from_mapping(mapping)  # the example: T_1 = 0.49 s, read
+    for stories in ([0, 1, 2, 3, 4], [4]):
+        floors = [dict(f) for f in mapping["superstructure"]["floor"]]
+        for i in stories:
+            floors[i]["stiffness_x_N_per_m"] /= 1000.0  # kN/m typed as N/m
+        with pytest.raises(DesignError, match=rf"fixed-base period along x is .* s, longer than any building of h_n = "
+                                              rf"18.4 m .* a story stiffness in kN/m\? .* floor {stories[0] + 1} from"):
+            Design.from_mapping({**mapping, "superstructure": {**mapping["superstructure"], "floor": floors}})
+
+
+def test_the_period_bound_is_four_cu_ta_of_a_steel_moment_frame_by_hand():
+    """One story (m, k, h): T = 2π √(m/k), the bound 4 × 1.4 × 0.0724 h^0.8 written here from ASCE 7-22 Tables
+    12.8-1/12.8-2; a stiffness 1 % stiffer than the bound's reads, 1 % softer is refused (c765efa read both)."""
+    m, h = 1.0e6, 4.0
+    bound_s = 4 * 1.4 * 0.0724 * h ** 0.8
+    k_at_bound = m * (2 * math.pi / bound_s) ** 2  # 2.6e7 N/m
+    floor = {"mass_kg": m, "story_height_m": h}
+    _building([{**floor, "stiffness_x_N_per_m": 1.01 * k_at_bound}])
+    with pytest.raises(DesignError, match=rf"along x is {2 * math.pi * math.sqrt(m / (0.99 * k_at_bound)):.3g} s, .* "
+                                          rf"\(above 4 C_u T_a = {bound_s:.3g} s"):
+        _building([{**floor, "stiffness_x_N_per_m": 0.99 * k_at_bound}])
+    with pytest.raises(DesignError, match=r"along y .*\(stiffness_y_N_per_m is in N/m"):  # y alone in kN/m
+        _building([{**floor, "stiffness_x_N_per_m": 1e9, "stiffness_y_N_per_m": 0.99 * k_at_bound}])
+
+
+# ---- 2. a bearing's axial capacity: a range and its gravity load
+
+@pytest.mark.parametrize("capacity, words", [
+    (1.2e4, "= 12000 N is below 0.1 of the bearing's gravity load (4.903e+06 N): a capacity in kN?"),
+    (1e-300, "= 1e-300 N is below 0.1 of the bearing's gravity load"),
+    (1e300, "= 1e+300 N is above 1e+09 N"),
+])
+def test_an_axial_capacity_in_another_unit_is_refused(capacity, words):
+    """c765efa read 1.2e4 N (kN typed as N) for a bearing carrying 4.9 MN, 1e-300 and 1e300 N; a capacity half the
+    load (a failing design, the review's 17.2.4.6 row) still reads."""
+    positions = [{"x_m": x, "y_m": y} for x in (-5.0, 5.0) for y in (-5.0, 5.0)]  # W/4 = 4.903e6 N each
+    share = BASE["mass_kg"] * 9.80665 / 4
+    Design.from_mapping({**BASE, "bearing_position": [{**p, "axial_capacity_N": 0.5 * share} for p in positions]})
+    with pytest.raises(DesignError, match=r"bearing_position 1: key 'axial_capacity_N' " + _escaped(words)):
+        Design.from_mapping({**BASE, "bearing_position": [{**p, "axial_capacity_N": capacity} for p in positions]})
+
+
+def _escaped(text: str) -> str:
+    import re
+
+    return re.escape(text)
