@@ -98,3 +98,22 @@ def test_a_capacity_beyond_its_sphere_is_refused(surface, capacity):
     for s, d in zip(inner_above, (0.2, 0.25, 0.25, 0.8), strict=True):
         s["displacement_capacity_m"] = d
     Design.from_mapping({**mapping, "bearing": {**mapping["bearing"], "surface": inner_above}})
+
+
+# ---- 4. a huge TOML is refused before its parse
+
+def test_a_design_file_past_4_mib_is_refused_unparsed_while_a_designs_file_keeps_64(tmp_path):
+    """c765efa parsed up to 64 MiB of any TOML: a 10 MB array took 100 s to refuse (load 9); now a design file stops
+    at 4 MiB (MAX_ONE_TOML_BYTES; the 10,000-bearing building is 0.5 MiB), a batch's designs file keeps 64 MiB."""
+    from isolator.batch.plan import load_design_mappings
+    from isolator.errors import BatchError
+
+    big = tmp_path / "big.toml"
+    with open(big, "wb") as stream:
+        stream.truncate(4 * 2**20 + 1)  # sparse NULs: no disk used
+    with pytest.raises(DesignError, match=r"big.toml: is 4.0 MiB, larger than any design file \(isolator reads a "
+                                          r"design file up to 4 MiB"):
+        Design.from_toml(big)
+    with pytest.raises(BatchError) as caught:  # read past the size check: the NULs are not TOML
+        load_design_mappings(big)
+    assert "not valid TOML" in str(caught.value), caught.value
