@@ -9,10 +9,12 @@ import math
 from pathlib import Path
 
 import pytest
+from _records import assert_one_line_exit_2
 from typer.testing import CliRunner
 
+from isolator.cli import app
 from isolator.design import Design
-from isolator.errors import DesignError
+from isolator.errors import DesignError, RecordFormatError, TimeStepConflictError
 
 RUNNER = CliRunner()
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -117,3 +119,45 @@ def test_a_design_file_past_4_mib_is_refused_unparsed_while_a_designs_file_keeps
     with pytest.raises(BatchError) as caught:  # read past the size check: the NULs are not TOML
         load_design_mappings(big)
     assert "not valid TOML" in str(caught.value), caught.value
+
+
+# ---- 5. a text record's time step stated twice, or against its time column or --dt
+
+SINE = [0.1 * math.sin(2 * math.pi * i * 0.01) for i in range(200)]
+
+
+def _read(path, **options):
+    from isolator.io.text import _read_text
+
+    return _read_text(str(path), **options)[0]
+
+
+def test_a_stated_step_that_disagrees_with_the_time_column_is_refused(tmp_path):
+    """c765efa read `# dt_s: 0.02` above a time column of 0.01 s as 0.01 s without a word; a note that is not a number
+    (`# dt: 0.01 s`) is still a note, and a line that agrees reads."""
+    body = "".join(f"{i * 0.01:.2f} {v:.6f}\n" for i, v in enumerate(SINE))
+    path = tmp_path / "x.txt"
+    path.write_text("# dt_s: 0.02\n" + body)
+    with pytest.raises(RecordFormatError, match=r"'# dt_s: 0.02' disagrees with the time column's step of 0.01 s"):
+        _read(path)
+    for note in ("# dt: 0.01 s\n", "# dt_s: 0.010\n"):
+        path.write_text(note + body)
+        assert _read(path).stats.delta == 0.01
+
+
+def test_two_stated_steps_or_dt_against_the_file_are_refused(tmp_path):
+    """c765efa took the last of `# dt_s: 0.02` / `# dt_s: 0.01` (0.01 s), and `info --dt 0.02` over `# dt_s: 0.01`
+    (0.02 s), without a word; `--units` against `# units:` was already refused."""
+    body = "".join(f"{v:.6f}\n" for v in SINE)
+    path = tmp_path / "x.txt"
+    path.write_text("# dt_s: 0.02\n# units: g\n# dt_s: 0.01\n" + body)
+    with pytest.raises(RecordFormatError, match=r"states its time step 2 times, differently \('# dt_s: 0.02', "
+                                                r"'# dt_s: 0.01'\)"):
+        _read(path)
+    path.write_text("# dt_s: 0.01\n# units: g\n" + body)
+    with pytest.raises(TimeStepConflictError):
+        _read(path, dt_s=0.02)
+    assert _read(path, dt_s=0.01).stats.delta == 0.01  # the same step given twice reads
+    line = assert_one_line_exit_2(RUNNER.invoke(app, ["info", str(path), "--dt", "0.02"]))
+    assert line == (f"error: {path}: plain text: the file states '# dt_s: 0.01' but the time step given is 0.02 s; "
+                    "--dt says 0.02 s: drop it to use the file's time step"), line
