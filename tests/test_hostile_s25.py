@@ -161,3 +161,19 @@ def test_two_stated_steps_or_dt_against_the_file_are_refused(tmp_path):
     line = assert_one_line_exit_2(RUNNER.invoke(app, ["info", str(path), "--dt", "0.02"]))
     assert line == (f"error: {path}: plain text: the file states '# dt_s: 0.01' but the time step given is 0.02 s; "
                     "--dt says 0.02 s: drop it to use the file's time step"), line
+
+
+def test_a_v2_block_whose_step_disagrees_with_its_channel_header_is_refused(tmp_path, records_dir):
+    """c765efa read an accel block of 0.020 s under the channel's 'equally-spaced intervals of 0.010 sec' as 0.02 s
+    (the record twice as long, its spectrum shifted an octave) without a word."""
+    from isolator.io.v2 import _read_v2
+
+    text = (records_dir / "other" / "ce89486SampleInput.v2").read_text()
+    block = " 10100 points of accel data equally spaced at 0.010 sec"
+    assert text.count(block) == 3  # one per channel
+    path = tmp_path / "x.v2"
+    path.write_text(text.replace(block, block.replace("0.010", "0.020"), 1))
+    with pytest.raises(RecordFormatError, match=r"DT=0.02 s on line 46 disagrees with the channel's header "
+                                                r"\('equally-spaced intervals of 0.010 sec'\)"):
+        _read_v2(str(path))
+    assert [trace.stats.delta for trace in _read_v2(str(records_dir / "other" / "ce89486SampleInput.v2"))] == [0.01] * 3
