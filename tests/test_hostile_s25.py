@@ -177,3 +177,23 @@ def test_a_v2_block_whose_step_disagrees_with_its_channel_header_is_refused(tmp_
                                                 r"\('equally-spaced intervals of 0.010 sec'\)"):
         _read_v2(str(path))
     assert [trace.stats.delta for trace in _read_v2(str(records_dir / "other" / "ce89486SampleInput.v2"))] == [0.01] * 3
+
+
+def test_a_knet_file_cut_short_or_scaled_against_its_header_is_refused(tmp_path, records_dir):
+    """c765efa read the first 900 lines of a K-NET file (7064 of 13800 samples) as a 70.6 s record under its header's
+    'Duration Time(s) 138', and a 'Max. Acc. (gal)' 100 times the samples' peak, without a word.  The shared records'
+    seven K-NET components agree with their headers (span = duration, peak within 5e-4 gal) and read."""
+    from isolator.errors import RecordError
+    from isolator.motion import read_ground_motion
+
+    text = (records_dir / "other" / "AOM0081801241951.EW").read_text()
+    assert read_ground_motion(records_dir / "other" / "AOM0081801241951.EW").npts == 13800
+    cut, scaled = tmp_path / "cut.EW", tmp_path / "scaled.EW"
+    cut.write_text("\n".join(text.splitlines()[:900]) + "\n")
+    scaled.write_text(text.replace("Max. Acc. (gal)   30.248", "Max. Acc. (gal)   3024.8"))
+    with pytest.raises(RecordError, match=r"cut.EW: K-NET header states 'Duration Time\(s\) 138' but the file holds "
+                                          r"7064 samples at 0.01 s \(70.64 s\): truncated"):
+        read_ground_motion(cut)
+    with pytest.raises(RecordError, match=r"'Max. Acc. \(gal\) 3024.8' but the samples × its 'Scale Factor' peak at "
+                                          r"30.248 gal"):
+        read_ground_motion(scaled)
