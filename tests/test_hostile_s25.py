@@ -81,27 +81,6 @@ def _escaped(text: str) -> str:
     return re.escape(text)
 
 
-# ---- 3. a triple whose surface's capacity passes its radius
-
-@pytest.mark.parametrize("surface, capacity", [(2, 5.0), (2, 0.9), (1, 3.0)])
-def test_a_capacity_beyond_its_sphere_is_refused(surface, capacity):
-    """c765efa ran the example triple with inner capacity 5 m on R = 0.3 m (23 s); now d_i ≥ R_i is refused, naming
-    the surface.  An inner capacity above the outer one but below its radius is Fenz & Constantinou's series model
-    (the inner sliders pause in regimes II-III): the example triple with d2 = d3 = 0.25 m > d1 = 0.2 m reads."""
-    from isolator.design import load_toml
-
-    mapping = load_toml(DATA / "example_triple.toml", "design file", DesignError)
-    surfaces = [dict(s) for s in mapping["bearing"]["surface"]]
-    surfaces[surface - 1]["displacement_capacity_m"] = capacity
-    with pytest.raises(DesignError, match=rf"bearing surface {surface}: displacement_capacity_m = {capacity:g} m is "
-                                          rf"not below radius_m = {surfaces[surface - 1]['radius_m']:g} m"):
-        Design.from_mapping({**mapping, "bearing": {**mapping["bearing"], "surface": surfaces}})
-    inner_above = [dict(s) for s in mapping["bearing"]["surface"]]
-    for s, d in zip(inner_above, (0.2, 0.25, 0.25, 0.8), strict=True):
-        s["displacement_capacity_m"] = d
-    Design.from_mapping({**mapping, "bearing": {**mapping["bearing"], "surface": inner_above}})
-
-
 # ---- 4. a huge TOML is refused before its parse
 
 def test_a_design_file_past_4_mib_is_refused_unparsed_while_a_designs_file_keeps_64(tmp_path):
