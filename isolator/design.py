@@ -102,6 +102,11 @@ BOUND_FORMS = (("lambda_max", "lambda_min"), ("mu_upper", "mu_lower"),
 #: sweep), so a few GB would exhaust the memory.  The largest real inputs are far below: a building on the layout
 #: bound (10,000 [[bearing_position]] tables) is 0.46 MiB, a batch designs file of 10,000 designs 0.9 MiB.
 MAX_TOML_BYTES = 64 * 2**20
+#: The largest design, target or suite file read [bytes] (a batch's designs file keeps MAX_TOML_BYTES): tomllib parses
+#: 0.5-3 MiB per second of CPU (an array of numbers the slowest), so 64 MiB of junk took up to 2 minutes to refuse (a
+#: 10 MB array: 100 s at load 9, session 25 sweep).  The largest real one, a building on the 10,000-bearing bound with
+#: 200 floors, is 0.5 MiB; 4 MiB is eight times that and parses in at most 8 s.
+MAX_ONE_TOML_BYTES = 4 * 2**20
 #: A key of this many dotted parts (``a.b.c…``, bare or quoted) is refused before tomllib reads the file: its time
 #: grows as the square of a key's parts (2,000 / 5,000 / 10,000 parts: 0.28 / 0.85 / 2.8 s; a 100 kB key of
 #: 50,000 ran past a minute; session 17 sweep).  Scanning 61 MiB of floats for it takes 8.4 s (/tmp/h166).
@@ -110,7 +115,7 @@ DEEP_TOML_KEY = re.compile(r"""(?<![\w"'-])(?:(?:[\w-]+|"[^"\n]*"|'[^'\n]*')[ \t
                            + f"{{{MAX_KEY_PARTS}}}")
 
 
-def load_toml(path, what: str, error_type: type[Exception]) -> dict:
+def load_toml(path, what: str, error_type: type[Exception], *, max_bytes: int = MAX_ONE_TOML_BYTES) -> dict:
     """Read a TOML file; a missing, unreadable or invalid file raises ``error_type``.
 
     Parameters
@@ -121,6 +126,8 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         What the file is, for the message ("design file", "designs file").
     error_type : type
         The exception raised, with one line naming the file and the problem.
+    max_bytes : int
+        The largest file read (:data:`MAX_ONE_TOML_BYTES`; a batch's designs file :data:`MAX_TOML_BYTES`).
     """
     import tomllib
 
@@ -136,13 +143,14 @@ def load_toml(path, what: str, error_type: type[Exception]) -> dict:
         raise error_type(f"{path}: {problem}")
     try:
         size = path.stat().st_size
-        if size > MAX_TOML_BYTES:
-            raise error_type(f"{path}: is {size / 2**20:.1f} MiB, larger than any {what} (isolator reads TOML files up "
-                             f"to {MAX_TOML_BYTES // 2**20} MiB; 10,000 bearing positions take about 0.5 MiB)")
+        if size > max_bytes:
+            raise error_type(f"{path}: is {size / 2**20:.1f} MiB, larger than any {what} (isolator reads a {what} up "
+                             f"to {max_bytes // 2**20} MiB; 10,000 bearing positions take about 0.5 MiB, 10,000 "
+                             "designs 0.9 MiB)")
         with path.open("rb") as stream:  # read at most the bound: a file that grows meanwhile is not read whole
-            data = stream.read(MAX_TOML_BYTES + 1)
-        if len(data) > MAX_TOML_BYTES:
-            raise error_type(f"{path}: grew past {MAX_TOML_BYTES // 2**20} MiB while read")
+            data = stream.read(max_bytes + 1)
+        if len(data) > max_bytes:
+            raise error_type(f"{path}: grew past {max_bytes // 2**20} MiB while read")
         # a byte-order mark (Notepad's "UTF-8 with BOM") is an encoding's mark, not content: tomllib called it "Invalid
         # statement (at line 1, column 1)"
         text = data.decode("utf-8-sig")

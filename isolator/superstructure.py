@@ -92,6 +92,20 @@ BEARING_POSITION_MAX_M = 1e4
 #: Read, 100,000 entries took 4.2 s and the building's `simulate` 16 s and 0.84 GB; with the bearings' old
 #: pairwise check of their places, 30,000 took 40 s to read and 100,000 ran past 120 s (session 16 sweep).
 MAX_BEARINGS = 10_000
+#: ASCE 7-22 Eq. 12.8-7, T_a = C_t h_n^x, with Table 12.8-2's most flexible system (steel moment-resisting frames:
+#: C_t = 0.0724, x = 0.8 with h_n in m) and Table 12.8-1's largest C_u = 1.4.  A fixed-base fundamental period above
+#: FIXED_BASE_PERIOD_FACTOR × C_u T_a is a story stiffness in another unit, not a building: kN/m typed as N/m makes
+#: the periods sqrt(1000) = 31.6 times longer (the example building's 0.49 s became 15.5 s and was read; session 24
+#: sweep).  Computed periods of flexible frames reach about 2 C_u T_a; 4 C_u T_a leaves them room and still catches
+#: one story of the example building in kN/m (its top story: T_1 = 5.9 s against 4 C_u T_a = 4.2 s).
+PERIOD_CT, PERIOD_X, PERIOD_CU = 0.0724, 0.8, 1.4
+FIXED_BASE_PERIOD_FACTOR = 4.0
+#: A bearing's axial capacity [N]: the largest friction pendulums carry about 1e8 N (10,000 t); 1e9 N is ten times
+#: that.  Below AXIAL_CAPACITY_MIN_SHARE of the bearing's own gravity load the capacity is another unit (kN typed as
+#: N is 1/1000 of it), not a design: a failing design's capacity is a fraction of its load, not a thousandth
+#: (1e-300 N and 1e300 N were read, session 24 sweep).
+AXIAL_CAPACITY_MAX_N = 1e9
+AXIAL_CAPACITY_MIN_SHARE = 0.1
 
 
 @dataclass(frozen=True)
@@ -441,8 +455,30 @@ def parse_superstructure(table, total_mass_kg: float, gravity_m_s2: float, sourc
                           f"{total_mass_kg:g} kg (the total isolated mass: the base slab is the rest)")
     r = _number(table, "response_modification_R", where, SUPERSTRUCTURE_KEYS, required=False,
                 within=RESPONSE_MODIFICATION_RANGE, what=", ASCE 7-22 Table 12.2-1's R of a system")
-    return Superstructure(floors=tuple(floors), damping_ratio=zeta, gravity_m_s2=float(gravity_m_s2),
-                          response_modification_R=r)
+    building = Superstructure(floors=tuple(floors), damping_ratio=zeta, gravity_m_s2=float(gravity_m_s2),
+                              response_modification_R=r)
+    _refuse_unit_slip_in_stiffness(building, where)
+    return building
+
+
+def _refuse_unit_slip_in_stiffness(building: Superstructure, where: str) -> None:
+    """A fixed-base fundamental period beyond any building's (:data:`FIXED_BASE_PERIOD_FACTOR` × C_u T_a) is refused,
+    naming the story whose own period 2π √(Σ m above / k_i) is the longest: its stiffness is the likeliest slip."""
+    height_m = float(np.sum(building.story_heights_m))
+    bound_s = FIXED_BASE_PERIOD_FACTOR * PERIOD_CU * PERIOD_CT * height_m ** PERIOD_X
+    masses_above = np.cumsum(building.masses_kg[::-1])[::-1]
+    for direction in ("x", "y"):
+        period_s = float(building.fixed_base_periods_s(direction)[0])
+        if period_s > bound_s:
+            story_periods = 2 * math.pi * np.sqrt(masses_above / building.story_stiffnesses(direction))
+            softest = int(np.argmax(story_periods))
+            key = f"stiffness_{direction}_N_per_m"
+            raise DesignError(
+                f"{where}: the fixed-base period along {direction} is {period_s:.3g} s, longer than any building of "
+                f"h_n = {height_m:g} m (above {FIXED_BASE_PERIOD_FACTOR:g} C_u T_a = {bound_s:.3g} s; ASCE 7-22 Eq. "
+                f"12.8-7, T_a = {PERIOD_CT} h_n^{PERIOD_X} of a steel moment frame, C_u = {PERIOD_CU}): a story "
+                f"stiffness in kN/m? ({key} is in N/m; floor {softest + 1} from the bottom has "
+                f"{building.story_stiffnesses(direction)[softest]:g} N/m)")
 
 
 def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
@@ -487,6 +523,9 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
         ys.append(_number(entry, "y_m", here, BEARING_KEYS, positive=False, within=plan[0], what=plan[1]))
         loads.append(_number(entry, "gravity_load_N", here, BEARING_KEYS, required=False))
         capacities.append(_number(entry, "axial_capacity_N", here, BEARING_KEYS, required=False))
+        if capacities[-1] is not None and capacities[-1] > AXIAL_CAPACITY_MAX_N:
+            raise DesignError(f"{here}: key 'axial_capacity_N' = {capacities[-1]:g} N is above {AXIAL_CAPACITY_MAX_N:g} "
+                              "N, ten times the largest friction pendulums' (about 1e8 N)")
         first = places.setdefault((xs[-1], ys[-1]), number)
         if first != number:
             raise DesignError(f"{here}: at the same place as bearing_position {first} ({xs[-1]:g}, {ys[-1]:g}) m")
@@ -511,6 +550,11 @@ def parse_bearing_layout(entries, weight_N: float, source: str = "<design>"):
         missing = [c is not None for c in capacities].index(False) + 1
         raise DesignError(f"{source}: bearing_position {missing}: missing key 'axial_capacity_N' (give it for every "
                           "bearing or for none)")
+    for number, (capacity, load) in enumerate(zip(capacities, loads, strict=True), start=1):
+        if capacity is not None and capacity < AXIAL_CAPACITY_MIN_SHARE * load:
+            raise DesignError(f"{source}: bearing_position {number}: key 'axial_capacity_N' = {capacity:g} N is below "
+                              f"{AXIAL_CAPACITY_MIN_SHARE:g} of the bearing's gravity load ({load:.4g} N): a capacity "
+                              "in kN? (axial_capacity_N is in N)")
     return BearingLayout(x_m=tuple(xs), y_m=tuple(ys), gravity_loads_N=tuple(float(v) for v in loads),
                          axial_capacities_N=tuple(capacities) if capacities and capacities[0] is not None else None)
 

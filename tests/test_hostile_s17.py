@@ -242,7 +242,7 @@ def test_a_toml_file_beyond_64_mib_is_refused_before_it_is_read(tmp_path):
     with path.open("wb") as stream:
         stream.truncate(65 * 2**20)
     with pytest.raises(DesignError, match=r"big.toml: is 65.0 MiB, larger than any design file \(isolator reads "
-                                          r"TOML files up to 64 MiB"):
+                                          r"a design file up to 4 MiB"):
         Design.from_toml(path)
 
 

@@ -85,11 +85,11 @@ def load_design_mappings(path) -> list[dict]:
     BatchError
         Missing or unreadable file, invalid TOML, no ``[[design]]`` list.
     """
-    from isolator.design import load_toml
+    from isolator.design import MAX_TOML_BYTES, load_toml
     from isolator.errors import printable
 
     path = Path(path)
-    content = load_toml(path, "designs file", BatchError)
+    content = load_toml(path, "designs file", BatchError, max_bytes=MAX_TOML_BYTES)
     designs = content.get("design")
     if (problem := one_table_problem(designs, "design")) is not None:
         raise BatchError(f"{path}: {problem}")

@@ -82,6 +82,38 @@ def _units_statements(comment_lines: list[str]) -> list[str]:
     return found
 
 
+def _stated_step(comment_lines: list[str], *, numbers_only: bool) -> tuple[float | None, str, str]:
+    """(step [s], the line as written, its value as written) of the comments' ``# dt_s:`` (or ``# dt:``) lines;
+    (None, "", "") when none.  ``numbers_only``: a line whose value is not a number is a note, not a step (a file
+    with a time column: ``# dt: 0.01 s`` was never read), else it is refused.
+
+    Raises
+    ------
+    RecordFormatError
+        A step that is not a number, or two lines that state different steps (``# dt_s: 0.02`` then
+        ``# dt_s: 0.01`` took the last without a word, session 25 sweep): which one holds cannot be told.
+    """
+    found = []
+    for line in comment_lines:
+        match = _META_RE.match(line.strip())
+        key = match.group(1).strip().lower() if match else ""
+        if key in ("dt_s", "dt"):
+            written = match.group(2)
+            try:
+                value = parse_float(written)
+            except ValueError:  # was float()'s "could not convert string to float: '0,01'"
+                if numbers_only:
+                    continue
+                comma = " (a decimal comma? write the step with a decimal point)" if "," in written else ""
+                raise RecordFormatError(f"'# {key}: {written[:40]}' is not a number{comma}") from None
+            found.append((value, f"'# {key}: {written[:40]}'", written))
+    if len({value for value, _, _ in found}) > 1:
+        raise RecordFormatError(f"states its time step {len(found)} times, differently ("
+                                + ", ".join(line for _, line, _ in found) + "): ambiguous; keep the one line that is "
+                                "right")
+    return found[0] if found else (None, "", "")
+
+
 def _one_unit(comment_lines: list[str]) -> str:
     """The file's units, stated once or the same each time; two different statements are refused.
 
@@ -265,7 +297,7 @@ def _parse_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fal
     filename_or_buf : str or path-like or file-like
         The text file [-].
     dt_s : float, optional
-        Time step for a one-column file (overrides ``# dt_s:``; must agree with a time
+        Time step for a one-column file (must agree with a ``# dt_s:`` line and with a time
         column if there is one) [s].
     headonly : bool, optional
         Ignored; the whole file is parsed to know NPTS and DT [-].
@@ -318,6 +350,7 @@ def _parse_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fal
     t0_s = 0.0
     dt_from = ""  # what gave the step, when the file gave it
     dt_written = ""  # the step as the file writes it (a '# dt_s:' line)
+    stated_s, stated_line, stated_written = _stated_step(comments, numbers_only=ncols == 2)
     if ncols == 2:
         time_s, acceleration = table[:, 0], table[:, 1]
         if time_s.size >= 2:
@@ -345,6 +378,9 @@ def _parse_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fal
                 if dt_s is not None and abs(dt_s - step_s) > tolerance_s:
                     raise TimeStepConflictError(f"the time step given ({dt_s:g} s) disagrees with the time column's "
                                                 f"{step_s:g} s", given=dt_s)
+                if stated_s is not None and not abs(stated_s - step_s) <= tolerance_s:  # the column was read alone
+                    raise RecordFormatError(f"{stated_line} disagrees with the time column's step of {step_s:g} s: "
+                                            "which one holds? (correct the line, or drop it)")
                 dt_s = float(f"{step_s:.12g}")  # drop the round-off of the division
                 dt_from = "the time column's step"
         elif dt_s is None:
@@ -352,14 +388,12 @@ def _parse_text(filename_or_buf, dt_s: float | None = None, headonly: bool = Fal
         t0_s = float(time_s[0])
     else:
         acceleration = table[:, 0]
-        for key in ("dt_s", "dt"):
-            if dt_s is None and key in meta:
-                try:
-                    dt_s = parse_float(meta[key])
-                except ValueError:  # was float()'s "could not convert string to float: '0,01'"
-                    comma = " (a decimal comma? write the step with a decimal point)" if "," in meta[key] else ""
-                    raise RecordFormatError(f"'# {key}: {meta[key][:40]}' is not a number{comma}") from None
-                dt_from, dt_written = f"'# {key}: {meta[key][:40]}'", meta[key]
+        if dt_s is not None and stated_s is not None and not abs(stated_s - dt_s) <= 1e-9 * max(dt_s, 1.0):
+            # --dt took the place of '# dt_s: 0.01' without a word (session 25 sweep), as --units against '# units:'
+            raise TimeStepConflictError(f"the file states {stated_line} but the time step given is {dt_s:g} s",
+                                        given=dt_s)
+        if dt_s is None and stated_s is not None:
+            dt_s, dt_from, dt_written = stated_s, stated_line, stated_written
         if dt_s is None:
             raise MissingTimeStepError("one column and no time step (none given, no '# dt_s:' line)")
     if dt_from:  # a step given by --dt keeps its own message (it names the flag)

@@ -36,6 +36,9 @@ _START_RE = re.compile(
     r"Start time:\s*(\d+)/(\d+)/(\d+),\s*(\d+):\s*(\d+):\s*([\d.]+)\s*UTC", re.IGNORECASE
 )
 _STATION_RE = re.compile(r"Station No\.\s*(\d+)", re.IGNORECASE)
+#: A channel's text header states its step ("At equally-spaced intervals of   0.010  sec."): a data block's DT that
+#: disagrees was read alone, the header's never compared (a block of 0.020 s under 0.010 s; session 25 sweep).
+_INTERVALS_RE = re.compile(r"equally-spaced\s+intervals\s+of\s+([-+0-9.Ee]+)\s*sec", re.IGNORECASE)
 _UNITS = {"cm/sec2": "cm/s2", "cm/sec/sec": "cm/s2", "g": "g", "m/sec2": "m/s2"}
 
 
@@ -140,6 +143,10 @@ def _read_v2(filename_or_buf, headonly: bool = False, **kwargs) -> Stream:
         if kind == "accel":
             if not dt_s > 0:
                 raise RecordFormatError(f"DT={dt_s:g} s is not positive on line {index + 1}")
+            stated = next((m for m in map(_INTERVALS_RE.search, text_header) if m), None)
+            if stated is not None and not abs(parse_float(stated.group(1)) - dt_s) <= 1e-6 * dt_s:
+                raise RecordFormatError(f"DT={dt_s:g} s on line {index + 1} disagrees with the channel's header "
+                                        f"('equally-spaced intervals of {stated.group(1)} sec'): which one holds?")
             units_text = (match.group(4) or "").strip().lower()
             units = _UNITS.get(units_text.replace(" ", ""))
             if units is None:

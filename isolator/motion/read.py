@@ -272,6 +272,31 @@ def _known_units() -> set[str]:
     return set(ACCELERATION_UNITS_TO_M_S2)
 
 
+#: A K-NET header's 'Duration Time(s)' (whole seconds) may differ from the samples' span by this much [s].
+KNET_DURATION_TOLERANCE_S = 1.0
+#: A K-NET header's 'Max. Acc. (gal)' (3 decimals) may differ from the demeaned samples' peak by this fraction [-];
+#: the shared records' seven K-NET components agree to 5e-4 gal.
+KNET_PEAK_TOLERANCE = 0.01
+
+
+def _check_knet_header(path: Path, stats, demeaned_m_s2: np.ndarray) -> None:
+    """A K-NET file whose samples disagree with its own header is refused: a file cut short (half of it read as a
+    70.6 s record under 'Duration Time(s) 138') or a 'Scale Factor' or samples of another record (session 25 sweep).
+    A step out of range and samples all zero keep their own messages."""
+    knet = stats.get("knet", {})
+    duration_s, span_s = knet.get("duration"), stats.npts * stats.delta
+    step_told = not stats.delta > 0 or dt_problem(stats.delta)  # a step out of range: its own message, later
+    if duration_s is not None and not step_told and abs(span_s - duration_s) > KNET_DURATION_TOLERANCE_S:
+        raise _fail(path, f"K-NET header states 'Duration Time(s) {duration_s:g}' but the file holds {stats.npts} "
+                          f"samples at {stats.delta:g} s ({span_s:g} s): truncated, or a header of another record",
+                    RecordFormatError)
+    stated_gal, peak_gal = knet.get("accmax"), 100.0 * float(np.max(np.abs(demeaned_m_s2)))
+    if stated_gal is not None and peak_gal > 0 and not abs(peak_gal - stated_gal) <= max(KNET_PEAK_TOLERANCE * stated_gal, 1e-3):
+        raise _fail(path, f"K-NET header states 'Max. Acc. (gal) {stated_gal:g}' but the samples × its 'Scale "
+                          f"Factor' peak at {peak_gal:.5g} gal: a scale factor or samples of another record",
+                    RecordFormatError)
+
+
 def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndarray, str, list[dict]]:
     """Acceleration in m/s² and the description of the units' source."""
     stats = trace.stats
@@ -329,7 +354,9 @@ def _to_m_s2(path: Path, trace, units, response, counts_factor) -> tuple[np.ndar
         if units is not None and _units_factor(path, units, "units given") != 1.0:
             raise _fail(path, f"the K-NET scale factor gives m/s2 but the units given are {units}", UnitsConflictError,
                         given=units)
-        return data - data.mean(), "K-NET scale factor (header, gal per count → m/s2)", steps
+        data = data - data.mean()
+        _check_knet_header(path, stats, data)
+        return data, "K-NET scale factor (header, gal per count → m/s2)", steps
     if np.issubdtype(trace.data.dtype, np.integer):
         raise _fail(path, "holds integer counts and neither an instrument response (StationXML) nor a counts "
                           "factor with units was given", CountsError)
