@@ -109,6 +109,9 @@ class PlanarMultisurfaceResponse(SolverResult):
     ultimate_displacement_m: float
     peak_force_per_weight: float
     n_steps: int = 0
+    #: the implicit steps (planar_multisurface_stepper) accepted at the shortest length with their error estimate above
+    #: the tolerance: not zero, the history's error is not held to ``step_tol`` there (0 from the event-driven kernel)
+    n_steps_at_floor: int = 0
     n_rim_contacts: int = 0
     ultimate_displacement_reached: bool = False
     n_impacts: int = 0  #: plastic impacts at the ultimate displacement
@@ -498,6 +501,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
                        "where a corner of two circles closing towards tangency made its steps stiff: more "
                        f"than {_pm.MAX_STIFF_STEPS_PER_INTERVAL} in one sample interval)" if status & _pm.STATUS_STIFF else
                        f"status {status}: the sliding set changes faster than its events resolve)"))
+    n_floor = 0
     if method == "steps" or status & _STOPPED:
         events_seconds = 0.0
         if method == "steps":
@@ -510,6 +514,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
             local, ax, ay, nz, rb, mu, rim, members, tmat, c, step_tol, scales, 64 + ax.size // 4)
         elapsed += events_seconds
         status = int(summary[_pm.S_STATUS])
+        n_floor = int(summary[_pm.S_STEPS_MULTI])
         fail_t = t0 + float(summary[_pm.S_FAIL_T])
         if status & _pm.STATUS_RIM:
             raise SolverError(f"the 2-D multi-surface implicit steps left a rim at t = {fail_t:.6g} s (a guard)")
@@ -589,6 +594,7 @@ def simulate_bearing_pair(ax_m_s2, ay_m_s2, dt_s: float | None = None, *, bearin
         ultimate_displacement_m=bearing.ultimate_displacement_m,
         peak_force_per_weight=peak_r,
         n_steps=int(summary[_pm.S_N_STEPS]),
+        n_steps_at_floor=n_floor,
         status=status, message="ok", solver_seconds=elapsed,
         damping_per_mass=c, gravity_m_s2=g,
         model=MODEL_NAME + ("+vertical" if az is not None else ""),

@@ -113,6 +113,14 @@ WORK_TOL = 1e-7
 #: the relative rounding of a position returned onto a rim (a few units in the last place of c̄): α times it is the
 #: floor of Ψ's gradient where groups are at their rims (step_force)
 RIM_ROUNDING = 8e-16
+#: the displacement's error scale is held above this many machine epsilons of Σ R̄ µ + Σ R̄ |r|, the rounding of the
+#: groups' slips (a slip R̄ (|r − ū/R̄| − µ) moves in quanta of R̄ ulp(r)): at rest the running peak is ~0 and the scale
+#: step_tol × the floor fell below it at tight tolerances (N. California 89146 ×1.5 on IELC's double, step_tol 3e-10:
+#: 141,017 steps accepted at the floor with their error above 1; docs/multisurface.md, h225's section).  The building's
+#: steps hold theirs the same way (planar_building_multisurface_kernel's X_ROUNDING_ULPS, h219)
+SLIP_QUANTA = 4.0
+#: the doubles' machine epsilon
+DOUBLE_EPS = 2.220446049250313e-16
 #: the relative rounding of a sliding group's slip (a few units in the last place of |r − b|): α R̄ (|b| + µ) times it
 #: is the floor of Ψ's gradient from the sliding groups near their circles (step_force; a term in |r| made the floor
 #: ~1e2 at an impact, r ~ 1e5 W, and Newton stopped on a wrong force: balances open by 5.8e-2 and 4.5)
@@ -1191,14 +1199,14 @@ def three_solves(y, h, tau, raw, c, rb, mu, rim, r, y1, yh, y2, r1, rh, r2, ult)
     booked (:func:`vertical_work`).  ``ult``: the ultimate classified once for the three (:func:`be_step`).
     Returns the three masks of :func:`be_step`."""
     m1 = be_step(y, h, raw[0] + raw[1] * (tau + 0.5 * h), raw[2] + raw[3] * (tau + 0.5 * h),
-                 raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1, 1.0, 1.0, ult, np.bool_(True))
+                 raw[4] + raw[5] * (tau + 0.5 * h), c, rb, mu, rim, r, y1, r1, 1.0, 1.0, ult, np.bool_(True), np.bool_(True))
     mh = be_step(y, 0.5 * h, raw[0] + raw[1] * (tau + 0.25 * h), raw[2] + raw[3] * (tau + 0.25 * h),
-                 raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult, np.bool_(True))
+                 raw[4] + raw[5] * (tau + 0.25 * h), c, rb, mu, rim, r1, yh, rh, 1.0, 1.0, ult, np.bool_(True), np.bool_(True))
     if raw[5] != 0.0:
         vertical_work(y, y1, rb, raw[5] * h)
         vertical_work(y, yh, rb, 0.5 * raw[5] * h)
     m2 = be_step(yh, 0.5 * h, raw[0] + raw[1] * (tau + 0.75 * h), raw[2] + raw[3] * (tau + 0.75 * h),
-                 raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult, np.bool_(True))
+                 raw[4] + raw[5] * (tau + 0.75 * h), c, rb, mu, rim, rh, y2, r2, 1.0, 1.0, ult, np.bool_(True), np.bool_(True))
     if raw[5] != 0.0:
         vertical_work(yh, y2, rb, 0.5 * raw[5] * h)
     return m1, mh, m2
@@ -1406,6 +1414,11 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
     x_floor = scales[0]
     v_floor = scales[1]
     max_evals = work_bound(tol)
+    rb_mu = 0.0  # Σ R̄ µ and Σ R̄ of the groups: the rounding of their slips (SLIP_QUANTA)
+    rb_sum = 0.0
+    for k in range(ng):
+        rb_mu += rb[k] * mu[k]
+        rb_sum += rb[k]
     peak_x = 0.0
     peak_v = 0.0
     peak_a = math.sqrt(ax[0] * ax[0] + ay[0] * ay[0])
@@ -1490,6 +1503,9 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
             ult = np.int64(-1)
             located = False
             stop_cut = False
+            # the error's displacement scale, above the slips' rounding (SLIP_QUANTA)
+            xs = max(tol * max(peak_x, x_floor),
+                     SLIP_QUANTA * DOUBLE_EPS * (rb_mu + rb_sum * math.sqrt(r[0] * r[0] + r[1] * r[1])))
             if jump:
                 g = nz[i] + slope_z * (tau + 0.5 * h)
                 arrive(y, h, ax[i] + slope_x * (tau + 0.5 * h), ay[i] + slope_y * (tau + 0.5 * h), g, c, mu, rim, y2)
@@ -1609,7 +1625,7 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                 # split 0.81 of the tolerance, X 4.6e-6, V 1.7e-4 of theirs; the steps fell to 6.5e-7 s with ~7,000
                 # gradients each until the work bound).  On the rims |ū_k| = c̄_k: the stored energy does not depend
                 # on the split, and the friction work it does is in the balance
-                err = step_error(y1, y2, m1, mh, m2, ng, tol * max(peak_x, x_floor), tol * max(peak_v, v_floor))
+                err = step_error(y1, y2, m1, mh, m2, ng, xs, tol * max(peak_v, v_floor))
             n_steps += 1
             if err > 1.0:
                 if not at_floor:
@@ -1682,8 +1698,7 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                     accept_step(ya, ya1, ya2, ny, ny - 1, ng, rim, m1a, mha, m2a, np.bool_(False), np.bool_(True))
                     vn = arrival_impact(ya, rim, free)
                     if vn >= 0.0:
-                        err_a = step_error(ya1, ya2, m1a, mha, m2a, ng, tol * max(peak_x, x_floor),
-                                           tol * max(peak_v, v_floor))
+                        err_a = step_error(ya1, ya2, m1a, mha, m2a, ng, xs, tol * max(peak_v, v_floor))
                         if err_a > 1.0 and not at_floor:
                             n_rej += 1
                             h = max(lo * max(0.1, 0.9 / math.sqrt(err_a)), h_floor)
