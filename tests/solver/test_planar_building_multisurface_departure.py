@@ -52,9 +52,9 @@ def test_a_tighter_step_tol_departs_from_rest_on_time_aom017(records_dir):
 
 
 def test_the_slide_displacement_does_not_sum_the_slips_rounding_aom017(records_dir):
-    # at step_tol 1e-10 the 1 mm slide takes ~2.4e5 steps; X summed the groups' slips, each a multiple of R̄ ulp(r)
-    # (~1.7e-17 m) with a bias, and erred by ~43 step_tol of the peak on c765efa (the whole record's window:
-    # 4.3e-9; docs/building.md, h224's section); X moved by h V' where the groups slide inside their rims
+    # at step_tol 1e-10 the window takes ~4.2e5 steps; X summed the groups' slips, each a multiple of R̄ ulp(r)
+    # (~1.7e-17 m) with a bias, and erred by 42.5 step_tol of the peak on c765efa (4.3e-9 over the record's 8 s
+    # window; docs/building.md, h224's section); X moved by h V' where the groups slide inside their rims: 0.33
     step_tol = 1e-10
     exact, plane, error = aom017_slide(records_dir, step_tol)
     assert plane.n_steps_at_floor == 0
