@@ -311,8 +311,9 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         # slab at rest leaving a rim, or the ultimate, inward lost its inward velocity in every step (Christchurch CBGS
         # ×1.5 on IELC's case at step_tol 1e-9, 6.167 s: 3,000,000 steps in one interval; Chuetsu-oki 65025, 1.741 s:
         # the work bound; docs/building.md, h220's section)
+        # X moved by h V' where the groups slid inside their rims (``x_balance``: the slips' quanta summed drifted)
         mask = be_step(y, h, ap_x, ap_y, gp, cp, rb, mu, rim, rguess, out, rout, 1.0, 1.0, ult, np.bool_(True),
-                       np.bool_(True))
+                       np.bool_(True), np.bool_(True))
     else:
         # the floors differ along x and y: the slab's effective mass µ_d per direction, Ψ's metric diagonal.  At the
         # ultimate the velocity is turned onto its circle only when every group that slid slid along its rim
@@ -322,7 +323,7 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         gp = g
         cp = c
         mask = be_step(y, h, ap_x, ap_y, g, c, rb, mu, rim, rguess, out, rout, mu_d[0], mu_d[1], ult,
-                       np.bool_(False), np.bool_(True))  # one compiled version: the same arguments' types
+                       np.bool_(False), np.bool_(True), np.bool_(False))  # one compiled version: the same types
         mu_h = 1.0  # be_step books the friction and the dashpot with g and c themselves
     impact = out[Y_EIMP] != y[Y_EIMP]
     slid = mask & ((1 << ng) - 1)

@@ -824,7 +824,7 @@ def step_force(y, rb, mu, rim, alpha, px, py, g, rx, ry, mx=1.0, my=1.0, ult=-1)
 
 @njit(cache=True)
 def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0, m_y=1.0, ult=-1, block=False,
-            leave=False):
+            leave=False, x_balance=False):
     """One backward-Euler step of length h [s] from the state y into out; the force r/W into rout[:2], the evaluations
     of Ψ's gradient it took into rout[2].
 
@@ -844,6 +844,12 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     slid along its rim (its return on the rim, not inside it to a rounding of it): a group leaving its rim inward from
     rest slips ~A h² ≪ RIM_ON c̄ and ends "on its rim", and turned, the inward velocity was lost in every step (the
     building's steps set it: docs/building.md, h220's section; the rigid block's leave it False).
+
+    ``x_balance``: where every group that slid returned inside its rim (none on its rim at the end, none on a half
+    disc), X moves by h V' (V' the momentum balance's) instead of the sum of the groups' slips, equal in exact
+    arithmetic, and the group that slid most takes the difference: the slips move in quanta of R̄ ulp(r) whatever h,
+    and their sum drifted by ~7e-18 m a step (the building's isotropic steps set it: docs/building.md, h224's
+    section; the rigid block's leave it False).
 
     Returns the bit set of the groups that slid, and above it (shifted by the number of groups) the bit
     set of the groups on their rims at the step's end (|ū| ≥ c̄ (1 − RIM_ON))."""
@@ -922,6 +928,29 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     else:
         out[Y_V] = 0.0
         out[Y_V + 1] = 0.0
+    if x_balance and mask & ((1 << ng) - 1) and not mask >> ng and not along and not half and iterations >= 0:
+        # X from the same balance, X + h V' (ΣΔ in exact arithmetic), where every group that slid returned inside its
+        # rim (no projection onto a rim, no velocity turned after this): a group's slip moves in quanta of
+        # R̄ ulp(r) (~1.7e-17 m on IELC's double, whatever h), with a bias, and X summed them — AOM017 ×1.5's 1 mm
+        # slide erred by 4.3e-9 of its peak at step_tol 1e-10 (43 step_tol; docs/building.md, h224's section).  The
+        # difference goes to the group that slid most, so that X stays the groups' sum (the rims and the ultimate
+        # are |ū_k| = c̄_k: X apart from Σū by the differences summed passed the ultimate by 1e-12 of it)
+        e1 = h * out[Y_V] - dx1
+        e2 = h * out[Y_V + 1] - dx2
+        most = -1
+        d_most = -1.0
+        for k in range(ng):
+            if mask >> k & 1:
+                d_k = (out[Y_U + 2 * k] - y[Y_U + 2 * k]) ** 2 + (out[Y_U + 2 * k + 1] - y[Y_U + 2 * k + 1]) ** 2
+                if d_k > d_most:
+                    most = k
+                    d_most = d_k
+        out[Y_U + 2 * most] += e1
+        out[Y_U + 2 * most + 1] += e2
+        dx1 += e1
+        dx2 += e2
+        out[Y_X] = y[Y_X] + dx1
+        out[Y_X + 1] = y[Y_X + 1] + dx2
     out[Y_EIN] = y[Y_EIN] - (abar_x * dx1 + abar_y * dx2)
     out[Y_EF] = y[Y_EF] + fric
     out[Y_EV] = y[Y_EV] + c * (dx1 * dx1 + dx2 * dx2) / h
