@@ -319,11 +319,13 @@ def building_step(y, h, a0x, a0y, sx, sy, g, c, rb, mu, rim, om, zeta, gam, rgue
         # ultimate the velocity is turned onto its circle only when every group that slid slid along its rim
         # (``leave``, independent of the masses): without it a slab at rest there leaving inward lost its inward
         # velocity in every step (h220's departure with k_y = k_x / 2: the work bound at 0.898 s; docs/building.md,
-        # h225's section).  ``block`` stays off: its step without slip takes V = h A for unit masses (be_step)
+        # h225's section).  ``block`` too (its step without slip from the momentum balance with
+        # the masses per direction): without it a slab at rest on a rim leaving inward was turned back onto it in every
+        # step (k_y = k_x / 2: the work bound at 1.494 s; docs/building.md, session 25)
         gp = g
         cp = c
         mask = be_step(y, h, ap_x, ap_y, g, c, rb, mu, rim, rguess, out, rout, mu_d[0], mu_d[1], ult,
-                       np.bool_(False), np.bool_(True), np.bool_(False))  # one compiled version: the same types
+                       np.bool_(True), np.bool_(True), np.bool_(False))  # one compiled version: the same types
         mu_h = 1.0  # be_step books the friction and the dashpot with g and c themselves
     impact = out[Y_EIMP] != y[Y_EIMP]
     slid = mask & ((1 << ng) - 1)

@@ -836,9 +836,9 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     for the whole step and its two halves alike (planar_multisurface_stepper); -1 takes :func:`at_ultimate` of y,
     and the velocity is then turned onto the ultimate circle only when the end is aligned too.
 
-    ``block``: the rigid block's steps and the building's isotropic ones (its anisotropic steps leave it False): a step
-    without slip whose p/g leaves a group's held set takes V = h A, and a group carries the mass only if its return
-    slid along its rim (docs/multisurface.md, "A restart below the rounding").
+    ``block``: the rigid block's steps and the building's (isotropic and anisotropic): a step without slip whose
+    force needed to hold the mass leaves a group's held set takes V from the momentum balance, and a group carries
+    the mass only if its return slid along its rim (docs/multisurface.md, "A restart below the rounding").
 
     ``leave``: held on the ultimate circle, the velocity is turned onto its tangent only when every group that slid
     slid along its rim (its return on the rim, not inside it to a rounding of it): a group leaving its rim inward from
@@ -913,10 +913,13 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     out[Y_X + 1] = y[Y_X + 1] + dx2
     # V from the momentum balance rather than ΣΔ/h (equal in exact arithmetic): the slips' rounding divided
     # by a small step would swamp the error estimate
-    if mask & ((1 << ng) - 1) and not unit:
+    if not unit and (mask & ((1 << ng) - 1) or (block and not rest_holds(y, rb, mu, rim, px / (met_x * g),
+                                                                            py / (met_y * g)))):
+        # (``block`` with unequal masses: the force needed to hold the slab, (m V/h − ā)/g per direction, leaves a
+        # group's held set — the anisotropic building leaving a rim inward from rest; docs/building.md, session 25)
         out[Y_V] = (m_x * y[Y_V] - h * (g * rx + abar_x)) / (m_x + c * h)
         out[Y_V + 1] = (m_y * y[Y_V + 1] - h * (g * ry + abar_y)) / (m_y + c * h)
-    elif mask & ((1 << ng) - 1) or (block and not rest_holds(y, rb, mu, rim, px / g, py / g)):
+    elif mask & ((1 << ng) - 1) or (unit and block and not rest_holds(y, rb, mu, rim, px / g, py / g)):
         # (the rigid block: also when no group's slip rose above the rounding of its ū — ~1e-17 m, A h² at a start
         # from rest with h ≲ 3e-9 s — while p/g leaves a group's held set: the mass moves, V = h A.  Zeroed there, a
         # restart from a stop was lost in every step the step-doubling allowed (the full step slid, its halves
@@ -1687,14 +1690,14 @@ def planar_multisurface_stepper(t, ax, ay, nz, rb, mu, rim, members, tmat, c, to
                         break
                     be_step(y, t_try, ax[i] + slope_x * (tau + 0.5 * t_try), ay[i] + slope_y * (tau + 0.5 * t_try),
                             nz[i] + slope_z * (tau + 0.5 * t_try), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, np.int64(-1),
-                            np.bool_(True))
+                            np.bool_(True), np.bool_(False))  # ``leave`` passed: one version with three_solves'
                     work += rh[2]
                     if y[Y_V] * y0[Y_V] + y[Y_V + 1] * y0[Y_V + 1] > 0.0:
                         lo = t_try
                 if lo > 0.0:
                     be_step(y, lo, ax[i] + slope_x * (tau + 0.5 * lo), ay[i] + slope_y * (tau + 0.5 * lo),
                             nz[i] + slope_z * (tau + 0.5 * lo), c, rb, mu, rim, r, y0, rh, 1.0, 1.0, np.int64(-1),
-                            np.bool_(True))
+                            np.bool_(True), np.bool_(False))  # ``leave`` passed: one version with three_solves'
                     if math.sqrt(y0[Y_V] ** 2 + y0[Y_V + 1] ** 2) <= max(
                             tol * max(peak_v, v_floor), CUT_ROUNDING * math.sqrt(y[Y_X] ** 2 + y[Y_X + 1] ** 2) / lo):
                         h = lo
