@@ -48,24 +48,30 @@ def test_a_tight_step_tol_takes_no_floor_steps_on_a_small_slide(records_dir):
     assert plane.n_steps <= 600_000
 
 
+def _anisotropic(push_g, push_s, hold_g, end_s):
+    """IELC's one-story building on the double, pushed along x by :func:`_push_hold_ease`: the exact 1-D building with
+    the x stiffness (the truth) and the 2-D building whose story is half as stiff along y (step_tol 1e-8)."""
+    acc, dt = _push_hold_ease(push_g, push_s, hold_g, end_s)
+    b = bearing("double", DOUBLE)
+    one = Superstructure(floors=(Floor(4e5, 3.5, 3e8, 3e8),), damping_ratio=0.05, gravity_m_s2=G)
+    two = Superstructure(floors=(Floor(4e5, 3.5, 3e8, 1.5e8),), damping_ratio=0.05, gravity_m_s2=G)
+    exact = simulate_building_bearing(acc, dt, superstructure=one, bearing=b, total_mass_kg=6e5, damping_Ns_per_m=5e4)
+    plane = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=two, bearing=b, total_mass_kg=6e5,
+                                           damping_Ns_per_m=5e4, step_tol=1e-8)
+    return exact, plane, [exact.EVENT_NAMES[k] for k in exact.event_kind], exact.peak_displacement_m
+
+
 def test_an_anisotropic_building_leaves_the_ultimate_inward_as_the_exact_1d_building():
     # h220's second case (IELC's one-story building pushed to the double's ultimate, left inward from rest at 0.898 s)
     # with the story's stiffness along y half that along x: the anisotropic steps, whose velocity was turned onto the
     # ultimate circle's tangent in every step while the groups' slips were below their rims' rounding; on c765efa the
     # work bound at 0.898132 s.  The truth along x: the exact 1-D building with the x stiffness
-    acc, dt = _push_hold_ease(0.3, 0.5, 0.16, 1.2)
-    b = bearing("double", DOUBLE)
-    one = Superstructure(floors=(Floor(4e5, 3.5, 3e8, 3e8),), damping_ratio=0.05, gravity_m_s2=G)
-    two = Superstructure(floors=(Floor(4e5, 3.5, 3e8, 1.5e8),), damping_ratio=0.05, gravity_m_s2=G)
-    exact = simulate_building_bearing(acc, dt, superstructure=one, bearing=b, total_mass_kg=6e5, damping_Ns_per_m=5e4)
-    kinds = [exact.EVENT_NAMES[k] for k in exact.event_kind]
+    exact, plane, kinds, peak = _anisotropic(0.3, 0.5, 0.16, 1.2)
     assert "ultimate" in kinds and kinds[kinds.index("ultimate") + 1] == "breakaway"
-    plane = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=two, bearing=b, total_mass_kg=6e5,
-                                           damping_Ns_per_m=5e4, step_tol=1e-8)
-    peak = exact.peak_displacement_m
     # measured 8.5e-9 of the peak (the isotropic building's: the same)
     assert np.max(np.abs(plane.displacement_m[:, 0] - exact.displacement_m)) <= 2e-8 * peak
     assert np.max(np.abs(plane.displacement_m[:, 1])) <= 1e-12 * peak
+
 
 def test_an_anisotropic_building_leaves_a_rim_inward_as_the_exact_1d_building():
     # h220's first case (the first group held on its rim from 1.459 s, its force leaving the friction circle inward at
@@ -73,17 +79,9 @@ def test_an_anisotropic_building_leaves_a_rim_inward_as_the_exact_1d_building():
     # ran without be_step's ``block`` (its step without slip took V = h A for unit masses only), so the first slips,
     # below the rim test's rounding, were turned back onto the rim's tangent in every step; on int25 (de0a704) the work
     # bound at 1.49439 s.  The truth along x: the exact 1-D building with the x stiffness
-    acc, dt = _push_hold_ease(0.2, 0.3, 0.1, 1.8)
-    b = bearing("double", DOUBLE)
-    one = Superstructure(floors=(Floor(4e5, 3.5, 3e8, 3e8),), damping_ratio=0.05, gravity_m_s2=G)
-    two = Superstructure(floors=(Floor(4e5, 3.5, 3e8, 1.5e8),), damping_ratio=0.05, gravity_m_s2=G)
-    exact = simulate_building_bearing(acc, dt, superstructure=one, bearing=b, total_mass_kg=6e5, damping_Ns_per_m=5e4)
-    kinds = [exact.EVENT_NAMES[k] for k in exact.event_kind]
+    exact, plane, kinds, peak = _anisotropic(0.2, 0.3, 0.1, 1.8)
     assert kinds[-2:] == ["stick", "breakaway"] and 1.45 < exact.event_time_s[-1] < 1.5
-    plane = simulate_building_bearing_pair(acc, 0.0 * acc, dt, superstructure=two, bearing=b, total_mass_kg=6e5,
-                                           damping_Ns_per_m=5e4, step_tol=1e-8)
-    peak = exact.peak_displacement_m
     assert exact.displacement_m[-1] < peak - 0.04  # it went back inward
-    # measured 1.66e-9 of the peak (h225's scratch copy of this change)
+    # measured 1.66e-9 of the peak
     assert np.max(np.abs(plane.displacement_m[:, 0] - exact.displacement_m)) <= 5e-9 * peak
     assert np.max(np.abs(plane.displacement_m[:, 1])) <= 1e-12 * peak
