@@ -88,6 +88,7 @@ from isolator.solver.planar_multisurface_kernel import (
 )
 from isolator.solver.planar_multisurface_stepper import (
     CUT_ROUNDING,
+    DOUBLE_EPS,
     H_MIN_FRACTION,
     MAX_STEPS_PER_INTERVAL,
     RIM_AWAY,
@@ -101,6 +102,7 @@ from isolator.solver.planar_multisurface_stepper import (
     S_N_RIM_CONTACTS,
     S_N_ULTIMATE,
     S_PEAK_R,
+    SLIP_QUANTA,
     SLIP_TURN,
     STATUS_UNSOLVED,
     STATUS_WORK,
@@ -131,13 +133,6 @@ from isolator.solver.planar_multisurface_stepper import (
 #: rout's slots past be_step's three (r_x, r_y, gradients): the velocity an impulse removed from the slab [m/s]
 R_IMPULSE = 3
 R_SIZE = 4
-#: the slab's displacement error scale xs is held above this many ulps of the groups' slips' rounding: a group's slip
-#: is R̄ (|r − ū/R̄| − µ) along its direction, whose rounding is ~ε R̄ (µ + |r|) whatever the slip (~1.7e-17 m on IELC's
-#: double), and the three solves' X differ by it.  step_tol × the displacement floor fell below it (AOM017 ×1.5 on the
-#: double, step_tol 3e-10: xs 1.0e-17 m before the slide, the rounding 1.7 of it): the steps were rejected on
-#: rounding down to the floor, where a restart's slip rounds to nothing, and the slide started late (2.05e-1 of the
-#: peak; docs/building.md, "A tighter step_tol gave a worse answer")
-X_ROUNDING_ULPS = 4.0
 
 
 @njit(cache=True)
@@ -203,7 +198,6 @@ def _mode_core(q0, v0, phi0, psi, h, w, z, gm, e, cs, sn, ic, is_, e0, ic2, is2,
 #: the columns of a step length's table per mode (mode_table): e^{−ζωh}, cos ω_d h, sin ω_d h and the integrals
 #: ∫e^{−ζωτ}cos ω_dτ, ∫e^{−ζωτ}sin ω_dτ, ∫e^{−2ζωτ}, ∫e^{−2ζωτ}cos 2ω_dτ, ∫e^{−2ζωτ}sin 2ω_dτ over [0, h]
 TABLE_SIZE = 8
-EPS = 2.220446049250313e-16  # the doubles' machine epsilon
 
 
 @njit(cache=True)
@@ -940,7 +934,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
     qd_floor = scales[3]
     floor_rel = scales[4]
     max_evals = work_bound(tol)
-    rb_mu = 0.0  # Σ R̄ µ and Σ R̄ of the groups: the rounding of their slips (X_ROUNDING_ULPS)
+    rb_mu = 0.0  # Σ R̄ µ and Σ R̄ of the groups: the rounding of their slips (SLIP_QUANTA)
     rb_sum = 0.0
     for k in range(ng):
         rb_mu += rb[k] * mu[k]
@@ -1134,7 +1128,7 @@ def planar_building_multisurface_kernel(t, ax, ay, nz, c, rb, mu, rim, members, 
                 summary[S_FAIL_RIMS] = _on_rims(y, rim)
                 break
             xs = max(tol * max(peak_x, x_floor),
-                     X_ROUNDING_ULPS * EPS * (rb_mu + rb_sum * math.sqrt(r[0] * r[0] + r[1] * r[1])))
+                     SLIP_QUANTA * DOUBLE_EPS * (rb_mu + rb_sum * math.sqrt(r[0] * r[0] + r[1] * r[1])))
             vs = tol * max(peak_v, v_floor)
             qs = tol * max(peak_q, floor_rel * peak_x, q_floor)
             qds = tol * max(peak_qd, floor_rel * peak_v, qd_floor)

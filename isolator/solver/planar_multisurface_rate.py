@@ -70,11 +70,6 @@ HAND_OVER_GAP = 1e-10
 HAND_OVER_MAX_FORCES = 20_000
 
 
-def _potential(u, smat, rbar, g):
-    ub = smat @ u
-    return float(g * np.sum(np.sum(ub * ub, axis=1) / (2.0 * rbar)))
-
-
 def hand_over(t_local, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, times, ax, ay, energies,
               rtol=HAND_OVER_RTOL, saturated_gap=HAND_OVER_GAP) -> dict:
     """The kernel's state with every surface on its rim and the rims apart (``STATUS_ALL_RIMS``) carried on: the slide
@@ -104,7 +99,7 @@ def hand_over(t_local, xdot, u, cap, bmat, smat, rbar, mu_s, mu_f, rate, g, c, t
     e_in, e_f, e_v, e_imp = energies
     impact = 0.5 * impulse * impulse
     total_in = e_in + out["input"]
-    total_balance = total_in - (0.5 * float(after @ after) + _potential(out["u"], smat, rbar, g) + e_f + out["friction"]
+    total_balance = total_in - (0.5 * float(after @ after) + out["potential"][1] + e_f + out["friction"]
                                 + e_v + out["viscous"] + e_imp + impact)
     out.update(impulse=impulse, impact_energy=impact, along=float(normal[0] * after[1] - normal[1] * after[0]),
                normal=normal, start_t=float(t_local), spread=planar_rim_slide.rim_spread(out["u"]), total_balance=total_balance, total_input=total_in,

@@ -114,10 +114,13 @@ WORK_TOL = 1e-7
 #: floor of Ψ's gradient where groups are at their rims (step_force)
 RIM_ROUNDING = 8e-16
 #: the displacement's error scale is held above this many machine epsilons of Σ R̄ µ + Σ R̄ |r|, the rounding of the
-#: groups' slips (a slip R̄ (|r − ū/R̄| − µ) moves in quanta of R̄ ulp(r)): at rest the running peak is ~0 and the scale
-#: step_tol × the floor fell below it at tight tolerances (N. California 89146 ×1.5 on IELC's double, step_tol 3e-10:
-#: 141,017 steps accepted at the floor with their error above 1; docs/multisurface.md, h225's section).  The building's
-#: steps hold theirs the same way (planar_building_multisurface_kernel's X_ROUNDING_ULPS, h219)
+#: groups' slips (a slip R̄ (|r − ū/R̄| − µ) moves in quanta of R̄ ulp(r), ~1.7e-17 m on IELC's double, and the three
+#: solves' X differ by it): at rest the running peak is ~0 and the scale step_tol × the floor fell below it at tight
+#: tolerances, the steps were rejected on rounding down to the floor and accepted there whatever their error — the
+#: rigid block's (N. California 89146 ×1.5 on IELC's double, step_tol 3e-10: 141,017 such steps; docs/multisurface.md,
+#: h225's section) and the building's (planar_building_multisurface_kernel, which takes this constant: AOM017 ×1.5,
+#: step_tol 3e-10, the slide started late, 2.05e-1 of the peak; docs/building.md, "A tighter step_tol gave a worse
+#: answer")
 SLIP_QUANTA = 4.0
 #: the doubles' machine epsilon
 DOUBLE_EPS = 2.220446049250313e-16
@@ -843,7 +846,8 @@ def be_step(y, h, abar_x, abar_y, g, c, rb, mu, rim, rguess, out, rout, m_x=1.0,
     ``leave``: held on the ultimate circle, the velocity is turned onto its tangent only when every group that slid
     slid along its rim (its return on the rim, not inside it to a rounding of it): a group leaving its rim inward from
     rest slips ~A h² ≪ RIM_ON c̄ and ends "on its rim", and turned, the inward velocity was lost in every step (the
-    building's steps set it: docs/building.md, h220's section; the rigid block's leave it False).
+    building's steps and the rigid block's three solves set it: docs/building.md, h220's section, docs/multisurface.md,
+    h225's; the rigid block's stop probes leave it False).
 
     ``x_balance``: where every group that slid returned inside its rim (none on its rim at the end, none on a half
     disc), X moves by h V' (V' the momentum balance's) instead of the sum of the groups' slips, equal in exact

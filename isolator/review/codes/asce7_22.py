@@ -233,6 +233,18 @@ def torsion_amplification(y_m: float, eccentricity_m: float, p_t: float, b_m: fl
     return 1.0 + (y_m / p_t ** 2) * 12.0 * eccentricity_m / (b_m * b_m + d_m * d_m)
 
 
+def direction_factors(plan: dict, layout: dict, params: dict, p_t: float, e_perp_b: float,
+                      e_perp_d: float) -> list[float]:
+    """Eq. 17.5-3's bracket for the two loading directions [-]: ⟂ b (loading along y, y measured along x) with the
+    actual eccentricity ``e_perp_b``, ⟂ d (loading along x) with ``e_perp_d`` [m], each plus ``accidental_e`` × that
+    plan dimension; ``y`` the given ``y_m``, else the layout's farthest bearing ⟂ loading, else half the dimension."""
+    b, d = plan["b_m"], plan["d_m"]
+    return [torsion_amplification(plan.get("y_m", layout_y if layout_y is not None else 0.5 * perpendicular),
+                                  e + params["accidental_e"] * perpendicular, p_t, b, d)
+            for perpendicular, layout_y, e in ((b, layout.get("y_for_loading_y_m"), e_perp_b),
+                                               (d, layout.get("y_for_loading_x_m"), e_perp_d))]
+
+
 def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) -> dict:
     """D_TM / D_M of Eq. 17.5-3 (the larger of the two loading directions), with its basis.
 
@@ -264,13 +276,8 @@ def torsion_factor(plan: dict | None, params: dict, layout: dict | None = None) 
     # a P_T below the floor said "P_T = 1 (the bearing layout)": the layout gave 0.29, the floor P_T_min was used
     p_t_said = (f"P_T = {p_t:.4g} ({p_t_source})" if p_t_raw >= params["P_T_min"] else
                 f"P_T = {p_t:.4g} (P_T_min; {p_t_source}: {p_t_raw:.4g})")
-    factors = []
-    # perpendicular b (along x): loading along y, y measured along x; perpendicular d: loading along x
-    for perpendicular, layout_y in ((b, layout.get("y_for_loading_y_m")), (d, layout.get("y_for_loading_x_m"))):
-        e = plan.get("eccentricity_m", 0.0) + params["accidental_e"] * perpendicular
-        y = plan.get("y_m", layout_y if layout_y is not None else 0.5 * perpendicular)
-        factors.append(torsion_amplification(y, e, p_t, b, d))
-    raw = max(factors)
+    e_plan = plan.get("eccentricity_m", 0.0)
+    raw = max(direction_factors(plan, layout, params, p_t, e_plan, e_plan))
     disagree = eccentricity_disagreement(plan, layout, params, p_t)
     y_source = "given" if "y_m" in plan else ("the bearing layout" if "y_for_loading_x_m" in layout else "assumed")
     return {"factor": max(raw, floor), "raw_factor": raw, "P_T": p_t, "P_T_raw": p_t_raw,
@@ -303,12 +310,7 @@ def eccentricity_disagreement(plan: dict, layout: dict, params: dict, p_t: float
         return {}
     e_plan = float(plan["eccentricity_m"])
     e_x, e_y = abs(centre[1]), abs(centre[0])  # ⟂ loading along x: the y offset; along y: the x offset
-    b, d = plan["b_m"], plan["d_m"]
-    factor = max(max(torsion_amplification(plan.get("y_m", layout_y if layout_y is not None else 0.5 * perp),
-                                           e + params["accidental_e"] * perp, p_t, b, d)
-                     for perp, layout_y, e in ((b, layout.get("y_for_loading_y_m"), e_y),
-                                               (d, layout.get("y_for_loading_x_m"), e_x))),
-                 params["D_TM_floor"])
+    factor = max(max(direction_factors(plan, layout, params, p_t, e_y, e_x)), params["D_TM_floor"])
     difference = max(abs(e_plan - e_x), abs(e_plan - e_y))
     floor_said = " (the floor)" if factor == params["D_TM_floor"] else ""
     verdict = (f"they disagree by {difference:.3g} m; the bearing layout's would give D_TM/D_M = {factor:.4g}"
